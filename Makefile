@@ -1,0 +1,40 @@
+# The two commands of the course: `make lab` and `make test` (plus `make bench`).
+# Both create .venv when it is missing and install afmsmiler (editable) with its extras.
+PYTHON ?= python3
+VENV   ?= .venv
+PY     := $(VENV)/bin/python
+STAMP  := $(VENV)/.afmsmiler-installed
+export MPLBACKEND ?= Agg
+
+.PHONY: install lab test unit notebooks bench clean
+
+$(STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[test,lab,files]'
+	touch $(STAMP)
+
+install: $(STAMP)
+
+## Open the course notebooks in JupyterLab, served on 127.0.0.1 only.
+lab: $(STAMP)
+	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks $(LAB_ARGS)
+
+## Every unit test, then every notebook under nbval, then the check that no 3D server outlived them.
+test: $(STAMP)
+	$(PY) -m pytest tests
+	$(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
+	$(PY) -m pytest -p no:cacheprovider tests/after_notebooks
+
+unit: $(STAMP)
+	$(PY) -m pytest tests
+
+notebooks: $(STAMP)
+	$(PY) -m pytest --nbval-lax --nbval-current-env notebooks
+
+## Speed figures, as ratios against each issue's named peer, measured in one run.
+bench: $(STAMP)
+	$(PY) benchmarks/run_all.py
+
+clean:
+	rm -rf $(VENV) .pytest_cache book/_build

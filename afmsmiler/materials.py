@@ -1,0 +1,67 @@
+"""Material presets for cantilevers, tips and samples (SI units).
+
+Values are textbook figures; each preset says where it comes from. Crystalline silicon is
+anisotropic: the Young's modulus along <110>, the usual cantilever axis on a (100) wafer, is
+169 GPa (Hopcroft, Nix and Kenny, J. Microelectromech. Syst. 19, 229 (2010)), which is also the
+value AFM probe vendors use to compute nominal spring constants.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from .validation import check_positive, check_range
+
+__all__ = ["Material", "MATERIALS", "get_material"]
+
+
+@dataclass(frozen=True)
+class Material:
+    """An isotropic, linear-elastic material.
+
+    Parameters
+    ----------
+    name : str
+        Human-readable name.
+    youngs_modulus : float
+        Young's modulus E in Pa.
+    density : float
+        Mass density rho in kg/m^3.
+    poisson_ratio : float
+        Poisson's ratio nu, in [0, 0.5).
+    source : str
+        Where the figures come from.
+    """
+
+    name: str
+    youngs_modulus: float
+    density: float
+    poisson_ratio: float = 0.25
+    source: str = ""
+
+    def __post_init__(self):
+        check_positive("youngs_modulus", self.youngs_modulus, "Pa")
+        check_positive("density", self.density, "kg/m^3")
+        check_range("poisson_ratio", self.poisson_ratio, 0.0, 0.5, high_inclusive=False)
+
+
+MATERIALS: dict[str, Material] = {
+    "silicon": Material("silicon <110>", 169e9, 2330.0, 0.064,
+                        "Hopcroft et al., JMEMS 19, 229 (2010): E<110> = 169 GPa"),
+    "silicon_nitride": Material("silicon nitride (LPCVD)", 250e9, 3100.0, 0.23,
+                                "LPCVD Si3N4 films, E reported 150-310 GPa; 250 GPa typical"),
+    "silicon_dioxide": Material("silicon dioxide (thermal)", 70e9, 2200.0, 0.17,
+                                "thermal SiO2, E = 70 GPa"),
+    "gold": Material("gold", 79e9, 19300.0, 0.42, "bulk Au, CRC Handbook"),
+    "aluminium": Material("aluminium", 70e9, 2700.0, 0.35, "bulk Al, CRC Handbook"),
+    "quartz": Material("quartz (qPlus tuning fork)", 78.7e9, 2650.0, 0.17,
+                       "Giessibl, Rev. Mod. Phys. 75, 949 (2003)"),
+}
+
+
+def get_material(name: str | Material) -> Material:
+    """Return a preset by key (see :data:`MATERIALS`) or pass a :class:`Material` through."""
+    if isinstance(name, Material):
+        return name
+    if name not in MATERIALS:
+        raise ValueError(f"material must be one of {sorted(MATERIALS)} or a Material, got {name!r}")
+    return MATERIALS[name]

@@ -1,0 +1,8 @@
+"""Widget panels: ipywidgets sliders -> pure model calls -> figures and scenes updated in place.
+
+Each panel is a class with a pure ``update(**values)`` callback that tests can call without a
+browser; sliders are bounded to the model's valid ranges, in practical units (nm, um, nN, GPa, kHz).
+"""
+from .panel import Panel, log_slider, running_as_notebook, slider
+
+__all__ = ["Panel", "slider", "log_slider", "running_as_notebook"]

@@ -1,0 +1,150 @@
+"""The base of every widget panel, and slider helpers in practical units.
+
+A panel owns a dict of controls (ipywidgets), a matplotlib figure and optionally a meshcat
+scene. Its :meth:`Panel.update` callback receives the control values (in the units the sliders
+show), converts them to SI, calls the models and updates the artists and the scene in place.
+Tests construct a panel, call :meth:`Panel.set` and check the figure data against the model.
+"""
+from __future__ import annotations
+
+import math
+import os
+
+import ipywidgets as widgets
+import matplotlib
+import matplotlib.pyplot as plt
+from IPython.display import display
+
+__all__ = ["Panel", "slider", "log_slider", "running_as_notebook"]
+
+
+def running_as_notebook() -> bool:
+    """True in a live notebook kernel; False under pytest/nbval (``AFMSMILER_TESTING`` or CI).
+
+    Use it to shorten long animations and simulations under test, as in Tedrake's course notes.
+    """
+    if os.environ.get("AFMSMILER_TESTING") or os.environ.get("CI") or "PYTEST_CURRENT_TEST" in os.environ:
+        return False
+    try:
+        from IPython import get_ipython
+        shell = get_ipython()
+    except ImportError:
+        return False
+    return shell is not None and type(shell).__name__ == "ZMQInteractiveShell" and \
+        not os.environ.get("NBVAL")
+
+
+def slider(description: str, value: float, low: float, high: float, step: float | None = None,
+           unit: str = "", readout_format: str = ".3g") -> widgets.FloatSlider:
+    """A linear float slider whose label carries its (practical) unit.
+
+    The bounds must lie inside the model's valid range, so the slider cannot produce a value the
+    model rejects.
+    """
+    if not (low < high and low <= value <= high):
+        raise ValueError(f"slider {description!r}: value {value} must lie in [{low}, {high}]")
+    label = f"{description} [{unit}]" if unit else description
+    return widgets.FloatSlider(value=value, min=low, max=high, step=step or (high - low) / 200,
+                               description=label, readout_format=readout_format,
+                               continuous_update=True, style={"description_width": "initial"},
+                               layout=widgets.Layout(width="420px"))
+
+
+def log_slider(description: str, value: float, low: float, high: float, unit: str = "",
+               steps_per_decade: int = 20, readout_format: str = ".3g") -> widgets.FloatLogSlider:
+    """A log-scale slider for a parameter that spans decades (bounds are values, not exponents)."""
+    if not (0 < low < high and low <= value <= high):
+        raise ValueError(f"log slider {description!r}: value {value} must lie in [{low}, {high}] > 0")
+    label = f"{description} [{unit}]" if unit else description
+    return widgets.FloatLogSlider(value=value, base=10, min=math.log10(low), max=math.log10(high),
+                                  step=1 / steps_per_decade, description=label,
+                                  readout_format=readout_format, continuous_update=True,
+                                  style={"description_width": "initial"},
+                                  layout=widgets.Layout(width="420px"))
+
+
+def _interactive_backend() -> bool:
+    return "ipympl" in matplotlib.get_backend().lower() or "widget" in matplotlib.get_backend().lower()
+
+
+class Panel:
+    """Base class of a widget panel.
+
+    Subclasses set ``self.controls`` (name -> widget) and ``self.fig`` in ``__init__`` before
+    calling ``super().__init__()``, and implement :meth:`update`.
+    """
+
+    controls: dict
+    fig: plt.Figure | None = None
+
+    def __init__(self):
+        self._output = widgets.Output()
+        self.last = None  # the last model result, for tests and exercises
+        for control in self.controls.values():
+            control.observe(self._on_change, names="value")
+        self.update(**self.values())
+
+    # -- values ---------------------------------------------------------------------------
+    def values(self) -> dict:
+        """Current control values (in the units the controls show)."""
+        return {name: c.value for name, c in self.controls.items()}
+
+    def set(self, **values) -> None:
+        """Set control values as a user would (one update at the end)."""
+        unknown = set(values) - set(self.controls)
+        if unknown:
+            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(self.controls)}")
+        self._hold = True
+        try:
+            for name, v in values.items():
+                self.controls[name].value = v
+        finally:
+            self._hold = False
+        self.update(**self.values())
+
+    _hold = False
+
+    def _on_change(self, _change) -> None:
+        if not self._hold:
+            self.update(**self.values())
+
+    # -- the callback ---------------------------------------------------------------------
+    def update(self, **values) -> None:  # pragma: no cover - abstract
+        raise NotImplementedError
+
+    # -- display --------------------------------------------------------------------------
+    @staticmethod
+    def new_figure(**kwargs) -> plt.Figure:
+        """A figure for a panel: an ipympl canvas in a live notebook, else a pyplot-free Figure.
+
+        Either way the figure is not shown automatically at the end of the cell; the panel
+        shows it (so it never appears twice).
+        """
+        if _interactive_backend():
+            with plt.ioff():
+                return plt.figure(**kwargs)
+        from matplotlib.figure import Figure
+        return Figure(**kwargs)
+
+    def redraw(self) -> None:
+        """Redraw the figure in place (ipympl), or re-render it into the panel's output."""
+        if self.fig is None:
+            return
+        if _interactive_backend():
+            self.fig.canvas.draw_idle()
+        else:
+            with self._output:
+                self._output.clear_output(wait=True)
+                display(self.fig)
+
+    def widget(self) -> widgets.Widget:
+        """The panel as one widget: controls on the left, the figure on the right."""
+        box = widgets.VBox(list(self.controls.values()))
+        if self.fig is not None and _interactive_backend():
+            return widgets.HBox([box, self.fig.canvas])
+        return widgets.HBox([box, self._output])
+
+    def show(self) -> None:
+        """Display the panel (call as the last line of a notebook cell)."""
+        display(self.widget())
+        self.redraw()

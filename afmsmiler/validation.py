@@ -1,0 +1,166 @@
+"""Checks of input at the public boundary of every model.
+
+Every public function of afmsmiler validates its arguments before doing any work and raises a
+``ValueError`` whose message names the parameter, the value it got and the valid range, e.g.::
+
+    k_s must be > 0 N/m, got -1.0
+    x must be in [0, 0.000125] m, got 0.0002 (at index 3)
+
+The helpers return the value converted to ``float`` (or a float ``ndarray``) so that callers can
+write ``length = check_positive("length", length, "m")``.
+"""
+from __future__ import annotations
+
+import math
+from numbers import Real
+
+import numpy as np
+
+__all__ = [
+    "check_finite",
+    "check_positive",
+    "check_nonnegative",
+    "check_range",
+    "check_array",
+    "check_choice",
+    "check_integer",
+]
+
+
+def _fmt(value) -> str:
+    return f"{value:g}" if isinstance(value, (float, np.floating)) else repr(value)
+
+
+def _unit(unit: str) -> str:
+    return f" {unit}" if unit else ""
+
+
+def _in(unit: str) -> str:
+    return f" (in {unit})" if unit else ""
+
+
+def _as_float(name: str, value) -> float:
+    if isinstance(value, bool) or not isinstance(value, (Real, np.number)):
+        if isinstance(value, np.ndarray) and value.ndim == 0:
+            return _as_float(name, value.item())
+        raise ValueError(f"{name} must be a real number, got {value!r}")
+    return float(value)
+
+
+def check_finite(name: str, value, unit: str = "") -> float:
+    """Return ``value`` as float; raise ``ValueError`` unless it is a finite real number."""
+    x = _as_float(name, value)
+    if not math.isfinite(x):
+        raise ValueError(f"{name} must be a finite number{_in(unit)}, got {x!r}")
+    return x
+
+
+def check_positive(name: str, value, unit: str = "") -> float:
+    """Return ``value`` as float; raise unless it is finite and > 0."""
+    x = _as_float(name, value)
+    if not (math.isfinite(x) and x > 0):
+        raise ValueError(f"{name} must be > 0{_unit(unit)} and finite, got {_fmt(x)}")
+    return x
+
+
+def check_nonnegative(name: str, value, unit: str = "") -> float:
+    """Return ``value`` as float; raise unless it is finite and >= 0."""
+    x = _as_float(name, value)
+    if not (math.isfinite(x) and x >= 0):
+        raise ValueError(f"{name} must be >= 0{_unit(unit)} and finite, got {_fmt(x)}")
+    return x
+
+
+def _interval(low, high, low_inclusive, high_inclusive) -> str:
+    left = "[" if low_inclusive else "("
+    right = "]" if high_inclusive else ")"
+    return f"{left}{_fmt(float(low))}, {_fmt(float(high))}{right}"
+
+
+def _inside(x, low, high, low_inclusive, high_inclusive):
+    above = (x >= low) if low_inclusive else (x > low)
+    below = (x <= high) if high_inclusive else (x < high)
+    return above & below
+
+
+def check_range(name: str, value, low, high, unit: str = "", *,
+                low_inclusive: bool = True, high_inclusive: bool = True) -> float:
+    """Return ``value`` as float; raise unless it is finite and inside the interval.
+
+    ``low`` or ``high`` may be ``-inf``/``inf`` for a half-open range.
+    """
+    x = _as_float(name, value)
+    if not (math.isfinite(x) and _inside(x, low, high, low_inclusive, high_inclusive)):
+        raise ValueError(
+            f"{name} must be in {_interval(low, high, low_inclusive, high_inclusive)}{_unit(unit)}, "
+            f"got {_fmt(x)}")
+    return x
+
+
+def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.inf,
+                low_inclusive: bool = True, high_inclusive: bool = True, ndim: int | None = None,
+                min_size: int = 0, increasing: bool = False, nondecreasing: bool = False,
+                size: int | None = None) -> np.ndarray:
+    """Return ``values`` as a float ndarray; raise unless every element is finite and in range.
+
+    Parameters
+    ----------
+    name, unit : str
+        Parameter name and its SI unit, for the error message.
+    low, high : float
+        Bounds (inclusive by default).
+    ndim : int, optional
+        Required number of dimensions.
+    min_size : int
+        Minimum number of elements.
+    increasing, nondecreasing : bool
+        Require strictly increasing (or non-decreasing) values along a 1-D array.
+    size : int, optional
+        Required number of elements (used for "arrays of the same length" checks).
+    """
+    try:
+        arr = np.asarray(values, dtype=float)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be an array of real numbers, got {values!r}") from None
+    if ndim is not None and arr.ndim != ndim:
+        raise ValueError(f"{name} must be a {ndim}-D array, got shape {arr.shape}")
+    if arr.size < min_size:
+        raise ValueError(f"{name} must have at least {min_size} elements, got {arr.size}")
+    if size is not None and arr.size != size:
+        raise ValueError(f"{name} must have {size} elements (same as its companion array), got {arr.size}")
+    flat = arr.ravel()
+    bad = ~np.isfinite(flat)
+    if bad.any():
+        i = int(np.argmax(bad))
+        raise ValueError(f"{name} must be finite{_in(unit)}, got {float(flat[i])!r} (at index {i})")
+    ok = _inside(flat, low, high, low_inclusive, high_inclusive)
+    if not ok.all():
+        i = int(np.argmin(ok))
+        raise ValueError(
+            f"{name} must be in {_interval(low, high, low_inclusive, high_inclusive)}{_unit(unit)}, "
+            f"got {_fmt(float(flat[i]))} (at index {i})")
+    if (increasing or nondecreasing) and arr.ndim == 1 and arr.size > 1:
+        d = np.diff(arr)
+        wrong = (d <= 0) if increasing else (d < 0)
+        if wrong.any():
+            i = int(np.argmax(wrong))
+            kind = "strictly increasing" if increasing else "non-decreasing"
+            raise ValueError(f"{name} must be {kind}, but element {i + 1} ({_fmt(float(arr[i + 1]))}) "
+                             f"follows {_fmt(float(arr[i]))}")
+    return arr
+
+
+def check_choice(name: str, value, choices):
+    """Return ``value``; raise unless it is one of ``choices``."""
+    if value not in choices:
+        raise ValueError(f"{name} must be one of {sorted(map(str, choices))}, got {value!r}")
+    return value
+
+
+def check_integer(name: str, value, low: int = -math.inf, high: int = math.inf) -> int:
+    """Return ``value`` as int; raise unless it is an integer in ``[low, high]``."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer, got {value!r}")
+    if not (low <= value <= high):
+        raise ValueError(f"{name} must be an integer in [{low}, {high}], got {value}")
+    return int(value)

@@ -1,0 +1,25 @@
+"""Run every benchmark script in this folder (``make bench``) and print their figures.
+
+Each ``bench_*.py`` measures one issue's speed targets as ratios against the named peer, in one
+run on this machine, and prints a short table. Nothing here is asserted by the tests: tests check
+correctness, benchmarks report speed.
+"""
+import runpy
+import sys
+from pathlib import Path
+
+HERE = Path(__file__).parent
+sys.path.insert(0, str(HERE))  # for the shared _timing helpers
+
+
+def main(names=None):
+    scripts = sorted(HERE.glob("bench_*.py"))
+    if names:
+        scripts = [s for s in scripts if any(n in s.stem for n in names)]
+    for script in scripts:
+        print(f"\n=== {script.stem} ===", flush=True)
+        runpy.run_path(str(script), run_name="__main__")
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])

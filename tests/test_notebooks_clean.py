@@ -1,0 +1,34 @@
+"""House rules for notebooks: committed without outputs, one per module, thin."""
+import json
+from pathlib import Path
+
+import pytest
+
+NOTEBOOKS = sorted((Path(__file__).parents[1] / "notebooks").glob("*.ipynb"))
+
+
+def test_there_are_notebooks():
+    assert NOTEBOOKS, "notebooks/ holds one notebook per module"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+def test_committed_without_outputs(path):
+    nb = json.loads(path.read_text(encoding="utf-8"))
+    dirty = [i for i, c in enumerate(nb["cells"]) if c["cell_type"] == "code"
+             and (c.get("outputs") or c.get("execution_count") is not None)]
+    assert not dirty, f"{path.name}: cells {dirty} carry outputs; strip them before committing"
+
+
+@pytest.mark.parametrize("path", NOTEBOOKS, ids=[p.name for p in NOTEBOOKS])
+def test_notebooks_are_thin_and_close_the_viewer(path):
+    nb = json.loads(path.read_text(encoding="utf-8"))
+    code = ["".join(c["source"]) for c in nb["cells"] if c["cell_type"] == "code"]
+    for src in code:
+        # a notebook never defines a function longer than a few lines
+        lines = src.splitlines()
+        for i, line in enumerate(lines):
+            if line.lstrip().startswith("def "):
+                body = [ln for ln in lines[i + 1:] if ln.startswith((" ", "\t")) or not ln.strip()]
+                assert len([b for b in body if b.strip()]) <= 8, f"{path.name}: long function in a cell"
+    if any("get_viewer" in src or "scenes" in src for src in code):
+        assert "close_viewer()" in code[-1], f"{path.name}: the last cell must close the meshcat viewer"

@@ -1,0 +1,67 @@
+"""The meshcat layer: one server per kernel, loopback only, and none survives its kernel."""
+import os
+import signal
+import subprocess
+import sys
+import time
+
+import psutil
+import pytest
+
+from afmsmiler.scenes import viewer
+
+CHILD = """
+import os, sys
+from afmsmiler.scenes import viewer
+vis = viewer.get_viewer()
+print(viewer._proc.pid, flush=True)
+sys.stdin.read()
+"""
+
+
+def _listening_addresses(pid):
+    return {c.laddr.ip for c in psutil.Process(pid).net_connections(kind="tcp")
+            if c.status == psutil.CONN_LISTEN}
+
+
+def test_one_server_reused_loopback_only_and_closed():
+    vis = viewer.get_viewer()
+    pid = viewer._proc.pid
+    try:
+        assert viewer.get_viewer() is vis  # reused, not a second server
+        assert vis.url().startswith("http://127.0.0.1:")
+        assert _listening_addresses(pid) == {"127.0.0.1"}
+        assert psutil.Process(pid).environ()[viewer.OWNER_ENV] == str(os.getpid())
+        html = viewer.static_html()
+        assert "<html" in html.lower() and len(html) > 1000
+    finally:
+        viewer.close_viewer()
+    assert not viewer.viewer_running()
+    assert not psutil.pid_exists(pid) or psutil.Process(pid).status() == psutil.STATUS_ZOMBIE
+    viewer.close_viewer()  # idempotent
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux-only")
+def test_server_dies_with_a_hard_killed_kernel():
+    kernel = subprocess.Popen([sys.executable, "-c", CHILD], stdin=subprocess.PIPE,
+                              stdout=subprocess.PIPE, text=True)
+    server_pid = int(kernel.stdout.readline())
+    assert psutil.pid_exists(server_pid)
+    kernel.send_signal(signal.SIGKILL)  # what nbval does to a kernel
+    kernel.wait()
+    deadline = time.time() + 10
+    while time.time() < deadline:
+        if not psutil.pid_exists(server_pid) or psutil.Process(server_pid).status() == psutil.STATUS_ZOMBIE:
+            break
+        time.sleep(0.05)
+    else:
+        os.kill(server_pid, signal.SIGKILL)
+        pytest.fail("the meshcat server outlived its kernel")
+
+
+def test_save_static_html(tmp_path):
+    try:
+        path = viewer.save_static_html(tmp_path / "scene.html")
+        assert open(path, encoding="utf-8").read().lower().count("<html") >= 1
+    finally:
+        viewer.close_viewer()
