@@ -23,14 +23,14 @@ lab: $(STAMP)
 ## Every unit test, then every notebook under nbval, then the check that no 3D server outlived them.
 test: $(STAMP)
 	$(PY) -m pytest tests
-	$(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
+	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
 	$(PY) -m pytest -p no:cacheprovider tests/after_notebooks
 
 unit: $(STAMP)
 	$(PY) -m pytest tests
 
 notebooks: $(STAMP)
-	$(PY) -m pytest --nbval-lax --nbval-current-env notebooks
+	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env notebooks
 
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
 bench: $(STAMP)

@@ -15,7 +15,7 @@ import matplotlib
 import matplotlib.pyplot as plt
 from IPython.display import display
 
-__all__ = ["Panel", "slider", "log_slider", "running_as_notebook"]
+__all__ = ["Panel", "slider", "log_slider", "running_as_notebook", "setup_notebook"]
 
 
 def running_as_notebook() -> bool:
@@ -32,6 +32,16 @@ def running_as_notebook() -> bool:
         return False
     return shell is not None and type(shell).__name__ == "ZMQInteractiveShell" and \
         not os.environ.get("NBVAL")
+
+
+def setup_notebook() -> None:
+    """First line of every notebook: interactive figures (ipympl) live, static ones under test."""
+    if running_as_notebook():
+        from IPython import get_ipython
+        try:
+            get_ipython().run_line_magic("matplotlib", "widget")
+        except Exception:  # ipympl missing: fall back to inline figures re-rendered by panels
+            get_ipython().run_line_magic("matplotlib", "inline")
 
 
 def slider(description: str, value: float, low: float, high: float, step: float | None = None,
