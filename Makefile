@@ -18,7 +18,8 @@ install: $(STAMP)
 
 ## Open the course notebooks in JupyterLab, served on 127.0.0.1 only.
 lab: $(STAMP)
-	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks $(LAB_ARGS)
+	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
+	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
 ## Every unit test, then every notebook under nbval, then the check that no 3D server outlived them.
 test: $(STAMP)
