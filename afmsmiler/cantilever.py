@@ -167,20 +167,44 @@ class Cantilever:
         return force * self.length ** 3 / (6 * self.flexural_rigidity) * (3 * u ** 2 - u ** 3)
 
     def slope(self, x, force):
-        """Slope theta(x) = dz/dx in rad: F L^2 / (2 E J) [2 (x/L) - (x/L)^2]."""
+        """Slope theta(x) = dz/dx in rad: F L^2 / (2 E J) [2 (x/L) - (x/L)^2].
+
+        Parameters
+        ----------
+        x : float or array_like
+            Position along the lever in m, in [0, L].
+        force : float
+            End force F in N (positive lifts the tip).
+        """
         x = self._x(x)
         force = self._force(force)
         u = x / self.length
         return force * self.length ** 2 / (2 * self.flexural_rigidity) * (2 * u - u ** 2)
 
     def curvature(self, x, force):
-        """Curvature d2z/dx2 = F (L - x) / (E J) in 1/m."""
+        """Curvature d2z/dx2 = F (L - x) / (E J) in 1/m.
+
+        Parameters
+        ----------
+        x : float or array_like
+            Position along the lever in m, in [0, L].
+        force : float
+            End force F in N (positive lifts the tip).
+        """
         x = self._x(x)
         force = self._force(force)
         return force * (self.length - x) / self.flexural_rigidity
 
     def bending_moment(self, x, force):
-        """Bending moment M(x) = E J z''(x) = F (L - x) in N m."""
+        """Bending moment M(x) = E J z''(x) = F (L - x) in N m.
+
+        Parameters
+        ----------
+        x : float or array_like
+            Position along the lever in m, in [0, L].
+        force : float
+            End force F in N (positive lifts the tip).
+        """
         return self.flexural_rigidity * self.curvature(x, force)
 
     def _z_b(self, z_b) -> np.ndarray:
@@ -205,19 +229,29 @@ class Cantilever:
     def stress(self, x, z_b, force):
         """Axial bending stress sigma = -E z_b z''(x) in Pa (negative is compressive).
 
-        Parameters are as for :meth:`strain`. The largest magnitude is at the clamp surface,
-        6 F L / (w h^2).
+        Parameters
+        ----------
+        x : float or array_like
+            Position along the lever in m, in [0, L].
+        z_b : float or array_like
+            Distance from the neutral plane in m, in [-h/2, h/2]; broadcasts against ``x``.
+        force : float
+            End force in N.
+
+        Notes
+        -----
+        The largest magnitude is at the clamp surface, 6 F L / (w h^2).
         """
         return self.youngs_modulus * self.strain(x, z_b, force)
 
     def force_for_deflection(self, tip_deflection: float) -> float:
-        """End force in N that deflects the tip by ``tip_deflection`` m (F = k z)."""
+        """End force in N that deflects the tip by ``tip_deflection`` (m): F = k z."""
         return self.spring_constant * check_range("tip_deflection", tip_deflection,
                                                   -math.inf, math.inf, "m")
 
     # -- dynamics -------------------------------------------------------------------------
     def resonance_frequency(self, mode: int = 1) -> float:
-        """Frequency of flexural mode ``mode`` in Hz (undamped, in vacuum).
+        """Frequency of flexural mode ``mode`` (1-based) in Hz (undamped, in vacuum).
 
         f_n = (b_n L)^2 / (2 pi L^2) sqrt(E J / (rho w h)), with b_n L from :func:`eigenvalue`.
         """

@@ -59,7 +59,13 @@ MATERIALS: dict[str, Material] = {
 
 
 def get_material(name: str | Material) -> Material:
-    """Return a preset by key (see :data:`MATERIALS`) or pass a :class:`Material` through."""
+    """Return a preset by key (see :data:`MATERIALS`) or pass a :class:`Material` through.
+
+    Parameters
+    ----------
+    name : str or Material
+        A key of :data:`MATERIALS` (``"silicon"``, ``"silicon_nitride"``, ...) or a Material.
+    """
     if isinstance(name, Material):
         return name
     if name not in MATERIALS:

@@ -48,7 +48,17 @@ def _as_float(name: str, value) -> float:
 
 
 def check_finite(name: str, value, unit: str = "") -> float:
-    """Return ``value`` as float; raise ``ValueError`` unless it is a finite real number."""
+    """Return ``value`` as float; raise ``ValueError`` unless it is a finite real number.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, as the caller spells it.
+    value : float
+        The value to check.
+    unit : str
+        Its SI unit, for the message.
+    """
     x = _as_float(name, value)
     if not math.isfinite(x):
         raise ValueError(f"{name} must be a finite number{_in(unit)}, got {x!r}")
@@ -56,7 +66,17 @@ def check_finite(name: str, value, unit: str = "") -> float:
 
 
 def check_positive(name: str, value, unit: str = "") -> float:
-    """Return ``value`` as float; raise unless it is finite and > 0."""
+    """Return ``value`` as float; raise unless it is finite and > 0.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, as the caller spells it.
+    value : float
+        The value to check.
+    unit : str
+        Its SI unit, for the message.
+    """
     x = _as_float(name, value)
     if not (math.isfinite(x) and x > 0):
         raise ValueError(f"{name} must be > 0{_unit(unit)} and finite, got {_fmt(x)}")
@@ -64,7 +84,17 @@ def check_positive(name: str, value, unit: str = "") -> float:
 
 
 def check_nonnegative(name: str, value, unit: str = "") -> float:
-    """Return ``value`` as float; raise unless it is finite and >= 0."""
+    """Return ``value`` as float; raise unless it is finite and >= 0.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, as the caller spells it.
+    value : float
+        The value to check.
+    unit : str
+        Its SI unit, for the message.
+    """
     x = _as_float(name, value)
     if not (math.isfinite(x) and x >= 0):
         raise ValueError(f"{name} must be >= 0{_unit(unit)} and finite, got {_fmt(x)}")
@@ -87,7 +117,16 @@ def check_range(name: str, value, low, high, unit: str = "", *,
                 low_inclusive: bool = True, high_inclusive: bool = True) -> float:
     """Return ``value`` as float; raise unless it is finite and inside the interval.
 
-    ``low`` or ``high`` may be ``-inf``/``inf`` for a half-open range.
+    Parameters
+    ----------
+    name, unit : str
+        The parameter's name and SI unit, for the message.
+    value : float
+        The value to check.
+    low, high : float
+        Bounds; ``-inf``/``inf`` for a half-open range.
+    low_inclusive, high_inclusive : bool
+        Whether the bounds belong to the range.
     """
     x = _as_float(name, value)
     if not (math.isfinite(x) and _inside(x, low, high, low_inclusive, high_inclusive)):
@@ -107,8 +146,12 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
     ----------
     name, unit : str
         Parameter name and its SI unit, for the error message.
+    values : array_like
+        The values to check.
     low, high : float
         Bounds (inclusive by default).
+    low_inclusive, high_inclusive : bool
+        Whether the bounds belong to the range.
     ndim : int, optional
         Required number of dimensions.
     min_size : int
@@ -151,14 +194,34 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
 
 
 def check_choice(name: str, value, choices):
-    """Return ``value``; raise unless it is one of ``choices``."""
+    """Return ``value``; raise unless it is one of ``choices``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : object
+        The value to check.
+    choices : collection
+        The valid values.
+    """
     if value not in choices:
         raise ValueError(f"{name} must be one of {sorted(map(str, choices))}, got {value!r}")
     return value
 
 
 def check_integer(name: str, value, low: int = -math.inf, high: int = math.inf) -> int:
-    """Return ``value`` as int; raise unless it is an integer in ``[low, high]``."""
+    """Return ``value`` as int; raise unless it is an integer in ``[low, high]``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : int
+        The value to check.
+    low, high : int
+        Inclusive bounds.
+    """
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         raise ValueError(f"{name} must be an integer, got {value!r}")
     if not (low <= value <= high):

@@ -31,7 +31,23 @@ class Feedback:
 
 def check_close(quantity: str, answer, expected: float, rtol: float, unit: str = "",
                 hint: str = "") -> Feedback:
-    """Feedback on a numerical answer that must match ``expected`` within ``rtol`` (relative)."""
+    """Feedback on a numerical answer that must match ``expected`` within ``rtol`` (relative).
+
+    Parameters
+    ----------
+    quantity : str
+        What the answer is, for the message (e.g. ``"thickness"``).
+    answer : float
+        The student's value.
+    expected : float
+        The model's value.
+    rtol : float
+        Accepted relative error.
+    unit : str
+        Unit shown in the message.
+    hint : str
+        Added to the message when the answer is off.
+    """
     try:
         value = float(answer)
     except (TypeError, ValueError):

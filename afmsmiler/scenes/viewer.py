@@ -113,12 +113,26 @@ atexit.register(close_viewer)
 
 
 def static_html(vis: meshcat.Visualizer | None = None) -> str:
-    """Return the current scene as one self-contained HTML page (meshcat's ``static_html``)."""
+    """Return the current scene as one self-contained HTML page (meshcat's ``static_html``).
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer, optional
+        The visualizer to export; this kernel's viewer by default.
+    """
     return (vis or get_viewer()).static_html()
 
 
 def save_static_html(path, vis: meshcat.Visualizer | None = None) -> str:
-    """Write :func:`static_html` to ``path`` (for the course book) and return the path."""
+    """Write :func:`static_html` to ``path`` (for the course book) and return the path.
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The HTML file to write.
+    vis : meshcat.Visualizer, optional
+        The visualizer to export; this kernel's viewer by default.
+    """
     path = os.fspath(path)
     with open(path, "w", encoding="utf-8") as f:
         f.write(static_html(vis))
