@@ -6,7 +6,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.afmsmiler-installed
 export MPLBACKEND ?= Agg
 
-.PHONY: install lab test unit notebooks bench clean
+.PHONY: install lab test unit notebooks bench book clean
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -36,6 +36,11 @@ notebooks: $(STAMP)
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
 bench: $(STAMP)
 	$(PY) benchmarks/run_all.py
+
+## The course book (Jupyter Book 1.x) into book/_build/html.
+book: $(STAMP)
+	$(PY) -m pip install --quiet -e '.[book]'
+	$(VENV)/bin/jupyter-book build book
 
 clean:
 	rm -rf $(VENV) .pytest_cache book/_build
