@@ -25,7 +25,7 @@ lab: $(STAMP)
 test: $(STAMP)
 	$(PY) -m pytest tests
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
-	$(PY) -m pytest -p no:cacheprovider tests/after_notebooks
+	$(PY) -m pytest -p no:cacheprovider tests/after_notebooks/check_servers.py
 
 unit: $(STAMP)
 	$(PY) -m pytest tests

@@ -59,6 +59,28 @@ def test_server_dies_with_a_hard_killed_kernel():
         pytest.fail("the meshcat server outlived its kernel")
 
 
+def test_leak_check_detects_an_orphaned_server():
+    """The after-notebooks check must be able to fail: an orphan with a dead owner is reported."""
+    import importlib.util
+    from pathlib import Path
+    spec = importlib.util.spec_from_file_location(
+        "check_servers", Path(__file__).parent / "after_notebooks" / "check_servers.py")
+    check = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(check)
+    dead = subprocess.Popen([sys.executable, "-c", "pass"])
+    dead.wait()
+    env = dict(os.environ, **{viewer.OWNER_ENV: str(dead.pid)})
+    orphan = subprocess.Popen([sys.executable, "-m", "afmsmiler.scenes._server"], env=env,
+                              stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
+    try:
+        orphan.stdout.readline()  # zmq_url=...: the server is up
+        assert (orphan.pid, str(dead.pid)) in check.orphaned_servers()
+    finally:
+        orphan.kill()
+        orphan.wait()
+    assert (orphan.pid, str(dead.pid)) not in check.orphaned_servers()
+
+
 def test_save_static_html(tmp_path):
     try:
         path = viewer.save_static_html(tmp_path / "scene.html")

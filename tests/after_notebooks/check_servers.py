@@ -20,7 +20,12 @@ def _afmsmiler_servers():
             continue
 
 
+def orphaned_servers():
+    """(pid, owner pid) of every afmsmiler meshcat server whose owning kernel is gone."""
+    return [(p.pid, owner) for p, owner in _afmsmiler_servers()
+            if owner is None or not psutil.pid_exists(int(owner))]
+
+
 def test_no_meshcat_server_outlives_its_kernel():
-    orphans = [(p.pid, owner) for p, owner in _afmsmiler_servers()
-               if owner is None or not psutil.pid_exists(int(owner))]
+    orphans = orphaned_servers()
     assert not orphans, f"meshcat servers left behind by dead kernels (pid, owner): {orphans}"
