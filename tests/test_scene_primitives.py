@@ -1,0 +1,207 @@
+"""The meshcat building blocks: mesh geometry follows the given deflection, colors map the ends of
+the scale to the colormap's ends, rigid primitives land where asked; one real-viewer smoke test."""
+import io
+
+import matplotlib
+import matplotlib.image
+import meshcat.geometry as g
+import numpy as np
+import pytest
+
+from afmsmiler.scenes import close_viewer, get_viewer, primitives as P
+
+
+class Recorder:
+    """A stand-in for meshcat.Visualizer that records what is sent to which path."""
+
+    def __init__(self, log=None, path=""):
+        self.log = {} if log is None else log
+        self.path = path
+
+    def __getitem__(self, name):
+        return Recorder(self.log, f"{self.path}/{name}")
+
+    def set_object(self, geometry, material=None):
+        self.log.setdefault(self.path, {})["object"] = (geometry, material)
+
+    def set_transform(self, matrix=np.eye(4)):
+        self.log.setdefault(self.path, {})["transform"] = np.asarray(matrix)
+
+    def set_property(self, key, value):
+        self.log.setdefault(self.path, {})[key] = value
+
+
+def apply(t, p):
+    return (t @ np.append(p, 1.0))[:3]
+
+
+# --- colors ------------------------------------------------------------------------------------
+def test_color_scale_maps_extremes_to_the_colormap_ends_and_clips():
+    scale = P.ColorScale.symmetric(2.0, "RdBu_r", "stress", "MPa")
+    cmap = matplotlib.colormaps["RdBu_r"]
+    rgb = scale.rgb([-2.0, 2.0, -50.0, 50.0, 0.0])
+    np.testing.assert_allclose(rgb[0], cmap(0.0)[:3], atol=1e-6)
+    np.testing.assert_allclose(rgb[1], cmap(1.0)[:3], atol=1e-6)
+    np.testing.assert_allclose(rgb[2], rgb[0])  # clipped below
+    np.testing.assert_allclose(rgb[3], rgb[1])  # clipped above
+    assert rgb[1][0] > rgb[1][2] and rgb[0][2] > rgb[0][0]  # tension red, compression blue
+    assert rgb[4].min() > 0.9  # the middle of a diverging map is (nearly) white
+    assert scale.title == "stress [MPa]"
+    assert P.rgb_hex([1.0, 0.0, 0.0]) == 0xff0000
+
+
+def test_color_scale_shape_and_bad_input():
+    scale = P.ColorScale(0.0, 1.0, "viridis")
+    assert scale.rgb(np.zeros((4, 5))).shape == (4, 5, 3)
+    with pytest.raises(ValueError, match="vmax must be in"):
+        P.ColorScale(1.0, 1.0)
+    with pytest.raises(ValueError, match="cmap must be"):
+        P.ColorScale(0.0, 1.0, "no-such-map")
+    with pytest.raises(ValueError, match="limit must be > 0"):
+        P.ColorScale.symmetric(0.0)
+
+
+@pytest.mark.parametrize("value, expected", [(0.13, 0.2), (1.0, 1.0), (3.0, 5.0), (7.0, 10.0),
+                                             (-0.0042, 0.005), (0.0, 1e-3), (1.2e5, 2e5)])
+def test_nice_ceil(value, expected):
+    assert P.nice_ceil(value, floor=1e-3) == pytest.approx(expected, rel=1e-12)
+
+
+# --- the beam mesh -----------------------------------------------------------------------------
+NL, NT = 21, 5
+X = np.linspace(0.0, 2.0, NL)
+W, H = 0.3, 0.04
+
+
+def levels(values_top, values_bottom):
+    return np.linspace(values_bottom, values_top, NT).T  # (NL, NT), bottom -> top
+
+
+def test_flat_beam_is_a_box_with_values_on_the_right_faces():
+    vals = levels(-X, X)  # top = -x, bottom = +x
+    mesh = P.beam_mesh(X, np.zeros(NL), W, H, vals)
+    n = 2 * NL * NT + 4 * NL + 4 * NT
+    assert mesh.vertices.shape == (n, 3) and mesh.values.shape == (n,)
+    assert mesh.faces.max() == n - 1 and len(np.unique(mesh.faces)) == n  # every vertex is used
+    lo, hi = mesh.vertices.min(0), mesh.vertices.max(0)
+    np.testing.assert_allclose(lo, [0.0, -W / 2, -H / 2], atol=1e-15)
+    np.testing.assert_allclose(hi, [2.0, W / 2, H / 2], atol=1e-15)
+    # the value at a vertex is the one given for its station and level
+    for v, val in zip(mesh.vertices, mesh.values):
+        i = int(np.argmin(abs(X - v[0])))
+        j = int(round((v[2] / H + 0.5) * (NT - 1)))
+        assert val == pytest.approx(vals[i, j], abs=1e-12)
+    top = mesh.vertices[:, 2] == H / 2
+    np.testing.assert_allclose(mesh.values[top], -mesh.vertices[top, 0], atol=1e-12)
+
+
+def test_deflected_beam_follows_the_centre_line_with_true_thickness():
+    a = 0.4
+    z = a * X ** 2
+    mesh = P.beam_mesh(X, z, W, H, np.zeros((NL, NT)), slope=2 * a * X)
+    side = mesh.vertices[:NL * NT].reshape(NL, NT, 3)
+    mid = side[:, NT // 2]  # the middle level is the centre line itself
+    np.testing.assert_allclose(mid[:, 0], X, atol=1e-12)
+    np.testing.assert_allclose(mid[:, 2], z, atol=1e-12)
+    # top and bottom lie h apart along the normal of the centre line (-z', 0, 1)/sqrt(1+z'^2)
+    d = side[:, -1] - side[:, 0]
+    np.testing.assert_allclose(np.linalg.norm(d, axis=1), H, rtol=1e-12)
+    normal = np.stack([-2 * a * X, np.zeros(NL), np.ones(NL)], 1)
+    normal /= np.linalg.norm(normal, axis=1)[:, None]
+    np.testing.assert_allclose(d / H, normal, atol=1e-12)
+    # the default slope is the numerical derivative: same mesh within its truncation error
+    mesh2 = P.beam_mesh(X, z, W, H, np.zeros((NL, NT)))
+    np.testing.assert_allclose(mesh2.vertices, mesh.vertices, atol=1e-12)  # exact for a parabola
+
+
+def test_beam_mesh_geometry_carries_vertex_colors_of_the_scale():
+    vals = levels(np.full(NL, 3.0), np.full(NL, -3.0))
+    mesh = P.beam_mesh(X, np.zeros(NL), W, H, vals)
+    scale = P.ColorScale.symmetric(3.0, unit="MPa")
+    geom = mesh.geometry(scale)
+    assert isinstance(geom, g.TriangularMeshGeometry)
+    top = mesh.vertices[:, 2] > H / 2 - 1e-12
+    np.testing.assert_allclose(geom.color[top], np.tile(matplotlib.colormaps["RdBu_r"](1.0)[:3], (top.sum(), 1)),
+                               atol=1e-6)
+
+
+def test_beam_mesh_bad_input():
+    with pytest.raises(ValueError, match="values must have shape"):
+        P.beam_mesh(X, np.zeros(NL), W, H, np.zeros((NL, 1)))
+    with pytest.raises(ValueError, match="deflection must have 21 elements"):
+        P.beam_mesh(X, np.zeros(NL - 1), W, H, np.zeros((NL, NT)))
+    with pytest.raises(ValueError, match="thickness must be > 0"):
+        P.beam_mesh(X, np.zeros(NL), W, -1.0, np.zeros((NL, NT)))
+    with pytest.raises(ValueError, match="x must be strictly increasing"):
+        P.beam_mesh(X[::-1], np.zeros(NL), W, H, np.zeros((NL, NT)))
+
+
+# --- rigid primitives --------------------------------------------------------------------------
+@pytest.mark.parametrize("vector", [[0.0, 0.0, 0.5], [0.3, -0.2, -0.4], [0.0, -1.0, 0.0],
+                                    [0.0, 0.0, 0.02]])
+def test_arrow_spans_start_to_start_plus_vector(vector):
+    rec = Recorder()
+    arrow = P.Arrow(rec, radius=0.01, head_length=0.06)
+    start = np.array([1.0, 2.0, -0.5])
+    arrow.set(start, vector)
+    shaft, head = rec.log["/shaft"]["transform"], rec.log["/head"]["transform"]
+    length = np.linalg.norm(vector)
+    head_len = min(0.06, length)
+    d = np.asarray(vector) / length
+    np.testing.assert_allclose(apply(shaft, [0, -0.5, 0]), start, atol=1e-9)
+    np.testing.assert_allclose(apply(shaft, [0, 0.5, 0]), start + d * (length - head_len), atol=1e-9)
+    np.testing.assert_allclose(apply(head, [0, 0.03, 0]), start + np.asarray(vector), atol=1e-12)  # apex
+    assert "visible" not in rec.log.get("", {})  # visible from the start: nothing sent
+    arrow.set(start, [0, 0, 0])
+    assert rec.log[""]["visible"] is False
+    arrow.set(start, vector)
+    assert rec.log[""]["visible"] is True
+
+
+def test_segment_and_cone_and_camera():
+    rec = Recorder()
+    seg = P.Segment(rec["laser"])
+    a, b = np.array([0.0, 0.0, 1.0]), np.array([1.0, 0.5, 0.0])
+    seg.set(a, b)
+    t = rec.log["/laser"]["transform"]
+    np.testing.assert_allclose(apply(t, [0, -0.5, 0]), a, atol=1e-12)
+    np.testing.assert_allclose(apply(t, [0, 0.5, 0]), b, atol=1e-12)
+    P.cone(rec["tip"], height=0.1, radius=0.03)
+    t = rec.log["/tip/shape"]["transform"]
+    np.testing.assert_allclose(apply(t, [0, 0.05, 0]), [0, 0, 0], atol=1e-12)  # apex at the origin
+    np.testing.assert_allclose(apply(t, [0, -0.05, 0]), [0, 0, 0.1], atol=1e-12)  # base above
+    P.set_camera(rec, [1.0, -3.0, 2.0])
+    # three.js camera frame is y-up, rotated +90 deg about x: world (x, y, z) = (x', -z', y')
+    x_, y_, z_ = rec.log["//Cameras/default/rotated/<object>"]["position"]
+    assert (x_, -z_, y_) == (1.0, -3.0, 2.0)
+
+
+def test_legend_png_and_html_state_the_unit():
+    scale = P.ColorScale.symmetric(5.0, label="bending stress", unit="MPa")
+    png = P.colorbar_png(scale, size_px=(400, 100))
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"
+    img = matplotlib.image.imread(io.BytesIO(png))
+    assert img.shape[:2] == (100, 400)
+    row = img[int(0.3 * 100)]  # through the bar (the bar spans 15%-45% from the top)
+    assert row[30, 2] > row[30, 0] and row[370, 0] > row[370, 2]  # blue on the left, red on the right
+    html = P.legend_html(scale)
+    assert "bending stress [MPa]" in html and ">-5<" in html and ">5<" in html
+
+
+def test_primitives_in_a_real_viewer_update_in_place():
+    try:
+        vis = get_viewer()["test_primitives"]
+        mesh = P.beam_mesh(X, 0.1 * X ** 2, W, H, levels(-X, X))
+        scale = P.ColorScale.symmetric(2.0, unit="MPa")
+        vis["beam"].set_object(mesh.geometry(scale), g.MeshLambertMaterial(vertexColors=True))
+        arrow = P.Arrow(vis["force"])
+        arrow.set([0, 0, 0], [0, 0, 0.3])
+        legend = P.ColorLegend(vis["legend"], scale)
+        assert legend.set(scale) is False  # same scale: no new texture
+        assert legend.set(P.ColorScale.symmetric(5.0, unit="MPa")) is True
+        before = len(get_viewer().static_html())
+        P.set_camera(get_viewer(), [1.0, -3.0, 1.0])
+        arrow.set([0, 0, 0], [0, 0, 0.5])  # moved in place: one transform per part, no new object
+        assert len(get_viewer().static_html()) - before < 2000
+    finally:
+        close_viewer()
