@@ -53,7 +53,7 @@ def _lut(cmap: str) -> np.ndarray:
 
 
 def rgb_hex(rgb) -> int:
-    """An RGB triple in [0, 1] as the 0xRRGGBB integer meshcat materials take."""
+    """The 0xRRGGBB integer meshcat materials take, of ``rgb``, an RGB triple in [0, 1]."""
     r, gr, b = (int(round(255 * float(np.clip(c, 0.0, 1.0)))) for c in rgb[:3])
     return (r << 16) | (gr << 8) | b
 
@@ -100,7 +100,7 @@ class ColorScale:
         return cls(-limit, limit, cmap, label, unit)
 
     def normalize(self, values) -> np.ndarray:
-        """Values as fractions of the scale in [0, 1] (clipped)."""
+        """``values`` as fractions of the scale in [0, 1] (clipped)."""
         v = np.asarray(values, dtype=float)
         return np.clip((v - self.vmin) / (self.vmax - self.vmin), 0.0, 1.0)
 
@@ -183,7 +183,8 @@ class BeamMesh:
         return scale.rgb(self.values)
 
     def geometry(self, scale: ColorScale) -> g.TriangularMeshGeometry:
-        """The meshcat geometry with vertex colors; draw it with a ``vertexColors=True`` material."""
+        """The meshcat geometry with vertex colors on ``scale``; draw it with a
+        ``vertexColors=True`` material."""
         return g.TriangularMeshGeometry(self.vertices, self.faces, self.colors(scale))
 
 
@@ -399,6 +400,15 @@ def cone(vis: meshcat.Visualizer, height: float, radius: float, color: int = 0x8
     """A cone with its apex at the origin of ``vis``, pointing along -z, base at z = +height.
 
     Place it with ``vis.set_transform(...)`` (an AFM tip under a cantilever's free end).
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        Where to draw (the cone itself goes to ``vis["shape"]``).
+    height, radius : float
+        Height and base radius in scene units.
+    color : int
+        0xRRGGBB.
     """
     height = check_positive("height", height)
     radius = check_positive("radius", radius)
@@ -411,13 +421,17 @@ def cone(vis: meshcat.Visualizer, height: float, radius: float, color: int = 0x8
 
 def sphere(vis: meshcat.Visualizer, radius: float, color: int = 0x808080,
            opacity: float = 1.0) -> None:
-    """A sphere of ``radius`` scene units centred at the origin of ``vis``."""
+    """A sphere of ``radius`` scene units centred at the origin of ``vis``, of ``color``
+    (0xRRGGBB) and ``opacity`` in (0, 1]."""
     radius = check_positive("radius", radius)
     vis.set_object(g.Sphere(radius), _material(color, opacity))
 
 
 def polyline(vis: meshcat.Visualizer, points, color: int = 0x202020) -> None:
-    """A polyline through ``points`` (N x 3, scene units); WebGL draws it one pixel wide."""
+    """A polyline through ``points`` (N x 3, scene units) at ``vis``, of ``color`` (0xRRGGBB).
+
+    WebGL draws lines one pixel wide whatever their width; use :class:`Segment` for a thick one.
+    """
     pts = check_array("points", points, ndim=2)
     if pts.shape[1] != 3 or pts.shape[0] < 2:
         raise ValueError(f"points must have shape (N >= 2, 3), got {pts.shape}")
@@ -427,7 +441,17 @@ def polyline(vis: meshcat.Visualizer, points, color: int = 0x202020) -> None:
 
 # --- the legend ------------------------------------------------------------------------------
 def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> bytes:
-    """A horizontal colorbar of ``scale`` with tick labels and ``"label [unit]"``, as PNG bytes."""
+    """A horizontal colorbar of ``scale`` with tick labels and ``"label [unit]"``, as PNG bytes.
+
+    Parameters
+    ----------
+    scale : ColorScale
+        The scale to draw.
+    size_px : (int, int)
+        Image width and height in pixels.
+    n_ticks : int
+        Evenly spaced tick labels from ``vmin`` to ``vmax`` (2 to 21).
+    """
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.colorbar import ColorbarBase
     from matplotlib.colors import Normalize
@@ -449,7 +473,10 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
 
 
 def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str:
-    """The legend of ``scale`` as an HTML snippet: a CSS gradient bar, its limits and its unit."""
+    """The legend of ``scale`` as an HTML snippet: a CSS gradient bar, its limits and its unit.
+
+    ``n_stops`` colors (2 to 64) make the gradient; the bar is ``width_px`` pixels wide.
+    """
     n_stops = check_integer("n_stops", n_stops, 2, 64)
     stops = scale.rgb(np.linspace(scale.vmin, scale.vmax, n_stops))
     css = ", ".join(f"rgb({int(255 * r)},{int(255 * gg)},{int(255 * b)})" for r, gg, b in stops)
@@ -497,7 +524,7 @@ class ColorLegend:
 
 
 def set_camera(vis: meshcat.Visualizer, position) -> None:
-    """Put meshcat's default camera at ``position`` (world frame, z up, scene units).
+    """Put the default camera of viewer ``vis`` at ``position`` (world frame, z up, scene units).
 
     The camera keeps looking at the world origin, so scene builders centre their objects there.
     """

@@ -1,0 +1,349 @@
+"""The 3D view of module (a): a cantilever drawn as a deformed beam colored by bending stress.
+
+Scale: **1 scene unit = 100 um** (:data:`SCENE_UNIT`), so a 450 um lever is 4.5 units long. The
+lever lies along +x from its clamp, z is up, and the camera looks at the x-z plane from the -y
+side, so the near side face shows the stress through the thickness (compression blue, tension
+red, the neutral plane white). The deflection is drawn exaggerated (default x100); lengths along
+x, the width and the thickness are true to scale. The whole drawing is shifted by -L/2 along x so
+that the camera, which looks at the origin, sees the lever centred.
+
+Everything is drawn once by :class:`CantileverScene` and then updated in place
+(:meth:`CantileverScene.update` replaces the beam mesh and moves the tip and arrow with
+``set_transform``), always in the kernel's single viewer (:func:`~afmsmiler.scenes.get_viewer`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import meshcat
+import meshcat.geometry as g
+import numpy as np
+from meshcat.animation import Animation
+
+from ..cantilever import Cantilever
+from ..validation import check_integer, check_positive, check_range
+from . import primitives as P
+from .viewer import get_viewer, static_html as _static_html
+
+__all__ = ["SCENE_UNIT", "DEFAULTS", "CantileverScene", "StressField", "stress_field",
+           "mode_animation"]
+
+#: Metres per scene unit (1 scene unit = 100 um).
+SCENE_UNIT = 100e-6
+
+#: Defaults of the scene, in one place.
+DEFAULTS = dict(
+    exaggeration=100.0,      # deflection drawn x100
+    n_length=61,             # stations along the lever
+    n_thickness=9,           # levels through the thickness (odd: one is the neutral plane)
+    tip_height=12e-6,        # m, the cone under the free end
+    tip_radius=4e-6,         # m, radius of its base
+    force_per_unit=100e-9,   # N drawn as one scene unit of arrow
+    stress_floor=1e-3,       # MPa, smallest color limit (for F = 0)
+    mode_segments=30,        # rigid segments per animated mode beam
+    mode_frames=48,          # frames per period of the mode animation
+    mode_fps=24,             # frames per second of the mode animation
+    mode_amplitude=0.15,     # animated tip amplitude as a fraction of L
+)
+
+_STRESS_LABEL = "bending stress"
+_STRESS_UNIT = "MPa"
+_BEAM_MATERIAL_ARGS = dict(vertexColors=True)
+_MODE_COLORS = (0x1f77b4, 0xff7f0e, 0x2ca02c)
+
+
+@dataclass(frozen=True)
+class StressField:
+    """Bending stress sampled for drawing (see :func:`stress_field`).
+
+    Attributes
+    ----------
+    x : ndarray, shape (n_length,)
+        Stations along the lever in m, from 0 to L.
+    z_b : ndarray, shape (n_thickness,)
+        Levels through the thickness in m, from -h/2 (bottom) to +h/2 (top).
+    deflection : ndarray, shape (n_length,)
+        z(x) in m.
+    slope : ndarray, shape (n_length,)
+        theta(x) in rad.
+    stress : ndarray, shape (n_length, n_thickness)
+        sigma(x, z_b) in Pa.
+    """
+
+    x: np.ndarray
+    z_b: np.ndarray
+    deflection: np.ndarray
+    slope: np.ndarray
+    stress: np.ndarray
+
+
+def stress_field(lever: Cantilever, force: float, n_length: int = DEFAULTS["n_length"],
+                 n_thickness: int = DEFAULTS["n_thickness"]) -> StressField:
+    """Sample deflection, slope and bending stress of ``lever`` under ``force`` (N) on a grid.
+
+    All numbers come from :class:`~afmsmiler.cantilever.Cantilever`; this only chooses the grid:
+    ``n_length`` stations from 0 to L and ``n_thickness`` levels from -h/2 to +h/2.
+    """
+    n_length = check_integer("n_length", n_length, 2, 10_000)
+    n_thickness = check_integer("n_thickness", n_thickness, 2, 1_000)
+    x = np.linspace(0.0, lever.length, n_length)
+    z_b = np.linspace(-0.5, 0.5, n_thickness) * lever.thickness
+    return StressField(x, z_b, lever.deflection(x, force), lever.slope(x, force),
+                       lever.stress(x[:, None], z_b[None, :], force))
+
+
+class CantileverScene:
+    """A cantilever in meshcat: stress-colored deformed beam, tip, force arrow and legend.
+
+    Parameters
+    ----------
+    lever : Cantilever
+        The lever to draw first.
+    force : float
+        End force in N (positive lifts the tip).
+    exaggeration : float
+        Factor applied to the drawn deflection (> 0; default x100).
+    vis : meshcat.Visualizer, optional
+        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+    path : str
+        Path of this scene in the viewer.
+    force_per_unit : float
+        Force in N drawn as one scene unit (100 um) of arrow.
+    stress_limit : float, optional
+        Fixed color limit in Pa; by default the next round number (1, 2, 5 x 10^n MPa) above
+        the largest stress, so the legend changes only when the stress crosses one.
+    n_length, n_thickness : int
+        Mesh stations along the lever and levels through its thickness.
+    camera : bool
+        Place the camera to look at the lever's side face.
+
+    Notes
+    -----
+    One scene unit is 100 um (:data:`SCENE_UNIT`). Drawn deflection = exaggeration x z(x);
+    the arrow's length is force / ``force_per_unit`` scene units, drawn from below the tip apex
+    when the force pushes the tip up (a repulsive sample), from the apex downwards when it pulls.
+    """
+
+    def __init__(self, lever: Cantilever, force: float = 0.0, *,
+                 exaggeration: float = DEFAULTS["exaggeration"],
+                 vis: meshcat.Visualizer | None = None, path: str = "afmsmiler/cantilever",
+                 force_per_unit: float = DEFAULTS["force_per_unit"],
+                 stress_limit: float | None = None,
+                 n_length: int = DEFAULTS["n_length"], n_thickness: int = DEFAULTS["n_thickness"],
+                 camera: bool = True):
+        if not isinstance(lever, Cantilever):
+            raise ValueError(f"lever must be a Cantilever, got {lever!r}")
+        self.root = vis if vis is not None else get_viewer()
+        self.path = path
+        self.vis = self.root[path]
+        self.force_per_unit = check_positive("force_per_unit", force_per_unit, "N")
+        self.stress_limit = (None if stress_limit is None
+                             else check_positive("stress_limit", stress_limit, "Pa"))
+        self.n_length = check_integer("n_length", n_length, 2, 10_000)
+        self.n_thickness = check_integer("n_thickness", n_thickness, 2, 1_000)
+        self._material = g.MeshLambertMaterial(**_BEAM_MATERIAL_ARGS)
+        self._tip_drawn_for = None
+        self._base_drawn_for = None
+        self.arrow = P.Arrow(self.vis["force"], color=0x303030, radius=0.015, head_length=0.08)
+        self.legend = None
+        self.scale = None
+        self.mesh = None
+        self.field = None
+        self.update(lever, force, exaggeration=exaggeration)
+        if camera:
+            P.set_camera(self.root, [0.0, -4.5, 2.0])
+
+    # -- in-place update ----------------------------------------------------------------------
+    def color_scale(self, field: StressField) -> P.ColorScale:
+        """The (symmetric, MPa) color scale for ``field``: fixed or the next round number."""
+        if self.stress_limit is not None:
+            limit = self.stress_limit / 1e6
+        else:
+            limit = P.nice_ceil(float(np.abs(field.stress).max()) / 1e6, DEFAULTS["stress_floor"])
+        return P.ColorScale.symmetric(limit, "RdBu_r", _STRESS_LABEL, _STRESS_UNIT)
+
+    def update(self, lever: Cantilever, force: float, *, exaggeration: float | None = None) -> None:
+        """Redraw for a new lever and/or force, in place (same viewer, same paths).
+
+        Parameters
+        ----------
+        lever : Cantilever
+            The lever.
+        force : float
+            End force in N.
+        exaggeration : float, optional
+            New deflection exaggeration (> 0); by default keep the current one.
+        """
+        if not isinstance(lever, Cantilever):
+            raise ValueError(f"lever must be a Cantilever, got {lever!r}")
+        force = check_range("force", force, -math.inf, math.inf, "N")
+        if exaggeration is not None:
+            self.exaggeration = check_positive("exaggeration", exaggeration)
+        self.lever, self.force = lever, force
+        field = stress_field(lever, force, self.n_length, self.n_thickness)
+        scale = self.color_scale(field)
+        u, ex = SCENE_UNIT, self.exaggeration
+        mesh = P.beam_mesh(field.x / u, ex * field.deflection / u, lever.width / u,
+                           lever.thickness / u, field.stress / 1e6, slope=ex * field.slope)
+        self.vis["beam"].set_object(mesh.geometry(scale), self._material)
+        self.field, self.mesh = field, mesh
+        self._draw_base(lever)
+        self._place_tip(lever, field)
+        if self.legend is None:
+            self.legend = P.ColorLegend(self.vis["legend"], scale, width=1.6)
+        else:
+            self.legend.set(scale)
+        self.scale = scale
+        length = lever.length / u
+        self.vis["legend"].set_transform(P.translation([0.0, 0.5, 0.9]))
+        self.vis.set_transform(P.translation([-length / 2, 0.0, 0.0]))  # centre the lever
+
+    def _draw_base(self, lever: Cantilever) -> None:
+        """The chip the lever is clamped to (a grey block behind x = 0), redrawn when h changes."""
+        key = lever.thickness
+        if key == self._base_drawn_for:
+            return
+        u = SCENE_UNIT
+        self.vis["chip"].set_object(g.Box([1.0, 1.2, 0.3]), g.MeshLambertMaterial(color=0x9a9a9a))
+        # top flush with the lever's top face
+        self.vis["chip"].set_transform(P.translation([-0.5, 0.0, lever.thickness / u / 2 - 0.15]))
+        self._base_drawn_for = key
+
+    def tip_pose(self, lever: Cantilever, field: StressField) -> np.ndarray:
+        """4x4 pose of the tip frame: origin on the beam's bottom face at the free end, z along
+        the local normal of the drawn beam (scene units), for ``lever`` drawn from ``field``."""
+        u, ex = SCENE_UNIT, self.exaggeration
+        s = ex * float(field.slope[-1])
+        n = np.array([-s, 0.0, 1.0]) / math.hypot(1.0, s)
+        tangent = np.array([1.0, 0.0, s]) / math.hypot(1.0, s)
+        inset = min(DEFAULTS["tip_radius"] * 1.5, 0.2 * lever.length) / u
+        centre = np.array([lever.length / u, 0.0, ex * float(field.deflection[-1]) / u])
+        origin = centre - inset * tangent - 0.5 * lever.thickness / u * n
+        pose = np.eye(4)
+        pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = tangent, [0.0, 1.0, 0.0], n, origin
+        return pose
+
+    def _place_tip(self, lever: Cantilever, field: StressField) -> None:
+        u = SCENE_UNIT
+        if self._tip_drawn_for is None:
+            P.cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u, 0x707070)
+            self._tip_drawn_for = True
+        pose = self.tip_pose(lever, field)
+        # the cone (apex at its origin, base at +height) hangs below the bottom face
+        self.vis["tip"].set_transform(pose @ P.translation([0.0, 0.0, -DEFAULTS["tip_height"] / u]))
+        apex = self.apex(pose)
+        length = self.force / self.force_per_unit
+        if length >= 0:   # pushed up from below: the arrow ends at the apex
+            self.arrow.set(apex - [0.0, 0.0, length], [0.0, 0.0, length])
+        else:             # pulled down: the arrow starts at the apex
+            self.arrow.set(apex, [0.0, 0.0, length])
+
+    @staticmethod
+    def apex(pose: np.ndarray) -> np.ndarray:
+        """Position of the tip apex (scene units) for a tip pose from :meth:`tip_pose`."""
+        return (pose @ np.array([0.0, 0.0, -DEFAULTS["tip_height"] / SCENE_UNIT, 1.0]))[:3]
+
+    # -- modes ----------------------------------------------------------------------------
+    def animate_modes(self, modes=(1, 2, 3), *, frames: int = DEFAULTS["mode_frames"],
+                      repetitions: int = 3, play: bool = True) -> Animation:
+        """Animate the first flexural mode shapes of the current lever beside it.
+
+        Each mode is drawn as a beam of rigid segments behind the static lever (see
+        :func:`mode_animation`), oscillating in its shape :meth:`Cantilever.mode_shape` with a
+        tip amplitude of 15 % of L. All modes are shown with the same period (their real
+        frequencies differ by f_n/f_1 = 6.27, 17.5, ...; see the plot of the mode shapes).
+
+        Parameters
+        ----------
+        modes : sequence of int
+            Mode numbers (1-based).
+        frames : int
+            Frames per period.
+        repetitions : int
+            How many periods the viewer plays.
+        play : bool
+            Start playing at once.
+
+        Returns
+        -------
+        meshcat.animation.Animation
+            The animation sent to the viewer (play it again with ``vis.set_animation``).
+        """
+        anim = mode_animation(self.lever, self.vis["modes"], modes=modes, frames=frames)
+        self.root.set_animation(anim, play=play, repetitions=check_integer(
+            "repetitions", repetitions, 1, 10_000))
+        return anim
+
+    def clear_modes(self) -> None:
+        """Remove the mode beams."""
+        self.vis["modes"].delete()
+
+    # -- export ---------------------------------------------------------------------------
+    def static_html(self) -> str:
+        """The scene as one self-contained HTML page (meshcat's ``static_html``), for the book."""
+        return _static_html(self.root)
+
+
+def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), *,
+                   frames: int = DEFAULTS["mode_frames"],
+                   segments: int = DEFAULTS["mode_segments"],
+                   amplitude: float = DEFAULTS["mode_amplitude"],
+                   fps: int = DEFAULTS["mode_fps"]) -> Animation:
+    """Draw segmented beams for ``modes`` under ``vis`` and return their oscillation as an Animation.
+
+    meshcat animates transforms, not vertices, so each mode beam is made of ``segments`` rigid
+    boxes whose poses follow A phi_n(x) sin(2 pi k / frames) for k = 0..frames. Mode n is placed
+    behind the lever at y = n (0.3 + 1.5 w) scene units (1 unit = 100 um).
+
+    Parameters
+    ----------
+    lever : Cantilever
+        Supplies L, w, h and the mode shapes.
+    vis : meshcat.Visualizer
+        Parent path of the mode beams.
+    modes : sequence of int
+        Mode numbers (1-based).
+    frames : int
+        Frames per period (>= 2).
+    segments : int
+        Rigid segments per beam (>= 2).
+    amplitude : float
+        Tip amplitude as a fraction of L, in (0, 1].
+    fps : int
+        Frame rate of the animation.
+
+    Returns
+    -------
+    meshcat.animation.Animation
+    """
+    frames = check_integer("frames", frames, 2, 10_000)
+    segments = check_integer("segments", segments, 2, 1_000)
+    amplitude = check_range("amplitude", amplitude, 0.0, 1.0, low_inclusive=False)
+    fps = check_integer("fps", fps, 1, 240)
+    modes = [check_integer("mode", m, 1, 50) for m in modes]
+    u = SCENE_UNIT
+    L, w, h = lever.length / u, lever.width / u, lever.thickness / u
+    pitch = 0.3 + 1.5 * w
+    edges = np.linspace(0.0, lever.length, segments + 1)
+    mids = 0.5 * (edges[1:] + edges[:-1])
+    fine = np.linspace(0.0, lever.length, 20 * segments + 1)
+    anim = Animation(default_framerate=fps)
+    for n in modes:
+        phi = lever.mode_shape(mids, n)
+        dphi = np.interp(mids, fine, np.gradient(lever.mode_shape(fine, n), fine / lever.length))
+        for i in range(segments):
+            box = vis[f"mode{n}"][f"s{i:03d}"]
+            # slightly longer than the pitch so the joints stay closed while bending
+            box.set_object(g.Box([1.08 * L / segments, w, h]),
+                           g.MeshLambertMaterial(color=_MODE_COLORS[(n - 1) % len(_MODE_COLORS)]))
+        for k in range(frames + 1):
+            a = amplitude * L * math.sin(2 * math.pi * k / frames)
+            with anim.at_frame(vis, k) as frame:
+                for i in range(segments):
+                    angle = math.atan(a / L * dphi[i])
+                    c, s = math.cos(angle), math.sin(angle)
+                    t = np.array([[c, 0, -s, mids[i] / u], [0, 1, 0, pitch * n],
+                                  [s, 0, c, a * phi[i]], [0, 0, 0, 1]])
+                    frame[f"mode{n}"][f"s{i:03d}"].set_transform(t)
+    return anim

@@ -1,0 +1,201 @@
+"""The cantilever scene against closed forms: the drawn centre line is the exaggerated Eq. (1), the
+colors are the textbook clamp stress 6 F L / (w h^2), the tip and arrow sit at the free end, the
+modes have their published nodes, and a real viewer is updated in place (one server, same paths)."""
+import math
+
+import numpy as np
+import pytest
+from meshcat.path import Path
+
+from afmsmiler.cantilever import Cantilever
+from afmsmiler.scenes import close_viewer, get_viewer, viewer
+from afmsmiler.scenes.cantilever import DEFAULTS, SCENE_UNIT, CantileverScene, mode_animation
+
+E, RHO = 169e9, 2330.0
+L, W, H = 450e-6, 50e-6, 2e-6
+F = 120e-9
+LEVER = Cantilever(L, W, H, E, RHO)
+
+
+class Recorder:
+    """A stand-in for meshcat.Visualizer recording what is sent to which path."""
+
+    def __init__(self, log=None, path=Path()):
+        self.log = {} if log is None else log
+        self.path = path
+
+    def __getitem__(self, name):
+        return Recorder(self.log, self.path.append(name))
+
+    def _node(self):
+        return self.log.setdefault(self.path.lower(), {})
+
+    def set_object(self, geometry, material=None):
+        self._node()["object"] = (geometry, material)
+        self._node()["n_objects"] = self._node().get("n_objects", 0) + 1
+
+    def set_transform(self, matrix=np.eye(4)):
+        self._node()["transform"] = np.asarray(matrix)
+
+    def set_property(self, key, value):
+        self._node()[key] = value
+
+    def set_animation(self, animation, play=True, repetitions=1):
+        self.log["animation"] = animation
+
+    def delete(self):
+        self.log.pop(self.path.lower(), None)
+
+
+def closed_form_tip(force):
+    k = E * W * H ** 3 / (4 * L ** 3)  # 3 E J / L^3 with J = w h^3 / 12, by hand
+    return force / k
+
+
+@pytest.fixture
+def scene():
+    rec = Recorder()
+    return CantileverScene(LEVER, F, vis=rec, path="lever"), rec
+
+
+def centre_line(sc):
+    nl, nt = sc.n_length, sc.n_thickness
+    side = sc.mesh.vertices[:nl * nt].reshape(nl, nt, 3)
+    return side[:, nt // 2]
+
+
+def test_drawn_centre_line_is_the_exaggerated_deflection(scene):
+    sc, _ = scene
+    mid = centre_line(sc)
+    u = mid[:, 0] * SCENE_UNIT / L
+    ref = closed_form_tip(F) / 2 * (3 * u ** 2 - u ** 3)  # z(L) (3u^2 - u^3)/2, Eq. (1)
+    np.testing.assert_allclose(mid[:, 0], np.linspace(0, L / SCENE_UNIT, sc.n_length), rtol=1e-6)
+    np.testing.assert_allclose(mid[:, 2], 100 * ref / SCENE_UNIT, rtol=1e-5, atol=1e-7)
+    sc.update(LEVER, F, exaggeration=250)
+    np.testing.assert_allclose(centre_line(sc)[:, 2], 250 * ref / SCENE_UNIT, rtol=1e-5, atol=1e-7)
+    # the width and thickness are drawn true to scale (1 unit = 100 um)
+    v = sc.mesh.vertices
+    assert v[:, 1].max() - v[:, 1].min() == pytest.approx(W / SCENE_UNIT, rel=1e-6)
+
+
+def test_colors_are_the_bending_stress_through_length_and_thickness(scene):
+    sc, rec = scene
+    sigma_clamp = 6 * F * L / (W * H ** 2) / 1e6  # MPa, textbook surface stress at the clamp
+    v, vals = sc.mesh.vertices, sc.mesh.values
+    top = sc.mesh.values[:sc.n_length * sc.n_thickness].reshape(sc.n_length, sc.n_thickness)
+    # F > 0 lifts the tip: top surface compressed, bottom stretched, zero on the neutral plane
+    assert top[0, -1] == pytest.approx(-sigma_clamp, rel=1e-12)
+    assert top[0, 0] == pytest.approx(sigma_clamp, rel=1e-12)
+    np.testing.assert_allclose(top[:, sc.n_thickness // 2], 0.0, atol=1e-12 * sigma_clamp)
+    # linear in z_b through the thickness and in (L - x) along the length
+    np.testing.assert_allclose(top[0], np.linspace(sigma_clamp, -sigma_clamp, sc.n_thickness), rtol=1e-12)
+    np.testing.assert_allclose(top[:, -1], -sigma_clamp * np.linspace(1, 0, sc.n_length), atol=1e-9)
+    # the color limit is the next round number above the peak, in MPa
+    assert sc.scale.unit == "MPa" and sigma_clamp <= sc.scale.vmax <= 2.5 * sigma_clamp
+    geom, material = rec.log["/lever/beam"]["object"]
+    assert material.vertexColors
+    np.testing.assert_allclose(geom.color, sc.scale.rgb(vals), atol=1e-7)
+    assert len(vals) == len(v)
+
+
+def test_fixed_stress_limit_maps_the_clamp_to_the_colormap_ends():
+    rec = Recorder()
+    sigma_clamp = 6 * F * L / (W * H ** 2)
+    sc = CantileverScene(LEVER, F, vis=rec, stress_limit=sigma_clamp)
+    geom, _ = rec.log["/afmsmiler/cantilever/beam"]["object"]
+    top_clamp = np.argmin(sc.mesh.values)
+    bottom_clamp = np.argmax(sc.mesh.values)
+    np.testing.assert_allclose(geom.color[top_clamp], sc.scale.rgb(-1e9), atol=1e-7)  # blue end
+    np.testing.assert_allclose(geom.color[bottom_clamp], sc.scale.rgb(1e9), atol=1e-7)  # red end
+    assert geom.color[bottom_clamp][0] > geom.color[bottom_clamp][2]
+
+
+def test_tip_and_force_arrow_sit_at_the_free_end(scene):
+    sc, rec = scene
+    ex = 100
+    z_tip = ex * closed_form_tip(F) / SCENE_UNIT
+    pose = sc.tip_pose(LEVER, sc.field)
+    apex = sc.apex(pose)
+    # the tip hangs below the bottom face near the free end, along the drawn beam's normal there:
+    # drawn slope = ex theta(L) = ex 3 z(L) / (2 L) (textbook), normal (-s, 0, 1) / sqrt(1 + s^2)
+    s = ex * 1.5 * closed_form_tip(F) / L
+    n = np.array([-s, 0, 1]) / math.hypot(1, s)
+    t = np.array([1, 0, s]) / math.hypot(1, s)
+    d = apex - [L / SCENE_UNIT, 0, z_tip]
+    assert d @ n == pytest.approx(-(H / 2 + DEFAULTS["tip_height"]) / SCENE_UNIT, rel=1e-9)
+    assert -0.1 < d @ t <= 0 and abs(d[1]) < 1e-12
+    # arrow: length F / force_per_unit, pointing up, ending at the apex
+    assert np.allclose(sc.arrow.vector, [0, 0, F / DEFAULTS["force_per_unit"]])
+    np.testing.assert_allclose(sc.arrow.start + sc.arrow.vector, apex, atol=1e-12)
+    sc.update(LEVER, -F)  # pulled down: starts at the apex, points down
+    apex = sc.apex(sc.tip_pose(LEVER, sc.field))
+    np.testing.assert_allclose(sc.arrow.start, apex, atol=1e-12)
+    assert sc.arrow.vector[2] == pytest.approx(-F / DEFAULTS["force_per_unit"])
+
+
+def test_update_is_in_place(scene):
+    sc, rec = scene
+    def objects():
+        return {k for k, v in rec.log.items() if k.startswith("/") and "object" in v}
+
+    paths = objects()
+    counts = {k: rec.log[k].get("n_objects", 0) for k in paths}
+    for f in np.linspace(-2e-7, 2e-7, 7):
+        sc.update(Cantilever(L * 0.8, W, H * 1.1, E, RHO), f, exaggeration=50)
+    assert objects() == paths
+    assert rec.log["/lever/force"]["visible"] is True  # hidden at F = 0, shown again after
+    grown = {k for k in paths if rec.log[k].get("n_objects", 0) > counts[k]}
+    assert grown <= {"/lever/beam", "/lever/chip", "/lever/legend/plate"}  # only the mesh is resent
+
+
+def test_modes_have_their_published_nodes():
+    # Node positions x/L of a clamped-free beam: mode 2 at 0.783; mode 3 at 0.504 and 0.868
+    # (Blevins, Formulas for Natural Frequency and Mode Shape, Table 8-1).
+    rec = Recorder()
+    segs, frames = 60, 8
+    anim = mode_animation(LEVER, rec["modes"], modes=(1, 2, 3), frames=frames, segments=segs)
+    quarter = frames // 4  # sin = 1
+    mids = (np.arange(segs) + 0.5) / segs
+    for n, nodes in ((1, []), (2, [0.783]), (3, [0.504, 0.868])):
+        z = []
+        for i in range(segs):
+            clip = anim.clips[Path(("modes", f"mode{n}", f"s{i:03d}"))]
+            track = clip.tracks["position"]
+            z.append(track.values[track.frames.index(quarter)][2])
+        z = np.array(z)
+        crossings = mids[:-1][np.diff(np.sign(z)) != 0]
+        assert len(crossings) == len(nodes)
+        for c, node in zip(crossings, nodes):
+            assert abs(c + 0.5 / segs - node) <= 1.0 / segs
+        tip = z[-1] + (z[-1] - z[-2]) / 2  # extrapolated from the last segment centres to x = L
+        assert tip == pytest.approx(DEFAULTS["mode_amplitude"] * L / SCENE_UNIT, rel=0.01)
+
+
+def test_bad_input():
+    rec = Recorder()
+    with pytest.raises(ValueError, match="exaggeration must be > 0"):
+        CantileverScene(LEVER, F, vis=rec, exaggeration=0)
+    with pytest.raises(ValueError, match="lever must be a Cantilever"):
+        CantileverScene("silicon", F, vis=rec)
+    sc = CantileverScene(LEVER, F, vis=rec)
+    with pytest.raises(ValueError, match="force must be in"):
+        sc.update(LEVER, math.nan)
+    with pytest.raises(ValueError, match="frames must be an integer"):
+        mode_animation(LEVER, rec, frames=1)
+
+
+def test_real_viewer_one_server_updated_in_place():
+    try:
+        sc = CantileverScene(LEVER, F)
+        pid = viewer._proc.pid
+        size0 = len(sc.static_html())
+        for f in np.linspace(0, 3e-7, 10):
+            sc.update(LEVER, f, exaggeration=200)
+        assert viewer._proc.pid == pid and sc.root is get_viewer()
+        # in place: the stored scene holds one mesh, so it does not grow with updates
+        assert abs(len(sc.static_html()) - size0) < 0.05 * size0
+        sc.animate_modes(frames=4, repetitions=1)
+        assert "<html" in sc.static_html().lower()
+    finally:
+        close_viewer()
+    assert not viewer.viewer_running()

@@ -1,0 +1,123 @@
+"""The module (a) panel without a browser: set sliders, compare the plotted data with the model and
+with closed forms; slider bounds can never produce a lever the model rejects."""
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+from afmsmiler.cantilever import Cantilever
+from afmsmiler.materials import MATERIALS
+from afmsmiler.scenes import close_viewer, viewer
+from afmsmiler.ui.cantilever import BOUNDS, CantileverPanel
+
+SET = dict(force=250.0, length=300.0, width=40.0, thickness=3.0, section=0.5)
+
+
+@pytest.fixture
+def panel():
+    p = CantileverPanel(scene=False)
+    p.set(**SET)
+    return p
+
+
+def test_lines_equal_the_model_in_the_units_shown(panel):
+    v = panel.values()
+    lever = Cantilever(v["length"] * 1e-6, v["width"] * 1e-6, v["thickness"] * 1e-6,
+                       v["youngs_modulus"] * 1e9, v["density"])
+    F = v["force"] * 1e-9
+    lines = panel.figure.lines
+    x_um, z_nm = lines["z"].get_data()
+    assert x_um[0] == 0 and x_um[-1] == pytest.approx(300.0)
+    x = np.asarray(x_um) * 1e-6
+    np.testing.assert_allclose(z_nm, lever.deflection(x, F) * 1e9, rtol=1e-12)
+    np.testing.assert_allclose(lines["theta"].get_data()[1], lever.slope(x, F) * 1e3, rtol=1e-12)
+    np.testing.assert_allclose(lines["stress_top"].get_data()[1],
+                               lever.stress(x, lever.thickness / 2, F) / 1e6, rtol=1e-12, atol=1e-15)
+    s_mpa, zb_um = lines["section"].get_data()
+    assert zb_um[0] == pytest.approx(-1.5) and zb_um[-1] == pytest.approx(1.5)
+    np.testing.assert_allclose(s_mpa, lever.stress(150e-6, np.asarray(zb_um) * 1e-6, F) / 1e6,
+                               rtol=1e-12, atol=1e-15)
+    assert lines["section_marker_z"].get_xdata()[0] == pytest.approx(150.0)
+
+
+def test_readouts_against_closed_forms(panel):
+    E, L, w, h, rho = 169e9, 300e-6, 40e-6, 3e-6, 2330.0
+    F = 250e-9
+    k = E * w * h ** 3 / (4 * L ** 3)
+    # f1 = (1.87510407)^2 / (2 pi L^2) sqrt(E J / (rho w h)) (Blevins, Table 8-1)
+    f1 = 1.87510407 ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * h ** 2 / (12 * rho))
+    last = panel.last
+    assert last.spring_constant == pytest.approx(k, rel=1e-12)
+    assert last.frequencies[0] == pytest.approx(f1, rel=1e-8)
+    assert last.frequencies[2] / last.frequencies[0] == pytest.approx((7.85475744 / 1.87510407) ** 2, rel=1e-8)
+    assert last.tip_deflection == pytest.approx(F / k, rel=1e-12)
+    assert last.max_stress == pytest.approx(6 * F * L / (w * h ** 2), rel=1e-12)
+    html = panel.readout.value
+    assert f"{k:.4g} N/m" in html and f"{f1 / 1e3:.4g}" in html and "kHz" in html
+    assert f"{F / k * 1e9:.4g} nm" in html and "MPa" in html
+
+
+def test_material_sets_e_and_rho_in_one_update(panel):
+    calls = []
+    update = panel.update
+    panel.update = lambda **v: (calls.append(v), update(**v))
+    panel.controls["material"].value = "silicon_nitride"  # as a user would
+    assert len(calls) == 1
+    m = MATERIALS["silicon_nitride"]
+    assert panel.values()["youngs_modulus"] == pytest.approx(m.youngs_modulus / 1e9)
+    assert panel.values()["density"] == pytest.approx(m.density)
+    assert panel.last.lever.youngs_modulus == pytest.approx(m.youngs_modulus)
+    panel.set(material="gold")
+    assert panel.last.lever.density == pytest.approx(MATERIALS["gold"].density)
+    assert len(calls) == 2
+
+
+def test_slider_bounds_keep_the_model_valid():
+    p = CantileverPanel(scene=False)
+    for name, (lo, hi) in BOUNDS.items():
+        assert (p.controls[name].min, p.controls[name].max) == (lo, hi) or name == "exaggeration"
+    # every corner of the slider box is a valid lever, and the section never leaves it
+    names = ["force", "length", "width", "thickness", "youngs_modulus", "density"]
+    for corner in itertools.product(*[BOUNDS[n] for n in names]):
+        p.set(**dict(zip(names, corner)), section=1.0)
+        assert p.last.curves.section_x_um == pytest.approx(p.last.lever.length * 1e6)
+        assert np.isfinite(p.last.curves.z_nm).all()
+    # a value typed beyond a bound is clamped by the slider, so the model never sees it
+    p.set(thickness=-5.0, length=1e6, section=7.0)
+    assert p.values()["thickness"] == BOUNDS["thickness"][0]
+    assert p.last.lever.length == pytest.approx(BOUNDS["length"][1] * 1e-6)
+    assert p.last.curves.section_x_um <= p.last.lever.length * 1e6 * (1 + 1e-12)
+    # every material preset lies inside the E and rho sliders
+    for m in MATERIALS.values():
+        assert BOUNDS["youngs_modulus"][0] <= m.youngs_modulus / 1e9 <= BOUNDS["youngs_modulus"][1]
+        assert BOUNDS["density"][0] <= m.density <= BOUNDS["density"][1]
+
+
+def test_unknown_controls_are_rejected(panel):
+    with pytest.raises(TypeError, match="unknown control"):
+        panel.set(youngs=100)
+    with pytest.raises(TypeError, match="unknown control"):
+        CantileverPanel(scene=False, stiffness=1.0)
+
+
+def test_panel_with_scene_updates_the_3d_view_in_place():
+    try:
+        p = CantileverPanel(scene=True, material="silicon_nitride")
+        assert p.last.lever.youngs_modulus == MATERIALS["silicon_nitride"].youngs_modulus
+        pid = viewer._proc.pid
+        p.set(force=-300.0, exaggeration=1000.0, length=200.0)
+        lever = p.last.lever
+        sc = p.scene
+        assert sc.exaggeration == pytest.approx(1000.0) and sc.lever is lever
+        nl, nt = sc.n_length, sc.n_thickness
+        centre = sc.mesh.vertices[:nl * nt].reshape(nl, nt, 3)[:, nt // 2]
+        np.testing.assert_allclose(centre[:, 2],
+                                   1000 * lever.deflection(centre[:, 0] * 1e-4, -3e-7) / 1e-4, rtol=1e-5,
+                                   atol=1e-9)
+        assert viewer._proc.pid == pid  # the same server throughout
+        assert "MPa" in p.readout.value and "x1,000" in p.readout.value
+        w = p.widget()
+        assert p.readout in w.children[0].children
+    finally:
+        close_viewer()
