@@ -1,0 +1,167 @@
+"""Bulk electric actuation: electrostatic (capacitive) and electromagnetic (Lorentz force, magnetic).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..validation import check_nonnegative, check_range
+from .base import (DEFLECTION, EPSILON_0, FORCE, SLOPE, Parameter, Quantity, Transducer,
+                   mechanical_response)
+
+__all__ = ["Electrostatic", "Electromagnetic", "ForceComponents"]
+
+
+@dataclass(frozen=True)
+class ForceComponents:
+    """A force (N) or deflection (m) split by frequency: DC, 1-omega and 2-omega amplitudes."""
+
+    dc: complex
+    first: complex
+    second: complex
+
+
+class Electrostatic(Transducer):
+    """Electrostatic actuation: a parallel-plate capacitor between the lever's end and an electrode.
+
+    A counter-electrode a gap g below the last ``electrode_length`` l_e of the lever (area
+    A = w l_e) forms C(z) = epsilon_0 A / (g + z), so dC/dz = -epsilon_0 A / g^2. At constant
+    voltage the force is F = (1/2) dC/dz V^2 (attractive: towards the electrode, z < 0). With
+    V = V_dc + V_ac cos(omega t)::
+
+        F = (1/2) dC/dz (V_dc^2 + V_ac^2 / 2)  +  dC/dz V_dc V_ac cos(omega t)  +  (1/4) dC/dz V_ac^2 cos(2 omega t)
+
+    the DC, 1-omega and 2-omega parts used by Kelvin-probe and electrostatic force microscopy
+    (Hudlet et al., Eur. Phys. J. B 2, 5 (1998); Senturia, *Microsystem Design*, ch. 6). The
+    force is spread uniformly over the electrode, q = F / l_e on [a, L], a = L - l_e; integrating
+    the point-load influence functions of module (a) gives the tip::
+
+        z(L) = q (3 L^4 / 4 - L a^3 + a^4 / 4) / (6 E J),     theta(L) = q (L^3 - a^3) / (6 E J)
+
+    (the end-load values F / k and 3 F / (2 k L) when l_e -> 0; q L^4 / (8 E J) when l_e = L).
+    Small deflections (|z| << g): the gap change, the electrostatic spring softening and pull-in
+    (at z = -g/3) are not modelled.
+    """
+
+    key = "electrostatic"
+    name = "electrostatic"
+    function, signal, size = "actuation", "DC&AC", "bulk"
+    summary = "a voltage across the gap to a counter-electrode pulls the lever"
+    BIASED = True
+    PARAMETERS = (
+        Parameter("gap", "m", "um", 1e6, "electrode gap g", 5e-6, 0.2e-6, 200e-6, log=True),
+        Parameter("electrode_length", "m", "um", 1e6, "electrode length l_e", 50e-6, 1e-6, 1e-3),
+        Parameter("ac_voltage", "V", "V", 1.0, "AC amplitude V_ac", 1.0, 0.0, 50.0),
+    )
+    MODES = ("actuation",)
+    INPUTS = {"actuation": Parameter("dc_voltage", "V", "V", 1.0, "DC voltage V_dc", 5.0,
+                                     -50.0, 50.0)}
+    OUTPUTS = {"actuation": DEFLECTION}
+    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
+
+    def _validate(self, values):
+        check_range("electrode_length", values["electrode_length"], 0.0, values["length"], "m",
+                    low_inclusive=False)
+
+    @property
+    def capacitance_gradient(self) -> float:
+        """dC/dz = -epsilon_0 w l_e / g^2 in F/m (z up, electrode below)."""
+        return -EPSILON_0 * self.width * self.electrode_length / self.gap ** 2
+
+    @property
+    def compliance(self) -> tuple:
+        """(tip deflection, tip slope) per newton of the uniform load on the electrode (m/N, rad/N)."""
+        L, a, ei = self.length, self.length - self.electrode_length, self.lever.flexural_rigidity
+        q = 1.0 / self.electrode_length
+        return (q * (0.75 * L ** 4 - L * a ** 3 + a ** 4 / 4) / (6 * ei),
+                q * (L ** 3 - a ** 3) / (6 * ei))
+
+    def force_components(self, dc_voltage: float) -> ForceComponents:
+        """DC, 1-omega and 2-omega force amplitudes in N for a bias ``dc_voltage`` (V)."""
+        v = self.INPUTS["actuation"].check(dc_voltage)
+        g, va = self.capacitance_gradient, self.ac_voltage
+        return ForceComponents(0.5 * g * (v * v + va * va / 2), g * v * va, 0.25 * g * va * va)
+
+    def deflection_components(self, dc_voltage: float, frequency: float) -> ForceComponents:
+        """Complex tip-deflection amplitudes (m) at DC, omega and 2 omega for a drive at ``frequency`` Hz."""
+        frequency = check_nonnegative("frequency", frequency, "Hz")
+        f = self.force_components(dc_voltage)
+        c = self.compliance[0]
+
+        def h(fr):
+            return complex(c * mechanical_response(fr, self.resonance_frequency, self.quality_factor))
+        return ForceComponents(f.dc * h(0.0), f.first * h(frequency), f.second * h(2 * frequency))
+
+    def _stages(self, v, mode):
+        force = 0.5 * self.capacitance_gradient * (v * v + self.ac_voltage ** 2 / 2)
+        cz, ct = self.compliance
+        return [(FORCE, force), (SLOPE, ct * force), (DEFLECTION, cz * force)]
+
+    def _sensitivity(self, mode, at):
+        return self.compliance[0] * self.capacitance_gradient * at
+
+
+class Electromagnetic(Transducer):
+    """Electromagnetic actuation: the Lorentz force on a current at the tip, or a magnetic moment.
+
+    A conductor loop runs along the lever's edges and across its free end; in a field B along the
+    lever's axis, only the crossbar of length l (perpendicular to B) feels a vertical force::
+
+        F = B I l        (Lorentz, F = I l x B)
+
+    an end load, so z = F / k and theta = 3 z / (2 L) (module (a)); it works at DC and AC
+    (Buguin et al., Appl. Phys. Lett. 78, 2982 (2001)). A magnetic moment m at the tip (a
+    magnetic particle or coating, MAC mode) feels the force m dB/dz in a field gradient
+    (:meth:`moment_force`) and the torque m B sin(angle) in a uniform field
+    (:meth:`moment_torque_deflection`): an end moment M bends the lever to z = M L^2 / (2 E J),
+    theta = M L / (E J) (Jackson, *Classical Electrodynamics*, sec. 5.7; Han, Lindsay and Jing,
+    Appl. Phys. Lett. 69, 4111 (1996)).
+    """
+
+    key = "electromagnetic"
+    name = "electromagnetic"
+    function, signal, size = "actuation", "DC&AC", "bulk"
+    summary = "Lorentz force B I l on a current loop at the tip (or a magnetic moment)"
+    PARAMETERS = (
+        Parameter("field", "T", "mT", 1e3, "magnetic field B", 0.1, 1e-4, 2.0, log=True),
+        Parameter("conductor_length", "m", "um", 1e6, "crossbar length l", 25e-6, 1e-6, 200e-6),
+    )
+    MODES = ("actuation",)
+    INPUTS = {"actuation": Parameter("current", "A", "mA", 1e3, "loop current I", 5e-3,
+                                     -50e-3, 50e-3)}
+    OUTPUTS = {"actuation": DEFLECTION}
+    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/A", "nm/mA", 1e6, "sensitivity")}
+
+    def lorentz_force(self, current):
+        """F = B I l in N for a loop current ``current`` (A)."""
+        return self.field * current * self.conductor_length
+
+    def moment_force(self, moment: float, field_gradient: float) -> float:
+        """Force m dB/dz in N on a moment ``moment`` (A m^2) in a gradient ``field_gradient`` (T/m)."""
+        m = check_range("moment", moment, -math.inf, math.inf, "A m^2")
+        grad = check_range("field_gradient", field_gradient, -math.inf, math.inf, "T/m")
+        return m * grad
+
+    def moment_torque_deflection(self, moment: float, angle: float = math.pi / 2) -> tuple:
+        """(tip deflection m, tip slope rad) from the torque m B sin(angle) of the model's field.
+
+        Parameters
+        ----------
+        moment : float
+            Magnetic moment in A m^2.
+        angle : float
+            Angle between the moment and the field in rad.
+        """
+        m = check_range("moment", moment, -math.inf, math.inf, "A m^2")
+        angle = check_range("angle", angle, -math.pi, math.pi, "rad")
+        torque = m * self.field * math.sin(angle)
+        ei, L = self.lever.flexural_rigidity, self.length
+        return torque * L ** 2 / (2 * ei), torque * L / ei
+
+    def _stages(self, i, mode):
+        force = self.lorentz_force(i)
+        z = force / self.spring_constant
+        return [(FORCE, force), (SLOPE, 1.5 * z / self.length), (DEFLECTION, z)]
+
+    def _sensitivity(self, mode, at):
+        return self.field * self.conductor_length / self.spring_constant

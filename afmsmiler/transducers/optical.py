@@ -1,0 +1,232 @@
+"""Bulk optical sensing: optical beam deflection, astigmatic detection and interferometry.
+
+All three read the lever's free end with a laser from outside ("bulk"), at DC and AC; their
+shot-noise-limited resolution is computed from the photocurrent (Schottky: a current I has the
+one-sided noise density sqrt(2 q I) A/sqrt(Hz)).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.special import erf
+
+from .base import (ELEMENTARY_CHARGE, TIP_DEFLECTION_INPUT, Parameter, Quantity, Transducer)
+
+__all__ = ["OpticalBeamDeflection", "AstigmaticDetection", "Interferometer"]
+
+_RESPONSIVITY = Parameter("responsivity", "A/W", "A/W", 1.0, "photodiode responsivity",
+                          0.4, 0.05, 1.0)
+_BANDWIDTH = Parameter("detector_bandwidth", "Hz", "kHz", 1e-3, "detector bandwidth",
+                       2e6, 1e3, 1e8, log=True)
+
+
+def _detector_lowpass(f, bandwidth):
+    """A first-order photoreceiver: 1 / (1 + j f / f_c)."""
+    return 1.0 / (1.0 + 1j * f / bandwidth)
+
+
+def _shot_noise_current(current: float, bandwidth: float) -> float:
+    """Rms shot noise sqrt(2 q I B) in A of a photocurrent ``current``."""
+    return math.sqrt(2 * ELEMENTARY_CHARGE * abs(current) * bandwidth)
+
+
+class OpticalBeamDeflection(Transducer):
+    """The optical lever: a laser reflected off the free end onto a split (four-quadrant) photodiode.
+
+    A tip deflection z tilts the free end by theta = 3 z / (2 L) (end-loaded lever, module (a)).
+    Reflection doubles the angle, so the spot moves by s = D tan(2 theta) ~ 2 D theta = 3 D z / L
+    on a detector at optical path D. For a Gaussian spot of 1/e^2 radius w, the fractions of
+    power on the upper (A + B) and lower (C + D) halves are (1 +- erf(sqrt(2) s / w)) / 2, so the
+    normalised difference signal is::
+
+        S = ((A + B) - (C + D)) / (A + B + C + D) = erf(sqrt(2) s / w)
+
+    and the small-signal sensitivity at the null is dS/dz = sqrt(8 / pi) / w * 3 D / L (1/m): it grows
+    with the optical path and falls as 1/L (Meyer and Amer, Appl. Phys. Lett. 53, 1045 (1988);
+    Sarid, *Scanning Force Microscopy*, ch. 5; Putman et al., J. Appl. Phys. 72, 6 (1992)).
+    The displacement of the reflection point itself (of order z, not D z / L) is neglected.
+
+    Noise: the difference current carries the shot noise of the whole photocurrent I = R P, so
+    the rms noise of S is sqrt(2 q B / I).
+    """
+
+    key = "optical_beam_deflection"
+    name = "optical beam deflection"
+    function, signal, size = "sensing", "DC&AC", "bulk"
+    summary = "laser reflected off the lever onto a four-quadrant photodiode"
+    PARAMETERS = (
+        Parameter("optical_path", "m", "mm", 1e3, "optical path D (lever to detector)",
+                  30e-3, 1e-3, 0.2),
+        Parameter("spot_radius", "m", "mm", 1e3, "spot 1/e^2 radius on the detector",
+                  0.5e-3, 20e-6, 5e-3),
+        Parameter("power", "W", "mW", 1e3, "laser power on the detector", 1e-3, 1e-6, 20e-3,
+                  log=True),
+        _RESPONSIVITY, _BANDWIDTH,
+    )
+    INPUTS = {"sensing": TIP_DEFLECTION_INPUT}
+    OUTPUTS = {"sensing": Quantity("signal", "", "", 1.0, "(A+B-C-D)/(A+B+C+D)")}
+    SENSITIVITY = {"sensing": Quantity("sensitivity", "1/m", "1/um", 1e-6, "sensitivity")}
+    SPOT = Quantity("spot_displacement", "m", "um", 1e6, "spot travel on the detector")
+
+    def spot_displacement(self, slope):
+        """Spot travel s = D tan(2 theta) in m for a free-end slope ``slope`` (rad)."""
+        return self.optical_path * np.tan(2 * np.asarray(slope, dtype=float))
+
+    def split_signal(self, spot):
+        """Normalised difference signal erf(sqrt(2) s / w) for a spot offset ``spot`` (m)."""
+        return erf(math.sqrt(2.0) * np.asarray(spot, dtype=float) / self.spot_radius)
+
+    def _stages(self, z, mode):
+        lever = self._lever_stages(z)
+        s = self.spot_displacement(lever[1][1])
+        return lever + [(self.SPOT, s), (self.OUTPUTS["sensing"], self.split_signal(s))]
+
+    def _sensitivity(self, mode, at):
+        two_theta = 3 * at / self.length
+        s = self.optical_path * math.tan(two_theta)
+        ds_dz = 3 * self.optical_path / (self.length * math.cos(two_theta) ** 2)
+        return (math.sqrt(8 / math.pi) / self.spot_radius
+                * math.exp(-2 * (s / self.spot_radius) ** 2) * ds_dz)
+
+    def _dynamics(self, f, mode):
+        return _detector_lowpass(f, self.detector_bandwidth)
+
+    def _detector_noise(self, bandwidth, low_frequency, mode):
+        current = self.responsivity * self.power
+        return {"shot": _shot_noise_current(current, bandwidth) / current}
+
+
+class AstigmaticDetection(Transducer):
+    """Astigmatic detection: the focus-error signal of an optical disc (DVD) pickup head.
+
+    The pickup focuses a laser onto the lever; on the way back a cylindrical lens makes the beam
+    astigmatic, with two line foci (x and y) separated by Delta (referred to the lever side),
+    and a four-quadrant detector sits midway, its split lines at 45 degrees to the foci. A
+    displacement d of the reflector moves the returning focus by 2 d, so the Gaussian beam radii
+    on the detector (waist w0, Rayleigh range z_R = pi w0^2 / lambda, a = Delta / 2) are::
+
+        w_x ~ sqrt(1 + ((2 d - a) / z_R)^2),     w_y ~ sqrt(1 + ((2 d + a) / z_R)^2)
+
+    For an elliptical Gaussian spot the diagonal quadrant pairs receive the angular fractions
+    (2/pi) atan(w_y / w_x) and 1 - (2/pi) atan(w_y / w_x), so the focus-error signal is::
+
+        FES = ((A + C) - (B + D)) / (A + B + C + D) = (4 / pi) atan(w_y / w_x) - 1
+
+    an S-curve: zero in focus, extrema near d = +-a/2, back to zero far away. Its slope at focus
+    is 8 a / (pi (z_R^2 + a^2)) (largest, 4 / (pi z_R), for a = z_R), and its linear range is a
+    few um (Bergmann and Schaefer, *Optics*; Hwu et al., Rev. Sci. Instrum. 76, 033704 (2005);
+    En-Te Hwu et al., "astigmatic detection system" AFM with a DVD pickup head).
+    Noise: shot noise of the detector current, as for the optical lever.
+    """
+
+    key = "astigmatic"
+    name = "astigmatic detection"
+    function, signal, size = "sensing", "DC&AC", "bulk"
+    summary = "focus-error S-curve of a DVD pickup head (cylindrical lens, four quadrants)"
+    PARAMETERS = (
+        Parameter("wavelength", "m", "nm", 1e9, "laser wavelength", 650e-9, 350e-9, 1.6e-6),
+        Parameter("waist", "m", "um", 1e6, "focused spot radius w0", 0.6e-6, 0.2e-6, 5e-6),
+        Parameter("astigmatic_distance", "m", "um", 1e6, "line-foci separation Delta",
+                  4e-6, 0.2e-6, 50e-6),
+        Parameter("power", "W", "uW", 1e6, "laser power on the detector", 100e-6, 1e-6, 5e-3,
+                  log=True),
+        _RESPONSIVITY, _BANDWIDTH,
+    )
+    INPUTS = {"sensing": Parameter("deflection", "m", "nm", 1e9, "tip deflection", 50e-9,
+                                   -10e-6, 10e-6)}
+    OUTPUTS = {"sensing": Quantity("signal", "", "", 1.0, "focus-error signal FES")}
+    SENSITIVITY = {"sensing": Quantity("sensitivity", "1/m", "1/um", 1e-6, "FES slope")}
+    RATIO = Quantity("axis_ratio", "", "", 1.0, "spot axis ratio w_y / w_x")
+
+    @property
+    def rayleigh_range(self) -> float:
+        """z_R = pi w0^2 / lambda in m."""
+        return math.pi * self.waist ** 2 / self.wavelength
+
+    def spot_radii(self, d):
+        """Beam radii (w_x, w_y) on the detector in units of w0 for a displacement ``d`` (m)."""
+        d = np.asarray(d, dtype=float)
+        a, zr = self.astigmatic_distance / 2, self.rayleigh_range
+        return np.sqrt(1 + ((2 * d - a) / zr) ** 2), np.sqrt(1 + ((2 * d + a) / zr) ** 2)
+
+    def focus_error(self, d):
+        """FES = (4/pi) atan(w_y / w_x) - 1 for a displacement ``d`` (m) of the reflector."""
+        wx, wy = self.spot_radii(d)
+        return 4 / math.pi * np.arctan(wy / wx) - 1
+
+    def _stages(self, z, mode):
+        wx, wy = self.spot_radii(z)
+        fes = 4 / math.pi * np.arctan(wy / wx) - 1
+        return self._lever_stages(z) + [(self.RATIO, wy / wx), (self.OUTPUTS["sensing"], fes)]
+
+    def _sensitivity(self, mode, at):
+        a, zr = self.astigmatic_distance / 2, self.rayleigh_range
+        u, v = (2 * at + a) / zr, (2 * at - a) / zr
+        wx, wy = self.spot_radii(at)
+        r = float(wy / wx)
+        return 4 / math.pi * r / (1 + r * r) * 2 / zr * (u / (1 + u * u) - v / (1 + v * v))
+
+    def _dynamics(self, f, mode):
+        return _detector_lowpass(f, self.detector_bandwidth)
+
+    def _detector_noise(self, bandwidth, low_frequency, mode):
+        current = self.responsivity * self.power
+        return {"shot": _shot_noise_current(current, bandwidth) / current}
+
+
+class Interferometer(Transducer):
+    """A (fibre) interferometer reading the lever's back: the two-beam fringe.
+
+    The light reflected by the lever interferes with a reference; a displacement d changes the
+    round-trip path by 2 d, so the detected power is (Hecht, *Optics*, ch. 9; Rugar, Mamin and
+    Guethner, Appl. Phys. Lett. 55, 2588 (1989))::
+
+        P(d) = P0 (1 + V cos(4 pi d / lambda + phi))
+
+    with visibility V and operating phase phi. Its slope -P0 V (4 pi / lambda) sin(phi) is
+    largest at quadrature, phi = -pi/2 (the default), where it is 4 pi V P0 / lambda; far from
+    it the response is nonlinear and even folds over each half fringe (lambda / 4 of travel).
+    Noise: shot noise of the photocurrent at the operating point.
+    """
+
+    key = "interferometry"
+    name = "interferometry"
+    function, signal, size = "sensing", "DC&AC", "bulk"
+    summary = "fibre interferometer: the fringe and its quadrature point"
+    PARAMETERS = (
+        Parameter("wavelength", "m", "nm", 1e9, "laser wavelength", 1310e-9, 350e-9, 2e-6),
+        Parameter("visibility", "", "", 1.0, "fringe visibility V", 0.8, 0.01, 1.0),
+        Parameter("power", "W", "uW", 1e6, "mean power P0 on the detector", 100e-6, 1e-6,
+                  5e-3, log=True),
+        Parameter("phase", "rad", "rad", 1.0, "operating phase phi", -math.pi / 2, -math.pi,
+                  math.pi),
+        _RESPONSIVITY, _BANDWIDTH,
+    )
+    INPUTS = {"sensing": Parameter("deflection", "m", "nm", 1e9, "tip deflection", 20e-9,
+                                   -1e-6, 1e-6)}
+    OUTPUTS = {"sensing": Quantity("power_detected", "W", "uW", 1e6, "detected power")}
+    SENSITIVITY = {"sensing": Quantity("sensitivity", "W/m", "uW/nm", 1e-3, "sensitivity")}
+    PHASE = Quantity("optical_phase", "rad", "rad", 1.0, "optical phase 4 pi d / lambda + phi")
+
+    def fringe(self, d):
+        """Detected power P0 (1 + V cos(4 pi d / lambda + phi)) in W at displacement ``d`` (m)."""
+        phase = 4 * math.pi * np.asarray(d, dtype=float) / self.wavelength + self.phase
+        return self.power * (1 + self.visibility * np.cos(phase))
+
+    def _stages(self, z, mode):
+        phase = 4 * math.pi * z / self.wavelength + self.phase
+        return self._lever_stages(z) + [(self.PHASE, phase),
+                                        (self.OUTPUTS["sensing"], self.fringe(z))]
+
+    def _sensitivity(self, mode, at):
+        k = 4 * math.pi / self.wavelength
+        return -self.power * self.visibility * k * math.sin(k * at + self.phase)
+
+    def _dynamics(self, f, mode):
+        return _detector_lowpass(f, self.detector_bandwidth)
+
+    def _detector_noise(self, bandwidth, low_frequency, mode):
+        power = float(self.fringe(0.0))
+        current = self.responsivity * power
+        return {"shot": _shot_noise_current(current, bandwidth) / self.responsivity}

@@ -1,0 +1,273 @@
+"""Thermal actuation: the photothermal (bulk) and electrothermal (embedded) bimorph.
+
+Heat deposited in a lever made of two layers with different thermal expansion bends it
+(a bimorph). Both models share three first-principles steps:
+
+1. Conduction to the clamp (1-D fin, no convection or radiation, the clamp at ambient): with
+   the layers' thermal conductance per unit width G/w = sum(kappa_i t_i),
+
+   * heat P at the free end (a laser spot):     Delta T(x) = P x / G
+   * heat P spread along the lever (a heater):  Delta T(x) = P (L x - x^2 / 2) / (L G)
+
+2. Bimorph curvature per kelvin (Timoshenko, J. Opt. Soc. Am. 11, 233 (1925))::
+
+       C = 6 (alpha_2 - alpha_1) (1 + m)^2 / (h (3 (1 + m)^2 + (1 + m n) (m^2 + 1 / (m n))))
+
+   with m = t_1 / t_2, n = E_1 / E_2, h = t_1 + t_2, layer 1 the silicon lever and layer 2 the
+   top film. A top film that expands more bends the lever down, towards the sample:
+   z''(x) = -C Delta T(x).
+
+3. Deflection of the free end from the curvature (clamped at x = 0)::
+
+       z(L) = int_0^L (L - x) z''(x) dx,     theta(L) = int_0^L z''(x) dx
+
+   i.e. z = -C P L^3 / (6 G) (tip heating) and z = -C P L^3 / (8 G) (uniform heating).
+
+The slowest thermal mode of the clamped fin (T = 0 at the clamp, no flux at the free end) has
+the time constant tau = 4 L^2 / (pi^2 D) with D = sum(kappa_i t_i) / sum(rho_i c_i t_i) the
+thermal diffusivity, so the deflection follows the power through the first-order low-pass
+1 / (1 + j 2 pi f tau) (-3 dB at 1 / (2 pi tau)) before the lever's own resonance
+(Carslaw and Jaeger, *Conduction of Heat in Solids*, 1959, sec. 3.3; Ramos et al., J. Appl.
+Phys. 99, 124904 (2006) for photothermal AFM excitation).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..materials import get_material
+from ..validation import check_nonnegative
+from .base import DEFLECTION, SLOPE, Parameter, Quantity, Transducer, mechanical_response
+
+__all__ = ["ThermalProperties", "THERMAL", "bimorph_curvature", "Photothermal", "Electrothermal",
+           "PowerComponents"]
+
+
+@dataclass(frozen=True)
+class ThermalProperties:
+    """Thermal figures of a material (SI): expansion alpha (1/K), conductivity (W/(m K)),
+    specific heat (J/(kg K)) and where they come from."""
+
+    expansion: float
+    conductivity: float
+    specific_heat: float
+    source: str = ""
+
+
+#: Thermal figures of the presets of :mod:`afmsmiler.materials` used in the bimorphs.
+THERMAL = {
+    "silicon": ThermalProperties(2.6e-6, 148.0, 705.0,
+                                 "Okada and Tokumaru, J. Appl. Phys. 56, 314 (1984); CRC Handbook"),
+    "gold": ThermalProperties(14.2e-6, 318.0, 129.0, "CRC Handbook of Chemistry and Physics"),
+    "aluminium": ThermalProperties(23.1e-6, 237.0, 897.0, "CRC Handbook of Chemistry and Physics"),
+}
+
+
+def bimorph_curvature(expansion_1: float, thickness_1: float, modulus_1: float,
+                      expansion_2: float, thickness_2: float, modulus_2: float) -> float:
+    """Timoshenko's bimorph curvature per kelvin, in 1/(m K), positive towards layer 1.
+
+    Parameters
+    ----------
+    expansion_1, expansion_2 : float
+        Thermal expansion coefficients in 1/K of the bottom (1) and top (2) layer.
+    thickness_1, thickness_2 : float
+        Layer thicknesses in m, > 0.
+    modulus_1, modulus_2 : float
+        Young's moduli in Pa, > 0.
+
+    Returns
+    -------
+    float
+        6 (alpha_2 - alpha_1) (1 + m)^2 / (h (3 (1 + m)^2 + (1 + m n)(m^2 + 1/(m n)))): the
+        curvature that bends the bilayer towards layer 1 (down, if layer 2 is on top) per kelvin.
+    """
+    m = thickness_1 / thickness_2
+    n = modulus_1 / modulus_2
+    h = thickness_1 + thickness_2
+    return (6 * (expansion_2 - expansion_1) * (1 + m) ** 2
+            / (h * (3 * (1 + m) ** 2 + (1 + m * n) * (m * m + 1 / (m * n)))))
+
+
+class _Bimorph(Transducer):
+    """Shared thermal and bimorph steps (see the module docstring)."""
+
+    FILM = "gold"
+    FILM_THICKNESS = "coating_thickness"
+    #: "tip" (laser spot) or "uniform" (heater along the lever)
+    HEATING = "tip"
+    TEMPERATURE = Quantity("tip_temperature", "K", "K", 1.0, "tip temperature rise")
+
+    @property
+    def _layers(self):
+        si, film = THERMAL["silicon"], THERMAL[self.FILM]
+        t1, t2 = self.thickness, getattr(self, self.FILM_THICKNESS)
+        return si, film, t1, t2
+
+    @property
+    def thermal_conductance(self) -> float:
+        """G = w sum(kappa_i t_i) in W m / K (heat flux along the lever per temperature gradient)."""
+        si, film, t1, t2 = self._layers
+        return self.width * (si.conductivity * t1 + film.conductivity * t2)
+
+    @property
+    def thermal_time_constant(self) -> float:
+        """tau = 4 L^2 / (pi^2 D) in s, the slowest thermal mode of the clamped lever."""
+        si, film, t1, t2 = self._layers
+        rho_c = (get_material("silicon").density * si.specific_heat * t1
+                 + get_material(self.FILM).density * film.specific_heat * t2)
+        diffusivity = (si.conductivity * t1 + film.conductivity * t2) / rho_c
+        return 4 * self.length ** 2 / (math.pi ** 2 * diffusivity)
+
+    @property
+    def curvature_per_kelvin(self) -> float:
+        """Timoshenko's C in 1/(m K) for the silicon lever and its top film."""
+        si, film, t1, t2 = self._layers
+        return bimorph_curvature(si.expansion, t1, get_material("silicon").youngs_modulus,
+                                 film.expansion, t2, get_material(self.FILM).youngs_modulus)
+
+    def temperature_profile(self, x, power):
+        """Temperature rise Delta T(x) in K along the lever for a heat input ``power`` (W)."""
+        x = np.asarray(x, dtype=float)
+        p_over_g = np.asarray(power, dtype=float) / self.thermal_conductance
+        if self.HEATING == "tip":
+            return p_over_g * x
+        return p_over_g * (self.length * x - x * x / 2) / self.length
+
+    @property
+    def _shape(self):
+        """(tip temperature, tip deflection, tip slope) per watt of heat, DC."""
+        L, g, c = self.length, self.thermal_conductance, self.curvature_per_kelvin
+        if self.HEATING == "tip":
+            return L / g, -c * L ** 3 / (6 * g), -c * L ** 2 / (2 * g)
+        return L / (2 * g), -c * L ** 3 / (8 * g), -c * L ** 2 / (3 * g)
+
+    def deflection_per_watt(self) -> float:
+        """Static tip deflection per watt of heat, in m/W (negative: towards the sample)."""
+        return self._shape[1]
+
+    def thermal_lag(self, f):
+        """The first-order low-pass 1 / (1 + j 2 pi f tau) of the heat flow (complex)."""
+        return 1.0 / (1.0 + 2j * math.pi * np.asarray(f, dtype=float) * self.thermal_time_constant)
+
+    def _heat_stages(self, heat):
+        t, z, th = self._shape
+        return [(self.TEMPERATURE, t * heat), (SLOPE, th * heat), (DEFLECTION, z * heat)]
+
+    def _dynamics(self, f, mode):
+        return self.thermal_lag(f)
+
+
+class Photothermal(_Bimorph):
+    """Photothermal actuation: a laser spot at the free end heats the gold-coated lever.
+
+    Absorbed power P_abs = A P (absorptance A of the coated back) flows to the clamp, the
+    temperature rises linearly along the lever, Delta T(x) = P_abs x / G, and the silicon/gold
+    bimorph bends the lever down: z = -C P_abs L^3 / (6 G), through the thermal low-pass of time
+    constant tau (see :mod:`afmsmiler.transducers.thermal`). Works at DC and AC (bulk: the
+    laser comes from outside); used for clean, resonance-free drive in liquid.
+    """
+
+    key = "photothermal"
+    name = "photothermal"
+    function, signal, size = "actuation", "DC&AC", "bulk"
+    summary = "a laser heats the coated lever: bimorph bending"
+    PARAMETERS = (
+        Parameter("absorptance", "", "", 1.0, "absorptance of the coating", 0.1, 1e-3, 1.0),
+        Parameter("coating_thickness", "m", "nm", 1e9, "gold coating thickness", 50e-9, 5e-9,
+                  500e-9),
+    )
+    MODES = ("actuation",)
+    INPUTS = {"actuation": Parameter("laser_power", "W", "mW", 1e3, "incident laser power",
+                                     1e-3, 0.0, 20e-3)}
+    OUTPUTS = {"actuation": DEFLECTION}
+    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/W", "nm/mW", 1e6, "sensitivity")}
+    ABSORBED = Quantity("absorbed_power", "W", "mW", 1e3, "absorbed power")
+
+    def _stages(self, p, mode):
+        heat = self.absorptance * p
+        return [(self.ABSORBED, heat)] + self._heat_stages(heat)
+
+    def _sensitivity(self, mode, at):
+        return self.absorptance * self.deflection_per_watt()
+
+
+@dataclass(frozen=True)
+class PowerComponents:
+    """Heater power of V = V_dc + V_ac cos(omega t) across R, split by frequency (W).
+
+    P(t) = dc + first cos(omega t) + second cos(2 omega t), with dc = (V_dc^2 + V_ac^2 / 2) / R,
+    first = 2 V_dc V_ac / R and second = V_ac^2 / (2 R).
+    """
+
+    dc: float
+    first: float
+    second: float
+
+
+class Electrothermal(_Bimorph):
+    """Electrothermal actuation: a resistive heater on the lever and an aluminium bimorph layer.
+
+    A voltage V = V_dc + V_ac cos(omega t) across the heater R dissipates P = V^2 / R::
+
+        P = (V_dc^2 + V_ac^2 / 2) / R  +  (2 V_dc V_ac / R) cos(omega t)  +  (V_ac^2 / (2 R)) cos(2 omega t)
+
+    so an unbiased drive (V_dc = 0) moves the lever at 2 omega only, and the 1-omega gain is
+    proportional to the bias. The heat, spread along the lever, gives Delta T(x) =
+    P (L x - x^2/2) / (L G) and, through the silicon/aluminium bimorph, z = -C P L^3 / (8 G),
+    low-passed by the thermal time constant tau (Pedrak et al., J. Vac. Sci. Technol. B 21, 3102
+    (2003); Rangelow et al., "active cantilevers"). The chain's input is the DC heater voltage;
+    the AC amplitude is a parameter whose rectified part V_ac^2 / (2 R) adds to the DC heat.
+    """
+
+    key = "electrothermal"
+    name = "electrothermal"
+    function, signal, size = "actuation", "DC&AC", "embedded"
+    summary = "an integrated heater warms an aluminium/silicon bimorph"
+    FILM = "aluminium"
+    FILM_THICKNESS = "film_thickness"
+    HEATING = "uniform"
+    BIASED = True
+    PARAMETERS = (
+        Parameter("resistance", "ohm", "kohm", 1e-3, "heater resistance R", 1e3, 10.0, 1e6,
+                  log=True),
+        Parameter("ac_voltage", "V", "V", 1.0, "AC amplitude V_ac", 0.5, 0.0, 5.0),
+        Parameter("film_thickness", "m", "nm", 1e9, "aluminium film thickness", 200e-9, 10e-9,
+                  2e-6),
+    )
+    MODES = ("actuation",)
+    INPUTS = {"actuation": Parameter("dc_voltage", "V", "V", 2.0, "DC heater voltage V_dc",
+                                     2.0, -5.0, 5.0)}
+    OUTPUTS = {"actuation": DEFLECTION}
+    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
+    POWER = Quantity("power", "W", "mW", 1e3, "mean heater power")
+
+    def power_components(self, dc_voltage: float) -> PowerComponents:
+        """DC, 1-omega and 2-omega heater power in W for a bias ``dc_voltage`` (V)."""
+        v = self.INPUTS["actuation"].check(dc_voltage)
+        r, va = self.resistance, self.ac_voltage
+        return PowerComponents((v * v + va * va / 2) / r, 2 * v * va / r, va * va / (2 * r))
+
+    def deflection_components(self, dc_voltage: float, frequency: float) -> PowerComponents:
+        """Complex tip-deflection amplitudes (m) at DC, omega and 2 omega for a drive at ``frequency``.
+
+        Each power component passes through the thermal lag and the first mode at its own
+        frequency.
+        """
+        frequency = check_nonnegative("frequency", frequency, "Hz")
+        p = self.power_components(dc_voltage)
+        k = self.deflection_per_watt()
+
+        def h(f):
+            return complex(k * self.thermal_lag(f)
+                           * mechanical_response(f, self.resonance_frequency, self.quality_factor))
+        return PowerComponents(p.dc * h(0.0), p.first * h(frequency), p.second * h(2 * frequency))
+
+    def _stages(self, v, mode):
+        heat = (v * v + self.ac_voltage ** 2 / 2) / self.resistance
+        return [(self.POWER, heat)] + self._heat_stages(heat)
+
+    def _sensitivity(self, mode, at):
+        return self.deflection_per_watt() * 2 * at / self.resistance
