@@ -1,0 +1,310 @@
+"""Fitting force-distance curves: Young's modulus, contact point and baseline with uncertainties.
+
+The force-volume workflow: for each curve, convert the positioner displacement to the tip
+position x = Z_np - F / k (the apex's travel towards the sample; with no lever correction the
+input already is the tip position), then fit::
+
+    F(x) = F_0 + E / (1 - nu^2) psi(max(x - x_0, 0))
+
+with psi the tip's force law at unit reduced modulus, for E, the contact point x_0 and the
+baseline F_0, by :func:`scipy.optimize.least_squares` with the analytic Jacobian
+(dF/dx_0 = -2 E* r(x - x_0)). The uncertainties are the square roots of the diagonal of
+s^2 (J^T J)^-1, with s^2 the residual variance: the usual linearised covariance (as
+:func:`scipy.optimize.curve_fit` reports it).
+
+Curves come from :func:`synthetic_curve` (the exact model with Gaussian noise) or from a file of
+any format the kept library ``afmformats`` reads (JPK, Asylum/Igor, AFM workshop, NT-MDT, its own
+tab and HDF5 exports) via :func:`load_curve`.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+
+from ..validation import check_array, check_integer, check_nonnegative, check_positive, check_range
+from .indent import indent
+from .tips import Spherical, Tip
+
+__all__ = ["ForceCurve", "FitResult", "synthetic_curve", "load_curve", "fit_curve"]
+
+
+@dataclass(frozen=True)
+class ForceCurve:
+    """A measured or synthetic force-distance curve (one segment), SI units.
+
+    Parameters
+    ----------
+    z_np : ndarray
+        Positioner displacement towards the tip in m (for files: minus the measured height).
+    force : ndarray
+        Force on the tip in N.
+    spring_constant : float or None
+        Lever spring constant in N/m, if known (needed for the tip position).
+    name : str
+        Where the curve comes from.
+    """
+
+    z_np: np.ndarray
+    force: np.ndarray
+    spring_constant: float | None = None
+    name: str = ""
+
+    @property
+    def tip_position(self) -> np.ndarray:
+        """Z_np - F / k in m (the apex's travel towards the sample)."""
+        if self.spring_constant is None:
+            raise ValueError("spring_constant is needed for the tip position, got None")
+        return self.z_np - self.force / self.spring_constant
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """Result of :func:`fit_curve`, with 1-sigma uncertainties from the fit covariance.
+
+    Parameters
+    ----------
+    youngs_modulus, youngs_modulus_error : float
+        E and its standard error in Pa.
+    contact_point, contact_point_error : float
+        x_0 (on the abscissa fitted: Z_np or tip position) and its standard error in m.
+    baseline, baseline_error : float
+        F_0 and its standard error in N.
+    residual_rms : float
+        Root-mean-square residual in N.
+    tip : Tip
+        The tip shape fitted.
+    poisson_ratio : float
+        The Poisson's ratio assumed.
+    x : ndarray
+        The abscissa fitted, in m (Z_np with a spring constant, else the tip position).
+    model_force : ndarray
+        The fitted model on ``x``, in N.
+    """
+
+    youngs_modulus: float
+    youngs_modulus_error: float
+    contact_point: float
+    contact_point_error: float
+    baseline: float
+    baseline_error: float
+    residual_rms: float
+    tip: Tip
+    poisson_ratio: float
+    x: np.ndarray = field(repr=False)
+    model_force: np.ndarray = field(repr=False)
+
+
+def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *, z_np_range=(-100e-9, 200e-9),
+                    points=1000, contact_point=0.0, baseline=0.0, noise=0.0, seed=None) -> ForceCurve:
+    """An approach curve from the exact model, with optional Gaussian force noise.
+
+    Parameters
+    ----------
+    tip : Tip
+        The tip shape.
+    youngs_modulus : float
+        E of the sample in Pa.
+    poisson_ratio : float
+        nu of the sample, in [0, 0.5).
+    spring_constant : float
+        k in N/m.
+    z_np_range : (float, float)
+        First and last Z_np in m (the ramp), relative to ``contact_point``'s frame.
+    points : int
+        Number of samples, >= 10.
+    contact_point : float
+        Z_np at which the tip touches the sample, in m.
+    baseline : float
+        Force offset in N (a deflection offset of the detector).
+    noise : float
+        Standard deviation of the Gaussian force noise in N, >= 0.
+    seed : int or None
+        Seed of the noise generator.
+
+    Returns
+    -------
+    ForceCurve
+    """
+    points = check_integer("points", points, 10, 10 ** 7)
+    lo = check_range("z_np_range[0]", z_np_range[0], -math.inf, math.inf, "m")
+    hi = check_range("z_np_range[1]", z_np_range[1], lo, math.inf, "m", low_inclusive=False)
+    cp = check_range("contact_point", contact_point, -math.inf, math.inf, "m")
+    f0 = check_range("baseline", baseline, -math.inf, math.inf, "N")
+    sigma = check_nonnegative("noise", noise, "N")
+    z = np.linspace(lo, hi, points)
+    curve = indent(z - cp, spring_constant, tip, youngs_modulus, poisson_ratio)
+    rng = np.random.default_rng(seed)
+    force = curve.force + f0 + (rng.normal(0.0, sigma, points) if sigma > 0 else 0.0)
+    return ForceCurve(z, force, float(spring_constant),
+                      f"synthetic {tip.key}, E = {youngs_modulus:g} Pa, noise {sigma:g} N")
+
+
+def load_curve(path, *, segment="approach", index=0) -> ForceCurve:
+    """Read one force-distance segment from a file with ``afmformats``.
+
+    Parameters
+    ----------
+    path : str or path-like
+        A file afmformats reads (``.jpk-force``, ``.ibw``, ``.tab``, ``.h5``, ...).
+    segment : {"approach", "retract"}
+        Which segment to return.
+    index : int
+        Which curve of a multi-curve file (maps), from 0.
+
+    Returns
+    -------
+    ForceCurve
+        ``z_np`` = -(height (measured)) (or -(height (piezo)) when no measured height is
+        stored), in m, and the spring constant from the file's metadata.
+
+    Raises
+    ------
+    ValueError
+        For an unknown segment or a curve index beyond the file.
+    """
+    import afmformats  # a kept library of the field, imported only when a file is read
+
+    if segment not in ("approach", "retract"):
+        raise ValueError(f"segment must be one of ['approach', 'retract'], got {segment!r}")
+    data = afmformats.load_data(path, modality="force-distance")
+    index = check_integer("index", index, 0, len(data) - 1)
+    fd = data[index]
+    seg = fd.appr if segment == "approach" else fd.retr
+    height = seg["height (measured)"] if "height (measured)" in fd.columns else seg["height (piezo)"]
+    k = fd.metadata.get("spring constant") if hasattr(fd.metadata, "get") else None
+    k = float(k) if k is not None and math.isfinite(float(k)) and k > 0 else None
+    return ForceCurve(-np.asarray(height, dtype=float), np.asarray(seg["force"], dtype=float), k,
+                      str(path))
+
+
+def _baseline_stats(x, force):
+    """Median and robust standard deviation of the first 40 % of the curve (the non-contact part)."""
+    n = max(5, int(0.4 * x.size))
+    head = force[:n]
+    med = float(np.median(head))
+    sigma = 1.4826 * float(np.median(np.abs(head - med)))
+    return med, sigma
+
+
+def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> FitResult:
+    """Fit E, the contact point and the baseline of an approach curve.
+
+    Parameters
+    ----------
+    position : array_like
+        Z_np in m if ``spring_constant`` is given, else the tip position in m; increasing
+        towards the sample (sorted internally).
+    force : array_like
+        Force in N, same length (>= 10 points).
+    tip : Tip
+        The tip shape to fit with (its parameters are held fixed).
+    poisson_ratio : float
+        nu of the sample, in [0, 0.5), held fixed.
+    spring_constant : float, optional
+        k in N/m. With it, the model is the full cantilever solution F(Z_np - x_0) of
+        :func:`~afmsmiler.contact.indent` (so the noise of F does not leak into the abscissa, as
+        it would through x = Z_np - F / k); without it, the tip-shape law F(x - x_0) itself.
+
+    Returns
+    -------
+    FitResult
+
+    Raises
+    ------
+    ValueError
+        On bad input; if the curve shows no contact (the force never rises clearly above the
+        noise of its baseline); if the fitted contact point falls outside the data.
+
+    Notes
+    -----
+    With k the derivatives follow from differentiating k (Z - Z_s) = E* psi(Z_s): with the
+    contact stiffness S = 2 E* r, dF/dx_0 = -k S / (k + S) and dF/dE* = k psi / (k + S).
+    """
+    x = check_array("position", position, "m", ndim=1, min_size=10)
+    f = check_array("force", force, "N", ndim=1, size=x.size)
+    if not isinstance(tip, Tip):
+        raise ValueError(f"tip must be a Tip, got {tip!r}")
+    nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
+    k = None if spring_constant is None else check_positive("spring_constant", spring_constant, "N/m")
+    order = np.argsort(x, kind="stable")
+    x, f = x[order], f[order]
+    scale_nu = 1.0 - nu * nu
+
+    # -- no contact? ------------------------------------------------------------------------
+    f0, sigma = _baseline_stats(x, f)
+    rise = f - f0
+    floor = max(8.0 * sigma, 1e-9 * float(np.max(np.abs(f))) if np.any(f) else 0.0)
+    above = rise > floor
+    tail = max(3, x.size // 50)
+    if rise[-1] <= floor or np.count_nonzero(above[-tail:]) < tail:
+        raise ValueError(
+            "the curve shows no contact: the force never rises clearly above its baseline "
+            f"(largest rise {float(rise.max()):.3g} N vs noise {sigma:.3g} N); nothing to fit")
+
+    # -- starting values ----------------------------------------------------------------------
+    last_below = np.flatnonzero(~above)
+    x0_guess = float(x[last_below[-1]]) if last_below.size else float(x[0])
+    depth = float(x[-1] - x0_guess)
+    if depth <= 0:
+        raise ValueError("the curve shows no contact: no indentation after the estimated contact point")
+    f_scale = max(float(rise[-1]), floor)
+    limit = tip.depth_limit
+    d_end = depth - (f_scale / k if k else 0.0)
+    d_end = min(max(d_end, 0.05 * depth), 0.99 * limit)
+    e_guess = f_scale / float(tip._force_unit(np.array(d_end))) * scale_nu
+
+    def unpack(p):
+        return e_guess * p[0], x0_guess + depth * p[1], f0 + f_scale * p[2]
+
+    def evaluate(p):
+        """Model force, and dF/dE*, dF/dx_0 (per unit parameter)."""
+        e, x0, b = unpack(p)
+        e_star = e / scale_nu
+        z = x - x0
+        contact = z > 0
+        z_s = np.zeros_like(z)
+        if k is None:
+            z_s[contact] = np.minimum(z[contact], 0.999 * limit)
+        elif contact.any():
+            zc = z[contact]
+            if isinstance(tip, Spherical):
+                zc = np.minimum(zc, 0.999 * tip.max_z_np(k, e_star))
+            z_s[contact] = tip._solve(zc, k, e_star)
+        psi = np.where(contact, tip._force_unit(z_s), 0.0)
+        stiff = np.where(contact, 2.0 * e_star * tip._radius(z_s), 0.0)
+        if k is None:
+            return b + e_star * psi, psi, -stiff
+        return b + e_star * psi, k * psi / (k + stiff), -k * stiff / (k + stiff)
+
+    def residuals(p):  # in units of the force rise, so that the tolerances are relative
+        return (evaluate(p)[0] - f) / f_scale
+
+    def jacobian(p):
+        _, d_e, d_x0 = evaluate(p)
+        j = np.empty((x.size, 3))
+        j[:, 0] = d_e * e_guess / scale_nu / f_scale
+        j[:, 1] = d_x0 * depth / f_scale
+        j[:, 2] = 1.0
+        return j
+
+    lower = [1e-9, (x[0] - x0_guess) / depth - 1.0, -np.inf]
+    upper = [np.inf, 1.0, np.inf]
+    sol = least_squares(residuals, [1.0, 0.0, 0.0], jac=jacobian, bounds=(lower, upper),
+                        xtol=1e-15, ftol=1e-15, gtol=1e-15, max_nfev=5000)
+    e, x0, b = unpack(sol.x)
+    if not (x[0] < x0 < x[-1]):
+        raise ValueError(f"the fitted contact point {x0:g} m lies outside the data "
+                         f"[{x[0]:g}, {x[-1]:g}] m: the curve shows no usable contact")
+    dof = max(x.size - 3, 1)
+    s2 = 2.0 * sol.cost / dof  # residual variance in units of f_scale^2
+    jac = jacobian(sol.x)
+    cov = np.linalg.pinv(jac.T @ jac) * s2
+    err = np.sqrt(np.clip(np.diag(cov), 0.0, np.inf)) * np.array([e_guess, depth, f_scale])
+    fitted = evaluate(sol.x)[0]
+    inv = np.empty_like(order)
+    inv[order] = np.arange(order.size)
+    return FitResult(float(e), float(err[0]), float(x0), float(err[1]), float(b), float(err[2]),
+                     float(math.sqrt(s2) * f_scale), tip, nu, x[inv], fitted[inv])

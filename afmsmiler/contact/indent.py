@@ -1,0 +1,406 @@
+"""Indentation curves: the cantilever in series with the contact, with or without adhesion.
+
+The nano-positioner moves the sample up by Z_np; the cantilever deflects by Z_c, the sample is
+indented by Z_s at the apex, and (paper, module d)::
+
+    Z_np = Z_s + Z_c,     F = k Z_c = F(Z_s)
+
+so Z_s solves k (Z_np - Z_s) = F(Z_s). The left side falls and the right side rises with Z_s, so
+for Z_np > 0 there is exactly one root in [0, Z_np]; for Z_np <= 0 the tip is not in contact and
+F = 0. The roots are found for a whole curve at once: in closed form for the cone and the pyramid
+(a quadratic in Z_s), by Newton's method on the cubic in sqrt(Z_s) for the paraboloid and on the
+parametric Sneddon equations for the sphere, each started from an upper bound on a convex,
+increasing function so that it converges monotonically, with bisection as a safeguard
+(:mod:`._solvers`). The residual k (Z_np - Z_s) - F(Z_s) is at round-off relative to k Z_np.
+
+Adhesion (sphere or paraboloid of radius R, work of adhesion w, in J/m^2):
+
+* DMT (Derjaguin, Muller and Toporov, J. Colloid Interface Sci. 53, 314 (1975)): in contact
+  F = F_elastic(Z_s) - 2 pi R w. The tip snaps on at Z_np = 0 and, on retract, stays on until
+  Z_s = 0, where it leaves at the pull-off force -2 pi R w.
+* JKR (Johnson, Kendall and Roberts, Proc. R. Soc. A 324, 301 (1971)), parametric in the contact
+  radius a, for a paraboloid (for a sphere, its apex paraboloid)::
+
+      Z_s = a^2 / R - sqrt(2 pi w a / E*),     F = 4 E* a^3 / (3 R) - sqrt(8 pi w E* a^3)
+
+  Equilibria with the lever satisfy Z_np(a) = Z_s(a) + F(a) / k, and they are stable where
+  dZ_np/da > 0 (where the contact stiffness dF/dZ_s exceeds -k). The tip snaps on at Z_np = 0 to
+  the stable branch and snaps off, on retract, at the minimum of Z_np(a): the cantilever
+  instability. For a soft lever (k -> 0) the pull-off force tends to (3/2) pi R w (JKR's
+  load-controlled value), for a stiff one to (5/6) pi R w (displacement control).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..validation import check_array, check_choice, check_nonnegative, check_positive
+from ._solvers import bracketed_newton
+from .tips import Parabolic, Spherical, Tip, reduced_modulus
+
+__all__ = ["IndentationCurve", "ApproachRetract", "indent", "approach_retract", "residual",
+           "ADHESION_MODELS", "jkr_curve", "jkr_instability"]
+
+#: Adhesion models offered by :func:`approach_retract` (None: purely elastic).
+ADHESION_MODELS = (None, "dmt", "jkr")
+
+
+@dataclass(frozen=True)
+class IndentationCurve:
+    """One branch (approach or retract) of an indentation curve, all arrays in SI units.
+
+    Parameters
+    ----------
+    z_np : ndarray
+        Nano-positioner displacement Z_np towards the tip in m (0: the undeformed surface touches
+        the tip with the lever at rest).
+    z_s : ndarray
+        Indentation of the sample at the apex in m (0 out of contact; negative for JKR necks).
+    z_c : ndarray
+        Cantilever deflection in m (F / k).
+    force : ndarray
+        Tip-sample force in N (positive pushes the tip up, negative is adhesion).
+    contact_radius : ndarray
+        Contact radius in m (0 out of contact).
+    in_contact : ndarray of bool
+        Whether the tip touches the sample.
+    """
+
+    z_np: np.ndarray
+    z_s: np.ndarray
+    z_c: np.ndarray
+    force: np.ndarray
+    contact_radius: np.ndarray
+    in_contact: np.ndarray
+
+    @property
+    def tip_position(self) -> np.ndarray:
+        """Position of the apex towards the sample, Z_np - Z_c, in m (= Z_s in contact)."""
+        return self.z_np - self.z_c
+
+    @property
+    def separation(self) -> np.ndarray:
+        """Tip-sample separation Z_c - Z_np in m (negative: indentation)."""
+        return self.z_c - self.z_np
+
+
+@dataclass(frozen=True)
+class ApproachRetract:
+    """An approach-retract cycle over a Z_np ramp.
+
+    Parameters
+    ----------
+    approach, retract : IndentationCurve
+        The two branches; ``retract.z_np`` is ``approach.z_np`` reversed.
+    pull_off_force : float
+        Magnitude of the most negative force on retract, at the instability, in N (0 without
+        adhesion). It is the exact value of the model, not the sampled minimum.
+    snap_off_z_np : float
+        Z_np in m at which the tip leaves the surface on retract (0 without adhesion).
+    adhesion : str or None
+        The adhesion model used.
+    """
+
+    approach: IndentationCurve
+    retract: IndentationCurve
+    pull_off_force: float
+    snap_off_z_np: float
+    adhesion: str | None
+
+
+def _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio):
+    z = check_array("z_np", z_np, "m")
+    k = check_positive("spring_constant", spring_constant, "N/m")
+    if not isinstance(tip, Tip):
+        raise ValueError(f"tip must be a Tip (Parabolic, Spherical, Conical, Pyramidal), got {tip!r}")
+    e_star = reduced_modulus(youngs_modulus, poisson_ratio)
+    return z, k, e_star
+
+
+def _check_depth(tip, z, k, e_star):
+    if isinstance(tip, Spherical) and z.size and z.max() > 0:
+        limit = tip.max_z_np(k, e_star)
+        if z.max() > limit:
+            raise ValueError(
+                f"z_np must be <= {limit:g} m for this sphere (R = {tip.radius:g} m, k = {k:g} N/m, "
+                f"E* = {e_star:g} Pa): beyond it the sphere would be indented past its radius, "
+                f"got {z.max():g}")
+
+
+def _elastic(tip, z, k, e_star) -> IndentationCurve:
+    contact = z > 0
+    z_s = np.zeros_like(z)
+    if contact.any():
+        z_s[contact] = tip._solve(z[contact], k, e_star)
+    z_c = np.where(contact, z - z_s, 0.0)
+    # the force from the contact law (equal to k Z_c to round-off)
+    force = np.where(contact, e_star * tip._force_unit(z_s), 0.0)
+    return IndentationCurve(z, z_s, z_c, force, np.where(contact, tip._radius(z_s), 0.0), contact)
+
+
+def indent(z_np, spring_constant, tip, youngs_modulus, poisson_ratio) -> IndentationCurve:
+    """Solve k (Z_np - Z_s) = F(Z_s) for every Z_np of an array (elastic, no adhesion).
+
+    Parameters
+    ----------
+    z_np : float or array_like
+        Nano-positioner displacements Z_np in m; Z_np <= 0 is out of contact (F = 0).
+    spring_constant : float
+        Cantilever spring constant k in N/m, > 0.
+    tip : Tip
+        The tip shape (:class:`~afmsmiler.contact.tips.Parabolic`, ``Spherical``, ``Conical``,
+        ``Pyramidal``).
+    youngs_modulus : float
+        Young's modulus E of the sample in Pa, > 0.
+    poisson_ratio : float
+        Poisson's ratio nu of the sample, in [0, 0.5).
+
+    Returns
+    -------
+    IndentationCurve
+        Arrays z_np, z_s, z_c, force, contact_radius, in_contact (1-D, even for a scalar input).
+
+    Raises
+    ------
+    ValueError
+        On non-finite Z_np, k <= 0, E <= 0, nu outside [0, 0.5), or a sphere that would be
+        indented past its radius.
+
+    Notes
+    -----
+    The relative residual |k (Z_np - Z_s) - F(Z_s)| / (k Z_np) is at round-off (see
+    :func:`residual`). Normalising by k Z_np = k Z_s + F, the sum of the magnitudes of the terms,
+    is the backward error of the equation; relative to F alone it is the same unless the sample
+    is much softer than the lever, where Z_np - Z_s loses digits to cancellation in any method.
+    """
+    z, k, e_star = _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio)
+    z = np.atleast_1d(z)
+    _check_depth(tip, z, k, e_star)
+    return _elastic(tip, z, k, e_star)
+
+
+def residual(curve: IndentationCurve, spring_constant, tip, youngs_modulus, poisson_ratio):
+    """Relative residual |k (Z_np - Z_s) - F(Z_s)| / (k Z_np) of an elastic curve (0 off contact).
+
+    Parameters
+    ----------
+    curve : IndentationCurve
+        A result of :func:`indent`.
+    spring_constant : float
+        k in N/m.
+    tip : Tip
+        The tip used.
+    youngs_modulus : float
+        E in Pa.
+    poisson_ratio : float
+        nu.
+
+    Returns
+    -------
+    ndarray
+        The residual of every point, with F(Z_s) recomputed from the returned Z_s by the tip's
+        public :meth:`~afmsmiler.contact.tips.Tip.force`.
+    """
+    k = check_positive("spring_constant", spring_constant, "N/m")
+    e_star = reduced_modulus(youngs_modulus, poisson_ratio)
+    c = curve.in_contact
+    out = np.zeros_like(curve.z_np)
+    out[c] = np.abs(k * (curve.z_np[c] - curve.z_s[c]) - tip.force(curve.z_s[c], e_star)) / (
+        k * curve.z_np[c])
+    return out
+
+
+# --- adhesion -----------------------------------------------------------------------------------
+def _adhesive_radius(tip) -> float:
+    if not isinstance(tip, (Parabolic, Spherical)):
+        raise ValueError(f"adhesion (DMT, JKR) needs a parabolic or spherical tip, got {type(tip).__name__}")
+    return tip.radius
+
+
+def _jkr_terms(a, radius, w, e_star, k):
+    """Z_s(a), F(a) and dZ_np/da of JKR with a lever k (a > 0)."""
+    sa = np.sqrt(a)
+    c1 = math.sqrt(2.0 * math.pi * w / e_star)
+    c2 = math.sqrt(8.0 * math.pi * w * e_star)
+    z_s = a * a / radius - c1 * sa
+    force = 4.0 * e_star * a ** 3 / (3.0 * radius) - c2 * a * sa
+    dz = 2.0 * a / radius - 0.5 * c1 / sa + (4.0 * e_star * a * a / radius - 1.5 * c2 * sa) / k
+    return z_s, force, dz
+
+
+def jkr_instability(spring_constant, radius, work_of_adhesion, reduced_modulus) -> tuple[float, float, float]:
+    """The JKR snap-off point with a lever: the minimum of Z_np(a) = Z_s(a) + F(a) / k.
+
+    Parameters
+    ----------
+    spring_constant : float
+        k in N/m.
+    radius : float
+        Tip radius R in m.
+    work_of_adhesion : float
+        w in J/m^2.
+    reduced_modulus : float
+        E* in Pa.
+
+    Returns
+    -------
+    (a, z_np, force) : tuple of float
+        Contact radius (m), positioner displacement (m) and force (N) at snap-off.
+
+    Notes
+    -----
+    With t = sqrt(a), t dZ_np/da = 2 t^3 / R - c1 + (4 E* t^5 / R - c2 t^2) / k, which is negative
+    at t = 0, first falls and then rises: it has exactly one positive root, found by Brent's method.
+    """
+    k = check_positive("spring_constant", spring_constant, "N/m")
+    radius = check_positive("radius", radius, "m")
+    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    e_star = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    c1 = 0.5 * math.sqrt(2.0 * math.pi * w / e_star)
+    c2 = 1.5 * math.sqrt(8.0 * math.pi * w * e_star)
+
+    def p(t):
+        return 2.0 * t ** 3 / radius - c1 + (4.0 * e_star * t ** 5 / radius - c2 * t * t) / k
+
+    hi = max((c1 * radius / 2.0) ** (1 / 3), (c2 * radius / (4.0 * e_star)) ** (1 / 3))
+    while p(hi) <= 0:
+        hi *= 2.0
+    t = brentq(p, 0.0, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
+    a = t * t
+    z_s, force, _ = _jkr_terms(np.array(a), radius, w, e_star, k)
+    return a, float(z_s + force / k), float(force)
+
+
+def jkr_curve(contact_radius, radius, work_of_adhesion, reduced_modulus) -> tuple[np.ndarray, np.ndarray]:
+    """JKR indentation Z_s(a) and force F(a) for contact radii ``a``.
+
+    Parameters
+    ----------
+    contact_radius : float or array_like
+        a in m, >= 0.
+    radius : float
+        Tip radius R in m.
+    work_of_adhesion : float
+        w in J/m^2, >= 0 (0 gives Hertz).
+    reduced_modulus : float
+        E* in Pa.
+
+    Returns
+    -------
+    (z_s, force) : tuple of ndarray
+        Z_s = a^2/R - sqrt(2 pi w a / E*) in m and F = 4 E* a^3 / (3R) - sqrt(8 pi w E* a^3) in N.
+    """
+    a = check_array("contact_radius", contact_radius, "m", low=0.0)
+    radius = check_positive("radius", radius, "m")
+    w = check_nonnegative("work_of_adhesion", work_of_adhesion, "J/m^2")
+    e_star = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    z_s = a * a / radius - np.sqrt(2.0 * math.pi * w * a / e_star)
+    force = 4.0 * e_star * a ** 3 / (3.0 * radius) - np.sqrt(8.0 * math.pi * w * e_star * a ** 3)
+    return z_s, force
+
+
+def _jkr_stable(z, k, radius, w, e_star, a_min, z_min) -> IndentationCurve:
+    """Points of the stable JKR branch at Z_np = z (all z >= z_min)."""
+    # bracket: a_min below; above, grow a_hi until Z_np(a_hi) >= max z
+    z_hi = z.max()
+    a_hi = max(2.0 * a_min, math.sqrt(radius * max(z_hi, 0.0)) * 2.0)
+    while True:
+        zs, f, _ = _jkr_terms(np.array(a_hi), radius, w, e_star, k)
+        if zs + f / k >= z_hi:
+            break
+        a_hi *= 2.0
+
+    def g(a):
+        zs, f, dz = _jkr_terms(a, radius, w, e_star, k)
+        return zs + f / k - z, dz
+
+    lo = np.full_like(z, a_min)
+    hi = np.full_like(z, a_hi)
+    a = bracketed_newton(g, lo, hi, 0.5 * (lo + hi))
+    z_s, force, _ = _jkr_terms(a, radius, w, e_star, k)
+    return z_s, force, a
+
+
+def _branch(z, k, z_s, force, radius, contact):
+    z_s = np.where(contact, z_s, 0.0)
+    force = np.where(contact, force, 0.0)
+    return IndentationCurve(z, z_s, force / k, force, np.where(contact, radius, 0.0), contact)
+
+
+def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, *,
+                     adhesion=None, work_of_adhesion=0.0) -> ApproachRetract:
+    """Approach and retract over a Z_np ramp, elastic or with DMT / JKR adhesion.
+
+    Parameters
+    ----------
+    z_np : array_like
+        The approach ramp of Z_np in m, strictly increasing; the retract runs it backwards.
+    spring_constant : float
+        k in N/m, > 0.
+    tip : Tip
+        The tip shape (adhesion needs :class:`Parabolic` or :class:`Spherical`).
+    youngs_modulus : float
+        E of the sample in Pa, > 0.
+    poisson_ratio : float
+        nu of the sample, in [0, 0.5).
+    adhesion : {None, "dmt", "jkr"}
+        Adhesion model (see the module docstring).
+    work_of_adhesion : float
+        w in J/m^2, > 0 when ``adhesion`` is given.
+
+    Returns
+    -------
+    ApproachRetract
+
+    Raises
+    ------
+    ValueError
+        On bad parameters, a ramp that is not increasing, adhesion with a cone or pyramid, or a
+        sphere indented past its radius.
+
+    Notes
+    -----
+    The snap-in (approach) and snap-off (retract) of the adhesive models happen between ramp
+    samples; ``pull_off_force`` and ``snap_off_z_np`` are the exact values of the model.
+    """
+    z = check_array("z_np", z_np, "m", ndim=1, min_size=2, increasing=True)
+    z, k, e_star = _check_common(z, spring_constant, tip, youngs_modulus, poisson_ratio)
+    check_choice("adhesion", adhesion, ADHESION_MODELS)
+    if adhesion is None:
+        _check_depth(tip, z, k, e_star)
+        app = _elastic(tip, z, k, e_star)
+        rz = z[::-1]
+        ret = IndentationCurve(rz, app.z_s[::-1], app.z_c[::-1], app.force[::-1],
+                               app.contact_radius[::-1], app.in_contact[::-1])
+        return ApproachRetract(app, ret, 0.0, 0.0, None)
+    radius = _adhesive_radius(tip)
+    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    rz = z[::-1]
+    if adhesion == "dmt":
+        f_ad = 2.0 * math.pi * radius * w
+        shift = f_ad / k
+        _check_depth(tip, z + shift, k, e_star)
+
+        def dmt(zz, contact):
+            el = _elastic(tip, zz + shift, k, e_star)
+            force = np.where(contact, el.force - f_ad, 0.0)
+            z_s = np.where(contact, el.z_s, 0.0)
+            return IndentationCurve(zz, z_s, force / k, force,
+                                    np.where(contact, el.contact_radius, 0.0), contact)
+
+        return ApproachRetract(dmt(z, z >= 0), dmt(rz, rz + shift > 0), f_ad, -shift, "dmt")
+    a_min, z_min, f_min = jkr_instability(k, radius, w, e_star)
+
+    def jkr(zz, contact):
+        z_s = np.zeros_like(zz)
+        force = np.zeros_like(zz)
+        a = np.zeros_like(zz)
+        if contact.any():
+            z_s[contact], force[contact], a[contact] = _jkr_stable(zz[contact], k, radius, w, e_star,
+                                                                   a_min, z_min)
+        return _branch(zz, k, z_s, force, a, contact)
+
+    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), -f_min, z_min, "jkr")
