@@ -1,0 +1,440 @@
+"""The contact-mode feedback loop: cantilever and sample in contact, PID control of the height.
+
+Cantilever (m_c, b_c, k_c) and sample (m_s, b_s, k_s) move together while in contact; the
+topography T(t) under the tip is a disturbance, Z_c the measured deflection, Z_np the height of
+the nano-positioner, R the deflection setpoint::
+
+    Z_c = P(s) (Z_np + T),    P(s) = (b_s s + k_s) / ((m_c + m_s) s^2 + (b_c + b_s) s + (k_c + k_s))
+    Z_np = C(s) (R - Z_c),    C(s) = K_P + K_I / s + K_D s
+
+Solved in :mod:`afmsmiler.controller.derivation` (sympy)::
+
+    Z_c / T  =  s (b_s s + k_s) / den
+    Z_np / T = -(b_s s + k_s)(K_D s^2 + K_P s + K_I) / den
+    den      =  A s^3 + B s^2 + C s + D
+    A = m_c + m_s + b_s K_D              B = b_c + b_s + b_s K_P + k_s K_D
+    C = k_c + k_s + b_s K_I + k_s K_P    D = k_s K_I
+
+For K_I = 0 a factor s cancels and the loop is of second order. The estimated topography is
+Z_c - Z_np; at steady state (K_I > 0) Z_c = R and Z_np = (k_c + k_s) R / k_s - T, so the estimate
+is T - k_c R / k_s: the topography shifted by the indentation of the sample under the setpoint
+force k_c R.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+from functools import cached_property
+from typing import NamedTuple
+
+import numpy as np
+
+from ..validation import check_array, check_finite, check_nonnegative, check_positive
+from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
+from .polygon import polygon_response
+
+__all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz"]
+
+_UNITS = {"m_c": "kg", "m_s": "kg", "b_c": "kg/s", "b_s": "kg/s", "k_c": "N/m", "k_s": "N/m",
+          "kp": "", "ki": "1/s", "kd": "s"}
+
+
+@dataclass(frozen=True)
+class Stability:
+    """Routh-Hurwitz verdict on the closed loop; truthy when the loop is stable.
+
+    Parameters
+    ----------
+    stable : bool
+        True if every pole has a negative real part.
+    margin : float
+        Dimensionless margin, > 0 exactly when stable: 1 - A D / (B C) for the third-order loop
+        (the Hurwitz condition B C > A D), the damping ratio B / (2 sqrt(A C)) for the second.
+    routh_column : tuple of float
+        First column of the Routh array (all > 0 when stable).
+    """
+
+    stable: bool
+    margin: float
+    routh_column: tuple
+
+    def __bool__(self) -> bool:
+        return self.stable
+
+
+def routh_hurwitz(den) -> Stability:
+    """Routh-Hurwitz test of a 2nd- or 3rd-order polynomial with positive leading coefficient.
+
+    Parameters
+    ----------
+    den : sequence of float
+        Coefficients, highest power first: (A, B, C) or (A, B, C, D).
+
+    Returns
+    -------
+    Stability
+    """
+    den = [float(c) for c in den]
+    if len(den) == 3:
+        A, B, C = den
+        column = (A, B, C)
+        margin = B / (2 * np.sqrt(A * C)) if A * C > 0 else -np.inf
+    elif len(den) == 4:
+        A, B, C, D = den
+        third = (B * C - A * D) / B if B != 0 else -np.inf
+        column = (A, B, third, D)
+        margin = 1 - A * D / (B * C) if B * C > 0 else -np.inf
+    else:
+        raise ValueError(f"den must have 3 or 4 coefficients, got {len(den)}")
+    stable = all(c > 0 for c in column)
+    return Stability(bool(stable), float(margin), column)
+
+
+class LoopResponse(NamedTuple):
+    """Deflection and positioner height in m (unpacks as ``z_c, z_np``).
+
+    Parameters
+    ----------
+    z_c : numpy.ndarray
+        Cantilever deflection Z_c in m.
+    z_np : numpy.ndarray
+        Nano-positioner height Z_np in m.
+    """
+
+    z_c: np.ndarray
+    z_np: np.ndarray
+
+
+@dataclass(frozen=True)
+class ScanPass:
+    """One pass (trace or retrace) over a line, in scan order.
+
+    Parameters
+    ----------
+    t : numpy.ndarray
+        Time in s since the start of the trace.
+    x : numpy.ndarray
+        Tip position along the line in m.
+    height : numpy.ndarray
+        True topography T under the tip in m.
+    z_c, z_np : numpy.ndarray
+        Deflection and positioner height in m.
+    """
+
+    t: np.ndarray
+    x: np.ndarray
+    height: np.ndarray
+    z_c: np.ndarray
+    z_np: np.ndarray
+
+    @property
+    def topography(self) -> np.ndarray:
+        """Estimated topography Z_c - Z_np in m."""
+        return self.z_c - self.z_np
+
+    @property
+    def error(self) -> np.ndarray:
+        """Estimate minus the true topography, in m (includes the steady indentation offset)."""
+        return self.topography - self.height
+
+
+@dataclass(frozen=True)
+class ScanLine:
+    """Trace and retrace of one line (see :meth:`ContactLoop.scan_line`).
+
+    Parameters
+    ----------
+    trace, retrace : ScanPass
+        The two passes; the retrace starts where and in the state the trace ended.
+    stable : bool
+        Routh-Hurwitz verdict on the loop (an unstable loop still simulates, flagged here).
+    setpoint : float
+        Deflection setpoint R in m.
+    speed : float
+        Scan speed in m/s.
+    offset : float
+        Steady-state value of estimate minus topography, in m (-k_c R / k_s when K_I > 0).
+    """
+
+    trace: ScanPass
+    retrace: ScanPass
+    stable: bool
+    setpoint: float
+    speed: float
+    offset: float = field(default=0.0)
+
+
+@dataclass(frozen=True)
+class ContactLoop:
+    """Cantilever and sample in contact under PID control of the positioner height, in SI units.
+
+    Parameters
+    ----------
+    m_c, m_s : float
+        Effective masses of cantilever and sample in kg (> 0).
+    b_c, b_s : float
+        Damping coefficients of cantilever and sample in kg/s (>= 0).
+    k_c, k_s : float
+        Spring constants of cantilever and sample in N/m (> 0).
+    kp : float
+        Proportional gain K_P (dimensionless, >= 0).
+    ki : float
+        Integral gain K_I in 1/s (>= 0; 0 makes the loop second order).
+    kd : float
+        Derivative gain K_D in s (>= 0).
+
+    Raises
+    ------
+    ValueError
+        If a parameter is not finite or out of its range.
+
+    Notes
+    -----
+    The closed-loop transfer functions are those of the module docstring, derived with sympy in
+    :mod:`afmsmiler.controller.derivation` (``tests/test_controller_derivation.py`` checks that
+    the coefficients here equal the derivation and python-control's ``feedback``). Responses
+    come from the closed forms of the 14 cases, superposed in O(N) along a polygon
+    (:mod:`afmsmiler.controller.polygon`).
+
+    Examples
+    --------
+    >>> from afmsmiler.controller import PRESETS
+    >>> loop = PRESETS["a_good_tracking"].loop
+    >>> bool(loop.is_stable())
+    True
+    """
+
+    m_c: float
+    m_s: float
+    b_c: float
+    b_s: float
+    k_c: float
+    k_s: float
+    kp: float
+    ki: float
+    kd: float
+
+    def __post_init__(self):
+        for name in ("m_c", "m_s", "k_c", "k_s"):
+            object.__setattr__(self, name, check_positive(name, getattr(self, name), _UNITS[name]))
+        for name in ("b_c", "b_s", "kp", "ki", "kd"):
+            object.__setattr__(self, name,
+                               check_nonnegative(name, getattr(self, name), _UNITS[name]))
+
+    def replace(self, **changes) -> "ContactLoop":
+        """A copy with some parameters changed (validated again).
+
+        Parameters
+        ----------
+        **changes
+            New values of any of m_c, m_s, b_c, b_s, k_c, k_s, kp, ki, kd (SI).
+
+        Returns
+        -------
+        ContactLoop
+        """
+        return replace(self, **changes)
+
+    # -- transfer functions ----------------------------------------------------------------
+    @property
+    def order(self) -> int:
+        """3, or 2 when K_I = 0 (the integrator pole cancels)."""
+        return 3 if self.ki > 0 else 2
+
+    @cached_property
+    def coefficients(self) -> dict:
+        """Numerators and denominator of Z_c/T and Z_np/T, highest power first (minimal order).
+
+        Returns
+        -------
+        dict
+            ``{"den": ..., "Zc_T": ..., "Znp_T": ...}`` as numpy arrays.
+        """
+        M, B, K = self.m_c + self.m_s, self.b_c + self.b_s, self.k_c + self.k_s
+        bs, ks, kp, ki, kd = self.b_s, self.k_s, self.kp, self.ki, self.kd
+        den = np.array([M + bs * kd, B + bs * kp + ks * kd, K + bs * ki + ks * kp, ks * ki])
+        zc = np.array([bs, ks, 0.0])
+        znp = -np.array([bs * kd, bs * kp + ks * kd, bs * ki + ks * kp, ks * ki])
+        if self.order == 2:  # cancel the common factor s
+            den, zc, znp = den[:-1], zc[:-1], znp[:-1]
+        return {"den": den, "Zc_T": zc, "Znp_T": znp}
+
+    def closed_loop(self):
+        """The closed-loop transfer functions Z_c/T and Z_np/T (python-control).
+
+        Returns
+        -------
+        tuple of control.TransferFunction
+            (Z_c/T, Z_np/T), in SI (s in 1/s).
+        """
+        import control
+        c = self.coefficients
+        return control.tf(c["Zc_T"], c["den"]), control.tf(c["Znp_T"], c["den"])
+
+    @property
+    def poles(self) -> np.ndarray:
+        """Closed-loop poles in 1/s (roots of the denominator, 2 or 3 of them)."""
+        return np.roots(self.coefficients["den"])
+
+    def is_stable(self) -> Stability:
+        """Routh-Hurwitz test of the closed loop; the result is truthy when stable.
+
+        Returns
+        -------
+        Stability
+            With the margin and the first column of the Routh array.
+        """
+        return routh_hurwitz(self.coefficients["den"])
+
+    @property
+    def stability_margin(self) -> float:
+        """The Routh-Hurwitz margin of :meth:`is_stable` (> 0 when stable)."""
+        return self.is_stable().margin
+
+    def steady_state(self, setpoint: float, height: float = 0.0) -> LoopResponse:
+        """Equilibrium for a constant setpoint R and a constant topography T.
+
+        Parameters
+        ----------
+        setpoint : float
+            Deflection setpoint R in m.
+        height : float
+            Topography T under the tip in m.
+
+        Returns
+        -------
+        LoopResponse
+            Z_c and Z_np in m: (R, (k_c + k_s) R / k_s - T) when K_I > 0.
+        """
+        R = check_finite("setpoint", setpoint, "m")
+        T = check_finite("height", height, "m")
+        K = self.k_c + self.k_s
+        if self.ki > 0:
+            return LoopResponse(np.float64(R), np.float64(K * R / self.k_s - T))
+        C0 = K + self.k_s * self.kp  # den(0) of the second-order loop
+        z_c = (self.k_s * self.kp * R + self.k_s * T) / C0
+        z_np = (self.kp * K * R - self.k_s * self.kp * T) / C0
+        return LoopResponse(np.float64(z_c), np.float64(z_np))
+
+    # -- closed forms ------------------------------------------------------------------------
+    @cached_property
+    def _structure(self):
+        _, den = normalise([1.0], self.coefficients["den"])
+        return classify_roots(np.roots(den))
+
+    def closed_forms(self, input: str = "step") -> tuple[ClosedForm, ClosedForm]:
+        """Closed-form responses of Z_c and Z_np to a unit step or unit-slope ramp of T.
+
+        Parameters
+        ----------
+        input : str
+            ``"step"`` (T = 1 m for t >= 0) or ``"ramp"`` (T = t x 1 m/s).
+
+        Returns
+        -------
+        tuple of ClosedForm
+            (Z_c, Z_np), callables of the time in s.
+        """
+        if input not in ("step", "ramp"):
+            raise ValueError(f"input must be one of ['ramp', 'step'], got {input!r}")
+        return self._forms[input]
+
+    @cached_property
+    def _forms(self):
+        structure, params = self._structure
+        den = self.coefficients["den"]
+        out = {}
+        for inp in ("step", "ramp"):
+            out[inp] = tuple(closed_form(normalise(self.coefficients[k], den)[0], structure,
+                                         params, inp) for k in ("Zc_T", "Znp_T"))
+        return out
+
+    # -- responses ----------------------------------------------------------------------------
+    def response(self, t_knots, T_knots, t_eval=None) -> LoopResponse:
+        """Z_c and Z_np for a polygon topography T(t) through the knots, from rest.
+
+        The loop is at rest (all zero) before ``t_knots[0]``; T steps to ``T_knots[0]`` there,
+        follows the polygon and is held at ``T_knots[-1]`` after the last knot. The setpoint is
+        not included (add :meth:`steady_state` for a constant R: the loop is linear).
+
+        Parameters
+        ----------
+        t_knots : array_like
+            Knot times in s, 1-D, strictly increasing (spacing may vary).
+        T_knots : array_like
+            Topography at the knots in m, same length (or shape (..., N) for a batch).
+        t_eval : array_like, optional
+            Times in s at which to evaluate (any order, between knots too); default: the knots.
+
+        Returns
+        -------
+        LoopResponse
+            ``(z_c, z_np)`` in m, each of the shape of ``t_eval`` (batch axes first).
+
+        Raises
+        ------
+        ValueError
+            On non-finite values, non-increasing knot times or mismatched lengths.
+        """
+        t = check_array("t_knots", t_knots, "s", ndim=1, min_size=1, increasing=True)
+        T = check_array("T_knots", T_knots, "m", min_size=1)
+        if T.ndim == 0 or T.shape[-1] != t.size:
+            raise ValueError(f"T_knots must have {t.size} values along its last axis (same as "
+                             f"t_knots), got shape {T.shape}")
+        te = None if t_eval is None else check_array("t_eval", t_eval, "s", ndim=1)
+        steps, ramps = self._forms["step"], self._forms["ramp"]
+        z_c, z_np = polygon_response(steps, ramps, t, T, te)
+        return LoopResponse(z_c, z_np)
+
+    def scan_line(self, x, height, speed: float, setpoint: float) -> ScanLine:
+        """Trace then retrace one line at constant speed, in contact at constant setpoint.
+
+        The tip is engaged at the first pixel: the loop starts at its steady state for the
+        setpoint and the first height (an instrument engaged at the setpoint waits there), then
+        the topography under the tip follows the polygon through the pixels at the scan speed.
+        The retrace runs back from the last pixel starting from the trace's end state (one
+        continuous simulation).
+
+        Parameters
+        ----------
+        x : array_like
+            Pixel positions along the line in m, 1-D, strictly increasing, at least 2.
+        height : array_like
+            Topography at the pixels in m, same length.
+        speed : float
+            Scan speed in m/s (> 0).
+        setpoint : float
+            Deflection setpoint R in m.
+
+        Returns
+        -------
+        ScanLine
+            Trace and retrace (each in scan order) with t, x, height, z_c, z_np, the estimated
+            topography Z_c - Z_np, and the stability flag.
+
+        Raises
+        ------
+        ValueError
+            On non-finite values, non-increasing x, mismatched lengths or speed <= 0.
+        """
+        x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True)
+        h = check_array("height", height, "m", ndim=1, size=x.size)
+        speed = check_positive("speed", speed, "m/s")
+        setpoint = check_finite("setpoint", setpoint, "m")
+        n = x.size
+        t_trace = (x - x[0]) / speed
+        t_retrace = t_trace[-1] + (x[-1] - x[::-1]) / speed
+        t_all = np.concatenate((t_trace, t_retrace[1:]))
+        h_all = np.concatenate((h, h[::-1][1:]))
+        z0 = self.steady_state(setpoint, h[0])
+        z_c, z_np = polygon_response(self._forms["step"], self._forms["ramp"], t_all,
+                                     h_all - h[0], None)
+        z_c = z_c + z0.z_c
+        z_np = z_np + z0.z_np
+        trace = ScanPass(t_trace, x, h, z_c[:n], z_np[:n])
+        retrace = ScanPass(t_retrace, x[::-1], h[::-1], z_c[n - 1:], z_np[n - 1:])
+        return ScanLine(trace, retrace, bool(self.is_stable()), setpoint, speed,
+                        self._offset(setpoint))
+
+    def _offset(self, setpoint):
+        z = self.steady_state(setpoint, 0.0)
+        return float(z.z_c - z.z_np)  # estimate - T at equilibrium (for T = 0 when K_I = 0)
