@@ -1,0 +1,249 @@
+"""Module (c), the loop: polygon responses vs python-control's forced_response, Routh-Hurwitz vs
+the poles, scans (trace/retrace, images), the paper's four Fig. 4 behaviours, and bad input.
+
+python-control's ``forced_response`` integrates the state-space realisation exactly for an input
+that is linear between its (uniform) time points, so on a fine uniform grid that contains every
+knot and every evaluation time it is an exact, independent reference for a polygon input.
+"""
+import control
+import numpy as np
+import pytest
+
+from afmsmiler import samples
+from afmsmiler.controller import PRESETS, ContactLoop, routh_hurwitz, scan_image
+from afmsmiler.controller.defaults import BASE, NG, SETPOINT, US, line_profile
+
+
+def random_params(rng, ki_zero=False):
+    return dict(m_c=rng.uniform(0.3, 3) * NG, m_s=rng.uniform(0.3, 3) * NG,
+                b_c=rng.uniform(0, 0.1) * NG / US, b_s=rng.uniform(0, 0.1) * NG / US,
+                k_c=rng.uniform(0.1, 10), k_s=rng.uniform(0.1, 100), kp=rng.uniform(0, 20),
+                ki=0.0 if ki_zero else rng.uniform(0, 50) / US, kd=rng.uniform(0, 0.5) * US)
+
+
+def _reference(loop, t_grid, u_grid):
+    zc, znp = loop.closed_loop()
+    return (control.forced_response(zc, t_grid, u_grid).outputs,
+            control.forced_response(znp, t_grid, u_grid).outputs)
+
+
+@pytest.mark.parametrize("seed", range(12))
+def test_response_matches_forced_response(seed):
+    """Random parameters (stable and unstable), random polygons with non-uniform knots,
+    evaluation times between knots."""
+    rng = np.random.default_rng(100 + seed)
+    loop = ContactLoop(**random_params(rng, ki_zero=seed % 4 == 0))
+    n = 6001
+    t_grid = np.linspace(0, 30e-6, n)
+    knots = np.r_[0, np.sort(rng.choice(np.arange(1, n - 1), 40, replace=False))]
+    assert np.ptp(np.diff(knots)) > 0  # non-uniform
+    T_knots = rng.normal(scale=20e-9, size=knots.size)
+    u_grid = np.interp(t_grid, t_grid[knots], T_knots)  # the polygon on the fine grid
+    ev = rng.choice(np.arange(n), 200, replace=False)
+    z_c, z_np = loop.response(t_grid[knots], T_knots, t_grid[ev])
+    ref_c, ref_np = _reference(loop, t_grid, u_grid)
+    for ours, ref in ((z_c, ref_c[ev]), (z_np, ref_np[ev])):
+        peak = np.max(np.abs(ref))
+        np.testing.assert_allclose(ours, ref, rtol=0, atol=1e-9 * peak)
+    # at the knots (default t_eval), uniform knots take the lfilter path
+    uk = np.arange(0, n, 150)
+    z_c, z_np = loop.response(t_grid[uk], u_grid[uk])
+    u_uni = np.interp(t_grid, t_grid[uk], u_grid[uk])
+    ref_c, ref_np = _reference(loop, t_grid, u_uni)
+    np.testing.assert_allclose(z_c, ref_c[uk], rtol=0, atol=1e-9 * np.max(np.abs(ref_c)))
+    np.testing.assert_allclose(z_np, ref_np[uk], rtol=0, atol=1e-9 * np.max(np.abs(ref_np)))
+
+
+def test_response_before_first_knot_and_after_last():
+    loop = PRESETS["a_good_tracking"].loop
+    t = np.array([1e-3, 2e-3])
+    z_c, z_np = loop.response(t, [0.0, 1e-8], [0.0, 0.5e-3, 1.0])
+    assert z_c[0] == z_c[1] == 0.0 and z_np[0] == 0.0
+    # long after the last knot T is held: the integral action returns Z_c -> 0, Z_np -> -T
+    assert z_np[2] == pytest.approx(-1e-8, rel=1e-9)
+    assert abs(z_c[2]) < 1e-9 * 1e-8
+
+
+def test_batch_equals_single_lines():
+    rng = np.random.default_rng(5)
+    loop = ContactLoop(**random_params(rng))
+    t = np.linspace(0, 1e-5, 50)
+    T = rng.normal(size=(3, 50)) * 1e-8
+    zc, znp = loop.response(t, T)
+    for i in range(3):
+        zc_i, znp_i = loop.response(t, T[i])
+        np.testing.assert_allclose(zc[i], zc_i, rtol=1e-13, atol=1e-25)
+
+
+@pytest.mark.parametrize("seed", range(40))
+def test_routh_hurwitz_agrees_with_the_poles(seed):
+    rng = np.random.default_rng(seed)
+    loop = ContactLoop(**random_params(rng, ki_zero=seed % 5 == 0))
+    stab = loop.is_stable()
+    poles = control.poles(loop.closed_loop()[0])  # python-control's own poles
+    assert np.allclose(np.sort_complex(poles), np.sort_complex(loop.poles), rtol=1e-8)
+    assert bool(stab) == bool(np.all(poles.real < 0))
+    assert (stab.margin > 0) == bool(stab)
+
+
+def test_routh_hurwitz_edge_cases():
+    # s^3 + s^2 + s + 1 = (s + 1)(s^2 + 1): marginal, not stable, margin exactly 0
+    marginal = routh_hurwitz([1, 1, 1, 1])
+    assert not marginal and marginal.margin == 0.0
+    assert routh_hurwitz([1, 2, 2, 1])  # (s + 1)(s^2 + s + 1)
+    assert routh_hurwitz([1, 0.5, 4]).margin == pytest.approx(0.125)  # damping ratio
+    with pytest.raises(ValueError, match="den"):
+        routh_hurwitz([1, 2])
+
+
+# --- scans ---------------------------------------------------------------------------------------
+def test_scan_line_flat_sample_stays_at_the_steady_state():
+    loop = PRESETS["a_good_tracking"].loop
+    x = np.linspace(0, 1e-6, 64)
+    r = loop.scan_line(x, np.full(64, 3e-9), 1e-4, SETPOINT)
+    k = loop.k_c + loop.k_s
+    np.testing.assert_allclose(r.trace.z_c, SETPOINT, rtol=1e-12)
+    np.testing.assert_allclose(r.retrace.z_np, k * SETPOINT / loop.k_s - 3e-9, rtol=1e-12)
+    assert r.offset == pytest.approx(-loop.k_c * SETPOINT / loop.k_s, rel=1e-12)
+
+
+def test_scan_line_is_one_continuous_simulation():
+    """Trace then retrace = forced_response over the whole back-and-forth path, from the
+    steady state at the first pixel (the retrace starts from the trace's end state)."""
+    loop = PRESETS["c_fast_scan"].loop
+    sample = line_profile("real line")
+    x, h = sample.x[:200], sample.heights[:200]
+    speed = 1e-3
+    r = loop.scan_line(x, h, speed, SETPOINT)
+    assert r.retrace.x[0] == x[-1] and r.retrace.t[0] == r.trace.t[-1]
+    assert r.retrace.z_np[0] == r.trace.z_np[-1]
+    dt = sample.pixel_size / speed / 4
+    t_grid = np.arange(0, 2 * r.trace.t[-1] + dt / 2, dt)
+    path = np.concatenate((h, h[::-1][1:]))
+    u = np.interp(t_grid, np.concatenate((r.trace.t, r.retrace.t[1:])), path) - h[0]
+    ref_c, ref_np = _reference(loop, t_grid, u)
+    z0 = loop.steady_state(SETPOINT, h[0])
+    ours = np.concatenate((r.trace.z_np, r.retrace.z_np[1:]))
+    np.testing.assert_allclose(ours, ref_np[::4] + z0.z_np, rtol=0,
+                               atol=1e-9 * np.max(np.abs(ours)))
+    np.testing.assert_allclose(np.concatenate((r.trace.topography, r.retrace.topography[1:])),
+                               (ref_c - ref_np)[::4] + z0.z_c - z0.z_np, rtol=0, atol=1e-18)
+
+
+def test_scan_image_rows_equal_scan_line():
+    img = samples.particles((6, 64), 4e-9, count=3)
+    for loop in (PRESETS["c_fast_scan"].loop, PRESETS["c_fast_scan"].loop.replace(ki=0.0)):
+        im = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT)
+        for row in (0, 5):
+            r = loop.scan_line(img.x, img.heights[row], 1e-3, SETPOINT)
+            np.testing.assert_allclose(im.trace[row], r.trace.topography, rtol=0, atol=1e-20)
+            np.testing.assert_allclose(im.retrace[row], r.retrace.topography[::-1], rtol=0,
+                                       atol=1e-20)
+            np.testing.assert_allclose(im.trace_z_np[row], r.trace.z_np, rtol=0, atol=1e-20)
+
+
+# --- the paper's Fig. 4 ----------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def fig4():
+    return {name: p.scan() for name, p in PRESETS.items()}
+
+
+def test_presets_are_the_documented_si_values():
+    d = PRESETS["d_unstable"].loop
+    assert d.kp == 100 and d.ki == pytest.approx(1e8) and d.kd == 0  # K_I = 100 per us
+    assert d.b_c == d.b_s == pytest.approx(1.5e-8)                  # 0.015 ng/us in kg/s
+    assert PRESETS["b_soft_sample"].loop.k_s == PRESETS["b_soft_sample"].loop.k_c == 1.0
+    assert PRESETS["a_good_tracking"].speed == pytest.approx(1e-5)    # 10 um/s
+    assert PRESETS["c_fast_scan"].speed == pytest.approx(1e-3)        # 1000 um/s
+
+
+def test_fig4a_small_error(fig4):
+    r = fig4["a_good_tracking"]
+    assert r.stable
+    step = np.ptp(r.trace.height)
+    assert np.max(np.abs(r.trace.error)) < 0.01 * step
+    assert np.max(np.abs(r.retrace.error)) < 0.01 * step
+
+
+def test_fig4b_soft_sample_large_error(fig4):
+    a, b = fig4["a_good_tracking"], fig4["b_soft_sample"]
+    step = np.ptp(b.trace.height)
+    assert b.stable
+    # the indentation k_c R / k_s = R shifts the estimate (python-free: from the parameters)
+    assert b.offset == pytest.approx(-SETPOINT, rel=1e-12)
+    assert np.median(b.trace.error) == pytest.approx(-SETPOINT, rel=1e-3)
+    assert np.max(np.abs(b.trace.error)) > 0.15 * step
+    assert np.max(np.abs(b.trace.error)) > 50 * np.max(np.abs(a.trace.error))
+
+
+def test_fig4c_fast_scan_trace_and_retrace_differ(fig4):
+    a, c = fig4["a_good_tracking"], fig4["c_fast_scan"]
+    step = np.ptp(c.trace.height)
+
+    def mismatch(r):
+        return np.mean(np.abs(r.trace.z_np - r.retrace.z_np[::-1]))
+    assert c.stable
+    assert mismatch(c) > 0.05 * step
+    assert mismatch(c) > 5 * mismatch(a)
+    assert np.max(np.abs(c.trace.topography - c.retrace.topography[::-1])) > \
+        10 * np.max(np.abs(a.trace.topography - a.retrace.topography[::-1]))
+
+
+def test_fig4d_growing_oscillation_flagged_unstable(fig4):
+    r = fig4["d_unstable"]
+    loop = PRESETS["d_unstable"].loop
+    assert not r.stable and not loop.is_stable() and loop.stability_margin < 0
+    # Hurwitz condition B C > A D fails, from the parameters directly
+    A = loop.m_c + loop.m_s
+    B = loop.b_c + loop.b_s + loop.b_s * loop.kp
+    C = loop.k_c + loop.k_s + loop.b_s * loop.ki + loop.k_s * loop.kp
+    assert B * C < A * loop.k_s * loop.ki
+    dev = r.trace.z_np - loop.steady_state(SETPOINT, 0).z_np
+    n = dev.size
+    early, late = np.max(np.abs(dev[: n // 4])), np.max(np.abs(dev[-n // 4:]))
+    assert np.isfinite(late) and late > 1e3 * early
+    assert np.sum(np.diff(np.sign(dev[-n // 4:])) != 0) > 10  # it oscillates
+
+
+# --- bad input -------------------------------------------------------------------------------------
+@pytest.mark.parametrize("name, value, match", [
+    ("m_c", -1e-12, "m_c must be > 0 kg"), ("k_s", -1.0, "k_s must be > 0 N/m"),
+    ("k_c", 0.0, "k_c must be > 0"), ("b_s", -1e-8, "b_s must be >= 0 kg/s"),
+    ("ki", np.nan, "ki must be >= 0 1/s"), ("kp", np.inf, "kp must be >= 0"),
+    ("kd", -1e-7, "kd must be >= 0 s"), ("m_s", "heavy", "m_s must be a real number"),
+])
+def test_bad_parameters(name, value, match):
+    with pytest.raises(ValueError, match=match):
+        ContactLoop(**{**BASE, name: value})
+
+
+def test_bad_scan_input():
+    loop = PRESETS["a_good_tracking"].loop
+    x = np.linspace(0, 1e-6, 10)
+    h = np.zeros(10)
+    with pytest.raises(ValueError, match="speed must be > 0 m/s"):
+        loop.scan_line(x, h, 0.0, SETPOINT)
+    with pytest.raises(ValueError, match="speed must be > 0 m/s"):
+        loop.scan_line(x, h, -1e-5, SETPOINT)
+    with pytest.raises(ValueError, match="x must be strictly increasing"):
+        loop.scan_line(x[::-1], h, 1e-5, SETPOINT)
+    with pytest.raises(ValueError, match="height must have 10 elements"):
+        loop.scan_line(x, h[:-1], 1e-5, SETPOINT)
+    with pytest.raises(ValueError, match="height must be finite"):
+        loop.scan_line(x, np.r_[h[:-1], np.nan], 1e-5, SETPOINT)
+    with pytest.raises(ValueError, match="setpoint must be a finite"):
+        loop.scan_line(x, h, 1e-5, np.nan)
+    with pytest.raises(ValueError, match="t_knots must be strictly increasing"):
+        loop.response([0, 2e-6, 1e-6], [0, 0, 0])
+    with pytest.raises(ValueError, match="T_knots must have 3 values"):
+        loop.response([0, 1e-6, 2e-6], [0, 0])
+    with pytest.raises(ValueError, match="t_eval must be finite"):
+        loop.response([0, 1e-6], [0, 0], [np.nan])
+    with pytest.raises(ValueError, match="input must be one of"):
+        loop.closed_forms("impulse")
+    with pytest.raises(ValueError, match="pixel_size must be > 0 m"):
+        scan_image(loop, np.zeros((2, 3)), 0.0, 1e-5, SETPOINT)
+    with pytest.raises(ValueError, match="heights must be a 2-D array"):
+        scan_image(loop, np.zeros(3), 1e-9, 1e-5, SETPOINT)
+    with pytest.raises(TypeError):
+        loop.scan_line(x, h, 1e-5, SETPOINT, direction="up")
