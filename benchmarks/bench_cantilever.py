@@ -1,0 +1,96 @@
+"""Module (a): one slider update of the cantilever panel (model + plot data + 3D scene update).
+
+Target (issue 2): well under 30 ms per update. Split into its parts:
+
+- model: build the Cantilever from slider values, k, f1..f3 and the plotted curves
+  (deflection, slope, stress along the lever and through a section, 201 + 41 points);
+- plots: move the line data of the four panels in place (``CantileverFigure.update``; the pixels
+  are drawn later by the browser/ipympl, timed separately for information);
+- scene: resample the stress field (61 x 9), rebuild the beam mesh with vertex colors and send it,
+  move tip and arrow (``CantileverScene.update``, into a running meshcat server);
+- the whole ``CantileverPanel.update``, and its worst case, when every update moves the color
+  limit across a round number so that the legend texture is re-rendered too.
+
+Peer: the same update done naively, rebuilding the figure and all scene objects instead of
+updating them in place.
+"""
+import contextlib
+import io
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from _timing import best_time, report  # noqa: E402
+
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
+
+from afmsmiler.cantilever import Cantilever  # noqa: E402
+from afmsmiler.plots.cantilever import CantileverFigure, cantilever_curves  # noqa: E402
+from afmsmiler.scenes import close_viewer, get_viewer  # noqa: E402
+from afmsmiler.scenes.cantilever import CantileverScene  # noqa: E402
+from afmsmiler.ui.cantilever import CantileverPanel  # noqa: E402
+
+TARGET = 30e-3
+
+
+def main():
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):  # its first redraw prints outside Jupyter
+            panel = CantileverPanel(scene=True)
+        panel.redraw = lambda: None  # pixels are drawn by the front end, after the callback
+        values = panel.values()
+        state = {"i": 0}
+
+        def next_values():  # a slider being dragged: the force changes every call
+            state["i"] += 1
+            return {**values, "force": 50.0 + (state["i"] % 100)}
+
+        def model():
+            v = next_values()
+            lever = Cantilever(v["length"] * 1e-6, v["width"] * 1e-6, v["thickness"] * 1e-6,
+                               v["youngs_modulus"] * 1e9, v["density"])
+            [lever.resonance_frequency(n) for n in (1, 2, 3)]
+            lever.spring_constant
+            return lever, cantilever_curves(lever, v["force"] * 1e-9, v["section"] * lever.length)
+
+        lever, curves = model()
+        t_model = best_time(model)
+        t_plots = best_time(lambda: panel.figure.update(curves))
+        t_scene = best_time(lambda: panel.scene.update(lever, next_values()["force"] * 1e-9))
+        t_panel = best_time(lambda: panel.update(**next_values()))
+
+        def crossing():  # worst case: every update crosses a round color limit (1 <-> 2 MPa)
+            state["i"] += 1
+            panel.update(**{**values, "force": 70.0 if state["i"] % 2 else 80.0})
+
+        t_cross = best_time(crossing)
+        canvas = FigureCanvasAgg(panel.fig)
+        t_draw = best_time(canvas.draw, repeat=3)
+
+        def naive():
+            v = next_values()
+            lev = Cantilever(v["length"] * 1e-6, v["width"] * 1e-6, v["thickness"] * 1e-6,
+                             v["youngs_modulus"] * 1e9, v["density"])
+            c = cantilever_curves(lev, v["force"] * 1e-9, 0.0)
+            CantileverFigure(c)
+            get_viewer()["bench_naive"].delete()
+            CantileverScene(lev, v["force"] * 1e-9, path="bench_naive", camera=False)
+
+        t_naive = best_time(naive, repeat=3)
+        print("one slider update of CantileverPanel (meshcat server running, figure not rasterised)")
+        report([
+            ("model: Cantilever, k, f1..f3, curves (201 + 41 pts)", t_model, None, None),
+            ("plots: CantileverFigure.update (line data in place)", t_plots, None, None),
+            ("scene: CantileverScene.update (61 x 9 mesh, tip, arrow)", t_scene, None, None),
+            ("whole CantileverPanel.update (model + plots + scene)", t_panel, TARGET, t_naive),
+            ("  same, each update re-rendering the legend texture", t_cross, TARGET, t_naive),
+            ("(info) rasterising the 4-panel figure with Agg", t_draw, None, None),
+        ])
+        print(f"peer = naive update rebuilding figure and scene objects: {t_naive * 1e3:.1f} ms")
+    finally:
+        close_viewer()
+
+
+if __name__ == "__main__":
+    main()
