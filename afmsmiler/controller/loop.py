@@ -318,8 +318,10 @@ class ContactLoop:
     # -- closed forms ------------------------------------------------------------------------
     @cached_property
     def _structure(self):
-        _, den = normalise([1.0], self.coefficients["den"])
-        return classify_roots(np.roots(den))
+        den = self.coefficients["den"]
+        companion = np.diag(np.ones(den.size - 2), -1)
+        companion[0] = -den[1:] / den[0]
+        return classify_roots(np.linalg.eigvals(companion))
 
     def closed_forms(self, input: str = "step") -> tuple[ClosedForm, ClosedForm]:
         """Closed-form responses of Z_c and Z_np to a unit step or unit-slope ramp of T.

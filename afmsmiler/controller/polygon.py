@@ -115,28 +115,35 @@ def _polygon_response(step_forms, ramp_forms, t_knots, u_knots, t_eval):
         out[o] = (step_forms[o].q0 * u0 + ramp_forms[o].q1 * (u_now - u0)
                   + ramp_forms[o].q0 * s_now)
 
+    has_step = bool(np.any(u0 != 0))
+    delta_c = delta.astype(complex)
     for b, (p, _) in enumerate(step_forms[0].blocks):
         m = len(step_forms[0].blocks[b][1])
         lam = np.exp(p * hh)
-        E = np.exp(p * elapsed)
         # basis sequences: F (driven by the slope changes), G, K (carried polynomial terms)
-        F = _recursion(lam, delta.astype(complex), uniform)
-        basis = [F]
+        basis = [_recursion(lam, delta_c, uniform)]
         if m >= 2:
-            G = _recursion(lam, lam * hh * _shifted(F), uniform)
-            basis.append(G)
+            basis.append(_recursion(lam, lam * hh * _shifted(basis[0]), uniform))
         if m >= 3:
-            K = _recursion(lam, lam * (2 * hh * _shifted(G) + hh ** 2 * _shifted(F)), uniform)
-            basis.append(K)
+            basis.append(_recursion(lam, lam * (2 * hh * _shifted(basis[1])
+                                                + hh ** 2 * _shifted(basis[0])), uniform))
+        E = np.exp(p * elapsed) if has_step else None
         for o in range(n_out):
             c = ramp_forms[o].blocks[b][1]
             sc = step_forms[o].blocks[b][1]
-            # coefficient j of the block at each knot, in local time
+            # coefficient j of the block at each knot, in local time tau = t - t_k
+            n_coef = 1 if idx is None else m
             coef = []
-            for j in range(m):
-                a = sum(c[i] * _binom(i, j) * basis[i - j] for i in range(j, m))
-                shift_poly = sum(sc[i] * _binom(i, j) * elapsed ** (i - j) for i in range(j, m))
-                coef.append(a + u0 * (E * shift_poly))
+            for j in range(n_coef):
+                a = c[j] * basis[0]
+                for i in range(j + 1, m):
+                    a = a + c[i] * _binom(i, j) * basis[i - j]
+                if has_step:
+                    shift_poly = sc[j]
+                    for i in range(j + 1, m):
+                        shift_poly = shift_poly + sc[i] * _binom(i, j) * elapsed ** (i - j)
+                    a = a + u0 * (E * shift_poly)
+                coef.append(a)
             if idx is None:
                 out[o] += coef[0].real
             else:
