@@ -26,8 +26,9 @@ Adhesion (sphere or paraboloid of radius R, work of adhesion w, in J/m^2):
   Equilibria with the lever satisfy Z_np(a) = Z_s(a) + F(a) / k, and they are stable where
   dZ_np/da > 0 (where the contact stiffness dF/dZ_s exceeds -k). The tip snaps on at Z_np = 0 to
   the stable branch and snaps off, on retract, at the minimum of Z_np(a): the cantilever
-  instability. For a soft lever (k -> 0) the pull-off force tends to (3/2) pi R w (JKR's
-  load-controlled value), for a stiff one to (5/6) pi R w (displacement control).
+  instability. On the way the force passes its minimum -(3/2) pi R w (JKR's pull-off force,
+  at dF/da = 0); the force at the jump itself tends to that value for a soft lever (k -> 0) and
+  to -(5/6) pi R w (displacement control) for a stiff one.
 """
 from __future__ import annotations
 
@@ -96,8 +97,12 @@ class ApproachRetract:
     approach, retract : IndentationCurve
         The two branches; ``retract.z_np`` is ``approach.z_np`` reversed.
     pull_off_force : float
-        Magnitude of the most negative force on retract, at the instability, in N (0 without
-        adhesion). It is the exact value of the model, not the sampled minimum.
+        Magnitude of the most negative force on retract in N (0 without adhesion): the adhesion a
+        force curve measures. Exact values of the model, not sampled minima.
+    snap_off_force : float
+        Force in N just before the tip jumps off the surface on retract (signed; 0 without
+        adhesion). For DMT it equals -pull_off_force; for JKR it lies between -(3/2) pi R w (soft
+        lever) and -(5/6) pi R w (stiff lever).
     snap_off_z_np : float
         Z_np in m at which the tip leaves the surface on retract (0 without adhesion).
     adhesion : str or None
@@ -107,6 +112,7 @@ class ApproachRetract:
     approach: IndentationCurve
     retract: IndentationCurve
     pull_off_force: float
+    snap_off_force: float
     snap_off_z_np: float
     adhesion: str | None
 
@@ -375,7 +381,7 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
         rz = z[::-1]
         ret = IndentationCurve(rz, app.z_s[::-1], app.z_c[::-1], app.force[::-1],
                                app.contact_radius[::-1], app.in_contact[::-1])
-        return ApproachRetract(app, ret, 0.0, 0.0, None)
+        return ApproachRetract(app, ret, 0.0, 0.0, 0.0, None)
     radius = _adhesive_radius(tip)
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
     rz = z[::-1]
@@ -391,7 +397,7 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
             return IndentationCurve(zz, z_s, force / k, force,
                                     np.where(contact, el.contact_radius, 0.0), contact)
 
-        return ApproachRetract(dmt(z, z >= 0), dmt(rz, rz + shift > 0), f_ad, -shift, "dmt")
+        return ApproachRetract(dmt(z, z >= 0), dmt(rz, rz + shift > 0), f_ad, -f_ad, -shift, "dmt")
     a_min, z_min, f_min = jkr_instability(k, radius, w, e_star)
 
     def jkr(zz, contact):
@@ -403,4 +409,8 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
                                                                    a_min, z_min)
         return _branch(zz, k, z_s, force, a, contact)
 
-    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), -f_min, z_min, "jkr")
+    # the most adhesive point of the stable branch: dF/da = 0 at a^3 = 9 pi w R^2 / (8 E*) when
+    # it lies on the branch (it always does: there dZ_s/da > 0), else the snap-off point
+    a_c = max(a_min, (9.0 * math.pi * w * radius ** 2 / (8.0 * e_star)) ** (1.0 / 3.0))
+    f_c = float(_jkr_terms(np.array(a_c), radius, w, e_star, k)[1])
+    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), -min(f_c, f_min), f_min, z_min, "jkr")

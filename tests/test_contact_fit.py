@@ -1,0 +1,139 @@
+"""Fitting E and the contact point: recovery within the reported uncertainty on synthetic noisy data,
+calibration of that uncertainty over many noise draws, files read with afmformats, the vendor's fit
+of a real JPK curve, and the refusal to fit a curve without contact."""
+import math
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, fit_curve, load_curve,
+                               synthetic_curve)
+
+DATA = Path(__file__).parent / "data" / "contact"
+TIPS = [Parabolic(20e-9), Spherical(5e-6), Conical(math.radians(20)), Pyramidal(math.radians(35))]
+IDS = [t.key for t in TIPS]
+E_TRUE, NU, K = 200e3, 0.45, 0.05  # Pa, -, N/m: a soft gel and a soft lever
+CP, F0, NOISE = 50e-9, 1e-10, 20e-12
+
+
+def _curve(tip, seed, noise=NOISE):
+    return synthetic_curve(tip, E_TRUE, NU, K, z_np_range=(-300e-9, 500e-9), points=800,
+                           contact_point=CP, baseline=F0, noise=noise, seed=seed)
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+def test_noiseless_curve_is_fitted_exactly(tip):
+    c = _curve(tip, 0, noise=0.0)
+    r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K)
+    assert r.youngs_modulus == pytest.approx(E_TRUE, rel=1e-9)
+    assert r.contact_point == pytest.approx(CP, rel=1e-9)
+    assert r.baseline == pytest.approx(F0, rel=1e-9)
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+@pytest.mark.parametrize("seed", [3, 11])
+def test_noisy_curve_recovers_e_within_its_uncertainty(tip, seed):
+    c = _curve(tip, seed)
+    r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K)
+    # 3 sigma: a 0.3 % chance per case for a correct fit with a correct uncertainty
+    assert abs(r.youngs_modulus - E_TRUE) <= 3 * r.youngs_modulus_error
+    assert abs(r.contact_point - CP) <= 3 * r.contact_point_error
+    assert abs(r.baseline - F0) <= 3 * r.baseline_error
+    assert 0 < r.youngs_modulus_error < 0.05 * E_TRUE
+    assert r.residual_rms == pytest.approx(NOISE, rel=0.15)
+
+
+def test_reported_uncertainty_is_calibrated():
+    # over 40 noise draws, |E - E_true| / sigma_E behaves like a standard normal variable
+    tip = Parabolic(20e-9)
+    pulls = []
+    for seed in range(40):
+        c = _curve(tip, 100 + seed)
+        r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K)
+        pulls.append((r.youngs_modulus - E_TRUE) / r.youngs_modulus_error)
+    pulls = np.array(pulls)
+    assert 0.5 <= np.mean(np.abs(pulls) < 1) <= 0.85  # 68 % expected
+    assert 0.7 <= np.std(pulls) <= 1.4
+    assert abs(np.mean(pulls)) < 0.6
+
+
+def test_fit_on_the_tip_position_axis():
+    tip = Conical(math.radians(20))
+    c = _curve(tip, 0, noise=0.0)
+    x = c.z_np - (c.force - F0) / K  # the apex's travel
+    r = fit_curve(x, c.force, tip, NU)
+    assert r.youngs_modulus == pytest.approx(E_TRUE, rel=1e-9)
+    assert r.contact_point == pytest.approx(CP, rel=1e-9)
+
+
+def test_no_contact_is_refused():
+    rng = np.random.default_rng(1)
+    z = np.linspace(-300e-9, 0, 500)
+    with pytest.raises(ValueError, match="no contact"):
+        fit_curve(z, rng.normal(0, NOISE, z.size), Parabolic(20e-9), NU, spring_constant=K)
+    with pytest.raises(ValueError, match="no contact"):
+        fit_curve(z, np.zeros(z.size), Parabolic(20e-9), NU, spring_constant=K)
+    # a curve that stops before the contact point
+    c = synthetic_curve(Parabolic(20e-9), E_TRUE, NU, K, z_np_range=(-300e-9, 40e-9), contact_point=CP,
+                        noise=NOISE, seed=2)
+    with pytest.raises(ValueError, match="no contact"):
+        fit_curve(c.z_np, c.force, Parabolic(20e-9), NU, spring_constant=K)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(poisson_ratio=0.5), "poisson_ratio"), (dict(spring_constant=0.0), "spring_constant"),
+    (dict(force=np.zeros(5)), "force must have"), (dict(tip=None), "tip must be a Tip")])
+def test_fit_bad_input(kwargs, match):
+    c = _curve(Parabolic(20e-9), 0)
+    args = dict(position=c.z_np, force=c.force, tip=Parabolic(20e-9), poisson_ratio=NU, spring_constant=K)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        fit_curve(**args)
+
+
+def test_nan_in_the_curve_is_refused():
+    c = _curve(Parabolic(20e-9), 0)
+    f = c.force.copy()
+    f[10] = math.nan
+    with pytest.raises(ValueError, match="force must be finite"):
+        fit_curve(c.z_np, f, Parabolic(20e-9), NU, spring_constant=K)
+
+
+# --- files -------------------------------------------------------------------------------------------
+def test_round_trip_through_afmformats_tab_export(tmp_path):
+    afmformats = pytest.importorskip("afmformats")
+    c = _curve(Parabolic(20e-9), 5)
+    n = c.z_np.size
+    data = {"force": np.r_[c.force, c.force[::-1]], "height (measured)": np.r_[-c.z_np, -c.z_np[::-1]],
+            "segment": np.r_[np.zeros(n, dtype=np.uint8), np.ones(n, dtype=np.uint8)]}
+    path = tmp_path / "synthetic.tab"
+    fd = afmformats.AFMForceDistance(data, metadata={"path": path, "enum": 0, "spring constant": K,
+                                                     "imaging mode": "force-distance"})
+    fd.export_data(path, fmt="tab")  # afmformats' own writer
+    loaded = load_curve(path)
+    assert loaded.spring_constant == K
+    np.testing.assert_allclose(loaded.z_np, c.z_np, rtol=1e-7, atol=1e-16)  # 8 digits in the file
+    np.testing.assert_allclose(loaded.force, c.force, rtol=1e-7, atol=1e-20)
+    r = fit_curve(loaded.z_np, loaded.force, Parabolic(20e-9), NU, spring_constant=loaded.spring_constant)
+    assert abs(r.youngs_modulus - E_TRUE) <= 3 * r.youngs_modulus_error
+
+
+def test_reproduces_the_vendor_fit_of_a_real_jpk_curve():
+    pytest.importorskip("afmformats")
+    # spot3-0192.jpk-force (afmformats' test data): the JPK data-processing software fits its
+    # approach with a paraboloid, R = 40 nm, nu = 0.5, on the vertical tip position:
+    # E = 233.1 kPa, contact point 18.03 um (nanite, tests/test_model_hertz_parabol.py).
+    curve = load_curve(DATA / "spot3-0192.jpk-force")
+    assert curve.spring_constant == pytest.approx(0.0435, rel=1e-3)  # from the file's header
+    assert curve.z_np.size == 2000
+    # nu = 0.5 is outside the model's [0, 0.5); only E / (1 - nu^2) is measured, so fit with
+    # nu = 0 (E* = E) and convert: E(nu = 0.5) = 0.75 E*
+    r = fit_curve(curve.tip_position, curve.force, Parabolic(40e-9), 0.0)
+    # tolerance: our baseline is a free parameter over the whole segment, JPK's is subtracted
+    # beforehand, which moves E by a few 1e-4
+    assert 0.75 * r.youngs_modulus == pytest.approx(233.1e3, rel=2e-3)
+    assert -r.contact_point == pytest.approx(18.03e-6, rel=5e-4)  # height axis points the other way
+    assert r.youngs_modulus_error < 0.01 * r.youngs_modulus
+    with pytest.raises(ValueError, match="segment must be one of"):
+        load_curve(DATA / "spot3-0192.jpk-force", segment="extend")

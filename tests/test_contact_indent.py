@@ -1,0 +1,263 @@
+"""The cantilever equation k (Z_np - Z_s) = F(Z_s), adhesion and viscoelasticity, against
+independent sources: the equation's own residual, a scalar scipy brentq solution, published JKR and
+DMT pull-off forces, Johnson's Hertz surface profile, and sympy-derived hereditary integrals."""
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, StandardLinearSolid,
+                               approach_retract, hereditary_force, indent, jkr_curve, jkr_instability,
+                               reduced_modulus, residual, surface_displacement,
+                               viscoelastic_approach_retract)
+
+TIPS = [Parabolic(20e-9), Spherical(500e-9), Conical(math.radians(20)), Pyramidal(math.radians(35))]
+IDS = [t.key for t in TIPS]
+
+
+# --- the solver ------------------------------------------------------------------------------------
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+@pytest.mark.parametrize("k, e", [(0.01, 1e3), (0.1, 1e6), (40.0, 1e9), (1e3, 1.7e11), (1e-3, 1e10)])
+def test_residual_is_round_off_for_a_whole_curve(tip, k, e):
+    nu = 0.3
+    e_star = e / (1 - nu ** 2)
+    z = np.linspace(-50e-9, 400e-9, 1000)
+    if isinstance(tip, Spherical):
+        z = np.linspace(-50e-9, 0.99 * tip.max_z_np(k, e_star), 1000)
+    c = indent(z, k, tip, e, nu)
+    inside = z > 0
+    # the test's own residual, with F recomputed from Z_s by the public force law
+    res = np.abs(k * (z[inside] - c.z_s[inside]) - tip.force(c.z_s[inside], e_star)) / (k * z[inside])
+    assert res.max() <= 1e-12
+    np.testing.assert_array_equal(residual(c, k, tip, e, nu)[inside] <= 1e-12, True)
+    # bookkeeping: Z_np = Z_s + Z_c and F = k Z_c in contact, nothing before contact
+    np.testing.assert_allclose(c.z_s[inside] + c.z_c[inside], z[inside], rtol=1e-14)
+    np.testing.assert_allclose(c.force[inside], k * c.z_c[inside], rtol=1e-9, atol=1e-12 * k * z.max())
+    assert np.all(c.force[~inside] == 0) and np.all(c.z_s[~inside] == 0)
+    assert np.all(c.contact_radius[~inside] == 0) and not c.in_contact[~inside].any()
+    assert np.all(np.diff(c.force[inside]) > 0)  # monotonic
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+def test_solver_equals_scalar_brentq(tip):
+    k, e, nu = 0.2, 5e6, 0.4
+    e_star = reduced_modulus(e, nu)
+    z = np.geomspace(1e-12, 150e-9, 40)
+    c = indent(z, k, tip, e, nu)
+    ref = [brentq(lambda s, zz=zz: k * (zz - s) - tip.force(s, e_star), 0.0, zz, xtol=1e-30, rtol=1e-15)
+           for zz in z]
+    np.testing.assert_allclose(c.z_s, ref, rtol=1e-12)
+
+
+def test_cone_closed_form_against_sympy():
+    zs, zn, k, c = sp.symbols("Z_s Z_np k c", positive=True)
+    roots = sp.solve(sp.Eq(k * (zn - zs), c * zs ** 2), zs)
+    root = [r for r in roots if r.subs({k: 1, c: 1, zn: 1}).evalf() > 0][0]
+    f = sp.lambdify((zn, k, c), root)
+    tip = Conical(0.5)
+    e_star = reduced_modulus(2e7, 0.25)
+    z = np.linspace(1e-9, 1e-6, 9)
+    np.testing.assert_allclose(indent(z, 3.0, tip, 2e7, 0.25).z_s,
+                               f(z, 3.0, 2 * math.tan(0.5) / math.pi * e_star), rtol=1e-13)
+
+
+def test_elastic_approach_and_retract_coincide():
+    z = np.linspace(-10e-9, 60e-9, 50)
+    ar = approach_retract(z, 0.5, Pyramidal(0.6), 1e7, 0.2)
+    np.testing.assert_array_equal(ar.retract.z_np, z[::-1])
+    np.testing.assert_array_equal(ar.retract.force, ar.approach.force[::-1])
+    assert ar.pull_off_force == 0.0
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(z_np=[0.0, math.nan]), "z_np must be finite"),
+    (dict(spring_constant=0.0), "spring_constant must be > 0"),
+    (dict(spring_constant=-1.0), "spring_constant must be > 0"),
+    (dict(youngs_modulus=0.0), "youngs_modulus must be in"),
+    (dict(youngs_modulus=math.nan), "youngs_modulus"),
+    (dict(poisson_ratio=0.5), r"poisson_ratio must be in \[0, 0.5\)"),
+    (dict(poisson_ratio=-0.01), "poisson_ratio"),
+    (dict(tip="cone"), "tip must be a Tip"),
+    (dict(tip=Spherical(10e-9), z_np=[0.0, 1e-6]), "past its radius"),
+])
+def test_bad_input(kwargs, match):
+    args = dict(z_np=[0.0, 1e-8], spring_constant=0.1, tip=Parabolic(1e-8), youngs_modulus=1e6,
+                poisson_ratio=0.3)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=match):
+        indent(**args)
+
+
+def test_approach_retract_bad_input():
+    with pytest.raises(ValueError, match="strictly increasing"):
+        approach_retract([0.0, 2e-9, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3)
+    with pytest.raises(ValueError, match="adhesion must be one of"):
+        approach_retract([0.0, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3, adhesion="maugis", work_of_adhesion=0.1)
+    with pytest.raises(ValueError, match="parabolic or spherical"):
+        approach_retract([0.0, 1e-9], 0.1, Conical(0.3), 1e6, 0.3, adhesion="dmt", work_of_adhesion=0.1)
+    with pytest.raises(ValueError, match="work_of_adhesion must be > 0"):
+        approach_retract([0.0, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3, adhesion="jkr")
+
+
+# --- adhesion ---------------------------------------------------------------------------------------
+R, W = 50e-9, 0.04  # tip radius (m) and work of adhesion (J/m^2)
+
+
+@pytest.mark.parametrize("tip", [Parabolic(R), Spherical(R)], ids=["parabolic", "spherical"])
+def test_dmt_pull_off_is_2_pi_r_w(tip):
+    # Derjaguin, Muller and Toporov, J. Colloid Interface Sci. 53, 314 (1975): F_pull-off = 2 pi R w
+    k = 0.1
+    z = np.linspace(-200e-9, 20e-9, 20001)
+    ar = approach_retract(z, k, tip, 1e8, 0.3, adhesion="dmt", work_of_adhesion=W)
+    published = 2 * math.pi * R * W
+    assert ar.pull_off_force == pytest.approx(published, rel=1e-14)
+    assert ar.snap_off_force == pytest.approx(-published, rel=1e-14)
+    # the sampled retract curve reaches it (to the ramp step k dz) and never goes below it
+    assert ar.retract.force.min() >= -published * (1 + 1e-12)
+    assert ar.retract.force.min() <= -published + 2 * k * (z[1] - z[0])
+    # hysteresis: at Z_np in (-2 pi R w / k, 0) the retract is in contact, the approach is not
+    mid = (ar.retract.z_np < 0) & (ar.retract.z_np > -published / k)
+    assert ar.retract.in_contact[mid].all() and not ar.approach.in_contact[ar.approach.z_np < 0].any()
+
+
+def test_jkr_pull_off_limits_are_the_published_values():
+    e_star = reduced_modulus(1e7, 0.3)
+    # JKR (Proc. R. Soc. A 324, 301 (1971)): load control (soft lever) 3/2 pi R w;
+    # displacement control (rigid lever) 5/6 pi R w (Johnson, Contact Mechanics, sec. 5.5)
+    _, _, f_soft = jkr_instability(1e-9, R, W, e_star)
+    _, _, f_stiff = jkr_instability(1e9, R, W, e_star)
+    assert -f_soft == pytest.approx(1.5 * math.pi * R * W, rel=1e-6)
+    assert -f_stiff == pytest.approx(5 / 6 * math.pi * R * W, rel=1e-6)
+
+
+def test_jkr_snap_off_is_the_cantilever_instability():
+    # at snap-off the slope of the JKR force-indentation curve equals -k (dF/dZ_s = -k)
+    e_star = reduced_modulus(1e7, 0.3)
+    for k in (0.01, 0.3, 5.0):
+        a, _, f = jkr_instability(k, R, W, e_star)
+        h = a * 1e-6
+        (z1, z2), (f1, f2) = jkr_curve([a - h, a + h], R, W, e_star)
+        assert (f2 - f1) / (z2 - z1) == pytest.approx(-k, rel=1e-6)
+        assert -f < 1.5 * math.pi * R * W
+
+
+def test_jkr_zero_load_radius():
+    # F = 0 at a0^3 = 9 pi w R^2 / (2 E*)  (JKR 1971 with K = 4 E* / 3)
+    e_star = 3e6
+    a0 = (9 * math.pi * W * R ** 2 / (2 * e_star)) ** (1 / 3)
+    _, f = jkr_curve(a0, R, W, e_star)
+    assert abs(float(f)) < 1e-12 * 4 * e_star * a0 ** 3 / (3 * R)
+
+
+def test_jkr_cycle_shows_snap_in_and_snap_off():
+    k, e, nu = 0.05, 1e7, 0.3
+    z = np.linspace(-300e-9, 30e-9, 3001)
+    ar = approach_retract(z, k, Parabolic(R), e, nu, adhesion="jkr", work_of_adhesion=W)
+    app, ret = ar.approach, ar.retract
+    # approach: no force before Z_np = 0, then a jump to a finite contact (snap-in, a > 0)
+    assert np.all(app.force[z < 0] == 0)
+    first = np.argmax(z >= 0)
+    assert app.contact_radius[first] > 0 and app.force[first] < 0
+    # retract stays on down to the instability, then leaves; the jump is a finite force
+    assert ret.in_contact[ret.z_np >= ar.snap_off_z_np].all()
+    assert not ret.in_contact[ret.z_np < ar.snap_off_z_np].any()
+    # the most adhesive force is JKR's published pull-off force (3/2) pi R w, passed on the way
+    assert ar.pull_off_force == pytest.approx(1.5 * math.pi * R * W, rel=1e-13)
+    assert ret.force.min() >= -ar.pull_off_force * (1 + 1e-12)
+    assert ret.force.min() <= -ar.pull_off_force * (1 - 1e-5)
+    # the jump happens later, at a smaller adhesive force (the lever's instability)
+    last = np.flatnonzero(ret.in_contact)[-1]
+    assert ar.snap_off_force < 0 and -ar.snap_off_force < ar.pull_off_force
+    # near the fold F - F_snap grows like sqrt(Z_np - Z_snap): the last sample is close, not exact
+    assert ret.force[last] == pytest.approx(ar.snap_off_force, rel=5e-3)
+    # on the branches: Z_np = Z_s + F / k and the parametric JKR law
+    c = ret.in_contact
+    np.testing.assert_allclose(ret.z_s[c] + ret.force[c] / k, ret.z_np[c], rtol=1e-10, atol=1e-20)
+    zs, f = jkr_curve(ret.contact_radius[c], R, W, reduced_modulus(e, nu))
+    np.testing.assert_allclose(ret.force[c], f, rtol=1e-12, atol=1e-22)
+
+
+def test_surface_profile_matches_hertz_and_follows_the_tip():
+    tip = Parabolic(R)
+    z_s = 10e-9
+    a = tip.contact_radius(z_s)
+    rho = np.linspace(0, 6 * a, 301)
+    u = surface_displacement(tip, z_s, rho)
+    # Johnson, Contact Mechanics (1985), eq. (3.42b) outside; the paraboloid inside
+    out = rho > a
+    ro = rho[out]
+    hertz = ((2 * a * a - ro ** 2) * np.arcsin(a / ro) + a * np.sqrt(ro ** 2 - a * a)) / (math.pi * R)
+    np.testing.assert_allclose(u[out], hertz, rtol=1e-12)
+    np.testing.assert_allclose(u[~out], z_s - rho[~out] ** 2 / (2 * R), rtol=1e-12)
+    # the cone: Sneddon's closed form cot(a) [a asin(a/rho) - rho + sqrt(rho^2 - a^2)]
+    cone = Conical(0.5)
+    a = cone.contact_radius(z_s)
+    ro = np.linspace(1.01 * a, 5 * a, 50)
+    ref = (a * np.arcsin(a / ro) - ro + np.sqrt(ro ** 2 - a * a)) / math.tan(0.5)
+    np.testing.assert_allclose(surface_displacement(cone, z_s, ro), ref, rtol=1e-12)
+
+
+# --- viscoelasticity -------------------------------------------------------------------------------
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+def test_sls_limits_are_the_elastic_curves(tip):
+    k, nu, e_inf, e_0 = 0.1, 0.3, 1e6, 4e6
+    z = np.linspace(-20e-9, 80e-9, 201)
+    speed = 1e-6  # m/s: the ramp lasts 0.1 s
+    fast = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(e_inf, e_0, 1e-15), nu, speed)
+    slow = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(e_inf, e_0, 1e15), nu, speed)
+    relaxed, glassy = indent(z, k, tip, e_inf, nu), indent(z, k, tip, e_0, nu)
+    scale = glassy.force.max()
+    for cyc, ref in ((fast, relaxed), (slow, glassy)):
+        np.testing.assert_allclose(cyc.approach.force, ref.force, rtol=0, atol=1e-9 * scale)
+        np.testing.assert_allclose(cyc.retract.force, ref.force[::-1], rtol=0, atol=1e-9 * scale)
+
+
+def test_sls_separates_approach_from_retract():
+    tip, k, nu = Parabolic(R), 0.1, 0.3
+    z = np.linspace(-20e-9, 80e-9, 401)
+    cyc = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(1e6, 4e6, 0.05), nu, 1e-6)
+    back = cyc.retract.force[::-1]
+    assert np.all(back <= cyc.approach.force + 1e-15)
+    assert (cyc.approach.force - back).max() > 0.1 * cyc.approach.force.max()
+    # bounded by the two elastic curves on approach
+    lo, hi = indent(z, k, tip, 1e6, nu).force, indent(z, k, tip, 4e6, nu).force
+    assert np.all(cyc.approach.force >= lo * (1 - 1e-12)) and np.all(cyc.approach.force <= hi * (1 + 1e-12))
+
+
+def test_hereditary_integral_against_closed_forms():
+    tip, nu = Conical(0.6), 0.25
+    mat = StandardLinearSolid(1e6, 3e6, 0.02)
+    c = 2 * math.tan(0.6) / math.pi  # F = E* c Z^2
+    # (1) psi linear in time (Z = sqrt(t / T)): the exact ramp response, sympy
+    t_s, s, tau, T, e_inf, de = sp.symbols("t s tau T E_inf dE", positive=True)
+    psi_rate = c / T * 1e-14  # d psi / dt for Z = 1e-7 sqrt(t / T)
+    f_sym = sp.integrate((e_inf + de * sp.exp(-(t_s - s) / tau)) * psi_rate, (s, 0, t_s))
+    f_ref = sp.lambdify((t_s, tau, T, e_inf, de), f_sym)
+    t = np.linspace(0, 0.1, 11)
+    z = 1e-7 * np.sqrt(t / 0.1)
+    got = hereditary_force(t, z, tip, mat, nu)
+    ref = f_ref(t, 0.02, 0.1, 1e6, 2e6) / (1 - nu ** 2)
+    np.testing.assert_allclose(got, ref, rtol=1e-12, atol=1e-12 * ref.max())
+    # (2) the paraboloid at constant indentation speed (Lee and Radok), quadrature
+    para = Parabolic(R)
+    v = 1e-6
+    t = np.linspace(0, 0.05, 4001)
+    got = hereditary_force(t, v * t, para, mat, nu)
+    b = 4 * math.sqrt(R) / 3 / (1 - nu ** 2)
+    for i in (1000, 2500, 4000):
+        ti = t[i]
+        ref = quad(lambda s_: float(mat.modulus(ti - s_)) * b * 1.5 * v ** 1.5 * math.sqrt(s_), 0, ti,
+                   epsabs=0, epsrel=1e-12)[0]
+        assert got[i] == pytest.approx(ref, rel=1e-5)
+
+
+def test_sls_bad_input():
+    with pytest.raises(ValueError, match="instantaneous_modulus must be in"):
+        StandardLinearSolid(2e6, 1e6, 0.1)
+    with pytest.raises(ValueError, match="relaxation_time must be > 0"):
+        StandardLinearSolid(1e6, 2e6, 0.0)
+    with pytest.raises(ValueError, match="speed must be > 0"):
+        viscoelastic_approach_retract([0, 1e-9], 0.1, Parabolic(R), StandardLinearSolid(1e6, 2e6, 1.0), 0.3, 0)
