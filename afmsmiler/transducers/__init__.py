@@ -29,8 +29,8 @@ from dataclasses import dataclass
 from html import escape
 
 from .acoustic import PiezoAcoustic
-from .base import (FrequencyResponse, Parameter, Quantity, Resolution, SignalChain, Stage,
-                   Transducer)
+from .base import (FrequencyResponse, Harmonics, Parameter, Quantity, Resolution, SignalChain,
+                   Stage, Transducer)
 from .electric import Electromagnetic, Electrostatic
 from .embedded import Optomechanical, Piezoelectric, Piezoresistive
 from .optical import AstigmaticDetection, Interferometer, OpticalBeamDeflection
@@ -39,9 +39,10 @@ from ..validation import check_choice
 
 __all__ = ["PRINCIPLES", "get_principle", "TableRow", "table_one", "table_one_markdown",
            "table_one_html", "Transducer", "Parameter", "Quantity", "SignalChain", "Stage",
-           "FrequencyResponse", "Resolution", "OpticalBeamDeflection", "AstigmaticDetection",
-           "Interferometer", "PiezoAcoustic", "Photothermal", "Electromagnetic", "Electrostatic",
-           "Optomechanical", "Piezoresistive", "Electrothermal", "Piezoelectric"]
+           "FrequencyResponse", "Resolution", "Harmonics", "OpticalBeamDeflection",
+           "AstigmaticDetection", "Interferometer", "PiezoAcoustic", "Photothermal",
+           "Electromagnetic", "Electrostatic", "Optomechanical", "Piezoresistive", "Electrothermal",
+           "Piezoelectric"]
 
 #: Key -> model class of every principle, in the order of the paper's Table I.
 PRINCIPLES: dict[str, type[Transducer]] = {cls.key: cls for cls in (
@@ -65,7 +66,21 @@ def get_principle(key: str, **params) -> Transducer:
 
 @dataclass(frozen=True)
 class TableRow:
-    """A row of Table I: the principle's name, function, signal and size class."""
+    """A row of Table I, generated from a model's class attributes.
+
+    Parameters
+    ----------
+    key : str
+        The model's key in :data:`PRINCIPLES`.
+    name : str
+        The principle's name.
+    function : str
+        ``"sensing"``, ``"actuation"`` or ``"both"``.
+    signal : str
+        ``"DC&AC"``, ``"AC only"`` or ``"AC mostly"``.
+    size : str
+        ``"bulk"`` or ``"embedded"``.
+    """
 
     key: str
     name: str

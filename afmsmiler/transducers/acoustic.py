@@ -99,7 +99,15 @@ class PiezoAcoustic(Transducer):
         return self.shaker_coefficient * participation_factor() * r * r
 
     def frequency_response(self, f, mode=None) -> FrequencyResponse:
-        """Complex tip amplitude per drive volt, d U / Y, at frequencies ``f`` (Hz); zero at DC."""
+        """Complex tip amplitude per drive volt, d U / Y, at frequencies ``f`` (Hz); zero at DC.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, >= 0.
+        mode : str, optional
+            ``"actuation"`` (the only mode).
+        """
         mode = self._mode(mode)
         response = self.shaker_coefficient * self.base_transfer(f)
         f = np.asarray(f, dtype=float)

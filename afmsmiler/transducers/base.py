@@ -37,11 +37,10 @@ from typing import ClassVar
 import numpy as np
 
 from ..cantilever import Cantilever
-from ..materials import get_material
 from ..validation import check_array, check_choice, check_positive, check_range
 
 __all__ = ["Quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
-           "Transducer", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0", "LEVER_PARAMETERS",
+           "Harmonics", "Transducer", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0", "LEVER_PARAMETERS",
            "mechanical_response", "thermal_deflection_noise"]
 
 #: Boltzmann constant k_B in J/K (SI 2019, exact).
@@ -81,11 +80,11 @@ class Quantity:
     label: str = ""
 
     def display(self, si_value):
-        """The value in the display unit."""
+        """The value ``si_value`` (SI, scalar or array) in the display unit."""
         return np.asarray(si_value) * self.scale if np.ndim(si_value) else float(si_value) * self.scale
 
     def to_si(self, display_value):
-        """A display-unit value back in SI."""
+        """``display_value`` (in the display unit) back in SI."""
         return display_value / self.scale
 
     @property
@@ -101,6 +100,8 @@ class Parameter(Quantity):
 
     Parameters
     ----------
+    name, unit, display_unit, scale, label
+        As for :class:`Quantity`.
     default : float
         Default value in SI units.
     low, high : float
@@ -138,7 +139,15 @@ LEVER_PARAMETERS: tuple[Parameter, ...] = (
 
 @dataclass(frozen=True)
 class Stage:
-    """One stage of a signal chain: a :class:`Quantity` and its values along the input sweep."""
+    """One stage of a signal chain.
+
+    Parameters
+    ----------
+    quantity : Quantity
+        What the stage is (name, SI unit, display).
+    values : ndarray
+        Its values (SI) along the input sweep.
+    """
 
     quantity: Quantity
     values: np.ndarray
@@ -212,6 +221,26 @@ class FrequencyResponse:
 
 
 @dataclass(frozen=True)
+class Harmonics:
+    """A force (N), power (W) or deflection (m) split by frequency: P(t) = dc + first cos(omega t)
+    + second cos(2 omega t) (complex amplitudes carry the phase).
+
+    Parameters
+    ----------
+    dc : complex
+        The static part.
+    first : complex
+        The amplitude at the drive frequency omega.
+    second : complex
+        The amplitude at 2 omega.
+    """
+
+    dc: complex
+    first: complex
+    second: complex
+
+
+@dataclass(frozen=True)
 class Resolution:
     """The noise-limited resolution in a bandwidth, referred to the chain's input.
 
@@ -267,6 +296,17 @@ def thermal_deflection_noise(lever: Cantilever, quality_factor: float, temperatu
 
     sqrt(4 k_B T B / (k omega1 Q)): the white, low-frequency part of the oscillator's
     thermal spectrum (fluctuation-dissipation theorem).
+
+    Parameters
+    ----------
+    lever : Cantilever
+        The lever (its k and f1).
+    quality_factor : float
+        Q of the first mode.
+    temperature : float
+        T in K.
+    bandwidth : float
+        B in Hz.
     """
     omega1 = 2 * math.pi * lever.resonance_frequency(1)
     return math.sqrt(4 * BOLTZMANN * temperature * bandwidth
@@ -373,15 +413,15 @@ class Transducer:
         return self.MODES[0] if mode is None else check_choice("mode", mode, self.MODES)
 
     def input_quantity(self, mode=None) -> Parameter:
-        """The chain's input (a :class:`Parameter`: its range bounds the input sweep)."""
+        """The input of the chain of ``mode`` (a :class:`Parameter`: its range bounds the sweep)."""
         return self.INPUTS[self._mode(mode)]
 
     def output_quantity(self, mode=None) -> Quantity:
-        """The chain's output."""
+        """The output of the chain of ``mode`` (default: the first mode)."""
         return self.OUTPUTS[self._mode(mode)]
 
     def sensitivity_quantity(self, mode=None) -> Quantity:
-        """Unit and display of :meth:`sensitivity`."""
+        """Unit and display of :meth:`sensitivity` for ``mode``."""
         return self.SENSITIVITY[self._mode(mode)]
 
     # -- the lever --------------------------------------------------------------------------
@@ -425,18 +465,16 @@ class Transducer:
         mode = self._mode(mode)
         q = self.INPUTS[mode]
         x = check_array(q.name, value, q.unit, low=q.low, high=q.high)
-        if x.ndim == 0:
-            x = x.reshape(())
         stages = [Stage(q, x)] + [Stage(sq, np.asarray(v, dtype=float))
                                   for sq, v in self._stages(x, mode)]
         return SignalChain(mode, tuple(stages))
 
     def respond(self, value, mode=None):
-        """The output for input ``value`` (the last stage of :meth:`chain`)."""
+        """The output for input ``value`` in the chain of ``mode`` (the last stage of :meth:`chain`)."""
         return self.chain(value, mode).output.values
 
     def operating_point(self, mode=None) -> float:
-        """The input value (SI) where :meth:`sensitivity` is taken by default.
+        """The input value (SI) of the chain of ``mode`` where :meth:`sensitivity` is taken by default.
 
         Zero (the nulled detector, the undriven actuator) except for drives whose force goes as
         the square of a voltage (electrostatic, electrothermal), where it is the input's default
@@ -566,7 +604,3 @@ FORCE = Quantity("force", "N", "nN", 1e9, "force on the lever")
 TIP_DEFLECTION_INPUT = Parameter("deflection", "m", "nm", 1e9, "tip deflection", 20e-9,
                                  -2e-6, 2e-6)
 
-
-def material_modulus(name: str) -> float:
-    """Young's modulus in Pa of a preset of :mod:`afmsmiler.materials`."""
-    return get_material(name).youngs_modulus

@@ -3,22 +3,11 @@
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
-
 from ..validation import check_nonnegative, check_range
-from .base import (DEFLECTION, EPSILON_0, FORCE, SLOPE, Parameter, Quantity, Transducer,
-                   mechanical_response)
+from .base import (DEFLECTION, EPSILON_0, FORCE, SLOPE, Harmonics, Parameter, Quantity,
+                   Transducer, mechanical_response)
 
-__all__ = ["Electrostatic", "Electromagnetic", "ForceComponents"]
-
-
-@dataclass(frozen=True)
-class ForceComponents:
-    """A force (N) or deflection (m) split by frequency: DC, 1-omega and 2-omega amplitudes."""
-
-    dc: complex
-    first: complex
-    second: complex
+__all__ = ["Electrostatic", "Electromagnetic"]
 
 
 class Electrostatic(Transducer):
@@ -76,21 +65,30 @@ class Electrostatic(Transducer):
         return (q * (0.75 * L ** 4 - L * a ** 3 + a ** 4 / 4) / (6 * ei),
                 q * (L ** 3 - a ** 3) / (6 * ei))
 
-    def force_components(self, dc_voltage: float) -> ForceComponents:
+    def force_components(self, dc_voltage: float) -> Harmonics:
         """DC, 1-omega and 2-omega force amplitudes in N for a bias ``dc_voltage`` (V)."""
         v = self.INPUTS["actuation"].check(dc_voltage)
         g, va = self.capacitance_gradient, self.ac_voltage
-        return ForceComponents(0.5 * g * (v * v + va * va / 2), g * v * va, 0.25 * g * va * va)
+        return Harmonics(0.5 * g * (v * v + va * va / 2), g * v * va, 0.25 * g * va * va)
 
-    def deflection_components(self, dc_voltage: float, frequency: float) -> ForceComponents:
-        """Complex tip-deflection amplitudes (m) at DC, omega and 2 omega for a drive at ``frequency`` Hz."""
+    def deflection_components(self, dc_voltage: float, frequency: float) -> Harmonics:
+        """Complex tip-deflection amplitudes (m) at DC, omega and 2 omega.
+
+        Parameters
+        ----------
+        dc_voltage : float
+            Bias V_dc in V.
+        frequency : float
+            Drive frequency omega / (2 pi) in Hz; each force component passes the first mode at
+            its own frequency.
+        """
         frequency = check_nonnegative("frequency", frequency, "Hz")
         f = self.force_components(dc_voltage)
         c = self.compliance[0]
 
         def h(fr):
             return complex(c * mechanical_response(fr, self.resonance_frequency, self.quality_factor))
-        return ForceComponents(f.dc * h(0.0), f.first * h(frequency), f.second * h(2 * frequency))
+        return Harmonics(f.dc * h(0.0), f.first * h(frequency), f.second * h(2 * frequency))
 
     def _stages(self, v, mode):
         force = 0.5 * self.capacitance_gradient * (v * v + self.ac_voltage ** 2 / 2)

@@ -79,7 +79,7 @@ class OpticalBeamDeflection(Transducer):
 
     def _stages(self, z, mode):
         lever = self._lever_stages(z)
-        s = self.spot_displacement(lever[1][1])
+        s = self.spot_displacement(lever[0][1])
         return lever + [(self.SPOT, s), (self.OUTPUTS["sensing"], self.split_signal(s))]
 
     def _sensitivity(self, mode, at):

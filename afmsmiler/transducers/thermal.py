@@ -39,16 +39,27 @@ import numpy as np
 
 from ..materials import get_material
 from ..validation import check_nonnegative
-from .base import DEFLECTION, SLOPE, Parameter, Quantity, Transducer, mechanical_response
+from .base import (DEFLECTION, SLOPE, Harmonics, Parameter, Quantity, Transducer,
+                   mechanical_response)
 
-__all__ = ["ThermalProperties", "THERMAL", "bimorph_curvature", "Photothermal", "Electrothermal",
-           "PowerComponents"]
+__all__ = ["ThermalProperties", "THERMAL", "bimorph_curvature", "Photothermal", "Electrothermal"]
 
 
 @dataclass(frozen=True)
 class ThermalProperties:
-    """Thermal figures of a material (SI): expansion alpha (1/K), conductivity (W/(m K)),
-    specific heat (J/(kg K)) and where they come from."""
+    """Thermal figures of a material (SI).
+
+    Parameters
+    ----------
+    expansion : float
+        Linear thermal expansion coefficient alpha in 1/K.
+    conductivity : float
+        Thermal conductivity kappa in W/(m K).
+    specific_heat : float
+        Specific heat capacity c in J/(kg K).
+    source : str
+        Where the figures come from.
+    """
 
     expansion: float
     conductivity: float
@@ -194,19 +205,6 @@ class Photothermal(_Bimorph):
         return self.absorptance * self.deflection_per_watt()
 
 
-@dataclass(frozen=True)
-class PowerComponents:
-    """Heater power of V = V_dc + V_ac cos(omega t) across R, split by frequency (W).
-
-    P(t) = dc + first cos(omega t) + second cos(2 omega t), with dc = (V_dc^2 + V_ac^2 / 2) / R,
-    first = 2 V_dc V_ac / R and second = V_ac^2 / (2 R).
-    """
-
-    dc: float
-    first: float
-    second: float
-
-
 class Electrothermal(_Bimorph):
     """Electrothermal actuation: a resistive heater on the lever and an aluminium bimorph layer.
 
@@ -244,17 +242,22 @@ class Electrothermal(_Bimorph):
     SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
     POWER = Quantity("power", "W", "mW", 1e3, "mean heater power")
 
-    def power_components(self, dc_voltage: float) -> PowerComponents:
+    def power_components(self, dc_voltage: float) -> Harmonics:
         """DC, 1-omega and 2-omega heater power in W for a bias ``dc_voltage`` (V)."""
         v = self.INPUTS["actuation"].check(dc_voltage)
         r, va = self.resistance, self.ac_voltage
-        return PowerComponents((v * v + va * va / 2) / r, 2 * v * va / r, va * va / (2 * r))
+        return Harmonics((v * v + va * va / 2) / r, 2 * v * va / r, va * va / (2 * r))
 
-    def deflection_components(self, dc_voltage: float, frequency: float) -> PowerComponents:
-        """Complex tip-deflection amplitudes (m) at DC, omega and 2 omega for a drive at ``frequency``.
+    def deflection_components(self, dc_voltage: float, frequency: float) -> Harmonics:
+        """Complex tip-deflection amplitudes (m) at DC, omega and 2 omega.
 
-        Each power component passes through the thermal lag and the first mode at its own
-        frequency.
+        Parameters
+        ----------
+        dc_voltage : float
+            Bias V_dc in V.
+        frequency : float
+            Drive frequency omega / (2 pi) in Hz; each power component passes the thermal lag
+            and the first mode at its own frequency.
         """
         frequency = check_nonnegative("frequency", frequency, "Hz")
         p = self.power_components(dc_voltage)
@@ -263,7 +266,7 @@ class Electrothermal(_Bimorph):
         def h(f):
             return complex(k * self.thermal_lag(f)
                            * mechanical_response(f, self.resonance_frequency, self.quality_factor))
-        return PowerComponents(p.dc * h(0.0), p.first * h(frequency), p.second * h(2 * frequency))
+        return Harmonics(p.dc * h(0.0), p.first * h(frequency), p.second * h(2 * frequency))
 
     def _stages(self, v, mode):
         heat = (v * v + self.ac_voltage ** 2 / 2) / self.resistance
