@@ -133,6 +133,17 @@ def test_tip_and_force_arrow_sit_at_the_free_end(scene):
     assert sc.arrow.vector[2] == pytest.approx(-F / DEFAULTS["force_per_unit"])
 
 
+def test_drawn_deflection_is_capped_at_one_lever_length(scene):
+    sc, _ = scene
+    soft = Cantilever(500e-6, 5e-6, 0.2e-6, 10e9, RHO)  # k ~ 1e-6 N/m: z(L) = 0.6 m at 500 nN
+    sc.update(soft, 5e-7, exaggeration=1e4)
+    mid = centre_line(sc)
+    assert mid[-1, 2] == pytest.approx(soft.length / SCENE_UNIT, rel=1e-6)
+    assert sc.drawn_exaggeration == pytest.approx(soft.length / (5e-7 / soft.spring_constant))
+    sc.update(LEVER, F, exaggeration=100)  # a stiff lever is drawn with the asked exaggeration
+    assert sc.drawn_exaggeration == 100
+
+
 def test_update_is_in_place(scene):
     sc, rec = scene
     def objects():

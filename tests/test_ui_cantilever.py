@@ -117,6 +117,8 @@ def test_panel_with_scene_updates_the_3d_view_in_place():
                                    atol=1e-9)
         assert viewer._proc.pid == pid  # the same server throughout
         assert "MPa" in p.readout.value and "x1,000" in p.readout.value
+        p.set(length=500.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
+        assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
         w = p.widget()
         assert p.readout in w.children[0].children
     finally:

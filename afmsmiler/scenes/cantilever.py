@@ -45,6 +45,7 @@ DEFAULTS = dict(
     mode_frames=48,          # frames per period of the mode animation
     mode_fps=24,             # frames per second of the mode animation
     mode_amplitude=0.15,     # animated tip amplitude as a fraction of L
+    max_drawn_tip=1.0,       # the drawn tip deflection is capped at this fraction of L
 )
 
 _STRESS_LABEL = "bending stress"
@@ -120,7 +121,9 @@ class CantileverScene:
 
     Notes
     -----
-    One scene unit is 100 um (:data:`SCENE_UNIT`). Drawn deflection = exaggeration x z(x);
+    One scene unit is 100 um (:data:`SCENE_UNIT`). Drawn deflection = exaggeration x z(x), except
+    that the exaggeration actually used (:attr:`drawn_exaggeration`) is lowered when the drawn
+    tip would move by more than L (soft levers under large forces), so the lever stays in view;
     the arrow's length is force / ``force_per_unit`` scene units, drawn from below the tip apex
     when the force pushes the tip up (a repulsive sample), from the apex downwards when it pulls.
     """
@@ -183,7 +186,10 @@ class CantileverScene:
         self.lever, self.force = lever, force
         field = stress_field(lever, force, self.n_length, self.n_thickness)
         scale = self.color_scale(field)
-        u, ex = SCENE_UNIT, self.exaggeration
+        tip = abs(float(field.deflection[-1]))
+        cap = DEFAULTS["max_drawn_tip"] * lever.length / tip if tip > 0 else math.inf
+        self.drawn_exaggeration = min(self.exaggeration, cap)
+        u, ex = SCENE_UNIT, self.drawn_exaggeration
         mesh = P.beam_mesh(field.x / u, ex * field.deflection / u, lever.width / u,
                            lever.thickness / u, field.stress / 1e6, slope=ex * field.slope)
         self.vis["beam"].set_object(mesh.geometry(scale), self._material)
@@ -213,7 +219,7 @@ class CantileverScene:
     def tip_pose(self, lever: Cantilever, field: StressField) -> np.ndarray:
         """4x4 pose of the tip frame: origin on the beam's bottom face at the free end, z along
         the local normal of the drawn beam (scene units), for ``lever`` drawn from ``field``."""
-        u, ex = SCENE_UNIT, self.exaggeration
+        u, ex = SCENE_UNIT, self.drawn_exaggeration
         s = ex * float(field.slope[-1])
         n = np.array([-s, 0.0, 1.0]) / math.hypot(1.0, s)
         tangent = np.array([1.0, 0.0, s]) / math.hypot(1.0, s)

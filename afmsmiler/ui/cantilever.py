@@ -173,9 +173,11 @@ class CantileverPanel(Panel):
         legend = ""
         if self.scene is not None:
             from ..scenes.primitives import legend_html
-            legend = ("<div style='margin-top:6px'>3D view: deflection x"
-                      f"{self.scene.exaggeration:,.0f}, 1 unit = 100 um</div>"
-                      + legend_html(self.scene.scale))
+            ex = self.scene.drawn_exaggeration
+            note = "" if ex == self.scene.exaggeration else " (capped: tip drawn at most L away)"
+            shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
+            legend = (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
+                      "1 unit = 100 um</div>" + legend_html(self.scene.scale))
         return f"<table>{table}</table>{legend}"
 
     def widget(self) -> widgets.Widget:
