@@ -13,7 +13,7 @@ import numpy as np
 EPS = np.finfo(float).eps
 
 
-def bracketed_newton(func, lo, hi, x0, *, maxiter: int = 100, rtol: float = 2 * EPS):
+def bracketed_newton(func, lo, hi, x0, *, maxiter: int = 100, rtol: float = 4 * EPS):
     """Solve ``g(x) = 0`` elementwise for increasing ``g`` with a root in ``[lo, hi]``.
 
     Parameters
@@ -27,7 +27,8 @@ def bracketed_newton(func, lo, hi, x0, *, maxiter: int = 100, rtol: float = 2 * 
     maxiter : int
         Iteration cap (bisection alone would need about 60 for full precision).
     rtol : float
-        Stop when every step is below ``rtol * |x|`` (or the residual is exactly zero).
+        Stop when, for every element, the step or the bracket is below ``rtol * |x|`` (or the
+        residual is exactly zero): round-off then decides the last digits.
 
     Returns
     -------
@@ -48,6 +49,7 @@ def bracketed_newton(func, lo, hi, x0, *, maxiter: int = 100, rtol: float = 2 * 
         xn = np.where(outside, 0.5 * (lo + hi), xn)
         step = np.abs(xn - x)
         x = xn
-        if np.all((step <= rtol * np.abs(x)) | (g == 0)):
+        tol = rtol * np.abs(x)
+        if np.all((step <= tol) | (g == 0) | (hi - lo <= tol)):
             break
     return x

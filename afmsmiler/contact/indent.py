@@ -138,13 +138,12 @@ def _check_depth(tip, z, k, e_star):
 
 def _elastic(tip, z, k, e_star) -> IndentationCurve:
     contact = z > 0
-    z_s = np.zeros_like(z)
+    z_s, force, radius = np.zeros_like(z), np.zeros_like(z), np.zeros_like(z)
     if contact.any():
-        z_s[contact] = tip._solve(z[contact], k, e_star)
+        z_s[contact], psi, radius[contact] = tip._solve_state(z[contact], k, e_star)
+        force[contact] = e_star * psi  # the contact law (equal to k Z_c to round-off)
     z_c = np.where(contact, z - z_s, 0.0)
-    # the force from the contact law (equal to k Z_c to round-off)
-    force = np.where(contact, e_star * tip._force_unit(z_s), 0.0)
-    return IndentationCurve(z, z_s, z_c, force, np.where(contact, tip._radius(z_s), 0.0), contact)
+    return IndentationCurve(z, z_s, z_c, force, radius, contact)
 
 
 def indent(z_np, spring_constant, tip, youngs_modulus, poisson_ratio) -> IndentationCurve:

@@ -243,6 +243,11 @@ class Tip:
         """Z_s solving k (Z_np - Z_s) = F(Z_s) for Z_np > 0 (unchecked, vectorised)."""
         raise NotImplementedError
 
+    def _solve_state(self, z_np, k, e_star):
+        """(Z_s, F / E*, r) at the solution, for Z_np > 0 (unchecked, vectorised)."""
+        z_s = self._solve(z_np, k, e_star)
+        return z_s, self._force_unit(z_s), self._radius(z_s)
+
 
 class _PowerLaw(Tip):
     """F = c E* Z^2 with r = g Z (cone and pyramid): the cantilever equation is a quadratic."""
@@ -450,6 +455,9 @@ class Spherical(Tip):
         # in u = r / R: h(u) + kappa G(u) = Z_np / R with kappa = E* R / k; h and G are increasing
         # and convex with h >= u^2 and G >= 4 u^3 / 3, so the paraboloid's root bounds u from
         # above and Newton from there converges monotonically; G'(u) = 2 u h'(u)
+        return self.radius * _sphere_depth(self._solve_u(z_np, k, e_star))
+
+    def _solve_u(self, z_np, k, e_star):
         radius = self.radius
         kappa = e_star * radius / k
         zeta = z_np / radius
@@ -460,8 +468,11 @@ class Spherical(Tip):
             return (_sphere_depth(u) + kappa * _sphere_force(u) - zeta,
                     _sphere_depth_slope(u) * (1.0 + 2.0 * kappa * u))
 
-        u = bracketed_newton(g, np.zeros_like(hi), hi, hi)
-        return radius * _sphere_depth(u)
+        return bracketed_newton(g, np.zeros_like(hi), hi, hi)
+
+    def _solve_state(self, z_np, k, e_star):
+        u = self._solve_u(z_np, k, e_star)
+        return self.radius * _sphere_depth(u), self.radius ** 2 * _sphere_force(u), self.radius * u
 
 
 @dataclass(frozen=True)

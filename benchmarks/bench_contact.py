@@ -1,0 +1,62 @@
+"""Module (d) speed: 1000-point indentation curves for the four tips (target: < 5 ms in total),
+against the named peer, a scalar scipy.optimize.brentq loop solving the same points (target: >= 20x).
+
+Both sides solve k (Z_np - Z_s) = F(Z_s) to full precision; the peer calls brentq once per point on
+the bracket [0, Z_np] with the tip's force law (the paper's approach, done with a proper root finder).
+"""
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+from scipy.optimize import brentq
+
+sys.path.insert(0, str(Path(__file__).parent))
+from _timing import best_time, report  # noqa: E402
+
+from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical, indent, reduced_modulus  # noqa: E402
+
+K, E, NU = 0.1, 1e6, 0.3
+E_STAR = reduced_modulus(E, NU)
+TIPS = [Parabolic(20e-9), Spherical(500e-9), Conical(math.radians(20)), Pyramidal(math.radians(35))]
+Z = np.linspace(-50e-9, 300e-9, 1000)
+
+
+def ours():
+    for tip in TIPS:
+        indent(Z, K, tip, E, NU)
+
+
+def peer_tip(tip):
+    # the force law as a plain scalar function (no validation), the fairest peer
+    f = tip._force_unit
+    out = np.zeros_like(Z)
+    for i, z in enumerate(Z):
+        if z > 0:
+            out[i] = brentq(lambda s: K * (z - s) - E_STAR * float(f(np.array(s))), 0.0, z,
+                            xtol=1e-30, rtol=4 * np.finfo(float).eps)
+    return out
+
+
+def peer():
+    for tip in TIPS:
+        peer_tip(tip)
+
+
+def main():
+    for tip in TIPS:  # same answers before timing anything
+        np.testing.assert_allclose(indent(Z, K, tip, E, NU).z_s, peer_tip(tip), rtol=1e-12, atol=1e-24)
+    rows = []
+    for tip in TIPS:
+        t = best_time(lambda tip=tip: indent(Z, K, tip, E, NU))
+        rows.append((f"indent, 1000 points, {tip.key}", t, None, None))
+    t_ours = best_time(ours)
+    t_peer = best_time(peer, repeat=3)
+    rows.append(("indent, 1000 points x 4 tips (afmsmiler)", t_ours, 5e-3, t_peer))
+    rows.append(("scalar brentq loop, 1000 points x 4 tips (peer)", t_peer, None, None))
+    report(rows)
+    print(f"ratio brentq / afmsmiler = {t_peer / t_ours:.1f}x (target >= 20x)", flush=True)
+
+
+if __name__ == "__main__":
+    main()
