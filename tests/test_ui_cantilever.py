@@ -123,3 +123,27 @@ def test_panel_with_scene_updates_the_3d_view_in_place():
         assert p.readout in w.children[0].children
     finally:
         close_viewer()
+
+
+def test_mode_shapes_figure_and_strain_axis():
+    from afmsmiler.plots.cantilever import mode_shapes_figure
+    lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
+    fig, lines = mode_shapes_figure(lever, modes=(1, 2, 3))
+    for n, line in enumerate(lines, start=1):
+        u, phi = line.get_data()
+        assert u[0] == 0 and u[-1] == 1 and phi[-1] == pytest.approx(1.0) and abs(phi[0]) < 1e-12
+        assert np.count_nonzero(np.diff(np.sign(phi[1:]))) == n - 1  # n - 1 nodes
+        bl = (1.87510407, 4.69409113, 7.85475744)[n - 1]  # Blevins, Table 8-1
+        f = bl ** 2 / (2 * math.pi * lever.length ** 2) * math.sqrt(169e9 * 4e-12 / (12 * 2330.0))
+        assert f"{f / 1e3:.4g} kHz" in line.get_label()
+
+
+def test_section_strain_axis_is_stress_over_e(panel):
+    # the top axis of the section plot reads microstrain = stress / E
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    FigureCanvasAgg(panel.fig).draw()
+    lo, hi = panel.figure.axes["section"].get_xlim()  # MPa
+    slo, shi = panel.figure.strain_axis.get_xlim()  # microstrain
+    assert (slo, shi) == pytest.approx((lo / 169e3 * 1e6, hi / 169e3 * 1e6), rel=1e-9)
+    c = panel.last.curves
+    np.testing.assert_allclose(c.section_strain_micro, c.section_stress_mpa * 1e6 / 169e9 * 1e6, rtol=1e-12)

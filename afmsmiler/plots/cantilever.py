@@ -130,6 +130,8 @@ class CantileverFigure:
     lines : dict
         ``"z"``, ``"theta"``, ``"stress_top"``, ``"section"`` lines and the ``"section_marker_*"``
         vertical lines at the section position, updated in place by :meth:`update`.
+    strain_axis : matplotlib.axes.Axes
+        The top axis of the section plot, strain in microstrain = stress / E.
     """
 
     def __init__(self, curves: CantileverCurves, fig: Figure | None = None):
@@ -153,9 +155,9 @@ class CantileverFigure:
         ax["section"].set(xlabel="stress sigma [MPa]", ylabel="z_b [um] (0 = neutral plane)")
         self._e_gpa = curves.youngs_modulus_gpa
         # microstrain = MPa / (E in GPa) * 1e3
-        self._strain_axis = ax["section"].secondary_xaxis(
+        self.strain_axis = ax["section"].secondary_xaxis(
             "top", functions=(lambda s: s / self._e_gpa * 1e3, lambda e: e * self._e_gpa / 1e3))
-        self._strain_axis.set_xlabel("strain [microstrain]")
+        self.strain_axis.set_xlabel("strain [microstrain]")
         self.fig.set_layout_engine("constrained")
         self.update(curves)
 
