@@ -121,7 +121,8 @@ def test_beam_mesh_geometry_carries_vertex_colors_of_the_scale():
     geom = mesh.geometry(scale)
     assert isinstance(geom, g.TriangularMeshGeometry)
     top = mesh.vertices[:, 2] > H / 2 - 1e-12
-    np.testing.assert_allclose(geom.color[top], np.tile(matplotlib.colormaps["RdBu_r"](1.0)[:3], (top.sum(), 1)),
+    red_end = matplotlib.colormaps["RdBu_r"](1.0)[:3]
+    np.testing.assert_allclose(geom.color[top], np.tile(red_end, (top.sum(), 1)),
                                atol=1e-6)
 
 

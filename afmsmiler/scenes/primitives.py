@@ -17,8 +17,8 @@ Contents
   laser beam), :func:`cone`, :func:`sphere`, :func:`polyline`: drawn once, then moved in place
   with ``set_transform`` (no new objects per update).
 - :class:`ColorLegend`: meshcat has no text, so the legend is a colorbar with tick labels and its
-  unit rendered (by Pillow, in about a millisecond) into a PNG texture on a thin plate; :func:`legend_html` gives the
-  same legend as an HTML snippet for a widget.
+  unit rendered (by Pillow, in about a millisecond) into a PNG texture on a thin plate;
+  :func:`legend_html` gives the same legend as an HTML snippet for a widget.
 """
 from __future__ import annotations
 
