@@ -93,9 +93,12 @@ def test_metadata_is_complete(key):
         assert getattr(model, name) == p.default
         if p.unit:
             assert p.display_unit, f"{key}.{name} needs a display unit"
+        if p.display_unit == p.unit:
+            assert p.scale == 1.0, f"{key}.{name}: same unit, so the scale must be 1"
         assert p.scale > 0
     for mode in model.MODES:
         q = model.input_quantity(mode)
+        assert q.scale == 1.0 or q.display_unit != q.unit
         chain = model.chain(np.linspace(q.low, q.high, 7), mode)
         assert chain.input.quantity is q and "deflection" in chain.names and "slope" in chain.names
         for stage in chain.stages:
@@ -623,6 +626,9 @@ def test_cross_parameter_checks():
         Piezoresistive(length=100e-6, resistor_length=200e-6)
     with pytest.raises(ValueError, match="^junction_depth must be in"):
         Piezoresistive(thickness=1e-6, junction_depth=0.8e-6)
+    assert Piezoresistive(thickness=1e-6).upper_bound("junction_depth") == pytest.approx(0.5e-6)
+    assert Electrostatic(length=100e-6).upper_bound("electrode_length") == pytest.approx(100e-6)
+    assert Electrostatic().upper_bound("gap") == Electrostatic.parameter_table()["gap"].high
     with pytest.raises(ValueError, match="^key must be one of"):
         get_principle("telekinesis")
     with pytest.raises(ValueError, match="^frequency must be >= 0 Hz"):

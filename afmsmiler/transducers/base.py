@@ -349,6 +349,9 @@ class Transducer:
     SENSITIVITY: ClassVar[dict] = {}
     #: True when the small-signal gain is taken at the input's default (a DC bias), not at 0.
     BIASED: ClassVar[bool] = False
+    #: Parameters bounded by another: name -> (other, factor), meaning 0 < value <= factor * other
+    #: (an electrode cannot be longer than the lever); widgets use it to bound their sliders.
+    BOUNDED_BY: ClassVar[dict] = {}
 
     def __init__(self, **params):
         table = self.parameter_table()
@@ -372,7 +375,19 @@ class Transducer:
             check_choice(f"{cls.__name__}.size", cls.size, SIZES)
 
     def _validate(self, values: dict) -> None:
-        """Checks that involve several parameters (override; raise ValueError naming one)."""
+        """Checks that involve several parameters (:attr:`BOUNDED_BY`); raise ValueError naming one."""
+        table = self.parameter_table()
+        for name, (other, factor) in self.BOUNDED_BY.items():
+            check_range(name, values[name], 0.0, factor * values[other], table[name].unit,
+                        low_inclusive=False)
+
+    def upper_bound(self, name: str) -> float:
+        """The largest valid value (SI) of parameter ``name`` given the other parameters."""
+        meta = self.parameter_table()[name]
+        if name in self.BOUNDED_BY:
+            other, factor = self.BOUNDED_BY[name]
+            return min(meta.high, factor * self._values[other])
+        return meta.high
 
     def __getattr__(self, item):
         values = self.__dict__.get("_values")
@@ -532,7 +547,10 @@ class Transducer:
             inp = Quantity("force", "N", "nN", 1e9, "tip force")
         else:
             gain = self._sensitivity(mode, at)
-            inp = self.INPUTS[mode]
+            q = self.INPUTS[mode]
+            # around a bias, the response is to a small AC drive added to it
+            inp = (Quantity(q.name, q.unit, q.display_unit, q.scale,
+                            f"small AC drive on {q.label}") if self.BIASED else q)
         response = gain * mech * self._dynamics(f, mode)
         return FrequencyResponse(f, response, inp, out, f"{out.unit or '1'}/{inp.unit}")
 

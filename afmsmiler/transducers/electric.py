@@ -37,6 +37,7 @@ class Electrostatic(Transducer):
     function, signal, size = "actuation", "DC&AC", "bulk"
     summary = "a voltage across the gap to a counter-electrode pulls the lever"
     BIASED = True
+    BOUNDED_BY = {"electrode_length": ("length", 1.0)}
     PARAMETERS = (
         Parameter("gap", "m", "um", 1e6, "electrode gap g", 5e-6, 0.2e-6, 200e-6, log=True),
         Parameter("electrode_length", "m", "um", 1e6, "electrode length l_e", 50e-6, 1e-6, 1e-3),
@@ -47,10 +48,6 @@ class Electrostatic(Transducer):
                                      -50.0, 50.0)}
     OUTPUTS = {"actuation": DEFLECTION}
     SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
-
-    def _validate(self, values):
-        check_range("electrode_length", values["electrode_length"], 0.0, values["length"], "m",
-                    low_inclusive=False)
 
     @property
     def capacitance_gradient(self) -> float:

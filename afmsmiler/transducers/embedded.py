@@ -10,7 +10,6 @@ import math
 
 import numpy as np
 
-from ..validation import check_range
 from .base import (BOLTZMANN, DEFLECTION, ELEMENTARY_CHARGE, EPSILON_0, SLOPE,
                    TIP_DEFLECTION_INPUT, Parameter, Quantity, Transducer)
 
@@ -61,6 +60,7 @@ class Piezoresistive(Transducer):
     name = "piezoresistive"
     function, signal, size = "sensing", "DC&AC", "embedded"
     summary = "a piezoresistor at the clamp in a Wheatstone bridge"
+    BOUNDED_BY = {"resistor_length": ("length", 1.0), "junction_depth": ("thickness", 0.5)}
     PARAMETERS = (
         Parameter("bias_voltage", "V", "V", 1.0, "bridge bias V_b", 2.0, 0.01, 10.0),
         Parameter("resistance", "ohm", "kohm", 1e-3, "resistance R", 5e3, 100.0, 1e6, log=True),
@@ -79,12 +79,6 @@ class Piezoresistive(Transducer):
     SENSITIVITY = {"sensing": Quantity("sensitivity", "V/m", "uV/nm", 1e-3, "sensitivity")}
     STRESS = Quantity("stress", "Pa", "MPa", 1e-6, "stress in the resistor")
     CHANGE = Quantity("relative_change", "", "ppm", 1e6, "dR/R")
-
-    def _validate(self, values):
-        check_range("resistor_length", values["resistor_length"], 0.0, values["length"], "m",
-                    low_inclusive=False)
-        check_range("junction_depth", values["junction_depth"], 0.0, values["thickness"] / 2,
-                    "m", low_inclusive=False)
 
     @property
     def gauge_factor(self) -> float:
@@ -156,6 +150,7 @@ class Piezoelectric(Transducer):
     name = "piezoelectric"
     function, signal, size = "both", "AC mostly", "embedded"
     summary = "a piezoelectric film: charge from strain, bending from voltage"
+    BOUNDED_BY = {"electrode_length": ("length", 1.0)}
     PARAMETERS = (
         Parameter("d31", "m/V", "pm/V", 1e12, "coefficient d31", -2.0e-12, -300e-12, 300e-12),
         Parameter("film_modulus", "Pa", "GPa", 1e-9, "film modulus E_p", 330e9, 10e9, 500e9),
@@ -176,10 +171,6 @@ class Piezoelectric(Transducer):
                    "actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
     STRAIN = Quantity("film_strain", "", "ppm", 1e6, "mean strain in the film")
     MOMENT = Quantity("moment", "N m", "nN m", 1e9, "bending moment")
-
-    def _validate(self, values):
-        check_range("electrode_length", values["electrode_length"], 0.0, values["length"], "m",
-                    low_inclusive=False)
 
     @property
     def film_offset(self) -> float:

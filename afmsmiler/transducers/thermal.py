@@ -236,7 +236,7 @@ class Electrothermal(_Bimorph):
                   2e-6),
     )
     MODES = ("actuation",)
-    INPUTS = {"actuation": Parameter("dc_voltage", "V", "V", 2.0, "DC heater voltage V_dc",
+    INPUTS = {"actuation": Parameter("dc_voltage", "V", "V", 1.0, "DC heater voltage V_dc",
                                      2.0, -5.0, 5.0)}
     OUTPUTS = {"actuation": DEFLECTION}
     SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}

@@ -1,0 +1,266 @@
+"""Figures of module (b): a transducer's signal chain and its frequency response.
+
+:func:`chain_curves` samples a transducer model (:mod:`afmsmiler.transducers`) over its input
+range and converts every stage to the units the figure shows (each stage's ``display_unit``);
+:class:`TransducerFigure` draws three panels once and :meth:`TransducerFigure.update` moves the
+line data in place:
+
+1. the lever: the first intermediate stage (the force, power, moment or slope) and the stage
+   that feeds the output (the spot travel, stress, detuning, ... or the slope) against the input;
+2. the output against the input, the operating point and the tangent of slope = the
+   small-signal sensitivity there;
+3. the frequency response |H(f)| (and its phase) from the model.
+"""
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..transducers.base import Quantity, Transducer
+from ..validation import check_integer
+
+__all__ = ["DEFAULTS", "ChainCurves", "chain_curves", "TransducerFigure", "frequency_grid"]
+
+#: Defaults of the figures, in one place.
+DEFAULTS = dict(n_points=201, n_frequencies=400, f_low=1e-2, f_high_ratio=10.0,
+                figsize=(11.0, 3.8))
+
+
+def frequency_grid(model: Transducer, n_frequencies: int = DEFAULTS["n_frequencies"]) -> np.ndarray:
+    """Log-spaced frequencies in Hz from 0.01 Hz to 10 f1 of ``model``'s lever.
+
+    Parameters
+    ----------
+    model : Transducer
+        The model (its first resonance sets the top of the grid).
+    n_frequencies : int
+        Number of frequencies (>= 2).
+    """
+    n_frequencies = check_integer("n_frequencies", n_frequencies, 2, 100_000)
+    top = DEFAULTS["f_high_ratio"] * model.resonance_frequency
+    return np.geomspace(DEFAULTS["f_low"], top, n_frequencies)
+
+
+@dataclass(frozen=True)
+class ChainCurves:
+    """What a :class:`TransducerFigure` shows, in the units it shows (each quantity's display unit).
+
+    Attributes
+    ----------
+    title : str
+        The principle's name and mode.
+    quantities : tuple of Quantity
+        The stages' quantities, input first, output last.
+    x : ndarray
+        The input sweep (display unit).
+    stages : tuple of ndarray
+        Each stage along the sweep (display units), aligned with ``quantities``.
+    value : float
+        The current input (display unit).
+    point : tuple of float
+        Each stage at the current input (display units).
+    sensitivity : float
+        Small-signal slope at the current input, output per input, in display units.
+    sensitivity_si : float
+        The same in SI units (``sensitivity_unit``).
+    sensitivity_unit : str
+        SI unit of ``sensitivity_si``.
+    frequency : ndarray
+        Frequencies in Hz.
+    magnitude : ndarray
+        |H(f)| in display units of output per input (the input of the frequency response).
+    phase_deg : ndarray
+        Phase of H(f) in degrees.
+    response_label : str
+        What ``magnitude`` is, with its unit.
+    """
+
+    title: str
+    quantities: tuple
+    x: np.ndarray
+    stages: tuple
+    value: float
+    point: tuple
+    sensitivity: float
+    sensitivity_si: float
+    sensitivity_unit: str
+    frequency: np.ndarray
+    magnitude: np.ndarray
+    phase_deg: np.ndarray
+    response_label: str
+
+
+def chain_curves(model: Transducer, value: float, mode: str | None = None, *,
+                 n_points: int = DEFAULTS["n_points"],
+                 n_frequencies: int = DEFAULTS["n_frequencies"]) -> ChainCurves:
+    """Sample ``model``'s chain over its input range and its frequency response, for plotting.
+
+    Parameters
+    ----------
+    model : Transducer
+        The transducer model.
+    value : float
+        The current input in SI units (inside the input's range).
+    mode : str, optional
+        ``"sensing"`` or ``"actuation"`` for a model that does both.
+    n_points : int
+        Samples of the input sweep.
+    n_frequencies : int
+        Samples of the frequency response.
+
+    Returns
+    -------
+    ChainCurves
+
+    Raises
+    ------
+    ValueError
+        If ``value`` is outside the input's range or ``mode`` is not offered (from the model).
+    """
+    n_points = check_integer("n_points", n_points, 2, 100_000)
+    q = model.input_quantity(mode)
+    xs = np.linspace(q.low, q.high, n_points)
+    sweep = model.chain(xs, mode)
+    here = model.chain(np.array([value]), mode)
+    quantities = tuple(s.quantity for s in sweep.stages)
+    out = sweep.output.quantity
+    sens_si = model.sensitivity(mode, at=value)
+    f = frequency_grid(model, n_frequencies)
+    fr = model.frequency_response(f, mode)
+    mag_scale = fr.output.scale / fr.input.scale
+    in_unit = fr.input.display_unit or fr.input.unit
+    out_unit = fr.output.display_unit or "1"
+    label = f"|{fr.output.label or fr.output.name}| per {fr.input.label} [{out_unit}/{in_unit}]"
+    mode_name = sweep.mode if len(model.MODES) > 1 else model.function
+    return ChainCurves(
+        title=f"{model.name} ({mode_name})",
+        quantities=quantities,
+        x=xs * q.scale,
+        stages=tuple(s.values * s.quantity.scale for s in sweep.stages),
+        value=float(value) * q.scale,
+        point=tuple(float(s.values[0]) * s.quantity.scale for s in here.stages),
+        sensitivity=sens_si * out.scale / q.scale,
+        sensitivity_si=sens_si,
+        sensitivity_unit=model.sensitivity_quantity(mode).unit,
+        frequency=f,
+        magnitude=np.abs(fr.response) * mag_scale,
+        phase_deg=np.degrees(np.angle(fr.response)),
+        response_label=label,
+    )
+
+
+def _pad(lo, hi):
+    span = hi - lo
+    if not span > 0:
+        span = max(abs(hi), abs(lo), 1e-12) * 0.1 or 1.0
+    mid = 0.5 * (hi + lo)
+    return mid - 0.55 * span, mid + 0.55 * span
+
+
+def _title(q: Quantity) -> str:
+    return q.title
+
+
+class TransducerFigure:
+    """Three panels: the lever's stages, the output with its tangent, the frequency response.
+
+    Parameters
+    ----------
+    curves : ChainCurves
+        The first data to show.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; a new pyplot-free Figure by default.
+
+    Attributes
+    ----------
+    axes : dict
+        ``"lever"`` (with its twin ``"lever_right"``), ``"output"``, ``"response"`` (with
+        ``"phase"``).
+    lines : dict
+        ``"left"``, ``"right"`` (the lever panel's stages), ``"output"``, ``"tangent"``,
+        ``"point"``, ``"point_left"``, ``"point_right"``, ``"magnitude"``, ``"phase"`` and
+        ``"f1"`` (the resonance marker), updated in place by :meth:`update`.
+    """
+
+    def __init__(self, curves: ChainCurves, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["figsize"])
+        lever, output, response = self.fig.subplots(1, 3)
+        self.axes = dict(lever=lever, lever_right=lever.twinx(), output=output, response=response,
+                         phase=response.twinx())
+        ax = self.axes
+        self.lines = {}
+        self.lines["left"], = ax["lever"].plot([], [], color="C0")
+        self.lines["right"], = ax["lever_right"].plot([], [], color="C1", ls="--")
+        self.lines["point_left"], = ax["lever"].plot([], [], "o", color="C0", ms=5)
+        self.lines["point_right"], = ax["lever_right"].plot([], [], "o", color="C1", ms=5)
+        self.lines["output"], = ax["output"].plot([], [], color="C3")
+        self.lines["tangent"], = ax["output"].plot([], [], color="0.3", ls=":", lw=1.5)
+        self.lines["point"], = ax["output"].plot([], [], "o", color="C3", ms=6)
+        self.lines["magnitude"], = ax["response"].loglog([], [], color="C2")
+        self.lines["phase"], = ax["phase"].semilogx([], [], color="C4", lw=0.8, alpha=0.7)
+        self.lines["f1"] = ax["response"].axvline(1.0, color="0.7", ls=":", lw=1)
+        ax["phase"].set_ylabel("phase [deg]", color="C4")
+        ax["phase"].set_ylim(-200, 200)
+        ax["output"].set_title("detector / output signal")
+        ax["lever"].set_title("through the lever")
+        ax["response"].set(xlabel="frequency [Hz]", title="frequency response")
+        for key in ("lever", "output"):
+            ax[key].axhline(0.0, color="0.85", lw=0.8)
+            ax[key].axvline(0.0, color="0.85", lw=0.8)
+        self.fig.set_layout_engine("constrained")
+        self.update(curves)
+
+    def update(self, curves: ChainCurves) -> None:
+        """Show new curves: set the line data, labels and limits (no new artists).
+
+        Parameters
+        ----------
+        curves : ChainCurves
+            From :func:`chain_curves`.
+        """
+        ax, ln = self.axes, self.lines
+        q, x = curves.quantities, curves.x
+        n = len(q)
+        left = 1
+        right = n - 2 if n - 2 > left else None
+        xlabel = _title(q[0])
+        ln["left"].set_data(x, curves.stages[left])
+        ln["point_left"].set_data([curves.value], [curves.point[left]])
+        ax["lever"].set(xlabel=xlabel)
+        ax["lever"].set_ylabel(_title(q[left]), color="C0")
+        ax["lever"].set_xlim(x[0], x[-1])
+        ax["lever"].set_ylim(*_pad(float(np.min(curves.stages[left])),
+                                   float(np.max(curves.stages[left]))))
+        if right is not None:
+            ln["right"].set_data(x, curves.stages[right])
+            ln["point_right"].set_data([curves.value], [curves.point[right]])
+            ax["lever_right"].set_ylabel(_title(q[right]), color="C1")
+            ax["lever_right"].set_ylim(*_pad(float(np.min(curves.stages[right])),
+                                             float(np.max(curves.stages[right]))))
+            ax["lever_right"].set_visible(True)
+        else:
+            ln["right"].set_data([], [])
+            ln["point_right"].set_data([], [])
+            ax["lever_right"].set_visible(False)
+        y = curves.stages[-1]
+        ln["output"].set_data(x, y)
+        ln["point"].set_data([curves.value], [curves.point[-1]])
+        half = 0.15 * (x[-1] - x[0])
+        tx = np.array([curves.value - half, curves.value + half])
+        ln["tangent"].set_data(tx, curves.point[-1] + curves.sensitivity * (tx - curves.value))
+        ax["output"].set(xlabel=xlabel, ylabel=_title(q[-1]))
+        ax["output"].set_xlim(x[0], x[-1])
+        ax["output"].set_ylim(*_pad(float(np.min(y)), float(np.max(y))))
+        ax["output"].set_title(f"{curves.title}: slope {curves.sensitivity_si:.3g} "
+                               f"{curves.sensitivity_unit}", fontsize="medium")
+        f, mag = curves.frequency, curves.magnitude
+        ln["magnitude"].set_data(f, mag)
+        ln["phase"].set_data(f, curves.phase_deg)
+        positive = mag[mag > 0]
+        ax["response"].set_xlim(f[0], f[-1])
+        if positive.size:
+            ax["response"].set_ylim(positive.min() / 3, positive.max() * 3)
+        ax["response"].set_ylabel(curves.response_label, fontsize="small")
+        ln["f1"].set_xdata([f[-1] / DEFAULTS["f_high_ratio"]] * 2)
