@@ -1,0 +1,167 @@
+"""Exercise checkers of module (c), contact-mode controller tuning.
+
+Each checker simulates the student's answer with :class:`~afmsmiler.controller.ContactLoop` and
+returns a :class:`~afmsmiler.exercises.Feedback`. A placeholder answer (``None``) gets "Not yet"
+and a hint. Answers are in SI units: K_I in 1/s, K_D in s, speed in m/s.
+"""
+from __future__ import annotations
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..controller import PRESETS, ContactLoop
+from ..controller.defaults import SETPOINT, line_profile
+from ..validation import check_nonnegative, check_positive, check_range
+from . import Feedback, check_close
+
+__all__ = ["DEFAULTS", "height_error", "check_fast_scan", "critical_ki", "check_critical_ki"]
+
+#: The exercises' givens, in one place (SI units).
+DEFAULTS = dict(plant="a_good_tracking", profile="real line", min_speed=1e-3,
+                max_rms_error=1e-9, unstable="d_unstable")
+
+
+def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profile"]) -> float:
+    """RMS height error of a scan: -Z_np against the topography, less the constant offset.
+
+    In constant-force mode the image is the positioner height: -Z_np follows T shifted by
+    (k_c + k_s) R / k_s. The error is the RMS of -Z_np - (T - that shift) over trace and retrace
+    (the worse of the two), on the 512-pixel line ``profile``.
+
+    Parameters
+    ----------
+    loop : ContactLoop
+        The loop.
+    speed : float
+        Scan speed in m/s.
+    profile : str
+        ``"real line"``, ``"step"`` or ``"grating"``.
+
+    Returns
+    -------
+    float
+        RMS error in m (inf if the signals overflow).
+    """
+    line = line_profile(profile)
+    scan = loop.scan_line(line.x, line.heights, speed, SETPOINT)
+    shift = loop.steady_state(SETPOINT, 0.0).z_np
+    with np.errstate(over="ignore", invalid="ignore"):
+        errs = [np.sqrt(np.mean((-(p.z_np - shift) - p.height) ** 2))
+                for p in (scan.trace, scan.retrace)]
+    worst = max(errs)
+    return float(worst) if np.isfinite(worst) else float("inf")
+
+
+def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
+                    max_rms_error: float = DEFAULTS["max_rms_error"],
+                    min_speed: float = DEFAULTS["min_speed"]) -> Feedback:
+    """Exercise 1: gains for a fast scan (at least ``min_speed``) with a small height error.
+
+    The plant is the one of preset (a) (stiff sample); the line is the real-like profile.
+
+    Parameters
+    ----------
+    kp : float or None
+        Proportional gain K_P (dimensionless).
+    ki : float or None
+        Integral gain K_I in 1/s.
+    kd : float or None
+        Derivative gain K_D in s.
+    speed : float
+        Scan speed in m/s (the faster the better; at least ``min_speed``).
+    max_rms_error : float
+        Largest accepted RMS height error in m.
+    min_speed : float
+        Slowest accepted speed in m/s.
+
+    Returns
+    -------
+    Feedback
+        Passed when the loop is stable, the speed is at least ``min_speed`` and the error
+        (:func:`height_error`) is at most ``max_rms_error``.
+    """
+    max_rms_error = check_positive("max_rms_error", max_rms_error, "m")
+    min_speed = check_positive("min_speed", min_speed, "m/s")
+    hint = ("Raise K_I until the positioner keeps up, then K_P; watch the poles: the loop must "
+            "stay stable. K_I in 1/s (1 per us = 1e6 1/s), K_D in s.")
+    if kp is None or ki is None or kd is None:
+        return Feedback(False, f"enter K_P, K_I [1/s] and K_D [s]. {hint}")
+    try:
+        loop = PRESETS[DEFAULTS["plant"]].loop.replace(
+            kp=check_nonnegative("kp", kp), ki=check_nonnegative("ki", ki, "1/s"),
+            kd=check_nonnegative("kd", kd, "s"))
+        speed = check_positive("speed", speed, "m/s")
+    except ValueError as err:
+        return Feedback(False, f"{err}. {hint}")
+    if speed < min_speed:
+        return Feedback(False, f"scan at {min_speed * 1e6:g} um/s or faster "
+                               f"(you chose {speed * 1e6:.4g} um/s).")
+    if not loop.is_stable():
+        return Feedback(False, f"the loop is unstable (Routh-Hurwitz margin "
+                               f"{loop.stability_margin:.3g}): the oscillation grows. {hint}")
+    err = height_error(loop, speed)
+    msg = (f"RMS height error {err * 1e9:.3g} nm at {speed * 1e6:.4g} um/s "
+           f"(limit {max_rms_error * 1e9:.3g} nm).")
+    if err <= max_rms_error:
+        return Feedback(True, msg + " Now try to go faster still.")
+    return Feedback(False, f"{msg} {hint}")
+
+
+def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -> float:
+    """The K_I (1/s) at which the loop of ``plant`` with gains kp, kd loses stability.
+
+    Found numerically, without the Routh-Hurwitz formula: the root of the largest real part of
+    the closed-loop poles as a function of K_I (Brent's method on a bracket found by doubling).
+
+    Parameters
+    ----------
+    kp : float
+        Proportional gain.
+    kd : float
+        Derivative gain in s.
+    plant : str
+        Preset whose mechanics to use.
+
+    Returns
+    -------
+    float
+        Critical K_I in 1/s (inf if the loop is stable for every K_I).
+    """
+    base = PRESETS[plant].loop.replace(kp=check_nonnegative("kp", kp),
+                                       kd=check_nonnegative("kd", kd, "s"))
+
+    def growth(ki):
+        return float(np.max(base.replace(ki=ki).poles.real))
+
+    low, high = 1.0, 1e3
+    while growth(high) < 0:
+        low, high = high, high * 4
+        if high > 1e16:
+            return float("inf")
+    return float(brentq(growth, low, high, xtol=1e-12 * high, rtol=1e-12))
+
+
+def check_critical_ki(ki, kp: float = 100.0, kd: float = 0.0, rtol: float = 0.01) -> Feedback:
+    """Exercise 2: the largest K_I for which preset (d)'s loop (K_P = 100, K_D = 0) is stable.
+
+    Parameters
+    ----------
+    ki : float or None
+        The student's K_I in 1/s (from the Hurwitz condition B C = A D).
+    kp : float
+        Proportional gain.
+    kd : float
+        Derivative gain in s.
+    rtol : float
+        Accepted relative error.
+
+    Returns
+    -------
+    Feedback
+    """
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    hint = ("Write B C = A D with A = m_c + m_s + b_s K_D, B = b_c + b_s + b_s K_P + k_s K_D, "
+            "C = k_c + k_s + b_s K_I + k_s K_P, D = k_s K_I, and solve for K_I (in 1/s).")
+    if ki is None:
+        return Feedback(False, f"enter K_I in 1/s. {hint}")
+    return check_close("critical K_I", ki, critical_ki(kp, kd), rtol, "1/s", hint)
