@@ -1,0 +1,172 @@
+"""Exercise checkers of module (d), contact mechanics.
+
+Exercise 1 (fitting): :func:`fitting_exercise` hands out a noisy synthetic approach curve of a
+sample of unknown Young's modulus; the student recovers E (and the contact point) by fitting, and
+:func:`check_fitted_modulus` / :func:`check_contact_point` compare with the values the curve was
+made from. Exercise 2 (adhesion): :func:`check_pull_off_force` compares a predicted pull-off force
+with the one of the simulated approach-retract cycle.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..contact import ForceCurve, Parabolic, Tip, approach_retract, synthetic_curve
+from ..validation import check_choice, check_integer, check_positive, check_range
+from . import Feedback, check_close
+
+__all__ = ["DEFAULTS", "FitExercise", "fitting_exercise", "check_fitted_modulus",
+           "check_contact_point", "check_pull_off_force"]
+
+#: The exercises' givens, in one place (SI units).
+DEFAULTS = dict(radius=20e-9, poisson_ratio=0.5 - 0.05, spring_constant=0.05, noise=15e-12,
+                modulus_range=(20e3, 2e6), points=800, z_np_range=(-300e-9, 400e-9),
+                contact_range=(-40e-9, 60e-9), youngs_modulus=1e7, pull_off_k=0.1)
+
+
+@dataclass(frozen=True)
+class FitExercise:
+    """A force curve to fit: what the student gets, and (hidden in the repr) the truth.
+
+    Attributes
+    ----------
+    curve : ForceCurve
+        The noisy approach curve (Z_np in m, force in N, the lever's k).
+    tip : Tip
+        The tip used (a paraboloid).
+    poisson_ratio : float
+        The sample's nu, given.
+    noise : float
+        The force noise in N.
+    """
+
+    curve: ForceCurve
+    tip: Tip
+    poisson_ratio: float
+    noise: float
+    _youngs_modulus: float = field(repr=False)
+    _contact_point: float = field(repr=False)
+
+
+def fitting_exercise(seed: int = 0) -> FitExercise:
+    """A noisy approach curve on a sample whose E is drawn at random (log-uniform, 20 kPa-2 MPa).
+
+    Parameters
+    ----------
+    seed : int
+        Seed of the draw (E, contact point and noise), >= 0.
+
+    Returns
+    -------
+    FitExercise
+    """
+    seed = check_integer("seed", seed, 0, 2 ** 32 - 1)
+    rng = np.random.default_rng(seed)
+    lo, hi = DEFAULTS["modulus_range"]
+    e = float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
+    cp = float(rng.uniform(*DEFAULTS["contact_range"]))
+    tip = Parabolic(DEFAULTS["radius"])
+    curve = synthetic_curve(tip, e, DEFAULTS["poisson_ratio"], DEFAULTS["spring_constant"],
+                            z_np_range=DEFAULTS["z_np_range"], points=DEFAULTS["points"],
+                            contact_point=cp, baseline=float(rng.normal(0.0, 50e-12)),
+                            noise=DEFAULTS["noise"], seed=int(rng.integers(2 ** 31)))
+    return FitExercise(curve, tip, DEFAULTS["poisson_ratio"], DEFAULTS["noise"], e, cp)
+
+
+def check_fitted_modulus(answer, exercise: FitExercise, rtol: float = 0.05) -> Feedback:
+    """Exercise 1: the Young's modulus recovered from ``exercise.curve``.
+
+    Parameters
+    ----------
+    answer : float or None
+        The student's E in Pa.
+    exercise : FitExercise
+        The curve that was fitted.
+    rtol : float
+        Accepted relative error (the fit's own uncertainty is about 1 %).
+
+    Returns
+    -------
+    Feedback
+    """
+    if not isinstance(exercise, FitExercise):
+        raise ValueError(f"exercise must be a FitExercise, got {exercise!r}")
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    hint = ("Fit F(Z_np) with fit_curve(curve.z_np, curve.force, exercise.tip, "
+            "exercise.poisson_ratio, spring_constant=curve.spring_constant) and give E in Pa.")
+    if answer is None:
+        return Feedback(False, f"enter E in Pa. {hint}")
+    return check_close("E", answer, exercise._youngs_modulus, rtol, "Pa", hint)
+
+
+def check_contact_point(answer, exercise: FitExercise, tolerance: float = 2e-9) -> Feedback:
+    """Exercise 1b: the contact point (Z_np at first touch) of ``exercise.curve``.
+
+    Parameters
+    ----------
+    answer : float or None
+        The student's contact point in m.
+    exercise : FitExercise
+        The curve.
+    tolerance : float
+        Accepted absolute error in m.
+
+    Returns
+    -------
+    Feedback
+    """
+    if not isinstance(exercise, FitExercise):
+        raise ValueError(f"exercise must be a FitExercise, got {exercise!r}")
+    tolerance = check_positive("tolerance", tolerance, "m")
+    hint = "The fit returns it as contact_point (in m, on the Z_np axis)."
+    try:
+        value = float(answer)
+    except (TypeError, ValueError):
+        return Feedback(False, f"enter the contact point in m. {hint}")
+    if not math.isfinite(value):
+        return Feedback(False, f"the contact point must be finite, got {value!r}. {hint}")
+    err = abs(value - exercise._contact_point)
+    if err <= tolerance:
+        return Feedback(True, f"contact point {value * 1e9:.4g} nm "
+                              f"(truth {exercise._contact_point * 1e9:.4g} nm).")
+    return Feedback(False, f"contact point {value * 1e9:.4g} nm is {err * 1e9:.3g} nm off "
+                           f"(needs to be within {tolerance * 1e9:g} nm). {hint}")
+
+
+def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
+                         work_of_adhesion: float = 0.05, rtol: float = 0.02) -> Feedback:
+    """Exercise 2: predict the pull-off force (its magnitude) of a DMT or JKR contact.
+
+    Parameters
+    ----------
+    answer : float or None
+        The student's pull-off force in N (positive).
+    model : {"dmt", "jkr"}
+        The adhesion model.
+    radius : float
+        Tip radius R in m.
+    work_of_adhesion : float
+        w in J/m^2.
+    rtol : float
+        Accepted relative error.
+
+    Returns
+    -------
+    Feedback
+        Compared with the most adhesive force of the simulated approach-retract cycle
+        (paraboloid, E = 10 MPa, k = 0.1 N/m).
+    """
+    model = check_choice("model", model, ("dmt", "jkr"))
+    radius = check_positive("radius", radius, "m")
+    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    cycle = approach_retract(np.array([-1e-9, 0.0]), DEFAULTS["pull_off_k"], Parabolic(radius),
+                             DEFAULTS["youngs_modulus"], 0.3, adhesion=model, work_of_adhesion=w)
+    hint = ("DMT: F = 2 pi R w; JKR: F = (3/2) pi R w (Derjaguin-Muller-Toporov 1975, "
+            "Johnson-Kendall-Roberts 1971). Give the magnitude in N.")
+    if answer is None:
+        return Feedback(False, f"enter the pull-off force in N. {hint}")
+    return check_close(f"{model.upper()} pull-off force", answer, cycle.pull_off_force, rtol, "N", hint)
+

@@ -1,0 +1,305 @@
+"""Figures of module (d), contact mechanics: tip geometries to scale, force curves, fits.
+
+Units shown: lengths in nm, forces in nN (:data:`UNITS`). :func:`contact_curves` samples the model
+results of one panel state and converts them; :class:`ContactFigure` draws them once and
+:meth:`ContactFigure.update` swaps the line data in place, so a widget panel never rebuilds a figure.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve, Spherical,
+                       surface_displacement)
+from ..contact.viscoelastic import ViscoelasticCycle
+from ..validation import check_integer, check_positive
+
+__all__ = ["DEFAULTS", "UNITS", "tip_outline", "tip_geometries_figure", "ContactCurves",
+           "contact_curves", "ContactFigure", "cycles_figure", "fit_figure"]
+
+#: Defaults of the figures, in one place.
+DEFAULTS = dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121, surface_extent=3.0)
+
+#: Factors from SI to the units shown (value_shown = value_SI * factor).
+UNITS = dict(length=1e9, force=1e9)
+
+_COLORS = dict(approach="#1f77b4", retract="#d62728", point="k", tip="#555555", sample="#b5651d")
+
+
+def tip_outline(tip, height, n=DEFAULTS["n_profile"]):
+    """Outline (x, z) in m of a tip's cross-section, apex at the origin, up to ``height``.
+
+    Parameters
+    ----------
+    tip : Tip
+        The tip shape (a pyramid is cut through the centres of two opposite faces).
+    height : float
+        Height of the drawn part in m, > 0.
+    n : int
+        Points on each flank.
+
+    Returns
+    -------
+    (x, z) : tuple of ndarray
+        A closed path from the left flank's top through the apex to the right flank's top; a
+        sphere continues as a cylindrical shank of its radius above its equator.
+    """
+    height = check_positive("height", height, "m")
+    n = check_integer("n", n, 3, 100_000)
+    if isinstance(tip, Spherical):
+        top = min(height, tip.radius)
+        r = tip.radius * np.sin(np.linspace(0.0, math.acos(1 - top / tip.radius), n)) \
+            if top < tip.radius else tip.radius * np.sin(np.linspace(0.0, math.pi / 2, n))
+        z = tip.profile(r)
+        if height > tip.radius:
+            r, z = np.r_[r, tip.radius], np.r_[z, height]
+    elif hasattr(tip, "radius"):
+        r = np.linspace(0.0, math.sqrt(2 * tip.radius * height), n)
+        z = tip.profile(r)
+    else:
+        angle = getattr(tip, "half_angle", getattr(tip, "face_angle", None))
+        r = np.linspace(0.0, height * math.tan(angle), n)
+        z = tip.profile(r)
+    return np.r_[-r[::-1], r[1:]], np.r_[z[::-1], z[1:]]
+
+
+def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=None) -> Figure:
+    """The four tip shapes side by side, drawn to the same scale (nm, equal aspect).
+
+    Parameters
+    ----------
+    tips : sequence of Tip, optional
+        The tips to draw; by default one of each registry class with its default parameters.
+    height : float
+        Height of the drawn tips in m.
+    fig : Figure, optional
+        Figure to draw into.
+
+    Returns
+    -------
+    Figure
+    """
+    tips = [cls() for cls in TIPS.values()] if tips is None else list(tips)
+    fig = fig or Figure(figsize=(2.6 * len(tips), 3.2))
+    axes = fig.subplots(1, len(tips), sharex=True, sharey=True, squeeze=False)[0]
+    s = UNITS["length"]
+    for ax, tip in zip(axes, tips):
+        x, z = tip_outline(tip, height)
+        ax.fill_between(x * s, z * s, height * s, color=_COLORS["tip"], alpha=0.35, lw=0)
+        ax.plot(x * s, z * s, color=_COLORS["tip"], lw=1.5)
+        ax.axhline(0.0, color=_COLORS["sample"], lw=2)
+        params = ", ".join(f"{p.label} {getattr(tip, p.name) / p.display_scale:.3g} {p.display_unit}"
+                           for p in tip.parameters)
+        ax.set_title(f"{tip.title}\n{params}", fontsize=9)
+        ax.set_aspect("equal")
+        ax.set_xlabel("x [nm]")
+    axes[0].set_ylabel("height above apex [nm]")
+    axes[0].set_ylim(-0.1 * height * s, 1.05 * height * s)
+    fig.tight_layout()
+    return fig
+
+
+@dataclass(frozen=True)
+class ContactCurves:
+    """What a :class:`ContactFigure` shows, in nm and nN.
+
+    Attributes
+    ----------
+    approach_nm, approach_nN : ndarray
+        Z_np and F of the approach branch.
+    retract_nm, retract_nN : ndarray
+        Z_np and F of the retract branch.
+    point_nm, point_nN : float
+        The current Z_np and F (on the approach branch).
+    rho_nm : ndarray
+        Radial positions of the cross-section, from -extent to +extent.
+    surface_nm : ndarray
+        Height of the deformed sample surface (0 = undeformed).
+    tip_x_nm, tip_z_nm : ndarray
+        Outline of the tip at its current position.
+    depth_nm, radius_nm : float
+        Current indentation Z_s and contact radius.
+    """
+
+    approach_nm: np.ndarray
+    approach_nN: np.ndarray
+    retract_nm: np.ndarray
+    retract_nN: np.ndarray
+    point_nm: float
+    point_nN: float
+    rho_nm: np.ndarray
+    surface_nm: np.ndarray
+    tip_x_nm: np.ndarray
+    tip_z_nm: np.ndarray
+    depth_nm: float
+    radius_nm: float
+
+
+def contact_curves(cycle, current, tip, extent) -> ContactCurves:
+    """Sample a panel state for :class:`ContactFigure` (units: nm, nN).
+
+    Parameters
+    ----------
+    cycle : ApproachRetract
+        The approach-retract curves.
+    current : IndentationCurve
+        The current state (one point, on the approach branch).
+    tip : Tip
+        The tip shape.
+    extent : float
+        Half-width of the drawn cross-section in m.
+
+    Returns
+    -------
+    ContactCurves
+    """
+    if not isinstance(cycle, (ApproachRetract, ViscoelasticCycle)):
+        raise ValueError(f"cycle must be an ApproachRetract, got {cycle!r}")
+    if not isinstance(current, IndentationCurve):
+        raise ValueError(f"current must be an IndentationCurve, got {current!r}")
+    extent = check_positive("extent", extent, "m")
+    s, f = UNITS["length"], UNITS["force"]
+    rho = np.linspace(-extent, extent, 2 * DEFAULTS["n_profile"] + 1)
+    z_s = float(current.z_s[0])
+    # the apex sits at the separation Z_c - Z_np: -Z_s in contact, above the surface off contact
+    apex = float(current.separation[0])
+    if current.in_contact[0] and z_s > 0:
+        u = surface_displacement(tip, z_s, np.abs(rho))
+    else:
+        u = np.zeros_like(rho)
+    x, z = tip_outline(tip, 2 * extent)
+    return ContactCurves(
+        cycle.approach.z_np * s, cycle.approach.force * f, cycle.retract.z_np * s,
+        cycle.retract.force * f, float(current.z_np[0]) * s, float(current.force[0]) * f,
+        rho * s, -u * s, x * s, (z + apex) * s, z_s * s, float(current.contact_radius[0]) * s)
+
+
+class ContactFigure:
+    """F vs Z_np with the current point, and the contact drawn to scale beside it.
+
+    Parameters
+    ----------
+    curves : ContactCurves
+        The first state to draw.
+    fig : Figure, optional
+        Figure to draw into (a panel passes its own).
+
+    Attributes
+    ----------
+    fig : Figure
+    approach, retract, point, surface, tip : matplotlib artists updated in place.
+    """
+
+    def __init__(self, curves: ContactCurves, fig=None):
+        self.fig = fig or Figure(figsize=DEFAULTS["figsize"])
+        self.ax_curve, self.ax_contact = self.fig.subplots(1, 2, gridspec_kw=dict(width_ratios=[1.3, 1]))
+        ax = self.ax_curve
+        (self.approach,) = ax.plot([], [], color=_COLORS["approach"], label="approach")
+        (self.retract,) = ax.plot([], [], "--", color=_COLORS["retract"], label="retract")
+        (self.point,) = ax.plot([], [], "o", color=_COLORS["point"], ms=7, label="current Z_np")
+        ax.axhline(0.0, color="0.7", lw=0.8)
+        ax.set_xlabel("nano-positioner displacement Z_np [nm]")
+        ax.set_ylabel("tip-sample force F [nN]")
+        ax.legend(loc="upper left", fontsize=8)
+        ax.grid(alpha=0.3)
+        ax = self.ax_contact
+        (self.surface,) = ax.plot([], [], color=_COLORS["sample"], lw=2, label="sample surface")
+        (self.tip,) = ax.plot([], [], color=_COLORS["tip"], lw=1.5, label="tip")
+        ax.set_aspect("equal", adjustable="box")
+        ax.set_xlabel("x [nm] (to scale)")
+        ax.set_ylabel("z [nm]")
+        ax.legend(loc="upper right", fontsize=8)
+        self.update(curves)
+        self.fig.tight_layout()
+
+    def update(self, curves: ContactCurves) -> None:
+        """Swap in new data and rescale the axes.
+
+        Parameters
+        ----------
+        curves : ContactCurves
+            The new state.
+        """
+        self.curves = curves
+        self.approach.set_data(curves.approach_nm, curves.approach_nN)
+        self.retract.set_data(curves.retract_nm, curves.retract_nN)
+        self.point.set_data([curves.point_nm], [curves.point_nN])
+        self.surface.set_data(curves.rho_nm, curves.surface_nm)
+        self.tip.set_data(curves.tip_x_nm, curves.tip_z_nm)
+        self.ax_curve.relim()
+        self.ax_curve.autoscale_view()
+        ext = float(curves.rho_nm.max())
+        self.ax_contact.set_xlim(-ext, ext)
+        self.ax_contact.set_ylim(-ext, ext)
+        self.ax_contact.set_title(f"Z_s = {curves.depth_nm:.3g} nm, r = {curves.radius_nm:.3g} nm",
+                                  fontsize=9)
+
+
+def cycles_figure(cycles, fig=None) -> Figure:
+    """Approach (solid) and retract (dashed) of several cycles on one F vs Z_np plot.
+
+    Parameters
+    ----------
+    cycles : dict
+        Label -> :class:`~afmsmiler.contact.ApproachRetract` or
+        :class:`~afmsmiler.contact.ViscoelasticCycle`.
+    fig : Figure, optional
+        Figure to draw into.
+
+    Returns
+    -------
+    Figure
+    """
+    fig = fig or Figure(figsize=(6.5, 4.2))
+    ax = fig.subplots()
+    s, f = UNITS["length"], UNITS["force"]
+    for i, (label, cyc) in enumerate(cycles.items()):
+        color = f"C{i}"
+        ax.plot(cyc.approach.z_np * s, cyc.approach.force * f, color=color, label=f"{label}: approach")
+        ax.plot(cyc.retract.z_np * s, cyc.retract.force * f, "--", color=color, label=f"{label}: retract")
+    ax.axhline(0.0, color="0.7", lw=0.8)
+    ax.set_xlabel("nano-positioner displacement Z_np [nm]")
+    ax.set_ylabel("tip-sample force F [nN]")
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    fig.tight_layout()
+    return fig
+
+
+def fit_figure(curve, result, fig=None) -> Figure:
+    """A force curve, its fitted model and the residuals (nm, nN).
+
+    Parameters
+    ----------
+    curve : ForceCurve
+        The data (its force is plotted against ``result.x``).
+    result : FitResult
+        The fit.
+    fig : Figure, optional
+        Figure to draw into.
+
+    Returns
+    -------
+    Figure
+    """
+    if not isinstance(curve, ForceCurve) or not isinstance(result, FitResult):
+        raise ValueError("curve must be a ForceCurve and result a FitResult")
+    fig = fig or Figure(figsize=(6.5, 5.0))
+    ax, axr = fig.subplots(2, 1, sharex=True, gridspec_kw=dict(height_ratios=[3, 1]))
+    s, f = UNITS["length"], UNITS["force"]
+    order = np.argsort(result.x)
+    ax.plot(result.x * s, curve.force * f, ".", ms=2, color="0.5", label="data")
+    ax.plot(result.x[order] * s, result.model_force[order] * f, color=_COLORS["retract"],
+            label=(f"fit: E = {result.youngs_modulus / 1e3:.4g} +/- "
+                   f"{result.youngs_modulus_error / 1e3:.2g} kPa"))
+    ax.axvline(result.contact_point * s, color="k", lw=0.8, ls=":", label="contact point")
+    ax.set_ylabel("force [nN]")
+    ax.legend(fontsize=8)
+    axr.plot(result.x * s, (curve.force - result.model_force) * f, ".", ms=2, color="0.3")
+    axr.set_ylabel("residual [nN]")
+    axr.set_xlabel("position (Z_np, or tip position) [nm]")
+    fig.tight_layout()
+    return fig

@@ -1,0 +1,205 @@
+"""Module (d)'s figures, 3D scene, widget panel and exercise checkers, without a browser: the data
+they show must equal what the model says."""
+import math
+
+import numpy as np
+import pytest
+
+from afmsmiler.contact import (TIPS, Conical, Parabolic, Pyramidal, Spherical, approach_retract,
+                               fit_curve, indent, reduced_modulus, surface_displacement)
+from afmsmiler.exercises.contact import (FitExercise, check_contact_point, check_fitted_modulus,
+                                         check_pull_off_force, fitting_exercise)
+from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figure, fit_figure,
+                                     tip_geometries_figure, tip_outline)
+from afmsmiler.scenes.contact import ContactScene, surface_mesh, tip_mesh
+from afmsmiler.ui.contact import BOUNDS, TIP_CONTROLS, ContactPanel
+
+
+# --- figures -------------------------------------------------------------------------------------
+@pytest.mark.parametrize("cls", list(TIPS.values()), ids=list(TIPS))
+def test_tip_outline_is_the_profile(cls):
+    tip = cls()
+    x, z = tip_outline(tip, 80e-9)
+    assert z.min() == 0.0 and x[np.argmin(z)] == 0.0
+    flank = (x >= 0) & ((x < getattr(tip, "radius", np.inf)) if isinstance(tip, Spherical) else True)
+    np.testing.assert_allclose(z[flank], tip.profile(x[flank]), rtol=1e-12, atol=1e-20)
+    assert np.isclose(z.max(), 80e-9)
+
+
+def test_geometry_figure_draws_all_four_to_one_scale():
+    fig = tip_geometries_figure()
+    axes = fig.axes
+    assert len(axes) == 4
+    assert len({ax.get_xlim() for ax in axes}) == 1 and len({ax.get_ylim() for ax in axes}) == 1
+    assert all(ax.get_aspect() == 1.0 for ax in axes)
+
+
+def test_contact_figure_shows_the_model():
+    tip = Parabolic(30e-9)
+    z = np.linspace(-50e-9, 100e-9, 200)
+    cyc = approach_retract(z, 0.1, tip, 1e6, 0.3)
+    cur = indent([70e-9], 0.1, tip, 1e6, 0.3)
+    curves = contact_curves(cyc, cur, tip, 100e-9)
+    fig = ContactFigure(curves)
+    np.testing.assert_allclose(fig.approach.get_xdata(), z * 1e9)
+    np.testing.assert_allclose(fig.approach.get_ydata(), cyc.approach.force * 1e9)
+    assert fig.point.get_ydata()[0] == pytest.approx(cur.force[0] * 1e9)
+    # the drawn surface is the model's displacement, the apex at -Z_s
+    rho = curves.rho_nm * 1e-9
+    np.testing.assert_allclose(curves.surface_nm, -surface_displacement(tip, cur.z_s[0], np.abs(rho)) * 1e9)
+    assert curves.tip_z_nm.min() == pytest.approx(-cur.z_s[0] * 1e9)
+
+
+def test_cycles_and_fit_figures():
+    tip = Parabolic(30e-9)
+    z = np.linspace(-200e-9, 50e-9, 200)
+    fig = cycles_figure({"JKR": approach_retract(z, 0.1, tip, 1e6, 0.3, adhesion="jkr", work_of_adhesion=0.02)})
+    assert len(fig.axes[0].lines) == 3
+    ex = fitting_exercise(1)
+    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio, spring_constant=ex.curve.spring_constant)
+    fig = fit_figure(ex.curve, r)
+    assert len(fig.axes) == 2
+
+
+# --- scene -----------------------------------------------------------------------------------------
+@pytest.mark.parametrize("tip", [Parabolic(20e-9), Spherical(40e-9), Conical(0.4), Pyramidal(0.6)],
+                         ids=lambda t: t.key)
+def test_meshes_are_well_formed_and_follow_the_solution(tip):
+    v, f = tip_mesh(tip, 100e-9, 20e-9)
+    assert f.min() == 0 and f.max() == v.shape[0] - 1 and np.isfinite(v).all()
+    assert v[:, 2].min() == 0.0  # apex at the origin
+    cur = indent([40e-9], 0.2, tip, 2e6, 0.3)
+    v, f, depth = surface_mesh(tip, cur, 150e-9, 20e-9)
+    assert f.max() == v.shape[0] - 1
+    assert depth[0] == pytest.approx(cur.z_s[0], rel=1e-12)  # the centre is pushed down by Z_s
+    rho = np.hypot(v[:, 0], v[:, 1]).astype(float) * 20e-9
+    np.testing.assert_allclose(depth, surface_displacement(tip, cur.z_s[0], rho), rtol=1e-5, atol=1e-15)
+
+
+class _Recorder:
+    """A stand-in for meshcat.Visualizer that records the calls (no server needed)."""
+
+    def __init__(self, log=None, path=""):
+        self.log = [] if log is None else log
+        self.path = path
+
+    def __getitem__(self, key):
+        return _Recorder(self.log, f"{self.path}/{key}")
+
+    def set_object(self, *args, **kwargs):
+        self.log.append(("set_object", self.path))
+
+    def set_transform(self, matrix):
+        self.log.append(("set_transform", self.path, np.array(matrix)))
+
+    def set_property(self, *args):
+        self.log.append(("set_property", self.path))
+
+    def delete(self):
+        self.log.append(("delete", self.path))
+
+
+def test_scene_updates_in_place():
+    rec = _Recorder()
+    tip = Parabolic(20e-9)
+    scene = ContactScene(tip, indent([30e-9], 0.1, tip, 1e6, 0.3), vis=rec)
+    n_tip = sum(1 for c in rec.log if c[:2] == ("set_object", "/afmsmiler/contact/tip"))
+    cur = indent([60e-9], 0.1, tip, 1e6, 0.3)
+    scene.update(tip, cur)
+    # the tip mesh is not rebuilt, only moved: apex at -Z_s (scene units)
+    assert sum(1 for c in rec.log if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip
+    move = [c for c in rec.log if c[0] == "set_transform"][-1]
+    assert move[2][2, 3] == pytest.approx(-cur.z_s[0] / scene.unit)
+    scene.update(Conical(0.4), cur)  # a new shape rebuilds the tip
+    assert sum(1 for c in rec.log if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip + 1
+
+
+def test_scene_in_the_real_viewer_updates_in_place():
+    from afmsmiler.scenes import close_viewer, get_viewer, static_html, viewer
+    try:
+        tip = Pyramidal(0.6)
+        scene = ContactScene(tip, indent([30e-9], 0.1, tip, 1e6, 0.3))
+        pid = viewer._proc.pid
+        size0 = len(static_html())
+        assert size0 > 1000
+        for z in np.linspace(10e-9, 90e-9, 8):
+            scene.update(tip, indent([z], 0.1, tip, 1e6, 0.3))
+        # one server, and the stored scene does not grow with updates (same paths replaced)
+        assert viewer._proc.pid == pid and scene.root is get_viewer()
+        assert abs(len(static_html()) - size0) < 0.05 * size0
+    finally:
+        close_viewer()
+    assert not viewer.viewer_running()
+
+
+# --- panel -----------------------------------------------------------------------------------------
+def test_tip_sliders_are_generated_from_the_registry():
+    names = {p.name for cls in TIPS.values() for p in cls.parameters}
+    assert set(TIP_CONTROLS) == names
+    panel = ContactPanel()
+    for name, p in TIP_CONTROLS.items():
+        w = panel.controls[name]
+        assert p.display_unit in w.description
+        low = 10 ** w.min if hasattr(w, "base") else w.min
+        high = 10 ** w.max if hasattr(w, "base") else w.max
+        assert p.low < low * p.display_scale and high * p.display_scale < p.high
+
+
+def test_panel_shows_what_the_model_says():
+    panel = ContactPanel()
+    panel.set(tip="conical", half_angle=30.0, spring_constant=0.5, youngs_modulus=2.0,
+              poisson_ratio=0.4, z_np=80.0)
+    s = panel.last
+    assert s.tip == Conical(math.radians(30.0))
+    ref = indent([80e-9], 0.5, s.tip, 2e6, 0.4)
+    assert s.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)
+    assert panel.figure.point.get_ydata()[0] == pytest.approx(ref.force[0] * 1e9, rel=1e-12)
+    assert panel.controls["radius"].layout.display == "none"
+    assert panel.controls["half_angle"].layout.display is None
+    assert panel.controls["adhesion"].disabled
+
+
+def test_panel_adhesion_and_sphere_limit():
+    panel = ContactPanel(tip="parabolic")
+    panel.set(adhesion="JKR", work_of_adhesion=40.0, radius=50.0)
+    s = panel.last
+    assert s.adhesion == "jkr"
+    assert s.cycle.pull_off_force == pytest.approx(1.5 * math.pi * 50e-9 * 0.04, rel=1e-12)
+    # the ramp reaches below the snap-off, so the drawn retract leaves the surface
+    assert not s.cycle.retract.in_contact[-1]
+    # a small sphere: the Z_np slider stops before the sphere is buried; the model never raises
+    panel.set(tip="spherical", radius=5.0, youngs_modulus=1e-3, spring_constant=100.0, adhesion="none")
+    k, e_star = 100.0, reduced_modulus(1e3, 0.3)
+    assert panel.controls["z_np"].max < Spherical(5e-9).max_z_np(k, e_star) * 1e9
+    panel.set(z_np=BOUNDS["z_np"][1])
+    assert panel.last.current.z_s[0] < 5e-9
+
+
+def test_panel_rejects_unknown_controls():
+    with pytest.raises(TypeError, match="unknown control"):
+        ContactPanel(stiffness=1.0)
+
+
+# --- exercises -------------------------------------------------------------------------------------
+def test_fitting_exercise_checker():
+    ex = fitting_exercise(7)
+    assert isinstance(ex, FitExercise) and "youngs_modulus" not in repr(ex)
+    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio,
+                  spring_constant=ex.curve.spring_constant)
+    assert check_fitted_modulus(r.youngs_modulus, ex)
+    assert check_contact_point(r.contact_point, ex)
+    # a fit that ignores the lever's bending (x = Z_np) overestimates the indentation: wrong E
+    naive = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio)
+    assert not check_fitted_modulus(naive.youngs_modulus, ex)
+    assert not check_fitted_modulus(None, ex) and not check_fitted_modulus("soft", ex)
+    assert not check_contact_point(r.contact_point + 10e-9, ex)
+    assert fitting_exercise(7).curve.force.tolist() == ex.curve.force.tolist()  # reproducible
+
+
+def test_pull_off_checker_uses_the_published_values():
+    R, w = 20e-9, 0.05
+    assert check_pull_off_force(2 * math.pi * R * w, "dmt", R, w)
+    assert check_pull_off_force(1.5 * math.pi * R * w, "jkr", R, w)
+    assert not check_pull_off_force(2 * math.pi * R * w, "jkr", R, w)
+    with pytest.raises(ValueError, match="model must be one of"):
+        check_pull_off_force(1e-9, "maugis")
