@@ -79,8 +79,15 @@ def test_figures_draw():
         assert isinstance(fig, Figure) and fig.axes
     img = samples.particles((16, 32), 4e-9, count=2)
     im = scan_image(PRESETS["c_fast_scan"].loop, img.heights, img.pixel_size, 1e-3, SETPOINT)
-    fig = plots.image_figure(im, img.heights)
+    fig = plots.image_figure(im, img.heights, signal="topography")
     np.testing.assert_allclose(fig.axes[1].images[0].get_array(), im.trace * 1e9)
+    fig = plots.image_figure(im)
+    loop = PRESETS["c_fast_scan"].loop
+    flat = (loop.k_c + loop.k_s) * SETPOINT / loop.k_s  # Z_np on a flat sample, from the docs
+    np.testing.assert_allclose(fig.axes[1].images[0].get_array(),
+                               -(im.retrace_z_np - flat) * 1e9, rtol=1e-12)
+    with pytest.raises(ValueError, match="signal must be one of"):
+        plots.image_figure(im, signal="phase")
 
 
 def test_off_scale_signals_are_masked_and_reported():

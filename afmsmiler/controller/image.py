@@ -26,6 +26,8 @@ class ScanImage:
         Pixel size in m.
     stable : bool
         Routh-Hurwitz verdict on the loop.
+    z_np_flat : float
+        Z_np in m at equilibrium on a flat sample at height 0 (the positioner's offset).
     """
 
     trace: np.ndarray
@@ -34,6 +36,17 @@ class ScanImage:
     retrace_z_np: np.ndarray
     pixel_size: float
     stable: bool
+    z_np_flat: float = 0.0
+
+    @property
+    def height_trace(self) -> np.ndarray:
+        """The constant-force "height" image of the trace, -(Z_np - z_np_flat), in m."""
+        return -(self.trace_z_np - self.z_np_flat)
+
+    @property
+    def height_retrace(self) -> np.ndarray:
+        """The constant-force "height" image of the retrace, -(Z_np - z_np_flat), in m."""
+        return -(self.retrace_z_np - self.z_np_flat)
 
 
 def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
@@ -86,4 +99,4 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
         z_c, z_np = z_c + zc0 + (zc1 - zc0) * h0, z_np + znp0 + (znp1 - znp0) * h0
     topo = z_c - z_np
     return ScanImage(topo[:, :n], topo[:, n - 1:][:, ::-1], z_np[:, :n], z_np[:, n - 1:][:, ::-1],
-                     pixel_size, bool(loop.is_stable()))
+                     pixel_size, bool(loop.is_stable()), float(znp0))

@@ -337,7 +337,7 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     return fig
 
 
-def image_figure(image, heights=None, fig: Figure | None = None) -> Figure:
+def image_figure(image, heights=None, signal: str = "height", fig: Figure | None = None) -> Figure:
     """Trace and retrace images of a scan (and the true height map), in nm over um.
 
     Parameters
@@ -346,6 +346,9 @@ def image_figure(image, heights=None, fig: Figure | None = None) -> Figure:
         The scan.
     heights : array_like, optional
         The true height map in m, shown first if given.
+    signal : str
+        ``"height"``: the positioner image -(Z_np - its flat-sample value), what a
+        constant-force AFM records; ``"topography"``: the estimate Z_c - Z_np.
     fig : matplotlib.figure.Figure, optional
         Where to draw.
 
@@ -353,10 +356,15 @@ def image_figure(image, heights=None, fig: Figure | None = None) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    panels = [("trace: Z_c - Z_np", image.trace), ("retrace: Z_c - Z_np", image.retrace)]
+    if signal not in ("height", "topography"):
+        raise ValueError(f"signal must be one of ['height', 'topography'], got {signal!r}")
+    if signal == "height":
+        panels = [("trace: -Z_np", image.height_trace), ("retrace: -Z_np", image.height_retrace)]
+    else:
+        panels = [("trace: Z_c - Z_np", image.trace), ("retrace: Z_c - Z_np", image.retrace)]
     if heights is not None:
         panels.insert(0, ("true topography", np.asarray(heights)))
-    fig = fig if fig is not None else Figure(figsize=(4.0 * len(panels), 3.8))
+    fig = fig if fig is not None else Figure(figsize=(4.2 * len(panels), 3.8))
     axes = fig.subplots(1, len(panels), squeeze=False)[0]
     rows, cols = image.trace.shape
     extent = (0, cols * image.pixel_size * UNITS["x"], 0, rows * image.pixel_size * UNITS["x"])
@@ -365,6 +373,7 @@ def image_figure(image, heights=None, fig: Figure | None = None) -> Figure:
     for ax, (title, data) in zip(axes, panels):
         im = ax.imshow(_finite(data * UNITS["z"]), origin="lower", extent=extent, cmap="afmhot",
                        vmin=vmin, vmax=vmax)
-        ax.set(title=title, xlabel="x [um]", ylabel="y [um]")
-    fig.colorbar(im, ax=list(axes), label="height [nm]")
+        ax.set(title=title, xlabel="x [um] (fast axis)", ylabel="y [um]")
+    fig.colorbar(im, ax=list(axes), label="height [nm]", shrink=0.8)
+    fig.set_layout_engine("constrained")
     return fig
