@@ -1,0 +1,163 @@
+"""Exercise checkers of module (b), probe transducers.
+
+Each checker computes the right answer with a model of :mod:`afmsmiler.transducers` and returns a
+:class:`~afmsmiler.exercises.Feedback`. A placeholder answer (``None``) gets "Not yet" and a hint.
+"""
+from __future__ import annotations
+
+import math
+
+from ..transducers import Electrothermal, Interferometer, OpticalBeamDeflection, Piezoresistive
+from ..validation import check_positive, check_range
+from . import Feedback, check_close
+
+__all__ = ["DEFAULTS", "check_length_doubling_sensitivity", "check_two_omega_power",
+           "check_bridge_output", "check_quadrature_phase"]
+
+#: The exercises' givens, in one place (SI units).
+DEFAULTS = dict(length=225e-6, ac_voltage=2.0, resistance=1e3, deflection=100e-9)
+
+
+def _number(name, answer, hint):
+    if answer is None:
+        return None, Feedback(False, f"enter {name}. {hint}")
+    try:
+        value = float(answer)
+    except (TypeError, ValueError):
+        return None, Feedback(False, f"{name} must be a number, got {answer!r}. {hint}")
+    if not math.isfinite(value):
+        return None, Feedback(False, f"{name} must be finite, got {value!r}. {hint}")
+    return value, None
+
+
+def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS["length"],
+                                      rtol: float = 0.02) -> Feedback:
+    """Exercise 1: which lever length doubles the optical lever's sensitivity?
+
+    Parameters
+    ----------
+    length : float or None
+        The student's lever length in m.
+    reference_length : float
+        The lever length (m) whose sensitivity is to be doubled (other parameters: defaults).
+    rtol : float
+        Accepted relative error of the resulting sensitivity ratio (2).
+
+    Returns
+    -------
+    Feedback
+        Passed when :class:`~afmsmiler.transducers.OpticalBeamDeflection` with that length is
+        twice as sensitive as with ``reference_length``.
+    """
+    reference_length = check_positive("reference_length", reference_length, "m")
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    hint = ("The spot moves by 2 D theta and theta = 3 z / (2 L) for a tip deflection z: how does "
+            "the signal per nm depend on L? Give L in metres.")
+    value, fail = _number("a length", length, hint)
+    if fail is not None:
+        return fail
+    p = OpticalBeamDeflection.parameter_table()["length"]
+    if not p.low <= value <= p.high:
+        return Feedback(False, f"the model takes lengths in [{p.low:g}, {p.high:g}] m, "
+                               f"got {value:g}. {hint}")
+    base = OpticalBeamDeflection(length=reference_length).sensitivity()
+    ratio = OpticalBeamDeflection(length=value).sensitivity() / base
+    return check_close(f"the sensitivity ratio of the {value * 1e6:.4g} um lever", ratio, 2.0,
+                       rtol, "", hint)
+
+
+def check_two_omega_power(amplitude, ac_voltage: float = DEFAULTS["ac_voltage"],
+                          resistance: float = DEFAULTS["resistance"],
+                          rtol: float = 1e-3) -> Feedback:
+    """Exercise 2: an unbiased heater gets V_ac cos(omega t); what power amplitude oscillates at 2 omega?
+
+    Parameters
+    ----------
+    amplitude : float or None
+        The student's 2-omega power amplitude in W.
+    ac_voltage : float
+        V_ac in V.
+    resistance : float
+        The heater's R in ohm.
+    rtol : float
+        Accepted relative error.
+
+    Returns
+    -------
+    Feedback
+        Compared with :meth:`~afmsmiler.transducers.Electrothermal.power_components` at V_dc = 0.
+    """
+    model = Electrothermal(ac_voltage=ac_voltage, resistance=resistance)
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    hint = "Expand (V_ac cos wt)^2 / R with cos^2 x = (1 + cos 2x) / 2. Give it in W."
+    value, fail = _number("a power amplitude", amplitude, hint)
+    if fail is not None:
+        return fail
+    return check_close("the 2-omega power amplitude", value, model.power_components(0.0).second,
+                       rtol, "W", hint)
+
+
+def check_bridge_output(voltage, deflection: float = DEFAULTS["deflection"],
+                        rtol: float = 0.02) -> Feedback:
+    """Exercise 3: the quarter-bridge output of the default piezoresistive lever for a deflection.
+
+    Parameters
+    ----------
+    voltage : float or None
+        The student's bridge output in V (mind the sign).
+    deflection : float
+        Tip deflection in m.
+    rtol : float
+        Accepted relative error (the small-signal formula is within it).
+
+    Returns
+    -------
+    Feedback
+        Compared with the exact bridge output of :class:`~afmsmiler.transducers.Piezoresistive`.
+    """
+    model = Piezoresistive()
+    q = model.input_quantity()
+    deflection = q.check(deflection)
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    hint = ("F = k z; the stress at the resistor is 6 F (L - l_r/2) / (w h^2) scaled to the "
+            "junction's mid-depth, dR/R = pi_l sigma and V_out = V_b dR / (4 R). A lever bent up "
+            "compresses its top. Give V_out in V.")
+    value, fail = _number("a voltage", voltage, hint)
+    if fail is not None:
+        return fail
+    expected = float(model.respond(deflection))
+    if value * expected < 0:
+        return Feedback(False, f"the sign is wrong: the model says {expected:.4g} V. {hint}")
+    return check_close("the bridge output", value, expected, rtol, "V", hint)
+
+
+def check_quadrature_phase(phase, rtol: float = 0.01) -> Feedback:
+    """Exercise 4: at which operating phase phi is the interferometer most sensitive?
+
+    Parameters
+    ----------
+    phase : float or None
+        The student's phase in rad.
+    rtol : float
+        Accepted shortfall of the sensitivity from its largest value.
+
+    Returns
+    -------
+    Feedback
+        Passed when :class:`~afmsmiler.transducers.Interferometer` at that phase reaches at least
+        (1 - rtol) of the largest sensitivity 4 pi V P0 / lambda.
+    """
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    hint = "P = P0 (1 + V cos(4 pi d / lambda + phi)): where is the fringe steepest? Give phi in rad."
+    value, fail = _number("a phase", phase, hint)
+    if fail is not None:
+        return fail
+    wrapped = math.remainder(value, 2 * math.pi)
+    model = Interferometer()
+    best = max(abs(model.replace(phase=p).sensitivity()) for p in (-math.pi / 2, math.pi / 2))
+    got = abs(model.replace(phase=wrapped).sensitivity())
+    if got >= (1 - rtol) * best:
+        return Feedback(True, f"phi = {value:.4g} rad is a quadrature point: "
+                              f"{got * 1e-3:.4g} uW/nm of {best * 1e-3:.4g} uW/nm.")
+    return Feedback(False, f"at phi = {value:.4g} rad the slope is {got * 1e-3:.4g} uW/nm, "
+                           f"{100 * got / best:.0f}% of the best. {hint}")

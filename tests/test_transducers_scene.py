@@ -1,0 +1,152 @@
+"""Module (b)'s scale models against geometry and closed forms: the drawn lever is the exaggerated
+end-load shape, the reflected beam obeys the law of reflection, the astigmatic spot has the beam
+radii's ratio, the meter shows the output; a real viewer is updated in place and closed."""
+import math
+
+import numpy as np
+import pytest
+from meshcat.path import Path
+
+from afmsmiler.scenes import close_viewer, get_viewer, viewer
+from afmsmiler.scenes.transducers import DEFAULTS, SCENE_UNIT, TransducerScene, lever_pose
+from afmsmiler.transducers import (PRINCIPLES, AstigmaticDetection, OpticalBeamDeflection,
+                                   PiezoAcoustic)
+
+
+class Recorder:
+    """A stand-in for meshcat.Visualizer recording what is sent to which path."""
+
+    def __init__(self, log=None, path=Path()):
+        self.log = {} if log is None else log
+        self.path = path
+
+    def __getitem__(self, name):
+        return Recorder(self.log, self.path.append(name))
+
+    def _node(self):
+        return self.log.setdefault(self.path.lower(), {})
+
+    def set_object(self, geometry, material=None):
+        node = self._node()
+        node["object"] = (geometry, material)
+        node["n_objects"] = node.get("n_objects", 0) + 1
+
+    def set_transform(self, matrix=np.eye(4)):
+        self._node()["transform"] = np.asarray(matrix)
+
+    def set_property(self, key, value):
+        self._node()[key] = value
+
+    def delete(self):
+        prefix = self.path.lower()
+        for key in [k for k in self.log if k == prefix or k.startswith(prefix + "/")]:
+            del self.log[key]
+
+
+def _scene(model, value, mode=None):
+    rec = Recorder()
+    return TransducerScene(model, value, mode, vis=rec, path="t", camera=False), rec
+
+
+def test_drawn_lever_is_the_exaggerated_end_load_shape():
+    model = OpticalBeamDeflection()
+    pose = lever_pose(model, 500e-9)
+    L = model.length / SCENE_UNIT
+    u = pose.x / L
+    # the tip at the largest input (2 um) is drawn at max_tip L; 500 nm is a quarter of it
+    amplitude = DEFAULTS["max_tip"] * L * 0.25
+    np.testing.assert_allclose(pose.z, amplitude * (3 * u ** 2 - u ** 3) / 2, rtol=1e-12, atol=1e-15)
+    np.testing.assert_allclose(pose.slope, amplitude * 3 * (u - u ** 2 / 2) / L, rtol=1e-12,
+                               atol=1e-15)
+    # signal meter: erf(sqrt2 s / w) as a fraction of its value at the end of the range
+    s = model.optical_path * math.tan(2 * 1.5 * 500e-9 / model.length)   # D tan(2 theta)
+    s_max = model.optical_path * math.tan(2 * 1.5 * 2e-6 / model.length)
+    w = model.spot_radius
+    assert pose.output_fraction == pytest.approx(math.erf(math.sqrt(2) * s / w)
+                                                 / math.erf(math.sqrt(2) * s_max / w), rel=1e-9)
+
+
+def test_reflected_beam_obeys_the_law_of_reflection():
+    model = OpticalBeamDeflection()
+    scene, rec = _scene(model, 0.0)
+    source = rec.log["/t/element/laser"]["transform"][:3, 3]
+    h = model.thickness / SCENE_UNIT
+    previous = None
+    for z in (0.0, 1.5e-6, -0.7e-6):
+        scene.update(model, z)
+        top = np.array([scene.pose.x[-1], 0.0, scene.pose.z[-1] + h / 2])
+        n = np.array([-scene.pose.slope[-1], 0.0, 1.0])
+        n /= np.linalg.norm(n)
+        incoming = (source - top) / np.linalg.norm(source - top)
+        outgoing = (scene.parts["spot"] - top) / np.linalg.norm(scene.parts["spot"] - top)
+        # equal angles to the normal, on opposite sides of it, in one plane
+        assert np.dot(incoming, n) == pytest.approx(np.dot(outgoing, n), rel=1e-12)
+        assert np.cross(n, incoming)[1] * np.cross(n, outgoing)[1] < 0
+        # the spot sits on the detector plane, and moves when the lever tilts
+        centre, normal, _ = scene.parts["detector"]
+        assert np.dot(scene.parts["spot"] - centre, normal) == pytest.approx(0.0, abs=1e-12)
+        if previous is not None:
+            assert np.linalg.norm(scene.parts["spot"] - previous) > 0.05
+        previous = scene.parts["spot"].copy()
+    bar = rec.log["/t/meter/bar"]["transform"]
+    assert bar[2, 2] == pytest.approx(abs(scene.pose.output_fraction), rel=1e-12)
+
+
+def test_astigmatic_spot_has_the_beam_radii_ratio():
+    model = AstigmaticDetection()
+    scene, rec = _scene(model, 0.8e-6)
+    a, zr = model.astigmatic_distance / 2, math.pi * model.waist ** 2 / model.wavelength
+    wx = math.sqrt(1 + ((2 * 0.8e-6 - a) / zr) ** 2)
+    wy = math.sqrt(1 + ((2 * 0.8e-6 + a) / zr) ** 2)
+    sx, sy = scene.parts["spot"]
+    assert sy / sx == pytest.approx(wy / wx, rel=1e-12)
+    t = rec.log["/t/element/spot"]["transform"]
+    assert t[1, 1] / t[0, 0] == pytest.approx(wy / wx, rel=1e-12)
+
+
+def test_base_barely_moves_at_resonance():
+    model = PiezoAcoustic(quality_factor=50.0)
+    scene, _ = _scene(model, 0.05)
+    # at resonance the tip moves gamma Q = 1.566 * 50 times the base
+    assert scene.parts["base_offset"] == pytest.approx(scene.pose.z[-1] / (1.566 * 50), rel=1e-3)
+
+
+def test_principles_swap_their_elements_in_place():
+    scene, rec = _scene(OpticalBeamDeflection(), 0.0)
+    assert "/t/element/detector/q0" in rec.log and "/t/element/spot" in rec.log
+    seen = set()
+    for key, cls in PRINCIPLES.items():
+        model = cls()
+        for mode in model.MODES:
+            scene.update(model, model.input_quantity(mode).default, mode)
+            assert scene.key == key
+            elements = {k for k in rec.log if k.startswith("/t/element/")}
+            seen |= elements
+            if key != "optical_beam_deflection":
+                assert "/t/element/detector/q0" not in elements or key == "astigmatic"
+    assert rec.log["/t/beam"]["n_objects"] == 1 + sum(len(c.MODES) for c in PRINCIPLES.values())
+    assert {"/t/element/loop", "/t/element/resistor", "/t/element/heater", "/t/element/film",
+            "/t/element/electrode", "/t/element/disk", "/t/element/shaker",
+            "/t/element/heating_beam", "/t/element/fibre"} <= seen
+
+
+def test_bad_input():
+    scene, _ = _scene(OpticalBeamDeflection(), 0.0)
+    with pytest.raises(ValueError, match="^model must be a Transducer"):
+        scene.update("optical lever", 0.0)
+    with pytest.raises(ValueError, match=r"^deflection must be in \[-2e-06, 2e-06\] m"):
+        scene.update(OpticalBeamDeflection(), 1.0)
+
+
+def test_real_viewer_is_updated_in_place_and_closed():
+    try:
+        vis = get_viewer()
+        pid = viewer._proc.pid
+        scene = TransducerScene(OpticalBeamDeflection(), 20e-9)
+        scene.update(OpticalBeamDeflection(), -300e-9)
+        scene.update(PiezoAcoustic(), 0.1)
+        assert get_viewer() is vis and viewer._proc.pid == pid     # one server, reused
+        assert "<html" in vis.static_html().lower()
+    finally:
+        close_viewer()
+    assert not viewer.viewer_running()

@@ -1,0 +1,137 @@
+"""Module (b)'s figure and panel without a browser: set controls, compare the plotted data with the
+model and with closed forms; sliders are generated from the metadata and cannot leave its ranges."""
+import math
+
+import numpy as np
+import pytest
+
+from afmsmiler.plots.transducers import TransducerFigure, chain_curves, frequency_grid
+from afmsmiler.transducers import PRINCIPLES, Electrostatic, OpticalBeamDeflection
+from afmsmiler.ui.transducers import TransducerPanel, control_for
+
+
+@pytest.fixture
+def panel():
+    return TransducerPanel(scene=False)
+
+
+def test_sliders_are_generated_from_the_metadata(panel):
+    for key, cls in PRINCIPLES.items():
+        panel.set(principle=key)
+        table = cls.parameter_table()
+        assert set(panel.controls) == {"principle", "mode", "input", *table}
+        for name, p in table.items():
+            c = panel.controls[name]
+            assert p.display_unit in c.description
+            lo, hi = (10 ** c.min, 10 ** c.max) if p.log else (c.min, c.max)
+            # bounds inside the valid range, in the unit shown
+            tol = 1e-9 * max(abs(p.low), abs(p.high)) * p.scale
+            assert lo >= p.low * p.scale - tol and hi <= p.high * p.scale + tol
+            assert c.value == pytest.approx(p.default * p.scale)
+        q = cls().input_quantity()
+        assert panel.controls["input"].min == pytest.approx(q.low * q.scale)
+
+
+@pytest.mark.parametrize("key", list(PRINCIPLES))
+def test_every_slider_extreme_is_a_valid_model(panel, key):
+    panel.set(principle=key)
+    names = [n for n in panel.controls if n not in ("principle", "mode")]
+    for name in names:
+        c = panel.controls[name]
+        for end in ("min", "max"):
+            value = getattr(c, end)
+            panel.set(**{name: 10 ** value if hasattr(c, "base") else value})
+            assert panel.last.model.key == key   # no ValueError from the model
+
+
+def test_lines_equal_the_model_in_the_units_shown(panel):
+    panel.set(principle="optical_beam_deflection", input=150.0, optical_path=50.0, length=120.0)
+    model = OpticalBeamDeflection(optical_path=50e-3, length=120e-6)
+    assert panel.last.model == model and panel.last.value == pytest.approx(150e-9)
+    lines = panel.figure.lines
+    x_nm, s = lines["output"].get_data()
+    z = np.linspace(-2e-6, 2e-6, len(x_nm))       # the input's valid range
+    np.testing.assert_allclose(x_nm, z * 1e9, rtol=1e-12)
+    np.testing.assert_allclose(s, model.respond(z), rtol=1e-12)
+    x_nm, slope_mrad = lines["left"].get_data()
+    np.testing.assert_allclose(slope_mrad, 1.5 * np.asarray(x_nm) * 1e-9 / 120e-6 * 1e3,
+                               rtol=1e-12)
+    px, py = lines["point"].get_data()
+    assert px[0] == pytest.approx(150.0) and py[0] == pytest.approx(float(model.respond(150e-9)))
+    # the tangent has the small-signal slope at the input (per nm shown)
+    tx, ty = lines["tangent"].get_data()
+    assert (ty[1] - ty[0]) / (tx[1] - tx[0]) == pytest.approx(model.sensitivity(at=150e-9) * 1e-9)
+    f, mag = lines["magnitude"].get_data()
+    fr = model.frequency_response(f)
+    np.testing.assert_allclose(mag, np.abs(fr.response) * 1e-9, rtol=1e-12)   # 1/N -> 1/nN
+    assert panel.last.sensitivity == pytest.approx(model.sensitivity(at=150e-9))
+    assert "sensing; DC&AC; bulk" in panel.readout.value
+
+
+def test_actuator_chain_and_readout(panel):
+    panel.set(principle="electrostatic", input=10.0, gap=4.0, ac_voltage=0.0)
+    model = Electrostatic(gap=4e-6, ac_voltage=0.0)
+    # F = (1/2) dC/dz V^2, dC/dz = -eps0 w l_e / g^2
+    force = -0.5 * 8.8541878128e-12 * model.width * model.electrode_length / 16e-12 * 100
+    assert panel.last.chain.stage("force").values == pytest.approx(force, rel=1e-12)
+    x, f_nn = panel.figure.lines["left"].get_data()
+    assert f_nn[np.argmin(np.abs(np.asarray(x) - 10.0))] == pytest.approx(force * 1e9, rel=1e-9)
+    assert "nm/V" in panel.readout.value and "resolution" in panel.readout.value
+
+
+def test_piezoelectric_offers_both_modes(panel):
+    panel.set(principle="piezoelectric")
+    assert tuple(panel.controls["mode"].options) == ("sensing", "actuation")
+    assert not panel.controls["mode"].disabled
+    panel.set(d31=-100.0)
+    panel.set(mode="actuation", input=4.0)
+    assert panel.last.mode == "actuation" and panel.last.model.d31 == pytest.approx(-100e-12)
+    assert panel.last.chain.output.values == pytest.approx(4.0 * panel.last.model.deflection_per_volt)
+    panel.set(principle="piezoresistive")
+    assert panel.controls["mode"].disabled and panel.last.mode == "sensing"
+
+
+def test_linked_slider_follows_the_lever(panel):
+    panel.set(principle="electrostatic", electrode_length=200.0)
+    panel.set(length=100.0)
+    assert panel.controls["electrode_length"].max == pytest.approx(100.0)
+    assert panel.last.model.electrode_length <= panel.last.model.length
+    panel.controls["length"].value = 60.0     # as a user would drag it
+    assert panel.last.model.electrode_length == pytest.approx(60e-6)
+
+
+def test_selector_change_from_the_widget(panel):
+    panel.controls["principle"].value = "photothermal"
+    assert panel.last.model.key == "photothermal" and "laser_power" not in panel.controls
+    assert "absorptance" in panel.controls
+    panel.controls["input"].value = 5.0       # mW
+    assert panel.last.value == pytest.approx(5e-3)
+
+
+def test_bad_controls(panel):
+    with pytest.raises(TypeError, match="unknown control"):
+        panel.set(colour=1.0)
+    with pytest.raises(ValueError, match="principle must be one of"):
+        panel.set(principle="telepathy")
+    with pytest.raises(ValueError, match="principle must be one of"):
+        TransducerPanel(principle="telepathy", scene=False)
+    with pytest.raises(ValueError, match="mode must be one of"):
+        panel.set(mode="actuation")
+
+
+def test_figure_and_control_helpers():
+    model = OpticalBeamDeflection()
+    f = frequency_grid(model, 50)
+    assert f[0] == pytest.approx(1e-2) and f[-1] == pytest.approx(10 * model.resonance_frequency)
+    curves = chain_curves(model, 0.0, n_points=11)
+    fig = TransducerFigure(curves)
+    assert len(fig.lines["output"].get_xdata()) == 11
+    assert curves.sensitivity == pytest.approx(model.sensitivity() * 1e-9)
+    with pytest.raises(ValueError, match="^deflection must be in"):
+        chain_curves(model, 1.0)
+    with pytest.raises(ValueError, match="^n_points must be an integer"):
+        chain_curves(model, 0.0, n_points=1)
+    p = OpticalBeamDeflection.parameter_table()["power"]
+    s = control_for(p)
+    assert s.value == pytest.approx(1.0) and "mW" in s.description
+    assert 10 ** s.min == pytest.approx(1e-3) and math.isclose(10 ** s.max, 20.0)
