@@ -12,9 +12,12 @@ for three close roots). Roots are therefore merged into a repeated root (at thei
 lie within :data:`MERGE_TOLERANCE` (relative) of each other, or all three within
 :data:`TRIPLE_TOLERANCE`; the error of that merge is of order (d |p| t)^2. For pairs both errors
 stay below 1e-9 of the peak on both sides of the threshold over the time spans of a scan
-(|p| t < 100). Three roots spread by 1e-5 to 1e-3 (relative) fall between the two remedies and
-lose up to about 1e-7 of the peak; exact triple roots and pairs at any distance do not. A complex pair whose imaginary part is that small is treated the same way (a repeated
-real root). Pairs of complex roots never cancel (their residue's imaginary part grows like 1/omega
+(|p| t < 60). Three roots spread by 1e-5 to 1e-3 (relative) fall between the two remedies (the
+merge error grows like the spread squared, the cancellation like its inverse square) and lose up
+to about 4e-8 of the peak there, the worst near :data:`TRIPLE_TOLERANCE`, chosen to balance the
+two; exact triple roots, pairs at any distance and clusters tighter than 1e-5 do not.
+A complex pair whose imaginary part is that small is treated as a repeated real root.
+Pairs of complex roots never cancel (their residue's imaginary part grows like 1/omega
 but multiplies sin(omega t), itself of order omega t).
 """
 from __future__ import annotations
@@ -31,8 +34,9 @@ __all__ = ["ClosedForm", "MERGE_TOLERANCE", "TRIPLE_TOLERANCE", "classify_roots"
 #: double roots scatter by about sqrt(eps) ~ 1.5e-8 (relative) around the true one.
 MERGE_TOLERANCE = 1e-6
 #: Relative spread below which three roots are one triple root. Computed triple roots scatter by
-#: about eps**(1/3) ~ 6e-6, so that a smaller threshold would miss exact triple roots.
-TRIPLE_TOLERANCE = 1e-4
+#: about eps**(1/3) ~ 6e-6, so a much smaller threshold would miss exact triple roots; 3e-4
+#: balances the merge error against the cancellation of the distinct-root formula.
+TRIPLE_TOLERANCE = 3e-4
 
 
 @dataclass(frozen=True)

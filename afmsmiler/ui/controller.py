@@ -48,10 +48,10 @@ DEFAULTS = dict(preset="a_good_tracking", **preset_values("a_good_tracking"),
 
 #: Slider bounds (low, high) in the units shown; all inside the model's valid ranges.
 BOUNDS = dict(m_c=(0.01, 100.0), m_s=(0.01, 100.0), b_c=(1e-4, 10.0), b_s=(1e-4, 10.0),
-              k_c=(0.01, 100.0), k_s=(0.01, 1000.0), kp=(0.0, 200.0), ki=(1e-5, 1e3),
+              k_c=(0.01, 100.0), k_s=(0.01, 1000.0), kp=(1e-3, 1e3), ki=(1e-5, 1e3),
               kd=(0.0, 2.0), speed=(1.0, 1e4), setpoint=(0.0, 100.0), height=(1.0, 500.0))
 
-_LOG = ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "ki", "speed")
+_LOG = ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "kp", "ki", "speed")
 _LABELS = dict(m_c=("m_c", "ng"), m_s=("m_s", "ng"), b_c=("b_c", "ng/us"), b_s=("b_s", "ng/us"),
                k_c=("k_c", "N/m"), k_s=("k_s", "N/m"), kp=("K_P", ""), ki=("K_I", "1/us"),
                kd=("K_D", "us"), speed=("scan speed", "um/s"), setpoint=("setpoint R", "nm"),
