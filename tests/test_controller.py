@@ -247,3 +247,57 @@ def test_bad_scan_input():
         scan_image(loop, np.zeros(3), 1e-9, 1e-5, SETPOINT)
     with pytest.raises(TypeError):
         loop.scan_line(x, h, 1e-5, SETPOINT, direction="up")
+
+
+# --- the O(N) recursion for every root structure (Jordan blocks of size 1, 2 and 3) ----------------
+STRUCTURES = {
+    "o2 distinct": [-1.0, -3.0], "o2 double": [-2.0, -2.0], "o2 complex": [-0.4 + 2.5j, -0.4 - 2.5j],
+    "o3 distinct": [-0.7, -2.0, -5.0], "o3 real_complex": [-1.0, -0.3 + 3.0j, -0.3 - 3.0j],
+    "o3 double_single": [-2.0, -2.0, -0.7], "o3 triple": [-1.5, -1.5, -1.5],
+    "o3 unstable": [0.2, -1.0 + 2.0j, -1.0 - 2.0j],
+}
+
+
+@pytest.mark.parametrize("name", STRUCTURES)
+@pytest.mark.parametrize("uniform", [True, False])
+def test_polygon_recursion_for_every_structure(name, uniform):
+    """polygon_response (with a non-zero first value: the step terms) vs forced_response."""
+    from afmsmiler.controller.closed_forms import classify_roots, closed_form, normalise
+    from afmsmiler.controller.polygon import polygon_response
+    rng = np.random.default_rng(7)
+    roots = STRUCTURES[name]
+    den = np.real(np.poly(roots))
+    nums = [rng.normal(size=len(roots) + 1) for _ in range(2)]
+    structure, params = classify_roots(np.roots(den))
+    steps, ramps = [], []
+    for num in nums:
+        b, _ = normalise(num, den)
+        steps.append(closed_form(b, structure, params, "step"))
+        ramps.append(closed_form(b, structure, params, "ramp"))
+    n = 4001
+    t_grid = np.linspace(0, 12, n)
+    knots = (np.arange(0, n, 100) if uniform else
+             np.r_[0, np.sort(rng.choice(np.arange(1, n - 1), 30, replace=False))])
+    u_knots = rng.normal(size=knots.size) + 1.0
+    u_grid = np.interp(t_grid, t_grid[knots], u_knots)
+    ev = np.sort(rng.choice(np.arange(n), 300, replace=False))
+    at_eval = polygon_response(steps, ramps, t_grid[knots], u_knots, t_grid[ev])
+    at_knots = polygon_response(steps, ramps, t_grid[knots], u_knots)
+    for o, num in enumerate(nums):
+        ref = control.forced_response(control.tf(num, den), t_grid, u_grid).outputs
+        peak = np.max(np.abs(ref))
+        np.testing.assert_allclose(at_eval[o], ref[ev], rtol=0, atol=1e-9 * peak)
+        np.testing.assert_allclose(at_knots[o], ref[knots], rtol=0, atol=1e-9 * peak)
+
+
+def test_overdamped_loop_has_real_roots_and_matches():
+    loop = ContactLoop(m_c=1e-12, m_s=1e-12, b_c=1e-5, b_s=1e-5, k_c=1.0, k_s=10.0, kp=0.5,
+                       ki=1e4, kd=0.0)
+    assert loop._structure[0] == "distinct"
+    t_grid = np.linspace(0, 2e-4, 4001)
+    knots = np.arange(0, 4001, 40)
+    T = np.sin(np.arange(knots.size)) * 1e-8
+    z_c, z_np = loop.response(t_grid[knots], T)
+    ref_c, ref_np = _reference(loop, t_grid, np.interp(t_grid, t_grid[knots], T))
+    np.testing.assert_allclose(z_np, ref_np[knots], rtol=0, atol=1e-9 * np.max(np.abs(ref_np)))
+    np.testing.assert_allclose(z_c, ref_c[knots], rtol=0, atol=1e-9 * np.max(np.abs(ref_c)))
