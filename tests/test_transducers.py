@@ -62,6 +62,12 @@ def test_table_one_is_rendered():
     assert html.count("<tr>") == 12
 
 
+def test_book_chapter_shows_the_generated_table():
+    from pathlib import Path
+    chapter = Path(__file__).parents[1] / "book" / "02_probe_transducers.md"
+    assert table_one_markdown() in chapter.read_text(encoding="utf-8")
+
+
 @pytest.mark.parametrize("key", list(PRINCIPLES))
 def test_signal_class_follows_from_the_physics(key):
     """'DC&AC' models respond at DC; 'AC only' never does; 'AC mostly' has a mode that does not."""
