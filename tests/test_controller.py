@@ -142,7 +142,7 @@ def test_scan_image_rows_equal_scan_line():
             np.testing.assert_allclose(im.trace_z_np[row], r.trace.z_np, rtol=0, atol=1e-20)
 
 
-# --- the paper's Fig. 4 ----------------------------------------------------------------------------
+# --- the paper's Fig. 4 ---------------------------------------------------------------------------
 @pytest.fixture(scope="module")
 def fig4():
     return {name: p.scan() for name, p in PRESETS.items()}
@@ -205,7 +205,7 @@ def test_fig4d_growing_oscillation_flagged_unstable(fig4):
     assert np.sum(np.diff(np.sign(dev[-n // 4:])) != 0) > 10  # it oscillates
 
 
-# --- bad input -------------------------------------------------------------------------------------
+# --- bad input ------------------------------------------------------------------------------------
 @pytest.mark.parametrize("name, value, match", [
     ("m_c", -1e-12, "m_c must be > 0 kg"), ("k_s", -1.0, "k_s must be > 0 N/m"),
     ("k_c", 0.0, "k_c must be > 0"), ("b_s", -1e-8, "b_s must be >= 0 kg/s"),
@@ -249,9 +249,10 @@ def test_bad_scan_input():
         loop.scan_line(x, h, 1e-5, SETPOINT, direction="up")
 
 
-# --- the O(N) recursion for every root structure (Jordan blocks of size 1, 2 and 3) ----------------
+# --- the O(N) recursion for every root structure (Jordan blocks of size 1, 2 and 3) ---------------
 STRUCTURES = {
-    "o2 distinct": [-1.0, -3.0], "o2 double": [-2.0, -2.0], "o2 complex": [-0.4 + 2.5j, -0.4 - 2.5j],
+    "o2 distinct": [-1.0, -3.0], "o2 double": [-2.0, -2.0],
+    "o2 complex": [-0.4 + 2.5j, -0.4 - 2.5j],
     "o3 distinct": [-0.7, -2.0, -5.0], "o3 real_complex": [-1.0, -0.3 + 3.0j, -0.3 - 3.0j],
     "o3 double_single": [-2.0, -2.0, -0.7], "o3 triple": [-1.5, -1.5, -1.5],
     "o3 unstable": [0.2, -1.0 + 2.0j, -1.0 - 2.0j],

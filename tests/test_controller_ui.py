@@ -101,7 +101,7 @@ def test_off_scale_signals_are_masked_and_reported():
     assert hi - lo < 20 * np.ptp(c.height_nm)
 
 
-# --- exercises ---------------------------------------------------------------------------------------
+# --- exercises ------------------------------------------------------------------------------------
 def test_fast_scan_checker_simulates_the_answer():
     assert not ex.check_fast_scan(None, 1.0, 0.0)
     # the preset's own gains are too slow at 1000 um/s, preset (d)'s gains are unstable

@@ -28,7 +28,8 @@ import numpy as np
 
 from ._generated import FUNCTIONS
 
-__all__ = ["ClosedForm", "MERGE_TOLERANCE", "TRIPLE_TOLERANCE", "classify_roots", "closed_form", "normalise"]
+__all__ = ["ClosedForm", "MERGE_TOLERANCE", "TRIPLE_TOLERANCE", "classify_roots", "closed_form",
+           "normalise"]
 
 #: Relative distance below which two roots are treated as one repeated (double) root. Computed
 #: double roots scatter by about sqrt(eps) ~ 1.5e-8 (relative) around the true one.

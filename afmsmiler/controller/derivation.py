@@ -296,7 +296,7 @@ def check_case(case: Case) -> bool:
 
 
 # --- code generation ---------------------------------------------------------------------------
-_HEADER = '''"""Closed-form step and ramp responses of monic 2nd/3rd-order systems: GENERATED, do not edit.
+_HEADER = '''"""Closed-form step and ramp responses, 2nd and 3rd order: GENERATED, do not edit.
 
 Written by ``python -m afmsmiler.controller.derivation`` from the sympy derivation in
 :mod:`afmsmiler.controller.derivation`; ``tests/test_controller_derivation.py`` checks that this
