@@ -261,3 +261,27 @@ def test_sls_bad_input():
         StandardLinearSolid(1e6, 2e6, 0.0)
     with pytest.raises(ValueError, match="speed must be > 0"):
         viscoelastic_approach_retract([0, 1e-9], 0.1, Parabolic(R), StandardLinearSolid(1e6, 2e6, 1.0), 0.3, 0)
+
+
+def test_adhesive_sphere_is_not_indented_past_its_radius():
+    from afmsmiler.contact import z_np_limit
+    tip, k, e, nu = Spherical(R), 0.5, 50e6, 0.3
+    e_star = reduced_modulus(e, nu)
+    assert z_np_limit(k, Parabolic(R), e, nu) == math.inf
+    # elastic and DMT: Z_np at Z_s = R is R + F(R) / k, less the DMT pull 2 pi R w / k
+    elastic = z_np_limit(k, tip, e, nu)
+    assert elastic == pytest.approx(R + tip.force(R, e_star) / k, rel=1e-13)
+    dmt = z_np_limit(k, tip, e, nu, adhesion="dmt", work_of_adhesion=W)
+    assert dmt == pytest.approx(elastic - 2 * math.pi * R * W / k, rel=1e-13)
+    jkr = z_np_limit(k, tip, e, nu, adhesion="jkr", work_of_adhesion=W)
+    assert jkr > 0
+    # a soft sample: the JKR neck alone reaches the sphere's equator, no Z_np >= 0 is allowed
+    assert z_np_limit(k, tip, 1e6, nu, adhesion="jkr", work_of_adhesion=W) < 0
+    for model, limit in (("dmt", dmt), ("jkr", jkr)):
+        ok = approach_retract(np.linspace(-300e-9, 0.999 * limit, 500), k, tip, e, nu, adhesion=model,
+                              work_of_adhesion=W)
+        assert ok.approach.contact_radius.max() < R
+        assert ok.approach.contact_radius.max() > 0.8 * R  # the limit is where the sphere ends
+        with pytest.raises(ValueError, match="past its radius"):
+            approach_retract(np.linspace(-300e-9, 1.001 * limit, 500), k, tip, e, nu, adhesion=model,
+                             work_of_adhesion=W)

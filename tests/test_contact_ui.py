@@ -203,3 +203,27 @@ def test_pull_off_checker_uses_the_published_values():
     assert not check_pull_off_force(2 * math.pi * R * w, "jkr", R, w)
     with pytest.raises(ValueError, match="model must be one of"):
         check_pull_off_force(1e-9, "maugis")
+
+
+@pytest.mark.parametrize("tip", list(TIPS))
+def test_no_slider_position_makes_the_model_raise(tip):
+    # every tip at the corners of the slider ranges (softest/stiffest lever and sample, smallest and
+    # largest tip parameter, largest Z_np, adhesion on where offered): the panel must never raise
+    panel = ContactPanel(tip=tip)
+    c = panel.controls
+
+    def ends(w):
+        return (10 ** w.min, 10 ** w.max) if hasattr(w, "base") else (w.min, w.max)
+
+    names = [p.name for p in TIPS[tip].parameters]
+    adhesion = ["none", "DMT", "JKR"] if tip in ("parabolic", "spherical") else ["none"]
+    for k in ends(c["spring_constant"]):
+        for e in ends(c["youngs_modulus"]):
+            for value in ends(c[names[0]]):
+                for model in adhesion:
+                    panel.set(spring_constant=k, youngs_modulus=e, poisson_ratio=c["poisson_ratio"].max,
+                              adhesion=model, work_of_adhesion=c["work_of_adhesion"].max,
+                              **{names[0]: value})
+                    panel.set(z_np=c["z_np"].max)
+                    s = panel.last
+                    assert np.isfinite(s.current.force).all() and np.isfinite(s.cycle.retract.force).all()

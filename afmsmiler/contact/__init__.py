@@ -11,7 +11,7 @@ All public functions take and return SI units.
 """
 from .fit import FitResult, ForceCurve, fit_curve, load_curve, synthetic_curve
 from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, approach_retract, indent,
-                     jkr_curve, jkr_instability, residual)
+                     jkr_curve, jkr_instability, residual, z_np_limit)
 from .surface import surface_displacement
 from .tips import (TIPS, Conical, Parabolic, Pyramidal, Spherical, Tip, TipParameter, make_tip,
                    reduced_modulus, tip_table)
@@ -21,6 +21,6 @@ from .viscoelastic import (StandardLinearSolid, ViscoelasticCycle, hereditary_fo
 __all__ = ["TIPS", "Tip", "TipParameter", "Parabolic", "Spherical", "Conical", "Pyramidal",
            "make_tip", "reduced_modulus", "tip_table", "IndentationCurve", "ApproachRetract",
            "indent", "approach_retract", "residual", "ADHESION_MODELS", "jkr_curve",
-           "jkr_instability", "StandardLinearSolid", "ViscoelasticCycle", "hereditary_force",
+           "jkr_instability", "z_np_limit", "StandardLinearSolid", "ViscoelasticCycle", "hereditary_force",
            "viscoelastic_approach_retract", "ForceCurve", "FitResult", "synthetic_curve",
            "load_curve", "fit_curve", "surface_displacement"]

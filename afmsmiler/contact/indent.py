@@ -43,7 +43,7 @@ from ._solvers import bracketed_newton
 from .tips import Parabolic, Spherical, Tip, reduced_modulus
 
 __all__ = ["IndentationCurve", "ApproachRetract", "indent", "approach_retract", "residual",
-           "ADHESION_MODELS", "jkr_curve", "jkr_instability"]
+           "ADHESION_MODELS", "jkr_curve", "jkr_instability", "z_np_limit"]
 
 #: Adhesion models offered by :func:`approach_retract` (None: purely elastic).
 ADHESION_MODELS = (None, "dmt", "jkr")
@@ -335,6 +335,48 @@ def _branch(z, k, z_s, force, radius, contact):
     return IndentationCurve(z, z_s, force / k, force, np.where(contact, radius, 0.0), contact)
 
 
+def z_np_limit(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion=None,
+               work_of_adhesion=0.0) -> float:
+    """Largest Z_np in m the model accepts: before a sphere is indented past its radius.
+
+    Parameters
+    ----------
+    spring_constant : float
+        k in N/m.
+    tip : Tip
+        The tip shape (only a :class:`Spherical` tip has a finite limit).
+    youngs_modulus : float
+        E in Pa.
+    poisson_ratio : float
+        nu, in [0, 0.5).
+    adhesion : {None, "dmt", "jkr"}
+        Adhesion model, as for :func:`approach_retract`.
+    work_of_adhesion : float
+        w in J/m^2 (with adhesion).
+
+    Returns
+    -------
+    float
+        inf for the paraboloid, cone and pyramid; for a sphere R + F(R)/k (elastic),
+        that minus 2 pi R w / k (DMT), or Z_np at which the JKR contact radius reaches R. It can be
+        negative (or -inf for JKR) when adhesion alone would bury the sphere.
+    """
+    _, k, e_star = _check_common(0.0, spring_constant, tip, youngs_modulus, poisson_ratio)
+    check_choice("adhesion", adhesion, ADHESION_MODELS)
+    if not isinstance(tip, Spherical):
+        return math.inf
+    if adhesion is None:
+        return tip.max_z_np(k, e_star)
+    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    if adhesion == "dmt":
+        return tip.max_z_np(k, e_star) - 2.0 * math.pi * tip.radius * w / k
+    a_min, _, _ = jkr_instability(k, tip.radius, w, e_star)
+    if a_min >= tip.radius:
+        return -math.inf
+    z_s, force, _ = _jkr_terms(np.array(tip.radius), tip.radius, w, e_star, k)
+    return float(z_s + force / k)
+
+
 def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, *,
                      adhesion=None, work_of_adhesion=0.0) -> ApproachRetract:
     """Approach and retract over a Z_np ramp, elastic or with DMT / JKR adhesion.
@@ -383,11 +425,16 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
         return ApproachRetract(app, ret, 0.0, 0.0, 0.0, None)
     radius = _adhesive_radius(tip)
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    limit = z_np_limit(k, tip, youngs_modulus, poisson_ratio, adhesion=adhesion, work_of_adhesion=w)
+    if z.max() >= limit:
+        raise ValueError(
+            f"z_np must be < {limit:g} m for this sphere (R = {radius:g} m) with {adhesion.upper()} "
+            f"adhesion (w = {w:g} J/m^2, k = {k:g} N/m): beyond it the sphere would be indented "
+            f"past its radius, got {z.max():g}")
     rz = z[::-1]
     if adhesion == "dmt":
         f_ad = 2.0 * math.pi * radius * w
         shift = f_ad / k
-        _check_depth(tip, z + shift, k, e_star)
 
         def dmt(zz, contact):
             el = _elastic(tip, zz + shift, k, e_star)

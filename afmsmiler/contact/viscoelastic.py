@@ -117,6 +117,8 @@ def hereditary_force(time, indentation, tip, material, poisson_ratio):
     """
     t = check_array("time", time, "s", ndim=1, min_size=2, increasing=True)
     z = check_array("indentation", indentation, "m", ndim=1, size=t.size, low=0.0)
+    if not isinstance(tip, Tip):
+        raise ValueError(f"tip must be a Tip, got {tip!r}")
     if not isinstance(material, StandardLinearSolid):
         raise ValueError(f"material must be a StandardLinearSolid, got {material!r}")
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)

@@ -18,8 +18,8 @@ from dataclasses import dataclass
 import ipywidgets as widgets
 import numpy as np
 
-from ..contact import (TIPS, ApproachRetract, IndentationCurve, Spherical, Tip, approach_retract,
-                       make_tip, reduced_modulus)
+from ..contact import (TIPS, ApproachRetract, IndentationCurve, Tip, approach_retract, make_tip,
+                       reduced_modulus, z_np_limit)
 from ..plots.contact import ContactCurves, ContactFigure, contact_curves
 from .panel import Panel, log_slider, slider
 
@@ -42,6 +42,7 @@ for _cls in TIPS.values():
 _ADHESION = {"none": None, "DMT": "dmt", "JKR": "jkr"}
 _RAMP_POINTS = 400
 _SPHERE_MARGIN = 0.9  # the Z_np slider stops at 90 % of the depth at which the sphere is buried
+_MIN_RANGE = 1e-9  # m: below this much room, adhesion is switched off for a sphere
 
 
 @dataclass(frozen=True)
@@ -160,12 +161,9 @@ class ContactPanel(Panel):
         self.controls["adhesion"].disabled = not adhesive
         self.controls["work_of_adhesion"].disabled = not adhesive
 
-    def _limit_z_np(self, tip: Tip, k: float, e_star: float) -> None:
-        """For a sphere, lower the Z_np slider's maximum below the depth limit (else restore it)."""
+    def _set_z_np_max(self, high: float) -> None:
+        """Move the Z_np slider's upper end (nm) without triggering an update."""
         z = self.controls["z_np"]
-        high = BOUNDS["z_np"][1]
-        if isinstance(tip, Spherical):
-            high = min(high, _SPHERE_MARGIN * tip.max_z_np(k, e_star) * 1e9)
         if z.max != high:
             hold, self._hold = self._hold, True
             try:
@@ -185,13 +183,21 @@ class ContactPanel(Panel):
         nu = poisson_ratio
         model = _ADHESION[adhesion] if tip in ("parabolic", "spherical") else None
         w = work_of_adhesion * 1e-3
+        self._note = ""
+        # the model's own limit (finite for a sphere): the slider stops at 90 % of it
+        limit = z_np_limit(k, shape, e, nu, adhesion=model, work_of_adhesion=w)
+        if model and _SPHERE_MARGIN * limit < _MIN_RANGE:  # adhesion alone would bury the sphere
+            self._note = "adhesion would pull this sphere in past its radius: shown without it"
+            model = None
+            limit = z_np_limit(k, shape, e, nu)
+        self._set_z_np_max(min(BOUNDS["z_np"][1], _SPHERE_MARGIN * limit * 1e9))
         kwargs = dict(adhesion=model, work_of_adhesion=w) if model else {}
-        self._limit_z_np(shape, k, reduced_modulus(e, nu))
-        z_now = self.controls["z_np"].value * 1e-9
-        z_lo, z_hi = BOUNDS["z_np"][0] * 1e-9, self.controls["z_np"].max * 1e-9
+        z_lo = BOUNDS["z_np"][0] * 1e-9
         if model:  # extend the ramp below the snap-off point so that the retract is complete
             probe = approach_retract(np.array([-1e-9, 0.0]), k, shape, e, nu, **kwargs)
             z_lo = min(z_lo, 1.25 * probe.snap_off_z_np)
+        z_now = self.controls["z_np"].value * 1e-9
+        z_hi = self.controls["z_np"].max * 1e-9
         cycle = approach_retract(np.linspace(z_lo, z_hi, _RAMP_POINTS), k, shape, e, nu, **kwargs)
         here = approach_retract(np.array([z_now - 1e-9, z_now]), k, shape, e, nu, **kwargs)
         current = _point(here.approach, 1)
@@ -223,9 +229,9 @@ class ContactPanel(Panel):
             rows.append(("pull-off force", f"{s.cycle.pull_off_force * 1e9:.4g} nN"))
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
-        note = ""
+        note = f"<div><i>{self._note}</i></div>" if self._note else ""
         if self.scene is not None:
-            note = f"<div>3D view: 1 unit = {self.scene.unit * 1e9:g} nm, true to scale</div>"
+            note += f"<div>3D view: 1 unit = {self.scene.unit * 1e9:g} nm, true to scale</div>"
         return f"<table>{table}</table>{note}"
 
     def widget(self) -> widgets.Widget:
