@@ -302,3 +302,16 @@ def test_overdamped_loop_has_real_roots_and_matches():
     ref_c, ref_np = _reference(loop, t_grid, np.interp(t_grid, t_grid[knots], T))
     np.testing.assert_allclose(z_np, ref_np[knots], rtol=0, atol=1e-9 * np.max(np.abs(ref_np)))
     np.testing.assert_allclose(z_c, ref_c[knots], rtol=0, atol=1e-9 * np.max(np.abs(ref_c)))
+
+
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_loop_closed_forms_match_step_response(name):
+    """The loop's own closed forms (SI units, poles ~1e6 1/s) vs control.step_response."""
+    loop = PRESETS[name].loop
+    t = np.linspace(0, 40e-6, 4001)
+    for form, tf in zip(loop.closed_forms("step"), loop.closed_loop()):
+        ref = control.step_response(tf, t).outputs
+        np.testing.assert_allclose(form(t), ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+    for form, tf in zip(loop.closed_forms("ramp"), loop.closed_loop()):
+        ref = control.forced_response(tf, t, t).outputs
+        np.testing.assert_allclose(form(t), ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
