@@ -238,7 +238,7 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
             if worst:
                 ax.text(0.01, 0.95, f"off scale: reaches {worst:.3g} nm", va="top",
                         transform=ax.transAxes, color="C3", fontsize="small")
-            ax.set(ylabel=label)
+            ax.set(ylabel=label, xlim=(c.x_trace_um[0], c.x_trace_um[-1]))
             ax.set_title(f"{preset.description}, {preset.speed * 1e6:g} um/s", fontsize="small")
             if row == len(presets) - 1:
                 ax.set_xlabel("x [um]")
