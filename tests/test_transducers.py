@@ -16,7 +16,7 @@ from afmsmiler.transducers import (PRINCIPLES, AstigmaticDetection, Electromagne
                                    OpticalBeamDeflection, Optomechanical, Photothermal,
                                    PiezoAcoustic, Piezoelectric, Piezoresistive, get_principle,
                                    table_one, table_one_html, table_one_markdown)
-from afmsmiler.transducers.acoustic import participation_factor
+from afmsmiler.transducers.acoustic import mode_slope_factor, participation_factor
 from afmsmiler.transducers.base import BOLTZMANN, mechanical_response
 from afmsmiler.transducers.embedded import quarter_bridge_output
 from afmsmiler.transducers.thermal import THERMAL, bimorph_curvature
@@ -273,6 +273,15 @@ def test_interferometer_quadrature_slope_and_nonlinearity():
 def test_participation_factor_is_the_published_value():
     # Erturk and Inman, J. Intell. Mater. Syst. Struct. 19, 1311 (2008): 1.566 for mode 1
     assert participation_factor() == pytest.approx(1.566, abs=5e-4)
+
+
+def test_mode_slope_factor_against_the_analytic_mode_shape():
+    # phi(x) = cosh bx - cos bx - s (sinh bx - sin bx), s = (cosh bL + cos bL) / (sinh bL + sin bL)
+    b = 1.87510407  # beta_1 L (Rao, Mechanical Vibrations)
+    s = (math.cosh(b) + math.cos(b)) / (math.sinh(b) + math.sin(b))
+    phi = math.cosh(b) - math.cos(b) - s * (math.sinh(b) - math.sin(b))
+    dphi = b * (math.sinh(b) + math.sin(b) - s * (math.cosh(b) - math.cos(b)))
+    assert mode_slope_factor() == pytest.approx(dphi / phi, rel=1e-6)
 
 
 def test_base_excitation_against_python_control():

@@ -115,8 +115,10 @@ class AstigmaticDetection(Transducer):
 
     an S-curve: zero in focus, extrema near d = +-a/2, back to zero far away. Its slope at focus
     is 8 a / (pi (z_R^2 + a^2)) (largest, 4 / (pi z_R), for a = z_R), and its linear range is a
-    few um (Bergmann and Schaefer, *Optics*; Hwu et al., Rev. Sci. Instrum. 76, 033704 (2005);
-    En-Te Hwu et al., "astigmatic detection system" AFM with a DVD pickup head).
+    few um (Braat, Dirksen and Janssen, "Diffractive read-out of optical discs", in *Optical
+    Imaging and Microscopy*, Springer 2003; the astigmatic detection system AFM with a DVD
+    pickup head: Hwu et al., Appl. Phys. Lett. 91, 221908 (2007), Nanotechnology 19, 115501
+    (2008)).
     Noise: shot noise of the detector current, as for the optical lever.
     """
 

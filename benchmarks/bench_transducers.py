@@ -1,0 +1,94 @@
+"""Module (b): one slider update of the transducer panel (model + plot data + 3D scale model).
+
+The issue names no speed target or peer; one panel update should stay at a few ms (target used
+here: 5 ms). Split into its parts, for the slowest of the eleven principles and their mean:
+
+- model: build the model from slider values, sample its chain over the input range (201 points),
+  the small-signal sensitivity, the frequency response (400 points) and the resolution;
+- plots: move the line data of the three panels in place (``TransducerFigure.update``; the pixels
+  are drawn later by the browser/ipympl, timed separately for information);
+- scene: redraw the bent lever and move the principle's parts (``TransducerScene.update``, into a
+  running meshcat server);
+- the whole ``TransducerPanel.update``.
+
+Peer: the same update done naively, building a new figure (and drawing it) on every call.
+"""
+import contextlib
+import io
+import sys
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+from _timing import best_time, report  # noqa: E402
+
+from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
+
+from afmsmiler.plots.transducers import TransducerFigure, chain_curves  # noqa: E402
+from afmsmiler.scenes import close_viewer  # noqa: E402
+from afmsmiler.transducers import PRINCIPLES  # noqa: E402
+from afmsmiler.ui.transducers import TransducerPanel  # noqa: E402
+
+TARGET = 5e-3
+
+
+def main():
+    try:
+        with contextlib.redirect_stdout(io.StringIO()):
+            panel = TransducerPanel(scene=True)
+        panel.redraw = lambda: None  # pixels are drawn by the front end, after the callback
+        rows = {"model": [], "plots": [], "scene": [], "panel": [], "naive": []}
+        for key, cls in PRINCIPLES.items():
+            panel.set(principle=key)
+            values = panel.values()
+            q = cls().input_quantity()
+            state = {"i": 0}
+
+            def next_input():  # a slider being dragged: the input changes every call
+                state["i"] += 1
+                return q.default * q.scale * (0.5 + (state["i"] % 100) / 100)
+
+            def model():
+                m = cls(**panel._to_si(cls, {n: v for n, v in values.items()
+                                             if n not in ("principle", "mode", "input")}))
+                curves = chain_curves(m, next_input() / q.scale)
+                m.resolution(1e3)
+                return m, curves
+
+            m, curves = model()
+            rows["model"].append(best_time(model, repeat=3, min_time=0.05))
+            rows["plots"].append(best_time(lambda: panel.figure.update(curves), repeat=3,
+                                           min_time=0.05))
+            rows["scene"].append(best_time(lambda: panel.scene.update(m, next_input() / q.scale),
+                                           repeat=3, min_time=0.05))
+            rows["panel"].append(best_time(lambda: panel.set(input=next_input()), repeat=3,
+                                           min_time=0.05))
+
+            def naive():
+                fig = TransducerFigure(chain_curves(m, next_input() / q.scale))
+                FigureCanvasAgg(fig.fig).draw()
+
+            rows["naive"].append(best_time(naive, repeat=3, number=3))
+        canvas = FigureCanvasAgg(panel.fig)
+        t_draw = best_time(canvas.draw, repeat=3, number=3)
+        keys = list(PRINCIPLES)
+        worst = {name: (max(t), keys[t.index(max(t))]) for name, t in rows.items()}
+        mean = {name: sum(t) / len(t) for name, t in rows.items()}
+        report([
+            ("model (chain, sensitivity, response, noise), mean", mean["model"], None, None),
+            (f"model, slowest ({worst['model'][1]})", worst["model"][0], None, None),
+            ("plots: update line data in place, mean", mean["plots"], None, None),
+            ("scene: update in place (meshcat), mean", mean["scene"], None, None),
+            (f"scene, slowest ({worst['scene'][1]})", worst["scene"][0], None, None),
+            ("TransducerPanel.update (all of it), mean", mean["panel"], TARGET, mean["naive"]),
+            (f"TransducerPanel.update, slowest ({worst['panel'][1]})", worst["panel"][0], TARGET,
+             None),
+            ("(info) Agg draw of the figure's pixels", t_draw, None, None),
+            ("(peer) new figure + Agg draw per update, mean", mean["naive"], None, None),
+        ])
+    finally:
+        close_viewer()
+
+
+if __name__ == "__main__":
+    main()
