@@ -1,8 +1,9 @@
 """Module (d) speed: 1000-point indentation curves for the four tips (target: < 5 ms in total),
-against the named peer, a scalar scipy.optimize.brentq loop solving the same points (target: >= 20x).
+against the named peer, a scalar scipy.optimize.brentq loop solving the same points (target:
+>= 20x).
 
 Both sides solve k (Z_np - Z_s) = F(Z_s) to full precision; the peer calls brentq once per point on
-the bracket [0, Z_np] with the tip's force law (the paper's approach, done with a proper root finder).
+the bracket [0, Z_np] with the tip's force law (the paper's approach, with a proper root finder).
 """
 import math
 import sys
@@ -14,7 +15,8 @@ from scipy.optimize import brentq
 sys.path.insert(0, str(Path(__file__).parent))
 from _timing import best_time, report  # noqa: E402
 
-from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical, indent, reduced_modulus  # noqa: E402
+from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, indent,  # noqa: E402
+                               reduced_modulus)
 
 K, E, NU = 0.1, 1e6, 0.3
 E_STAR = reduced_modulus(E, NU)
@@ -45,7 +47,8 @@ def peer():
 
 def main():
     for tip in TIPS:  # same answers before timing anything
-        np.testing.assert_allclose(indent(Z, K, tip, E, NU).z_s, peer_tip(tip), rtol=1e-12, atol=1e-24)
+        np.testing.assert_allclose(indent(Z, K, tip, E, NU).z_s, peer_tip(tip), rtol=1e-12,
+                                   atol=1e-24)
     rows = []
     for tip in TIPS:
         t = best_time(lambda tip=tip: indent(Z, K, tip, E, NU))

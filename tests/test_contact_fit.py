@@ -1,6 +1,6 @@
-"""Fitting E and the contact point: recovery within the reported uncertainty on synthetic noisy data,
-calibration of that uncertainty over many noise draws, files read with afmformats, the vendor's fit
-of a real JPK curve, and the refusal to fit a curve without contact."""
+"""Fitting E and the contact point: recovery within the reported uncertainty on synthetic noisy
+data, calibration of that uncertainty over many noise draws, files read with afmformats, the
+vendor's fit of a real JPK curve, and the refusal to fit a curve without contact."""
 import math
 from pathlib import Path
 
@@ -75,8 +75,8 @@ def test_no_contact_is_refused():
     with pytest.raises(ValueError, match="no contact"):
         fit_curve(z, np.zeros(z.size), Parabolic(20e-9), NU, spring_constant=K)
     # a curve that stops before the contact point
-    c = synthetic_curve(Parabolic(20e-9), E_TRUE, NU, K, z_np_range=(-300e-9, 40e-9), contact_point=CP,
-                        noise=NOISE, seed=2)
+    c = synthetic_curve(Parabolic(20e-9), E_TRUE, NU, K, z_np_range=(-300e-9, 40e-9),
+                        contact_point=CP, noise=NOISE, seed=2)
     with pytest.raises(ValueError, match="no contact"):
         fit_curve(c.z_np, c.force, Parabolic(20e-9), NU, spring_constant=K)
 
@@ -86,7 +86,8 @@ def test_no_contact_is_refused():
     (dict(force=np.zeros(5)), "force must have"), (dict(tip=None), "tip must be a Tip")])
 def test_fit_bad_input(kwargs, match):
     c = _curve(Parabolic(20e-9), 0)
-    args = dict(position=c.z_np, force=c.force, tip=Parabolic(20e-9), poisson_ratio=NU, spring_constant=K)
+    args = dict(position=c.z_np, force=c.force, tip=Parabolic(20e-9), poisson_ratio=NU,
+                spring_constant=K)
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         fit_curve(**args)
@@ -100,12 +101,13 @@ def test_nan_in_the_curve_is_refused():
         fit_curve(c.z_np, f, Parabolic(20e-9), NU, spring_constant=K)
 
 
-# --- files -------------------------------------------------------------------------------------------
+# --- files ----------------------------------------------------------------------------------------
 def test_round_trip_through_afmformats_tab_export(tmp_path):
     afmformats = pytest.importorskip("afmformats")
     c = _curve(Parabolic(20e-9), 5)
     n = c.z_np.size
-    data = {"force": np.r_[c.force, c.force[::-1]], "height (measured)": np.r_[-c.z_np, -c.z_np[::-1]],
+    data = {"force": np.r_[c.force, c.force[::-1]],
+            "height (measured)": np.r_[-c.z_np, -c.z_np[::-1]],
             "segment": np.r_[np.zeros(n, dtype=np.uint8), np.ones(n, dtype=np.uint8)]}
     path = tmp_path / "synthetic.tab"
     fd = afmformats.AFMForceDistance(data, metadata={"path": path, "enum": 0, "spring constant": K,
@@ -115,7 +117,8 @@ def test_round_trip_through_afmformats_tab_export(tmp_path):
     assert loaded.spring_constant == K
     np.testing.assert_allclose(loaded.z_np, c.z_np, rtol=1e-7, atol=1e-16)  # 8 digits in the file
     np.testing.assert_allclose(loaded.force, c.force, rtol=1e-7, atol=1e-20)
-    r = fit_curve(loaded.z_np, loaded.force, Parabolic(20e-9), NU, spring_constant=loaded.spring_constant)
+    r = fit_curve(loaded.z_np, loaded.force, Parabolic(20e-9), NU,
+                  spring_constant=loaded.spring_constant)
     assert abs(r.youngs_modulus - E_TRUE) <= 3 * r.youngs_modulus_error
 
 

@@ -10,17 +10,18 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, StandardLinearSolid,
-                               approach_retract, hereditary_force, indent, jkr_curve, jkr_instability,
-                               reduced_modulus, residual, surface_displacement,
+                               approach_retract, hereditary_force, indent, jkr_curve,
+                               jkr_instability, reduced_modulus, residual, surface_displacement,
                                viscoelastic_approach_retract)
 
 TIPS = [Parabolic(20e-9), Spherical(500e-9), Conical(math.radians(20)), Pyramidal(math.radians(35))]
 IDS = [t.key for t in TIPS]
 
 
-# --- the solver ------------------------------------------------------------------------------------
+# --- the solver -----------------------------------------------------------------------------------
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
-@pytest.mark.parametrize("k, e", [(0.01, 1e3), (0.1, 1e6), (40.0, 1e9), (1e3, 1.7e11), (1e-3, 1e10)])
+@pytest.mark.parametrize("k, e", [(0.01, 1e3), (0.1, 1e6), (40.0, 1e9), (1e3, 1.7e11),
+                                  (1e-3, 1e10)])
 def test_residual_is_round_off_for_a_whole_curve(tip, k, e):
     nu = 0.3
     e_star = e / (1 - nu ** 2)
@@ -30,12 +31,14 @@ def test_residual_is_round_off_for_a_whole_curve(tip, k, e):
     c = indent(z, k, tip, e, nu)
     inside = z > 0
     # the test's own residual, with F recomputed from Z_s by the public force law
-    res = np.abs(k * (z[inside] - c.z_s[inside]) - tip.force(c.z_s[inside], e_star)) / (k * z[inside])
+    zi, zs = z[inside], c.z_s[inside]
+    res = np.abs(k * (zi - zs) - tip.force(zs, e_star)) / (k * zi)
     assert res.max() <= 1e-12
     np.testing.assert_array_equal(residual(c, k, tip, e, nu)[inside] <= 1e-12, True)
     # bookkeeping: Z_np = Z_s + Z_c and F = k Z_c in contact, nothing before contact
     np.testing.assert_allclose(c.z_s[inside] + c.z_c[inside], z[inside], rtol=1e-14)
-    np.testing.assert_allclose(c.force[inside], k * c.z_c[inside], rtol=1e-9, atol=1e-12 * k * z.max())
+    np.testing.assert_allclose(c.force[inside], k * c.z_c[inside], rtol=1e-9,
+                               atol=1e-12 * k * z.max())
     assert np.all(c.force[~inside] == 0) and np.all(c.z_s[~inside] == 0)
     assert np.all(c.contact_radius[~inside] == 0) and not c.in_contact[~inside].any()
     assert np.all(np.diff(c.force[inside]) > 0)  # monotonic
@@ -47,8 +50,8 @@ def test_solver_equals_scalar_brentq(tip):
     e_star = reduced_modulus(e, nu)
     z = np.geomspace(1e-12, 150e-9, 40)
     c = indent(z, k, tip, e, nu)
-    ref = [brentq(lambda s, zz=zz: k * (zz - s) - tip.force(s, e_star), 0.0, zz, xtol=1e-30, rtol=1e-15)
-           for zz in z]
+    ref = [brentq(lambda s, zz=zz: k * (zz - s) - tip.force(s, e_star), 0.0, zz, xtol=1e-30,
+                  rtol=1e-15) for zz in z]
     np.testing.assert_allclose(c.z_s, ref, rtol=1e-12)
 
 
@@ -95,14 +98,16 @@ def test_approach_retract_bad_input():
     with pytest.raises(ValueError, match="strictly increasing"):
         approach_retract([0.0, 2e-9, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3)
     with pytest.raises(ValueError, match="adhesion must be one of"):
-        approach_retract([0.0, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3, adhesion="maugis", work_of_adhesion=0.1)
+        approach_retract([0.0, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3, adhesion="maugis",
+                         work_of_adhesion=0.1)
     with pytest.raises(ValueError, match="parabolic or spherical"):
-        approach_retract([0.0, 1e-9], 0.1, Conical(0.3), 1e6, 0.3, adhesion="dmt", work_of_adhesion=0.1)
+        approach_retract([0.0, 1e-9], 0.1, Conical(0.3), 1e6, 0.3, adhesion="dmt",
+                         work_of_adhesion=0.1)
     with pytest.raises(ValueError, match="work_of_adhesion must be > 0"):
         approach_retract([0.0, 1e-9], 0.1, Parabolic(1e-8), 1e6, 0.3, adhesion="jkr")
 
 
-# --- adhesion ---------------------------------------------------------------------------------------
+# --- adhesion -------------------------------------------------------------------------------------
 R, W = 50e-9, 0.04  # tip radius (m) and work of adhesion (J/m^2)
 
 
@@ -120,7 +125,8 @@ def test_dmt_pull_off_is_2_pi_r_w(tip):
     assert ar.retract.force.min() <= -published + 2 * k * (z[1] - z[0])
     # hysteresis: at Z_np in (-2 pi R w / k, 0) the retract is in contact, the approach is not
     mid = (ar.retract.z_np < 0) & (ar.retract.z_np > -published / k)
-    assert ar.retract.in_contact[mid].all() and not ar.approach.in_contact[ar.approach.z_np < 0].any()
+    assert ar.retract.in_contact[mid].all()
+    assert not ar.approach.in_contact[ar.approach.z_np < 0].any()
 
 
 def test_jkr_pull_off_limits_are_the_published_values():
@@ -189,7 +195,8 @@ def test_surface_profile_matches_hertz_and_follows_the_tip():
     # Johnson, Contact Mechanics (1985), eq. (3.42b) outside; the paraboloid inside
     out = rho > a
     ro = rho[out]
-    hertz = ((2 * a * a - ro ** 2) * np.arcsin(a / ro) + a * np.sqrt(ro ** 2 - a * a)) / (math.pi * R)
+    hertz = ((2 * a * a - ro ** 2) * np.arcsin(a / ro) + a * np.sqrt(ro ** 2 - a * a)) / (
+        math.pi * R)
     np.testing.assert_allclose(u[out], hertz, rtol=1e-12)
     np.testing.assert_allclose(u[~out], z_s - rho[~out] ** 2 / (2 * R), rtol=1e-12)
     # the cone: Sneddon's closed form cot(a) [a asin(a/rho) - rho + sqrt(rho^2 - a^2)]
@@ -200,14 +207,16 @@ def test_surface_profile_matches_hertz_and_follows_the_tip():
     np.testing.assert_allclose(surface_displacement(cone, z_s, ro), ref, rtol=1e-12)
 
 
-# --- viscoelasticity -------------------------------------------------------------------------------
+# --- viscoelasticity ------------------------------------------------------------------------------
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
 def test_sls_limits_are_the_elastic_curves(tip):
     k, nu, e_inf, e_0 = 0.1, 0.3, 1e6, 4e6
     z = np.linspace(-20e-9, 80e-9, 201)
     speed = 1e-6  # m/s: the ramp lasts 0.1 s
-    fast = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(e_inf, e_0, 1e-15), nu, speed)
-    slow = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(e_inf, e_0, 1e15), nu, speed)
+    fast = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(e_inf, e_0, 1e-15), nu,
+                                         speed)
+    slow = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(e_inf, e_0, 1e15), nu,
+                                         speed)
     relaxed, glassy = indent(z, k, tip, e_inf, nu), indent(z, k, tip, e_0, nu)
     scale = glassy.force.max()
     for cyc, ref in ((fast, relaxed), (slow, glassy)):
@@ -224,7 +233,8 @@ def test_sls_separates_approach_from_retract():
     assert (cyc.approach.force - back).max() > 0.1 * cyc.approach.force.max()
     # bounded by the two elastic curves on approach
     lo, hi = indent(z, k, tip, 1e6, nu).force, indent(z, k, tip, 4e6, nu).force
-    assert np.all(cyc.approach.force >= lo * (1 - 1e-12)) and np.all(cyc.approach.force <= hi * (1 + 1e-12))
+    assert np.all(cyc.approach.force >= lo * (1 - 1e-12))
+    assert np.all(cyc.approach.force <= hi * (1 + 1e-12))
 
 
 def test_hereditary_integral_against_closed_forms():
@@ -249,8 +259,8 @@ def test_hereditary_integral_against_closed_forms():
     b = 4 * math.sqrt(R) / 3 / (1 - nu ** 2)
     for i in (1000, 2500, 4000):
         ti = t[i]
-        ref = quad(lambda s_: float(mat.modulus(ti - s_)) * b * 1.5 * v ** 1.5 * math.sqrt(s_), 0, ti,
-                   epsabs=0, epsrel=1e-12)[0]
+        ref = quad(lambda s_: float(mat.modulus(ti - s_)) * b * 1.5 * v ** 1.5 * math.sqrt(s_),
+                   0, ti, epsabs=0, epsrel=1e-12)[0]
         assert got[i] == pytest.approx(ref, rel=1e-5)
 
 
@@ -260,7 +270,8 @@ def test_sls_bad_input():
     with pytest.raises(ValueError, match="relaxation_time must be > 0"):
         StandardLinearSolid(1e6, 2e6, 0.0)
     with pytest.raises(ValueError, match="speed must be > 0"):
-        viscoelastic_approach_retract([0, 1e-9], 0.1, Parabolic(R), StandardLinearSolid(1e6, 2e6, 1.0), 0.3, 0)
+        viscoelastic_approach_retract([0, 1e-9], 0.1, Parabolic(R),
+                                      StandardLinearSolid(1e6, 2e6, 1.0), 0.3, 0)
 
 
 def test_adhesive_sphere_is_not_indented_past_its_radius():
@@ -278,10 +289,10 @@ def test_adhesive_sphere_is_not_indented_past_its_radius():
     # a soft sample: the JKR neck alone reaches the sphere's equator, no Z_np >= 0 is allowed
     assert z_np_limit(k, tip, 1e6, nu, adhesion="jkr", work_of_adhesion=W) < 0
     for model, limit in (("dmt", dmt), ("jkr", jkr)):
-        ok = approach_retract(np.linspace(-300e-9, 0.999 * limit, 500), k, tip, e, nu, adhesion=model,
-                              work_of_adhesion=W)
+        ok = approach_retract(np.linspace(-300e-9, 0.999 * limit, 500), k, tip, e, nu,
+                              adhesion=model, work_of_adhesion=W)
         assert ok.approach.contact_radius.max() < R
         assert ok.approach.contact_radius.max() > 0.8 * R  # the limit is where the sphere ends
         with pytest.raises(ValueError, match="past its radius"):
-            approach_retract(np.linspace(-300e-9, 1.001 * limit, 500), k, tip, e, nu, adhesion=model,
-                             work_of_adhesion=W)
+            approach_retract(np.linspace(-300e-9, 1.001 * limit, 500), k, tip, e, nu,
+                             adhesion=model, work_of_adhesion=W)

@@ -14,7 +14,8 @@ from afmsmiler.contact import (TIPS, Conical, Parabolic, Pyramidal, Spherical, m
                                reduced_modulus, tip_table)
 
 E_STAR = 2.5e6  # Pa
-TIPS_UNDER_TEST = [Parabolic(35e-9), Spherical(2e-6), Conical(math.radians(25)), Pyramidal(math.radians(35))]
+TIPS_UNDER_TEST = [Parabolic(35e-9), Spherical(2e-6), Conical(math.radians(25)),
+                   Pyramidal(math.radians(35))]
 
 
 # --- the issue's formulas, parametric in r, in 50-digit arithmetic ----------------------------
@@ -51,19 +52,22 @@ def test_force_and_radius_match_the_printed_formulas(tip):
         assert tip.depth_for_radius(r) == pytest.approx(float(z), rel=2e-14)
     # vectorised call equals the scalar calls
     zs = np.array([float(issue_formula(tip, r)[0]) for r in radii])
-    np.testing.assert_allclose(tip.force(zs, E_STAR), [tip.force(z, E_STAR) for z in zs], rtol=2e-15)
+    np.testing.assert_allclose(tip.force(zs, E_STAR), [tip.force(z, E_STAR) for z in zs],
+                               rtol=2e-15)
 
 
 # --- Sneddon's general punch: numerical quadrature --------------------------------------------
 def sneddon_quad(slope, a):
-    """Indentation and force (E* = E_STAR) of a punch with profile slope f'(rho) at contact radius a.
+    """Indentation and force (E* = E_STAR) of a punch of profile slope f'(rho) at contact radius a.
 
-    delta = a int_0^1 f'(a x) / sqrt(1 - x^2) dx,  F = 2 E* a^2 int_0^1 x^2 f'(a x) / sqrt(1 - x^2) dx
+    delta = a int_0^1 f'(a x) / sqrt(1 - x^2) dx,
+    F = 2 E* a^2 int_0^1 x^2 f'(a x) / sqrt(1 - x^2) dx
     """
     w = dict(weight="alg", wvar=(0.0, -0.5), epsabs=0.0, epsrel=1e-13, limit=200)
     # the algebraic weight (1 - x)^-1/2 handles the endpoint; the rest is (1 + x)^-1/2
     d = a * quad(lambda x: slope(a * x) / math.sqrt(1 + x), 0.0, 1.0, **w)[0]
-    f = 2 * E_STAR * a * a * quad(lambda x: x * x * slope(a * x) / math.sqrt(1 + x), 0.0, 1.0, **w)[0]
+    f = 2 * E_STAR * a * a * quad(lambda x: x * x * slope(a * x) / math.sqrt(1 + x), 0.0, 1.0,
+                                  **w)[0]
     return d, f
 
 
@@ -85,7 +89,8 @@ def test_sympy_derivation_of_cone_and_paraboloid_from_sneddon():
     for slope, expected in ((a * x / R, 4 * sp.sqrt(R) / 3 * E * d ** sp.Rational(3, 2)),
                             (1 / sp.tan(al), 2 * sp.tan(al) / sp.pi * E * d ** 2)):
         depth = sp.simplify(a * sp.integrate(slope / sp.sqrt(1 - x ** 2), (x, 0, 1)))
-        force = sp.simplify(2 * E * a ** 2 * sp.integrate(x ** 2 * slope / sp.sqrt(1 - x ** 2), (x, 0, 1)))
+        force = sp.simplify(2 * E * a ** 2 * sp.integrate(x ** 2 * slope / sp.sqrt(1 - x ** 2),
+                                                          (x, 0, 1)))
         a_of_d = sp.solve(sp.Eq(depth, d), a)[0]
         assert sp.simplify(force.subs(a, a_of_d) - expected) == 0
     # the library against the derived closed forms
@@ -115,7 +120,7 @@ def test_contact_stiffness_is_2_e_star_r():
         np.testing.assert_allclose(tip.contact_stiffness(z, E_STAR), numeric, rtol=1e-8)
 
 
-# --- the sphere tends to the paraboloid ------------------------------------------------------------
+# --- the sphere tends to the paraboloid -----------------------------------------------------------
 def test_sphere_tends_to_paraboloid_with_the_sympy_series_correction():
     u, zeta = sp.symbols("u zeta", positive=True)
     # F_sphere / F_paraboloid at the same depth, as a series in zeta = Z_s / R

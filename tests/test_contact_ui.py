@@ -21,7 +21,7 @@ def test_tip_outline_is_the_profile(cls):
     tip = cls()
     x, z = tip_outline(tip, 80e-9)
     assert z.min() == 0.0 and x[np.argmin(z)] == 0.0
-    flank = (x >= 0) & ((x < getattr(tip, "radius", np.inf)) if isinstance(tip, Spherical) else True)
+    flank = (x >= 0) & ((x < tip.radius) if isinstance(tip, Spherical) else True)
     np.testing.assert_allclose(z[flank], tip.profile(x[flank]), rtol=1e-12, atol=1e-20)
     assert np.isclose(z.max(), 80e-9)
 
@@ -46,22 +46,25 @@ def test_contact_figure_shows_the_model():
     assert fig.point.get_ydata()[0] == pytest.approx(cur.force[0] * 1e9)
     # the drawn surface is the model's displacement, the apex at -Z_s
     rho = curves.rho_nm * 1e-9
-    np.testing.assert_allclose(curves.surface_nm, -surface_displacement(tip, cur.z_s[0], np.abs(rho)) * 1e9)
+    u = surface_displacement(tip, cur.z_s[0], np.abs(rho))
+    np.testing.assert_allclose(curves.surface_nm, -u * 1e9)
     assert curves.tip_z_nm.min() == pytest.approx(-cur.z_s[0] * 1e9)
 
 
 def test_cycles_and_fit_figures():
     tip = Parabolic(30e-9)
     z = np.linspace(-200e-9, 50e-9, 200)
-    fig = cycles_figure({"JKR": approach_retract(z, 0.1, tip, 1e6, 0.3, adhesion="jkr", work_of_adhesion=0.02)})
+    cyc = approach_retract(z, 0.1, tip, 1e6, 0.3, adhesion="jkr", work_of_adhesion=0.02)
+    fig = cycles_figure({"JKR": cyc})
     assert len(fig.axes[0].lines) == 3
     ex = fitting_exercise(1)
-    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio, spring_constant=ex.curve.spring_constant)
+    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio,
+                  spring_constant=ex.curve.spring_constant)
     fig = fit_figure(ex.curve, r)
     assert len(fig.axes) == 2
 
 
-# --- scene -----------------------------------------------------------------------------------------
+# --- scene ----------------------------------------------------------------------------------------
 @pytest.mark.parametrize("tip", [Parabolic(20e-9), Spherical(40e-9), Conical(0.4), Pyramidal(0.6)],
                          ids=lambda t: t.key)
 def test_meshes_are_well_formed_and_follow_the_solution(tip):
@@ -73,7 +76,8 @@ def test_meshes_are_well_formed_and_follow_the_solution(tip):
     assert f.max() == v.shape[0] - 1
     assert depth[0] == pytest.approx(cur.z_s[0], rel=1e-12)  # the centre is pushed down by Z_s
     rho = np.hypot(v[:, 0], v[:, 1]).astype(float) * 20e-9
-    np.testing.assert_allclose(depth, surface_displacement(tip, cur.z_s[0], rho), rtol=1e-5, atol=1e-15)
+    np.testing.assert_allclose(depth, surface_displacement(tip, cur.z_s[0], rho), rtol=1e-5,
+                               atol=1e-15)
 
 
 class _Recorder:
@@ -132,7 +136,7 @@ def test_scene_in_the_real_viewer_updates_in_place():
     assert not viewer.viewer_running()
 
 
-# --- panel -----------------------------------------------------------------------------------------
+# --- panel ----------------------------------------------------------------------------------------
 def test_tip_sliders_are_generated_from_the_registry():
     names = {p.name for cls in TIPS.values() for p in cls.parameters}
     assert set(TIP_CONTROLS) == names
@@ -168,7 +172,8 @@ def test_panel_adhesion_and_sphere_limit():
     # the ramp reaches below the snap-off, so the drawn retract leaves the surface
     assert not s.cycle.retract.in_contact[-1]
     # a small sphere: the Z_np slider stops before the sphere is buried; the model never raises
-    panel.set(tip="spherical", radius=5.0, youngs_modulus=1e-3, spring_constant=100.0, adhesion="none")
+    panel.set(tip="spherical", radius=5.0, youngs_modulus=1e-3, spring_constant=100.0,
+              adhesion="none")
     k, e_star = 100.0, reduced_modulus(1e3, 0.3)
     assert panel.controls["z_np"].max < Spherical(5e-9).max_z_np(k, e_star) * 1e9
     panel.set(z_np=BOUNDS["z_np"][1])
@@ -180,7 +185,7 @@ def test_panel_rejects_unknown_controls():
         ContactPanel(stiffness=1.0)
 
 
-# --- exercises -------------------------------------------------------------------------------------
+# --- exercises ------------------------------------------------------------------------------------
 def test_fitting_exercise_checker():
     ex = fitting_exercise(7)
     assert isinstance(ex, FitExercise) and "youngs_modulus" not in repr(ex)
@@ -221,9 +226,10 @@ def test_no_slider_position_makes_the_model_raise(tip):
         for e in ends(c["youngs_modulus"]):
             for value in ends(c[names[0]]):
                 for model in adhesion:
-                    panel.set(spring_constant=k, youngs_modulus=e, poisson_ratio=c["poisson_ratio"].max,
-                              adhesion=model, work_of_adhesion=c["work_of_adhesion"].max,
-                              **{names[0]: value})
+                    panel.set(spring_constant=k, youngs_modulus=e,
+                              poisson_ratio=c["poisson_ratio"].max, adhesion=model,
+                              work_of_adhesion=c["work_of_adhesion"].max, **{names[0]: value})
                     panel.set(z_np=c["z_np"].max)
                     s = panel.last
-                    assert np.isfinite(s.current.force).all() and np.isfinite(s.cycle.retract.force).all()
+                    assert np.isfinite(s.current.force).all()
+                    assert np.isfinite(s.cycle.retract.force).all()

@@ -21,6 +21,6 @@ from .viscoelastic import (StandardLinearSolid, ViscoelasticCycle, hereditary_fo
 __all__ = ["TIPS", "Tip", "TipParameter", "Parabolic", "Spherical", "Conical", "Pyramidal",
            "make_tip", "reduced_modulus", "tip_table", "IndentationCurve", "ApproachRetract",
            "indent", "approach_retract", "residual", "ADHESION_MODELS", "jkr_curve",
-           "jkr_instability", "z_np_limit", "StandardLinearSolid", "ViscoelasticCycle", "hereditary_force",
-           "viscoelastic_approach_retract", "ForceCurve", "FitResult", "synthetic_curve",
-           "load_curve", "fit_curve", "surface_displacement"]
+           "jkr_instability", "z_np_limit", "StandardLinearSolid", "ViscoelasticCycle",
+           "hereditary_force", "viscoelastic_approach_retract", "ForceCurve", "FitResult",
+           "synthetic_curve", "load_curve", "fit_curve", "surface_displacement"]

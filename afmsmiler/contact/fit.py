@@ -97,8 +97,9 @@ class FitResult:
     model_force: np.ndarray = field(repr=False)
 
 
-def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *, z_np_range=(-100e-9, 200e-9),
-                    points=1000, contact_point=0.0, baseline=0.0, noise=0.0, seed=None) -> ForceCurve:
+def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *,
+                    z_np_range=(-100e-9, 200e-9), points=1000, contact_point=0.0, baseline=0.0,
+                    noise=0.0, seed=None) -> ForceCurve:
     """An approach curve from the exact model, with optional Gaussian force noise.
 
     Parameters
@@ -173,7 +174,8 @@ def load_curve(path, *, segment="approach", index=0) -> ForceCurve:
     index = check_integer("index", index, 0, len(data) - 1)
     fd = data[index]
     seg = fd.appr if segment == "approach" else fd.retr
-    height = seg["height (measured)"] if "height (measured)" in fd.columns else seg["height (piezo)"]
+    column = "height (measured)" if "height (measured)" in fd.columns else "height (piezo)"
+    height = seg[column]
     k = fd.metadata.get("spring constant") if hasattr(fd.metadata, "get") else None
     k = float(k) if k is not None and math.isfinite(float(k)) and k > 0 else None
     return ForceCurve(-np.asarray(height, dtype=float), np.asarray(seg["force"], dtype=float), k,
@@ -181,7 +183,7 @@ def load_curve(path, *, segment="approach", index=0) -> ForceCurve:
 
 
 def _baseline_stats(x, force):
-    """Median and robust standard deviation of the first 40 % of the curve (the non-contact part)."""
+    """Median and robust standard deviation of the first 40 % of the curve (off contact)."""
     n = max(5, int(0.4 * x.size))
     head = force[:n]
     med = float(np.median(head))
@@ -228,7 +230,9 @@ def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> F
     if not isinstance(tip, Tip):
         raise ValueError(f"tip must be a Tip, got {tip!r}")
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
-    k = None if spring_constant is None else check_positive("spring_constant", spring_constant, "N/m")
+    k = None
+    if spring_constant is not None:
+        k = check_positive("spring_constant", spring_constant, "N/m")
     order = np.argsort(x, kind="stable")
     x, f = x[order], f[order]
     scale_nu = 1.0 - nu * nu
@@ -249,7 +253,8 @@ def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> F
     x0_guess = float(x[last_below[-1]]) if last_below.size else float(x[0])
     depth = float(x[-1] - x0_guess)
     if depth <= 0:
-        raise ValueError("the curve shows no contact: no indentation after the estimated contact point")
+        raise ValueError("the curve shows no contact: no indentation after the estimated "
+                         "contact point")
     f_scale = max(float(rise[-1]), floor)
     limit = tip.depth_limit
     d_end = depth - (f_scale / k if k else 0.0)

@@ -121,7 +121,8 @@ def _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio):
     z = check_array("z_np", z_np, "m")
     k = check_positive("spring_constant", spring_constant, "N/m")
     if not isinstance(tip, Tip):
-        raise ValueError(f"tip must be a Tip (Parabolic, Spherical, Conical, Pyramidal), got {tip!r}")
+        raise ValueError(
+            f"tip must be a Tip (Parabolic, Spherical, Conical, Pyramidal), got {tip!r}")
     e_star = reduced_modulus(youngs_modulus, poisson_ratio)
     return z, k, e_star
 
@@ -131,9 +132,9 @@ def _check_depth(tip, z, k, e_star):
         limit = tip.max_z_np(k, e_star)
         if z.max() > limit:
             raise ValueError(
-                f"z_np must be <= {limit:g} m for this sphere (R = {tip.radius:g} m, k = {k:g} N/m, "
-                f"E* = {e_star:g} Pa): beyond it the sphere would be indented past its radius, "
-                f"got {z.max():g}")
+                f"z_np must be <= {limit:g} m for this sphere (R = {tip.radius:g} m, "
+                f"k = {k:g} N/m, E* = {e_star:g} Pa): beyond it the sphere would be indented "
+                f"past its radius, got {z.max():g}")
 
 
 def _elastic(tip, z, k, e_star) -> IndentationCurve:
@@ -221,7 +222,8 @@ def residual(curve: IndentationCurve, spring_constant, tip, youngs_modulus, pois
 # --- adhesion -----------------------------------------------------------------------------------
 def _adhesive_radius(tip) -> float:
     if not isinstance(tip, (Parabolic, Spherical)):
-        raise ValueError(f"adhesion (DMT, JKR) needs a parabolic or spherical tip, got {type(tip).__name__}")
+        raise ValueError("adhesion (DMT, JKR) needs a parabolic or spherical tip, "
+                         f"got {type(tip).__name__}")
     return tip.radius
 
 
@@ -236,7 +238,8 @@ def _jkr_terms(a, radius, w, e_star, k):
     return z_s, force, dz
 
 
-def jkr_instability(spring_constant, radius, work_of_adhesion, reduced_modulus) -> tuple[float, float, float]:
+def jkr_instability(spring_constant, radius, work_of_adhesion,
+                    reduced_modulus) -> tuple[float, float, float]:
     """The JKR snap-off point with a lever: the minimum of Z_np(a) = Z_s(a) + F(a) / k.
 
     Parameters
@@ -279,7 +282,8 @@ def jkr_instability(spring_constant, radius, work_of_adhesion, reduced_modulus) 
     return a, float(z_s + force / k), float(force)
 
 
-def jkr_curve(contact_radius, radius, work_of_adhesion, reduced_modulus) -> tuple[np.ndarray, np.ndarray]:
+def jkr_curve(contact_radius, radius, work_of_adhesion,
+              reduced_modulus) -> tuple[np.ndarray, np.ndarray]:
     """JKR indentation Z_s(a) and force F(a) for contact radii ``a``.
 
     Parameters
@@ -428,9 +432,9 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
     limit = z_np_limit(k, tip, youngs_modulus, poisson_ratio, adhesion=adhesion, work_of_adhesion=w)
     if z.max() >= limit:
         raise ValueError(
-            f"z_np must be < {limit:g} m for this sphere (R = {radius:g} m) with {adhesion.upper()} "
-            f"adhesion (w = {w:g} J/m^2, k = {k:g} N/m): beyond it the sphere would be indented "
-            f"past its radius, got {z.max():g}")
+            f"z_np must be < {limit:g} m for this sphere (R = {radius:g} m) with "
+            f"{adhesion.upper()} adhesion (w = {w:g} J/m^2, k = {k:g} N/m): beyond it the sphere "
+            f"would be indented past its radius, got {z.max():g}")
     rz = z[::-1]
     if adhesion == "dmt":
         f_ad = 2.0 * math.pi * radius * w
@@ -451,12 +455,13 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
         force = np.zeros_like(zz)
         a = np.zeros_like(zz)
         if contact.any():
-            z_s[contact], force[contact], a[contact] = _jkr_stable(zz[contact], k, radius, w, e_star,
-                                                                   a_min, z_min)
+            z_s[contact], force[contact], a[contact] = _jkr_stable(
+                zz[contact], k, radius, w, e_star, a_min, z_min)
         return _branch(zz, k, z_s, force, a, contact)
 
     # the most adhesive point of the stable branch: dF/da = 0 at a^3 = 9 pi w R^2 / (8 E*) when
     # it lies on the branch (it always does: there dZ_s/da > 0), else the snap-off point
     a_c = max(a_min, (9.0 * math.pi * w * radius ** 2 / (8.0 * e_star)) ** (1.0 / 3.0))
     f_c = float(_jkr_terms(np.array(a_c), radius, w, e_star, k)[1])
-    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), -min(f_c, f_min), f_min, z_min, "jkr")
+    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), -min(f_c, f_min), f_min, z_min,
+                           "jkr")

@@ -1,4 +1,4 @@
-"""Tip shapes of module (d): force F(Z_s) and contact radius r(Z_s) of a rigid tip on an elastic sample.
+"""Tip shapes of module (d): force F(Z_s) and contact radius r(Z_s) of a rigid tip on a sample.
 
 A rigid, frictionless, axisymmetric (or, for the pyramid, four-sided) tip pressed by Z_s into an
 elastic half-space of Young's modulus E and Poisson's ratio nu feels the force F(Z_s), with the
@@ -495,7 +495,8 @@ class Conical(_PowerLaw):
     half_angle: float = math.radians(20.0)
     key: ClassVar[str] = "conical"
     title: ClassVar[str] = "cone (Sneddon)"
-    formula: ClassVar[str] = r"F = E^* \frac{2\tan\alpha}{\pi} Z_s^2,\quad Z_s = \frac{\pi r}{2\tan\alpha}"
+    formula: ClassVar[str] = (r"F = E^* \frac{2\tan\alpha}{\pi} Z_s^2,\quad "
+                              r"Z_s = \frac{\pi r}{2\tan\alpha}")
     parameters: ClassVar[tuple[TipParameter, ...]] = (
         TipParameter("half_angle", "half opening angle", "rad", math.radians(20.0), 0.0,
                      math.pi / 2, "deg", math.pi / 180, math.radians(5.0), math.radians(85.0)),)
@@ -587,18 +588,20 @@ def make_tip(key: str, **parameters) -> Tip:
     names = {p.name for p in cls.parameters}
     unknown = set(parameters) - names
     if unknown:
-        raise TypeError(f"{cls.__name__} has no parameter(s) {sorted(unknown)}; valid: {sorted(names)}")
+        raise TypeError(f"{cls.__name__} has no parameter(s) {sorted(unknown)}; "
+                        f"valid: {sorted(names)}")
     return cls(**parameters)
 
 
 def tip_table() -> str:
-    """A Markdown table of the registry: tip, formula, parameters with units, defaults and ranges."""
+    """A Markdown table of the registry: tip, formula, parameters, units, defaults, ranges."""
     rows = ["| key | tip | F(Z_s), r(Z_s) | parameter | default | valid range |",
             "|---|---|---|---|---|---|"]
     for key, cls in TIPS.items():
         for p in cls.parameters:
             d = p.display_scale
             high = "inf" if not math.isfinite(p.high) else f"{p.high / d:g}"
-            rows.append(f"| `{key}` | {cls.title} | ${cls.formula}$ | {p.label} [{p.display_unit}] | "
-                        f"{p.default / d:g} | ({p.low / d:g}, {high}) |")
+            rows.append(f"| `{key}` | {cls.title} | ${cls.formula}$ | "
+                        f"{p.label} [{p.display_unit}] | {p.default / d:g} | "
+                        f"({p.low / d:g}, {high}) |")
     return "\n".join(rows)

@@ -65,8 +65,8 @@ class StandardLinearSolid:
 
     def __post_init__(self):
         e_inf = check_positive("relaxed_modulus", self.relaxed_modulus, "Pa")
-        e_0 = check_range("instantaneous_modulus", self.instantaneous_modulus, e_inf, math.inf, "Pa",
-                          high_inclusive=False)
+        e_0 = check_range("instantaneous_modulus", self.instantaneous_modulus, e_inf, math.inf,
+                          "Pa", high_inclusive=False)
         tau = check_positive("relaxation_time", self.relaxation_time, "s")
         object.__setattr__(self, "relaxed_modulus", e_inf)
         object.__setattr__(self, "instantaneous_modulus", e_0)

@@ -168,5 +168,6 @@ def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
             "Johnson-Kendall-Roberts 1971). Give the magnitude in N.")
     if answer is None:
         return Feedback(False, f"enter the pull-off force in N. {hint}")
-    return check_close(f"{model.upper()} pull-off force", answer, cycle.pull_off_force, rtol, "N", hint)
+    return check_close(f"{model.upper()} pull-off force", answer, cycle.pull_off_force, rtol, "N",
+                       hint)
 

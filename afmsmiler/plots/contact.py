@@ -2,7 +2,8 @@
 
 Units shown: lengths in nm, forces in nN (:data:`UNITS`). :func:`contact_curves` samples the model
 results of one panel state and converts them; :class:`ContactFigure` draws them once and
-:meth:`ContactFigure.update` swaps the line data in place, so a widget panel never rebuilds a figure.
+:meth:`ContactFigure.update` swaps the line data in place, so a widget panel never rebuilds a
+figure.
 """
 from __future__ import annotations
 
@@ -91,8 +92,9 @@ def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=Non
         ax.fill_between(x * s, z * s, height * s, color=_COLORS["tip"], alpha=0.35, lw=0)
         ax.plot(x * s, z * s, color=_COLORS["tip"], lw=1.5)
         ax.axhline(0.0, color=_COLORS["sample"], lw=2)
-        params = ", ".join(f"{p.label} {getattr(tip, p.name) / p.display_scale:.3g} {p.display_unit}"
-                           for p in tip.parameters)
+        params = ", ".join(
+            f"{p.label} {getattr(tip, p.name) / p.display_scale:.3g} {p.display_unit}"
+            for p in tip.parameters)
         ax.set_title(f"{tip.title}\n{params}", fontsize=9)
         ax.set_aspect("equal")
         ax.set_xlabel("x [nm]")
@@ -195,7 +197,8 @@ class ContactFigure:
 
     def __init__(self, curves: ContactCurves, fig=None):
         self.fig = fig or Figure(figsize=DEFAULTS["figsize"])
-        self.ax_curve, self.ax_contact = self.fig.subplots(1, 2, gridspec_kw=dict(width_ratios=[1.3, 1]))
+        self.ax_curve, self.ax_contact = self.fig.subplots(
+            1, 2, gridspec_kw=dict(width_ratios=[1.3, 1]))
         ax = self.ax_curve
         (self.approach,) = ax.plot([], [], color=_COLORS["approach"], label="approach")
         (self.retract,) = ax.plot([], [], "--", color=_COLORS["retract"], label="retract")
@@ -258,8 +261,10 @@ def cycles_figure(cycles, fig=None) -> Figure:
     s, f = UNITS["length"], UNITS["force"]
     for i, (label, cyc) in enumerate(cycles.items()):
         color = f"C{i}"
-        ax.plot(cyc.approach.z_np * s, cyc.approach.force * f, color=color, label=f"{label}: approach")
-        ax.plot(cyc.retract.z_np * s, cyc.retract.force * f, "--", color=color, label=f"{label}: retract")
+        ax.plot(cyc.approach.z_np * s, cyc.approach.force * f, color=color,
+                label=f"{label}: approach")
+        ax.plot(cyc.retract.z_np * s, cyc.retract.force * f, "--", color=color,
+                label=f"{label}: retract")
     ax.axhline(0.0, color="0.7", lw=0.8)
     ax.set_xlabel("nano-positioner displacement Z_np [nm]")
     ax.set_ylabel("tip-sample force F [nN]")

@@ -190,7 +190,8 @@ class ContactScene:
         v, f, depth = surface_mesh(tip, current, self.extent, self.unit)
         limit = P.nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
         if limit != self.depth_scale.vmax:
-            self.depth_scale = P.ColorScale(0.0, limit, cmap="viridis_r", label="depression", unit="nm")
+            self.depth_scale = P.ColorScale(0.0, limit, cmap="viridis_r", label="depression",
+                                            unit="nm")
         colors = self.depth_scale.rgb(depth * 1e9)
         self.vis["surface"].set_object(g.TriangularMeshGeometry(v, f, colors),
                                        g.MeshLambertMaterial(vertexColors=True, side=2))

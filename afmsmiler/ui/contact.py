@@ -128,14 +128,15 @@ class ContactPanel(Panel):
             raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(valid)}")
         v = {**DEFAULTS, **initial}
         b = BOUNDS
-        controls = dict(tip=widgets.Dropdown(options=[(cls.title, key) for key, cls in TIPS.items()],
-                                             value=v["tip"], description="tip"))
+        options = [(cls.title, key) for key, cls in TIPS.items()]
+        controls = dict(tip=widgets.Dropdown(options=options, value=v["tip"], description="tip"))
         for name, p in TIP_CONTROLS.items():
             controls[name] = _tip_slider(p)
             if name in initial:
                 controls[name].value = initial[name]
         controls.update(
-            spring_constant=log_slider("k", v["spring_constant"], *b["spring_constant"], unit="N/m"),
+            spring_constant=log_slider("k", v["spring_constant"], *b["spring_constant"],
+                                       unit="N/m"),
             youngs_modulus=log_slider("E", v["youngs_modulus"], *b["youngs_modulus"], unit="MPa"),
             poisson_ratio=slider("nu", v["poisson_ratio"], *b["poisson_ratio"], step=0.01),
             z_np=slider("Z_np", v["z_np"], *b["z_np"], step=0.5, unit="nm"),
@@ -201,7 +202,8 @@ class ContactPanel(Panel):
         cycle = approach_retract(np.linspace(z_lo, z_hi, _RAMP_POINTS), k, shape, e, nu, **kwargs)
         here = approach_retract(np.array([z_now - 1e-9, z_now]), k, shape, e, nu, **kwargs)
         current = _point(here.approach, 1)
-        extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])), 30e-9)
+        extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
+                     30e-9)
         curves = contact_curves(cycle, current, shape, extent)
         if self.figure is None:
             self.figure = ContactFigure(curves, fig=self.fig)
@@ -224,7 +226,8 @@ class ContactPanel(Panel):
                 ("indentation Z_s", f"{float(c.z_s[0]) * 1e9:.4g} nm"),
                 ("lever deflection Z_c", f"{float(c.z_c[0]) * 1e9:.4g} nm"),
                 ("contact radius r", f"{float(c.contact_radius[0]) * 1e9:.4g} nm"),
-                ("reduced modulus E*", f"{reduced_modulus(s.youngs_modulus, s.poisson_ratio) / 1e6:.4g} MPa")]
+                ("reduced modulus E*",
+                 f"{reduced_modulus(s.youngs_modulus, s.poisson_ratio) / 1e6:.4g} MPa")]
         if s.adhesion:
             rows.append(("pull-off force", f"{s.cycle.pull_off_force * 1e9:.4g} nN"))
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
