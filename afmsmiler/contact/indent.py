@@ -142,9 +142,9 @@ def _elastic(tip, z, k, e_star) -> IndentationCurve:
     z_s, force, radius = np.zeros_like(z), np.zeros_like(z), np.zeros_like(z)
     if contact.any():
         z_s[contact], psi, radius[contact] = tip._solve_state(z[contact], k, e_star)
-        force[contact] = e_star * psi  # the contact law (equal to k Z_c to round-off)
-    z_c = np.where(contact, z - z_s, 0.0)
-    return IndentationCurve(z, z_s, z_c, force, radius, contact)
+        force[contact] = e_star * psi
+    # Z_c = F / k rather than Z_np - Z_s, which would lose digits when Z_s ~ Z_np (soft samples)
+    return IndentationCurve(z, z_s, force / k, force, radius, contact)
 
 
 def indent(z_np, spring_constant, tip, youngs_modulus, poisson_ratio) -> IndentationCurve:
