@@ -82,8 +82,6 @@ def test_signal_class_follows_from_the_physics(key):
         assert all(v == 0 for v in dc.values())
     else:
         assert any(v == 0 for v in dc.values()) and any(v > 0 for v in dc.values())
-    assert {"sensing": "sensing", "actuation": "actuation"}.get(
-        model.function, "both") == model.function
     assert set(model.MODES) == ({"sensing", "actuation"} if model.function == "both"
                                 else {model.function})
 
@@ -471,6 +469,31 @@ def test_parallel_plate_gradient_and_distributed_load():
     assert chain.output.values[0] < 0
     assert model.sensitivity(at=10.0) == pytest.approx(model.compliance[0] * model.capacitance_gradient
                                                        * 10.0, rel=1e-12)
+
+
+def test_pull_in_voltage_against_sympy():
+    # spring k against the parallel-plate pull eps0 A V^2 / (2 (g - x)^2): the equilibrium is lost
+    # where the total stiffness vanishes too (Senturia, Microsystem Design, sec. 6.4)
+    x, k, g, c, v = sp.symbols("x k g c V", positive=True)     # c = eps0 A
+    net = k * x - c * v ** 2 / (2 * (g - x) ** 2)
+    sol = sp.solve([net, sp.diff(net, x)], [x, v], dict=True)
+    assert sol == [{x: g / 3, v: sp.sqrt(8 * k * g ** 3 / (27 * c))}]
+    model = Electrostatic(gap=2e-6)
+    subs = {k: 1 / model.compliance[0], g: 2e-6,
+            c: 8.8541878128e-12 * model.width * model.electrode_length}
+    assert model.pull_in_voltage == pytest.approx(float(sol[0][v].subs(subs)), rel=1e-12)
+
+
+def test_models_say_where_their_assumptions_fail():
+    assert Electrostatic().validity(5.0) == ()
+    (note,) = Electrostatic(gap=0.5e-6).validity(20.0)
+    assert "pull-in" in note
+    assert Electrothermal().validity(1.0) == ()
+    # 5 V on 100 ohm is 250 mW: P L / (2 G) is far beyond 300 K
+    assert "K above ambient" in Electrothermal(resistance=100.0).validity(5.0)[0]
+    assert OpticalBeamDeflection().validity(1e-6) == ()
+    with pytest.raises(ValueError, match="^dc_voltage must be in"):
+        Electrostatic().validity(100.0)
 
 
 # --- electromagnetic ---------------------------------------------------------------------------------------

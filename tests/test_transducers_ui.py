@@ -77,6 +77,9 @@ def test_actuator_chain_and_readout(panel):
     x, f_nn = panel.figure.lines["left"].get_data()
     assert f_nn[np.argmin(np.abs(np.asarray(x) - 10.0))] == pytest.approx(force * 1e9, rel=1e-9)
     assert "nm/V" in panel.readout.value and "resolution" in panel.readout.value
+    assert "pull-in" not in panel.readout.value
+    panel.set(gap=0.5, input=20.0)
+    assert "pull-in" in panel.readout.value
 
 
 def test_piezoelectric_offers_both_modes(panel):

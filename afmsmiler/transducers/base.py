@@ -588,7 +588,26 @@ class Transducer:
             contributions["thermal"] = z_th / static if static > 0 else math.inf
         return Resolution(bandwidth, self.INPUTS[mode], contributions)
 
+    def validity(self, value, mode=None) -> tuple:
+        """Where the model's assumptions fail at input ``value`` (SI): a tuple of messages.
+
+        Empty when the model holds (the default); e.g. the electrostatic model past pull-in, or a
+        bimorph heated by hundreds of kelvin.
+
+        Parameters
+        ----------
+        value : float
+            The input in SI units.
+        mode : str, optional
+            As for :meth:`chain`.
+        """
+        mode = self._mode(mode)
+        return tuple(self._validity(self.INPUTS[mode].check(value), mode))
+
     # -- to implement -----------------------------------------------------------------------
+    def _validity(self, value: float, mode: str):
+        return ()
+
     def _stages(self, x: np.ndarray, mode: str):  # pragma: no cover - abstract
         raise NotImplementedError
 

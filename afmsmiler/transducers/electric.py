@@ -28,8 +28,8 @@ class Electrostatic(Transducer):
         z(L) = q (3 L^4 / 4 - L a^3 + a^4 / 4) / (6 E J),     theta(L) = q (L^3 - a^3) / (6 E J)
 
     (the end-load values F / k and 3 F / (2 k L) when l_e -> 0; q L^4 / (8 E J) when l_e = L).
-    Small deflections (|z| << g): the gap change, the electrostatic spring softening and pull-in
-    (at z = -g/3) are not modelled.
+    Small deflections (|z| << g): the gap change and the electrostatic spring softening are not
+    modelled; :attr:`pull_in_voltage` says where that stops being true.
     """
 
     key = "electrostatic"
@@ -61,6 +61,24 @@ class Electrostatic(Transducer):
         q = 1.0 / self.electrode_length
         return (q * (0.75 * L ** 4 - L * a ** 3 + a ** 4 / 4) / (6 * ei),
                 q * (L ** 3 - a ** 3) / (6 * ei))
+
+    @property
+    def pull_in_voltage(self) -> float:
+        """Pull-in voltage sqrt(8 k_e g^3 / (27 epsilon_0 A)) in V (Senturia, sec. 6.4).
+
+        Beyond it the electrode snaps the lever down (at z = -g/3); k_e = 1 / compliance is the
+        lever's stiffness against the load on the electrode. The model is only meaningful well
+        below it.
+        """
+        k_e = 1.0 / self.compliance[0]
+        area = self.width * self.electrode_length
+        return math.sqrt(8 * k_e * self.gap ** 3 / (27 * EPSILON_0 * area))
+
+    def _validity(self, value, mode):
+        peak = abs(value) + self.ac_voltage
+        if peak >= self.pull_in_voltage:
+            yield (f"|V_dc| + V_ac = {peak:.3g} V is past pull-in ({self.pull_in_voltage:.3g} V): "
+                   f"the lever would snap onto the electrode")
 
     def force_components(self, dc_voltage: float) -> Harmonics:
         """DC, 1-omega and 2-omega force amplitudes in N for a bias ``dc_voltage`` (V)."""

@@ -170,6 +170,15 @@ class _Bimorph(Transducer):
     def _dynamics(self, f, mode):
         return self.thermal_lag(f)
 
+    #: Largest temperature rise (K) for which constant material properties are a fair model.
+    MAX_TEMPERATURE_RISE = 300.0
+
+    def _validity(self, value, mode):
+        rise = float(self.chain(value, mode).stage("tip_temperature").values)
+        if rise > self.MAX_TEMPERATURE_RISE:
+            yield (f"the tip is {rise:.0f} K above ambient: the linear, constant-property model "
+                   f"no longer holds")
+
 
 class Photothermal(_Bimorph):
     """Photothermal actuation: a laser spot at the free end heats the gold-coated lever.
@@ -215,7 +224,8 @@ class Electrothermal(_Bimorph):
     so an unbiased drive (V_dc = 0) moves the lever at 2 omega only, and the 1-omega gain is
     proportional to the bias. The heat, spread along the lever, gives Delta T(x) =
     P (L x - x^2/2) / (L G) and, through the silicon/aluminium bimorph, z = -C P L^3 / (8 G),
-    low-passed by the thermal time constant tau (Pedrak et al., J. Vac. Sci. Technol. B 21, 3102
+    low-passed by the thermal time constant tau; the model is linear (properties do not change
+    with temperature, nothing melts), so keep the temperature rise readout plausible (Pedrak et al., J. Vac. Sci. Technol. B 21, 3102
     (2003); Rangelow et al., "active cantilevers"). The chain's input is the DC heater voltage;
     the AC amplitude is a parameter whose rectified part V_ac^2 / (2 R) adds to the DC heat.
     """

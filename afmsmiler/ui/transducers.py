@@ -287,7 +287,9 @@ class TransducerPanel(Panel):
                   if math.isfinite(total) else "no small-signal response here"))]
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
-        return f"<div><i>{m.summary}</i></div><table>{table}</table>"
+        notes = "".join(f"<div style='color:#b00'>{n}</div>"
+                        for n in m.validity(s.value, s.mode))
+        return f"<div><i>{m.summary}</i></div><table>{table}</table>{notes}"
 
     def widget(self) -> widgets.Widget:
         """Selector, mode, sliders and readout on the left, the figure below."""
