@@ -116,8 +116,13 @@ class TipParameter:
                            high_inclusive=False)
 
 
+# the registry's parameters, with their defaults, in one place
 _RADIUS = TipParameter("radius", "tip radius", "m", 20e-9, 0.0, math.inf, "nm", 1e-9,
                        1e-9, 5e-6, log=True)
+_HALF_ANGLE = TipParameter("half_angle", "half opening angle", "rad", math.radians(20.0), 0.0,
+                           math.pi / 2, "deg", math.pi / 180, math.radians(5.0), math.radians(85.0))
+_FACE_ANGLE = TipParameter("face_angle", "face angle", "rad", math.radians(35.0), 0.0, math.pi / 2,
+                           "deg", math.pi / 180, math.radians(5.0), math.radians(85.0))
 
 
 class Tip:
@@ -492,14 +497,12 @@ class Conical(_PowerLaw):
         If ``half_angle`` is outside (0, pi/2).
     """
 
-    half_angle: float = math.radians(20.0)
+    half_angle: float = _HALF_ANGLE.default
     key: ClassVar[str] = "conical"
     title: ClassVar[str] = "cone (Sneddon)"
     formula: ClassVar[str] = (r"F = E^* \frac{2\tan\alpha}{\pi} Z_s^2,\quad "
                               r"Z_s = \frac{\pi r}{2\tan\alpha}")
-    parameters: ClassVar[tuple[TipParameter, ...]] = (
-        TipParameter("half_angle", "half opening angle", "rad", math.radians(20.0), 0.0,
-                     math.pi / 2, "deg", math.pi / 180, math.radians(5.0), math.radians(85.0)),)
+    parameters: ClassVar[tuple[TipParameter, ...]] = (_HALF_ANGLE,)
 
     def _coefficients(self):
         t = math.tan(self.half_angle)
@@ -533,14 +536,12 @@ class Pyramidal(_PowerLaw):
         If ``face_angle`` is outside (0, pi/2).
     """
 
-    face_angle: float = math.radians(35.0)
+    face_angle: float = _FACE_ANGLE.default
     key: ClassVar[str] = "pyramidal"
     title: ClassVar[str] = "four-sided pyramid (Bilodeau)"
     formula: ClassVar[str] = (r"F = E^* \frac{\tan\beta}{\sqrt{2}} Z_s^2,\quad "
                               r"Z_s = \frac{\sqrt{2}\, r}{\tan\beta}")
-    parameters: ClassVar[tuple[TipParameter, ...]] = (
-        TipParameter("face_angle", "face angle", "rad", math.radians(35.0), 0.0, math.pi / 2,
-                     "deg", math.pi / 180, math.radians(5.0), math.radians(85.0)),)
+    parameters: ClassVar[tuple[TipParameter, ...]] = (_FACE_ANGLE,)
 
     def _coefficients(self):
         t = math.tan(self.face_angle)
