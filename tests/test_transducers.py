@@ -86,7 +86,7 @@ def test_signal_class_follows_from_the_physics(key):
                                 else {model.function})
 
 
-# --- the metadata (nanite-style: every model described by data) -----------------------------------
+# --- the metadata (nanite-style: every model described by data) ----------------------------------
 @pytest.mark.parametrize("key", list(PRINCIPLES))
 def test_metadata_is_complete(key):
     cls = PRINCIPLES[key]
@@ -113,7 +113,7 @@ def test_metadata_is_complete(key):
         assert res.total > 0 and res.quantity is q and "thermal" in res.contributions
 
 
-# --- the lever's dynamics and its thermal floor -----------------------------------------------------
+# --- the lever's dynamics and its thermal floor --------------------------------------------------
 def test_mechanical_response_is_a_damped_oscillator():
     # python-control: G(s) = w1^2 / (s^2 + (w1/Q) s + w1^2)
     f1, q = 80e3, 150.0
@@ -134,7 +134,7 @@ def test_thermal_floor_integrates_to_equipartition():
     assert total == pytest.approx(BOLTZMANN * model.temperature / model.spring_constant, rel=1e-6)
 
 
-# --- optical beam deflection ------------------------------------------------------------------------
+# --- optical beam deflection ---------------------------------------------------------------------
 def test_free_end_slope_is_three_halves_z_over_l():
     model = OpticalBeamDeflection()
     lever = model.lever
@@ -204,7 +204,7 @@ def test_optical_lever_shot_noise():
     assert res.total == pytest.approx(math.hypot(expected, res.contributions["thermal"]))
 
 
-# --- astigmatic detection ----------------------------------------------------------------------------
+# --- astigmatic detection ------------------------------------------------------------------------
 def _fes_by_integration(wx, wy):
     """((A+C)-(B+D))/sum for an elliptical Gaussian on quadrants split along the diagonals."""
     def density(phi):  # angular density of an elliptical Gaussian (integrated over radius)
@@ -250,7 +250,7 @@ def test_astigmatic_s_curve_and_slope_against_sympy():
     assert 0.5e-6 < peak < 5e-6
 
 
-# --- interferometry ------------------------------------------------------------------------------------
+# --- interferometry ------------------------------------------------------------------------------
 def test_interferometer_quadrature_slope_and_nonlinearity():
     model = Interferometer(wavelength=633e-9, visibility=0.9, power=200e-6)
     # textbook: dP/dd at quadrature = 4 pi V P0 / lambda (Rugar et al. 1989)
@@ -267,7 +267,7 @@ def test_interferometer_quadrature_slope_and_nonlinearity():
     assert abs(model.replace(phase=0.0).sensitivity()) < 1e-20
 
 
-# --- piezo-acoustic base excitation -------------------------------------------------------------------
+# --- piezo-acoustic base excitation --------------------------------------------------------------
 def test_participation_factor_is_the_published_value():
     # Erturk and Inman, J. Intell. Mater. Syst. Struct. 19, 1311 (2008): 1.566 for mode 1
     assert participation_factor() == pytest.approx(1.566, abs=5e-4)
@@ -302,7 +302,7 @@ def test_base_excitation_against_python_control():
     assert m.respond(2.0) == pytest.approx(2.0 * 1e-9 * 1.566 * 80, rel=1e-3)
 
 
-# --- photothermal and electrothermal bimorphs ----------------------------------------------------------
+# --- photothermal and electrothermal bimorphs ----------------------------------------------------
 def test_timoshenko_curvature_against_sympy_bilayer():
     """Derive the bilayer from force and moment balance plus strain compatibility."""
     a1, a2, t1, t2, e1, e2, dT, P, kap, w = sp.symbols(
@@ -425,7 +425,7 @@ def test_electrothermal_power_harmonics_against_sympy_and_fft():
     assert abs(slow.first) / 1.5 == pytest.approx(abs(model.sensitivity(at=0.8)), rel=1e-6)
 
 
-# --- electrostatic ---------------------------------------------------------------------------------------
+# --- electrostatic -------------------------------------------------------------------------------
 def test_electrostatic_harmonics_against_sympy():
     th, vdc, vac, dc_dz = sp.symbols("theta V_dc V_ac Cprime", real=True)
     dc, first, second = _fourier_coefficients(dc_dz / 2 * (vdc + vac * sp.cos(th)) ** 2, th)
@@ -496,7 +496,7 @@ def test_models_say_where_their_assumptions_fail():
         Electrostatic().validity(100.0)
 
 
-# --- electromagnetic ---------------------------------------------------------------------------------------
+# --- electromagnetic -----------------------------------------------------------------------------
 def test_lorentz_force_and_magnetic_torque():
     model = Electromagnetic(field=0.2, conductor_length=30e-6)
     lever = model.lever
@@ -519,7 +519,7 @@ def test_lorentz_force_and_magnetic_torque():
     assert z == pytest.approx(z_ref, rel=1e-12) and th == pytest.approx(th_ref, rel=1e-12)
 
 
-# --- optomechanical -----------------------------------------------------------------------------------------
+# --- optomechanical ------------------------------------------------------------------------------
 def test_cavity_slope_at_half_linewidth():
     model = Optomechanical(detuning=-0.5, power=50e-6, dip_depth=0.6, coupling=2e18)
     gamma = model.linewidth
@@ -538,7 +538,7 @@ def test_cavity_slope_at_half_linewidth():
     assert steep / model.sensitivity() == pytest.approx(3 * math.sqrt(3) / 4, rel=1e-12)
 
 
-# --- piezoresistive ------------------------------------------------------------------------------------------
+# --- piezoresistive ------------------------------------------------------------------------------
 def test_quarter_bridge_against_the_resistor_divider():
     vb, r, delta = sp.symbols("V_b R delta", positive=True)
     rx = r * (1 + delta)
@@ -584,7 +584,7 @@ def test_piezoresistive_noise():
     assert res.contributions["hooge"] * sens == pytest.approx(hooge, rel=1e-12)
 
 
-# --- piezoelectric -------------------------------------------------------------------------------------------
+# --- piezoelectric -------------------------------------------------------------------------------
 def test_piezoelectric_sensing_and_actuation_against_sympy():
     x, L, EJ, F, le, zp, d31, ep, w, V = sp.symbols("x L EJ F l_e z_p d31 E_p w V", real=True)
     curv = F * (L - x) / EJ                                   # end-loaded lever (module (a))
@@ -620,7 +620,7 @@ def test_piezoelectric_sensing_is_ac_mostly():
     assert act.response[0].real == pytest.approx(model.sensitivity("actuation"), rel=1e-12)
 
 
-# --- bad input ------------------------------------------------------------------------------------------------
+# --- bad input -----------------------------------------------------------------------------------
 CASES = [(key, name, p) for key, cls in PRINCIPLES.items()
          for name, p in cls.parameter_table().items()]
 

@@ -69,7 +69,7 @@ def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS
 def check_two_omega_power(amplitude, ac_voltage: float = DEFAULTS["ac_voltage"],
                           resistance: float = DEFAULTS["resistance"],
                           rtol: float = 1e-3) -> Feedback:
-    """Exercise 2: an unbiased heater gets V_ac cos(omega t); what power amplitude oscillates at 2 omega?
+    """Exercise 2: an unbiased heater gets V_ac cos(omega t); what power oscillates at 2 omega?
 
     Parameters
     ----------

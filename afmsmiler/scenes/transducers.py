@@ -196,7 +196,7 @@ class TransducerScene:
         v["meter"]["frame"].set_transform(P.translation([mx, 0.0, 0.0]))
         v["meter"]["bar"].set_object(g.Box([0.12, 0.12, 1.0]), _mat(_GREEN))
 
-    # -- the update --------------------------------------------------------------------------------
+    # -- the update -------------------------------------------------------------------------------
     def update(self, model: Transducer, value: float, mode: str | None = None) -> None:
         """Redraw for a model and input (SI), in place.
 
@@ -236,7 +236,7 @@ class TransducerScene:
         getattr(self, f"_move_{model.key}")(model, value, mode, pose)
         self.vis.set_transform(P.translation([-pose.x[-1] / 2, 0.0, 0.0]))
 
-    # -- helpers ------------------------------------------------------------------------------------
+    # -- helpers ----------------------------------------------------------------------------------
     def _segment(self, name, color, radius=None, opacity=1.0):
         seg = P.Segment(self.vis["element"][name], color=color,
                         radius=radius or DEFAULTS["beam_radius"], opacity=opacity)
@@ -315,7 +315,7 @@ class TransducerScene:
         self.vis["element"]["spot"].set_transform(P.translation(hit - 0.02 * normal))
         self.parts["spot"] = hit
 
-    # -- astigmatic detection -----------------------------------------------------------------------
+    # -- astigmatic detection ---------------------------------------------------------------------
     def _draw_astigmatic(self, model):
         L = model.length / SCENE_UNIT
         self._head = np.array([L, 0.0, 1.8])
@@ -335,7 +335,7 @@ class TransducerScene:
             P.translation(centre) @ np.diag([wx * scale, wy * scale, 0.02, 1.0]))
         self.parts["spot"] = (float(wx * scale), float(wy * scale))
 
-    # -- interferometry -----------------------------------------------------------------------------
+    # -- interferometry ---------------------------------------------------------------------------
     def _draw_interferometry(self, model):
         L = model.length / SCENE_UNIT
         node = self.vis["element"]["fibre"]
@@ -350,7 +350,7 @@ class TransducerScene:
         self._segments["beam"].set(self._fibre_end, top)
         self.parts["gap"] = float(self._fibre_end[2] - top[2])
 
-    # -- piezo-acoustic -------------------------------------------------------------------------------
+    # -- piezo-acoustic ---------------------------------------------------------------------------
     def _draw_piezo_acoustic(self, model):
         self._box("shaker", (1.0, 1.2, 0.3), [-0.5, 0.0, -0.45], _ORANGE)
 
@@ -363,7 +363,7 @@ class TransducerScene:
         self.parts["base_offset"] = offset
         self.parts["slope_factor"] = mode_slope_factor()
 
-    # -- photothermal -----------------------------------------------------------------------------------
+    # -- photothermal -----------------------------------------------------------------------------
     def _draw_photothermal(self, model):
         L = model.length / SCENE_UNIT
         self._source = np.array([L + 1.2, 0.0, 2.0])
@@ -376,7 +376,7 @@ class TransducerScene:
         self.vis["element"]["heating_beam"].set_property("visible", bool(value > 0))
         self.parts["beam_on"] = bool(value > 0)
 
-    # -- electromagnetic ---------------------------------------------------------------------------------
+    # -- electromagnetic --------------------------------------------------------------------------
     def _draw_electromagnetic(self, model):
         L = model.length / SCENE_UNIT
         self._box("magnet_n", (0.4, 1.0, 0.6), [L + 0.6, 0.0, 0.0], _RED)
@@ -393,7 +393,7 @@ class TransducerScene:
         self._arrows["force"].set(top + [0.0, 0.0, 0.05], vec)
         self.parts["force"] = vec
 
-    # -- electrostatic ------------------------------------------------------------------------------------
+    # -- electrostatic ----------------------------------------------------------------------------
     def _draw_electrostatic(self, model):
         L = model.length / SCENE_UNIT
         le = model.electrode_length / SCENE_UNIT
@@ -409,7 +409,7 @@ class TransducerScene:
         self._arrows["force"].set(top + [0.0, 0.0, 0.05], vec)
         self.parts["force"] = vec
 
-    # -- optomechanical -------------------------------------------------------------------------------------
+    # -- optomechanical ---------------------------------------------------------------------------
     def _draw_optomechanical(self, model):
         L = model.length / SCENE_UNIT
         w = model.width / SCENE_UNIT
@@ -422,7 +422,7 @@ class TransducerScene:
     def _move_optomechanical(self, model, value, mode, pose):
         self.parts["detuning_fraction"] = pose.fraction
 
-    # -- piezoresistive --------------------------------------------------------------------------------------
+    # -- piezoresistive ---------------------------------------------------------------------------
     def _draw_piezoresistive(self, model):
         pass
 
@@ -434,7 +434,7 @@ class TransducerScene:
         self._surface_line("resistor", model, pose, [(0.0, -e), (1.0, -e), (1.0, e), (0.0, e)],
                            x_range=(0.0, lr), color=color)
 
-    # -- electrothermal ----------------------------------------------------------------------------------------
+    # -- electrothermal ---------------------------------------------------------------------------
     def _draw_electrothermal(self, model):
         pass
 
@@ -448,7 +448,7 @@ class TransducerScene:
             path += [(u, -e), (u, e)] if i % 2 == 0 else [(u, e), (u, -e)]
         self._surface_line("heater", model, pose, path, color=0xff3000)
 
-    # -- piezoelectric ------------------------------------------------------------------------------------------
+    # -- piezoelectric ----------------------------------------------------------------------------
     def _draw_piezoelectric(self, model):
         self._film_material = g.MeshLambertMaterial(color=_GOLD)
 

@@ -18,7 +18,9 @@ class Electrostatic(Transducer):
     voltage the force is F = (1/2) dC/dz V^2 (attractive: towards the electrode, z < 0). With
     V = V_dc + V_ac cos(omega t)::
 
-        F = (1/2) dC/dz (V_dc^2 + V_ac^2 / 2)  +  dC/dz V_dc V_ac cos(omega t)  +  (1/4) dC/dz V_ac^2 cos(2 omega t)
+        F = (1/2) dC/dz (V_dc^2 + V_ac^2 / 2)          (DC)
+          + dC/dz V_dc V_ac cos(omega t)               (1 omega)
+          + (1/4) dC/dz V_ac^2 cos(2 omega t)          (2 omega)
 
     the DC, 1-omega and 2-omega parts used by Kelvin-probe and electrostatic force microscopy
     (Hudlet et al., Eur. Phys. J. B 2, 5 (1998); Senturia, *Microsystem Design*, ch. 6). The

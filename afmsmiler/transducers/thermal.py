@@ -219,15 +219,18 @@ class Electrothermal(_Bimorph):
 
     A voltage V = V_dc + V_ac cos(omega t) across the heater R dissipates P = V^2 / R::
 
-        P = (V_dc^2 + V_ac^2 / 2) / R  +  (2 V_dc V_ac / R) cos(omega t)  +  (V_ac^2 / (2 R)) cos(2 omega t)
+        P = (V_dc^2 + V_ac^2 / 2) / R                  (DC)
+          + (2 V_dc V_ac / R) cos(omega t)             (1 omega)
+          + (V_ac^2 / (2 R)) cos(2 omega t)            (2 omega)
 
     so an unbiased drive (V_dc = 0) moves the lever at 2 omega only, and the 1-omega gain is
     proportional to the bias. The heat, spread along the lever, gives Delta T(x) =
     P (L x - x^2/2) / (L G) and, through the silicon/aluminium bimorph, z = -C P L^3 / (8 G),
-    low-passed by the thermal time constant tau; the model is linear (properties do not change
-    with temperature, nothing melts), so keep the temperature rise readout plausible (Pedrak et al., J. Vac. Sci. Technol. B 21, 3102
-    (2003); Rangelow et al., "active cantilevers"). The chain's input is the DC heater voltage;
-    the AC amplitude is a parameter whose rectified part V_ac^2 / (2 R) adds to the DC heat.
+    low-passed by the thermal time constant tau (Pedrak et al., J. Vac. Sci. Technol. B 21, 3102
+    (2003)). The model is linear (properties do not change with temperature, nothing melts):
+    :meth:`validity` flags temperature rises beyond ``MAX_TEMPERATURE_RISE``. The chain's input
+    is the DC heater voltage; the AC amplitude is a parameter whose rectified part
+    V_ac^2 / (2 R) adds to the DC heat.
     """
 
     key = "electrothermal"

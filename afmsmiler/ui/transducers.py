@@ -138,7 +138,7 @@ class TransducerPanel(Panel):
         super().__init__()
         self._ready = True
 
-    # -- building the controls from the metadata ----------------------------------------------------
+    # -- building the controls from the metadata --------------------------------------------------
     @property
     def model_class(self) -> type:
         return PRINCIPLES[self._selector.value]
@@ -214,7 +214,7 @@ class TransducerPanel(Panel):
             self._hold = hold
         self.update(**self.values())
 
-    # -- the callback ------------------------------------------------------------------------------
+    # -- the callback -----------------------------------------------------------------------------
     def _bound_linked_sliders(self, cls, values: dict) -> dict:
         """Move the maxima of sliders bounded by another parameter; return the clamped values."""
         table = cls.parameter_table()
