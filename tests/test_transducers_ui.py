@@ -138,3 +138,16 @@ def test_figure_and_control_helpers():
     s = control_for(p)
     assert s.value == pytest.approx(1.0) and "mW" in s.description
     assert 10 ** s.min == pytest.approx(1e-3) and math.isclose(10 ** s.max, 20.0)
+
+
+def test_one_user_action_is_one_update():
+    panel = TransducerPanel(principle="piezoelectric", scene=False)
+    calls = []
+    original = panel.update
+    panel.update = lambda **v: (calls.append(v["mode"]), original(**v))
+    panel.set(mode="actuation", input=3.0)
+    panel.controls["mode"].value = "sensing"            # a click on the toggle
+    panel.controls["principle"].value = "interferometry"  # a new choice in the selector
+    panel.controls["input"].value = 40.0                 # a slider drag
+    assert calls == ["actuation", "sensing", "sensing", "sensing"]
+    assert panel.last.model.key == "interferometry" and panel.last.value == pytest.approx(40e-9)

@@ -173,10 +173,13 @@ class TransducerPanel(Panel):
         self._build(change["new"])
 
     def _on_mode(self, change) -> None:
-        if self._hold or change["new"] is None:
-            return
+        if not self._hold and change["new"] is not None:
+            self._switch_mode(change["new"])
+
+    def _switch_mode(self, mode: str) -> None:
+        """Rebuild the input slider for ``mode``, keeping the parameters' values."""
         keep = {n: c.value for n, c in self.controls.items() if n not in _FIXED}
-        self._build(self._selector.value, change["new"])
+        self._build(self._selector.value, mode)
         hold, self._hold = self._hold, True
         try:
             for n, v in keep.items():
@@ -200,9 +203,7 @@ class TransducerPanel(Panel):
                 if values["mode"] not in self._mode.options:
                     raise ValueError(f"mode must be one of {list(self._mode.options)}, "
                                      f"got {values['mode']!r}")
-                self._hold = False
-                self._mode.value = values["mode"]
-                self._hold = True
+                self._switch_mode(values["mode"])
             rest = {k: v for k, v in values.items() if k not in ("principle", "mode")}
             unknown = set(rest) - set(self.controls)
             if unknown:
