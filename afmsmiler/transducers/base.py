@@ -319,13 +319,22 @@ class Transducer:
     Subclasses set the class attributes ``key``, ``name``, ``function``, ``signal``, ``size``,
     ``PARAMETERS`` (their own :class:`Parameter` entries; the lever's are added), ``MODES``,
     ``INPUTS`` and ``OUTPUTS`` (mode -> :class:`Parameter` of the chain's input, mode ->
-    :class:`Quantity` of its output), and implement ``_stages``, ``_sensitivity``,
-    ``_dynamics`` and ``_detector_noise``.
+    :class:`Quantity` of its output), ``SENSITIVITY`` (mode -> :class:`Quantity` of the
+    sensitivity's unit), optionally ``BIASED`` and ``BOUNDED_BY``, and implement ``_stages``
+    and ``_sensitivity`` (and, where they apply, ``_dynamics``, ``_detector_noise`` and
+    ``_validity``).
+
+    Examples
+    --------
+    >>> from afmsmiler.transducers import OpticalBeamDeflection
+    >>> obd = OpticalBeamDeflection(optical_path=30e-3, length=225e-6)
+    >>> round(obd.sensitivity() * 1e-6, 3)  # 1/um of tip deflection
+    1.277
 
     Parameters
     ----------
     **params : float
-        Any of :meth:`parameters` by name, in SI units; the others take their defaults.
+        Any of :meth:`parameter_table` by name, in SI units; the others take their defaults.
 
     Raises
     ------
