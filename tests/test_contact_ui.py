@@ -13,6 +13,7 @@ from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figur
                                      tip_geometries_figure, tip_outline)
 from afmsmiler.scenes.contact import ContactScene, surface_mesh, tip_mesh
 from afmsmiler.ui.contact import BOUNDS, TIP_CONTROLS, ContactPanel
+from recording import Recorder
 
 
 # --- figures -------------------------------------------------------------------------------------
@@ -80,42 +81,20 @@ def test_meshes_are_well_formed_and_follow_the_solution(tip):
                                atol=1e-15)
 
 
-class _Recorder:
-    """A stand-in for meshcat.Visualizer that records the calls (no server needed)."""
-
-    def __init__(self, log=None, path=""):
-        self.log = [] if log is None else log
-        self.path = path
-
-    def __getitem__(self, key):
-        return _Recorder(self.log, f"{self.path}/{key}")
-
-    def set_object(self, *args, **kwargs):
-        self.log.append(("set_object", self.path))
-
-    def set_transform(self, matrix):
-        self.log.append(("set_transform", self.path, np.array(matrix)))
-
-    def set_property(self, *args):
-        self.log.append(("set_property", self.path))
-
-    def delete(self):
-        self.log.append(("delete", self.path))
-
 
 def test_scene_updates_in_place():
-    rec = _Recorder()
+    rec = Recorder()
     tip = Parabolic(20e-9)
     scene = ContactScene(tip, indent([30e-9], 0.1, tip, 1e6, 0.3), vis=rec)
-    n_tip = sum(1 for c in rec.log if c[:2] == ("set_object", "/afmsmiler/contact/tip"))
+    n_tip = sum(1 for c in rec.calls if c[:2] == ("set_object", "/afmsmiler/contact/tip"))
     cur = indent([60e-9], 0.1, tip, 1e6, 0.3)
     scene.update(tip, cur)
     # the tip mesh is not rebuilt, only moved: apex at -Z_s (scene units)
-    assert sum(1 for c in rec.log if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip
-    move = [c for c in rec.log if c[0] == "set_transform"][-1]
+    assert sum(1 for c in rec.calls if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip
+    move = [c for c in rec.calls if c[0] == "set_transform"][-1]
     assert move[2][2, 3] == pytest.approx(-cur.z_s[0] / scene.unit)
     scene.update(Conical(0.4), cur)  # a new shape rebuilds the tip
-    assert sum(1 for c in rec.log if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip + 1
+    assert sum(1 for c in rec.calls if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip + 1
 
 
 def test_scene_in_the_real_viewer_updates_in_place():

@@ -10,41 +10,13 @@ from meshcat.path import Path
 from afmsmiler.cantilever import Cantilever
 from afmsmiler.scenes import close_viewer, get_viewer, viewer
 from afmsmiler.scenes.cantilever import DEFAULTS, SCENE_UNIT, CantileverScene, mode_animation
+from recording import Recorder
 
 E, RHO = 169e9, 2330.0
 L, W, H = 450e-6, 50e-6, 2e-6
 F = 120e-9
 LEVER = Cantilever(L, W, H, E, RHO)
 
-
-class Recorder:
-    """A stand-in for meshcat.Visualizer recording what is sent to which path."""
-
-    def __init__(self, log=None, path=Path()):
-        self.log = {} if log is None else log
-        self.path = path
-
-    def __getitem__(self, name):
-        return Recorder(self.log, self.path.append(name))
-
-    def _node(self):
-        return self.log.setdefault(self.path.lower(), {})
-
-    def set_object(self, geometry, material=None):
-        self._node()["object"] = (geometry, material)
-        self._node()["n_objects"] = self._node().get("n_objects", 0) + 1
-
-    def set_transform(self, matrix=np.eye(4)):
-        self._node()["transform"] = np.asarray(matrix)
-
-    def set_property(self, key, value):
-        self._node()[key] = value
-
-    def set_animation(self, animation, play=True, repetitions=1):
-        self.log["animation"] = animation
-
-    def delete(self):
-        self.log.pop(self.path.lower(), None)
 
 
 def closed_form_tip(force):

@@ -9,26 +9,8 @@ import numpy as np
 import pytest
 
 from afmsmiler.scenes import close_viewer, get_viewer, primitives as P
+from recording import Recorder
 
-
-class Recorder:
-    """A stand-in for meshcat.Visualizer that records what is sent to which path."""
-
-    def __init__(self, log=None, path=""):
-        self.log = {} if log is None else log
-        self.path = path
-
-    def __getitem__(self, name):
-        return Recorder(self.log, f"{self.path}/{name}")
-
-    def set_object(self, geometry, material=None):
-        self.log.setdefault(self.path, {})["object"] = (geometry, material)
-
-    def set_transform(self, matrix=np.eye(4)):
-        self.log.setdefault(self.path, {})["transform"] = np.asarray(matrix)
-
-    def set_property(self, key, value):
-        self.log.setdefault(self.path, {})[key] = value
 
 
 def apply(t, p):
@@ -154,9 +136,9 @@ def test_arrow_spans_start_to_start_plus_vector(vector):
     np.testing.assert_allclose(apply(head, [0, 0.03, 0]), start + np.asarray(vector), atol=1e-12)  # apex
     assert "visible" not in rec.log.get("", {})  # visible from the start: nothing sent
     arrow.set(start, [0, 0, 0])
-    assert rec.log[""]["visible"] is False
+    assert rec.log["/"]["visible"] is False
     arrow.set(start, vector)
-    assert rec.log[""]["visible"] is True
+    assert rec.log["/"]["visible"] is True
 
 
 def test_segment_and_cone_and_camera():
@@ -173,7 +155,7 @@ def test_segment_and_cone_and_camera():
     np.testing.assert_allclose(apply(t, [0, -0.05, 0]), [0, 0, 0.1], atol=1e-12)  # base above
     P.set_camera(rec, [1.0, -3.0, 2.0])
     # three.js camera frame is y-up, rotated +90 deg about x: world (x, y, z) = (x', -z', y')
-    x_, y_, z_ = rec.log["//Cameras/default/rotated/<object>"]["position"]
+    x_, y_, z_ = rec.log["/Cameras/default/rotated/<object>"]["position"]
     assert (x_, -z_, y_) == (1.0, -3.0, 2.0)
 
 

@@ -11,36 +11,8 @@ from afmsmiler.scenes import close_viewer, get_viewer, viewer
 from afmsmiler.scenes.transducers import DEFAULTS, SCENE_UNIT, TransducerScene, lever_pose
 from afmsmiler.transducers import (PRINCIPLES, AstigmaticDetection, OpticalBeamDeflection,
                                    PiezoAcoustic)
+from recording import Recorder
 
-
-class Recorder:
-    """A stand-in for meshcat.Visualizer recording what is sent to which path."""
-
-    def __init__(self, log=None, path=Path()):
-        self.log = {} if log is None else log
-        self.path = path
-
-    def __getitem__(self, name):
-        return Recorder(self.log, self.path.append(name))
-
-    def _node(self):
-        return self.log.setdefault(self.path.lower(), {})
-
-    def set_object(self, geometry, material=None):
-        node = self._node()
-        node["object"] = (geometry, material)
-        node["n_objects"] = node.get("n_objects", 0) + 1
-
-    def set_transform(self, matrix=np.eye(4)):
-        self._node()["transform"] = np.asarray(matrix)
-
-    def set_property(self, key, value):
-        self._node()[key] = value
-
-    def delete(self):
-        prefix = self.path.lower()
-        for key in [k for k in self.log if k == prefix or k.startswith(prefix + "/")]:
-            del self.log[key]
 
 
 def _scene(model, value, mode=None):
