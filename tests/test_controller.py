@@ -130,16 +130,95 @@ def test_scan_line_is_one_continuous_simulation():
                                (ref_c - ref_np)[::4] + z0.z_c - z0.z_np, rtol=0, atol=1e-18)
 
 
-def test_scan_image_rows_equal_scan_line():
+def _flattened_reference(loop, heights, pixel_size, speed, setpoint, sub=4):
+    """The whole image as ONE polygon (trace 0, retrace 0, trace 1, ...; one pixel time per
+    knot, the slow-axis step included) through control.forced_response on a grid 4x finer,
+    from the steady state at the first pixel: Z_np and Z_c - Z_np, shape (rows, 2 cols - 1)."""
+    rows, n = heights.shape
+    path = np.concatenate((heights, heights[:, ::-1][:, 1:]), axis=1).ravel()
+    dt = pixel_size / speed
+    t_knots = np.arange(path.size) * dt
+    t_grid = np.arange((path.size - 1) * sub + 1) * dt / sub
+    ref_c, ref_np = _reference(loop, t_grid, np.interp(t_grid, t_knots, path) - path[0])
+    z0 = loop.steady_state(setpoint, path[0])
+    z_np = ref_np[::sub] + z0.z_np
+    return z_np.reshape(rows, 2 * n - 1), (ref_c[::sub] + z0.z_c - z_np).reshape(rows, 2 * n - 1)
+
+
+def _back_and_forth(trace, retrace):
+    """Trace then retrace (in scan order, the shared turn-around pixel once) per row."""
+    return np.concatenate((trace, retrace[:, ::-1][:, 1:]), axis=1)
+
+
+@pytest.mark.parametrize("name, changes", [("c_fast_scan", {}), ("c_fast_scan", {"ki": 0.0}),
+                                           ("b_soft_sample", {}), ("d_unstable", {})])
+def test_scan_image_is_one_engaged_scan(name, changes):
+    """Chained rows (the default): the image equals forced_response over the whole image
+    flattened into one polygon, each row starting from the previous retrace's end state."""
+    img = samples.particles((5, 40), 4e-9, count=3, seed=2)
+    loop = PRESETS[name].loop.replace(**changes)
+    speed = PRESETS[name].speed
+    im = scan_image(loop, img.heights, img.pixel_size, speed, SETPOINT)
+    assert im.chained and im.stable == bool(loop.is_stable())
+    ref_np, ref_topo = _flattened_reference(loop, img.heights, img.pixel_size, speed, SETPOINT)
+    ours_np = _back_and_forth(im.trace_z_np, im.retrace_z_np)
+    ours_topo = _back_and_forth(im.trace, im.retrace)
+    peak = np.max(np.abs(ref_np))
+    np.testing.assert_allclose(ours_np, ref_np, rtol=0, atol=1e-9 * peak)
+    np.testing.assert_allclose(ours_topo, ref_topo, rtol=0, atol=1e-9 * peak)
+
+
+def test_scan_image_rows_are_not_restarted():
+    """Row 0 is scan_line's trace (both start engaged at the first pixel); later rows inherit
+    the lag of the previous ones, so they differ from rows scanned independently."""
+    img = samples.particles((6, 64), 4e-9, count=3)
+    loop = PRESETS["c_fast_scan"].loop
+    chained = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT)
+    alone = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT, chained=False)
+    r0 = loop.scan_line(img.x, img.heights[0], 1e-3, SETPOINT)
+    np.testing.assert_allclose(chained.trace_z_np[0], r0.trace.z_np, rtol=0, atol=1e-20)
+    np.testing.assert_allclose(chained.retrace_z_np[0], r0.retrace.z_np[::-1], rtol=0,
+                               atol=1e-20)
+    # the loop is still settling from row 0's retrace and the slow-axis step when row 1 starts
+    start = loop.steady_state(SETPOINT, img.heights[1, 0]).z_np
+    assert abs(chained.trace_z_np[1, 0] - start) > 1e-3 * np.ptp(img.heights)
+    assert alone.trace_z_np[1, 0] == pytest.approx(start, rel=1e-12)
+
+
+def test_scan_image_independent_rows_equal_scan_line():
     img = samples.particles((6, 64), 4e-9, count=3)
     for loop in (PRESETS["c_fast_scan"].loop, PRESETS["c_fast_scan"].loop.replace(ki=0.0)):
-        im = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT)
+        im = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT, chained=False)
+        assert not im.chained
         for row in (0, 5):
             r = loop.scan_line(img.x, img.heights[row], 1e-3, SETPOINT)
             np.testing.assert_allclose(im.trace[row], r.trace.topography, rtol=0, atol=1e-20)
             np.testing.assert_allclose(im.retrace[row], r.retrace.topography[::-1], rtol=0,
                                        atol=1e-20)
             np.testing.assert_allclose(im.trace_z_np[row], r.trace.z_np, rtol=0, atol=1e-20)
+            line = im.line(row)
+            np.testing.assert_allclose(line.retrace.z_c, r.retrace.z_c, rtol=0, atol=1e-20)
+            np.testing.assert_allclose(line.trace.t, r.trace.t, rtol=1e-12)
+
+
+def test_scan_image_keeps_every_line_with_its_times():
+    img = samples.particles((4, 32), 4e-9, count=2)
+    loop = PRESETS["a_good_tracking"].loop
+    im = scan_image(loop, img.heights, img.pixel_size, 1e-5, SETPOINT)
+    dt = img.pixel_size / 1e-5
+    assert im.pixel_time == pytest.approx(dt) and im.line_time == pytest.approx(63 * dt)
+    for row in range(4):
+        line = im.line(row)
+        # row i's trace starts after i lines of 2 * 32 - 1 pixel times (the step included)
+        assert line.trace.t[0] == pytest.approx(row * 63 * dt, rel=1e-12)
+        assert line.retrace.t[0] == line.trace.t[-1]
+        np.testing.assert_array_equal(line.trace.height, img.heights[row])
+        np.testing.assert_allclose(line.trace.topography, im.trace[row], rtol=1e-12)
+        np.testing.assert_array_equal(line.retrace.x, img.x[::-1])
+        assert line.offset == pytest.approx(-loop.k_c * SETPOINT / loop.k_s)
+    assert im.line(-1).trace.t[0] == im.line(3).trace.t[0]
+    with pytest.raises(ValueError, match=r"row must be an integer in \[-4, 3\]"):
+        im.line(4)
 
 
 # --- the paper's Fig. 4 ---------------------------------------------------------------------------
@@ -245,6 +324,10 @@ def test_bad_scan_input():
         scan_image(loop, np.zeros((2, 3)), 0.0, 1e-5, SETPOINT)
     with pytest.raises(ValueError, match="heights must be a 2-D array"):
         scan_image(loop, np.zeros(3), 1e-9, 1e-5, SETPOINT)
+    with pytest.raises(ValueError, match="chained must be True or False"):
+        scan_image(loop, np.zeros((2, 3)), 1e-9, 1e-5, SETPOINT, chained="yes")
+    with pytest.raises(TypeError):
+        scan_image(loop, np.zeros((2, 3)), 1e-9, 1e-5, SETPOINT, rows_first=True)
     with pytest.raises(TypeError):
         loop.scan_line(x, h, 1e-5, SETPOINT, direction="up")
 
