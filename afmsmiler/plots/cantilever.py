@@ -20,7 +20,8 @@ __all__ = ["DEFAULTS", "UNITS", "CantileverCurves", "cantilever_curves", "Cantil
            "mode_shapes_figure"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = dict(n_points=201, n_section=41, figsize=(10.0, 6.5))
+DEFAULTS = dict(n_points=201, n_section=41, figsize=(10.0, 6.5),
+                min_span=1e-3)  # smallest y span in the units shown (1 pm, 1 urad, 1 kPa)
 
 #: Factors from SI to the units shown (value_shown = value_SI * factor).
 UNITS = dict(x=1e6, z=1e9, theta=1e3, stress=1e-6, z_b=1e6, strain=1e6)
@@ -177,10 +178,12 @@ class CantileverFigure:
             ax = self.axes[key]
             ax.set_xlim(0.0, L[-1])
             lo, hi = float(np.min(y)), float(np.max(y))
-            ax.set_ylim(*_pad(min(lo, 0.0), max(hi, 0.0), 1e-3 * max(abs(lo), abs(hi), 1e-12)))
+            ax.set_ylim(*_pad(min(lo, 0.0), max(hi, 0.0),
+                              max(1e-3 * max(abs(lo), abs(hi)), DEFAULTS["min_span"])))
         self.lines["section"].set_data(curves.section_stress_mpa, curves.z_b_um)
         ax = self.axes["section"]
-        smax = max(float(np.abs(curves.stress_top_mpa).max()), 1e-12)  # whole lever's peak
+        # the whole lever's peak (at least min_span / 2, so that F = 0 gives readable ticks)
+        smax = max(float(np.abs(curves.stress_top_mpa).max()), DEFAULTS["min_span"] / 2)
         ax.set_xlim(-1.1 * smax, 1.1 * smax)
         h2 = float(curves.z_b_um[-1])
         ax.set_ylim(-1.1 * h2, 1.1 * h2)
@@ -221,6 +224,7 @@ def mode_shapes_figure(lever: Cantilever, modes=(1, 2, 3), *, n_points: int = DE
                      label=f"mode {n}: f = {lever.resonance_frequency(n) / 1e3:.4g} kHz")[0]
              for n in modes]
     ax.axhline(0.0, color="0.8", lw=0.8)
-    ax.set(xlabel="x / L", ylabel="mode shape (1 at the tip)", title="flexural mode shapes")
+    ax.set(xlabel="x / L (dimensionless)", ylabel="mode shape, 1 at the tip (dimensionless)",
+           title="flexural mode shapes")
     ax.legend(loc="lower left", fontsize="small")
     return fig, lines

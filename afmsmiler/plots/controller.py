@@ -143,7 +143,7 @@ class ScanFigure:
         self.lines = {}
         self.lines["znp_trace"], = ax["znp"].plot([], [], color="C0", label="trace")
         self.lines["znp_retrace"], = ax["znp"].plot([], [], color="C3", ls="--", label="retrace")
-        ax["znp"].set(ylabel="-Z_np [nm]", title="positioner height (sign flipped)")
+        ax["znp"].set(xlabel="x [um]", ylabel="-Z_np [nm]", title="positioner height (sign flipped)")
         ax["znp"].legend(loc="upper right", fontsize="small")
         self.lines["height"], = ax["topo"].plot([], [], color="0.6", lw=3, alpha=0.6,
                                                 label="true topography T")
@@ -240,8 +240,7 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
                         transform=ax.transAxes, color="C3", fontsize="small")
             ax.set(ylabel=label, xlim=(c.x_trace_um[0], c.x_trace_um[-1]))
             ax.set_title(f"{preset.description}, {preset.speed * 1e6:g} um/s", fontsize="small")
-            if row == len(presets) - 1:
-                ax.set_xlabel("x [um]")
+            ax.set_xlabel("x [um]", fontsize="small")
         axes[row, 1].legend(loc="lower right", fontsize="x-small")
     fig.set_layout_engine("constrained")
     return fig
@@ -331,7 +330,7 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
         a2.plot(tt, np.where(tt >= t[k], dslope[k] * (tt - t[k]), 0.0), color="C2", lw=0.8,
                 alpha=0.7, label="ramps at the knots" if k == 0 else None)
     a2.plot(t, h, "o", color="C0", label="their sum at the knots")
-    a2.set(xlabel="t [us]", ylabel="[nm]", title="= a step + ramps of slope changes")
+    a2.set(xlabel="t [us]", ylabel="height [nm]", title="= a step + ramps of slope changes")
     a2.legend(fontsize="small")
     fig.set_layout_engine("constrained")
     return fig

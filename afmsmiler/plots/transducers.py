@@ -13,6 +13,7 @@ line data in place:
 """
 from __future__ import annotations
 
+import textwrap
 from dataclasses import dataclass
 
 import numpy as np
@@ -25,7 +26,7 @@ __all__ = ["DEFAULTS", "ChainCurves", "chain_curves", "TransducerFigure", "frequ
 
 #: Defaults of the figures, in one place.
 DEFAULTS = dict(n_points=201, n_frequencies=400, f_low=1e-2, f_high_ratio=10.0,
-                figsize=(11.0, 3.8))
+                figsize=(11.0, 3.8), label_width=40)
 
 
 def frequency_grid(model: Transducer, n_frequencies: int = DEFAULTS["n_frequencies"]) -> np.ndarray:
@@ -160,7 +161,13 @@ def _pad(lo, hi):
 
 
 def _title(q: Quantity) -> str:
-    return q.title
+    """The axis label of ``q``: ``"label [unit]"``, or ``"label (dimensionless)"`` for a ratio."""
+    return q.title if q.display_unit else f"{q.title} (dimensionless)"
+
+
+def _wrap(text: str, width: int = DEFAULTS["label_width"]) -> str:
+    """``text`` broken into lines of about ``width`` characters (long axis labels fit the axes)."""
+    return textwrap.fill(text, width, break_long_words=False)
 
 
 class TransducerFigure:
@@ -253,7 +260,7 @@ class TransducerFigure:
         ax["output"].set(xlabel=xlabel, ylabel=_title(q[-1]))
         ax["output"].set_xlim(x[0], x[-1])
         ax["output"].set_ylim(*_pad(float(np.min(y)), float(np.max(y))))
-        ax["output"].set_title(f"{curves.title}: slope {curves.sensitivity_si:.3g} "
+        ax["output"].set_title(f"{curves.title}\nslope {curves.sensitivity_si:.3g} "
                                f"{curves.sensitivity_unit}", fontsize="medium")
         f, mag = curves.frequency, curves.magnitude
         ln["magnitude"].set_data(f, mag)
@@ -262,5 +269,5 @@ class TransducerFigure:
         ax["response"].set_xlim(f[0], f[-1])
         if positive.size:
             ax["response"].set_ylim(positive.min() / 3, positive.max() * 3)
-        ax["response"].set_ylabel(curves.response_label, fontsize="small")
+        ax["response"].set_ylabel(_wrap(curves.response_label), fontsize="small")
         ln["f1"].set_xdata([f[-1] / DEFAULTS["f_high_ratio"]] * 2)
