@@ -1,20 +1,28 @@
-"""Sample topographies with their physical pixel size: steps, gratings, rough and particle surfaces.
+"""Sample topographies with their physical pixel size: steps, gratings, rough and particle
+surfaces, and real AFM images read from files.
 
 Every generator returns a :class:`Sample`, which carries the heights (m) together with the pixel
 size (m), so that a scan or a plot never has to guess its units. Lines are 1-D samples, images
 2-D (rows along the slow axis y, columns along the fast scan axis x). Random surfaces take a
-``seed`` and are reproducible.
+``seed`` and are reproducible. :func:`from_file` reads a real image (WSxM ``.top``/``.stp``) in
+SI units; :data:`REAL_IMAGE` is one that ships with the package (DNA on mica, 500 nm).
 """
 from __future__ import annotations
 
-from dataclasses import dataclass
+import re
+from dataclasses import dataclass, replace
+from pathlib import Path
 
 import numpy as np
 
 from .validation import check_array, check_choice, check_finite, check_integer, check_positive, \
     check_range
 
-__all__ = ["Sample", "step", "grating", "rough_surface", "particles", "PROFILES", "profile"]
+__all__ = ["Sample", "step", "grating", "rough_surface", "particles", "PROFILES", "profile",
+           "REAL_LINE_ROW", "from_file", "REAL_IMAGE", "real_image"]
+
+#: A real AFM image shipped with the package (see ``afmsmiler/data/README.md``).
+REAL_IMAGE = Path(__file__).with_name("data") / "wsxm_sample_0.top"
 
 
 @dataclass(frozen=True)
@@ -26,14 +34,18 @@ class Sample:
     heights : numpy.ndarray
         Topography in m, 1-D (a line) or 2-D (rows along y, columns along x).
     pixel_size : float
-        Distance between neighbouring pixels in m.
+        Distance between neighbouring pixels along x (the fast axis) in m.
     name : str
         A short description.
+    pixel_size_y : float, optional
+        Distance between neighbouring rows in m, if the pixels are not square; default
+        ``pixel_size``.
     """
 
     heights: np.ndarray
     pixel_size: float
     name: str = ""
+    pixel_size_y: float | None = None
 
     def __post_init__(self):
         h = check_array("heights", self.heights, "m", min_size=2)
@@ -41,6 +53,8 @@ class Sample:
             raise ValueError(f"heights must be a 1-D or 2-D array, got shape {h.shape}")
         object.__setattr__(self, "heights", h)
         object.__setattr__(self, "pixel_size", check_positive("pixel_size", self.pixel_size, "m"))
+        dy = self.pixel_size if self.pixel_size_y is None else self.pixel_size_y
+        object.__setattr__(self, "pixel_size_y", check_positive("pixel_size_y", dy, "m"))
 
     @property
     def x(self) -> np.ndarray:
@@ -68,6 +82,19 @@ class Sample:
             raise ValueError("line() needs a 2-D sample (an image)")
         row = check_integer("row", row, 0, self.heights.shape[0] - 1)
         return Sample(self.heights[row], self.pixel_size, f"{self.name}, row {row}")
+
+    def level_rows(self) -> "Sample":
+        """A copy with each row's median height subtracted (AFM "line levelling").
+
+        Removes the offset that slow-axis drift and the loop's integrator leave from line to
+        line, as image software does before showing an AFM image. A line is levelled as one row.
+
+        Returns
+        -------
+        Sample
+        """
+        h = self.heights - np.median(self.heights, axis=-1, keepdims=True)
+        return replace(self, heights=h, name=f"{self.name}, rows levelled")
 
 
 def _n(pixels):
@@ -218,24 +245,33 @@ def particles(shape=(256, 256), pixel_size: float = 4e-9, count: int = 30,
 
 
 #: Line profiles offered by the controller panel, by name.
-PROFILES = ("step", "grating", "real line")
+PROFILES = ("step", "grating", "real line", "particles")
+#: The row of :func:`real_image` that ``profile("real line")`` takes (two molecules crossed).
+REAL_LINE_ROW = 202
 
 
 def profile(name: str, pixels: int = 512, pixel_size: float = 4e-9,
             height: float = 50e-9) -> Sample:
-    """A named line profile: ``"step"``, ``"grating"`` or ``"real line"`` (a row of
-    :func:`particles`, a synthetic but realistic image), scaled to a feature ``height``.
+    """A named line profile, scaled to a feature ``height``.
+
+    ``"step"`` and ``"grating"`` (4 periods) are ideal; ``"real line"`` is a row of the real AFM
+    image :func:`real_image` (row :data:`REAL_LINE_ROW`, two molecules and the substrate's
+    noise), its first ``pixels`` pixels put on the requested pixel size and its range scaled
+    to ``height``: the shape of a real line at the scale of the other profiles (for the
+    line at its own scale, 0.98 nm pixels and 2 nm high, use ``real_image().line(202)``);
+    ``"particles"`` is the highest row of :func:`particles`, a synthetic image.
 
     Parameters
     ----------
     name : str
         One of :data:`PROFILES`.
     pixels : int
-        Number of pixels.
+        Number of pixels (at most 512 for ``"real line"``).
     pixel_size : float
         Pixel size in m.
     height : float
-        Feature height in m (step height, grating depth, particle diameter).
+        Feature height in m (step height, grating depth, range of the real line, particle
+        diameter).
 
     Returns
     -------
@@ -246,7 +282,131 @@ def profile(name: str, pixels: int = 512, pixel_size: float = 4e-9,
         return step(pixels, pixel_size, height)
     if name == "grating":
         return grating(pixels, pixel_size, pixels * pixel_size / 4, height)
+    if name == "real line":
+        row = _real_row()
+        n = check_integer("pixels", pixels, 2, row.size)
+        pixel_size = check_positive("pixel_size", pixel_size, "m")
+        height = check_finite("height", height, "m")
+        h = row[:n] - np.min(row[:n])
+        return Sample(h * (height / np.ptp(h)), pixel_size,
+                      f"real line (row {REAL_LINE_ROW} of {REAL_IMAGE.name}, rescaled)")
     img = particles((64, pixels), pixel_size, count=max(4, pixels // 16), radius=height / 2,
                     rms=height / 50, seed=3)
     rows = img.heights.max(axis=1)
-    return Sample(img.heights[int(np.argmax(rows))], pixel_size, "real-like line")
+    return Sample(img.heights[int(np.argmax(rows))], pixel_size, "particles line (synthetic)")
+
+
+_REAL_ROW: list = []
+
+
+def _real_row() -> np.ndarray:
+    if not _REAL_ROW:
+        _REAL_ROW.append(real_image().heights[REAL_LINE_ROW].copy())
+    return _REAL_ROW[0]
+
+
+# --- real images from files ----------------------------------------------------------------
+#: Length units that image headers use, in m.
+_LENGTH_UNITS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "\u00b5m": 1e-6, "\u03bcm": 1e-6, "nm": 1e-9,
+                 "\u00c5": 1e-10, "A": 1e-10, "pm": 1e-12}
+_WSXM_TYPES = {"short": "<i2", "double": "<f8"}
+
+
+def _wsxm_length(header: dict, key: str, path) -> float:
+    """A header value such as '500 nm' or '59.7449 nm', in m."""
+    if key not in header:
+        raise ValueError(f"{path}: WSxM header has no {key!r}")
+    match = re.fullmatch(r"\s*([-+0-9.eE]+)\s*(\S+)\s*", header[key])
+    if match is None or match.group(2) not in _LENGTH_UNITS:
+        raise ValueError(f"{path}: {key} must be a length (units {sorted(_LENGTH_UNITS)}), "
+                         f"got {header[key]!r}")
+    return float(match.group(1)) * _LENGTH_UNITS[match.group(2)]
+
+
+def _read_wsxm(path: Path) -> Sample:
+    """WSxM image (``.top``, ``.stp``): text header, then rows x columns little-endian values.
+
+    Scales as Gwyddion's ``wsxmfile.c`` module does: the image spans ``X Amplitude`` by
+    ``Y Amplitude`` (pixel size = amplitude / number of columns or rows) and its values are
+    scaled so that their range is ``Z Amplitude``.
+    """
+    raw = path.read_bytes()
+    match = re.search(rb"Image header size: (\d+)", raw[:200])
+    if not raw.startswith(b"WSxM file copyright") or match is None:
+        raise ValueError(f"{path} is not a WSxM image (no 'WSxM file copyright' and "
+                         f"'Image header size' at its start)")
+    size = int(match.group(1))
+    header = {}
+    for line in raw[:size].decode("latin-1").splitlines():
+        key, sep, value = line.strip().partition(": ")
+        if sep:
+            header[key] = value.strip()
+    rows = int(header.get("Number of rows", 0))
+    cols = int(header.get("Number of columns", 0))
+    dtype = _WSXM_TYPES.get(header.get("Image Data Type", "short"))
+    if dtype is None:
+        raise ValueError(f"{path}: Image Data Type must be one of {sorted(_WSXM_TYPES)}, "
+                         f"got {header['Image Data Type']!r}")
+    count = rows * cols
+    if count < 4 or len(raw) < size + count * np.dtype(dtype).itemsize:
+        raise ValueError(f"{path}: {rows} x {cols} values do not fit in the file")
+    data = np.frombuffer(raw, dtype, count, offset=size).reshape(rows, cols).astype(float)
+    z_range = _wsxm_length(header, "Z Amplitude", path)
+    span = float(np.ptp(data))
+    heights = data * (z_range / span) if span > 0 else data * 0.0
+    name = header.get("Acquisition channel", "image")
+    return Sample(heights, _wsxm_length(header, "X Amplitude", path) / cols,
+                  f"{path.name} ({name})", _wsxm_length(header, "Y Amplitude", path) / rows)
+
+
+_READERS = {".top": _read_wsxm, ".stp": _read_wsxm}
+
+
+def from_file(path) -> Sample:
+    """Read a real AFM height image, in SI units (heights and pixel sizes in m).
+
+    Parameters
+    ----------
+    path : str or pathlib.Path
+        A WSxM image file (``.top`` topography, ``.stp``), as written by Nanotec's WSxM and
+        Dulcinea/Cervantes instruments.
+
+    Returns
+    -------
+    Sample
+        The image as stored (rows in file order, no levelling: see :meth:`Sample.level_rows`),
+        with ``pixel_size`` along the rows (fast axis) and ``pixel_size_y`` between them.
+
+    Raises
+    ------
+    ValueError
+        If the file does not exist, its format is not supported, or its header lacks the scan
+        size, the height range or their units (a height image must be in length units).
+
+    Notes
+    -----
+    Scaled like Gwyddion's WSxM module: pixel size = ``X Amplitude`` / columns and heights
+    spanning ``Z Amplitude`` (with its unit: nm, um, Angstrom, ...). A common unit error is to
+    keep only the integer part of ``Z Amplitude`` or to assume nm; the tests compare with the
+    independent count-to-volt-to-nm conversion of the same header.
+    """
+    p = Path(path)
+    reader = _READERS.get(p.suffix.lower())
+    if reader is None:
+        raise ValueError(f"path must name a file of type {sorted(_READERS)}, got {str(path)!r}")
+    if not p.is_file():
+        raise ValueError(f"path must name an existing file, got {str(path)!r}")
+    return reader(p)
+
+
+def real_image() -> Sample:
+    """The real AFM image shipped with the package, rows levelled (see :data:`REAL_IMAGE`).
+
+    Plasmid DNA minicircles on mica, 512 x 512 pixels over 500 nm x 500 nm, heights of about
+    2 nm (``afmsmiler/data/README.md`` gives its origin and licence).
+
+    Returns
+    -------
+    Sample
+    """
+    return from_file(REAL_IMAGE).level_rows()

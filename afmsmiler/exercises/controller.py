@@ -57,7 +57,8 @@ def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
                     min_speed: float = DEFAULTS["min_speed"]) -> Feedback:
     """Exercise 1: gains for a fast scan (at least ``min_speed``) with a small height error.
 
-    The plant is the one of preset (a) (stiff sample); the line is the real-like profile.
+    The plant is the one of preset (a) (stiff sample); the line is the "real line" profile (a
+    row of a real AFM image, see :func:`afmsmiler.samples.profile`).
 
     Parameters
     ----------
