@@ -18,7 +18,8 @@ from afmsmiler.transducers import (PRINCIPLES, AstigmaticDetection, Electromagne
                                    PiezoAcoustic, Piezoelectric, Piezoresistive, get_principle,
                                    table_one, table_one_html, table_one_markdown)
 from afmsmiler.transducers.acoustic import mode_slope_factor, participation_factor
-from afmsmiler.transducers.base import BOLTZMANN, mechanical_response
+from afmsmiler.transducers.base import (BOLTZMANN, mechanical_response,
+                                       thermal_deflection_noise)
 from afmsmiler.transducers.embedded import quarter_bridge_output
 from afmsmiler.transducers.thermal import THERMAL, bimorph_curvature
 
@@ -200,9 +201,37 @@ def test_optical_lever_shot_noise():
     model = OpticalBeamDeflection(power=1e-3, responsivity=0.5)
     res = model.resolution(1e4)
     current = 0.5e-3
-    expected = math.sqrt(2 * 1.602176634e-19 * current * 1e4) / current / model.sensitivity()
+    slope = math.sqrt(8 / math.pi) * 3 * model.optical_path / (model.spot_radius * model.length)
+    expected = math.sqrt(2 * 1.602176634e-19 * current * 1e4) / current / slope
     assert res.contributions["shot"] == pytest.approx(expected, rel=1e-12)
-    assert res.total == pytest.approx(math.hypot(expected, res.contributions["thermal"]))
+    assert res.total == pytest.approx(math.hypot(expected, res.contributions["thermal"]), rel=1e-12)
+
+
+def test_astigmatic_and_interferometer_shot_noise():
+    # the displacement whose signal equals the photocurrent's shot noise sqrt(2 q I B) (Schottky)
+    q_e, bw = 1.602176634e-19, 1e3
+    ast = AstigmaticDetection(power=200e-6, responsivity=0.5)
+    a, zr = ast.astigmatic_distance / 2, math.pi * ast.waist ** 2 / ast.wavelength
+    slope = 8 * a / (math.pi * (zr ** 2 + a ** 2))      # FES slope at focus (sympy test above)
+    expected = math.sqrt(2 * q_e * 0.5 * 200e-6 * bw) / (0.5 * 200e-6) / slope
+    assert ast.resolution(bw).contributions["shot"] == pytest.approx(expected, rel=1e-12)
+    # interferometer at quadrature: delta_d = lambda / (4 pi V) sqrt(2 q B / (R P0))
+    # (Rugar, Mamin and Guethner, Appl. Phys. Lett. 55, 2588 (1989))
+    ifm = Interferometer(wavelength=1310e-9, visibility=0.8, power=100e-6, responsivity=0.9)
+    expected = 1310e-9 / (4 * math.pi * 0.8) * math.sqrt(2 * q_e * bw / (0.9 * 100e-6))
+    assert ifm.resolution(bw).contributions["shot"] == pytest.approx(expected, rel=1e-12)
+    # off quadrature (phi = 0): the mean power P0 (1 + V) and the slope vanishes
+    assert ifm.replace(phase=0.0).resolution(bw).contributions["shot"] > 1e6 * expected
+
+
+def test_optomechanical_shot_noise():
+    # at Delta_0 = -gamma/2 the transmission is P (1 - D/2) and the slope D P G / gamma
+    q_e, bw = 1.602176634e-19, 1e3
+    model = Optomechanical(power=50e-6, dip_depth=0.6, coupling=2e18, responsivity=0.8)
+    gamma = 299792458.0 / (model.wavelength * model.optical_q)
+    current = 0.8 * 50e-6 * (1 - 0.6 / 2)
+    expected = math.sqrt(2 * q_e * current * bw) / 0.8 / (0.6 * 50e-6 * 2e18 / gamma)
+    assert model.resolution(bw).contributions["shot"] == pytest.approx(expected, rel=1e-12)
 
 
 # --- astigmatic detection ------------------------------------------------------------------------
@@ -548,6 +577,25 @@ def test_models_say_where_their_assumptions_fail():
         Electrostatic().validity(100.0)
 
 
+def test_piezoresistor_says_where_it_stops_being_linear():
+    # the clamp's surface stress 6 F L / (w h^2) with F = k z = E w h^3 z / (4 L^3) is
+    # 1.5 E h z / L^2 (Timoshenko and Gere, Mechanics of Materials): 30 MPa for the default at 2 um
+    model = Piezoresistive()
+    assert 1.5 * 169e9 * 3e-6 * 2e-6 / 225e-6 ** 2 < 0.1 * model.FRACTURE_STRESS
+    assert model.validity(2e-6) == () and model.validity(-2e-6) == ()
+    # a stubby lever bent by 2 um: 1.5 * 169 GPa * 10 um * 2 um / (20 um)^2 = 127 GPa
+    stub = Piezoresistive(length=20e-6, thickness=10e-6, resistor_length=4e-6)
+    notes = stub.validity(2e-6)
+    assert any("GPa" in n and "breaks" in n for n in notes)
+    assert any("clipped at -1" in n for n in notes)
+    # dR/R of a resistance cannot pass -1: the active arm shorts and the bridge sits at -V_b / 2
+    chain = stub.chain([2e-6, -2e-6])
+    assert chain.stage("relative_change").values[0] == -1.0
+    assert chain.output.values[0] == pytest.approx(-stub.bias_voltage / 2, rel=1e-15)
+    assert 0 < chain.output.values[1] < stub.bias_voltage / 2
+    assert stub.sensitivity(at=2e-6) == 0.0
+
+
 # --- electromagnetic -----------------------------------------------------------------------------
 def test_lorentz_force_and_magnetic_torque():
     model = Electromagnetic(field=0.2, conductor_length=30e-6)
@@ -630,10 +678,23 @@ def test_piezoresistive_noise():
     sens = abs(model.sensitivity())
     # Johnson noise of 1 kOhm at 300 K: 4.07 nV/sqrt(Hz) (Horowitz and Hill, 3rd ed., 8.1.1)
     assert res.contributions["johnson"] * sens == pytest.approx(4.07e-9, rel=2e-3)
-    # Hooge: S_V = V_b^2 alpha / (4 N f), integrated over [f1, f2]
-    n = model.carrier_density * 2 * model.resistor_length * model.width / 4 * model.junction_depth
-    hooge = math.sqrt(model.bias_voltage ** 2 * model.hooge / (4 * n) * math.log(1001 / 1000))
-    assert res.contributions["hooge"] * sens == pytest.approx(hooge, rel=1e-12)
+    # the bridge of four arms R1..R4 (R1 active), derived with sympy: its output resistance is
+    # R1 || R2 + R3 || R4 and each arm's fluctuation dR_i reaches the output as dV/dR_i dR_i
+    vb, r1, r2, r3, r4 = sp.symbols("V_b R1 R2 R3 R4", positive=True)
+    vout = vb * (r1 / (r1 + r2) - r4 / (r3 + r4))
+    arms = (r1, r2, r3, r4)
+    r = model.resistance
+    at_balance = dict.fromkeys(arms, r)
+    r_out = (r1 * r2 / (r1 + r2) + r3 * r4 / (r3 + r4)).subs(at_balance)
+    johnson = math.sqrt(4 * BOLTZMANN * 300.0 * float(r_out) * 1.0)
+    assert res.contributions["johnson"] * sens == pytest.approx(johnson, rel=1e-12)
+    # Hooge (Hooge, Phys. Lett. A 29, 139 (1969)): each arm's resistance fluctuates with
+    # S_R / R^2 = alpha_H / (N f), independently; N = p x (two legs l_r long, w/4 wide, d_j deep)
+    gain2 = sum((sp.diff(vout, ri) * ri) ** 2 for ri in arms).subs(at_balance)
+    n = model.carrier_density * 2 * model.resistor_length * (model.width / 4) * model.junction_depth
+    s_times_f = float(gain2.subs(vb, model.bias_voltage)) * model.hooge / n
+    band, _ = integrate.quad(lambda f: s_times_f / f, 1e3, 1e3 + 1.0)
+    assert res.contributions["hooge"] * sens == pytest.approx(math.sqrt(band), rel=1e-10)
 
 
 # --- piezoelectric -------------------------------------------------------------------------------
@@ -655,6 +716,22 @@ def test_piezoelectric_sensing_and_actuation_against_sympy():
     # Maxwell reciprocity: charge per tip force (short circuit) = tip deflection per volt (free)
     assert model.sensitivity("sensing") / lever.spring_constant == pytest.approx(
         model.sensitivity("actuation"), rel=1e-12)
+
+
+def test_piezoelectric_leakage_noise_against_quadrature():
+    # Johnson current of the leak R = tau / C, 4 k_B T / R (A^2/Hz), integrated by the charge
+    # amplifier: S_q(f) = S_i / (2 pi f)^2, summed over [f1, f1 + B] by quadrature
+    model = Piezoelectric(leakage_time_constant=0.1, temperature=300.0)
+    cap = 8.8541878128e-12 * model.permittivity * model.width * model.electrode_length / (
+        model.film_thickness)
+    r_leak = 0.1 / cap
+    f1, bw = 10.0, 1e3
+    q2, _ = integrate.quad(lambda f: 4 * BOLTZMANN * 300.0 / r_leak / (2 * math.pi * f) ** 2,
+                           f1, f1 + bw)
+    res = model.resolution(bw, low_frequency=f1, mode="sensing")
+    assert res.contributions["leakage"] * abs(model.sensitivity("sensing")) == pytest.approx(
+        math.sqrt(q2), rel=1e-10)
+    assert set(model.resolution(bw, mode="actuation").contributions) == {"thermal"}
 
 
 def test_piezoelectric_sensing_is_ac_mostly():
@@ -705,6 +782,49 @@ def test_bad_calls_raise(key):
         model.resolution(1.0, low_frequency=-1.0)
     with pytest.raises(ValueError, match="^f must be in"):
         model.frequency_response([1.0, -1.0])
+
+
+HELPER_CASES = [
+    # (call, argument name in the message)
+    (lambda v: OpticalBeamDeflection().spot_displacement(v), "slope", (math.nan, 0.8, -math.pi / 4)),
+    (lambda v: OpticalBeamDeflection().split_signal(v), "spot", (math.nan, math.inf)),
+    (lambda v: AstigmaticDetection().spot_radii(v), "d", (math.nan, -math.inf)),
+    (lambda v: AstigmaticDetection().focus_error([0.0, v]), "d", (math.nan, math.inf)),
+    (lambda v: Interferometer().fringe(v), "d", (math.nan, math.inf)),
+    (lambda v: Optomechanical().transmission(v), "x", (math.nan, math.inf)),
+    (lambda v: Electromagnetic().lorentz_force(v), "current", (math.nan, math.inf)),
+    (lambda v: Photothermal().temperature_profile(v, 1e-3), "x", (math.nan, -1e-6, 1.0)),
+    (lambda v: Photothermal().temperature_profile(0.0, v), "power", (math.nan, -1e-3)),
+    (lambda v: Electrothermal().thermal_lag(v), "f", (math.nan, -1.0)),
+    (lambda v: quarter_bridge_output(v, 0.01), "bias_voltage", (math.nan, math.inf)),
+    (lambda v: quarter_bridge_output(1.0, v), "relative_change", (math.nan, -1.5)),
+    (lambda v: bimorph_curvature(2.6e-6, v, 169e9, 14e-6, 5e-8, 79e9), "thickness_1",
+     (math.nan, 0.0, -1e-6)),
+    (lambda v: bimorph_curvature(2.6e-6, 3e-6, 169e9, 14e-6, 5e-8, v), "modulus_2",
+     (math.inf, 0.0)),
+    (lambda v: bimorph_curvature(v, 3e-6, 169e9, 14e-6, 5e-8, 79e9), "expansion_1",
+     (math.nan, math.inf)),
+    (lambda v: mechanical_response(v, 1e5, 100.0), "f", (math.nan, -1.0)),
+    (lambda v: mechanical_response(1e3, v, 100.0), "resonance_frequency", (0.0, math.inf)),
+    (lambda v: mechanical_response(1e3, 1e5, v), "quality_factor", (-1.0, math.nan)),
+    (lambda v: thermal_deflection_noise(OpticalBeamDeflection().lever, 100.0, 300.0, v),
+     "bandwidth", (0.0, math.inf)),
+    (lambda v: thermal_deflection_noise(OpticalBeamDeflection().lever, v, 300.0, 1.0),
+     "quality_factor", (0.0, math.nan)),
+    (lambda v: thermal_deflection_noise(OpticalBeamDeflection().lever, 100.0, v, 1.0),
+     "temperature", (-1.0, math.nan)),
+    (lambda v: thermal_deflection_noise(v, 100.0, 300.0, 1.0), "lever", (1.0, None)),
+    (lambda v: OpticalBeamDeflection().upper_bound(v), "name", ("colour", "")),
+    (lambda v: participation_factor(v), "mode", (0, 1.5)),
+]
+
+
+@pytest.mark.parametrize("call, name, values", HELPER_CASES,
+                         ids=[f"{i}-{c[1]}" for i, c in enumerate(HELPER_CASES)])
+def test_public_helpers_reject_bad_input(call, name, values):
+    for value in values:
+        with pytest.raises(ValueError, match=rf"^{name} must be"):
+            call(value)
 
 
 def test_cross_parameter_checks():

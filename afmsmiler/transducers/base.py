@@ -285,8 +285,16 @@ def mechanical_response(f, resonance_frequency: float, quality_factor: float) ->
     -------
     ndarray of complex
         1 / (1 - (f/f1)^2 + j f / (Q f1)).
+
+    Raises
+    ------
+    ValueError
+        If a frequency is negative or not finite, or f1 or Q is not finite and positive.
     """
-    r = np.asarray(f, dtype=float) / resonance_frequency
+    f = check_array("f", f, "Hz", low=0.0)
+    resonance_frequency = check_positive("resonance_frequency", resonance_frequency, "Hz")
+    quality_factor = check_positive("quality_factor", quality_factor)
+    r = f / resonance_frequency
     return 1.0 / (1.0 - r * r + 1j * r / quality_factor)
 
 
@@ -307,7 +315,17 @@ def thermal_deflection_noise(lever: Cantilever, quality_factor: float, temperatu
         T in K.
     bandwidth : float
         B in Hz.
+
+    Raises
+    ------
+    ValueError
+        If ``lever`` is not a Cantilever or a number is not finite and positive.
     """
+    if not isinstance(lever, Cantilever):
+        raise ValueError(f"lever must be a Cantilever, got {lever!r}")
+    quality_factor = check_positive("quality_factor", quality_factor)
+    temperature = check_positive("temperature", temperature, "K")
+    bandwidth = check_positive("bandwidth", bandwidth, "Hz")
     omega1 = 2 * math.pi * lever.resonance_frequency(1)
     return math.sqrt(4 * BOLTZMANN * temperature * bandwidth
                      / (lever.spring_constant * omega1 * quality_factor))
@@ -392,7 +410,7 @@ class Transducer:
 
     def upper_bound(self, name: str) -> float:
         """The largest valid value (SI) of parameter ``name`` given the other parameters."""
-        meta = self.parameter_table()[name]
+        meta = self.parameter_table()[check_choice("name", name, self.parameter_table())]
         if name in self.BOUNDED_BY:
             other, factor = self.BOUNDED_BY[name]
             return min(meta.high, factor * self._values[other])

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 import math
-from ..validation import check_nonnegative, check_range
+from ..validation import check_array, check_nonnegative, check_range
 from .base import (DEFLECTION, EPSILON_0, FORCE, SLOPE, Harmonics, Parameter, Quantity,
                    Transducer, mechanical_response)
 
@@ -148,8 +148,14 @@ class Electromagnetic(Transducer):
     SENSITIVITY = {"actuation": Quantity("sensitivity", "m/A", "nm/mA", 1e6, "sensitivity")}
 
     def lorentz_force(self, current):
-        """F = B I l in N for a loop current ``current`` (A)."""
-        return self.field * current * self.conductor_length
+        """F = B I l in N for a loop current ``current`` (A).
+
+        Parameters
+        ----------
+        current : float or array_like
+            Loop current I in A (positive lifts the tip).
+        """
+        return self.field * check_array("current", current, "A") * self.conductor_length
 
     def moment_force(self, moment: float, field_gradient: float) -> float:
         """Force m dB/dz in N on a moment ``moment`` (A m^2) in a gradient ``field_gradient`` (T/m)."""

@@ -10,6 +10,7 @@ import math
 
 import numpy as np
 
+from ..validation import check_array, check_finite
 from .base import (BOLTZMANN, DEFLECTION, ELEMENTARY_CHARGE, EPSILON_0, SLOPE,
                    TIP_DEFLECTION_INPUT, Parameter, Quantity, Transducer)
 
@@ -31,9 +32,15 @@ def quarter_bridge_output(bias_voltage, relative_change):
     bias_voltage : float
         Bridge bias V_b in V.
     relative_change : float or array_like
-        delta = dR / R of the active arm (> -1).
+        delta = dR / R of the active arm, >= -1 (a resistance cannot be negative).
+
+    Raises
+    ------
+    ValueError
+        If ``bias_voltage`` is not finite or a ``relative_change`` not finite and >= -1.
     """
-    d = np.asarray(relative_change, dtype=float)
+    bias_voltage = check_finite("bias_voltage", bias_voltage, "V")
+    d = check_array("relative_change", relative_change, low=-1.0)
     return bias_voltage / 4 * d / (1 + d / 2)
 
 
@@ -48,7 +55,10 @@ class Piezoresistive(Transducer):
     pi_l = (pi_11 + pi_12 + pi_44) / 2 = 71.8e-11 1/Pa, Smith, Phys. Rev. 94, 42 (1954)), or
     GF * strain with the gauge factor GF = pi_l E. The quarter bridge gives
     V_out = (V_b / 4) delta / (1 + delta / 2) (:func:`quarter_bridge_output`), small-signal
-    V_b delta / 4.
+    V_b delta / 4. The sign: a lever bent up (z > 0) compresses its top, so a p-type resistor
+    (pi_l > 0) loses resistance and the output is negative. The linear model is flagged by
+    :meth:`validity` beyond |dR/R| = ``MAX_RELATIVE_CHANGE`` or a clamp stress of
+    ``FRACTURE_STRESS``; dR/R is clipped at -1, where the bridge output reaches its rail -V_b / 2.
 
     Noise (Harley and Kenny, J. Microelectromech. Syst. 9, 226 (2000); all four arms matched
     resistors of N = p V carriers each, V = 2 l_r (w/4) d_j): Johnson noise of the bridge's
@@ -96,9 +106,20 @@ class Piezoresistive(Transducer):
         """N = p V carriers in one resistor (two legs of width w/4)."""
         return self.carrier_density * 2 * self.resistor_length * self.width / 4 * self.junction_depth
 
-    def _stages(self, z, mode):
+    #: Largest |dR/R| for which a constant piezoresistive coefficient is a fair model.
+    MAX_RELATIVE_CHANGE = 0.1
+    #: Surface stress (Pa) at the clamp beyond which an etched silicon lever is likely to break
+    #: (fracture strengths of etched silicon microstructures are 1-3 GPa; Petersen, Proc. IEEE
+    #: 70, 420 (1982) gives 7 GPa for flawless crystal).
+    FRACTURE_STRESS = 1e9
+
+    def _delta(self, z):
+        """dR/R of the resistor for tip deflections ``z``, clipped at -1 (a resistance >= 0)."""
         stress = self.stress_per_newton * self.spring_constant * z
-        delta = self.piezo_coefficient * stress
+        return stress, np.maximum(self.piezo_coefficient * stress, -1.0)
+
+    def _stages(self, z, mode):
+        stress, delta = self._delta(z)
         return self._lever_stages(z) + [(self.STRESS, stress), (self.CHANGE, delta),
                                         (self.OUTPUTS["sensing"],
                                          quarter_bridge_output(self.bias_voltage, delta))]
@@ -106,7 +127,21 @@ class Piezoresistive(Transducer):
     def _sensitivity(self, mode, at):
         d_delta_dz = self.piezo_coefficient * self.stress_per_newton * self.spring_constant
         delta = d_delta_dz * at
+        if delta <= -1.0:      # the clipped branch: the arm is a short, the output at -V_b / 2
+            return 0.0
         return self.bias_voltage / 4 * d_delta_dz / (1 + delta / 2) ** 2
+
+    def _validity(self, value, mode):
+        clamp = abs(float(self.lever.stress(0.0, self.thickness / 2,
+                                            self.spring_constant * value)))
+        delta = self.piezo_coefficient * float(self._delta(value)[0])
+        if clamp > self.FRACTURE_STRESS:
+            yield (f"the clamp's surface stress is {clamp / 1e9:.3g} GPa: an etched silicon lever "
+                   f"breaks at 1-3 GPa")
+        if abs(delta) > self.MAX_RELATIVE_CHANGE:
+            yield (f"dR/R = {delta:.3g}: far beyond the small stresses where the piezoresistive "
+                   f"coefficient is constant" + (" (clipped at -1: a resistance cannot be negative)"
+                                                  if delta < -1 else ""))
 
     def _detector_noise(self, bandwidth, low_frequency, mode):
         johnson = math.sqrt(4 * BOLTZMANN * self.temperature * self.resistance * bandwidth)
@@ -281,9 +316,15 @@ class Optomechanical(Transducer):
         return SPEED_OF_LIGHT / (self.wavelength * self.optical_q)
 
     def transmission(self, x):
-        """Transmitted power P_T in W for a displacement ``x`` (m)."""
+        """Transmitted power P_T in W for a displacement ``x`` (m).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Displacement of the lever in m (moves the resonance by G x).
+        """
         g2 = (self.linewidth / 2) ** 2
-        delta = self.detuning * self.linewidth - self.coupling * np.asarray(x, dtype=float)
+        delta = self.detuning * self.linewidth - self.coupling * check_array("x", x, "m")
         return self.power * (1 - self.dip_depth * g2 / (delta * delta + g2))
 
     def _stages(self, z, mode):

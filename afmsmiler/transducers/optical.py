@@ -11,6 +11,7 @@ import math
 import numpy as np
 from scipy.special import erf
 
+from ..validation import check_array
 from .base import (ELEMENTARY_CHARGE, TIP_DEFLECTION_INPUT, Parameter, Quantity, Transducer)
 
 __all__ = ["OpticalBeamDeflection", "AstigmaticDetection", "Interferometer"]
@@ -70,12 +71,27 @@ class OpticalBeamDeflection(Transducer):
     SPOT = Quantity("spot_displacement", "m", "um", 1e6, "spot travel on the detector")
 
     def spot_displacement(self, slope):
-        """Spot travel s = D tan(2 theta) in m for a free-end slope ``slope`` (rad)."""
-        return self.optical_path * np.tan(2 * np.asarray(slope, dtype=float))
+        """Spot travel s = D tan(2 theta) in m for a free-end slope ``slope`` (rad).
+
+        Parameters
+        ----------
+        slope : float or array_like
+            Free-end slope theta in rad, in (-pi/4, pi/4) (beyond, the beam no longer returns).
+        """
+        slope = check_array("slope", slope, "rad", low=-math.pi / 4, high=math.pi / 4,
+                            low_inclusive=False, high_inclusive=False)
+        return self.optical_path * np.tan(2 * slope)
 
     def split_signal(self, spot):
-        """Normalised difference signal erf(sqrt(2) s / w) for a spot offset ``spot`` (m)."""
-        return erf(math.sqrt(2.0) * np.asarray(spot, dtype=float) / self.spot_radius)
+        """Normalised difference signal erf(sqrt(2) s / w) for a spot offset ``spot`` (m).
+
+        Parameters
+        ----------
+        spot : float or array_like
+            Spot centre's offset from the split line in m (positive towards A + B).
+        """
+        spot = check_array("spot", spot, "m")
+        return erf(math.sqrt(2.0) * spot / self.spot_radius)
 
     def _stages(self, z, mode):
         lever = self._lever_stages(z)
@@ -147,13 +163,25 @@ class AstigmaticDetection(Transducer):
         return math.pi * self.waist ** 2 / self.wavelength
 
     def spot_radii(self, d):
-        """Beam radii (w_x, w_y) on the detector in units of w0 for a displacement ``d`` (m)."""
-        d = np.asarray(d, dtype=float)
+        """Beam radii (w_x, w_y) on the detector in units of w0 for a displacement ``d`` (m).
+
+        Parameters
+        ----------
+        d : float or array_like
+            Displacement of the reflector (the lever) from focus in m.
+        """
+        d = check_array("d", d, "m")
         a, zr = self.astigmatic_distance / 2, self.rayleigh_range
         return np.sqrt(1 + ((2 * d - a) / zr) ** 2), np.sqrt(1 + ((2 * d + a) / zr) ** 2)
 
     def focus_error(self, d):
-        """FES = (4/pi) atan(w_y / w_x) - 1 for a displacement ``d`` (m) of the reflector."""
+        """FES = (4/pi) atan(w_y / w_x) - 1 for a displacement ``d`` (m) of the reflector.
+
+        Parameters
+        ----------
+        d : float or array_like
+            Displacement of the reflector from focus in m.
+        """
         wx, wy = self.spot_radii(d)
         return 4 / math.pi * np.arctan(wy / wx) - 1
 
@@ -212,8 +240,14 @@ class Interferometer(Transducer):
     PHASE = Quantity("optical_phase", "rad", "rad", 1.0, "optical phase 4 pi d / lambda + phi")
 
     def fringe(self, d):
-        """Detected power P0 (1 + V cos(4 pi d / lambda + phi)) in W at displacement ``d`` (m)."""
-        phase = 4 * math.pi * np.asarray(d, dtype=float) / self.wavelength + self.phase
+        """Detected power P0 (1 + V cos(4 pi d / lambda + phi)) in W at displacement ``d`` (m).
+
+        Parameters
+        ----------
+        d : float or array_like
+            Displacement of the lever in m (it changes the round-trip path by 2 d).
+        """
+        phase = 4 * math.pi * check_array("d", d, "m") / self.wavelength + self.phase
         return self.power * (1 + self.visibility * np.cos(phase))
 
     def _stages(self, z, mode):

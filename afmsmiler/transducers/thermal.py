@@ -38,7 +38,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import get_material
-from ..validation import check_nonnegative
+from ..validation import check_array, check_finite, check_nonnegative, check_positive
 from .base import (DEFLECTION, SLOPE, Harmonics, Parameter, Quantity, Transducer,
                    mechanical_response)
 
@@ -94,7 +94,18 @@ def bimorph_curvature(expansion_1: float, thickness_1: float, modulus_1: float,
     float
         6 (alpha_2 - alpha_1) (1 + m)^2 / (h (3 (1 + m)^2 + (1 + m n)(m^2 + 1/(m n)))): the
         curvature that bends the bilayer towards layer 1 (down, if layer 2 is on top) per kelvin.
+
+    Raises
+    ------
+    ValueError
+        If an expansion coefficient is not finite, or a thickness or modulus not finite and > 0.
     """
+    expansion_1 = check_finite("expansion_1", expansion_1, "1/K")
+    expansion_2 = check_finite("expansion_2", expansion_2, "1/K")
+    thickness_1 = check_positive("thickness_1", thickness_1, "m")
+    thickness_2 = check_positive("thickness_2", thickness_2, "m")
+    modulus_1 = check_positive("modulus_1", modulus_1, "Pa")
+    modulus_2 = check_positive("modulus_2", modulus_2, "Pa")
     m = thickness_1 / thickness_2
     n = modulus_1 / modulus_2
     h = thickness_1 + thickness_2
@@ -140,9 +151,17 @@ class _Bimorph(Transducer):
                                  film.expansion, t2, get_material(self.FILM).youngs_modulus)
 
     def temperature_profile(self, x, power):
-        """Temperature rise Delta T(x) in K along the lever for a heat input ``power`` (W)."""
-        x = np.asarray(x, dtype=float)
-        p_over_g = np.asarray(power, dtype=float) / self.thermal_conductance
+        """Temperature rise Delta T(x) in K along the lever for a heat input ``power`` (W).
+
+        Parameters
+        ----------
+        x : float or array_like
+            Position along the lever in m, in [0, L] (the clamp at 0, held at ambient).
+        power : float or array_like
+            Heat deposited in the lever in W, >= 0 (broadcasts against ``x``).
+        """
+        x = check_array("x", x, "m", low=0.0, high=self.length)
+        p_over_g = check_array("power", power, "W", low=0.0) / self.thermal_conductance
         if self.HEATING == "tip":
             return p_over_g * x
         return p_over_g * (self.length * x - x * x / 2) / self.length
@@ -160,8 +179,15 @@ class _Bimorph(Transducer):
         return self._shape[1]
 
     def thermal_lag(self, f):
-        """The first-order low-pass 1 / (1 + j 2 pi f tau) of the heat flow (complex)."""
-        return 1.0 / (1.0 + 2j * math.pi * np.asarray(f, dtype=float) * self.thermal_time_constant)
+        """The first-order low-pass 1 / (1 + j 2 pi f tau) of the heat flow (complex).
+
+        Parameters
+        ----------
+        f : float or array_like
+            Frequencies in Hz, >= 0.
+        """
+        f = check_array("f", f, "Hz", low=0.0)
+        return 1.0 / (1.0 + 2j * math.pi * f * self.thermal_time_constant)
 
     def _heat_stages(self, heat):
         t, z, th = self._shape
