@@ -34,6 +34,19 @@ def test_denominator_is_the_one_in_the_docs():
     assert sp.expand(B - (b_c + b_s + b_s * kp + k_s * kd)) == 0
     assert sp.expand(C - (k_c + k_s + b_s * ki + k_s * kp)) == 0
     assert sp.expand(D - k_s * ki) == 0
+    # the numerators as the module docstring writes them
+    s = S["s"]
+    pid = kd * s ** 2 + kp * s + ki
+    docs = {"Zc_T": s * (b_s * s + k_s), "Znp_T": -(b_s * s + k_s) * pid,
+            "Zc_R": (b_s * s + k_s) * pid,
+            "Znp_R": ((m_c + m_s) * s ** 2 + (b_c + b_s) * s + k_c + k_s) * pid}
+    den = A * s ** 3 + B * s ** 2 + C * s + D
+    for name, num in docs.items():
+        got_num, got_den = derivation.closed_loop()[name]
+        assert sp.expand(got_den - den) == 0, name
+        assert sp.expand(got_num - num) == 0, name
+    assert "A = m_c + m_s + b_s K_D" in derivation.__doc__
+    assert "D = k_s K_I" in derivation.__doc__
 
 
 @pytest.mark.parametrize("seed", range(6))
@@ -55,6 +68,30 @@ def test_closed_loop_equals_python_control_feedback(seed):
     num, den = derivation.closed_loop()["Zc_T"]
     G = sp.lambdify(S["s"], (num / den).subs(subs), "numpy")
     np.testing.assert_allclose(zc(s), G(s), rtol=1e-12)
+
+
+@pytest.mark.parametrize("seed", range(8))
+def test_denominator_is_the_characteristic_polynomial(seed):
+    """A s^3 + B s^2 + C s + D (sympy, substituted) equals the denominator python-control forms
+    for the loop closed from P and C built independently: den(P) den(C) + num(P) num(C), the
+    characteristic polynomial of 1 + P C (coefficient by coefficient, K_I = 0 included), and its
+    roots are python-control's closed-loop poles."""
+    rng = np.random.default_rng(20 + seed)
+    p = random_params(rng, ki_zero=seed % 4 == 0)
+    P = control.tf([p["b_s"], p["k_s"]], [p["m_c"] + p["m_s"], p["b_c"] + p["b_s"],
+                                          p["k_c"] + p["k_s"]])
+    C = control.tf([p["kd"], p["kp"], p["ki"]], [1, 0])
+    loop_tf = control.feedback(P, C)
+    char = np.asarray(loop_tf.den[0][0], dtype=float)
+    subs = {S[k]: v for k, v in p.items()}
+    ours = np.array([float(c.subs(subs)) for c in derivation.denominator_coefficients()])
+    assert char.size == 4
+    # same scale: both lead with A = m_c + m_s + b_s K_D (python-control's dP dC has lead M,
+    # num(P) num(C) adds b_s K_D)
+    np.testing.assert_allclose(ours, char, rtol=1e-12, atol=0)  # each coefficient, own scale
+    poles = control.poles(loop_tf)
+    np.testing.assert_allclose(np.sort_complex(np.roots(ours)), np.sort_complex(poles),
+                               rtol=1e-8, atol=1e-8 * np.max(np.abs(poles)))
 
 
 @pytest.mark.parametrize("ki", [0.0, 3e5])

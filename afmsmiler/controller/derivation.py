@@ -19,9 +19,25 @@ Everything numeric in :mod:`afmsmiler.controller` comes from here:
   ``afmsmiler/controller/_generated.py``.  Run ``python -m afmsmiler.controller.derivation`` to
   regenerate it, ``... --check`` to verify that the committed file is what the derivation gives.
 
-The source paper prints the closed-loop equations with at least one typo; its printed form is not
-reproduced here: this sympy derivation is the reference, and ``tests/test_controller_derivation.py``
-checks it against an independent composition of P and C with python-control's ``feedback``.
+The result, to compare term by term with the paper's printed equations (which have at least one
+typo; their printed form is not reproduced here: this sympy derivation is the reference)::
+
+    Z_c / T  =   s (b_s s + k_s) / den
+    Z_np / T = -(b_s s + k_s) (K_D s^2 + K_P s + K_I) / den
+    Z_c / R  =  (b_s s + k_s) (K_D s^2 + K_P s + K_I) / den
+    Z_np / R =  ((m_c + m_s) s^2 + (b_c + b_s) s + k_c + k_s) (K_D s^2 + K_P s + K_I) / den
+
+    den = A s^3 + B s^2 + C s + D   with
+    A = m_c + m_s + b_s K_D
+    B = b_c + b_s + b_s K_P + k_s K_D
+    C = k_c + k_s + b_s K_I + k_s K_P
+    D = k_s K_I
+
+and, for K_I > 0 and a constant setpoint R, Z_c = R and Z_np = (k_c + k_s) R / k_s.
+``tests/test_controller_derivation.py`` checks every line above against :func:`closed_loop`,
+the denominator against the characteristic polynomial den(P) den(C) + num(P) num(C) that
+python-control's ``feedback`` forms from P and C built independently, and the transfer
+functions against ``feedback`` at complex frequencies.
 """
 from __future__ import annotations
 
