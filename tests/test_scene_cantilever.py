@@ -9,6 +9,7 @@ from meshcat.path import Path
 
 from afmsmiler.cantilever import Cantilever
 from afmsmiler.scenes import close_viewer, get_viewer, viewer
+from afmsmiler.scenes import primitives as P
 from afmsmiler.scenes.cantilever import DEFAULTS, SCENE_UNIT, CantileverScene, mode_animation
 from recording import Recorder
 
@@ -105,13 +106,14 @@ def test_tip_and_force_arrow_sit_at_the_free_end(scene):
     assert sc.arrow.vector[2] == pytest.approx(-F / DEFAULTS["force_per_unit"])
 
 
-def test_drawn_deflection_is_capped_at_one_lever_length(scene):
+def test_drawn_deflection_is_capped_at_a_fraction_of_the_lever_length(scene):
     sc, _ = scene
     soft = Cantilever(500e-6, 5e-6, 0.2e-6, 10e9, RHO)  # k ~ 1e-6 N/m: z(L) = 0.6 m at 500 nN
     sc.update(soft, 5e-7, exaggeration=1e4)
     mid = centre_line(sc)
-    assert mid[-1, 2] == pytest.approx(soft.length / SCENE_UNIT, rel=1e-6)
-    assert sc.drawn_exaggeration == pytest.approx(soft.length / (5e-7 / soft.spring_constant))
+    cap = DEFAULTS["max_drawn_tip"] * soft.length
+    assert mid[-1, 2] == pytest.approx(cap / SCENE_UNIT, rel=1e-6)
+    assert sc.drawn_exaggeration == pytest.approx(cap / (5e-7 / soft.spring_constant))
     sc.update(LEVER, F, exaggeration=100)  # a stiff lever is drawn with the asked exaggeration
     assert sc.drawn_exaggeration == 100
 
@@ -182,3 +184,37 @@ def test_real_viewer_one_server_updated_in_place():
     finally:
         close_viewer()
     assert not viewer.viewer_running()
+
+
+@pytest.mark.parametrize("length", [20e-6, 100e-6, 450e-6, 500e-6])
+@pytest.mark.parametrize("force", [0.0, 5e-7, -5e-7])
+def test_camera_frames_the_lever_tip_chip_and_legend(length, force):
+    """Every part a student must see projects inside a 1200 x 800 view of meshcat's camera."""
+    rec = Recorder()
+    soft = Cantilever(length, 5e-6, 0.2e-6, 10e9, RHO)  # deflection capped: the extreme pose
+    sc = CantileverScene(soft, force, vis=rec, path="lever", exaggeration=1e4)
+    x_l = np.array([-length / SCENE_UNIT / 2, 0.0, 0.0])  # the lever frame in the world
+    mid = centre_line(sc) + x_l
+    w, h = sc.legend_width, sc.legend_width / 4
+    legend = sc.legend_corner(length / SCENE_UNIT) + x_l + np.array(
+        [[0, 0, 0], [w, 0, 0], [0, 0, h], [w, 0, h]])
+    apex = sc.apex(sc.tip_pose(soft, sc.field)) + x_l
+    chip = x_l + [-DEFAULTS["chip_in_view"], 0.0, 0.0]
+    points = np.vstack([mid[[0, -1]], legend, apex, chip])
+    ndc = P.camera_ndc(points, sc.camera_position, aspect=1.5)
+    assert np.all(np.abs(ndc) <= 1.0), ndc
+    # the camera looks at the origin, which lies on the lever between clamp and free end
+    assert mid[0, 0] < 0.0 < mid[-1, 0]
+    x_, y_, z_ = rec.log["/Cameras/default/rotated/<object>"]["position"]
+    np.testing.assert_allclose((x_, -z_, y_), sc.camera_position)
+    assert rec.log["/Axes"]["visible"] is False  # meshcat's axes would pierce the lever
+
+
+def test_camera_follows_only_large_changes_of_length():
+    rec = Recorder()
+    sc = CantileverScene(LEVER, F, vis=rec)
+    first = sc.camera_position.copy()
+    sc.update(Cantilever(L * 1.1, W, H, E, RHO), F)
+    np.testing.assert_array_equal(sc.camera_position, first)  # small change: camera kept
+    sc.update(Cantilever(L / 4, W, H, E, RHO), F)
+    assert np.linalg.norm(sc.camera_position) < np.linalg.norm(first)  # short lever: closer

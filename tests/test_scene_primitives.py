@@ -1,6 +1,7 @@
 """The meshcat building blocks: mesh geometry follows the given deflection, colors map the ends of
 the scale to the colormap's ends, rigid primitives land where asked; one real-viewer smoke test."""
 import io
+import math
 
 import matplotlib
 import matplotlib.image
@@ -188,3 +189,23 @@ def test_primitives_in_a_real_viewer_update_in_place():
         assert len(get_viewer().static_html()) - before < 2000
     finally:
         close_viewer()
+
+
+def test_camera_ndc_is_a_pinhole_projection():
+    cam = [0.0, -4.0, 0.0]  # on the -y axis, looking at the origin: screen x = world x, up = z
+    t = math.tan(math.radians(P.CAMERA_FOV / 2))
+    pts = [[0, 0, 0], [4 * t * 1.5, 0, 0], [0, 0, -4 * t], [1, 2, 1], [0, -5, 0]]
+    ndc = P.camera_ndc(pts, cam, aspect=1.5)
+    np.testing.assert_allclose(ndc[:3], [[0, 0], [1, 0], [0, -1]], atol=1e-12)
+    np.testing.assert_allclose(ndc[3], [1 / (6 * t * 1.5), 1 / (6 * t)], rtol=1e-12)  # depth 6
+    assert np.isinf(ndc[4]).all()  # behind the camera
+    with pytest.raises(ValueError, match="camera"):
+        P.camera_ndc(pts, [0, 0, 3])  # straight down: no up direction
+    with pytest.raises(ValueError, match="fov_deg"):
+        P.camera_ndc(pts, cam, fov_deg=180)
+
+
+def test_show_helpers_hides_the_grid_and_axes():
+    rec = Recorder()
+    P.show_helpers(rec, grid=False, axes=False)
+    assert rec.log["/Grid"]["visible"] is False and rec.log["/Axes"]["visible"] is False

@@ -45,7 +45,11 @@ DEFAULTS = dict(
     mode_frames=48,          # frames per period of the mode animation
     mode_fps=24,             # frames per second of the mode animation
     mode_amplitude=0.15,     # animated tip amplitude as a fraction of L
-    max_drawn_tip=1.0,       # the drawn tip deflection is capped at this fraction of L
+    max_drawn_tip=0.5,       # the drawn tip deflection is capped at this fraction of L
+    camera_direction=(0.0, -0.914, 0.406),  # from the lever's centre, slightly from above
+    chip_in_view=0.7,        # scene units of the chip kept in view behind the clamp
+    min_distance=1.2,        # scene units, the closest camera (short levers)
+    reframe_ratio=1.3,       # re-aim the camera when L changes by more than this factor
 )
 
 _STRESS_LABEL = "bending stress"
@@ -123,7 +127,8 @@ class CantileverScene:
     -----
     One scene unit is 100 um (:data:`SCENE_UNIT`). Drawn deflection = exaggeration x z(x), except
     that the exaggeration actually used (:attr:`drawn_exaggeration`) is lowered when the drawn
-    tip would move by more than L (soft levers under large forces), so the lever stays in view;
+    tip would move by more than ``max_drawn_tip`` x L (soft levers under large forces), so the
+    lever stays in view and does not look stretched;
     the arrow's length is force / ``force_per_unit`` scene units, drawn from below the tip apex
     when the force pushes the tip up (a repulsive sample), from the apex downwards when it pulls.
     """
@@ -153,9 +158,59 @@ class CantileverScene:
         self.scale = None
         self.mesh = None
         self.field = None
+        self.camera = bool(camera)
+        self.camera_position = None
+        self._framed_for = None
         self.update(lever, force, exaggeration=exaggeration)
-        if camera:
-            P.set_camera(self.root, [0.0, -4.5, 2.0])
+
+    # -- framing ------------------------------------------------------------------------------
+    @staticmethod
+    def framing(length: float, aspect: float = 1.5) -> tuple[np.ndarray, float]:
+        """Camera position and legend width (scene units) that frame a lever ``length`` units long.
+
+        The camera looks at the lever's centre (the origin) along ``camera_direction``, from the
+        smallest distance (at least ``min_distance``) at which, in a view ``aspect`` times wider
+        than high, the clamp with ``chip_in_view`` units of chip, the free end deflected up or
+        down by the largest drawn deflection, and the legend all fit inside 92 % of the view (see
+        :func:`~afmsmiler.scenes.primitives.camera_ndc`). The legend is as wide as half that
+        distance, so it reads the same for every lever.
+        """
+        direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
+        cap = DEFAULTS["max_drawn_tip"] * length
+        distance = DEFAULTS["min_distance"]
+        for _ in range(60):  # grow by 5 % steps: the legend grows with the distance
+            legend = 0.5 * distance
+            corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
+            points = np.array([[-length / 2 - DEFAULTS["chip_in_view"], 0.0, 0.0],
+                               [length / 2, 0.0, cap], [length / 2, 0.0, -cap - 0.15],
+                               corner, corner + [legend, 0.0, legend / 4]])
+            ndc = P.camera_ndc(points, distance * direction, aspect=aspect)
+            if np.abs(ndc).max() <= 0.92:
+                break
+            distance *= 1.05
+        return distance * direction, 0.5 * distance
+
+    @staticmethod
+    def _legend_corner(length: float, legend_width: float) -> np.ndarray:
+        return np.array([-0.3 * legend_width, 0.5, 0.25 * legend_width + 0.1 * length])
+
+    def _frame(self, length: float) -> None:
+        """Aim the camera at a lever ``length`` units long and size the legend; only when the
+        length changed by more than ``reframe_ratio`` since the last time (a slider drag does
+        not move the camera under the student's hand at every step)."""
+        if self._framed_for is not None and (1 / DEFAULTS["reframe_ratio"]
+                                             < length / self._framed_for
+                                             < DEFAULTS["reframe_ratio"]):
+            return
+        position, legend_width = self.framing(length)
+        if self.camera:
+            P.set_camera(self.root, position)
+            P.show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
+        self.camera_position = position
+        self.legend_width = legend_width
+        self._framed_for = length
+        if self.legend is not None:
+            self.legend = P.ColorLegend(self.vis["legend"], self.scale, width=legend_width)
 
     # -- in-place update ----------------------------------------------------------------------
     def color_scale(self, field: StressField) -> P.ColorScale:
@@ -196,14 +251,21 @@ class CantileverScene:
         self.field, self.mesh = field, mesh
         self._draw_base(lever)
         self._place_tip(lever, field)
+        length = lever.length / u
+        self._frame(length)
         if self.legend is None:
-            self.legend = P.ColorLegend(self.vis["legend"], scale, width=1.6)
+            self.legend = P.ColorLegend(self.vis["legend"], scale, width=self.legend_width)
         else:
             self.legend.set(scale)
         self.scale = scale
-        length = lever.length / u
-        self.vis["legend"].set_transform(P.translation([0.0, 0.5, 0.9]))
+        # above the clamp, behind the lever, facing the camera
+        self.vis["legend"].set_transform(P.translation(self.legend_corner(length)))
         self.vis.set_transform(P.translation([-length / 2, 0.0, 0.0]))  # centre the lever
+
+    def legend_corner(self, length: float) -> np.ndarray:
+        """Lower-left corner of the legend plate in the lever's frame (scene units): above the
+        clamp, behind the lever."""
+        return self._legend_corner(length, self.legend_width)
 
     def _draw_base(self, lever: Cantilever) -> None:
         """The chip the lever is clamped to (a grey block behind x = 0), redrawn when h changes."""

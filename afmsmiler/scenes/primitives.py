@@ -36,7 +36,8 @@ from ..validation import check_array, check_integer, check_positive, check_range
 
 __all__ = ["ColorScale", "nice_ceil", "BeamMesh", "beam_mesh", "beam_faces", "rotation_between",
            "translation", "Arrow", "Segment", "cone", "sphere", "polyline", "colorbar_png",
-           "legend_html", "ColorLegend", "set_camera", "rgb_hex"]
+           "legend_html", "ColorLegend", "set_camera", "rgb_hex", "CAMERA_FOV", "camera_ndc",
+           "show_helpers"]
 
 _LUT_SIZE = 256
 
@@ -481,7 +482,7 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     img[top:bottom, margin:width - margin] = np.rint(255 * bar).astype(np.uint8)[None, :, :]
     im = Image.fromarray(img)
     draw = ImageDraw.Draw(im)
-    font = _font(max(8, int(0.16 * height)))
+    font = _font(max(8, int(0.2 * height)))
     _centred_text(draw, width / 2, int(0.03 * height), scale.title, font)
     for i, value in enumerate(np.linspace(scale.vmin, scale.vmax, n_ticks)):
         x = margin + i * (width - 2 * margin - 1) / (n_ticks - 1)
@@ -552,3 +553,64 @@ def set_camera(vis: meshcat.Visualizer, position) -> None:
     x, y, z = _check_point("position", position)
     # the camera node is rotated by +pi/2 about x (three.js is y-up): world (x, y, z) -> (x, z, -y)
     vis["/Cameras/default/rotated/<object>"].set_property("position", [x, z, -y])
+
+
+#: Vertical field of view of meshcat's default camera in degrees (three.js PerspectiveCamera(75, ...)).
+CAMERA_FOV = 75.0
+
+
+def camera_ndc(points, position, target=(0.0, 0.0, 0.0), fov_deg: float = CAMERA_FOV,
+               aspect: float = 1.5) -> np.ndarray:
+    """Where ``points`` land on the screen of a camera at ``position`` looking at ``target``.
+
+    A pinhole projection with z up (meshcat's orbit camera), used to check that a scene builder
+    frames its objects: a point is in view when both coordinates lie in [-1, 1].
+
+    Parameters
+    ----------
+    points : array_like, shape (N, 3)
+        World positions in scene units.
+    position, target : array_like, shape (3,)
+        Camera position and the point it looks at (meshcat's default: the origin).
+    fov_deg : float
+        Vertical field of view in degrees, in (0, 180).
+    aspect : float
+        Width / height of the view (> 0), e.g. 1.5 for 1200 x 800 pixels.
+
+    Returns
+    -------
+    ndarray, shape (N, 2)
+        Normalised device coordinates (x right, y up); ``inf`` for points behind the camera.
+    """
+    pts = check_array("points", points, ndim=2)
+    if pts.shape[1] != 3:
+        raise ValueError(f"points must have shape (N, 3), got {pts.shape}")
+    pos, tgt = _check_point("position", position), _check_point("target", target)
+    fov = check_range("fov_deg", fov_deg, 0.0, 180.0, "deg", low_inclusive=False,
+                      high_inclusive=False)
+    aspect = check_positive("aspect", aspect)
+    forward = tgt - pos
+    if np.linalg.norm(forward) == 0 or np.linalg.norm(np.cross(forward, [0, 0, 1])) == 0:
+        raise ValueError("the camera must look at a target other than its position, not straight "
+                         f"up or down; got position {pos.tolist()} and target {tgt.tolist()}")
+    forward /= np.linalg.norm(forward)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    d = pts - pos
+    depth = d @ forward
+    t = math.tan(math.radians(fov) / 2)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ndc = np.stack([(d @ right) / (depth * t * aspect), (d @ up) / (depth * t)], -1)
+    ndc[depth <= 0] = np.inf
+    return ndc
+
+
+def show_helpers(vis: meshcat.Visualizer, grid: bool = True, axes: bool = True) -> None:
+    """Show or hide meshcat's ground grid (the plane z = 0) and its x-y-z axes at the origin.
+
+    Scene builders centre their objects on the origin, where the axes would poke through them,
+    and a sample surface at z = 0 would fight with the grid: hide what gets in the way.
+    """
+    vis["/Grid"].set_property("visible", bool(grid))
+    vis["/Axes"].set_property("visible", bool(axes))
