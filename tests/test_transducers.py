@@ -136,6 +136,49 @@ def test_thermal_floor_integrates_to_equipartition():
     assert total == pytest.approx(BOLTZMANN * model.temperature / model.spring_constant, rel=1e-6)
 
 
+def test_band_integral_of_the_brownian_spectrum():
+    # the closed-form antiderivative differentiates back to |H|^2 (sympy, 30 digits)
+    r, q = sp.symbols("r Q", positive=True)
+    b = sp.sqrt(4 - 1 / q ** 2)
+    x = b * r / (1 + r ** 2)
+    antiderivative = r / (2 * (1 + r ** 2)) * sp.atanh(x) / x + q / 2 * sp.atan2(r, q * (1 - r ** 2))
+    residual = sp.diff(antiderivative, r) - 1 / ((1 - r ** 2) ** 2 + r ** 2 / q ** 2)
+    for qv, rv in (("0.51", "0.3"), ("0.7", "2"), ("30", "0.99"), ("10000", "1.0001"), ("150", "7")):
+        assert abs(sp.N(residual.subs({q: sp.Rational(qv), r: sp.Rational(rv)}), 30)) < 1e-20
+    # the model's band noise against scipy's quadrature of S_0 |H|^2 (python-control's H above)
+    for qv in (0.5, 0.7, 30.0, 1e4):
+        model = OpticalBeamDeflection(quality_factor=qv)
+        f1 = model.resonance_frequency
+        s0 = 4 * BOLTZMANN * model.temperature / (model.spring_constant * 2 * math.pi * f1 * qv)
+        sys = control.tf([(2 * math.pi * f1) ** 2], [1, 2 * math.pi * f1 / qv, (2 * math.pi * f1) ** 2])
+        for lo, hi in ((1.0, 1e3), (0.5 * f1, 1.5 * f1), (0.0, 3 * f1), (2 * f1, 20 * f1)):
+            ref, _ = integrate.quad(lambda f: s0 * abs(sys(2j * math.pi * f)) ** 2, lo, hi,
+                                    points=[p for p in (f1,) if lo < p < hi], limit=2000,
+                                    epsabs=0, epsrel=1e-11)
+            assert model.thermal_noise(hi - lo, lo) == pytest.approx(math.sqrt(ref), rel=1e-8)
+            np.testing.assert_allclose(model.thermal_noise_density([lo, hi]),
+                                       [s0 * abs(sys(2j * math.pi * f)) ** 2 for f in (lo, hi)],
+                                       rtol=1e-12)
+    # all frequencies: equipartition, k <z^2> = k_B T with k = E w h^3 / (4 L^3)
+    model = OpticalBeamDeflection(quality_factor=150.0)
+    k = 169e9 * model.width * model.thickness ** 3 / (4 * model.length ** 3)
+    assert model.thermal_noise(1e6 * model.resonance_frequency, 0.0) == pytest.approx(
+        math.sqrt(BOLTZMANN * model.temperature / k), rel=1e-6)
+    # a sensor's resolution counts the band's motion, resonance included; a drive, the white floor
+    wide = model.resolution(2 * model.resonance_frequency)
+    assert wide.contributions["thermal"] == pytest.approx(
+        model.thermal_noise(2 * model.resonance_frequency, 1.0), rel=1e-12)
+    assert wide.contributions["thermal"] > 10 * model.thermal_noise(2 * model.resonance_frequency)
+    drive = Electromagnetic(quality_factor=150.0).resolution(2 * model.resonance_frequency)
+    assert drive.contributions["thermal"] == pytest.approx(
+        model.thermal_noise(2 * model.resonance_frequency) / Electromagnetic().sensitivity(),
+        rel=1e-12)
+    with pytest.raises(ValueError, match="^quality_factor must be in"):
+        thermal_deflection_noise(model.lever, 0.3, 300.0, 1e3, 0.0)
+    with pytest.raises(ValueError, match="^low_frequency must be in"):
+        model.thermal_noise(1e3, -1.0)
+
+
 # --- optical beam deflection ---------------------------------------------------------------------
 def test_free_end_slope_is_three_halves_z_over_l():
     model = OpticalBeamDeflection()

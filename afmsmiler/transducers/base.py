@@ -16,10 +16,18 @@ oscillator of stiffness k (the end-load spring constant), resonance f1 and quali
     H_mech(f) = 1 / (1 - (f/f1)^2 + j f / (Q f1))          (= 1 at DC, ~ -j Q at f1)
 
 (e.g. Sarid, *Scanning Force Microscopy*, OUP 1994, ch. 1; Garcia, *Amplitude Modulation AFM*,
-Wiley 2010, ch. 2). Its thermal (Brownian) motion below resonance has the one-sided power spectral
-density S_z = 4 k_B T / (k omega1 Q) (fluctuation-dissipation theorem applied to that
-oscillator; Butt and Jaschke, Nanotechnology 6, 1 (1995)), so the deflection noise in a
-bandwidth B is sqrt(S_z B): the floor under every detector's resolution.
+Wiley 2010, ch. 2). Its thermal (Brownian) motion has the one-sided power spectral density
+S_z(f) = S_0 |H_mech(f)|^2 with S_0 = 4 k_B T / (k omega1 Q) (fluctuation-dissipation theorem
+applied to that oscillator; Butt and Jaschke, Nanotechnology 6, 1 (1995)), which integrates to
+k_B T / k over all frequencies (equipartition). The deflection noise in a band [f_a, f_b] is
+sqrt(S_0 f1 (F(f_b / f1) - F(f_a / f1))) with the closed-form antiderivative of |H_mech|^2 in
+r = f / f1, b = sqrt(4 - 1/Q^2) (partial fractions of 1 / (r^2 - b r + 1)(r^2 + b r + 1))::
+
+    F(r) = r / (2 (1 + r^2)) atanh(x) / x + (Q / 2) atan2(r, Q (1 - r^2)),   x = b r / (1 + r^2)
+
+(F(inf) = pi Q / 2); well below resonance it is sqrt(S_0 B), the white floor under every
+detector's resolution. The first mode alone holds 97 % of the end-load lever's k_B T / k
+(Butt and Jaschke); the model gives the whole of it to the first mode.
 
 Conventions
 -----------
@@ -298,37 +306,59 @@ def mechanical_response(f, resonance_frequency: float, quality_factor: float) ->
     return 1.0 / (1.0 - r * r + 1j * r / quality_factor)
 
 
-def thermal_deflection_noise(lever: Cantilever, quality_factor: float, temperature: float,
-                             bandwidth: float) -> float:
-    """Rms Brownian tip deflection in m within a bandwidth B well below resonance.
+def _response_power_integral(r, quality_factor: float):
+    """int_0^r |1 / (1 - u^2 + j u / Q)|^2 du (see the module docstring), for Q >= 1/2, r >= 0."""
+    r = np.asarray(r, dtype=float)
+    b = math.sqrt(4.0 - 1.0 / quality_factor ** 2)
+    x = b * r / (1.0 + r * r)
+    safe = np.where(x > 1e-6, x, 0.5)   # a dummy where the series is used
+    ratio = np.where(x > 1e-6, np.arctanh(safe) / safe, 1.0 + x * x / 3.0)
+    return (r / (2.0 * (1.0 + r * r)) * ratio
+            + quality_factor / 2.0 * np.arctan2(r, quality_factor * (1.0 - r * r)))
 
-    sqrt(4 k_B T B / (k omega1 Q)): the white, low-frequency part of the oscillator's
-    thermal spectrum (fluctuation-dissipation theorem).
+
+def thermal_deflection_noise(lever: Cantilever, quality_factor: float, temperature: float,
+                             bandwidth: float, low_frequency: float | None = None) -> float:
+    """Rms Brownian tip deflection in m within a bandwidth.
+
+    Without ``low_frequency``: sqrt(4 k_B T B / (k omega1 Q)), the white floor S_0 B of the
+    oscillator's thermal spectrum well below resonance (what a drive at any frequency competes
+    with, since drive and Brownian force pass the same |H_mech|). With it: the spectrum
+    S_0 |H_mech(f)|^2 integrated over [low_frequency, low_frequency + B] in closed form (see the
+    module docstring), the tip's actual rms motion in that band, resonance included.
 
     Parameters
     ----------
     lever : Cantilever
         The lever (its k and f1).
     quality_factor : float
-        Q of the first mode.
+        Q of the first mode, >= 1/2 for the band integral (> 0 for the white floor).
     temperature : float
         T in K.
     bandwidth : float
         B in Hz.
+    low_frequency : float, optional
+        Lower edge of the band in Hz, >= 0.
 
     Raises
     ------
     ValueError
-        If ``lever`` is not a Cantilever or a number is not finite and positive.
+        If ``lever`` is not a Cantilever or a number is not finite and in its range.
     """
     if not isinstance(lever, Cantilever):
         raise ValueError(f"lever must be a Cantilever, got {lever!r}")
     quality_factor = check_positive("quality_factor", quality_factor)
     temperature = check_positive("temperature", temperature, "K")
     bandwidth = check_positive("bandwidth", bandwidth, "Hz")
-    omega1 = 2 * math.pi * lever.resonance_frequency(1)
-    return math.sqrt(4 * BOLTZMANN * temperature * bandwidth
-                     / (lever.spring_constant * omega1 * quality_factor))
+    f1 = lever.resonance_frequency(1)
+    s0 = 4 * BOLTZMANN * temperature / (lever.spring_constant * 2 * math.pi * f1 * quality_factor)
+    if low_frequency is None:
+        return math.sqrt(s0 * bandwidth)
+    low_frequency = check_range("low_frequency", low_frequency, 0.0, math.inf, "Hz")
+    quality_factor = check_range("quality_factor", quality_factor, 0.5, math.inf)
+    edges = _response_power_integral([low_frequency / f1, (low_frequency + bandwidth) / f1],
+                                     quality_factor)
+    return math.sqrt(s0 * f1 * max(float(edges[1] - edges[0]), 0.0))
 
 
 class Transducer:
@@ -477,10 +507,32 @@ class Transducer:
         """f1 of the lever in Hz."""
         return self.lever.resonance_frequency(1)
 
-    def thermal_noise(self, bandwidth: float) -> float:
-        """Rms Brownian tip deflection in m within ``bandwidth`` Hz (see the module docstring)."""
-        bandwidth = check_positive("bandwidth", bandwidth, "Hz")
-        return thermal_deflection_noise(self.lever, self.quality_factor, self.temperature, bandwidth)
+    def thermal_noise(self, bandwidth: float, low_frequency: float | None = None) -> float:
+        """Rms Brownian tip deflection in m within ``bandwidth`` Hz (see the module docstring).
+
+        Parameters
+        ----------
+        bandwidth : float
+            B in Hz, > 0.
+        low_frequency : float, optional
+            Lower edge of the band in Hz: the spectrum, resonance included, is integrated over
+            [low_frequency, low_frequency + B]; without it, the white floor below resonance.
+        """
+        return thermal_deflection_noise(self.lever, self.quality_factor, self.temperature,
+                                        bandwidth, low_frequency)
+
+    def thermal_noise_density(self, f) -> np.ndarray:
+        """One-sided power spectral density of the Brownian tip deflection in m^2/Hz.
+
+        S_z(f) = 4 k_B T / (k omega1 Q) |H_mech(f)|^2 (see the module docstring).
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, >= 0.
+        """
+        s0 = self.thermal_noise(1.0) ** 2
+        return s0 * np.abs(mechanical_response(f, self.resonance_frequency, self.quality_factor)) ** 2
 
     # -- the public interface -----------------------------------------------------------------
     def chain(self, value, mode=None) -> SignalChain:
@@ -589,7 +641,8 @@ class Transducer:
         bandwidth : float
             Measurement bandwidth B in Hz, > 0 (the band is [low_frequency, low_frequency + B]).
         low_frequency : float
-            Lower edge of the band in Hz, > 0 (matters only for 1/f noise and leakage).
+            Lower edge of the band in Hz, > 0 (matters for 1/f noise, leakage, and the Brownian
+            motion of a sensing chain when the band reaches the resonance).
         mode : str, optional
             As for :meth:`chain`.
 
@@ -597,18 +650,23 @@ class Transducer:
         -------
         Resolution
             Rms contributions: the detector's own noise (where known) and the lever's Brownian
-            motion (``"thermal"``), in the input's units.
+            motion (``"thermal"``), in the input's units. For a sensor, the Brownian motion is
+            the tip's rms deflection in the band (its spectrum integrated, resonance included);
+            for an actuator, the drive whose deflection equals it: the Brownian force is white
+            and passes the same |H_mech| as the drive's, so it is the white floor sqrt(S_0 B)
+            over the drive's static gain at any drive frequency.
         """
         bandwidth = check_positive("bandwidth", bandwidth, "Hz")
         low_frequency = check_positive("low_frequency", low_frequency, "Hz")
         mode = self._mode(mode)
         sens = abs(self._sensitivity(mode, self.operating_point(mode)))
-        z_th = self.thermal_noise(bandwidth)
+        z_th = self.thermal_noise(bandwidth)    # the white floor (for drives)
         contributions = {}
         for source, rms_output in self._detector_noise(bandwidth, low_frequency, mode).items():
             contributions[source] = rms_output / sens if sens > 0 else math.inf
         if mode == "sensing":
-            contributions["thermal"] = z_th
+            # the tip really moves this much in the band, its resonance included
+            contributions["thermal"] = self.thermal_noise(bandwidth, low_frequency)
         else:
             # the smallest drive whose static deflection equals the Brownian motion
             static = abs(self._static_gain(mode, self.operating_point(mode)))
