@@ -319,8 +319,14 @@ def test_astigmatic_s_curve_and_slope_against_sympy():
     np.testing.assert_allclose(f, -f[::-1], atol=1e-12)
     assert abs(float(model.focus_error(0.0))) < 1e-15
     assert np.all(np.diff(f[np.argmax(f):]) < 0) and float(model.focus_error(200e-6)) < 0.05 * f.max()
-    peak = z[np.argmax(f)]
+    # the extrema: d(w_y / w_x)^2 / dd = 0 at 2 d = sqrt(a^2 + z_R^2) (sympy), a few um here
+    ratio2 = ((1 + ((2 * d + a) / zr) ** 2) / (1 + ((2 * d - a) / zr) ** 2))
+    (extremum,) = sp.solve(sp.numer(sp.together(sp.diff(ratio2, d))), d)
+    assert sp.simplify(extremum - sp.sqrt(a ** 2 + zr ** 2) / 2) == 0
+    peak = float(extremum.subs(subs))
     assert 0.5e-6 < peak < 5e-6
+    assert model.sensitivity(at=peak) == pytest.approx(0.0, abs=1e-9 * model.sensitivity())
+    assert z[np.argmax(f)] == pytest.approx(peak, abs=z[1] - z[0])
 
 
 # --- interferometry ------------------------------------------------------------------------------
@@ -506,11 +512,16 @@ def test_thermal_lag_is_a_first_order_lowpass(cls):
     sys = control.tf([1], [tau, 1])
     f = np.array([0.1, 1.0, 3.0]) * fc
     np.testing.assert_allclose(model.thermal_lag(f), sys(2j * math.pi * f), rtol=1e-12)
-    # the full response: DC value is the static sensitivity; -3 dB at fc (fc << f1)
+    # the full response: DC value is the static sensitivity; -3 dB at fc (fc << f1), times the
+    # lever's first mode (python-control's w1^2 / (s^2 + w1/Q s + w1^2))
     assert fc < model.resonance_frequency / 50
-    fr = model.frequency_response([0.0, fc])
+    w1 = 2 * math.pi * model.resonance_frequency
+    lever = control.tf([w1 ** 2], [1, w1 / model.quality_factor, w1 ** 2])
+    f = np.array([0.0, fc, 0.5 * model.resonance_frequency, model.resonance_frequency])
+    fr = model.frequency_response(f)
+    np.testing.assert_allclose(fr.response, model.sensitivity() * (sys * lever)(2j * math.pi * f),
+                               rtol=1e-12)
     assert abs(fr.response[1] / fr.response[0]) == pytest.approx(1 / math.sqrt(2), rel=1e-3)
-    assert fr.response[0].real == pytest.approx(model.sensitivity(), rel=1e-12)
 
 
 def _fourier_coefficients(expr, th):
@@ -786,8 +797,13 @@ def test_piezoelectric_sensing_is_ac_mostly():
     static = model.sensitivity("sensing") / model.spring_constant
     mech = np.abs(mechanical_response(f, model.resonance_frequency, model.quality_factor))
     assert fr.response[0] == 0
-    assert abs(fr.response[1]) == pytest.approx(static * mech[1] / math.sqrt(2), rel=1e-6)
-    assert abs(fr.response[2]) == pytest.approx(static * mech[2], rel=1e-6)
+    assert abs(fr.response[1]) == pytest.approx(static * mech[1] / math.sqrt(2), rel=1e-12)
+    assert abs(fr.response[2]) == pytest.approx(static * mech[2] / math.sqrt(1 + 1e-6), rel=1e-12)
+    # python-control: the charge amplifier's high-pass tau s / (tau s + 1) on the first mode
+    w1 = 2 * math.pi * model.resonance_frequency
+    sys = (control.tf([0.01, 0], [0.01, 1])
+           * control.tf([w1 ** 2], [1, w1 / model.quality_factor, w1 ** 2]))
+    np.testing.assert_allclose(fr.response, static * sys(2j * math.pi * f), rtol=1e-12)
     act = model.frequency_response([0.0], "actuation")
     assert act.response[0].real == pytest.approx(model.sensitivity("actuation"), rel=1e-12)
 

@@ -55,8 +55,10 @@ def test_quadrature_phase():
 
 
 def test_bad_givens_raise():
-    with pytest.raises(ValueError, match="^reference_length must be > 0"):
+    with pytest.raises(ValueError, match="^reference_length must be in"):
         check_length_doubling_sensitivity(1e-4, reference_length=-1.0)
+    with pytest.raises(ValueError, match="^reference_length must be in"):
+        check_length_doubling_sensitivity(1e-4, reference_length=5e-3)   # beyond the model's 1 mm
     with pytest.raises(ValueError, match="^rtol must be in"):
         check_two_omega_power(1.0, rtol=0.0)
     with pytest.raises(ValueError, match="^deflection must be in"):

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 
 from ..transducers import Electrothermal, Interferometer, OpticalBeamDeflection, Piezoresistive
-from ..validation import check_positive, check_range
+from ..validation import check_range
 from . import Feedback, check_close
 
 __all__ = ["DEFAULTS", "check_length_doubling_sensitivity", "check_two_omega_power",
@@ -39,7 +39,8 @@ def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS
     length : float or None
         The student's lever length in m.
     reference_length : float
-        The lever length (m) whose sensitivity is to be doubled (other parameters: defaults).
+        The lever length (m) whose sensitivity is to be doubled (other parameters: defaults),
+        inside the model's range of lengths.
     rtol : float
         Accepted relative error of the resulting sensitivity ratio (2).
 
@@ -49,14 +50,14 @@ def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS
         Passed when :class:`~afmsmiler.transducers.OpticalBeamDeflection` with that length is
         twice as sensitive as with ``reference_length``.
     """
-    reference_length = check_positive("reference_length", reference_length, "m")
+    p = OpticalBeamDeflection.parameter_table()["length"]
+    reference_length = check_range("reference_length", reference_length, p.low, p.high, "m")
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
     hint = ("The spot moves by 2 D theta and theta = 3 z / (2 L) for a tip deflection z: how does "
             "the signal per nm depend on L? Give L in metres.")
     value, fail = _number("a length", length, hint)
     if fail is not None:
         return fail
-    p = OpticalBeamDeflection.parameter_table()["length"]
     if not p.low <= value <= p.high:
         return Feedback(False, f"the model takes lengths in [{p.low:g}, {p.high:g}] m, "
                                f"got {value:g}. {hint}")

@@ -129,7 +129,7 @@ class AstigmaticDetection(Transducer):
 
         FES = ((A + C) - (B + D)) / (A + B + C + D) = (4 / pi) atan(w_y / w_x) - 1
 
-    an S-curve: zero in focus, extrema near d = +-a/2, back to zero far away. Its slope at focus
+    an S-curve: zero in focus, extrema at d = +-sqrt(a^2 + z_R^2) / 2, back to zero far away. Its slope at focus
     is 8 a / (pi (z_R^2 + a^2)) (largest, 4 / (pi z_R), for a = z_R), and its linear range is a
     few um (Braat, Dirksen and Janssen, "Diffractive read-out of optical discs", in *Optical
     Imaging and Microscopy*, Springer 2003; the astigmatic detection system AFM with a DVD
