@@ -4,7 +4,11 @@ Scale: one scene unit is :attr:`ContactScene.unit` metres, chosen when the scene
 default 20 nm), and lengths are true to scale in all three directions. The sample is a disc of
 radius ``extent`` whose surface follows the contact solution: inside the contact it fits the tip,
 outside it is Sneddon's displacement profile (:func:`~afmsmiler.contact.surface_displacement`),
-colored by the depth of the depression. The tip is a mesh of its own shape (a body of revolution,
+colored by the depth of the depression (legend under the sample). The scene shows the sample cut
+away along the plane y = 0: only the far halves (y >= 0) of the sample and of the tip are drawn,
+closed by their cross-sections on the cut, so the camera (on the -y side, slightly above) sees
+the tip's outline pressing into the depression's profile, as in a textbook figure, instead of
+the near rim of a full disc and the flank of the tip. The tip is a mesh of its own shape (a body of revolution,
 or four faces for the pyramid) whose apex sits at the separation Z_c - Z_np (-Z_s in contact).
 
 Built once by :class:`ContactScene`; :meth:`ContactScene.update` replaces the surface mesh with
@@ -25,29 +29,40 @@ from ..validation import check_integer, check_positive
 from . import primitives as P
 from .viewer import get_viewer
 
-__all__ = ["DEFAULTS", "ContactScene", "surface_mesh", "tip_mesh"]
+__all__ = ["DEFAULTS", "ContactScene", "surface_mesh", "tip_mesh", "cut_mesh"]
 
 #: Defaults of the scene, in one place.
 DEFAULTS = dict(unit=20e-9, extent=150e-9, n_radial=40, n_angular=48, tip_height=120e-9,
-                depth_floor=1e-9)
+                depth_floor=1e-9,
+                slab=0.35,                       # drawn sample thickness, as a fraction of extent
+                camera_direction=(0.25, -1.0, 0.42),  # from the contact, slightly from above
+                camera_distance=1.6,             # in units of the extent
+                legend_width=0.9,                # in units of the extent
+                lowered=0.2)                     # the drawing's shift down, in units of the extent
+
+_CUT_COLOR = 0xb89f7a
 
 _TIP_COLOR = 0x8a8a8a
 
 
-def _polar_faces(n_r: int, n_t: int) -> np.ndarray:
-    """Triangles of a polar grid: vertex 0 is the centre, then n_r rings of n_t vertices."""
-    faces = [[0, 1 + (j + 1) % n_t, 1 + j] for j in range(n_t)]
+def _polar_faces(n_r: int, n_t: int, closed: bool = True) -> np.ndarray:
+    """Triangles of a polar grid: vertex 0 is the centre, then n_r rings of n_t vertices.
+
+    ``closed=False`` leaves out the cells between the last and the first point of each ring (a
+    sector such as a half disc)."""
+    last = n_t if closed else n_t - 1
+    faces = [[0, 1 + (j + 1) % n_t, 1 + j] for j in range(last)]
     for i in range(n_r - 1):
         a = 1 + i * n_t
         b = a + n_t
-        for j in range(n_t):
+        for j in range(last):
             j1 = (j + 1) % n_t
             faces += [[a + j, a + j1, b + j1], [a + j, b + j1, b + j]]
     return np.asarray(faces, dtype=np.uint32)
 
 
 def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
-                 n_angular=DEFAULTS["n_angular"]):
+                 n_angular=DEFAULTS["n_angular"], *, half=False):
     """Vertices (scene units), faces and depths (m) of the deformed sample surface.
 
     Parameters
@@ -62,6 +77,9 @@ def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
         Metres per scene unit.
     n_radial, n_angular : int
         Rings and points per ring of the polar grid.
+    half : bool
+        Draw only the half y >= 0 (``n_angular`` points from 0 to pi on each ring), for a
+        cut-away view.
 
     Returns
     -------
@@ -79,15 +97,48 @@ def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
         u = surface_displacement(tip, z_s, np.r_[0.0, rho])
     else:
         u = np.zeros(n_r + 1)
-    theta = np.linspace(0.0, 2 * math.pi, n_t, endpoint=False)
+    theta = (np.linspace(0.0, math.pi, n_t) if half
+             else np.linspace(0.0, 2 * math.pi, n_t, endpoint=False))
     x = np.r_[0.0, (rho[:, None] * np.cos(theta)[None, :]).ravel()]
     y = np.r_[0.0, (rho[:, None] * np.sin(theta)[None, :]).ravel()]
     depth = np.r_[u[0], np.repeat(u[1:], n_t)]
     vertices = np.stack([x, y, -depth], -1) / unit
-    return vertices.astype(np.float32), _polar_faces(n_r, n_t), depth
+    return vertices.astype(np.float32), _polar_faces(n_r, n_t, closed=not half), depth
 
 
-def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"]):
+def cut_mesh(vertices, n_radial, n_angular, slab):
+    """The cross-section wall on the plane y = 0 of a half :func:`surface_mesh`.
+
+    Parameters
+    ----------
+    vertices : ndarray
+        Vertices of ``surface_mesh(..., half=True)`` in scene units.
+    n_radial, n_angular : int
+        The grid they were made with.
+    slab : float
+        Depth of the wall's flat bottom below z = 0, in scene units (> 0).
+
+    Returns
+    -------
+    (vertices, faces) : tuple of ndarray
+        A strip from the surface profile along the x axis (the rings' points at theta = pi, the
+        centre, the points at theta = 0) down to z = -slab.
+    """
+    slab = check_positive("slab", slab)
+    v = np.asarray(vertices, dtype=np.float32)
+    rings = 1 + np.arange(n_radial) * n_angular
+    order = np.r_[rings[::-1] + n_angular - 1, 0, rings]  # x from -extent to +extent
+    top = v[order].copy()
+    top[:, 1] = 0.0
+    bottom = top.copy()
+    bottom[:, 2] = -slab
+    n = top.shape[0]
+    i = np.arange(n - 1)
+    faces = np.concatenate([np.stack([i, i + 1, n + i + 1], -1), np.stack([i, n + i + 1, n + i], -1)])
+    return np.vstack([top, bottom]).astype(np.float32), faces.astype(np.uint32)
+
+
+def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     """Vertices (scene units, apex at the origin) and faces of a tip, closed by a flat top.
 
     Parameters
@@ -99,7 +150,10 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"]):
     unit : float
         Metres per scene unit.
     n_angular : int
-        Points per ring for bodies of revolution.
+        Points per ring for bodies of revolution (of the half ring if ``half``).
+    half : bool
+        Draw only the half y >= 0, closed by its cross-section on the plane y = 0 (the tip's
+        outline), for a cut-away view.
 
     Returns
     -------
@@ -107,22 +161,40 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"]):
     """
     unit = check_positive("unit", unit, "m")
     x, z = tip_outline(tip, height)
-    half = x.size // 2
-    r, z = x[half:], z[half:]  # one flank: from the apex outwards
-    n_t = 4 if isinstance(tip, Pyramidal) else check_integer("n_angular", n_angular, 3, 2000)
-    # a pyramid's outline is cut across its faces; its corners lie sqrt(2) further out
-    scale = math.sqrt(2.0) if n_t == 4 else 1.0
-    theta = np.linspace(0.0, 2 * math.pi, n_t, endpoint=False) + (math.pi / 4 if n_t == 4 else 0.0)
-    rings = r[1:, None] * scale
+    mid = x.size // 2
+    r, z = x[mid:], z[mid:]  # one flank: from the apex outwards
+    pyramid = isinstance(tip, Pyramidal)
+    if pyramid:
+        # the outline is cut across the faces; the corners (at 45 deg) lie sqrt(2) further out
+        corner = [math.pi / 4, 3 * math.pi / 4, 5 * math.pi / 4, 7 * math.pi / 4]
+        theta = np.array([0.0] + corner[:2] + [math.pi]) if half else np.array(corner)
+        scale = (np.array([1.0, math.sqrt(2.0), math.sqrt(2.0), 1.0]) if half
+                 else np.full(4, math.sqrt(2.0)))
+    else:
+        n = check_integer("n_angular", n_angular, 3, 2000)
+        theta = (np.linspace(0.0, math.pi, n) if half
+                 else np.linspace(0.0, 2 * math.pi, n, endpoint=False))
+        scale = np.ones(n)
+    n_t = theta.size
+    rings = r[1:, None] * scale[None, :]
     xs = np.r_[0.0, (rings * np.cos(theta)[None, :]).ravel(), 0.0]
     ys = np.r_[0.0, (rings * np.sin(theta)[None, :]).ravel(), 0.0]
     zs = np.r_[0.0, np.repeat(z[1:], n_t), z[-1]]
     vertices = np.stack([xs, ys, zs], -1) / unit
-    faces = _polar_faces(r.size - 1, n_t)[:, ::-1]  # outward normals
+    n_r = r.size - 1
+    faces = [_polar_faces(n_r, n_t, closed=not half)[:, ::-1]]  # outward normals
     top = vertices.shape[0] - 1
-    last = 1 + (r.size - 2) * n_t
-    lid = [[top, last + j, last + (j + 1) % n_t] for j in range(n_t)]
-    return vertices.astype(np.float32), np.vstack([faces, np.asarray(lid, dtype=np.uint32)])
+    last = 1 + (n_r - 1) * n_t
+    lid = [[top, last + j, last + (j + 1) % n_t] for j in range(n_t if not half else n_t - 1)]
+    faces.append(np.asarray(lid, dtype=np.uint32))
+    if half:  # the cross-section: a strip between the flanks at theta = 0 and theta = pi
+        right = 1 + np.arange(n_r) * n_t
+        left = right + n_t - 1
+        cut = [[0, left[0], right[0]]]
+        for i in range(n_r - 1):
+            cut += [[right[i], left[i], left[i + 1]], [right[i], left[i + 1], right[i + 1]]]
+        faces.append(np.asarray(cut, dtype=np.uint32))
+    return vertices.astype(np.float32), np.vstack(faces).astype(np.uint32)
 
 
 class ContactScene:
@@ -165,9 +237,16 @@ class ContactScene:
         self.vis.delete()
         self._tip = None
         self.depth_scale = P.ColorScale(0.0, 1.0, cmap="viridis_r", label="depression", unit="nm")
+        e = self.extent / self.unit
+        width = DEFAULTS["legend_width"] * e
+        self.legend = P.ColorLegend(self.vis["legend"], self.depth_scale, width=width)
+        direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
+        self.camera_position = DEFAULTS["camera_distance"] * e * direction / np.linalg.norm(direction)
+        # lowered a little, so that the camera (looking at the origin) sees the tip's shank too
+        self.vis.set_transform(P.translation([0.0, 0.0, -DEFAULTS["lowered"] * e]))
         if camera:
-            P.set_camera(self.root, [self.extent / self.unit * 1.6, -self.extent / self.unit * 1.6,
-                                     self.extent / self.unit * 0.9])
+            P.set_camera(self.root, self.camera_position)
+            P.show_helpers(self.root, grid=False, axes=False)  # the grid would cut the sample
         self.update(tip, current)
 
     def update(self, tip, current) -> None:
@@ -182,19 +261,35 @@ class ContactScene:
         """
         if not isinstance(current, IndentationCurve):
             raise ValueError(f"current must be an IndentationCurve, got {current!r}")
-        if tip != self._tip:
-            v, f = tip_mesh(tip, DEFAULTS["tip_height"], self.unit)
+        z_s = max(float(current.z_s[0]), 0.0) if current.in_contact[0] else 0.0
+        # the drawn tip doubles in height when an indentation would bury 2/3 of it
+        height = DEFAULTS["tip_height"] * 2.0 ** max(
+            0, math.ceil(math.log2(max(1.5 * z_s / DEFAULTS["tip_height"], 1e-300))))
+        if (tip, height) != (self._tip, getattr(self, "tip_height", None)):
+            v, f = tip_mesh(tip, height, self.unit, half=True)
             self.vis["tip"].set_object(g.TriangularMeshGeometry(v, f),
-                                       g.MeshLambertMaterial(color=_TIP_COLOR, opacity=0.9))
-            self._tip = tip
-        v, f, depth = surface_mesh(tip, current, self.extent, self.unit)
+                                       g.MeshLambertMaterial(color=_TIP_COLOR, side=2))
+            self._tip, self.tip_height = tip, height
+        n_r, n_t = DEFAULTS["n_radial"], DEFAULTS["n_angular"]
+        e = self.extent / self.unit
+        v, f, depth = surface_mesh(tip, current, self.extent, self.unit, n_r, n_t, half=True)
         limit = P.nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
         if limit != self.depth_scale.vmax:
             self.depth_scale = P.ColorScale(0.0, limit, cmap="viridis_r", label="depression",
                                             unit="nm")
+            self.legend.set(self.depth_scale)
         colors = self.depth_scale.rgb(depth * 1e9)
         self.vis["surface"].set_object(g.TriangularMeshGeometry(v, f, colors),
                                        g.MeshLambertMaterial(vertexColors=True, side=2))
+        # the sample is drawn thicker than the deepest point of the depression
+        self.slab = max(DEFAULTS["slab"] * e, 1.2 * float(depth.max()) / self.unit + 0.05 * e)
+        cv, cf = cut_mesh(v, n_r, n_t, self.slab)
+        self.vis["cut"].set_object(g.TriangularMeshGeometry(cv, cf),
+                                   g.MeshLambertMaterial(color=_CUT_COLOR, side=2))
+        # the legend: a caption under the sample's cut face, facing the camera
+        width = self.legend.width
+        self.legend_corner = np.array([-width / 2, 0.0, -self.slab - 0.05 * e - width / 4])
+        self.vis["legend"].set_transform(P.translation(self.legend_corner))
         apex = float(current.separation[0])
         self.vis["tip"].set_transform(P.translation([0.0, 0.0, apex / self.unit]))
         self.last_vertices = v

@@ -539,7 +539,9 @@ class ColorLegend:
         png = colorbar_png(scale)
         h = self.width / 4
         material = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(png)), color=0xffffff)
-        self.vis["plate"].set_object(g.Box([self.width, 1e-3, h]), material)
+        # thick enough (1 % of its width) that the depth buffer keeps its front and back faces
+        # apart: a thinner plate shows the mirrored back texture through the front one
+        self.vis["plate"].set_object(g.Box([self.width, self.width / 100, h]), material)
         self.vis["plate"].set_transform(translation([self.width / 2, 0.0, h / 2]))
         self.scale = scale
         return True
