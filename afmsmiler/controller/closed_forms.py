@@ -53,12 +53,15 @@ class ClosedForm:
         root with positive imaginary part is kept), with c_j multiplying t^j e^{p t}.
     case : str
         Name of the closed form used (e.g. ``"ramp_o3_real_complex"``).
+    feedthrough : float
+        Direct feedthrough b_n of the transfer function (its value at s -> infinity).
     """
 
     q0: float
     q1: float
     blocks: tuple
     case: str
+    feedthrough: float = 0.0
 
     def __call__(self, t):
         """Evaluate y(t) (0 for t < 0, the system starts at rest).
@@ -195,4 +198,4 @@ def closed_form(b, structure: str, params, input: str = "step") -> ClosedForm:
     """
     name = f"{input}_o{len(b) - 1}_{structure}"
     q0, q1, modes = FUNCTIONS[name](b, *params)
-    return ClosedForm(float(q0), float(q1), _blocks(structure, params, modes), name)
+    return ClosedForm(float(q0), float(q1), _blocks(structure, params, modes), name, float(b[-1]))

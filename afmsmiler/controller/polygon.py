@@ -13,6 +13,16 @@ e^{p h} sum_i C(j, i) h^(j-i) c t^i: a first-order recursion x_k = e^{p h_k} x_{
 coefficient, run by ``scipy.signal.lfilter`` (C speed) when the knots are equally spaced and by a
 vectorised associative scan (log2 N passes) when they are not. This is the exact first-order-hold
 discretisation of the system, with no step-size error.
+
+When every root is simple (distinct real, complex pairs) the same superposition is arranged so
+that nothing cancels: a simple root p with residue R contributes R (e^{p t} - 1 - p t) / p^2 to
+the ramp response, whose mode and polynomial parts are each of order R / p^2 and cancel to
+order R t^2 when |p| t is small (a slow root, e.g. a weak integrator: up to 4e-8 of the peak at
+the corners of the panel's sliders). Carried from knot to knot,
+z_k = e^{p h} z_{k-1} + h (phi1(p h) u_{k-1} + phi2(p h) (u_k - u_{k-1})) with
+phi1(x) = (e^x - 1) / x and phi2(x) = (e^x - 1 - x) / x^2 evaluated without cancellation, and
+y = feedthrough u + Re sum R z, where R = p times the step response's mode coefficient.
+Repeated roots keep the coefficient recursion above.
 """
 from __future__ import annotations
 
@@ -42,6 +52,57 @@ def _recursion(lam, d, uniform):
         a[shift:] = a[shift:] * a[:-shift]
         shift *= 2
     return x
+
+
+_PHI_SERIES = 0.5  # |x| below which phi1, phi2 are summed as series (18 terms: < 1e-20)
+_FACT = [float(np.prod(np.arange(1, k + 1))) for k in range(21)]
+
+
+def _phi12(x):
+    """phi1(x) = (e^x - 1) / x and phi2(x) = (e^x - 1 - x) / x^2 (complex), without cancellation."""
+    x = np.asarray(x, dtype=complex)
+    small = np.abs(x) < _PHI_SERIES
+    xs = np.where(small, x, 0.0)
+    phi1 = np.zeros_like(x)
+    phi2 = np.zeros_like(x)
+    for k in range(17, -1, -1):  # Horner: sum x^k / (k + 1)!, sum x^k / (k + 2)!
+        phi1 = phi1 * xs + 1.0 / _FACT[k + 1]
+        phi2 = phi2 * xs + 1.0 / _FACT[k + 2]
+    if not small.all():
+        xl = np.where(small, 1.0, x)
+        em1 = np.expm1(xl)
+        phi1 = np.where(small, phi1, em1 / xl)
+        phi2 = np.where(small, phi2, (em1 - xl) / xl ** 2)
+    return phi1, phi2
+
+
+def _simple_modes(step_forms, u, hh, slope, idx, tau, uniform):
+    """Outputs for simple roots only: the cancellation-free recursion of the module docstring."""
+    n_out = len(step_forms)
+    u_now = u if idx is None else u[..., idx] + slope[..., idx] * tau
+    out = np.empty((n_out,) + u_now.shape)
+    for o in range(n_out):
+        out[o] = step_forms[o].feedthrough * u_now
+    u_prev = np.zeros(u.shape)
+    u_prev[..., 1:] = u[..., :-1]
+    step = u - u_prev
+    step[..., 0] = 0.0  # no segment ends at the first knot: z_0 = 0
+    for b, (p, _) in enumerate(step_forms[0].blocks):
+        if uniform and hh.size > 1:  # one spacing: scalars (hh[0] = 0 multiplies u_prev = 0)
+            lam = np.array([1.0, np.exp(p * hh[1])])
+            phi1, phi2 = (hh[1] * f for f in _phi12(p * hh[1]))
+        else:
+            lam = np.exp(p * hh)
+            phi1, phi2 = (hh * f for f in _phi12(p * hh))
+        z = _recursion(lam, phi1 * u_prev + phi2 * step, uniform)
+        if idx is not None:
+            ph1, ph2 = _phi12(p * tau)
+            z = (np.exp(p * tau) * z[..., idx] + tau * ph1 * u[..., idx]
+                 + tau ** 2 * ph2 * slope[..., idx])
+        for o in range(n_out):
+            residue = step_forms[o].blocks[b][1][0] * p  # the step response's mode is R / p
+            out[o] += (residue * z).real
+    return out
 
 
 def _shifted(seq):
@@ -110,6 +171,12 @@ def _polygon_response(step_forms, ramp_forms, t_knots, u_knots, t_eval, uniform)
         before = idx < 0
         idx = np.maximum(idx, 0)
         tau = te - t[idx]
+
+    if all(len(cs) == 1 for _, cs in step_forms[0].blocks):
+        out = _simple_modes(step_forms, u, hh, slope, idx, tau, uniform)
+        if before is not None and before.any():
+            out[..., before] = 0.0
+        return out
 
     n_out = len(step_forms)
     if idx is None:
