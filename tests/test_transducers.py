@@ -492,8 +492,31 @@ def test_bimorph_deflection_from_conduction_and_curvature(cls):
     assert z_tip < 0  # a top film that expands more bends the lever towards the sample
 
 
+def _fin_tip_deflection_by_sympy(kind):
+    """The tip deflection per its DC value of the heated fin at complex wavenumber k (sympy).
+
+    Periodic heat P e^{j w t}: G T'' - j w c' T = -q(x), T(0) = 0 (clamp at ambient), and at the
+    free end G T'(L) = P (a laser spot) or 0 with q = P / L along the lever (a heater); with
+    k^2 = j w c' / G = j w / D. The bimorph's curvature is -C T(x), so the tip deflection goes as
+    int_0^L (L - x) T(x) dx (Timoshenko; module (a)'s clamped-free lever).
+    """
+    x, L, G, P = sp.symbols("x L G P", positive=True)
+    k = sp.symbols("k")
+    T = sp.Function("T")
+    if kind == "tip":
+        sol = sp.dsolve(sp.Eq(T(x).diff(x, 2) - k ** 2 * T(x), 0), T(x),
+                        ics={T(0): 0, T(x).diff(x).subs(x, L): P / G}).rhs
+        dc = P * L ** 3 / (6 * G)
+    else:
+        sol = sp.dsolve(sp.Eq(T(x).diff(x, 2) - k ** 2 * T(x), -P / (L * G)), T(x),
+                        ics={T(0): 0, T(x).diff(x).subs(x, L): 0}).rhs
+        dc = P * L ** 3 / (8 * G)
+    ratio = sp.integrate(sp.expand((L - x) * sol), (x, 0, L)) / dc
+    return sp.lambdify((k, L), ratio.subs({P: 1, G: 1}), "mpmath")
+
+
 @pytest.mark.parametrize("cls", [Photothermal, Electrothermal])
-def test_thermal_lag_is_a_first_order_lowpass(cls):
+def test_thermal_lag_solves_the_heat_equation(cls):
     model = cls()
     tau = model.thermal_time_constant
     # the slowest mode of the heat equation with T(0) = 0, T'(L) = 0 has k L = pi / 2
@@ -504,24 +527,42 @@ def test_thermal_lag_is_a_first_order_lowpass(cls):
                       + get_material(model.FILM).density * film.specific_heat * t2))
     assert tau == pytest.approx(1 / (diffusivity * (math.pi / (2 * model.length)) ** 2), rel=1e-12)
     fc = 1 / (2 * math.pi * tau)
-    lag = model.thermal_lag([0.0, fc, 100 * fc])
-    assert abs(lag[1]) == pytest.approx(1 / math.sqrt(2), rel=1e-12)      # -3 dB
-    assert np.angle(lag[1]) == pytest.approx(-math.pi / 4, rel=1e-12)     # -45 degrees
-    assert abs(lag[2]) == pytest.approx(0.01, rel=1e-3)                   # -20 dB/decade
-    # python-control's first-order system 1 / (tau s + 1)
-    sys = control.tf([1], [tau, 1])
-    f = np.array([0.1, 1.0, 3.0]) * fc
-    np.testing.assert_allclose(model.thermal_lag(f), sys(2j * math.pi * f), rtol=1e-12)
-    # the full response: DC value is the static sensitivity; -3 dB at fc (fc << f1), times the
-    # lever's first mode (python-control's w1^2 / (s^2 + w1/Q s + w1^2))
+    # the exact fin response, from sympy's solution evaluated in 30-digit arithmetic
+    exact = _fin_tip_deflection_by_sympy(model.HEATING)
+    # (|s| = (f / fc) pi^2 / 4: the series below 0.02, i.e. f < 0.0081 fc, the closed form above)
+    f = np.array([1e-6, 1e-3, 0.0081, 0.0082, 0.3, 1.0, 3.0, 30.0, 100.0, 1e4]) * fc
+    with mpmath.workdps(30):
+        # every float enters as an mpf first: double-precision products inside the expression
+        # (7 L k, ...) would spoil its cancellations at low frequency
+        length = mpmath.mpf(model.length)
+        ref = [complex(exact(mpmath.sqrt(2j * mpmath.pi * mpmath.mpf(fi) / diffusivity), length))
+               for fi in f]
+    np.testing.assert_allclose(model.thermal_lag(f), ref, rtol=1e-12)
+    assert model.thermal_lag(0.0) == 1.0
+    # below fc it is the slowest mode's first-order low-pass (python-control's 1 / (tau s + 1));
+    # far above, steeper: the heat stays near where it is deposited
+    first_order = control.tf([1], [tau, 1])
+    low = np.array([0.01, 0.1, 1.0]) * fc
+    np.testing.assert_allclose(np.abs(model.thermal_lag(low)), np.abs(first_order(2j * math.pi * low)),
+                               rtol=0.01)
+    assert abs(np.angle(model.thermal_lag(fc)) + math.pi / 4) < math.radians(7)
+    # asymptotes (u = L sqrt(j w / D) large): tanh -> 1, sech -> 0 in the fin's solution, so
+    # 6 / u^3 for heat at the free end, 4 / u^2 for heat spread along the lever
+    u = model.length * np.sqrt(2j * math.pi * 1e5 * fc / diffusivity)
+    far = 6 / u ** 3 if cls is Photothermal else 4 / u ** 2
+    assert model.thermal_lag(1e5 * fc) == pytest.approx(far, rel=1e-2)
+    # the full response: the static sensitivity times the fin and the lever's first mode
+    # (python-control's w1^2 / (s^2 + w1/Q s + w1^2))
     assert fc < model.resonance_frequency / 50
     w1 = 2 * math.pi * model.resonance_frequency
     lever = control.tf([w1 ** 2], [1, w1 / model.quality_factor, w1 ** 2])
     f = np.array([0.0, fc, 0.5 * model.resonance_frequency, model.resonance_frequency])
+    with mpmath.workdps(30):
+        fin = [1.0] + [complex(exact(mpmath.sqrt(2j * mpmath.pi * mpmath.mpf(fi) / diffusivity),
+                                     mpmath.mpf(model.length))) for fi in f[1:]]
     fr = model.frequency_response(f)
-    np.testing.assert_allclose(fr.response, model.sensitivity() * (sys * lever)(2j * math.pi * f),
-                               rtol=1e-12)
-    assert abs(fr.response[1] / fr.response[0]) == pytest.approx(1 / math.sqrt(2), rel=1e-3)
+    np.testing.assert_allclose(fr.response, model.sensitivity() * np.array(fin)
+                               * lever(2j * math.pi * f), rtol=1e-12)
 
 
 def _fourier_coefficients(expr, th):
