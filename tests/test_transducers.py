@@ -407,6 +407,10 @@ def test_base_excitation_against_python_control():
     r = 1e4
     assert model.base_transfer(r * model.resonance_frequency) == pytest.approx(
         -gamma * r * r / (r * r - 1 - 1j * r / 80), rel=1e-12)
+    # the sensitivity at the drive frequency, d |U/Y| (half the resonance here)
+    r = 0.5
+    assert model.replace(drive_ratio=r).sensitivity() == pytest.approx(
+        1e-9 * gamma * r * r / abs(1 - r * r + 1j * r / 80.0), rel=1e-12)
     # the chain at the drive frequency: amplitude = d V |U/Y|; the slope follows the mode shape
     chain = model.replace(drive_ratio=1.0).chain([2.0])
     assert chain.output.values[0] == pytest.approx(2.0 * 1e-9 * gamma * 80, rel=1e-12)
@@ -490,6 +494,13 @@ def test_bimorph_deflection_from_conduction_and_curvature(cls):
     assert chain.stage("deflection").values[0] == pytest.approx(z_tip, rel=1e-9)
     assert chain.stage("slope").values[0] == pytest.approx(slope, rel=1e-9)
     assert z_tip < 0  # a top film that expands more bends the lever towards the sample
+    # the small-signal sensitivity: z per incident watt (A z_tip / 1 mW) for the laser; for the
+    # heater, d/dV of (V^2 + V_ac^2 / 2) / R times z per watt, 2 V / R (z_tip / 1 mW)
+    if cls is Photothermal:
+        assert model.sensitivity() == pytest.approx(model.absorptance * z_tip / 1e-3, rel=1e-9)
+    else:
+        assert model.sensitivity(at=v) == pytest.approx(2 * v / model.resistance * z_tip / 1e-3,
+                                                        rel=1e-9)
 
 
 def _fin_tip_deflection_by_sympy(kind):
@@ -700,6 +711,9 @@ def test_lorentz_force_and_magnetic_torque():
     assert chain.stage("force").values[0] == pytest.approx(force, rel=1e-12)
     assert chain.output.values[0] == pytest.approx(float(lever.deflection(lever.length, force)),
                                                    rel=1e-12)
+    # sensitivity B l / k with k = E w h^3 / (4 L^3) (silicon <110>, 169 GPa)
+    k = 169e9 * model.width * model.thickness ** 3 / (4 * model.length ** 3)
+    assert model.sensitivity() == pytest.approx(0.2 * 30e-6 / k, rel=1e-12)
     assert model.moment_force(1e-12, 50.0) == pytest.approx(5e-11)
     # an end moment M: E J z'' = M, z(0) = z'(0) = 0 (sympy)
     x, L, EJ, M = sp.symbols("x L EJ M", positive=True)
