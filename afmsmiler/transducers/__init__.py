@@ -3,21 +3,21 @@
 Each principle is a model (a :class:`~afmsmiler.transducers.base.Transducer` subclass) that
 turns its physical input into its output signal through the cantilever of module (a):
 
-=====================  ================================================  =========================
-key                    model                                             module
-=====================  ================================================  =========================
-optical_beam_deflection  :class:`OpticalBeamDeflection`                  :mod:`.optical`
-astigmatic             :class:`AstigmaticDetection`                      :mod:`.optical`
-interferometry         :class:`Interferometer`                           :mod:`.optical`
-piezo_acoustic         :class:`PiezoAcoustic`                            :mod:`.acoustic`
-photothermal           :class:`Photothermal`                             :mod:`.thermal`
-electromagnetic        :class:`Electromagnetic`                          :mod:`.electric`
-electrostatic          :class:`Electrostatic`                            :mod:`.electric`
-optomechanical         :class:`Optomechanical`                           :mod:`.embedded`
-piezoresistive         :class:`Piezoresistive`                           :mod:`.embedded`
-electrothermal         :class:`Electrothermal`                           :mod:`.thermal`
-piezoelectric          :class:`Piezoelectric`                            :mod:`.embedded`
-=====================  ================================================  =========================
+=======================  ==============================  ================
+key                      model                           module
+=======================  ==============================  ================
+optical_beam_deflection  :class:`OpticalBeamDeflection`  :mod:`.optical`
+astigmatic               :class:`AstigmaticDetection`    :mod:`.optical`
+interferometry           :class:`Interferometer`         :mod:`.optical`
+piezo_acoustic           :class:`PiezoAcoustic`          :mod:`.acoustic`
+photothermal             :class:`Photothermal`           :mod:`.thermal`
+electromagnetic          :class:`Electromagnetic`        :mod:`.electric`
+electrostatic            :class:`Electrostatic`          :mod:`.electric`
+optomechanical           :class:`Optomechanical`         :mod:`.embedded`
+piezoresistive           :class:`Piezoresistive`         :mod:`.embedded`
+electrothermal           :class:`Electrothermal`         :mod:`.thermal`
+piezoelectric            :class:`Piezoelectric`          :mod:`.embedded`
+=======================  ==============================  ================
 
 :data:`PRINCIPLES` maps each key to its model class, in the order of Table I, and
 :func:`table_one` generates the table's rows (name, function, signal, size) from the models'
