@@ -384,6 +384,33 @@ def test_polygon_recursion_for_every_structure(name, uniform):
         np.testing.assert_allclose(at_knots[o], ref[knots], rtol=0, atol=1e-9 * peak)
 
 
+@pytest.mark.parametrize("roots", [
+    [-1.0, -1.0 * (1 + 1.1e-6)], [-1.0, -1.0 * (1 + 0.9e-5)], [-1.0, -1.0 * (1 + 1.2e-5)],
+    [-1.0, -1.0 * (1 + 0.9e-5), -3.0], [-1.0, -1.0 * (1 + 1.2e-5), -0.05],
+    [-3.0, -1.0 + 4e-6j, -1.0 - 4e-6j], [-3.0, -1.0 + 6e-6j, -1.0 - 6e-6j],
+])
+def test_polygon_near_repeated_roots(roots):
+    """Many ramps superposed over |p| t = 60 near the double-root threshold (MERGE_TOLERANCE =
+    1e-5): 1e-9 of the peak on both sides (with 1e-6 the first pair, kept apart, failed)."""
+    from afmsmiler.controller.closed_forms import classify_roots, closed_form, normalise
+    from afmsmiler.controller.polygon import polygon_response
+    rng = np.random.default_rng(7)
+    den = np.real(np.poly(roots))
+    nums = [rng.normal(size=len(roots) + 1) for _ in range(2)]
+    structure, params = classify_roots(np.roots(den))
+    steps = [closed_form(normalise(num, den)[0], structure, params, "step") for num in nums]
+    ramps = [closed_form(normalise(num, den)[0], structure, params, "ramp") for num in nums]
+    n = 4001
+    t_grid = np.linspace(0, 60, n)
+    knots = np.arange(0, n, 10)
+    u_knots = rng.normal(size=knots.size) + 1.0
+    out = polygon_response(steps, ramps, t_grid[knots], u_knots)
+    for o, num in enumerate(nums):
+        ref = control.forced_response(control.tf(num, den), t_grid,
+                                      np.interp(t_grid, t_grid[knots], u_knots)).outputs
+        np.testing.assert_allclose(out[o], ref[knots], rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+
+
 def test_overdamped_loop_has_real_roots_and_matches():
     loop = ContactLoop(m_c=1e-12, m_s=1e-12, b_c=1e-5, b_s=1e-5, k_c=1.0, k_s=10.0, kp=0.5,
                        ki=1e4, kd=0.0)

@@ -177,19 +177,29 @@ def test_every_case_matches_python_control(case, seed):
 @pytest.mark.parametrize("inp", ["step", "ramp"])
 @pytest.mark.parametrize("roots, expect", [
     ([-1.0, -1.0 * (1 + 1e-8)], "o2_double"),                   # merged: below the threshold
-    ([-1.0, -1.0 * (1 + 1e-5)], "o2_distinct"),                 # kept apart: above it
+    ([-1.0, -1.0 * (1 + 9e-6)], "o2_double"),                   # just below it
+    ([-1.0, -1.0 * (1 + 1.2e-5)], "o2_distinct"),               # kept apart: just above it
+    ([-1.0, -1.0 * (1 + 1e-4)], "o2_distinct"),
     ([-1.0 + 1e-8j, -1.0 - 1e-8j], "o2_double"),
+    ([-1.0 + 4e-6j, -1.0 - 4e-6j], "o2_double"),
+    ([-1.0 + 3.5e-6j, -1.0 - 3.5e-6j], "o2_double"),
+    ([-1.0 + 6e-6j, -1.0 - 6e-6j], "o2_complex"),               # 2 omega > 1e-5: a pair
     ([-1.0 + 1e-5j, -1.0 - 1e-5j], "o2_complex"),
     ([-1.0, -1.0 * (1 + 1e-8), -3.0], "o3_double_single"),
-    ([-1.0, -1.0 * (1 + 1e-5), -3.0], "o3_distinct"),
+    ([-1.0, -1.0 * (1 + 9e-6), -3.0], "o3_double_single"),
+    ([-1.0, -1.0 * (1 + 1.2e-5), -3.0], "o3_distinct"),
     ([-3.0, -1.0 + 1e-8j, -1.0 - 1e-8j], "o3_double_single"),
+    ([-3.0, -1.0 + 3e-6j, -1.0 - 3e-6j], "o3_double_single"),
+    ([-3.0, -1.0 + 6e-6j, -1.0 - 6e-6j], "o3_real_complex"),
     ([-1.0, -1.0 * (1 + 1e-8), -1.0 * (1 - 1e-8)], "o3_triple"),
     ([-1.0, -1.0 + 1e-9j, -1.0 - 1e-9j], "o3_triple"),
     ([-2.0, -1.0 * (1 + 1e-3), -1.0], "o3_distinct"),
 ])
 def test_near_repeated_roots_keep_their_accuracy(roots, expect, inp):
-    """Root structures at the boundaries between cases, against python-control."""
+    """Root structures at the boundaries between cases, against python-control, over |p| t up to
+    15 and 60 (the span of a scan)."""
     assert _compare(roots, inp, expect=f"{inp}_{expect}") < 1e-9
+    assert _compare(roots, inp, t_end=60.0) < 1e-9
 
 
 def test_merge_threshold_is_relative():
