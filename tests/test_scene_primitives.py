@@ -209,3 +209,17 @@ def test_show_helpers_hides_the_grid_and_axes():
     rec = Recorder()
     P.show_helpers(rec, grid=False, axes=False)
     assert rec.log["/Grid"]["visible"] is False and rec.log["/Axes"]["visible"] is False
+
+
+def test_text_plate_is_a_png_of_the_text_on_a_plate():
+    img = matplotlib.image.imread(io.BytesIO(P.text_png("output / max", size_px=(300, 50))))
+    assert img.shape[:2] == (50, 300)
+    dark = img[..., 0] < 0.5
+    assert dark[:, 100:200].any() and not dark[:, :10].any()  # centred text, white margins
+    rec = Recorder()
+    plate = P.TextPlate(rec["label"], "output / max", width=1.2)
+    geom, material = rec.log["/label/plate"]["object"]
+    np.testing.assert_allclose(geom.lengths, [1.2, 1.2 / 100, 0.2])
+    assert material.map is not None
+    np.testing.assert_allclose(rec.log["/label/plate"]["transform"][:3, 3], [0.6, 0.0, 0.1])
+    assert plate.text == "output / max"

@@ -93,7 +93,7 @@ def test_principles_swap_their_elements_in_place():
             scene.update(model, model.input_quantity(mode).default, mode)
             assert scene.key == key
             elements = {k for k in rec.log if k.startswith("/t/element/")}
-            seen |= elements
+            seen |= elements | {k.rsplit("/", 1)[0] for k in elements}  # wires: one path each
             if key != "optical_beam_deflection":
                 assert "/t/element/detector/q0" not in elements or key == "astigmatic"
     assert rec.log["/t/beam"]["n_objects"] == 1 + sum(len(c.MODES) for c in PRINCIPLES.values())
@@ -122,3 +122,57 @@ def test_real_viewer_is_updated_in_place_and_closed():
     finally:
         close_viewer()
     assert not viewer.viewer_running()
+
+
+def test_photodiode_spot_travels_as_many_spot_radii_as_the_model_says():
+    """The drawing exaggerates the lever's tilt and shortens the optical path, so the spot is
+    drawn to the same scale as its travel: travel / radius = s / w of the model (on average over
+    the two ends of the range; the drawn tip's up-down motion adds +-12 %), and it never leaves
+    the photodiode."""
+    model = OpticalBeamDeflection()
+    scene, rec = _scene(model, 0.0)
+    centre, normal, rot = scene.parts["detector"]
+    half = rec.log["/t/element/detector/q0"]["object"][0].lengths[0] / 0.96  # one quadrant
+    ends = []
+    for z in np.linspace(-2e-6, 2e-6, 9):
+        scene.update(model, z)
+        a = scene.parts["spot_radius"]
+        offset = scene.parts["spot"] - centre
+        s = float(model.chain(np.array([z])).stage("spot_displacement").values[0])
+        assert np.linalg.norm(offset) / a == pytest.approx(abs(s) / model.spot_radius, rel=0.15,
+                                                           abs=1e-12)
+        ends.append(np.linalg.norm(offset) / a * model.spot_radius / abs(s) if abs(z) == 2e-6
+                    else None)
+        assert np.all(np.abs((rot[:3, :3].T @ offset)[:2]) + a <= 2 * half)  # on the diode
+    ends = [r for r in ends if r is not None]
+    assert np.mean(ends) == pytest.approx(1.0, rel=1e-9)
+
+
+@pytest.mark.parametrize("key", list(PRINCIPLES))
+def test_camera_sees_every_part_of_every_principle(key):
+    """The centre of every drawn object (lever, chip, meter and its label, lasers, detectors,
+    magnets, ...) projects inside a 1200 x 800 view of the default camera, at both ends of the
+    input range; meshcat's axes, which would pierce the lever, are hidden."""
+    from afmsmiler.scenes import primitives as P
+    model = PRINCIPLES[key]()
+    q = model.input_quantity(None)
+    rec = Recorder()
+    scene = TransducerScene(model, q.low, vis=rec, path="t")
+    for value in (q.low, q.high):
+        scene.update(model, value)
+        shift = rec.log["/t"]["transform"]  # the whole drawing, centred on the lever
+
+        def world(key):  # compose the transforms from /t down to the node
+            parts = key.split("/")[1:]
+            t = np.eye(4)
+            for i in range(1, len(parts) + 1):
+                t = t @ np.asarray(rec.log.get("/" + "/".join(parts[:i]), {}).get(
+                    "transform", np.eye(4)))
+            return t[:3, 3]
+
+        centres = [world(k) for k, v in rec.log.items()
+                   if k.startswith("/t/") and "object" in v and v.get("visible", True)]
+        centres.append(shift[:3, 3] + [scene.pose.x[-1], 0.0, scene.pose.z[-1]])  # the free end
+        ndc = P.camera_ndc(np.array(centres), DEFAULTS["camera"], aspect=1.5)
+        assert np.all(np.abs(ndc) <= 1.0), ndc
+    assert rec.log["/Axes"]["visible"] is False

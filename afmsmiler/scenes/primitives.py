@@ -37,7 +37,7 @@ from ..validation import check_array, check_integer, check_positive, check_range
 __all__ = ["ColorScale", "nice_ceil", "BeamMesh", "beam_mesh", "beam_faces", "rotation_between",
            "translation", "Arrow", "Segment", "cone", "sphere", "polyline", "colorbar_png",
            "legend_html", "ColorLegend", "set_camera", "rgb_hex", "CAMERA_FOV", "camera_ndc",
-           "show_helpers"]
+           "show_helpers", "text_png", "TextPlate"]
 
 _LUT_SIZE = 256
 
@@ -492,6 +492,56 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     buf = io.BytesIO()
     im.save(buf, format="PNG", compress_level=1)
     return buf.getvalue()
+
+
+def text_png(text: str, size_px=(480, 80)) -> bytes:
+    """One line of black ``text`` centred on a white image, as PNG bytes (Pillow).
+
+    Parameters
+    ----------
+    text : str
+        The text.
+    size_px : (int, int)
+        Image width and height in pixels (at least 100 x 20); the font is 60 % of the height.
+    """
+    from PIL import Image, ImageDraw
+
+    width = check_integer("width_px", int(size_px[0]), 100, 4096)
+    height = check_integer("height_px", int(size_px[1]), 20, 4096)
+    im = Image.new("RGB", (width, height), (255, 255, 255))
+    draw = ImageDraw.Draw(im)
+    font = _font(int(0.6 * height))
+    _centred_text(draw, width / 2, int(0.15 * height), str(text), font)
+    buf = io.BytesIO()
+    im.save(buf, format="PNG", compress_level=1)
+    return buf.getvalue()
+
+
+class TextPlate:
+    """A line of text in the scene (meshcat draws none): a PNG texture on a thin plate.
+
+    Like :class:`ColorLegend`, the plate lies in the x-z plane, readable from the -y side, with
+    its lower-left corner at the origin of ``vis`` (place it with ``vis.set_transform``).
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        Where to draw.
+    text : str
+        The text.
+    width : float
+        Plate width in scene units (its height is ``width / 6``).
+    """
+
+    def __init__(self, vis: meshcat.Visualizer, text: str, width: float = 1.0):
+        self.vis = vis
+        self.width = check_positive("width", width)
+        self.text = str(text)
+        h = self.width / 6
+        material = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(text_png(self.text))),
+                                       color=0xffffff)
+        vis["plate"].set_object(g.Box([self.width, self.width / 100, h]), material)
+        vis["plate"].set_transform(translation([self.width / 2, 0.0, h / 2]))
 
 
 def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str:

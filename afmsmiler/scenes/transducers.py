@@ -55,7 +55,8 @@ DEFAULTS = dict(
     n_sweep=21,           # inputs sampled to find the largest deflection and output
     meter_x=-1.4,         # position of the signal meter (scene units)
     beam_radius=0.012,    # laser beams
-    camera=(0.8, -5.0, 2.6),
+    detector_distance=1.5,  # optical beam deflection: tip to photodiode, scene units
+    camera=(0.8, -3.6, 2.8),  # a little from above: the photodiode's face is not edge-on
 )
 
 _WHITE, _GREY, _RED, _BLUE, _GREEN = 0xffffff, 0x9a9a9a, 0xe03030, 0x3060e0, 0x20a040
@@ -180,11 +181,13 @@ class TransducerScene:
         self.parts = {}
         self._beam_material = g.MeshLambertMaterial(vertexColors=True)
         self._segments = {}
+        self._lines = {}
         self._arrows = {}
         self._draw_common()
         self.update(model, value, mode)
         if camera:
             P.set_camera(self.root, list(DEFAULTS["camera"]))
+            P.show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
 
     # -- drawn once -----------------------------------------------------------------------------
     def _draw_common(self):
@@ -195,6 +198,9 @@ class TransducerScene:
         v["meter"]["frame"].set_object(g.Box([0.16, 0.16, 2.0]), _mat(0xcccccc, 0.25))
         v["meter"]["frame"].set_transform(P.translation([mx, 0.0, 0.0]))
         v["meter"]["bar"].set_object(g.Box([0.12, 0.12, 1.0]), _mat(_GREEN))
+        # what the bar is: the output as a fraction of its largest value over the input range
+        label = P.TextPlate(v["meter"]["label"], "output / max", width=1.1)
+        v["meter"]["label"].set_transform(P.translation([mx - label.width / 2, 0.0, 1.05]))
 
     # -- the update -------------------------------------------------------------------------------
     def update(self, model: Transducer, value: float, mode: str | None = None) -> None:
@@ -230,7 +236,7 @@ class TransducerScene:
             @ np.diag([1.0, 1.0, bar, 1.0]))
         if model.key != self.key:
             self.vis["element"].delete()
-            self._segments, self._arrows, self.parts = {}, {}, {}
+            self._segments, self._arrows, self.parts, self._lines = {}, {}, {}, {}
             self.key = model.key
             getattr(self, f"_draw_{model.key}")(model)
         getattr(self, f"_move_{model.key}")(model, value, mode, pose)
@@ -259,17 +265,35 @@ class TransducerScene:
         h = model.thickness / SCENE_UNIT
         return np.array([pose.x[-1], 0.0, pose.z[-1] + h / 2])
 
-    def _surface_line(self, name, model, pose, ys, x_range=(0.0, 1.0), color=_COPPER, lift=0.01):
-        """A polyline on the lever's top surface at lateral offsets ``ys`` (a path of (u, y))."""
+    def _surface_line(self, name, model, pose, ys, x_range=(0.0, 1.0), color=_COPPER,
+                      radius=0.012):
+        """A wire on the lever's top surface along a path of (u, y): u the fraction of
+        ``x_range`` (itself a fraction of L), y the lateral offset in scene units.
+
+        Drawn as thin cylinders (WebGL lines are one pixel wide, too thin to see) lying on the
+        bent surface: legs along the lever are cut into pieces of at most L / 12 that follow it.
+        The cylinders are made once per principle and color, then moved in place.
+        """
         h = model.thickness / SCENE_UNIT
-        x_of = np.interp
+        L = pose.x[-1]
+        path = []
+        for (u0, y0), (u1, y1) in zip(ys[:-1], ys[1:]):
+            n = max(1, int(np.ceil(abs(u1 - u0) * (x_range[1] - x_range[0]) * 12)))
+            for t in np.linspace(0.0, 1.0, n + 1)[(1 if path else 0):]:
+                path.append((u0 + t * (u1 - u0), y0 + t * (y1 - y0)))
         pts = []
-        for u, y in ys:
-            x = x_range[0] + u * (x_range[1] - x_range[0])
-            xs = x * pose.x[-1]
-            pts.append([xs, y, x_of(xs, pose.x, pose.z) + h / 2 + lift])
-        P.polyline(self.vis["element"][name], np.array(pts), color=color)
-        self.parts[name] = np.array(pts)
+        for u, y in path:
+            xs = (x_range[0] + u * (x_range[1] - x_range[0])) * L
+            pts.append([xs, y, np.interp(xs, pose.x, pose.z) + h / 2 + radius])
+        pts = np.array(pts)
+        if self._lines.get(name, (None,))[0] != (color, len(pts)):
+            self.vis["element"][name].delete()
+            self._lines[name] = ((color, len(pts)), [
+                P.Segment(self.vis["element"][name][f"s{i:03d}"], color=color, radius=radius)
+                for i in range(len(pts) - 1)])
+        for seg, a, b in zip(self._lines[name][1], pts[:-1], pts[1:]):
+            seg.set(a, b)
+        self.parts[name] = pts
 
     def _quadrants(self, name, centre, normal, size=0.5):
         """A four-quadrant photodiode: four thin plates in the plane through ``centre``."""
@@ -290,30 +314,55 @@ class TransducerScene:
         L = model.length / SCENE_UNIT
         self._source = np.array([L - 1.6, 0.0, 2.2])
         self._box("laser", (0.5, 0.25, 0.25), self._source, 0x333333)
-        tip = np.array([L, 0.0, 0.0])
+        tip = np.array([L, 0.0, model.thickness / SCENE_UNIT / 2])  # the undeflected top face
         d = tip - self._source
         d /= np.linalg.norm(d)
         nominal = d - 2 * d[2] * np.array([0.0, 0.0, 1.0])
-        self._detector = tip + 2.6 * nominal
-        self._quadrants("detector", self._detector, -nominal)
+        self._detector = tip + DEFAULTS["detector_distance"] * nominal
+        self.parts["detector"] = (self._detector, -nominal, None)
+        # The drawn lever tilts ~13x more than the real one and the detector is ~20x nearer than
+        # the real optical path D, so the drawn spot is scaled like its travel: at the ends of
+        # the input range, travel / radius on the drawing = s / w of the model on average (the
+        # drawn tip's own up-down motion, negligible in a real AFM, adds +-12 %), and the spot
+        # crosses the split line as far (in spot radii) as the model's signal says.
+        q = model.input_quantity(None)
+        travel, ratio = [], []
+        for end in (q.low, q.high):
+            pose = lever_pose(model, end)
+            hit = self._reflect(model, self._tip_top(model, pose), pose)
+            travel.append(float(np.linalg.norm(hit - self._detector)))
+            s = float(model.chain(np.array([end])).stage("spot_displacement").values[0])
+            ratio.append(travel[-1] * model.spot_radius / abs(s))
+        self._spot_radius = float(np.mean(ratio))
+        size = 2.1 * (max(travel) + self._spot_radius)
+        self._quadrants("detector", self._detector, -nominal, size=size)
         self._segment("incident", _RED)
         self._segment("reflected", _RED, opacity=0.8)
-        P.sphere(self.vis["element"]["spot"], 0.06, color=0xff0000)
+        P.sphere(self.vis["element"]["spot"], 1.0, color=0xff0000, opacity=0.85)
 
-    def _move_optical_beam_deflection(self, model, value, mode, pose):
-        top = self._tip_top(model, pose)
-        self._segments["incident"].set(self._source, top)
+    def _reflect(self, model, top, pose):
+        """Where the beam from the laser, reflected at ``top`` of the lever drawn as ``pose``,
+        meets the detector plane (law of reflection on the drawn surface)."""
         d = top - self._source
         d /= np.linalg.norm(d)
         n = np.array([-pose.slope[-1], 0.0, 1.0])
         n /= np.linalg.norm(n)
         r = d - 2 * np.dot(d, n) * n
-        centre, normal, _ = self.parts["detector"]
-        t = np.dot(centre - top, normal) / np.dot(r, normal)
-        hit = top + t * r
+        centre, normal = self._detector, self.parts["detector"][1]
+        return top + np.dot(centre - top, normal) / np.dot(r, normal) * r
+
+    def _move_optical_beam_deflection(self, model, value, mode, pose):
+        top = self._tip_top(model, pose)
+        self._segments["incident"].set(self._source, top)
+        hit = self._reflect(model, top, pose)
         self._segments["reflected"].set(top, hit)
-        self.vis["element"]["spot"].set_transform(P.translation(hit - 0.02 * normal))
+        _, normal, rot = self.parts["detector"]
+        a = self._spot_radius
+        flat = np.eye(4)
+        flat[:3, :3] = rot[:3, :3] @ np.diag([a, a, 0.02])  # a disc on the detector's plane
+        self.vis["element"]["spot"].set_transform(P.translation(hit - 0.02 * normal) @ flat)
         self.parts["spot"] = hit
+        self.parts["spot_radius"] = a
 
     # -- astigmatic detection ---------------------------------------------------------------------
     def _draw_astigmatic(self, model):
@@ -321,7 +370,8 @@ class TransducerScene:
         self._head = np.array([L, 0.0, 1.8])
         self._box("pickup_head", (0.9, 0.7, 0.35), self._head, 0x303030)
         self._box("objective", (0.3, 0.3, 0.05), self._head - [0, 0, 0.2], 0x8080ff, 0.6)
-        self._quadrants("detector", self._head + [0.0, 0.0, 0.6], [0.0, 0.0, -1.0], size=0.4)
+        # the quadrant detector, drawn as a window on the head's top face (it sits inside)
+        self._quadrants("detector", self._head + [0.0, 0.0, 0.185], [0.0, 0.0, 1.0], size=0.4)
         self._segment("beam", _RED, opacity=0.8)
         P.sphere(self.vis["element"]["spot"], 1.0, color=0xff2020)
 
@@ -330,7 +380,7 @@ class TransducerScene:
         self._segments["beam"].set(top, self._head - [0, 0, 0.22])
         wx, wy = model.spot_radii(value)
         scale = 0.1 / np.sqrt(wx * wy)
-        centre = self._head + [0.0, 0.0, 0.58]
+        centre = self._head + [0.0, 0.0, 0.2]
         self.vis["element"]["spot"].set_transform(
             P.translation(centre) @ np.diag([wx * scale, wy * scale, 0.02, 1.0]))
         self.parts["spot"] = (float(wx * scale), float(wy * scale))
