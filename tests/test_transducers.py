@@ -115,6 +115,55 @@ def test_metadata_is_complete(key):
         assert res.total > 0 and res.quantity is q and "thermal" in res.contributions
 
 
+#: What the outputs of the sensors can physically be: a normalised difference lies in [-1, 1], a
+#: detected power between 0 and its maximum, a quarter bridge between its rails -V_b/2 and V_b/2
+#: (a resistance cannot be negative).
+OUTPUT_BOUNDS = {
+    "optical_beam_deflection": lambda m: (-1.0, 1.0),
+    "astigmatic": lambda m: (-1.0, 1.0),
+    "interferometry": lambda m: (0.0, m.power * (1 + m.visibility)),
+    "optomechanical": lambda m: (0.0, m.power),
+    "piezoresistive": lambda m: (-m.bias_voltage / 2, m.bias_voltage / 2),
+}
+
+
+@pytest.mark.parametrize("key", list(PRINCIPLES))
+def test_every_corner_of_the_parameter_space_gives_finite_numbers(key):
+    """Parameters at their bounds or anywhere between, in random combinations (a slider user):
+    the chain, the sensitivity, the response and the resolution stay finite and never raise, and
+    a sensor's output stays physical."""
+    cls = PRINCIPLES[key]
+    table = cls.parameter_table()
+    rng = np.random.default_rng(20261123)
+    for _ in range(60):
+        values = {}
+        for name, p in table.items():
+            pick = rng.integers(3)
+            if pick < 2:
+                values[name] = (p.low, p.high)[pick]
+            elif p.log:
+                values[name] = math.exp(rng.uniform(math.log(p.low), math.log(p.high)))
+            else:
+                values[name] = rng.uniform(p.low, p.high)
+        for name, (other, factor) in cls.BOUNDED_BY.items():
+            values[name] = min(values[name], factor * values[other])
+        model = cls(**values)
+        for mode in model.MODES:
+            q = model.input_quantity(mode)
+            chain = model.chain(np.linspace(q.low, q.high, 41), mode)
+            for stage in chain.stages:
+                assert np.isfinite(stage.values).all(), (values, stage.quantity.name)
+            if key in OUTPUT_BOUNDS:
+                low, high = OUTPUT_BOUNDS[key](model)
+                out = chain.output.values
+                assert np.all((out >= low - 1e-12 * abs(low)) & (out <= high + 1e-12 * abs(high)))
+            assert math.isfinite(model.sensitivity(mode))
+            f = np.geomspace(1e-2, 10 * model.resonance_frequency, 30)
+            assert np.isfinite(model.frequency_response(f, mode).response).all()
+            assert model.resolution(1e3, mode=mode).total > 0
+            model.validity(q.low, mode)
+
+
 # --- the lever's dynamics and its thermal floor --------------------------------------------------
 def test_mechanical_response_is_a_damped_oscillator():
     # python-control: G(s) = w1^2 / (s^2 + (w1/Q) s + w1^2)
