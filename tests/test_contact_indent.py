@@ -295,3 +295,74 @@ def test_adhesive_sphere_is_not_indented_past_its_radius():
         with pytest.raises(ValueError, match="past its radius"):
             approach_retract(np.linspace(-300e-9, 1.001 * limit, 500), k, tip, e, nu,
                              adhesion=model, work_of_adhesion=W)
+
+
+def _ting_reference(t, tip_c, exponent, mat, nu, v, t_m):
+    """Ting's force for Z_s = v t up to t_m and v (2 t_m - t) after, psi = c Z_s^exponent, by
+    quadrature and brentq on the integrals as printed (Ting 1966; Efremov et al. 2017)."""
+    def e(s):
+        return float(mat.modulus(s))
+
+    def d_psi(s):  # d psi / ds on the loading
+        return tip_c * exponent * (v * s) ** (exponent - 1) * v
+
+    q = dict(epsabs=0, epsrel=1e-12, limit=200)
+    if t <= t_m:
+        return quad(lambda s: e(t - s) * d_psi(s), 0, t, **q)[0] / (1 - nu ** 2)
+
+    def cond(t1):  # integral_t1^t E(t - s) dZ_s = 0
+        return (quad(lambda s: e(t - s) * v, t1, t_m, **q)[0]
+                - quad(lambda s: e(t - s) * v, t_m, t, **q)[0])
+
+    if cond(0.0) <= 0:
+        return 0.0  # the surface has receded from the tip
+    t1 = brentq(cond, 0.0, t_m, xtol=1e-17)
+    return quad(lambda s: e(t - s) * d_psi(s), 0, t1, **q)[0] / (1 - nu ** 2)
+
+
+@pytest.mark.parametrize("tip, c, n", [
+    (Conical(0.6), 2 * math.tan(0.6) / math.pi, 2.0),
+    (Parabolic(R), 4 * math.sqrt(R) / 3, 1.5)], ids=["conical", "parabolic"])
+def test_retract_follows_tings_solution(tip, c, n):
+    # a triangular indentation history: Lee and Radok while it grows, Ting's t1 while it shrinks
+    nu, v, t_m = 0.25, 1e-6, 0.05
+    mat = StandardLinearSolid(1e6, 3e6, 0.02)
+    t = np.linspace(0, 2 * t_m, 1601)
+    z = np.maximum(v * np.minimum(t, 2 * t_m - t), 0.0)
+    ref = np.array([_ting_reference(ti, c, n, mat, nu, v, t_m) for ti in t[::20]])
+    got = hereditary_force(t, z, tip, mat, nu)[::20]
+    # second order in the step (psi linear between samples): 1601 samples give ~1e-6
+    np.testing.assert_allclose(got, ref, rtol=0, atol=2e-5 * ref.max())
+    assert np.all((got == 0) == (ref == 0))  # the tip leaves where Ting's t1 reaches 0
+    assert (ref == 0).sum() >= 5  # ... before the indentation returns to 0
+    # Lee and Radok's integral carried on through the unloading would pull at the end (tensile)
+    end = 2 * t_m
+    lee_radok = quad(lambda s: float(mat.modulus(end - s)) * c * n * (v * min(s, end - s)) ** (
+        n - 1) * (v if s < t_m else -v), 0, end, points=[t_m], epsabs=0, epsrel=1e-10)[0]
+    assert lee_radok < -0.01 * ref.max() and got[-1] == 0.0
+    # a stiff lever (F / k << Z_s) is the prescribed indentation: same forces
+    cyc = viscoelastic_approach_retract(np.linspace(0, v * t_m, 801), 1e5, tip, mat, nu, v)
+    both = np.r_[cyc.approach.force, cyc.retract.force[1:]][::20]
+    np.testing.assert_allclose(both, ref, rtol=0, atol=2e-5 * ref.max())
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+@pytest.mark.parametrize("tau", [0.005, 0.05, 0.5])
+def test_sls_retract_never_pulls_and_leaves_at_zero_force(tip, tau):
+    # no adhesion: the retract force is compressive until the tip leaves (Ting), then zero
+    k, nu = 0.1, 0.3
+    z = np.linspace(-20e-9, 80e-9, 401)
+    cyc = viscoelastic_approach_retract(z, k, tip, StandardLinearSolid(1e6, 4e6, tau), nu, 1e-6)
+    ret = cyc.retract
+    c = ret.in_contact
+    assert np.all(ret.force >= 0) and ret.force.max() > 0
+    last = np.flatnonzero(c)[-1]
+    assert not c[last + 1:].any() and np.all(ret.force[last + 1:] == 0)
+    assert ret.force[last] < 2e-3 * ret.force.max()  # it reaches ~0 (to a step) where it leaves
+    assert ret.z_np[last] > ret.z_np[-1]  # ... before the ramp ends
+    np.testing.assert_allclose(ret.force[c], k * (ret.z_np[c] - ret.z_s[c]), rtol=1e-12,
+                               atol=1e-15 * ret.force.max())
+    # the contact radius has one maximum (creep may still widen it just after the turn)
+    rad = ret.contact_radius[c]
+    peak = int(np.argmax(rad))
+    assert np.all(np.diff(rad[:peak + 1]) >= 0) and np.all(np.diff(rad[peak:]) <= 0)

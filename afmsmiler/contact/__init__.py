@@ -3,7 +3,8 @@
 - :mod:`.tips`: the four tip shapes with F(Z_s), r(Z_s) and their metadata registry :data:`TIPS`;
 - :mod:`.indent`: the cantilever equation k (Z_np - Z_s) = F(Z_s) solved exactly for whole curves,
   approach-retract cycles with DMT or JKR adhesion;
-- :mod:`.viscoelastic`: a standard linear solid through Lee and Radok's hereditary integral;
+- :mod:`.viscoelastic`: a standard linear solid (Lee and Radok's hereditary integral on loading,
+  Ting's solution on unloading);
 - :mod:`.fit`: fitting E, contact point and baseline, synthetic curves, files via afmformats;
 - :mod:`.surface`: the deformed surface around the contact (for the 3D scene).
 

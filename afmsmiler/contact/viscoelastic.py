@@ -1,4 +1,4 @@
-"""A viscoelastic sample: the standard linear solid, with the hereditary integral of Lee and Radok.
+"""A viscoelastic sample: the standard linear solid, Lee and Radok on loading, Ting on unloading.
 
 The standard linear solid (a spring in parallel with a spring-dashpot arm) relaxes as::
 
@@ -19,11 +19,24 @@ which is exact for a piecewise-linear psi(t). Coupled to the cantilever (F = k (
 step is the elastic problem with the effective modulus E*_inf + phi (E*_0 - E*_inf) and a force
 offset, solved by the same exact solver as :func:`~afmsmiler.contact.indent`.
 
-Limits (tested): tau -> 0 gives the elastic curve with E_inf, tau -> inf the elastic curve with E_0.
-On retract the model keeps Lee and Radok's integral while the force is compressive and lets the
-tip leave the surface when it would turn tensile (the surface then recovers more slowly than the
-tip retracts; re-contact within the same cycle is not modelled). Ting's correction for a
-shrinking contact area is not applied: retract curves are qualitative beyond the turning point.
+On retract the contact shrinks, where Lee and Radok's integral no longer holds (it would pull the
+sample with tensile forces although nothing sticks). Ting's solution (Ting, J. Appl. Mech. 33, 845
+(1966); in the form used for AFM curves by Efremov et al., Sci. Rep. 7, 1541 (2017)) applies: the
+contact radius at time t equals the one at an earlier time t1 of the loading, found from::
+
+    integral_t1^t E(t - s) dZ_s(s) = 0,     F(t) = 1/(1 - nu^2) * integral_0^t1 E(t - s) d psi(s)
+
+With the exponential kernel both integrals are again carried by memories (of psi and of Z_s) at
+the loading's samples, so each retract step is a scalar root in t1, monotone, bracketed between two
+samples and found by Brent's method; with the lever, Z_s(t) is linear in the memories and
+k (Z_np - Z_s) = F closes the system. When no t1 > 0 remains, the surface has receded from the tip:
+F = 0 and the apex recovers freely (integral_0^t E(t - s) dZ_s = 0). A contact that grows again
+after it began to shrink (a fast-creeping sample under a slow retract) is continued by Lee and
+Radok's integral, an approximation outside the single-maximum case Ting solved.
+
+Limits (tested): tau -> 0 gives the elastic curve with E_inf, tau -> inf the elastic curve with E_0,
+on approach and retract; the prescribed-indentation force is checked against Ting's integrals by
+quadrature.
 """
 from __future__ import annotations
 
@@ -31,6 +44,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.optimize import brentq
 
 from ..validation import check_array, check_positive, check_range
 from .indent import IndentationCurve, _check_common, _check_depth
@@ -94,6 +108,68 @@ def _kernel(dt, tau):
     return decay, phi
 
 
+class _Loading:
+    """The loading history (contact growing) for Ting's unloading: one node per step.
+
+    Node j holds t_j, Z_j, psi_j, h_j = int_0^t_j e^(-(t_j - s)/tau) d psi and
+    H_j = int_0^t_j e^(-(t_j - s)/tau) dZ_s; between nodes psi and Z_s are linear in time, as in
+    the hereditary integral's recursion. Node 0 is the onset of contact (all zero).
+    """
+
+    def __init__(self, tau, t0, capacity):
+        self.tau = tau
+        self.rows = np.zeros((5, capacity + 1))  # t, Z, psi, h, H
+        self.rows[0, 0] = t0
+        self.size = 1
+
+    def append(self, t, z, psi, h, hz):
+        self.rows[:, self.size] = t, z, psi, h, hz
+        self.size += 1
+
+    def nodes(self, t_now):
+        """Arrays Z, psi, h, H at the nodes and their decay exp(-(t_now - t_j) / tau)."""
+        t, z, psi, h, hz = self.rows[:, :self.size]
+        with np.errstate(under="ignore"):
+            return z, psi, h, hz, np.exp(-(t_now - t) / self.tau)
+
+    def at(self, j, theta, t_now):
+        """Z, psi, h, H and the decay at t1 = t_j + theta (t_(j+1) - t_j), 0 <= theta <= 1."""
+        t0, z0, p0, h0, hz0 = self.rows[:, j].tolist()
+        t1, z1, p1, _, _ = self.rows[:, j + 1].tolist()
+        s = theta * (t1 - t0)
+        decay, phi = _kernel(s, self.tau)
+        w = theta * float(phi)  # int_tj^t1 e^(-(t1 - s)/tau) ds / (t_(j+1) - t_j)
+        with np.errstate(under="ignore"):
+            to_now = math.exp(-(t_now - t0 - s) / self.tau)
+        return (z0 + theta * (z1 - z0), p0 + theta * (p1 - p0), float(decay) * h0 + w * (p1 - p0),
+                float(decay) * hz0 + w * (z1 - z0), to_now)
+
+    def solve(self, t_now, residual):
+        """Ting's t1: the root of ``residual(Z, psi, h, H, decay)``, a decreasing function of t1.
+
+        Returns None if the residual is <= 0 already at the onset (the contact has ended),
+        "grow" if it is > 0 at the last node (the contact grows: Lee and Radok apply), else the
+        state at t1 (see :meth:`at`).
+        """
+        r = residual(*self.nodes(t_now))
+        if r[0] <= 0:
+            return None
+        if r[-1] > 0:
+            return "grow"
+        j = int(np.flatnonzero(r > 0)[-1])
+
+        def g(theta):
+            return residual(*self.at(j, theta, t_now))
+
+        # the nodes' values and the interpolation's ends agree to round-off; a sign lost to it
+        # puts the root on the node
+        if g(1.0) >= 0:
+            return self.at(j, 1.0, t_now)
+        if g(0.0) <= 0:
+            return self.at(j, 0.0, t_now)
+        return self.at(j, brentq(g, 0.0, 1.0, xtol=1e-15, rtol=4 * np.finfo(float).eps), t_now)
+
+
 def hereditary_force(time, indentation, tip, material, poisson_ratio):
     """Force in N under a prescribed indentation history (an infinitely stiff lever).
 
@@ -102,7 +178,7 @@ def hereditary_force(time, indentation, tip, material, poisson_ratio):
     time : array_like
         Sample times in s, strictly increasing.
     indentation : array_like
-        Z_s(t) in m, >= 0, same length; taken linear in psi between samples.
+        Z_s(t) in m, >= 0, same length; taken linear in time between samples (and psi(Z_s) too).
     tip : Tip
         The tip shape.
     material : StandardLinearSolid
@@ -113,7 +189,15 @@ def hereditary_force(time, indentation, tip, material, poisson_ratio):
     Returns
     -------
     ndarray
-        F(t) = 1/(1 - nu^2) integral E(t - s) d psi(Z_s(s)).
+        While the contact grows, F(t) = 1/(1 - nu^2) integral_0^t E(t - s) d psi(Z_s(s)) (Lee and
+        Radok); once it shrinks, Ting's F(t) = 1/(1 - nu^2) integral_0^t1 E(t - s) d psi, with t1
+        the root of integral_t1^t E(t - s) dZ_s = 0, and F = 0 once no such t1 exists (the
+        surface has receded from the tip).
+
+    Raises
+    ------
+    ValueError
+        On bad parameters (see :func:`viscoelastic_approach_retract`).
     """
     t = check_array("time", time, "s", ndim=1, min_size=2, increasing=True)
     z = check_array("indentation", indentation, "m", ndim=1, size=t.size, low=0.0)
@@ -123,15 +207,32 @@ def hereditary_force(time, indentation, tip, material, poisson_ratio):
         raise ValueError(f"material must be a StandardLinearSolid, got {material!r}")
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
     psi = tip.force(z, 1.0)
-    scale = 1.0 / (1.0 - nu * nu)
-    decay, phi = _kernel(np.diff(t), material.relaxation_time)
-    d_psi = np.diff(psi)
-    h = np.empty_like(psi)
-    h[0] = psi[0]
-    for n in range(1, psi.size):
-        h[n] = decay[n - 1] * h[n - 1] + phi[n - 1] * d_psi[n - 1]
-    delta = material.instantaneous_modulus - material.relaxed_modulus
-    return scale * (material.relaxed_modulus * psi + delta * h)
+    e_inf = material.relaxed_modulus
+    d_e = material.instantaneous_modulus - material.relaxed_modulus
+    tau = material.relaxation_time
+    decay, phi = _kernel(np.diff(t), tau)
+    out = np.zeros_like(psi)
+    loading = _Loading(tau, t[0], t.size)
+    # step 0: an instantaneous indentation to z[0] at t[0]
+    h = hz = 0.0
+    z_prev = psi_prev = 0.0
+    for n in range(t.size):
+        a, p = (decay[n - 1], phi[n - 1]) if n else (1.0, 1.0)
+        hz_n = a * hz + p * (z[n] - z_prev)
+        if z[n] == 0.0 and z_prev == 0.0 and loading.size == 1:
+            loading.rows[0, 0] = t[n]  # not touched yet: the onset is later
+            continue
+        state = loading.solve(t[n], lambda z1, p1, h1, H1, d: e_inf * (z[n] - z1) + d_e * (
+            hz_n - d * H1)) if loading.size > 1 else "grow"
+        h = a * h + p * (psi[n] - psi_prev)
+        hz, z_prev, psi_prev = hz_n, z[n], psi[n]
+        if state == "grow":
+            loading.append(t[n], z[n], psi[n], h, hz)
+            out[n] = e_inf * psi[n] + d_e * h
+        elif state is not None:
+            _, p1, h1, _, d = state
+            out[n] = e_inf * p1 + d_e * d * h1
+    return out / (1.0 - nu * nu)
 
 
 @dataclass(frozen=True)
@@ -180,8 +281,11 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
 
     Notes
     -----
-    See the module docstring: Lee and Radok's hereditary integral, advanced exactly for a
-    piecewise-linear psi(Z_s(t)), each step an elastic solve with an effective modulus.
+    See the module docstring: while the contact grows, Lee and Radok's hereditary integral,
+    advanced exactly for a piecewise-linear psi(Z_s(t)), each step an elastic solve with an
+    effective modulus; while it shrinks, Ting's solution; the retract's force is never tensile and
+    the tip leaves the surface where the force reaches zero. The retract's contact radius is
+    Ting's a(t) = a(t1), not r(Z_s(t)).
     """
     z = check_array("z_np", z_np, "m", ndim=1, min_size=2, increasing=True)
     if not isinstance(material, StandardLinearSolid):
@@ -199,28 +303,49 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
     n = path.size
     z_s = np.zeros(n)
     force = np.zeros(n)
+    radius = np.zeros(n)
     contact = np.zeros(n, dtype=bool)
-    h = 0.0
-    psi_prev = 0.0
-    lifted = False
+    h = hz = 0.0  # memories of psi and of Z_s: int e^(-(t - s)/tau) d psi (and dZ_s)
+    psi_prev = zs_prev = 0.0
+    loading = None  # Ting's loading history, from the onset of contact
     for i in range(n):
         a, p = (decay[i - 1], phi[i - 1]) if i else (0.0, 1.0)
-        e_eff = e_inf + p * d_e
-        offset = d_e * (a * h - p * psi_prev)  # force not carried by this step's increment
-        z_eff = path[i] - offset / k
-        if lifted or z_eff <= 0:
-            # out of contact; on retract, the tip has left the surface for good
-            lifted = lifted or (i >= z.size and contact[i - 1])
-            continue
-        zs = float(tip._solve(np.array([z_eff]), k, e_eff)[0])
-        psi = float(tip._force_unit(np.array(zs)))
+        state = "grow"
+        if loading is not None:
+            def ting(z1, p1, h1, hz1, d, i=i, a=a, p=p):
+                # Z_s from Ting's condition int_t1^t E dZ_s = 0, then the lever's residual
+                zs = (e_inf * z1 - d_e * (a * hz - p * zs_prev - d * hz1)) / (e_inf + p * d_e)
+                return k * (path[i] - zs) - (e_inf * p1 + d_e * d * h1)
+
+            state = loading.solve(time[i], ting)
+        if state == "grow":  # Lee and Radok: the step is elastic with an effective modulus
+            e_eff = e_inf + p * d_e
+            z_eff = path[i] - d_e * (a * h - p * psi_prev) / k
+            if z_eff > 0:
+                zs = float(tip._solve(np.array([z_eff]), k, e_eff)[0])
+                if loading is None:
+                    loading = _Loading(material.relaxation_time, time[i - 1] if i else 0.0, n)
+            else:
+                state, zs = None, 0.0
+        elif state is not None:  # Ting: the contact shrinks, its radius is that at t1
+            z1, p1, h1, hz1, d = state
+            zs = (e_inf * z1 - d_e * (a * hz - p * zs_prev - d * hz1)) / (e_inf + p * d_e)
+            force[i] = e_inf * p1 + d_e * d * h1
+            radius[i] = float(tip._radius(np.array(z1)))
+        else:  # the surface has receded from the tip: its free recovery, int_0^t E dZ_s = 0
+            zs = -d_e * (a * hz - p * zs_prev) / (e_inf + p * d_e) if loading is not None else 0.0
+        psi = float(tip._force_unit(np.array(max(zs, 0.0))))
         h = a * h + p * (psi - psi_prev)
-        psi_prev = psi
-        z_s[i] = zs
-        force[i] = e_inf * psi + d_e * h
-        contact[i] = True
+        hz = a * hz + p * (zs - zs_prev)
+        psi_prev, zs_prev = psi, zs
+        if state == "grow":
+            loading.append(time[i], zs, psi, h, hz)
+            force[i] = e_inf * psi + d_e * h
+            radius[i] = float(tip._radius(np.array(zs)))
+        if state is not None:
+            z_s[i] = zs
+            contact[i] = True
     z_c = force / k
-    radius = np.where(contact, tip._radius(z_s), 0.0)
     m = z.size
     app = IndentationCurve(path[:m], z_s[:m], z_c[:m], force[:m], radius[:m], contact[:m])
     # the retract starts at the turning point (shared with the approach's last sample)
