@@ -26,6 +26,7 @@ Repeated roots keep the coefficient recursion above.
 """
 from __future__ import annotations
 
+import cmath
 from math import comb as _binom
 
 import numpy as np
@@ -76,6 +77,21 @@ def _phi12(x):
     return phi1, phi2
 
 
+def _phi12_scalar(x: complex):
+    """:func:`_phi12` for one number, in plain Python (a scan's uniform spacing)."""
+    if abs(x) < _PHI_SERIES:
+        phi1 = phi2 = 0.0
+        for k in range(17, -1, -1):
+            phi1 = phi1 * x + _INV_FACT[k + 1]
+            phi2 = phi2 * x + _INV_FACT[k + 2]
+        return complex(phi1), complex(phi2)
+    em1 = cmath.exp(x) - 1.0
+    return em1 / x, (em1 - x) / (x * x)
+
+
+_INV_FACT = [1.0 / f for f in _FACT]
+
+
 def _simple_modes(step_forms, u, hh, slope, idx, tau, uniform):
     """Outputs for simple roots only: the cancellation-free recursion of the module docstring."""
     n_out = len(step_forms)
@@ -90,7 +106,7 @@ def _simple_modes(step_forms, u, hh, slope, idx, tau, uniform):
     for b, (p, _) in enumerate(step_forms[0].blocks):
         if uniform and hh.size > 1:  # one spacing: scalars (hh[0] = 0 multiplies u_prev = 0)
             lam = np.array([1.0, np.exp(p * hh[1])])
-            phi1, phi2 = (hh[1] * f for f in _phi12(p * hh[1]))
+            phi1, phi2 = (hh[1] * f for f in _phi12_scalar(complex(p * hh[1])))
         else:
             lam = np.exp(p * hh)
             phi1, phi2 = (hh * f for f in _phi12(p * hh))
