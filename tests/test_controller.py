@@ -460,3 +460,23 @@ def test_loop_closed_forms_match_step_response(name):
     for form, tf in zip(loop.closed_forms("ramp"), loop.closed_loop()):
         ref = control.forced_response(tf, t, t).outputs
         np.testing.assert_allclose(form(t), ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+
+
+def test_phi_functions_against_mpmath():
+    """phi1(x) = (e^x - 1)/x and phi2(x) = (e^x - 1 - x)/x^2 to a few eps, on both sides of the
+    series/closed-form switch, small and large, real and complex (40-digit mpmath reference)."""
+    import mpmath as mp
+    from afmsmiler.controller.polygon import _phi12, _phi12_scalar
+    mp.mp.dps = 40
+    xs = np.array([0, 1e-12, -1e-9 + 1e-9j, 0.3 - 0.2j, 0.49j, 0.51, -0.51, -3 + 40j, -700,
+                   5 + 1j, -1e-3, 0.2 + 0.45j])
+    vector = _phi12(xs)
+    for k, x in enumerate(xs):
+        X = mp.mpc(complex(x))
+        ref1 = complex((mp.e ** X - 1) / X) if x != 0 else 1.0
+        ref2 = complex((mp.e ** X - 1 - X) / X ** 2) if x != 0 else 0.5
+        for got, ref in ((vector[0][k], ref1), (vector[1][k], ref2)):
+            assert abs(got - ref) <= 1e-15 * abs(ref)
+        scalar = _phi12_scalar(complex(x))
+        assert abs(scalar[0] - ref1) <= 1e-15 * abs(ref1)
+        assert abs(scalar[1] - ref2) <= 1e-15 * abs(ref2)
