@@ -3,6 +3,7 @@ independent sources: the equation's own residual, a scalar scipy brentq solution
 DMT pull-off forces, Johnson's Hertz surface profile, and sympy-derived hereditary integrals."""
 import math
 
+import mpmath
 import numpy as np
 import pytest
 import sympy as sp
@@ -41,6 +42,59 @@ def test_residual_is_round_off_for_a_whole_curve(tip, k, e):
     assert np.all(c.force[~inside] == 0) and np.all(c.z_s[~inside] == 0)
     assert np.all(c.contact_radius[~inside] == 0) and not c.in_contact[~inside].any()
     assert np.all(np.diff(c.force[inside]) > 0)  # monotonic
+
+
+def _root_50_digits(tip, z_np, k, e_star):
+    """(Z_s, F) solving k (Z_np - Z_s) = F(Z_s) by bisection in 50-digit mpmath on the issue's
+    formulas (the sphere parametric in u = r / R)."""
+    mpmath.mp.dps = 50
+    zn, k, es = mpmath.mpf(z_np), mpmath.mpf(k), mpmath.mpf(e_star)
+    if isinstance(tip, Spherical):
+        rad = mpmath.mpf(tip.radius)
+
+        def state(u):
+            return rad * u * mpmath.atanh(u), es * rad ** 2 * ((1 + u * u) * mpmath.atanh(u) - u)
+        lo, hi = mpmath.mpf(0), 1 - mpmath.mpf(10) ** -12
+    else:
+        if isinstance(tip, Parabolic):
+            c, n = 4 * mpmath.sqrt(mpmath.mpf(tip.radius)) / 3, mpmath.mpf(1.5)
+        elif isinstance(tip, Conical):
+            c, n = 2 * mpmath.tan(mpmath.mpf(tip.half_angle)) / mpmath.pi, 2
+        else:
+            c, n = mpmath.tan(mpmath.mpf(tip.face_angle)) / mpmath.sqrt(2), 2
+
+        def state(s):
+            return s, es * c * s ** n
+        lo, hi = mpmath.mpf(0), zn
+    for _ in range(175):  # 2^-175 < 1e-52
+        mid = (lo + hi) / 2
+        zs, f = state(mid)
+        lo, hi = (mid, hi) if k * (zn - zs) > f else (lo, mid)
+    return state((lo + hi) / 2)
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+@pytest.mark.parametrize("k, e", [(0.01, 1e3), (0.1, 1e6), (40.0, 1e9), (1e3, 1.7e11),
+                                  (1e-3, 1e10), (1e3, 1e3), (1e-3, 1e11)])
+def test_solution_is_the_correctly_rounded_root(tip, k, e):
+    # The forward error, relative to Z_s and to F themselves, against a 50-digit root: stronger
+    # than the issue's residual, which is relative to k Z_np = k Z_s + F (the sum of the terms;
+    # at k = 1e3 N/m on E = 1 kPa, F / (k Z_np) ~ 1e-7, and even the correctly rounded Z_s leaves
+    # a residual ~ eps k Z_s, i.e. ~1e-9 of F: relative to F alone no double Z_s can reach 1e-12)
+    nu = 0.3
+    e_star = e / (1 - nu ** 2)
+    if isinstance(tip, Spherical):
+        z = np.linspace(1e-12, 0.99 * tip.max_z_np(k, e_star), 12)
+    else:
+        z = np.geomspace(1e-12, 400e-9, 12)
+    c = indent(z, k, tip, e, nu)
+    eps = np.finfo(float).eps
+    for i, zz in enumerate(z):
+        zs, f = _root_50_digits(tip, zz, k, e_star)
+        assert abs(c.z_s[i] - float(zs)) <= 8 * eps * float(zs)
+        assert abs(c.force[i] - float(f)) <= 16 * eps * float(f)
+        assert abs(c.z_c[i] - float(f / k)) <= 16 * eps * float(f / k)
+    assert residual(c, k, tip, e, nu).max() <= 16 * eps
 
 
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)

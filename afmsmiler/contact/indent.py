@@ -180,7 +180,9 @@ def indent(z_np, spring_constant, tip, youngs_modulus, poisson_ratio) -> Indenta
     The relative residual |k (Z_np - Z_s) - F(Z_s)| / (k Z_np) is at round-off (see
     :func:`residual`). Normalising by k Z_np = k Z_s + F, the sum of the magnitudes of the terms,
     is the backward error of the equation; relative to F alone it is the same unless the sample
-    is much softer than the lever, where Z_np - Z_s loses digits to cancellation in any method.
+    is much softer than the lever, where even the correctly rounded Z_s leaves a residual of order
+    eps k Z_s >> eps F. The stronger statement holds too: Z_s, F and Z_c = F / k are each within a
+    few eps of the exact root relative to themselves (tested against a 50-digit solution).
     """
     z, k, e_star = _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio)
     z = np.atleast_1d(z)
