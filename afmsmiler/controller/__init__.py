@@ -4,7 +4,8 @@
 transfer functions (python-control), the Routh-Hurwitz verdict, and responses to polygon
 topographies from the closed forms of :mod:`~afmsmiler.controller.derivation` (14 cases),
 superposed in O(N) (:mod:`~afmsmiler.controller.polygon`). :func:`scan_image` scans a height map
-line after line; :data:`PRESETS` are the paper's four Fig. 4 scenarios.
+line after line with the tip engaged throughout (each line continues from the state the previous
+retrace left); :data:`PRESETS` are the paper's four Fig. 4 scenarios.
 """
 from .closed_forms import ClosedForm, classify_roots, closed_form
 from .defaults import PRESETS, Preset
