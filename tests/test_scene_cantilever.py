@@ -218,3 +218,17 @@ def test_camera_follows_only_large_changes_of_length():
     np.testing.assert_array_equal(sc.camera_position, first)  # small change: camera kept
     sc.update(Cantilever(L / 4, W, H, E, RHO), F)
     assert np.linalg.norm(sc.camera_position) < np.linalg.norm(first)  # short lever: closer
+
+
+def test_mode_beams_are_labelled_with_number_and_frequency():
+    rec = Recorder()
+    mode_animation(LEVER, rec["modes"], modes=(1, 2), frames=4, segments=4)
+    J = W * H ** 3 / 12
+    for n, beta in ((1, 1.8751040687), (2, 4.6940911330)):  # b_n L, Blevins Table 8-1
+        f = beta ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * J / (RHO * W * H))
+        png = rec.log[f"/modes/label{n}/plate"]["object"][1].map.image.data
+        assert png == P.text_png(f"mode {n}: {f / 1e3:.3g} kHz")
+        # the label sits beside the clamp end of its own beam (same y), left of x = 0
+        t = rec.log[f"/modes/label{n}"]["transform"]
+        beam_y = rec.log[f"/modes/mode{n}/s000"]["object"] and n * (0.3 + 1.5 * W / SCENE_UNIT)
+        assert t[1, 3] == pytest.approx(beam_y) and t[0, 3] < 0

@@ -362,7 +362,8 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
 
     meshcat animates transforms, not vertices, so each mode beam is made of ``segments`` rigid
     boxes whose poses follow A phi_n(x) sin(2 pi k / frames) for k = 0..frames. Mode n is placed
-    behind the lever at y = n (0.3 + 1.5 w) scene units (1 unit = 100 um).
+    behind the lever at y = n (0.3 + 1.5 w) scene units (1 unit = 100 um), labelled with its
+    number and frequency (a :class:`~afmsmiler.scenes.primitives.TextPlate` beside its clamp).
 
     Parameters
     ----------
@@ -400,6 +401,10 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
     for n in modes:
         phi = lever.mode_shape(mids, n)
         dphi = np.interp(mids, fine, np.gradient(lever.mode_shape(fine, n), fine / lever.length))
+        # which beam is which: "mode n: f_n" beside its clamp end (meshcat has no text)
+        label = P.TextPlate(vis[f"label{n}"], f"mode {n}: "
+                            f"{lever.resonance_frequency(n) / 1e3:.3g} kHz", width=max(0.25 * L, 0.3))
+        vis[f"label{n}"].set_transform(P.translation([-1.05 * label.width, pitch * n, 0.02]))
         for i in range(segments):
             box = vis[f"mode{n}"][f"s{i:03d}"]
             # slightly longer than the pitch so the joints stay closed while bending
