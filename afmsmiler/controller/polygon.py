@@ -85,7 +85,10 @@ def _phi12_scalar(x: complex):
             phi1 = phi1 * x + _INV_FACT[k + 1]
             phi2 = phi2 * x + _INV_FACT[k + 2]
         return complex(phi1), complex(phi2)
-    em1 = cmath.exp(x) - 1.0
+    try:
+        em1 = cmath.exp(x) - 1.0
+    except OverflowError:  # an unstable mode over one step: inf (then nan), as numpy gives
+        return tuple(complex(f) for f in _phi12(x))
     return em1 / x, (em1 - x) / (x * x)
 
 
