@@ -264,7 +264,13 @@ class CantileverScene:
 
     def legend_corner(self, length: float) -> np.ndarray:
         """Lower-left corner of the legend plate in the lever's frame (scene units): above the
-        clamp, behind the lever."""
+        clamp, behind the lever.
+
+        Parameters
+        ----------
+        length : float
+            Lever length in scene units.
+        """
         return self._legend_corner(length, self.legend_width)
 
     def _draw_base(self, lever: Cantilever) -> None:

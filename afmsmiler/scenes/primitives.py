@@ -663,6 +663,13 @@ def show_helpers(vis: meshcat.Visualizer, grid: bool = True, axes: bool = True) 
 
     Scene builders centre their objects on the origin, where the axes would poke through them,
     and a sample surface at z = 0 would fight with the grid: hide what gets in the way.
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        Any visualizer of the viewer (the helpers live at its root).
+    grid, axes : bool
+        Whether to show the grid and the axes.
     """
     vis["/Grid"].set_property("visible", bool(grid))
     vis["/Axes"].set_property("visible", bool(axes))
