@@ -420,3 +420,27 @@ def test_sls_retract_never_pulls_and_leaves_at_zero_force(tip, tau):
     rad = ret.contact_radius[c]
     peak = int(np.argmax(rad))
     assert np.all(np.diff(rad[:peak + 1]) >= 0) and np.all(np.diff(rad[peak:]) <= 0)
+
+
+@pytest.mark.parametrize("k, e", [(0.05, 1e7), (0.01, 1e6), (5.0, 1e9), (100.0, 1e5)])
+def test_jkr_branch_and_snap_off_against_40_digits(k, e):
+    # Z_np(a) = a^2/R - sqrt(2 pi w a / E*) + [4 E* a^3 / (3R) - sqrt(8 pi w E* a^3)] / k (JKR 1971
+    # with the lever in series) in 40-digit mpmath: its minimum is the snap-off, its inverse the branch
+    mpmath.mp.dps = 40
+    e_star = reduced_modulus(e, 0.3)
+    rm, wm, em, km = map(mpmath.mpf, (R, W, e_star, k))
+
+    def z_np(a):
+        return (a * a / rm - mpmath.sqrt(2 * mpmath.pi * wm * a / em)
+                + (4 * em * a ** 3 / (3 * rm) - mpmath.sqrt(8 * mpmath.pi * wm * em * a ** 3)) / km)
+
+    a_min, z_min, _ = jkr_instability(k, R, W, e_star)
+    a_ref = mpmath.findroot(lambda a: mpmath.diff(z_np, a), mpmath.mpf(a_min) * 1.01)
+    assert a_min == pytest.approx(float(a_ref), rel=1e-13)
+    assert z_min == pytest.approx(float(z_np(a_ref)), rel=1e-14)
+    z = np.linspace(1.5 * z_min, 30e-9, 60)
+    ret = approach_retract(z, k, Parabolic(R), e, 0.3, adhesion="jkr", work_of_adhesion=W).retract
+    c = ret.in_contact
+    for zz, a in zip(ret.z_np[c], ret.contact_radius[c]):
+        ref = mpmath.findroot(lambda x, zz=zz: z_np(x) - zz, mpmath.mpf(a))
+        assert a == pytest.approx(float(ref), rel=1e-13)  # the fold's conditioning: ~20 eps
