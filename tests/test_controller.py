@@ -480,6 +480,6 @@ def test_phi_functions_against_mpmath():
         scalar = _phi12_scalar(complex(x))
         assert abs(scalar[0] - ref1) <= 1e-15 * abs(ref1)
         assert abs(scalar[1] - ref2) <= 1e-15 * abs(ref2)
-    # an unstable mode over one step overflows to inf as numpy does, without raising
+    # an unstable mode over one step overflows (inf, nan) as numpy does, without raising
     with np.errstate(over="ignore", invalid="ignore"):
-        assert np.isinf(_phi12_scalar(800 + 0j)[0].real)
+        assert not np.isfinite(_phi12_scalar(800 + 0j)[0])
