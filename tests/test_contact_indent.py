@@ -424,8 +424,9 @@ def test_sls_retract_never_pulls_and_leaves_at_zero_force(tip, tau):
 
 @pytest.mark.parametrize("k, e", [(0.05, 1e7), (0.01, 1e6), (5.0, 1e9), (100.0, 1e5)])
 def test_jkr_branch_and_snap_off_against_40_digits(k, e):
-    # Z_np(a) = a^2/R - sqrt(2 pi w a / E*) + [4 E* a^3 / (3R) - sqrt(8 pi w E* a^3)] / k (JKR 1971
-    # with the lever in series) in 40-digit mpmath: its minimum is the snap-off, its inverse the branch
+    # Z_np(a) = a^2/R - sqrt(2 pi w a / E*) + [4 E* a^3 / (3R) - sqrt(8 pi w E* a^3)] / k
+    # (JKR 1971 with the lever in series) in 40-digit mpmath: its minimum is the snap-off, its
+    # inverse the stable branch
     mpmath.mp.dps = 40
     e_star = reduced_modulus(e, 0.3)
     rm, wm, em, km = map(mpmath.mpf, (R, W, e_star, k))

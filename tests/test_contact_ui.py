@@ -94,7 +94,8 @@ def test_scene_updates_in_place():
     move = [c for c in rec.calls if c[0] == "set_transform"][-1]
     assert move[2][2, 3] == pytest.approx(-cur.z_s[0] / scene.unit)
     scene.update(Conical(0.4), cur)  # a new shape rebuilds the tip
-    assert sum(1 for c in rec.calls if c[:2] == ("set_object", "/afmsmiler/contact/tip")) == n_tip + 1
+    tip_calls = [c for c in rec.calls if c[:2] == ("set_object", "/afmsmiler/contact/tip")]
+    assert len(tip_calls) == n_tip + 1
 
 
 def test_scene_in_the_real_viewer_updates_in_place():
