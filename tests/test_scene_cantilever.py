@@ -232,3 +232,6 @@ def test_mode_beams_are_labelled_with_number_and_frequency():
         t = rec.log[f"/modes/label{n}"]["transform"]
         beam_y = rec.log[f"/modes/mode{n}/s000"]["object"] and n * (0.3 + 1.5 * W / SCENE_UNIT)
         assert t[1, 3] == pytest.approx(beam_y) and t[0, 3] < 0
+        # before it plays, the beam lies straight behind the lever (not piled up at the clamp)
+        seg = rec.log[f"/modes/mode{n}/s003"]["transform"]
+        np.testing.assert_allclose(seg[:3, 3], [3.5 / 4 * L / SCENE_UNIT, beam_y, 0.0])

@@ -416,6 +416,8 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
             # slightly longer than the pitch so the joints stay closed while bending
             box.set_object(g.Box([1.08 * L / segments, w, h]),
                            g.MeshLambertMaterial(color=_MODE_COLORS[(n - 1) % len(_MODE_COLORS)]))
+            # at rest (straight) until the animation plays, not piled up at the clamp
+            box.set_transform(P.translation([mids[i] / u, pitch * n, 0.0]))
         for k in range(frames + 1):
             a = amplitude * L * math.sin(2 * math.pi * k / frames)
             with anim.at_frame(vis, k) as frame:
