@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from afmsmiler.contact import (TIPS, Conical, Parabolic, Pyramidal, Spherical, approach_retract,
-                               fit_curve, indent, reduced_modulus, surface_displacement)
+                               fit_curve, indent, jkr_curve, jkr_instability, reduced_modulus,
+                               surface_displacement)
 from afmsmiler.exercises.contact import (FitExercise, check_contact_point, check_fitted_modulus,
                                          check_pull_off_force, fitting_exercise)
 from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figure, fit_figure,
@@ -213,3 +214,33 @@ def test_no_slider_position_makes_the_model_raise(tip):
                     s = panel.last
                     assert np.isfinite(s.current.force).all()
                     assert np.isfinite(s.cycle.retract.force).all()
+                    panel.set(branch="retract", z_np=c["z_np"].min)
+                    assert np.isfinite(panel.last.current.force).all()
+                    panel.set(branch="approach")
+
+
+def test_panel_follows_the_retract_branch_through_the_hysteresis():
+    # JKR: on the approach branch the tip is free below Z_np = 0; on the retract branch it stays
+    # stuck down to the snap-off (the lever's instability), and the slider reaches below it
+    panel = ContactPanel(tip="parabolic")
+    panel.set(adhesion="JKR", work_of_adhesion=40.0, radius=50.0, youngs_modulus=10.0)
+    e_star = reduced_modulus(10e6, 0.3)
+    _, z_snap, f_snap = jkr_instability(0.1, 50e-9, 0.04, e_star)
+    assert panel.controls["z_np"].min < z_snap * 1e9
+    inside = 0.9 * z_snap * 1e9
+    panel.set(z_np=inside)
+    assert not panel.last.current.in_contact[0] and panel.last.current.force[0] == 0
+    panel.set(branch="retract")
+    cur = panel.last.current
+    assert cur.in_contact[0] and f_snap < cur.force[0] < 0  # stuck, pulled down
+    zs, f = jkr_curve(cur.contact_radius, 50e-9, 0.04, e_star)
+    assert cur.force[0] == pytest.approx(float(f[0]), rel=1e-12)
+    assert cur.z_s[0] + cur.force[0] / 0.1 == pytest.approx(inside * 1e-9, rel=1e-12)
+    assert panel.figure.point.get_ydata()[0] == pytest.approx(cur.force[0] * 1e9, rel=1e-12)
+    panel.set(z_np=1.05 * z_snap * 1e9)  # past the snap-off: free
+    assert not panel.last.current.in_contact[0]
+    # without adhesion both branches are the elastic curve and the slider keeps its bounds
+    panel.set(adhesion="none", z_np=40.0)
+    assert panel.controls["z_np"].min == BOUNDS["z_np"][0]
+    ref = indent([40e-9], 0.1, Parabolic(50e-9), 10e6, 0.3)
+    assert panel.last.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)

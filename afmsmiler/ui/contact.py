@@ -13,6 +13,7 @@ sphere so that it can never be indented past its radius.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import ipywidgets as widgets
@@ -27,7 +28,7 @@ __all__ = ["ContactPanel", "ContactState", "DEFAULTS", "BOUNDS", "TIP_CONTROLS"]
 
 #: Initial control values in the units shown (a soft sample under a contact-mode lever).
 DEFAULTS = dict(tip="parabolic", spring_constant=0.1, youngs_modulus=1.0, poisson_ratio=0.3,
-                z_np=60.0, adhesion="none", work_of_adhesion=20.0)
+                z_np=60.0, branch="approach", adhesion="none", work_of_adhesion=20.0)
 
 #: Slider bounds (low, high) in the units shown; all inside the model's valid ranges.
 BOUNDS = dict(spring_constant=(0.005, 100.0), youngs_modulus=(1e-3, 1e5), poisson_ratio=(0.0, 0.49),
@@ -43,6 +44,7 @@ _ADHESION = {"none": None, "DMT": "dmt", "JKR": "jkr"}
 _RAMP_POINTS = 400
 _SPHERE_MARGIN = 0.9  # the Z_np slider stops at 90 % of the depth at which the sphere is buried
 _MIN_RANGE = 1e-9  # m: below this much room, adhesion is switched off for a sphere
+_Z_NP_FLOOR = -2000.0  # nm: the Z_np slider never reaches lower (a very soft lever's snap-off)
 
 
 @dataclass(frozen=True)
@@ -62,7 +64,7 @@ class ContactState:
     cycle : ApproachRetract
         The approach-retract curves over the ramp.
     current : IndentationCurve
-        The state at the current Z_np (one point, approach branch).
+        The state at the current Z_np (one point, on the branch chosen).
     curves : ContactCurves
         What the figure shows (nm, nN).
     """
@@ -98,8 +100,10 @@ class ContactPanel(Panel):
     Controls (units as shown): ``tip`` (a key of :data:`~afmsmiler.contact.TIPS`), one slider per
     tip parameter of the registry (``radius`` [nm], ``half_angle`` [deg], ``face_angle`` [deg];
     only the current shape's are visible), ``spring_constant`` [N/m], ``youngs_modulus`` [MPa],
-    ``poisson_ratio``, ``z_np`` [nm], ``adhesion`` ("none", "DMT", "JKR"; only for a paraboloid
-    or a sphere) and ``work_of_adhesion`` [mJ/m^2].
+    ``poisson_ratio``, ``z_np`` [nm], ``branch`` ("approach" or "retract": which branch of the
+    cycle the current point follows; they differ with adhesion, where on retract the tip stays
+    stuck below Z_np = 0 down to the snap-off), ``adhesion`` ("none", "DMT", "JKR"; only for a
+    paraboloid or a sphere) and ``work_of_adhesion`` [mJ/m^2].
 
     Parameters
     ----------
@@ -140,6 +144,8 @@ class ContactPanel(Panel):
             youngs_modulus=log_slider("E", v["youngs_modulus"], *b["youngs_modulus"], unit="MPa"),
             poisson_ratio=slider("nu", v["poisson_ratio"], *b["poisson_ratio"], step=0.01),
             z_np=slider("Z_np", v["z_np"], *b["z_np"], step=0.5, unit="nm"),
+            branch=widgets.ToggleButtons(options=["approach", "retract"], value=v["branch"],
+                                         description="branch"),
             adhesion=widgets.Dropdown(options=list(_ADHESION), value=v["adhesion"],
                                       description="adhesion"),
             work_of_adhesion=slider("w", v["work_of_adhesion"], *b["work_of_adhesion"], step=1.0,
@@ -162,18 +168,21 @@ class ContactPanel(Panel):
         self.controls["adhesion"].disabled = not adhesive
         self.controls["work_of_adhesion"].disabled = not adhesive
 
-    def _set_z_np_max(self, high: float) -> None:
-        """Move the Z_np slider's upper end (nm) without triggering an update."""
+    def _set_z_np_range(self, low: float, high: float) -> None:
+        """Move the Z_np slider's ends (nm) without triggering an update."""
         z = self.controls["z_np"]
-        if z.max != high:
+        if (z.min, z.max) != (low, high):
             hold, self._hold = self._hold, True
-            try:
-                z.max = high  # ipywidgets clamps the value into the new range
+            try:  # ipywidgets clamps the value into the new range; keep min < max throughout
+                if low < z.max:
+                    z.min, z.max = low, high
+                else:
+                    z.max, z.min = high, low
             finally:
                 self._hold = hold
 
     # -- the callback ------------------------------------------------------------------------------
-    def update(self, tip, spring_constant, youngs_modulus, poisson_ratio, z_np, adhesion,
+    def update(self, tip, spring_constant, youngs_modulus, poisson_ratio, z_np, branch, adhesion,
                work_of_adhesion, **tip_parameters) -> None:
         """Convert the control values to SI, run the model, update figure, scene and readouts."""
         self._show_tip_controls(tip)
@@ -191,17 +200,22 @@ class ContactPanel(Panel):
             self._note = "adhesion would pull this sphere in past its radius: shown without it"
             model = None
             limit = z_np_limit(k, shape, e, nu)
-        self._set_z_np_max(min(BOUNDS["z_np"][1], _SPHERE_MARGIN * limit * 1e9))
         kwargs = dict(adhesion=model, work_of_adhesion=w) if model else {}
-        z_lo = BOUNDS["z_np"][0] * 1e-9
+        z_lo = BOUNDS["z_np"][0]  # nm
         if model:  # extend the ramp below the snap-off point so that the retract is complete
             probe = approach_retract(np.array([-1e-9, 0.0]), k, shape, e, nu, **kwargs)
-            z_lo = min(z_lo, 1.25 * probe.snap_off_z_np)
+            z_lo = min(z_lo, math.floor(1.25 * probe.snap_off_z_np * 1e9))
+        # the slider reaches below the snap-off (so that the retract branch can let go), down to
+        # _Z_NP_FLOOR, and stops at 90 % of the model's limit
+        self._set_z_np_range(max(z_lo, _Z_NP_FLOOR),
+                             min(BOUNDS["z_np"][1], _SPHERE_MARGIN * limit * 1e9))
+        z_lo *= 1e-9
         z_now = self.controls["z_np"].value * 1e-9
         z_hi = self.controls["z_np"].max * 1e-9
         cycle = approach_retract(np.linspace(z_lo, z_hi, _RAMP_POINTS), k, shape, e, nu, **kwargs)
         here = approach_retract(np.array([z_now - 1e-9, z_now]), k, shape, e, nu, **kwargs)
-        current = _point(here.approach, 1)
+        # the point at Z_np = z_now: last of the approach, first of the retract
+        current = _point(here.retract, 0) if branch == "retract" else _point(here.approach, 1)
         extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
                      30e-9)
         curves = contact_curves(cycle, current, shape, extent)
@@ -230,6 +244,7 @@ class ContactPanel(Panel):
                  f"{reduced_modulus(s.youngs_modulus, s.poisson_ratio) / 1e6:.4g} MPa")]
         if s.adhesion:
             rows.append(("pull-off force", f"{s.cycle.pull_off_force * 1e9:.4g} nN"))
+            rows.append(("snap-off at Z_np", f"{s.cycle.snap_off_z_np * 1e9:.4g} nm"))
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
         note = f"<div><i>{self._note}</i></div>" if self._note else ""
