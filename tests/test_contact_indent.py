@@ -445,3 +445,27 @@ def test_jkr_branch_and_snap_off_against_40_digits(k, e):
     for zz, a in zip(ret.z_np[c], ret.contact_radius[c]):
         ref = mpmath.findroot(lambda x, zz=zz: z_np(x) - zz, mpmath.mpf(a))
         assert a == pytest.approx(float(ref), rel=1e-13)  # the fold's conditioning: ~20 eps
+
+
+def test_sls_cycles_over_random_parameters_are_physical():
+    # fixed draws over the whole range (lever 1e-3-100 N/m, E 1 kPa-1 GPa, E_0/E_inf 1-100,
+    # tau 1 us-1000 s, speed 10 nm/s-100 um/s): no failure, no tension, between the elastic curves
+    rng = np.random.default_rng(0)
+    for _ in range(12):
+        key = rng.choice(["parabolic", "spherical", "conical", "pyramidal"])
+        tip = {"conical": Conical(0.35), "pyramidal": Pyramidal(0.6)}.get(key) or (
+            Parabolic if key == "parabolic" else Spherical)(float(10 ** rng.uniform(-8, -6)))
+        k, e_inf = 10 ** rng.uniform(-3, 2), 10 ** rng.uniform(3, 9)
+        mat = StandardLinearSolid(e_inf, e_inf * 10 ** rng.uniform(0, 2), 10 ** rng.uniform(-6, 3))
+        nu, speed = rng.uniform(0, 0.49), 10 ** rng.uniform(-8, -4)
+        z_max = 200e-9
+        if isinstance(tip, Spherical):
+            z_max = min(z_max, 0.9 * tip.max_z_np(k, reduced_modulus(e_inf, nu)))
+        z = np.linspace(-0.2 * z_max, z_max, int(rng.integers(20, 400)))
+        cyc = viscoelastic_approach_retract(z, k, tip, mat, nu, speed)
+        f = np.r_[cyc.approach.force, cyc.retract.force]
+        assert np.isfinite(f).all() and f.min() >= 0
+        lo, hi = indent(z, k, tip, mat.relaxed_modulus, nu), indent(z, k, tip,
+                                                                    mat.instantaneous_modulus, nu)
+        assert np.all(cyc.approach.force >= lo.force * (1 - 1e-9))
+        assert np.all(cyc.approach.force <= hi.force * (1 + 1e-9))

@@ -167,7 +167,9 @@ class _Loading:
             return self.at(j, 1.0, t_now)
         if g(0.0) <= 0:
             return self.at(j, 0.0, t_now)
-        return self.at(j, brentq(g, 0.0, 1.0, xtol=1e-15, rtol=4 * np.finfo(float).eps), t_now)
+        # theta to 1e-13 of a step: far below the scheme's second-order error, and brentq needs
+        # no more than a few dozen steps for it (at 1e-15 round-off in g could stall it)
+        return self.at(j, brentq(g, 0.0, 1.0, xtol=1e-13, maxiter=400), t_now)
 
 
 def hereditary_force(time, indentation, tip, material, poisson_ratio):
