@@ -30,7 +30,8 @@ from afmsmiler.transducers.thermal import THERMAL, bimorph_curvature
 # electrostatic (actuation; DC and AC; bulk), optomechanical (sensing; DC and AC; embedded),
 # piezoresistive (sensing; DC and AC; embedded), electrothermal (actuation; DC and AC; embedded),
 # piezoelectric (both; AC mostly; embedded)."
-TABLE_I_TEXT = """optical beam deflection (sensing; DC and AC; bulk), astigmatic detection (sensing; DC and AC;
+TABLE_I_TEXT = """\
+optical beam deflection (sensing; DC and AC; bulk), astigmatic detection (sensing; DC and AC;
 bulk), interferometry (sensing; DC and AC; bulk), piezo-acoustic (actuation; AC only; bulk),
 photothermal (actuation; DC and AC; bulk), electromagnetic (actuation; DC and AC; bulk),
 electrostatic (actuation; DC and AC; bulk), optomechanical (sensing; DC and AC; embedded),
@@ -190,16 +191,19 @@ def test_band_integral_of_the_brownian_spectrum():
     r, q = sp.symbols("r Q", positive=True)
     b = sp.sqrt(4 - 1 / q ** 2)
     x = b * r / (1 + r ** 2)
-    antiderivative = r / (2 * (1 + r ** 2)) * sp.atanh(x) / x + q / 2 * sp.atan2(r, q * (1 - r ** 2))
+    antiderivative = (r / (2 * (1 + r ** 2)) * sp.atanh(x) / x
+                      + q / 2 * sp.atan2(r, q * (1 - r ** 2)))
     residual = sp.diff(antiderivative, r) - 1 / ((1 - r ** 2) ** 2 + r ** 2 / q ** 2)
-    for qv, rv in (("0.51", "0.3"), ("0.7", "2"), ("30", "0.99"), ("10000", "1.0001"), ("150", "7")):
+    for qv, rv in (("0.51", "0.3"), ("0.7", "2"), ("30", "0.99"), ("10000", "1.0001"),
+                   ("150", "7")):
         assert abs(sp.N(residual.subs({q: sp.Rational(qv), r: sp.Rational(rv)}), 30)) < 1e-20
     # the model's band noise against scipy's quadrature of S_0 |H|^2 (python-control's H above)
     for qv in (0.5, 0.7, 30.0, 1e4):
         model = OpticalBeamDeflection(quality_factor=qv)
         f1 = model.resonance_frequency
         s0 = 4 * BOLTZMANN * model.temperature / (model.spring_constant * 2 * math.pi * f1 * qv)
-        sys = control.tf([(2 * math.pi * f1) ** 2], [1, 2 * math.pi * f1 / qv, (2 * math.pi * f1) ** 2])
+        w1 = 2 * math.pi * f1
+        sys = control.tf([w1 ** 2], [1, w1 / qv, w1 ** 2])
         for lo, hi in ((1.0, 1e3), (0.5 * f1, 1.5 * f1), (0.0, 3 * f1), (2 * f1, 20 * f1)):
             ref, _ = integrate.quad(lambda f: s0 * abs(sys(2j * math.pi * f)) ** 2, lo, hi,
                                     points=[p for p in (f1,) if lo < p < hi], limit=2000,
@@ -367,7 +371,8 @@ def test_astigmatic_s_curve_and_slope_against_sympy():
     f = model.focus_error(z)
     np.testing.assert_allclose(f, -f[::-1], atol=1e-12)
     assert abs(float(model.focus_error(0.0))) < 1e-15
-    assert np.all(np.diff(f[np.argmax(f):]) < 0) and float(model.focus_error(200e-6)) < 0.05 * f.max()
+    assert np.all(np.diff(f[np.argmax(f):]) < 0)
+    assert float(model.focus_error(200e-6)) < 0.05 * f.max()
     # the extrema: d(w_y / w_x)^2 / dd = 0 at 2 d = sqrt(a^2 + z_R^2) (sympy), a few um here
     ratio2 = ((1 + ((2 * d + a) / zr) ** 2) / (1 + ((2 * d - a) / zr) ** 2))
     (extremum,) = sp.solve(sp.numer(sp.together(sp.diff(ratio2, d))), d)
@@ -407,7 +412,7 @@ def _mode_by_mpmath(n):
 
 
 def _gamma_by_mpmath(n):
-    """gamma_n = phi(1) int phi / int phi^2 (the mode normalised to 1 at the tip), by mpmath.quad."""
+    """gamma_n = phi(1) int phi / int phi^2 (the mode normalised to 1 at the tip), by quadrature."""
     with mpmath.workdps(30):
         _, phi = _mode_by_mpmath(n)
         return float(phi(1) * mpmath.quad(phi, [0, 1]) / mpmath.quad(lambda x: phi(x) ** 2, [0, 1]))
@@ -603,8 +608,8 @@ def test_thermal_lag_solves_the_heat_equation(cls):
     # far above, steeper: the heat stays near where it is deposited
     first_order = control.tf([1], [tau, 1])
     low = np.array([0.01, 0.1, 1.0]) * fc
-    np.testing.assert_allclose(np.abs(model.thermal_lag(low)), np.abs(first_order(2j * math.pi * low)),
-                               rtol=0.01)
+    np.testing.assert_allclose(np.abs(model.thermal_lag(low)),
+                               np.abs(first_order(2j * math.pi * low)), rtol=0.01)
     assert abs(np.angle(model.thermal_lag(fc)) + math.pi / 4) < math.radians(7)
     # asymptotes (u = L sqrt(j w / D) large): tanh -> 1, sech -> 0 in the fin's solution, so
     # 6 / u^3 for heat at the free end, 4 / u^2 for heat spread along the lever
@@ -703,8 +708,9 @@ def test_parallel_plate_gradient_and_distributed_load():
     f = 0.5 * model.capacitance_gradient * (100 + model.ac_voltage ** 2 / 2)
     assert chain.stage("force").values[0] == pytest.approx(f, rel=1e-12)
     assert chain.output.values[0] < 0
-    assert model.sensitivity(at=10.0) == pytest.approx(model.compliance[0] * model.capacitance_gradient
-                                                       * 10.0, rel=1e-12)
+    # small signal: d/dV of (1/2) C' V^2 = C' V, C' = -eps0 A / g^2, times the quadrature compliance
+    expected = ref * (-8.8541878128e-12 * area / 3e-6 ** 2) * 10.0
+    assert model.sensitivity(at=10.0) == pytest.approx(expected, rel=1e-10)
 
 
 def test_pull_in_voltage_against_sympy():
@@ -949,7 +955,8 @@ def test_bad_calls_raise(key):
 
 HELPER_CASES = [
     # (call, argument name in the message)
-    (lambda v: OpticalBeamDeflection().spot_displacement(v), "slope", (math.nan, 0.8, -math.pi / 4)),
+    (lambda v: OpticalBeamDeflection().spot_displacement(v), "slope",
+     (math.nan, 0.8, -math.pi / 4)),
     (lambda v: OpticalBeamDeflection().split_signal(v), "spot", (math.nan, math.inf)),
     (lambda v: AstigmaticDetection().spot_radii(v), "d", (math.nan, -math.inf)),
     (lambda v: AstigmaticDetection().focus_error([0.0, v]), "d", (math.nan, math.inf)),

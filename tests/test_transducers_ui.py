@@ -89,7 +89,8 @@ def test_piezoelectric_offers_both_modes(panel):
     panel.set(d31=-100.0)
     panel.set(mode="actuation", input=4.0)
     assert panel.last.mode == "actuation" and panel.last.model.d31 == pytest.approx(-100e-12)
-    assert panel.last.chain.output.values == pytest.approx(4.0 * panel.last.model.deflection_per_volt)
+    per_volt = panel.last.model.deflection_per_volt
+    assert panel.last.chain.output.values == pytest.approx(4.0 * per_volt)
     panel.set(principle="piezoresistive")
     assert panel.controls["mode"].disabled and panel.last.mode == "sensing"
 

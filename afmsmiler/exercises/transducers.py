@@ -149,7 +149,8 @@ def check_quadrature_phase(phase, rtol: float = 0.01) -> Feedback:
         (1 - rtol) of the largest sensitivity 4 pi V P0 / lambda.
     """
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
-    hint = "P = P0 (1 + V cos(4 pi d / lambda + phi)): where is the fringe steepest? Give phi in rad."
+    hint = ("P = P0 (1 + V cos(4 pi d / lambda + phi)): where is the fringe steepest? "
+            "Give phi in rad.")
     value, fail = _number("a phase", phase, hint)
     if fail is not None:
         return fail

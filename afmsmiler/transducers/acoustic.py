@@ -59,7 +59,8 @@ def mode_slope_factor() -> float:
     The static end-load shape gives 1.5 instead (theta = 3 z / (2 L)), so an optical lever
     calibrated statically reads a mode-1 vibration of amplitude U as 1.3765 / 1.5 U = 0.918 U.
     Closed form from phi = cosh bx - cos bx - s (sinh bx - sin bx),
-    s = (cosh bL + cos bL) / (sinh bL + sin bL), with b L = :func:`~afmsmiler.cantilever.eigenvalue`.
+    s = (cosh bL + cos bL) / (sinh bL + sin bL), with b L from
+    :func:`~afmsmiler.cantilever.eigenvalue`.
     """
     bl = eigenvalue(1)
     ch, c, sh, sn = math.cosh(bl), math.cos(bl), math.sinh(bl), math.sin(bl)
@@ -108,7 +109,13 @@ class PiezoAcoustic(Transducer):
     BASE = Quantity("base_amplitude", "m", "nm", 1e9, "base amplitude")
 
     def base_transfer(self, f):
-        """Complex U / Y (tip deflection relative to the base, per base displacement) at ``f`` Hz."""
+        """Complex U / Y (tip deflection relative to the base, per base displacement) at ``f`` Hz.
+
+        Parameters
+        ----------
+        f : array_like
+            Frequencies in Hz, >= 0.
+        """
         f = check_array("f", f, "Hz", low=0.0)
         r = f / self.resonance_frequency
         return participation_factor() * r * r * mechanical_response(

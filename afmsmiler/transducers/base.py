@@ -48,7 +48,8 @@ from ..cantilever import Cantilever
 from ..validation import check_array, check_choice, check_positive, check_range
 
 __all__ = ["Quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
-           "Harmonics", "Transducer", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0", "LEVER_PARAMETERS",
+           "Harmonics", "Transducer", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",
+           "LEVER_PARAMETERS",
            "mechanical_response", "thermal_deflection_noise"]
 
 #: Boltzmann constant k_B in J/K (SI 2019, exact).
@@ -89,7 +90,9 @@ class Quantity:
 
     def display(self, si_value):
         """The value ``si_value`` (SI, scalar or array) in the display unit."""
-        return np.asarray(si_value) * self.scale if np.ndim(si_value) else float(si_value) * self.scale
+        if np.ndim(si_value):
+            return np.asarray(si_value) * self.scale
+        return float(si_value) * self.scale
 
     def to_si(self, display_value):
         """``display_value`` (in the display unit) back in SI."""
@@ -189,7 +192,7 @@ class SignalChain:
         for s in self.stages:
             if s.quantity.name == name:
                 return s
-        raise ValueError(f"name must be one of {[s.quantity.name for s in self.stages]}, got {name!r}")
+        raise ValueError(f"name must be one of {list(self.names)}, got {name!r}")
 
     @property
     def names(self) -> tuple:
@@ -432,7 +435,7 @@ class Transducer:
             check_choice(f"{cls.__name__}.size", cls.size, SIZES)
 
     def _validate(self, values: dict) -> None:
-        """Checks that involve several parameters (:attr:`BOUNDED_BY`); raise ValueError naming one."""
+        """Checks involving several parameters (:attr:`BOUNDED_BY`); raise ValueError naming one."""
         table = self.parameter_table()
         for name, (other, factor) in self.BOUNDED_BY.items():
             check_range(name, values[name], 0.0, factor * values[other], table[name].unit,
@@ -532,11 +535,12 @@ class Transducer:
             Frequencies in Hz, >= 0.
         """
         s0 = self.thermal_noise(1.0) ** 2
-        return s0 * np.abs(mechanical_response(f, self.resonance_frequency, self.quality_factor)) ** 2
+        response = mechanical_response(f, self.resonance_frequency, self.quality_factor)
+        return s0 * np.abs(response) ** 2
 
     # -- the public interface -----------------------------------------------------------------
     def chain(self, value, mode=None) -> SignalChain:
-        """The signal chain for input ``value`` (scalar or array, SI units of :meth:`input_quantity`).
+        """The signal chain for input ``value`` (scalar or array, SI, see :meth:`input_quantity`).
 
         Parameters
         ----------
@@ -564,11 +568,11 @@ class Transducer:
         return SignalChain(mode, tuple(stages))
 
     def respond(self, value, mode=None):
-        """The output for input ``value`` in the chain of ``mode`` (the last stage of :meth:`chain`)."""
+        """The output for input ``value`` in the chain of ``mode`` (last stage of :meth:`chain`)."""
         return self.chain(value, mode).output.values
 
     def operating_point(self, mode=None) -> float:
-        """The input value (SI) of the chain of ``mode`` where :meth:`sensitivity` is taken by default.
+        """The input (SI) of the chain of ``mode`` where :meth:`sensitivity` is taken by default.
 
         Zero (the nulled detector, the undriven actuator) except for drives whose force goes as
         the square of a voltage (electrostatic, electrothermal), where it is the input's default

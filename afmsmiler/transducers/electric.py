@@ -1,4 +1,4 @@
-"""Bulk electric actuation: electrostatic (capacitive) and electromagnetic (Lorentz force, magnetic).
+"""Bulk electric actuation: electrostatic (capacitive), electromagnetic (Lorentz force, magnetic).
 """
 from __future__ import annotations
 
@@ -58,7 +58,7 @@ class Electrostatic(Transducer):
 
     @property
     def compliance(self) -> tuple:
-        """(tip deflection, tip slope) per newton of the uniform load on the electrode (m/N, rad/N)."""
+        """(tip deflection, tip slope) per newton of uniform load on the electrode (m/N, rad/N)."""
         L, a, ei = self.length, self.length - self.electrode_length, self.lever.flexural_rigidity
         q = 1.0 / self.electrode_length
         return (q * (0.75 * L ** 4 - L * a ** 3 + a ** 4 / 4) / (6 * ei),
@@ -104,7 +104,8 @@ class Electrostatic(Transducer):
         c = self.compliance[0]
 
         def h(fr):
-            return complex(c * mechanical_response(fr, self.resonance_frequency, self.quality_factor))
+            return complex(c * mechanical_response(fr, self.resonance_frequency,
+                                                   self.quality_factor))
         return Harmonics(f.dc * h(0.0), f.first * h(frequency), f.second * h(2 * frequency))
 
     def _stages(self, v, mode):
@@ -158,7 +159,15 @@ class Electromagnetic(Transducer):
         return self.field * check_array("current", current, "A") * self.conductor_length
 
     def moment_force(self, moment: float, field_gradient: float) -> float:
-        """Force m dB/dz in N on a moment ``moment`` (A m^2) in a gradient ``field_gradient`` (T/m)."""
+        """Force m dB/dz in N on a moment ``moment`` (A m^2) in a gradient ``field_gradient`` (T/m).
+
+        Parameters
+        ----------
+        moment : float
+            Magnetic moment m in A m^2.
+        field_gradient : float
+            Field gradient dB/dz in T/m.
+        """
         m = check_range("moment", moment, -math.inf, math.inf, "A m^2")
         grad = check_range("field_gradient", field_gradient, -math.inf, math.inf, "T/m")
         return m * grad

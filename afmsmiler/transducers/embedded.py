@@ -97,14 +97,15 @@ class Piezoresistive(Transducer):
 
     @property
     def stress_per_newton(self) -> float:
-        """Mean stress in the resistor per newton of tip force, in Pa/N (from the lever's stress)."""
+        """Mean stress in the resistor per newton of tip force in Pa/N (from the lever's stress)."""
         z_b = self.thickness / 2 - self.junction_depth / 2
         return float(self.lever.stress(self.resistor_length / 2, z_b, 1.0))
 
     @property
     def carrier_number(self) -> float:
         """N = p V carriers in one resistor (two legs of width w/4)."""
-        return self.carrier_density * 2 * self.resistor_length * self.width / 4 * self.junction_depth
+        volume = 2 * self.resistor_length * self.width / 4 * self.junction_depth
+        return self.carrier_density * volume
 
     #: Largest |dR/R| for which a constant piezoresistive coefficient is a fair model.
     MAX_RELATIVE_CHANGE = 0.1
@@ -215,7 +216,8 @@ class Piezoelectric(Transducer):
     @property
     def capacitance(self) -> float:
         """Film capacitance eps_0 eps_r w l_e / t_p in F."""
-        return EPSILON_0 * self.permittivity * self.width * self.electrode_length / self.film_thickness
+        area = self.width * self.electrode_length
+        return EPSILON_0 * self.permittivity * area / self.film_thickness
 
     @property
     def mean_strain_per_newton(self) -> float:
@@ -284,10 +286,10 @@ class Optomechanical(Transducer):
 
     At the half-linewidth point Delta_0 = -gamma / 2 (the default) the slope is
     dP_T / dx = D P_in G / gamma (its sign flips on the other flank, Delta_0 = +gamma / 2; the
-    steepest slope, 3 sqrt(3) / 4 = 1.30 times that, is at |Delta_0| = gamma / (2 sqrt 3)) (Aspelmeyer,
-    Kippenberg and Marquardt, Rev. Mod. Phys. 86, 1391 (2014); Srinivasan et al., Nano Lett.
-    11, 791 (2011)). The intracavity field follows x with the amplitude decay rate kappa / 2, a
-    low-pass at gamma / 2. Noise: shot noise of the transmitted photocurrent.
+    steepest slope, 3 sqrt(3) / 4 = 1.30 times that, is at |Delta_0| = gamma / (2 sqrt 3))
+    (Aspelmeyer, Kippenberg and Marquardt, Rev. Mod. Phys. 86, 1391 (2014); Srinivasan et al.,
+    Nano Lett. 11, 791 (2011)). The intracavity field follows x with the amplitude decay rate
+    kappa / 2, a low-pass at gamma / 2. Noise: shot noise of the transmitted photocurrent.
     """
 
     key = "optomechanical"
@@ -335,7 +337,8 @@ class Optomechanical(Transducer):
     def _sensitivity(self, mode, at):
         g2 = (self.linewidth / 2) ** 2
         delta = self.detuning * self.linewidth - self.coupling * at
-        return -self.power * self.dip_depth * self.coupling * 2 * delta * g2 / (delta ** 2 + g2) ** 2
+        lorentzian_slope = 2 * delta * g2 / (delta ** 2 + g2) ** 2
+        return -self.power * self.dip_depth * self.coupling * lorentzian_slope
 
     def _dynamics(self, f, mode):
         return 1.0 / (1.0 + 1j * f / (self.linewidth / 2))

@@ -33,7 +33,7 @@ def _shot_noise_current(current: float, bandwidth: float) -> float:
 
 
 class OpticalBeamDeflection(Transducer):
-    """The optical lever: a laser reflected off the free end onto a split (four-quadrant) photodiode.
+    """The optical lever: a laser reflected off the free end onto a four-quadrant photodiode.
 
     A tip deflection z tilts the free end by theta = 3 z / (2 L) (end-loaded lever, module (a)).
     Reflection doubles the angle, so the spot moves by s = D tan(2 theta) ~ 2 D theta = 3 D z / L
@@ -43,8 +43,8 @@ class OpticalBeamDeflection(Transducer):
 
         S = ((A + B) - (C + D)) / (A + B + C + D) = erf(sqrt(2) s / w)
 
-    and the small-signal sensitivity at the null is dS/dz = sqrt(8 / pi) / w * 3 D / L (1/m): it grows
-    with the optical path and falls as 1/L (Meyer and Amer, Appl. Phys. Lett. 53, 1045 (1988);
+    and the small-signal sensitivity at the null is dS/dz = sqrt(8 / pi) / w * 3 D / L (1/m): it
+    grows with the optical path and falls as 1/L (Meyer and Amer, Appl. Phys. Lett. 53, 1045 (1988);
     Sarid, *Scanning Force Microscopy*, ch. 5; Putman et al., J. Appl. Phys. 72, 6 (1992)).
     The displacement of the reflection point itself (of order z, not D z / L) is neglected.
 
@@ -129,12 +129,12 @@ class AstigmaticDetection(Transducer):
 
         FES = ((A + C) - (B + D)) / (A + B + C + D) = (4 / pi) atan(w_y / w_x) - 1
 
-    an S-curve: zero in focus, extrema at d = +-sqrt(a^2 + z_R^2) / 2, back to zero far away. Its slope at focus
-    is 8 a / (pi (z_R^2 + a^2)) (largest, 4 / (pi z_R), for a = z_R), and its linear range is a
-    few um (Braat, Dirksen and Janssen, "Diffractive read-out of optical discs", in *Optical
-    Imaging and Microscopy*, Springer 2003; the astigmatic detection system AFM with a DVD
-    pickup head: Hwu et al., Appl. Phys. Lett. 91, 221908 (2007), Nanotechnology 19, 115501
-    (2008)).
+    an S-curve: zero in focus, extrema at d = +-sqrt(a^2 + z_R^2) / 2, back to zero far away.
+    Its slope at focus is 8 a / (pi (z_R^2 + a^2)) (largest, 4 / (pi z_R), for a = z_R), and its
+    linear range is a few um (Braat, Dirksen and Janssen, "Diffractive read-out of optical
+    discs", in *Optical Imaging and Microscopy*, Springer 2003; the astigmatic detection system
+    AFM with a DVD pickup head: Hwu et al., Appl. Phys. Lett. 91, 221908 (2007), Nanotechnology
+    19, 115501 (2008)).
     Noise: shot noise of the detector current, as for the optical lever.
     """
 

@@ -137,7 +137,7 @@ _SERIES_RADIUS = 0.02
 
 
 def _fin_response(s, heating: str):
-    """H(u) of the module docstring for s = u^2 = j omega L^2 / D (array), ``heating`` tip/uniform."""
+    """H(u) of the module docstring for s = u^2 = j omega L^2 / D (array); heating tip/uniform."""
     s = np.asarray(s, dtype=complex)
     out = np.empty_like(s)
     small = np.abs(s) < _SERIES_RADIUS
@@ -169,7 +169,7 @@ class _Bimorph(Transducer):
 
     @property
     def thermal_conductance(self) -> float:
-        """G = w sum(kappa_i t_i) in W m / K (heat flux along the lever per temperature gradient)."""
+        """G = w sum(kappa_i t_i) in W m / K (heat flow along the lever per kelvin per metre)."""
         si, film, t1, t2 = self._layers
         return self.width * (si.conductivity * t1 + film.conductivity * t2)
 

@@ -1,4 +1,4 @@
-"""The widget panel of module (b): a selector over the eleven transducers, generated sliders, plots, 3D.
+"""The widget panel of module (b): a selector over the eleven transducers, sliders, plots, 3D.
 
 :class:`TransducerPanel` offers the principles of :data:`afmsmiler.transducers.PRINCIPLES`; for the
 chosen one it builds a slider for the chain's input and one per parameter from the model's
@@ -53,8 +53,8 @@ def control_for(p: Parameter, value: float | None = None, high: float | None = N
     label = p.label or p.name
     if p.log:
         return log_slider(label, value * s, p.low * s, hi * s, unit=p.display_unit)
-    return slider(label, value * s, p.low * s, hi * s, step=(hi - p.low) * s / DEFAULTS["slider_steps"],
-                  unit=p.display_unit)
+    step = (hi - p.low) * s / DEFAULTS["slider_steps"]
+    return slider(label, value * s, p.low * s, hi * s, step=step, unit=p.display_unit)
 
 
 @dataclass(frozen=True)
@@ -281,7 +281,8 @@ class TransducerPanel(Panel):
         res = s.resolution
         total = res.total * q.scale
         rows = [("Table I", f"{m.function}; {m.signal}; {m.size}"),
-                ("lever k, f1", f"{m.spring_constant:.3g} N/m, {m.resonance_frequency / 1e3:.4g} kHz"),
+                ("lever k, f1",
+                 f"{m.spring_constant:.3g} N/m, {m.resonance_frequency / 1e3:.4g} kHz"),
                 ("sensitivity here", f"{s.sensitivity * sq.scale:.4g} {sq.display_unit}"),
                 (f"resolution in {DEFAULTS['bandwidth'] / 1e3:g} kHz",
                  (f"{total:.3g} {q.display_unit} (mostly {res.dominant})"
