@@ -95,6 +95,21 @@ def test_piezoelectric_offers_both_modes(panel):
     assert panel.controls["mode"].disabled and panel.last.mode == "sensing"
 
 
+def test_readout_says_where_models_stop_holding(panel):
+    # a stubby piezoresistive lever bent 2 um: the clamp sees 1.5 E h z / L^2 = 127 GPa
+    panel.set(principle="piezoresistive", length=20.0, thickness=10.0, resistor_length=4.0,
+              input=2000.0)
+    assert "breaks at 1-3 GPa" in panel.readout.value
+    _, out_uv = panel.figure.lines["output"].get_data()
+    vb_uv = panel.last.model.bias_voltage * 1e6
+    assert np.all(np.abs(out_uv) <= vb_uv / 2 * (1 + 1e-12))     # the bridge's rails
+    # base excitation far above the resonance: the second mode matters
+    panel.set(principle="piezo_acoustic", drive_ratio=3.0)
+    assert "second mode" in panel.readout.value
+    panel.set(drive_ratio=1.0)
+    assert "second mode" not in panel.readout.value
+
+
 def test_linked_slider_follows_the_lever(panel):
     panel.set(principle="electrostatic", electrode_length=200.0)
     panel.set(length=100.0)
