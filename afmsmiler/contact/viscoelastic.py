@@ -312,14 +312,14 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
     loading = None  # Ting's loading history, from the onset of contact
     for i in range(n):
         a, p = (decay[i - 1], phi[i - 1]) if i else (0.0, 1.0)
-        state = "grow"
-        if loading is not None:
-            def ting(z1, p1, h1, hz1, d, i=i, a=a, p=p):
-                # Z_s from Ting's condition int_t1^t E dZ_s = 0, then the lever's residual
-                zs = (e_inf * z1 - d_e * (a * hz - p * zs_prev - d * hz1)) / (e_inf + p * d_e)
-                return k * (path[i] - zs) - (e_inf * p1 + d_e * d * h1)
+        def ting_depth(z1, hz1, d, a=a, p=p):
+            # Z_s(t) from Ting's condition int_t1^t E dZ_s = 0: linear in this step's increment
+            return (e_inf * z1 - d_e * (a * hz - p * zs_prev - d * hz1)) / (e_inf + p * d_e)
 
-            state = loading.solve(time[i], ting)
+        def ting(z1, p1, h1, hz1, d, i=i):  # the lever's residual at t1, decreasing in t1
+            return k * (path[i] - ting_depth(z1, hz1, d)) - (e_inf * p1 + d_e * d * h1)
+
+        state = "grow" if loading is None else loading.solve(time[i], ting)
         if state == "grow":  # Lee and Radok: the step is elastic with an effective modulus
             e_eff = e_inf + p * d_e
             z_eff = path[i] - d_e * (a * h - p * psi_prev) / k
@@ -331,11 +331,11 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
                 state, zs = None, 0.0
         elif state is not None:  # Ting: the contact shrinks, its radius is that at t1
             z1, p1, h1, hz1, d = state
-            zs = (e_inf * z1 - d_e * (a * hz - p * zs_prev - d * hz1)) / (e_inf + p * d_e)
+            zs = ting_depth(z1, hz1, d)
             force[i] = e_inf * p1 + d_e * d * h1
             radius[i] = float(tip._radius(np.array(z1)))
         else:  # the surface has receded from the tip: its free recovery, int_0^t E dZ_s = 0
-            zs = -d_e * (a * hz - p * zs_prev) / (e_inf + p * d_e) if loading is not None else 0.0
+            zs = ting_depth(0.0, 0.0, 0.0) if loading is not None else 0.0
         psi = float(tip._force_unit(np.array(max(zs, 0.0))))
         h = a * h + p * (psi - psi_prev)
         hz = a * hz + p * (zs - zs_prev)
