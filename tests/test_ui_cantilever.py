@@ -121,7 +121,7 @@ def test_panel_with_scene_updates_the_3d_view_in_place():
         p.set(length=500.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
         assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
         w = p.widget()
-        assert p.readout in w.children[0].children
+        assert p.readout in w.children[0].children  # beside the controls, above the figure
     finally:
         close_viewer()
 
@@ -148,3 +148,40 @@ def test_section_strain_axis_is_stress_over_e(panel):
     assert (slo, shi) == pytest.approx((lo / 169e3 * 1e6, hi / 169e3 * 1e6), rel=1e-9)
     c = panel.last.curves
     np.testing.assert_allclose(c.section_strain_micro, c.section_stress_mpa * 1e6 / 169e9 * 1e6, rtol=1e-12)
+
+
+def test_sliders_keep_working_after_close_viewer():
+    # "Run All" ends with close_viewer(); in JupyterLab the next slider move raised ZMQError in
+    # the ipywidgets callback, so plots moved (auto-redraw) but the readouts froze silently.
+    try:
+        p = CantileverPanel(scene=True)
+        close_viewer()
+        p.controls["force"].value = 200.0  # as a user would move it
+        lever = p.last.lever
+        assert p.last.tip_deflection == pytest.approx(200e-9 / lever.spring_constant, rel=1e-12)
+        assert f"{200e-9 / lever.spring_constant * 1e9:.4g} nm" in p.readout.value
+        assert p.scene is None and "3D view closed" in p.readout.value
+        assert not viewer.viewer_running()  # a slider never starts a server nobody closes
+        p.set(force=-100.0)
+        assert not viewer.viewer_running() and p.error is None
+        # the student opens a viewer again: the lever is drawn there at once
+        vis = viewer.get_viewer()
+        p.set(force=50.0)
+        assert p.scene is not None and p.scene.root is vis and p.scene.force == pytest.approx(50e-9)
+        assert "3D view closed" not in p.readout.value and "MPa" in p.readout.value
+    finally:
+        close_viewer()
+
+
+def test_layout_fits_one_screen():
+    # Side by side (about 430 + 1000 px) the figure wrapped below a 700 px column in JupyterLab;
+    # controls and readouts now sit above the figure, all unsqueezed (flex: 0 0 auto).
+    from afmsmiler.ui.panel import arrange
+    p = CantileverPanel(scene=False)
+    w = arrange(p.widget())
+    top, figure = w.children
+    controls, readout = top.children
+    assert list(controls.children) == list(p.controls.values()) and readout is p.readout
+    assert top.layout.flex_flow == "row wrap" and controls.layout.flex == "0 0 auto"
+    width, height = p.fig.get_size_inches() * p.fig.dpi
+    assert width <= 1000 and height <= 600

@@ -31,6 +31,7 @@ BOUNDS = dict(force=(-500.0, 500.0), length=(20.0, 500.0), width=(5.0, 100.0),
               section=(0.0, 1.0), exaggeration=(1.0, 1e4))
 
 _N_MODES = 3
+_FIGSIZE = (10.0, 5.6)  # inches: with the controls above it, the panel fits one screen
 
 
 @dataclass(frozen=True)
@@ -120,7 +121,7 @@ class CantileverPanel(Panel):
         self.figure = None
         self.scene = None
         self._want_scene = bool(scene)
-        self.fig = self.new_figure(figsize=(10.0, 6.5))
+        self.fig = self.new_figure(figsize=_FIGSIZE)
         # registered before Panel's own observer, so one material change gives one update
         self.controls["material"].observe(self._on_material, names="value")
         super().__init__()
@@ -147,12 +148,7 @@ class CantileverPanel(Panel):
         else:
             self.figure.update(curves)
         if self._want_scene:
-            if self.scene is None:
-                from ..scenes.cantilever import CantileverScene
-                self.scene = CantileverScene(lever, f, exaggeration=exaggeration,
-                                             force_per_unit=BOUNDS["force"][1] * 1e-9 / 1.5)
-            else:
-                self.scene.update(lever, f, exaggeration=exaggeration)
+            self._update_scene(lever, f, exaggeration)
         freqs = tuple(lever.resonance_frequency(n) for n in range(1, _N_MODES + 1))
         self.last = CantileverState(
             lever=lever, force=f, curves=curves, spring_constant=lever.spring_constant,
@@ -160,6 +156,28 @@ class CantileverPanel(Panel):
             max_stress=float(abs(curves.stress_top_mpa).max()) * 1e6)
         self.readout.value = self._readout_html()
         self.redraw()
+
+    def _update_scene(self, lever: Cantilever, force: float, exaggeration: float) -> None:
+        """Draw into the kernel's viewer; after ``close_viewer()`` stop drawing, never restart it.
+
+        The notebook's last cell closes the viewer, so after "Run All" the sliders must go on
+        updating the plots without the 3D view (and without starting a server nobody closes).
+        If the student opens a viewer again (``get_viewer()``), the scene is drawn there anew.
+        """
+        from ..scenes import viewer
+        if self.scene is not None and not (viewer.viewer_running()
+                                           and self.scene.root is viewer.get_viewer()):
+            self.scene, self._scene_closed = None, True  # its server was closed
+        if self.scene is None:
+            if self._scene_closed and not viewer.viewer_running():
+                return
+            from ..scenes.cantilever import CantileverScene
+            self.scene = CantileverScene(lever, force, exaggeration=exaggeration,
+                                         force_per_unit=BOUNDS["force"][1] * 1e-9 / 1.5)
+        else:
+            self.scene.update(lever, force, exaggeration=exaggeration)
+
+    _scene_closed = False
 
     def _readout_html(self) -> str:
         s = self.last
@@ -178,10 +196,19 @@ class CantileverPanel(Panel):
             shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
             legend = (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
+        elif self._scene_closed:
+            legend = ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
+                      "run <code>get_viewer().jupyter_cell()</code> to open it again</div>")
         return f"<table>{table}</table>{legend}"
 
     def widget(self) -> widgets.Widget:
-        """Controls and readouts on the left, the figure on the right."""
-        box = super().widget()
-        left = widgets.VBox(list(self.controls.values()) + [self.readout])
-        return widgets.HBox([left, box.children[1]])
+        """Controls with the readouts beside them, the figure below.
+
+        Controls and figure side by side need about 1450 px, wider than a notebook on most
+        screens: the figure would move below a tall column and leave the sliders when the
+        student scrolls to it. This way the whole panel (about 900 px high) fits on one screen.
+        """
+        figure = super().widget().children[1]
+        self.readout.layout.margin = "0 0 0 16px"
+        top = widgets.HBox([widgets.VBox(list(self.controls.values())), self.readout])
+        return widgets.VBox([top, figure])

@@ -7,15 +7,17 @@ Tests construct a panel, call :meth:`Panel.set` and check the figure data agains
 """
 from __future__ import annotations
 
+import html
 import math
 import os
+import traceback
 
 import ipywidgets as widgets
 import matplotlib
 import matplotlib.pyplot as plt
 from IPython.display import display
 
-__all__ = ["Panel", "slider", "log_slider", "running_as_notebook", "setup_notebook"]
+__all__ = ["Panel", "arrange", "slider", "log_slider", "running_as_notebook", "setup_notebook"]
 
 
 def running_as_notebook() -> bool:
@@ -90,6 +92,8 @@ class Panel:
     def __init__(self):
         self._output = widgets.Output()
         self.last = None  # the last model result, for tests and exercises
+        self.error = None  # the message of the last failed update from a control, else None
+        self._error_box = widgets.HTML()
         for control in self.controls.values():
             control.observe(self._on_change, names="value")
         self.update(**self.values())
@@ -115,8 +119,33 @@ class Panel:
     _hold = False
 
     def _on_change(self, _change) -> None:
-        if not self._hold:
+        """A control moved: update, and show a failure in the panel instead of losing it.
+
+        ipywidgets runs this callback outside any cell, so an exception raised here would only
+        reach JupyterLab's log console while the panel silently stopped updating. In a live
+        notebook the error is shown under the panel (:attr:`error`); elsewhere (tests) it is
+        shown and raised again.
+        """
+        if self._hold:
+            return
+        try:
             self.update(**self.values())
+        except Exception as exc:
+            self._report_error(exc)
+            if not running_as_notebook():
+                raise
+        else:
+            if self.error is not None:
+                self.error = None
+                self._error_box.value = ""
+
+    def _report_error(self, exc: Exception) -> None:
+        self.error = f"{type(exc).__name__}: {exc}"
+        tb = "".join(traceback.format_exception(exc)[-6:])
+        self._error_box.value = (
+            "<div style='color:#b00020'><b>The panel could not update</b> "
+            f"({html.escape(self.error)})<pre style='font-size:11px'>{html.escape(tb)}</pre>"
+            "</div>")
 
     # -- the callback ---------------------------------------------------------------------
     def update(self, **values) -> None:  # pragma: no cover - abstract
@@ -132,7 +161,9 @@ class Panel:
         """
         if _interactive_backend():
             with plt.ioff():
-                return plt.figure(**kwargs)
+                fig = plt.figure(**kwargs)
+            fig.canvas.header_visible = False  # the panel is its own title; save the room
+            return fig
         from matplotlib.figure import Figure
         return Figure(**kwargs)
 
@@ -151,10 +182,45 @@ class Panel:
         """The panel as one widget: controls on the left, the figure on the right."""
         box = widgets.VBox(list(self.controls.values()))
         if self.fig is not None and _interactive_backend():
-            return widgets.HBox([box, self.fig.canvas])
-        return widgets.HBox([box, self._output])
+            return arrange(widgets.HBox([box, self.fig.canvas]))
+        return arrange(widgets.HBox([box, self._output]))
 
     def show(self) -> None:
-        """Display the panel (call as the last line of a notebook cell)."""
-        display(self.widget())
+        """Display the panel (call as the last line of a notebook cell).
+
+        The panel is laid out with :func:`arrange` (controls keep their width; the figure moves
+        below them when the notebook is too narrow for both), with a line under it where a
+        failed update is reported.
+        """
+        display(widgets.VBox([arrange(self.widget()), self._error_box]))
         self.redraw()
+
+
+def arrange(box: widgets.Widget) -> widgets.Widget:
+    """Lay out a panel's boxes so that nothing is squeezed or clipped; return ``box``.
+
+    In a row (HBox) every child keeps its natural width (CSS ``flex: 0 0 auto``) and the row
+    wraps: when the notebook is narrower than controls + figure, the figure moves below the
+    controls instead of squeezing them into a clipped, scrolling strip (which is what a flex row
+    does by default next to a fixed-size ipympl canvas). Nested boxes are arranged too.
+
+    Parameters
+    ----------
+    box : ipywidgets.Widget
+        The panel's widget (usually from :meth:`Panel.widget`); other widgets pass unchanged.
+
+    Returns
+    -------
+    ipywidgets.Widget
+        ``box`` itself, its layout changed in place.
+    """
+    if isinstance(box, widgets.Box):
+        if isinstance(box, widgets.HBox):
+            box.layout.flex_flow = "row wrap"
+            box.layout.align_items = "flex-start"
+            for child in box.children:
+                if isinstance(child, widgets.DOMWidget):
+                    child.layout.flex = "0 0 auto"
+        for child in box.children:
+            arrange(child)
+    return box

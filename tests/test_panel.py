@@ -1,0 +1,101 @@
+"""The panel base class as a student meets it in JupyterLab, checked without a browser.
+
+Each test here stands for a problem seen in a real JupyterLab (headless Chromium): a failing update
+from a slider that only reached the log console while the panel froze, controls squeezed into a
+clipped strip next to the fixed-size ipympl canvas, and the canvas's "Figure N" header.
+"""
+import ipywidgets as widgets
+import matplotlib
+import matplotlib.pyplot as plt
+import pytest
+
+import afmsmiler.ui.panel as panel_module
+from afmsmiler.ui.panel import Panel, arrange, slider
+
+
+class Square(Panel):
+    """A minimal panel: y = x^2, refusing x < 0 as a model would."""
+
+    def __init__(self, low=-1.0):
+        self.controls = dict(x=slider("x", 1.0, low, 2.0, unit="m"))
+        self.fig = self.new_figure(figsize=(2.0, 1.5))
+        self.ax = self.fig.add_subplot()
+        (self.line,) = self.ax.plot([0.0], [0.0])
+        super().__init__()
+
+    def update(self, x):
+        if x < 0:
+            raise ValueError(f"x must be >= 0 m, got {x}")
+        self.line.set_data([x], [x * x])
+        self.last = x * x
+        self.redraw()
+
+
+def test_a_failing_slider_update_is_shown_in_the_panel_and_raised_under_test():
+    p = Square()
+    with pytest.raises(ValueError, match="x must be >= 0 m, got -0.5"):
+        p.controls["x"].value = -0.5  # as a user would move it
+    assert p.error == "ValueError: x must be >= 0 m, got -0.5"
+    assert "could not update" in p._error_box.value and "got -0.5" in p._error_box.value
+    assert p.last == 1.0  # the last good result is kept
+    p.controls["x"].value = 1.5
+    assert p.error is None and p._error_box.value == "" and p.last == 2.25
+
+
+def test_in_a_live_notebook_the_failure_is_shown_not_lost(monkeypatch):
+    # ipywidgets calls observers outside any cell: an exception raised there only reaches
+    # JupyterLab's log console, so the panel must show it itself and keep working.
+    monkeypatch.setattr(panel_module, "running_as_notebook", lambda: True)
+    p = Square()
+    p.controls["x"].value = -0.25  # no exception escapes to ipywidgets
+    assert p.error == "ValueError: x must be >= 0 m, got -0.25"
+    assert "x must be &gt;= 0 m, got -0.25" in p._error_box.value  # escaped for HTML
+    p.controls["x"].value = 0.5
+    assert p.error is None and p.line.get_ydata()[0] == 0.25
+
+
+def test_set_still_raises_for_tests_and_exercises():
+    p = Square()
+    with pytest.raises(ValueError, match="got -1"):
+        p.set(x=-1.0)
+
+
+def test_arrange_keeps_controls_unsqueezed_and_wraps_the_figure():
+    left = widgets.VBox([slider("a", 1.0, 0.0, 2.0), widgets.HBox([widgets.HTML("k"),
+                                                                    widgets.HTML("f")])])
+    right = widgets.Output()
+    box = arrange(widgets.HBox([left, right]))
+    assert box.layout.flex_flow == "row wrap" and box.layout.align_items == "flex-start"
+    assert left.layout.flex == "0 0 auto" and right.layout.flex == "0 0 auto"
+    inner = left.children[1]
+    assert inner.layout.flex_flow == "row wrap"
+    assert all(c.layout.flex == "0 0 auto" for c in inner.children)
+    assert left.layout.flex_flow is None  # a column stays a column
+    assert arrange(right) is right  # a non-box passes through
+
+
+def test_show_displays_the_arranged_panel_and_its_error_line(monkeypatch):
+    shown = []
+    monkeypatch.setattr(panel_module, "display", lambda *objs: shown.extend(objs))
+    p = Square()
+    shown.clear()  # the first redraw, outside ipympl, displays the figure into the panel
+    p.show()
+    outer = shown[0]
+    assert isinstance(outer, widgets.VBox)
+    body, errors = outer.children
+    assert errors is p._error_box
+    assert body.layout.flex_flow == "row wrap"
+    assert body.children[0].layout.flex == "0 0 auto"
+
+
+def test_ipympl_figure_has_no_figure_n_header():
+    old = matplotlib.get_backend()
+    plt.switch_backend("module://ipympl.backend_nbagg")
+    try:
+        p = Square()
+        assert p.fig.canvas.header_visible is False
+        w = p.widget()
+        assert w.children[1] is p.fig.canvas and w.layout.flex_flow == "row wrap"
+        plt.close(p.fig)
+    finally:
+        plt.switch_backend(old)
