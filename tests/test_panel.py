@@ -99,3 +99,22 @@ def test_ipympl_figure_has_no_figure_n_header():
         plt.close(p.fig)
     finally:
         plt.switch_backend(old)
+
+
+def test_scene_open_drops_a_scene_whose_viewer_was_closed():
+    from types import SimpleNamespace
+
+    from afmsmiler.scenes import close_viewer, viewer
+    p = Square()
+    try:
+        p.scene = None
+        assert p.scene_open()  # before the first draw: drawing will start the viewer
+        p.scene = SimpleNamespace(root=viewer.get_viewer())
+        assert p.scene_open() and p.scene is not None
+        close_viewer()  # the notebook's last cell, e.g. after "Run All"
+        assert not p.scene_open() and p.scene is None
+        assert not p.scene_open() and not viewer.viewer_running()  # and it starts no server
+        viewer.get_viewer()  # the student opens a viewer again: build the scene there
+        assert p.scene_open() and p.scene is None
+    finally:
+        close_viewer()

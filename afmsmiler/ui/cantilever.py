@@ -147,8 +147,13 @@ class CantileverPanel(Panel):
             self.figure = CantileverFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
-        if self._want_scene:
-            self._update_scene(lever, f, exaggeration)
+        if self._want_scene and self.scene_open():  # not after close_viewer()
+            if self.scene is None:
+                from ..scenes.cantilever import CantileverScene
+                self.scene = CantileverScene(lever, f, exaggeration=exaggeration,
+                                             force_per_unit=BOUNDS["force"][1] * 1e-9 / 1.5)
+            else:
+                self.scene.update(lever, f, exaggeration=exaggeration)
         freqs = tuple(lever.resonance_frequency(n) for n in range(1, _N_MODES + 1))
         self.last = CantileverState(
             lever=lever, force=f, curves=curves, spring_constant=lever.spring_constant,
@@ -156,28 +161,6 @@ class CantileverPanel(Panel):
             max_stress=float(abs(curves.stress_top_mpa).max()) * 1e6)
         self.readout.value = self._readout_html()
         self.redraw()
-
-    def _update_scene(self, lever: Cantilever, force: float, exaggeration: float) -> None:
-        """Draw into the kernel's viewer; after ``close_viewer()`` stop drawing, never restart it.
-
-        The notebook's last cell closes the viewer, so after "Run All" the sliders must go on
-        updating the plots without the 3D view (and without starting a server nobody closes).
-        If the student opens a viewer again (``get_viewer()``), the scene is drawn there anew.
-        """
-        from ..scenes import viewer
-        if self.scene is not None and not (viewer.viewer_running()
-                                           and self.scene.root is viewer.get_viewer()):
-            self.scene, self._scene_closed = None, True  # its server was closed
-        if self.scene is None:
-            if self._scene_closed and not viewer.viewer_running():
-                return
-            from ..scenes.cantilever import CantileverScene
-            self.scene = CantileverScene(lever, force, exaggeration=exaggeration,
-                                         force_per_unit=BOUNDS["force"][1] * 1e-9 / 1.5)
-        else:
-            self.scene.update(lever, force, exaggeration=exaggeration)
-
-    _scene_closed = False
 
     def _readout_html(self) -> str:
         s = self.last
@@ -196,7 +179,7 @@ class CantileverPanel(Panel):
             shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
             legend = (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
-        elif self._scene_closed:
+        elif self._want_scene and self._viewer_closed:
             legend = ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
                       "run <code>get_viewer().jupyter_cell()</code> to open it again</div>")
         return f"<table>{table}</table>{legend}"

@@ -151,6 +151,35 @@ class Panel:
     def update(self, **values) -> None:  # pragma: no cover - abstract
         raise NotImplementedError
 
+    # -- the 3D view ----------------------------------------------------------------------
+    _viewer_closed = False  # the viewer that self.scene drew into was closed
+
+    def scene_open(self) -> bool:
+        """Whether :meth:`update` may draw its 3D view (``self.scene``) now.
+
+        True before the scene exists (drawing it starts the kernel's viewer) and while the
+        viewer it draws into runs. A notebook's last cell calls ``close_viewer()``, so after
+        "Run All" every slider move would send to a closed socket (ZMQError) and the panel
+        would stop updating; instead this drops the stale scene and returns False, and the
+        panel goes on updating its plots and readouts without starting a server. Once the
+        student opens a viewer again (``get_viewer()``), it returns True with ``self.scene``
+        None, so the scene is built anew there. Use it as
+        ``if self._want_scene and self.scene_open():`` before creating or updating the scene.
+
+        Returns
+        -------
+        bool
+            Draw the scene (create it when ``self.scene`` is None) or skip it.
+        """
+        from ..scenes import viewer
+        scene = getattr(self, "scene", None)
+        if scene is None:
+            return not self._viewer_closed or viewer.viewer_running()
+        if viewer.viewer_running() and getattr(scene, "root", None) is viewer.get_viewer():
+            return True
+        self.scene, self._viewer_closed = None, True
+        return viewer.viewer_running()
+
     # -- display --------------------------------------------------------------------------
     @staticmethod
     def new_figure(**kwargs) -> plt.Figure:
