@@ -223,7 +223,7 @@ class ContactPanel(Panel):
             self.figure = ContactFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
-        if self._want_scene:
+        if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.contact import ContactScene
                 self.scene = ContactScene(shape, current)

@@ -260,7 +260,7 @@ class TransducerPanel(Panel):
             self.figure = TransducerFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
-        if self._want_scene:
+        if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.transducers import TransducerScene
                 self.scene = TransducerScene(model, value, mode)
