@@ -123,7 +123,7 @@ class ControllerPanel(Panel):
         self.controls = controls
         self.indicator = widgets.HTML()
         self.figure = None
-        self.fig = self.new_figure(figsize=(11.0, 6.0))
+        self.fig = self.new_figure(figsize=(10.0, 6.0))  # 11 in was clipped in JupyterLab
         self.controls["preset"].observe(self._on_preset, names="value")
         super().__init__()
 

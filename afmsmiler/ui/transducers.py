@@ -25,7 +25,7 @@ from .panel import Panel, log_slider, slider
 __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "control_for"]
 
 #: Panel defaults, in one place.
-DEFAULTS = dict(principle="optical_beam_deflection", bandwidth=1e3, figsize=(11.0, 3.8),
+DEFAULTS = dict(principle="optical_beam_deflection", bandwidth=1e3, figsize=(10.0, 3.8),
                 slider_steps=400)
 
 _FIXED = ("principle", "mode", "input")
