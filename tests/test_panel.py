@@ -118,3 +118,30 @@ def test_scene_open_drops_a_scene_whose_viewer_was_closed():
         assert p.scene_open() and p.scene is None
     finally:
         close_viewer()
+
+
+def test_a_column_of_controls_shares_one_label_width():
+    # with each label as wide as its text, the tracks began and ended at different places
+    short = slider("h", 1.0, 0.0, 2.0, unit="um")
+    long = slider("optical path D (lever to detector)", 1.0, 0.0, 2.0, unit="mm")
+    menu = widgets.Dropdown(options=["a", "b"], description="material")
+    lone = widgets.HTML("readout")
+    arrange(widgets.VBox([short, long, menu, lone]))
+    widths = {c.style.description_width for c in (short, long, menu)}
+    assert len(widths) == 1
+    label_px = int(widths.pop().removesuffix("px"))
+    assert label_px >= 7 * len(long.description)  # room for the longest label
+    assert short.layout.width == long.layout.width == menu.layout.width
+    assert int(short.layout.width.removesuffix("px")) > label_px + 200  # and for the track
+
+
+def test_controls_swapped_into_an_arranged_column_are_aligned_too():
+    # the transducer panel replaces its sliders when the principle changes
+    column = widgets.VBox([slider("a", 1.0, 0.0, 2.0), slider("b", 1.0, 0.0, 2.0)])
+    arrange(column)
+    arrange(column)  # arranging twice registers one observer
+    new = [slider("laser power on the detector", 1.0, 0.0, 2.0, unit="mW"),
+           slider("Q", 1.0, 0.0, 2.0)]
+    column.children = new
+    assert new[0].style.description_width == new[1].style.description_width != "initial"
+    assert len(column._trait_notifiers["children"]["change"]) == 1

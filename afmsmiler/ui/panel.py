@@ -231,7 +231,9 @@ def arrange(box: widgets.Widget) -> widgets.Widget:
     In a row (HBox) every child keeps its natural width (CSS ``flex: 0 0 auto``) and the row
     wraps: when the notebook is narrower than controls + figure, the figure moves below the
     controls instead of squeezing them into a clipped, scrolling strip (which is what a flex row
-    does by default next to a fixed-size ipympl canvas). Nested boxes are arranged too.
+    does by default next to a fixed-size ipympl canvas). In a column (VBox) the sliders and
+    drop-downs get one label width, so their tracks start and end at the same place whatever
+    their labels' lengths. Nested boxes are arranged too.
 
     Parameters
     ----------
@@ -244,6 +246,11 @@ def arrange(box: widgets.Widget) -> widgets.Widget:
         ``box`` itself, its layout changed in place.
     """
     if isinstance(box, widgets.Box):
+        if isinstance(box, widgets.VBox):
+            _align_labels(box.children)
+            if not getattr(box, "_labels_aligned", False):  # controls swapped in later, too
+                box.observe(lambda change: _align_labels(change["new"]), names="children")
+                box._labels_aligned = True
         if isinstance(box, widgets.HBox):
             box.layout.flex_flow = "row wrap"
             box.layout.align_items = "flex-start"
@@ -253,3 +260,21 @@ def arrange(box: widgets.Widget) -> widgets.Widget:
         for child in box.children:
             arrange(child)
     return box
+
+
+#: Label widths are estimated (the kernel cannot measure text): px per character of JupyterLab's
+#: 13 px widget font, with margin; the track and readout of a slider keep this much room.
+_LABEL_PX_PER_CHAR, _TRACK_PX = 7.5, 300
+
+
+def _align_labels(children) -> None:
+    """Give the sliders and drop-downs in one column a common label width (in place)."""
+    aligned = [c for c in children if isinstance(c, (widgets.FloatSlider, widgets.FloatLogSlider,
+                                                     widgets.IntSlider, widgets.Dropdown))
+               and c.description]
+    if len(aligned) < 2:
+        return
+    label = int(max(len(c.description) for c in aligned) * _LABEL_PX_PER_CHAR) + 8
+    for c in aligned:
+        c.style.description_width = f"{label}px"
+        c.layout.width = f"{label + _TRACK_PX}px"
