@@ -181,7 +181,8 @@ class CantileverPanel(Panel):
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
         elif self._want_scene and self._viewer_closed:
             legend = ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
-                      "run <code>get_viewer().jupyter_cell()</code> to open it again</div>")
+                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it again"
+                      "</div>")
         return f"<table>{table}</table>{legend}"
 
     def widget(self) -> widgets.Widget:
