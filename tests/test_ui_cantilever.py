@@ -185,3 +185,34 @@ def test_layout_fits_one_screen():
     assert top.layout.flex_flow == "row wrap" and controls.layout.flex == "0 0 auto"
     width, height = p.fig.get_size_inches() * p.fig.dpi
     assert width <= 1000 and height <= 600
+
+
+def _elastica_tip(alpha):
+    """Tip deflection / L of the inextensible elastica under a vertical end force (independent of
+    the linear model): EJ theta'' = -F cos(theta), theta(0) = 0, theta'(L) = 0, alpha = F L^2/EJ."""
+    from scipy.integrate import solve_bvp
+    s = np.linspace(0.0, 1.0, 101)
+    sol = solve_bvp(lambda s, y: np.vstack([y[1], -alpha * np.cos(y[0]), np.sin(y[0])]),
+                    lambda a, b: np.array([a[0], b[1], a[2]]), s, np.zeros((3, s.size)), tol=1e-10)
+    assert sol.success
+    return float(sol.sol(1.0)[2])
+
+
+def test_readout_warns_beyond_small_deflections():
+    from afmsmiler.ui.cantilever import SMALL_SLOPE
+    # at the threshold, linear theory (z/L = alpha/3, theta(L) = alpha/2) is within 1 % of the elastica
+    alpha = 2 * SMALL_SLOPE
+    assert alpha / 3 == pytest.approx(_elastica_tip(alpha), rel=0.01)
+    # at 0.5 rad it is not (10 %): the readout must say so
+    assert 1 / 3 > 1.08 * _elastica_tip(1.0)
+    p = CantileverPanel(scene=False)
+    assert "beyond small deflections" not in p.readout.value  # the default lever: 1.8 mrad
+    p.set(thickness=0.2, force=500.0)  # theta(L) = F L^2 / (2 E J), J = w h^3 / 12
+    E, L, w, h = 169e9, 450e-6, 50e-6, 0.2e-6
+    theta = 500e-9 * L ** 2 / (2 * E * w * h ** 3 / 12)
+    assert theta > SMALL_SLOPE
+    assert "beyond small deflections" in p.readout.value and f"{theta:.2g} rad" in p.readout.value
+    p.set(force=-500.0)
+    assert "beyond small deflections" in p.readout.value  # either sign
+    p.set(force=500.0 * 0.9 * SMALL_SLOPE / theta)
+    assert "beyond small deflections" not in p.readout.value

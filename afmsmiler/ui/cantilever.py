@@ -32,6 +32,11 @@ BOUNDS = dict(force=(-500.0, 500.0), length=(20.0, 500.0), width=(5.0, 100.0),
 
 _N_MODES = 3
 _FIGSIZE = (10.0, 5.6)  # inches: with the controls above it, the panel fits one screen
+#: Largest end slope |theta(L)| in rad (of the linear theory) for which the readout calls the
+#: small-deflection beam theory good: F L^3 / (3 E J) then overestimates the tip deflection of the
+#: end-loaded elastica by about 0.45 theta^2, 0.5 % at 0.1 rad but 10 % at 0.5 rad (checked
+#: against the elastica solved numerically in tests/test_ui_cantilever.py).
+SMALL_SLOPE = 0.1
 
 
 @dataclass(frozen=True)
@@ -171,6 +176,11 @@ class CantileverPanel(Panel):
                 ("max |stress| (clamp surface)", f"{s.max_stress / 1e6:.4g} MPa")]
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
+        slope = abs(float(s.curves.theta_mrad[-1])) / 1e3  # rad, largest at the free end
+        if slope > SMALL_SLOPE:
+            table += ("<tr><td colspan='2' style='color:#b00020'>beyond small deflections: "
+                      f"|theta(L)| = {slope:.2g} rad &gt; {SMALL_SLOPE:g} rad, so linear beam "
+                      "theory (these curves) overestimates z</td></tr>")
         legend = ""
         if self.scene is not None:
             from ..scenes.primitives import legend_html
