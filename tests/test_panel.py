@@ -145,3 +145,25 @@ def test_controls_swapped_into_an_arranged_column_are_aligned_too():
     column.children = new
     assert new[0].style.description_width == new[1].style.description_width != "initial"
     assert len(column._trait_notifiers["children"]["change"]) == 1
+
+
+def test_ipympl_panel_figure_stays_out_of_pyplot():
+    # made with plt.figure, the panel's figure was pyplot's current one: a student's next
+    # plt.plot(...) drew into the panel, and each re-run of the panel cell added a figure
+    old = matplotlib.get_backend()
+    plt.switch_backend("module://ipympl.backend_nbagg")
+    try:
+        before = plt.get_fignums()
+        panels = [Square() for _ in range(3)]
+        assert plt.get_fignums() == before
+        assert all(type(p.fig.canvas).__name__ == "Canvas" for p in panels)  # ipympl's widget
+        fig, ax = plt.subplots()
+        assert plt.gcf() is fig and all(p.fig is not fig for p in panels)
+        plt.close(fig)
+        p = panels[0]
+        p.controls["x"].value = 1.5  # still updates in place
+        assert p.line.get_ydata()[0] == 2.25
+        p.fig.canvas.draw()  # and draws through its own manager
+        assert p.fig.canvas.manager is not None
+    finally:
+        plt.switch_backend(old)

@@ -186,15 +186,19 @@ class Panel:
         """A figure for a panel: an ipympl canvas in a live notebook, else a pyplot-free Figure.
 
         Either way the figure is not shown automatically at the end of the cell; the panel
-        shows it (so it never appears twice).
+        shows it (so it never appears twice). Nor is it pyplot's current figure: made with
+        ``plt.figure`` it was, so a student's next ``plt.plot(...)`` drew into the panel's
+        axes, and every re-run of a panel cell added a figure to pyplot's list (warning after
+        20).
         """
-        if _interactive_backend():
-            with plt.ioff():
-                fig = plt.figure(**kwargs)
-            fig.canvas.header_visible = False  # the panel is its own title; save the room
-            return fig
         from matplotlib.figure import Figure
-        return Figure(**kwargs)
+        fig = Figure(**kwargs)
+        if _interactive_backend():
+            from ipympl.backend_nbagg import new_figure_manager_given_figure
+            with plt.ioff():  # not queued for display at the end of the cell
+                new_figure_manager_given_figure(0, fig)  # an ipympl canvas, outside pyplot
+            fig.canvas.header_visible = False  # the panel is its own title; save the room
+        return fig
 
     def redraw(self) -> None:
         """Redraw the figure in place (ipympl), or re-render it into the panel's output."""
