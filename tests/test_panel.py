@@ -167,3 +167,29 @@ def test_ipympl_panel_figure_stays_out_of_pyplot():
         assert p.fig.canvas.manager is not None
     finally:
         plt.switch_backend(old)
+
+
+def test_ipympl_redraw_pushes_the_new_image_without_a_browser_round_trip(monkeypatch):
+    # draw_idle only asked the browser to request a draw, and ipympl's browser side drops that
+    # request while it waits for an image: after quick slider moves the figure stayed stale
+    old = matplotlib.get_backend()
+    plt.switch_backend("module://ipympl.backend_nbagg")
+    try:
+        p = Square()
+        sent, events = [], []
+        monkeypatch.setattr(p.fig.canvas, "send_binary", sent.append)
+        monkeypatch.setattr(p.fig.canvas, "send_event", lambda *a, **k: events.append(a))
+        # before the browser shows the canvas, ipympl would send raw pixels for a PNG: ask
+        assert p.fig.canvas.syncing_data_url
+        p.controls["x"].value = 1.1
+        assert sent == [] and events == [("draw",)]
+        events.clear()
+        p.fig.canvas._handle_message(None, {"type": "initialized"}, [])  # the browser view
+        for x in (1.2, 1.4, 1.6):
+            p.controls["x"].value = x
+        assert len(sent) == 3 and all(png[:8] == b"\x89PNG\r\n\x1a\n" for png in sent)
+        assert ("draw",) not in events
+        # the last image is the last state: y = x^2 = 2.56 is where the line is drawn
+        assert p.line.get_ydata()[0] == pytest.approx(2.56)
+    finally:
+        plt.switch_backend(old)

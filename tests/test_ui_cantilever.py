@@ -183,6 +183,7 @@ def test_layout_fits_one_screen():
     controls, readout = top.children
     assert list(controls.children) == list(p.controls.values()) and readout is p.readout
     assert top.layout.flex_flow == "row wrap" and controls.layout.flex == "0 0 auto"
+    assert readout.layout.width == "460px"  # a long line (the slope warning) wraps inside it
     width, height = p.fig.get_size_inches() * p.fig.dpi
     assert width <= 1000 and height <= 600
 

@@ -204,5 +204,6 @@ class CantileverPanel(Panel):
         """
         figure = super().widget().children[1]
         self.readout.layout.margin = "0 0 0 16px"
+        self.readout.layout.width = "460px"  # a long warning wraps instead of pushing it below
         top = widgets.HBox([widgets.VBox(list(self.controls.values())), self.readout])
         return widgets.VBox([top, figure])

@@ -201,11 +201,25 @@ class Panel:
         return fig
 
     def redraw(self) -> None:
-        """Redraw the figure in place (ipympl), or re-render it into the panel's output."""
+        """Redraw the figure in place (ipympl), or re-render it into the panel's output.
+
+        With ipympl the figure is drawn here and its image pushed to the browser at once.
+        ``draw_idle`` only asks the browser to request a draw, and the browser drops that request
+        while it waits for an image: after a quick series of slider moves the figure then stayed
+        on an intermediate state while the readouts showed the last one, and a loop of
+        ``panel.set`` in one cell showed only its last frame (the requests wait for the cell).
+        Until the browser has shown the canvas (ipympl's ``syncing_data_url``), ``draw_idle``
+        is kept: ipympl would push that first image as raw pixels, which the browser cannot
+        decode ("broken" image), and the canvas would then stop updating.
+        """
         if self.fig is None:
             return
         if _interactive_backend():
-            self.fig.canvas.draw_idle()
+            canvas = self.fig.canvas
+            if getattr(canvas, "syncing_data_url", True):
+                canvas.draw_idle()  # no browser view yet: it draws when it asks
+            else:
+                canvas.draw()
         else:
             with self._output:
                 self._output.clear_output(wait=True)
