@@ -3,6 +3,6 @@
 Each panel is a class with a pure ``update(**values)`` callback that tests can call without a
 browser; sliders are bounded to the model's valid ranges, in practical units (nm, um, nN, GPa, kHz).
 """
-from .panel import Panel, log_slider, running_as_notebook, setup_notebook, slider
+from .panel import Panel, arrange, log_slider, running_as_notebook, setup_notebook, slider
 
-__all__ = ["Panel", "slider", "log_slider", "running_as_notebook", "setup_notebook"]
+__all__ = ["Panel", "arrange", "slider", "log_slider", "running_as_notebook", "setup_notebook"]
