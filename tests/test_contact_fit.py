@@ -133,9 +133,12 @@ def test_reproduces_the_vendor_fit_of_a_real_jpk_curve():
     curve = load_curve(DATA / "spot3-0192.jpk-force")
     assert curve.spring_constant == pytest.approx(0.0435, rel=1e-3)  # from the file's header
     assert curve.z_np.size == 2000
-    # nu = 0.5 is outside the model's [0, 0.5); only E / (1 - nu^2) is measured, so fit with
-    # nu = 0 (E* = E) and convert: E(nu = 0.5) = 0.75 E*
+    # nu = 0.5 is outside the model's [0, 0.5); only E* = E / (1 - nu^2) is measured, so fit with
+    # nu = 0 (E* = E) and convert: E(nu = 0.5) = (1 - 0.5^2) E* = 0.75 E* (the notebook does the
+    # same, and plots.contact.fit_label states both; tests/test_contact_ui.py checks the legend).
+    # nu = 0.499 instead would give (1 - 0.499^2) E* = 0.751 E*, 0.3 kPa off the printed 233.1.
     r = fit_curve(curve.tip_position, curve.force, Parabolic(40e-9), 0.0)
+    assert r.poisson_ratio == 0.0
     # tolerance: half a unit in the last digit JPK prints (233.1 kPa, 18.03 um), nothing looser
     # (our baseline is a free parameter over the whole segment; JPK subtracts its own first)
     assert 0.75 * r.youngs_modulus == pytest.approx(233.1e3, rel=0, abs=0.05e3)

@@ -11,7 +11,7 @@ from afmsmiler.contact import (TIPS, Conical, Parabolic, Pyramidal, Spherical, a
 from afmsmiler.exercises.contact import (FitExercise, check_contact_point, check_fitted_modulus,
                                          check_pull_off_force, fitting_exercise)
 from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figure, fit_figure,
-                                     tip_geometries_figure, tip_outline)
+                                     fit_label, fit_window, tip_geometries_figure, tip_outline)
 from afmsmiler.scenes.contact import ContactScene, surface_mesh, tip_mesh
 from afmsmiler.ui.contact import BOUNDS, TIP_CONTROLS, ContactPanel
 from recording import Recorder
@@ -64,6 +64,77 @@ def test_cycles_and_fit_figures():
                   spring_constant=ex.curve.spring_constant)
     fig = fit_figure(ex.curve, r)
     assert len(fig.axes) == 2
+
+
+def _legend_texts(ax):
+    return [t.get_text() for t in ax.get_legend().get_texts()]
+
+
+def test_fit_figure_of_the_real_curve_states_nu_and_zooms_on_the_contact():
+    # spot3-0192.jpk-force, fitted at nu = 0 (the model refuses the vendor's nu = 0.5): the legend
+    # must say which nu the E it shows belongs to, and give E at nu = 0.5 as the vendor's software
+    # reports it, 233.1 kPa (nanite, tests/test_model_hertz_parabol.py), to the digit it prints
+    from pathlib import Path
+    from afmsmiler.contact import load_curve
+    pytest.importorskip("afmformats")
+    curve = load_curve(Path(__file__).parent / "data" / "contact" / "spot3-0192.jpk-force")
+    r = fit_curve(curve.tip_position, curve.force, Parabolic(40e-9), 0.0)
+    fig = fit_figure(curve, r, report_poisson_ratio=0.5)
+    ax, axr = fig.axes
+    label = _legend_texts(ax)[1]
+    assert label == fit_label(r, 0.5)
+    first, second = label.split("\n")
+    assert first.startswith("fit at nu = 0: E = ")
+    e_at_0 = float(first.split("E = ")[1].split(" ")[0])
+    assert e_at_0 == pytest.approx(r.youngs_modulus / 1e3, abs=0.05)  # E* = E at nu = 0
+    assert second.startswith("E(nu = 0.5) = (1 - nu^2) E* = ")
+    assert float(second.split("E* = ")[1].split(" ")[0]) == pytest.approx(233.1, abs=0.05)
+    # nu = 0.499, the closest the model accepts, would not print the vendor's value
+    assert (1 - 0.499 ** 2) * r.youngs_modulus / 1e3 > 233.1 + 0.2
+    # default view: 1 um, the whole contact region (contact point to the curve's end, where the
+    # force is largest) and baseline before it; y limits fit the data in view
+    lo, hi = (v / 1e9 for v in axr.get_xlim())
+    assert hi - lo == pytest.approx(1e-6, rel=1e-9)
+    x_peak = r.x[np.argmax(curve.force)]
+    assert lo < r.contact_point < hi and lo <= x_peak <= hi
+    assert hi == pytest.approx(r.x.max())  # contact side: tip position grows into the sample
+    inside = (r.x >= lo) & (r.x <= hi)
+    y0, y1 = ax.get_ylim()
+    assert y0 <= curve.force[inside].min() * 1e9 and curve.force[inside].max() * 1e9 <= y1
+    assert y1 - y0 < 1.2 * np.ptp(curve.force[inside]) * 1e9  # zoomed in y too
+    assert "um" in ax.get_title() and "[nm]" in axr.get_xlabel()
+    # no zoom: the whole curve
+    lo, hi = (v / 1e9 for v in fit_figure(curve, r, zoom=None).axes[1].get_xlim())
+    assert lo <= r.x.min() and hi >= r.x.max()
+
+
+def test_fit_window_geometry():
+    ex = fitting_exercise(1)
+    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio,
+                  spring_constant=ex.curve.spring_constant)
+    # the contact region (Z_np from the contact point, ~55 nm, to 400 nm) is narrower than 1 um: the view
+    # reaches the curve's end and goes 1 um back, clipped to the data (from -300 nm)
+    assert fit_window(r, 1e-6) == (pytest.approx(ex.curve.z_np.min()),
+                                   pytest.approx(ex.curve.z_np.max()))
+    lo, hi = fit_window(r, 0.3e-6)
+    assert hi == pytest.approx(ex.curve.z_np.max())
+    # contact region (about 345 nm) wider than the window: all of it and half a window of baseline
+    assert ex.curve.z_np.max() - r.contact_point > 0.3e-6
+    assert lo == pytest.approx(r.contact_point - 0.15e-6)
+    assert fit_label(r).startswith(f"fit at nu = {ex.poisson_ratio:g}: E = ")
+    e_star = float(fit_label(r).split("E* = E/(1 - nu^2) = ")[1].split(" ")[0]) * 1e3
+    assert e_star == pytest.approx(r.youngs_modulus / (1 - ex.poisson_ratio ** 2), rel=1e-3)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(report_poisson_ratio=0.6), "report_poisson_ratio"), (dict(zoom=0.0), "zoom"),
+    (dict(zoom=-1e-6), "zoom")])
+def test_fit_figure_bad_input(kwargs, match):
+    ex = fitting_exercise(1)
+    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio,
+                  spring_constant=ex.curve.spring_constant)
+    with pytest.raises(ValueError, match=match):
+        fit_figure(ex.curve, r, **kwargs)
 
 
 # --- scene ----------------------------------------------------------------------------------------

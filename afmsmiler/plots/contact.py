@@ -16,13 +16,15 @@ from matplotlib.figure import Figure
 from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve, Spherical,
                        surface_displacement)
 from ..contact.viscoelastic import ViscoelasticCycle
-from ..validation import check_integer, check_positive
+from ..validation import check_integer, check_positive, check_range
 
 __all__ = ["DEFAULTS", "UNITS", "tip_outline", "tip_geometries_figure", "ContactCurves",
-           "contact_curves", "ContactFigure", "cycles_figure", "fit_figure"]
+           "contact_curves", "ContactFigure", "cycles_figure", "fit_figure", "fit_label",
+           "fit_window"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121, surface_extent=3.0)
+DEFAULTS = dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121, surface_extent=3.0,
+                fit_zoom=1e-6)
 
 #: Factors from SI to the units shown (value_shown = value_SI * factor).
 UNITS = dict(length=1e9, force=1e9)
@@ -274,8 +276,9 @@ def cycles_figure(cycles, fig=None) -> Figure:
     return fig
 
 
-def fit_figure(curve, result, fig=None) -> Figure:
-    """A force curve, its fitted model and the residuals (nm, nN).
+def fit_figure(curve, result, *, report_poisson_ratio=None, zoom=DEFAULTS["fit_zoom"],
+               fig=None) -> Figure:
+    """A force curve, its fitted model and the residuals (nm, nN), zoomed on the contact.
 
     Parameters
     ----------
@@ -283,28 +286,118 @@ def fit_figure(curve, result, fig=None) -> Figure:
         The data (its force is plotted against ``result.x``).
     result : FitResult
         The fit.
+    report_poisson_ratio : float, optional
+        A Poisson's ratio in [0, 0.5] at which to also state E, converted from the measured
+        reduced modulus: E(nu) = (1 - nu^2) E*. It may be 0.5, which the fit itself refuses.
+    zoom : float or None
+        Width in m of the default view around the fitted contact point: it shows the whole
+        contact region and baseline before it up to this width (the contact region alone if
+        it is wider). None shows the whole curve.
     fig : Figure, optional
         Figure to draw into.
 
     Returns
     -------
     Figure
+
+    Raises
+    ------
+    ValueError
+        If ``curve``/``result`` have the wrong types, ``report_poisson_ratio`` is outside
+        [0, 0.5] or ``zoom`` is not > 0.
+
+    Notes
+    -----
+    A fit measures only the reduced modulus E* = E / (1 - nu^2) (rigid tip); the legend states
+    the Poisson's ratio the fit assumed, E and E*, so that a value quoted at another nu can be
+    compared with it.
     """
     if not isinstance(curve, ForceCurve) or not isinstance(result, FitResult):
         raise ValueError("curve must be a ForceCurve and result a FitResult")
+    if report_poisson_ratio is not None:
+        report_poisson_ratio = check_range("report_poisson_ratio", report_poisson_ratio, 0.0, 0.5)
+    if zoom is not None:
+        zoom = check_positive("zoom", zoom, "m")
     fig = fig or Figure(figsize=(6.5, 5.0))
     ax, axr = fig.subplots(2, 1, sharex=True, gridspec_kw=dict(height_ratios=[3, 1]))
     s, f = UNITS["length"], UNITS["force"]
     order = np.argsort(result.x)
     ax.plot(result.x * s, curve.force * f, ".", ms=2, color="0.5", label="data")
     ax.plot(result.x[order] * s, result.model_force[order] * f, color=_COLORS["retract"],
-            label=(f"fit: E = {result.youngs_modulus / 1e3:.4g} +/- "
-                   f"{result.youngs_modulus_error / 1e3:.2g} kPa"))
+            label=fit_label(result, report_poisson_ratio))
     ax.axvline(result.contact_point * s, color="k", lw=0.8, ls=":", label="contact point")
     ax.set_ylabel("force [nN]")
-    ax.legend(fontsize=8)
+    ax.legend(fontsize=8, loc="best")
     axr.plot(result.x * s, (curve.force - result.model_force) * f, ".", ms=2, color="0.3")
     axr.set_ylabel("residual [nN]")
     axr.set_xlabel("position (Z_np, or tip position) [nm]")
+    if zoom is not None and fit_window(result, zoom) != (result.x.min(), result.x.max()):
+        lo, hi = fit_window(result, zoom)
+        axr.set_xlim(lo * s, hi * s)
+        inside = (result.x >= lo) & (result.x <= hi)
+        for a, y in ((ax, np.r_[curve.force[inside], result.model_force[inside]]),
+                     (axr, (curve.force - result.model_force)[inside])):
+            pad = 0.05 * (np.ptp(y) or 1e-12)
+            a.set_ylim((y.min() - pad) * f, (y.max() + pad) * f)
+        ax.set_title(f"zoom: {(hi - lo) * 1e6:.2g} um around the contact point "
+                     f"(full curve: {np.ptp(result.x) * 1e6:.2g} um)", fontsize=9)
     fig.tight_layout()
     return fig
+
+
+def fit_label(result, report_poisson_ratio=None) -> str:
+    """Legend text of a fit: E at the Poisson's ratio assumed, E*, and E at another nu.
+
+    Parameters
+    ----------
+    result : FitResult
+        The fit.
+    report_poisson_ratio : float, optional
+        Also state E(nu) = (1 - nu^2) E* at this nu, in [0, 0.5].
+
+    Returns
+    -------
+    str
+        E.g. ``"fit at nu = 0: E = 310.8 +/- 1.4 kPa, E* = E/(1 - nu^2) = 310.8 kPa"``
+        with, if asked, a second line ``"E(nu = 0.5) = (1 - nu^2) E* = 233.1 +/- 1.1 kPa"``.
+    """
+    if not isinstance(result, FitResult):
+        raise ValueError(f"result must be a FitResult, got {result!r}")
+    nu = result.poisson_ratio
+    e_star = result.youngs_modulus / (1 - nu ** 2)
+    e_star_err = result.youngs_modulus_error / (1 - nu ** 2)
+    text = (f"fit at nu = {nu:g}: E = {result.youngs_modulus / 1e3:.4g} +/- "
+            f"{result.youngs_modulus_error / 1e3:.2g} kPa, E* = E/(1 - nu^2) = "
+            f"{e_star / 1e3:.4g} kPa")
+    if report_poisson_ratio is not None:
+        nu2 = check_range("report_poisson_ratio", report_poisson_ratio, 0.0, 0.5)
+        text += (f"\nE(nu = {nu2:g}) = (1 - nu^2) E* = {(1 - nu2 ** 2) * e_star / 1e3:.4g} +/- "
+                 f"{(1 - nu2 ** 2) * e_star_err / 1e3:.2g} kPa")
+    return text
+
+
+def fit_window(result, width):
+    """The x range (m) of :func:`fit_figure`'s default view.
+
+    Parameters
+    ----------
+    result : FitResult
+        The fit.
+    width : float
+        Width of the view in m, > 0.
+
+    Returns
+    -------
+    (lo, hi) : tuple of float
+        In m, lo < hi: the contact region (from the contact point to the farthest datum on the
+        side where the model force rises) and, before the contact point, baseline up to a total
+        of ``width``; if the contact region alone is wider, it and width/2 of baseline. Clipped
+        to the data.
+    """
+    width = check_positive("width", width, "m")
+    x, cp = result.x, result.contact_point
+    side = 1.0 if x[np.argmax(result.model_force)] >= cp else -1.0
+    depth = max(float(np.max(side * (x - cp))), 0.0)
+    before = max(width - depth, width / 2)
+    ends = (cp - side * before, cp + side * depth)
+    return max(min(ends), float(x.min())), min(max(ends), float(x.max()))
