@@ -172,6 +172,33 @@ def test_legend_png_and_html_state_the_unit():
     assert "bending stress [MPa]" in html and ">-5<" in html and ">5<" in html
 
 
+@pytest.mark.parametrize("limit, exponent", [(1e-3, -3), (5e-3, -3), (0.05, -3), (0.1, 0),
+                                             (0.5, 0), (5.0, 0),
+                                             (500.0, 0), (1e3, 3), (2e3, 3), (5e4, 3), (1e6, 6)])
+def test_legend_ticks_are_short_with_a_common_power_of_ten(limit, exponent):
+    # the 1, 2, 5 x 10^n limits of a stress legend: at 1000 MPa "%.3g" wrote "1e+03", wider than
+    # the space beside the bar's end; now the labels stay within 5 characters (-0.25, -250)
+    ticks = np.linspace(-limit, limit, 5)
+    labels, e = P.tick_labels(ticks)
+    assert e == exponent
+    assert all(len(t) <= 5 and "e" not in t for t in labels), labels
+    np.testing.assert_allclose([float(t) * 10.0 ** e for t in labels], ticks, rtol=1e-12)
+    scale = P.ColorScale.symmetric(limit, label="bending stress", unit="MPa")
+    title = P.legend_title(scale, e)
+    assert title == ("bending stress [MPa]" if e == 0 else f"bending stress [x 10^{e} MPa]")
+    assert (f"{title}</div>" in P.legend_html(scale)) and (f">{labels[0]}<" in P.legend_html(scale))
+
+
+@pytest.mark.parametrize("limit", [1e3, 5e4, 1e-3, 0.5])
+def test_legend_texts_stay_inside_the_plate(limit):
+    # the bar stops 1/16 of the width from each edge: a label spilling past the plate would leave
+    # dark pixels in the outermost columns (and be cut off in the 3D view)
+    png = P.colorbar_png(P.ColorScale.symmetric(limit, label="bending stress", unit="MPa"))
+    img = matplotlib.image.imread(io.BytesIO(png))[..., :3]
+    assert img[:, :2].min() > 0.9 and img[:, -2:].min() > 0.9
+    assert img[int(0.7 * img.shape[0]):, :30].min() < 0.5  # but the first label is drawn
+
+
 def test_primitives_in_a_real_viewer_update_in_place():
     try:
         vis = get_viewer()["test_primitives"]

@@ -37,7 +37,7 @@ from ..validation import check_array, check_integer, check_positive, check_range
 __all__ = ["ColorScale", "nice_ceil", "BeamMesh", "beam_mesh", "beam_faces", "rotation_between",
            "translation", "Arrow", "Segment", "cone", "sphere", "polyline", "colorbar_png",
            "legend_html", "ColorLegend", "set_camera", "rgb_hex", "CAMERA_FOV", "camera_ndc",
-           "show_helpers", "text_png", "TextPlate"]
+           "show_helpers", "text_png", "TextPlate", "tick_labels", "legend_title"]
 
 _LUT_SIZE = 256
 
@@ -450,9 +450,49 @@ def _font(size: int):
         return ImageFont.load_default()
 
 
-def _centred_text(draw, x, y, text, font):
+def _centred_text(draw, x, y, text, font, width=None):
+    """Draw ``text`` centred on x, shifted inwards if it would cross the image's edges."""
     left, _, right, _ = draw.textbbox((0, 0), text, font=font)
-    draw.text((x - (right - left) / 2, y), text, fill=(0, 0, 0), font=font)
+    x0 = x - (right - left) / 2
+    if width is not None:
+        x0 = min(max(x0, 1 - left), width - 1 - right)
+    draw.text((x0, y), text, fill=(0, 0, 0), font=font)
+
+
+def tick_labels(values) -> tuple[list[str], int]:
+    """Short tick labels for a legend: the values divided by a common 10^exponent.
+
+    The exponent is a multiple of 3, nonzero only when the largest |value| is >= 1000 or below
+    0.1, so every label has at most 3 significant digits and 5 characters ("-0.25", "1")
+    instead of "1e+03"; the legend's title then says "x 10^exponent" (:func:`legend_title`).
+
+    Parameters
+    ----------
+    values : array_like
+        The tick values (in the legend's unit), finite.
+
+    Returns
+    -------
+    (labels, exponent) : tuple of (list of str, int)
+        ``float(labels[i]) * 10**exponent`` is ``values[i]`` to 3 significant digits of the
+        largest value; values below 1e-12 of it are written "0".
+    """
+    v = check_array("values", values, ndim=1)
+    top = float(np.abs(v).max()) if v.size else 0.0
+    exponent = 0
+    if top > 0 and not 0.1 <= top < 1000:
+        exponent = 3 * math.floor(math.log10(top) / 3)
+    scaled = v / 10.0 ** exponent
+    scaled[np.abs(v) < 1e-12 * top] = 0.0
+    return [f"{x:.3g}" for x in scaled], exponent
+
+
+def legend_title(scale: ColorScale, exponent: int = 0) -> str:
+    """``"label [unit]"``, or ``"label [x 10^exponent unit]"`` for ticks from :func:`tick_labels`."""
+    if exponent == 0:
+        return scale.title
+    unit = f" {scale.unit}" if scale.unit else ""
+    return f"{scale.label} [x 10^{exponent}{unit}]"
 
 
 def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> bytes:
@@ -483,12 +523,13 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     im = Image.fromarray(img)
     draw = ImageDraw.Draw(im)
     font = _font(max(8, int(0.2 * height)))
-    _centred_text(draw, width / 2, int(0.03 * height), scale.title, font)
-    for i, value in enumerate(np.linspace(scale.vmin, scale.vmax, n_ticks)):
+    labels, exponent = tick_labels(np.linspace(scale.vmin, scale.vmax, n_ticks))
+    _centred_text(draw, width / 2, int(0.03 * height), legend_title(scale, exponent), font,
+                  width)
+    for i, text in enumerate(labels):
         x = margin + i * (width - 2 * margin - 1) / (n_ticks - 1)
         draw.line([(x, bottom), (x, bottom + int(0.05 * height))], fill=(0, 0, 0), width=1)
-        value = 0.0 if abs(value) < 1e-12 * (scale.vmax - scale.vmin) else value
-        _centred_text(draw, x, bottom + int(0.08 * height), f"{value:.3g}", font)
+        _centred_text(draw, x, bottom + int(0.08 * height), text, font, width)
     buf = io.BytesIO()
     im.save(buf, format="PNG", compress_level=1)
     return buf.getvalue()
@@ -553,8 +594,10 @@ def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str
     stops = scale.rgb(np.linspace(scale.vmin, scale.vmax, n_stops))
     css = ", ".join(f"rgb({int(255 * r)},{int(255 * gg)},{int(255 * b)})" for r, gg, b in stops)
     ticks = [scale.vmin, 0.0, scale.vmax] if scale.vmin < 0 < scale.vmax else [scale.vmin, scale.vmax]
-    spans = "".join(f"<span>{t:.3g}</span>" for t in ticks)
-    return (f'<div style="width:{width_px}px;font-size:12px"><div>{scale.title}</div>'
+    labels, exponent = tick_labels(ticks)
+    spans = "".join(f"<span>{t}</span>" for t in labels)
+    title = legend_title(scale, exponent)
+    return (f'<div style="width:{width_px}px;font-size:12px"><div>{title}</div>'
             f'<div style="height:12px;background:linear-gradient(to right, {css})"></div>'
             f'<div style="display:flex;justify-content:space-between">{spans}</div></div>')
 
