@@ -133,3 +133,61 @@ def test_critical_ki_is_the_hurwitz_condition():
     assert not ex.check_critical_ki(None)
     assert not loop.replace(ki=ki_star * 1.01).is_stable()
     assert loop.replace(ki=ki_star * 0.99).is_stable()
+
+
+# --- layout ---------------------------------------------------------------------------------------
+def test_controls_and_indicator_share_a_row_above_the_figure():
+    # In one column with the indicator under the sliders and the figure under that, the panel
+    # was about 1300 px high in JupyterLab: no slider and the plots it moves on one screen.
+    import ipywidgets as widgets
+
+    from afmsmiler.ui.panel import arrange
+    p = ControllerPanel()
+    w = arrange(p.widget())
+    row, figure = w.children
+    assert isinstance(w, widgets.VBox) and isinstance(row, widgets.HBox)
+    *columns, indicator = row.children
+    assert indicator is p.indicator and len(columns) == 2
+    shown = [c for col in columns for c in col.children]
+    assert sorted(map(id, shown)) == sorted(map(id, p.controls.values()))  # each once, all there
+    assert max(len(col.children) for col in columns) <= 7  # two short columns, not one of 14
+    assert figure is not indicator and figure not in shown and p.indicator not in shown
+    assert row.layout.flex_flow == "row wrap"  # a narrow notebook wraps, never squeezes
+    assert all(col.layout.flex == "0 0 auto" for col in row.children)
+    width_px = sum(int(c.layout.width.removesuffix("px")) for c in (columns[0].children[1],
+                                                                      columns[1].children[1],
+                                                                      indicator))
+    assert width_px <= 1200
+    fig_w, fig_h = p.fig.get_size_inches() * p.fig.dpi
+    assert fig_w <= 1000 and fig_h <= 600
+
+
+def _overlaps(fig):
+    """Pairs of titles/axis labels of different axes whose boxes overlap once drawn."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    FigureCanvasAgg(fig).draw()
+    r = fig.canvas.get_renderer()
+    boxes = [(id(ax), t.get_text(), t.get_window_extent(r)) for ax in fig.axes
+             for t in (ax.title, ax.xaxis.label, ax.yaxis.label) if t.get_text().strip()]
+    return [(ta, tb) for i, (a, ta, ba) in enumerate(boxes) for b, tb, bb in boxes[i + 1:]
+            if a != b and ba.overlaps(bb)]
+
+
+def test_stand_alone_figures_fit_the_notebook_by_default():
+    # 11-12.6 in wide figures were clipped on the right of JupyterLab's output area; the
+    # notebook now calls the builders without a figure, so their defaults must fit (<= 10 in)
+    # with no title or label running into another axes'.
+    image = samples.particles((32, 32), pixel_size=32e-9)
+    scan = scan_image(PRESETS["c_fast_scan"].loop, image.heights, image.pixel_size, speed=1e-3,
+                      setpoint=10e-9)
+    line = line_profile("real line")
+    c = plots.scan_curves(PRESETS["a_good_tracking"].scan(), PRESETS["a_good_tracking"].loop)
+    figs = dict(fig4=plots.fig4_figure(), block=plots.block_diagram(),
+                image=plots.image_figure(scan, image.heights),
+                image2=plots.image_figure(scan, signal="topography"),
+                polygon=plots.polygon_figure(line.x, line.heights, speed=1e-3, n_show=14),
+                scan=plots.ScanFigure(c).fig)
+    for name, fig in figs.items():
+        width, height = fig.get_size_inches()
+        assert width <= 10.0 and height <= 9.0, (name, width, height)
+        assert not _overlaps(fig), (name, _overlaps(fig))

@@ -167,3 +167,45 @@ def test_one_user_action_is_one_update():
     panel.controls["input"].value = 40.0                 # a slider drag
     assert calls == ["actuation", "sensing", "sensing", "sensing"]
     assert panel.last.model.key == "interferometry" and panel.last.value == pytest.approx(40e-9)
+
+
+def _leaves(w):
+    """Every widget in the tree under ``w`` (depth first)."""
+    yield w
+    for child in getattr(w, "children", ()):
+        yield from _leaves(child)
+
+
+def test_controls_and_readout_share_a_row_above_the_figure():
+    # In one column (selector, mode, up to 13 sliders, the readout) with the figure below it,
+    # the panel was 1100-1300 px high in JupyterLab: no slider and the plots on one screen.
+    import ipywidgets as widgets
+
+    from afmsmiler.transducers.base import LEVER_PARAMETERS
+    from afmsmiler.ui.panel import arrange
+    panel = TransducerPanel(scene=False)
+    w = arrange(panel.widget())
+    row, figure = w.children
+    assert isinstance(w, widgets.VBox) and isinstance(row, widgets.HBox)
+    chain, lever = row.children
+    assert row.layout.flex_flow == "row wrap"
+    assert chain.layout.flex == lever.layout.flex == "0 0 auto"
+    lever_names = [p.name for p in LEVER_PARAMETERS]
+    for key in ("optical_beam_deflection", "piezoresistive", "electromagnetic"):
+        panel.set(principle=key)  # the columns follow the new controls
+        in_row = list(_leaves(row))
+        assert all(any(c is x for x in in_row) for c in panel.controls.values())
+        assert any(x is panel.readout for x in in_row)
+        assert not any(x is figure for x in in_row) and figure is not panel.readout
+        # the readout is beside the principle's column, not under it
+        assert list(lever.children) == [panel.controls[n] for n in lever_names] + [panel.readout]
+        assert chain.children[:2] == (panel.controls["principle"], panel.controls["mode"])
+        assert len(chain.children) == len(panel.controls) - len(lever_names)
+        assert len(chain.children) <= 10
+        # labels aligned within each column, also for the swapped-in sliders
+        widths = {c.layout.width for c in chain.children[2:]}
+        assert len(widths) == 1
+        total = int(widths.pop().removesuffix("px")) + int(panel.readout.layout.width[:-2])
+        assert total <= 1100
+    fig_w, fig_h = panel.fig.get_size_inches() * panel.fig.dpi
+    assert fig_w <= 1000 and fig_h <= 400

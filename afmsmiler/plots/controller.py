@@ -14,11 +14,17 @@ import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
-__all__ = ["UNITS", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure", "block_diagram",
-           "polygon_figure", "image_figure"]
+__all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
+           "block_diagram", "polygon_figure", "image_figure"]
 
 #: Factors from SI to the units shown (value_shown = value_SI * factor).
 UNITS = dict(x=1e6, z=1e9, pole=1e-6)
+
+#: Default figure sizes in inches, at most 10 in wide: JupyterLab's output area is about 1000 px
+#: (10 in at 100 dpi) wide and clipped wider figures on the right. ``"fig4"`` is (width, height
+#: per scenario row), ``"image"`` (width per image, height).
+FIGSIZE = dict(scan=(10.0, 6.0), fig4=(10.0, 2.2), block=(10.0, 2.9), polygon=(10.0, 3.2),
+               image=(3.3, 3.2))
 
 
 @dataclass(frozen=True)
@@ -135,7 +141,7 @@ class ScanFigure:
     """
 
     def __init__(self, curves: ScanCurves, fig: Figure | None = None, title: str = ""):
-        self.fig = fig if fig is not None else Figure(figsize=(11.0, 6.0))
+        self.fig = fig if fig is not None else Figure(figsize=FIGSIZE["scan"])
         grid = self.fig.add_gridspec(2, 3)
         ax = self.axes = dict(znp=self.fig.add_subplot(grid[0, :2]),
                               topo=self.fig.add_subplot(grid[1, :2]),
@@ -210,7 +216,7 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
     sample : afmsmiler.samples.Sample, optional
         The line to scan; default the presets' grating.
     fig : matplotlib.figure.Figure, optional
-        Where to draw.
+        Where to draw; default a new Figure of FIGSIZE["fig4"] (10 in wide, 2.2 in per scenario).
 
     Returns
     -------
@@ -218,7 +224,8 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
     """
     from ..controller import PRESETS
     presets = PRESETS if presets is None else presets
-    fig = fig if fig is not None else Figure(figsize=(12.0, 2.6 * len(presets)))
+    width, row = FIGSIZE["fig4"]
+    fig = fig if fig is not None else Figure(figsize=(width, row * len(presets)))
     axes = fig.subplots(len(presets), 2, squeeze=False)
     for row, preset in enumerate(presets.values()):
         r = preset.scan(sample)
@@ -264,13 +271,13 @@ def block_diagram(fig: Figure | None = None) -> Figure:
     Parameters
     ----------
     fig : matplotlib.figure.Figure, optional
-        Where to draw.
+        Where to draw; default a new Figure of FIGSIZE["block"] (10 x 2.9 in).
 
     Returns
     -------
     matplotlib.figure.Figure
     """
-    fig = fig if fig is not None else Figure(figsize=(11.0, 3.2))
+    fig = fig if fig is not None else Figure(figsize=FIGSIZE["block"])
     ax = fig.add_subplot()
     for xy, sign in (((1.2, 1.0), "$-$"), ((7.0, 1.0), "+")):
         ax.add_patch(Circle(xy, 0.2, fc="white", ec="black"))
@@ -309,7 +316,7 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     n_show : int
         Number of pixels to draw (the first ones).
     fig : matplotlib.figure.Figure, optional
-        Where to draw.
+        Where to draw; default a new Figure of FIGSIZE["polygon"] (10 x 3.2 in).
 
     Returns
     -------
@@ -318,7 +325,7 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     x = np.asarray(x, dtype=float)[:n_show]
     h = np.asarray(height, dtype=float)[:n_show] * UNITS["z"]
     t = (x - x[0]) / speed * 1e6  # us
-    fig = fig if fig is not None else Figure(figsize=(10.0, 3.2))
+    fig = fig if fig is not None else Figure(figsize=FIGSIZE["polygon"])
     a1, a2 = fig.subplots(1, 2)
     a1.plot(t, h, "o-", color="C0")
     a1.set(xlabel="t [us]", ylabel="T [nm]", title="topography under the tip: a polygon")
@@ -349,7 +356,7 @@ def image_figure(image, heights=None, signal: str = "height", fig: Figure | None
         ``"height"``: the positioner image -(Z_np - its flat-sample value), what a
         constant-force AFM records; ``"topography"``: the estimate Z_c - Z_np.
     fig : matplotlib.figure.Figure, optional
-        Where to draw.
+        Where to draw; default a new Figure of FIGSIZE["image"] (3.3 in per image, 10 in for three).
 
     Returns
     -------
@@ -363,7 +370,8 @@ def image_figure(image, heights=None, signal: str = "height", fig: Figure | None
         panels = [("trace: Z_c - Z_np", image.trace), ("retrace: Z_c - Z_np", image.retrace)]
     if heights is not None:
         panels.insert(0, ("true topography", np.asarray(heights)))
-    fig = fig if fig is not None else Figure(figsize=(4.2 * len(panels), 3.8))
+    per_image, height = FIGSIZE["image"]
+    fig = fig if fig is not None else Figure(figsize=(per_image * len(panels), height))
     axes = fig.subplots(1, len(panels), squeeze=False)[0]
     rows, cols = image.trace.shape
     extent = (0, cols * image.pixel_size * UNITS["x"], 0, rows * image.pixel_size * UNITS["x"])

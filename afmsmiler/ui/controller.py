@@ -168,10 +168,32 @@ class ControllerPanel(Panel):
                 f"<table>{table}</table>")
 
     def widget(self) -> widgets.Widget:
-        """Controls and the indicator on the left, the figure on the right."""
-        box = super().widget()
-        left = widgets.VBox(list(self.controls.values()) + [self.indicator])
-        return widgets.HBox([left, box.children[1]])
+        """Two columns of controls with the indicator beside them, the figure below.
+
+        The fourteen controls in one column, the indicator under them and the figure under that
+        made the panel about 1300 px high: the student could not see a slider and the plots it
+        moves at the same time. Here the mechanics (preset, masses, damping, stiffnesses) and the
+        scan (gains, speed, setpoint, profile) are two columns of seven beside the indicator, and
+        the figure (1000 x 600 px) follows: about 850 px in all. In a notebook too narrow for the
+        row (about 1200 px), :func:`~afmsmiler.ui.panel.arrange` wraps the indicator below the
+        columns, still above the figure.
+
+        Returns
+        -------
+        ipywidgets.VBox
+            ``[HBox([mechanics column, scan column, indicator]), figure]``.
+        """
+        figure = super().widget().children[1]
+        columns = [widgets.VBox([self.controls[name] for name in names]) for names in _COLUMNS]
+        columns[1].layout.margin = "0 0 0 12px"
+        self.indicator.layout.margin = "0 0 0 16px"
+        self.indicator.layout.width = "320px"  # the list of poles wraps instead of moving it
+        return widgets.VBox([widgets.HBox([*columns, self.indicator]), figure])
+
+
+#: The two columns of controls in :meth:`ControllerPanel.widget` (every control once).
+_COLUMNS = (("preset", "m_c", "m_s", "b_c", "b_s", "k_c", "k_s"),
+            ("kp", "ki", "kd", "speed", "setpoint", "height", "profile"))
 
 
 _CACHE: dict = {}

@@ -19,7 +19,7 @@ import ipywidgets as widgets
 
 from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves
 from ..transducers import PRINCIPLES
-from ..transducers.base import Parameter, Resolution, SignalChain, Transducer
+from ..transducers.base import LEVER_PARAMETERS, Parameter, Resolution, SignalChain, Transducer
 from .panel import Panel, log_slider, slider
 
 __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "control_for"]
@@ -29,6 +29,8 @@ DEFAULTS = dict(principle="optical_beam_deflection", bandwidth=1e3, figsize=(10.
                 slider_steps=400)
 
 _FIXED = ("principle", "mode", "input")
+#: The sliders of the lever every model shares; :meth:`TransducerPanel.widget` gives them a column.
+_LEVER = tuple(p.name for p in LEVER_PARAMETERS)
 
 
 def control_for(p: Parameter, value: float | None = None, high: float | None = None):
@@ -125,8 +127,9 @@ class TransducerPanel(Panel):
             description="principle")
         self._mode = widgets.ToggleButtons(options=list(PRINCIPLES[principle].MODES),
                                            description="mode")
-        self._sliders = widgets.VBox()
         self.readout = widgets.HTML()
+        # the two columns of widget(): the principle's chain, and the lever with the readout
+        self._chain, self._lever = widgets.VBox(), widgets.VBox()
         self.figure = None
         self.scene = None
         self._want_scene = bool(scene)
@@ -165,7 +168,10 @@ class TransducerPanel(Panel):
             if self._ready:
                 for c in sliders.values():
                     c.observe(self._on_change, names="value")
-            self._sliders.children = list(sliders.values())
+            self._chain.children = [self._selector, self._mode,
+                                    *(c for n, c in sliders.items() if n not in _LEVER)]
+            self._lever.children = [*(c for n, c in sliders.items() if n in _LEVER),
+                                    self.readout]
         finally:
             self._hold = hold
 
@@ -294,7 +300,24 @@ class TransducerPanel(Panel):
         return f"<div><i>{m.summary}</i></div><table>{table}</table>{notes}"
 
     def widget(self) -> widgets.Widget:
-        """Selector, mode, sliders and readout on the left, the figure below."""
-        box = super().widget()
-        left = widgets.VBox([self._selector, self._mode, self._sliders, self.readout])
-        return widgets.VBox([left, box.children[1]])
+        """The principle's controls beside the lever's sliders and the readout, the figure below.
+
+        With selector, mode, up to thirteen sliders and the readout in one column and the figure
+        under it, the panel was 1100-1300 px high: the student could not see a slider and the
+        plots it moves at the same time. Here the first column holds the selector, the mode, the
+        input and the principle's own parameters, the second the lever's (length, width,
+        thickness, Q, temperature) with the readout under them; the figure (1000 x 380 px)
+        follows: about 750 px high, at most about 1100 px wide. In a narrower notebook
+        :func:`~afmsmiler.ui.panel.arrange` wraps the second column below the first, still above
+        the figure. The columns' children change with the principle.
+
+        Returns
+        -------
+        ipywidgets.VBox
+            ``[HBox([chain column, lever column + readout]), figure]``.
+        """
+        figure = super().widget().children[1]
+        self._lever.layout.margin = "0 0 0 16px"
+        self.readout.layout.margin = "8px 0 0 0"
+        self.readout.layout.width = "460px"  # as wide as the lever's sliders: long lines wrap
+        return widgets.VBox([widgets.HBox([self._chain, self._lever]), figure])
