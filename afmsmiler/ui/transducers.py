@@ -116,7 +116,8 @@ class TransducerPanel(Panel):
     scene : TransducerScene or None
         The 3D view.
     readout : ipywidgets.HTML
-        Table I's row of the principle, k, f1, the sensitivity and the resolution.
+        Table I's row of the principle, k, f1, the sensitivity and the resolution (and, after
+        ``close_viewer()``, how to get the 3D view back).
     """
 
     def __init__(self, principle: str = DEFAULTS["principle"], scene: bool = True):
@@ -297,6 +298,10 @@ class TransducerPanel(Panel):
                         for k, v in rows)
         notes = "".join(f"<div style='color:#b00'>{n}</div>"
                         for n in m.validity(s.value, s.mode))
+        if self._want_scene and self.scene is None and self._viewer_closed:
+            notes += ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
+                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it "
+                      "again</div>")
         return f"<div><i>{m.summary}</i></div><table>{table}</table>{notes}"
 
     def widget(self) -> widgets.Widget:
