@@ -186,6 +186,21 @@ def test_real_viewer_one_server_updated_in_place():
     assert not viewer.viewer_running()
 
 
+def _must_see(sc, lever):
+    """World points a student must see: clamp, free end (top face and the tip apex), the four
+    corners of the legend plate and the chip behind the clamp."""
+    length = lever.length / SCENE_UNIT
+    x_l = np.array([-length / 2, 0.0, 0.0])  # the lever frame in the world
+    nl, nt = sc.n_length, sc.n_thickness
+    side = sc.mesh.vertices[:nl * nt].reshape(nl, nt, 3) + x_l
+    w, h = sc.legend_width, sc.legend_width / 4
+    legend = sc.legend_corner(length) + x_l + np.array(
+        [[0, 0, 0], [w, 0, 0], [0, 0, h], [w, 0, h]])
+    apex = sc.apex(sc.tip_pose(lever, sc.field)) + x_l
+    chip = x_l + [-DEFAULTS["chip_in_view"], 0.0, 0.0]
+    return np.vstack([side[0, nt // 2], side[-1, 0], side[-1, -1], legend, apex, chip])
+
+
 @pytest.mark.parametrize("length", [20e-6, 100e-6, 450e-6, 500e-6])
 @pytest.mark.parametrize("force", [0.0, 5e-7, -5e-7])
 def test_camera_frames_the_lever_tip_chip_and_legend(length, force):
@@ -193,21 +208,36 @@ def test_camera_frames_the_lever_tip_chip_and_legend(length, force):
     rec = Recorder()
     soft = Cantilever(length, 5e-6, 0.2e-6, 10e9, RHO)  # deflection capped: the extreme pose
     sc = CantileverScene(soft, force, vis=rec, path="lever", exaggeration=1e4)
-    x_l = np.array([-length / SCENE_UNIT / 2, 0.0, 0.0])  # the lever frame in the world
-    mid = centre_line(sc) + x_l
-    w, h = sc.legend_width, sc.legend_width / 4
-    legend = sc.legend_corner(length / SCENE_UNIT) + x_l + np.array(
-        [[0, 0, 0], [w, 0, 0], [0, 0, h], [w, 0, h]])
-    apex = sc.apex(sc.tip_pose(soft, sc.field)) + x_l
-    chip = x_l + [-DEFAULTS["chip_in_view"], 0.0, 0.0]
-    points = np.vstack([mid[[0, -1]], legend, apex, chip])
-    ndc = P.camera_ndc(points, sc.camera_position, aspect=1.5)
+    ndc = P.camera_ndc(_must_see(sc, soft), sc.camera_position, aspect=1.5)
     assert np.all(np.abs(ndc) <= 1.0), ndc
     # the camera looks at the origin, which lies on the lever between clamp and free end
+    mid = centre_line(sc) + [-length / SCENE_UNIT / 2, 0.0, 0.0]
     assert mid[0, 0] < 0.0 < mid[-1, 0]
     x_, y_, z_ = rec.log["/Cameras/default/rotated/<object>"]["position"]
     np.testing.assert_allclose((x_, -z_, y_), sc.camera_position)
     assert rec.log["/Axes"]["visible"] is False  # meshcat's axes would pierce the lever
+
+
+@pytest.mark.parametrize("start", [400e-6, 450e-6, 20e-6, 100e-6])
+@pytest.mark.parametrize("force", [5e-7, -5e-7])
+def test_capped_tip_stays_in_view_when_the_lever_grows_a_little(start, force):
+    # the live test: a soft lever under a large force (deflection drawn capped at
+    # max_drawn_tip x L), then L moved up by less than reframe_ratio: the camera, framed for the
+    # shorter lever, used to stay put and the tip left the top of the view (ndc y = 1.05 for
+    # 450 -> 500 um). Sweep L in slider steps up to just below the ratio.
+    rec = Recorder()
+    sc = CantileverScene(Cantilever(start, 5e-6, 0.2e-6, 10e9, RHO), force, vis=rec,
+                         path="lever", exaggeration=1e4)
+    for length in np.linspace(start, start * DEFAULTS["reframe_ratio"] * 0.999, 12)[1:]:
+        soft = Cantilever(length, 5e-6, 0.2e-6, 10e9, RHO)
+        sc.update(soft, force)
+        z_drawn = centre_line(sc)[-1, 2]
+        assert abs(z_drawn) == pytest.approx(DEFAULTS["max_drawn_tip"] * length / SCENE_UNIT,
+                                             rel=1e-6)  # capped indeed
+        ndc = P.camera_ndc(_must_see(sc, soft), sc.camera_position, aspect=1.5)
+        assert np.all(np.abs(ndc) <= 1.0), (length, ndc)
+        x_, y_, z_ = rec.log["/Cameras/default/rotated/<object>"]["position"]
+        np.testing.assert_allclose((x_, -z_, y_), sc.camera_position)  # the viewer was told
 
 
 def test_camera_follows_only_large_changes_of_length():

@@ -50,6 +50,8 @@ DEFAULTS = dict(
     chip_in_view=0.7,        # scene units of the chip kept in view behind the clamp
     min_distance=1.2,        # scene units, the closest camera (short levers)
     reframe_ratio=1.3,       # re-aim the camera when L changes by more than this factor
+    frame_margin=0.95,       # ... or when the free end leaves this inner part of the view
+    aspect=1.5,              # width / height of the view framed for (1200 x 800 pixels)
 )
 
 _STRESS_LABEL = "bending stress"
@@ -165,7 +167,7 @@ class CantileverScene:
 
     # -- framing ------------------------------------------------------------------------------
     @staticmethod
-    def framing(length: float, aspect: float = 1.5) -> tuple[np.ndarray, float]:
+    def framing(length: float, aspect: float = DEFAULTS["aspect"]) -> tuple[np.ndarray, float]:
         """Camera position and legend width (scene units) that frame a lever ``length`` units long.
 
         The camera looks at the lever's centre (the origin) along ``camera_direction``, from the
@@ -194,14 +196,20 @@ class CantileverScene:
     def _legend_corner(length: float, legend_width: float) -> np.ndarray:
         return np.array([-0.3 * legend_width, 0.5, 0.25 * legend_width + 0.1 * length])
 
-    def _frame(self, length: float) -> None:
+    def _frame(self, length: float, free_end=()) -> None:
         """Aim the camera at a lever ``length`` units long and size the legend; only when the
         length changed by more than ``reframe_ratio`` since the last time (a slider drag does
-        not move the camera under the student's hand at every step)."""
+        not move the camera under the student's hand at every step), or when a point of
+        ``free_end`` (world frame, scene units: the drawn end of the lever and the tip apex)
+        would leave the inner ``frame_margin`` of the view (a lever lengthened within the ratio
+        while its deflection is drawn capped at ``max_drawn_tip`` x L)."""
         if self._framed_for is not None and (1 / DEFAULTS["reframe_ratio"]
                                              < length / self._framed_for
                                              < DEFAULTS["reframe_ratio"]):
-            return
+            if not self.camera or len(free_end) == 0 or np.abs(P.camera_ndc(
+                    np.asarray(free_end, dtype=float), self.camera_position,
+                    aspect=DEFAULTS["aspect"])).max() <= DEFAULTS["frame_margin"]:
+                return
         position, legend_width = self.framing(length)
         if self.camera:
             P.set_camera(self.root, position)
@@ -252,7 +260,9 @@ class CantileverScene:
         self._draw_base(lever)
         self._place_tip(lever, field)
         length = lever.length / u
-        self._frame(length)
+        x_l = np.array([-length / 2, 0.0, 0.0])  # the lever frame in the world
+        end = np.array([length, 0.0, ex * float(field.deflection[-1]) / u])
+        self._frame(length, [end + x_l, self.apex(self.tip_pose(lever, field)) + x_l])
         if self.legend is None:
             self.legend = P.ColorLegend(self.vis["legend"], scale, width=self.legend_width)
         else:

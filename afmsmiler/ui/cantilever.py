@@ -185,7 +185,9 @@ class CantileverPanel(Panel):
         if self.scene is not None:
             from ..scenes.primitives import legend_html
             ex = self.scene.drawn_exaggeration
-            note = "" if ex == self.scene.exaggeration else " (capped: tip drawn at most L away)"
+            from ..scenes.cantilever import DEFAULTS as SCENE
+            note = ("" if ex == self.scene.exaggeration else
+                    f" (capped: tip drawn at most {SCENE['max_drawn_tip']:g} L away)")
             shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
             legend = (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
