@@ -73,8 +73,8 @@ def _controller_figures():
                       setpoint=10e-9)
     return [polygon_figure(line.x, line.heights, speed=1e-3, n_show=14,
                            fig=Figure(figsize=(10, 3.2))),
-            fig4_figure(fig=Figure(figsize=(12, 10.4))),
-            image_figure(scan, image.heights, fig=Figure(figsize=(12.6, 3.8)))]
+            fig4_figure(),
+            image_figure(scan, image.heights)]
 
 
 def _principles():

@@ -488,7 +488,15 @@ def tick_labels(values) -> tuple[list[str], int]:
 
 
 def legend_title(scale: ColorScale, exponent: int = 0) -> str:
-    """``"label [unit]"``, or ``"label [x 10^exponent unit]"`` for ticks from :func:`tick_labels`."""
+    """``"label [unit]"``, or ``"label [x 10^exponent unit]"`` for ticks from :func:`tick_labels`.
+
+    Parameters
+    ----------
+    scale : ColorScale
+        The scale whose label and unit make the title.
+    exponent : int
+        The power of ten shared by the tick labels (0: none).
+    """
     if exponent == 0:
         return scale.title
     unit = f" {scale.unit}" if scale.unit else ""
