@@ -10,6 +10,7 @@ from afmsmiler.cantilever import Cantilever
 from afmsmiler.materials import MATERIALS
 from afmsmiler.scenes import close_viewer, viewer
 from afmsmiler.ui.cantilever import BOUNDS, CantileverPanel
+from afmsmiler.scenes.cantilever import DEFAULTS
 
 SET = dict(force=250.0, length=300.0, width=40.0, thickness=3.0, section=0.5)
 
@@ -120,6 +121,7 @@ def test_panel_with_scene_updates_the_3d_view_in_place():
         assert "MPa" in p.readout.value and "x1,000" in p.readout.value
         p.set(length=500.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
         assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
+        assert f"at most {DEFAULTS['max_drawn_tip']:g} L" in p.readout.value
         w = p.widget()
         assert p.readout in w.children[0].children  # beside the controls, above the figure
     finally:
