@@ -342,7 +342,7 @@ def test_bad_scan_input():
         loop.scan_line(x, h, 1e-5, SETPOINT, direction="up")
 
 
-# --- the O(N) recursion for every root structure (Jordan blocks of size 1, 2 and 3) ---------------
+# --- the O(N) recursion for every root structure (blocks of 1, 2, 3 terms; clusters: 16) ---
 STRUCTURES = {
     "o2 distinct": [-1.0, -3.0], "o2 double": [-2.0, -2.0],
     "o2 complex": [-0.4 + 2.5j, -0.4 - 2.5j],
@@ -409,6 +409,131 @@ def test_polygon_near_repeated_roots(roots):
         ref = control.forced_response(control.tf(num, den), t_grid,
                                       np.interp(t_grid, t_grid[knots], u_knots)).outputs
         np.testing.assert_allclose(out[o], ref[knots], rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+
+
+CLUSTER_SPREADS = [1e-8, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2]
+# three roots about -1 spread by s (relative): real, lopsided, with a complex pair
+CLUSTER_SHAPES = {
+    "real": lambda s: [-1.0, -1.0 * (1 + s), -1.0 * (1 - s)],
+    "lopsided": lambda s: [-1.0, -1.0 * (1 + s), -1.0 * (1 + 0.3 * s)],
+    "complex": lambda s: [-1.0, -1.0 + s * 1j, -1.0 - s * 1j],
+}
+
+
+@pytest.mark.parametrize("spread", CLUSTER_SPREADS)
+@pytest.mark.parametrize("shape", CLUSTER_SHAPES)
+@pytest.mark.parametrize("scale", [1.0, 1e6])
+def test_clustered_triple_roots_single_response(spread, shape, scale):
+    """Three roots clustered within 1e-8..1e-2 (relative; the band 1e-5..1e-3 lost up to 4e-8 of
+    the peak when merged or kept apart) vs control.step_response / forced_response (u = t) of the
+    same transfer function, over |p| t up to 60, at 1 1/s and at the loop's 1e6 1/s."""
+    from afmsmiler.controller.closed_forms import classify_roots, closed_form, normalise
+    rng = np.random.default_rng(3)
+    roots = np.asarray(CLUSTER_SHAPES[shape](spread)) * scale
+    den = np.real(np.poly(roots)) * rng.uniform(0.5, 2)
+    num = rng.normal(size=4) * scale ** np.arange(4)  # b_j s^(3-j): same weight at s ~ scale
+    G = control.tf(num, den)
+    b, den_monic = normalise(num, den)
+    structure, params = classify_roots(np.roots(den_monic))
+    for t_end in (15.0, 60.0):
+        t = np.linspace(0, t_end / scale, 3001)
+        for inp, ref in (("step", control.step_response(G, t).outputs),
+                         ("ramp", control.forced_response(G, t, t).outputs)):
+            form = closed_form(b, structure, params, inp)
+            np.testing.assert_allclose(form(t), ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+
+
+@pytest.mark.parametrize("spread", CLUSTER_SPREADS)
+@pytest.mark.parametrize("shape", CLUSTER_SHAPES)
+@pytest.mark.parametrize("uniform", [True, False])
+def test_clustered_triple_roots_polygon(spread, shape, uniform):
+    """The O(N) knot-to-knot recursion for clustered roots (many ramps superposed over |p| t = 60,
+    a non-zero first value, times between knots) vs forced_response on the fine grid."""
+    from afmsmiler.controller.closed_forms import classify_roots, closed_form, normalise
+    from afmsmiler.controller.polygon import polygon_response
+    rng = np.random.default_rng(11)
+    den = np.real(np.poly(CLUSTER_SHAPES[shape](spread)))
+    nums = [rng.normal(size=4) for _ in range(2)]
+    structure, params = classify_roots(np.roots(den))
+    steps = [closed_form(normalise(num, den)[0], structure, params, "step") for num in nums]
+    ramps = [closed_form(normalise(num, den)[0], structure, params, "ramp") for num in nums]
+    n = 4001
+    t_grid = np.linspace(0, 60, n)
+    knots = (np.arange(0, n, 10) if uniform else
+             np.r_[0, np.sort(rng.choice(np.arange(1, n - 1), 300, replace=False))])
+    u_knots = rng.normal(size=knots.size) + 1.0
+    ev = np.sort(rng.choice(np.arange(n), 500, replace=False))
+    at_knots = polygon_response(steps, ramps, t_grid[knots], u_knots)
+    at_eval = polygon_response(steps, ramps, t_grid[knots], u_knots, t_grid[ev])
+    for o, num in enumerate(nums):
+        ref = control.forced_response(control.tf(num, den), t_grid,
+                                      np.interp(t_grid, t_grid[knots], u_knots)).outputs
+        peak = np.max(np.abs(ref))
+        np.testing.assert_allclose(at_knots[o], ref[knots], rtol=0, atol=1e-9 * peak)
+        np.testing.assert_allclose(at_eval[o], ref[ev], rtol=0, atol=1e-9 * peak)
+
+
+@pytest.mark.parametrize("roots", [
+    [0.3, 0.3 * (1 + 1e-3), 0.3 * (1 - 1e-3)],              # unstable cluster, |p| t up to 18
+    [-1.0, -1.0 * (1 + 2e-6), -1.0 * (1 + 1e-3)],           # a near pair inside a cluster
+    [-1.0, -1.0 + 3e-4j, -1.0 - 3e-4j],
+])
+def test_clustered_roots_against_expm(roots):
+    """Clusters against an independent exact solution: scipy.linalg.expm of the augmented matrix
+    [[A, B, 0], [0, 0, 1], [0, 0, 0]] of the controllable-canonical realisation (A, B, C, b3),
+    whose exponential carries the state under a step (u = 1) or a ramp (u = t) from rest."""
+    from scipy.linalg import expm
+    from afmsmiler.controller.closed_forms import classify_roots, closed_form, normalise
+    rng = np.random.default_rng(5)
+    num = rng.normal(size=4)
+    b, a = normalise(num, np.real(np.poly(roots)))   # a = [1, a2, a1, a0]
+    structure, params = classify_roots(np.roots(a))
+    aug = np.zeros((5, 5))
+    aug[0, 1] = aug[1, 2] = 1.0
+    aug[2, :3] = -a[:0:-1]              # x3' = -a0 x1 - a1 x2 - a2 x3 + u
+    aug[2, 3] = 1.0                     # B: u enters x3
+    aug[3, 4] = 1.0                     # u' = v, v' = 0
+    C = np.array([b[k] - b[3] * a[3 - k] for k in range(3)])
+    t = np.linspace(0, 60, 301)
+    for inp, state0, u in (("step", [0, 0, 0, 1, 0], np.ones_like(t)),
+                           ("ramp", [0, 0, 0, 0, 1], t)):
+        ref = np.array([C @ (expm(aug * tk) @ state0)[:3] for tk in t]) + b[3] * u
+        form = closed_form(b, structure, params, inp)
+        np.testing.assert_allclose(form(t), ref, rtol=0, atol=1e-9 * np.max(np.abs(ref)))
+
+
+def _cluster_gains(roots):
+    """kp, ki, kd that place the loop's poles (BASE lever and sample) at the given three roots:
+    den = (M + b_s kd) s^3 + (B + b_s kp + k_s kd) s^2 + (K + b_s ki + k_s kp) s + k_s ki is
+    linear in the gains (the loop's own derivation is checked against sympy elsewhere)."""
+    M, B, K = BASE["m_c"] + BASE["m_s"], BASE["b_c"] + BASE["b_s"], BASE["k_c"] + BASE["k_s"]
+    b_s, k_s = BASE["b_s"], BASE["k_s"]
+    _, a2, a1, a0 = np.real(np.poly(roots))
+    lhs = np.array([[b_s, 0, k_s - b_s * a2], [k_s, b_s, -b_s * a1], [0, k_s, -b_s * a0]])
+    kp, ki, kd = np.linalg.solve(lhs, [M * a2 - B, M * a1 - K, M * a0])
+    return {**BASE, "kp": kp, "ki": ki, "kd": kd}
+
+
+@pytest.mark.parametrize("spread", CLUSTER_SPREADS)
+@pytest.mark.parametrize("shape", ["real", "complex"])
+def test_loop_with_clustered_poles(spread, shape):
+    """A loop whose three poles cluster about -5e6 1/s (kp ~ 0.49, ki ~ 2.5e6 1/s, kd ~ 3e-7 s):
+    .response at the knots and between them vs forced_response, 1e-9 of the peak."""
+    roots = np.asarray(CLUSTER_SHAPES[shape](spread)) * 5e6
+    loop = ContactLoop(**_cluster_gains(roots))
+    den = loop.coefficients["den"]  # (its computed roots scatter by ~1e-5: compare polynomials)
+    np.testing.assert_allclose(den / den[0], np.real(np.poly(roots)), rtol=1e-9)
+    rng = np.random.default_rng(2)
+    n, sub = 200, 10
+    t_knots = np.arange(n) * 2e-7
+    T = rng.normal(size=n) * 1e-8
+    t_grid = np.linspace(0, t_knots[-1], (n - 1) * sub + 1)
+    ref_c, ref_np = _reference(loop, t_grid, np.interp(t_grid, t_knots, T))
+    ev = np.arange(3, t_grid.size, 7)
+    for got, at in ((loop.response(t_knots, T), slice(None, None, sub)),
+                    (loop.response(t_knots, T, t_grid[ev]), ev)):
+        for ours, ref in zip(got, (ref_c, ref_np)):
+            np.testing.assert_allclose(ours, ref[at], rtol=0, atol=1e-9 * np.max(np.abs(ref)))
 
 
 def test_overdamped_loop_has_real_roots_and_matches():

@@ -22,7 +22,10 @@ the corners of the panel's sliders). Carried from knot to knot,
 z_k = e^{p h} z_{k-1} + h (phi1(p h) u_{k-1} + phi2(p h) (u_k - u_{k-1})) with
 phi1(x) = (e^x - 1) / x and phi2(x) = (e^x - 1 - x) / x^2 evaluated without cancellation, and
 y = feedthrough u + Re sum R z, where R = p times the step response's mode coefficient.
-Repeated roots keep the coefficient recursion above.
+Repeated roots keep the coefficient recursion above, for a block of any length: a double root
+carries 2 coefficients, a triple root 3, and a cluster of three close roots (expanded about their
+mean, see :mod:`afmsmiler.controller.closed_forms`) the 5 to 16 terms of its series, with
+the sequences F_j(k) = sum_{i <= k} Delta_i (t_k - t_i)^j e^{p (t_k - t_i)}, each one recursion.
 """
 from __future__ import annotations
 
@@ -215,12 +218,17 @@ def _polygon_response(step_forms, ramp_forms, t_knots, u_knots, t_eval, uniform)
         m = len(step_forms[0].blocks[b][1])
         lam = np.exp(p * hh)
         # basis sequences: F (driven by the slope changes), G, K (carried polynomial terms)
+        # F_j(k) = sum_{i <= k} Delta_i (t_k - t_i)^j e^{p (t_k - t_i)}, carried by
+        # F_j(k) = lam_k (F_j(k-1) + sum_{i < j} C(j, i) h_k^(j-i) F_i(k-1)) (+ Delta_k for j = 0)
         basis = [_recursion(lam, delta_c, uniform)]
-        if m >= 2:
-            basis.append(_recursion(lam, lam * hh * _shifted(basis[0]), uniform))
-        if m >= 3:
-            basis.append(_recursion(lam, lam * (2 * hh * _shifted(basis[1])
-                                                + hh ** 2 * _shifted(basis[0])), uniform))
+        shifted, lam_h = [], [lam]  # F_i(k-1) and lam_k h_k^n
+        for j in range(1, m):
+            shifted.append(_shifted(basis[j - 1]))
+            lam_h.append(lam_h[-1] * hh)
+            drive = lam_h[1] * shifted[j - 1] * j
+            for i in range(j - 1):
+                drive = drive + (_binom(j, i) * lam_h[j - i]) * shifted[i]
+            basis.append(_recursion(lam, drive, uniform))
         E = np.exp(p * elapsed) if has_step else None
         for o in range(n_out):
             c = ramp_forms[o].blocks[b][1]
