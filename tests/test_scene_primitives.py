@@ -250,3 +250,26 @@ def test_text_plate_is_a_png_of_the_text_on_a_plate():
     assert material.map is not None
     np.testing.assert_allclose(rec.log["/label/plate"]["transform"][:3, 3], [0.6, 0.0, 0.1])
     assert plate.text == "output / max"
+
+
+# --- tube (wires) -------------------------------------------------------------------------------
+def test_tube_rings_sit_at_the_radius_around_their_points():
+    pts = np.array([[0, 0, 0], [1, 0, 0], [1, 1, 0], [1, 1, 0.5]], float)
+    v, f = P.Tube.mesh(pts, radius=0.1, sides=8)
+    assert v.shape == (4 * 8, 3) and f.shape == (3 * 8 * 2, 3)
+    assert f.min() == 0 and f.max() == len(v) - 1
+    rings = v.reshape(4, 8, 3)
+    np.testing.assert_allclose(np.linalg.norm(rings - pts[:, None, :], axis=2), 0.1, rtol=1e-12)
+    np.testing.assert_allclose(rings.mean(axis=1), pts, atol=1e-12)
+    # on a straight leg the ring is normal to the leg
+    np.testing.assert_allclose((rings[0] - pts[0]) @ (pts[1] - pts[0]), 0.0, atol=1e-12)
+
+
+def test_tube_is_one_object_per_update():
+    rec = Recorder()
+    tube = P.Tube(rec["wire"], radius=0.02)
+    for k in range(3):
+        tube.set([[0, 0, 0], [1, 0, 0.1 * k], [2, 0, 0]])
+    assert rec.log["/wire"]["n_objects"] == 3 and len(rec.calls) == 3
+    with pytest.raises(ValueError, match="points must have shape"):
+        tube.set([[0, 0, 0]])

@@ -397,6 +397,74 @@ class Segment:
             self.vis.set_transform(t)
 
 
+class Tube:
+    """A thick polyline (a wire on a lever) drawn as one triangle mesh, redrawn with :meth:`set`.
+
+    One ``set_object`` per update, instead of one transform per :class:`Segment`, keeps a bent
+    wire of many pieces cheap to follow a slider.
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        Where to draw.
+    color : int
+        0xRRGGBB.
+    radius : float
+        Radius in scene units.
+    sides : int
+        Vertices around the tube (3 to 32).
+    """
+
+    def __init__(self, vis: meshcat.Visualizer, color: int = 0xb87333, radius: float = 0.01,
+                 sides: int = 6):
+        self.vis = vis
+        self.color = color
+        self.radius = check_positive("radius", radius)
+        self.sides = check_integer("sides", sides, 3, 32)
+
+    @staticmethod
+    def mesh(points, radius: float, sides: int = 6) -> tuple[np.ndarray, np.ndarray]:
+        """Vertices (N * sides x 3) and triangles ((N - 1) * sides * 2 x 3) of a tube.
+
+        Parameters
+        ----------
+        points : array_like
+            The centre line, N >= 2 points x 3 (scene units).
+        radius : float
+            Tube radius (scene units).
+        sides : int
+            Vertices on each ring, which is centred on its point and normal to the mean of the
+            neighbouring legs.
+        """
+        pts = check_array("points", points, ndim=2)
+        if pts.shape[1] != 3 or pts.shape[0] < 2:
+            raise ValueError(f"points must have shape (N >= 2, 3), got {pts.shape}")
+        radius = check_positive("radius", radius)
+        legs = np.diff(pts, axis=0)
+        legs /= np.maximum(np.linalg.norm(legs, axis=1, keepdims=True), 1e-300)
+        tangent = np.vstack([legs[:1], legs[:-1] + legs[1:], legs[-1:]])
+        tangent /= np.maximum(np.linalg.norm(tangent, axis=1, keepdims=True), 1e-300)
+        ref = np.where(np.abs(tangent[:, 2:3]) > 0.9, [[1.0, 0.0, 0.0]], [[0.0, 0.0, 1.0]])
+        normal = np.cross(tangent, ref)
+        normal /= np.linalg.norm(normal, axis=1, keepdims=True)
+        binormal = np.cross(tangent, normal)
+        angle = 2 * np.pi * np.arange(sides) / sides
+        rings = (pts[:, None, :] + radius * (np.cos(angle)[None, :, None] * normal[:, None, :]
+                                             + np.sin(angle)[None, :, None] * binormal[:, None, :]))
+        i = np.arange(len(pts) - 1)[:, None] * sides
+        j = np.arange(sides)[None, :]
+        a, b = i + j, i + (j + 1) % sides
+        c, d = a + sides, b + sides
+        faces = np.concatenate([np.stack([a, b, d], -1), np.stack([a, d, c], -1)], axis=1)
+        return rings.reshape(-1, 3), faces.reshape(-1, 3)
+
+    def set(self, points) -> None:
+        """Draw the tube along ``points`` (N x 3, scene units), replacing the previous one."""
+        vertices, faces = self.mesh(points, self.radius, self.sides)
+        self.vis.set_object(g.TriangularMeshGeometry(vertices.astype(np.float32), faces),
+                            _material(self.color))
+
+
 def cone(vis: meshcat.Visualizer, height: float, radius: float, color: int = 0x808080) -> None:
     """A cone with its apex at the origin of ``vis``, pointing along -z, base at z = +height.
 

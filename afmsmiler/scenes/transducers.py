@@ -270,9 +270,9 @@ class TransducerScene:
         """A wire on the lever's top surface along a path of (u, y): u the fraction of
         ``x_range`` (itself a fraction of L), y the lateral offset in scene units.
 
-        Drawn as thin cylinders (WebGL lines are one pixel wide, too thin to see) lying on the
+        Drawn as a thin tube (WebGL lines are one pixel wide, too thin to see) lying on the
         bent surface: legs along the lever are cut into pieces of at most L / 12 that follow it.
-        The cylinders are made once per principle and color, then moved in place.
+        The tube is one mesh, sent in one message per update.
         """
         h = model.thickness / SCENE_UNIT
         L = pose.x[-1]
@@ -286,13 +286,10 @@ class TransducerScene:
             xs = (x_range[0] + u * (x_range[1] - x_range[0])) * L
             pts.append([xs, y, np.interp(xs, pose.x, pose.z) + h / 2 + radius])
         pts = np.array(pts)
-        if self._lines.get(name, (None,))[0] != (color, len(pts)):
-            self.vis["element"][name].delete()
-            self._lines[name] = ((color, len(pts)), [
-                P.Segment(self.vis["element"][name][f"s{i:03d}"], color=color, radius=radius)
-                for i in range(len(pts) - 1)])
-        for seg, a, b in zip(self._lines[name][1], pts[:-1], pts[1:]):
-            seg.set(a, b)
+        if self._lines.get(name, (None,))[0] != (color, radius):
+            self._lines[name] = ((color, radius), P.Tube(self.vis["element"][name], color=color,
+                                                         radius=radius))
+        self._lines[name][1].set(pts)
         self.parts[name] = pts
 
     def _quadrants(self, name, centre, normal, size=0.5):
