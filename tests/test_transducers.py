@@ -687,7 +687,7 @@ def test_parallel_plate_gradient_and_distributed_load():
     area = model.width * model.electrode_length
 
     def cap(z):  # C(z) = eps0 A / (g + z), z up, electrode below
-        return 8.8541878128e-12 * area / (3e-6 + z)
+        return 8.8541878188e-12 * area / (3e-6 + z)  # epsilon_0: CODATA 2022
     h = 1e-12
     assert model.capacitance_gradient == pytest.approx((cap(h) - cap(-h)) / (2 * h), rel=1e-6)
     # tip deflection of a uniform load on [a, L] by Maxwell-Betti reciprocity: the tip moves under
@@ -709,7 +709,7 @@ def test_parallel_plate_gradient_and_distributed_load():
     assert chain.stage("force").values[0] == pytest.approx(f, rel=1e-12)
     assert chain.output.values[0] < 0
     # small signal: d/dV of (1/2) C' V^2 = C' V, C' = -eps0 A / g^2, times the quadrature compliance
-    expected = ref * (-8.8541878128e-12 * area / 3e-6 ** 2) * 10.0
+    expected = ref * (-8.8541878188e-12 * area / 3e-6 ** 2) * 10.0
     assert model.sensitivity(at=10.0) == pytest.approx(expected, rel=1e-10)
 
 
@@ -722,7 +722,7 @@ def test_pull_in_voltage_against_sympy():
     assert sol == [{x: g / 3, v: sp.sqrt(8 * k * g ** 3 / (27 * c))}]
     model = Electrostatic(gap=2e-6)
     subs = {k: 1 / model.compliance[0], g: 2e-6,
-            c: 8.8541878128e-12 * model.width * model.electrode_length}
+            c: 8.8541878188e-12 * model.width * model.electrode_length}
     assert model.pull_in_voltage == pytest.approx(float(sol[0][v].subs(subs)), rel=1e-12)
 
 
@@ -886,7 +886,7 @@ def test_piezoelectric_leakage_noise_against_quadrature():
     # Johnson current of the leak R = tau / C, 4 k_B T / R (A^2/Hz), integrated by the charge
     # amplifier: S_q(f) = S_i / (2 pi f)^2, summed over [f1, f1 + B] by quadrature
     model = Piezoelectric(leakage_time_constant=0.1, temperature=300.0)
-    cap = 8.8541878128e-12 * model.permittivity * model.width * model.electrode_length / (
+    cap = 8.8541878188e-12 * model.permittivity * model.width * model.electrode_length / (
         model.film_thickness)
     r_leak = 0.1 / cap
     f1, bw = 10.0, 1e3

@@ -72,7 +72,7 @@ def test_actuator_chain_and_readout(panel):
     panel.set(principle="electrostatic", input=10.0, gap=4.0, ac_voltage=0.0)
     model = Electrostatic(gap=4e-6, ac_voltage=0.0)
     # F = (1/2) dC/dz V^2, dC/dz = -eps0 w l_e / g^2
-    force = -0.5 * 8.8541878128e-12 * model.width * model.electrode_length / 16e-12 * 100
+    force = -0.5 * 8.8541878188e-12 * model.width * model.electrode_length / 16e-12 * 100
     assert panel.last.chain.stage("force").values == pytest.approx(force, rel=1e-12)
     x, f_nn = panel.figure.lines["left"].get_data()
     assert f_nn[np.argmin(np.abs(np.asarray(x) - 10.0))] == pytest.approx(force * 1e9, rel=1e-9)

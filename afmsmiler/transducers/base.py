@@ -43,6 +43,7 @@ from dataclasses import dataclass, field
 from typing import ClassVar
 
 import numpy as np
+import scipy.constants
 
 from ..cantilever import Cantilever
 from ..validation import check_array, check_choice, check_positive, check_range
@@ -52,12 +53,11 @@ __all__ = ["Quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse",
            "LEVER_PARAMETERS",
            "mechanical_response", "thermal_deflection_noise"]
 
-#: Boltzmann constant k_B in J/K (SI 2019, exact).
-BOLTZMANN = 1.380649e-23
-#: Elementary charge q in C (SI 2019, exact).
-ELEMENTARY_CHARGE = 1.602176634e-19
-#: Vacuum permittivity epsilon_0 in F/m (CODATA 2018).
-EPSILON_0 = 8.8541878128e-12
+#: Boltzmann constant k_B in J/K, elementary charge q in C, vacuum permittivity epsilon_0 in
+#: F/m: scipy's CODATA values (2022 in scipy >= 1.15), kept under these names for the models.
+BOLTZMANN = scipy.constants.k
+ELEMENTARY_CHARGE = scipy.constants.e
+EPSILON_0 = scipy.constants.epsilon_0
 
 FUNCTIONS = ("sensing", "actuation", "both")
 SIGNALS = ("DC&AC", "AC only", "AC mostly")
