@@ -4,7 +4,7 @@ A rectangular cantilever of length L, width w, thickness h, Young's modulus E an
 clamped at x = 0 and loaded by a point force F at its free end x = L. Solving E J z'''' = 0 with
 z(0) = z'(0) = 0 (clamp), z''(L) = 0 (no moment) and E J z'''(L) = -F (end shear), in the sign
 convention where F > 0 lifts the tip (z > 0), gives (see ``notebooks/01_cantilever_mechanics.ipynb`` and
-``tests/test_cantilever.py`` for the sympy derivation)::
+``tests/test_cantilever_model.py`` for the sympy derivation)::
 
     z(x)     = F L^3 / (6 E J) [3 (x/L)^2 - (x/L)^3]
     theta(x) = F L^2 / (2 E J) [2 (x/L) - (x/L)^2]

@@ -228,7 +228,9 @@ def test_panel_adhesion_and_sphere_limit():
               adhesion="none")
     k, e_star = 100.0, reduced_modulus(1e3, 0.3)
     assert panel.controls["z_np"].max < Spherical(5e-9).max_z_np(k, e_star) * 1e9
-    panel.set(z_np=BOUNDS["z_np"][1])
+    with pytest.raises(ValueError, match="z_np must be in"):  # rejected, not clamped
+        panel.set(z_np=BOUNDS["z_np"][1])
+    panel.set(z_np=panel.controls["z_np"].max)
     assert panel.last.current.z_s[0] < 5e-9
 
 

@@ -35,7 +35,7 @@ _FIGSIZE = (10.0, 5.6)  # inches: with the controls above it, the panel fits one
 #: Largest end slope |theta(L)| in rad (of the linear theory) for which the readout calls the
 #: small-deflection beam theory good: F L^3 / (3 E J) then overestimates the tip deflection of the
 #: end-loaded elastica by about 0.45 theta^2, 0.5 % at 0.1 rad but 10 % at 0.5 rad (checked
-#: against the elastica solved numerically in tests/test_ui_cantilever.py).
+#: against the elastica solved numerically in tests/test_cantilever_ui.py).
 SMALL_SLOPE = 0.1
 
 

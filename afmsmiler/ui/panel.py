@@ -17,7 +17,10 @@ import matplotlib
 import matplotlib.pyplot as plt
 from IPython.display import display
 
-__all__ = ["Panel", "arrange", "slider", "log_slider", "running_as_notebook", "setup_notebook"]
+from ..validation import check_choice, check_finite
+
+__all__ = ["Panel", "arrange", "slider", "log_slider", "check_control_value", "running_as_notebook",
+           "setup_notebook"]
 
 
 def running_as_notebook() -> bool:
@@ -75,6 +78,59 @@ def log_slider(description: str, value: float, low: float, high: float, unit: st
                                   layout=widgets.Layout(width="420px"))
 
 
+_MISSING = object()
+
+
+def _same(value, last, control) -> bool:
+    """Whether a control's ``value`` is ``last`` up to round-off (a browser echo, not a move)."""
+    if value == last:
+        return True
+    if isinstance(value, bool) or not isinstance(value, (int, float)) \
+            or isinstance(last, bool) or not isinstance(last, (int, float)):
+        return False
+    step = getattr(control, "step", 0.0) or 0.0
+    if isinstance(control, widgets.FloatLogSlider):  # the step is in the exponent
+        return abs(value - last) <= 1e-9 * max(abs(value), abs(last))
+    return abs(value - last) <= 1e-9 * max(abs(value), abs(last), step)
+
+
+def check_control_value(name: str, control, value):
+    """Raise ``ValueError`` naming ``name`` unless ``control`` can hold ``value`` unchanged.
+
+    A slider would clamp an out-of-range value and a drop-down raise a traitlets error; here both
+    say what is valid.
+
+    Parameters
+    ----------
+    name : str
+        The control's name in the panel.
+    control : ipywidgets.Widget
+        The control.
+    value : object
+        The value to set (in the units the control shows).
+
+    Returns
+    -------
+    object
+        ``value``.
+    """
+    if isinstance(control, (widgets.FloatSlider, widgets.FloatLogSlider, widgets.IntSlider)):
+        if isinstance(control, widgets.FloatLogSlider):
+            low, high = control.base ** control.min, control.base ** control.max
+        else:
+            low, high = control.min, control.max
+        unit = getattr(getattr(control, "parameter", None), "display_unit", "")
+        x = check_finite(name, value, unit)
+        tol = 1e-12 * max(abs(low), abs(high))  # the slider's own ends, up to round-off
+        if not low - tol <= x <= high + tol:
+            raise ValueError(f"{name} must be in [{low:.6g}, {high:.6g}]"
+                             f"{' ' + unit if unit else ''}, got {x:.6g}")
+    elif isinstance(control, (widgets.Dropdown, widgets.ToggleButtons, widgets.RadioButtons)):
+        options = [o[1] if isinstance(o, tuple) else o for o in control.options]
+        check_choice(name, value, options)
+    return value
+
+
 def _interactive_backend() -> bool:
     return "ipympl" in matplotlib.get_backend().lower() or "widget" in matplotlib.get_backend().lower()
 
@@ -94,27 +150,54 @@ class Panel:
         self.last = None  # the last model result, for tests and exercises
         self.error = None  # the message of the last failed update from a control, else None
         self._error_box = widgets.HTML()
+        self._applied = {}  # the values the model last ran with, by control name
         for control in self.controls.values():
             control.observe(self._on_change, names="value")
-        self.update(**self.values())
+        self._run(self.values())
 
     # -- values ---------------------------------------------------------------------------
     def values(self) -> dict:
-        """Current control values (in the units the controls show)."""
-        return {name: c.value for name, c in self.controls.items()}
+        """Current control values (in the units the controls show).
+
+        A slider whose value differs from the one the model last ran with by round-off only
+        (the browser's echo of a value it snapped to the slider's grid) reports the value the
+        model ran with: the browser never changes a value the student did not touch.
+        """
+        out = {}
+        for name, c in self.controls.items():
+            v, last = c.value, self._applied.get(name, _MISSING)
+            out[name] = last if last is not _MISSING and _same(v, last, c) else v
+        return out
+
+    def _run(self, values: dict) -> None:
+        """Run :meth:`update` once with ``values`` and remember them as applied."""
+        self.update(**values)
+        self._applied = dict(values)
 
     def set(self, **values) -> None:
-        """Set control values as a user would (one update at the end)."""
+        """Set control values as a user would (one update at the end).
+
+        Raises
+        ------
+        TypeError
+            For a name that is not a control.
+        ValueError
+            For a value outside a slider's range or not among a drop-down's options, naming the
+            control, the value and what is valid (a slider would silently clamp it).
+        """
         unknown = set(values) - set(self.controls)
         if unknown:
             raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(self.controls)}")
-        self._hold = True
+        for name, v in values.items():
+            check_control_value(name, self.controls[name], v)
+        hold, self._hold = self._hold, True
         try:
             for name, v in values.items():
                 self.controls[name].value = v
         finally:
-            self._hold = False
-        self.update(**self.values())
+            self._hold = hold
+        if not hold:
+            self._run({**self.values(), **values})
 
     _hold = False
 
@@ -128,8 +211,11 @@ class Panel:
         """
         if self._hold:
             return
+        values = self.values()
+        if values == self._applied:  # a browser echo of what the model already shows
+            return
         try:
-            self.update(**self.values())
+            self._run(values)
         except Exception as exc:
             self._report_error(exc)
             if not running_as_notebook():

@@ -220,7 +220,7 @@ class TransducerPanel(Panel):
                 self.controls[name].value = v
         finally:
             self._hold = hold
-        self.update(**self.values())
+        self._run(self.values())
 
     # -- the callback -----------------------------------------------------------------------------
     def _bound_linked_sliders(self, cls, values: dict) -> dict:

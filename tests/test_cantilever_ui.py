@@ -85,11 +85,12 @@ def test_slider_bounds_keep_the_model_valid():
         p.set(**dict(zip(names, corner)), section=1.0)
         assert p.last.curves.section_x_um == pytest.approx(p.last.lever.length * 1e6)
         assert np.isfinite(p.last.curves.z_nm).all()
-    # a value typed beyond a bound is clamped by the slider, so the model never sees it
-    p.set(thickness=-5.0, length=1e6, section=7.0)
-    assert p.values()["thickness"] == BOUNDS["thickness"][0]
-    assert p.last.lever.length == pytest.approx(BOUNDS["length"][1] * 1e-6)
-    assert p.last.curves.section_x_um <= p.last.lever.length * 1e6 * (1 + 1e-12)
+    # a value typed beyond a bound is rejected with its name and range (a slider would clamp it)
+    before = p.values()
+    for bad in (dict(thickness=-5.0), dict(length=1e6), dict(section=7.0)):
+        with pytest.raises(ValueError, match=f"{next(iter(bad))} must be in"):
+            p.set(**bad)
+    assert p.values() == before
     # every material preset lies inside the E and rho sliders
     for m in MATERIALS.values():
         assert BOUNDS["youngs_modulus"][0] <= m.youngs_modulus / 1e9 <= BOUNDS["youngs_modulus"][1]
