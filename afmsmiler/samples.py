@@ -15,6 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
+from . import data
 from .validation import check_array, check_choice, check_finite, check_integer, check_positive, \
     check_range
 
@@ -22,7 +23,7 @@ __all__ = ["Sample", "step", "grating", "rough_surface", "particles", "PROFILES"
            "REAL_LINE_ROW", "from_file", "REAL_IMAGE", "real_image"]
 
 #: A real AFM image shipped with the package (see ``afmsmiler/data/README.md``).
-REAL_IMAGE = Path(__file__).with_name("data") / "wsxm_sample_0.top"
+REAL_IMAGE = data.path("wsxm_sample_0.top")
 
 
 @dataclass(frozen=True)

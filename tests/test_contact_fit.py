@@ -10,7 +10,9 @@ import pytest
 from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, fit_curve, load_curve,
                                synthetic_curve)
 
-DATA = Path(__file__).parent / "data" / "contact"
+from afmsmiler import data
+
+JPK = data.path("spot3-0192.jpk-force")
 TIPS = [Parabolic(20e-9), Spherical(5e-6), Conical(math.radians(20)), Pyramidal(math.radians(35))]
 IDS = [t.key for t in TIPS]
 E_TRUE, NU, K = 200e3, 0.45, 0.05  # Pa, -, N/m: a soft gel and a soft lever
@@ -130,7 +132,7 @@ def test_reproduces_the_vendor_fit_of_a_real_jpk_curve():
     # spot3-0192.jpk-force (afmformats' test data): the JPK data-processing software fits its
     # approach with a paraboloid, R = 40 nm, nu = 0.5, on the vertical tip position:
     # E = 233.1 kPa, contact point 18.03 um (nanite, tests/test_model_hertz_parabol.py).
-    curve = load_curve(DATA / "spot3-0192.jpk-force")
+    curve = load_curve(JPK)
     assert curve.spring_constant == pytest.approx(0.0435, rel=1e-3)  # from the file's header
     assert curve.z_np.size == 2000
     # nu = 0.5 is outside the model's [0, 0.5); only E* = E / (1 - nu^2) is measured, so fit with
@@ -147,4 +149,4 @@ def test_reproduces_the_vendor_fit_of_a_real_jpk_curve():
     assert abs(0.75 * r.youngs_modulus - 233.1e3) <= 3 * 0.75 * r.youngs_modulus_error
     assert r.youngs_modulus_error < 0.01 * r.youngs_modulus
     with pytest.raises(ValueError, match="segment must be one of"):
-        load_curve(DATA / "spot3-0192.jpk-force", segment="extend")
+        load_curve(JPK, segment="extend")

@@ -74,10 +74,10 @@ def test_fit_figure_of_the_real_curve_states_nu_and_zooms_on_the_contact():
     # spot3-0192.jpk-force, fitted at nu = 0 (the model refuses the vendor's nu = 0.5): the legend
     # must say which nu the E it shows belongs to, and give E at nu = 0.5 as the vendor's software
     # reports it, 233.1 kPa (nanite, tests/test_model_hertz_parabol.py), to the digit it prints
-    from pathlib import Path
+    from afmsmiler import data
     from afmsmiler.contact import load_curve
     pytest.importorskip("afmformats")
-    curve = load_curve(Path(__file__).parent / "data" / "contact" / "spot3-0192.jpk-force")
+    curve = load_curve(data.path("spot3-0192.jpk-force"))
     r = fit_curve(curve.tip_position, curve.force, Parabolic(40e-9), 0.0)
     fig = fit_figure(curve, r, report_poisson_ratio=0.5)
     ax, axr = fig.axes

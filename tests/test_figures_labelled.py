@@ -16,10 +16,12 @@ import pytest
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from afmsmiler import data
+
 matplotlib.use("Agg")
 
 UNIT = re.compile(r"\[[^\]]+\]|\(dimensionless\)")
-DATA = Path(__file__).parent / "data" / "contact" / "spot3-0192.jpk-force"
+DATA = data.path("spot3-0192.jpk-force")
 
 
 def _cantilever_panel(**values):

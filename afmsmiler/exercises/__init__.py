@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Feedback", "check_close"]
+__all__ = ["Feedback", "check_close", "diagnose_slip"]
 
 
 @dataclass(frozen=True)
@@ -29,9 +29,64 @@ class Feedback:
         return ("**Correct!** " if self.passed else "**Not yet.** ") + self.message
 
 
+def diagnose_slip(value: float, expected: float, rtol: float, unit: str = "") -> str | None:
+    """Name the common slip that turns the right answer into ``value``, without giving the answer.
+
+    The slips recognised: the wrong sign; a factor 10^(3n) (|n| = 1..6, a unit prefix such as um
+    for m or 1/us for 1/s), also with the wrong sign; a factor 10^2 (cm, per cent); degrees
+    for radians and back (180/pi); hertz for radians per second and back (2 pi). The message says
+    which slip it is and what to check, never the expected value.
+
+    Parameters
+    ----------
+    value : float
+        The student's answer, finite.
+    expected : float
+        The right answer, finite and nonzero.
+    rtol : float
+        The tolerance of the check, > 0.
+    unit : str
+        The unit the answer must be in, for the message.
+
+    Returns
+    -------
+    str or None
+        The diagnosis, or None if the answer is not a recognised slip of the right one.
+    """
+    if not (math.isfinite(value) and math.isfinite(expected) and expected != 0 and rtol > 0):
+        return None
+    in_unit = f" in {unit}" if unit else ""
+
+    def near(factor):
+        return abs(value - factor * expected) <= rtol * abs(factor * expected)
+
+    if near(-1.0):
+        return "The size is right but the sign is wrong: check which direction is positive."
+    for n in (1, -1, 2, -2, 3, -3, 4, -4, 5, -5, 6, -6):
+        for sign in (1.0, -1.0):
+            if near(sign * 10.0 ** (3 * n)):
+                both = " and the sign is wrong too" if sign < 0 else ""
+                return (f"Your answer is 10^{3 * n} times the right one{both}: a unit prefix "
+                        f"slipped (milli, micro, nano, ...); give it in SI units{in_unit}.")
+    for factor, what in ((100.0, "10^2 times the right one (centi, or a per cent?)"),
+                         (0.01, "10^-2 times the right one (centi, or a per cent?)"),
+                         (180.0 / math.pi, "in degrees where radians are asked"),
+                         (math.pi / 180.0, "in radians where degrees are asked"),
+                         (2.0 * math.pi, "2 pi times the right one (rad/s where Hz is asked?)"),
+                         (1.0 / (2.0 * math.pi), "1/(2 pi) of the right one (Hz where rad/s is "
+                                                 "asked?)")):
+        if near(factor):
+            return f"Your answer looks {what}; check the unit{in_unit}."
+    return None
+
+
 def check_close(quantity: str, answer, expected: float, rtol: float, unit: str = "",
                 hint: str = "") -> Feedback:
     """Feedback on a numerical answer that must match ``expected`` within ``rtol`` (relative).
+
+    A wrong answer that is a common slip of the right one (sign, unit prefix, degrees, 2 pi; see
+    :func:`diagnose_slip`) is told so; any other is told how far off it is, as a per cent when it
+    is within a factor of two and as a factor otherwise.
 
     Parameters
     ----------
@@ -58,5 +113,14 @@ def check_close(quantity: str, answer, expected: float, rtol: float, unit: str =
     u = f" {unit}" if unit else ""
     if err <= rtol:
         return Feedback(True, f"{quantity} = {value:.4g}{u} (model: {expected:.4g}{u}).")
+    slip = diagnose_slip(value, expected, rtol, unit)
+    if slip is not None:
+        return Feedback(False, f"{quantity} = {value:.4g}{u}. {slip}")
+    if expected and (value == 0 or value / expected > 2 or value / expected < 0.5):
+        how = ("has the wrong sign and size" if value / expected < 0 else
+               f"is off by a factor of about {max(abs(value / expected), abs(expected / value)):.2g}"
+               if value else "is zero")
+        return Feedback(False, f"{quantity} = {value:.4g}{u} {how} (needs to be within "
+                               f"{100 * rtol:g}%). {hint}".strip())
     return Feedback(False, f"{quantity} = {value:.4g}{u} is off by {100 * err:.1f}% "
                            f"(needs to be within {100 * rtol:g}%). {hint}".strip())

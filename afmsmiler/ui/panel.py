@@ -82,16 +82,25 @@ _MISSING = object()
 
 
 def _same(value, last, control) -> bool:
-    """Whether a control's ``value`` is ``last`` up to round-off (a browser echo, not a move)."""
+    """Whether a control's ``value`` is ``last`` snapped to its grid (a browser echo, not a move).
+
+    The browser snaps a value the kernel set to the nearest point ``min + n * step`` of the
+    slider's grid and sends that back. The nearest grid point lies within half a step of the value
+    the kernel set and every other one at least half a step away, so a change of less than half a
+    step is the echo, never a student's move.
+    """
     if value == last:
         return True
     if isinstance(value, bool) or not isinstance(value, (int, float)) \
             or isinstance(last, bool) or not isinstance(last, (int, float)):
         return False
-    step = getattr(control, "step", 0.0) or 0.0
-    if isinstance(control, widgets.FloatLogSlider):  # the step is in the exponent
-        return abs(value - last) <= 1e-9 * max(abs(value), abs(last))
-    return abs(value - last) <= 1e-9 * max(abs(value), abs(last), step)
+    step = float(getattr(control, "step", 0.0) or 0.0)
+    if isinstance(control, widgets.FloatLogSlider):  # the grid is in the exponent
+        if value <= 0 or last <= 0:
+            return False
+        return abs(math.log(value / last, control.base)) < 0.5 * step * (1 - 1e-9)
+    return abs(value - last) < 0.5 * step * (1 - 1e-9) or \
+        abs(value - last) <= 1e-12 * max(abs(value), abs(last))
 
 
 def check_control_value(name: str, control, value):
@@ -284,6 +293,7 @@ class Panel:
             with plt.ioff():  # not queued for display at the end of the cell
                 new_figure_manager_given_figure(0, fig)  # an ipympl canvas, outside pyplot
             fig.canvas.header_visible = False  # the panel is its own title; save the room
+            fig.canvas.toolbar_position = "top"  # at the left it covered the y-axis labels
         return fig
 
     def redraw(self) -> None:
