@@ -24,11 +24,17 @@ __all__ = [
     "check_array",
     "check_choice",
     "check_integer",
+    "check_instance",
 ]
 
 
 def _fmt(value) -> str:
     return f"{value:g}" if isinstance(value, (float, np.floating)) else repr(value)
+
+
+def _short(value, limit: int = 60) -> str:
+    text = repr(value)
+    return text if len(text) <= limit else text[:limit - 3] + "..."
 
 
 def _unit(unit: str) -> str:
@@ -162,9 +168,13 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
         Required number of elements (used for "arrays of the same length" checks).
     """
     try:
-        arr = np.asarray(values, dtype=float)
-    except (TypeError, ValueError):
-        raise ValueError(f"{name} must be an array of real numbers, got {values!r}") from None
+        raw = np.asarray(values)
+    except (TypeError, ValueError):  # ragged nested sequences
+        raise ValueError(f"{name} must be an array of real numbers, got {_short(values)}") from None
+    if raw.dtype.kind not in "iuf":  # complex (the imaginary part would be lost), bool, str, object
+        raise ValueError(f"{name} must be an array of real numbers, got an array of "
+                         f"{raw.dtype} ({_short(values)})")
+    arr = raw.astype(float)
     if ndim is not None and arr.ndim != ndim:
         raise ValueError(f"{name} must be a {ndim}-D array, got shape {arr.shape}")
     if arr.size < min_size:
@@ -227,3 +237,41 @@ def check_integer(name: str, value, low: int = -math.inf, high: int = math.inf) 
     if not (low <= value <= high):
         raise ValueError(f"{name} must be an integer in [{low}, {high}], got {value}")
     return int(value)
+
+
+def check_instance(name: str, value, kind, what: str | None = None):
+    """Return ``value``; raise ``TypeError`` naming the parameter unless it is a ``kind``.
+
+    Object parameters (``lever``, ``tip``, ``loop``, ``sample``, ...) are checked at the boundary
+    like numbers, so a wrong object is named at once instead of failing deep inside with an
+    ``AttributeError``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : object
+        The value to check.
+    kind : type or tuple of type
+        The accepted class(es).
+    what : str, optional
+        How to name the accepted kind in the message (default: the class names).
+
+    Returns
+    -------
+    object
+        ``value``.
+
+    Examples
+    --------
+    >>> check_instance("lever", 3.0, str)
+    Traceback (most recent call last):
+    ...
+    TypeError: lever must be a str, got float 3.0
+    """
+    if not isinstance(value, kind):
+        if what is None:
+            kinds = kind if isinstance(kind, tuple) else (kind,)
+            what = " or ".join(k.__name__ for k in kinds)
+        raise TypeError(f"{name} must be a {what}, got {type(value).__name__} {_short(value)}")
+    return value

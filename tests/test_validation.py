@@ -40,3 +40,23 @@ def test_choice_and_integer():
         check_integer("mode", 6, 1, 5)
     with pytest.raises(ValueError, match="must be an integer"):
         check_integer("mode", 1.0)
+
+
+@pytest.mark.parametrize("bad, kind", [
+    ([1 + 2j, 3.0], "complex"), ([True, False], "bool"), (["1.0", "2"], "<U"), ("12", "<U"),
+    (np.array([1.0, None], dtype=object), "object")])
+def test_arrays_reject_what_is_not_real_numbers(bad, kind):
+    # np.asarray(..., dtype=float) dropped the imaginary part and read strings and booleans as numbers
+    with pytest.raises(ValueError, match=f"x must be an array of real numbers, got an array of {kind}"):
+        check_array("x", bad)
+    with pytest.raises(ValueError, match="x must be an array of real numbers"):
+        check_array("x", [[1.0, 2.0], [3.0]])  # ragged
+
+
+def test_objects_are_checked_by_name():
+    from afmsmiler.cantilever import Cantilever
+    from afmsmiler.validation import check_instance
+    with pytest.raises(TypeError, match=r"^lever must be a Cantilever, got str 'silicon'$"):
+        check_instance("lever", "silicon", Cantilever)
+    lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
+    assert check_instance("lever", lever, Cantilever) is lever
