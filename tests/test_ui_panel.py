@@ -193,3 +193,62 @@ def test_ipympl_redraw_pushes_the_new_image_without_a_browser_round_trip(monkeyp
         assert p.line.get_ydata()[0] == pytest.approx(2.56)
     finally:
         plt.switch_backend(old)
+
+
+def test_slider_helpers_reject_a_step_that_makes_no_slider():
+    from afmsmiler.ui.panel import log_slider, slider
+    with pytest.raises(ValueError, match="steps_per_decade must be an integer in"):
+        log_slider("k", 1.0, 0.1, 10.0, steps_per_decade=0)
+    with pytest.raises(ValueError, match="step must be in"):
+        slider("x", 1.0, 0.0, 2.0, step=0.0)
+
+
+class Lever(Panel):
+    """A panel over two controls built by the slider factory, counting its updates."""
+
+    def __init__(self):
+        from afmsmiler.parameters import Parameter
+        from afmsmiler.ui.controls import control
+        length = Parameter(name="length", unit="m", display_unit="um", default=225e-6,
+                           low=20e-6, high=1e-3)
+        q = Parameter(name="quality_factor", unit="", default=150.0, low=0.5, high=1e5, log=True)
+        self.controls = dict(length=control(length), quality_factor=control(q),
+                             shape=widgets.Dropdown(options=["a", "b"], value="a"))
+        self.calls = []
+        super().__init__()
+
+    def update(self, length, quality_factor, shape):
+        self.calls.append((length, quality_factor, shape))
+
+
+def test_the_browser_echo_of_a_snapped_value_changes_nothing():
+    # The browser snaps a value the kernel set to the slider's grid and sends it back: 225 um on
+    # a grid of 2.45 um from 20 um came back as 225.8 um and the model ran with it. Less than half
+    # a step away, it is taken as the echo: no update, and values() keeps what the model ran with.
+    p = Lever()
+    assert p.calls == [(225.0, 150.0, "a")]
+    length, q = p.controls["length"], p.controls["quality_factor"]
+    length.value = 225.0 + 0.4 * length.step          # the echo of a value off the grid
+    q.value = 150.0 * 10 ** (0.4 * q.step)              # the same on a log slider
+    assert len(p.calls) == 1 and p.values()["length"] == 225.0
+    assert p.values()["quality_factor"] == 150.0
+    length.value = 225.0 + length.step                  # a student's move: one step
+    assert p.calls[-1][0] == pytest.approx(225.0 + length.step)
+    q.value = 150.0 * 10 ** q.step
+    assert p.calls[-1][1] == pytest.approx(150.0 * 10 ** q.step) and len(p.calls) == 3
+
+
+def test_set_rejects_what_a_control_cannot_hold_instead_of_clamping_it():
+    p = Lever()
+    with pytest.raises(ValueError, match=r"length must be in \[20, 1000\] um, got 1e\+300"):
+        p.set(length=1e300)
+    with pytest.raises(ValueError, match=r"quality_factor must be in \[0.50\d*, 9\d+\.?\d*\], got 0.1"):
+        p.set(quality_factor=0.1)
+    with pytest.raises(ValueError, match=r"shape must be one of \['a', 'b'\], got 'cube'"):
+        p.set(shape="cube")
+    with pytest.raises(ValueError, match="length must be a real number"):
+        p.set(length="long")
+    assert len(p.calls) == 1 and p.values() == {"length": 225.0, "quality_factor": 150.0,
+                                                 "shape": "a"}
+    p.set(length=300.0, shape="b")  # two values, one update, exactly the values given
+    assert p.calls[-1] == (300.0, 150.0, "b") and len(p.calls) == 2

@@ -17,7 +17,7 @@ import matplotlib
 import matplotlib.pyplot as plt
 from IPython.display import display
 
-from ..validation import check_choice, check_finite
+from ..validation import check_choice, check_finite, check_integer
 
 __all__ = ["Panel", "arrange", "slider", "log_slider", "check_control_value", "running_as_notebook",
            "setup_notebook"]
@@ -58,6 +58,8 @@ def slider(description: str, value: float, low: float, high: float, step: float 
     """
     if not (low < high and low <= value <= high):
         raise ValueError(f"slider {description!r}: value {value} must lie in [{low}, {high}]")
+    if step is not None and not (math.isfinite(step) and 0 < step <= high - low):
+        raise ValueError(f"step must be in (0, {high - low:g}], got {step!r}")
     label = f"{description} [{unit}]" if unit else description
     return widgets.FloatSlider(value=value, min=low, max=high, step=step or (high - low) / 200,
                                description=label, readout_format=readout_format,
@@ -70,6 +72,7 @@ def log_slider(description: str, value: float, low: float, high: float, unit: st
     """A log-scale slider for a parameter that spans decades (bounds are values, not exponents)."""
     if not (0 < low < high and low <= value <= high):
         raise ValueError(f"log slider {description!r}: value {value} must lie in [{low}, {high}] > 0")
+    check_integer("steps_per_decade", steps_per_decade, 1, 10_000)
     label = f"{description} [{unit}]" if unit else description
     return widgets.FloatLogSlider(value=value, base=10, min=math.log10(low), max=math.log10(high),
                                   step=1 / steps_per_decade, description=label,
