@@ -5,7 +5,7 @@ import pytest
 
 from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical, indent, surface_displacement
 from afmsmiler.plots.contact import tip_outline
-from afmsmiler.scenes import primitives as P
+from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.contact import DEFAULTS, ContactScene, cut_mesh, surface_mesh, tip_mesh
 from recording import Recorder
 
@@ -60,7 +60,7 @@ def test_camera_frames_the_contact_the_sample_and_the_legend(tip, z_np):
     w = sc.legend.width
     legend = sc.legend_corner + shift + np.array([[0, 0, 0], [w, 0, 0], [0, 0, w / 4],
                                                   [w, 0, w / 4]])
-    ndc = P.camera_ndc(np.vstack([apex, rim, legend]), sc.camera_position, aspect=1.5)
+    ndc = camera_ndc(np.vstack([apex, rim, legend]), sc.camera_position, aspect=1.5)
     assert np.all(np.abs(ndc) <= 1.0), ndc
     # the apex is at the contact solution, and a buried tip is drawn taller than the indentation
     assert sc.last_apex == pytest.approx(float(cur.separation[0]))

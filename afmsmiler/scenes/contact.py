@@ -26,7 +26,10 @@ import numpy as np
 from ..contact import IndentationCurve, Pyramidal, Tip, surface_displacement
 from ..plots.contact import tip_outline
 from ..validation import check_integer, check_positive
-from . import primitives as P
+from .camera import set_camera, show_helpers
+from .colors import ColorScale, nice_ceil
+from .legends import ColorLegend
+from .transforms import translation
 from .viewer import get_viewer
 
 __all__ = ["DEFAULTS", "ContactScene", "surface_mesh", "tip_mesh", "cut_mesh"]
@@ -236,17 +239,17 @@ class ContactScene:
         self.vis = self.root[path]
         self.vis.delete()
         self._tip = None
-        self.depth_scale = P.ColorScale(0.0, 1.0, cmap="viridis_r", label="depression", unit="nm")
+        self.depth_scale = ColorScale(0.0, 1.0, cmap="viridis_r", label="depression", unit="nm")
         e = self.extent / self.unit
         width = DEFAULTS["legend_width"] * e
-        self.legend = P.ColorLegend(self.vis["legend"], self.depth_scale, width=width)
+        self.legend = ColorLegend(self.vis["legend"], self.depth_scale, width=width)
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         self.camera_position = DEFAULTS["camera_distance"] * e * direction / np.linalg.norm(direction)
         # lowered a little, so that the camera (looking at the origin) sees the tip's shank too
-        self.vis.set_transform(P.translation([0.0, 0.0, -DEFAULTS["lowered"] * e]))
+        self.vis.set_transform(translation([0.0, 0.0, -DEFAULTS["lowered"] * e]))
         if camera:
-            P.set_camera(self.root, self.camera_position)
-            P.show_helpers(self.root, grid=False, axes=False)  # the grid would cut the sample
+            set_camera(self.root, self.camera_position)
+            show_helpers(self.root, grid=False, axes=False)  # the grid would cut the sample
         self.update(tip, current)
 
     def update(self, tip, current) -> None:
@@ -273,10 +276,10 @@ class ContactScene:
         n_r, n_t = DEFAULTS["n_radial"], DEFAULTS["n_angular"]
         e = self.extent / self.unit
         v, f, depth = surface_mesh(tip, current, self.extent, self.unit, n_r, n_t, half=True)
-        limit = P.nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
+        limit = nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
         if limit != self.depth_scale.vmax:
-            self.depth_scale = P.ColorScale(0.0, limit, cmap="viridis_r", label="depression",
-                                            unit="nm")
+            self.depth_scale = ColorScale(0.0, limit, cmap="viridis_r", label="depression",
+                                          unit="nm")
             self.legend.set(self.depth_scale)
         colors = self.depth_scale.rgb(depth * 1e9)
         self.vis["surface"].set_object(g.TriangularMeshGeometry(v, f, colors),
@@ -289,8 +292,8 @@ class ContactScene:
         # the legend: a caption under the sample's cut face, facing the camera
         width = self.legend.width
         self.legend_corner = np.array([-width / 2, 0.0, -self.slab - 0.05 * e - width / 4])
-        self.vis["legend"].set_transform(P.translation(self.legend_corner))
+        self.vis["legend"].set_transform(translation(self.legend_corner))
         apex = float(current.separation[0])
-        self.vis["tip"].set_transform(P.translation([0.0, 0.0, apex / self.unit]))
+        self.vis["tip"].set_transform(translation([0.0, 0.0, apex / self.unit]))
         self.last_vertices = v
         self.last_apex = apex
