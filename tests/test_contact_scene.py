@@ -29,9 +29,9 @@ def test_half_meshes_are_the_far_half_closed_by_their_cross_sections(tip):
     assert len(cut_faces) == np.sum(on_cut) - 2  # the outline is filled: apex + 2 per ring gap
 
     cur = indent([40e-9], 0.2, tip, 2e6, 0.3)
-    v, f, depth = surface_mesh(tip, cur, 150e-9, UNIT, 20, 24, half=True)
+    v, f, depth = surface_mesh(tip, cur, 150e-9, UNIT, 20, half=True)
     assert f.max() == v.shape[0] - 1 and v[:, 1].min() >= -1e-6
-    cv, cf = cut_mesh(v, 20, 24, 3.0)
+    cv, cf = cut_mesh(v, 20, 3.0)
     assert np.all(cv[:, 1] == 0.0) and cf.max() == cv.shape[0] - 1
     top = cv[: cv.shape[0] // 2]
     assert np.all(np.diff(top[:, 0]) > 0)  # from -extent to +extent along x

@@ -37,3 +37,17 @@ def test_color_scale_shape_and_bad_input():
 def test_nice_ceil(value, expected):
     assert nice_ceil(value, floor=1e-3) == pytest.approx(expected, rel=1e-12)
 
+
+
+def test_color_scale_rejects_nan_by_name_and_clips_infinities():
+    # NaN went through np.rint(nan).astype(intp): an index of -2**63 and an IndexError (or, on
+    # some platforms, the colour of an arbitrary end of the table)
+    scale = ColorScale(0.0, 1.0, "viridis")
+    with pytest.raises(ValueError, match=r"values must not be NaN, got 1 NaN of 3"):
+        scale.rgb([0.0, np.nan, 1.0])
+    with pytest.raises(ValueError, match="values must be real numbers"):
+        scale.rgb(np.array([1 + 2j]))
+    with pytest.raises(ValueError, match="values must be real numbers"):
+        scale.rgb(["0.5"])
+    rgb = scale.rgb([-np.inf, np.inf])  # beyond the scale: its end colours, like any far value
+    np.testing.assert_allclose(rgb, scale.rgb([-1e300, 1e300]))

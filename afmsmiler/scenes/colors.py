@@ -80,12 +80,38 @@ class ColorScale:
         return cls(-limit, limit, cmap, label, unit)
 
     def normalize(self, values) -> np.ndarray:
-        """``values`` as fractions of the scale in [0, 1] (clipped)."""
-        v = np.asarray(values, dtype=float)
+        """``values`` as fractions of the scale in [0, 1] (clipped: -inf and +inf go to the ends).
+
+        Parameters
+        ----------
+        values : array_like
+            Real numbers in the scale's unit; NaN has no place on a scale.
+
+        Raises
+        ------
+        ValueError
+            If ``values`` holds NaN or anything but real numbers.
+        """
+        try:
+            v = np.asarray(values)
+        except (TypeError, ValueError):  # ragged nested sequences
+            raise ValueError("values must be an array of real numbers") from None
+        if v.dtype.kind not in "iuf":
+            raise ValueError(f"values must be real numbers, got an array of {v.dtype}")
+        v = v.astype(float, copy=False)
+        n_nan = int(np.count_nonzero(np.isnan(v)))
+        if n_nan:
+            raise ValueError(f"values must not be NaN, got {n_nan} NaN of {v.size} values")
         return np.clip((v - self.vmin) / (self.vmax - self.vmin), 0.0, 1.0)
 
     def rgb(self, values) -> np.ndarray:
-        """RGB colors in [0, 1] of ``values``: an array of shape ``values.shape + (3,)`` (float32)."""
+        """RGB colors in [0, 1] of ``values``: an array of shape ``values.shape + (3,)`` (float32).
+
+        Parameters
+        ----------
+        values : array_like
+            Real numbers in the scale's unit (see :meth:`normalize`).
+        """
         idx = np.rint(self.normalize(values) * (_LUT_SIZE - 1)).astype(np.intp)
         return _lut(self.cmap)[idx]
 
