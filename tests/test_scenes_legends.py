@@ -19,7 +19,8 @@ def test_legend_png_and_html_state_the_unit():
     img = matplotlib.image.imread(io.BytesIO(png))
     assert img.shape[:2] == (100, 400)
     row = img[int(0.3 * 100)]  # through the bar (the bar spans 15%-45% from the top)
-    assert row[30, 2] > row[30, 0] and row[370, 0] > row[370, 2]  # blue on the left, red on the right
+    # blue on the left, red on the right
+    assert row[30, 2] > row[30, 0] and row[370, 0] > row[370, 2]
     html = legend_html(scale)
     assert "bending stress [MPa]" in html and ">-5<" in html and ">5<" in html
 

@@ -22,8 +22,10 @@ def test_arrow_spans_start_to_start_plus_vector(vector):
     head_len = min(0.06, length)
     d = np.asarray(vector) / length
     np.testing.assert_allclose(apply(shaft, [0, -0.5, 0]), start, atol=1e-9)
-    np.testing.assert_allclose(apply(shaft, [0, 0.5, 0]), start + d * (length - head_len), atol=1e-9)
-    np.testing.assert_allclose(apply(head, [0, 0.03, 0]), start + np.asarray(vector), atol=1e-12)  # apex
+    np.testing.assert_allclose(apply(shaft, [0, 0.5, 0]), start + d * (length - head_len),
+                               atol=1e-9)
+    np.testing.assert_allclose(apply(head, [0, 0.03, 0]), start + np.asarray(vector),
+                               atol=1e-12)  # apex
     assert "visible" not in rec.log.get("", {})  # visible from the start: nothing sent
     arrow.set(start, [0, 0, 0])
     assert rec.log["/"]["visible"] is False

@@ -60,7 +60,8 @@ def test_server_dies_with_a_hard_killed_kernel():
     kernel.wait()
     deadline = time.time() + 10
     while time.time() < deadline:
-        if not psutil.pid_exists(server_pid) or psutil.Process(server_pid).status() == psutil.STATUS_ZOMBIE:
+        if (not psutil.pid_exists(server_pid)
+                or psutil.Process(server_pid).status() == psutil.STATUS_ZOMBIE):
             break
         time.sleep(0.05)
     else:

@@ -23,7 +23,8 @@ def set_camera(vis: meshcat.Visualizer, position) -> None:
     vis["/Cameras/default/rotated/<object>"].set_property("position", [x, z, -y])
 
 
-#: Vertical field of view of meshcat's default camera in degrees (three.js PerspectiveCamera(75, ...)).
+#: Vertical field of view of meshcat's default camera in degrees (three.js's
+#: ``PerspectiveCamera(75, ...)``).
 CAMERA_FOV = 75.0
 
 

@@ -3,7 +3,8 @@
 Scale: one scene unit is :attr:`ContactScene.unit` metres, chosen when the scene is built (by
 default 20 nm), and lengths are true to scale in all three directions. The sample is a square
 of half side ``extent`` (a :func:`~afmsmiler.scenes.meshes.height_map_mesh`, as module (f)'s
-images) whose surface follows the contact solution: inside the contact it fits the tip, outside it is Sneddon's displacement profile (:func:`~afmsmiler.contact.surface_displacement`),
+images) whose surface follows the contact solution: inside the contact it fits the tip, outside
+it is Sneddon's displacement profile (:func:`~afmsmiler.contact.surface_displacement`),
 colored by the depth of the depression (legend under the sample). The scene shows the sample cut
 away along the plane y = 0: only the far halves (y >= 0) of the sample and of the tip are drawn,
 closed by their cross-sections on the cut, so the camera (on the -y side, slightly above) sees
@@ -132,7 +133,8 @@ def cut_mesh(vertices, n_grid, slab):
     bottom[:, 2] = -slab
     n = top.shape[0]
     i = np.arange(n - 1)
-    faces = np.concatenate([np.stack([i, i + 1, n + i + 1], -1), np.stack([i, n + i + 1, n + i], -1)])
+    faces = np.concatenate([np.stack([i, i + 1, n + i + 1], -1),
+                            np.stack([i, n + i + 1, n + i], -1)])
     return np.vstack([top, bottom]).astype(np.float32), faces.astype(np.uint32)
 
 

@@ -182,7 +182,8 @@ def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str
     n_stops = check_integer("n_stops", n_stops, 2, 64)
     stops = scale.rgb(np.linspace(scale.vmin, scale.vmax, n_stops))
     css = ", ".join(f"rgb({int(255 * r)},{int(255 * gg)},{int(255 * b)})" for r, gg, b in stops)
-    ticks = [scale.vmin, 0.0, scale.vmax] if scale.vmin < 0 < scale.vmax else [scale.vmin, scale.vmax]
+    ticks = ([scale.vmin, 0.0, scale.vmax] if scale.vmin < 0 < scale.vmax
+             else [scale.vmin, scale.vmax])
     labels, exponent = tick_labels(ticks)
     spans = "".join(f"<span>{t}</span>" for t in labels)
     title = legend_title(scale, exponent)

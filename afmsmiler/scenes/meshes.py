@@ -156,7 +156,8 @@ def beam_mesh(x, deflection, width: float, thickness: float, values, *, slope=No
         raise ValueError(f"values must have shape ({nl}, n_thickness >= 2), got {values.shape}")
     nt = values.shape[1]
     _check_vertices("values", _beam_vertices(nl, nt), f"shape {values.shape}")
-    s = np.gradient(z, x, edge_order=2) if slope is None else check_array("slope", slope, ndim=1, size=nl)
+    s = (np.gradient(z, x, edge_order=2) if slope is None
+         else check_array("slope", slope, ndim=1, size=nl))
 
     inv = 1.0 / np.sqrt(1.0 + s * s)
     nx_, nz_ = -s * inv, inv                                  # unit normal in the x-z plane

@@ -59,7 +59,8 @@ class Arrow:
         self._visible = True
 
     def transforms(self, start, vector) -> tuple[np.ndarray, np.ndarray] | None:
-        """The shaft and head transforms for an arrow from ``start`` along ``vector`` (None if 0)."""
+        """The shaft and head transforms for an arrow from ``start`` along ``vector``
+        (None if ``vector`` is 0)."""
         start = check_point("start", start)
         vector = check_point("vector", vector)
         length = float(np.linalg.norm(vector))
@@ -70,13 +71,15 @@ class Arrow:
         rot[:3, :3] = rotation_between([0.0, 1.0, 0.0], d)  # meshcat cylinders lie along y
         head = min(self.head_length, length)
         shaft = length - head
-        shaft_t = translation(start + d * shaft / 2) @ rot @ np.diag([1.0, max(shaft, 1e-9), 1.0, 1.0])
+        stretch = np.diag([1.0, max(shaft, 1e-9), 1.0, 1.0])
+        shaft_t = translation(start + d * shaft / 2) @ rot @ stretch
         s = head / self.head_length
         head_t = translation(start + d * (shaft + head / 2)) @ rot @ np.diag([s, s, s, 1.0])
         return shaft_t, head_t
 
     def set(self, start, vector) -> None:
-        """Point the arrow from ``start`` along ``vector`` (scene units); hide it if ``vector`` is 0."""
+        """Point the arrow from ``start`` along ``vector`` (scene units); hide it if
+        ``vector`` is 0."""
         t = self.transforms(start, vector)
         self.start, self.vector = np.asarray(start, float), np.asarray(vector, float)
         _show(self, t is not None)
@@ -110,7 +113,8 @@ class Segment:
 
     @staticmethod
     def transform(start, end) -> np.ndarray | None:
-        """The transform of a unit cylinder spanning ``start`` -> ``end`` (None if they coincide)."""
+        """The transform of a unit cylinder spanning ``start`` -> ``end`` (None if they
+        coincide)."""
         start = check_point("start", start)
         end = check_point("end", end)
         v = end - start
@@ -216,7 +220,8 @@ def cone(vis: meshcat.Visualizer, height: float, radius: float, color: int = 0x8
     # meshcat's cone points along +y with its centre at the origin: turn it apex-down and lift it
     fix = translation([0.0, 0.0, height / 2]) @ np.array(
         [[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
-    vis["shape"].set_object(g.Cylinder(height, radiusTop=0.0, radiusBottom=radius), _material(color))
+    vis["shape"].set_object(g.Cylinder(height, radiusTop=0.0, radiusBottom=radius),
+                            _material(color))
     vis["shape"].set_transform(fix)
 
 
