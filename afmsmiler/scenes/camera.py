@@ -10,7 +10,8 @@ import numpy as np
 from ..validation import check_array, check_positive, check_range
 from .transforms import check_point
 
-__all__ = ["set_camera", "CAMERA_FOV", "camera_ndc", "show_helpers"]
+__all__ = ["set_camera", "CAMERA_FOV", "camera_ndc", "show_helpers", "READABLE_TEXT",
+           "readable_width"]
 
 
 def set_camera(vis: meshcat.Visualizer, position) -> None:
@@ -90,3 +91,63 @@ def show_helpers(vis: meshcat.Visualizer, grid: bool = True, axes: bool = True) 
     """
     vis["/Grid"].set_property("visible", bool(grid))
     vis["/Axes"].set_property("visible", bool(axes))
+
+
+#: The smallest height, as a fraction of the view's height, at which a line of text in a scene
+#: reads: 10 px in the 400-pixel-high frame meshcat opens in a notebook cell, 20 px in an
+#: 800-pixel-high browser tab.
+READABLE_TEXT = 0.025
+
+
+def readable_width(text_fraction: float, position, camera_position, target=(0.0, 0.0, 0.0), *,
+                   fov_deg: float = CAMERA_FOV, text_height: float = READABLE_TEXT) -> float:
+    """Width of an upright text plate centred at ``position`` whose text spans ``text_height``
+    of the view's height.
+
+    A legend sized by a fixed number of scene units reads in one scene and is a smudge in the
+    next; sized by this, its text has the same height on screen whatever the scene's scale. The
+    plates (:class:`~afmsmiler.scenes.legends.ColorLegend`, ``TextPlate``) stand upright, so the
+    text's height is measured along z, projected by :func:`camera_ndc`: a plate seen from above
+    or below is foreshortened, and one far off the axis of view stretched, as on screen.
+
+    Parameters
+    ----------
+    text_fraction : float
+        Height of the plate's text as a fraction of the plate's width (> 0), e.g.
+        :attr:`~afmsmiler.scenes.legends.ColorLegend.TEXT_FRACTION`.
+    position : array_like, shape (3,)
+        Where the plate's centre will be, world frame, scene units.
+    camera_position, target : array_like, shape (3,)
+        The camera and the point it looks at (see :func:`camera_ndc`).
+    fov_deg : float
+        Vertical field of view in degrees, in (0, 180).
+    text_height : float
+        The fraction of the view's height the text must span, in (0, 1]; by default
+        :data:`READABLE_TEXT`.
+
+    Returns
+    -------
+    float
+        The plate's width in scene units.
+
+    Raises
+    ------
+    ValueError
+        If a parameter is out of range or ``position`` is not in front of the camera.
+    """
+    text_fraction = check_positive("text_fraction", text_fraction)
+    text_height = check_range("text_height", text_height, 0.0, 1.0, low_inclusive=False)
+    pos, cam = check_point("position", position), check_point("camera_position", camera_position)
+    depth = float(np.linalg.norm(pos - cam))
+    # a short upright segment through the centre: the screen's height per scene unit there
+    half = 1e-3 * max(depth, 1e-300)
+    ndc = camera_ndc([pos - [0.0, 0.0, half], pos + [0.0, 0.0, half]], cam, target,
+                     fov_deg=fov_deg, aspect=1.0)
+    if not np.isfinite(ndc).all():
+        raise ValueError(f"position must be in front of the camera, got {pos.tolist()} for a "
+                         f"camera at {cam.tolist()} looking at {np.asarray(target).tolist()}")
+    per_unit = abs(float(ndc[1, 1] - ndc[0, 1])) / 2 / (2 * half)  # fraction of view height
+    if per_unit <= 0:
+        raise ValueError(f"position must not be seen edge-on from the camera, got "
+                         f"{pos.tolist()} for a camera at {cam.tolist()}")
+    return text_height / (per_unit * text_fraction)

@@ -23,7 +23,7 @@ from meshcat.animation import Animation
 
 from ..cantilever import Cantilever
 from ..validation import check_integer, check_positive, check_range
-from .camera import camera_ndc, set_camera, show_helpers
+from .camera import camera_ndc, readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend, TextPlate
 from .meshes import beam_mesh
@@ -179,14 +179,21 @@ class CantileverScene:
         smallest distance (at least ``min_distance``) at which, in a view ``aspect`` times wider
         than high, the clamp with ``chip_in_view`` units of chip, the free end deflected up or
         down by the largest drawn deflection, and the legend all fit inside 92 % of the view (see
-        :func:`~afmsmiler.scenes.camera.camera_ndc`). The legend is as wide as half that
-        distance, so it reads the same for every lever.
+        :func:`~afmsmiler.scenes.camera.camera_ndc`). The legend's width grows with that
+        distance (:func:`~afmsmiler.scenes.camera.readable_width`), so it reads the same for
+        every lever.
         """
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         cap = DEFAULTS["max_drawn_tip"] * length
         distance = DEFAULTS["min_distance"]
         for _ in range(60):  # grow by 5 % steps: the legend grows with the distance
-            legend = 0.5 * distance
+            # its text READABLE_TEXT of the view's height where its centre stands
+            camera = distance * direction
+            legend = readable_width(ColorLegend.TEXT_FRACTION, [0.0, 0.5, 0.0], camera)
+            for _ in range(2):  # where its centre stands: it moves with its width
+                corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
+                legend = readable_width(ColorLegend.TEXT_FRACTION,
+                                        corner + [legend / 2, 0.0, legend / 8], camera)
             corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
             points = np.array([[-length / 2 - DEFAULTS["chip_in_view"], 0.0, 0.0],
                                [length / 2, 0.0, cap], [length / 2, 0.0, -cap - 0.15],
@@ -195,7 +202,7 @@ class CantileverScene:
             if np.abs(ndc).max() <= 0.92:
                 break
             distance *= 1.05
-        return distance * direction, 0.5 * distance
+        return distance * direction, legend
 
     @staticmethod
     def _legend_corner(length: float, legend_width: float) -> np.ndarray:

@@ -27,7 +27,7 @@ import numpy as np
 from ..contact import IndentationCurve, Pyramidal, Tip, surface_displacement
 from ..plots.contact import tip_outline
 from ..validation import check_integer, check_positive
-from .camera import set_camera, show_helpers
+from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend
 from .meshes import height_map_mesh
@@ -42,7 +42,6 @@ DEFAULTS = dict(unit=20e-9, extent=150e-9, n_grid=40, n_angular=48, tip_height=1
                 slab=0.35,                       # drawn sample thickness, as a fraction of extent
                 camera_direction=(0.25, -1.0, 0.42),  # from the contact, slightly from above
                 camera_distance=1.6,             # in units of the extent
-                legend_width=0.9,                # in units of the extent
                 lowered=0.2)                     # the drawing's shift down, in units of the extent
 
 _CUT_COLOR = 0xb89f7a
@@ -238,10 +237,13 @@ class ContactScene:
         self._tip = None
         self.depth_scale = ColorScale(0.0, 1.0, cmap="viridis_r", label="depression", unit="nm")
         e = self.extent / self.unit
-        width = DEFAULTS["legend_width"] * e
-        self.legend = ColorLegend(self.vis["legend"], self.depth_scale, width=width)
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         self.camera_position = DEFAULTS["camera_distance"] * e * direction / np.linalg.norm(direction)
+        # its text READABLE_TEXT of the view's height where it stands, under the sample
+        below = (DEFAULTS["lowered"] + DEFAULTS["slab"] + 0.25) * e
+        width = readable_width(ColorLegend.TEXT_FRACTION, [0.0, 0.0, -below],
+                               self.camera_position)
+        self.legend = ColorLegend(self.vis["legend"], self.depth_scale, width=width)
         # lowered a little, so that the camera (looking at the origin) sees the tip's shank too
         self.vis.set_transform(translation([0.0, 0.0, -DEFAULTS["lowered"] * e]))
         if camera:

@@ -31,6 +31,22 @@ def _font(size: int):
         return ImageFont.load_default()
 
 
+#: Font size of a colorbar's title and tick labels, as a fraction of its image's height.
+_COLORBAR_FONT = 0.25
+#: Font size of a text plate, as a fraction of its image's height.
+_TEXT_FONT = 0.6
+
+
+def _fitting_font(draw, text, size, width):
+    """The font of ``size`` px, or the largest smaller one (>= 8 px) in which ``text`` fits in
+    ``width`` px (a long title shrinks instead of spilling over the plate's edges)."""
+    for s in range(size, 7, -1):  # bounded: at most size - 7 measures
+        left, _, right, _ = draw.textbbox((0, 0), text, font=_font(s))
+        if right - left <= width:
+            return _font(s)
+    return _font(8)
+
+
 def _centred_text(draw, x, y, text, font, width=None):
     """Draw ``text`` centred on x, shifted inwards if it would cross the image's edges."""
     left, _, right, _ = draw.textbbox((0, 0), text, font=font)
@@ -88,7 +104,8 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     """A horizontal colorbar of ``scale`` with tick labels and ``"label [unit]"``, as PNG bytes.
 
     Drawn with Pillow (matplotlib's imaging library) in about a millisecond, so that a legend
-    can follow a slider: the title on top, the bar in the middle, the tick labels below.
+    can follow a slider: the title on top, the bar in the middle, the tick labels below, their
+    font a quarter of the image's height (a title too long for the width gets a smaller one).
 
     Parameters
     ----------
@@ -105,20 +122,23 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     width = check_integer("width_px", int(size_px[0]), 100, 4096)
     height = check_integer("height_px", int(size_px[1]), 40, 4096)
     margin = width // 16
-    top, bottom = int(0.28 * height), int(0.60 * height)
+    top, bottom = int(0.32 * height), int(0.56 * height)
     img = np.full((height, width, 3), 255, dtype=np.uint8)
     bar = scale.rgb(np.linspace(scale.vmin, scale.vmax, width - 2 * margin))
     img[top:bottom, margin:width - margin] = np.rint(255 * bar).astype(np.uint8)[None, :, :]
     im = Image.fromarray(img)
     draw = ImageDraw.Draw(im)
-    font = _font(max(8, int(0.2 * height)))
+    size = max(8, int(_COLORBAR_FONT * height))
+    font = _font(size)
     labels, exponent = tick_labels(np.linspace(scale.vmin, scale.vmax, n_ticks))
-    _centred_text(draw, width / 2, int(0.03 * height), legend_title(scale, exponent), font,
-                  width)
+    title = legend_title(scale, exponent)
+    _centred_text(draw, width / 2, int(0.02 * height), title, _fitting_font(draw, title, size,
+                                                                            width - 4), width)
     for i, text in enumerate(labels):
         x = margin + i * (width - 2 * margin - 1) / (n_ticks - 1)
-        draw.line([(x, bottom), (x, bottom + int(0.05 * height))], fill=(0, 0, 0), width=1)
-        _centred_text(draw, x, bottom + int(0.08 * height), text, font, width)
+        draw.line([(x, bottom), (x, bottom + int(0.04 * height))], fill=(0, 0, 0),
+                  width=max(1, height // 60))
+        _centred_text(draw, x, bottom + int(0.05 * height), text, font, width)
     buf = io.BytesIO()
     im.save(buf, format="PNG", compress_level=1)
     return buf.getvalue()
@@ -140,7 +160,7 @@ def text_png(text: str, size_px=(480, 80)) -> bytes:
     height = check_integer("height_px", int(size_px[1]), 20, 4096)
     im = Image.new("RGB", (width, height), (255, 255, 255))
     draw = ImageDraw.Draw(im)
-    font = _font(int(0.6 * height))
+    font = _font(int(_TEXT_FONT * height))
     _centred_text(draw, width / 2, int(0.15 * height), str(text), font)
     buf = io.BytesIO()
     im.save(buf, format="PNG", compress_level=1)
@@ -163,6 +183,10 @@ class TextPlate:
         Plate width in scene units (its height is ``width / 6``).
     """
 
+    #: Height of a line of its text as a fraction of the plate's width (the font is 60 % of the
+    #: 80-pixel-high image, the plate 1/6 as high as wide); see :attr:`text_height`.
+    TEXT_FRACTION = _TEXT_FONT / 6
+
     def __init__(self, vis: meshcat.Visualizer, text: str, width: float = 1.0):
         self.vis = vis
         self.width = check_positive("width", width)
@@ -172,6 +196,12 @@ class TextPlate:
                                        color=0xffffff)
         vis["plate"].set_object(g.Box([self.width, self.width / 100, h]), material)
         vis["plate"].set_transform(translation([self.width / 2, 0.0, h / 2]))
+
+    @property
+    def text_height(self) -> float:
+        """Height of a line of the plate's text in scene units (its font size): size the plate
+        with :func:`~afmsmiler.scenes.camera.readable_width` so that this reads on screen."""
+        return self.TEXT_FRACTION * self.width
 
 
 def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str:
@@ -209,11 +239,21 @@ class ColorLegend:
         Plate width in scene units (its height follows the 4:1 image).
     """
 
+    #: Height of its tick labels as a fraction of the plate's width (the font is a quarter of
+    #: the image's height, the plate 1/4 as high as wide); see :attr:`text_height`.
+    TEXT_FRACTION = _COLORBAR_FONT / 4
+
     def __init__(self, vis: meshcat.Visualizer, scale: ColorScale, width: float = 1.6):
         self.vis = vis
         self.width = check_positive("width", width)
         self.scale = None
         self.set(scale)
+
+    @property
+    def text_height(self) -> float:
+        """Height of a line of the plate's text in scene units (its font size): size the plate
+        with :func:`~afmsmiler.scenes.camera.readable_width` so that this reads on screen."""
+        return self.TEXT_FRACTION * self.width
 
     def set(self, scale: ColorScale) -> bool:
         """Show ``scale``; return True if the texture had to be redrawn."""

@@ -40,7 +40,7 @@ import numpy as np
 from ..transducers.acoustic import mode_slope_factor
 from ..transducers.base import Transducer
 from ..validation import check_range
-from .camera import set_camera, show_helpers
+from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale
 from .legends import TextPlate
 from .meshes import beam_mesh
@@ -204,7 +204,8 @@ class TransducerScene:
         v["meter"]["frame"].set_transform(translation([mx, 0.0, 0.0]))
         v["meter"]["bar"].set_object(g.Box([0.12, 0.12, 1.0]), _mat(_GREEN))
         # what the bar is: the output as a fraction of its largest value over the input range
-        label = TextPlate(v["meter"]["label"], "output / max", width=1.1)
+        width = readable_width(TextPlate.TEXT_FRACTION, [mx, 0.0, 1.1], DEFAULTS["camera"])
+        label = TextPlate(v["meter"]["label"], "output / max", width=width)
         v["meter"]["label"].set_transform(translation([mx - label.width / 2, 0.0, 1.05]))
 
     # -- the update -------------------------------------------------------------------------------
