@@ -145,7 +145,9 @@ def test_height_map_colours_its_values_and_rejects_bad_input_by_name():
            ((np.zeros((2, 2)), 1e-9), {"unit": -1.0}, "unit must be > 0"),
            ((np.zeros((2, 2)), 1e-9), {"values": np.zeros((3, 2))}, "values must have the shape"),
            ((np.zeros((2, 2)), 1e-9), {"exaggeration": 0.0}, "exaggeration must be > 0"),
-           ((np.zeros((2049, 2048)), 1e-9), {}, "heights must make at most")]
+           ((np.zeros((2049, 2048)), 1e-9), {}, "heights must make at most"),
+           # 1 m in units of 1e-40 m: 1e40 scene units, inf in float32 (before: silently)
+           ((np.ones((2, 2)), 1e-9), {"unit": 1e-40}, "must stay below 3.4e\\+38 scene units")]
     for args, kwargs, match in bad:
         with pytest.raises(ValueError, match=match):
             height_map_mesh(*args, **{"unit": 1e-9, **kwargs})

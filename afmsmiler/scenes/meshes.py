@@ -11,6 +11,7 @@ Both return a :class:`ScalarMesh`, whose :meth:`ScalarMesh.geometry` is the mesh
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from functools import lru_cache
 
@@ -219,8 +220,9 @@ def height_map_mesh(heights, pixel_size: float, *, unit: float, pixel_size_y: fl
     Raises
     ------
     ValueError
-        If a parameter is out of range, ``values`` does not have the shape of ``heights``, or
-        the grid has more than :data:`MAX_VERTICES` points.
+        If a parameter is out of range, ``values`` does not have the shape of ``heights``, the
+        grid has more than :data:`MAX_VERTICES` points, or a vertex would be too far away for
+        float32 (the drawing's precision).
 
     Examples
     --------
@@ -243,6 +245,12 @@ def height_map_mesh(heights, pixel_size: float, *, unit: float, pixel_size_y: fl
     vals = h if values is None else check_array("values", values, ndim=2)
     if vals.shape != h.shape:
         raise ValueError(f"values must have the shape of heights {h.shape}, got {vals.shape}")
+    reach = max(abs(x0), abs(x0 + dx * (cols - 1)), abs(y0), abs(y0 + dy * (rows - 1)),
+                float(np.abs(h).max()) * exaggeration) / unit
+    if not reach <= float(np.finfo(np.float32).max) or not math.isfinite(exaggeration / unit):
+        raise ValueError(f"heights, pixel sizes and origin divided by unit must stay below "
+                         f"{float(np.finfo(np.float32).max):.3g} scene units, got {reach:.3g} "
+                         f"(unit={unit!r} m)")
     vertices = np.empty((rows, cols, 3), dtype=np.float32)
     vertices[..., 0] = ((x0 + dx * np.arange(cols)) / unit)[None, :]
     vertices[..., 1] = ((y0 + dy * np.arange(rows)) / unit)[:, None]
