@@ -87,6 +87,16 @@ def test_particles_paint_the_same_heights_as_the_whole_image_sum():
     assert img.heights.min() < -0.5e-9  # the substrate's valleys are still there
 
 
+def test_rough_surface_at_any_pixel_size():
+    # before: (pi T k)^2 in m^-2 overflowed for tiny pixels: NaN, named "heights must be finite"
+    for pixel in (1e-300, 1e-9, 1e3):
+        s = samples.rough_surface((32, 32), pixel, rms=1e-9, correlation_length=4 * pixel)
+        assert s.heights.std() == pytest.approx(1e-9, rel=1e-12)
+    np.testing.assert_allclose(samples.rough_surface((32, 32), 1e-300, 1e-9, 4e-300).heights,
+                               samples.rough_surface((32, 32), 1e-9, 1e-9, 4e-9).heights,
+                               rtol=1e-9, atol=1e-24)  # the same surface, in pixels
+
+
 def test_particles_too_much_work_is_named():
     # before: 10000 particles each painted over the whole 256 x 256 image (minutes at 2048^2)
     with pytest.raises(ValueError, match="count and radius must cover at most"):
@@ -240,10 +250,13 @@ def test_the_header_is_checked_from_the_first_bytes(tmp_path):
     (lambda: samples.step(1), "pixels must be an integer in"),
     (lambda: samples.step(10, -1e-9), "pixel_size must be > 0 m"),
     (lambda: samples.step(10, 1e-9, np.nan), "height must be a finite"),
-    (lambda: samples.grating(10, 1e-9, period=0.0), "period must be > 0 m"),
+    (lambda: samples.grating(10, 1e-9, period=0.0), r"period must be in \[2e-09, inf\] m"),
     (lambda: samples.grating(10, 1e-9, duty=1.0), r"duty must be in \(0, 1\)"),
     (lambda: samples.rough_surface((4, 4, 4)), "shape must be"),
     (lambda: samples.rough_surface(8, rms=-1e-9), "rms must be in"),
+    (lambda: samples.rough_surface((64, 64), rms=1e308, correlation_length=1e-8),
+     r"rms must be in \[0, 0.001\] m"),  # before: "heights must be finite"
+    (lambda: samples.grating(10, 1e-9, period=1.5e-9), r"period must be in \[2e-09, inf\] m"),
     (lambda: samples.profile("moon"), "name must be one of"),
     (lambda: samples.Sample(np.zeros((2, 2, 2)), 1e-9), "heights must be a 1-D or 2-D"),
     (lambda: samples.Sample([0.0, np.inf], 1e-9), "heights must be finite"),

@@ -51,3 +51,9 @@ def test_color_scale_rejects_nan_by_name_and_clips_infinities():
         scale.rgb(["0.5"])
     rgb = scale.rgb([-np.inf, np.inf])  # beyond the scale: its end colours, like any far value
     np.testing.assert_allclose(rgb, scale.rgb([-1e300, 1e300]))
+
+
+def test_color_scale_of_the_widest_limits_does_not_overflow():
+    # before: vmax - vmin = inf, so every value mapped to the vmin end (0 was drawn as -1.8e308)
+    scale = ColorScale(-1.7e308, 1.7e308, "viridis")
+    np.testing.assert_allclose(scale.normalize([-1.7e308, 0.0, 1.7e308]), [0.0, 0.5, 1.0])

@@ -13,8 +13,11 @@ import numpy as np
 from ..validation import check_finite, check_integer, check_positive, check_range
 from .sample import MAX_LINE_PIXELS, Sample, check_shape
 
-__all__ = ["step", "grating", "rough_surface", "particles", "MAX_PARTICLE_WORK"]
+__all__ = ["step", "grating", "rough_surface", "particles", "MAX_HEIGHT",
+           "MAX_PARTICLE_WORK"]
 
+#: The largest height of a synthetic sample in m (an AFM's z range is at most about 100 um).
+MAX_HEIGHT = 1e-3
 #: The most pixels that :func:`particles` may paint in all (count x pixels under one particle).
 MAX_PARTICLE_WORK = 1 << 26
 
@@ -61,7 +64,7 @@ def grating(pixels: int = 512, pixel_size: float = 4e-9, period: float = 500e-9,
     pixel_size : float
         Pixel size in m.
     period : float
-        Grating period in m (> 0).
+        Grating period in m, at least two pixels (a shorter one would alias).
     height : float
         Height of the lines in m.
     duty : float
@@ -73,7 +76,8 @@ def grating(pixels: int = 512, pixel_size: float = 4e-9, period: float = 500e-9,
     """
     n = _n(pixels)
     pixel_size = check_positive("pixel_size", pixel_size, "m")
-    period = check_positive("period", period, "m")
+    # a period under two pixels would alias into a different, longer one (Nyquist)
+    period = check_range("period", period, 2 * pixel_size, np.inf, "m")
     height = check_finite("height", height, "m")
     duty = check_range("duty", duty, 0, 1, low_inclusive=False, high_inclusive=False)
     phase = np.mod(np.arange(n) * pixel_size / period, 1.0)
@@ -90,10 +94,11 @@ def _gaussian_field(shape, pixel_size, correlation_length, rng):
     dropped, so the heights are relative to the mean plane.
     """
     noise = rng.standard_normal(shape)
-    freqs = [np.fft.fftfreq(n, d=pixel_size) for n in shape[:-1]]
-    freqs.append(np.fft.rfftfreq(shape[-1], d=pixel_size))
+    # in cycles per pixel and pixels, so that no tiny or huge pixel size overflows
+    freqs = [np.fft.fftfreq(n) for n in shape[:-1]]
+    freqs.append(np.fft.rfftfreq(shape[-1]))
     k2 = sum(np.meshgrid(*[f ** 2 for f in freqs], indexing="ij", sparse=True))
-    spectrum = np.exp(-0.5 * (np.pi * correlation_length) ** 2 * k2)
+    spectrum = np.exp(-0.5 * (np.pi * correlation_length / pixel_size) ** 2 * k2)
     spectrum.flat[0] = 0.0
     axes = tuple(range(len(shape)))
     field = np.fft.irfftn(np.fft.rfftn(noise, axes=axes) * spectrum, s=shape, axes=axes)
@@ -117,7 +122,7 @@ def rough_surface(shape=(256, 256), pixel_size: float = 4e-9, rms: float = 2e-9,
     pixel_size : float
         Pixel size in m.
     rms : float
-        RMS roughness in m (>= 0).
+        RMS roughness in m, 0 to :data:`MAX_HEIGHT`.
     correlation_length : float
         Lateral correlation length T in m (> 0), at most a quarter of the longest side
         (``max(shape) * pixel_size / 4``).
@@ -146,7 +151,7 @@ def rough_surface(shape=(256, 256), pixel_size: float = 4e-9, rms: float = 2e-9,
     """
     shape = check_shape(shape)
     pixel_size = check_positive("pixel_size", pixel_size, "m")
-    rms = check_range("rms", rms, 0, np.inf, "m")
+    rms = check_range("rms", rms, 0, MAX_HEIGHT, "m")
     longest = max(shape) * pixel_size
     correlation_length = check_range("correlation_length", correlation_length, 0, longest / 4,
                                      "m", low_inclusive=False)

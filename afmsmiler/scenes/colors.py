@@ -102,7 +102,9 @@ class ColorScale:
         n_nan = int(np.count_nonzero(np.isnan(v)))
         if n_nan:
             raise ValueError(f"values must not be NaN, got {n_nan} NaN of {v.size} values")
-        return np.clip((v - self.vmin) / (self.vmax - self.vmin), 0.0, 1.0)
+        # halved, so that limits near +-1.8e308 do not overflow their difference
+        span = 0.5 * self.vmax - 0.5 * self.vmin
+        return np.clip((0.5 * v - 0.5 * self.vmin) / span, 0.0, 1.0)
 
     def rgb(self, values) -> np.ndarray:
         """RGB colors in [0, 1] of ``values``: an array of shape ``values.shape + (3,)`` (float32).
