@@ -9,7 +9,8 @@ from meshcat.path import Path
 
 from afmsmiler.cantilever import Cantilever
 from afmsmiler.scenes import close_viewer, get_viewer, viewer
-from afmsmiler.scenes import primitives as P
+from afmsmiler.scenes.camera import camera_ndc
+from afmsmiler.scenes.legends import text_png
 from afmsmiler.scenes.cantilever import DEFAULTS, SCENE_UNIT, CantileverScene, mode_animation
 from recording import Recorder
 
@@ -208,7 +209,7 @@ def test_camera_frames_the_lever_tip_chip_and_legend(length, force):
     rec = Recorder()
     soft = Cantilever(length, 5e-6, 0.2e-6, 10e9, RHO)  # deflection capped: the extreme pose
     sc = CantileverScene(soft, force, vis=rec, path="lever", exaggeration=1e4)
-    ndc = P.camera_ndc(_must_see(sc, soft), sc.camera_position, aspect=1.5)
+    ndc = camera_ndc(_must_see(sc, soft), sc.camera_position, aspect=1.5)
     assert np.all(np.abs(ndc) <= 1.0), ndc
     # the camera looks at the origin, which lies on the lever between clamp and free end
     mid = centre_line(sc) + [-length / SCENE_UNIT / 2, 0.0, 0.0]
@@ -234,7 +235,7 @@ def test_capped_tip_stays_in_view_when_the_lever_grows_a_little(start, force):
         z_drawn = centre_line(sc)[-1, 2]
         assert abs(z_drawn) == pytest.approx(DEFAULTS["max_drawn_tip"] * length / SCENE_UNIT,
                                              rel=1e-6)  # capped indeed
-        ndc = P.camera_ndc(_must_see(sc, soft), sc.camera_position, aspect=1.5)
+        ndc = camera_ndc(_must_see(sc, soft), sc.camera_position, aspect=1.5)
         assert np.all(np.abs(ndc) <= 1.0), (length, ndc)
         x_, y_, z_ = rec.log["/Cameras/default/rotated/<object>"]["position"]
         np.testing.assert_allclose((x_, -z_, y_), sc.camera_position)  # the viewer was told
@@ -257,7 +258,7 @@ def test_mode_beams_are_labelled_with_number_and_frequency():
     for n, beta in ((1, 1.8751040687), (2, 4.6940911330)):  # b_n L, Blevins Table 8-1
         f = beta ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * J / (RHO * W * H))
         png = rec.log[f"/modes/label{n}/plate"]["object"][1].map.image.data
-        assert png == P.text_png(f"mode {n}: {f / 1e3:.3g} kHz")
+        assert png == text_png(f"mode {n}: {f / 1e3:.3g} kHz")
         # the label sits beside the clamp end of its own beam (same y), left of x = 0
         t = rec.log[f"/modes/label{n}"]["transform"]
         beam_y = rec.log[f"/modes/mode{n}/s000"]["object"] and n * (0.3 + 1.5 * W / SCENE_UNIT)

@@ -5,7 +5,7 @@ import pytest
 
 from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical, indent, surface_displacement
 from afmsmiler.plots.contact import tip_outline
-from afmsmiler.scenes import primitives as P
+from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.contact import DEFAULTS, ContactScene, cut_mesh, surface_mesh, tip_mesh
 from recording import Recorder
 
@@ -29,9 +29,9 @@ def test_half_meshes_are_the_far_half_closed_by_their_cross_sections(tip):
     assert len(cut_faces) == np.sum(on_cut) - 2  # the outline is filled: apex + 2 per ring gap
 
     cur = indent([40e-9], 0.2, tip, 2e6, 0.3)
-    v, f, depth = surface_mesh(tip, cur, 150e-9, UNIT, 20, 24, half=True)
+    v, f, depth = surface_mesh(tip, cur, 150e-9, UNIT, 20, half=True)
     assert f.max() == v.shape[0] - 1 and v[:, 1].min() >= -1e-6
-    cv, cf = cut_mesh(v, 20, 24, 3.0)
+    cv, cf = cut_mesh(v, 20, 3.0)
     assert np.all(cv[:, 1] == 0.0) and cf.max() == cv.shape[0] - 1
     top = cv[: cv.shape[0] // 2]
     assert np.all(np.diff(top[:, 0]) > 0)  # from -extent to +extent along x
@@ -60,7 +60,7 @@ def test_camera_frames_the_contact_the_sample_and_the_legend(tip, z_np):
     w = sc.legend.width
     legend = sc.legend_corner + shift + np.array([[0, 0, 0], [w, 0, 0], [0, 0, w / 4],
                                                   [w, 0, w / 4]])
-    ndc = P.camera_ndc(np.vstack([apex, rim, legend]), sc.camera_position, aspect=1.5)
+    ndc = camera_ndc(np.vstack([apex, rim, legend]), sc.camera_position, aspect=1.5)
     assert np.all(np.abs(ndc) <= 1.0), ndc
     # the apex is at the contact solution, and a buried tip is drawn taller than the indentation
     assert sc.last_apex == pytest.approx(float(cur.separation[0]))

@@ -23,15 +23,40 @@ def test_step_and_grating_geometry():
 def test_rough_surface_statistics():
     s = samples.rough_surface((256, 256), 2e-9, rms=3e-9, correlation_length=10e-9, seed=4)
     assert s.heights.std() == pytest.approx(3e-9, rel=1e-12)
-    # Gaussian filter exp(-(pi l f)^2) on white noise: autocorrelation exp(-r^2 / (2 l^2)) / ...
-    # so neighbours (r = l/5) are strongly correlated, points 5 l apart are not
-    h = s.heights - s.heights.mean()
+    assert abs(s.heights.mean()) < 1e-12 * 3e-9  # relative to the mean plane
+    # neighbours (r = T/5) are strongly correlated, points 5 T apart are not
+    h = s.heights
     near = np.mean(h[:, :-1] * h[:, 1:]) / h.var()
     far = np.mean(h[:, :-25] * h[:, 25:]) / h.var()
     assert near > 0.9 and abs(far) < 0.1
     np.testing.assert_array_equal(s.heights, samples.rough_surface(
         (256, 256), 2e-9, rms=3e-9, correlation_length=10e-9, seed=4).heights)
-    assert samples.rough_surface(64, 1e-9).heights.shape == (64,)
+    assert samples.rough_surface(64, 1e-9, correlation_length=5e-9).heights.shape == (64,)
+
+
+def test_rough_surface_autocorrelation_is_the_gaussian_of_its_correlation_length():
+    # Gwyddion's (and ISO 25178's) Gaussian surface: G(r) = rms^2 exp(-r^2 / T^2), so the
+    # normalised autocorrelation at r = T is 1/e = 0.368 and at r = T/2 exp(-1/4) = 0.779 (the
+    # old filter gave exp(-r^2 / (2 T^2)): 0.607 at r = T). Averaged over 8 seeds of 256 x 256
+    # pixels, T = 8 pixels: the estimate's spread is about 0.01.
+    T = 8
+    acf = np.zeros(T + 1)
+    for seed in range(8):
+        h = samples.rough_surface((256, 256), 1e-9, 1e-9, T * 1e-9, seed=seed).heights
+        lags = np.array([np.mean(h * np.roll(h, -lag, axis=1)) for lag in range(T + 1)])
+        acf += lags / h.var() / 8
+    assert acf[T] == pytest.approx(np.exp(-1.0), abs=0.04)
+    assert acf[T // 2] == pytest.approx(np.exp(-0.25), abs=0.04)
+
+
+def test_rough_surface_longer_than_the_image_is_named_not_flat():
+    # before: a perfectly flat surface at -4.6e6 m, noise at the level of rounding scaled up
+    with pytest.raises(ValueError, match=r"correlation_length must be in \(0, 6.4e-08\] m, got "
+                                         r"1e-06"):
+        samples.rough_surface((64, 64), 4e-9, 2e-9, 1e-6)
+    s = samples.rough_surface((64, 64), 4e-9, 2e-9, 64e-9)  # the longest allowed: T = P / 4
+    assert s.heights.std() == pytest.approx(2e-9, rel=1e-12) and np.ptp(s.heights) < 20e-9
+    assert abs(s.heights.mean()) < 1e-20
 
 
 def test_particles_and_profiles():
@@ -44,6 +69,51 @@ def test_particles_and_profiles():
         p = samples.profile(name, 256, 4e-9, 50e-9)
         assert p.heights.shape == (256,) and p.pixel_size == 4e-9
         assert np.ptp(p.heights) == pytest.approx(50e-9, rel=0.1)
+
+
+def test_particles_paint_the_same_heights_as_the_whole_image_sum():
+    # the reference: every particle's cap evaluated over the whole image; outside the caps the
+    # substrate keeps its own heights (the old loop put max(substrate, 0) there: its valleys
+    # were cut flat at the mean plane wherever there was at least one particle)
+    rows, cols, px, r = 40, 60, 4e-9, 18e-9
+    img = samples.particles((rows, cols), px, count=12, radius=r, rms=0.5e-9, seed=5)
+    h = samples.particles((rows, cols), px, count=0, rms=0.5e-9, seed=5).heights.copy()
+    rng = np.random.default_rng(6)
+    y, x = np.mgrid[0:rows, 0:cols] * px
+    for cy, cx in zip(rng.uniform(0, rows * px, 12), rng.uniform(0, cols * px, 12)):
+        rho2 = (x - cx) ** 2 + (y - cy) ** 2
+        h = np.maximum(h, np.where(rho2 < r * r, r + np.sqrt(np.maximum(r * r - rho2, 0)), -1))
+    np.testing.assert_array_equal(img.heights, h)
+    assert img.heights.min() < -0.5e-9  # the substrate's valleys are still there
+
+
+def test_rough_surface_at_any_pixel_size():
+    # before: (pi T k)^2 in m^-2 overflowed for tiny pixels: NaN, named "heights must be finite"
+    for pixel in (1e-300, 1e-9, 1e3):
+        s = samples.rough_surface((32, 32), pixel, rms=1e-9, correlation_length=4 * pixel)
+        assert s.heights.std() == pytest.approx(1e-9, rel=1e-12)
+    np.testing.assert_allclose(samples.rough_surface((32, 32), 1e-300, 1e-9, 4e-300).heights,
+                               samples.rough_surface((32, 32), 1e-9, 1e-9, 4e-9).heights,
+                               rtol=1e-9, atol=1e-24)  # the same surface, in pixels
+
+
+def test_particles_too_much_work_is_named():
+    # before: 10000 particles each painted over the whole 256 x 256 image (minutes at 2048^2)
+    with pytest.raises(ValueError, match="count and radius must cover at most"):
+        samples.particles((256, 256), count=10000, radius=1e-6)
+    with pytest.raises(ValueError, match="shape must have at most 4194304 pixels"):
+        samples.particles((4096, 4096))
+    with pytest.raises(ValueError, match="shape must have at most"):
+        samples.rough_surface((3000, 3000), correlation_length=4e-9)
+
+
+@pytest.mark.slow
+def test_the_largest_particle_image_is_made_within_seconds():
+    import time
+    start = time.perf_counter()
+    img = samples.particles((2048, 2048), count=10000)  # before: past two minutes
+    assert time.perf_counter() - start < 10.0
+    assert img.heights.max() == pytest.approx(50e-9, rel=0.05)
 
 
 # --- the real image --------------------------------------------------------------------------
@@ -129,14 +199,64 @@ def test_from_file_rejects_what_it_cannot_read(tmp_path):
     assert samples.from_file(um).pixel_size == pytest.approx(500e-9 / 512, rel=1e-12)
 
 
+def _wsxm_file(tmp_path, old, new, name="image.top"):
+    """The shipped image with one header field changed (to a text of the same length)."""
+    raw = samples.REAL_IMAGE.read_bytes()
+    old, new = old.encode(), new.encode()
+    assert len(old) == len(new) and old in raw[:HEADER_SIZE]  # the header keeps its size
+    raw = raw.replace(old, new, 1)
+    path = tmp_path / name
+    path.write_bytes(raw)
+    return path
+
+
+def test_a_negative_amplitude_is_rejected_by_name_not_mirrored(tmp_path):
+    # before: heights = counts * (Z Amplitude / range): a negative Z Amplitude silently inverted
+    # the image (molecules became trenches)
+    for field in ("Z", "X", "Y"):
+        old = {"Z": "Z Amplitude: 59.7449", "X": "X Amplitude: 500 nm",
+               "Y": "Y Amplitude: 500 nm"}[field]
+        new = {"Z": "Z Amplitude: -59.745", "X": "X Amplitude: -50 nm",
+               "Y": "Y Amplitude: -50 nm"}[field]
+        path = _wsxm_file(tmp_path, old, new)
+        with pytest.raises(ValueError, match=f"{field} Amplitude must be a positive length"):
+            samples.from_file(path)
+
+
+def test_the_header_is_checked_from_the_first_bytes(tmp_path):
+    import time
+    # a 2 GiB file (sparse: no disk used) that is not an image: before, read_bytes() took all of
+    # it into memory before looking at its first line
+    big = tmp_path / "big.top"
+    with open(big, "wb") as f:
+        f.write(b"not an image")
+        f.truncate(2 << 30)
+    start = time.perf_counter()
+    with pytest.raises(ValueError, match="is not a WSxM image"):
+        samples.from_file(big)
+    assert time.perf_counter() - start < 1.0
+    # a header that announces more data than the file holds, or too many pixels
+    short = _wsxm_file(tmp_path, "Number of rows: 512", "Number of rows: 999")
+    with pytest.raises(ValueError, match=r"512 short values need \d+ bytes, the file has"):
+        samples.from_file(short)
+    huge = _wsxm_file(tmp_path, "Number of rows: 512", "Number of rows: 9e9")
+    with pytest.raises(ValueError, match=r"Number of rows must be an integer in \[2, 2097152\]"):
+        samples.from_file(huge)
+    with pytest.raises(ValueError, match="path must be a str or os.PathLike"):
+        samples.from_file(3)
+
+
 @pytest.mark.parametrize("call, match", [
     (lambda: samples.step(1), "pixels must be an integer in"),
     (lambda: samples.step(10, -1e-9), "pixel_size must be > 0 m"),
     (lambda: samples.step(10, 1e-9, np.nan), "height must be a finite"),
-    (lambda: samples.grating(10, 1e-9, period=0.0), "period must be > 0 m"),
+    (lambda: samples.grating(10, 1e-9, period=0.0), r"period must be in \[2e-09, inf\] m"),
     (lambda: samples.grating(10, 1e-9, duty=1.0), r"duty must be in \(0, 1\)"),
     (lambda: samples.rough_surface((4, 4, 4)), "shape must be"),
     (lambda: samples.rough_surface(8, rms=-1e-9), "rms must be in"),
+    (lambda: samples.rough_surface((64, 64), rms=1e308, correlation_length=1e-8),
+     r"rms must be in \[0, 0.001\] m"),  # before: "heights must be finite"
+    (lambda: samples.grating(10, 1e-9, period=1.5e-9), r"period must be in \[2e-09, inf\] m"),
     (lambda: samples.profile("moon"), "name must be one of"),
     (lambda: samples.Sample(np.zeros((2, 2, 2)), 1e-9), "heights must be a 1-D or 2-D"),
     (lambda: samples.Sample([0.0, np.inf], 1e-9), "heights must be finite"),

@@ -5,10 +5,19 @@ import subprocess
 import sys
 import time
 
+import meshcat.geometry as g
+import numpy as np
 import psutil
 import pytest
 
-from afmsmiler.scenes import viewer
+from afmsmiler.scenes import close_viewer, get_viewer, viewer
+from afmsmiler.scenes.camera import set_camera
+from afmsmiler.scenes.colors import ColorScale
+from afmsmiler.scenes.legends import ColorLegend
+from afmsmiler.scenes.meshes import beam_mesh
+from afmsmiler.scenes.shapes import Arrow
+
+pytestmark = pytest.mark.viewer  # every test here starts a real meshcat server
 
 CHILD = """
 import os, sys
@@ -51,7 +60,8 @@ def test_server_dies_with_a_hard_killed_kernel():
     kernel.wait()
     deadline = time.time() + 10
     while time.time() < deadline:
-        if not psutil.pid_exists(server_pid) or psutil.Process(server_pid).status() == psutil.STATUS_ZOMBIE:
+        if (not psutil.pid_exists(server_pid)
+                or psutil.Process(server_pid).status() == psutil.STATUS_ZOMBIE):
             break
         time.sleep(0.05)
     else:
@@ -87,3 +97,24 @@ def test_save_static_html(tmp_path):
         assert open(path, encoding="utf-8").read().lower().count("<html") >= 1
     finally:
         viewer.close_viewer()
+
+
+def test_scene_pieces_in_a_real_viewer_update_in_place():
+    try:
+        vis = get_viewer()["test_pieces"]
+        x = np.linspace(0.0, 2.0, 21)
+        mesh = beam_mesh(x, 0.1 * x ** 2, 0.3, 0.04, np.linspace(x, -x, 5).T)
+        scale = ColorScale.symmetric(2.0, unit="MPa")
+        vis["beam"].set_object(mesh.geometry(scale), g.MeshLambertMaterial(vertexColors=True))
+        arrow = Arrow(vis["force"])
+        arrow.set([0, 0, 0], [0, 0, 0.3])
+        legend = ColorLegend(vis["legend"], scale)
+        assert legend.set(scale) is False  # same scale: no new texture
+        assert legend.set(ColorScale.symmetric(5.0, unit="MPa")) is True
+        before = len(get_viewer().static_html())
+        set_camera(get_viewer(), [1.0, -3.0, 1.0])
+        arrow.set([0, 0, 0], [0, 0, 0.5])  # moved in place: one transform per part, no new object
+        assert len(get_viewer().static_html()) - before < 2000
+    finally:
+        close_viewer()
+

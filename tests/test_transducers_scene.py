@@ -153,7 +153,7 @@ def test_camera_sees_every_part_of_every_principle(key):
     """The centre of every drawn object (lever, chip, meter and its label, lasers, detectors,
     magnets, ...) projects inside a 1200 x 800 view of the default camera, at both ends of the
     input range; meshcat's axes, which would pierce the lever, are hidden."""
-    from afmsmiler.scenes import primitives as P
+    from afmsmiler.scenes.camera import camera_ndc
     model = PRINCIPLES[key]()
     q = model.input_quantity(None)
     rec = Recorder()
@@ -173,6 +173,6 @@ def test_camera_sees_every_part_of_every_principle(key):
         centres = [world(k) for k, v in rec.log.items()
                    if k.startswith("/t/") and "object" in v and v.get("visible", True)]
         centres.append(shift[:3, 3] + [scene.pose.x[-1], 0.0, scene.pose.z[-1]])  # the free end
-        ndc = P.camera_ndc(np.array(centres), DEFAULTS["camera"], aspect=1.5)
+        ndc = camera_ndc(np.array(centres), DEFAULTS["camera"], aspect=1.5)
         assert np.all(np.abs(ndc) <= 1.0), ndc
     assert rec.log["/Axes"]["visible"] is False

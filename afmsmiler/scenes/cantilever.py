@@ -23,7 +23,12 @@ from meshcat.animation import Animation
 
 from ..cantilever import Cantilever
 from ..validation import check_integer, check_positive, check_range
-from . import primitives as P
+from .camera import camera_ndc, readable_width, set_camera, show_helpers
+from .colors import ColorScale, nice_ceil
+from .legends import ColorLegend, TextPlate
+from .meshes import beam_mesh
+from .shapes import Arrow, cone
+from .transforms import translation
 from .viewer import get_viewer, static_html as _static_html
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "CantileverScene", "StressField", "stress_field",
@@ -155,7 +160,7 @@ class CantileverScene:
         self._material = g.MeshLambertMaterial(**_BEAM_MATERIAL_ARGS)
         self._tip_drawn_for = None
         self._base_drawn_for = None
-        self.arrow = P.Arrow(self.vis["force"], color=0x303030, radius=0.015, head_length=0.08)
+        self.arrow = Arrow(self.vis["force"], color=0x303030, radius=0.015, head_length=0.08)
         self.legend = None
         self.scale = None
         self.mesh = None
@@ -174,23 +179,30 @@ class CantileverScene:
         smallest distance (at least ``min_distance``) at which, in a view ``aspect`` times wider
         than high, the clamp with ``chip_in_view`` units of chip, the free end deflected up or
         down by the largest drawn deflection, and the legend all fit inside 92 % of the view (see
-        :func:`~afmsmiler.scenes.primitives.camera_ndc`). The legend is as wide as half that
-        distance, so it reads the same for every lever.
+        :func:`~afmsmiler.scenes.camera.camera_ndc`). The legend's width grows with that
+        distance (:func:`~afmsmiler.scenes.camera.readable_width`), so it reads the same for
+        every lever.
         """
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         cap = DEFAULTS["max_drawn_tip"] * length
         distance = DEFAULTS["min_distance"]
         for _ in range(60):  # grow by 5 % steps: the legend grows with the distance
-            legend = 0.5 * distance
+            # its text READABLE_TEXT of the view's height where its centre stands
+            camera = distance * direction
+            legend = readable_width(ColorLegend.TEXT_FRACTION, [0.0, 0.5, 0.0], camera)
+            for _ in range(2):  # where its centre stands: it moves with its width
+                corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
+                legend = readable_width(ColorLegend.TEXT_FRACTION,
+                                        corner + [legend / 2, 0.0, legend / 8], camera)
             corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
             points = np.array([[-length / 2 - DEFAULTS["chip_in_view"], 0.0, 0.0],
                                [length / 2, 0.0, cap], [length / 2, 0.0, -cap - 0.15],
                                corner, corner + [legend, 0.0, legend / 4]])
-            ndc = P.camera_ndc(points, distance * direction, aspect=aspect)
+            ndc = camera_ndc(points, distance * direction, aspect=aspect)
             if np.abs(ndc).max() <= 0.92:
                 break
             distance *= 1.05
-        return distance * direction, 0.5 * distance
+        return distance * direction, legend
 
     @staticmethod
     def _legend_corner(length: float, legend_width: float) -> np.ndarray:
@@ -206,28 +218,28 @@ class CantileverScene:
         if self._framed_for is not None and (1 / DEFAULTS["reframe_ratio"]
                                              < length / self._framed_for
                                              < DEFAULTS["reframe_ratio"]):
-            if not self.camera or len(free_end) == 0 or np.abs(P.camera_ndc(
+            if not self.camera or len(free_end) == 0 or np.abs(camera_ndc(
                     np.asarray(free_end, dtype=float), self.camera_position,
                     aspect=DEFAULTS["aspect"])).max() <= DEFAULTS["frame_margin"]:
                 return
         position, legend_width = self.framing(length)
         if self.camera:
-            P.set_camera(self.root, position)
-            P.show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
+            set_camera(self.root, position)
+            show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
         self.camera_position = position
         self.legend_width = legend_width
         self._framed_for = length
         if self.legend is not None:
-            self.legend = P.ColorLegend(self.vis["legend"], self.scale, width=legend_width)
+            self.legend = ColorLegend(self.vis["legend"], self.scale, width=legend_width)
 
     # -- in-place update ----------------------------------------------------------------------
-    def color_scale(self, field: StressField) -> P.ColorScale:
+    def color_scale(self, field: StressField) -> ColorScale:
         """The (symmetric, MPa) color scale for ``field``: fixed or the next round number."""
         if self.stress_limit is not None:
             limit = self.stress_limit / 1e6
         else:
-            limit = P.nice_ceil(float(np.abs(field.stress).max()) / 1e6, DEFAULTS["stress_floor"])
-        return P.ColorScale.symmetric(limit, "RdBu_r", _STRESS_LABEL, _STRESS_UNIT)
+            limit = nice_ceil(float(np.abs(field.stress).max()) / 1e6, DEFAULTS["stress_floor"])
+        return ColorScale.symmetric(limit, "RdBu_r", _STRESS_LABEL, _STRESS_UNIT)
 
     def update(self, lever: Cantilever, force: float, *, exaggeration: float | None = None) -> None:
         """Redraw for a new lever and/or force, in place (same viewer, same paths).
@@ -253,8 +265,8 @@ class CantileverScene:
         cap = DEFAULTS["max_drawn_tip"] * lever.length / tip if tip > 0 else math.inf
         self.drawn_exaggeration = min(self.exaggeration, cap)
         u, ex = SCENE_UNIT, self.drawn_exaggeration
-        mesh = P.beam_mesh(field.x / u, ex * field.deflection / u, lever.width / u,
-                           lever.thickness / u, field.stress / 1e6, slope=ex * field.slope)
+        mesh = beam_mesh(field.x / u, ex * field.deflection / u, lever.width / u,
+                         lever.thickness / u, field.stress / 1e6, slope=ex * field.slope)
         self.vis["beam"].set_object(mesh.geometry(scale), self._material)
         self.field, self.mesh = field, mesh
         self._draw_base(lever)
@@ -264,13 +276,13 @@ class CantileverScene:
         end = np.array([length, 0.0, ex * float(field.deflection[-1]) / u])
         self._frame(length, [end + x_l, self.apex(self.tip_pose(lever, field)) + x_l])
         if self.legend is None:
-            self.legend = P.ColorLegend(self.vis["legend"], scale, width=self.legend_width)
+            self.legend = ColorLegend(self.vis["legend"], scale, width=self.legend_width)
         else:
             self.legend.set(scale)
         self.scale = scale
         # above the clamp, behind the lever, facing the camera
-        self.vis["legend"].set_transform(P.translation(self.legend_corner(length)))
-        self.vis.set_transform(P.translation([-length / 2, 0.0, 0.0]))  # centre the lever
+        self.vis["legend"].set_transform(translation(self.legend_corner(length)))
+        self.vis.set_transform(translation([-length / 2, 0.0, 0.0]))  # centre the lever
 
     def legend_corner(self, length: float) -> np.ndarray:
         """Lower-left corner of the legend plate in the lever's frame (scene units): above the
@@ -291,7 +303,7 @@ class CantileverScene:
         u = SCENE_UNIT
         self.vis["chip"].set_object(g.Box([1.0, 1.2, 0.3]), g.MeshLambertMaterial(color=0x9a9a9a))
         # top flush with the lever's top face
-        self.vis["chip"].set_transform(P.translation([-0.5, 0.0, lever.thickness / u / 2 - 0.15]))
+        self.vis["chip"].set_transform(translation([-0.5, 0.0, lever.thickness / u / 2 - 0.15]))
         self._base_drawn_for = key
 
     def tip_pose(self, lever: Cantilever, field: StressField) -> np.ndarray:
@@ -311,11 +323,11 @@ class CantileverScene:
     def _place_tip(self, lever: Cantilever, field: StressField) -> None:
         u = SCENE_UNIT
         if self._tip_drawn_for is None:
-            P.cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u, 0x707070)
+            cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u, 0x707070)
             self._tip_drawn_for = True
         pose = self.tip_pose(lever, field)
         # the cone (apex at its origin, base at +height) hangs below the bottom face
-        self.vis["tip"].set_transform(pose @ P.translation([0.0, 0.0, -DEFAULTS["tip_height"] / u]))
+        self.vis["tip"].set_transform(pose @ translation([0.0, 0.0, -DEFAULTS["tip_height"] / u]))
         apex = self.apex(pose)
         length = self.force / self.force_per_unit
         if length >= 0:   # pushed up from below: the arrow ends at the apex
@@ -379,7 +391,7 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
     meshcat animates transforms, not vertices, so each mode beam is made of ``segments`` rigid
     boxes whose poses follow A phi_n(x) sin(2 pi k / frames) for k = 0..frames. Mode n is placed
     behind the lever at y = n (0.3 + 1.5 w) scene units (1 unit = 100 um), labelled with its
-    number and frequency (a :class:`~afmsmiler.scenes.primitives.TextPlate` beside its clamp).
+    number and frequency (a :class:`~afmsmiler.scenes.legends.TextPlate` beside its clamp).
 
     Parameters
     ----------
@@ -418,16 +430,16 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
         phi = lever.mode_shape(mids, n)
         dphi = np.interp(mids, fine, np.gradient(lever.mode_shape(fine, n), fine / lever.length))
         # which beam is which: "mode n: f_n" beside its clamp end (meshcat has no text)
-        label = P.TextPlate(vis[f"label{n}"], f"mode {n}: "
-                            f"{lever.resonance_frequency(n) / 1e3:.3g} kHz", width=max(0.25 * L, 0.3))
-        vis[f"label{n}"].set_transform(P.translation([-1.05 * label.width, pitch * n, 0.02]))
+        label = TextPlate(vis[f"label{n}"], f"mode {n}: "
+                          f"{lever.resonance_frequency(n) / 1e3:.3g} kHz", width=max(0.25 * L, 0.3))
+        vis[f"label{n}"].set_transform(translation([-1.05 * label.width, pitch * n, 0.02]))
         for i in range(segments):
             box = vis[f"mode{n}"][f"s{i:03d}"]
             # slightly longer than the pitch so the joints stay closed while bending
             box.set_object(g.Box([1.08 * L / segments, w, h]),
                            g.MeshLambertMaterial(color=_MODE_COLORS[(n - 1) % len(_MODE_COLORS)]))
             # at rest (straight) until the animation plays, not piled up at the clamp
-            box.set_transform(P.translation([mids[i] / u, pitch * n, 0.0]))
+            box.set_transform(translation([mids[i] / u, pitch * n, 0.0]))
         for k in range(frames + 1):
             a = amplitude * L * math.sin(2 * math.pi * k / frames)
             with anim.at_frame(vis, k) as frame:

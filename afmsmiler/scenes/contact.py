@@ -1,14 +1,15 @@
 """The 3D view of module (d): a rigid tip pressing into a deforming sample surface.
 
 Scale: one scene unit is :attr:`ContactScene.unit` metres, chosen when the scene is built (by
-default 20 nm), and lengths are true to scale in all three directions. The sample is a disc of
-radius ``extent`` whose surface follows the contact solution: inside the contact it fits the tip,
-outside it is Sneddon's displacement profile (:func:`~afmsmiler.contact.surface_displacement`),
+default 20 nm), and lengths are true to scale in all three directions. The sample is a square
+of half side ``extent`` (a :func:`~afmsmiler.scenes.meshes.height_map_mesh`, as module (f)'s
+images) whose surface follows the contact solution: inside the contact it fits the tip, outside
+it is Sneddon's displacement profile (:func:`~afmsmiler.contact.surface_displacement`),
 colored by the depth of the depression (legend under the sample). The scene shows the sample cut
 away along the plane y = 0: only the far halves (y >= 0) of the sample and of the tip are drawn,
 closed by their cross-sections on the cut, so the camera (on the -y side, slightly above) sees
 the tip's outline pressing into the depression's profile, as in a textbook figure, instead of
-the near rim of a full disc and the flank of the tip. The tip is a mesh of its own shape (a body of revolution,
+the near edge of the full sample and the flank of the tip. The tip is a mesh of its own shape (a body of revolution,
 or four faces for the pyramid) whose apex sits at the separation Z_c - Z_np (-Z_s in contact).
 
 Built once by :class:`ContactScene`; :meth:`ContactScene.update` replaces the surface mesh with
@@ -26,18 +27,21 @@ import numpy as np
 from ..contact import IndentationCurve, Pyramidal, Tip, surface_displacement
 from ..plots.contact import tip_outline
 from ..validation import check_integer, check_positive
-from . import primitives as P
+from .camera import readable_width, set_camera, show_helpers
+from .colors import ColorScale, nice_ceil
+from .legends import ColorLegend
+from .meshes import height_map_mesh
+from .transforms import translation
 from .viewer import get_viewer
 
 __all__ = ["DEFAULTS", "ContactScene", "surface_mesh", "tip_mesh", "cut_mesh"]
 
 #: Defaults of the scene, in one place.
-DEFAULTS = dict(unit=20e-9, extent=150e-9, n_radial=40, n_angular=48, tip_height=120e-9,
+DEFAULTS = dict(unit=20e-9, extent=150e-9, n_grid=40, n_angular=48, tip_height=120e-9,
                 depth_floor=1e-9,
                 slab=0.35,                       # drawn sample thickness, as a fraction of extent
                 camera_direction=(0.25, -1.0, 0.42),  # from the contact, slightly from above
                 camera_distance=1.6,             # in units of the extent
-                legend_width=0.9,                # in units of the extent
                 lowered=0.2)                     # the drawing's shift down, in units of the extent
 
 _CUT_COLOR = 0xb89f7a
@@ -61,9 +65,12 @@ def _polar_faces(n_r: int, n_t: int, closed: bool = True) -> np.ndarray:
     return np.asarray(faces, dtype=np.uint32)
 
 
-def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
-                 n_angular=DEFAULTS["n_angular"], *, half=False):
+def surface_mesh(tip, current, extent, unit, n_grid=DEFAULTS["n_grid"], *, half=False):
     """Vertices (scene units), faces and depths (m) of the deformed sample surface.
+
+    A :func:`~afmsmiler.scenes.meshes.height_map_mesh` of the square grid of ``2 n_grid + 1``
+    columns from x = -extent to +extent and as many rows over y (or ``n_grid + 1`` rows from
+    y = 0 to +extent if ``half``); the centre of the contact is at the origin.
 
     Parameters
     ----------
@@ -72,14 +79,13 @@ def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
     current : IndentationCurve
         The current state (its first point is drawn).
     extent : float
-        Radius of the drawn disc in m.
+        Half the side of the drawn square in m.
     unit : float
         Metres per scene unit.
-    n_radial, n_angular : int
-        Rings and points per ring of the polar grid.
+    n_grid : int
+        Grid steps from the axis to the edge, 1 to 1000.
     half : bool
-        Draw only the half y >= 0 (``n_angular`` points from 0 to pi on each ring), for a
-        cut-away view.
+        Draw only the half y >= 0 (its first row lies on y = 0), for a cut-away view.
 
     Returns
     -------
@@ -87,54 +93,47 @@ def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
         depth is the downward displacement u of each vertex in m.
     """
     extent = check_positive("extent", extent, "m")
-    unit = check_positive("unit", unit, "m")
-    n_r = check_integer("n_radial", n_radial, 2, 2000)
-    n_t = check_integer("n_angular", n_angular, 3, 2000)
-    # rings crowd towards the axis, where the contact is
-    rho = extent * np.linspace(0.0, 1.0, n_r + 1)[1:] ** 1.5
+    n = check_integer("n_grid", n_grid, 1, 1000)
+    x = np.linspace(-extent, extent, 2 * n + 1)
+    y = x[n:] if half else x
+    rho = np.hypot(x[None, :], y[:, None])
     z_s = float(current.z_s[0])
+    depth = np.zeros_like(rho)
     if current.in_contact[0] and z_s > 0:
-        u = surface_displacement(tip, z_s, np.r_[0.0, rho])
-    else:
-        u = np.zeros(n_r + 1)
-    theta = (np.linspace(0.0, math.pi, n_t) if half
-             else np.linspace(0.0, 2 * math.pi, n_t, endpoint=False))
-    x = np.r_[0.0, (rho[:, None] * np.cos(theta)[None, :]).ravel()]
-    y = np.r_[0.0, (rho[:, None] * np.sin(theta)[None, :]).ravel()]
-    depth = np.r_[u[0], np.repeat(u[1:], n_t)]
-    vertices = np.stack([x, y, -depth], -1) / unit
-    return vertices.astype(np.float32), _polar_faces(n_r, n_t, closed=not half), depth
+        rho_1, where = np.unique(rho, return_inverse=True)  # the grid's symmetry: fewer radii
+        depth = surface_displacement(tip, z_s, rho_1)[where].reshape(rho.shape)
+    mesh = height_map_mesh(-depth, extent / n, unit=unit, origin=(-extent, y[0]), values=depth)
+    return mesh.vertices, mesh.faces, mesh.values
 
 
-def cut_mesh(vertices, n_radial, n_angular, slab):
+def cut_mesh(vertices, n_grid, slab):
     """The cross-section wall on the plane y = 0 of a half :func:`surface_mesh`.
 
     Parameters
     ----------
     vertices : ndarray
         Vertices of ``surface_mesh(..., half=True)`` in scene units.
-    n_radial, n_angular : int
-        The grid they were made with.
+    n_grid : int
+        The grid they were made with (their first ``2 n_grid + 1`` vertices lie on y = 0).
     slab : float
         Depth of the wall's flat bottom below z = 0, in scene units (> 0).
 
     Returns
     -------
     (vertices, faces) : tuple of ndarray
-        A strip from the surface profile along the x axis (the rings' points at theta = pi, the
-        centre, the points at theta = 0) down to z = -slab.
+        A strip from the surface profile along the x axis (from -extent to +extent) down to
+        z = -slab.
     """
     slab = check_positive("slab", slab)
     v = np.asarray(vertices, dtype=np.float32)
-    rings = 1 + np.arange(n_radial) * n_angular
-    order = np.r_[rings[::-1] + n_angular - 1, 0, rings]  # x from -extent to +extent
-    top = v[order].copy()
+    top = v[:2 * check_integer("n_grid", n_grid, 1, 1000) + 1].copy()
     top[:, 1] = 0.0
     bottom = top.copy()
     bottom[:, 2] = -slab
     n = top.shape[0]
     i = np.arange(n - 1)
-    faces = np.concatenate([np.stack([i, i + 1, n + i + 1], -1), np.stack([i, n + i + 1, n + i], -1)])
+    faces = np.concatenate([np.stack([i, i + 1, n + i + 1], -1),
+                            np.stack([i, n + i + 1, n + i], -1)])
     return np.vstack([top, bottom]).astype(np.float32), faces.astype(np.uint32)
 
 
@@ -213,7 +212,7 @@ class ContactScene:
     unit : float
         Metres per scene unit (default 20 nm).
     extent : float
-        Radius of the drawn sample disc in m.
+        Half the side of the drawn square of sample in m.
     camera : bool
         Place the camera to look at the contact slightly from above.
 
@@ -236,17 +235,20 @@ class ContactScene:
         self.vis = self.root[path]
         self.vis.delete()
         self._tip = None
-        self.depth_scale = P.ColorScale(0.0, 1.0, cmap="viridis_r", label="depression", unit="nm")
+        self.depth_scale = ColorScale(0.0, 1.0, cmap="viridis_r", label="depression", unit="nm")
         e = self.extent / self.unit
-        width = DEFAULTS["legend_width"] * e
-        self.legend = P.ColorLegend(self.vis["legend"], self.depth_scale, width=width)
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         self.camera_position = DEFAULTS["camera_distance"] * e * direction / np.linalg.norm(direction)
+        # its text READABLE_TEXT of the view's height where it stands, under the sample
+        below = (DEFAULTS["lowered"] + DEFAULTS["slab"] + 0.25) * e
+        width = readable_width(ColorLegend.TEXT_FRACTION, [0.0, 0.0, -below],
+                               self.camera_position)
+        self.legend = ColorLegend(self.vis["legend"], self.depth_scale, width=width)
         # lowered a little, so that the camera (looking at the origin) sees the tip's shank too
-        self.vis.set_transform(P.translation([0.0, 0.0, -DEFAULTS["lowered"] * e]))
+        self.vis.set_transform(translation([0.0, 0.0, -DEFAULTS["lowered"] * e]))
         if camera:
-            P.set_camera(self.root, self.camera_position)
-            P.show_helpers(self.root, grid=False, axes=False)  # the grid would cut the sample
+            set_camera(self.root, self.camera_position)
+            show_helpers(self.root, grid=False, axes=False)  # the grid would cut the sample
         self.update(tip, current)
 
     def update(self, tip, current) -> None:
@@ -270,27 +272,27 @@ class ContactScene:
             self.vis["tip"].set_object(g.TriangularMeshGeometry(v, f),
                                        g.MeshLambertMaterial(color=_TIP_COLOR, side=2))
             self._tip, self.tip_height = tip, height
-        n_r, n_t = DEFAULTS["n_radial"], DEFAULTS["n_angular"]
+        n_grid = DEFAULTS["n_grid"]
         e = self.extent / self.unit
-        v, f, depth = surface_mesh(tip, current, self.extent, self.unit, n_r, n_t, half=True)
-        limit = P.nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
+        v, f, depth = surface_mesh(tip, current, self.extent, self.unit, n_grid, half=True)
+        limit = nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
         if limit != self.depth_scale.vmax:
-            self.depth_scale = P.ColorScale(0.0, limit, cmap="viridis_r", label="depression",
-                                            unit="nm")
+            self.depth_scale = ColorScale(0.0, limit, cmap="viridis_r", label="depression",
+                                          unit="nm")
             self.legend.set(self.depth_scale)
         colors = self.depth_scale.rgb(depth * 1e9)
         self.vis["surface"].set_object(g.TriangularMeshGeometry(v, f, colors),
                                        g.MeshLambertMaterial(vertexColors=True, side=2))
         # the sample is drawn thicker than the deepest point of the depression
         self.slab = max(DEFAULTS["slab"] * e, 1.2 * float(depth.max()) / self.unit + 0.05 * e)
-        cv, cf = cut_mesh(v, n_r, n_t, self.slab)
+        cv, cf = cut_mesh(v, n_grid, self.slab)
         self.vis["cut"].set_object(g.TriangularMeshGeometry(cv, cf),
                                    g.MeshLambertMaterial(color=_CUT_COLOR, side=2))
         # the legend: a caption under the sample's cut face, facing the camera
         width = self.legend.width
         self.legend_corner = np.array([-width / 2, 0.0, -self.slab - 0.05 * e - width / 4])
-        self.vis["legend"].set_transform(P.translation(self.legend_corner))
+        self.vis["legend"].set_transform(translation(self.legend_corner))
         apex = float(current.separation[0])
-        self.vis["tip"].set_transform(P.translation([0.0, 0.0, apex / self.unit]))
+        self.vis["tip"].set_transform(translation([0.0, 0.0, apex / self.unit]))
         self.last_vertices = v
         self.last_apex = apex

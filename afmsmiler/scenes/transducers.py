@@ -40,7 +40,12 @@ import numpy as np
 from ..transducers.acoustic import mode_slope_factor
 from ..transducers.base import Transducer
 from ..validation import check_range
-from . import primitives as P
+from .camera import readable_width, set_camera, show_helpers
+from .colors import ColorScale
+from .legends import TextPlate
+from .meshes import beam_mesh
+from .shapes import Arrow, Segment, Tube, cone, sphere
+from .transforms import rotation_between, translation
 from .viewer import get_viewer
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "TransducerScene", "LeverPose", "lever_pose"]
@@ -61,7 +66,7 @@ DEFAULTS = dict(
 
 _WHITE, _GREY, _RED, _BLUE, _GREEN = 0xffffff, 0x9a9a9a, 0xe03030, 0x3060e0, 0x20a040
 _COPPER, _ORANGE, _GOLD = 0xb87333, 0xf08020, 0xd4af37
-_STRAIN = P.ColorScale.symmetric(1.0, "RdBu_r", "bending strain (relative)", "")
+_STRAIN = ColorScale.symmetric(1.0, "RdBu_r", "bending strain (relative)", "")
 
 
 def _mat(color, opacity=1.0):
@@ -186,21 +191,22 @@ class TransducerScene:
         self._draw_common()
         self.update(model, value, mode)
         if camera:
-            P.set_camera(self.root, list(DEFAULTS["camera"]))
-            P.show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
+            set_camera(self.root, list(DEFAULTS["camera"]))
+            show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
 
     # -- drawn once -----------------------------------------------------------------------------
     def _draw_common(self):
         v = self.vis
         v["chip"].set_object(g.Box([1.0, 1.2, 0.3]), _mat(_GREY))
-        P.cone(v["tip"], 0.15, 0.05, color=0x707070)
+        cone(v["tip"], 0.15, 0.05, color=0x707070)
         mx = DEFAULTS["meter_x"]
         v["meter"]["frame"].set_object(g.Box([0.16, 0.16, 2.0]), _mat(0xcccccc, 0.25))
-        v["meter"]["frame"].set_transform(P.translation([mx, 0.0, 0.0]))
+        v["meter"]["frame"].set_transform(translation([mx, 0.0, 0.0]))
         v["meter"]["bar"].set_object(g.Box([0.12, 0.12, 1.0]), _mat(_GREEN))
         # what the bar is: the output as a fraction of its largest value over the input range
-        label = P.TextPlate(v["meter"]["label"], "output / max", width=1.1)
-        v["meter"]["label"].set_transform(P.translation([mx - label.width / 2, 0.0, 1.05]))
+        width = readable_width(TextPlate.TEXT_FRACTION, [mx, 0.0, 1.1], DEFAULTS["camera"])
+        label = TextPlate(v["meter"]["label"], "output / max", width=width)
+        v["meter"]["label"].set_transform(translation([mx - label.width / 2, 0.0, 1.05]))
 
     # -- the update -------------------------------------------------------------------------------
     def update(self, model: Transducer, value: float, mode: str | None = None) -> None:
@@ -225,14 +231,14 @@ class TransducerScene:
         h, w = model.thickness / u, model.width / u
         nt = 3
         values = np.outer(pose.strain, np.linspace(-1.0, 1.0, nt))
-        mesh = P.beam_mesh(pose.x, pose.z, w, h, values, slope=pose.slope)
+        mesh = beam_mesh(pose.x, pose.z, w, h, values, slope=pose.slope)
         self.vis["beam"].set_object(mesh.geometry(_STRAIN), self._beam_material)
-        self.vis["chip"].set_transform(P.translation([-0.5, 0.0, h / 2 - 0.15]))
-        self.vis["tip"].set_transform(P.translation([pose.x[-1], 0.0, pose.z[-1] - h / 2]))
+        self.vis["chip"].set_transform(translation([-0.5, 0.0, h / 2 - 0.15]))
+        self.vis["tip"].set_transform(translation([pose.x[-1], 0.0, pose.z[-1] - h / 2]))
         s = pose.output_fraction
         bar = max(abs(s), 1e-3)
         self.vis["meter"]["bar"].set_transform(
-            P.translation([DEFAULTS["meter_x"], 0.0, np.sign(s) * bar / 2])
+            translation([DEFAULTS["meter_x"], 0.0, np.sign(s) * bar / 2])
             @ np.diag([1.0, 1.0, bar, 1.0]))
         if model.key != self.key:
             self.vis["element"].delete()
@@ -240,24 +246,24 @@ class TransducerScene:
             self.key = model.key
             getattr(self, f"_draw_{model.key}")(model)
         getattr(self, f"_move_{model.key}")(model, value, mode, pose)
-        self.vis.set_transform(P.translation([-pose.x[-1] / 2, 0.0, 0.0]))
+        self.vis.set_transform(translation([-pose.x[-1] / 2, 0.0, 0.0]))
 
     # -- helpers ----------------------------------------------------------------------------------
     def _segment(self, name, color, radius=None, opacity=1.0):
-        seg = P.Segment(self.vis["element"][name], color=color,
-                        radius=radius or DEFAULTS["beam_radius"], opacity=opacity)
+        seg = Segment(self.vis["element"][name], color=color,
+                      radius=radius or DEFAULTS["beam_radius"], opacity=opacity)
         self._segments[name] = seg
         return seg
 
     def _arrow(self, name, color=0x202020):
-        arrow = P.Arrow(self.vis["element"][name], color=color, radius=0.02, head_length=0.1)
+        arrow = Arrow(self.vis["element"][name], color=color, radius=0.02, head_length=0.1)
         self._arrows[name] = arrow
         return arrow
 
     def _box(self, name, size, centre, color, opacity=1.0):
         node = self.vis["element"][name]
         node.set_object(g.Box(list(size)), _mat(color, opacity))
-        node.set_transform(P.translation(centre))
+        node.set_transform(translation(centre))
         return node
 
     @staticmethod
@@ -287,8 +293,8 @@ class TransducerScene:
             pts.append([xs, y, np.interp(xs, pose.x, pose.z) + h / 2 + radius])
         pts = np.array(pts)
         if self._lines.get(name, (None,))[0] != (color, radius):
-            self._lines[name] = ((color, radius), P.Tube(self.vis["element"][name], color=color,
-                                                         radius=radius))
+            self._lines[name] = ((color, radius), Tube(self.vis["element"][name], color=color,
+                                                       radius=radius))
         self._lines[name][1].set(pts)
         self.parts[name] = pts
 
@@ -296,14 +302,14 @@ class TransducerScene:
         """A four-quadrant photodiode: four thin plates in the plane through ``centre``."""
         n = np.asarray(normal, float) / np.linalg.norm(normal)
         rot = np.eye(4)
-        rot[:3, :3] = P.rotation_between([0.0, 0.0, 1.0], n)
+        rot[:3, :3] = rotation_between([0.0, 0.0, 1.0], n)
         colors = (0x4060a0, 0x5070b0, 0x5070b0, 0x4060a0)
         half = size / 2
         for i, (a, b) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
             node = self.vis["element"][name][f"q{i}"]
             node.set_object(g.Box([half * 0.96, half * 0.96, 0.01]), _mat(colors[i]))
-            node.set_transform(P.translation(centre) @ rot
-                               @ P.translation([a * half / 2, b * half / 2, 0.0]))
+            node.set_transform(translation(centre) @ rot
+                               @ translation([a * half / 2, b * half / 2, 0.0]))
         self.parts[name] = (np.asarray(centre, float), n, rot)
 
     # -- optical beam deflection ------------------------------------------------------------------
@@ -335,7 +341,7 @@ class TransducerScene:
         self._quadrants("detector", self._detector, -nominal, size=size)
         self._segment("incident", _RED)
         self._segment("reflected", _RED, opacity=0.8)
-        P.sphere(self.vis["element"]["spot"], 1.0, color=0xff0000, opacity=0.85)
+        sphere(self.vis["element"]["spot"], 1.0, color=0xff0000, opacity=0.85)
 
     def _reflect(self, model, top, pose):
         """Where the beam from the laser, reflected at ``top`` of the lever drawn as ``pose``,
@@ -357,7 +363,7 @@ class TransducerScene:
         a = self._spot_radius
         flat = np.eye(4)
         flat[:3, :3] = rot[:3, :3] @ np.diag([a, a, 0.02])  # a disc on the detector's plane
-        self.vis["element"]["spot"].set_transform(P.translation(hit - 0.02 * normal) @ flat)
+        self.vis["element"]["spot"].set_transform(translation(hit - 0.02 * normal) @ flat)
         self.parts["spot"] = hit
         self.parts["spot_radius"] = a
 
@@ -370,7 +376,7 @@ class TransducerScene:
         # the quadrant detector, drawn as a window on the head's top face (it sits inside)
         self._quadrants("detector", self._head + [0.0, 0.0, 0.185], [0.0, 0.0, 1.0], size=0.4)
         self._segment("beam", _RED, opacity=0.8)
-        P.sphere(self.vis["element"]["spot"], 1.0, color=0xff2020)
+        sphere(self.vis["element"]["spot"], 1.0, color=0xff2020)
 
     def _move_astigmatic(self, model, value, mode, pose):
         top = self._tip_top(model, pose)
@@ -379,7 +385,7 @@ class TransducerScene:
         scale = 0.1 / np.sqrt(wx * wy)
         centre = self._head + [0.0, 0.0, 0.2]
         self.vis["element"]["spot"].set_transform(
-            P.translation(centre) @ np.diag([wx * scale, wy * scale, 0.02, 1.0]))
+            translation(centre) @ np.diag([wx * scale, wy * scale, 0.02, 1.0]))
         self.parts["spot"] = (float(wx * scale), float(wy * scale))
 
     # -- interferometry ---------------------------------------------------------------------------
@@ -388,7 +394,7 @@ class TransducerScene:
         node = self.vis["element"]["fibre"]
         node.set_object(g.Cylinder(1.6, radius=0.12), _mat(0xe0e0c0, 0.9))
         rot = np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]], dtype=float)
-        node.set_transform(P.translation([L, 0.0, 1.3]) @ rot)
+        node.set_transform(translation([L, 0.0, 1.3]) @ rot)
         self._fibre_end = np.array([L, 0.0, 0.5])
         self._segment("beam", _RED, opacity=0.7)
 
@@ -406,7 +412,7 @@ class TransducerScene:
         gain = float(np.abs(model.base_transfer(model.drive_ratio * model.resonance_frequency)))
         offset = pose.z[-1] / max(gain, 1e-12)
         offset = float(np.clip(offset, -0.3, 0.3))
-        self.vis["element"]["shaker"].set_transform(P.translation([-0.5, 0.0, -0.45 + offset]))
+        self.vis["element"]["shaker"].set_transform(translation([-0.5, 0.0, -0.45 + offset]))
         self.parts["base_offset"] = offset
         self.parts["slope_factor"] = mode_slope_factor()
 
@@ -450,7 +456,7 @@ class TransducerScene:
     def _move_electrostatic(self, model, value, mode, pose):
         L = model.length / SCENE_UNIT
         le = model.electrode_length / SCENE_UNIT
-        self.vis["element"]["electrode"].set_transform(P.translation([L - le / 2, 0.0, -0.45]))
+        self.vis["element"]["electrode"].set_transform(translation([L - le / 2, 0.0, -0.45]))
         top = self._tip_top(model, pose)
         vec = np.array([0.0, 0.0, 0.8 * pose.output_fraction])
         self._arrows["force"].set(top + [0.0, 0.0, 0.05], vec)
@@ -463,7 +469,7 @@ class TransducerScene:
         node = self.vis["element"]["disk"]
         node.set_object(g.Cylinder(0.03, radius=0.35), _mat(0xb0b0ff, 0.9))
         rot = np.array([[1, 0, 0, 0], [0, 0, -1, 0], [0, 1, 0, 0], [0, 0, 0, 1]], dtype=float)
-        node.set_transform(P.translation([L - 0.1, w / 2 + 0.38, 0.0]) @ rot)
+        node.set_transform(translation([L - 0.1, w / 2 + 0.38, 0.0]) @ rot)
         self._box("waveguide", (4.0, 0.04, 0.03), [L - 0.1, w / 2 + 0.78, 0.0], 0x8080c0)
 
     def _move_optomechanical(self, model, value, mode, pose):
@@ -508,7 +514,7 @@ class TransducerScene:
         z = np.interp(x, pose.x, pose.z)
         slope = np.interp(x, pose.x, pose.slope)
         off = (h + t) / 2
-        mesh = P.beam_mesh(x, z + off, 0.8 * w, t, np.zeros((n, 2)), slope=slope)
+        mesh = beam_mesh(x, z + off, 0.8 * w, t, np.zeros((n, 2)), slope=slope)
         self.vis["element"]["film"].set_object(
             g.TriangularMeshGeometry(mesh.vertices, mesh.faces), self._film_material)
         self.parts["film_length"] = le

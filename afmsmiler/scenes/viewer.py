@@ -21,6 +21,8 @@ import threading
 import meshcat
 from meshcat.visualizer import ViewerWindow
 
+from ..validation import check_instance
+
 __all__ = ["get_viewer", "close_viewer", "viewer_running", "static_html", "save_static_html",
            "OWNER_ENV"]
 
@@ -119,8 +121,34 @@ def static_html(vis: meshcat.Visualizer | None = None) -> str:
     ----------
     vis : meshcat.Visualizer, optional
         The visualizer to export; this kernel's viewer by default.
+
+    Raises
+    ------
+    TypeError
+        If ``vis`` is not a :class:`meshcat.Visualizer`.
     """
-    return (vis or get_viewer()).static_html()
+    if vis is None:
+        vis = get_viewer()
+    check_instance("vis", vis, meshcat.Visualizer)
+    return vis.static_html()
+
+
+def _html_path(path) -> str:
+    """``path`` as a str naming a file that can be written, or a ValueError naming ``path``."""
+    try:
+        path = os.fspath(path)
+    except TypeError:
+        raise ValueError(f"path must be a str or os.PathLike naming an HTML file, got "
+                         f"{path!r} ({type(path).__name__})") from None
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if not path or os.path.isdir(path):
+        raise ValueError(f"path must name a file, got the folder {path!r}")
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        raise ValueError(f"path must be in an existing folder, got {path!r} ({parent!r} does not "
+                         f"exist)")
+    return path
 
 
 def save_static_html(path, vis: meshcat.Visualizer | None = None) -> str:
@@ -129,11 +157,25 @@ def save_static_html(path, vis: meshcat.Visualizer | None = None) -> str:
     Parameters
     ----------
     path : str or os.PathLike
-        The HTML file to write.
+        The HTML file to write, in an existing folder (replaced if it exists).
     vis : meshcat.Visualizer, optional
         The visualizer to export; this kernel's viewer by default.
+
+    Raises
+    ------
+    ValueError
+        If ``path`` is not a path, names a folder, lies in a folder that does not exist or
+        cannot be written (the message names ``path`` and the operating system's reason).
+    TypeError
+        If ``vis`` is not a :class:`meshcat.Visualizer`.
     """
-    path = os.fspath(path)
-    with open(path, "w", encoding="utf-8") as f:
-        f.write(static_html(vis))
+    path = _html_path(path)
+    if vis is not None:
+        check_instance("vis", vis, meshcat.Visualizer)
+    html = static_html(vis)  # before the file is opened: a failed export leaves no empty file
+    try:
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(html)
+    except OSError as err:
+        raise ValueError(f"path {path!r} cannot be written: {err.strerror or err}") from None
     return path

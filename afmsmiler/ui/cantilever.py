@@ -183,7 +183,7 @@ class CantileverPanel(Panel):
                       "theory (these curves) overestimates z</td></tr>")
         legend = ""
         if self.scene is not None:
-            from ..scenes.primitives import legend_html
+            from ..scenes.legends import legend_html
             ex = self.scene.drawn_exaggeration
             from ..scenes.cantilever import DEFAULTS as SCENE
             note = ("" if ex == self.scene.exaggeration else
