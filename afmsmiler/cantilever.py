@@ -17,9 +17,12 @@ cosh(b x) - cos(b x) - s (sinh(b x) - sin(b x)) with b_n L the roots of cos(bL) 
 found here numerically, and frequencies f_n = (b_n L)^2 / (2 pi L^2) sqrt(E J / (rho w h)).
 
 The formulas are those of every strength-of-materials text (e.g. Timoshenko and Gere, *Mechanics
-of Materials*) as used for AFM levers by Butt, Siedle, Seifert et al., J. Mol. Recognit. 12, 394
-(1999) and Sader, J. Appl. Phys. 84, 64 (1998); the eigenvalues are those tabulated by Blevins,
-*Formulas for Natural Frequency and Mode Shape* (1979), Table 8-1.
+of Materials*) as applied to AFM levers by Butt and Jaschke, Nanotechnology 6, 1 (1995), Butt,
+Cappella and Kappl, Surf. Sci. Rep. 59, 1 (2005) and Sader, J. Appl. Phys. 84, 64 (1998); the
+eigenvalues are those tabulated by Blevins, *Formulas for Natural Frequency and Mode Shape*
+(1979), Table 8-1. Module (a) of the AFM SMILER toolkit ("AFM SMILER: A Scale Model Interactive
+Learning Extended Reality Toolkit for Atomic Force Microscopy Created with Digital Twin
+Technology") is the model this course re-creates.
 
 The user-settable quantities are described once in :data:`PARAMETERS` (SI unit, display unit,
 valid and slider ranges); :class:`Cantilever` validates with them and the widget panel builds its

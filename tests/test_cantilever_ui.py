@@ -389,3 +389,15 @@ def test_defaults_are_read_only_and_on_the_slider_grid():
         if name != "exaggeration":  # a log slider's grid is in the exponent
             n = (c.value - c.min) / c.step
             assert abs(n - round(n)) < 1e-6, name  # the browser echoes it unchanged
+
+
+def test_exercise_1_can_be_checked_with_the_sliders():
+    # notebook 01, exercise 1: "work out h for k = 0.1 N/m, then check it with the sliders"; the
+    # closed form h = (4 k L^3 / (E w))^(1/3) = 1.628 um lies between two thickness steps, and the
+    # nearer one gives k within 1 % of 0.1 N/m
+    h = (4 * 0.1 * 450e-6 ** 3 / (169e9 * 50e-6)) ** (1 / 3) * 1e6
+    p = CantileverPanel(scene=False)
+    c = p.controls["thickness"]
+    nearest = c.min + round((h - c.min) / c.step) * c.step
+    p.set(thickness=nearest)
+    assert p.last.spring_constant == pytest.approx(0.1, rel=0.01)
