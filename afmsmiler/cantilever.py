@@ -3,7 +3,8 @@
 A rectangular cantilever of length L, width w, thickness h, Young's modulus E and density rho is
 clamped at x = 0 and loaded by a point force F at its free end x = L. Solving E J z'''' = 0 with
 z(0) = z'(0) = 0 (clamp), z''(L) = 0 (no moment) and E J z'''(L) = -F (end shear), in the sign
-convention where F > 0 lifts the tip (z > 0), gives (see ``notebooks/01_cantilever_mechanics.ipynb`` and
+convention where F > 0 lifts the tip (z > 0), gives (see
+``notebooks/01_cantilever_mechanics.ipynb`` and
 ``tests/test_cantilever_model.py`` for the sympy derivation)::
 
     z(x)     = F L^3 / (6 E J) [3 (x/L)^2 - (x/L)^3]
@@ -40,10 +41,10 @@ from scipy.optimize import brentq
 
 from .materials import DENSITY, YOUNGS_MODULUS, Material, get_material
 from .parameters import Parameter, read_only
-from .validation import check_array, check_instance, check_integer, check_range
+from .validation import check_array, check_integer, check_range
 
-__all__ = ["Cantilever", "Bending", "eigenvalue", "MAX_MODE", "PARAMETERS", "FORCE", "LENGTH",
-           "WIDTH", "THICKNESS", "SECTION", "EXAGGERATION", "LIMITS"]
+__all__ = ["Cantilever", "Bending", "eigenvalue", "check_modes", "MAX_MODE", "PARAMETERS",
+           "FORCE", "LENGTH", "WIDTH", "THICKNESS", "SECTION", "EXAGGERATION", "LIMITS"]
 
 #: Highest flexural mode the model offers (beyond it, thin-beam theory is meaningless anyway).
 MAX_MODE = 50
@@ -81,7 +82,29 @@ LIMITS = read_only(dict(n_length=10_000, n_thickness=1_000, n_section=10_000,
                         n_field=2_000_000))
 
 
-@lru_cache(maxsize=None)
+def check_modes(modes, name: str = "modes") -> list:
+    """Return ``modes`` as a list of mode numbers; raise naming ``name`` unless it is a sequence of
+    1 to :data:`MAX_MODE` integers, each in [1, MAX_MODE].
+
+    Parameters
+    ----------
+    modes : sequence of int
+        Mode numbers (1-based).
+    name : str
+        The parameter's name, for the message.
+
+    Returns
+    -------
+    list of int
+    """
+    if isinstance(modes, (str, bytes)) or not isinstance(modes, (list, tuple, range, np.ndarray)):
+        raise TypeError(f"{name} must be a sequence of mode numbers, got "
+                        f"{type(modes).__name__} {modes!r:.60}")
+    if not 1 <= len(modes) <= MAX_MODE:
+        raise ValueError(f"{name} must name 1 to {MAX_MODE} modes, got {len(modes)}")
+    return [check_integer(name, m, 1, MAX_MODE) for m in modes]
+
+
 def eigenvalue(mode: int) -> float:
     """Dimensionless eigenvalue b_n L of flexural mode ``mode`` (1-based) of a clamped-free beam.
 
@@ -98,7 +121,11 @@ def eigenvalue(mode: int) -> float:
     float
         b_n L (1.8751..., 4.6941..., 7.8548..., ...).
     """
-    check_integer("mode", mode, 1, MAX_MODE)
+    return _eigenvalue(check_integer("mode", mode, 1, MAX_MODE))
+
+
+@lru_cache(maxsize=None)
+def _eigenvalue(mode: int) -> float:
     centre = (mode - 0.5) * math.pi
     return brentq(lambda x: math.cos(x) + 1.0 / math.cosh(x), centre - 0.5, centre + 0.5,
                   xtol=1e-15, rtol=4 * np.finfo(float).eps, maxiter=200)

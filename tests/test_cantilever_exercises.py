@@ -130,3 +130,10 @@ def test_largest_stress_is_at_the_clamp_with_the_right_sign():
     assert "one of" in str(check_largest_stress("tip", "compression"))
     with pytest.raises(ValueError, match="force must be"):
         check_largest_stress("clamp", "compression", force=0.0)
+
+
+@pytest.mark.parametrize("answer", [1e300, -1e300, 1e-300, 5e-324])
+def test_extreme_answers_get_feedback_not_an_exception(answer):
+    for checker in (check_thickness_for_spring_constant, check_mode_ratio, check_tip_slope):
+        fb = checker(answer)
+        assert not fb and str(fb).startswith("Not yet")

@@ -260,3 +260,21 @@ def test_materials_and_from_material_validate_their_inputs():
         MATERIALS["new"] = Material("x", 1e9, 1000.0)  # read-only presets
     with pytest.raises(ValueError, match=r"^tip_deflection must be in"):
         LEVER.force_for_deflection(1.0)
+
+
+@pytest.mark.parametrize("bad", [[1.0, 2.0], "2", 2.0, True, None])
+def test_mode_numbers_are_checked_before_the_cache(bad):
+    # eigenvalue is cached: a list used to raise "unhashable type" instead of naming mode
+    with pytest.raises((TypeError, ValueError), match="mode"):
+        eigenvalue(bad)
+    with pytest.raises((TypeError, ValueError), match="mode"):
+        LEVER.resonance_frequency(bad)
+
+
+def test_mode_sequences_are_checked_by_name():
+    from afmsmiler.cantilever import check_modes
+    assert check_modes(range(1, 4)) == [1, 2, 3]
+    for bad, kind in ((3.0, TypeError), (None, TypeError), ("12", TypeError), ((), ValueError),
+                      ((1, 0), ValueError), ((1.5,), ValueError), (list(range(1, 60)), ValueError)):
+        with pytest.raises(kind, match="^modes must"):
+            check_modes(bad)

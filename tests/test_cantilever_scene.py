@@ -307,3 +307,24 @@ def test_mode_beams_are_labelled_with_number_and_frequency():
         # before it plays, the beam lies straight behind the lever (not piled up at the clamp)
         seg = rec.log[f"/modes/mode{n}/s003"]["transform"]
         np.testing.assert_allclose(seg[:3, 3], [3.5 / 4 * L / SCENE_UNIT, beam_y, 0.0])
+
+
+def test_scene_arguments_are_checked_by_name_before_drawing():
+    rec = Recorder()
+    for kwargs, match in ((dict(exaggeration=None), "exaggeration must be"),
+                          (dict(exaggeration=math.nan), "exaggeration must be"),
+                          (dict(force_per_unit=1e-300), "force_per_unit must be in"),
+                          (dict(stress_limit=-1.0), "stress_limit must be"),
+                          (dict(path=3), "path must be a str")):
+        with pytest.raises((TypeError, ValueError), match=match):
+            CantileverScene(bend(LEVER, F), vis=rec, **kwargs)
+    assert rec.calls == []
+    with pytest.raises(TypeError, match="^modes must be a sequence"):
+        mode_animation(LEVER, rec, modes=2)
+    with pytest.raises(ValueError, match="^length must be in"):
+        CantileverScene.framing(math.nan)
+    # a 1 m lever (the longest valid) is still framed: the camera backs off far enough
+    length = 1.0 / SCENE_UNIT
+    position, _ = CantileverScene.framing(length)
+    ends = np.array([[-length / 2, 0.0, 0.0], [length / 2, 0.0, 0.0]])
+    assert np.all(np.abs(P.camera_ndc(ends, position, aspect=1.5)) <= 1.0)

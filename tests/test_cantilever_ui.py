@@ -401,3 +401,14 @@ def test_exercise_1_can_be_checked_with_the_sliders():
     nearest = c.min + round((h - c.min) / c.step) * c.step
     p.set(thickness=nearest)
     assert p.last.spring_constant == pytest.approx(0.1, rel=0.01)
+
+
+def test_update_names_a_bad_value_before_any_work():
+    p = CantileverPanel(scene=False)
+    good = p.values()
+    last = p.last
+    for name, bad in (("force", "lots"), ("length", None), ("thickness", math.inf),
+                      ("force", 1e300), ("material", "cheese")):
+        with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
+            p.update(**{**good, name: bad})
+    assert p.last is last

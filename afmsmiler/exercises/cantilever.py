@@ -78,7 +78,7 @@ def check_thickness_for_spring_constant(thickness, *, target_k: float = DEFAULTS
     # thickness that gives target_k, from a 1 um reference lever of the same L, w and material
     reference = Cantilever.from_material(material, length, width, 1e-6)
     expected = 1e-6 * (target_k / reference.spring_constant) ** (1.0 / 3.0)
-    if h > 0 and abs((h / expected) ** 3 - 1.0) <= rtol:
+    if 0.5 < h / expected < 2.0 and abs((h / expected) ** 3 - 1.0) <= rtol:
         k = reference.spring_constant * (h / 1e-6) ** 3
         return Feedback(True, f"a {h * unit_scale('um'):.4g} um thick lever has k = {k:.4g} N/m "
                               f"(target {target_k:g} N/m).")

@@ -15,16 +15,17 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..cantilever import MAX_MODE, Bending, Cantilever
+from ..cantilever import Bending, Cantilever, check_modes
 from ..parameters import read_only, unit_scale
-from ..validation import check_instance, check_integer
+from ..validation import check_instance
 
 __all__ = ["DEFAULTS", "UNITS", "CantileverCurves", "cantilever_curves", "CantileverFigure",
            "ModeShapesFigure", "mode_shapes_figure"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = read_only(dict(n_points=121, figsize=(10.0, 6.5), modes_figsize=(6.0, 3.2),
-                          min_span=1e-3))  # smallest y span in the units shown (1 pm, 1 urad, 1 kPa)
+DEFAULTS = read_only(dict(
+    n_points=121, figsize=(10.0, 6.5), modes_figsize=(6.0, 3.2),
+    min_span=1e-3))  # smallest y span in the units shown (1 pm, 1 urad, 1 kPa)
 
 #: Display unit of each quantity shown (value_shown = value_SI * unit_scale(unit)).
 UNITS = read_only(dict(x="um", z="nm", theta="mrad", stress="MPa", z_b="um",
@@ -228,8 +229,7 @@ class ModeShapesFigure:
                  modes=None):
         curves = check_instance("curves", curves, CantileverCurves)
         n = len(curves.frequencies_khz)
-        self.modes = tuple(range(1, n + 1)) if modes is None else tuple(
-            check_integer("mode", m, 1, MAX_MODE) for m in modes)
+        self.modes = tuple(range(1, n + 1)) if modes is None else tuple(check_modes(modes))
         if len(self.modes) != n:
             raise ValueError(f"modes must number the {n} modes of curves, got {len(self.modes)}")
         if ax is None:
@@ -291,9 +291,7 @@ def mode_shapes_figure(bending, modes=(1, 2, 3), *, ax=None):
         One line per mode, labelled with f_n in kHz.
     """
     check_instance("bending", bending, (Bending, Cantilever), "Bending or Cantilever")
-    modes = [check_integer("mode", m, 1, MAX_MODE) for m in modes]
-    if not modes:
-        raise ValueError("modes must name at least one mode, got none")
+    modes = check_modes(modes)
     if isinstance(bending, Cantilever):
         bending = bending.bending(0.0, n_length=DEFAULTS["n_points"], modes=max(modes))
     elif len(bending.frequencies) < max(modes):

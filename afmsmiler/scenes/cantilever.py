@@ -17,14 +17,13 @@ and hands the same result to its figures and to this scene.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import meshcat
 import meshcat.geometry as g
 import numpy as np
 from meshcat.animation import Animation
 
-from ..cantilever import EXAGGERATION, MAX_MODE, Bending, Cantilever
+from ..cantilever import EXAGGERATION, Bending, Cantilever, check_modes
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance, check_integer, check_positive, check_range
 from . import primitives as P
@@ -82,7 +81,7 @@ class CantileverScene:
     path : str
         Path of this scene in the viewer.
     force_per_unit : float
-        Force in N drawn as one scene unit (100 um) of arrow.
+        Force in N drawn as one scene unit (100 um) of arrow, in [1e-15, 1e3].
     stress_limit : float, optional
         Fixed color limit in Pa; by default the next round number (1, 2, 5 x 10^n MPa) above
         the largest stress, so the legend changes only when the stress crosses one.
@@ -116,7 +115,8 @@ class CantileverScene:
         self.root = vis if vis is not None else get_viewer()
         self.path = path
         self.vis = self.root[path]
-        self.force_per_unit = check_positive("force_per_unit", force_per_unit, "N")
+        exaggeration = EXAGGERATION.check(exaggeration)
+        self.force_per_unit = check_range("force_per_unit", force_per_unit, 1e-15, 1e3, "N")
         self.stress_limit = (None if stress_limit is None
                              else check_positive("stress_limit", stress_limit, "Pa"))
         self._material = g.MeshLambertMaterial(**_BEAM_MATERIAL_ARGS)
@@ -143,11 +143,27 @@ class CantileverScene:
         down by the largest drawn deflection, and the legend all fit inside 92 % of the view (see
         :func:`~afmsmiler.scenes.primitives.camera_ndc`). The legend is as wide as half that
         distance, so it reads the same for every lever.
+
+        Parameters
+        ----------
+        length : float
+            Lever length in scene units (> 0, at most 10^4: a 1 m lever).
+        aspect : float
+            Width / height of the view, in [0.1, 10].
+
+        Returns
+        -------
+        position : ndarray, shape (3,)
+            Camera position in scene units.
+        legend_width : float
+            Legend width in scene units.
         """
+        length = check_range("length", length, 0.0, 1e4, low_inclusive=False)
+        aspect = check_range("aspect", aspect, 0.1, 10.0)
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         cap = DEFAULTS["max_drawn_tip"] * length
         distance = DEFAULTS["min_distance"]
-        for _ in range(60):  # grow by 5 % steps: the legend grows with the distance
+        for _ in range(400):  # grow by 5 % steps (to 3e8 x): the legend grows with the distance
             legend = 0.5 * distance
             corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
             points = np.array([[-length / 2 - DEFAULTS["chip_in_view"], 0.0, 0.0],
@@ -293,7 +309,8 @@ class CantileverScene:
     def _place_tip(self, field: Bending) -> None:
         u = SCENE_UNIT
         if self._tip_drawn_for is None:
-            P.cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u, 0x707070)
+            P.cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u,
+                   0x707070)
             self._tip_drawn_for = True
         pose = self.tip_pose(field)
         # the cone (apex at its origin, base at +height) hangs below the bottom face
@@ -356,7 +373,7 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
                    segments: int = DEFAULTS["mode_segments"],
                    amplitude: float = DEFAULTS["mode_amplitude"],
                    fps: int = DEFAULTS["mode_fps"]) -> Animation:
-    """Draw segmented beams for ``modes`` under ``vis`` and return their oscillation as an Animation.
+    """Draw segmented beams for ``modes`` under ``vis``; return their oscillation as an Animation.
 
     meshcat animates transforms, not vertices, so each mode beam is made of ``segments`` rigid
     boxes whose poses follow A phi_n(x) sin(2 pi k / frames) for k = 0..frames. Mode n is placed
@@ -389,9 +406,7 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
     segments = check_integer("segments", segments, 2, 1_000)
     amplitude = check_range("amplitude", amplitude, 0.0, 1.0, low_inclusive=False)
     fps = check_integer("fps", fps, 1, 240)
-    modes = [check_integer("mode", m, 1, MAX_MODE) for m in modes]
-    if not 1 <= len(modes) <= MAX_MODE:
-        raise ValueError(f"modes must name 1 to {MAX_MODE} modes, got {len(modes)}")
+    modes = check_modes(modes)
     if segments * (frames + 1) * len(modes) > LIMITS["animation_transforms"]:
         raise ValueError(f"segments x (frames + 1) x modes must be at most "
                          f"{LIMITS['animation_transforms']} (a longer animation takes minutes to "
@@ -408,7 +423,8 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
         dphi = np.interp(mids, fine, np.gradient(lever.mode_shape(fine, n), fine / lever.length))
         # which beam is which: "mode n: f_n" beside its clamp end (meshcat has no text)
         label = P.TextPlate(vis[f"label{n}"], f"mode {n}: "
-                            f"{lever.resonance_frequency(n) * _KHZ:.3g} kHz", width=max(0.25 * L, 0.3))
+                            f"{lever.resonance_frequency(n) * _KHZ:.3g} kHz",
+                            width=max(0.25 * L, 0.3))
         vis[f"label{n}"].set_transform(P.translation([-1.05 * label.width, pitch * n, 0.02]))
         for i in range(segments):
             box = vis[f"mode{n}"][f"s{i:03d}"]

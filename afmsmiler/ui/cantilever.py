@@ -23,7 +23,7 @@ from ..parameters import read_only, unit_scale
 from ..plots.cantilever import DEFAULTS as PLOTS
 from ..plots.cantilever import (CantileverCurves, CantileverFigure, ModeShapesFigure,
                                 cantilever_curves)
-from ..validation import check_choice, check_range
+from ..validation import check_choice, check_finite, check_range
 from .controls import control
 from .panel import Panel, _interactive_backend
 
@@ -190,7 +190,9 @@ class CantileverPanel(Panel):
         given = dict(force=force, length=length, width=width, thickness=thickness,
                      youngs_modulus=youngs_modulus, density=density, section=section,
                      exaggeration=exaggeration)
-        si = {name: PARAMETERS[name].to_si(value) for name, value in given.items()}
+        si = {name: PARAMETERS[name].check(PARAMETERS[name].to_si(
+            check_finite(name, value, PARAMETERS[name].display_unit)))
+            for name, value in given.items()}  # named errors before any work
         lever = Cantilever(si["length"], si["width"], si["thickness"], si["youngs_modulus"],
                            si["density"])
         bending = lever.bending(si["force"], section=si["section"], n_length=PLOTS["n_points"],
@@ -284,8 +286,8 @@ class CantileverPanel(Panel):
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
         elif self._want_scene and self._viewer_closed:
             legend = ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
-                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it again"
-                      "</div>")
+                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it "
+                      "again</div>")
         return f"<table>{table}</table>{legend}"
 
     def widget(self) -> widgets.Widget:
