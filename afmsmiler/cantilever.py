@@ -463,7 +463,7 @@ class Cantilever:
         ...                                  thickness=2e-6)
         >>> b = lever.bending(100e-9, n_length=5)
         >>> round(b.tip_deflection / 1e-9, 1)  # nm: F / k
-        539.3
+        539.2
         """
         force = self._force(force)
         section = SECTION.check(section)

@@ -376,6 +376,12 @@ def test_initial_values_are_checked_by_name():
     assert p.last.lever.density == pytest.approx(MATERIALS["gold"].density)
     with pytest.raises(TypeError):
         p.update(force=1.0)  # update takes every control value, by name
+    for values in (dict(youngs_modulus=120.0, material="quartz"),
+                   dict(material="quartz", youngs_modulus=120.0)):
+        p.set(**values)  # E given with a material wins, whatever the order
+        assert p.last.lever.youngs_modulus == pytest.approx(120e9)
+        assert p.last.lever.density == pytest.approx(MATERIALS["quartz"].density)
+        p.set(material="silicon")
 
 
 def test_defaults_are_read_only_and_on_the_slider_grid():

@@ -152,6 +152,21 @@ class CantileverPanel(Panel):
         self.controls["material"].observe(self._on_material, names="value")
         super().__init__()
 
+    def set(self, **values) -> None:
+        """Set control values as a user would, in one update (see :meth:`Panel.set`).
+
+        A material is applied first, so that E or rho given in the same call win over its preset
+        whatever the order of the keywords.
+
+        Parameters
+        ----------
+        **values
+            Control names and values, in the units shown.
+        """
+        if "material" in values:
+            values = {"material": values.pop("material"), **values}
+        super().set(**values)
+
     def _on_material(self, change) -> None:
         """A material was chosen: move E and rho to its values without an update of their own
         (the drop-down's own change then runs the one update)."""
