@@ -51,10 +51,10 @@ MAX_MODE = 50
 
 # -- the parameter vocabulary of module (a) ------------------------------------------------------
 # Valid ranges keep every result finite in double precision (a 1 nm to 1 m beam of 1 Pa to 10 TPa
-# under at most 1 N); the slider ranges are the panel's (a contact lever like BudgetSensors
+# under at most 10^6 N: z(L) <= 10^43 m, sigma <= 10^34 Pa); the slider ranges are the panel's (a contact lever like BudgetSensors
 # ContAl-G, 450 x 50 x 2 um of silicon, by default; L up to 1000 um so that it can be doubled).
 #: End force F (positive lifts the tip).
-FORCE = Parameter(name="force", unit="N", display_unit="nN", default=100e-9, low=-1.0, high=1.0,
+FORCE = Parameter(name="force", unit="N", display_unit="nN", default=100e-9, low=-1e6, high=1e6,
                   slider_low=-500e-9, slider_high=500e-9, label="end force F")
 #: Lever length L (clamp to free end).
 LENGTH = Parameter(name="length", unit="m", display_unit="um", default=450e-6, low=1e-9, high=1.0,
@@ -435,7 +435,7 @@ class Cantilever:
         Parameters
         ----------
         force : float
-            End force F in N, in [-1, 1] (positive lifts the tip).
+            End force F in N, in [-10^6, 10^6] (positive lifts the tip).
         section : float
             Position of the cross-section as a fraction x/L, in [0, 1].
         n_length : int

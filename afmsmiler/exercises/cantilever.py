@@ -170,7 +170,7 @@ def check_tip_slope(slope, *, force: float = DEFAULTS["force"],
     slope : float or None
         The student's theta(L) in rad.
     force : float
-        End force in N (positive lifts the tip), in [-1, 1] and not 0.
+        End force in N (positive lifts the tip), in [-10^6, 10^6] and not 0.
     length, width, thickness : float
         The lever's L, w and h in m.
     material : str

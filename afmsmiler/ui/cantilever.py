@@ -108,6 +108,9 @@ class CantileverPanel(Panel):
         The last model result.
     figure : CantileverFigure
         The four plots.
+    modes_figure : ModeShapesFigure or None
+        The mode shapes and frequencies, once :meth:`show_modes` drew them; they follow the
+        sliders from then on.
     scene : CantileverScene or None
         The 3D view.
     readout : ipywidgets.HTML
