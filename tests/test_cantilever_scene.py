@@ -145,7 +145,8 @@ def test_modes_have_their_published_nodes():
     # (Blevins, Formulas for Natural Frequency and Mode Shape, Table 8-1).
     rec = Recorder()
     segs, frames = 60, 8
-    anim = mode_animation(LEVER, rec["modes"], modes=(1, 2, 3), frames=frames, segments=segs)
+    fine = LEVER.bending(0.0, n_length=2001, modes=3)  # the shapes interpolated at segment centres
+    anim = mode_animation(fine, rec["modes"], modes=(1, 2, 3), frames=frames, segments=segs)
     quarter = frames // 4  # sin = 1
     mids = (np.arange(segs) + 0.5) / segs
     for n, nodes in ((1, []), (2, [0.783]), (3, [0.504, 0.868])):
@@ -177,9 +178,11 @@ def test_bad_input():
     with pytest.raises(TypeError, match="bending must be a Bending"):
         sc.update(None)
     with pytest.raises(ValueError, match="frames must be an integer"):
-        mode_animation(LEVER, rec, frames=1)
-    with pytest.raises(TypeError, match="lever must be a Cantilever"):
-        mode_animation("lever", rec)
+        mode_animation(bend(LEVER, F), rec, frames=1)
+    with pytest.raises(TypeError, match="bending must be a Bending"):
+        mode_animation(LEVER, rec)  # the scene draws the model's mode shapes, not its own
+    with pytest.raises(ValueError, match=r"^modes must be at most 3 \(the modes of bending\)"):
+        mode_animation(bend(LEVER, F), rec, modes=(1, 4))
 
 
 def test_sizes_are_bounded_before_any_work():
@@ -191,9 +194,10 @@ def test_sizes_are_bounded_before_any_work():
     with pytest.raises(ValueError, match=r"^bending must have at most"):
         sc.update(huge)
     with pytest.raises(ValueError, match=r"^segments x \(frames \+ 1\) x modes must be at most"):
-        mode_animation(LEVER, rec["modes"], frames=10_000, segments=1_000, modes=range(1, 51))
+        mode_animation(LEVER.bending(F, modes=50), rec["modes"], frames=10_000, segments=1_000,
+                       modes=range(1, 51))
     with pytest.raises(ValueError, match=r"^modes must name 1 to"):
-        mode_animation(LEVER, rec["modes"], modes=())
+        mode_animation(bend(LEVER, F), rec["modes"], modes=())
     assert len(rec.calls) == n_calls  # nothing was sent
 
 
@@ -205,7 +209,7 @@ def test_largest_allowed_drawings_take_seconds_not_minutes():
     CantileverScene(LEVER.bending(F, n_length=10_000, n_thickness=LIMITS["mesh_points"] // 10_000),
                     vis=rec)
     frames = LIMITS["animation_transforms"] // (20 * 3) - 1
-    mode_animation(LEVER, rec["modes"], frames=frames, segments=20, modes=(1, 2, 3))
+    mode_animation(bend(LEVER, F), rec["modes"], frames=frames, segments=20, modes=(1, 2, 3))
     assert time.perf_counter() - t0 < 10.0
 
 
@@ -294,7 +298,7 @@ def test_camera_follows_only_large_changes_of_length():
 
 def test_mode_beams_are_labelled_with_number_and_frequency():
     rec = Recorder()
-    mode_animation(LEVER, rec["modes"], modes=(1, 2), frames=4, segments=4)
+    mode_animation(bend(LEVER, 0.0), rec["modes"], modes=(1, 2), frames=4, segments=4)
     J = W * H ** 3 / 12
     for n, beta in ((1, 1.8751040687), (2, 4.6940911330)):  # b_n L, Blevins Table 8-1
         f = beta ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * J / (RHO * W * H))
@@ -320,7 +324,7 @@ def test_scene_arguments_are_checked_by_name_before_drawing():
             CantileverScene(bend(LEVER, F), vis=rec, **kwargs)
     assert rec.calls == []
     with pytest.raises(TypeError, match="^modes must be a sequence"):
-        mode_animation(LEVER, rec, modes=2)
+        mode_animation(bend(LEVER, F), rec, modes=2)
     with pytest.raises(ValueError, match="^length must be in"):
         CantileverScene.framing(math.nan)
     # a 1 m lever (the longest valid) is still framed: the camera backs off far enough

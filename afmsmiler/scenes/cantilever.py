@@ -333,14 +333,15 @@ class CantileverScene:
         """Animate the first flexural mode shapes of the current lever beside it.
 
         Each mode is drawn as a beam of rigid segments behind the static lever (see
-        :func:`mode_animation`), oscillating in its shape :meth:`Cantilever.mode_shape` with a
-        tip amplitude of 15 % of L. All modes are shown with the same period (their real
-        frequencies differ by f_n/f_1 = 6.27, 17.5, ...; see the plot of the mode shapes).
+        :func:`mode_animation`), oscillating in its shape (from the result drawn, so the modes must
+        be among those it holds) with a tip amplitude of 15 % of L. All modes are shown with the
+        same period (their real frequencies differ by f_n/f_1 = 6.27, 17.5, ...; see the plot of
+        the mode shapes).
 
         Parameters
         ----------
         modes : sequence of int
-            Mode numbers (1-based).
+            Mode numbers (1-based), at most the number of modes of the result drawn.
         frames : int
             Frames per period.
         repetitions : int
@@ -353,7 +354,7 @@ class CantileverScene:
         meshcat.animation.Animation
             The animation sent to the viewer (play it again with ``vis.set_animation``).
         """
-        anim = mode_animation(self.lever, self.vis["modes"], modes=modes, frames=frames)
+        anim = mode_animation(self.field, self.vis["modes"], modes=modes, frames=frames)
         self.root.set_animation(anim, play=play, repetitions=check_integer(
             "repetitions", repetitions, 1, 10_000))
         return anim
@@ -368,7 +369,7 @@ class CantileverScene:
         return _static_html(self.root)
 
 
-def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), *,
+def mode_animation(bending: Bending, vis: meshcat.Visualizer, modes=(1, 2, 3), *,
                    frames: int = DEFAULTS["mode_frames"],
                    segments: int = DEFAULTS["mode_segments"],
                    amplitude: float = DEFAULTS["mode_amplitude"],
@@ -379,11 +380,14 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
     boxes whose poses follow A phi_n(x) sin(2 pi k / frames) for k = 0..frames. Mode n is placed
     behind the lever at y = n (0.3 + 1.5 w) scene units (1 unit = 100 um), labelled with its
     number and frequency (a :class:`~afmsmiler.scenes.primitives.TextPlate` beside its clamp).
+    The shapes and frequencies are the model's (``bending.mode_shapes``), read at the segment
+    centres by linear interpolation; nothing is computed from the lever here.
 
     Parameters
     ----------
-    lever : Cantilever
-        Supplies L, w, h and the mode shapes.
+    bending : Bending
+        The model's result: L, w, h, and the mode shapes and frequencies (its ``modes`` must
+        include every mode asked for).
     vis : meshcat.Visualizer
         Parent path of the mode beams.
     modes : sequence of int
@@ -401,29 +405,33 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
     -------
     meshcat.animation.Animation
     """
-    check_instance("lever", lever, Cantilever)
+    check_instance("bending", bending, Bending)
     frames = check_integer("frames", frames, 2, 10_000)
     segments = check_integer("segments", segments, 2, 1_000)
     amplitude = check_range("amplitude", amplitude, 0.0, 1.0, low_inclusive=False)
     fps = check_integer("fps", fps, 1, 240)
     modes = check_modes(modes)
+    if max(modes) > len(bending.frequencies):
+        raise ValueError(f"modes must be at most {len(bending.frequencies)} (the modes of "
+                         f"bending), got {max(modes)}")
     if segments * (frames + 1) * len(modes) > LIMITS["animation_transforms"]:
         raise ValueError(f"segments x (frames + 1) x modes must be at most "
                          f"{LIMITS['animation_transforms']} (a longer animation takes minutes to "
                          f"build and send), got {segments} x {frames + 1} x {len(modes)}")
+    lever, x = bending.lever, bending.x
     u = SCENE_UNIT
     L, w, h = lever.length / u, lever.width / u, lever.thickness / u
     pitch = 0.3 + 1.5 * w
     edges = np.linspace(0.0, lever.length, segments + 1)
     mids = 0.5 * (edges[1:] + edges[:-1])
-    fine = np.linspace(0.0, lever.length, 20 * segments + 1)
     anim = Animation(default_framerate=fps)
     for n in modes:
-        phi = lever.mode_shape(mids, n)
-        dphi = np.interp(mids, fine, np.gradient(lever.mode_shape(fine, n), fine / lever.length))
+        shape = bending.mode_shapes[n - 1]
+        phi = np.interp(mids, x, shape)
+        dphi = np.interp(mids, x, np.gradient(shape, x / lever.length))  # d phi / d(x/L)
         # which beam is which: "mode n: f_n" beside its clamp end (meshcat has no text)
         label = P.TextPlate(vis[f"label{n}"], f"mode {n}: "
-                            f"{lever.resonance_frequency(n) * _KHZ:.3g} kHz",
+                            f"{bending.frequencies[n - 1] * _KHZ:.3g} kHz",
                             width=max(0.25 * L, 0.3))
         vis[f"label{n}"].set_transform(P.translation([-1.05 * label.width, pitch * n, 0.02]))
         for i in range(segments):
