@@ -33,6 +33,7 @@ def beam():
 LEVER = Cantilever.from_material("silicon", length=125e-6, width=30e-6, thickness=4e-6)
 
 
+@pytest.mark.slow  # sympy's dsolve takes seconds
 def test_derivation_matches_printed_equation_1(beam):
     (x, L, E, J, F), z = beam
     u = x / L
@@ -42,6 +43,7 @@ def test_derivation_matches_printed_equation_1(beam):
     assert sp.simplify(F / z.subs(x, L) - 3 * E * J / L ** 3) == 0
 
 
+@pytest.mark.slow  # sympy's dsolve takes seconds
 def test_library_equals_derivation(beam):
     (x, L, E, J, F), z = beam
     subs = {L: LEVER.length, E: LEVER.youngs_modulus, J: LEVER.width * LEVER.thickness ** 3 / 12}
