@@ -9,9 +9,19 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from .validation import check_positive, check_range
+from .parameters import Parameter, read_only
+from .validation import check_instance, check_range
 
-__all__ = ["Material", "MATERIALS", "get_material"]
+__all__ = ["Material", "MATERIALS", "get_material", "YOUNGS_MODULUS", "DENSITY"]
+
+#: Young's modulus E: valid from 1 Pa to 10 TPa (every beam result stays finite), the slider of
+#: module (a) from 10 to 400 GPa (every preset of :data:`MATERIALS` lies on it).
+YOUNGS_MODULUS = Parameter(name="youngs_modulus", unit="Pa", display_unit="GPa", default=169e9,
+                           low=1.0, high=1e13, slider_low=10e9, slider_high=400e9,
+                           label="Young's modulus E")
+#: Mass density rho: valid from 1 to 10^5 kg/m^3, the slider from 1000 to 20000 kg/m^3.
+DENSITY = Parameter(name="density", unit="kg/m^3", default=2330.0, low=1.0, high=1e5,
+                    slider_low=1000.0, slider_high=20000.0, label="density rho")
 
 
 @dataclass(frozen=True)
@@ -39,12 +49,16 @@ class Material:
     source: str = ""
 
     def __post_init__(self):
-        check_positive("youngs_modulus", self.youngs_modulus, "Pa")
-        check_positive("density", self.density, "kg/m^3")
-        check_range("poisson_ratio", self.poisson_ratio, 0.0, 0.5, high_inclusive=False)
+        check_instance("name", self.name, str)
+        check_instance("source", self.source, str)
+        object.__setattr__(self, "youngs_modulus", YOUNGS_MODULUS.check(self.youngs_modulus))
+        object.__setattr__(self, "density", DENSITY.check(self.density))
+        object.__setattr__(self, "poisson_ratio", check_range(
+            "poisson_ratio", self.poisson_ratio, 0.0, 0.5, high_inclusive=False))
 
 
-MATERIALS: dict[str, Material] = {
+#: The presets by key (read-only).
+MATERIALS = read_only({
     "silicon": Material("silicon <110>", 169e9, 2330.0, 0.064,
                         "Hopcroft et al., JMEMS 19, 229 (2010): E<110> = 169 GPa"),
     "silicon_nitride": Material("silicon nitride (LPCVD)", 250e9, 3100.0, 0.23,
@@ -55,7 +69,7 @@ MATERIALS: dict[str, Material] = {
     "aluminium": Material("aluminium", 70e9, 2700.0, 0.35, "bulk Al, CRC Handbook"),
     "quartz": Material("quartz (qPlus tuning fork)", 78.7e9, 2650.0, 0.17,
                        "Giessibl, Rev. Mod. Phys. 75, 949 (2003)"),
-}
+})
 
 
 def get_material(name: str | Material) -> Material:
@@ -65,9 +79,21 @@ def get_material(name: str | Material) -> Material:
     ----------
     name : str or Material
         A key of :data:`MATERIALS` (``"silicon"``, ``"silicon_nitride"``, ...) or a Material.
+
+    Returns
+    -------
+    Material
+
+    Raises
+    ------
+    TypeError
+        If ``name`` is neither a string nor a Material.
+    ValueError
+        If ``name`` is not a key of :data:`MATERIALS`.
     """
     if isinstance(name, Material):
         return name
+    check_instance("material", name, str, "key of MATERIALS (str) or a Material")
     if name not in MATERIALS:
         raise ValueError(f"material must be one of {sorted(MATERIALS)} or a Material, got {name!r}")
     return MATERIALS[name]

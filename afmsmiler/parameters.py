@@ -89,7 +89,7 @@ UNITS = MappingProxyType({
     "A/W": ("A/W", 1.0), "m/V": ("m/V", 1.0), "nm/V": ("m/V", 1e-9), "pm/V": ("m/V", 1e-12),
     # temperature, number density, dimensionless
     "K": ("K", 1.0), "1/m^3": ("1/m^3", 1.0), "1/cm^3": ("1/m^3", 1e6),
-    "": ("", 1.0), "x": ("", 1.0),
+    "": ("", 1.0), "x": ("", 1.0), "microstrain": ("", 1e-6),
 })
 
 

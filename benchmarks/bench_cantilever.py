@@ -2,11 +2,12 @@
 
 Target (issue 2): well under 30 ms per update. Split into its parts:
 
-- model: build the Cantilever from slider values, k, f1..f3 and the plotted curves
-  (deflection, slope, stress along the lever and through a section, 201 + 41 points);
+- model: build the Cantilever from slider values and run ``Cantilever.bending`` once (deflection,
+  slope and the 121 x 9 stress field, a 41-point section, f1..f3 and their mode shapes), then
+  convert it to the units shown;
 - plots: move the line data of the four panels in place (``CantileverFigure.update``; the pixels
   are drawn later by the browser/ipympl, timed separately for information);
-- scene: resample the stress field (61 x 9), rebuild the beam mesh with vertex colors and send it,
+- scene: rebuild the beam mesh (121 x 9) with vertex colors from the same result and send it,
   move tip and arrow (``CantileverScene.update``, into a running meshcat server);
 - the whole ``CantileverPanel.update``, and its worst case, when every update moves the color
   limit across a round number so that the legend texture is re-rendered too.
@@ -25,7 +26,7 @@ from _timing import best_time, report  # noqa: E402
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 
-from afmsmiler.cantilever import Cantilever  # noqa: E402
+from afmsmiler.cantilever import PARAMETERS, Cantilever  # noqa: E402
 from afmsmiler.plots.cantilever import CantileverFigure, cantilever_curves  # noqa: E402
 from afmsmiler.scenes import close_viewer, get_viewer  # noqa: E402
 from afmsmiler.scenes.cantilever import CantileverScene  # noqa: E402
@@ -46,18 +47,24 @@ def main():
             state["i"] += 1
             return {**values, "force": 50.0 + (state["i"] % 100)}
 
-        def model():
-            v = next_values()
-            lever = Cantilever(v["length"] * 1e-6, v["width"] * 1e-6, v["thickness"] * 1e-6,
-                               v["youngs_modulus"] * 1e9, v["density"])
-            [lever.resonance_frequency(n) for n in (1, 2, 3)]
-            lever.spring_constant
-            return lever, cantilever_curves(lever, v["force"] * 1e-9, v["section"] * lever.length)
+        def si(v):
+            return {k: PARAMETERS[k].to_si(x) for k, x in v.items() if k in PARAMETERS}
 
-        lever, curves = model()
+        def bending(v):
+            s = si(v)
+            lever = Cantilever(s["length"], s["width"], s["thickness"], s["youngs_modulus"],
+                               s["density"])
+            return lever.bending(s["force"], section=s["section"], n_length=121, n_thickness=9,
+                                 n_section=41, modes=3)
+
+        def model():
+            b = bending(next_values())
+            return b, cantilever_curves(b)
+
+        result, curves = model()
         t_model = best_time(model)
         t_plots = best_time(lambda: panel.figure.update(curves))
-        t_scene = best_time(lambda: panel.scene.update(lever, next_values()["force"] * 1e-9))
+        t_scene = best_time(lambda: panel.scene.update(bending(next_values())))
         t_panel = best_time(lambda: panel.update(**next_values()))
 
         def crossing():  # worst case: every update crosses a round color limit (1 <-> 2 MPa)
@@ -69,20 +76,17 @@ def main():
         t_draw = best_time(canvas.draw, repeat=3)
 
         def naive():
-            v = next_values()
-            lev = Cantilever(v["length"] * 1e-6, v["width"] * 1e-6, v["thickness"] * 1e-6,
-                             v["youngs_modulus"] * 1e9, v["density"])
-            c = cantilever_curves(lev, v["force"] * 1e-9, 0.0)
-            CantileverFigure(c)
+            b = bending(next_values())
+            CantileverFigure(cantilever_curves(b))
             get_viewer()["bench_naive"].delete()
-            CantileverScene(lev, v["force"] * 1e-9, path="bench_naive", camera=False)
+            CantileverScene(b, path="bench_naive", camera=False)
 
         t_naive = best_time(naive, repeat=3)
         print("one slider update of CantileverPanel (meshcat server running, figure not rasterised)")
         report([
-            ("model: Cantilever, k, f1..f3, curves (201 + 41 pts)", t_model, None, None),
+            ("model: Cantilever.bending once (121 x 9 + 41 pts, 3 modes)", t_model, None, None),
             ("plots: CantileverFigure.update (line data in place)", t_plots, None, None),
-            ("scene: CantileverScene.update (61 x 9 mesh, tip, arrow)", t_scene, None, None),
+            ("scene: CantileverScene.update (121 x 9 mesh, tip, arrow)", t_scene, None, None),
             ("whole CantileverPanel.update (model + plots + scene)", t_panel, TARGET, t_naive),
             ("  same, each update re-rendering the legend texture", t_cross, TARGET, t_naive),
             ("(info) rasterising the 4-panel figure with Agg", t_draw, None, None),

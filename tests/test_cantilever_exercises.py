@@ -5,7 +5,7 @@ import pytest
 
 from afmsmiler.exercises import Feedback
 from afmsmiler.exercises.cantilever import (check_largest_stress, check_mode_ratio,
-                                            check_thickness_for_spring_constant)
+                                            check_thickness_for_spring_constant, check_tip_slope)
 
 # Silicon <110>: E = 169 GPa (Hopcroft, Nix and Kenny, JMEMS 19, 229 (2010)).
 E_SI = 169e9
@@ -30,6 +30,79 @@ def test_thickness_placeholders_and_nonsense_get_not_yet():
     # a thickness in um instead of m is caught (k is 1e18 times too large)
     h_um = (4 * 0.1 * 450e-6 ** 3 / (E_SI * 50e-6)) ** (1 / 3) * 1e6
     assert not check_thickness_for_spring_constant(h_um)
+
+
+# The closed-form answers (independent of the model): h from k = E w h^3 / (4 L^3); theta(L) =
+# F L^2 / (2 E J) = 6 F L^2 / (E w h^3); f2/f1 = (b_2 L / b_1 L)^2 (Blevins, Table 8-1).
+H_ANSWER = (4 * 0.1 * 450e-6 ** 3 / (E_SI * 50e-6)) ** (1 / 3)
+THETA_ANSWER = 6 * 100e-9 * 450e-6 ** 2 / (E_SI * 50e-6 * 2e-6 ** 3)
+RATIO_ANSWER = (BL[1] / BL[0]) ** 2
+
+
+def _no_answer(fb, answer, given=None):
+    """The feedback states no digits of the answer (other than the student's own value echoed)."""
+    text = str(fb)
+    if given is not None:
+        text = text.replace(f"{given:.4g}", "<given>")
+    for digits in (2, 3, 4, 5, 6):
+        assert f"{answer:.{digits}g}" not in text, text
+
+
+def test_thickness_slips_are_named_without_the_answer():
+    # 01 used to say "off by 100397289849108348928.0 %" for a thickness in um
+    assert check_thickness_for_spring_constant(H_ANSWER).passed
+    for factor, words in ((1e6, "10^6 times"), (1e9, "10^9 times"), (1e3, "10^3 times"),
+                          (1e-3, "10^-3 times"), (-1.0, "sign is wrong"),
+                          (-1e6, "10^6 times the right one and the sign is wrong")):
+        fb = check_thickness_for_spring_constant(H_ANSWER * factor)
+        assert not fb and words in str(fb), (factor, str(fb))
+        assert "%" not in str(fb)
+        _no_answer(fb, H_ANSWER, H_ANSWER * factor)
+
+
+def test_tip_slope_against_the_closed_form_and_its_slips():
+    assert THETA_ANSWER == pytest.approx(1.797e-3, rel=1e-3)  # 3 z(L) / (2 L), z(L) = 539 nm
+    assert check_tip_slope(THETA_ANSWER).passed
+    assert check_tip_slope(-THETA_ANSWER, force=-100e-9).passed
+    assert not check_tip_slope(1.03 * THETA_ANSWER)
+    for answer, words in ((THETA_ANSWER * 180 / math.pi, "in degrees where radians are asked"),
+                          (THETA_ANSWER * 1e3, "10^3 times"), (-THETA_ANSWER, "sign is wrong")):
+        fb = check_tip_slope(answer)
+        assert not fb and words in str(fb), str(fb)
+        _no_answer(fb, THETA_ANSWER, answer)
+    for answer in (None, "1 degree", math.inf, True):
+        assert not check_tip_slope(answer)
+    with pytest.raises(ValueError, match="force must be"):
+        check_tip_slope(1e-3, force=0.0)
+
+
+def test_mode_ratio_slips_are_named_without_the_answer():
+    for answer, words in ((-RATIO_ANSWER, "sign is wrong"), (RATIO_ANSWER * 1e3, "10^3 times"),
+                          (RATIO_ANSWER * 2 * math.pi, "2 pi times")):
+        fb = check_mode_ratio(answer, mode=2)
+        assert not fb and words in str(fb), str(fb)
+        _no_answer(fb, RATIO_ANSWER, answer)
+
+
+def test_hints_name_only_what_exists_and_give_nothing_away():
+    # every hint of module (a) is shown for a placeholder; none states a number of the answer
+    for fb, answer in ((check_thickness_for_spring_constant(None), H_ANSWER),
+                       (check_mode_ratio(None), RATIO_ANSWER), (check_tip_slope(None), THETA_ANSWER)):
+        assert not fb
+        _no_answer(fb, answer)
+    fb = check_largest_stress("middle", "tension")  # wrong place and wrong side
+    assert "MPa" not in str(fb) and "clamp" not in str(fb) and "compression" not in str(fb)
+
+
+def test_checker_inputs_are_validated_by_name():
+    with pytest.raises(ValueError, match="target_k must be in"):
+        check_thickness_for_spring_constant(1e-6, target_k=-1.0)
+    with pytest.raises(ValueError, match="length must be in"):
+        check_thickness_for_spring_constant(1e-6, length=math.nan)
+    with pytest.raises(ValueError, match="material must be one of"):
+        check_thickness_for_spring_constant(1e-6, material="cheese")
+    with pytest.raises(ValueError, match="rtol must be in"):
+        check_mode_ratio(6.0, rtol=2.0)
 
 
 @pytest.mark.parametrize("mode", [2, 3])
@@ -57,3 +130,10 @@ def test_largest_stress_is_at_the_clamp_with_the_right_sign():
     assert "one of" in str(check_largest_stress("tip", "compression"))
     with pytest.raises(ValueError, match="force must be"):
         check_largest_stress("clamp", "compression", force=0.0)
+
+
+@pytest.mark.parametrize("answer", [1e300, -1e300, 1e-300, 5e-324])
+def test_extreme_answers_get_feedback_not_an_exception(answer):
+    for checker in (check_thickness_for_spring_constant, check_mode_ratio, check_tip_slope):
+        fb = checker(answer)
+        assert not fb and str(fb).startswith("Not yet")

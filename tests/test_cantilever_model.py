@@ -1,14 +1,16 @@
 """Module (a) against independent sources: a sympy solution of the beam equation, mpmath roots of
 the characteristic equation, and commercial probes' datasheets."""
 import math
+import re
 
 import mpmath
 import numpy as np
 import pytest
 import sympy as sp
 
-from afmsmiler.cantilever import MAX_MODE, Cantilever, eigenvalue
-from afmsmiler.materials import MATERIALS
+from afmsmiler.cantilever import LIMITS, MAX_MODE, PARAMETERS, Bending, Cantilever, eigenvalue
+from afmsmiler.materials import MATERIALS, Material, get_material
+from afmsmiler.parameters import Parameter
 
 
 # --- the sympy derivation: E J z'''' = 0 with clamp and free-end-load boundary conditions --------
@@ -31,6 +33,7 @@ def beam():
 LEVER = Cantilever.from_material("silicon", length=125e-6, width=30e-6, thickness=4e-6)
 
 
+@pytest.mark.slow  # sympy's dsolve takes seconds
 def test_derivation_matches_printed_equation_1(beam):
     (x, L, E, J, F), z = beam
     u = x / L
@@ -40,6 +43,7 @@ def test_derivation_matches_printed_equation_1(beam):
     assert sp.simplify(F / z.subs(x, L) - 3 * E * J / L ** 3) == 0
 
 
+@pytest.mark.slow  # sympy's dsolve takes seconds
 def test_library_equals_derivation(beam):
     (x, L, E, J, F), z = beam
     subs = {L: LEVER.length, E: LEVER.youngs_modulus, J: LEVER.width * LEVER.thickness ** 3 / 12}
@@ -142,11 +146,13 @@ def test_presets_exist():
 
 # --- bad input --------------------------------------------------------------------------------------
 @pytest.mark.parametrize("field", ["length", "width", "thickness", "youngs_modulus", "density"])
-@pytest.mark.parametrize("bad", [0.0, -1e-6, math.nan, math.inf])
+@pytest.mark.parametrize("bad", [0.0, -1e-6, math.nan, math.inf, 1e300, 1e-300])
 def test_bad_parameters_name_the_parameter(field, bad):
     kwargs = dict(length=1e-4, width=3e-5, thickness=1e-6, youngs_modulus=1.69e11, density=2330.0)
     kwargs[field] = bad
-    with pytest.raises(ValueError, match=rf"^{field} must be > 0"):
+    p = PARAMETERS[field]
+    expected = re.escape(f"{field} must be in [{p.low:g}, {p.high:g}] {p.unit}, got")
+    with pytest.raises(ValueError, match=rf"^({expected}|{field} must be a finite)"):
         Cantilever(**kwargs)
 
 
@@ -165,3 +171,112 @@ def test_bad_positions_and_heights():
         LEVER.resonance_frequency(0)
     with pytest.raises(ValueError, match="material must be one of"):
         Cantilever.from_material("unobtainium", 1e-4, 1e-5, 1e-6)
+
+
+# --- the parameter vocabulary -----------------------------------------------------------------------
+def test_parameters_describe_every_slider_quantity_in_si():
+    units = dict(force="N", length="m", width="m", thickness="m", youngs_modulus="Pa",
+                 density="kg/m^3", section="", exaggeration="")
+    shown = dict(force="nN", length="um", width="um", thickness="um", youngs_modulus="GPa",
+                 density="kg/m^3", section="", exaggeration="x")
+    assert set(PARAMETERS) == set(units)
+    for name, p in PARAMETERS.items():
+        assert isinstance(p, Parameter) and p.name == name
+        assert (p.unit, p.display_unit) == (units[name], shown[name])
+    with pytest.raises(TypeError):
+        PARAMETERS["length"] = None  # read-only
+    # notebook 01 asks to double L from 450 um: the slider reaches at least 900 um
+    assert PARAMETERS["length"].slider_high >= 1000e-6
+    assert PARAMETERS["length"].default == 450e-6
+    # every preset lies on the E and rho sliders
+    for m in MATERIALS.values():
+        for name, value in (("youngs_modulus", m.youngs_modulus), ("density", m.density)):
+            assert PARAMETERS[name].slider_low <= value <= PARAMETERS[name].slider_high
+
+
+@pytest.mark.parametrize("corner", [0, 1])
+def test_every_result_is_finite_at_the_corners_of_the_valid_ranges(corner):
+    # the valid ranges are chosen so that no valid input gives inf or nan (independent bound: the
+    # closed forms below overflow for 1e300 inputs, which the ranges reject)
+    names = ["length", "width", "thickness", "youngs_modulus", "density"]
+    import itertools
+    for values in itertools.product(*[(PARAMETERS[n].low, PARAMETERS[n].high) for n in names]):
+        lever = Cantilever(*values)
+        for force in (PARAMETERS["force"].low, PARAMETERS["force"].high)[corner:corner + 1]:
+            b = lever.bending(force, section=0.5, n_length=3, n_thickness=3, n_section=3,
+                              modes=2)
+            for arr in (b.deflection, b.slope, b.stress, b.section_stress, b.mode_shapes,
+                        b.frequencies, [lever.spring_constant, lever.effective_mass]):
+                assert np.all(np.isfinite(arr)), (values, force)
+
+
+def test_bending_against_the_closed_forms():
+    # Eq. (1) by hand (Timoshenko and Gere): z(L) = F / k, sigma_max = 6 F L / (w h^2) at the clamp
+    E, L, w, h, rho, F = 169e9, 300e-6, 40e-6, 3e-6, 2330.0, 250e-9
+    lever = Cantilever(L, w, h, E, rho)
+    b = lever.bending(F, section=0.25, n_length=11, n_thickness=5, n_section=7, modes=3)
+    assert isinstance(b, Bending) and b.x.shape == (11,) and b.stress.shape == (11, 5)
+    k = E * w * h ** 3 / (4 * L ** 3)
+    assert b.tip_deflection == pytest.approx(F / k, rel=1e-12)
+    assert b.tip_slope == pytest.approx(1.5 * F / k / L, rel=1e-12)
+    assert b.max_stress == pytest.approx(6 * F * L / (w * h ** 2), rel=1e-12)
+    np.testing.assert_allclose(b.top_stress, -6 * F * (L - b.x) / (w * h ** 2), atol=1e-6)
+    assert b.section_x == pytest.approx(75e-6)
+    np.testing.assert_allclose(b.section_stress, -12 * F * (L - 75e-6) * b.section_z_b
+                               / (w * h ** 3), rtol=1e-12, atol=1e-9)
+    np.testing.assert_allclose(b.section_strain, b.section_stress / E, rtol=1e-12, atol=1e-20)
+    for n, bl in enumerate((1.87510407, 4.69409113, 7.85475744)):  # Blevins, Table 8-1
+        f = bl ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * h ** 2 / (12 * rho))
+        assert b.frequencies[n] == pytest.approx(f, rel=1e-8)
+        assert b.mode_shapes[n, -1] == pytest.approx(1.0) and abs(b.mode_shapes[n, 0]) < 1e-12
+    assert lever.bending(F, modes=0).mode_shapes.shape == (0, 201)
+
+
+def test_bending_sizes_are_bounded_and_named():
+    lever = Cantilever(*(1e-4, 3e-5, 1e-6, 1.69e11, 2330.0))
+    for kwargs, name in ((dict(n_length=10 ** 9), "n_length"), (dict(n_thickness=1), "n_thickness"),
+                         (dict(n_section=10 ** 9), "n_section"), (dict(modes=MAX_MODE + 1), "modes"),
+                         (dict(section=1.5), "section"), (dict(force=2e6), "force"),
+                         (dict(n_length=10_000, n_thickness=1_000), "n_length x n_thickness")):
+        with pytest.raises(ValueError, match=rf"^{name} must"):
+            lever.bending(**kwargs)
+    big = lever.bending(n_length=LIMITS["n_length"], n_thickness=LIMITS["n_field"] //
+                        LIMITS["n_length"], n_section=LIMITS["n_section"], modes=MAX_MODE)
+    assert big.stress.size == LIMITS["n_field"]
+
+
+def test_materials_and_from_material_validate_their_inputs():
+    with pytest.raises(TypeError, match="material must be"):
+        get_material(["silicon"])
+    with pytest.raises(TypeError, match="material must be"):
+        Cantilever.from_material(3.0, 1e-4, 1e-5, 1e-6)
+    with pytest.raises(ValueError, match=r"^thickness must be in"):
+        Cantilever.from_material("silicon", 1e-4, 1e-5, -1e-6)
+    with pytest.raises(ValueError, match=r"^youngs_modulus must be in"):
+        Material("x", 1e300, 1000.0)
+    with pytest.raises(ValueError, match=r"^density must be in"):
+        Material("x", 1e9, math.nan)
+    with pytest.raises(TypeError, match="name must be a str"):
+        Material(None, 1e9, 1000.0)
+    with pytest.raises(TypeError):
+        MATERIALS["new"] = Material("x", 1e9, 1000.0)  # read-only presets
+    with pytest.raises(ValueError, match=r"^tip_deflection must be in"):
+        LEVER.force_for_deflection(1.0)
+
+
+@pytest.mark.parametrize("bad", [[1.0, 2.0], "2", 2.0, True, None])
+def test_mode_numbers_are_checked_before_the_cache(bad):
+    # eigenvalue is cached: a list used to raise "unhashable type" instead of naming mode
+    with pytest.raises((TypeError, ValueError), match="mode"):
+        eigenvalue(bad)
+    with pytest.raises((TypeError, ValueError), match="mode"):
+        LEVER.resonance_frequency(bad)
+
+
+def test_mode_sequences_are_checked_by_name():
+    from afmsmiler.cantilever import check_modes
+    assert check_modes(range(1, 4)) == [1, 2, 3]
+    for bad, kind in ((3.0, TypeError), (None, TypeError), ("12", TypeError), ((), ValueError),
+                      ((1, 0), ValueError), ((1.5,), ValueError), (list(range(1, 60)), ValueError)):
+        with pytest.raises(kind, match="^modes must"):
+            check_modes(bad)

@@ -6,11 +6,15 @@ import math
 import numpy as np
 import pytest
 
-from afmsmiler.cantilever import Cantilever
+from afmsmiler.cantilever import PARAMETERS, Cantilever
 from afmsmiler.materials import MATERIALS
 from afmsmiler.scenes import close_viewer, viewer
-from afmsmiler.ui.cantilever import BOUNDS, CantileverPanel
+from afmsmiler.ui.cantilever import SLIDERS, CantileverPanel
 from afmsmiler.scenes.cantilever import DEFAULTS
+
+#: Slider ends in the units shown, from the parameters (the panel types none of them).
+BOUNDS = {n: (PARAMETERS[n].to_display(PARAMETERS[n].slider_low),
+              PARAMETERS[n].to_display(PARAMETERS[n].slider_high)) for n in SLIDERS}
 
 SET = dict(force=250.0, length=300.0, width=40.0, thickness=3.0, section=0.5)
 
@@ -78,7 +82,10 @@ def test_material_sets_e_and_rho_in_one_update(panel):
 def test_slider_bounds_keep_the_model_valid():
     p = CantileverPanel(scene=False)
     for name, (lo, hi) in BOUNDS.items():
-        assert (p.controls[name].min, p.controls[name].max) == (lo, hi) or name == "exaggeration"
+        c = p.controls[name]
+        assert c.parameter is PARAMETERS[name]  # built by ui.controls.control from the model's
+        if name != "exaggeration":
+            assert (c.min, c.max) == pytest.approx((lo, hi), rel=1e-12, abs=1e-12)
     # every corner of the slider box is a valid lever, and the section never leaves it
     names = ["force", "length", "width", "thickness", "youngs_modulus", "density"]
     for corner in itertools.product(*[BOUNDS[n] for n in names]):
@@ -104,10 +111,13 @@ def test_unknown_controls_are_rejected(panel):
         CantileverPanel(scene=False, stiffness=1.0)
 
 
+@pytest.mark.viewer
+@pytest.mark.slow
 def test_panel_with_scene_updates_the_3d_view_in_place():
     try:
         p = CantileverPanel(scene=True, material="silicon_nitride")
-        assert p.last.lever.youngs_modulus == MATERIALS["silicon_nitride"].youngs_modulus
+        assert p.last.lever.youngs_modulus == pytest.approx(
+            MATERIALS["silicon_nitride"].youngs_modulus, rel=1e-15)
         pid = viewer._proc.pid
         p.set(force=-300.0, exaggeration=1000.0, length=200.0)
         lever = p.last.lever
@@ -120,7 +130,7 @@ def test_panel_with_scene_updates_the_3d_view_in_place():
                                    atol=1e-9)
         assert viewer._proc.pid == pid  # the same server throughout
         assert "MPa" in p.readout.value and "x1,000" in p.readout.value
-        p.set(length=500.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
+        p.set(length=1000.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
         assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
         assert f"at most {DEFAULTS['max_drawn_tip']:g} L" in p.readout.value
         w = p.widget()
@@ -142,6 +152,7 @@ def test_mode_shapes_figure_and_strain_axis():
         assert f"{f / 1e3:.4g} kHz" in line.get_label()
 
 
+@pytest.mark.slow
 def test_section_strain_axis_is_stress_over_e(panel):
     # the top axis of the section plot reads microstrain = stress / E
     from matplotlib.backends.backend_agg import FigureCanvasAgg
@@ -153,6 +164,8 @@ def test_section_strain_axis_is_stress_over_e(panel):
     np.testing.assert_allclose(c.section_strain_micro, c.section_stress_mpa * 1e6 / 169e9 * 1e6, rtol=1e-12)
 
 
+@pytest.mark.viewer
+@pytest.mark.slow
 def test_sliders_keep_working_after_close_viewer():
     # "Run All" ends with close_viewer(); in JupyterLab the next slider move raised ZMQError in
     # the ipywidgets callback, so plots moved (auto-redraw) but the readouts froze silently.
@@ -176,6 +189,7 @@ def test_sliders_keep_working_after_close_viewer():
         close_viewer()
 
 
+@pytest.mark.slow
 def test_layout_fits_one_screen():
     # Side by side (about 430 + 1000 px) the figure wrapped below a 700 px column in JupyterLab;
     # controls and readouts now sit above the figure, all unsqueezed (flex: 0 0 auto).
@@ -189,6 +203,15 @@ def test_layout_fits_one_screen():
     assert readout.layout.width == "460px"  # a long line (the slope warning) wraps inside it
     width, height = p.fig.get_size_inches() * p.fig.dpi
     assert width <= 1000 and height <= 600
+    # the toolbar sits above the figure (panel base); the labels must lie inside the canvas
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    canvas = FigureCanvasAgg(p.fig)
+    canvas.draw()
+    r = canvas.get_renderer()
+    for ax in p.figure.axes.values():
+        for label in (ax.yaxis.label, ax.xaxis.label, ax.title):
+            box = label.get_window_extent(r)
+            assert box.x0 >= 0 and box.y0 >= 0 and box.x1 <= width and box.y1 <= height
 
 
 def _elastica_tip(alpha):
@@ -220,3 +243,178 @@ def test_readout_warns_beyond_small_deflections():
     assert "beyond small deflections" in p.readout.value  # either sign
     p.set(force=500.0 * 0.9 * SMALL_SLOPE / theta)
     assert "beyond small deflections" not in p.readout.value
+
+
+# --- one user action, one model run -----------------------------------------------------------------
+def _count_model(monkeypatch):
+    """Count the runs of the model and of each of its physics methods."""
+    counts = {}
+    for name in ("bending", "deflection", "slope", "stress", "strain", "curvature",
+                 "resonance_frequency", "mode_shape"):
+        original = getattr(Cantilever, name)
+
+        def counted(self, *a, _name=name, _original=original, **k):
+            counts[_name] = counts.get(_name, 0) + 1
+            return _original(self, *a, **k)
+        monkeypatch.setattr(Cantilever, name, counted)
+    return counts
+
+
+@pytest.mark.parametrize("scene", [False, pytest.param(True, marks=[pytest.mark.viewer,
+                                                                    pytest.mark.slow])])
+def test_one_slider_move_runs_the_model_once(monkeypatch, scene):
+    # Before: the figure sampled the lever (cantilever_curves) and the scene sampled it again
+    # (stress_field), and the readout asked for f1..f3 on its own: 2 samplings per move. Now the
+    # panel runs Cantilever.bending once and the figures and scene only draw its result.
+    try:
+        p = CantileverPanel(scene=scene)
+        p.show_modes()  # the mode-shape figure follows too, from the same result
+        lever = p.last.lever
+        counts = _count_model(monkeypatch)
+        lever.bending(1e-7, section=0.3, n_length=121, n_thickness=9, n_section=41, modes=3)
+        one_run = dict(counts)
+        assert one_run["bending"] == 1
+        for move in (dict(force=250.0), dict(length=900.0), dict(section=0.5),
+                     dict(exaggeration=1000.0), dict(material="gold")):
+            counts.clear()
+            name, value = next(iter(move.items()))
+            p.controls[name].value = value  # as a user would
+            assert counts == one_run, (move, counts)
+        counts.clear()
+        p.set(force=-100.0, thickness=3.0, width=40.0)  # several values, one update
+        assert counts == one_run
+        counts.clear()
+        p.controls["force"].value = p.controls["force"].value + 0.1 * p.controls["force"].step
+        assert counts == {}  # the browser's echo of a snapped value runs nothing
+    finally:
+        close_viewer()
+
+
+def test_material_drop_down_is_one_model_run(monkeypatch):
+    p = CantileverPanel(scene=False)
+    counts = _count_model(monkeypatch)
+    p.controls["material"].value = "quartz"
+    assert counts["bending"] == 1
+    m = MATERIALS["quartz"]
+    assert p.last.lever.youngs_modulus == pytest.approx(m.youngs_modulus)
+    assert p.last.lever.density == pytest.approx(m.density)
+
+
+def test_double_the_length_as_notebook_01_says():
+    # from 450 um the slider used to end at 500 um; now doubling gives k / 8 and f1 / 4
+    p = CantileverPanel(scene=False)
+    k, f1 = p.last.spring_constant, p.last.frequencies[0]
+    p.set(length=2 * p.values()["length"])
+    assert p.last.lever.length == pytest.approx(900e-6, rel=1e-12)
+    assert p.last.spring_constant == pytest.approx(k / 8, rel=1e-9)  # k ~ 1 / L^3
+    assert p.last.frequencies[0] == pytest.approx(f1 / 4, rel=1e-9)  # f ~ 1 / L^2
+    p.set(thickness=p.values()["thickness"] / 2)  # "halve h": k / 8 again, f1 / 2
+    assert p.last.spring_constant == pytest.approx(k / 64, rel=1e-9)
+
+
+def test_mode_shapes_follow_the_sliders():
+    p = CantileverPanel(scene=False)
+    p.show_modes()
+    fig = p.modes_figure
+    before = [line.get_label() for line in fig.lines]
+    p.set(length=900.0)
+    lever = p.last.lever
+    for n, line in enumerate(fig.lines, start=1):
+        f = lever.resonance_frequency(n)
+        assert line.get_label() == f"mode {n}: f = {f / 1e3:.4g} kHz"
+        # f_n = (b_n L)^2 / (2 pi L^2) sqrt(E h^2 / (12 rho)) with b_n L from Blevins, Table 8-1
+        bl = (1.87510407, 4.69409113, 7.85475744)[n - 1]
+        assert f == pytest.approx(bl ** 2 / (2 * math.pi * 900e-6 ** 2)
+                                  * math.sqrt(169e9 * 4e-12 / (12 * 2330.0)), rel=1e-8)
+        u, phi = line.get_data()
+        np.testing.assert_allclose(phi, lever.mode_shape(np.asarray(u) * lever.length, n),
+                                   atol=1e-12)
+    assert [line.get_label() for line in fig.lines] != before
+    assert [t.get_text() for t in fig.legend.get_texts()] == [l.get_label() for l in fig.lines]
+
+
+def _legend_covers_data(fig, legend, lines):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    box = legend.get_window_extent(canvas.get_renderer())
+    for line in lines:
+        xy = line.axes.transData.transform(np.column_stack(line.get_data()))
+        inside = ((xy[:, 0] >= box.x0) & (xy[:, 0] <= box.x1)
+                  & (xy[:, 1] >= box.y0) & (xy[:, 1] <= box.y1))
+        if inside.any():
+            return True
+    return False
+
+
+@pytest.mark.slow
+def test_mode_legend_covers_no_curve():
+    p = CantileverPanel(scene=False)
+    p.show_modes()
+    for length in (20.0, 450.0, 1000.0):
+        p.set(length=length)
+        fig = p.modes_figure
+        assert not _legend_covers_data(fig.fig, fig.legend, fig.lines)
+        # and the legend stays inside the figure
+        from matplotlib.backends.backend_agg import FigureCanvasAgg
+        canvas = FigureCanvasAgg(fig.fig)
+        canvas.draw()
+        box = fig.legend.get_window_extent(canvas.get_renderer())
+        w, h = fig.fig.get_size_inches() * fig.fig.dpi
+        assert box.x0 >= 0 and box.x1 <= w and box.y0 >= 0 and box.y1 <= h
+
+
+def test_initial_values_are_checked_by_name():
+    with pytest.raises(ValueError, match=r"^length must be in \[20, 1000\] um, got 2000"):
+        CantileverPanel(scene=False, length=2000.0)
+    with pytest.raises(ValueError, match="material must be one of"):
+        CantileverPanel(scene=False, material="unobtainium")
+    with pytest.raises(ValueError, match="material must be one of"):
+        CantileverPanel(scene=False).set(material="unobtainium")
+    p = CantileverPanel(scene=False, material="gold", youngs_modulus=100.0)
+    assert p.last.lever.youngs_modulus == pytest.approx(100e9)  # given beats the preset
+    assert p.last.lever.density == pytest.approx(MATERIALS["gold"].density)
+    with pytest.raises(TypeError):
+        p.update(force=1.0)  # update takes every control value, by name
+    for values in (dict(youngs_modulus=120.0, material="quartz"),
+                   dict(material="quartz", youngs_modulus=120.0)):
+        p.set(**values)  # E given with a material wins, whatever the order
+        assert p.last.lever.youngs_modulus == pytest.approx(120e9)
+        assert p.last.lever.density == pytest.approx(MATERIALS["quartz"].density)
+        p.set(material="silicon")
+
+
+def test_defaults_are_read_only_and_on_the_slider_grid():
+    from afmsmiler.ui.cantilever import DEFAULTS as PANEL
+    with pytest.raises(TypeError):
+        PANEL["length"] = 500.0
+    p = CantileverPanel(scene=False)
+    for name in SLIDERS:
+        c = p.controls[name]
+        assert c.value == pytest.approx(PANEL[name], rel=1e-12)
+        if name != "exaggeration":  # a log slider's grid is in the exponent
+            n = (c.value - c.min) / c.step
+            assert abs(n - round(n)) < 1e-6, name  # the browser echoes it unchanged
+
+
+def test_exercise_1_can_be_checked_with_the_sliders():
+    # notebook 01, exercise 1: "work out h for k = 0.1 N/m, then check it with the sliders"; the
+    # closed form h = (4 k L^3 / (E w))^(1/3) = 1.628 um lies between two thickness steps, and the
+    # nearer one gives k within 1 % of 0.1 N/m
+    h = (4 * 0.1 * 450e-6 ** 3 / (169e9 * 50e-6)) ** (1 / 3) * 1e6
+    p = CantileverPanel(scene=False)
+    c = p.controls["thickness"]
+    nearest = c.min + round((h - c.min) / c.step) * c.step
+    p.set(thickness=nearest)
+    assert p.last.spring_constant == pytest.approx(0.1, rel=0.01)
+
+
+def test_update_names_a_bad_value_before_any_work():
+    p = CantileverPanel(scene=False)
+    good = p.values()
+    last = p.last
+    for name, bad in (("force", "lots"), ("length", None), ("thickness", math.inf),
+                      ("force", 1e300), ("material", "cheese")):
+        with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
+            p.update(**{**good, name: bad})
+    assert p.last is last

@@ -99,7 +99,7 @@ def _scenes():
     from afmsmiler.transducers import OpticalBeamDeflection
     for length in (100e-6, 450e-6):
         rec = Recorder()
-        sc = CantileverScene(Cantilever(length, 50e-6, 2e-6, 169e9, 2330.0), 0.0, vis=rec)
+        sc = CantileverScene(Cantilever(length, 50e-6, 2e-6, 169e9, 2330.0).bending(0.0), vis=rec)
         yield (f"cantilever {length * 1e6:.0f} um", rec, "/afmsmiler/cantilever/legend/plate",
                sc.camera_position, ColorLegend.TEXT_FRACTION, 0.95)
     tip = Parabolic(20e-9)

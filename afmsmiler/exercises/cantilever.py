@@ -5,22 +5,41 @@ Each checker computes the right answer with :class:`~afmsmiler.cantilever.Cantil
 """
 from __future__ import annotations
 
-from ..cantilever import MAX_MODE, Cantilever
-from ..validation import check_integer, check_positive, check_range
+import math
+
+from ..cantilever import FORCE, LENGTH, MAX_MODE, WIDTH, Cantilever
+from ..materials import get_material
+from ..parameters import read_only, unit_scale
+from ..validation import check_integer, check_range
 from . import Feedback, check_close
 
 __all__ = ["DEFAULTS", "check_thickness_for_spring_constant", "check_mode_ratio",
-           "check_largest_stress"]
+           "check_largest_stress", "check_tip_slope"]
 
 #: The exercises' givens, in one place (SI units).
-DEFAULTS = dict(target_k=0.1, length=450e-6, width=50e-6, material="silicon",
-                force=100e-9, thickness=2e-6)
+DEFAULTS = read_only(dict(target_k=0.1, length=450e-6, width=50e-6, material="silicon",
+                          force=100e-9, thickness=2e-6))
 
 _LOCATIONS = ("clamp", "middle", "free end")
 _STATES = ("tension", "compression")
 
 
-def check_thickness_for_spring_constant(thickness, target_k: float = DEFAULTS["target_k"],
+def _number(quantity: str, unit: str, answer, hint: str):
+    """The answer as a float, or the Feedback that says why it is not one."""
+    if answer is None:
+        return Feedback(False, f"enter {quantity}{' in ' + unit if unit else ''}. {hint}")
+    if isinstance(answer, bool):
+        return Feedback(False, f"{quantity} must be a number, got {answer!r}. {hint}")
+    try:
+        value = float(answer)
+    except (TypeError, ValueError):
+        return Feedback(False, f"{quantity} must be a number, got {answer!r}. {hint}")
+    if not math.isfinite(value):
+        return Feedback(False, f"{quantity} must be finite, got {value!r}. {hint}")
+    return value
+
+
+def check_thickness_for_spring_constant(thickness, *, target_k: float = DEFAULTS["target_k"],
                                         length: float = DEFAULTS["length"],
                                         width: float = DEFAULTS["width"],
                                         material: str = DEFAULTS["material"],
@@ -32,31 +51,38 @@ def check_thickness_for_spring_constant(thickness, target_k: float = DEFAULTS["t
     thickness : float or None
         The student's thickness in m.
     target_k : float
-        Wanted spring constant in N/m.
+        Wanted spring constant in N/m, in (0, 10^6].
     length, width : float
-        The lever's L and w in m.
+        The lever's L and w in m (valid ranges of :data:`afmsmiler.cantilever.PARAMETERS`).
     material : str
         A key of :data:`afmsmiler.materials.MATERIALS`.
     rtol : float
-        Accepted relative error of the resulting k (k ~ h^3, so 3 % in k is 1 % in h).
+        Accepted relative error of the resulting k, in (0, 1) (k ~ h^3, so 3 % in k is 1 % in h).
 
     Returns
     -------
     Feedback
-        Passed when the lever of that thickness has k within ``rtol`` of ``target_k``.
+        Passed when the lever of that thickness has k within ``rtol`` of ``target_k``; a
+        thickness given in um or nm, or with the wrong sign, is told so (without the answer).
     """
-    target_k = check_positive("target_k", target_k, "N/m")
-    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    target_k = check_range("target_k", target_k, 0.0, 1e6, "N/m", low_inclusive=False)
+    length, width = LENGTH.check(length), WIDTH.check(width)
+    get_material(material)
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     hint = ("k = 3 E J / L^3 with J = w h^3 / 12: solve for h, and mind that k grows as h^3. "
             "Give h in metres.")
-    if thickness is None:
-        return Feedback(False, f"enter a thickness in m. {hint}")
-    try:
-        h = check_positive("thickness", thickness, "m")
-    except ValueError as err:
-        return Feedback(False, f"{err}. {hint}")
-    k = Cantilever.from_material(material, length, width, h).spring_constant
-    return check_close(f"k of the {h * 1e6:.4g} um thick lever", k, target_k, rtol, "N/m", hint)
+    h = _number("the thickness h", "m", thickness, hint)
+    if isinstance(h, Feedback):
+        return h
+    # k grows as h^3 (the model's own law, checked against the closed form in the tests): the
+    # thickness that gives target_k, from a 1 um reference lever of the same L, w and material
+    reference = Cantilever.from_material(material, length, width, 1e-6)
+    expected = 1e-6 * (target_k / reference.spring_constant) ** (1.0 / 3.0)
+    if 0.5 < h / expected < 2.0 and abs((h / expected) ** 3 - 1.0) <= rtol:
+        k = reference.spring_constant * (h / 1e-6) ** 3
+        return Feedback(True, f"a {h * unit_scale('um'):.4g} um thick lever has k = {k:.4g} N/m "
+                              f"(target {target_k:g} N/m).")
+    return check_close("thickness h", h, expected, rtol / 3.0, "m", hint)
 
 
 def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
@@ -77,15 +103,16 @@ def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
         Compared with the model's f_n / f_1 (the same for every rectangular lever).
     """
     mode = check_integer("mode", mode, 2, MAX_MODE)
-    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     lever = Cantilever.from_material(DEFAULTS["material"], DEFAULTS["length"], DEFAULTS["width"],
                                      DEFAULTS["thickness"])
     expected = lever.resonance_frequency(mode) / lever.resonance_frequency(1)
     hint = ("f_n is proportional to (b_n L)^2 with b_n L the roots of cos(bL) cosh(bL) = -1; "
             "only the roots matter.")
-    if ratio is None:
-        return Feedback(False, f"enter f{mode}/f1 as a number. {hint}")
-    return check_close(f"f{mode}/f1", ratio, expected, rtol, "", hint)
+    value = _number(f"f{mode}/f1", "", ratio, hint)
+    if isinstance(value, Feedback):
+        return value
+    return check_close(f"f{mode}/f1", value, expected, rtol, "", hint)
 
 
 def check_largest_stress(location, top_surface, force: float = DEFAULTS["force"]) -> Feedback:
@@ -106,9 +133,9 @@ def check_largest_stress(location, top_surface, force: float = DEFAULTS["force"]
     Feedback
         Both parts right, or what is wrong.
     """
-    force = check_range("force", force, -1.0, 1.0, "N")
+    force = FORCE.check(force)
     if force == 0:
-        raise ValueError("force must be in [-1, 1] N and not 0, got 0")
+        raise ValueError(f"force must be in [{FORCE.low:g}, {FORCE.high:g}] N and not 0, got 0")
     lever = Cantilever.from_material(DEFAULTS["material"], DEFAULTS["length"], DEFAULTS["width"],
                                      DEFAULTS["thickness"])
     xs = {"clamp": 0.0, "middle": lever.length / 2, "free end": lever.length}
@@ -121,11 +148,51 @@ def check_largest_stress(location, top_surface, force: float = DEFAULTS["force"]
                                f"one of {_STATES}. {hint}")
     wrong = []
     if location != where:
-        wrong.append(f"the stress at the {location} is {abs(top[location]) / 1e6:.3g} MPa, "
-                     f"not the largest")
+        wrong.append(f"the stress at the {location} is not the largest")
     if top_surface != state:
-        wrong.append(f"the top surface is not in {top_surface} for F = {force * 1e9:.3g} nN")
+        wrong.append(f"the top surface is not in {top_surface} for F = "
+                     f"{force * unit_scale('nN'):.3g} nN")
     if wrong:
         return Feedback(False, "; ".join(wrong) + ". " + hint)
-    return Feedback(True, f"largest at the {where}: {abs(top[where]) / 1e6:.3g} MPa of "
-                          f"{state} on the top surface for F = {force * 1e9:.3g} nN.")
+    return Feedback(True, f"largest at the {where}: {abs(top[where]) * unit_scale('MPa'):.3g} "
+                          f"MPa of {state} on the top surface for F = "
+                          f"{force * unit_scale('nN'):.3g} nN.")
+
+
+def check_tip_slope(slope, *, force: float = DEFAULTS["force"],
+                    length: float = DEFAULTS["length"], width: float = DEFAULTS["width"],
+                    thickness: float = DEFAULTS["thickness"],
+                    material: str = DEFAULTS["material"], rtol: float = 0.01) -> Feedback:
+    """Exercise 4: the slope theta(L) at the free end (what an optical lever reads), in rad.
+
+    Parameters
+    ----------
+    slope : float or None
+        The student's theta(L) in rad.
+    force : float
+        End force in N (positive lifts the tip), in [-10^6, 10^6] and not 0.
+    length, width, thickness : float
+        The lever's L, w and h in m.
+    material : str
+        A key of :data:`afmsmiler.materials.MATERIALS`.
+    rtol : float
+        Accepted relative error, in (0, 1).
+
+    Returns
+    -------
+    Feedback
+        Compared with the model's theta(L); an answer in degrees or mrad, or with the wrong
+        sign, is told so (without the answer).
+    """
+    force = FORCE.check(force)
+    if force == 0:
+        raise ValueError(f"force must be in [{FORCE.low:g}, {FORCE.high:g}] N and not 0, got 0")
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
+    lever = Cantilever.from_material(material, length, width, thickness)
+    expected = float(lever.slope(lever.length, force))
+    hint = ("Differentiate z(x) (or use theta(L) = 3 z(L) / (2 L)) and give the angle in "
+            "radians, signed like z.")
+    value = _number("theta(L)", "rad", slope, hint)
+    if isinstance(value, Feedback):
+        return value
+    return check_close("theta(L)", value, expected, rtol, "rad", hint)

@@ -1,10 +1,12 @@
 """Figures of module (a): deflection, slope, surface stress, a cross-section profile, mode shapes.
 
-:func:`cantilever_curves` samples a :class:`~afmsmiler.cantilever.Cantilever` and converts to the
-units the figures show (x in um, z in nm, theta in mrad, stress in MPa, z_b in um, strain in
-microstrain); :class:`CantileverFigure` draws them once and :meth:`CantileverFigure.update`
-moves the line data in place, so a widget panel only swaps data. :func:`mode_shapes_figure`
-plots the first flexural mode shapes.
+:func:`cantilever_curves` converts a :class:`~afmsmiler.cantilever.Bending` (the model's result for
+one load case) to the units the figures show (x in um, z in nm, theta in mrad, stress in MPa, z_b
+in um, strain in microstrain; the factors come from :data:`afmsmiler.parameters.UNITS`);
+:class:`CantileverFigure` draws them once and :meth:`CantileverFigure.update` moves the line data in
+place, so a widget panel only swaps data. :class:`ModeShapesFigure` (and the one-call
+:func:`mode_shapes_figure`) plots the first flexural mode shapes the same way. Nothing here computes
+physics: every number comes from the model's result.
 """
 from __future__ import annotations
 
@@ -13,18 +15,25 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..cantilever import Cantilever
-from ..validation import check_integer, check_range
+from ..cantilever import Bending, Cantilever, check_modes
+from ..parameters import read_only, unit_scale
+from ..validation import check_instance
 
 __all__ = ["DEFAULTS", "UNITS", "CantileverCurves", "cantilever_curves", "CantileverFigure",
-           "mode_shapes_figure"]
+           "ModeShapesFigure", "mode_shapes_figure"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = dict(n_points=201, n_section=41, figsize=(10.0, 6.5),
-                min_span=1e-3)  # smallest y span in the units shown (1 pm, 1 urad, 1 kPa)
+DEFAULTS = read_only(dict(
+    n_points=121, figsize=(10.0, 6.5), modes_figsize=(6.0, 3.2),
+    min_span=1e-3))  # smallest y span in the units shown (1 pm, 1 urad, 1 kPa)
 
-#: Factors from SI to the units shown (value_shown = value_SI * factor).
-UNITS = dict(x=1e6, z=1e9, theta=1e3, stress=1e-6, z_b=1e6, strain=1e6)
+#: Display unit of each quantity shown (value_shown = value_SI * unit_scale(unit)).
+UNITS = read_only(dict(x="um", z="nm", theta="mrad", stress="MPa", z_b="um",
+                       strain="microstrain", youngs_modulus="GPa", frequency="kHz"))
+
+
+def _scale(quantity: str) -> float:
+    return unit_scale(UNITS[quantity])
 
 
 @dataclass(frozen=True)
@@ -51,6 +60,12 @@ class CantileverCurves:
         Strain at the section in microstrain (1e-6).
     youngs_modulus_gpa : float
         E in GPa (links the stress and strain axes).
+    mode_u : ndarray
+        x / L of the mode shapes.
+    mode_shapes : ndarray, shape (modes, n)
+        The first flexural mode shapes, 1 at the tip.
+    frequencies_khz : tuple of float
+        Their frequencies in kHz.
     """
 
     x_um: np.ndarray
@@ -62,25 +77,18 @@ class CantileverCurves:
     section_stress_mpa: np.ndarray
     section_strain_micro: np.ndarray
     youngs_modulus_gpa: float
+    mode_u: np.ndarray
+    mode_shapes: np.ndarray
+    frequencies_khz: tuple
 
 
-def cantilever_curves(lever: Cantilever, force: float, section_x: float, *,
-                      n_points: int = DEFAULTS["n_points"],
-                      n_section: int = DEFAULTS["n_section"]) -> CantileverCurves:
-    """Sample ``lever`` under an end ``force`` for the figure, in the units it shows.
+def cantilever_curves(bending: Bending) -> CantileverCurves:
+    """The model's result ``bending`` in the units the figures show (no physics computed here).
 
     Parameters
     ----------
-    lever : Cantilever
-        The lever.
-    force : float
-        End force in N.
-    section_x : float
-        Position of the cross-section in m, in [0, L].
-    n_points : int
-        Samples along the lever (>= 2).
-    n_section : int
-        Samples through the thickness (>= 2).
+    bending : Bending
+        From :meth:`Cantilever.bending`.
 
     Returns
     -------
@@ -88,24 +96,24 @@ def cantilever_curves(lever: Cantilever, force: float, section_x: float, *,
 
     Raises
     ------
-    ValueError
-        If ``section_x`` is outside [0, L] or the force is not finite (from the model).
+    TypeError
+        If ``bending`` is not a :class:`~afmsmiler.cantilever.Bending`.
     """
-    n_points = check_integer("n_points", n_points, 2, 100_000)
-    n_section = check_integer("n_section", n_section, 2, 10_000)
-    section_x = check_range("section_x", section_x, 0.0, lever.length, "m")
-    x = np.linspace(0.0, lever.length, n_points)
-    z_b = np.linspace(-0.5, 0.5, n_section) * lever.thickness
+    b = check_instance("bending", bending, Bending)
+    sx, sz, st = _scale("x"), _scale("z"), _scale("stress")
     return CantileverCurves(
-        x_um=x * UNITS["x"],
-        z_nm=lever.deflection(x, force) * UNITS["z"],
-        theta_mrad=lever.slope(x, force) * UNITS["theta"],
-        stress_top_mpa=lever.stress(x, lever.thickness / 2, force) * UNITS["stress"],
-        section_x_um=section_x * UNITS["x"],
-        z_b_um=z_b * UNITS["z_b"],
-        section_stress_mpa=lever.stress(section_x, z_b, force) * UNITS["stress"],
-        section_strain_micro=lever.strain(section_x, z_b, force) * UNITS["strain"],
-        youngs_modulus_gpa=lever.youngs_modulus * 1e-9,
+        x_um=b.x * sx,
+        z_nm=b.deflection * sz,
+        theta_mrad=b.slope * _scale("theta"),
+        stress_top_mpa=b.top_stress * st,
+        section_x_um=b.section_x * sx,
+        z_b_um=b.section_z_b * _scale("z_b"),
+        section_stress_mpa=b.section_stress * st,
+        section_strain_micro=b.section_strain * _scale("strain"),
+        youngs_modulus_gpa=b.lever.youngs_modulus * _scale("youngs_modulus"),
+        mode_u=b.x / b.lever.length,
+        mode_shapes=b.mode_shapes,
+        frequencies_khz=tuple(f * _scale("frequency") for f in b.frequencies),
     )
 
 
@@ -141,24 +149,28 @@ class CantileverFigure:
         self.axes = dict(z=axes[0, 0], theta=axes[0, 1], stress_top=axes[1, 0], section=axes[1, 1])
         ax = self.axes
         self.lines = {}
+        u = UNITS
+        xl = f"x [{u['x']}]"
         self.lines["z"], = ax["z"].plot([], [], color="C0")
-        ax["z"].set(xlabel="x [um]", ylabel="deflection z [nm]", title="deflection z(x)")
+        ax["z"].set(xlabel=xl, ylabel=f"deflection z [{u['z']}]", title="deflection z(x)")
         self.lines["theta"], = ax["theta"].plot([], [], color="C1")
-        ax["theta"].set(xlabel="x [um]", ylabel="slope theta [mrad]", title="slope theta(x)")
+        ax["theta"].set(xlabel=xl, ylabel=f"slope theta [{u['theta']}]", title="slope theta(x)")
         self.lines["stress_top"], = ax["stress_top"].plot([], [], color="C3")
-        ax["stress_top"].set(xlabel="x [um]", ylabel="stress [MPa]",
+        ax["stress_top"].set(xlabel=xl, ylabel=f"stress [{u['stress']}]",
                              title="bending stress on the top surface")
         for key in ("z", "theta", "stress_top"):
             self.lines[f"section_marker_{key}"] = ax[key].axvline(0.0, color="0.6", ls=":", lw=1)
             ax[key].axhline(0.0, color="0.85", lw=0.8)
         self.lines["section"], = ax["section"].plot([], [], color="C2", marker=".", ms=3)
         ax["section"].axvline(0.0, color="0.85", lw=0.8)
-        ax["section"].set(xlabel="stress sigma [MPa]", ylabel="z_b [um] (0 = neutral plane)")
+        ax["section"].set(xlabel=f"stress sigma [{u['stress']}]",
+                          ylabel=f"z_b [{u['z_b']}] (0 = neutral plane)")
         self._e_gpa = curves.youngs_modulus_gpa
-        # microstrain = MPa / (E in GPa) * 1e3
+        # strain = stress / E, each in its display unit: r = strain shown per (stress / E) shown
+        r = _scale("strain") * unit_scale(u["youngs_modulus"]) / _scale("stress")
         self.strain_axis = ax["section"].secondary_xaxis(
-            "top", functions=(lambda s: s / self._e_gpa * 1e3, lambda e: e * self._e_gpa / 1e3))
-        self.strain_axis.set_xlabel("strain [microstrain]")
+            "top", functions=(lambda s: s / self._e_gpa * r, lambda e: e * self._e_gpa / r))
+        self.strain_axis.set_xlabel(f"strain [{u['strain']}]")
         self.fig.set_layout_engine("constrained")
         self.update(curves)
 
@@ -187,22 +199,88 @@ class CantileverFigure:
         ax.set_xlim(-1.1 * smax, 1.1 * smax)
         h2 = float(curves.z_b_um[-1])
         ax.set_ylim(-1.1 * h2, 1.1 * h2)
-        ax.set_title(f"cross-section at x = {curves.section_x_um:.4g} um")
+        ax.set_title(f"cross-section at x = {curves.section_x_um:.4g} {UNITS['x']}")
         self._e_gpa = curves.youngs_modulus_gpa
 
 
-def mode_shapes_figure(lever: Cantilever, modes=(1, 2, 3), *, n_points: int = DEFAULTS["n_points"],
-                       ax=None):
-    """Plot the flexural mode shapes of ``lever`` (normalised to 1 at the tip) against x/L.
+class ModeShapesFigure:
+    """The first flexural mode shapes against x/L, updated in place (a panel's second figure).
 
     Parameters
     ----------
-    lever : Cantilever
-        The lever (its mode shapes and frequencies).
+    curves : CantileverCurves
+        The first data to show (its ``mode_shapes`` and ``frequencies_khz``).
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; a new pyplot-free Figure by default.
+    ax : matplotlib.axes.Axes, optional
+        Draw into these axes instead (``fig`` is then theirs).
+    modes : sequence of int, optional
+        The mode numbers of the curves' shapes, for the labels (default 1, 2, ...).
+
+    Attributes
+    ----------
+    lines : list of matplotlib.lines.Line2D
+        One line per mode, labelled ``"mode n: f = ... kHz"``.
+    legend : matplotlib.legend.Legend
+        Outside the axes, on the right, so that it never covers a curve.
+    """
+
+    def __init__(self, curves: CantileverCurves, fig: Figure | None = None, ax=None,
+                 modes=None):
+        curves = check_instance("curves", curves, CantileverCurves)
+        n = len(curves.frequencies_khz)
+        self.modes = tuple(range(1, n + 1)) if modes is None else tuple(check_modes(modes))
+        if len(self.modes) != n:
+            raise ValueError(f"modes must number the {n} modes of curves, got {len(self.modes)}")
+        if ax is None:
+            self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["modes_figsize"])
+            ax = self.fig.add_subplot()
+            self.fig.set_layout_engine("constrained")
+        else:
+            self.fig = ax.figure
+        self.ax = ax
+        self.lines = [ax.plot([], [], color=f"C{i}")[0] for i in range(n)]
+        ax.axhline(0.0, color="0.8", lw=0.8)
+        ax.set(xlabel="x / L (dimensionless)", ylabel="mode shape, 1 at the tip (dimensionless)",
+               title="flexural mode shapes", xlim=(0.0, 1.0))
+        self.legend = None
+        self.update(curves)
+
+    def update(self, curves: CantileverCurves) -> None:
+        """Show the mode shapes of ``curves`` (line data and labels in place).
+
+        Parameters
+        ----------
+        curves : CantileverCurves
+            From :func:`cantilever_curves`, with as many modes as the figure has lines.
+        """
+        curves = check_instance("curves", curves, CantileverCurves)
+        if len(curves.frequencies_khz) != len(self.lines):
+            raise ValueError(f"curves must hold {len(self.lines)} modes, got "
+                             f"{len(curves.frequencies_khz)}")
+        for n, line, shape, f in zip(self.modes, self.lines, curves.mode_shapes,
+                                     curves.frequencies_khz):
+            line.set_data(curves.mode_u, shape)
+            line.set_label(f"mode {n}: f = {f:.4g} {UNITS['frequency']}")
+        lo = min(-1.0, float(np.min(curves.mode_shapes, initial=0.0)))
+        self.ax.set_ylim(1.1 * lo, 1.1)
+        if self.legend is not None:
+            self.legend.remove()
+        # beside the axes: inside, every corner of [0, 1] x [-1, 1] holds a mode's curve
+        self.legend = self.ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0),
+                                     borderaxespad=0.0, fontsize="small")
+
+
+def mode_shapes_figure(bending, modes=(1, 2, 3), *, ax=None):
+    """Plot flexural mode shapes (normalised to 1 at the tip) against x/L.
+
+    Parameters
+    ----------
+    bending : Bending or Cantilever
+        The model's result (its mode shapes), or a lever, whose
+        :meth:`~afmsmiler.cantilever.Cantilever.bending` is then computed once here.
     modes : sequence of int
-        Mode numbers (1-based).
-    n_points : int
-        Samples along the lever.
+        Mode numbers (1-based, at most :data:`~afmsmiler.cantilever.MAX_MODE`).
     ax : matplotlib.axes.Axes, optional
         Where to draw; a new Figure by default.
 
@@ -212,19 +290,16 @@ def mode_shapes_figure(lever: Cantilever, modes=(1, 2, 3), *, n_points: int = DE
     lines : list of matplotlib.lines.Line2D
         One line per mode, labelled with f_n in kHz.
     """
-    n_points = check_integer("n_points", n_points, 2, 100_000)
-    modes = [check_integer("mode", m, 1, 50) for m in modes]
-    if ax is None:
-        fig = Figure(figsize=(6.0, 3.5), layout="constrained")
-        ax = fig.add_subplot()
-    else:
-        fig = ax.figure
-    x = np.linspace(0.0, lever.length, n_points)
-    lines = [ax.plot(x / lever.length, lever.mode_shape(x, n),
-                     label=f"mode {n}: f = {lever.resonance_frequency(n) / 1e3:.4g} kHz")[0]
-             for n in modes]
-    ax.axhline(0.0, color="0.8", lw=0.8)
-    ax.set(xlabel="x / L (dimensionless)", ylabel="mode shape, 1 at the tip (dimensionless)",
-           title="flexural mode shapes")
-    ax.legend(loc="lower left", fontsize="small")
-    return fig, lines
+    check_instance("bending", bending, (Bending, Cantilever), "Bending or Cantilever")
+    modes = check_modes(modes)
+    if isinstance(bending, Cantilever):
+        bending = bending.bending(0.0, n_length=DEFAULTS["n_points"], modes=max(modes))
+    elif len(bending.frequencies) < max(modes):
+        raise ValueError(f"modes must be at most {len(bending.frequencies)} (the modes in "
+                         f"bending), got {max(modes)}")
+    c = cantilever_curves(bending)
+    idx = [m - 1 for m in modes]
+    c = CantileverCurves(**{**c.__dict__, "mode_shapes": c.mode_shapes[idx],
+                            "frequencies_khz": tuple(c.frequencies_khz[i] for i in idx)})
+    figure = ModeShapesFigure(c, ax=ax, modes=modes)
+    return figure.fig, figure.lines

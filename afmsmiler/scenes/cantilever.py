@@ -10,19 +10,22 @@ that the camera, which looks at the origin, sees the lever centred.
 Everything is drawn once by :class:`CantileverScene` and then updated in place
 (:meth:`CantileverScene.update` replaces the beam mesh and moves the tip and arrow with
 ``set_transform``), always in the kernel's single viewer (:func:`~afmsmiler.scenes.get_viewer`).
+The scene draws the model's result, a :class:`~afmsmiler.cantilever.Bending` (deflection, slope
+and stress on a grid), and computes no physics itself: a panel runs the model once per slider move
+and hands the same result to its figures and to this scene.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 import meshcat
 import meshcat.geometry as g
 import numpy as np
 from meshcat.animation import Animation
 
-from ..cantilever import Cantilever
-from ..validation import check_integer, check_positive, check_range
+from ..cantilever import EXAGGERATION, Bending, Cantilever, check_modes
+from ..parameters import read_only, unit_scale
+from ..validation import check_instance, check_integer, check_positive, check_range
 from .camera import camera_ndc, readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend, TextPlate
@@ -31,17 +34,14 @@ from .shapes import Arrow, cone
 from .transforms import translation
 from .viewer import get_viewer, static_html as _static_html
 
-__all__ = ["SCENE_UNIT", "DEFAULTS", "CantileverScene", "StressField", "stress_field",
-           "mode_animation"]
+__all__ = ["SCENE_UNIT", "DEFAULTS", "LIMITS", "CantileverScene", "mode_animation"]
 
 #: Metres per scene unit (1 scene unit = 100 um).
 SCENE_UNIT = 100e-6
 
 #: Defaults of the scene, in one place.
-DEFAULTS = dict(
-    exaggeration=100.0,      # deflection drawn x100
-    n_length=61,             # stations along the lever
-    n_thickness=9,           # levels through the thickness (odd: one is the neutral plane)
+DEFAULTS = read_only(dict(
+    exaggeration=EXAGGERATION.default,  # deflection drawn x100
     tip_height=12e-6,        # m, the cone under the free end
     tip_radius=4e-6,         # m, radius of its base
     force_per_unit=100e-9,   # N drawn as one scene unit of arrow
@@ -57,52 +57,18 @@ DEFAULTS = dict(
     reframe_ratio=1.3,       # re-aim the camera when L changes by more than this factor
     frame_margin=0.95,       # ... or when the free end leaves this inner part of the view
     aspect=1.5,              # width / height of the view framed for (1200 x 800 pixels)
-)
+))
+
+#: Largest drawings the viewer is sent (each takes about a second or less): beam-mesh vertices
+#: (stations x levels of the Bending drawn), and segments x (frames + 1) x modes of an animation.
+LIMITS = read_only(dict(mesh_points=200_000, animation_transforms=20_000))
 
 _STRESS_LABEL = "bending stress"
 _STRESS_UNIT = "MPa"
+_MPA = unit_scale(_STRESS_UNIT, "Pa")  # MPa per Pa
+_KHZ = unit_scale("kHz", "Hz")
 _BEAM_MATERIAL_ARGS = dict(vertexColors=True)
 _MODE_COLORS = (0x1f77b4, 0xff7f0e, 0x2ca02c)
-
-
-@dataclass(frozen=True)
-class StressField:
-    """Bending stress sampled for drawing (see :func:`stress_field`).
-
-    Attributes
-    ----------
-    x : ndarray, shape (n_length,)
-        Stations along the lever in m, from 0 to L.
-    z_b : ndarray, shape (n_thickness,)
-        Levels through the thickness in m, from -h/2 (bottom) to +h/2 (top).
-    deflection : ndarray, shape (n_length,)
-        z(x) in m.
-    slope : ndarray, shape (n_length,)
-        theta(x) in rad.
-    stress : ndarray, shape (n_length, n_thickness)
-        sigma(x, z_b) in Pa.
-    """
-
-    x: np.ndarray
-    z_b: np.ndarray
-    deflection: np.ndarray
-    slope: np.ndarray
-    stress: np.ndarray
-
-
-def stress_field(lever: Cantilever, force: float, n_length: int = DEFAULTS["n_length"],
-                 n_thickness: int = DEFAULTS["n_thickness"]) -> StressField:
-    """Sample deflection, slope and bending stress of ``lever`` under ``force`` (N) on a grid.
-
-    All numbers come from :class:`~afmsmiler.cantilever.Cantilever`; this only chooses the grid:
-    ``n_length`` stations from 0 to L and ``n_thickness`` levels from -h/2 to +h/2.
-    """
-    n_length = check_integer("n_length", n_length, 2, 10_000)
-    n_thickness = check_integer("n_thickness", n_thickness, 2, 1_000)
-    x = np.linspace(0.0, lever.length, n_length)
-    z_b = np.linspace(-0.5, 0.5, n_thickness) * lever.thickness
-    return StressField(x, z_b, lever.deflection(x, force), lever.slope(x, force),
-                       lever.stress(x[:, None], z_b[None, :], force))
 
 
 class CantileverScene:
@@ -110,25 +76,29 @@ class CantileverScene:
 
     Parameters
     ----------
-    lever : Cantilever
-        The lever to draw first.
-    force : float
-        End force in N (positive lifts the tip).
+    bending : Bending
+        The model's result to draw first (:meth:`Cantilever.bending`: the lever, the end force
+        and the deflection, slope and stress on its grid, drawn as the mesh's stations and levels).
     exaggeration : float
-        Factor applied to the drawn deflection (> 0; default x100).
+        Factor applied to the drawn deflection (1 to 10^6; default x100).
     vis : meshcat.Visualizer, optional
         The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
     path : str
         Path of this scene in the viewer.
     force_per_unit : float
-        Force in N drawn as one scene unit (100 um) of arrow.
+        Force in N drawn as one scene unit (100 um) of arrow, in [1e-15, 1e3].
     stress_limit : float, optional
         Fixed color limit in Pa; by default the next round number (1, 2, 5 x 10^n MPa) above
         the largest stress, so the legend changes only when the stress crosses one.
-    n_length, n_thickness : int
-        Mesh stations along the lever and levels through its thickness.
     camera : bool
         Place the camera to look at the lever's side face.
+
+    Raises
+    ------
+    TypeError
+        If ``bending`` is not a :class:`~afmsmiler.cantilever.Bending`.
+    ValueError
+        For an argument outside its range, or a grid of more than ``LIMITS["mesh_points"]``.
 
     Notes
     -----
@@ -140,23 +110,20 @@ class CantileverScene:
     when the force pushes the tip up (a repulsive sample), from the apex downwards when it pulls.
     """
 
-    def __init__(self, lever: Cantilever, force: float = 0.0, *,
+    def __init__(self, bending: Bending, *,
                  exaggeration: float = DEFAULTS["exaggeration"],
                  vis: meshcat.Visualizer | None = None, path: str = "afmsmiler/cantilever",
                  force_per_unit: float = DEFAULTS["force_per_unit"],
-                 stress_limit: float | None = None,
-                 n_length: int = DEFAULTS["n_length"], n_thickness: int = DEFAULTS["n_thickness"],
-                 camera: bool = True):
-        if not isinstance(lever, Cantilever):
-            raise ValueError(f"lever must be a Cantilever, got {lever!r}")
+                 stress_limit: float | None = None, camera: bool = True):
+        check_instance("bending", bending, Bending)
+        check_instance("path", path, str)
         self.root = vis if vis is not None else get_viewer()
         self.path = path
         self.vis = self.root[path]
-        self.force_per_unit = check_positive("force_per_unit", force_per_unit, "N")
+        exaggeration = EXAGGERATION.check(exaggeration)
+        self.force_per_unit = check_range("force_per_unit", force_per_unit, 1e-15, 1e3, "N")
         self.stress_limit = (None if stress_limit is None
                              else check_positive("stress_limit", stress_limit, "Pa"))
-        self.n_length = check_integer("n_length", n_length, 2, 10_000)
-        self.n_thickness = check_integer("n_thickness", n_thickness, 2, 1_000)
         self._material = g.MeshLambertMaterial(**_BEAM_MATERIAL_ARGS)
         self._tip_drawn_for = None
         self._base_drawn_for = None
@@ -168,7 +135,7 @@ class CantileverScene:
         self.camera = bool(camera)
         self.camera_position = None
         self._framed_for = None
-        self.update(lever, force, exaggeration=exaggeration)
+        self.update(bending, exaggeration=exaggeration)
 
     # -- framing ------------------------------------------------------------------------------
     @staticmethod
@@ -182,18 +149,38 @@ class CantileverScene:
         :func:`~afmsmiler.scenes.camera.camera_ndc`). The legend's width grows with that
         distance (:func:`~afmsmiler.scenes.camera.readable_width`), so it reads the same for
         every lever.
+
+        Parameters
+        ----------
+        length : float
+            Lever length in scene units (> 0, at most 10^4: a 1 m lever).
+        aspect : float
+            Width / height of the view, in [0.1, 10].
+
+        Returns
+        -------
+        position : ndarray, shape (3,)
+            Camera position in scene units.
+        legend_width : float
+            Legend width in scene units.
         """
+        length = check_range("length", length, 0.0, 1e4, low_inclusive=False)
+        aspect = check_range("aspect", aspect, 0.1, 10.0)
         direction = np.asarray(DEFAULTS["camera_direction"], dtype=float)
         cap = DEFAULTS["max_drawn_tip"] * length
         distance = DEFAULTS["min_distance"]
-        for _ in range(60):  # grow by 5 % steps: the legend grows with the distance
+        for _ in range(400):  # grow by 5 % steps (to 3e8 x): the legend grows with the distance
             # its text READABLE_TEXT of the view's height where its centre stands
             camera = distance * direction
-            legend = readable_width(ColorLegend.TEXT_FRACTION, [0.0, 0.5, 0.0], camera)
-            for _ in range(2):  # where its centre stands: it moves with its width
-                corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
-                legend = readable_width(ColorLegend.TEXT_FRACTION,
-                                        corner + [legend / 2, 0.0, legend / 8], camera)
+            try:
+                legend = readable_width(ColorLegend.TEXT_FRACTION, [0.0, 0.5, 0.0], camera)
+                for _ in range(2):  # where its centre stands: it moves with its width
+                    corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0, 0]
+                    legend = readable_width(ColorLegend.TEXT_FRACTION,
+                                            corner + [legend / 2, 0.0, legend / 8], camera)
+            except ValueError:  # the legend would stand behind a camera this close: back off
+                distance *= 1.05
+                continue
             corner = CantileverScene._legend_corner(length, legend) - [length / 2, 0.0, 0.0]
             points = np.array([[-length / 2 - DEFAULTS["chip_in_view"], 0.0, 0.0],
                                [length / 2, 0.0, cap], [length / 2, 0.0, -cap - 0.15],
@@ -233,48 +220,55 @@ class CantileverScene:
             self.legend = ColorLegend(self.vis["legend"], self.scale, width=legend_width)
 
     # -- in-place update ----------------------------------------------------------------------
-    def color_scale(self, field: StressField) -> ColorScale:
-        """The (symmetric, MPa) color scale for ``field``: fixed or the next round number."""
-        if self.stress_limit is not None:
-            limit = self.stress_limit / 1e6
-        else:
-            limit = nice_ceil(float(np.abs(field.stress).max()) / 1e6, DEFAULTS["stress_floor"])
-        return ColorScale.symmetric(limit, "RdBu_r", _STRESS_LABEL, _STRESS_UNIT)
-
-    def update(self, lever: Cantilever, force: float, *, exaggeration: float | None = None) -> None:
-        """Redraw for a new lever and/or force, in place (same viewer, same paths).
+    def color_scale(self, field: Bending) -> ColorScale:
+        """The (symmetric, MPa) color scale for ``field``: fixed or the next round number.
 
         Parameters
         ----------
-        lever : Cantilever
-            The lever.
-        force : float
-            End force in N.
-        exaggeration : float, optional
-            New deflection exaggeration (> 0); by default keep the current one.
+        field : Bending
+            The model's result (its stress).
         """
-        if not isinstance(lever, Cantilever):
-            raise ValueError(f"lever must be a Cantilever, got {lever!r}")
-        force = check_range("force", force, -math.inf, math.inf, "N")
+        if self.stress_limit is not None:
+            limit = self.stress_limit * _MPA
+        else:
+            limit = nice_ceil(float(np.abs(field.stress).max()) * _MPA, DEFAULTS["stress_floor"])
+        return ColorScale.symmetric(limit, "RdBu_r", _STRESS_LABEL, _STRESS_UNIT)
+
+    def update(self, bending: Bending, *, exaggeration: float | None = None) -> None:
+        """Redraw for a new result (lever and/or force), in place (same viewer, same paths).
+
+        Parameters
+        ----------
+        bending : Bending
+            The model's result (:meth:`Cantilever.bending`).
+        exaggeration : float, optional
+            New deflection exaggeration (1 to 10^6); by default keep the current one.
+        """
+        field = check_instance("bending", bending, Bending)
+        n_length, n_thickness = field.x.size, field.z_b.size
+        if n_length * n_thickness > LIMITS["mesh_points"]:
+            raise ValueError(f"bending must have at most {LIMITS['mesh_points']} grid points to "
+                             f"draw, got {n_length} x {n_thickness}")
         if exaggeration is not None:
-            self.exaggeration = check_positive("exaggeration", exaggeration)
+            self.exaggeration = EXAGGERATION.check(exaggeration)
+        lever, force = field.lever, field.force
         self.lever, self.force = lever, force
-        field = stress_field(lever, force, self.n_length, self.n_thickness)
+        self.n_length, self.n_thickness = n_length, n_thickness
         scale = self.color_scale(field)
         tip = abs(float(field.deflection[-1]))
         cap = DEFAULTS["max_drawn_tip"] * lever.length / tip if tip > 0 else math.inf
         self.drawn_exaggeration = min(self.exaggeration, cap)
         u, ex = SCENE_UNIT, self.drawn_exaggeration
         mesh = beam_mesh(field.x / u, ex * field.deflection / u, lever.width / u,
-                         lever.thickness / u, field.stress / 1e6, slope=ex * field.slope)
+                           lever.thickness / u, field.stress * _MPA, slope=ex * field.slope)
         self.vis["beam"].set_object(mesh.geometry(scale), self._material)
         self.field, self.mesh = field, mesh
         self._draw_base(lever)
-        self._place_tip(lever, field)
+        self._place_tip(field)
         length = lever.length / u
         x_l = np.array([-length / 2, 0.0, 0.0])  # the lever frame in the world
         end = np.array([length, 0.0, ex * float(field.deflection[-1]) / u])
-        self._frame(length, [end + x_l, self.apex(self.tip_pose(lever, field)) + x_l])
+        self._frame(length, [end + x_l, self.apex(self.tip_pose(field)) + x_l])
         if self.legend is None:
             self.legend = ColorLegend(self.vis["legend"], scale, width=self.legend_width)
         else:
@@ -306,9 +300,17 @@ class CantileverScene:
         self.vis["chip"].set_transform(translation([-0.5, 0.0, lever.thickness / u / 2 - 0.15]))
         self._base_drawn_for = key
 
-    def tip_pose(self, lever: Cantilever, field: StressField) -> np.ndarray:
+    def tip_pose(self, field: Bending) -> np.ndarray:
         """4x4 pose of the tip frame: origin on the beam's bottom face at the free end, z along
-        the local normal of the drawn beam (scene units), for ``lever`` drawn from ``field``."""
+        the local normal of the drawn beam (scene units), for the lever drawn from ``field``.
+
+        Parameters
+        ----------
+        field : Bending
+            The result drawn (its lever, end deflection and end slope).
+        """
+        field = check_instance("field", field, Bending)
+        lever = field.lever
         u, ex = SCENE_UNIT, self.drawn_exaggeration
         s = ex * float(field.slope[-1])
         n = np.array([-s, 0.0, 1.0]) / math.hypot(1.0, s)
@@ -320,12 +322,13 @@ class CantileverScene:
         pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = tangent, [0.0, 1.0, 0.0], n, origin
         return pose
 
-    def _place_tip(self, lever: Cantilever, field: StressField) -> None:
+    def _place_tip(self, field: Bending) -> None:
         u = SCENE_UNIT
         if self._tip_drawn_for is None:
-            cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u, 0x707070)
+            cone(self.vis["tip"], DEFAULTS["tip_height"] / u, DEFAULTS["tip_radius"] / u,
+                   0x707070)
             self._tip_drawn_for = True
-        pose = self.tip_pose(lever, field)
+        pose = self.tip_pose(field)
         # the cone (apex at its origin, base at +height) hangs below the bottom face
         self.vis["tip"].set_transform(pose @ translation([0.0, 0.0, -DEFAULTS["tip_height"] / u]))
         apex = self.apex(pose)
@@ -346,14 +349,15 @@ class CantileverScene:
         """Animate the first flexural mode shapes of the current lever beside it.
 
         Each mode is drawn as a beam of rigid segments behind the static lever (see
-        :func:`mode_animation`), oscillating in its shape :meth:`Cantilever.mode_shape` with a
-        tip amplitude of 15 % of L. All modes are shown with the same period (their real
-        frequencies differ by f_n/f_1 = 6.27, 17.5, ...; see the plot of the mode shapes).
+        :func:`mode_animation`), oscillating in its shape (from the result drawn, so the modes must
+        be among those it holds) with a tip amplitude of 15 % of L. All modes are shown with the
+        same period (their real frequencies differ by f_n/f_1 = 6.27, 17.5, ...; see the plot of
+        the mode shapes).
 
         Parameters
         ----------
         modes : sequence of int
-            Mode numbers (1-based).
+            Mode numbers (1-based), at most the number of modes of the result drawn.
         frames : int
             Frames per period.
         repetitions : int
@@ -366,7 +370,7 @@ class CantileverScene:
         meshcat.animation.Animation
             The animation sent to the viewer (play it again with ``vis.set_animation``).
         """
-        anim = mode_animation(self.lever, self.vis["modes"], modes=modes, frames=frames)
+        anim = mode_animation(self.field, self.vis["modes"], modes=modes, frames=frames)
         self.root.set_animation(anim, play=play, repetitions=check_integer(
             "repetitions", repetitions, 1, 10_000))
         return anim
@@ -381,22 +385,25 @@ class CantileverScene:
         return _static_html(self.root)
 
 
-def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), *,
+def mode_animation(bending: Bending, vis: meshcat.Visualizer, modes=(1, 2, 3), *,
                    frames: int = DEFAULTS["mode_frames"],
                    segments: int = DEFAULTS["mode_segments"],
                    amplitude: float = DEFAULTS["mode_amplitude"],
                    fps: int = DEFAULTS["mode_fps"]) -> Animation:
-    """Draw segmented beams for ``modes`` under ``vis`` and return their oscillation as an Animation.
+    """Draw segmented beams for ``modes`` under ``vis``; return their oscillation as an Animation.
 
     meshcat animates transforms, not vertices, so each mode beam is made of ``segments`` rigid
     boxes whose poses follow A phi_n(x) sin(2 pi k / frames) for k = 0..frames. Mode n is placed
     behind the lever at y = n (0.3 + 1.5 w) scene units (1 unit = 100 um), labelled with its
     number and frequency (a :class:`~afmsmiler.scenes.legends.TextPlate` beside its clamp).
+    The shapes and frequencies are the model's (``bending.mode_shapes``), read at the segment
+    centres by linear interpolation; nothing is computed from the lever here.
 
     Parameters
     ----------
-    lever : Cantilever
-        Supplies L, w, h and the mode shapes.
+    bending : Bending
+        The model's result: L, w, h, and the mode shapes and frequencies (its ``modes`` must
+        include every mode asked for).
     vis : meshcat.Visualizer
         Parent path of the mode beams.
     modes : sequence of int
@@ -414,24 +421,34 @@ def mode_animation(lever: Cantilever, vis: meshcat.Visualizer, modes=(1, 2, 3), 
     -------
     meshcat.animation.Animation
     """
+    check_instance("bending", bending, Bending)
     frames = check_integer("frames", frames, 2, 10_000)
     segments = check_integer("segments", segments, 2, 1_000)
     amplitude = check_range("amplitude", amplitude, 0.0, 1.0, low_inclusive=False)
     fps = check_integer("fps", fps, 1, 240)
-    modes = [check_integer("mode", m, 1, 50) for m in modes]
+    modes = check_modes(modes)
+    if max(modes) > len(bending.frequencies):
+        raise ValueError(f"modes must be at most {len(bending.frequencies)} (the modes of "
+                         f"bending), got {max(modes)}")
+    if segments * (frames + 1) * len(modes) > LIMITS["animation_transforms"]:
+        raise ValueError(f"segments x (frames + 1) x modes must be at most "
+                         f"{LIMITS['animation_transforms']} (a longer animation takes minutes to "
+                         f"build and send), got {segments} x {frames + 1} x {len(modes)}")
+    lever, x = bending.lever, bending.x
     u = SCENE_UNIT
     L, w, h = lever.length / u, lever.width / u, lever.thickness / u
     pitch = 0.3 + 1.5 * w
     edges = np.linspace(0.0, lever.length, segments + 1)
     mids = 0.5 * (edges[1:] + edges[:-1])
-    fine = np.linspace(0.0, lever.length, 20 * segments + 1)
     anim = Animation(default_framerate=fps)
     for n in modes:
-        phi = lever.mode_shape(mids, n)
-        dphi = np.interp(mids, fine, np.gradient(lever.mode_shape(fine, n), fine / lever.length))
+        shape = bending.mode_shapes[n - 1]
+        phi = np.interp(mids, x, shape)
+        dphi = np.interp(mids, x, np.gradient(shape, x / lever.length))  # d phi / d(x/L)
         # which beam is which: "mode n: f_n" beside its clamp end (meshcat has no text)
         label = TextPlate(vis[f"label{n}"], f"mode {n}: "
-                          f"{lever.resonance_frequency(n) / 1e3:.3g} kHz", width=max(0.25 * L, 0.3))
+                            f"{bending.frequencies[n - 1] * _KHZ:.3g} kHz",
+                            width=max(0.25 * L, 0.3))
         vis[f"label{n}"].set_transform(translation([-1.05 * label.width, pitch * n, 0.02]))
         for i in range(segments):
             box = vis[f"mode{n}"][f"s{i:03d}"]

@@ -1,42 +1,54 @@
 """The widget panel of module (a): sliders for the lever and its load, four plots, the 3D view.
 
-Sliders show practical units (nN, um, GPa, kg/m^3); :meth:`CantileverPanel.update` converts them
-to SI, builds a :class:`~afmsmiler.cantilever.Cantilever`, and updates the figure
-(:class:`~afmsmiler.plots.cantilever.CantileverFigure`) and the meshcat scene
-(:class:`~afmsmiler.scenes.cantilever.CantileverScene`) in place. All slider bounds lie inside the
-model's valid ranges (every dimension > 0, the cross-section given as a fraction of L), so no
-slider position can make the model raise.
+Every slider is built by :func:`~afmsmiler.ui.controls.control` from the model's own description
+of its parameter (:data:`afmsmiler.cantilever.PARAMETERS`: SI unit, display unit nN, um, GPa,
+kg/m^3, valid and slider ranges), so no slider position can make the model raise and no unit
+factor is typed here. One user action is one :meth:`CantileverPanel.update`, which runs the model
+once (:meth:`~afmsmiler.cantilever.Cantilever.bending`) and hands that result to the figure
+(:class:`~afmsmiler.plots.cantilever.CantileverFigure`), the mode-shape figure
+(:class:`~afmsmiler.plots.cantilever.ModeShapesFigure`, see :meth:`CantileverPanel.show_modes`)
+and the meshcat scene (:class:`~afmsmiler.scenes.cantilever.CantileverScene`), which compute
+nothing themselves.
 """
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import ipywidgets as widgets
+from IPython.display import display
 
-from ..cantilever import Cantilever
+from ..cantilever import FORCE, PARAMETERS, Bending, Cantilever
 from ..materials import MATERIALS
-from ..plots.cantilever import CantileverCurves, CantileverFigure, cantilever_curves
-from .panel import Panel, log_slider, slider
+from ..parameters import read_only, unit_scale
+from ..plots.cantilever import DEFAULTS as PLOTS
+from ..plots.cantilever import (CantileverCurves, CantileverFigure, ModeShapesFigure,
+                                cantilever_curves)
+from ..validation import check_choice, check_finite, check_range
+from .controls import control
+from .panel import Panel, _interactive_backend
 
-__all__ = ["CantileverPanel", "CantileverState", "DEFAULTS", "BOUNDS"]
+__all__ = ["CantileverPanel", "CantileverState", "DEFAULTS", "SLIDERS"]
 
-#: Initial control values (a contact-mode silicon lever like BudgetSensors ContAl-G:
-#: 450 x 50 x 2 um, nominal k = 0.2 N/m, f0 = 13 kHz), in the units the sliders show.
-DEFAULTS = dict(force=100.0, length=450.0, width=50.0, thickness=2.0, material="silicon",
-                youngs_modulus=169.0, density=2330.0, section=0.0, exaggeration=100.0)
+#: The sliders, in the order shown (the material drop-down comes after the thickness).
+SLIDERS = ("force", "length", "width", "thickness", "youngs_modulus", "density", "section",
+           "exaggeration")
 
-#: Slider bounds (low, high) in the units shown; all inside the model's valid ranges.
-BOUNDS = dict(force=(-500.0, 500.0), length=(20.0, 500.0), width=(5.0, 100.0),
-              thickness=(0.2, 10.0), youngs_modulus=(10.0, 400.0), density=(1000.0, 20000.0),
-              section=(0.0, 1.0), exaggeration=(1.0, 1e4))
+#: Initial control values in the units shown, from the parameters' defaults (a contact-mode
+#: silicon lever like BudgetSensors ContAl-G: 450 x 50 x 2 um, nominal k = 0.2 N/m, f0 = 13 kHz).
+DEFAULTS = read_only({**{n: PARAMETERS[n].to_display(PARAMETERS[n].default) for n in SLIDERS},
+                      "material": "silicon"})
 
 _N_MODES = 3
+_N_THICKNESS = 9   # levels of the stress field through the thickness (odd: the neutral plane)
+_N_SECTION = 41    # levels of the cross-section profile
 _FIGSIZE = (10.0, 5.6)  # inches: with the controls above it, the panel fits one screen
 #: Largest end slope |theta(L)| in rad (of the linear theory) for which the readout calls the
 #: small-deflection beam theory good: F L^3 / (3 E J) then overestimates the tip deflection of the
 #: end-loaded elastica by about 0.45 theta^2, 0.5 % at 0.1 rad but 10 % at 0.5 rad (checked
 #: against the elastica solved numerically in tests/test_cantilever_ui.py).
 SMALL_SLOPE = 0.1
+#: Units of the readouts.
+_READOUT = read_only(dict(spring_constant="N/m", frequency="kHz", deflection="nm", stress="MPa"))
 
 
 @dataclass(frozen=True)
@@ -49,6 +61,8 @@ class CantileverState:
         The lever built from the sliders.
     force : float
         End force in N.
+    bending : Bending
+        The model's result, drawn by the figures and the scene.
     curves : CantileverCurves
         The plotted curves (in the units shown).
     spring_constant : float
@@ -58,11 +72,12 @@ class CantileverState:
     tip_deflection : float
         z(L) in m.
     max_stress : float
-        Largest |sigma| on the surface in Pa.
+        Largest |sigma| in Pa (on a surface at the clamp).
     """
 
     lever: Cantilever
     force: float
+    bending: Bending
     curves: CantileverCurves
     spring_constant: float
     frequencies: tuple
@@ -93,6 +108,9 @@ class CantileverPanel(Panel):
         The last model result.
     figure : CantileverFigure
         The four plots.
+    modes_figure : ModeShapesFigure or None
+        The mode shapes and frequencies, once :meth:`show_modes` drew them; they follow the
+        sliders from then on.
     scene : CantileverScene or None
         The 3D view.
     readout : ipywidgets.HTML
@@ -104,26 +122,32 @@ class CantileverPanel(Panel):
         if unknown:
             raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
         v = {**DEFAULTS, **initial}
-        if "material" in initial and not {"youngs_modulus", "density"} & set(initial):
-            m = MATERIALS[initial["material"]]
-            v["youngs_modulus"], v["density"] = m.youngs_modulus / 1e9, m.density
-        b = BOUNDS
+        check_choice("material", v["material"], list(MATERIALS))
+        if "material" in initial:  # a material sets E and rho unless they are given too
+            m = MATERIALS[v["material"]]
+            if "youngs_modulus" not in initial:
+                v["youngs_modulus"] = PARAMETERS["youngs_modulus"].to_display(m.youngs_modulus)
+            if "density" not in initial:
+                v["density"] = PARAMETERS["density"].to_display(m.density)
+        sliders = {}
+        for name in SLIDERS:
+            p = PARAMETERS[name]
+            value = check_range(name, v[name], p.to_display(p.slider_low),
+                                p.to_display(p.slider_high), p.display_unit)  # on the slider
+            sliders[name] = control(p, p.to_si(value))
         self.controls = dict(
-            force=slider("F", v["force"], *b["force"], step=1.0, unit="nN"),
-            length=slider("L", v["length"], *b["length"], step=1.0, unit="um"),
-            width=slider("w", v["width"], *b["width"], step=0.5, unit="um"),
-            thickness=slider("h", v["thickness"], *b["thickness"], step=0.01, unit="um"),
+            force=sliders["force"], length=sliders["length"], width=sliders["width"],
+            thickness=sliders["thickness"],
             material=widgets.Dropdown(options=[(m.name, key) for key, m in MATERIALS.items()],
                                       value=v["material"], description="material"),
-            youngs_modulus=slider("E", v["youngs_modulus"], *b["youngs_modulus"], step=0.1,
-                                  unit="GPa"),
-            density=slider("rho", v["density"], *b["density"], step=10.0, unit="kg/m^3"),
-            section=slider("section x/L", v["section"], *b["section"], step=0.01),
-            exaggeration=log_slider("exaggeration", v["exaggeration"], *b["exaggeration"],
-                                    unit="x"),
+            youngs_modulus=sliders["youngs_modulus"], density=sliders["density"],
+            section=sliders["section"], exaggeration=sliders["exaggeration"],
         )
         self.readout = widgets.HTML()
         self.figure = None
+        self.modes_figure = None  # the mode shapes, once show_modes() drew them
+        self.modes_fig = None
+        self._modes_output = widgets.Output()
         self.scene = None
         self._want_scene = bool(scene)
         self.fig = self.new_figure(figsize=_FIGSIZE)
@@ -131,52 +155,139 @@ class CantileverPanel(Panel):
         self.controls["material"].observe(self._on_material, names="value")
         super().__init__()
 
+    def set(self, **values) -> None:
+        """Set control values as a user would, in one update (see :meth:`Panel.set`).
+
+        A material is applied first, so that E or rho given in the same call win over its preset
+        whatever the order of the keywords.
+
+        Parameters
+        ----------
+        **values
+            Control names and values, in the units shown.
+        """
+        if "material" in values:
+            values = {"material": values.pop("material"), **values}
+        super().set(**values)
+
     def _on_material(self, change) -> None:
+        """A material was chosen: move E and rho to its values without an update of their own
+        (the drop-down's own change then runs the one update)."""
         m = MATERIALS[change["new"]]
         hold, self._hold = self._hold, True
         try:
-            self.controls["youngs_modulus"].value = m.youngs_modulus / 1e9
-            self.controls["density"].value = m.density
+            self.controls["youngs_modulus"].value = PARAMETERS["youngs_modulus"].to_display(
+                m.youngs_modulus)
+            self.controls["density"].value = PARAMETERS["density"].to_display(m.density)
         finally:
             self._hold = hold
 
-    def update(self, force, length, width, thickness, material, youngs_modulus, density,
+    def update(self, *, force, length, width, thickness, material, youngs_modulus, density,
                section, exaggeration) -> None:
-        """Convert the control values to SI, run the model, update plots, scene and readouts."""
-        del material  # it acts through E and rho (see _on_material)
-        lever = Cantilever(length * 1e-6, width * 1e-6, thickness * 1e-6, youngs_modulus * 1e9,
-                           density)
-        f = force * 1e-9
-        curves = cantilever_curves(lever, f, section * lever.length)
+        """Run the model once for these control values and show the result everywhere.
+
+        Parameters
+        ----------
+        force : float
+            End force F in nN.
+        length, width, thickness : float
+            L, w, h in um.
+        material : str
+            A key of :data:`afmsmiler.materials.MATERIALS`; it acts through E and rho (a choice
+            in the drop-down moves their sliders).
+        youngs_modulus : float
+            E in GPa.
+        density : float
+            rho in kg/m^3.
+        section : float
+            Cross-section position x/L.
+        exaggeration : float
+            Of the deflection drawn in the 3D view.
+        """
+        check_choice("material", material, list(MATERIALS))
+        given = dict(force=force, length=length, width=width, thickness=thickness,
+                     youngs_modulus=youngs_modulus, density=density, section=section,
+                     exaggeration=exaggeration)
+        si = {name: PARAMETERS[name].check(PARAMETERS[name].to_si(
+            check_finite(name, value, PARAMETERS[name].display_unit)))
+            for name, value in given.items()}  # named errors before any work
+        lever = Cantilever(si["length"], si["width"], si["thickness"], si["youngs_modulus"],
+                           si["density"])
+        bending = lever.bending(si["force"], section=si["section"], n_length=PLOTS["n_points"],
+                                n_thickness=_N_THICKNESS, n_section=_N_SECTION, modes=_N_MODES)
+        curves = cantilever_curves(bending)
         if self.figure is None:
             self.figure = CantileverFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
+        if self.modes_figure is not None:
+            self.modes_figure.update(curves)
         if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.cantilever import CantileverScene
-                self.scene = CantileverScene(lever, f, exaggeration=exaggeration,
-                                             force_per_unit=BOUNDS["force"][1] * 1e-9 / 1.5)
+                self.scene = CantileverScene(bending, exaggeration=si["exaggeration"],
+                                             force_per_unit=FORCE.slider_high / 1.5)
             else:
-                self.scene.update(lever, f, exaggeration=exaggeration)
-        freqs = tuple(lever.resonance_frequency(n) for n in range(1, _N_MODES + 1))
+                self.scene.update(bending, exaggeration=si["exaggeration"])
         self.last = CantileverState(
-            lever=lever, force=f, curves=curves, spring_constant=lever.spring_constant,
-            frequencies=freqs, tip_deflection=float(curves.z_nm[-1]) * 1e-9,
-            max_stress=float(abs(curves.stress_top_mpa).max()) * 1e6)
+            lever=lever, force=bending.force, bending=bending, curves=curves,
+            spring_constant=bending.spring_constant, frequencies=bending.frequencies,
+            tip_deflection=bending.tip_deflection, max_stress=bending.max_stress)
         self.readout.value = self._readout_html()
         self.redraw()
 
+    # -- the mode shapes ------------------------------------------------------------------
+    def modes_widget(self) -> widgets.Widget:
+        """The mode shapes of the lever on the sliders, as a figure that follows them.
+
+        Returns
+        -------
+        ipywidgets.Widget
+            An ipympl canvas in a live notebook, else an Output the figure is rendered into.
+        """
+        if self.modes_figure is None:
+            self.modes_fig = self.new_figure(figsize=PLOTS["modes_figsize"])
+            self.modes_figure = ModeShapesFigure(self.last.curves, fig=self.modes_fig)
+        if _interactive_backend():
+            return self.modes_fig.canvas
+        return self._modes_output
+
+    def show_modes(self) -> None:
+        """Display the mode shapes under the cell; every later slider move updates them."""
+        display(self.modes_widget())
+        self._redraw_modes()
+
+    def _redraw_modes(self) -> None:
+        if self.modes_fig is None:
+            return
+        if _interactive_backend():
+            canvas = self.modes_fig.canvas
+            if getattr(canvas, "syncing_data_url", True):
+                canvas.draw_idle()
+            else:
+                canvas.draw()
+        else:
+            with self._modes_output:
+                self._modes_output.clear_output(wait=True)
+                display(self.modes_fig)
+
+    def redraw(self) -> None:
+        """Redraw the figure and, once shown, the mode shapes (see :meth:`Panel.redraw`)."""
+        super().redraw()
+        self._redraw_modes()
+
     def _readout_html(self) -> str:
-        s = self.last
-        f = ", ".join(f"{x / 1e3:.4g}" for x in s.frequencies)
-        rows = [("spring constant k", f"{s.spring_constant:.4g} N/m"),
-                ("f1, f2, f3", f"{f} kHz"),
-                ("tip deflection z(L)", f"{s.tip_deflection * 1e9:.4g} nm"),
-                ("max |stress| (clamp surface)", f"{s.max_stress / 1e6:.4g} MPa")]
+        s, u = self.last, _READOUT
+        f = ", ".join(f"{x * unit_scale(u['frequency']):.4g}" for x in s.frequencies)
+        rows = [("spring constant k", f"{s.spring_constant:.4g} {u['spring_constant']}"),
+                ("f1, f2, f3", f"{f} {u['frequency']}"),
+                ("tip deflection z(L)",
+                 f"{s.tip_deflection * unit_scale(u['deflection']):.4g} {u['deflection']}"),
+                ("max |stress| (clamp surface)",
+                 f"{s.max_stress * unit_scale(u['stress']):.4g} {u['stress']}")]
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
-        slope = abs(float(s.curves.theta_mrad[-1])) / 1e3  # rad, largest at the free end
+        slope = abs(s.bending.tip_slope)  # rad, largest at the free end
         if slope > SMALL_SLOPE:
             table += ("<tr><td colspan='2' style='color:#b00020'>beyond small deflections: "
                       f"|theta(L)| = {slope:.2g} rad &gt; {SMALL_SLOPE:g} rad, so linear beam "
@@ -193,8 +304,8 @@ class CantileverPanel(Panel):
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
         elif self._want_scene and self._viewer_closed:
             legend = ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
-                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it again"
-                      "</div>")
+                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it "
+                      "again</div>")
         return f"<table>{table}</table>{legend}"
 
     def widget(self) -> widgets.Widget:
