@@ -19,8 +19,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_array, check_finite, check_positive
-from .loop import ContactLoop, ScanLine, ScanPass
+from ..validation import check_array, check_instance, check_positive
+from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass
 from .polygon import polygon_response
 
 __all__ = ["ScanImage", "scan_image"]
@@ -130,8 +130,10 @@ class ScanImage:
         return ScanLine(trace, retrace, self.stable, self.setpoint, self.speed, self.offset)
 
 
-def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
-               setpoint: float, *, chained: bool = True) -> ScanImage:
+def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
+               speed: float = PARAMETERS["speed"].default,
+               setpoint: float = PARAMETERS["setpoint"].default,
+               chained: bool = True) -> ScanImage:
     """Scan a height map row after row (trace then retrace of each row), at constant speed.
 
     Parameters
@@ -144,7 +146,7 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
     pixel_size : float
         Pixel size in m (> 0).
     speed : float
-        Scan speed in m/s (> 0).
+        Scan speed in m/s (> 0; keyword-only, like ``setpoint`` and ``chained``).
     setpoint : float
         Deflection setpoint in m.
     chained : bool
@@ -170,12 +172,13 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
     rows x (2 columns - 1) knots. An unstable loop still scans (its signals grow to inf, then
     nan) and is flagged by ``stable``.
     """
+    check_instance("loop", loop, ContactLoop)
     h = check_array("heights", heights, "m", ndim=2)
     if h.shape[1] < 2:
         raise ValueError(f"heights must have at least 2 columns, got shape {h.shape}")
     pixel_size = check_positive("pixel_size", pixel_size, "m")
-    speed = check_positive("speed", speed, "m/s")
-    setpoint = check_finite("setpoint", setpoint, "m")
+    speed = PARAMETERS["speed"].check(speed)
+    setpoint = PARAMETERS["setpoint"].check(setpoint)
     if not isinstance(chained, (bool, np.bool_)):
         raise ValueError(f"chained must be True or False, got {chained!r}")
     rows, n = h.shape

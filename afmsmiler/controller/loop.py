@@ -28,14 +28,62 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..validation import check_array, check_finite, check_nonnegative, check_positive
+from ..parameters import Parameter, read_only
+from ..validation import check_array, check_finite, check_positive
 from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
 
-__all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz"]
+__all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz",
+           "polished_roots",           "PARAMETERS", "LOOP_PARAMETERS"]
 
-_UNITS = {"m_c": "kg", "m_s": "kg", "b_c": "kg/s", "b_s": "kg/s", "k_c": "N/m", "k_s": "N/m",
-          "kp": "", "ki": "1/s", "kd": "s"}
+
+_POSITIVE = dict(low=0.0, low_inclusive=False, high_inclusive=False)  # (0, inf)
+_NONNEGATIVE = dict(low=0.0, high_inclusive=False)  # [0, inf)
+
+
+def _mass(name, label):
+    return Parameter(name=name, unit="kg", display_unit="ng", default=1e-12, **_POSITIVE,
+                     slider_low=1e-14, slider_high=1e-10, log=True, label=label)
+
+
+def _damping(name, label):
+    return Parameter(name=name, unit="kg/s", display_unit="ng/us", default=1.5e-8,
+                     **_NONNEGATIVE, slider_low=1e-10, slider_high=1e-5, log=True, label=label)
+
+
+def _stiffness(name, label, default, slider_high):
+    return Parameter(name=name, unit="N/m", default=default, **_POSITIVE, slider_low=0.01,
+                     slider_high=slider_high, log=True, label=label)
+
+
+#: Every user-settable quantity of module (c), in SI, with its display unit, default (the paper's
+#: preset (a): m = 1 ng, b = 0.015 ng/us, k_c = 1 N/m, k_s = 100 N/m, K_P = 0.5, K_I = 0.01/us,
+#: K_D = 0, 10 um/s, R = 10 nm, 50 nm features), valid range (what the model accepts) and slider
+#: range (a part of it). The masses, damping, stiffnesses, gains and speed span decades: log
+#: sliders.
+PARAMETERS = read_only({p.name: p for p in (
+    _mass("m_c", "lever m_c"),
+    _mass("m_s", "sample m_s"),
+    _damping("b_c", "lever b_c"),
+    _damping("b_s", "sample b_s"),
+    _stiffness("k_c", "lever k_c", 1.0, 100.0),
+    _stiffness("k_s", "sample k_s", 100.0, 1000.0),
+    Parameter(name="kp", unit="", default=0.5, **_NONNEGATIVE, slider_low=1e-3,
+              slider_high=1e3, log=True, label="K_P"),
+    Parameter(name="ki", unit="1/s", display_unit="1/us", default=1e4, **_NONNEGATIVE,
+              slider_low=10.0, slider_high=1e9, log=True, label="K_I"),
+    Parameter(name="kd", unit="s", display_unit="us", default=0.0, **_NONNEGATIVE,
+              slider_low=0.0, slider_high=2e-6, label="K_D"),
+    Parameter(name="speed", unit="m/s", display_unit="um/s", default=1e-5, **_POSITIVE,
+              slider_low=1e-6, slider_high=1e-2, log=True, label="scan speed"),
+    Parameter(name="setpoint", unit="m", display_unit="nm", default=10e-9, high_inclusive=False,
+              low_inclusive=False, slider_low=0.0, slider_high=100e-9, label="setpoint R"),
+    Parameter(name="height", unit="m", display_unit="nm", default=50e-9, **_POSITIVE,
+              slider_low=1e-9, slider_high=500e-9, label="feature h"),
+)})
+
+#: The parameters of :class:`ContactLoop`, in the order of its fields.
+LOOP_PARAMETERS = ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "kp", "ki", "kd")
 
 
 @dataclass(frozen=True)
@@ -61,30 +109,90 @@ class Stability:
         return self.stable
 
 
+def polished_roots(den) -> np.ndarray:
+    """Roots of a real 2nd- or 3rd-order polynomial, the slowest real one kept accurate.
+
+    The eigenvalues of the companion matrix are accurate to about eps times the largest root:
+    a real root far slower than the others (K_I = 1e-24 1/s, or K_P = 1e19, gives one about
+    1e-36 of the fastest) comes back as 0 or with no correct digit. When the slowest root is real
+    and at most a tenth of the others in modulus, it is taken from the product of the roots
+    (Vieta: prod p_i = (-1)^n a_n / a_0), which the accurate fast roots give to full precision.
+
+    Parameters
+    ----------
+    den : array_like
+        Coefficients, highest power first, 3 or 4 of them, finite, leading one nonzero.
+
+    Returns
+    -------
+    numpy.ndarray
+        The roots (complex), in 1/s for a loop's denominator.
+    """
+    den = np.asarray(den, dtype=float)
+    companion = np.diag(np.ones(den.size - 2), -1)
+    companion[0] = -den[1:] / den[0]
+    roots = np.linalg.eigvals(companion).astype(complex)
+    k = int(np.argmin(np.abs(roots)))
+    others = np.delete(roots, k)
+    n = den.size - 1
+    if roots[k].imag == 0 and np.all(np.abs(roots[k]) <= 0.1 * np.abs(others)):
+        product = (-1) ** n * den[-1] / den[0]
+        roots[k] = product / np.prod(others).real
+    return roots
+
+
 def routh_hurwitz(den) -> Stability:
-    """Routh-Hurwitz test of a 2nd- or 3rd-order polynomial with positive leading coefficient.
+    """Routh-Hurwitz test of a 2nd- or 3rd-order polynomial (Routh array of its coefficients).
+
+    A negative leading coefficient is normalised away (the polynomial times -1 has the same
+    roots: -s^2 - 2 s - 3 is as stable as s^2 + 2 s + 3).
 
     Parameters
     ----------
     den : sequence of float
-        Coefficients, highest power first: (A, B, C) or (A, B, C, D).
+        Coefficients, highest power first: (A, B, C) or (A, B, C, D); finite, A != 0.
 
     Returns
     -------
     Stability
+
+    Raises
+    ------
+    ValueError
+        If there are not 3 or 4 coefficients, one is not finite or the leading one is 0.
+
+    Notes
+    -----
+    For a cubic A s^3 + B s^2 + C s + D with A > 0 the first column of the Routh array is
+    (A, B, (B C - A D) / B, D): all roots lie in the open left half-plane exactly when
+    B, D > 0 and B C > A D (Ogata, *Modern Control Engineering*, 5th ed., Sec. 5-6).
+
+    Examples
+    --------
+    >>> bool(routh_hurwitz([-1.0, -2.0, -3.0]))
+    True
     """
-    den = [float(c) for c in den]
+    try:
+        den = [float(c) for c in den]
+    except (TypeError, ValueError):
+        raise ValueError(f"den must be a sequence of 3 or 4 real numbers, got {den!r}") from None
+    if len(den) not in (3, 4):
+        raise ValueError(f"den must have 3 or 4 coefficients, got {len(den)}")
+    if not all(np.isfinite(den)):
+        raise ValueError(f"den must hold finite coefficients, got {den}")
+    if den[0] == 0:
+        raise ValueError(f"den's leading coefficient must be nonzero, got {den}")
+    if den[0] < 0:
+        den = [-c for c in den]
     if len(den) == 3:
         A, B, C = den
         column = (A, B, C)
         margin = B / (2 * np.sqrt(A * C)) if A * C > 0 else -np.inf
-    elif len(den) == 4:
+    else:
         A, B, C, D = den
         third = (B * C - A * D) / B if B != 0 else -np.inf
         column = (A, B, third, D)
         margin = 1 - A * D / (B * C) if B * C > 0 else -np.inf
-    else:
-        raise ValueError(f"den must have 3 or 4 coefficients, got {len(den)}")
     stable = all(c > 0 for c in column)
     return Stability(bool(stable), float(margin), column)
 
@@ -163,9 +271,16 @@ class ScanLine:
     offset: float = field(default=0.0)
 
 
-@dataclass(frozen=True)
+_P = PARAMETERS
+#: Slowest integrator pole in 1/s that the loop keeps as a third pole (see ContactLoop.order).
+SLOWEST_POLE = 1e-100
+
+
+@dataclass(frozen=True, kw_only=True)
 class ContactLoop:
     """Cantilever and sample in contact under PID control of the positioner height, in SI units.
+
+    All keyword-only, validated with :data:`PARAMETERS` (defaults: the paper's preset (a)).
 
     Parameters
     ----------
@@ -185,7 +300,7 @@ class ContactLoop:
     Raises
     ------
     ValueError
-        If a parameter is not finite or out of its range.
+        If a parameter is not finite or out of its range (the message names it and the range).
 
     Notes
     -----
@@ -203,22 +318,19 @@ class ContactLoop:
     True
     """
 
-    m_c: float
-    m_s: float
-    b_c: float
-    b_s: float
-    k_c: float
-    k_s: float
-    kp: float
-    ki: float
-    kd: float
+    m_c: float = _P["m_c"].default
+    m_s: float = _P["m_s"].default
+    b_c: float = _P["b_c"].default
+    b_s: float = _P["b_s"].default
+    k_c: float = _P["k_c"].default
+    k_s: float = _P["k_s"].default
+    kp: float = _P["kp"].default
+    ki: float = _P["ki"].default
+    kd: float = _P["kd"].default
 
     def __post_init__(self):
-        for name in ("m_c", "m_s", "k_c", "k_s"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name), _UNITS[name]))
-        for name in ("b_c", "b_s", "kp", "ki", "kd"):
-            object.__setattr__(self, name,
-                               check_nonnegative(name, getattr(self, name), _UNITS[name]))
+        for name in LOOP_PARAMETERS:
+            object.__setattr__(self, name, PARAMETERS[name].check(getattr(self, name)))
 
     def replace(self, **changes) -> "ContactLoop":
         """A copy with some parameters changed (validated again).
@@ -237,8 +349,16 @@ class ContactLoop:
     # -- transfer functions ----------------------------------------------------------------
     @property
     def order(self) -> int:
-        """3, or 2 when K_I = 0 (the integrator pole cancels)."""
-        return 3 if self.ki > 0 else 2
+        """3, or 2 when K_I = 0 (the integrator pole cancels).
+
+        Also 2 when the integrator's pole, about -k_s K_I / (k_c + k_s + k_s K_P + b_s K_I), is
+        slower than :data:`SLOWEST_POLE` (a time constant above 1e100 s, when the closed forms'
+        1/p^2 would underflow): over any time the model can reach, such a loop responds as with
+        K_I = 0 (the responses converge as K_I -> 0); it still settles at its K_I > 0 steady state
+        (:meth:`steady_state`).
+        """
+        C = self.k_c + self.k_s + self.b_s * self.ki + self.k_s * self.kp
+        return 3 if self.k_s * self.ki > SLOWEST_POLE * C else 2
 
     @cached_property
     def coefficients(self) -> dict:
@@ -272,8 +392,18 @@ class ContactLoop:
 
     @property
     def poles(self) -> np.ndarray:
-        """Closed-loop poles in 1/s (roots of the denominator, 2 or 3 of them)."""
-        return np.roots(self.coefficients["den"])
+        """Closed-loop poles in 1/s (roots of the denominator, 2 or 3 of them).
+
+        A slow real pole far below the others (a tiny K_I, or a huge K_P) is taken from the
+        product of the roots (Vieta), not from the eigenvalues, which lose it entirely below
+        about 1e-16 of the largest pole (it came back as exactly 0 and the closed forms divided
+        by it).
+        """
+        return self._roots.copy()
+
+    @cached_property
+    def _roots(self) -> np.ndarray:
+        return polished_roots(self.coefficients["den"])
 
     def is_stable(self) -> Stability:
         """Routh-Hurwitz test of the closed loop; the result is truthy when stable.
@@ -318,10 +448,7 @@ class ContactLoop:
     # -- closed forms ------------------------------------------------------------------------
     @cached_property
     def _structure(self):
-        den = self.coefficients["den"]
-        companion = np.diag(np.ones(den.size - 2), -1)
-        companion[0] = -den[1:] / den[0]
-        return classify_roots(np.linalg.eigvals(companion))
+        return classify_roots(self._roots)
 
     def closed_forms(self, input: str = "step") -> tuple[ClosedForm, ClosedForm]:
         """Closed-form responses of Z_c and Z_np to a unit step or unit-slope ramp of T.
@@ -387,7 +514,8 @@ class ContactLoop:
         z_c, z_np = polygon_response(steps, ramps, t, T, te)
         return LoopResponse(z_c, z_np)
 
-    def scan_line(self, x, height, speed: float, setpoint: float) -> ScanLine:
+    def scan_line(self, x, height, *, speed: float = _P["speed"].default,
+                  setpoint: float = _P["setpoint"].default) -> ScanLine:
         """Trace then retrace one line at constant speed, in contact at constant setpoint.
 
         The tip is engaged at the first pixel: the loop starts at its steady state for the
@@ -403,9 +531,9 @@ class ContactLoop:
         height : array_like
             Topography at the pixels in m, same length.
         speed : float
-            Scan speed in m/s (> 0).
+            Scan speed in m/s (> 0; keyword-only, default 10 um/s).
         setpoint : float
-            Deflection setpoint R in m.
+            Deflection setpoint R in m (keyword-only, default 10 nm).
 
         Returns
         -------
@@ -420,8 +548,8 @@ class ContactLoop:
         """
         x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True)
         h = check_array("height", height, "m", ndim=1, size=x.size)
-        speed = check_positive("speed", speed, "m/s")
-        setpoint = check_finite("setpoint", setpoint, "m")
+        speed = _P["speed"].check(speed)
+        setpoint = _P["setpoint"].check(setpoint)
         n = x.size
         t_trace = (x - x[0]) / speed
         t_retrace = t_trace[-1] + (x[-1] - x[::-1]) / speed
