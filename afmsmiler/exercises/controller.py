@@ -43,7 +43,7 @@ def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profi
         RMS error in m (inf if the signals overflow).
     """
     line = line_profile(profile)
-    scan = loop.scan_line(line.x, line.heights, speed, SETPOINT)
+    scan = loop.scan_line(line.x, line.heights, speed=speed, setpoint=SETPOINT)
     shift = loop.steady_state(SETPOINT, 0.0).z_np
     with np.errstate(over="ignore", invalid="ignore"):
         errs = [np.sqrt(np.mean((-(p.z_np - shift) - p.height) ** 2))
