@@ -680,3 +680,54 @@ def test_phi_functions_against_mpmath():
     # an unstable mode over one step overflows (inf, nan) as numpy does, without raising
     with np.errstate(over="ignore", invalid="ignore"):
         assert not np.isfinite(_phi12_scalar(800 + 0j)[0])
+
+
+# --- joining module (a): a loop from a Cantilever --------------------------------------------------
+# b_1 L of the first clamped-free mode, the root of cos x cosh x = -1 (Butt & Jaschke 1995; any
+# vibration textbook): typed here as the published value, not taken from module (a).
+BETA1_L = 1.875104068711961
+
+
+@pytest.mark.parametrize("dims, q", [((450e-6, 50e-6, 2e-6), 150.0),
+                                     ((125e-6, 30e-6, 4e-6), 400.0),
+                                     ((200e-6, 40e-6, 0.6e-6), 2.0)])
+def test_loop_from_cantilever_matches_the_analytic_lever(dims, q):
+    from afmsmiler.cantilever import Cantilever
+    length, width, thickness = dims
+    E, rho = 169e9, 2330.0
+    lever = Cantilever(length, width, thickness, E, rho)
+    loop = ContactLoop.from_cantilever(lever, sample_stiffness=20.0, sample_mass=2e-12,
+                                       sample_damping=1e-8, quality_factor=q, kp=2.0, ki=3e5,
+                                       kd=1e-8)
+    mass = rho * length * width * thickness
+    k = E * width * thickness ** 3 / (4 * length ** 3)            # 3 E J / L^3, J = w h^3 / 12
+    m_eff = 3 * mass / BETA1_L ** 4                               # 0.2427 m
+    omega = BETA1_L ** 2 / length ** 2 * np.sqrt(E * width * thickness ** 3 / 12
+                                                   / (rho * width * thickness))
+    assert m_eff / mass == pytest.approx(0.2427, abs=5e-5)
+    assert loop.k_c == pytest.approx(k, rel=1e-12)
+    assert loop.m_c == pytest.approx(m_eff, rel=1e-9)
+    assert loop.b_c == pytest.approx(m_eff * omega / q, rel=1e-9)
+    # the lever alone (no sample, no feedback) rings at omega with quality factor Q
+    lever_poles = np.roots([loop.m_c, loop.b_c, loop.k_c])
+    assert np.max(np.abs(lever_poles)) == pytest.approx(omega, rel=1e-9)
+    assert -np.sum(lever_poles.real) / 2 == pytest.approx(omega / (2 * q), rel=1e-9)
+    # closed-loop poles: python-control's feedback of the same plant and PID, built from the
+    # analytic numbers
+    P = control.tf([1e-8, 20.0], [m_eff + 2e-12, m_eff * omega / q + 1e-8, k + 20.0])
+    C = control.tf([1e-8, 2.0, 3e5], [1, 0])
+    ref = control.poles(control.feedback(P, C))
+    np.testing.assert_allclose(np.sort_complex(loop.poles), np.sort_complex(ref), rtol=1e-7)
+
+
+def test_loop_from_cantilever_rejects_bad_input():
+    from afmsmiler.cantilever import Cantilever
+    lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
+    with pytest.raises(TypeError, match="lever"):
+        ContactLoop.from_cantilever("silicon")
+    with pytest.raises(ValueError, match="quality_factor"):
+        ContactLoop.from_cantilever(lever, quality_factor=0.0)
+    with pytest.raises(ValueError, match="k_s"):
+        ContactLoop.from_cantilever(lever, sample_stiffness=-1.0)
+    with pytest.raises(TypeError):
+        ContactLoop.from_cantilever(lever, 10.0)  # keyword-only

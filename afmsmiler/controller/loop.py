@@ -28,8 +28,9 @@ from typing import NamedTuple
 
 import numpy as np
 
+from ..cantilever import Cantilever
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_finite, check_positive
+from ..validation import check_array, check_finite, check_instance
 from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
 
@@ -80,6 +81,8 @@ PARAMETERS = read_only({p.name: p for p in (
               low_inclusive=False, slider_low=0.0, slider_high=100e-9, label="setpoint R"),
     Parameter(name="height", unit="m", display_unit="nm", default=50e-9, **_POSITIVE,
               slider_low=1e-9, slider_high=500e-9, label="feature h"),
+    Parameter(name="quality_factor", unit="", default=150.0, low=0.5, high=1e5,
+              slider_low=0.5, slider_high=1e5, log=True, label="quality factor Q"),
 )})
 
 #: The parameters of :class:`ContactLoop`, in the order of its fields.
@@ -331,6 +334,73 @@ class ContactLoop:
     def __post_init__(self):
         for name in LOOP_PARAMETERS:
             object.__setattr__(self, name, PARAMETERS[name].check(getattr(self, name)))
+
+    @classmethod
+    def from_cantilever(cls, lever, *, sample_stiffness: float = _P["k_s"].default,
+                        sample_mass: float = _P["m_s"].default,
+                        sample_damping: float = _P["b_s"].default,
+                        quality_factor: float = _P["quality_factor"].default,
+                        kp: float = _P["kp"].default, ki: float = _P["ki"].default,
+                        kd: float = _P["kd"].default) -> "ContactLoop":
+        """The loop of a module (a) cantilever in contact with a sample (joins modules (a), (c)).
+
+        The lever enters as the point-mass oscillator of its first flexural mode: k_c its
+        end-load spring constant 3 E J / L^3, m_c its effective mass k_c / omega_1^2
+        (= 3 m / (b_1 L)^4 = 0.2427 m for a rectangular beam, with b_1 L = 1.8751) and b_c the
+        damping that gives the quality factor Q: b_c = m_c omega_1 / Q, omega_1 = 2 pi f_1.
+
+        Parameters
+        ----------
+        lever : afmsmiler.cantilever.Cantilever
+            The cantilever.
+        sample_stiffness : float
+            Sample stiffness k_s in N/m (> 0).
+        sample_mass : float
+            Sample effective mass m_s in kg (> 0).
+        sample_damping : float
+            Sample damping b_s in kg/s (>= 0).
+        quality_factor : float
+            Quality factor Q of the lever's first mode (dimensionless, 0.5 to 1e5).
+        kp : float
+            Proportional gain K_P (dimensionless, >= 0).
+        ki : float
+            Integral gain K_I in 1/s (>= 0).
+        kd : float
+            Derivative gain K_D in s (>= 0).
+
+        Returns
+        -------
+        ContactLoop
+
+        Raises
+        ------
+        TypeError
+            If ``lever`` is not a Cantilever.
+        ValueError
+            If a value is out of its range (named).
+
+        Notes
+        -----
+        The effective mass is the one of the modal (Rayleigh) reduction of the first mode, as in
+        Butt and Jaschke, Nanotechnology 6, 1 (1995); the damping follows from the definition
+        Q = m omega_1 / b of a damped oscillator.
+
+        Examples
+        --------
+        >>> from afmsmiler.cantilever import Cantilever
+        >>> lever = Cantilever.from_material("silicon", length=450e-6, width=50e-6,
+        ...                                  thickness=2e-6)
+        >>> loop = ContactLoop.from_cantilever(lever, sample_stiffness=10.0)
+        >>> round(loop.m_c / lever.mass, 4)
+        0.2427
+        """
+        check_instance("lever", lever, Cantilever)
+        q = _P["quality_factor"].check(quality_factor)
+        k_c = lever.spring_constant
+        m_c = lever.effective_mass
+        omega = 2 * np.pi * lever.resonance_frequency(1)
+        return cls(m_c=m_c, m_s=sample_mass, b_c=m_c * omega / q, b_s=sample_damping, k_c=k_c,
+                   k_s=sample_stiffness, kp=kp, ki=ki, kd=kd)
 
     def replace(self, **changes) -> "ContactLoop":
         """A copy with some parameters changed (validated again).
