@@ -545,6 +545,7 @@ def test_clustered_triple_roots_polygon(spread, shape, uniform):
         np.testing.assert_allclose(at_eval[o], ref[ev], rtol=0, atol=1e-9 * peak)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("roots", [
     [0.3, 0.3 * (1 + 1e-3), 0.3 * (1 - 1e-3)],              # unstable cluster, |p| t up to 18
     [-1.0, -1.0 * (1 + 2e-6), -1.0 * (1 + 1e-3)],           # a near pair inside a cluster

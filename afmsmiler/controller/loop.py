@@ -273,6 +273,17 @@ class ScanLine:
     speed: float
     offset: float = field(default=0.0)
 
+    @property
+    def gap(self) -> float:
+        """Largest difference of Z_np between trace and retrace at the same pixel, in m.
+
+        The positioner lags behind the topography in the direction of the scan, so a slow loop's
+        trace and retrace disagree (the paper's Fig. 4c); 0 for a loop that keeps up.
+        """
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = np.abs(self.trace.z_np - self.retrace.z_np[::-1])
+        return float(np.max(d)) if np.all(np.isfinite(d)) else float("inf")
+
 
 _P = PARAMETERS
 #: Slowest integrator pole in 1/s that the loop keeps as a third pole (see ContactLoop.order).

@@ -249,6 +249,7 @@ class ControllerPanel(Panel):
         rows = [("Routh-Hurwitz margin", f"{c.margin:.3g}"),
                 ("poles", format_poles(c.poles_per_us)),
                 ("max |error| (less offset)", f"{s.max_error * nm:.3g} nm"),
+                ("trace-retrace gap of Z_np", f"{s.scan.gap * nm:.3g} nm"),
                 ("indentation offset", f"{s.scan.offset * nm:.3g} nm")]
         table = "".join(f"<tr><td style='vertical-align:top'>{k}</td><td><b>{v}</b></td></tr>"
                         for k, v in rows)
