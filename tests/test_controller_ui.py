@@ -82,7 +82,8 @@ def test_figures_draw():
                 plots.polygon_figure(line_profile().x, line_profile().heights, 1e-3)):
         assert isinstance(fig, Figure) and fig.axes
     img = samples.particles((16, 32), 4e-9, count=2)
-    im = scan_image(PRESETS["c_fast_scan"].loop, img.heights, img.pixel_size, speed=1e-3, setpoint=SETPOINT)
+    im = scan_image(PRESETS["c_fast_scan"].loop, img.heights, img.pixel_size, speed=1e-3,
+                    setpoint=SETPOINT)
     fig = plots.image_figure(im, img.heights, signal="topography")
     np.testing.assert_allclose(fig.axes[1].images[0].get_array(), im.trace * 1e9)
     fig = plots.image_figure(im)

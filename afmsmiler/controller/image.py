@@ -20,10 +20,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..validation import check_array, check_instance, check_positive
-from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass
+from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass, check_size
+
+#: Most pixels of a scanned image (2048 x 2048 take about 4 s).
+MAX_IMAGE_PIXELS = 2048 * 2048
 from .polygon import polygon_response
 
-__all__ = ["ScanImage", "scan_image"]
+__all__ = ["ScanImage", "scan_image", "MAX_IMAGE_PIXELS"]
 
 
 @dataclass(frozen=True)
@@ -141,8 +144,8 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
     loop : ContactLoop
         The feedback loop.
     heights : array_like
-        Topography in m, shape (rows, columns); the fast axis is along the columns, rows are
-        scanned in increasing order.
+        Topography in m, shape (rows, columns), at most :data:`MAX_IMAGE_PIXELS` values; the
+        fast axis is along the columns, rows are scanned in increasing order.
     pixel_size : float
         Pixel size in m (> 0).
     speed : float
@@ -173,6 +176,7 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
     nan) and is flagged by ``stable``.
     """
     check_instance("loop", loop, ContactLoop)
+    check_size("heights", heights, MAX_IMAGE_PIXELS)
     h = check_array("heights", heights, "m", ndim=2)
     if h.shape[1] < 2:
         raise ValueError(f"heights must have at least 2 columns, got shape {h.shape}")

@@ -35,33 +35,32 @@ from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
 
 __all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz",
-           "polished_roots",           "PARAMETERS", "LOOP_PARAMETERS"]
-
-
-_POSITIVE = dict(low=0.0, low_inclusive=False, high_inclusive=False)  # (0, inf)
-_NONNEGATIVE = dict(low=0.0, high_inclusive=False)  # [0, inf)
+           "polished_roots", "check_size", "MAX_LINE_PIXELS", "MAX_KNOTS", "PARAMETERS",
+           "LOOP_PARAMETERS"]
 
 
 def _mass(name, label):
-    return Parameter(name=name, unit="kg", display_unit="ng", default=1e-12, **_POSITIVE,
-                     slider_low=1e-14, slider_high=1e-10, log=True, label=label)
+    return Parameter(name=name, unit="kg", display_unit="ng", default=1e-12, low=1e-18,
+                     high=1e-3, slider_low=1e-14, slider_high=1e-10, log=True, label=label)
 
 
 def _damping(name, label):
-    return Parameter(name=name, unit="kg/s", display_unit="ng/us", default=1.5e-8,
-                     **_NONNEGATIVE, slider_low=1e-10, slider_high=1e-5, log=True, label=label)
+    return Parameter(name=name, unit="kg/s", display_unit="ng/us", default=1.5e-8, low=0.0,
+                     high=1.0, slider_low=1e-10, slider_high=1e-5, log=True, label=label)
 
 
 def _stiffness(name, label, default, slider_high):
-    return Parameter(name=name, unit="N/m", default=default, **_POSITIVE, slider_low=0.01,
-                     slider_high=slider_high, log=True, label=label)
+    return Parameter(name=name, unit="N/m", default=default, low=1e-6, high=1e6,
+                     slider_low=0.01, slider_high=slider_high, log=True, label=label)
 
 
 #: Every user-settable quantity of module (c), in SI, with its display unit, default (the paper's
 #: preset (a): m = 1 ng, b = 0.015 ng/us, k_c = 1 N/m, k_s = 100 N/m, K_P = 0.5, K_I = 0.01/us,
-#: K_D = 0, 10 um/s, R = 10 nm, 50 nm features), valid range (what the model accepts) and slider
-#: range (a part of it). The masses, damping, stiffnesses, gains and speed span decades: log
-#: sliders.
+#: K_D = 0, 10 um/s, R = 10 nm, 50 nm features), valid range and slider range (a part of it).
+#: The valid ranges reach far beyond any AFM (1 fg to 1 g, up to 1 kg/s, 1 uN/m to 1 MN/m, K_P up
+#: to 1e30, K_I up to 1e15 1/s, K_D up to 1 s, 1 nm/s to 1 m/s) but stop where the double-precision
+#: closed forms would overflow. The masses, damping, stiffnesses, gains and speed span decades:
+#: log sliders.
 PARAMETERS = read_only({p.name: p for p in (
     _mass("m_c", "lever m_c"),
     _mass("m_s", "sample m_s"),
@@ -69,21 +68,45 @@ PARAMETERS = read_only({p.name: p for p in (
     _damping("b_s", "sample b_s"),
     _stiffness("k_c", "lever k_c", 1.0, 100.0),
     _stiffness("k_s", "sample k_s", 100.0, 1000.0),
-    Parameter(name="kp", unit="", default=0.5, **_NONNEGATIVE, slider_low=1e-3,
+    Parameter(name="kp", unit="", default=0.5, low=0.0, high=1e30, slider_low=1e-3,
               slider_high=1e3, log=True, label="K_P"),
-    Parameter(name="ki", unit="1/s", display_unit="1/us", default=1e4, **_NONNEGATIVE,
+    Parameter(name="ki", unit="1/s", display_unit="1/us", default=1e4, low=0.0, high=1e15,
               slider_low=10.0, slider_high=1e9, log=True, label="K_I"),
-    Parameter(name="kd", unit="s", display_unit="us", default=0.0, **_NONNEGATIVE,
+    Parameter(name="kd", unit="s", display_unit="us", default=0.0, low=0.0, high=1.0,
               slider_low=0.0, slider_high=2e-6, label="K_D"),
-    Parameter(name="speed", unit="m/s", display_unit="um/s", default=1e-5, **_POSITIVE,
+    Parameter(name="speed", unit="m/s", display_unit="um/s", default=1e-5, low=1e-9, high=1.0,
               slider_low=1e-6, slider_high=1e-2, log=True, label="scan speed"),
-    Parameter(name="setpoint", unit="m", display_unit="nm", default=10e-9, high_inclusive=False,
-              low_inclusive=False, slider_low=0.0, slider_high=100e-9, label="setpoint R"),
-    Parameter(name="height", unit="m", display_unit="nm", default=50e-9, **_POSITIVE,
-              slider_low=1e-9, slider_high=500e-9, label="feature h"),
+    Parameter(name="setpoint", unit="m", display_unit="nm", default=10e-9, low=-1e-6,
+              high=1e-6, slider_low=0.0, slider_high=100e-9, label="setpoint R"),
+    Parameter(name="height", unit="m", display_unit="nm", default=50e-9, low=0.0, high=1e-5,
+              low_inclusive=False, slider_low=1e-9, slider_high=500e-9, label="feature h"),
     Parameter(name="quality_factor", unit="", default=150.0, low=0.5, high=1e5,
               slider_low=0.5, slider_high=1e5, log=True, label="quality factor Q"),
 )})
+
+#: Most pixels of a scanned line (a 2**18-pixel line, trace and retrace, takes about 1.5 s).
+MAX_LINE_PIXELS = 2 ** 18
+#: Most knots, topography values and evaluation times of :meth:`ContactLoop.response`.
+MAX_KNOTS = 2 ** 19
+
+
+def check_size(name: str, values, limit: int) -> None:
+    """Raise ``ValueError`` naming ``name`` if ``values`` holds more than ``limit`` elements.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    values : array_like
+        The values (not converted: the size is read from their shape).
+    limit : int
+        The largest size the model honours within seconds.
+    """
+    n = int(np.size(values)) if not hasattr(values, "size") else int(values.size)
+    if n > limit:
+        raise ValueError(f"{name} must have at most {limit} values (a bound the model honours "
+                         f"in seconds), got {n}")
+
 
 #: The parameters of :class:`ContactLoop`, in the order of its fields.
 LOOP_PARAMETERS = ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "kp", "ki", "kd")
@@ -569,7 +592,8 @@ class ContactLoop:
         Parameters
         ----------
         t_knots : array_like
-            Knot times in s, 1-D, strictly increasing (spacing may vary).
+            Knot times in s, 1-D, strictly increasing (spacing may vary), at most
+        :data:`MAX_KNOTS` (4 times that for ``T_knots`` and ``t_eval``).
         T_knots : array_like
             Topography at the knots in m, same length (or shape (..., N) for a batch).
         t_eval : array_like, optional
@@ -585,6 +609,10 @@ class ContactLoop:
         ValueError
             On non-finite values, non-increasing knot times or mismatched lengths.
         """
+        check_size("t_knots", t_knots, MAX_KNOTS)
+        check_size("T_knots", T_knots, 4 * MAX_KNOTS)
+        if t_eval is not None:
+            check_size("t_eval", t_eval, 4 * MAX_KNOTS)
         t = check_array("t_knots", t_knots, "s", ndim=1, min_size=1, increasing=True)
         T = check_array("T_knots", T_knots, "m", min_size=1)
         if T.ndim == 0 or T.shape[-1] != t.size:
@@ -608,7 +636,8 @@ class ContactLoop:
         Parameters
         ----------
         x : array_like
-            Pixel positions along the line in m, 1-D, strictly increasing, at least 2.
+            Pixel positions along the line in m, 1-D, strictly increasing, 2 to
+        :data:`MAX_LINE_PIXELS` of them.
         height : array_like
             Topography at the pixels in m, same length.
         speed : float
@@ -627,6 +656,7 @@ class ContactLoop:
         ValueError
             On non-finite values, non-increasing x, mismatched lengths or speed <= 0.
         """
+        check_size("x", x, MAX_LINE_PIXELS)
         x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True)
         h = check_array("height", height, "m", ndim=1, size=x.size)
         speed = _P["speed"].check(speed)

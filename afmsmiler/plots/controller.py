@@ -157,7 +157,8 @@ class ScanFigure:
         self.lines = {}
         self.lines["znp_trace"], = ax["znp"].plot([], [], color="C0", label="trace")
         self.lines["znp_retrace"], = ax["znp"].plot([], [], color="C3", ls="--", label="retrace")
-        ax["znp"].set(xlabel="x [um]", ylabel="-Z_np [nm]", title="positioner height (sign flipped)")
+        ax["znp"].set(xlabel="x [um]", ylabel="-Z_np [nm]",
+                      title="positioner height (sign flipped)")
         self.lines["height"], = ax["topo"].plot([], [], color="0.6", lw=3, alpha=0.6,
                                                 label="true topography T")
         self.lines["topo_trace"], = ax["topo"].plot([], [], color="C0", label="trace")
