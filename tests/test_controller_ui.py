@@ -444,3 +444,12 @@ def test_critical_ki_checker_names_an_answer_in_per_us():
     fb = ex.check_critical_ki(right * 1e-6)
     assert not fb and "10^-6" in str(fb)
     assert f"{right:.4g}" not in str(fb) and f"{right:.3g}" not in str(fb)
+
+
+def test_fast_scan_checker_names_a_speed_in_um_per_s():
+    fb = ex.check_fast_scan(20.0, 1e6, 0.0, 1000.0)  # 1000 um/s typed as 1000 m/s
+    assert not fb and "10^6" in str(fb) and "um/s" in str(fb)
+    fb = ex.check_fast_scan(20.0, 1e6, 0.0, 1e5)  # out of range, not a slip: named, no crash
+    assert not fb and "speed must be in" in str(fb)
+    with pytest.raises(ValueError, match="plant must be one of"):
+        ex.critical_ki(1.0, plant="e_magic")

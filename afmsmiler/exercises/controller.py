@@ -11,7 +11,7 @@ from scipy.optimize import brentq
 
 from ..controller import PARAMETERS, PRESETS, ContactLoop
 from ..controller.defaults import SETPOINT, line_profile
-from ..validation import check_nonnegative, check_positive, check_range
+from ..validation import check_choice, check_nonnegative, check_positive, check_range
 from ..parameters import read_only
 from . import Feedback, check_close
 
@@ -55,7 +55,7 @@ def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profi
 
 
 def unit_slip(name: str, value: float) -> str | None:
-    """Name a unit-prefix slip (a factor 10^6: us for s, 1/us for 1/s) in a gain, or None.
+    """Name a unit-prefix slip (a factor 10^6: us for s, 1/us for 1/s, um/s for m/s), or None.
 
     A value outside the range the panel's slider offers (:data:`PARAMETERS`) whose 10^6 or
     10^-6 multiple lies inside it is such a slip: K_D = 1 s is a derivative time of 1 us typed in
@@ -64,7 +64,7 @@ def unit_slip(name: str, value: float) -> str | None:
     Parameters
     ----------
     name : str
-        ``"kp"``, ``"ki"`` or ``"kd"``.
+        ``"ki"``, ``"kd"`` or ``"speed"`` (a key of :data:`PARAMETERS`).
     value : float
         The student's value in SI.
 
@@ -123,25 +123,31 @@ def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
     if kp is None or ki is None or kd is None:
         return Feedback(False, f"enter K_P, K_I [1/s] and K_D [s]. {hint}")
     try:
-        loop = PRESETS[DEFAULTS["plant"]].loop.replace(
-            kp=check_nonnegative("kp", kp), ki=check_nonnegative("ki", ki, "1/s"),
-            kd=check_nonnegative("kd", kd, "s"))
-        speed = check_positive("speed", speed, "m/s")
+        answer = dict(kp=check_nonnegative("kp", kp), ki=check_nonnegative("ki", ki, "1/s"),
+                      kd=check_nonnegative("kd", kd, "s"),
+                      speed=check_positive("speed", speed, "m/s"))
     except ValueError as err:
         return Feedback(False, f"{err}. {hint}")
-    for name, value in (("ki", loop.ki), ("kd", loop.kd)):
-        slip = unit_slip(name, value)
+    for name in ("ki", "kd", "speed"):
+        slip = unit_slip(name, answer[name])
         if slip is not None:  # a unit slip is rejected even when the loop happens to track
             return Feedback(False, slip)
+    try:
+        speed = PARAMETERS["speed"].check(answer.pop("speed"))
+        loop = PRESETS[DEFAULTS["plant"]].loop.replace(**answer)
+    except ValueError as err:
+        return Feedback(False, f"{err}. {hint}")
+    um_s = PARAMETERS["speed"]
     if speed < min_speed:
-        return Feedback(False, f"scan at {min_speed * 1e6:g} um/s or faster "
-                               f"(you chose {speed * 1e6:.4g} um/s).")
+        return Feedback(False, f"scan at {um_s.to_display(min_speed):g} um/s or faster "
+                               f"(you chose {um_s.to_display(speed):.4g} um/s).")
     if not loop.is_stable():
         return Feedback(False, f"the loop is unstable (Routh-Hurwitz margin "
                                f"{loop.stability_margin:.3g}): the oscillation grows. {hint}")
     err = height_error(loop, speed)
-    msg = (f"RMS height error {err * 1e9:.3g} nm at {speed * 1e6:.4g} um/s "
-           f"(limit {max_rms_error * 1e9:.3g} nm).")
+    nm = PARAMETERS["height"].scale
+    msg = (f"RMS height error {err * nm:.3g} nm at {um_s.to_display(speed):.4g} um/s "
+           f"(limit {max_rms_error * nm:.3g} nm).")
     if err <= max_rms_error:
         return Feedback(True, msg + " Now try to go faster still.")
     return Feedback(False, f"{msg} {hint}")
@@ -167,6 +173,7 @@ def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -
     float
         Critical K_I in 1/s (inf if the loop is stable for every K_I).
     """
+    check_choice("plant", plant, list(PRESETS))
     base = PRESETS[plant].loop.replace(kp=check_nonnegative("kp", kp),
                                        kd=check_nonnegative("kd", kd, "s"))
 
