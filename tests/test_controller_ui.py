@@ -453,3 +453,23 @@ def test_fast_scan_checker_names_a_speed_in_um_per_s():
     assert not fb and "speed must be in" in str(fb)
     with pytest.raises(ValueError, match="plant must be one of"):
         ex.critical_ki(1.0, plant="e_magic")
+
+
+@pytest.mark.parametrize("how, detour", [("set", ()), ("set", ("d_unstable",)),
+                                         ("dropdown", ("d_unstable",))])
+def test_preset_after_a_small_move_restores_the_preset_exactly(how, detour):
+    # (a drop-down cannot choose the option it shows: the browser sends no change)
+    # A move smaller than half a slider step (K_P 0.5 -> 0.51, b_c 0.015 -> 0.0152 ng/us) was
+    # taken for the browser's echo when the preset came back: preset (a) then ran with K_P = 0.51
+    # and b_c = 0.0152 and showed other poles than preset (a) reached directly.
+    p = ControllerPanel()
+    p.set(kp=0.51, b_c=0.0152)
+    for name in (*detour, "a_good_tracking"):
+        if how == "set":
+            p.set(preset=name)
+        else:
+            p.controls["preset"].value = name
+    ref = PRESETS["a_good_tracking"].loop
+    assert p.last.loop.kp == ref.kp and p.last.loop.b_c == pytest.approx(ref.b_c, rel=1e-12)
+    np.testing.assert_allclose(np.sort_complex(p.last.loop.poles), np.sort_complex(ref.poles),
+                               rtol=1e-12)
