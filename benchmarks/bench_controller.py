@@ -38,7 +38,7 @@ def next_loop():
 
 
 def ours():
-    return next_loop().scan_line(line.x, line.heights, SPEED, SETPOINT)
+    return next_loop().scan_line(line.x, line.heights, speed=SPEED, setpoint=SETPOINT)
 
 
 t_path = np.arange(2 * line.heights.size - 1) * line.pixel_size / SPEED
@@ -55,11 +55,11 @@ def peer():
 
 
 def image_scan():
-    return scan_image(next_loop(), image.heights, image.pixel_size, SPEED, SETPOINT)
+    return scan_image(next_loop(), image.heights, image.pixel_size, speed=SPEED, setpoint=SETPOINT)
 
 
 def image_scan_rows_alone():
-    return scan_image(next_loop(), image.heights, image.pixel_size, SPEED, SETPOINT,
+    return scan_image(next_loop(), image.heights, image.pixel_size, speed=SPEED, setpoint=SETPOINT,
                       chained=False)
 
 

@@ -124,11 +124,42 @@ def test_steady_state(ki):
 
 
 # --- the 14 closed forms ------------------------------------------------------------------------
-def test_generated_code_is_up_to_date():
+@pytest.mark.slow
+def test_generated_code_text_is_up_to_date():
+    """The text check holds only under the sympy release that printed the file: another release
+    may order the same formulas differently (the numeric check below covers any release)."""
+    from afmsmiler.controller import _generated
+    if _generated.SYMPY_VERSION != sp.__version__:
+        pytest.skip(f"_generated.py was printed by sympy {_generated.SYMPY_VERSION}, this is "
+                    f"sympy {sp.__version__}: text check skipped, numbers checked below")
     assert derivation.GENERATED.read_text(encoding="utf-8") == derivation.generate_code()
     assert len(derivation.CASES) == 14
 
 
+@pytest.mark.slow
+@pytest.mark.parametrize("case", derivation.CASES, ids=lambda c: c.name)
+def test_generated_functions_equal_the_derivation_numerically(case):
+    """Each generated function against the derived sympy expressions, lambdified, on random
+    numerators and roots (tolerance 1e-9: both evaluate the same formulas in double precision,
+    differently arranged; they agree to ~1e-14)."""
+    assert derivation.numeric_mismatch(case, samples=20, seed=1) <= 1e-9
+
+
+@pytest.mark.slow
+def test_numeric_check_catches_a_wrong_generated_function(monkeypatch):
+    from afmsmiler.controller import _generated
+    case = derivation.CASES[3]
+    right = _generated.FUNCTIONS[case.name]
+
+    def wrong(b, *roots):
+        q0, q1, modes = right(b, *roots)
+        return q0, q1, tuple(m * (1 + 1e-6) for m in modes)
+
+    monkeypatch.setitem(_generated.FUNCTIONS, case.name, wrong)
+    assert derivation.numeric_mismatch(case) > 1e-9
+
+
+@pytest.mark.slow
 @pytest.mark.parametrize("case", derivation.CASES, ids=lambda c: c.name)
 def test_closed_form_inverts_the_laplace_transform(case):
     assert derivation.check_case(case)
@@ -217,5 +248,10 @@ def test_three_clustered_roots_documented_accuracy(spread):
             assert _compare(roots, inp) < 1e-9
 
 
-def test_derivation_script_check_mode():
+@pytest.mark.slow
+def test_derivation_script_check_mode(monkeypatch, capsys):
     assert derivation.main(["--check"]) == 0
+    from afmsmiler.controller import _generated
+    monkeypatch.setattr(_generated, "SYMPY_VERSION", "0.0")  # as under another sympy release
+    assert derivation.main(["--check"]) == 0
+    assert "text check skipped" in capsys.readouterr().out

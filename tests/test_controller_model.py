@@ -11,7 +11,10 @@ import pytest
 
 from afmsmiler import samples
 from afmsmiler.controller import PRESETS, ContactLoop, routh_hurwitz, scan_image
-from afmsmiler.controller.defaults import BASE, NG, SETPOINT, US, line_profile
+from afmsmiler.controller.defaults import BASE, SETPOINT, line_profile
+from afmsmiler.parameters import UNITS
+
+NG, US = UNITS["ng"][1], UNITS["us"][1]  # kg per ng, s per us
 
 
 def random_params(rng, ki_zero=False):
@@ -106,11 +109,77 @@ def test_routh_hurwitz_edge_cases():
         routh_hurwitz([1, 2])
 
 
+@pytest.mark.parametrize("den", [[-1.0, -2.0, -3.0], [-2.0, -3.0, -4.0, -1.0],
+                                 [-1.0, 1.0, 1.0], [-1.0, -1.0, -1.0, -5.0]])
+def test_routh_hurwitz_normalises_a_negative_leading_coefficient(den):
+    # -s^2 - 2s - 3 has the roots of s^2 + 2s + 3 (both Re = -1): stable. It was called
+    # unstable. The verdict must be numpy's roots' (an independent source).
+    stable = bool(np.all(np.roots(den).real < 0))
+    stab = routh_hurwitz(den)
+    assert bool(stab) == stable
+    assert (stab.margin > 0) == stable
+    assert stab == routh_hurwitz([-c for c in den])
+
+
+@pytest.mark.parametrize("den, match", [
+    ([np.nan, 1.0, 1.0], "finite"), ([1.0, np.inf, 1.0, 1.0], "finite"),
+    ([1.0, 2.0, np.nan], "finite"), ([0.0, 1.0, 1.0], "leading coefficient"),
+    (["a", 1.0, 1.0], "real numbers"), ([1.0, 2.0, 3.0, 4.0, 5.0], "3 or 4"),
+])
+def test_routh_hurwitz_rejects_bad_coefficients(den, match):
+    # NaN coefficients were accepted (and called unstable, or stable for (1, 2, nan) rows).
+    with pytest.raises(ValueError, match=match):
+        routh_hurwitz(den)
+
+
+def _mp_roots(den):
+    """Roots of den at 200 digits (mpmath, independent of numpy's companion eigenvalues)."""
+    import mpmath
+    with mpmath.workdps(200):
+        return np.array([complex(r) for r in mpmath.polyroots([mpmath.mpf(c) for c in den],
+                                                                maxsteps=400, extraprec=400)])
+
+
+@pytest.mark.parametrize("changes", [dict(ki=1e-24), dict(ki=1e-30), dict(ki=1e-90),
+                                     dict(kp=1e19), dict(kp=1e20), dict(kp=1e30, ki=1e9)])
+def test_slow_pole_is_not_lost(changes):
+    # A tiny K_I or a huge K_P makes one pole ~1e-36 of the fastest: the companion eigenvalues
+    # returned it as exactly 0 and the closed forms divided by zero (K_I = 0 worked).
+    loop = PRESETS["c_fast_scan"].loop.replace(**changes)
+    assert loop.order == 3
+    ref = _mp_roots(loop.coefficients["den"])
+    for p in loop.poles:
+        k = np.argmin(np.abs(ref - p))
+        assert abs(p - ref[k]) <= 1e-9 * abs(ref[k])
+    line = line_profile()
+    r = loop.scan_line(line.x, line.heights, speed=1e-3)
+    for p in (r.trace, r.retrace):
+        assert np.all(np.isfinite(p.z_c)) and np.all(np.isfinite(p.z_np))
+
+
+@pytest.mark.parametrize("ki", [1e-24, 1e-200, 5e-324])
+def test_tiny_integral_gain_responds_as_no_integrator(ki):
+    # The analytic limit: as K_I -> 0 the responses to the topography converge to those of the
+    # K_I = 0 loop over any finite time (the integrator's pole tends to 0 and its mode to a
+    # constant); only the steady state the scan starts from differs (Z_c = R with K_I > 0).
+    base = PRESETS["c_fast_scan"].loop
+    line = line_profile()
+    tiny = base.replace(ki=ki)
+    zero = base.replace(ki=0.0)
+    r1, r0 = (lp.scan_line(line.x, line.heights, speed=1e-3) for lp in (tiny, zero))
+    s1, s0 = (lp.steady_state(SETPOINT, line.heights[0]) for lp in (tiny, zero))
+    assert s1.z_c == SETPOINT
+    for a, b in ((r1.trace, r0.trace), (r1.retrace, r0.retrace)):
+        np.testing.assert_allclose(a.z_c - s1.z_c, b.z_c - s0.z_c, rtol=0, atol=1e-9 * 50e-9)
+        np.testing.assert_allclose(a.z_np - s1.z_np, b.z_np - s0.z_np, rtol=0,
+                                   atol=1e-9 * 50e-9)
+
+
 # --- scans ---------------------------------------------------------------------------------------
 def test_scan_line_flat_sample_stays_at_the_steady_state():
     loop = PRESETS["a_good_tracking"].loop
     x = np.linspace(0, 1e-6, 64)
-    r = loop.scan_line(x, np.full(64, 3e-9), 1e-4, SETPOINT)
+    r = loop.scan_line(x, np.full(64, 3e-9), speed=1e-4, setpoint=SETPOINT)
     k = loop.k_c + loop.k_s
     np.testing.assert_allclose(r.trace.z_c, SETPOINT, rtol=1e-12)
     np.testing.assert_allclose(r.retrace.z_np, k * SETPOINT / loop.k_s - 3e-9, rtol=1e-12)
@@ -124,7 +193,7 @@ def test_scan_line_is_one_continuous_simulation():
     sample = line_profile("real line")
     x, h = sample.x[:200], sample.heights[:200]
     speed = 1e-3
-    r = loop.scan_line(x, h, speed, SETPOINT)
+    r = loop.scan_line(x, h, speed=speed, setpoint=SETPOINT)
     assert r.retrace.x[0] == x[-1] and r.retrace.t[0] == r.trace.t[-1]
     assert r.retrace.z_np[0] == r.trace.z_np[-1]
     dt = sample.pixel_size / speed / 4
@@ -168,7 +237,7 @@ def test_scan_image_is_one_engaged_scan(name, changes):
     img = samples.particles((5, 40), 4e-9, count=3, seed=2)
     loop = PRESETS[name].loop.replace(**changes)
     speed = PRESETS[name].speed
-    im = scan_image(loop, img.heights, img.pixel_size, speed, SETPOINT)
+    im = scan_image(loop, img.heights, img.pixel_size, speed=speed, setpoint=SETPOINT)
     assert im.chained and im.stable == bool(loop.is_stable())
     ref_np, ref_topo = _flattened_reference(loop, img.heights, img.pixel_size, speed, SETPOINT)
     ours_np = _back_and_forth(im.trace_z_np, im.retrace_z_np)
@@ -183,9 +252,10 @@ def test_scan_image_rows_are_not_restarted():
     the lag of the previous ones, so they differ from rows scanned independently."""
     img = samples.particles((6, 64), 4e-9, count=3)
     loop = PRESETS["c_fast_scan"].loop
-    chained = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT)
-    alone = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT, chained=False)
-    r0 = loop.scan_line(img.x, img.heights[0], 1e-3, SETPOINT)
+    chained = scan_image(loop, img.heights, img.pixel_size, speed=1e-3, setpoint=SETPOINT)
+    alone = scan_image(loop, img.heights, img.pixel_size, speed=1e-3, setpoint=SETPOINT,
+                       chained=False)
+    r0 = loop.scan_line(img.x, img.heights[0], speed=1e-3, setpoint=SETPOINT)
     np.testing.assert_allclose(chained.trace_z_np[0], r0.trace.z_np, rtol=0, atol=1e-18)
     np.testing.assert_allclose(chained.retrace_z_np[0], r0.retrace.z_np[::-1], rtol=0,
                                atol=1e-18)
@@ -198,10 +268,11 @@ def test_scan_image_rows_are_not_restarted():
 def test_scan_image_independent_rows_equal_scan_line():
     img = samples.particles((6, 64), 4e-9, count=3)
     for loop in (PRESETS["c_fast_scan"].loop, PRESETS["c_fast_scan"].loop.replace(ki=0.0)):
-        im = scan_image(loop, img.heights, img.pixel_size, 1e-3, SETPOINT, chained=False)
+        im = scan_image(loop, img.heights, img.pixel_size, speed=1e-3, setpoint=SETPOINT,
+                        chained=False)
         assert not im.chained
         for row in (0, 5):
-            r = loop.scan_line(img.x, img.heights[row], 1e-3, SETPOINT)
+            r = loop.scan_line(img.x, img.heights[row], speed=1e-3, setpoint=SETPOINT)
             np.testing.assert_allclose(im.trace[row], r.trace.topography, rtol=0, atol=1e-18)
             np.testing.assert_allclose(im.retrace[row], r.retrace.topography[::-1], rtol=0,
                                        atol=1e-18)
@@ -214,7 +285,7 @@ def test_scan_image_independent_rows_equal_scan_line():
 def test_scan_image_keeps_every_line_with_its_times():
     img = samples.particles((4, 32), 4e-9, count=2)
     loop = PRESETS["a_good_tracking"].loop
-    im = scan_image(loop, img.heights, img.pixel_size, 1e-5, SETPOINT)
+    im = scan_image(loop, img.heights, img.pixel_size, speed=1e-5, setpoint=SETPOINT)
     dt = img.pixel_size / 1e-5
     assert im.pixel_time == pytest.approx(dt) and im.line_time == pytest.approx(63 * dt)
     for row in range(4):
@@ -296,10 +367,11 @@ def test_fig4d_growing_oscillation_flagged_unstable(fig4):
 
 # --- bad input ------------------------------------------------------------------------------------
 @pytest.mark.parametrize("name, value, match", [
-    ("m_c", -1e-12, "m_c must be > 0 kg"), ("k_s", -1.0, "k_s must be > 0 N/m"),
-    ("k_c", 0.0, "k_c must be > 0"), ("b_s", -1e-8, "b_s must be >= 0 kg/s"),
-    ("ki", np.nan, "ki must be >= 0 1/s"), ("kp", np.inf, "kp must be >= 0"),
-    ("kd", -1e-7, "kd must be >= 0 s"), ("m_s", "heavy", "m_s must be a real number"),
+    ("m_c", -1e-12, r"m_c must be in \[1e-18, 0.001\] kg"),
+    ("k_s", -1.0, r"k_s must be in \[1e-06, 1e\+06\] N/m"), ("k_c", 0.0, r"k_c must be in"),
+    ("b_s", -1e-8, r"b_s must be in \[0, 1\] kg/s"),
+    ("ki", np.nan, r"ki must be in \[0, 1e\+15\] 1/s, got nan"), ("kp", np.inf, r"kp must be in"),
+    ("kd", -1e-7, r"kd must be in \[0, 1\] s"), ("m_s", "heavy", "m_s must be a real number"),
 ])
 def test_bad_parameters(name, value, match):
     with pytest.raises(ValueError, match=match):
@@ -310,18 +382,18 @@ def test_bad_scan_input():
     loop = PRESETS["a_good_tracking"].loop
     x = np.linspace(0, 1e-6, 10)
     h = np.zeros(10)
-    with pytest.raises(ValueError, match="speed must be > 0 m/s"):
-        loop.scan_line(x, h, 0.0, SETPOINT)
-    with pytest.raises(ValueError, match="speed must be > 0 m/s"):
-        loop.scan_line(x, h, -1e-5, SETPOINT)
+    with pytest.raises(ValueError, match=r"speed must be in \[1e-09, 1\] m/s"):
+        loop.scan_line(x, h, speed=0.0, setpoint=SETPOINT)
+    with pytest.raises(ValueError, match=r"speed must be in \[1e-09, 1\] m/s"):
+        loop.scan_line(x, h, speed=-1e-5, setpoint=SETPOINT)
     with pytest.raises(ValueError, match="x must be strictly increasing"):
-        loop.scan_line(x[::-1], h, 1e-5, SETPOINT)
+        loop.scan_line(x[::-1], h, speed=1e-5, setpoint=SETPOINT)
     with pytest.raises(ValueError, match="height must have 10 elements"):
-        loop.scan_line(x, h[:-1], 1e-5, SETPOINT)
+        loop.scan_line(x, h[:-1], speed=1e-5, setpoint=SETPOINT)
     with pytest.raises(ValueError, match="height must be finite"):
-        loop.scan_line(x, np.r_[h[:-1], np.nan], 1e-5, SETPOINT)
-    with pytest.raises(ValueError, match="setpoint must be a finite"):
-        loop.scan_line(x, h, 1e-5, np.nan)
+        loop.scan_line(x, np.r_[h[:-1], np.nan], speed=1e-5, setpoint=SETPOINT)
+    with pytest.raises(ValueError, match=r"setpoint must be in \[-1e-06, 1e-06\] m, got nan"):
+        loop.scan_line(x, h, speed=1e-5, setpoint=np.nan)
     with pytest.raises(ValueError, match="t_knots must be strictly increasing"):
         loop.response([0, 2e-6, 1e-6], [0, 0, 0])
     with pytest.raises(ValueError, match="T_knots must have 3 values"):
@@ -331,15 +403,15 @@ def test_bad_scan_input():
     with pytest.raises(ValueError, match="input must be one of"):
         loop.closed_forms("impulse")
     with pytest.raises(ValueError, match="pixel_size must be > 0 m"):
-        scan_image(loop, np.zeros((2, 3)), 0.0, 1e-5, SETPOINT)
+        scan_image(loop, np.zeros((2, 3)), 0.0, speed=1e-5, setpoint=SETPOINT)
     with pytest.raises(ValueError, match="heights must be a 2-D array"):
-        scan_image(loop, np.zeros(3), 1e-9, 1e-5, SETPOINT)
+        scan_image(loop, np.zeros(3), 1e-9, speed=1e-5, setpoint=SETPOINT)
     with pytest.raises(ValueError, match="chained must be True or False"):
-        scan_image(loop, np.zeros((2, 3)), 1e-9, 1e-5, SETPOINT, chained="yes")
+        scan_image(loop, np.zeros((2, 3)), 1e-9, speed=1e-5, setpoint=SETPOINT, chained="yes")
     with pytest.raises(TypeError):
-        scan_image(loop, np.zeros((2, 3)), 1e-9, 1e-5, SETPOINT, rows_first=True)
+        scan_image(loop, np.zeros((2, 3)), 1e-9, speed=1e-5, setpoint=SETPOINT, rows_first=True)
     with pytest.raises(TypeError):
-        loop.scan_line(x, h, 1e-5, SETPOINT, direction="up")
+        loop.scan_line(x, h, speed=1e-5, setpoint=SETPOINT, direction="up")
 
 
 # --- the O(N) recursion for every root structure (blocks of 1, 2, 3 terms; clusters: 16) ---
@@ -473,6 +545,7 @@ def test_clustered_triple_roots_polygon(spread, shape, uniform):
         np.testing.assert_allclose(at_eval[o], ref[ev], rtol=0, atol=1e-9 * peak)
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("roots", [
     [0.3, 0.3 * (1 + 1e-3), 0.3 * (1 - 1e-3)],              # unstable cluster, |p| t up to 18
     [-1.0, -1.0 * (1 + 2e-6), -1.0 * (1 + 1e-3)],           # a near pair inside a cluster
@@ -608,3 +681,104 @@ def test_phi_functions_against_mpmath():
     # an unstable mode over one step overflows (inf, nan) as numpy does, without raising
     with np.errstate(over="ignore", invalid="ignore"):
         assert not np.isfinite(_phi12_scalar(800 + 0j)[0])
+
+
+# --- joining module (a): a loop from a Cantilever -------------------------------------------------
+# b_1 L of the first clamped-free mode, the root of cos x cosh x = -1 (Butt & Jaschke 1995; any
+# vibration textbook): typed here as the published value, not taken from module (a).
+BETA1_L = 1.875104068711961
+
+
+@pytest.mark.parametrize("dims, q", [((450e-6, 50e-6, 2e-6), 150.0),
+                                     ((125e-6, 30e-6, 4e-6), 400.0),
+                                     ((200e-6, 40e-6, 0.6e-6), 2.0)])
+def test_loop_from_cantilever_matches_the_analytic_lever(dims, q):
+    from afmsmiler.cantilever import Cantilever
+    length, width, thickness = dims
+    E, rho = 169e9, 2330.0
+    lever = Cantilever(length, width, thickness, E, rho)
+    loop = ContactLoop.from_cantilever(lever, sample_stiffness=20.0, sample_mass=2e-12,
+                                       sample_damping=1e-8, quality_factor=q, kp=2.0, ki=3e5,
+                                       kd=1e-8)
+    mass = rho * length * width * thickness
+    k = E * width * thickness ** 3 / (4 * length ** 3)            # 3 E J / L^3, J = w h^3 / 12
+    m_eff = 3 * mass / BETA1_L ** 4                               # 0.2427 m
+    omega = BETA1_L ** 2 / length ** 2 * np.sqrt(E * width * thickness ** 3 / 12
+                                                   / (rho * width * thickness))
+    assert m_eff / mass == pytest.approx(0.2427, abs=5e-5)
+    assert loop.k_c == pytest.approx(k, rel=1e-12)
+    assert loop.m_c == pytest.approx(m_eff, rel=1e-9)
+    assert loop.b_c == pytest.approx(m_eff * omega / q, rel=1e-9)
+    # the lever alone (no sample, no feedback) rings at omega with quality factor Q
+    lever_poles = np.roots([loop.m_c, loop.b_c, loop.k_c])
+    assert np.max(np.abs(lever_poles)) == pytest.approx(omega, rel=1e-9)
+    assert -np.sum(lever_poles.real) / 2 == pytest.approx(omega / (2 * q), rel=1e-9)
+    # closed-loop poles: python-control's feedback of the same plant and PID, built from the
+    # analytic numbers
+    P = control.tf([1e-8, 20.0], [m_eff + 2e-12, m_eff * omega / q + 1e-8, k + 20.0])
+    C = control.tf([1e-8, 2.0, 3e5], [1, 0])
+    ref = control.poles(control.feedback(P, C))
+    np.testing.assert_allclose(np.sort_complex(loop.poles), np.sort_complex(ref), rtol=1e-7)
+
+
+def test_loop_from_cantilever_rejects_bad_input():
+    from afmsmiler.cantilever import Cantilever
+    lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
+    with pytest.raises(TypeError, match="lever"):
+        ContactLoop.from_cantilever("silicon")
+    with pytest.raises(ValueError, match="quality_factor"):
+        ContactLoop.from_cantilever(lever, quality_factor=0.0)
+    with pytest.raises(ValueError, match="k_s"):
+        ContactLoop.from_cantilever(lever, sample_stiffness=-1.0)
+    with pytest.raises(TypeError):
+        ContactLoop.from_cantilever(lever, 10.0)  # keyword-only
+
+
+# --- bounds: valid extremes give finite results quickly; sizes are bounded ------------------------
+def test_valid_extremes_give_finite_results_in_seconds():
+    """Every corner of the valid ranges (and random points inside): a stable loop's scan is
+    finite, no exception but a named ValueError, well under a second per line."""
+    import time
+    import warnings
+
+    from afmsmiler.controller import LOOP_PARAMETERS, PARAMETERS
+    line = line_profile()
+    rng = np.random.default_rng(7)
+    for _ in range(300):
+        kw = {}
+        for name in LOOP_PARAMETERS:
+            p = PARAMETERS[name]
+            lo = p.low if p.low > 0 else 1e-30
+            kw[name] = [p.low, p.high, float(np.exp(rng.uniform(np.log(lo), np.log(p.high)))),
+                        p.default][rng.integers(0, 4)]
+        speed = [PARAMETERS["speed"].low, PARAMETERS["speed"].high, 1e-5][rng.integers(0, 3)]
+        loop = ContactLoop(**kw)
+        start = time.perf_counter()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # unstable loops overflow, flagged
+            r = loop.scan_line(line.x, line.heights, speed=speed, setpoint=1e-6)
+        assert time.perf_counter() - start < 1.0
+        if loop.is_stable():
+            for p in (r.trace, r.retrace):
+                assert np.all(np.isfinite(p.z_c)) and np.all(np.isfinite(p.z_np)), kw
+
+
+def test_sizes_are_bounded():
+    from afmsmiler.controller.image import MAX_IMAGE_PIXELS
+    from afmsmiler.controller.loop import MAX_KNOTS, MAX_LINE_PIXELS
+    loop = ContactLoop()
+    with pytest.raises(ValueError, match=f"x must have at most {MAX_LINE_PIXELS}"):
+        loop.scan_line(np.arange(MAX_LINE_PIXELS + 1) * 1e-9, np.zeros(MAX_LINE_PIXELS + 1))
+    with pytest.raises(ValueError, match=f"t_knots must have at most {MAX_KNOTS}"):
+        loop.response(np.arange(MAX_KNOTS + 1) * 1e-9, np.zeros(MAX_KNOTS + 1))
+    with pytest.raises(ValueError, match="heights must have at most"):
+        scan_image(loop, np.zeros((MAX_IMAGE_PIXELS // 1000 + 1, 1000)), 1e-9)
+    with pytest.raises(TypeError, match="loop"):
+        scan_image("loop", np.zeros((2, 3)), 1e-9)
+
+
+@pytest.mark.parametrize("name, value", [("m_c", 1e-19), ("k_s", 1e7), ("ki", 1e16),
+                                         ("kd", 2.0), ("b_c", 2.0), ("kp", 1e31)])
+def test_values_beyond_the_valid_range_are_named(name, value):
+    with pytest.raises(ValueError, match=f"{name} must be in"):
+        ContactLoop(**{name: value})

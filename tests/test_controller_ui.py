@@ -1,6 +1,7 @@
 """Module (c) panel, figures and exercises without a browser: the plotted data equal the model,
 slider bounds cannot produce a loop the model rejects, checkers judge by simulating the answer."""
 import itertools
+import re
 from dataclasses import astuple
 
 import numpy as np
@@ -12,7 +13,9 @@ from afmsmiler.controller import PRESETS, ContactLoop, scan_image
 from afmsmiler.controller.defaults import SETPOINT, line_profile
 from afmsmiler.exercises import controller as ex
 from afmsmiler.plots import controller as plots
-from afmsmiler.ui.controller import BOUNDS, DEFAULTS, ControllerPanel, preset_values
+from afmsmiler.controller import PARAMETERS
+from afmsmiler.parameters import UNITS
+from afmsmiler.ui.controller import DEFAULTS, SLIDERS, ControllerPanel, format_poles, preset_values
 
 
 @pytest.fixture(scope="module")
@@ -23,11 +26,12 @@ def panel():
 def test_panel_plots_what_the_model_says(panel):
     panel.set(kp=2.0, ki=0.05, kd=0.01, speed=500.0, profile="step", setpoint=5.0, height=40.0)
     v = panel.values()
-    loop = ContactLoop(m_c=v["m_c"] * 1e-12, m_s=v["m_s"] * 1e-12, b_c=v["b_c"] * 1e-6,
-                       b_s=v["b_s"] * 1e-6, k_c=v["k_c"], k_s=v["k_s"], kp=2.0, ki=0.05e6,
+    ng, ng_us = UNITS["ng"][1], UNITS["ng/us"][1]  # SI value of one display unit
+    loop = ContactLoop(m_c=v["m_c"] * ng, m_s=v["m_s"] * ng, b_c=v["b_c"] * ng_us,
+                       b_s=v["b_s"] * ng_us, k_c=v["k_c"], k_s=v["k_s"], kp=2.0, ki=0.05e6,
                        kd=0.01e-6)
     line = samples.profile("step", 512, 4e-9, 40e-9)
-    r = loop.scan_line(line.x, line.heights, 500e-6, 5e-9)
+    r = loop.scan_line(line.x, line.heights, speed=500e-6, setpoint=5e-9)
     lines = panel.figure.lines
     x, y = lines["znp_trace"].get_data()
     np.testing.assert_allclose(x, line.x * 1e6, rtol=1e-12)
@@ -36,8 +40,7 @@ def test_panel_plots_what_the_model_says(panel):
     np.testing.assert_allclose(x, line.x[::-1] * 1e6, rtol=1e-12)
     np.testing.assert_allclose(y, r.retrace.topography * 1e9, rtol=1e-9)
     np.testing.assert_allclose(lines["height"].get_data()[1], line.heights * 1e9)
-    px, py = lines["poles"].get_data()
-    np.testing.assert_allclose(np.sort_complex(px + 1j * np.asarray(py)),
+    np.testing.assert_allclose(np.sort_complex(panel.figure.poles()),
                                np.sort_complex(loop.poles * 1e-6), rtol=1e-9)
     assert "STABLE" in panel.indicator.value
     np.testing.assert_allclose(astuple(panel.last.loop), astuple(loop), rtol=1e-12)
@@ -55,17 +58,18 @@ def test_preset_sets_every_slider_and_flags_instability(panel):
     assert preset_values("b_soft_sample")["k_s"] == 1.0
 
 
-def test_slider_bounds_lie_inside_the_model_ranges():
-    corners = {k: v for k, v in BOUNDS.items()}
+def test_slider_bounds_lie_inside_the_model_ranges(panel):
+    ends = {}
+    for name in SLIDERS:
+        c = panel.controls[name]
+        lo, hi = (c.base ** c.min, c.base ** c.max) if hasattr(c, "base") else (c.min, c.max)
+        ends[name] = [PARAMETERS[name].to_si(lo), PARAMETERS[name].to_si(hi)]
+        assert lo <= DEFAULTS[name] <= hi * (1 + 1e-12), name
     for m_c, k_s, kp, ki, kd, speed in itertools.product(
-            corners["m_c"], corners["k_s"], corners["kp"], corners["ki"], corners["kd"],
-            corners["speed"]):
-        loop = ContactLoop(m_c=m_c * 1e-12, m_s=1e-12, b_c=BOUNDS["b_c"][0] * 1e-6,
-                           b_s=BOUNDS["b_s"][0] * 1e-6, k_c=BOUNDS["k_c"][0], k_s=k_s, kp=kp,
-                           ki=ki * 1e6, kd=kd * 1e-6)
-        loop.scan_line([0.0, 1e-9, 2e-9], [0.0, 1e-9, 0.0], speed * 1e-6, 0.0)
-    for name, (low, high) in BOUNDS.items():
-        assert low <= DEFAULTS[name] <= high, name
+            ends["m_c"], ends["k_s"], ends["kp"], ends["ki"], ends["kd"], ends["speed"]):
+        loop = ContactLoop(m_c=m_c, m_s=ends["m_s"][0], b_c=ends["b_c"][0], b_s=ends["b_s"][0],
+                           k_c=ends["k_c"][0], k_s=k_s, kp=kp, ki=ki, kd=kd)
+        loop.scan_line([0.0, 1e-9, 2e-9], [0.0, 1e-9, 0.0], speed=speed, setpoint=0.0)
 
 
 def test_unknown_control_is_rejected():
@@ -78,7 +82,8 @@ def test_figures_draw():
                 plots.polygon_figure(line_profile().x, line_profile().heights, 1e-3)):
         assert isinstance(fig, Figure) and fig.axes
     img = samples.particles((16, 32), 4e-9, count=2)
-    im = scan_image(PRESETS["c_fast_scan"].loop, img.heights, img.pixel_size, 1e-3, SETPOINT)
+    im = scan_image(PRESETS["c_fast_scan"].loop, img.heights, img.pixel_size, speed=1e-3,
+                    setpoint=SETPOINT)
     fig = plots.image_figure(im, img.heights, signal="topography")
     np.testing.assert_allclose(fig.axes[1].images[0].get_array(), im.trace * 1e9)
     fig = plots.image_figure(im)
@@ -114,7 +119,7 @@ def test_fast_scan_checker_simulates_the_answer():
     # its verdict is the error of an independent evaluation of -Z_np against T
     loop = PRESETS["a_good_tracking"].loop.replace(kp=30, ki=3e6, kd=1e-7)
     line = line_profile("real line")
-    r = loop.scan_line(line.x, line.heights, 1e-3, SETPOINT)
+    r = loop.scan_line(line.x, line.heights, speed=1e-3, setpoint=SETPOINT)
     shift = (loop.k_c + loop.k_s) * SETPOINT / loop.k_s  # steady Z_np for T = 0
     rms = max(np.sqrt(np.mean((-(p.z_np - shift) - p.height) ** 2)) for p in (r.trace, r.retrace))
     assert rms < 1e-9 and f"{rms * 1e9:.3g} nm" in str(good)
@@ -173,6 +178,7 @@ def _overlaps(fig):
             if a != b and ba.overlaps(bb)]
 
 
+@pytest.mark.slow
 def test_stand_alone_figures_fit_the_notebook_by_default():
     # 11-12.6 in wide figures were clipped on the right of JupyterLab's output area; the
     # notebook now calls the builders without a figure, so their defaults must fit (<= 10 in)
@@ -191,3 +197,279 @@ def test_stand_alone_figures_fit_the_notebook_by_default():
         width, height = fig.get_size_inches()
         assert width <= 10.0 and height <= 9.0, (name, width, height)
         assert not _overlaps(fig), (name, _overlaps(fig))
+
+
+# --- one user action = one update with exactly the values chosen ---------------------------------
+def _count_scans(monkeypatch):
+    calls = []
+    original = ContactLoop.scan_line
+
+    def counting(self, *args, **kwargs):
+        calls.append(self)
+        return original(self, *args, **kwargs)
+
+    monkeypatch.setattr(ContactLoop, "scan_line", counting)
+    return calls
+
+
+def _browser_echo(panel):
+    """Do what the browser does when it draws the sliders: snap each value to the slider's grid
+    (min + n step, in the exponent for a log slider) and send it back."""
+    for name in SLIDERS:
+        c = panel.controls[name]
+        if hasattr(c, "base"):
+            e = np.log10(c.value)
+            snapped = c.base ** (c.min + round((e - c.min) / c.step) * c.step)
+        else:
+            snapped = c.min + round((c.value - c.min) / c.step) * c.step
+        c.value = float(min(max(snapped, c.base ** c.min if hasattr(c, "base") else c.min),
+                            c.base ** c.max if hasattr(c, "base") else c.max))
+
+
+def _preset_si(name):
+    p = PRESETS[name]
+    return {**{k: getattr(p.loop, k) for k in ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "kp",
+                                                "ki", "kd")}, "speed": p.speed}
+
+
+@pytest.mark.parametrize("how", ["set", "dropdown"])
+@pytest.mark.parametrize("name", list(PRESETS))
+def test_choosing_a_preset_runs_one_update_with_exactly_its_values(monkeypatch, how, name):
+    # The browser echoed the damping 0.015 -> 0.01585 ng/us and K_P 0.5 -> 0.501, and a preset
+    # reached after other moves kept the echoed values: preset (a) showed other poles.
+    start = "b_soft_sample" if name != "b_soft_sample" else "d_unstable"
+    p = ControllerPanel(preset=start, kp=3.0, b_c=0.02, speed=200.0)
+    _browser_echo(p)
+    calls = _count_scans(monkeypatch)
+    if how == "set":
+        p.set(preset=name)
+    else:
+        p.controls["preset"].value = name  # what the drop-down does in the browser
+    assert len(calls) == 1
+    _browser_echo(p)  # the browser snaps the new values: no update, nothing changes
+    assert len(calls) == 1
+    si = _preset_si(name)
+    loop = p.last.loop
+    for k, v in si.items():
+        got = p.last.scan.speed if k == "speed" else getattr(loop, k)
+        assert got == pytest.approx(v, rel=1e-12, abs=0), k
+    assert p.values() == {**p.values(), **preset_values(name)}
+
+
+def test_preset_a_poles_do_not_depend_on_the_way_it_was_reached():
+    direct = ControllerPanel()
+    _browser_echo(direct)
+    detour = ControllerPanel(preset="d_unstable")
+    _browser_echo(detour)
+    detour.set(kp=2.0, b_s=0.5)
+    _browser_echo(detour)
+    detour.controls["preset"].value = "a_good_tracking"
+    _browser_echo(detour)
+    reference = np.sort_complex(np.roots(  # the preset's own loop, independently: numpy's roots
+        PRESETS["a_good_tracking"].loop.coefficients["den"]))
+    for panel in (direct, detour):
+        np.testing.assert_allclose(np.sort_complex(panel.last.loop.poles), reference,
+                                   rtol=1e-9)
+        np.testing.assert_allclose(np.sort_complex(panel.figure.poles()), reference * 1e-6,
+                                   rtol=1e-9)
+    np.testing.assert_array_equal(direct.last.loop.poles, detour.last.loop.poles)
+
+
+@pytest.mark.parametrize("name, value", [("kp", 2.0), ("ki", 0.02), ("speed", 300.0),
+                                         ("height", 20.0), ("profile", "step")])
+def test_one_slider_move_runs_the_model_once(monkeypatch, name, value):
+    p = ControllerPanel()
+    calls = _count_scans(monkeypatch)
+    p.set(**{name: value})
+    assert len(calls) == 1
+    p.controls[name].value = value  # the browser's echo of the same value: nothing runs
+    assert len(calls) == 1
+
+
+def test_update_uses_exactly_the_values_given():
+    p = ControllerPanel()
+    v = {**p.values(), "kp": 7.0, "speed": 123.0, "setpoint": 4.0}
+    p.update(**v)
+    assert p.last.loop.kp == 7.0 and p.controls["kp"].value != 7.0
+    assert p.last.scan.speed == pytest.approx(123e-6, rel=1e-12)
+    assert p.last.scan.setpoint == pytest.approx(4e-9, rel=1e-12)
+
+
+def test_panel_types_no_scale_factor():
+    # display units come from PARAMETERS and UNITS only (NG/US/UM constants and typed factors
+    # like * 1e-6 are gone from the panel)
+    import inspect
+    import re
+
+    from afmsmiler.ui import controller as ui
+    source = inspect.getsource(ui)
+    assert not re.search(r"[*/]\s*1e-?\d+", source)
+    assert not hasattr(ui, "BOUNDS") and not hasattr(ui, "_LABELS") and not hasattr(ui, "_LOG")
+    with pytest.raises(TypeError):
+        ui.DEFAULTS["kp"] = 1.0  # read-only
+
+
+def test_unknown_preset_or_profile_is_named():
+    with pytest.raises(ValueError, match="preset must be one of"):
+        ControllerPanel().set(preset="e_magic")
+    with pytest.raises(ValueError, match="profile must be one of"):
+        ControllerPanel(profile="cube")
+
+
+def test_pole_list_wraps_between_poles_not_inside_numbers():
+    text = format_poles(np.array([-0.00662, -0.00606 + 8.69j, -0.00606 - 8.69j]))
+    spans = re.findall(r"<span style='white-space:nowrap'>(.*?)</span>", text)
+    assert spans == ["-0.00662", "-0.00606 &plusmn; 8.69i"]
+    outside = re.sub(r"<span.*?</span>", "", text)
+    assert not re.search(r"\d", outside.replace("1/us", ""))  # no digit can wrap on its own
+    p = ControllerPanel()
+    assert format_poles(p.last.curves.poles_per_us) in p.indicator.value
+
+
+@pytest.mark.slow
+def test_pole_map_shows_the_sign_of_the_real_part():
+    # On a linear axis scaled by |p| ~ 9 1/us, Re p = -0.006 (stable) and +0.006 (unstable) both
+    # sat on the imaginary axis. Now: a symlog real axis puts them on either side, a shaded
+    # half-plane each, and the markers are coloured by stability.
+    stable = ControllerPanel()
+    f = stable.figure
+    ax = f.axes["poles"]
+    assert ax.get_xscale() == "symlog"
+    x, _ = f.lines["poles_stable"].get_data()
+    assert len(x) == 3 and len(f.lines["poles_unstable"].get_data()[0]) == 0
+    # the poles' screen positions are clearly left of the imaginary axis
+    to_px = ax.transData.transform
+    zero = to_px((0.0, 0.0))[0]
+    width = ax.bbox.width
+    assert all(zero - to_px((xi, 0.0))[0] > 0.1 * width for xi in x)
+    unstable = ControllerPanel(preset="d_unstable")
+    xu, _ = unstable.figure.lines["poles_unstable"].get_data()
+    assert len(xu) == 2 and np.all(np.asarray(xu) > 0)
+    assert f.lines["poles_stable"].get_color() != f.lines["poles_unstable"].get_color()
+
+
+def _legend_clear_of_axes(fig, legend):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    FigureCanvasAgg(fig).draw()
+    r = fig.canvas.get_renderer()
+    box = legend.get_window_extent(r)
+    return not any(box.overlaps(ax.get_window_extent(r)) for ax in fig.axes)
+
+
+@pytest.mark.slow
+def test_legends_do_not_cover_data():
+    p = ControllerPanel()
+    assert _legend_clear_of_axes(p.fig, p.figure.legend)
+    fig = plots.fig4_figure()
+    assert fig.legends and all(_legend_clear_of_axes(fig, lg) for lg in fig.legends)
+    assert not any(ax.get_legend() for ax in fig.axes)
+    fig = plots.polygon_figure(line_profile().x, line_profile().heights, 1e-3)
+    (ax1, ax2) = fig.axes
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    FigureCanvasAgg(fig).draw()
+    r = fig.canvas.get_renderer()
+    assert not ax2.get_legend().get_window_extent(r).overlaps(ax2.get_window_extent(r))
+
+
+# --- notebook 03's "Things to try", followed step by step with the panel --------------------------
+def test_things_to_try_recipe_of_notebook_03():
+    """Every step of the recipe in notebook 03 and the outcome it states. (The old recipe, "raise
+    K_I until trace and retrace agree", made the error grow 2.7 -> 3.9 nm until unstable.)"""
+    import warnings
+    p = ControllerPanel()
+    nm = 1e9
+    # 1. from (a), raise the speed to 1000 um/s: trace and retrace of Z_np differ by ~28 nm
+    p.set(preset="a_good_tracking")
+    p.set(speed=1000.0)
+    assert p.last.loop.is_stable()
+    gap0, err0 = p.last.scan.gap * nm, p.last.max_error * nm
+    assert 20 < gap0 < 35 and 2 < err0 < 3.5
+    # 2. raising K_I alone does not help: the error grows ...
+    p.set(ki=0.02)
+    assert p.last.max_error * nm > err0 and p.last.scan.gap * nm > gap0
+    assert p.last.loop.is_stable()
+    # ... and just above 0.028 /us the complex pair crosses into the right half-plane
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the growing oscillation overflows
+        p.set(ki=0.03)
+    assert not p.last.loop.is_stable() and "UNSTABLE" in p.indicator.value
+    assert np.max(p.last.loop.poles.real) > 0
+    # 3. back to K_I = 0.01 /us and raise K_P to 5: the gap falls five-fold, the error ten-fold,
+    #    and the complex poles move away from the imaginary axis
+    p.set(ki=0.01)
+    re_before = np.max(p.last.loop.poles.real)
+    p.set(kp=5.0)
+    assert p.last.loop.is_stable()
+    assert p.last.scan.gap * nm < gap0 / 5 and p.last.max_error * nm < err0 / 10
+    complex_re = p.last.loop.poles[np.abs(p.last.loop.poles.imag) > 0].real
+    assert np.all(complex_re < 4 * re_before)
+    # 4. a larger K_P allows a larger K_I: K_P = 20 with K_I = 1 /us is stable, gap below 2.5 nm
+    p.set(kp=20.0, ki=1.0)
+    assert p.last.loop.is_stable() and p.last.scan.gap * nm < 2.5
+    # 5. lower k_s to 1 N/m: the estimate is off by the indentation k_c R / k_s = 10 nm
+    p.set(k_s=1.0)
+    assert p.last.scan.offset * nm == pytest.approx(-10.0, rel=1e-9)
+
+
+# --- exercise checkers: unit slips are rejected and named, without the answer --------------------
+def test_fast_scan_checker_rejects_a_us_for_s_slip_in_kd():
+    # K_D = 1 s (a derivative time of 1 us typed in us) was accepted as correct: the huge
+    # derivative gain tracks anything in this linear model.
+    fb = ex.check_fast_scan(30, 3e6, 1.0, 1e-3)
+    assert not fb
+    assert "10^6" in str(fb) and "K_D" in str(fb) and "us" in str(fb)
+    assert ex.check_fast_scan(30, 3e6, 1e-7, 1e-3)  # the same answer in s passes
+
+
+def test_fast_scan_checker_names_a_per_us_slip_in_ki():
+    fb = ex.check_fast_scan(30, 3.0, 1e-7, 1e-3)  # K_I = 3 per us typed as 3 1/s
+    assert not fb and "10^6" in str(fb) and "K_I" in str(fb) and "1/us" in str(fb)
+    assert ex.check_fast_scan(30, 0.0, 0.0, 1e-3)  # no integrator at all is no slip
+
+
+def test_fast_scan_hint_is_one_that_works():
+    # the hint says: raise K_P first, then K_I as far as the poles allow. Followed from the
+    # preset's gains at 1000 um/s:
+    assert not ex.check_fast_scan(0.5, 1e4, 0.0, 1e-3)
+    assert "Raise K_P first" in str(ex.check_fast_scan(0.5, 1e4, 0.0, 1e-3))
+    assert ex.check_fast_scan(20.0, 1e4, 0.0, 1e-3)       # K_P raised: passes
+    assert ex.check_fast_scan(20.0, 1e6, 0.0, 1e-3)       # then K_I raised: still stable, better
+    assert ex.height_error(PRESETS["a_good_tracking"].loop.replace(kp=20.0, ki=1e6), 1e-3) < \
+        ex.height_error(PRESETS["a_good_tracking"].loop.replace(kp=20.0, ki=1e4), 1e-3)
+
+
+def test_critical_ki_checker_names_an_answer_in_per_us():
+    # an answer in 1/us was "off by 100 %"; now the factor 10^-6 is named, the value is not given
+    right = ex.critical_ki(100.0)
+    fb = ex.check_critical_ki(right * 1e-6)
+    assert not fb and "10^-6" in str(fb)
+    assert f"{right:.4g}" not in str(fb) and f"{right:.3g}" not in str(fb)
+
+
+def test_fast_scan_checker_names_a_speed_in_um_per_s():
+    fb = ex.check_fast_scan(20.0, 1e6, 0.0, 1000.0)  # 1000 um/s typed as 1000 m/s
+    assert not fb and "10^6" in str(fb) and "um/s" in str(fb)
+    fb = ex.check_fast_scan(20.0, 1e6, 0.0, 1e5)  # out of range, not a slip: named, no crash
+    assert not fb and "speed must be in" in str(fb)
+    with pytest.raises(ValueError, match="plant must be one of"):
+        ex.critical_ki(1.0, plant="e_magic")
+
+
+@pytest.mark.parametrize("how, detour", [("set", ()), ("set", ("d_unstable",)),
+                                         ("dropdown", ("d_unstable",))])
+def test_preset_after_a_small_move_restores_the_preset_exactly(how, detour):
+    # (a drop-down cannot choose the option it shows: the browser sends no change)
+    # A move smaller than half a slider step (K_P 0.5 -> 0.51, b_c 0.015 -> 0.0152 ng/us) was
+    # taken for the browser's echo when the preset came back: preset (a) then ran with K_P = 0.51
+    # and b_c = 0.0152 and showed other poles than preset (a) reached directly.
+    p = ControllerPanel()
+    p.set(kp=0.51, b_c=0.0152)
+    for name in (*detour, "a_good_tracking"):
+        if how == "set":
+            p.set(preset=name)
+        else:
+            p.controls["preset"].value = name
+    ref = PRESETS["a_good_tracking"].loop
+    assert p.last.loop.kp == ref.kp and p.last.loop.b_c == pytest.approx(ref.b_c, rel=1e-12)
+    np.testing.assert_allclose(np.sort_complex(p.last.loop.poles), np.sort_complex(ref.poles),
+                               rtol=1e-12)

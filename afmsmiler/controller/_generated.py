@@ -1,11 +1,18 @@
 """Closed-form step and ramp responses, 2nd and 3rd order: GENERATED, do not edit.
 
 Written by ``python -m afmsmiler.controller.derivation`` from the sympy derivation in
-:mod:`afmsmiler.controller.derivation`; ``tests/test_controller_derivation.py`` checks that this
-file is what the derivation gives. Each function takes the numerator coefficients b = (b0, b1, ...)
-of N(s) / prod(s - p_i) and the roots, and returns (q0, q1, modes): see ``derive_case``.
+:mod:`afmsmiler.controller.derivation`, printed by sympy 1.14.0.
+``tests/test_controller_derivation.py`` checks these functions numerically against the derivation
+(under any sympy), and the text against what the derivation prints when the installed sympy is
+the one named here (:data:`SYMPY_VERSION`; another release may print the same formulas in
+another order). Each function takes the numerator
+coefficients b = (b0, b1, ...) of N(s) / prod(s - p_i) and the roots, and returns
+(q0, q1, modes): see ``derive_case``.
 """
 # flake8: noqa
+
+#: The sympy release that printed this file.
+SYMPY_VERSION = '1.14.0'
 
 
 def step_o2_distinct(b, p1, p2):

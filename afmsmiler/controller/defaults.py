@@ -33,21 +33,18 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from .. import samples
-from .loop import ContactLoop
+from ..parameters import read_only
+from .loop import LOOP_PARAMETERS, PARAMETERS, ContactLoop
 
-__all__ = ["Preset", "PRESETS", "NG", "US", "UM", "BASE", "SETPOINT", "line_profile"]
+__all__ = ["Preset", "PRESETS", "BASE", "SETPOINT", "LINE", "line_profile"]
 
-NG = 1e-12  #: kg per ng
-US = 1e-6  #: s per us
-UM = 1e-6  #: m per um
-
-#: Shared loop parameters in SI (see the module docstring for the scaled values).
-BASE = dict(m_c=1 * NG, m_s=1 * NG, b_c=0.015 * NG / US, b_s=0.015 * NG / US, k_c=1.0,
-            k_s=100.0, kp=0.5, ki=0.01 / US, kd=0.0)
+#: Shared loop parameters in SI: the defaults of :data:`~afmsmiler.controller.PARAMETERS`.
+BASE = read_only({name: PARAMETERS[name].default for name in LOOP_PARAMETERS})
 #: Deflection setpoint R in m.
-SETPOINT = 10e-9
+SETPOINT = PARAMETERS["setpoint"].default
 #: The scanned line: pixels, pixel size (m), feature height (m), profile name.
-LINE = dict(pixels=512, pixel_size=4e-9, height=50e-9, name="grating")
+LINE = read_only(dict(pixels=512, pixel_size=4e-9, height=PARAMETERS["height"].default,
+                      name="grating"))
 
 
 @dataclass(frozen=True)
@@ -87,7 +84,8 @@ class Preset:
         afmsmiler.controller.ScanLine
         """
         sample = line_profile() if sample is None else sample
-        return self.loop.scan_line(sample.x, sample.heights, self.speed, self.setpoint)
+        return self.loop.scan_line(sample.x, sample.heights, speed=self.speed,
+                                   setpoint=self.setpoint)
 
 
 def line_profile(name: str = LINE["name"]):
@@ -109,13 +107,13 @@ def _loop(**changes):
     return ContactLoop(**{**BASE, **changes})
 
 
-PRESETS = {p.name: p for p in (
+PRESETS = read_only({p.name: p for p in (
     Preset("a_good_tracking", "(a) stiff sample, stable gains, slow scan: good tracking",
-           _loop(), 10 * UM),
+           _loop(), PARAMETERS["speed"].default),
     Preset("b_soft_sample", "(b) sample as soft as the lever (k_s = k_c): large error",
-           _loop(k_s=1.0), 10 * UM),
+           _loop(k_s=1.0), PARAMETERS["speed"].default),
     Preset("c_fast_scan", "(c) fast scan (1000 um/s): trace and retrace differ",
-           _loop(), 1000 * UM),
+           _loop(), 1e-3),  # 1000 um/s
     Preset("d_unstable", "(d) K_P = K_I = 100 (scaled): growing oscillation, unstable",
-           _loop(kp=100.0, ki=100 / US), 1000 * UM),
-)}
+           _loop(kp=100.0, ki=1e8), 1e-3),  # K_I = 100 /us, 1000 um/s
+)})

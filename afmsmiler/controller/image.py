@@ -19,11 +19,14 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_array, check_finite, check_positive
-from .loop import ContactLoop, ScanLine, ScanPass
+from ..validation import check_array, check_instance, check_positive
+from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass, check_size
+
+#: Most pixels of a scanned image (2048 x 2048 take about 4 s).
+MAX_IMAGE_PIXELS = 2048 * 2048
 from .polygon import polygon_response
 
-__all__ = ["ScanImage", "scan_image"]
+__all__ = ["ScanImage", "scan_image", "MAX_IMAGE_PIXELS"]
 
 
 @dataclass(frozen=True)
@@ -130,8 +133,10 @@ class ScanImage:
         return ScanLine(trace, retrace, self.stable, self.setpoint, self.speed, self.offset)
 
 
-def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
-               setpoint: float, *, chained: bool = True) -> ScanImage:
+def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
+               speed: float = PARAMETERS["speed"].default,
+               setpoint: float = PARAMETERS["setpoint"].default,
+               chained: bool = True) -> ScanImage:
     """Scan a height map row after row (trace then retrace of each row), at constant speed.
 
     Parameters
@@ -139,12 +144,12 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
     loop : ContactLoop
         The feedback loop.
     heights : array_like
-        Topography in m, shape (rows, columns); the fast axis is along the columns, rows are
-        scanned in increasing order.
+        Topography in m, shape (rows, columns), at most :data:`MAX_IMAGE_PIXELS` values; the
+        fast axis is along the columns, rows are scanned in increasing order.
     pixel_size : float
         Pixel size in m (> 0).
     speed : float
-        Scan speed in m/s (> 0).
+        Scan speed in m/s (> 0; keyword-only, like ``setpoint`` and ``chained``).
     setpoint : float
         Deflection setpoint in m.
     chained : bool
@@ -170,12 +175,14 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, speed: float,
     rows x (2 columns - 1) knots. An unstable loop still scans (its signals grow to inf, then
     nan) and is flagged by ``stable``.
     """
+    check_instance("loop", loop, ContactLoop)
+    check_size("heights", heights, MAX_IMAGE_PIXELS)
     h = check_array("heights", heights, "m", ndim=2)
     if h.shape[1] < 2:
         raise ValueError(f"heights must have at least 2 columns, got shape {h.shape}")
     pixel_size = check_positive("pixel_size", pixel_size, "m")
-    speed = check_positive("speed", speed, "m/s")
-    setpoint = check_finite("setpoint", setpoint, "m")
+    speed = PARAMETERS["speed"].check(speed)
+    setpoint = PARAMETERS["setpoint"].check(setpoint)
     if not isinstance(chained, (bool, np.bool_)):
         raise ValueError(f"chained must be True or False, got {chained!r}")
     rows, n = h.shape

@@ -28,14 +28,88 @@ from typing import NamedTuple
 
 import numpy as np
 
-from ..validation import check_array, check_finite, check_nonnegative, check_positive
+from ..cantilever import Cantilever
+from ..parameters import Parameter, read_only
+from ..validation import check_array, check_finite, check_instance
 from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
 
-__all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz"]
+__all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz",
+           "polished_roots", "check_size", "MAX_LINE_PIXELS", "MAX_KNOTS", "PARAMETERS",
+           "LOOP_PARAMETERS"]
 
-_UNITS = {"m_c": "kg", "m_s": "kg", "b_c": "kg/s", "b_s": "kg/s", "k_c": "N/m", "k_s": "N/m",
-          "kp": "", "ki": "1/s", "kd": "s"}
+
+def _mass(name, label):
+    return Parameter(name=name, unit="kg", display_unit="ng", default=1e-12, low=1e-18,
+                     high=1e-3, slider_low=1e-14, slider_high=1e-10, log=True, label=label)
+
+
+def _damping(name, label):
+    return Parameter(name=name, unit="kg/s", display_unit="ng/us", default=1.5e-8, low=0.0,
+                     high=1.0, slider_low=1e-10, slider_high=1e-5, log=True, label=label)
+
+
+def _stiffness(name, label, default, slider_high):
+    return Parameter(name=name, unit="N/m", default=default, low=1e-6, high=1e6,
+                     slider_low=0.01, slider_high=slider_high, log=True, label=label)
+
+
+#: Every user-settable quantity of module (c), in SI, with its display unit, default (the paper's
+#: preset (a): m = 1 ng, b = 0.015 ng/us, k_c = 1 N/m, k_s = 100 N/m, K_P = 0.5, K_I = 0.01/us,
+#: K_D = 0, 10 um/s, R = 10 nm, 50 nm features), valid range and slider range (a part of it).
+#: The valid ranges reach far beyond any AFM (1 fg to 1 g, up to 1 kg/s, 1 uN/m to 1 MN/m, K_P up
+#: to 1e30, K_I up to 1e15 1/s, K_D up to 1 s, 1 nm/s to 1 m/s) but stop where the double-precision
+#: closed forms would overflow. The masses, damping, stiffnesses, gains and speed span decades:
+#: log sliders.
+PARAMETERS = read_only({p.name: p for p in (
+    _mass("m_c", "lever m_c"),
+    _mass("m_s", "sample m_s"),
+    _damping("b_c", "lever b_c"),
+    _damping("b_s", "sample b_s"),
+    _stiffness("k_c", "lever k_c", 1.0, 100.0),
+    _stiffness("k_s", "sample k_s", 100.0, 1000.0),
+    Parameter(name="kp", unit="", default=0.5, low=0.0, high=1e30, slider_low=1e-3,
+              slider_high=1e3, log=True, label="K_P"),
+    Parameter(name="ki", unit="1/s", display_unit="1/us", default=1e4, low=0.0, high=1e15,
+              slider_low=10.0, slider_high=1e9, log=True, label="K_I"),
+    Parameter(name="kd", unit="s", display_unit="us", default=0.0, low=0.0, high=1.0,
+              slider_low=0.0, slider_high=2e-6, label="K_D"),
+    Parameter(name="speed", unit="m/s", display_unit="um/s", default=1e-5, low=1e-9, high=1.0,
+              slider_low=1e-6, slider_high=1e-2, log=True, label="scan speed"),
+    Parameter(name="setpoint", unit="m", display_unit="nm", default=10e-9, low=-1e-6,
+              high=1e-6, slider_low=0.0, slider_high=100e-9, label="setpoint R"),
+    Parameter(name="height", unit="m", display_unit="nm", default=50e-9, low=0.0, high=1e-5,
+              low_inclusive=False, slider_low=1e-9, slider_high=500e-9, label="feature h"),
+    Parameter(name="quality_factor", unit="", default=150.0, low=0.5, high=1e5,
+              slider_low=0.5, slider_high=1e5, log=True, label="quality factor Q"),
+)})
+
+#: Most pixels of a scanned line (a 2**18-pixel line, trace and retrace, takes about 1.5 s).
+MAX_LINE_PIXELS = 2 ** 18
+#: Most knots, topography values and evaluation times of :meth:`ContactLoop.response`.
+MAX_KNOTS = 2 ** 19
+
+
+def check_size(name: str, values, limit: int) -> None:
+    """Raise ``ValueError`` naming ``name`` if ``values`` holds more than ``limit`` elements.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    values : array_like
+        The values (not converted: the size is read from their shape).
+    limit : int
+        The largest size the model honours within seconds.
+    """
+    n = int(np.size(values)) if not hasattr(values, "size") else int(values.size)
+    if n > limit:
+        raise ValueError(f"{name} must have at most {limit} values (a bound the model honours "
+                         f"in seconds), got {n}")
+
+
+#: The parameters of :class:`ContactLoop`, in the order of its fields.
+LOOP_PARAMETERS = ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "kp", "ki", "kd")
 
 
 @dataclass(frozen=True)
@@ -61,30 +135,90 @@ class Stability:
         return self.stable
 
 
+def polished_roots(den) -> np.ndarray:
+    """Roots of a real 2nd- or 3rd-order polynomial, the slowest real one kept accurate.
+
+    The eigenvalues of the companion matrix are accurate to about eps times the largest root:
+    a real root far slower than the others (K_I = 1e-24 1/s, or K_P = 1e19, gives one about
+    1e-36 of the fastest) comes back as 0 or with no correct digit. When the slowest root is real
+    and at most a tenth of the others in modulus, it is taken from the product of the roots
+    (Vieta: prod p_i = (-1)^n a_n / a_0), which the accurate fast roots give to full precision.
+
+    Parameters
+    ----------
+    den : array_like
+        Coefficients, highest power first, 3 or 4 of them, finite, leading one nonzero.
+
+    Returns
+    -------
+    numpy.ndarray
+        The roots (complex), in 1/s for a loop's denominator.
+    """
+    den = np.asarray(den, dtype=float)
+    companion = np.diag(np.ones(den.size - 2), -1)
+    companion[0] = -den[1:] / den[0]
+    roots = np.linalg.eigvals(companion).astype(complex)
+    k = int(np.argmin(np.abs(roots)))
+    others = np.delete(roots, k)
+    n = den.size - 1
+    if roots[k].imag == 0 and np.all(np.abs(roots[k]) <= 0.1 * np.abs(others)):
+        product = (-1) ** n * den[-1] / den[0]
+        roots[k] = product / np.prod(others).real
+    return roots
+
+
 def routh_hurwitz(den) -> Stability:
-    """Routh-Hurwitz test of a 2nd- or 3rd-order polynomial with positive leading coefficient.
+    """Routh-Hurwitz test of a 2nd- or 3rd-order polynomial (Routh array of its coefficients).
+
+    A negative leading coefficient is normalised away (the polynomial times -1 has the same
+    roots: -s^2 - 2 s - 3 is as stable as s^2 + 2 s + 3).
 
     Parameters
     ----------
     den : sequence of float
-        Coefficients, highest power first: (A, B, C) or (A, B, C, D).
+        Coefficients, highest power first: (A, B, C) or (A, B, C, D); finite, A != 0.
 
     Returns
     -------
     Stability
+
+    Raises
+    ------
+    ValueError
+        If there are not 3 or 4 coefficients, one is not finite or the leading one is 0.
+
+    Notes
+    -----
+    For a cubic A s^3 + B s^2 + C s + D with A > 0 the first column of the Routh array is
+    (A, B, (B C - A D) / B, D): all roots lie in the open left half-plane exactly when
+    B, D > 0 and B C > A D (Ogata, *Modern Control Engineering*, 5th ed., Sec. 5-6).
+
+    Examples
+    --------
+    >>> bool(routh_hurwitz([-1.0, -2.0, -3.0]))
+    True
     """
-    den = [float(c) for c in den]
+    try:
+        den = [float(c) for c in den]
+    except (TypeError, ValueError):
+        raise ValueError(f"den must be a sequence of 3 or 4 real numbers, got {den!r}") from None
+    if len(den) not in (3, 4):
+        raise ValueError(f"den must have 3 or 4 coefficients, got {len(den)}")
+    if not all(np.isfinite(den)):
+        raise ValueError(f"den must hold finite coefficients, got {den}")
+    if den[0] == 0:
+        raise ValueError(f"den's leading coefficient must be nonzero, got {den}")
+    if den[0] < 0:
+        den = [-c for c in den]
     if len(den) == 3:
         A, B, C = den
         column = (A, B, C)
         margin = B / (2 * np.sqrt(A * C)) if A * C > 0 else -np.inf
-    elif len(den) == 4:
+    else:
         A, B, C, D = den
         third = (B * C - A * D) / B if B != 0 else -np.inf
         column = (A, B, third, D)
         margin = 1 - A * D / (B * C) if B * C > 0 else -np.inf
-    else:
-        raise ValueError(f"den must have 3 or 4 coefficients, got {len(den)}")
     stable = all(c > 0 for c in column)
     return Stability(bool(stable), float(margin), column)
 
@@ -162,10 +296,28 @@ class ScanLine:
     speed: float
     offset: float = field(default=0.0)
 
+    @property
+    def gap(self) -> float:
+        """Largest difference of Z_np between trace and retrace at the same pixel, in m.
 
-@dataclass(frozen=True)
+        The positioner lags behind the topography in the direction of the scan, so a slow loop's
+        trace and retrace disagree (the paper's Fig. 4c); 0 for a loop that keeps up.
+        """
+        with np.errstate(over="ignore", invalid="ignore"):
+            d = np.abs(self.trace.z_np - self.retrace.z_np[::-1])
+        return float(np.max(d)) if np.all(np.isfinite(d)) else float("inf")
+
+
+_P = PARAMETERS
+#: Slowest integrator pole in 1/s that the loop keeps as a third pole (see ContactLoop.order).
+SLOWEST_POLE = 1e-100
+
+
+@dataclass(frozen=True, kw_only=True)
 class ContactLoop:
     """Cantilever and sample in contact under PID control of the positioner height, in SI units.
+
+    All keyword-only, validated with :data:`PARAMETERS` (defaults: the paper's preset (a)).
 
     Parameters
     ----------
@@ -185,7 +337,7 @@ class ContactLoop:
     Raises
     ------
     ValueError
-        If a parameter is not finite or out of its range.
+        If a parameter is not finite or out of its range (the message names it and the range).
 
     Notes
     -----
@@ -203,22 +355,86 @@ class ContactLoop:
     True
     """
 
-    m_c: float
-    m_s: float
-    b_c: float
-    b_s: float
-    k_c: float
-    k_s: float
-    kp: float
-    ki: float
-    kd: float
+    m_c: float = _P["m_c"].default
+    m_s: float = _P["m_s"].default
+    b_c: float = _P["b_c"].default
+    b_s: float = _P["b_s"].default
+    k_c: float = _P["k_c"].default
+    k_s: float = _P["k_s"].default
+    kp: float = _P["kp"].default
+    ki: float = _P["ki"].default
+    kd: float = _P["kd"].default
 
     def __post_init__(self):
-        for name in ("m_c", "m_s", "k_c", "k_s"):
-            object.__setattr__(self, name, check_positive(name, getattr(self, name), _UNITS[name]))
-        for name in ("b_c", "b_s", "kp", "ki", "kd"):
-            object.__setattr__(self, name,
-                               check_nonnegative(name, getattr(self, name), _UNITS[name]))
+        for name in LOOP_PARAMETERS:
+            object.__setattr__(self, name, PARAMETERS[name].check(getattr(self, name)))
+
+    @classmethod
+    def from_cantilever(cls, lever, *, sample_stiffness: float = _P["k_s"].default,
+                        sample_mass: float = _P["m_s"].default,
+                        sample_damping: float = _P["b_s"].default,
+                        quality_factor: float = _P["quality_factor"].default,
+                        kp: float = _P["kp"].default, ki: float = _P["ki"].default,
+                        kd: float = _P["kd"].default) -> "ContactLoop":
+        """The loop of a module (a) cantilever in contact with a sample (joins modules (a), (c)).
+
+        The lever enters as the point-mass oscillator of its first flexural mode: k_c its
+        end-load spring constant 3 E J / L^3, m_c its effective mass k_c / omega_1^2
+        (= 3 m / (b_1 L)^4 = 0.2427 m for a rectangular beam, with b_1 L = 1.8751) and b_c the
+        damping that gives the quality factor Q: b_c = m_c omega_1 / Q, omega_1 = 2 pi f_1.
+
+        Parameters
+        ----------
+        lever : afmsmiler.cantilever.Cantilever
+            The cantilever.
+        sample_stiffness : float
+            Sample stiffness k_s in N/m (> 0).
+        sample_mass : float
+            Sample effective mass m_s in kg (> 0).
+        sample_damping : float
+            Sample damping b_s in kg/s (>= 0).
+        quality_factor : float
+            Quality factor Q of the lever's first mode (dimensionless, 0.5 to 1e5).
+        kp : float
+            Proportional gain K_P (dimensionless, >= 0).
+        ki : float
+            Integral gain K_I in 1/s (>= 0).
+        kd : float
+            Derivative gain K_D in s (>= 0).
+
+        Returns
+        -------
+        ContactLoop
+
+        Raises
+        ------
+        TypeError
+            If ``lever`` is not a Cantilever.
+        ValueError
+            If a value is out of its range (named).
+
+        Notes
+        -----
+        The effective mass is the one of the modal (Rayleigh) reduction of the first mode, as in
+        Butt and Jaschke, Nanotechnology 6, 1 (1995); the damping follows from the definition
+        Q = m omega_1 / b of a damped oscillator.
+
+        Examples
+        --------
+        >>> from afmsmiler.cantilever import Cantilever
+        >>> lever = Cantilever.from_material("silicon", length=450e-6, width=50e-6,
+        ...                                  thickness=2e-6)
+        >>> loop = ContactLoop.from_cantilever(lever, sample_stiffness=10.0)
+        >>> round(loop.m_c / lever.mass, 4)
+        0.2427
+        """
+        check_instance("lever", lever, Cantilever)
+        q = _P["quality_factor"].check(quality_factor)
+        k_c = lever.spring_constant
+        m_c = lever.effective_mass
+        omega = 2 * np.pi * lever.resonance_frequency(1)
+        return cls(m_c=m_c, m_s=sample_mass, b_c=m_c * omega / q, b_s=sample_damping, k_c=k_c,
+                   k_s=sample_stiffness, kp=kp, ki=ki, kd=kd)
 
     def replace(self, **changes) -> "ContactLoop":
         """A copy with some parameters changed (validated again).
@@ -237,8 +453,16 @@ class ContactLoop:
     # -- transfer functions ----------------------------------------------------------------
     @property
     def order(self) -> int:
-        """3, or 2 when K_I = 0 (the integrator pole cancels)."""
-        return 3 if self.ki > 0 else 2
+        """3, or 2 when K_I = 0 (the integrator pole cancels).
+
+        Also 2 when the integrator's pole, about -k_s K_I / (k_c + k_s + k_s K_P + b_s K_I), is
+        slower than :data:`SLOWEST_POLE` (a time constant above 1e100 s, when the closed forms'
+        1/p^2 would underflow): over any time the model can reach, such a loop responds as with
+        K_I = 0 (the responses converge as K_I -> 0); it still settles at its K_I > 0 steady state
+        (:meth:`steady_state`).
+        """
+        C = self.k_c + self.k_s + self.b_s * self.ki + self.k_s * self.kp
+        return 3 if self.k_s * self.ki > SLOWEST_POLE * C else 2
 
     @cached_property
     def coefficients(self) -> dict:
@@ -272,8 +496,18 @@ class ContactLoop:
 
     @property
     def poles(self) -> np.ndarray:
-        """Closed-loop poles in 1/s (roots of the denominator, 2 or 3 of them)."""
-        return np.roots(self.coefficients["den"])
+        """Closed-loop poles in 1/s (roots of the denominator, 2 or 3 of them).
+
+        A slow real pole far below the others (a tiny K_I, or a huge K_P) is taken from the
+        product of the roots (Vieta), not from the eigenvalues, which lose it entirely below
+        about 1e-16 of the largest pole (it came back as exactly 0 and the closed forms divided
+        by it).
+        """
+        return self._roots.copy()
+
+    @cached_property
+    def _roots(self) -> np.ndarray:
+        return polished_roots(self.coefficients["den"])
 
     def is_stable(self) -> Stability:
         """Routh-Hurwitz test of the closed loop; the result is truthy when stable.
@@ -318,10 +552,7 @@ class ContactLoop:
     # -- closed forms ------------------------------------------------------------------------
     @cached_property
     def _structure(self):
-        den = self.coefficients["den"]
-        companion = np.diag(np.ones(den.size - 2), -1)
-        companion[0] = -den[1:] / den[0]
-        return classify_roots(np.linalg.eigvals(companion))
+        return classify_roots(self._roots)
 
     def closed_forms(self, input: str = "step") -> tuple[ClosedForm, ClosedForm]:
         """Closed-form responses of Z_c and Z_np to a unit step or unit-slope ramp of T.
@@ -361,7 +592,8 @@ class ContactLoop:
         Parameters
         ----------
         t_knots : array_like
-            Knot times in s, 1-D, strictly increasing (spacing may vary).
+            Knot times in s, 1-D, strictly increasing (spacing may vary), at most
+        :data:`MAX_KNOTS` (4 times that for ``T_knots`` and ``t_eval``).
         T_knots : array_like
             Topography at the knots in m, same length (or shape (..., N) for a batch).
         t_eval : array_like, optional
@@ -377,6 +609,10 @@ class ContactLoop:
         ValueError
             On non-finite values, non-increasing knot times or mismatched lengths.
         """
+        check_size("t_knots", t_knots, MAX_KNOTS)
+        check_size("T_knots", T_knots, 4 * MAX_KNOTS)
+        if t_eval is not None:
+            check_size("t_eval", t_eval, 4 * MAX_KNOTS)
         t = check_array("t_knots", t_knots, "s", ndim=1, min_size=1, increasing=True)
         T = check_array("T_knots", T_knots, "m", min_size=1)
         if T.ndim == 0 or T.shape[-1] != t.size:
@@ -387,7 +623,8 @@ class ContactLoop:
         z_c, z_np = polygon_response(steps, ramps, t, T, te)
         return LoopResponse(z_c, z_np)
 
-    def scan_line(self, x, height, speed: float, setpoint: float) -> ScanLine:
+    def scan_line(self, x, height, *, speed: float = _P["speed"].default,
+                  setpoint: float = _P["setpoint"].default) -> ScanLine:
         """Trace then retrace one line at constant speed, in contact at constant setpoint.
 
         The tip is engaged at the first pixel: the loop starts at its steady state for the
@@ -399,13 +636,14 @@ class ContactLoop:
         Parameters
         ----------
         x : array_like
-            Pixel positions along the line in m, 1-D, strictly increasing, at least 2.
+            Pixel positions along the line in m, 1-D, strictly increasing, 2 to
+        :data:`MAX_LINE_PIXELS` of them.
         height : array_like
             Topography at the pixels in m, same length.
         speed : float
-            Scan speed in m/s (> 0).
+            Scan speed in m/s (> 0; keyword-only, default 10 um/s).
         setpoint : float
-            Deflection setpoint R in m.
+            Deflection setpoint R in m (keyword-only, default 10 nm).
 
         Returns
         -------
@@ -418,10 +656,11 @@ class ContactLoop:
         ValueError
             On non-finite values, non-increasing x, mismatched lengths or speed <= 0.
         """
+        check_size("x", x, MAX_LINE_PIXELS)
         x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True)
         h = check_array("height", height, "m", ndim=1, size=x.size)
-        speed = check_positive("speed", speed, "m/s")
-        setpoint = check_finite("setpoint", setpoint, "m")
+        speed = _P["speed"].check(speed)
+        setpoint = _P["setpoint"].check(setpoint)
         n = x.size
         t_trace = (x - x[0]) / speed
         t_retrace = t_trace[-1] + (x[-1] - x[::-1]) / speed

@@ -9,16 +9,18 @@ from __future__ import annotations
 import numpy as np
 from scipy.optimize import brentq
 
-from ..controller import PRESETS, ContactLoop
+from ..controller import PARAMETERS, PRESETS, ContactLoop
 from ..controller.defaults import SETPOINT, line_profile
-from ..validation import check_nonnegative, check_positive, check_range
+from ..validation import check_choice, check_nonnegative, check_positive, check_range
+from ..parameters import read_only
 from . import Feedback, check_close
 
-__all__ = ["DEFAULTS", "height_error", "check_fast_scan", "critical_ki", "check_critical_ki"]
+__all__ = ["DEFAULTS", "height_error", "check_fast_scan", "critical_ki", "check_critical_ki",
+           "unit_slip"]
 
 #: The exercises' givens, in one place (SI units).
-DEFAULTS = dict(plant="a_good_tracking", profile="real line", min_speed=1e-3,
-                max_rms_error=1e-9, unstable="d_unstable")
+DEFAULTS = read_only(dict(plant="a_good_tracking", profile="real line", min_speed=1e-3,
+                          max_rms_error=1e-9, unstable="d_unstable"))
 
 
 def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profile"]) -> float:
@@ -43,13 +45,46 @@ def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profi
         RMS error in m (inf if the signals overflow).
     """
     line = line_profile(profile)
-    scan = loop.scan_line(line.x, line.heights, speed, SETPOINT)
+    scan = loop.scan_line(line.x, line.heights, speed=speed, setpoint=SETPOINT)
     shift = loop.steady_state(SETPOINT, 0.0).z_np
     with np.errstate(over="ignore", invalid="ignore"):
         errs = [np.sqrt(np.mean((-(p.z_np - shift) - p.height) ** 2))
                 for p in (scan.trace, scan.retrace)]
     worst = max(errs)
     return float(worst) if np.isfinite(worst) else float("inf")
+
+
+def unit_slip(name: str, value: float) -> str | None:
+    """Name a unit-prefix slip (a factor 10^6: us for s, 1/us for 1/s, um/s for m/s), or None.
+
+    A value outside the range the panel's slider offers (:data:`PARAMETERS`) whose 10^6 or
+    10^-6 multiple lies inside it is such a slip: K_D = 1 s is a derivative time of 1 us typed in
+    the wrong unit, K_I = 3 1/s one of 3 per us. The message says which way, not the answer.
+
+    Parameters
+    ----------
+    name : str
+        ``"ki"``, ``"kd"`` or ``"speed"`` (a key of :data:`PARAMETERS`).
+    value : float
+        The student's value in SI.
+
+    Returns
+    -------
+    str or None
+    """
+    p = PARAMETERS[name]
+    lo, hi = p.slider_low, p.slider_high
+    if value == 0 or lo <= value <= hi or not p.display_unit or p.display_unit == p.unit:
+        return None
+    label = p.label or name
+    shown = f"[{p.to_display(lo):g}, {p.to_display(hi):g}] {p.display_unit}"
+    for factor, way in ((1e-6, "above"), (1e6, "below")):
+        if lo <= value * factor <= hi:
+            return (f"{label} = {value:.4g} {p.unit} is 10^6 times {way} the range the panel "
+                    f"offers ({shown}): a value in {p.display_unit} typed as {p.unit}? "
+                    f"Give {label} in {p.unit} (1 {p.display_unit} = "
+                    f"{p.to_si(1.0):g} {p.unit}).")
+    return None
 
 
 def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
@@ -83,26 +118,36 @@ def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
     """
     max_rms_error = check_positive("max_rms_error", max_rms_error, "m")
     min_speed = check_positive("min_speed", min_speed, "m/s")
-    hint = ("Raise K_I until the positioner keeps up, then K_P; watch the poles: the loop must "
-            "stay stable. K_I in 1/s (1 per us = 1e6 1/s), K_D in s.")
+    hint = ("Raise K_P first (it adds damping and stiffness to the loop), then K_I as far as "
+            "the poles allow: the loop must stay stable. K_I in 1/s, K_D in s.")
     if kp is None or ki is None or kd is None:
         return Feedback(False, f"enter K_P, K_I [1/s] and K_D [s]. {hint}")
     try:
-        loop = PRESETS[DEFAULTS["plant"]].loop.replace(
-            kp=check_nonnegative("kp", kp), ki=check_nonnegative("ki", ki, "1/s"),
-            kd=check_nonnegative("kd", kd, "s"))
-        speed = check_positive("speed", speed, "m/s")
+        answer = dict(kp=check_nonnegative("kp", kp), ki=check_nonnegative("ki", ki, "1/s"),
+                      kd=check_nonnegative("kd", kd, "s"),
+                      speed=check_positive("speed", speed, "m/s"))
     except ValueError as err:
         return Feedback(False, f"{err}. {hint}")
+    for name in ("ki", "kd", "speed"):
+        slip = unit_slip(name, answer[name])
+        if slip is not None:  # a unit slip is rejected even when the loop happens to track
+            return Feedback(False, slip)
+    try:
+        speed = PARAMETERS["speed"].check(answer.pop("speed"))
+        loop = PRESETS[DEFAULTS["plant"]].loop.replace(**answer)
+    except ValueError as err:
+        return Feedback(False, f"{err}. {hint}")
+    um_s = PARAMETERS["speed"]
     if speed < min_speed:
-        return Feedback(False, f"scan at {min_speed * 1e6:g} um/s or faster "
-                               f"(you chose {speed * 1e6:.4g} um/s).")
+        return Feedback(False, f"scan at {um_s.to_display(min_speed):g} um/s or faster "
+                               f"(you chose {um_s.to_display(speed):.4g} um/s).")
     if not loop.is_stable():
         return Feedback(False, f"the loop is unstable (Routh-Hurwitz margin "
                                f"{loop.stability_margin:.3g}): the oscillation grows. {hint}")
     err = height_error(loop, speed)
-    msg = (f"RMS height error {err * 1e9:.3g} nm at {speed * 1e6:.4g} um/s "
-           f"(limit {max_rms_error * 1e9:.3g} nm).")
+    nm = PARAMETERS["height"].scale
+    msg = (f"RMS height error {err * nm:.3g} nm at {um_s.to_display(speed):.4g} um/s "
+           f"(limit {max_rms_error * nm:.3g} nm).")
     if err <= max_rms_error:
         return Feedback(True, msg + " Now try to go faster still.")
     return Feedback(False, f"{msg} {hint}")
@@ -128,6 +173,7 @@ def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -
     float
         Critical K_I in 1/s (inf if the loop is stable for every K_I).
     """
+    check_choice("plant", plant, list(PRESETS))
     base = PRESETS[plant].loop.replace(kp=check_nonnegative("kp", kp),
                                        kd=check_nonnegative("kd", kd, "s"))
 

@@ -8,17 +8,21 @@ axes keep the topography's range and say how far off scale the signals went.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
 from matplotlib.figure import Figure
+from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
+
+from ..parameters import unit_scale
 
 __all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
            "block_diagram", "polygon_figure", "image_figure"]
 
-#: Factors from SI to the units shown (value_shown = value_SI * factor).
-UNITS = dict(x=1e6, z=1e9, pole=1e-6)
+#: Factors from SI to the units shown (value_shown = value_SI * factor), from the one unit table.
+UNITS = dict(x=unit_scale("um", "m"), z=unit_scale("nm", "m"), pole=unit_scale("1/us", "1/s"))
 
 #: Default figure sizes in inches, at most 10 in wide: JupyterLab's output area is about 1000 px
 #: (10 in at 100 dpi) wide and clipped wider figures on the right. ``"fig4"`` is (width, height
@@ -135,13 +139,17 @@ class ScanFigure:
     ----------
     lines : dict
         ``"znp_trace"``, ``"znp_retrace"``, ``"topo_trace"``, ``"topo_retrace"``, ``"height"``
-        lines and the ``"poles"`` markers, updated in place by :meth:`update`.
+        lines and the ``"poles_stable"`` and ``"poles_unstable"`` markers, updated in place by
+        :meth:`update`.
+    legend : matplotlib.legend.Legend
+        The figure's legend, above the axes.
     axes : dict
         ``"znp"``, ``"topo"``, ``"poles"``.
     """
 
     def __init__(self, curves: ScanCurves, fig: Figure | None = None, title: str = ""):
         self.fig = fig if fig is not None else Figure(figsize=FIGSIZE["scan"])
+        self.fig.set_layout_engine("constrained")  # before the legend placed "outside"
         grid = self.fig.add_gridspec(2, 3)
         ax = self.axes = dict(znp=self.fig.add_subplot(grid[0, :2]),
                               topo=self.fig.add_subplot(grid[1, :2]),
@@ -149,25 +157,37 @@ class ScanFigure:
         self.lines = {}
         self.lines["znp_trace"], = ax["znp"].plot([], [], color="C0", label="trace")
         self.lines["znp_retrace"], = ax["znp"].plot([], [], color="C3", ls="--", label="retrace")
-        ax["znp"].set(xlabel="x [um]", ylabel="-Z_np [nm]", title="positioner height (sign flipped)")
-        ax["znp"].legend(loc="upper right", fontsize="small")
+        ax["znp"].set(xlabel="x [um]", ylabel="-Z_np [nm]",
+                      title="positioner height (sign flipped)")
         self.lines["height"], = ax["topo"].plot([], [], color="0.6", lw=3, alpha=0.6,
                                                 label="true topography T")
         self.lines["topo_trace"], = ax["topo"].plot([], [], color="C0", label="trace")
         self.lines["topo_retrace"], = ax["topo"].plot([], [], color="C3", ls="--",
                                                       label="retrace")
         ax["topo"].set(xlabel="x [um]", ylabel="Z_c - Z_np [nm]", title="estimated topography")
-        ax["topo"].legend(loc="upper right", fontsize="small")
+        # one legend above the plots, outside every axes: inside, it covered the data
+        self.legend = self.fig.legend(
+            handles=[self.lines[k] for k in ("znp_trace", "znp_retrace", "height")],
+            loc="outside upper left", ncols=3, fontsize="small", frameon=False)
         self.texts = {k: ax[k].text(0.01, 0.95, "", transform=ax[k].transAxes, va="top",
                                     color="C3", fontsize="small") for k in ("znp", "topo")}
-        ax["poles"].axvspan(-1e9, 0, color="C2", alpha=0.08)
-        ax["poles"].axvline(0, color="0.5", lw=0.8)
-        ax["poles"].axhline(0, color="0.85", lw=0.8)
-        self.lines["poles"], = ax["poles"].plot([], [], "x", ms=10, mew=2, color="C0")
-        ax["poles"].set(xlabel="Re p [1/us]", ylabel="Im p [1/us]")
+        # the pole map: a symmetric-log real axis, so that Re p = -0.01 and +0.01 1/us next to
+        # poles of 10 1/us fall on either side of the imaginary axis instead of on it; the
+        # left (stable) half-plane shaded green, the right one red; stable poles green,
+        # unstable ones red
+        pa = ax["poles"]
+        self.shades = (pa.axvspan(-1e30, 0, color="C2", alpha=0.10, lw=0),
+                       pa.axvspan(0, 1e30, color="C3", alpha=0.10, lw=0))
+        pa.axvline(0, color="0.3", lw=1.0)
+        pa.axhline(0, color="0.85", lw=0.8)
+        pa.text(0.02, 0.02, "stable", transform=pa.transAxes, color="C2", fontsize="small")
+        pa.text(0.98, 0.02, "unstable", transform=pa.transAxes, color="C3", fontsize="small",
+                ha="right")
+        self.lines["poles_stable"], = pa.plot([], [], "x", ms=10, mew=2, color="C2")
+        self.lines["poles_unstable"], = pa.plot([], [], "x", ms=10, mew=2, color="C3")
+        pa.set(ylabel="Im p [1/us]")
         if title:
             self.fig.suptitle(title)
-        self.fig.set_layout_engine("constrained")
         self.update(curves)
 
     def update(self, curves: ScanCurves) -> None:
@@ -195,15 +215,42 @@ class ScanFigure:
             self.texts[key].set_text(
                 "" if not worst else f"off scale: |signal| reaches {worst:.3g} nm")
         p = c.poles_per_us
-        self.lines["poles"].set_data(p.real, p.imag)
+        right = p.real >= 0
+        self.lines["poles_stable"].set_data(p.real[~right], p.imag[~right])
+        self.lines["poles_unstable"].set_data(p.real[right], p.imag[right])
         ax = self.axes["poles"]
         r = max(float(np.max(np.abs(p))), 1e-9) * 1.15
-        ax.set_xlim(-r, max(r * 0.3, 1.15 * float(np.max(p.real))))
+        nonzero = np.abs(p.real[p.real != 0])
+        # linear within a decade below the smallest |Re p| (at most 1e-3 of the largest pole)
+        small = float(nonzero.min()) if nonzero.size else r * 1e-3
+        linthresh = min(small / 10, r * 1e-3)
+        ax.set_xscale("symlog", linthresh=linthresh, linscale=0.5)
+        ax.set_xlim(-r, r)
+        # three ticks (symlog's default crowds a label on every decade): 0 and +-10^k
+        hi = math.floor(math.log10(r))
+        ticks = [-(10.0 ** hi), 0.0, 10.0 ** hi]
+        ax.set_xlabel(f"Re p [1/us] (symlog, linear within {linthresh:.1g})")
+        ax.xaxis.set_major_locator(FixedLocator(ticks))
+        ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+        ax.xaxis.set_minor_locator(NullLocator())
         ax.set_ylim(-r, r)
         verdict = "STABLE" if c.stable else "UNSTABLE"
         ax.set_title(f"closed-loop poles: {verdict}\nRouth-Hurwitz margin {c.margin:.3g}\n"
                      f"max Re p = {float(np.max(p.real)):.3g} 1/us",
                      color="C2" if c.stable else "C3", fontsize="medium")
+
+    def poles(self) -> np.ndarray:
+        """The poles drawn (stable and unstable markers together), in 1/us.
+
+        Returns
+        -------
+        numpy.ndarray of complex
+        """
+        out = []
+        for key in ("poles_stable", "poles_unstable"):
+            x, y = self.lines[key].get_data()
+            out.append(np.asarray(x, dtype=float) + 1j * np.asarray(y, dtype=float))
+        return np.concatenate(out)
 
 
 def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
@@ -226,6 +273,7 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
     presets = PRESETS if presets is None else presets
     width, row = FIGSIZE["fig4"]
     fig = fig if fig is not None else Figure(figsize=(width, row * len(presets)))
+    fig.set_layout_engine("constrained")  # before the legend placed "outside"
     axes = fig.subplots(len(presets), 2, squeeze=False)
     for row, preset in enumerate(presets.values()):
         r = preset.scan(sample)
@@ -248,8 +296,9 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
             ax.set(ylabel=label, xlim=(c.x_trace_um[0], c.x_trace_um[-1]))
             ax.set_title(f"{preset.description}, {preset.speed * 1e6:g} um/s", fontsize="small")
             ax.set_xlabel("x [um]", fontsize="small")
-        axes[row, 1].legend(loc="lower right", fontsize="x-small")
-    fig.set_layout_engine("constrained")
+    # one legend above the plots, outside every axes (in the axes it covered the data)
+    fig.legend(handles=axes[0, 1].get_lines(), loc="outside upper center", ncols=3,
+               fontsize="small", frameon=False)
     return fig
 
 
@@ -338,7 +387,7 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
                 alpha=0.7, label="ramps at the knots" if k == 0 else None)
     a2.plot(t, h, "o", color="C0", label="their sum at the knots")
     a2.set(xlabel="t [us]", ylabel="height [nm]", title="= a step + ramps of slope changes")
-    a2.legend(fontsize="small")
+    a2.legend(fontsize="small", loc="upper left", bbox_to_anchor=(1.01, 1.0))  # beside it
     fig.set_layout_engine("constrained")
     return fig
 

@@ -1,30 +1,42 @@
 """The widget panel of module (c): tune the contact-mode loop and watch trace and retrace.
 
-Sliders show the paper's practical units: masses in ng, damping in ng/us (= 1e-6 kg/s),
-stiffness in N/m, K_I in 1/us, K_D in us, speed in um/s, setpoint and feature height in nm.
-:meth:`ControllerPanel.update` converts them to SI, builds a
-:class:`~afmsmiler.controller.ContactLoop`, scans the chosen profile (trace then retrace) and
-updates the :class:`~afmsmiler.plots.controller.ScanFigure` in place, with the stability verdict
-and the pole map. Parameters spanning decades have log sliders; every bound lies inside the
-model's valid range (masses, stiffnesses and speed > 0, damping and gains >= 0).
+Every slider is built by :func:`~afmsmiler.ui.controls.control` from the model's own description,
+:data:`afmsmiler.controller.PARAMETERS` (display units from its ``display_unit``: masses in ng,
+damping in ng/us, stiffness in N/m, K_I in 1/us, K_D in us, speed in um/s, setpoint and feature
+height in nm; log sliders where the parameter spans decades; every position inside the model's
+valid range). :meth:`ControllerPanel.update` converts the values it is given to SI with the same
+descriptions, builds one :class:`~afmsmiler.controller.ContactLoop`, scans the chosen profile once
+(trace then retrace) and hands the result to the
+:class:`~afmsmiler.plots.controller.ScanFigure` and the indicator, which compute nothing.
+Choosing a preset runs one update with exactly the preset's values.
 """
 from __future__ import annotations
 
+import html
 from dataclasses import dataclass
 
 import ipywidgets as widgets
+import numpy as np
 
-from ..controller import PRESETS, ContactLoop, ScanLine
-from ..controller.defaults import LINE, NG, UM, US
+from ..controller import PARAMETERS, PRESETS, ContactLoop, ScanLine
+from ..controller.defaults import LINE
+from ..controller.loop import LOOP_PARAMETERS
+from ..parameters import read_only
 from ..plots.controller import ScanCurves, ScanFigure, scan_curves
 from ..samples import PROFILES, profile
-from .panel import Panel, log_slider, slider
+from ..validation import check_choice
+from .controls import WIDTH, control
+from .panel import Panel
 
-__all__ = ["ControllerPanel", "ControllerState", "DEFAULTS", "BOUNDS", "preset_values"]
+__all__ = ["ControllerPanel", "ControllerState", "DEFAULTS", "SLIDERS", "preset_values",
+           "format_poles"]
+
+#: The sliders of the panel, in order: the loop's parameters, then the scan's.
+SLIDERS = (*LOOP_PARAMETERS, "speed", "setpoint", "height")
 
 
 def preset_values(name: str) -> dict:
-    """Control values (units shown) of one of the Fig. 4 presets.
+    """Control values (in the units shown) of one of the Fig. 4 presets.
 
     Parameters
     ----------
@@ -34,28 +46,55 @@ def preset_values(name: str) -> dict:
     Returns
     -------
     dict
+        Slider name -> value in the slider's display unit (from :data:`PARAMETERS`).
+
+    Raises
+    ------
+    ValueError
+        If ``name`` is not a preset.
     """
+    check_choice("preset", name, list(PRESETS))
     p = PRESETS[name]
-    lp = p.loop
-    return dict(m_c=lp.m_c / NG, m_s=lp.m_s / NG, b_c=lp.b_c / (NG / US), b_s=lp.b_s / (NG / US),
-                k_c=lp.k_c, k_s=lp.k_s, kp=lp.kp, ki=lp.ki * US, kd=lp.kd / US,
-                speed=p.speed / UM, setpoint=p.setpoint * 1e9)
+    si = {k: getattr(p.loop, k) for k in LOOP_PARAMETERS}
+    si.update(speed=p.speed, setpoint=p.setpoint)
+    # 12 digits: 10 nm shows as 10, not as 9.999999999999998 (the unit conversion's round-off)
+    return {k: float(f"{PARAMETERS[k].to_display(v):.12g}") for k, v in si.items()}
 
 
 #: Initial control values, in the units the sliders show: preset (a) on the grating.
-DEFAULTS = dict(preset="a_good_tracking", **preset_values("a_good_tracking"),
-                profile=LINE["name"], height=LINE["height"] * 1e9)
+DEFAULTS = read_only(dict(preset="a_good_tracking", **preset_values("a_good_tracking"),
+                          height=float(f"{PARAMETERS['height'].to_display(LINE['height']):.12g}"),
+                          profile=LINE["name"]))
 
-#: Slider bounds (low, high) in the units shown; all inside the model's valid ranges.
-BOUNDS = dict(m_c=(0.01, 100.0), m_s=(0.01, 100.0), b_c=(1e-4, 10.0), b_s=(1e-4, 10.0),
-              k_c=(0.01, 100.0), k_s=(0.01, 1000.0), kp=(1e-3, 1e3), ki=(1e-5, 1e3),
-              kd=(0.0, 2.0), speed=(1.0, 1e4), setpoint=(0.0, 100.0), height=(1.0, 500.0))
 
-_LOG = ("m_c", "m_s", "b_c", "b_s", "k_c", "k_s", "kp", "ki", "speed")
-_LABELS = dict(m_c=("m_c", "ng"), m_s=("m_s", "ng"), b_c=("b_c", "ng/us"), b_s=("b_s", "ng/us"),
-               k_c=("k_c", "N/m"), k_s=("k_s", "N/m"), kp=("K_P", ""), ki=("K_I", "1/us"),
-               kd=("K_D", "us"), speed=("scan speed", "um/s"), setpoint=("setpoint R", "nm"),
-               height=("feature height", "nm"))
+def format_poles(poles, unit: str = "1/us") -> str:
+    """The poles as an HTML list that wraps between poles, never inside a number.
+
+    A conjugate pair is written once as ``a ± bi``; each pole is a no-wrap span.
+
+    Parameters
+    ----------
+    poles : array_like of complex
+        Poles in the unit shown.
+    unit : str
+        Their unit, appended once.
+
+    Returns
+    -------
+    str
+        HTML.
+    """
+    items, seen = [], []
+    for p in sorted(np.asarray(poles, dtype=complex), key=lambda z: (z.real, -z.imag)):
+        if p.imag < 0 and any(abs(q - p.conjugate()) <= 1e-12 * abs(p) for q in seen):
+            continue
+        seen.append(p)
+        if p.imag > 0 and any(abs(q - p.conjugate()) <= 1e-12 * abs(p) for q in poles):
+            text = f"{p.real:.3g} &plusmn; {p.imag:.3g}i"
+        else:
+            text = f"{p.real:.3g}"
+        items.append(f"<span style='white-space:nowrap'>{text}</span>")
+    return ", ".join(items) + f" {html.escape(unit)}"
 
 
 @dataclass(frozen=True)
@@ -107,17 +146,17 @@ class ControllerPanel(Panel):
         unknown = set(initial) - set(DEFAULTS)
         if unknown:
             raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
-        v = {**DEFAULTS, **initial}
+        v = dict(DEFAULTS)
         if "preset" in initial:
-            v = {**v, **preset_values(initial["preset"]),
-                 **{k: x for k, x in initial.items() if k != "preset"}}
+            v.update(preset_values(initial["preset"]))
+        v.update(initial)
+        check_choice("profile", v["profile"], list(PROFILES))
         controls = {"preset": widgets.Dropdown(
             options=[(p.description, name) for name, p in PRESETS.items()], value=v["preset"],
-            description="preset", layout=widgets.Layout(width="420px"))}
-        for name, (low, high) in BOUNDS.items():
-            label, unit = _LABELS[name]
-            make = log_slider if name in _LOG else slider
-            controls[name] = make(label, v[name], low, high, unit=unit)
+            description="preset", layout=widgets.Layout(width=WIDTH))}
+        for name in SLIDERS:
+            p = PARAMETERS[name]
+            controls[name] = control(p, p.to_si(v[name]))
         controls["profile"] = widgets.Dropdown(options=list(PROFILES), value=v["profile"],
                                                description="profile")
         self.controls = controls
@@ -127,22 +166,70 @@ class ControllerPanel(Panel):
         self.controls["preset"].observe(self._on_preset, names="value")
         super().__init__()
 
+    def set(self, **values) -> None:
+        """Set control values as a user would: one update, with exactly these values.
+
+        Choosing a ``preset`` sets every slider to the preset's values (others given here win).
+
+        Parameters
+        ----------
+        **values
+            Control name -> value in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For an unknown control or a value it cannot hold (see :meth:`Panel.set`).
+        """
+        if "preset" in values:
+            values = {**preset_values(values["preset"]), **values}
+        super().set(**values)
+
     def _on_preset(self, change) -> None:
-        hold, self._hold = self._hold, True
-        try:
-            for name, value in preset_values(change["new"]).items():
-                self.controls[name].value = value
-        finally:
-            self._hold = hold
+        """The student chose a preset: every slider moves to it and the model runs once with
+        exactly the preset's values (the sliders' grids, the browser's echoes and the values
+        before do not leak into them)."""
+        if self._hold:  # inside set(), which runs the update itself
+            return
+        self.set(preset=change["new"])
 
     def update(self, preset, m_c, m_s, b_c, b_s, k_c, k_s, kp, ki, kd, speed, setpoint, height,
                profile) -> None:
-        """Convert the control values to SI, scan the line, update plots and the indicator."""
-        del preset  # it acts through the other sliders (see _on_preset)
-        loop = ContactLoop(m_c=m_c * NG, m_s=m_s * NG, b_c=b_c * NG / US, b_s=b_s * NG / US,
-                           k_c=k_c, k_s=k_s, kp=kp, ki=ki / US, kd=kd * US)
-        sample = _profile(profile, height * 1e-9)
-        scan = loop.scan_line(sample.x, sample.heights, speed * UM, setpoint * 1e-9)
+        """Scan the line with exactly these values (units shown), update plots and indicator.
+
+        Parameters
+        ----------
+        preset : str
+            The preset chosen (it acts through the other values, see :meth:`set`).
+        m_c, m_s : float
+            Masses in ng.
+        b_c, b_s : float
+            Damping in ng/us.
+        k_c, k_s : float
+            Stiffnesses in N/m.
+        kp : float
+            K_P (dimensionless).
+        ki : float
+            K_I in 1/us.
+        kd : float
+            K_D in us.
+        speed : float
+            Scan speed in um/s.
+        setpoint : float
+            Deflection setpoint R in nm.
+        height : float
+            Feature height of the profile in nm.
+        profile : str
+            One of :data:`afmsmiler.samples.PROFILES`.
+        """
+        del preset
+        shown = dict(m_c=m_c, m_s=m_s, b_c=b_c, b_s=b_s, k_c=k_c, k_s=k_s, kp=kp, ki=ki, kd=kd,
+                     speed=speed, setpoint=setpoint, height=height)
+        si = {k: PARAMETERS[k].to_si(v) for k, v in shown.items()}
+        loop = ContactLoop(**{k: si[k] for k in LOOP_PARAMETERS})
+        sample = _profile(profile, si["height"])
+        scan = loop.scan_line(sample.x, sample.heights, speed=si["speed"],
+                              setpoint=si["setpoint"])
         curves = scan_curves(scan, loop)
         if self.figure is None:
             self.figure = ScanFigure(curves, fig=self.fig)
@@ -156,14 +243,16 @@ class ControllerPanel(Panel):
 
     def _indicator_html(self) -> str:
         s = self.last
-        stab = s.loop.is_stable()
-        color, verdict = ("green", "STABLE") if stab else ("red", "UNSTABLE")
-        poles = ", ".join(f"{p * 1e-6:.3g}" for p in s.loop.poles)
-        rows = [("Routh-Hurwitz margin", f"{stab.margin:.3g}"),
-                ("poles", f"{poles} 1/us"),
-                ("max |error| (less offset)", f"{s.max_error * 1e9:.3g} nm"),
-                ("indentation offset", f"{s.scan.offset * 1e9:.3g} nm")]
-        table = "".join(f"<tr><td>{k}</td><td><b>{v}</b></td></tr>" for k, v in rows)
+        c = s.curves
+        color, verdict = ("green", "STABLE") if c.stable else ("red", "UNSTABLE")
+        nm = PARAMETERS["height"].scale
+        rows = [("Routh-Hurwitz margin", f"{c.margin:.3g}"),
+                ("poles", format_poles(c.poles_per_us)),
+                ("max |error| (less offset)", f"{s.max_error * nm:.3g} nm"),
+                ("trace-retrace gap of Z_np", f"{s.scan.gap * nm:.3g} nm"),
+                ("indentation offset", f"{s.scan.offset * nm:.3g} nm")]
+        table = "".join(f"<tr><td style='vertical-align:top'>{k}</td><td><b>{v}</b></td></tr>"
+                        for k, v in rows)
         return (f"<div style='font-size:1.2em;color:{color}'><b>&#9679; {verdict}</b></div>"
                 f"<table>{table}</table>")
 
