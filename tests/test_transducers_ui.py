@@ -361,3 +361,25 @@ def test_sensitivity_in_one_unit_in_title_and_readout(panel):
     model = OpticalBeamDeflection()
     shown = f"{model.sensitivity(at=panel.last.value) * 1e-6:.4g} 1/um"   # at the input, 20 nm
     assert shown in title and shown in panel.readout.value
+
+
+def test_the_notebooks_things_to_try_do_what_it_says(panel):
+    # notebook 02: "make the optical lever shorter; move the interferometer's phase off
+    # quadrature; drive the electrothermal heater with no DC bias; shake the base at half the
+    # resonance frequency" - each followed here on the panel, as a student would
+    panel.set(principle="optical_beam_deflection", input=0.0)
+    long_lever = panel.last.sensitivity
+    panel.set(length=112.5)
+    assert panel.last.sensitivity == pytest.approx(2 * long_lever, rel=1e-9)   # ~ 1/L
+    panel.set(principle="interferometry", input=0.0)
+    quadrature = abs(panel.last.sensitivity)
+    panel.set(phase=-0.3)
+    assert abs(panel.last.sensitivity) < 0.5 * quadrature    # cos falls off quadrature
+    panel.set(principle="electrothermal", input=0.0)
+    assert panel.last.sensitivity == 0.0                      # no 1-omega response unbiased
+    assert "<b>0 nm/V</b>" in panel.readout.value             # the readout says so
+    panel.set(principle="piezo_acoustic", drive_ratio=1.0)
+    at_resonance = abs(panel.last.sensitivity)
+    panel.set(drive_ratio=0.5)
+    # |gamma r^2 H(r)| at r = 1/2: 1.566 / 4 / 0.75 = 0.52 against 1.566 Q = 235 at resonance
+    assert abs(panel.last.sensitivity) < at_resonance / 100

@@ -351,7 +351,7 @@ class TransducerPanel(Panel):
         rows = [("Table I", f"{m.function}; {m.signal}; {m.size}"),
                 ("lever k, f1",
                  f"{m.spring_constant:.3g} N/m, {m.resonance_frequency / 1e3:.4g} kHz"),
-                ("sensitivity here", f"{sq.to_display(s.sensitivity):.4g} {sq.display_unit}"),
+                ("sensitivity here", f"{sq.to_display(s.sensitivity) + 0.0:.4g} {sq.display_unit}"),
                 (f"resolution in {DEFAULTS['bandwidth'] / 1e3:g} kHz",
                  (f"{total:.3g} {q.display_unit} (mostly {res.dominant})"
                   if math.isfinite(total) else "no small-signal response here"))]
