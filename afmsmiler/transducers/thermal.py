@@ -49,6 +49,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import get_material
+from ..parameters import read_only
 from ..validation import check_array, check_finite, check_nonnegative, check_positive
 from ..brownian import mechanical_response
 from .base import DEFLECTION, SLOPE, Harmonics, Parameter, Transducer, quantity
@@ -79,12 +80,12 @@ class ThermalProperties:
 
 
 #: Thermal figures of the presets of :mod:`afmsmiler.materials` used in the bimorphs.
-THERMAL = {
+THERMAL = read_only({
     "silicon": ThermalProperties(2.6e-6, 148.0, 705.0,
                                  "Okada and Tokumaru, J. Appl. Phys. 56, 314 (1984); CRC Handbook"),
     "gold": ThermalProperties(14.2e-6, 318.0, 129.0, "CRC Handbook of Chemistry and Physics"),
     "aluminium": ThermalProperties(23.1e-6, 237.0, 897.0, "CRC Handbook of Chemistry and Physics"),
-}
+})
 
 
 def bimorph_curvature(expansion_1: float, thickness_1: float, modulus_1: float,
