@@ -26,23 +26,36 @@ from ..validation import check_instance, check_integer
 __all__ = ["DEFAULTS", "ChainCurves", "chain_curves", "TransducerFigure", "frequency_grid"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = read_only(dict(n_frequencies=400, f_low=1e-2, f_high_ratio=10.0,
+DEFAULTS = read_only(dict(n_frequencies=400, n_resonance=101, f_low=1e-2, f_high_ratio=10.0,
                           figsize=(11.0, 3.8), label_width=40))
 
 
 def frequency_grid(model: Transducer, n_frequencies: int = DEFAULTS["n_frequencies"]) -> np.ndarray:
-    """Log-spaced frequencies in Hz from 0.01 Hz to 10 f1 of ``model``'s lever.
+    """Log-spaced frequencies in Hz from 0.01 Hz to 10 f1 of ``model``'s lever, dense at f1.
+
+    A log grid of a few hundred points steps by ~4 % near f1, wider than the resonance of a lever
+    with Q = 150 (f1 / Q): the plotted peak then fell anywhere below Q and the phase seemed to
+    jump. ``DEFAULTS["n_resonance"]`` more points span f1 (1 +- 5 / Q), f1 itself included.
 
     Parameters
     ----------
     model : Transducer
-        The model (its first resonance sets the top of the grid).
+        The model (its first resonance and Q set the top and the dense part of the grid).
     n_frequencies : int
-        Number of frequencies (>= 2).
+        Number of log-spaced frequencies, 2 to 100000.
+
+    Returns
+    -------
+    ndarray
+        Increasing frequencies in Hz.
     """
     n_frequencies = check_integer("n_frequencies", n_frequencies, 2, 100_000)
-    top = DEFAULTS["f_high_ratio"] * model.resonance_frequency
-    return np.geomspace(DEFAULTS["f_low"], top, n_frequencies)
+    f1 = model.resonance_frequency
+    top = DEFAULTS["f_high_ratio"] * f1
+    half_width = min(5.0 / model.quality_factor, 0.9)
+    dense = f1 * (1.0 + np.linspace(-half_width, half_width, DEFAULTS["n_resonance"]))
+    grid = np.concatenate([np.geomspace(DEFAULTS["f_low"], top, n_frequencies), dense])
+    return np.unique(grid[(grid >= DEFAULTS["f_low"]) & (grid <= top)])
 
 
 @dataclass(frozen=True)
