@@ -388,6 +388,8 @@ def test_operate_runs_the_chain_once_and_agrees_with_the_chain(key, monkeypatch)
         model.operate(q.high * 2 + 1)
     with pytest.raises(ValueError, match="^n_points must be"):
         model.operate(q.default, n_points=1)
+    with pytest.raises(ValueError, match="^frequencies must be"):
+        model.operate(q.default, frequencies=[1.0, math.nan])
     with pytest.raises(ValueError, match="^mode must be one of"):
         model.operate(q.default, mode="telepathy")
 

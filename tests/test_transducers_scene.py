@@ -228,3 +228,5 @@ def test_optical_lever_is_a_reusable_piece():
         OpticalLever(rec["x"], source=[0, 0, 1], target=[0, 0, 1])
     with pytest.raises(ValueError, match="^spot_radius must be"):
         lever.move([1.0, 0.0, 0.0], 0.0, -1.0)
+    with pytest.raises(ValueError, match="^slope .* away from the detector"):
+        lever.hit([1.0, 0.0, 0.0], 1e6)      # a mirror turned on its side

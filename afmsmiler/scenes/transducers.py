@@ -251,7 +251,10 @@ class OpticalLever:
         n = np.array([-slope, 0.0, 1.0])
         n /= np.linalg.norm(n)
         r = d - 2 * np.dot(d, n) * n
-        return top + np.dot(self.detector - top, self.normal) / np.dot(r, self.normal) * r
+        facing = np.dot(r, self.normal)
+        if not facing < -1e-9:   # the detector faces the nominal beam: -normal
+            raise ValueError(f"slope {slope:g} sends the reflected beam away from the detector")
+        return top + np.dot(self.detector - top, self.normal) / facing * r
 
     def draw_detector(self, size: float) -> None:
         """Draw the four-quadrant photodiode, a square of side ``size`` (scene units, > 0)."""

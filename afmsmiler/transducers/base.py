@@ -549,6 +549,8 @@ class Transducer:
         q = self.INPUTS[mode]
         value = q.check(value)
         n_points = check_integer("n_points", n_points, 2, 100_000)
+        if frequencies is not None:
+            frequencies = check_array("frequencies", frequencies, "Hz", low=0.0, ndim=1)
         xs = np.append(np.linspace(q.low, q.high, n_points), value)
         both = self.chain(xs, mode)
         sweep = SignalChain(mode, tuple(Stage(st.quantity, st.values[:-1]) for st in both.stages))
