@@ -1,4 +1,4 @@
-"""The 3D scale models of module (b): the lever with each transducer's laser path or embedded element.
+"""The 3D scale models of module (b): the lever with each transducer's laser path or embedded part.
 
 Scale: the lever (length, width, thickness) is drawn to scale at **1 scene unit = 100 um**
 (:data:`SCENE_UNIT`), clamped at x = 0 to a grey chip and bent along +x; its deflection is
@@ -27,7 +27,14 @@ as a fraction of its largest value over the input range (full scale: the translu
 :class:`TransducerScene` draws into the kernel's single viewer
 (:func:`~afmsmiler.scenes.get_viewer`) and updates in place: a new input moves the parts with
 ``set_transform`` and re-sends only the bent geometry; a new principle replaces the
-principle's group of objects under its own path.
+principle's group of objects under its own path. It draws a model run
+(:meth:`~afmsmiler.transducers.base.Transducer.operate`, an
+:class:`~afmsmiler.transducers.base.Operation`) and evaluates no physics itself: the lever's
+shape comes from the model's ``deflection_shape``, every fraction and ratio from the run's stages.
+
+The optical lever's parts (laser, beams, four-quadrant photodiode, spot and the law of
+reflection on the drawn lever) are a reusable piece, :class:`OpticalLever`, drawn under any
+``vis`` node, with :func:`quadrant_photodiode`: module (e)'s laser alignment uses them too.
 """
 from __future__ import annotations
 
