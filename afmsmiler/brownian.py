@@ -147,7 +147,8 @@ def mechanical_response(f, *, resonance_frequency: float,
 
 def _response_power_integral(r, quality_factor: float):
     """int_0^r |1 / (1 - u^2 + j u / Q)|^2 du (see the module docstring), for Q >= 1/2, r >= 0."""
-    r = np.asarray(r, dtype=float)
+    # beyond r = 1e150, F(r) equals F(inf) = pi Q / 2 to double precision (and r^2 overflows)
+    r = np.minimum(np.asarray(r, dtype=float), 1e150)
     b = math.sqrt(4.0 - 1.0 / quality_factor ** 2)
     x = b * r / (1.0 + r * r)
     safe = np.where(x > 1e-6, x, 0.5)   # a dummy where the series is used

@@ -143,6 +143,15 @@ def test_band_integral_of_the_brownian_spectrum():
         model.thermal_noise(1e3, -1.0)
 
 
+def test_extreme_bands_stay_finite():
+    # a band reaching past 1e308 Hz: (f_a + B) / f_n overflowed and F(inf) / inf gave NaN
+    full = math.sqrt(mode_share(1) * BOLTZMANN * 295.0 / LEVER.spring_constant)
+    assert thermal_deflection_noise(LEVER, bandwidth=1e308, low_frequency=0.0) == \
+        pytest.approx(full, rel=1e-9)
+    assert thermal_deflection_noise(LEVER, bandwidth=1e308, low_frequency=1e308) == 0.0
+    assert math.isfinite(thermal_deflection_noise(LEVER, bandwidth=1e308))
+
+
 def test_parameters_and_defaults():
     assert QUALITY_FACTOR.default == 150.0 and TEMPERATURE.default == 295.0
     assert QUALITY_FACTOR.unit == "" and TEMPERATURE.unit == "K"
