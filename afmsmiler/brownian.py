@@ -142,7 +142,8 @@ def mechanical_response(f, *, resonance_frequency: float,
     resonance_frequency = check_positive("resonance_frequency", resonance_frequency, "Hz")
     quality_factor = check_positive("quality_factor", quality_factor)
     r = f / resonance_frequency
-    return 1.0 / (1.0 - r * r + 1j * r / quality_factor)
+    with np.errstate(over="ignore"):   # far above f_n, r^2 -> inf and the response -> 0
+        return 1.0 / (1.0 - r * r + 1j * r / quality_factor)
 
 
 def _response_power_integral(r, quality_factor: float):
