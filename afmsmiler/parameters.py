@@ -63,11 +63,12 @@ UNITS = MappingProxyType({
     # length
     "m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "nm": ("m", 1e-9),
     "pm": ("m", 1e-12),
+    "1/m": ("1/m", 1.0), "1/um": ("1/m", 1e6),
     # angle
     "rad": ("rad", 1.0), "mrad": ("rad", 1e-3), "deg": ("rad", math.pi / 180.0),
     # force, stiffness, pressure, energy per area
     "N": ("N", 1.0), "uN": ("N", 1e-6), "nN": ("N", 1e-9), "pN": ("N", 1e-12),
-    "N/m": ("N/m", 1.0),
+    "N/m": ("N/m", 1.0), "N m": ("N m", 1.0), "nN m": ("N m", 1e-9),
     "Pa": ("Pa", 1.0), "kPa": ("Pa", 1e3), "MPa": ("Pa", 1e6), "GPa": ("Pa", 1e9),
     "J/m^2": ("J/m^2", 1.0), "mJ/m^2": ("J/m^2", 1e-3),
     "1/Pa": ("1/Pa", 1.0), "1e-11/Pa": ("1/Pa", 1e-11),
@@ -77,19 +78,25 @@ UNITS = MappingProxyType({
     # time, frequency, speed
     "s": ("s", 1.0), "ms": ("s", 1e-3), "us": ("s", 1e-6),
     "1/s": ("1/s", 1.0), "1/us": ("1/s", 1e6),
-    "Hz": ("Hz", 1.0), "kHz": ("Hz", 1e3), "MHz": ("Hz", 1e6),
+    "Hz": ("Hz", 1.0), "kHz": ("Hz", 1e3), "MHz": ("Hz", 1e6), "GHz": ("Hz", 1e9),
     "m/s": ("m/s", 1.0), "mm/s": ("m/s", 1e-3), "um/s": ("m/s", 1e-6),
     "Hz/m": ("Hz/m", 1.0), "GHz/nm": ("Hz/m", 1e9 / 1e-9),
     # electrical, magnetic, optical
-    "V": ("V", 1.0), "mV": ("V", 1e-3),
+    "V": ("V", 1.0), "mV": ("V", 1e-3), "uV": ("V", 1e-6),
+    "C": ("C", 1.0), "fC": ("C", 1e-15),
     "A": ("A", 1.0), "mA": ("A", 1e-3), "uA": ("A", 1e-6),
     "W": ("W", 1.0), "mW": ("W", 1e-3), "uW": ("W", 1e-6),
     "ohm": ("ohm", 1.0), "kohm": ("ohm", 1e3),
     "T": ("T", 1.0), "mT": ("T", 1e-3),
     "A/W": ("A/W", 1.0), "m/V": ("m/V", 1.0), "nm/V": ("m/V", 1e-9), "pm/V": ("m/V", 1e-12),
+    # transducer sensitivities (output per tip deflection, deflection per drive)
+    "V/m": ("V/m", 1.0), "uV/nm": ("V/m", 1e-6 / 1e-9), "W/m": ("W/m", 1.0),
+    "uW/nm": ("W/m", 1e-6 / 1e-9), "C/m": ("C/m", 1.0), "fC/nm": ("C/m", 1e-15 / 1e-9),
+    "m/A": ("m/A", 1.0), "nm/mA": ("m/A", 1e-9 / 1e-3), "m/W": ("m/W", 1.0),
+    "nm/mW": ("m/W", 1e-9 / 1e-3),
     # temperature, number density, dimensionless
     "K": ("K", 1.0), "1/m^3": ("1/m^3", 1.0), "1/cm^3": ("1/m^3", 1e6),
-    "": ("", 1.0), "x": ("", 1.0), "microstrain": ("", 1e-6),
+    "": ("", 1.0), "x": ("", 1.0), "ppm": ("", 1e-6), "microstrain": ("", 1e-6),
 })
 
 

@@ -24,10 +24,11 @@ from _timing import best_time, report  # noqa: E402
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
 
-from afmsmiler.plots.transducers import TransducerFigure, chain_curves  # noqa: E402
+from afmsmiler.plots.transducers import (TransducerFigure, chain_curves,  # noqa: E402
+                                         frequency_grid)
 from afmsmiler.scenes import close_viewer  # noqa: E402
 from afmsmiler.transducers import PRINCIPLES  # noqa: E402
-from afmsmiler.ui.transducers import TransducerPanel  # noqa: E402
+from afmsmiler.ui.transducers import TransducerPanel, to_si  # noqa: E402
 
 TARGET = 5e-3
 
@@ -48,24 +49,26 @@ def main():
                 state["i"] += 1
                 return q.default * q.scale * (0.5 + (state["i"] % 100) / 100)
 
-            def model():
-                m = cls(**panel._to_si(cls, {n: v for n, v in values.items()
-                                             if n not in ("principle", "mode", "input")}))
-                curves = chain_curves(m, next_input() / q.scale)
-                m.resolution(1e3)
-                return m, curves
+            table = cls.parameter_table()
 
-            m, curves = model()
+            def model():
+                m = cls(**{n: to_si(table[n], v) for n, v in values.items()
+                           if n not in ("principle", "mode", "input")})
+                op = m.operate(q.to_si(next_input()), frequencies=frequency_grid(m),
+                               bandwidth=1e3)
+                return op, chain_curves(op)
+
+            op, curves = model()
             rows["model"].append(best_time(model, repeat=3, min_time=0.05))
             rows["plots"].append(best_time(lambda: panel.figure.update(curves), repeat=3,
                                            min_time=0.05))
-            rows["scene"].append(best_time(lambda: panel.scene.update(m, next_input() / q.scale),
+            rows["scene"].append(best_time(lambda: panel.scene.update(op),
                                            repeat=3, min_time=0.05))
             rows["panel"].append(best_time(lambda: panel.set(input=next_input()), repeat=3,
                                            min_time=0.05))
 
             def naive():
-                fig = TransducerFigure(chain_curves(m, next_input() / q.scale))
+                fig = TransducerFigure(chain_curves(op))
                 FigureCanvasAgg(fig.fig).draw()
 
             rows["naive"].append(best_time(naive, repeat=3, number=3))

@@ -110,7 +110,7 @@ def _scenes():
         yield (f"contact {z_np * 1e9:.0f} nm", rec, "/afmsmiler/contact/legend/plate",
                sc.camera_position, ColorLegend.TEXT_FRACTION, 0.95 if z_np < 100e-9 else 0.85)
     rec = Recorder()
-    TransducerScene(OpticalBeamDeflection(), 20e-9, vis=rec)
+    TransducerScene(OpticalBeamDeflection().operate(20e-9), vis=rec)
     yield ("transducer meter", rec, "/afmsmiler/transducers/meter/label/plate",
            DEFAULTS["camera"], TextPlate.TEXT_FRACTION, 0.95)
 

@@ -41,6 +41,15 @@ def test_bridge_output_against_the_closed_form():
     expected = vb / 4 * pi_l * sigma                               # small signal V_b dR / (4 R)
     assert check_bridge_output(expected)
     assert not check_bridge_output(-expected)                      # sign matters
+    # a wrong sign is named, and the answer is not given (it printed the exact value)
+    fb = check_bridge_output(-expected)
+    assert "sign" in fb.message
+    for shown in (f"{expected:.4g}", f"{expected:.3g}", f"{expected * 1e6:.3g}"):
+        assert shown not in fb.message
+    fb = check_bridge_output(-2 * expected)
+    assert f"{expected:.4g}" not in fb.message and f"{expected:.3g}" not in fb.message
+    fb = check_bridge_output(expected * 1e6)                       # uV typed for V
+    assert "10^6" in fb.message or "1e6" in fb.message or "unit" in fb.message
     assert not check_bridge_output(2 * expected)
     assert not check_bridge_output(None)
 

@@ -17,12 +17,12 @@ from recording import Recorder
 
 def _scene(model, value, mode=None):
     rec = Recorder()
-    return TransducerScene(model, value, mode, vis=rec, path="t", camera=False), rec
+    return TransducerScene(model.operate(value, mode), vis=rec, path="t", camera=False), rec
 
 
 def test_drawn_lever_is_the_exaggerated_end_load_shape():
     model = OpticalBeamDeflection()
-    pose = lever_pose(model, 500e-9)
+    pose = lever_pose(model.operate(500e-9))
     L = model.length / SCENE_UNIT
     u = pose.x / L
     # the tip at the largest input (2 um) is drawn at max_tip L; 500 nm is a quarter of it
@@ -45,7 +45,7 @@ def test_reflected_beam_obeys_the_law_of_reflection():
     h = model.thickness / SCENE_UNIT
     previous = None
     for z in (0.0, 1.5e-6, -0.7e-6):
-        scene.update(model, z)
+        scene.update(model.operate(z))
         top = np.array([scene.pose.x[-1], 0.0, scene.pose.z[-1] + h / 2])
         n = np.array([-scene.pose.slope[-1], 0.0, 1.0])
         n /= np.linalg.norm(n)
@@ -90,7 +90,7 @@ def test_principles_swap_their_elements_in_place():
     for key, cls in PRINCIPLES.items():
         model = cls()
         for mode in model.MODES:
-            scene.update(model, model.input_quantity(mode).default, mode)
+            scene.update(model.operate(model.input_quantity(mode).default, mode))
             assert scene.key == key
             elements = {k for k in rec.log if k.startswith("/t/element/")}
             seen |= elements | {k.rsplit("/", 1)[0] for k in elements}  # wires: one path each
@@ -104,19 +104,24 @@ def test_principles_swap_their_elements_in_place():
 
 def test_bad_input():
     scene, _ = _scene(OpticalBeamDeflection(), 0.0)
-    with pytest.raises(ValueError, match="^model must be a Transducer"):
-        scene.update("optical lever", 0.0)
+    with pytest.raises(TypeError, match="^operation must be"):
+        scene.update(OpticalBeamDeflection())
     with pytest.raises(ValueError, match=r"^deflection must be in \[-2e-06, 2e-06\] m"):
-        scene.update(OpticalBeamDeflection(), 1.0)
+        scene.update(OpticalBeamDeflection().operate(1.0))
+    with pytest.raises(ValueError, match="^fraction must be in"):
+        lever_pose(OpticalBeamDeflection().operate(0.0), fraction=2.0)
+    with pytest.raises(ValueError, match="^n_length must be"):
+        lever_pose(OpticalBeamDeflection().operate(0.0), 10**9)
 
 
+@pytest.mark.viewer
 def test_real_viewer_is_updated_in_place_and_closed():
     try:
         vis = get_viewer()
         pid = viewer._proc.pid
-        scene = TransducerScene(OpticalBeamDeflection(), 20e-9)
-        scene.update(OpticalBeamDeflection(), -300e-9)
-        scene.update(PiezoAcoustic(), 0.1)
+        scene = TransducerScene(OpticalBeamDeflection().operate(20e-9))
+        scene.update(OpticalBeamDeflection().operate(-300e-9))
+        scene.update(PiezoAcoustic().operate(0.1))
         assert get_viewer() is vis and viewer._proc.pid == pid     # one server, reused
         assert "<html" in vis.static_html().lower()
     finally:
@@ -135,7 +140,7 @@ def test_photodiode_spot_travels_as_many_spot_radii_as_the_model_says():
     half = rec.log["/t/element/detector/q0"]["object"][0].lengths[0] / 0.96  # one quadrant
     ends = []
     for z in np.linspace(-2e-6, 2e-6, 9):
-        scene.update(model, z)
+        scene.update(model.operate(z))
         a = scene.parts["spot_radius"]
         offset = scene.parts["spot"] - centre
         s = float(model.chain(np.array([z])).stage("spot_displacement").values[0])
@@ -157,9 +162,9 @@ def test_camera_sees_every_part_of_every_principle(key):
     model = PRINCIPLES[key]()
     q = model.input_quantity(None)
     rec = Recorder()
-    scene = TransducerScene(model, q.low, vis=rec, path="t")
+    scene = TransducerScene(model.operate(q.low), vis=rec, path="t")
     for value in (q.low, q.high):
-        scene.update(model, value)
+        scene.update(model.operate(value))
         shift = rec.log["/t"]["transform"]  # the whole drawing, centred on the lever
 
         def world(key):  # compose the transforms from /t down to the node
@@ -176,3 +181,52 @@ def test_camera_sees_every_part_of_every_principle(key):
         ndc = camera_ndc(np.array(centres), DEFAULTS["camera"], aspect=1.5)
         assert np.all(np.abs(ndc) <= 1.0), ndc
     assert rec.log["/Axes"]["visible"] is False
+
+
+def test_scene_computes_no_physics(monkeypatch):
+    # the scene drew from its own runs of the chain (two per update, two more per new optical
+    # lever) and branched on "piezo_acoustic" for the mode shape: it now only draws an Operation
+    from afmsmiler.transducers.base import Transducer
+    ops = {key: cls().operate(cls().input_quantity().default) for key, cls in PRINCIPLES.items()}
+    rec = Recorder()
+    scene = TransducerScene(ops["optical_beam_deflection"], vis=rec, path="t", camera=False)
+
+    def forbidden(*args, **kwargs):
+        raise AssertionError("the scene ran the model")
+
+    for name in ("chain", "respond", "sensitivity", "frequency_response", "operate"):
+        monkeypatch.setattr(Transducer, name, forbidden)
+    monkeypatch.setattr(PiezoAcoustic, "base_transfer", forbidden)
+    monkeypatch.setattr(AstigmaticDetection, "spot_radii", forbidden)
+    for op in ops.values():
+        scene.update(op)
+        assert scene.key == op.model.key
+    import inspect
+
+    import afmsmiler.scenes.transducers as module
+    assert "piezo_acoustic" not in inspect.getsource(module.lever_pose)
+
+
+def test_optical_lever_is_a_reusable_piece():
+    # module (e)'s laser alignment draws the same laser, detector, beams and spot under its path
+    from afmsmiler.scenes.transducers import OpticalLever
+    rec = Recorder()
+    lever = OpticalLever(rec["alignment"], source=[-1.0, 0.0, 2.0], target=[1.0, 0.0, 0.0],
+                         detector_distance=2.0)
+    lever.draw_detector(0.6)
+    # a flat lever: the beam leaves at the mirror angle and hits the detector's centre
+    hit = lever.move([1.0, 0.0, 0.0], 0.0, 0.05)
+    np.testing.assert_allclose(hit, lever.detector, atol=1e-12)
+    np.testing.assert_allclose(lever.detector, [1.0 + 2.0 / math.sqrt(2), 0.0,
+                                                2.0 / math.sqrt(2)], rtol=1e-12)
+    # tilting the mirror by a turns the beam by 2 a: the spot moves by ~ 2 a d on the detector
+    a = 1e-3
+    moved = lever.hit([1.0, 0.0, 0.0], math.tan(a))
+    assert np.linalg.norm(moved - lever.detector) == pytest.approx(2 * a * 2.0, rel=1e-2)
+    assert {"/alignment/laser", "/alignment/detector/q0", "/alignment/spot"} <= set(rec.log)
+    with pytest.raises(ValueError, match="^target must differ"):
+        OpticalLever(rec["x"], source=[0, 0, 1], target=[0, 0, 1])
+    with pytest.raises(ValueError, match="^spot_radius must be"):
+        lever.move([1.0, 0.0, 0.0], 0.0, -1.0)
+    with pytest.raises(ValueError, match="^slope .* away from the detector"):
+        lever.hit([1.0, 0.0, 0.0], 1e6)      # a mirror turned on its side

@@ -1,5 +1,6 @@
 """Module (b)'s figure and panel without a browser: set controls, compare the plotted data with the
-model and with closed forms; sliders are generated from the metadata and cannot leave its ranges."""
+model and with closed forms; sliders are generated from the metadata and cannot leave its ranges;
+one user action runs the signal chain once; out-of-range values and unknown choices are named."""
 import math
 
 import numpy as np
@@ -7,7 +8,9 @@ import pytest
 
 from afmsmiler.plots.transducers import TransducerFigure, chain_curves, frequency_grid
 from afmsmiler.transducers import PRINCIPLES, Electrostatic, OpticalBeamDeflection
-from afmsmiler.ui.transducers import TransducerPanel, control_for
+from afmsmiler.transducers.base import Transducer
+from afmsmiler.ui.controls import control
+from afmsmiler.ui.transducers import TransducerPanel, to_si
 
 
 @pytest.fixture
@@ -28,8 +31,11 @@ def test_sliders_are_generated_from_the_metadata(panel):
             tol = 1e-9 * max(abs(p.low), abs(p.high)) * p.scale
             assert lo >= p.low * p.scale - tol and hi <= p.high * p.scale + tol
             assert c.value == pytest.approx(p.default * p.scale)
+            assert c.parameter is p     # built by ui.controls.control from the Parameter
         q = cls().input_quantity()
-        assert panel.controls["input"].min == pytest.approx(q.low * q.scale)
+        c = panel.controls["input"]
+        assert c.parameter is q and c.value == pytest.approx(q.to_display(q.default))
+        assert q.to_display(q.low) - 1e-9 * c.step <= c.min < q.to_display(q.low) + c.step
 
 
 @pytest.mark.parametrize("key", list(PRINCIPLES))
@@ -142,18 +148,23 @@ def test_figure_and_control_helpers():
     model = OpticalBeamDeflection()
     f = frequency_grid(model, 50)
     assert f[0] == pytest.approx(1e-2) and f[-1] == pytest.approx(10 * model.resonance_frequency)
-    curves = chain_curves(model, 0.0, n_points=11)
+    curves = chain_curves(model.operate(0.0, frequencies=f, n_points=11))
     fig = TransducerFigure(curves)
     assert len(fig.lines["output"].get_xdata()) == 11
     assert curves.sensitivity == pytest.approx(model.sensitivity() * 1e-9)
     with pytest.raises(ValueError, match="^deflection must be in"):
-        chain_curves(model, 1.0)
+        model.operate(1.0)
     with pytest.raises(ValueError, match="^n_points must be an integer"):
-        chain_curves(model, 0.0, n_points=1)
+        model.operate(0.0, n_points=1)
+    with pytest.raises(TypeError, match="^operation must be"):
+        chain_curves(model)
+    with pytest.raises(ValueError, match="^operation must carry a frequency response"):
+        chain_curves(model.operate(0.0))
     p = OpticalBeamDeflection.parameter_table()["power"]
-    s = control_for(p)
+    s = control(p)
     assert s.value == pytest.approx(1.0) and "mW" in s.description
-    assert 10 ** s.min == pytest.approx(1e-3) and math.isclose(10 ** s.max, 20.0)
+    # a log grid through the default 1 mW, inside [1 uW, 20 mW]
+    assert 10 ** s.min == pytest.approx(1e-3) and 19.0 < 10 ** s.max <= 20.0
 
 
 def test_one_user_action_is_one_update():
@@ -211,6 +222,7 @@ def test_controls_and_readout_share_a_row_above_the_figure():
     assert fig_w <= 1000 and fig_h <= 400
 
 
+@pytest.mark.viewer
 def test_after_close_viewer_the_readout_says_how_to_get_the_3d_view_back():
     # "Run All" ends notebook 02 with close_viewer(): the sliders go on updating plots and
     # readout without starting a server, and the readout tells the student what to do.
@@ -229,3 +241,160 @@ def test_after_close_viewer_the_readout_says_how_to_get_the_3d_view_back():
         assert "3D view closed" not in panel.readout.value
     finally:
         close_viewer()
+
+
+# --- one user action = one model run ------------------------------------------------------------
+class _ChainCounter:
+    def __init__(self, monkeypatch):
+        self.n = 0
+        original = Transducer.chain
+
+        def counting(model, *args, **kwargs):
+            self.n += 1
+            return original(model, *args, **kwargs)
+
+        monkeypatch.setattr(Transducer, "chain", counting)
+
+
+def _browser_echo(c):
+    """What the browser sends back after drawing slider ``c``: its value snapped to the grid."""
+    if hasattr(c, "base"):
+        e = c.min + round((np.log10(c.value) - c.min) / c.step) * c.step
+        return float(10 ** e)
+    return c.min + round((c.value - c.min) / c.step) * c.step
+
+
+@pytest.mark.parametrize("key", list(PRINCIPLES))
+def test_one_slider_move_runs_the_signal_chain_once(key, monkeypatch):
+    # before: five runs per move (the figure's sweep and point, the scene's sweep and point, the
+    # panel's own chain); the figure and the 3D view now draw from one Operation
+    from recording import Recorder
+
+    from afmsmiler.scenes.transducers import TransducerScene
+    panel = TransducerPanel(principle=key, scene=False)
+    panel.scene = TransducerScene(panel.last.operation, vis=Recorder(), camera=False)
+    counter = _ChainCounter(monkeypatch)
+    c = panel.controls["input"]
+    c.value = c.min + 3 * c.step if c.value != c.min + 3 * c.step else c.min   # a student's drag
+    assert counter.n == 1
+    panel.controls["temperature"].value = 300.0
+    assert counter.n == 2
+
+
+def test_one_principle_change_is_one_update_even_with_the_browser_echo():
+    # the drop-down ran 10-14 full updates: the browser echoed every new slider's value snapped
+    # to a grid that did not hold it; the grid now holds every default, so the echo is ignored
+    panel = TransducerPanel(scene=False)
+    calls = []
+    original = panel.update
+    panel.update = lambda **v: (calls.append(v["principle"]), original(**v))
+    for key in PRINCIPLES:
+        if key == panel.controls["principle"].value:
+            continue
+        calls.clear()
+        panel.controls["principle"].value = key           # the student picks a principle
+        for name, c in list(panel.controls.items()):      # the browser draws the new sliders
+            if name not in ("principle", "mode"):
+                c.value = _browser_echo(c)
+        assert calls == [key], key
+        model = PRINCIPLES[key]()
+        assert panel.last.model == model   # every default kept: 225 um, Q 150, 295 K, ...
+
+
+def test_out_of_range_values_are_rejected_not_clamped(panel):
+    # the panel clamped: power 1e300 W became 0.02 W and the model ran with it
+    with pytest.raises(ValueError, match=r"^power must be in \[.*\] mW, got 1e\+300"):
+        panel.set(power=1e300)
+    with pytest.raises(ValueError, match=r"^power must be in \[1e-06, 0.02\] W"):
+        panel.update(principle="optical_beam_deflection", mode="sensing", input=0.0, power=1e300)
+    with pytest.raises(ValueError, match="^deflection must be in"):
+        panel.update(principle="optical_beam_deflection", mode="sensing", input=1e9)
+    with pytest.raises(ValueError, match="^length must be"):
+        panel.update(principle="optical_beam_deflection", mode="sensing", input=0.0,
+                     length=math.nan)
+    assert panel.last.model.power == pytest.approx(1e-3)   # the last good run is kept
+    # a slider's own end, one rounding error outside the range once in SI, is the end
+    p = OpticalBeamDeflection.parameter_table()["power"]
+    assert to_si(p, 20.000000000000004) == 0.02
+    with pytest.raises(ValueError, match="^power must be in"):
+        to_si(p, 20.001)
+
+
+def test_unknown_choices_name_the_valid_ones(panel):
+    with pytest.raises(ValueError, match=r"^principle must be one of .*optical_beam_deflection"):
+        panel.update(principle="telepathy", mode="sensing", input=0.0)
+    with pytest.raises(ValueError, match=r"^mode must be one of .*sensing"):
+        panel.update(principle="optical_beam_deflection", mode="actuation", input=0.0)
+    with pytest.raises(TypeError, match="unknown parameter"):
+        panel.update(principle="optical_beam_deflection", mode="sensing", input=0.0, colour=1.0)
+    with pytest.raises(ValueError, match="^mode must be one of"):
+        panel.set(principle="interferometry", mode="actuation")
+
+
+def test_update_uses_exactly_the_values_it_is_given(panel):
+    panel.update(principle="electrostatic", mode="actuation", input=7.0, gap=4.0)
+    assert panel.last.model == Electrostatic(gap=4e-6) and panel.last.value == 7.0
+    assert panel.controls["principle"].value == "optical_beam_deflection"   # widgets not read
+
+
+def test_phase_is_continuous_through_the_resonance(panel):
+    # notebook 02: the phase jumped from -170 deg to +175 deg at resonance (np.angle wraps)
+    for key in ("optical_beam_deflection", "piezo_acoustic", "photothermal", "electrostatic"):
+        panel.set(principle=key)
+        f, phase = panel.figure.lines["phase"].get_data()
+        assert np.max(np.abs(np.diff(phase))) < 180.0, key   # a wrap jumps by ~360 deg
+        lo, hi = panel.figure.axes["phase"].get_ylim()
+        assert lo <= np.min(phase) and np.max(phase) <= hi
+    panel.set(principle="optical_beam_deflection")
+    f, phase = panel.figure.lines["phase"].get_data()
+    f1 = panel.last.model.resonance_frequency
+    # below resonance in phase with the force, -90 deg at f1, towards -180 deg above
+    # (the detector's 2 MHz low-pass adds a little lag): the phase only falls
+    assert np.all(np.diff(phase) <= 1e-9)
+    assert np.interp(f1, f, phase) == pytest.approx(-90.0, abs=3.0)    # f1 is on the grid
+    assert np.interp(5 * f1, f, phase) < -170.0
+
+
+def test_frequency_response_shows_the_resonance_peak(panel):
+    # a 400-point log grid steps by ~4 % near f1, wider than the f1 / Q = 0.7 % resonance of a
+    # Q = 150 lever: the plotted peak fell well below Q. The peak of a damped oscillator's
+    # |H| is Q / sqrt(1 - 1/(4 Q^2)) times its static gain (here the sensitivity / k, 1/nN shown;
+    # the detector's 2 MHz low-pass takes 0.1 % at f1)
+    model = OpticalBeamDeflection()
+    f, mag = panel.figure.lines["magnitude"].get_data()
+    q = model.quality_factor
+    static = model.sensitivity() / model.spring_constant * 1e-9
+    lowpass = 1 / abs(1 + 1j * model.resonance_frequency / model.detector_bandwidth)
+    assert np.max(mag) == pytest.approx(static * q / math.sqrt(1 - 1 / (4 * q * q)) * lowpass,
+                                        rel=2e-3)
+    assert np.all(np.diff(f) > 0) and len(f) <= 400 + 101
+
+
+def test_sensitivity_in_one_unit_in_title_and_readout(panel):
+    # the plot title said 1/m and the readout 1/um: both now use the sensitivity's display unit
+    title = panel.figure.axes["output"].get_title()
+    model = OpticalBeamDeflection()
+    shown = f"{model.sensitivity(at=panel.last.value) * 1e-6:.4g} 1/um"   # at the input, 20 nm
+    assert shown in title and shown in panel.readout.value
+
+
+def test_the_notebooks_things_to_try_do_what_it_says(panel):
+    # notebook 02: "make the optical lever shorter; move the interferometer's phase off
+    # quadrature; drive the electrothermal heater with no DC bias; shake the base at half the
+    # resonance frequency" - each followed here on the panel, as a student would
+    panel.set(principle="optical_beam_deflection", input=0.0)
+    long_lever = panel.last.sensitivity
+    panel.set(length=112.5)
+    assert panel.last.sensitivity == pytest.approx(2 * long_lever, rel=1e-9)   # ~ 1/L
+    panel.set(principle="interferometry", input=0.0)
+    quadrature = abs(panel.last.sensitivity)
+    panel.set(phase=-0.3)
+    assert abs(panel.last.sensitivity) < 0.5 * quadrature    # cos falls off quadrature
+    panel.set(principle="electrothermal", input=0.0)
+    assert panel.last.sensitivity == 0.0                      # no 1-omega response unbiased
+    assert "<b>0 nm/V</b>" in panel.readout.value             # the readout says so
+    panel.set(principle="piezo_acoustic", drive_ratio=1.0)
+    at_resonance = abs(panel.last.sensitivity)
+    panel.set(drive_ratio=0.5)
+    # |gamma r^2 H(r)| at r = 1/2: 1.566 / 4 / 0.75 = 0.52 against 1.566 Q = 235 at resonance
+    assert abs(panel.last.sensitivity) < at_resonance / 100

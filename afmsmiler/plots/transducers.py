@@ -19,29 +19,43 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..transducers.base import Quantity, Transducer
-from ..validation import check_integer
+from ..parameters import Parameter, read_only
+from ..transducers.base import Operation, Transducer
+from ..validation import check_instance, check_integer
 
 __all__ = ["DEFAULTS", "ChainCurves", "chain_curves", "TransducerFigure", "frequency_grid"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = dict(n_points=201, n_frequencies=400, f_low=1e-2, f_high_ratio=10.0,
-                figsize=(11.0, 3.8), label_width=40)
+DEFAULTS = read_only(dict(n_frequencies=400, n_resonance=101, f_low=1e-2, f_high_ratio=10.0,
+                          figsize=(11.0, 3.8), label_width=40))
 
 
 def frequency_grid(model: Transducer, n_frequencies: int = DEFAULTS["n_frequencies"]) -> np.ndarray:
-    """Log-spaced frequencies in Hz from 0.01 Hz to 10 f1 of ``model``'s lever.
+    """Log-spaced frequencies in Hz from 0.01 Hz to 10 f1 of ``model``'s lever, dense at f1.
+
+    A log grid of a few hundred points steps by ~4 % near f1, wider than the resonance of a lever
+    with Q = 150 (f1 / Q): the plotted peak then fell anywhere below Q and the phase seemed to
+    jump. ``DEFAULTS["n_resonance"]`` more points span f1 (1 +- 5 / Q), f1 itself included.
 
     Parameters
     ----------
     model : Transducer
-        The model (its first resonance sets the top of the grid).
+        The model (its first resonance and Q set the top and the dense part of the grid).
     n_frequencies : int
-        Number of frequencies (>= 2).
+        Number of log-spaced frequencies, 2 to 100000.
+
+    Returns
+    -------
+    ndarray
+        Increasing frequencies in Hz.
     """
     n_frequencies = check_integer("n_frequencies", n_frequencies, 2, 100_000)
-    top = DEFAULTS["f_high_ratio"] * model.resonance_frequency
-    return np.geomspace(DEFAULTS["f_low"], top, n_frequencies)
+    f1 = model.resonance_frequency
+    top = DEFAULTS["f_high_ratio"] * f1
+    half_width = min(5.0 / model.quality_factor, 0.9)
+    dense = f1 * (1.0 + np.linspace(-half_width, half_width, DEFAULTS["n_resonance"]))
+    grid = np.concatenate([np.geomspace(DEFAULTS["f_low"], top, n_frequencies), dense])
+    return np.unique(grid[(grid >= DEFAULTS["f_low"]) & (grid <= top)])
 
 
 @dataclass(frozen=True)
@@ -52,7 +66,7 @@ class ChainCurves:
     ----------
     title : str
         The principle's name and mode.
-    quantities : tuple of Quantity
+    quantities : tuple of Parameter
         The stages' quantities, input first, output last.
     x : ndarray
         The input sweep (display unit).
@@ -68,12 +82,17 @@ class ChainCurves:
         The same in SI units (``sensitivity_unit``).
     sensitivity_unit : str
         SI unit of ``sensitivity_si``.
+    sensitivity_display : float
+        The sensitivity in its display unit (the readout's: 1/um for the optical lever).
+    sensitivity_display_unit : str
+        That unit, from the model's sensitivity quantity.
     frequency : ndarray
         Frequencies in Hz.
     magnitude : ndarray
         |H(f)| in display units of output per input (the input of the frequency response).
     phase_deg : ndarray
-        Phase of H(f) in degrees.
+        Phase of H(f) in degrees, unwrapped (continuous through the resonance: -170 deg is
+        followed by -185 deg, not +175 deg).
     response_label : str
         What ``magnitude`` is, with its unit.
     """
@@ -87,29 +106,22 @@ class ChainCurves:
     sensitivity: float
     sensitivity_si: float
     sensitivity_unit: str
+    sensitivity_display: float
+    sensitivity_display_unit: str
     frequency: np.ndarray
     magnitude: np.ndarray
     phase_deg: np.ndarray
     response_label: str
 
 
-def chain_curves(model: Transducer, value: float, mode: str | None = None, *,
-                 n_points: int = DEFAULTS["n_points"],
-                 n_frequencies: int = DEFAULTS["n_frequencies"]) -> ChainCurves:
-    """Sample ``model``'s chain over its input range and its frequency response, for plotting.
+def chain_curves(operation: Operation) -> ChainCurves:
+    """The curves of a model run (:meth:`~afmsmiler.transducers.base.Transducer.operate`), in
+    the units the figure shows; no model is evaluated here.
 
     Parameters
     ----------
-    model : Transducer
-        The transducer model.
-    value : float
-        The current input in SI units (inside the input's range).
-    mode : str, optional
-        ``"sensing"`` or ``"actuation"`` for a model that does both.
-    n_points : int
-        Samples of the input sweep.
-    n_frequencies : int
-        Samples of the frequency response.
+    operation : Operation
+        The model's sweep, point, sensitivity and frequency response (``frequencies`` given).
 
     Returns
     -------
@@ -117,19 +129,20 @@ def chain_curves(model: Transducer, value: float, mode: str | None = None, *,
 
     Raises
     ------
+    TypeError
+        If ``operation`` is not an Operation.
     ValueError
-        If ``value`` is outside the input's range or ``mode`` is not offered (from the model).
+        If it carries no frequency response.
     """
-    n_points = check_integer("n_points", n_points, 2, 100_000)
-    q = model.input_quantity(mode)
-    xs = np.linspace(q.low, q.high, n_points)
-    sweep = model.chain(xs, mode)
-    here = model.chain(np.array([value]), mode)
-    quantities = tuple(s.quantity for s in sweep.stages)
+    op = check_instance("operation", operation, Operation)
+    if op.response is None:
+        raise ValueError("operation must carry a frequency response (operate(frequencies=...))")
+    model, sweep, here = op.model, op.sweep, op.point
+    q = sweep.input.quantity
+    quantities = tuple(st.quantity for st in sweep.stages)
     out = sweep.output.quantity
-    sens_si = model.sensitivity(mode, at=value)
-    f = frequency_grid(model, n_frequencies)
-    fr = model.frequency_response(f, mode)
+    sq = model.sensitivity_quantity(op.mode)
+    fr = op.response
     mag_scale = fr.output.scale / fr.input.scale
     in_unit = fr.input.display_unit or fr.input.unit
     out_unit = fr.output.display_unit or "1"
@@ -138,16 +151,18 @@ def chain_curves(model: Transducer, value: float, mode: str | None = None, *,
     return ChainCurves(
         title=f"{model.name} ({mode_name})",
         quantities=quantities,
-        x=xs * q.scale,
-        stages=tuple(s.values * s.quantity.scale for s in sweep.stages),
-        value=float(value) * q.scale,
-        point=tuple(float(s.values[0]) * s.quantity.scale for s in here.stages),
-        sensitivity=sens_si * out.scale / q.scale,
-        sensitivity_si=sens_si,
-        sensitivity_unit=model.sensitivity_quantity(mode).unit,
-        frequency=f,
+        x=q.to_display(sweep.input.values),
+        stages=tuple(st.quantity.to_display(st.values) for st in sweep.stages),
+        value=q.to_display(op.value),
+        point=tuple(st.quantity.to_display(float(st.values[0])) for st in here.stages),
+        sensitivity=op.sensitivity * out.scale / q.scale,
+        sensitivity_si=op.sensitivity,
+        sensitivity_unit=sq.unit,
+        sensitivity_display=sq.to_display(op.sensitivity),
+        sensitivity_display_unit=sq.display_unit,
+        frequency=fr.frequency,
         magnitude=np.abs(fr.response) * mag_scale,
-        phase_deg=np.degrees(np.angle(fr.response)),
+        phase_deg=np.degrees(np.unwrap(np.angle(fr.response))),
         response_label=label,
     )
 
@@ -160,9 +175,15 @@ def _pad(lo, hi):
     return mid - 0.55 * span, mid + 0.55 * span
 
 
-def _title(q: Quantity) -> str:
+def _title(q: Parameter) -> str:
     """The axis label of ``q``: ``"label [unit]"``, or ``"label (dimensionless)"`` for a ratio."""
     return q.title if q.display_unit else f"{q.title} (dimensionless)"
+
+
+def _phase_limits(phase_deg) -> tuple[float, float]:
+    """Phase axis limits in degrees: multiples of 90 deg around the (unwrapped) data."""
+    lo, hi = float(np.min(phase_deg)), float(np.max(phase_deg))
+    return 90.0 * np.floor(lo / 90.0 - 0.1), 90.0 * np.ceil(hi / 90.0 + 0.1)
 
 
 def _wrap(text: str, width: int = DEFAULTS["label_width"]) -> str:
@@ -209,7 +230,6 @@ class TransducerFigure:
         self.lines["phase"], = ax["phase"].semilogx([], [], color="C4", lw=0.8, alpha=0.7)
         self.lines["f1"] = ax["response"].axvline(1.0, color="0.7", ls=":", lw=1)
         ax["phase"].set_ylabel("phase [deg]", color="C4")
-        ax["phase"].set_ylim(-200, 200)
         ax["output"].set_title("detector / output signal")
         ax["lever"].set_title("through the lever")
         ax["response"].set(xlabel="frequency [Hz]", title="frequency response")
@@ -260,11 +280,12 @@ class TransducerFigure:
         ax["output"].set(xlabel=xlabel, ylabel=_title(q[-1]))
         ax["output"].set_xlim(x[0], x[-1])
         ax["output"].set_ylim(*_pad(float(np.min(y)), float(np.max(y))))
-        ax["output"].set_title(f"{curves.title}\nslope {curves.sensitivity_si:.3g} "
-                               f"{curves.sensitivity_unit}", fontsize="medium")
+        ax["output"].set_title(f"{curves.title}\nslope {curves.sensitivity_display:.4g} "
+                               f"{curves.sensitivity_display_unit}", fontsize="medium")
         f, mag = curves.frequency, curves.magnitude
         ln["magnitude"].set_data(f, mag)
         ln["phase"].set_data(f, curves.phase_deg)
+        ax["phase"].set_ylim(*_phase_limits(curves.phase_deg))
         positive = mag[mag > 0]
         ax["response"].set_xlim(f[0], f[-1])
         if positive.size:

@@ -1,4 +1,4 @@
-"""The 3D scale models of module (b): the lever with each transducer's laser path or embedded element.
+"""The 3D scale models of module (b): the lever with each transducer's laser path or embedded part.
 
 Scale: the lever (length, width, thickness) is drawn to scale at **1 scene unit = 100 um**
 (:data:`SCENE_UNIT`), clamped at x = 0 to a grey chip and bent along +x; its deflection is
@@ -27,42 +27,51 @@ as a fraction of its largest value over the input range (full scale: the translu
 :class:`TransducerScene` draws into the kernel's single viewer
 (:func:`~afmsmiler.scenes.get_viewer`) and updates in place: a new input moves the parts with
 ``set_transform`` and re-sends only the bent geometry; a new principle replaces the
-principle's group of objects under its own path.
+principle's group of objects under its own path. It draws a model run
+(:meth:`~afmsmiler.transducers.base.Transducer.operate`, an
+:class:`~afmsmiler.transducers.base.Operation`) and evaluates no physics itself: the lever's
+shape comes from the model's ``deflection_shape``, every fraction and ratio from the run's stages.
+
+The optical lever's parts (laser, beams, four-quadrant photodiode, spot and the law of
+reflection on the drawn lever) are a reusable piece, :class:`OpticalLever`, drawn under any
+``vis`` node, with :func:`quadrant_photodiode`: module (e)'s laser alignment uses them too.
 """
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import meshcat
 import meshcat.geometry as g
 import numpy as np
 
-from ..transducers.acoustic import mode_slope_factor
-from ..transducers.base import Transducer
-from ..validation import check_range
+from ..parameters import read_only
+from ..transducers.base import Operation
+from ..validation import (check_array, check_instance, check_integer, check_positive,
+                          check_range)
 from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale
 from .legends import TextPlate
 from .meshes import beam_mesh
-from .shapes import Arrow, Segment, Tube, cone, sphere
+from .shapes import Arrow, cone, Segment, sphere, Tube
 from .transforms import rotation_between, translation
 from .viewer import get_viewer
 
-__all__ = ["SCENE_UNIT", "DEFAULTS", "TransducerScene", "LeverPose", "lever_pose"]
+__all__ = ["SCENE_UNIT", "DEFAULTS", "TransducerScene", "LeverPose", "lever_pose", "OpticalLever",
+           "quadrant_photodiode"]
 
 #: Metres per scene unit (1 scene unit = 100 um), for the lever.
 SCENE_UNIT = 100e-6
 
 #: Defaults of the scene, in one place.
-DEFAULTS = dict(
+DEFAULTS = read_only(dict(
     max_tip=0.12,         # drawn tip deflection at the largest input, as a fraction of L
     n_length=41,          # stations along the drawn lever
-    n_sweep=21,           # inputs sampled to find the largest deflection and output
     meter_x=-1.4,         # position of the signal meter (scene units)
     beam_radius=0.012,    # laser beams
     detector_distance=1.5,  # optical beam deflection: tip to photodiode, scene units
     camera=(0.8, -3.6, 2.8),  # a little from above: the photodiode's face is not edge-on
-)
+))
 
 _WHITE, _GREY, _RED, _BLUE, _GREEN = 0xffffff, 0x9a9a9a, 0xe03030, 0x3060e0, 0x20a040
 _COPPER, _ORANGE, _GOLD = 0xb87333, 0xf08020, 0xd4af37
@@ -75,7 +84,7 @@ def _mat(color, opacity=1.0):
 
 @dataclass(frozen=True)
 class LeverPose:
-    """The lever as drawn (scene units), from a transducer's chain at one input.
+    """The lever as drawn (scene units), from a transducer's run at one input.
 
     Attributes
     ----------
@@ -101,47 +110,195 @@ class LeverPose:
     output_fraction: float
 
 
-def lever_pose(model: Transducer, value: float, mode: str | None = None,
-               n_length: int = DEFAULTS["n_length"]) -> LeverPose:
-    """The drawn lever for ``model`` at input ``value`` (SI): shape, exaggeration and strain.
+def lever_pose(operation: Operation, n_length: int = DEFAULTS["n_length"], *,
+               fraction: float | None = None) -> LeverPose:
+    """The drawn lever for a model run (:meth:`~afmsmiler.transducers.base.Transducer.operate`).
+
+    No model is evaluated: the deflection and output fractions come from the run's sweep, the
+    shape from the model's :meth:`~afmsmiler.transducers.base.Transducer.deflection_shape`.
 
     Parameters
     ----------
-    model : Transducer
-        The transducer model (its lever and chain).
-    value : float
-        The input in SI units.
-    mode : str, optional
-        ``"sensing"`` or ``"actuation"`` for a model that does both.
+    operation : Operation
+        The model run.
     n_length : int
-        Stations along the lever.
+        Stations along the lever, 2 to 10000.
+    fraction : float, optional
+        Draw the lever at this signed fraction of the largest deflection instead of the run's
+        (the ends of the range are -1 and 1 for a symmetric one), in [-1, 1].
 
     Returns
     -------
     LeverPose
-        The end-load shape (3 u^2 - u^3) / 2 (mode 1 for base excitation) scaled so that the
-        largest deflection over the input range is ``DEFAULTS["max_tip"]`` L.
+        The model's shape (end load, or mode 1 for base excitation) scaled so that the largest
+        deflection over the input range is ``DEFAULTS["max_tip"]`` L.
     """
-    q = model.input_quantity(mode)
-    sweep = model.chain(np.linspace(q.low, q.high, DEFAULTS["n_sweep"]), mode)
-    here = model.chain(np.array([value]), mode)
-    z_max = float(np.abs(sweep.stage("deflection").values).max()) or 1.0
-    out_max = float(np.abs(sweep.output.values).max()) or 1.0
-    fraction = float(here.stage("deflection").values[0]) / z_max
+    op = check_instance("operation", operation, Operation)
+    n_length = check_integer("n_length", n_length, 2, 10_000)
+    model = op.model
+    if fraction is None:
+        fraction = op.deflection_fraction
+    fraction = check_range("fraction", fraction, -1.0, 1.0)
     length = model.length / SCENE_UNIT
     u = np.linspace(0.0, 1.0, n_length)
-    if model.key == "piezo_acoustic":
-        shape = model.lever.mode_shape(u * model.length, 1)
-        dshape = np.gradient(shape, u)
-        curv = np.gradient(dshape, u)
-    else:
-        shape = (3 * u ** 2 - u ** 3) / 2
-        dshape = 3 * (u - u ** 2 / 2)
-        curv = 3 * (1 - u)
+    shape, dshape, curv = model.deflection_shape(u)
     amplitude = DEFAULTS["max_tip"] * length * fraction
     strain = -np.sign(fraction) * np.abs(fraction) * curv / max(np.abs(curv).max(), 1e-12)
     return LeverPose(u * length, amplitude * shape, amplitude * dshape / length, strain,
-                     fraction, float(here.output.values[0]) / out_max)
+                     fraction, op.output_fraction)
+
+
+def quadrant_photodiode(vis: meshcat.Visualizer, centre, normal, size: float = 0.5) -> np.ndarray:
+    """A four-quadrant photodiode: four thin plates in the plane through ``centre``.
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        The node to draw under (its children ``q0`` to ``q3``).
+    centre : array_like
+        Centre of the detector, scene units (3 values).
+    normal : array_like
+        Normal of its face (3 values, not zero).
+    size : float
+        Side of the square detector, scene units, > 0.
+
+    Returns
+    -------
+    ndarray
+        The 4 x 4 rotation taking +z to ``normal``.
+    """
+    centre = check_array("centre", centre, size=3)
+    n = check_array("normal", normal, size=3)
+    if not np.linalg.norm(n) > 0:
+        raise ValueError(f"normal must not be zero, got {normal!r}")
+    size = check_positive("size", size)
+    n = n / np.linalg.norm(n)
+    rot = np.eye(4)
+    rot[:3, :3] = rotation_between([0.0, 0.0, 1.0], n)
+    colors = (0x4060a0, 0x5070b0, 0x5070b0, 0x4060a0)
+    half = size / 2
+    for i, (a, b) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
+        node = vis[f"q{i}"]
+        node.set_object(g.Box([half * 0.96, half * 0.96, 0.01]), _mat(colors[i]))
+        node.set_transform(translation(centre) @ rot
+                           @ translation([a * half / 2, b * half / 2, 0.0]))
+    return rot
+
+
+class OpticalLever:
+    """The optical lever's parts, reusable by any scene: laser, beams, four-quadrant photodiode
+    and spot, with the reflection computed on the drawn lever (law of reflection).
+
+    The detector faces the beam that the undeflected lever reflects, ``detector_distance`` from
+    the reflection point ``target``. Module (b)'s transducer scene draws the optical beam
+    deflection with it; a laser-alignment scene can move ``source`` and redraw.
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        The node to draw under (children ``laser``, ``detector``, ``incident``, ``reflected``,
+        ``spot``).
+    source : array_like
+        The laser's position, scene units (3 values).
+    target : array_like
+        Where the beam meets the undeflected lever's top face, scene units (3 values).
+    detector_distance : float
+        From ``target`` to the detector's centre along the nominal reflected beam, > 0.
+    beam_radius : float
+        Radius of the drawn beams, > 0.
+
+    Attributes
+    ----------
+    detector : ndarray
+        The detector's centre.
+    normal : ndarray
+        Its face's normal (towards the lever).
+    rotation : ndarray or None
+        The detector's 4 x 4 rotation once drawn (:meth:`draw_detector`).
+    """
+
+    def __init__(self, vis: meshcat.Visualizer, *, source, target,
+                 detector_distance: float = DEFAULTS["detector_distance"],
+                 beam_radius: float = DEFAULTS["beam_radius"]):
+        self.vis = vis
+        self.source = check_array("source", source, size=3)
+        target = check_array("target", target, size=3)
+        detector_distance = check_positive("detector_distance", detector_distance)
+        beam_radius = check_positive("beam_radius", beam_radius)
+        d = target - self.source
+        if not np.linalg.norm(d) > 0:
+            raise ValueError("target must differ from source")
+        d = d / np.linalg.norm(d)
+        nominal = d - 2 * d[2] * np.array([0.0, 0.0, 1.0])
+        self.detector = target + detector_distance * nominal
+        self.normal = -nominal
+        self.rotation = None
+        vis["laser"].set_object(g.Box([0.5, 0.25, 0.25]), _mat(0x333333))
+        vis["laser"].set_transform(translation(self.source))
+        self._incident = Segment(vis["incident"], color=_RED, radius=beam_radius)
+        self._reflected = Segment(vis["reflected"], color=_RED, radius=beam_radius,
+                                    opacity=0.8)
+        sphere(vis["spot"], 1.0, color=0xff0000, opacity=0.85)
+
+    def hit(self, top, slope: float) -> np.ndarray:
+        """Where the beam reflected at ``top`` of a surface of slope dz/dx ``slope`` meets the
+        detector's plane.
+
+        Parameters
+        ----------
+        top : array_like
+            The reflection point, scene units (3 values).
+        slope : float
+            dz/dx of the reflecting surface there (drawn).
+
+        Returns
+        -------
+        ndarray
+            The point on the detector's plane, scene units.
+        """
+        top = check_array("top", top, size=3)
+        slope = check_range("slope", slope, -math.inf, math.inf)
+        d = top - self.source
+        d /= np.linalg.norm(d)
+        n = np.array([-slope, 0.0, 1.0])
+        n /= np.linalg.norm(n)
+        r = d - 2 * np.dot(d, n) * n
+        facing = np.dot(r, self.normal)
+        if not facing < -1e-9:   # the detector faces the nominal beam: -normal
+            raise ValueError(f"slope {slope:g} sends the reflected beam away from the detector")
+        return top + np.dot(self.detector - top, self.normal) / facing * r
+
+    def draw_detector(self, size: float) -> None:
+        """Draw the four-quadrant photodiode, a square of side ``size`` (scene units, > 0)."""
+        self.rotation = quadrant_photodiode(self.vis["detector"], self.detector, self.normal,
+                                            size)
+
+    def move(self, top, slope: float, spot_radius: float) -> np.ndarray:
+        """Draw the beams to and from ``top`` and the spot (radius ``spot_radius``) on the detector.
+
+        Parameters
+        ----------
+        top : array_like
+            The reflection point, scene units (3 values).
+        slope : float
+            dz/dx of the reflecting surface there.
+        spot_radius : float
+            Drawn spot radius, scene units, > 0.
+
+        Returns
+        -------
+        ndarray
+            The spot's centre.
+        """
+        spot_radius = check_positive("spot_radius", spot_radius)
+        hit = self.hit(top, slope)
+        self._incident.set(self.source, np.asarray(top, float))
+        self._reflected.set(np.asarray(top, float), hit)
+        rot = self.rotation if self.rotation is not None else np.eye(4)
+        flat = np.eye(4)
+        flat[:3, :3] = rot[:3, :3] @ np.diag([spot_radius, spot_radius, 0.02])  # a disc
+        self.vis["spot"].set_transform(translation(hit - 0.02 * self.normal) @ flat)
+        return hit
 
 
 class TransducerScene:
@@ -149,12 +306,8 @@ class TransducerScene:
 
     Parameters
     ----------
-    model : Transducer
-        The first model to draw.
-    value : float
-        Its input in SI units.
-    mode : str, optional
-        ``"sensing"`` or ``"actuation"`` for a model that does both.
+    operation : Operation
+        The first model run to draw (:meth:`~afmsmiler.transducers.base.Transducer.operate`).
     vis : meshcat.Visualizer, optional
         The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
     path : str
@@ -172,11 +325,9 @@ class TransducerScene:
         Name -> latest placement of each principle-specific moving part (scene units), for tests.
     """
 
-    def __init__(self, model: Transducer, value: float, mode: str | None = None, *,
-                 vis: meshcat.Visualizer | None = None, path: str = "afmsmiler/transducers",
-                 camera: bool = True):
-        if not isinstance(model, Transducer):
-            raise ValueError(f"model must be a Transducer, got {model!r}")
+    def __init__(self, operation: Operation, *, vis: meshcat.Visualizer | None = None,
+                 path: str = "afmsmiler/transducers", camera: bool = True):
+        check_instance("operation", operation, Operation)
         self.root = vis if vis is not None else get_viewer()
         self.path = path
         self.vis = self.root[path]
@@ -189,7 +340,7 @@ class TransducerScene:
         self._lines = {}
         self._arrows = {}
         self._draw_common()
-        self.update(model, value, mode)
+        self.update(operation)
         if camera:
             set_camera(self.root, list(DEFAULTS["camera"]))
             show_helpers(self.root, grid=True, axes=False)  # the axes would pierce the lever
@@ -209,23 +360,17 @@ class TransducerScene:
         v["meter"]["label"].set_transform(translation([mx - label.width / 2, 0.0, 1.05]))
 
     # -- the update -------------------------------------------------------------------------------
-    def update(self, model: Transducer, value: float, mode: str | None = None) -> None:
-        """Redraw for a model and input (SI), in place.
+    def update(self, operation: Operation) -> None:
+        """Redraw for a model run, in place (no model is evaluated here).
 
         Parameters
         ----------
-        model : Transducer
-            The model (a new principle replaces the principle's objects).
-        value : float
-            The input in SI units, inside its range.
-        mode : str, optional
-            ``"sensing"`` or ``"actuation"`` for a model that does both.
+        operation : Operation
+            The run (a new principle replaces the principle's objects).
         """
-        if not isinstance(model, Transducer):
-            raise ValueError(f"model must be a Transducer, got {model!r}")
-        q = model.input_quantity(mode)
-        value = check_range(q.name, value, q.low, q.high, q.unit)
-        pose = lever_pose(model, value, mode)
+        op = check_instance("operation", operation, Operation)
+        model = op.model
+        pose = lever_pose(op)
         self.pose = pose
         u = SCENE_UNIT
         h, w = model.thickness / u, model.width / u
@@ -244,8 +389,8 @@ class TransducerScene:
             self.vis["element"].delete()
             self._segments, self._arrows, self.parts, self._lines = {}, {}, {}, {}
             self.key = model.key
-            getattr(self, f"_draw_{model.key}")(model)
-        getattr(self, f"_move_{model.key}")(model, value, mode, pose)
+            getattr(self, f"_draw_{model.key}")(op)
+        getattr(self, f"_move_{model.key}")(op, pose)
         self.vis.set_transform(translation([-pose.x[-1] / 2, 0.0, 0.0]))
 
     # -- helpers ----------------------------------------------------------------------------------
@@ -299,76 +444,45 @@ class TransducerScene:
         self.parts[name] = pts
 
     def _quadrants(self, name, centre, normal, size=0.5):
-        """A four-quadrant photodiode: four thin plates in the plane through ``centre``."""
+        """A four-quadrant photodiode under ``element/name`` (see :func:`quadrant_photodiode`)."""
+        rot = quadrant_photodiode(self.vis["element"][name], centre, normal, size)
         n = np.asarray(normal, float) / np.linalg.norm(normal)
-        rot = np.eye(4)
-        rot[:3, :3] = rotation_between([0.0, 0.0, 1.0], n)
-        colors = (0x4060a0, 0x5070b0, 0x5070b0, 0x4060a0)
-        half = size / 2
-        for i, (a, b) in enumerate(((1, 1), (-1, 1), (-1, -1), (1, -1))):
-            node = self.vis["element"][name][f"q{i}"]
-            node.set_object(g.Box([half * 0.96, half * 0.96, 0.01]), _mat(colors[i]))
-            node.set_transform(translation(centre) @ rot
-                               @ translation([a * half / 2, b * half / 2, 0.0]))
         self.parts[name] = (np.asarray(centre, float), n, rot)
 
     # -- optical beam deflection ------------------------------------------------------------------
-    def _draw_optical_beam_deflection(self, model):
+    def _draw_optical_beam_deflection(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
-        self._source = np.array([L - 1.6, 0.0, 2.2])
-        self._box("laser", (0.5, 0.25, 0.25), self._source, 0x333333)
+        source = np.array([L - 1.6, 0.0, 2.2])
         tip = np.array([L, 0.0, model.thickness / SCENE_UNIT / 2])  # the undeflected top face
-        d = tip - self._source
-        d /= np.linalg.norm(d)
-        nominal = d - 2 * d[2] * np.array([0.0, 0.0, 1.0])
-        self._detector = tip + DEFAULTS["detector_distance"] * nominal
-        self.parts["detector"] = (self._detector, -nominal, None)
+        self._optical_lever = lever = OpticalLever(self.vis["element"], source=source, target=tip)
         # The drawn lever tilts ~13x more than the real one and the detector is ~20x nearer than
         # the real optical path D, so the drawn spot is scaled like its travel: at the ends of
         # the input range, travel / radius on the drawing = s / w of the model on average (the
         # drawn tip's own up-down motion, negligible in a real AFM, adds +-12 %), and the spot
         # crosses the split line as far (in spot radii) as the model's signal says.
-        q = model.input_quantity(None)
+        z = op.sweep.stage("deflection").values
+        spot = op.sweep.stage("spot_displacement").values
+        z_max = float(np.abs(z).max()) or 1.0
         travel, ratio = [], []
-        for end in (q.low, q.high):
-            pose = lever_pose(model, end)
-            hit = self._reflect(model, self._tip_top(model, pose), pose)
-            travel.append(float(np.linalg.norm(hit - self._detector)))
-            s = float(model.chain(np.array([end])).stage("spot_displacement").values[0])
-            ratio.append(travel[-1] * model.spot_radius / abs(s))
+        for i in (0, -1):
+            pose = lever_pose(op, fraction=float(z[i]) / z_max)
+            hit = lever.hit(self._tip_top(model, pose), float(pose.slope[-1]))
+            travel.append(float(np.linalg.norm(hit - lever.detector)))
+            ratio.append(travel[-1] * model.spot_radius / abs(float(spot[i])))
         self._spot_radius = float(np.mean(ratio))
-        size = 2.1 * (max(travel) + self._spot_radius)
-        self._quadrants("detector", self._detector, -nominal, size=size)
-        self._segment("incident", _RED)
-        self._segment("reflected", _RED, opacity=0.8)
-        sphere(self.vis["element"]["spot"], 1.0, color=0xff0000, opacity=0.85)
+        lever.draw_detector(2.1 * (max(travel) + self._spot_radius))
+        self.parts["detector"] = (lever.detector, lever.normal, lever.rotation)
 
-    def _reflect(self, model, top, pose):
-        """Where the beam from the laser, reflected at ``top`` of the lever drawn as ``pose``,
-        meets the detector plane (law of reflection on the drawn surface)."""
-        d = top - self._source
-        d /= np.linalg.norm(d)
-        n = np.array([-pose.slope[-1], 0.0, 1.0])
-        n /= np.linalg.norm(n)
-        r = d - 2 * np.dot(d, n) * n
-        centre, normal = self._detector, self.parts["detector"][1]
-        return top + np.dot(centre - top, normal) / np.dot(r, normal) * r
-
-    def _move_optical_beam_deflection(self, model, value, mode, pose):
-        top = self._tip_top(model, pose)
-        self._segments["incident"].set(self._source, top)
-        hit = self._reflect(model, top, pose)
-        self._segments["reflected"].set(top, hit)
-        _, normal, rot = self.parts["detector"]
-        a = self._spot_radius
-        flat = np.eye(4)
-        flat[:3, :3] = rot[:3, :3] @ np.diag([a, a, 0.02])  # a disc on the detector's plane
-        self.vis["element"]["spot"].set_transform(translation(hit - 0.02 * normal) @ flat)
+    def _move_optical_beam_deflection(self, op, pose):
+        top = self._tip_top(op.model, pose)
+        hit = self._optical_lever.move(top, float(pose.slope[-1]), self._spot_radius)
         self.parts["spot"] = hit
-        self.parts["spot_radius"] = a
+        self.parts["spot_radius"] = self._spot_radius
 
     # -- astigmatic detection ---------------------------------------------------------------------
-    def _draw_astigmatic(self, model):
+    def _draw_astigmatic(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
         self._head = np.array([L, 0.0, 1.8])
         self._box("pickup_head", (0.9, 0.7, 0.35), self._head, 0x303030)
@@ -378,18 +492,19 @@ class TransducerScene:
         self._segment("beam", _RED, opacity=0.8)
         sphere(self.vis["element"]["spot"], 1.0, color=0xff2020)
 
-    def _move_astigmatic(self, model, value, mode, pose):
-        top = self._tip_top(model, pose)
+    def _move_astigmatic(self, op, pose):
+        top = self._tip_top(op.model, pose)
         self._segments["beam"].set(top, self._head - [0, 0, 0.22])
-        wx, wy = model.spot_radii(value)
-        scale = 0.1 / np.sqrt(wx * wy)
+        ratio = float(op.point.stage("axis_ratio").values[0])   # w_y / w_x, from the model
+        sx, sy = 0.1 / math.sqrt(ratio), 0.1 * math.sqrt(ratio)  # area as at focus
         centre = self._head + [0.0, 0.0, 0.2]
         self.vis["element"]["spot"].set_transform(
-            translation(centre) @ np.diag([wx * scale, wy * scale, 0.02, 1.0]))
-        self.parts["spot"] = (float(wx * scale), float(wy * scale))
+            translation(centre) @ np.diag([sx, sy, 0.02, 1.0]))
+        self.parts["spot"] = (sx, sy)
 
     # -- interferometry ---------------------------------------------------------------------------
-    def _draw_interferometry(self, model):
+    def _draw_interferometry(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
         node = self.vis["element"]["fibre"]
         node.set_object(g.Cylinder(1.6, radius=0.12), _mat(0xe0e0c0, 0.9))
@@ -398,45 +513,52 @@ class TransducerScene:
         self._fibre_end = np.array([L, 0.0, 0.5])
         self._segment("beam", _RED, opacity=0.7)
 
-    def _move_interferometry(self, model, value, mode, pose):
+    def _move_interferometry(self, op, pose):
+        model, value = op.model, op.value
         top = self._tip_top(model, pose)
         self._segments["beam"].set(self._fibre_end, top)
         self.parts["gap"] = float(self._fibre_end[2] - top[2])
 
     # -- piezo-acoustic ---------------------------------------------------------------------------
-    def _draw_piezo_acoustic(self, model):
+    def _draw_piezo_acoustic(self, op):
+        model = op.model
         self._box("shaker", (1.0, 1.2, 0.3), [-0.5, 0.0, -0.45], _ORANGE)
 
-    def _move_piezo_acoustic(self, model, value, mode, pose):
-        # the base moves by the tip amplitude / (gamma |H|): barely at resonance
-        gain = float(np.abs(model.base_transfer(model.drive_ratio * model.resonance_frequency)))
-        offset = pose.z[-1] / max(gain, 1e-12)
+    def _move_piezo_acoustic(self, op, pose):
+        # the base moves by the tip amplitude / (gamma |H|): barely at resonance; the ratio of
+        # the two amplitudes is the model's (its chain's base and tip stages)
+        base = np.abs(op.sweep.stage("base_amplitude").values).max()
+        tip = np.abs(op.sweep.stage("deflection").values).max()
+        offset = pose.z[-1] * (base / tip if tip > 0 else 0.0)
         offset = float(np.clip(offset, -0.3, 0.3))
         self.vis["element"]["shaker"].set_transform(translation([-0.5, 0.0, -0.45 + offset]))
         self.parts["base_offset"] = offset
-        self.parts["slope_factor"] = mode_slope_factor()
 
     # -- photothermal -----------------------------------------------------------------------------
-    def _draw_photothermal(self, model):
+    def _draw_photothermal(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
         self._source = np.array([L + 1.2, 0.0, 2.0])
         self._box("laser", (0.4, 0.22, 0.22), self._source, 0x222266)
         self._segment("heating_beam", _BLUE, radius=0.02, opacity=0.8)
 
-    def _move_photothermal(self, model, value, mode, pose):
+    def _move_photothermal(self, op, pose):
+        model, value = op.model, op.value
         top = self._tip_top(model, pose)
         self._segments["heating_beam"].set(self._source, top)
         self.vis["element"]["heating_beam"].set_property("visible", bool(value > 0))
         self.parts["beam_on"] = bool(value > 0)
 
     # -- electromagnetic --------------------------------------------------------------------------
-    def _draw_electromagnetic(self, model):
+    def _draw_electromagnetic(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
         self._box("magnet_n", (0.4, 1.0, 0.6), [L + 0.6, 0.0, 0.0], _RED)
         self._box("magnet_s", (0.4, 1.0, 0.6), [L + 1.0, 0.0, 0.0], _BLUE)
         self._arrow("force")
 
-    def _move_electromagnetic(self, model, value, mode, pose):
+    def _move_electromagnetic(self, op, pose):
+        model, value = op.model, op.value
         w = model.width / SCENE_UNIT
         e = 0.4 * w
         loop = [(0.0, -e), (1.0, -e), (1.0, e), (0.0, e)]
@@ -447,13 +569,15 @@ class TransducerScene:
         self.parts["force"] = vec
 
     # -- electrostatic ----------------------------------------------------------------------------
-    def _draw_electrostatic(self, model):
+    def _draw_electrostatic(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
         le = model.electrode_length / SCENE_UNIT
         self._box("electrode", (le, 0.6, 0.05), [L - le / 2, 0.0, -0.45], _GOLD)
         self._arrow("force")
 
-    def _move_electrostatic(self, model, value, mode, pose):
+    def _move_electrostatic(self, op, pose):
+        model, value = op.model, op.value
         L = model.length / SCENE_UNIT
         le = model.electrode_length / SCENE_UNIT
         self.vis["element"]["electrode"].set_transform(translation([L - le / 2, 0.0, -0.45]))
@@ -463,7 +587,8 @@ class TransducerScene:
         self.parts["force"] = vec
 
     # -- optomechanical ---------------------------------------------------------------------------
-    def _draw_optomechanical(self, model):
+    def _draw_optomechanical(self, op):
+        model = op.model
         L = model.length / SCENE_UNIT
         w = model.width / SCENE_UNIT
         node = self.vis["element"]["disk"]
@@ -472,14 +597,17 @@ class TransducerScene:
         node.set_transform(translation([L - 0.1, w / 2 + 0.38, 0.0]) @ rot)
         self._box("waveguide", (4.0, 0.04, 0.03), [L - 0.1, w / 2 + 0.78, 0.0], 0x8080c0)
 
-    def _move_optomechanical(self, model, value, mode, pose):
+    def _move_optomechanical(self, op, pose):
+        model, value = op.model, op.value
         self.parts["detuning_fraction"] = pose.fraction
 
     # -- piezoresistive ---------------------------------------------------------------------------
-    def _draw_piezoresistive(self, model):
+    def _draw_piezoresistive(self, op):
+        model = op.model
         pass
 
-    def _move_piezoresistive(self, model, value, mode, pose):
+    def _move_piezoresistive(self, op, pose):
+        model, value = op.model, op.value
         w = model.width / SCENE_UNIT
         lr = model.resistor_length / model.length
         e = 0.3 * w
@@ -488,10 +616,12 @@ class TransducerScene:
                            x_range=(0.0, lr), color=color)
 
     # -- electrothermal ---------------------------------------------------------------------------
-    def _draw_electrothermal(self, model):
+    def _draw_electrothermal(self, op):
+        model = op.model
         pass
 
-    def _move_electrothermal(self, model, value, mode, pose):
+    def _move_electrothermal(self, op, pose):
+        model, value = op.model, op.value
         w = model.width / SCENE_UNIT
         e = 0.35 * w
         n = 6
@@ -502,10 +632,12 @@ class TransducerScene:
         self._surface_line("heater", model, pose, path, color=0xff3000)
 
     # -- piezoelectric ----------------------------------------------------------------------------
-    def _draw_piezoelectric(self, model):
+    def _draw_piezoelectric(self, op):
+        model = op.model
         self._film_material = g.MeshLambertMaterial(color=_GOLD)
 
-    def _move_piezoelectric(self, model, value, mode, pose):
+    def _move_piezoelectric(self, op, pose):
+        model, value = op.model, op.value
         u = SCENE_UNIT
         h, w, t = model.thickness / u, model.width / u, max(model.film_thickness / u, 0.01)
         le = model.electrode_length / u

@@ -29,8 +29,8 @@ from dataclasses import dataclass
 from html import escape
 
 from .acoustic import PiezoAcoustic
-from .base import (FrequencyResponse, Harmonics, Parameter, Quantity, Resolution, SignalChain,
-                   Stage, Transducer)
+from .base import (FrequencyResponse, Harmonics, Operation, Parameter, Resolution, SignalChain,
+                   Stage, Transducer, quantity)
 from .electric import Electromagnetic, Electrostatic
 from .embedded import Optomechanical, Piezoelectric, Piezoresistive
 from .optical import AstigmaticDetection, Interferometer, OpticalBeamDeflection
@@ -38,8 +38,8 @@ from .thermal import Electrothermal, Photothermal
 from ..validation import check_choice
 
 __all__ = ["PRINCIPLES", "get_principle", "TableRow", "table_one", "table_one_markdown",
-           "table_one_html", "Transducer", "Parameter", "Quantity", "SignalChain", "Stage",
-           "FrequencyResponse", "Resolution", "Harmonics", "OpticalBeamDeflection",
+           "table_one_html", "Transducer", "Parameter", "quantity", "Operation", "SignalChain",
+           "Stage", "FrequencyResponse", "Resolution", "Harmonics", "OpticalBeamDeflection",
            "AstigmaticDetection", "Interferometer", "PiezoAcoustic", "Photothermal",
            "Electromagnetic", "Electrostatic", "Optomechanical", "Piezoresistive", "Electrothermal",
            "Piezoelectric"]

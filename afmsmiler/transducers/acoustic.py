@@ -9,7 +9,8 @@ import numpy as np
 
 from ..cantilever import MAX_MODE, Cantilever, eigenvalue
 from ..validation import check_array, check_integer
-from .base import FrequencyResponse, Parameter, Quantity, Transducer, mechanical_response
+from ..brownian import mechanical_response
+from .base import FrequencyResponse, Parameter, Transducer, quantity
 
 __all__ = ["PiezoAcoustic", "participation_factor", "mode_slope_factor"]
 
@@ -97,16 +98,20 @@ class PiezoAcoustic(Transducer):
     function, signal, size = "actuation", "AC only", "bulk"
     summary = "a piezo shaker vibrates the chip: base excitation"
     PARAMETERS = (
-        Parameter("shaker_coefficient", "m/V", "nm/V", 1e9, "shaker displacement d", 0.5e-9,
-                  1e-12, 1e-6, log=True),
-        Parameter("drive_ratio", "", "", 1.0, "drive frequency / f1", 1.0, 0.01, 3.0),
+        Parameter(name="shaker_coefficient", unit="m/V", display_unit="nm/V", default=0.5e-9,
+                  low=1e-12, high=1e-6, log=True, label="shaker displacement d"),
+        Parameter(name="drive_ratio", unit="", default=1.0, low=0.01, high=3.0,
+                  label="drive frequency / f1"),
     )
     MODES = ("actuation",)
-    INPUTS = {"actuation": Parameter("drive_voltage", "V", "V", 1.0, "drive amplitude V", 0.1,
-                                     0.0, 10.0)}
-    OUTPUTS = {"actuation": Quantity("deflection", "m", "nm", 1e9, "tip amplitude")}
-    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
-    BASE = Quantity("base_amplitude", "m", "nm", 1e9, "base amplitude")
+    INPUTS = {"actuation": Parameter(name="drive_voltage", unit="V", default=0.1, low=0.0,
+                                     high=10.0, label="drive amplitude V")}
+    OUTPUTS = {"actuation": quantity(name="deflection", unit="m", display_unit="nm",
+                                     label="tip amplitude")}
+    SENSITIVITY = {"actuation": quantity(name="deflection_per_voltage", unit="m/V",
+                                         display_unit="nm/V",
+                                         label="sensitivity")}
+    BASE = quantity(name="base_amplitude", unit="m", display_unit="nm", label="base amplitude")
 
     def base_transfer(self, f):
         """Complex U / Y (tip deflection relative to the base, per base displacement) at ``f`` Hz.
@@ -119,7 +124,7 @@ class PiezoAcoustic(Transducer):
         f = check_array("f", f, "Hz", low=0.0)
         r = f / self.resonance_frequency
         return participation_factor() * r * r * mechanical_response(
-            f, self.resonance_frequency, self.quality_factor)
+            f, resonance_frequency=self.resonance_frequency, quality_factor=self.quality_factor)
 
     @property
     def _gain(self) -> float:
@@ -129,9 +134,29 @@ class PiezoAcoustic(Transducer):
         y = self.shaker_coefficient * v
         u = self._gain * y
         return [(self.BASE, y),
-                (Quantity("slope", "rad", "mrad", 1e3, "free-end slope amplitude"),
+                (quantity(name="slope", unit="rad", display_unit="mrad",
+                          label="free-end slope amplitude"),
                  mode_slope_factor() * u / self.length),
                 (self.OUTPUTS["actuation"], u)]
+
+    def deflection_shape(self, u) -> tuple:
+        """The first flexural mode shape (base excitation drives mode 1), 1 at the tip.
+
+        Parameters
+        ----------
+        u : array_like
+            Positions along the lever as fractions of L, in [0, 1].
+
+        Returns
+        -------
+        tuple of ndarray
+            (shape, d shape / du, d^2 shape / du^2), the derivatives by finite differences.
+        """
+        u = check_array("u", u, low=0.0, high=1.0)
+        shape = self.lever.mode_shape(u * self.length, 1)
+        dshape = np.gradient(shape, u) if u.size > 1 else np.zeros_like(u)
+        curv = np.gradient(dshape, u) if u.size > 1 else np.zeros_like(u)
+        return shape, dshape, curv
 
     def _sensitivity(self, mode, at):
         return self.shaker_coefficient * self._gain
@@ -145,10 +170,11 @@ class PiezoAcoustic(Transducer):
         f = self.drive_ratio * self.resonance_frequency
         f2 = self.lever.resonance_frequency(2)
         r2 = f / f2
-        second = participation_factor(2) * r2 * r2 * mechanical_response(f, f2, self.quality_factor)
+        second = participation_factor(2) * r2 * r2 * mechanical_response(
+            f, resonance_frequency=f2, quality_factor=self.quality_factor)
         return float(abs(second) / abs(self.base_transfer(f)))
 
-    def _validity(self, value, mode):
+    def _validity(self, value, mode, point):
         share = self.mode_2_share()
         if share > MAX_MODE_2_SHARE:
             yield (f"at {self.drive_ratio:.3g} f1 the second mode adds {100 * share:.0f} % to the "

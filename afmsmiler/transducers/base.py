@@ -15,19 +15,15 @@ oscillator of stiffness k (the end-load spring constant), resonance f1 and quali
 
     H_mech(f) = 1 / (1 - (f/f1)^2 + j f / (Q f1))          (= 1 at DC, ~ -j Q at f1)
 
-(e.g. Sarid, *Scanning Force Microscopy*, OUP 1994, ch. 1; Garcia, *Amplitude Modulation AFM*,
-Wiley 2010, ch. 2). Its thermal (Brownian) motion has the one-sided power spectral density
-S_z(f) = S_0 |H_mech(f)|^2 with S_0 = 4 k_B T / (k omega1 Q) (fluctuation-dissipation theorem
-applied to that oscillator; Butt and Jaschke, Nanotechnology 6, 1 (1995)), which integrates to
-k_B T / k over all frequencies (equipartition). The deflection noise in a band [f_a, f_b] is
-sqrt(S_0 f1 (F(f_b / f1) - F(f_a / f1))) with the closed-form antiderivative of |H_mech|^2 in
-r = f / f1, b = sqrt(4 - 1/Q^2) (partial fractions of 1 / (r^2 - b r + 1)(r^2 + b r + 1))::
-
-    F(r) = r / (2 (1 + r^2)) atanh(x) / x + (Q / 2) atan2(r, Q (1 - r^2)),   x = b r / (1 + r^2)
-
-(F(inf) = pi Q / 2); well below resonance it is sqrt(S_0 B), the white floor under every
-detector's resolution. The first mode alone holds 97 % of the end-load lever's k_B T / k
-(Butt and Jaschke); the model gives the whole of it to the first mode.
+(:func:`afmsmiler.brownian.mechanical_response`; Sarid, *Scanning Force Microscopy*, OUP 1994,
+ch. 1; Garcia, *Amplitude Modulation AFM*, Wiley 2010, ch. 2). Its thermal (Brownian) motion is
+the lever's own, from module (a)'s :mod:`afmsmiler.brownian`: the first mode's one-sided power
+spectral density S_z(f) = S_0 |H_mech(f)|^2 with S_0 = 0.971 x 4 k_B T / (k omega1 Q)
+(fluctuation-dissipation theorem), which integrates to 0.971 k_B T / k: for a point-loaded
+rectangular lever the first mode carries the share 12 / (b_1 L)^4 = 0.971 of k_B T / k, the
+higher modes the rest (Butt and Jaschke, Nanotechnology 6, 1 (1995)). The deflection noise in a
+band is that spectrum integrated in closed form; well below resonance it is sqrt(S_0 B), the
+white floor under every detector's resolution.
 
 Conventions
 -----------
@@ -45,13 +41,16 @@ from typing import ClassVar
 import numpy as np
 import scipy.constants
 
+from ..brownian import (QUALITY_FACTOR, TEMPERATURE, mechanical_response, thermal_deflection_noise,
+                        thermal_noise_density)
 from ..cantilever import Cantilever
-from ..validation import check_array, check_choice, check_positive, check_range
+from ..parameters import Parameter
+from ..validation import (check_array, check_choice, check_integer, check_positive,
+                          check_range)
 
-__all__ = ["Quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
-           "Harmonics", "Transducer", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",
-           "LEVER_PARAMETERS",
-           "mechanical_response", "thermal_deflection_noise"]
+__all__ = ["quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
+           "Harmonics", "Transducer", "Operation", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",
+           "LEVER_PARAMETERS", "SWEEP_POINTS"]
 
 #: Boltzmann constant k_B in J/K, elementary charge q in C, vacuum permittivity epsilon_0 in
 #: F/m: scipy's CODATA values (2022 in scipy >= 1.15), kept under these names for the models.
@@ -62,89 +61,46 @@ EPSILON_0 = scipy.constants.epsilon_0
 FUNCTIONS = ("sensing", "actuation", "both")
 SIGNALS = ("DC&AC", "AC only", "AC mostly")
 SIZES = ("bulk", "embedded")
+#: Inputs sampled over the input's range by :meth:`Transducer.operate` (plots, 3D view).
+SWEEP_POINTS = 201
 
 
-@dataclass(frozen=True)
-class Quantity:
-    """A physical quantity: its name, SI unit, and how widgets and plots show it.
+def quantity(*, name: str, unit: str, display_unit: str | None = None,
+             label: str = "") -> Parameter:
+    """A quantity of a signal chain (a stage, an output, a sensitivity): a :class:`Parameter`
+    without bounds, so that every quantity is described by the one class of
+    :mod:`afmsmiler.parameters` (display scale from :data:`~afmsmiler.parameters.UNITS`).
 
     Parameters
     ----------
     name : str
-        Identifier (also the keyword argument of a parameter).
+        Identifier (one SI unit per name across the package).
     unit : str
-        SI unit, e.g. ``"m"``, ``"V"``, ``"1/Pa"`` (``""`` if dimensionless).
-    display_unit : str
-        Practical unit for widgets and plots, e.g. ``"nm"``.
-    scale : float
-        Display value = SI value * ``scale`` (1e9 for m -> nm).
+        SI unit (``""`` if dimensionless).
+    display_unit : str, optional
+        Practical unit for plots and readouts (a key of ``UNITS``); default: ``unit``.
     label : str
         Human-readable description, e.g. ``"tip deflection"``.
+
+    Returns
+    -------
+    Parameter
+        Default 0, valid range unbounded.
     """
-
-    name: str
-    unit: str
-    display_unit: str = ""
-    scale: float = 1.0
-    label: str = ""
-
-    def display(self, si_value):
-        """The value ``si_value`` (SI, scalar or array) in the display unit."""
-        if np.ndim(si_value):
-            return np.asarray(si_value) * self.scale
-        return float(si_value) * self.scale
-
-    def to_si(self, display_value):
-        """``display_value`` (in the display unit) back in SI."""
-        return display_value / self.scale
-
-    @property
-    def title(self) -> str:
-        """``"label [display unit]"`` for an axis or a slider."""
-        text = self.label or self.name.replace("_", " ")
-        return f"{text} [{self.display_unit}]" if self.display_unit else text
+    return Parameter(name=name, unit=unit, display_unit=display_unit, default=0.0, label=label)
 
 
-@dataclass(frozen=True)
-class Parameter(Quantity):
-    """A model parameter: a :class:`Quantity` with a default and a valid range (SI).
-
-    Parameters
-    ----------
-    name, unit, display_unit, scale, label
-        As for :class:`Quantity`.
-    default : float
-        Default value in SI units.
-    low, high : float
-        Valid range (inclusive) in SI units.
-    log : bool
-        Whether a widget should use a logarithmic slider (the range spans decades; needs low > 0).
-    """
-
-    default: float = 0.0
-    low: float = -math.inf
-    high: float = math.inf
-    log: bool = False
-
-    def __post_init__(self):
-        if not (self.low <= self.default <= self.high):
-            raise ValueError(f"parameter {self.name}: default {self.default} outside "
-                             f"[{self.low}, {self.high}]")
-        if self.log and not self.low > 0:
-            raise ValueError(f"parameter {self.name}: a log slider needs low > 0")
-
-    def check(self, value) -> float:
-        """Return ``value`` as float; raise ``ValueError`` naming the parameter unless in range."""
-        return check_range(self.name, value, self.low, self.high, self.unit)
-
-
-#: Parameters shared by every model: the lever's geometry (silicon), its Q and its temperature.
+#: Parameters shared by every model: the lever's geometry (silicon), its Q and its temperature
+#: (the last two those of module (a)'s Brownian motion, :mod:`afmsmiler.brownian`).
 LEVER_PARAMETERS: tuple[Parameter, ...] = (
-    Parameter("length", "m", "um", 1e6, "lever length", 225e-6, 20e-6, 1e-3),
-    Parameter("width", "m", "um", 1e6, "lever width", 28e-6, 5e-6, 100e-6),
-    Parameter("thickness", "m", "um", 1e6, "lever thickness", 3e-6, 0.2e-6, 10e-6),
-    Parameter("quality_factor", "", "", 1.0, "quality factor Q", 150.0, 0.5, 1e5, log=True),
-    Parameter("temperature", "K", "K", 1.0, "temperature", 295.0, 1.0, 600.0),
+    Parameter(name="length", unit="m", display_unit="um", default=225e-6, low=20e-6, high=1e-3,
+              label="lever length"),
+    Parameter(name="width", unit="m", display_unit="um", default=28e-6, low=5e-6, high=100e-6,
+              label="lever width"),
+    Parameter(name="thickness", unit="m", display_unit="um", default=3e-6, low=0.2e-6,
+              high=10e-6, label="lever thickness"),
+    QUALITY_FACTOR,
+    TEMPERATURE,
 )
 
 
@@ -154,13 +110,13 @@ class Stage:
 
     Parameters
     ----------
-    quantity : Quantity
+    quantity : Parameter
         What the stage is (name, SI unit, display).
     values : ndarray
         Its values (SI) along the input sweep.
     """
 
-    quantity: Quantity
+    quantity: Parameter
     values: np.ndarray
 
 
@@ -209,7 +165,7 @@ class FrequencyResponse:
         Frequencies in Hz.
     response : ndarray of complex
         Output per input (``unit``) at each frequency.
-    input, output : Quantity
+    input, output : Parameter
         What goes in (a tip force for sensors, the drive for actuators) and what comes out.
     unit : str
         SI unit of ``response`` (``output.unit`` per ``input.unit``).
@@ -217,8 +173,8 @@ class FrequencyResponse:
 
     frequency: np.ndarray
     response: np.ndarray
-    input: Quantity
-    output: Quantity
+    input: Parameter
+    output: Parameter
     unit: str
 
     @property
@@ -259,14 +215,14 @@ class Resolution:
     ----------
     bandwidth : float
         Measurement bandwidth B in Hz.
-    quantity : Quantity
+    quantity : Parameter
         The input quantity the noise is referred to (tip deflection for sensors).
     contributions : dict
         Name -> rms noise in ``quantity.unit`` (each source alone).
     """
 
     bandwidth: float
-    quantity: Quantity
+    quantity: Parameter
     contributions: dict = field(default_factory=dict)
 
     @property
@@ -280,88 +236,57 @@ class Resolution:
         return max(self.contributions, key=self.contributions.get)
 
 
-def mechanical_response(f, resonance_frequency: float, quality_factor: float) -> np.ndarray:
-    """First-mode tip response to a tip force, normalised to 1 at DC (a damped oscillator).
+@dataclass(frozen=True)
+class Operation:
+    """A model run at one input: what a panel shows after one slider move (SI units).
 
-    Parameters
+    Made by :meth:`Transducer.operate`, which evaluates the signal chain once (over the input's
+    range and at the input together); the figure and the 3D view draw from it and never run the
+    model again.
+
+    Attributes
     ----------
-    f : array_like
-        Frequencies in Hz (>= 0).
-    resonance_frequency : float
-        f1 in Hz.
-    quality_factor : float
-        Q (> 0).
-
-    Returns
-    -------
-    ndarray of complex
-        1 / (1 - (f/f1)^2 + j f / (Q f1)).
-
-    Raises
-    ------
-    ValueError
-        If a frequency is negative or not finite, or f1 or Q is not finite and positive.
+    model : Transducer
+        The model that ran.
+    mode : str
+        ``"sensing"`` or ``"actuation"``.
+    value : float
+        The input (SI).
+    sweep : SignalChain
+        The chain over the input's valid range (``n_points`` inputs).
+    point : SignalChain
+        The chain at ``value`` (each stage an array of one value).
+    sensitivity : float
+        d(output)/d(input) at ``value`` (SI, ``model.sensitivity_quantity(mode).unit``).
+    response : FrequencyResponse or None
+        The frequency response at the frequencies asked for.
+    resolution : Resolution or None
+        The noise-limited resolution in the bandwidth asked for.
+    validity : tuple of str
+        Where the model's assumptions fail at ``value`` (see :meth:`Transducer.validity`).
     """
-    f = check_array("f", f, "Hz", low=0.0)
-    resonance_frequency = check_positive("resonance_frequency", resonance_frequency, "Hz")
-    quality_factor = check_positive("quality_factor", quality_factor)
-    r = f / resonance_frequency
-    return 1.0 / (1.0 - r * r + 1j * r / quality_factor)
 
+    model: "Transducer"
+    mode: str
+    value: float
+    sweep: SignalChain
+    point: SignalChain
+    sensitivity: float
+    response: FrequencyResponse | None = None
+    resolution: Resolution | None = None
+    validity: tuple = ()
 
-def _response_power_integral(r, quality_factor: float):
-    """int_0^r |1 / (1 - u^2 + j u / Q)|^2 du (see the module docstring), for Q >= 1/2, r >= 0."""
-    r = np.asarray(r, dtype=float)
-    b = math.sqrt(4.0 - 1.0 / quality_factor ** 2)
-    x = b * r / (1.0 + r * r)
-    safe = np.where(x > 1e-6, x, 0.5)   # a dummy where the series is used
-    ratio = np.where(x > 1e-6, np.arctanh(safe) / safe, 1.0 + x * x / 3.0)
-    return (r / (2.0 * (1.0 + r * r)) * ratio
-            + quality_factor / 2.0 * np.arctan2(r, quality_factor * (1.0 - r * r)))
+    @property
+    def deflection_fraction(self) -> float:
+        """Tip deflection at ``value`` over the largest |deflection| of the sweep, in [-1, 1]."""
+        z_max = float(np.abs(self.sweep.stage("deflection").values).max()) or 1.0
+        return float(self.point.stage("deflection").values[0]) / z_max
 
-
-def thermal_deflection_noise(lever: Cantilever, quality_factor: float, temperature: float,
-                             bandwidth: float, low_frequency: float | None = None) -> float:
-    """Rms Brownian tip deflection in m within a bandwidth.
-
-    Without ``low_frequency``: sqrt(4 k_B T B / (k omega1 Q)), the white floor S_0 B of the
-    oscillator's thermal spectrum well below resonance (what a drive at any frequency competes
-    with, since drive and Brownian force pass the same |H_mech|). With it: the spectrum
-    S_0 |H_mech(f)|^2 integrated over [low_frequency, low_frequency + B] in closed form (see the
-    module docstring), the tip's actual rms motion in that band, resonance included.
-
-    Parameters
-    ----------
-    lever : Cantilever
-        The lever (its k and f1).
-    quality_factor : float
-        Q of the first mode, >= 1/2 for the band integral (> 0 for the white floor).
-    temperature : float
-        T in K.
-    bandwidth : float
-        B in Hz.
-    low_frequency : float, optional
-        Lower edge of the band in Hz, >= 0.
-
-    Raises
-    ------
-    ValueError
-        If ``lever`` is not a Cantilever or a number is not finite and in its range.
-    """
-    if not isinstance(lever, Cantilever):
-        raise ValueError(f"lever must be a Cantilever, got {lever!r}")
-    quality_factor = check_positive("quality_factor", quality_factor)
-    temperature = check_positive("temperature", temperature, "K")
-    bandwidth = check_positive("bandwidth", bandwidth, "Hz")
-    f1 = lever.resonance_frequency(1)
-    s0 = 4 * BOLTZMANN * temperature / (lever.spring_constant * 2 * math.pi * f1 * quality_factor)
-    if low_frequency is None:
-        return math.sqrt(s0 * bandwidth)
-    low_frequency = check_range("low_frequency", low_frequency, 0.0, math.inf, "Hz")
-    quality_factor = check_range("quality_factor", quality_factor, 0.5, math.inf)
-    edges = _response_power_integral([low_frequency / f1, (low_frequency + bandwidth) / f1],
-                                     quality_factor)
-    return math.sqrt(s0 * f1 * max(float(edges[1] - edges[0]), 0.0))
+    @property
+    def output_fraction(self) -> float:
+        """Output at ``value`` over the largest |output| of the sweep, in [-1, 1]."""
+        out_max = float(np.abs(self.sweep.output.values).max()) or 1.0
+        return float(self.point.output.values[0]) / out_max
 
 
 class Transducer:
@@ -370,7 +295,7 @@ class Transducer:
     Subclasses set the class attributes ``key``, ``name``, ``function``, ``signal``, ``size``,
     ``PARAMETERS`` (their own :class:`Parameter` entries; the lever's are added), ``MODES``,
     ``INPUTS`` and ``OUTPUTS`` (mode -> :class:`Parameter` of the chain's input, mode ->
-    :class:`Quantity` of its output), ``SENSITIVITY`` (mode -> :class:`Quantity` of the
+    :func:`quantity` of its output), ``SENSITIVITY`` (mode -> :func:`quantity` of the
     sensitivity's unit), optionally ``BIASED`` and ``BOUNDED_BY``, and implement ``_stages``
     and ``_sensitivity`` (and, where they apply, ``_dynamics``, ``_detector_noise`` and
     ``_validity``).
@@ -491,11 +416,11 @@ class Transducer:
         """The input of the chain of ``mode`` (a :class:`Parameter`: its range bounds the sweep)."""
         return self.INPUTS[self._mode(mode)]
 
-    def output_quantity(self, mode=None) -> Quantity:
+    def output_quantity(self, mode=None) -> Parameter:
         """The output of the chain of ``mode`` (default: the first mode)."""
         return self.OUTPUTS[self._mode(mode)]
 
-    def sensitivity_quantity(self, mode=None) -> Quantity:
+    def sensitivity_quantity(self, mode=None) -> Parameter:
         """Unit and display of :meth:`sensitivity` for ``mode``."""
         return self.SENSITIVITY[self._mode(mode)]
 
@@ -521,22 +446,44 @@ class Transducer:
             Lower edge of the band in Hz: the spectrum, resonance included, is integrated over
             [low_frequency, low_frequency + B]; without it, the white floor below resonance.
         """
-        return thermal_deflection_noise(self.lever, self.quality_factor, self.temperature,
-                                        bandwidth, low_frequency)
+        return thermal_deflection_noise(self.lever, quality_factor=self.quality_factor,
+                                        temperature=self.temperature, bandwidth=bandwidth,
+                                        low_frequency=low_frequency, mode=1)
 
     def thermal_noise_density(self, f) -> np.ndarray:
         """One-sided power spectral density of the Brownian tip deflection in m^2/Hz.
 
-        S_z(f) = 4 k_B T / (k omega1 Q) |H_mech(f)|^2 (see the module docstring).
+        S_z(f) = 0.971 x 4 k_B T / (k omega1 Q) |H_mech(f)|^2, the first mode's share (see
+        :func:`afmsmiler.brownian.thermal_noise_density`).
 
         Parameters
         ----------
         f : array_like
             Frequencies in Hz, >= 0.
         """
-        s0 = self.thermal_noise(1.0) ** 2
-        response = mechanical_response(f, self.resonance_frequency, self.quality_factor)
-        return s0 * np.abs(response) ** 2
+        return thermal_noise_density(self.lever, f, quality_factor=self.quality_factor,
+                                     temperature=self.temperature, mode=1)
+
+    # -- the lever's shape --------------------------------------------------------------------
+    def deflection_shape(self, u) -> tuple:
+        """The drawn lever's shape along it, normalised to 1 at the tip, and its derivatives.
+
+        A static chain bends the lever like an end load, (3 u^2 - u^3) / 2 (module (a)); a model
+        that drives the first mode at resonance (the piezo shaker) overrides this with the mode
+        shape. The 3D view draws whatever the model says here.
+
+        Parameters
+        ----------
+        u : array_like
+            Positions along the lever as fractions of L, in [0, 1].
+
+        Returns
+        -------
+        tuple of ndarray
+            (shape, d shape / du, d^2 shape / du^2).
+        """
+        u = check_array("u", u, low=0.0, high=1.0)
+        return (3 * u ** 2 - u ** 3) / 2, 3 * (u - u ** 2 / 2), 3 * (1 - u)
 
     # -- the public interface -----------------------------------------------------------------
     def chain(self, value, mode=None) -> SignalChain:
@@ -566,6 +513,54 @@ class Transducer:
         stages = [Stage(q, x)] + [Stage(sq, np.asarray(v, dtype=float))
                                   for sq, v in self._stages(x, mode)]
         return SignalChain(mode, tuple(stages))
+
+    def operate(self, value: float, mode=None, *, frequencies=None, bandwidth: float | None = None,
+                n_points: int = SWEEP_POINTS) -> Operation:
+        """Everything a panel shows at input ``value``, the signal chain evaluated once.
+
+        The chain runs once over ``n_points`` inputs spanning the input's valid range with
+        ``value`` appended; the sweep, the point, the sensitivity at ``value``, and (when asked)
+        the frequency response and the resolution come with it.
+
+        Parameters
+        ----------
+        value : float
+            The input in SI units, inside the input's valid range.
+        mode : str, optional
+            As for :meth:`chain`.
+        frequencies : array_like, optional
+            Frequencies in Hz (>= 0) of the frequency response; none when omitted.
+        bandwidth : float, optional
+            Measurement bandwidth in Hz of the resolution; none when omitted.
+        n_points : int
+            Inputs of the sweep, 2 to 100000.
+
+        Returns
+        -------
+        Operation
+
+        Raises
+        ------
+        ValueError
+            If ``value`` is outside the input's range, ``mode`` is not offered, or a size or
+            bandwidth is invalid.
+        """
+        mode = self._mode(mode)
+        q = self.INPUTS[mode]
+        value = q.check(value)
+        n_points = check_integer("n_points", n_points, 2, 100_000)
+        if frequencies is not None:
+            frequencies = check_array("frequencies", frequencies, "Hz", low=0.0, ndim=1)
+        xs = np.append(np.linspace(q.low, q.high, n_points), value)
+        both = self.chain(xs, mode)
+        sweep = SignalChain(mode, tuple(Stage(st.quantity, st.values[:-1]) for st in both.stages))
+        point = SignalChain(mode, tuple(Stage(st.quantity, st.values[-1:]) for st in both.stages))
+        return Operation(
+            model=self, mode=mode, value=value, sweep=sweep, point=point,
+            sensitivity=self.sensitivity(mode, at=value),
+            response=None if frequencies is None else self.frequency_response(frequencies, mode),
+            resolution=None if bandwidth is None else self.resolution(bandwidth, mode=mode),
+            validity=tuple(self._validity(value, mode, point)))
 
     def respond(self, value, mode=None):
         """The output for input ``value`` in the chain of ``mode`` (last stage of :meth:`chain`)."""
@@ -622,18 +617,18 @@ class Transducer:
         """
         mode = self._mode(mode)
         f = check_array("f", f, "Hz", low=0.0)
-        mech = mechanical_response(f, self.resonance_frequency, self.quality_factor)
+        mech = mechanical_response(f, resonance_frequency=self.resonance_frequency,
+                                   quality_factor=self.quality_factor)
         out = self.OUTPUTS[mode]
         at = self.operating_point(mode)
         if mode == "sensing":
             gain = self._sensitivity(mode, at) / self.spring_constant
-            inp = Quantity("force", "N", "nN", 1e9, "tip force")
+            inp = TIP_FORCE
         else:
             gain = self._sensitivity(mode, at)
             q = self.INPUTS[mode]
             # around a bias, the response is to a small AC drive added to it
-            inp = (Quantity(q.name, q.unit, q.display_unit, q.scale,
-                            f"small AC drive on {q.label}") if self.BIASED else q)
+            inp = q.with_(label=f"small AC drive on {q.label}") if self.BIASED else q
         response = gain * mech * self._dynamics(f, mode)
         return FrequencyResponse(f, response, inp, out, f"{out.unit or '1'}/{inp.unit}")
 
@@ -691,10 +686,12 @@ class Transducer:
             As for :meth:`chain`.
         """
         mode = self._mode(mode)
-        return tuple(self._validity(self.INPUTS[mode].check(value), mode))
+        value = self.INPUTS[mode].check(value)
+        return tuple(self._validity(value, mode, self.chain(np.array([value]), mode)))
 
     # -- to implement -----------------------------------------------------------------------
-    def _validity(self, value: float, mode: str):
+    def _validity(self, value: float, mode: str, point: SignalChain):
+        """Messages where the model fails at ``value``; ``point`` is the chain there."""
         return ()
 
     def _stages(self, x: np.ndarray, mode: str):  # pragma: no cover - abstract
@@ -724,9 +721,10 @@ class Transducer:
         return [(SLOPE, 1.5 * z / self.lever.length)]
 
 
-DEFLECTION = Quantity("deflection", "m", "nm", 1e9, "tip deflection")
-SLOPE = Quantity("slope", "rad", "mrad", 1e3, "free-end slope")
-FORCE = Quantity("force", "N", "nN", 1e9, "force on the lever")
-TIP_DEFLECTION_INPUT = Parameter("deflection", "m", "nm", 1e9, "tip deflection", 20e-9,
-                                 -2e-6, 2e-6)
+DEFLECTION = quantity(name="deflection", unit="m", display_unit="nm", label="tip deflection")
+SLOPE = quantity(name="slope", unit="rad", display_unit="mrad", label="free-end slope")
+FORCE = quantity(name="force", unit="N", display_unit="nN", label="force on the lever")
+TIP_FORCE = quantity(name="force", unit="N", display_unit="nN", label="tip force")
+TIP_DEFLECTION_INPUT = Parameter(name="deflection", unit="m", display_unit="nm", default=20e-9,
+                                 low=-2e-6, high=2e-6, label="tip deflection")
 

@@ -3,9 +3,11 @@
 from __future__ import annotations
 
 import math
+
+from ..brownian import mechanical_response
 from ..validation import check_array, check_nonnegative, check_range
-from .base import (DEFLECTION, EPSILON_0, FORCE, SLOPE, Harmonics, Parameter, Quantity,
-                   Transducer, mechanical_response)
+from .base import (DEFLECTION, EPSILON_0, FORCE, SLOPE, Harmonics, Parameter, Transducer,
+                   quantity)
 
 __all__ = ["Electrostatic", "Electromagnetic"]
 
@@ -41,15 +43,20 @@ class Electrostatic(Transducer):
     BIASED = True
     BOUNDED_BY = {"electrode_length": ("length", 1.0)}
     PARAMETERS = (
-        Parameter("gap", "m", "um", 1e6, "electrode gap g", 5e-6, 0.2e-6, 200e-6, log=True),
-        Parameter("electrode_length", "m", "um", 1e6, "electrode length l_e", 50e-6, 1e-6, 1e-3),
-        Parameter("ac_voltage", "V", "V", 1.0, "AC amplitude V_ac", 1.0, 0.0, 50.0),
+        Parameter(name="gap", unit="m", display_unit="um", default=5e-6, low=0.2e-6, high=200e-6,
+                  log=True, label="electrode gap g"),
+        Parameter(name="electrode_length", unit="m", display_unit="um", default=50e-6, low=1e-6,
+                  high=1e-3, label="electrode length l_e"),
+        Parameter(name="ac_voltage", unit="V", default=1.0, low=0.0, high=50.0,
+                  label="AC amplitude V_ac"),
     )
     MODES = ("actuation",)
-    INPUTS = {"actuation": Parameter("dc_voltage", "V", "V", 1.0, "DC voltage V_dc", 5.0,
-                                     -50.0, 50.0)}
+    INPUTS = {"actuation": Parameter(name="dc_voltage", unit="V", default=5.0, low=-50.0,
+                                     high=50.0, label="DC voltage V_dc")}
     OUTPUTS = {"actuation": DEFLECTION}
-    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
+    SENSITIVITY = {"actuation": quantity(name="deflection_per_voltage", unit="m/V",
+                                         display_unit="nm/V",
+                                         label="sensitivity")}
 
     @property
     def capacitance_gradient(self) -> float:
@@ -76,7 +83,7 @@ class Electrostatic(Transducer):
         area = self.width * self.electrode_length
         return math.sqrt(8 * k_e * self.gap ** 3 / (27 * EPSILON_0 * area))
 
-    def _validity(self, value, mode):
+    def _validity(self, value, mode, point):
         peak = abs(value) + self.ac_voltage
         if peak >= self.pull_in_voltage:
             yield (f"|V_dc| + V_ac = {peak:.3g} V is past pull-in ({self.pull_in_voltage:.3g} V): "
@@ -104,8 +111,9 @@ class Electrostatic(Transducer):
         c = self.compliance[0]
 
         def h(fr):
-            return complex(c * mechanical_response(fr, self.resonance_frequency,
-                                                   self.quality_factor))
+            return complex(c * mechanical_response(
+                fr, resonance_frequency=self.resonance_frequency,
+                quality_factor=self.quality_factor))
         return Harmonics(f.dc * h(0.0), f.first * h(frequency), f.second * h(2 * frequency))
 
     def _stages(self, v, mode):
@@ -139,14 +147,18 @@ class Electromagnetic(Transducer):
     function, signal, size = "actuation", "DC&AC", "bulk"
     summary = "Lorentz force B I l on a current loop at the tip (or a magnetic moment)"
     PARAMETERS = (
-        Parameter("field", "T", "mT", 1e3, "magnetic field B", 0.1, 1e-4, 2.0, log=True),
-        Parameter("conductor_length", "m", "um", 1e6, "crossbar length l", 25e-6, 1e-6, 200e-6),
+        Parameter(name="field", unit="T", display_unit="mT", default=0.1, low=1e-4, high=2.0,
+                  log=True, label="magnetic field B"),
+        Parameter(name="conductor_length", unit="m", display_unit="um", default=25e-6, low=1e-6,
+                  high=200e-6, label="crossbar length l"),
     )
     MODES = ("actuation",)
-    INPUTS = {"actuation": Parameter("current", "A", "mA", 1e3, "loop current I", 5e-3,
-                                     -50e-3, 50e-3)}
+    INPUTS = {"actuation": Parameter(name="current", unit="A", display_unit="mA", default=5e-3,
+                                     low=-50e-3, high=50e-3, label="loop current I")}
     OUTPUTS = {"actuation": DEFLECTION}
-    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/A", "nm/mA", 1e6, "sensitivity")}
+    SENSITIVITY = {"actuation": quantity(name="deflection_per_current", unit="m/A",
+                                         display_unit="nm/mA",
+                                         label="sensitivity")}
 
     def lorentz_force(self, current):
         """F = B I l in N for a loop current ``current`` (A).

@@ -12,7 +12,7 @@ import numpy as np
 
 from ..validation import check_array, check_finite
 from .base import (BOLTZMANN, DEFLECTION, ELEMENTARY_CHARGE, EPSILON_0, SLOPE,
-                   TIP_DEFLECTION_INPUT, Parameter, Quantity, Transducer)
+                   TIP_DEFLECTION_INPUT, Parameter, Transducer, quantity)
 
 __all__ = ["Piezoresistive", "Piezoelectric", "Optomechanical", "quarter_bridge_output",
            "SPEED_OF_LIGHT"]
@@ -72,23 +72,30 @@ class Piezoresistive(Transducer):
     summary = "a piezoresistor at the clamp in a Wheatstone bridge"
     BOUNDED_BY = {"resistor_length": ("length", 1.0), "junction_depth": ("thickness", 0.5)}
     PARAMETERS = (
-        Parameter("bias_voltage", "V", "V", 1.0, "bridge bias V_b", 2.0, 0.01, 10.0),
-        Parameter("resistance", "ohm", "kohm", 1e-3, "resistance R", 5e3, 100.0, 1e6, log=True),
-        Parameter("piezo_coefficient", "1/Pa", "1e-11/Pa", 1e11, "coefficient pi_l",
-                  71.8e-11, -150e-11, 150e-11),
-        Parameter("resistor_length", "m", "um", 1e6, "resistor leg length l_r", 50e-6, 1e-6,
-                  1e-3),
-        Parameter("junction_depth", "m", "um", 1e6, "junction depth d_j", 0.3e-6, 0.01e-6,
-                  5e-6),
-        Parameter("hooge", "", "", 1.0, "Hooge parameter alpha_H", 1e-5, 1e-8, 1e-2, log=True),
-        Parameter("carrier_density", "1/m^3", "1/cm^3", 1e-6, "carrier density p", 1e25, 1e22,
-                  1e27, log=True),
+        Parameter(name="bias_voltage", unit="V", default=2.0, low=0.01, high=10.0,
+                  label="bridge bias V_b"),
+        Parameter(name="resistance", unit="ohm", display_unit="kohm", default=5e3, low=100.0,
+                  high=1e6, log=True, label="resistance R"),
+        Parameter(name="piezo_coefficient", unit="1/Pa", display_unit="1e-11/Pa",
+                  default=71.8e-11, low=-150e-11, high=150e-11, label="coefficient pi_l"),
+        Parameter(name="resistor_length", unit="m", display_unit="um", default=50e-6, low=1e-6,
+                  high=1e-3, label="resistor leg length l_r"),
+        Parameter(name="junction_depth", unit="m", display_unit="um", default=0.3e-6, low=0.01e-6,
+                  high=5e-6, label="junction depth d_j"),
+        Parameter(name="hooge", unit="", default=1e-5, low=1e-8, high=1e-2, log=True,
+                  label="Hooge parameter alpha_H"),
+        Parameter(name="carrier_density", unit="1/m^3", display_unit="1/cm^3", default=1e25,
+                  low=1e22, high=1e27, log=True, label="carrier density p"),
     )
     INPUTS = {"sensing": TIP_DEFLECTION_INPUT}
-    OUTPUTS = {"sensing": Quantity("bridge_voltage", "V", "uV", 1e6, "bridge output")}
-    SENSITIVITY = {"sensing": Quantity("sensitivity", "V/m", "uV/nm", 1e-3, "sensitivity")}
-    STRESS = Quantity("stress", "Pa", "MPa", 1e-6, "stress in the resistor")
-    CHANGE = Quantity("relative_change", "", "ppm", 1e6, "dR/R")
+    OUTPUTS = {"sensing": quantity(name="bridge_voltage", unit="V", display_unit="uV",
+                                   label="bridge output")}
+    SENSITIVITY = {"sensing": quantity(name="voltage_per_deflection", unit="V/m",
+                                       display_unit="uV/nm",
+                                       label="sensitivity")}
+    STRESS = quantity(name="stress", unit="Pa", display_unit="MPa",
+                      label="stress in the resistor")
+    CHANGE = quantity(name="relative_change", unit="", display_unit="ppm", label="dR/R")
 
     @property
     def gauge_factor(self) -> float:
@@ -132,7 +139,7 @@ class Piezoresistive(Transducer):
             return 0.0
         return self.bias_voltage / 4 * d_delta_dz / (1 + delta / 2) ** 2
 
-    def _validity(self, value, mode):
+    def _validity(self, value, mode, point):
         clamp = abs(float(self.lever.stress(0.0, self.thickness / 2,
                                             self.spring_constant * value)))
         delta = self.piezo_coefficient * float(self._delta(value)[0])
@@ -188,25 +195,35 @@ class Piezoelectric(Transducer):
     summary = "a piezoelectric film: charge from strain, bending from voltage"
     BOUNDED_BY = {"electrode_length": ("length", 1.0)}
     PARAMETERS = (
-        Parameter("d31", "m/V", "pm/V", 1e12, "coefficient d31", -2.0e-12, -300e-12, 300e-12),
-        Parameter("film_modulus", "Pa", "GPa", 1e-9, "film modulus E_p", 330e9, 10e9, 500e9),
-        Parameter("film_thickness", "m", "um", 1e6, "film thickness t_p", 0.5e-6, 0.01e-6,
-                  5e-6),
-        Parameter("permittivity", "", "", 1.0, "relative permittivity eps_r", 10.5, 1.0, 5000.0,
-                  log=True),
-        Parameter("electrode_length", "m", "um", 1e6, "electrode length l_e", 100e-6, 1e-6, 1e-3),
-        Parameter("leakage_time_constant", "s", "s", 1.0, "leakage time constant R C", 1.0,
-                  1e-6, 1e4, log=True),
+        Parameter(name="d31", unit="m/V", display_unit="pm/V", default=-2.0e-12, low=-300e-12,
+                  high=300e-12, label="coefficient d31"),
+        Parameter(name="film_modulus", unit="Pa", display_unit="GPa", default=330e9, low=10e9,
+                  high=500e9, label="film modulus E_p"),
+        Parameter(name="film_thickness", unit="m", display_unit="um", default=0.5e-6, low=0.01e-6,
+                  high=5e-6, label="film thickness t_p"),
+        Parameter(name="permittivity", unit="", default=10.5, low=1.0, high=5000.0, log=True,
+                  label="relative permittivity eps_r"),
+        Parameter(name="electrode_length", unit="m", display_unit="um", default=100e-6, low=1e-6,
+                  high=1e-3, label="electrode length l_e"),
+        Parameter(name="leakage_time_constant", unit="s", default=1.0, low=1e-6, high=1e4,
+                  log=True, label="leakage time constant R C"),
     )
     MODES = ("sensing", "actuation")
     INPUTS = {"sensing": TIP_DEFLECTION_INPUT,
-              "actuation": Parameter("voltage", "V", "V", 1.0, "film voltage V", 5.0, -50.0, 50.0)}
-    OUTPUTS = {"sensing": Quantity("charge", "C", "fC", 1e15, "charge on the electrodes"),
+              "actuation": Parameter(name="voltage", unit="V", default=5.0, low=-50.0, high=50.0,
+                                     label="film voltage V")}
+    OUTPUTS = {"sensing": quantity(name="charge", unit="C", display_unit="fC",
+                                   label="charge on the electrodes"),
                "actuation": DEFLECTION}
-    SENSITIVITY = {"sensing": Quantity("sensitivity", "C/m", "fC/nm", 1e6, "sensitivity"),
-                   "actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
-    STRAIN = Quantity("film_strain", "", "ppm", 1e6, "mean strain in the film")
-    MOMENT = Quantity("moment", "N m", "nN m", 1e9, "bending moment")
+    SENSITIVITY = {"sensing": quantity(name="charge_per_deflection", unit="C/m",
+                                       display_unit="fC/nm",
+                                       label="sensitivity"),
+                   "actuation": quantity(name="deflection_per_voltage", unit="m/V",
+                                         display_unit="nm/V",
+                                         label="sensitivity")}
+    STRAIN = quantity(name="film_strain", unit="", display_unit="ppm",
+                      label="mean strain in the film")
+    MOMENT = quantity(name="moment", unit="N m", display_unit="nN m", label="bending moment")
 
     @property
     def film_offset(self) -> float:
@@ -297,20 +314,30 @@ class Optomechanical(Transducer):
     function, signal, size = "sensing", "DC&AC", "embedded"
     summary = "an on-chip optical cavity detuned by the lever's motion"
     PARAMETERS = (
-        Parameter("wavelength", "m", "nm", 1e9, "cavity wavelength", 1550e-9, 400e-9, 2e-6),
-        Parameter("optical_q", "", "", 1.0, "optical quality factor Q_o", 1e5, 1e2, 1e8, log=True),
-        Parameter("coupling", "Hz/m", "GHz/nm", 1e-18, "coupling G / 2 pi", 1e18, 1e15, 1e20,
-                  log=True),
-        Parameter("power", "W", "uW", 1e6, "input power P_in", 100e-6, 1e-6, 5e-3, log=True),
-        Parameter("dip_depth", "", "", 1.0, "dip depth D", 0.8, 0.01, 1.0),
-        Parameter("detuning", "", "", 1.0, "laser detuning Delta_0 / gamma", -0.5, -3.0, 3.0),
-        Parameter("responsivity", "A/W", "A/W", 1.0, "photodiode responsivity", 0.9, 0.05, 1.0),
+        Parameter(name="wavelength", unit="m", display_unit="nm", default=1550e-9, low=400e-9,
+                  high=2e-6, label="cavity wavelength"),
+        Parameter(name="optical_q", unit="", default=1e5, low=1e2, high=1e8, log=True,
+                  label="optical quality factor Q_o"),
+        Parameter(name="coupling", unit="Hz/m", display_unit="GHz/nm", default=1e18, low=1e15,
+                  high=1e20, log=True, label="coupling G / 2 pi"),
+        Parameter(name="power", unit="W", display_unit="uW", default=100e-6, low=1e-6, high=5e-3,
+                  log=True, label="input power P_in"),
+        Parameter(name="dip_depth", unit="", default=0.8, low=0.01, high=1.0,
+                  label="dip depth D"),
+        Parameter(name="detuning", unit="", default=-0.5, low=-3.0, high=3.0,
+                  label="laser detuning Delta_0 / gamma"),
+        Parameter(name="responsivity", unit="A/W", default=0.9, low=0.05, high=1.0,
+                  label="photodiode responsivity"),
     )
-    INPUTS = {"sensing": Parameter("deflection", "m", "nm", 1e9, "tip deflection", 0.2e-9,
-                                   -50e-9, 50e-9)}
-    OUTPUTS = {"sensing": Quantity("transmitted_power", "W", "uW", 1e6, "transmitted power")}
-    SENSITIVITY = {"sensing": Quantity("sensitivity", "W/m", "uW/nm", 1e-3, "sensitivity")}
-    DETUNING = Quantity("detuning_hz", "Hz", "GHz", 1e-9, "laser-cavity detuning")
+    INPUTS = {"sensing": Parameter(name="deflection", unit="m", display_unit="nm", default=0.2e-9,
+                                   low=-50e-9, high=50e-9, label="tip deflection")}
+    OUTPUTS = {"sensing": quantity(name="transmitted_power", unit="W", display_unit="uW",
+                                   label="transmitted power")}
+    SENSITIVITY = {"sensing": quantity(name="power_per_deflection", unit="W/m",
+                                       display_unit="uW/nm",
+                                       label="sensitivity")}
+    DETUNING = quantity(name="detuning_hz", unit="Hz", display_unit="GHz",
+                        label="laser-cavity detuning")
 
     @property
     def linewidth(self) -> float:

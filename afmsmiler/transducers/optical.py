@@ -12,14 +12,14 @@ import numpy as np
 from scipy.special import erf
 
 from ..validation import check_array
-from .base import (ELEMENTARY_CHARGE, TIP_DEFLECTION_INPUT, Parameter, Quantity, Transducer)
+from .base import (ELEMENTARY_CHARGE, TIP_DEFLECTION_INPUT, Parameter, Transducer, quantity)
 
 __all__ = ["OpticalBeamDeflection", "AstigmaticDetection", "Interferometer"]
 
-_RESPONSIVITY = Parameter("responsivity", "A/W", "A/W", 1.0, "photodiode responsivity",
-                          0.4, 0.05, 1.0)
-_BANDWIDTH = Parameter("detector_bandwidth", "Hz", "kHz", 1e-3, "detector bandwidth",
-                       2e6, 1e3, 1e8, log=True)
+_RESPONSIVITY = Parameter(name="responsivity", unit="A/W", default=0.4, low=0.05, high=1.0,
+                          label="photodiode responsivity")
+_BANDWIDTH = Parameter(name="detector_bandwidth", unit="Hz", display_unit="kHz", default=2e6,
+                       low=1e3, high=1e8, log=True, label="detector bandwidth")
 
 
 def _detector_lowpass(f, bandwidth):
@@ -57,18 +57,21 @@ class OpticalBeamDeflection(Transducer):
     function, signal, size = "sensing", "DC&AC", "bulk"
     summary = "laser reflected off the lever onto a four-quadrant photodiode"
     PARAMETERS = (
-        Parameter("optical_path", "m", "mm", 1e3, "optical path D (lever to detector)",
-                  30e-3, 1e-3, 0.2),
-        Parameter("spot_radius", "m", "mm", 1e3, "spot 1/e^2 radius on the detector",
-                  0.5e-3, 20e-6, 5e-3),
-        Parameter("power", "W", "mW", 1e3, "laser power on the detector", 1e-3, 1e-6, 20e-3,
-                  log=True),
+        Parameter(name="optical_path", unit="m", display_unit="mm", default=30e-3, low=1e-3,
+                  high=0.2, label="optical path D (lever to detector)"),
+        Parameter(name="spot_radius", unit="m", display_unit="mm", default=0.5e-3, low=20e-6,
+                  high=5e-3, label="spot 1/e^2 radius on the detector"),
+        Parameter(name="power", unit="W", display_unit="mW", default=1e-3, low=1e-6, high=20e-3,
+                  log=True, label="laser power on the detector"),
         _RESPONSIVITY, _BANDWIDTH,
     )
     INPUTS = {"sensing": TIP_DEFLECTION_INPUT}
-    OUTPUTS = {"sensing": Quantity("signal", "", "", 1.0, "(A+B-C-D)/(A+B+C+D)")}
-    SENSITIVITY = {"sensing": Quantity("sensitivity", "1/m", "1/um", 1e-6, "sensitivity")}
-    SPOT = Quantity("spot_displacement", "m", "um", 1e6, "spot travel on the detector")
+    OUTPUTS = {"sensing": quantity(name="signal", unit="", label="(A+B-C-D)/(A+B+C+D)")}
+    SENSITIVITY = {"sensing": quantity(name="signal_per_deflection", unit="1/m",
+                                       display_unit="1/um",
+                                       label="sensitivity")}
+    SPOT = quantity(name="spot_displacement", unit="m", display_unit="um",
+                    label="spot travel on the detector")
 
     def spot_displacement(self, slope):
         """Spot travel s = D tan(2 theta) in m for a free-end slope ``slope`` (rad).
@@ -143,19 +146,23 @@ class AstigmaticDetection(Transducer):
     function, signal, size = "sensing", "DC&AC", "bulk"
     summary = "focus-error S-curve of a DVD pickup head (cylindrical lens, four quadrants)"
     PARAMETERS = (
-        Parameter("wavelength", "m", "nm", 1e9, "laser wavelength", 650e-9, 350e-9, 1.6e-6),
-        Parameter("waist", "m", "um", 1e6, "focused spot radius w0", 0.6e-6, 0.2e-6, 5e-6),
-        Parameter("astigmatic_distance", "m", "um", 1e6, "line-foci separation Delta",
-                  4e-6, 0.2e-6, 50e-6),
-        Parameter("power", "W", "uW", 1e6, "laser power on the detector", 100e-6, 1e-6, 5e-3,
-                  log=True),
+        Parameter(name="wavelength", unit="m", display_unit="nm", default=650e-9, low=350e-9,
+                  high=1.6e-6, label="laser wavelength"),
+        Parameter(name="waist", unit="m", display_unit="um", default=0.6e-6, low=0.2e-6,
+                  high=5e-6, label="focused spot radius w0"),
+        Parameter(name="astigmatic_distance", unit="m", display_unit="um", default=4e-6,
+                  low=0.2e-6, high=50e-6, label="line-foci separation Delta"),
+        Parameter(name="power", unit="W", display_unit="uW", default=100e-6, low=1e-6, high=5e-3,
+                  log=True, label="laser power on the detector"),
         _RESPONSIVITY, _BANDWIDTH,
     )
-    INPUTS = {"sensing": Parameter("deflection", "m", "nm", 1e9, "tip deflection", 50e-9,
-                                   -10e-6, 10e-6)}
-    OUTPUTS = {"sensing": Quantity("signal", "", "", 1.0, "focus-error signal FES")}
-    SENSITIVITY = {"sensing": Quantity("sensitivity", "1/m", "1/um", 1e-6, "FES slope")}
-    RATIO = Quantity("axis_ratio", "", "", 1.0, "spot axis ratio w_y / w_x")
+    INPUTS = {"sensing": Parameter(name="deflection", unit="m", display_unit="nm", default=50e-9,
+                                   low=-10e-6, high=10e-6, label="tip deflection")}
+    OUTPUTS = {"sensing": quantity(name="signal", unit="", label="focus-error signal FES")}
+    SENSITIVITY = {"sensing": quantity(name="signal_per_deflection", unit="1/m",
+                                       display_unit="1/um",
+                                       label="FES slope")}
+    RATIO = quantity(name="axis_ratio", unit="", label="spot axis ratio w_y / w_x")
 
     @property
     def rayleigh_range(self) -> float:
@@ -225,19 +232,25 @@ class Interferometer(Transducer):
     function, signal, size = "sensing", "DC&AC", "bulk"
     summary = "fibre interferometer: the fringe and its quadrature point"
     PARAMETERS = (
-        Parameter("wavelength", "m", "nm", 1e9, "laser wavelength", 1310e-9, 350e-9, 2e-6),
-        Parameter("visibility", "", "", 1.0, "fringe visibility V", 0.8, 0.01, 1.0),
-        Parameter("power", "W", "uW", 1e6, "mean power P0 on the detector", 100e-6, 1e-6,
-                  5e-3, log=True),
-        Parameter("phase", "rad", "rad", 1.0, "operating phase phi", -math.pi / 2, -math.pi,
-                  math.pi),
+        Parameter(name="wavelength", unit="m", display_unit="nm", default=1310e-9, low=350e-9,
+                  high=2e-6, label="laser wavelength"),
+        Parameter(name="visibility", unit="", default=0.8, low=0.01, high=1.0,
+                  label="fringe visibility V"),
+        Parameter(name="power", unit="W", display_unit="uW", default=100e-6, low=1e-6, high=5e-3,
+                  log=True, label="mean power P0 on the detector"),
+        Parameter(name="phase", unit="rad", default=-math.pi / 2, low=-math.pi, high=math.pi,
+                  label="operating phase phi"),
         _RESPONSIVITY, _BANDWIDTH,
     )
-    INPUTS = {"sensing": Parameter("deflection", "m", "nm", 1e9, "tip deflection", 20e-9,
-                                   -1e-6, 1e-6)}
-    OUTPUTS = {"sensing": Quantity("power_detected", "W", "uW", 1e6, "detected power")}
-    SENSITIVITY = {"sensing": Quantity("sensitivity", "W/m", "uW/nm", 1e-3, "sensitivity")}
-    PHASE = Quantity("optical_phase", "rad", "rad", 1.0, "optical phase 4 pi d / lambda + phi")
+    INPUTS = {"sensing": Parameter(name="deflection", unit="m", display_unit="nm", default=20e-9,
+                                   low=-1e-6, high=1e-6, label="tip deflection")}
+    OUTPUTS = {"sensing": quantity(name="power_detected", unit="W", display_unit="uW",
+                                   label="detected power")}
+    SENSITIVITY = {"sensing": quantity(name="power_per_deflection", unit="W/m",
+                                       display_unit="uW/nm",
+                                       label="sensitivity")}
+    PHASE = quantity(name="optical_phase", unit="rad",
+                     label="optical phase 4 pi d / lambda + phi")
 
     def fringe(self, d):
         """Detected power P0 (1 + V cos(4 pi d / lambda + phi)) in W at displacement ``d`` (m).

@@ -49,9 +49,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import get_material
+from ..parameters import read_only
 from ..validation import check_array, check_finite, check_nonnegative, check_positive
-from .base import (DEFLECTION, SLOPE, Harmonics, Parameter, Quantity, Transducer,
-                   mechanical_response)
+from ..brownian import mechanical_response
+from .base import DEFLECTION, SLOPE, Harmonics, Parameter, Transducer, quantity
 
 __all__ = ["ThermalProperties", "THERMAL", "bimorph_curvature", "Photothermal", "Electrothermal"]
 
@@ -79,12 +80,12 @@ class ThermalProperties:
 
 
 #: Thermal figures of the presets of :mod:`afmsmiler.materials` used in the bimorphs.
-THERMAL = {
+THERMAL = read_only({
     "silicon": ThermalProperties(2.6e-6, 148.0, 705.0,
                                  "Okada and Tokumaru, J. Appl. Phys. 56, 314 (1984); CRC Handbook"),
     "gold": ThermalProperties(14.2e-6, 318.0, 129.0, "CRC Handbook of Chemistry and Physics"),
     "aluminium": ThermalProperties(23.1e-6, 237.0, 897.0, "CRC Handbook of Chemistry and Physics"),
-}
+})
 
 
 def bimorph_curvature(expansion_1: float, thickness_1: float, modulus_1: float,
@@ -159,7 +160,7 @@ class _Bimorph(Transducer):
     FILM_THICKNESS = "coating_thickness"
     #: "tip" (laser spot) or "uniform" (heater along the lever)
     HEATING = "tip"
-    TEMPERATURE = Quantity("tip_temperature", "K", "K", 1.0, "tip temperature rise")
+    TEMPERATURE = quantity(name="tip_temperature", unit="K", label="tip temperature rise")
 
     @property
     def _layers(self):
@@ -251,8 +252,8 @@ class _Bimorph(Transducer):
     #: Largest temperature rise (K) for which constant material properties are a fair model.
     MAX_TEMPERATURE_RISE = 300.0
 
-    def _validity(self, value, mode):
-        rise = float(self.chain(value, mode).stage("tip_temperature").values)
+    def _validity(self, value, mode, point):
+        rise = float(point.stage("tip_temperature").values[0])
         if rise > self.MAX_TEMPERATURE_RISE:
             yield (f"the tip is {rise:.0f} K above ambient: the linear, constant-property model "
                    f"no longer holds")
@@ -273,16 +274,21 @@ class Photothermal(_Bimorph):
     function, signal, size = "actuation", "DC&AC", "bulk"
     summary = "a laser heats the coated lever: bimorph bending"
     PARAMETERS = (
-        Parameter("absorptance", "", "", 1.0, "absorptance of the coating", 0.1, 1e-3, 1.0),
-        Parameter("coating_thickness", "m", "nm", 1e9, "gold coating thickness", 50e-9, 5e-9,
-                  500e-9),
+        Parameter(name="absorptance", unit="", default=0.1, low=1e-3, high=1.0,
+                  label="absorptance of the coating"),
+        Parameter(name="coating_thickness", unit="m", display_unit="nm", default=50e-9, low=5e-9,
+                  high=500e-9, label="gold coating thickness"),
     )
     MODES = ("actuation",)
-    INPUTS = {"actuation": Parameter("laser_power", "W", "mW", 1e3, "incident laser power",
-                                     1e-3, 0.0, 20e-3)}
+    INPUTS = {"actuation": Parameter(name="laser_power", unit="W", display_unit="mW",
+                                     default=1e-3, low=0.0, high=20e-3,
+                                     label="incident laser power")}
     OUTPUTS = {"actuation": DEFLECTION}
-    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/W", "nm/mW", 1e6, "sensitivity")}
-    ABSORBED = Quantity("absorbed_power", "W", "mW", 1e3, "absorbed power")
+    SENSITIVITY = {"actuation": quantity(name="deflection_per_power", unit="m/W",
+                                         display_unit="nm/mW",
+                                         label="sensitivity")}
+    ABSORBED = quantity(name="absorbed_power", unit="W", display_unit="mW",
+                        label="absorbed power")
 
     def _stages(self, p, mode):
         heat = self.absorptance * p
@@ -320,18 +326,21 @@ class Electrothermal(_Bimorph):
     HEATING = "uniform"
     BIASED = True
     PARAMETERS = (
-        Parameter("resistance", "ohm", "kohm", 1e-3, "heater resistance R", 1e3, 10.0, 1e6,
-                  log=True),
-        Parameter("ac_voltage", "V", "V", 1.0, "AC amplitude V_ac", 0.5, 0.0, 5.0),
-        Parameter("film_thickness", "m", "nm", 1e9, "aluminium film thickness", 200e-9, 10e-9,
-                  2e-6),
+        Parameter(name="resistance", unit="ohm", display_unit="kohm", default=1e3, low=10.0,
+                  high=1e6, log=True, label="heater resistance R"),
+        Parameter(name="ac_voltage", unit="V", default=0.5, low=0.0, high=5.0,
+                  label="AC amplitude V_ac"),
+        Parameter(name="film_thickness", unit="m", display_unit="nm", default=200e-9, low=10e-9,
+                  high=2e-6, label="aluminium film thickness"),
     )
     MODES = ("actuation",)
-    INPUTS = {"actuation": Parameter("dc_voltage", "V", "V", 1.0, "DC heater voltage V_dc",
-                                     2.0, -5.0, 5.0)}
+    INPUTS = {"actuation": Parameter(name="dc_voltage", unit="V", default=2.0, low=-5.0, high=5.0,
+                                     label="DC heater voltage V_dc")}
     OUTPUTS = {"actuation": DEFLECTION}
-    SENSITIVITY = {"actuation": Quantity("sensitivity", "m/V", "nm/V", 1e9, "sensitivity")}
-    POWER = Quantity("power", "W", "mW", 1e3, "mean heater power")
+    SENSITIVITY = {"actuation": quantity(name="deflection_per_voltage", unit="m/V",
+                                         display_unit="nm/V",
+                                         label="sensitivity")}
+    POWER = quantity(name="power", unit="W", display_unit="mW", label="mean heater power")
 
     def power_components(self, dc_voltage: float) -> Harmonics:
         """DC, 1-omega and 2-omega heater power in W for a bias ``dc_voltage`` (V)."""
@@ -356,7 +365,8 @@ class Electrothermal(_Bimorph):
 
         def h(f):
             return complex(k * self.thermal_lag(f)
-                           * mechanical_response(f, self.resonance_frequency, self.quality_factor))
+                           * mechanical_response(f, resonance_frequency=self.resonance_frequency,
+                                               quality_factor=self.quality_factor))
         return Harmonics(p.dc * h(0.0), p.first * h(frequency), p.second * h(2 * frequency))
 
     def _stages(self, v, mode):

@@ -2,13 +2,17 @@
 
 :class:`TransducerPanel` offers the principles of :data:`afmsmiler.transducers.PRINCIPLES`; for the
 chosen one it builds a slider for the chain's input and one per parameter from the model's
-metadata (:meth:`~afmsmiler.transducers.base.Transducer.parameter_table`): label, practical unit
-(um, mW, kHz, ...), bounds (the parameter's valid range, in the unit shown) and linear or log
-scale. Parameters bounded by another (an electrode no longer than the lever, see
-``BOUNDED_BY``) get their slider's maximum moved with it, so no slider position makes the model
-raise. :meth:`TransducerPanel.update` converts the values to SI, builds the model, and updates
-the figure (:class:`~afmsmiler.plots.transducers.TransducerFigure`), the 3D view
-(:class:`~afmsmiler.scenes.transducers.TransducerScene`) and the readout in place.
+:class:`~afmsmiler.parameters.Parameter` entries
+(:meth:`~afmsmiler.transducers.base.Transducer.parameter_table`) with the one slider factory,
+:func:`afmsmiler.ui.controls.control`: label, practical unit (um, mW, kHz, ...), slider range,
+linear or log, and the grid through the default (so the browser's echo never changes a value).
+Parameters bounded by another (an electrode no longer than the lever, see ``BOUNDED_BY``) get
+their slider's maximum moved with it when the other moves. :meth:`TransducerPanel.update`
+converts the values it is given to SI, runs the model once
+(:meth:`~afmsmiler.transducers.base.Transducer.operate`: the signal chain evaluated once over the
+input range and at the input), and hands the result to the figure
+(:class:`~afmsmiler.plots.transducers.TransducerFigure`), the 3D view
+(:class:`~afmsmiler.scenes.transducers.TransducerScene`) and the readout, which compute nothing.
 """
 from __future__ import annotations
 
@@ -17,46 +21,65 @@ from dataclasses import dataclass
 
 import ipywidgets as widgets
 
-from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves
+from ..parameters import UNITS, Parameter, read_only
+from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves, frequency_grid
 from ..transducers import PRINCIPLES
-from ..transducers.base import LEVER_PARAMETERS, Parameter, Resolution, SignalChain, Transducer
-from .panel import Panel, log_slider, slider
+from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalChain,
+                                Transducer)
+from ..validation import check_choice, check_finite
+from .controls import control
+from .panel import Panel, check_control_value
 
-__all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "control_for"]
+__all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "to_si"]
 
 #: Panel defaults, in one place.
-DEFAULTS = dict(principle="optical_beam_deflection", bandwidth=1e3, figsize=(10.0, 3.8),
-                slider_steps=400)
+DEFAULTS = read_only(dict(principle="optical_beam_deflection", bandwidth=1e3,
+                          figsize=(10.0, 3.8)))
 
 _FIXED = ("principle", "mode", "input")
 #: The sliders of the lever every model shares; :meth:`TransducerPanel.widget` gives them a column.
 _LEVER = tuple(p.name for p in LEVER_PARAMETERS)
 
 
-def control_for(p: Parameter, value: float | None = None, high: float | None = None):
-    """A slider for parameter ``p`` in its display unit, bounded by its valid range.
+def to_si(p: Parameter, display_value: float) -> float:
+    """A control's value (display unit) in SI, checked against ``p``'s valid range.
+
+    Display units below their SI unit divide by the exact power of ten (120 um -> 0.00012 m).
+    A slider's end converted to SI can land one rounding error outside the range
+    (20 mW -> 0.020000000000000004 W); such a value, within 1e-12 of a slider end, is that end.
+    Anything else outside the valid range raises (nothing is clamped).
 
     Parameters
     ----------
     p : Parameter
-        The parameter's metadata.
-    value : float, optional
-        Initial value in SI (default: the parameter's default).
-    high : float, optional
-        A tighter upper bound in SI (for parameters bounded by another).
+        The quantity's description.
+    display_value : float
+        The value in ``p.display_unit``.
 
     Returns
     -------
-    ipywidgets.FloatSlider or ipywidgets.FloatLogSlider
+    float
+        The value in SI units.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and its valid range, if the value is outside it or not finite.
     """
-    value = p.default if value is None else value
-    hi = p.high if high is None else min(high, p.high)
-    s = p.scale
-    label = p.label or p.name
-    if p.log:
-        return log_slider(label, value * s, p.low * s, hi * s, unit=p.display_unit)
-    step = (hi - p.low) * s / DEFAULTS["slider_steps"]
-    return slider(label, value * s, p.low * s, hi * s, step=step, unit=p.display_unit)
+    v = check_finite(p.name, display_value, p.display_unit)
+    factor = UNITS[p.display_unit][1]   # SI value of one display unit
+    per_si = round(1.0 / factor)
+    # divide by an exact power of ten where there is one: 120 um is 0.00012 m, where
+    # 120 * 1e-6 gives 0.00011999999999999999 m (1e-6 is not exact in binary)
+    x = v / per_si if per_si >= 1 and abs(1.0 / factor - per_si) <= 1e-9 * per_si else v * factor
+    # the default shown on a slider (1.31e-6 m * 1e9 = 1309.9999999999998 nm) comes back as
+    # the default, not as 1.3099999999999997e-6 m
+    if math.isclose(x, p.default, rel_tol=1e-14):
+        x = p.default
+    for end in (p.slider_low, p.slider_high):
+        if math.isfinite(end) and abs(x - end) <= 1e-12 * abs(end):
+            x = end
+    return p.check(x)
 
 
 @dataclass(frozen=True)
@@ -66,7 +89,7 @@ class TransducerState:
     Attributes
     ----------
     model : Transducer
-        The model built from the sliders.
+        The model built from the control values.
     mode : str
         ``"sensing"`` or ``"actuation"``.
     value : float
@@ -79,6 +102,8 @@ class TransducerState:
         Small-signal sensitivity at the input (SI, ``model.sensitivity_quantity(mode).unit``).
     resolution : Resolution
         Noise-limited resolution in ``DEFAULTS["bandwidth"]``, referred to the input.
+    operation : Operation
+        The model run all of the above come from.
     """
 
     model: Transducer
@@ -88,6 +113,7 @@ class TransducerState:
     curves: ChainCurves
     sensitivity: float
     resolution: Resolution
+    operation: Operation
 
 
 class TransducerPanel(Panel):
@@ -121,8 +147,7 @@ class TransducerPanel(Panel):
     """
 
     def __init__(self, principle: str = DEFAULTS["principle"], scene: bool = True):
-        if principle not in PRINCIPLES:
-            raise ValueError(f"principle must be one of {list(PRINCIPLES)}, got {principle!r}")
+        check_choice("principle", principle, PRINCIPLES)
         self._selector = widgets.Dropdown(
             options=[(cls.name, key) for key, cls in PRINCIPLES.items()], value=principle,
             description="principle")
@@ -158,9 +183,10 @@ class TransducerPanel(Panel):
             self._mode.value = mode
             self._mode.disabled = len(modes) == 1
             model = cls()
-            sliders = {"input": control_for(model.input_quantity(mode))}
+            sliders = {"input": control(model.input_quantity(mode))}
             for name, p in cls.parameter_table().items():
-                sliders[name] = control_for(p, high=model.upper_bound(name))
+                high = model.upper_bound(name) if name in cls.BOUNDED_BY else None
+                sliders[name] = control(p, high=high)
             old = getattr(self, "controls", {})
             for name, c in old.items():
                 if name not in ("principle", "mode"):
@@ -198,18 +224,25 @@ class TransducerPanel(Panel):
         """Set control values as a user would (one update at the end).
 
         ``principle`` and ``mode`` are applied first, so their sliders can be set in the same call.
+
+        Raises
+        ------
+        ValueError
+            For an unknown principle or mode (naming the valid choices), or a value outside its
+            slider's range (naming the control and the range).
+        TypeError
+            For a name that is not a control (of the principle being set).
         """
+        if "principle" in values:
+            check_choice("principle", values["principle"], PRINCIPLES)
+        if "mode" in values:
+            principle = values.get("principle", self._selector.value)
+            check_choice("mode", values["mode"], PRINCIPLES[principle].MODES)
         hold, self._hold = self._hold, True
         try:
             if "principle" in values and values["principle"] != self._selector.value:
-                if values["principle"] not in PRINCIPLES:
-                    raise ValueError(f"principle must be one of {list(PRINCIPLES)}, "
-                                     f"got {values['principle']!r}")
                 self._selector.value = values["principle"]
             if "mode" in values and values["mode"] != self._mode.value:
-                if values["mode"] not in self._mode.options:
-                    raise ValueError(f"mode must be one of {list(self._mode.options)}, "
-                                     f"got {values['mode']!r}")
                 self._switch_mode(values["mode"])
             rest = {k: v for k, v in values.items() if k not in ("principle", "mode")}
             unknown = set(rest) - set(self.controls)
@@ -217,52 +250,81 @@ class TransducerPanel(Panel):
                 raise TypeError(f"unknown control(s) {sorted(unknown)}; "
                                 f"valid: {sorted(self.controls)}")
             for name, v in rest.items():
+                check_control_value(name, self.controls[name], v)
+            for name, v in rest.items():
                 self.controls[name].value = v
+        except Exception:
+            if not hold:  # the principle may have changed: show what the controls now say
+                self._hold = hold
+                self._run(self.values())
+            raise
         finally:
             self._hold = hold
-        self._run(self.values())
+        if not hold:
+            self._run({**self.values(), **rest})
 
     # -- the callback -----------------------------------------------------------------------------
-    def _bound_linked_sliders(self, cls, values: dict) -> dict:
-        """Move the maxima of sliders bounded by another parameter; return the clamped values."""
-        table = cls.parameter_table()
-        for name, (other, factor) in cls.BOUNDED_BY.items():
-            p = table[name]
-            high = min(p.high, factor * values[other] / table[other].scale) * p.scale
-            control = self.controls[name]
-            if control.max != high:
-                hold, self._hold = self._hold, True
-                try:
-                    if control.value > high:
-                        control.value = high
-                    control.max = high
-                finally:
-                    self._hold = hold
-            values[name] = control.value
-        return values
+    def _run(self, values: dict) -> None:
+        """Move the maxima of sliders bounded by another parameter, then update once.
 
-    @staticmethod
-    def _to_si(cls, params: dict) -> dict:
-        """Slider values -> SI, kept inside the valid ranges against float round-off.
-
-        The sliders' bounds are the ranges in display units; dividing by the display scale can
-        land one rounding error outside them (20 mW -> 0.020000000000000004 W).
+        When the student shortens the lever, an electrode slider's maximum follows it (the
+        electrode cannot be longer than the lever), and so does its value if it was longer.
         """
+        cls = PRINCIPLES[check_choice("principle", values.get("principle"), PRINCIPLES)]
         table = cls.parameter_table()
-        si = {n: min(max(v / table[n].scale, table[n].low), table[n].high)
-              for n, v in params.items()}
-        for name, (other, factor) in cls.BOUNDED_BY.items():
-            si[name] = min(si[name], factor * si[other])
-        return si
+        values = dict(values)
+        hold, self._hold = self._hold, True
+        try:
+            for name, (other, factor) in cls.BOUNDED_BY.items():
+                c = self.controls.get(name)
+                if c is None or other not in values:
+                    continue
+                p = table[name]
+                high = min(p.slider_high, factor * to_si(table[other], values[other]))
+                shown = p.to_display(high)
+                if c.max != shown:
+                    if values[name] > shown:
+                        values[name] = shown
+                        c.value = shown
+                    c.max = shown
+        finally:
+            self._hold = hold
+        super()._run(values)
 
     def update(self, principle, mode, input, **params) -> None:  # noqa: A002 - a control name
-        """Convert the control values to SI, run the model, update plots, scene and readout."""
-        cls = PRINCIPLES[principle]
-        params = self._bound_linked_sliders(cls, dict(params))
-        model = cls(**self._to_si(cls, params))
-        q = model.input_quantity(mode)
-        value = min(max(input / q.scale, q.low), q.high)
-        curves = chain_curves(model, value, mode)
+        """Run the model once with the values given and update plots, scene and readout.
+
+        Parameters
+        ----------
+        principle : str
+            A key of :data:`~afmsmiler.transducers.PRINCIPLES`.
+        mode : str
+            One of the principle's modes.
+        input : float
+            The chain's input in its display unit (nm of deflection, V, mA, mW, ...).
+        **params : float
+            Model parameters by name, in their display units; the others take their defaults.
+
+        Raises
+        ------
+        ValueError
+            For an unknown principle or mode (naming the choices), or a value outside its valid
+            range (naming the parameter and the range; nothing is clamped).
+        TypeError
+            For a parameter the model does not have.
+        """
+        cls = PRINCIPLES[check_choice("principle", principle, PRINCIPLES)]
+        mode = check_choice("mode", mode, cls.MODES)
+        table = cls.parameter_table()
+        unknown = set(params) - set(table)
+        if unknown:
+            raise TypeError(f"{cls.__name__} got unknown parameter(s) {sorted(unknown)}; "
+                            f"valid: {sorted(table)}")
+        model = cls(**{n: to_si(table[n], v) for n, v in params.items()})
+        value = to_si(model.input_quantity(mode), input)
+        op = model.operate(value, mode, frequencies=frequency_grid(model),
+                           bandwidth=DEFAULTS["bandwidth"])
+        curves = chain_curves(op)
         if self.figure is None:
             self.figure = TransducerFigure(curves, fig=self.fig)
         else:
@@ -270,13 +332,12 @@ class TransducerPanel(Panel):
         if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.transducers import TransducerScene
-                self.scene = TransducerScene(model, value, mode)
+                self.scene = TransducerScene(op)
             else:
-                self.scene.update(model, value, mode)
+                self.scene.update(op)
         self.last = TransducerState(
-            model=model, mode=mode, value=value, chain=model.chain(value, mode), curves=curves,
-            sensitivity=curves.sensitivity_si,
-            resolution=model.resolution(DEFAULTS["bandwidth"], mode=mode))
+            model=model, mode=mode, value=value, chain=op.point, curves=curves,
+            sensitivity=op.sensitivity, resolution=op.resolution, operation=op)
         self.readout.value = self._readout_html()
         self.redraw()
 
@@ -286,18 +347,18 @@ class TransducerPanel(Panel):
         sq = m.sensitivity_quantity(s.mode)
         q = m.input_quantity(s.mode)
         res = s.resolution
-        total = res.total * q.scale
+        total = q.to_display(res.total) if math.isfinite(res.total) else math.inf
         rows = [("Table I", f"{m.function}; {m.signal}; {m.size}"),
                 ("lever k, f1",
                  f"{m.spring_constant:.3g} N/m, {m.resonance_frequency / 1e3:.4g} kHz"),
-                ("sensitivity here", f"{s.sensitivity * sq.scale:.4g} {sq.display_unit}"),
+                ("sensitivity here", f"{sq.to_display(s.sensitivity) + 0.0:.4g} {sq.display_unit}"),
                 (f"resolution in {DEFAULTS['bandwidth'] / 1e3:g} kHz",
                  (f"{total:.3g} {q.display_unit} (mostly {res.dominant})"
                   if math.isfinite(total) else "no small-signal response here"))]
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
         notes = "".join(f"<div style='color:#b00'>{n}</div>"
-                        for n in m.validity(s.value, s.mode))
+                        for n in s.operation.validity)
         if self._want_scene and self.scene is None and self._viewer_closed:
             notes += ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
                       "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it "
