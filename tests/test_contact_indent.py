@@ -136,7 +136,6 @@ def test_elastic_approach_and_retract_coincide():
     (dict(youngs_modulus=math.nan), "youngs_modulus"),
     (dict(poisson_ratio=0.5), r"poisson_ratio must be in \[0, 0.5\)"),
     (dict(poisson_ratio=-0.01), "poisson_ratio"),
-    (dict(tip="cone"), "tip must be a Tip"),
     (dict(tip=Spherical(10e-9), z_np=[0.0, 1e-6]), "past its radius"),
 ])
 def test_bad_input(kwargs, match):
@@ -145,6 +144,11 @@ def test_bad_input(kwargs, match):
     args.update(kwargs)
     with pytest.raises(ValueError, match=match):
         indent(**args)
+
+
+def test_a_wrong_tip_object_is_a_type_error_naming_tip():
+    with pytest.raises(TypeError, match="tip must be a Tip, got str 'cone'"):
+        indent([0.0, 1e-8], 0.1, "cone", 1e6, 0.3)
 
 
 def test_approach_retract_bad_input():
