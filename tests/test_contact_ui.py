@@ -11,9 +11,9 @@ from afmsmiler.contact import (TIPS, Conical, Parabolic, Pyramidal, Spherical, a
 from afmsmiler.exercises.contact import (FitExercise, check_contact_point, check_fitted_modulus,
                                          check_pull_off_force, fitting_exercise)
 from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figure, fit_figure,
-                                     fit_label, fit_window, tip_geometries_figure, tip_outline)
+                                     fit_label, fit_window, tip_geometries_figure)
 from afmsmiler.scenes.contact import ContactScene, surface_mesh, tip_mesh
-from afmsmiler.ui.contact import BOUNDS, TIP_CONTROLS, ContactPanel
+from afmsmiler.ui.contact import SLIDERS, TIP_CONTROLS, ContactPanel
 from recording import Recorder
 
 
@@ -21,7 +21,7 @@ from recording import Recorder
 @pytest.mark.parametrize("cls", list(TIPS.values()), ids=list(TIPS))
 def test_tip_outline_is_the_profile(cls):
     tip = cls()
-    x, z = tip_outline(tip, 80e-9)
+    x, z = tip.outline(80e-9)
     assert z.min() == 0.0 and x[np.argmin(z)] == 0.0
     flank = (x >= 0) & ((x < tip.radius) if isinstance(tip, Spherical) else True)
     np.testing.assert_allclose(z[flank], tip.profile(x[flank]), rtol=1e-12, atol=1e-20)
@@ -198,7 +198,7 @@ def test_tip_sliders_are_generated_from_the_registry():
         assert p.display_unit in w.description
         low = 10 ** w.min if hasattr(w, "base") else w.min
         high = 10 ** w.max if hasattr(w, "base") else w.max
-        assert p.low < low * p.display_scale and high * p.display_scale < p.high
+        assert p.low < p.to_si(low) and p.to_si(high) < p.high
 
 
 def test_panel_shows_what_the_model_says():
@@ -229,7 +229,7 @@ def test_panel_adhesion_and_sphere_limit():
     k, e_star = 100.0, reduced_modulus(1e3, 0.3)
     assert panel.controls["z_np"].max < Spherical(5e-9).max_z_np(k, e_star) * 1e9
     with pytest.raises(ValueError, match="z_np must be in"):  # rejected, not clamped
-        panel.set(z_np=BOUNDS["z_np"][1])
+        panel.set(z_np=SLIDERS["z_np"].to_display(SLIDERS["z_np"].slider_high))
     panel.set(z_np=panel.controls["z_np"].max)
     assert panel.last.current.z_s[0] < 5e-9
 
@@ -314,6 +314,7 @@ def test_panel_follows_the_retract_branch_through_the_hysteresis():
     assert not panel.last.current.in_contact[0]
     # without adhesion both branches are the elastic curve and the slider keeps its bounds
     panel.set(adhesion="none", z_np=40.0)
-    assert panel.controls["z_np"].min == BOUNDS["z_np"][0]
+    assert panel.controls["z_np"].min == pytest.approx(SLIDERS["z_np"].to_display(
+        SLIDERS["z_np"].slider_low))
     ref = indent([40e-9], 0.1, Parabolic(50e-9), 10e6, 0.3)
     assert panel.last.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)

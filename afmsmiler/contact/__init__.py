@@ -16,7 +16,7 @@ from .fit import FitResult, ForceCurve, fit_curve, load_curve, synthetic_curve
 from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesion_extrema,
                      approach_retract, indent,
                      jkr_curve, jkr_instability, residual, z_np_limit)
-from .surface import surface_displacement
+from .surface import contact_surface, surface_displacement
 from .system import BRANCHES, PARAMETERS, ContactSystem
 from .tips import (PYRAMID_FORMS, TIPS, Conical, Parabolic, Pyramidal, Spherical, Tip, make_tip,
                    reduced_modulus, tip_table)
@@ -28,4 +28,4 @@ __all__ = ["ContactSystem", "PARAMETERS", "BRANCHES", "PYRAMID_FORMS", "TIPS", "
            "indent", "approach_retract", "adhesion_extrema", "residual", "ADHESION_MODELS", "jkr_curve",
            "jkr_instability", "z_np_limit", "StandardLinearSolid", "ViscoelasticCycle",
            "hereditary_force", "viscoelastic_approach_retract", "ForceCurve", "FitResult",
-           "synthetic_curve", "load_curve", "fit_curve", "surface_displacement"]
+           "synthetic_curve", "load_curve", "fit_curve", "surface_displacement", "contact_surface"]

@@ -26,9 +26,10 @@ import math
 import numpy as np
 
 from ..validation import check_array, check_finite, check_instance, check_range
+from .indent import IndentationCurve
 from .tips import Pyramidal, Tip
 
-__all__ = ["surface_displacement"]
+__all__ = ["surface_displacement", "contact_surface"]
 
 _NODES, _WEIGHTS = np.polynomial.legendre.leggauss(48)
 
@@ -90,3 +91,32 @@ def surface_displacement(tip, z_s, rho, *, contact_radius=None):
     out[~inside] = (2.0 / math.pi) * (0.5 * theta_max * (integrand @ _WEIGHTS)
                                       + float(punch) * theta_max)
     return out
+
+
+def contact_surface(tip, current, rho):
+    """Downward displacement u(rho) in m of the surface in the state ``current`` (its first point).
+
+    The model's :func:`surface_displacement` at the state's indentation and
+    contact radius (an adhesive neck included), zero out of contact: what the figure and the 3D
+    view both draw.
+
+    Parameters
+    ----------
+    tip : Tip
+        The tip shape.
+    current : IndentationCurve
+        The state (its first point).
+    rho : array_like
+        Distances from the axis in m, >= 0.
+
+    Returns
+    -------
+    ndarray
+        u in m, shaped like ``rho``.
+    """
+    check_instance("current", current, IndentationCurve)
+    rho = np.asarray(rho, dtype=float)
+    if current.in_contact[0] and float(current.contact_radius[0]) > 0:
+        return surface_displacement(tip, float(current.z_s[0]), rho,
+                                    contact_radius=float(current.contact_radius[0]))
+    return np.zeros_like(rho)

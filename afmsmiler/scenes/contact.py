@@ -23,9 +23,8 @@ import meshcat
 import meshcat.geometry as g
 import numpy as np
 
-from ..contact import IndentationCurve, Pyramidal, Tip, surface_displacement
-from ..plots.contact import tip_outline
-from ..validation import check_integer, check_positive
+from ..contact import IndentationCurve, Pyramidal, Tip, contact_surface
+from ..validation import check_instance, check_integer, check_positive
 from . import primitives as P
 from .viewer import get_viewer
 
@@ -92,11 +91,8 @@ def surface_mesh(tip, current, extent, unit, n_radial=DEFAULTS["n_radial"],
     n_t = check_integer("n_angular", n_angular, 3, 2000)
     # rings crowd towards the axis, where the contact is
     rho = extent * np.linspace(0.0, 1.0, n_r + 1)[1:] ** 1.5
-    z_s = float(current.z_s[0])
-    if current.in_contact[0] and z_s > 0:
-        u = surface_displacement(tip, z_s, np.r_[0.0, rho])
-    else:
-        u = np.zeros(n_r + 1)
+    # the state the readout gives, an adhesive neck included (the figure draws the same)
+    u = contact_surface(tip, current, np.r_[0.0, rho])
     theta = (np.linspace(0.0, math.pi, n_t) if half
              else np.linspace(0.0, 2 * math.pi, n_t, endpoint=False))
     x = np.r_[0.0, (rho[:, None] * np.cos(theta)[None, :]).ravel()]
@@ -160,7 +156,8 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     (vertices, faces) : tuple of ndarray
     """
     unit = check_positive("unit", unit, "m")
-    x, z = tip_outline(tip, height)
+    check_instance("tip", tip, Tip)
+    x, z = tip.outline(height)
     mid = x.size // 2
     r, z = x[mid:], z[mid:]  # one flank: from the apex outwards
     pyramid = isinstance(tip, Pyramidal)
@@ -228,8 +225,7 @@ class ContactScene:
     def __init__(self, tip, current, *, vis: meshcat.Visualizer | None = None,
                  path: str = "afmsmiler/contact", unit: float = DEFAULTS["unit"],
                  extent: float = DEFAULTS["extent"], camera: bool = True):
-        if not isinstance(tip, Tip):
-            raise ValueError(f"tip must be a Tip, got {tip!r}")
+        check_instance("tip", tip, Tip)
         self.unit = check_positive("unit", unit, "m")
         self.extent = check_positive("extent", extent, "m")
         self.root = vis if vis is not None else get_viewer()
@@ -259,8 +255,8 @@ class ContactScene:
         current : IndentationCurve
             The state to draw (its first point).
         """
-        if not isinstance(current, IndentationCurve):
-            raise ValueError(f"current must be an IndentationCurve, got {current!r}")
+        check_instance("tip", tip, Tip)
+        check_instance("current", current, IndentationCurve)
         z_s = max(float(current.z_s[0]), 0.0) if current.in_contact[0] else 0.0
         # the drawn tip doubles in height when an indentation would bury 2/3 of it
         height = DEFAULTS["tip_height"] * 2.0 ** max(
@@ -273,10 +269,14 @@ class ContactScene:
         n_r, n_t = DEFAULTS["n_radial"], DEFAULTS["n_angular"]
         e = self.extent / self.unit
         v, f, depth = surface_mesh(tip, current, self.extent, self.unit, n_r, n_t, half=True)
-        limit = P.nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
-        if limit != self.depth_scale.vmax:
-            self.depth_scale = P.ColorScale(0.0, limit, cmap="viridis_r", label="depression",
-                                            unit="nm")
+        floor = DEFAULTS["depth_floor"] * 1e9
+        limit = P.nice_ceil(float(depth.max()) * 1e9, floor)
+        # an adhesive neck pulls the surface up (negative depth): the scale reaches down to it
+        low = -P.nice_ceil(-float(depth.min()) * 1e9, floor) if depth.min() < 0 else 0.0
+        if (low, limit) != (self.depth_scale.vmin, self.depth_scale.vmax):
+            self.depth_scale = P.ColorScale(low, limit, cmap="viridis_r",
+                                            label="depression (< 0: pulled up)" if low else
+                                            "depression", unit="nm")
             self.legend.set(self.depth_scale)
         colors = self.depth_scale.rgb(depth * 1e9)
         self.vis["surface"].set_object(g.TriangularMeshGeometry(v, f, colors),
