@@ -318,3 +318,128 @@ def test_panel_follows_the_retract_branch_through_the_hysteresis():
         SLIDERS["z_np"].slider_low))
     ref = indent([40e-9], 0.1, Parabolic(50e-9), 10e6, 0.3)
     assert panel.last.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)
+
+
+# --- the panel uses what it is given, once per move, on the slider grid ----------------------------
+def test_update_uses_the_values_it_is_given():
+    panel = ContactPanel()
+    assert panel.last.current.z_np[0] == pytest.approx(60e-9, rel=1e-12)
+    panel.update(**{**panel.values(), "z_np": 5.0})  # before: ignored, kept the slider's 60 nm
+    assert panel.last.current.z_np[0] == pytest.approx(5e-9, rel=1e-12)
+    ref = indent([5e-9], 0.1, Parabolic(20e-9), 1e6, 0.3)
+    assert panel.last.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)
+    panel.update(**{**panel.values(), "spring_constant": 2.0, "youngs_modulus": 3.0})
+    assert (panel.last.spring_constant, panel.last.youngs_modulus) == (2.0, 3e6)
+
+
+def test_an_unknown_tip_is_a_value_error_naming_the_choices():
+    panel = ContactPanel()
+    with pytest.raises(ValueError, match=r"tip must be one of .*'parabolic'.*got 'cube'"):
+        panel.update(**{**panel.values(), "tip": "cube"})
+    with pytest.raises(ValueError, match=r"tip must be one of"):
+        panel.set(tip="cube")
+    with pytest.raises(ValueError, match=r"tip must be one of"):
+        ContactPanel(tip="cube")
+    with pytest.raises(ValueError, match=r"adhesion must be one of"):
+        panel.update(**{**panel.values(), "adhesion": "Maugis"})
+
+
+def _browser_echo(w):
+    """The value a browser sends back after snapping the kernel's value to the slider's grid."""
+    if hasattr(w, "base"):
+        n = round((math.log10(w.value) - w.min) / w.step)
+        return 10 ** (w.min + n * w.step)
+    return w.min + round((w.value - w.min) / w.step) * w.step
+
+
+def test_defaults_sit_on_the_slider_grid_and_the_echo_changes_nothing():
+    # before: k 0.1 came back from the browser as 0.0998 N/m and the cone's 20 deg as 20.2 deg
+    panel = ContactPanel(tip="conical")
+    for name, shown in (("spring_constant", 0.1), ("half_angle", 20.0), ("youngs_modulus", 1.0),
+                        ("z_np", 60.0), ("work_of_adhesion", 20.0), ("radius", 20.0)):
+        w = panel.controls[name]
+        assert _browser_echo(w) == pytest.approx(shown, rel=1e-12), name
+        w.value = _browser_echo(w)  # the echo arrives
+    assert panel.last.spring_constant == 0.1
+    assert panel.last.tip.half_angle == pytest.approx(math.radians(20.0), rel=1e-15)
+
+
+def test_one_slider_move_runs_the_model_once_for_the_ramp_and_once_for_the_point(monkeypatch):
+    from afmsmiler.contact import ContactSystem
+    calls = []
+    for name in ("approach_retract", "indent"):
+        original = getattr(ContactSystem, name)
+
+        def counted(self, z_np, _original=original, _name=name):
+            calls.append((_name, np.size(z_np)))
+            return _original(self, z_np)
+
+        monkeypatch.setattr(ContactSystem, name, counted)
+    panel = ContactPanel()
+    for values in (dict(youngs_modulus=2.0), dict(adhesion="JKR"), dict(z_np=-20.0),
+                   dict(branch="retract"), dict(tip="spherical"), dict(radius=50.0)):
+        calls.clear()
+        panel.set(**values)
+        ramps = [c for c in calls if c[1] > 2]
+        assert len(ramps) == 1, (values, calls)  # the ramp, once
+        assert len(calls) == 2, (values, calls)  # and the current point, once
+
+
+def test_figure_and_scene_draw_the_state_the_readout_gives_on_the_jkr_neck():
+    # the review's state: JKR retract at Z_np = -20 nm, stuck (F = -1.7 nN, r = 35 nm); before,
+    # the drawing and the 3D view showed the tip floating 3 nm above a flat surface
+    from afmsmiler.contact import contact_surface
+    panel = ContactPanel()
+    panel.set(adhesion="JKR", branch="retract", z_np=-20.0)
+    cur = panel.last.current
+    assert cur.in_contact[0] and cur.z_s[0] < 0
+    assert cur.force[0] == pytest.approx(-1.739e-9, rel=1e-3)
+    assert cur.contact_radius[0] == pytest.approx(34.77e-9, rel=1e-3)
+    assert "-1.739 nN" in panel.readout.value
+    c = panel.figure.curves
+    mid = np.argmin(np.abs(c.rho_nm))
+    apex_nm = c.tip_z_nm.min()
+    # the tip touches the surface: apex height = surface height on the axis = -Z_s > 0
+    assert apex_nm == pytest.approx(-cur.z_s[0] * 1e9, rel=1e-12)
+    assert c.surface_nm[mid] == pytest.approx(apex_nm, rel=1e-12)
+    # the surface follows the tip over the contact radius (the neck), not a flat plane
+    rho = np.abs(c.rho_nm) * 1e-9
+    inside = rho <= cur.contact_radius[0]
+    assert c.surface_nm.max() > 5.0  # pulled up around the tip
+    np.testing.assert_allclose(c.surface_nm[inside],
+                               -contact_surface(panel.last.tip, cur, rho[inside]) * 1e9)
+    # the 3D view draws the same state: centre vertex of the surface at the apex
+    scene = ContactScene(panel.last.tip, cur, vis=Recorder(), camera=False)
+    centre = float(scene.last_vertices[0, 2]) * scene.unit
+    assert centre == pytest.approx(scene.last_apex, rel=1e-6)
+    assert scene.last_apex == pytest.approx(-cur.z_s[0], rel=1e-12)
+    assert scene.depth_scale.vmin < 0  # the colour scale reaches the neck
+
+
+def _overlaps(fig, ax, legend):
+    fig.canvas.draw() if hasattr(fig.canvas, "draw") else None
+    box = legend.get_window_extent()
+    for line in ax.get_lines():
+        xy = ax.transData.transform(np.c_[line.get_xdata(), line.get_ydata()])
+        inside = ((xy[:, 0] > box.x0) & (xy[:, 0] < box.x1) & (xy[:, 1] > box.y0)
+                  & (xy[:, 1] < box.y1))
+        if inside.any():
+            return True
+    return False
+
+
+def test_legends_do_not_cover_data():
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    panel = ContactPanel()
+    panel.set(adhesion="JKR", branch="retract", z_np=-20.0)
+    figs = [panel.fig]
+    tip = Parabolic(50e-9)
+    ramp = np.linspace(-150e-9, 40e-9, 200)
+    figs.append(cycles_figure({m: approach_retract(ramp, 0.1, tip, 20e6, 0.3, adhesion=m,
+                                                   work_of_adhesion=0.03) for m in ("dmt", "jkr")}))
+    for fig in figs:
+        FigureCanvasAgg(fig)
+        fig.canvas.draw()
+        for ax in fig.axes:
+            if ax.get_legend() is not None:
+                assert not _overlaps(fig, ax, ax.get_legend()), ax.get_xlabel()
