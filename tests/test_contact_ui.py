@@ -443,3 +443,71 @@ def test_legends_do_not_cover_data():
         for ax in fig.axes:
             if ax.get_legend() is not None:
                 assert not _overlaps(fig, ax, ax.get_legend()), ax.get_xlabel()
+
+
+# --- hints that run, hints that do not give the answer away, slips named ---------------------------
+def _notebook_namespace():
+    import json
+    from pathlib import Path
+    nb = json.loads((Path(__file__).parents[1] / "notebooks" / "04_contact_mechanics.ipynb")
+                    .read_text())
+    imports = next("".join(c["source"]) for c in nb["cells"]
+                   if c["cell_type"] == "code" and "fitting_exercise" in "".join(c["source"]))
+    ns = {}
+    exec(imports, ns)  # the notebook's own import cell
+    exercise_cell = next("".join(c["source"]) for c in nb["cells"]
+                         if c["cell_type"] == "code" and "ex = fitting_exercise" in
+                         "".join(c["source"]))
+    exec(exercise_cell.splitlines()[0], ns)  # ex = fitting_exercise(seed=...)
+    return ns
+
+
+def test_every_hint_s_code_runs_in_the_notebook():
+    # before: exercise 1's hint named `exercise` and `curve`, which the notebook does not have
+    # (NameError when pasted)
+    import re
+    from afmsmiler.exercises.contact import HINTS
+    ns = _notebook_namespace()
+    ex = ns["ex"]
+    messages = list(HINTS.values()) + [check_fitted_modulus(1.0, ex).message,
+                                       check_fitted_modulus(None, ex).message,
+                                       check_contact_point(1.0, ex).message,
+                                       check_pull_off_force(1e-3, "jkr").message]
+    snippets = [code for m in messages for code in re.findall(r"`([^`]+)`", m)]
+    assert snippets, "the fitting hint shows the call"
+    for code in snippets:
+        result = eval(code, ns)
+        if hasattr(result, "youngs_modulus"):
+            assert check_fitted_modulus(result.youngs_modulus, ex)
+
+
+def test_the_pull_off_hint_points_to_the_sources_without_the_formulas():
+    from afmsmiler.exercises.contact import HINTS
+    text = check_pull_off_force(1e-3, "dmt").message + HINTS["pull_off"]
+    for giveaway in ("pi R w", "2 pi", "3/2", "1.5", "(3/2)"):
+        assert giveaway not in text
+    assert "book" in text and "1971" in text and "1975" in text
+
+
+def test_checkers_name_unit_slips():
+    ex = fitting_exercise(4)
+    r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio,
+                  spring_constant=ex.curve.spring_constant)
+    in_kpa = check_fitted_modulus(r.youngs_modulus / 1e3, ex)
+    assert not in_kpa and "10^-3 times" in in_kpa.message and "prefix" in in_kpa.message
+    in_nm = check_contact_point(r.contact_point * 1e9, ex)  # before: only "... nm off"
+    assert not in_nm and "10^9 times" in in_nm.message and "prefix" in in_nm.message
+    in_nn = check_pull_off_force(1.5 * math.pi * 20e-9 * 0.05 * 1e9, "jkr", 20e-9, 0.05)
+    assert not in_nn and "10^9 times" in in_nn.message
+
+
+def test_things_to_try_lever_against_sample():
+    # notebook 04: "make the lever stiffer than the sample and the sample stiffer than the lever
+    # (when is Z_s ~ Z_np?)": a stiff lever on a soft sample indents by almost all of Z_np
+    panel = ContactPanel()
+    panel.set(spring_constant=100.0, youngs_modulus=panel.controls["youngs_modulus"].base ** (
+        panel.controls["youngs_modulus"].min), z_np=100.0)
+    assert panel.last.current.z_s[0] > 0.95 * 100e-9
+    panel.set(spring_constant=panel.controls["spring_constant"].base ** (
+        panel.controls["spring_constant"].min), youngs_modulus=1e4)
+    assert panel.last.current.z_s[0] < 0.05 * 100e-9
