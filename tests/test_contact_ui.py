@@ -102,7 +102,7 @@ def test_fit_figure_of_the_real_curve_states_nu_and_zooms_on_the_contact():
     y0, y1 = ax.get_ylim()
     assert y0 <= curve.force[inside].min() * 1e9 and curve.force[inside].max() * 1e9 <= y1
     assert y1 - y0 < 1.2 * np.ptp(curve.force[inside]) * 1e9  # zoomed in y too
-    assert "um" in ax.get_title() and "[nm]" in axr.get_xlabel()
+    assert "um around the contact point" in axr.get_xlabel() and "[nm]" in axr.get_xlabel()
     # no zoom: the whole curve
     lo, hi = (v / 1e9 for v in fit_figure(curve, r, zoom=None).axes[1].get_xlim())
     assert lo <= r.x.min() and hi >= r.x.max()

@@ -594,7 +594,7 @@ class Pyramidal(_PowerLaw):
     face_angle: float = FACE_ANGLE.default
     form: str = "rico"
     key: ClassVar[str] = "pyramidal"
-    title: ClassVar[str] = "four-sided pyramid (Rico 2005 / Bilodeau 1992)"
+    title: ClassVar[str] = "4-sided pyramid (Rico/Bilodeau)"
     formula: ClassVar[str] = (r"F = c\, E^* \tan\beta\, Z_s^2,\quad "
                               r"Z_s = \frac{r}{c \tan\beta},\quad c = 1/\sqrt{2}\ "
                               r"\mathrm{(Rico)}\ \mathrm{or}\ 0.7453\ \mathrm{(Bilodeau)}")

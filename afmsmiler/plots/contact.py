@@ -293,9 +293,7 @@ def fit_figure(curve, result, *, report_poisson_ratio=None, zoom=DEFAULTS["fit_z
             label=fit_label(result, report_poisson_ratio))
     ax.axvline(result.contact_point * s, color="k", lw=0.8, ls=":", label="contact point")
     ax.set_ylabel("force [nN]")
-    # under the residuals, outside both axes (the title above says what the view shows)
-    ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.55), bbox_transform=axr.transAxes,
-              fontsize=8, frameon=False)
+    ax.legend(**{**_LEGEND_ABOVE, "ncol": 2})  # above the data; the zoom is told under the axes
     axr.plot(result.x * s, (curve.force - result.model_force) * f, ".", ms=2, color="0.3")
     axr.set_ylabel("residual [nN]")
     axr.set_xlabel("position (Z_np, or tip position) [nm]")
@@ -307,8 +305,8 @@ def fit_figure(curve, result, *, report_poisson_ratio=None, zoom=DEFAULTS["fit_z
                      (axr, (curve.force - result.model_force)[inside])):
             pad = 0.05 * (np.ptp(y) or 1e-12)
             a.set_ylim((y.min() - pad) * f, (y.max() + pad) * f)
-        ax.set_title(f"zoom: {(hi - lo) * 1e6:.2g} um around the contact point "
-                     f"(full curve: {np.ptp(result.x) * 1e6:.2g} um)", fontsize=9)
+        axr.set_xlabel(f"{axr.get_xlabel()}\nzoom: {(hi - lo) * 1e6:.2g} um around the contact "
+                       f"point (full curve: {np.ptp(result.x) * 1e6:.2g} um)")
     fig.tight_layout()
     return fig
 
@@ -337,6 +335,9 @@ def fit_label(result, report_poisson_ratio=None) -> str:
     text = (f"fit at nu = {nu:g}: E = {result.youngs_modulus / 1e3:.4g} +/- "
             f"{result.youngs_modulus_error / 1e3:.2g} kPa, E* = E/(1 - nu^2) = "
             f"{e_star / 1e3:.4g} kPa")
+    form = getattr(result.tip, "form", None)
+    if form is not None:  # a pyramid: which published prefactor the modulus rests on
+        text += f"\npyramid law: {form} (c = {result.tip.prefactor:.4g})"
     if report_poisson_ratio is not None:
         nu2 = check_range("report_poisson_ratio", report_poisson_ratio, 0.0, 0.5)
         text += (f"\nE(nu = {nu2:g}) = (1 - nu^2) E* = {(1 - nu2 ** 2) * e_star / 1e3:.4g} +/- "
