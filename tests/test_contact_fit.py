@@ -21,7 +21,8 @@ CP, F0, NOISE = 50e-9, 1e-10, 20e-12
 
 
 def _curve(tip, seed, noise=NOISE):
-    return synthetic_curve(tip, E_TRUE, NU, K, z_np_range=(-300e-9, 500e-9), points=800,
+    return synthetic_curve(tip, spring_constant=K, youngs_modulus=E_TRUE, poisson_ratio=NU,
+                           z_np_range=(-300e-9, 500e-9), points=800,
                            contact_point=CP, baseline=F0, noise=noise, seed=seed)
 
 
@@ -87,7 +88,8 @@ def test_no_contact_is_refused():
     with pytest.raises(ValueError, match="no contact"):
         fit_curve(z, np.zeros(z.size), Parabolic(20e-9), NU, spring_constant=K)
     # a curve that stops before the contact point
-    c = synthetic_curve(Parabolic(20e-9), E_TRUE, NU, K, z_np_range=(-300e-9, 40e-9),
+    c = synthetic_curve(Parabolic(20e-9), spring_constant=K, youngs_modulus=E_TRUE,
+                        poisson_ratio=NU, z_np_range=(-300e-9, 40e-9),
                         contact_point=CP, noise=NOISE, seed=2)
     with pytest.raises(ValueError, match="no contact"):
         fit_curve(c.z_np, c.force, Parabolic(20e-9), NU, spring_constant=K)

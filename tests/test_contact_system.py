@@ -190,3 +190,20 @@ def test_jkr_neck_surface_is_hertz_plus_a_flat_punch():
 def test_pyramid_registry_cites_both_forms():
     assert "Rico" in Pyramidal.title and "Bilodeau" in Pyramidal.title
     assert "0.7453" in Pyramidal.formula
+
+
+@pytest.mark.slow
+def test_ramp_size_is_bounded_and_the_bound_runs_in_seconds():
+    from afmsmiler.contact.indent import MAX_POINTS
+    with pytest.raises(ValueError, match=rf"z_np must have at most {MAX_POINTS} points"):
+        indent(np.zeros(MAX_POINTS + 1), 0.1, Parabolic(), 1e6, 0.3)
+    s = ContactSystem(adhesion="jkr", work_of_adhesion=0.02)
+    t0 = time.perf_counter()
+    cycle = s.approach_retract(np.linspace(-100e-9, 300e-9, MAX_POINTS))
+    assert time.perf_counter() - t0 < 10 and np.isfinite(cycle.retract.force).all()
+
+
+def test_residual_checks_its_objects():
+    with pytest.raises(TypeError, match="curve must be a IndentationCurve|curve must be an"):
+        from afmsmiler.contact import residual
+        residual(None, 0.1, Parabolic(), 1e6, 0.3)

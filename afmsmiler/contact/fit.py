@@ -103,7 +103,7 @@ class FitResult:
     model: str = ""
 
 
-def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *,
+def synthetic_curve(tip, *, spring_constant, youngs_modulus, poisson_ratio,
                     z_np_range=(-100e-9, 200e-9), points=1000, contact_point=0.0, baseline=0.0,
                     noise=0.0, seed=None) -> ForceCurve:
     """An approach curve from the exact model, with optional Gaussian force noise.
@@ -112,12 +112,13 @@ def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *,
     ----------
     tip : Tip
         The tip shape.
+    spring_constant : float
+        k in N/m (keyword: the quantities come in the order of
+        :class:`~afmsmiler.contact.ContactSystem`).
     youngs_modulus : float
         E of the sample in Pa.
     poisson_ratio : float
         nu of the sample, in [0, 0.5).
-    spring_constant : float
-        k in N/m.
     z_np_range : (float, float)
         First and last Z_np in m (the ramp), relative to ``contact_point``'s frame.
     points : int

@@ -122,7 +122,13 @@ class ApproachRetract:
     adhesion: str | None
 
 
+#: Most Z_np points one call solves (a slider ramp has 400; a JKR cycle of this many takes a few s).
+MAX_POINTS = 100_000
+
+
 def _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio):
+    if np.size(z_np) > MAX_POINTS:
+        raise ValueError(f"z_np must have at most {MAX_POINTS} points, got {np.size(z_np)}")
     z = check_array("z_np", z_np, "m")
     k = check_positive("spring_constant", spring_constant, "N/m")
     check_instance("tip", tip, Tip)
@@ -215,6 +221,8 @@ def residual(curve: IndentationCurve, spring_constant, tip, youngs_modulus, pois
         The residual of every point, with F(Z_s) recomputed from the returned Z_s by the tip's
         public :meth:`~afmsmiler.contact.tips.Tip.force`.
     """
+    check_instance("curve", curve, IndentationCurve)
+    check_instance("tip", tip, Tip)
     k = check_positive("spring_constant", spring_constant, "N/m")
     e_star = reduced_modulus(youngs_modulus, poisson_ratio)
     c = curve.in_contact

@@ -88,7 +88,8 @@ def fitting_exercise(seed: int = 0) -> FitExercise:
     e = float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
     cp = float(rng.uniform(*DEFAULTS["contact_range"]))
     tip = Parabolic(DEFAULTS["radius"])
-    curve = synthetic_curve(tip, e, DEFAULTS["poisson_ratio"], DEFAULTS["spring_constant"],
+    curve = synthetic_curve(tip, spring_constant=DEFAULTS["spring_constant"], youngs_modulus=e,
+                            poisson_ratio=DEFAULTS["poisson_ratio"],
                             z_np_range=DEFAULTS["z_np_range"], points=DEFAULTS["points"],
                             contact_point=cp, baseline=float(rng.normal(0.0, 50e-12)),
                             noise=DEFAULTS["noise"], seed=int(rng.integers(2 ** 31)))
