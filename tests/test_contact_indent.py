@@ -451,6 +451,7 @@ def test_jkr_branch_and_snap_off_against_40_digits(k, e):
         assert a == pytest.approx(float(ref), rel=1e-13)  # the fold's conditioning: ~20 eps
 
 
+@pytest.mark.slow
 def test_sls_cycles_over_random_parameters_are_physical():
     # fixed draws over the whole range (lever 1e-3-100 N/m, E 1 kPa-1 GPa, E_0/E_inf 1-100,
     # tau 1 us-1000 s, speed 10 nm/s-100 um/s): no failure, no tension, between the elastic curves

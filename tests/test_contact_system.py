@@ -207,3 +207,8 @@ def test_residual_checks_its_objects():
     with pytest.raises(TypeError, match="curve must be a IndentationCurve|curve must be an"):
         from afmsmiler.contact import residual
         residual(None, 0.1, Parabolic(), 1e6, 0.3)
+
+
+def test_tips_say_how_they_are_drawn():
+    assert [cls.faces for cls in TIPS.values()] == [None, None, None, 4]
+    assert [cls.adhesive for cls in TIPS.values()] == [True, True, False, False]

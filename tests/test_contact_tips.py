@@ -84,6 +84,7 @@ def test_axisymmetric_tips_match_sneddons_integrals(tip, slope):
         assert tip.force(d, E_STAR) == pytest.approx(f, rel=1e-11)
 
 
+@pytest.mark.slow
 def test_sympy_derivation_of_cone_and_paraboloid_from_sneddon():
     x, a, R, al, E, d = sp.symbols("x a R alpha E delta", positive=True)
     for slope, expected in ((a * x / R, 4 * sp.sqrt(R) / 3 * E * d ** sp.Rational(3, 2)),

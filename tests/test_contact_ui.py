@@ -170,6 +170,7 @@ def test_scene_updates_in_place():
     assert len(tip_calls) == n_tip + 1
 
 
+@pytest.mark.viewer
 def test_scene_in_the_real_viewer_updates_in_place():
     from afmsmiler.scenes import close_viewer, get_viewer, static_html, viewer
     try:
@@ -264,6 +265,7 @@ def test_pull_off_checker_uses_the_published_values():
         check_pull_off_force(1e-9, "maugis")
 
 
+@pytest.mark.slow
 @pytest.mark.parametrize("tip", list(TIPS))
 def test_no_slider_position_makes_the_model_raise(tip):
     # every tip at the corners of the slider ranges (softest/stiffest lever and sample, smallest and
@@ -428,6 +430,7 @@ def _overlaps(fig, ax, legend):
     return False
 
 
+@pytest.mark.slow
 def test_legends_do_not_cover_data():
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     panel = ContactPanel()

@@ -116,6 +116,8 @@ class Tip:
     parameters: ClassVar[tuple[Parameter, ...]]
     #: Whether the adhesion models (DMT, JKR: a smooth apex of radius R) apply to this shape.
     adhesive: ClassVar[bool] = False
+    #: Number of flat faces (4 for the pyramid), or None for a body of revolution: how to draw it.
+    faces: ClassVar[int | None] = None
 
     def __post_init__(self):
         for p in self.parameters:
@@ -599,6 +601,7 @@ class Pyramidal(_PowerLaw):
                               r"Z_s = \frac{r}{c \tan\beta},\quad c = 1/\sqrt{2}\ "
                               r"\mathrm{(Rico)}\ \mathrm{or}\ 0.7453\ \mathrm{(Bilodeau)}")
     parameters: ClassVar[tuple[Parameter, ...]] = (FACE_ANGLE,)
+    faces: ClassVar[int | None] = 4
 
     def __post_init__(self):
         super().__post_init__()

@@ -23,7 +23,7 @@ import meshcat
 import meshcat.geometry as g
 import numpy as np
 
-from ..contact import IndentationCurve, Pyramidal, Tip, contact_surface
+from ..contact import IndentationCurve, Tip, contact_surface
 from ..validation import check_instance, check_integer, check_positive
 from . import primitives as P
 from .viewer import get_viewer
@@ -160,7 +160,7 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     x, z = tip.outline(height)
     mid = x.size // 2
     r, z = x[mid:], z[mid:]  # one flank: from the apex outwards
-    pyramid = isinstance(tip, Pyramidal)
+    pyramid = tip.faces == 4  # the model says how the shape is drawn, not its class name
     if pyramid:
         # the outline is cut across the faces; the corners (at 45 deg) lie sqrt(2) further out
         corner = [math.pi / 4, 3 * math.pi / 4, 5 * math.pi / 4, 7 * math.pi / 4]
