@@ -178,7 +178,7 @@ def test_make_tip_rejects_unknown_key_and_parameter():
 @pytest.mark.parametrize("bad", [0.0, -1e-9, math.nan, math.inf])
 @pytest.mark.parametrize("cls", [Parabolic, Spherical])
 def test_bad_radius(cls, bad):
-    with pytest.raises(ValueError, match=r"^radius must be in \(0, inf\) m"):
+    with pytest.raises(ValueError, match=r"^radius must be in \(0, 0.01\] m"):
         cls(bad)
 
 

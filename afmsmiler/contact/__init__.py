@@ -17,7 +17,8 @@ from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesio
                      approach_retract, indent,
                      jkr_curve, jkr_instability, residual, z_np_limit)
 from .surface import contact_surface, surface_displacement
-from .system import BRANCHES, PARAMETERS, ContactSystem
+from .quantities import PARAMETERS
+from .system import BRANCHES, ContactSystem
 from .tips import (PYRAMID_FORMS, TIPS, Conical, Parabolic, Pyramidal, Spherical, Tip, make_tip,
                    reduced_modulus, tip_table)
 from .viscoelastic import (StandardLinearSolid, ViscoelasticCycle, hereditary_force,

@@ -41,7 +41,8 @@ from scipy.optimize import brentq
 from ..validation import (check_array, check_choice, check_instance, check_nonnegative,
                           check_positive)
 from ._solvers import bracketed_newton
-from .tips import Parabolic, Spherical, Tip, reduced_modulus
+from .quantities import PARAMETERS
+from .tips import Spherical, Tip, reduced_modulus
 
 __all__ = ["IndentationCurve", "ApproachRetract", "indent", "approach_retract", "residual",
            "adhesion_extrema",
@@ -129,10 +130,12 @@ MAX_POINTS = 100_000
 def _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio):
     if np.size(z_np) > MAX_POINTS:
         raise ValueError(f"z_np must have at most {MAX_POINTS} points, got {np.size(z_np)}")
-    z = check_array("z_np", z_np, "m")
-    k = check_positive("spring_constant", spring_constant, "N/m")
+    zp = PARAMETERS["z_np"]
+    z = check_array("z_np", z_np, "m", low=zp.low, high=zp.high)
+    k = PARAMETERS["spring_constant"].check(spring_constant)
     check_instance("tip", tip, Tip)
-    e_star = reduced_modulus(youngs_modulus, poisson_ratio)
+    e = PARAMETERS["youngs_modulus"].check(youngs_modulus)
+    e_star = reduced_modulus(e, PARAMETERS["poisson_ratio"].check(poisson_ratio))
     return z, k, e_star
 
 
@@ -278,7 +281,7 @@ def jkr_instability(spring_constant, radius, work_of_adhesion,
     """
     k = check_positive("spring_constant", spring_constant, "N/m")
     radius = check_positive("radius", radius, "m")
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     e_star = check_positive("reduced_modulus", reduced_modulus, "Pa")
     c1 = 0.5 * math.sqrt(2.0 * math.pi * w / e_star)
     c2 = 1.5 * math.sqrt(8.0 * math.pi * w * e_star)
@@ -404,7 +407,7 @@ def z_np_limit(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion=
         return math.inf
     if adhesion is None:
         return tip.max_z_np(k, e_star)
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     if adhesion == "dmt":
         return tip.max_z_np(k, e_star) - 2.0 * math.pi * tip.radius * w / k
     a_min, _, _ = jkr_instability(k, tip.radius, w, e_star)
@@ -461,7 +464,7 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
                                app.contact_radius[::-1], app.in_contact[::-1])
         return ApproachRetract(app, ret, 0.0, 0.0, 0.0, None)
     radius = _adhesive_radius(tip)
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     try:
         with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
             cycle = _adhesive_cycle(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion,
@@ -562,7 +565,7 @@ def adhesion_extrema(spring_constant, tip, youngs_modulus, poisson_ratio, *, adh
     _, k, e_star = _check_common(0.0, spring_constant, tip, youngs_modulus, poisson_ratio)
     check_choice("adhesion", adhesion, ("dmt", "jkr"))
     radius = _adhesive_radius(tip)
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
         if adhesion == "dmt":
             f_ad = 2.0 * math.pi * radius * w

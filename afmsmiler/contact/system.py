@@ -31,30 +31,13 @@ from functools import cached_property
 
 import numpy as np
 
-from ..parameters import Parameter, read_only
 from ..validation import check_array, check_choice, check_instance
 from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesion_extrema,
                      approach_retract, indent, z_np_limit)
+from .quantities import PARAMETERS
 from .tips import Parabolic, Tip, reduced_modulus
 
 __all__ = ["PARAMETERS", "ContactSystem", "BRANCHES"]
-
-#: The user-settable quantities of a contact system (SI; display units through ``UNITS``).
-PARAMETERS = read_only({p.name: p for p in (
-    Parameter(name="spring_constant", unit="N/m", display_unit="N/m", default=0.1, low=0.0,
-              low_inclusive=False, slider_low=0.005, slider_high=100.0, log=True,
-              label="lever spring constant k"),
-    Parameter(name="youngs_modulus", unit="Pa", display_unit="MPa", default=1e6, low=0.0,
-              low_inclusive=False, slider_low=1e3, slider_high=1e11, log=True,
-              label="Young's modulus E"),
-    Parameter(name="poisson_ratio", unit="", default=0.3, low=0.0, high=0.5,
-              high_inclusive=False, slider_low=0.0, slider_high=0.49, label="Poisson's ratio nu"),
-    Parameter(name="z_np", unit="m", display_unit="nm", default=60e-9, slider_low=-50e-9,
-              slider_high=200e-9, label="positioner displacement Z_np"),
-    Parameter(name="work_of_adhesion", unit="J/m^2", display_unit="mJ/m^2", default=20e-3,
-              low=0.0, low_inclusive=False, slider_low=1e-3, slider_high=0.2,
-              label="work of adhesion w"),
-)})
 
 #: The branches of a cycle on which :meth:`ContactSystem.at` gives the state.
 BRANCHES = ("approach", "retract")

@@ -78,7 +78,7 @@ def reduced_modulus(youngs_modulus, poisson_ratio) -> float:
 
 # the registry's parameters, with their defaults, in one place (SI; display units through UNITS)
 RADIUS = Parameter(name="radius", unit="m", display_unit="nm", default=20e-9, low=0.0,
-                   low_inclusive=False, high_inclusive=False, slider_low=1e-9, slider_high=5e-6, log=True,
+                   high=1e-2, low_inclusive=False, slider_low=1e-9, slider_high=5e-6, log=True,
                    label="tip radius R")
 HALF_ANGLE = Parameter(name="half_angle", unit="rad", display_unit="deg",
                        default=math.radians(20.0), low=0.0, high=math.pi / 2, low_inclusive=False,
