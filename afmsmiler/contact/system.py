@@ -11,14 +11,15 @@ accept (:attr:`ContactSystem.z_np_limit`). It plays the part module (c)'s
 :class:`~afmsmiler.cantilever.Cantilever` (:meth:`ContactSystem.from_cantilever`), so that the
 course's modules join up.
 
-The quantities always come in one order: tip, spring_constant, youngs_modulus, poisson_ratio,
-adhesion, work_of_adhesion. :data:`PARAMETERS` describes the user-settable ones (SI units,
+The quantities always come in one order, the free functions' (:func:`indent`,
+:func:`approach_retract`, :func:`z_np_limit`, :func:`adhesion_extrema`): spring_constant, tip,
+youngs_modulus, poisson_ratio, adhesion, work_of_adhesion; the system takes them as keywords. :data:`PARAMETERS` describes the user-settable ones (SI units,
 display units, defaults, valid and slider ranges) for the panel and the docs.
 
 Examples
 --------
 >>> from afmsmiler.contact import ContactSystem, Parabolic
->>> system = ContactSystem(tip=Parabolic(radius=50e-9), spring_constant=0.1,
+>>> system = ContactSystem(spring_constant=0.1, tip=Parabolic(radius=50e-9),
 ...                        youngs_modulus=20e6, poisson_ratio=0.3, adhesion="jkr",
 ...                        work_of_adhesion=0.03)
 >>> round(system.pull_off_force / (1.5 * 3.141592653589793 * 50e-9 * 0.03), 6)  # JKR: 3/2 pi R w
@@ -54,10 +55,10 @@ class ContactSystem:
 
     Parameters
     ----------
+    spring_constant : float
+        Lever spring constant k in N/m (see :data:`PARAMETERS` for the valid ranges).
     tip : Tip
         The tip shape (default: a paraboloid of radius 20 nm).
-    spring_constant : float
-        Lever spring constant k in N/m, > 0.
     youngs_modulus : float
         Young's modulus E of the sample in Pa, > 0.
     poisson_ratio : float
@@ -81,8 +82,8 @@ class ContactSystem:
     Rico/Bilodeau, DMT, JKR).
     """
 
-    tip: Tip = field(default_factory=Parabolic)
     spring_constant: float = PARAMETERS["spring_constant"].default
+    tip: Tip = field(default_factory=Parabolic)
     youngs_modulus: float = PARAMETERS["youngs_modulus"].default
     poisson_ratio: float = PARAMETERS["poisson_ratio"].default
     adhesion: str | None = None
