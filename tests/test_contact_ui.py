@@ -514,3 +514,21 @@ def test_things_to_try_lever_against_sample():
     panel.set(spring_constant=panel.controls["spring_constant"].base ** (
         panel.controls["spring_constant"].min), youngs_modulus=1e4)
     assert panel.last.current.z_s[0] < 0.05 * 100e-9
+
+
+def test_a_z_np_beyond_the_sphere_s_limit_is_clipped_and_said():
+    panel = ContactPanel()
+    panel.set(z_np=200.0)
+    panel.set(tip="spherical", radius=5.0, spring_constant=100.0)  # a 5 nm sphere, stiff lever
+    top = panel.controls["z_np"].max
+    assert top < 200.0 and panel.controls["z_np"].value == top
+    assert panel.last.current.z_np[0] == pytest.approx(top * 1e-9, rel=1e-12)
+    assert "outside" in panel.readout.value and "shown at" in panel.readout.value
+
+
+def test_the_z_np_slider_keeps_its_ends():
+    # 200e-9 / 1e-9 is 199.99999999999997 in floating point: the slider's end must not drop
+    panel = ContactPanel()
+    assert (panel.controls["z_np"].min, panel.controls["z_np"].max) == (-50.0, 200.0)
+    panel.set(youngs_modulus=2.0)
+    assert panel.controls["z_np"].max == 200.0

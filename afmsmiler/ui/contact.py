@@ -206,16 +206,19 @@ class ContactPanel(Panel):
             self._hold = hold
 
     def _z_np_range(self, system: ContactSystem) -> tuple[float, float]:
-        """The Z_np slider's range in m: below the snap-off, up to 90 % of the model's limit."""
+        """The Z_np slider's range as shown (nm, on its grid): below the snap-off, up to 90 % of
+        the model's limit."""
         p = SLIDERS["z_np"]
-        step = p.to_si(self.controls["z_np"].step)
+        step = self.controls["z_np"].step
         low = p.slider_low
         if system.adhesion:  # extend the ramp below the snap-off so that the retract is complete
             low = min(low, 1.25 * system.snap_off_z_np)
-        low = max(step * math.floor(low / step), _Z_NP_FLOOR)  # on the slider's grid
+        low = max(low, _Z_NP_FLOOR)
         high = min(p.slider_high, _SPHERE_MARGIN * system.z_np_limit)
-        high = max(step * math.floor(high / step), low + step)
-        return low, high
+        # whole steps in the display unit (in SI, 200e-9 / 1e-9 is 199.99999999999997)
+        n_low = math.floor(p.to_display(low) / step + 1e-9)
+        n_high = max(math.floor(p.to_display(high) / step + 1e-9), n_low + 1)
+        return n_low * step, n_high * step
 
     # -- the callback ------------------------------------------------------------------------------
     def update(self, tip, spring_constant, youngs_modulus, poisson_ratio, z_np, branch, adhesion,
@@ -271,16 +274,17 @@ class ContactPanel(Panel):
         if model and _SPHERE_MARGIN * system.z_np_limit < _MIN_RANGE:
             self._note = "adhesion would pull this sphere in past its radius: shown without it"
             system = system.replace(adhesion=None)
-        z_lo, z_hi = self._z_np_range(system)
-        z_now = SLIDERS["z_np"].to_si(z_np)
-        if not z_lo <= z_now <= z_hi:
-            clipped = min(max(z_now, z_lo), z_hi)
-            self._note += (f" Z_np {z_np:g} nm is outside [{z_lo * 1e9:g}, {z_hi * 1e9:g}] nm "
-                           f"for this tip: shown at {clipped * 1e9:g} nm.")
-            z_now = clipped
-        self._set_z_np_range(z_lo * 1e9, z_hi * 1e9, SLIDERS["z_np"].to_display(z_now))
-        cycle = system.approach_retract(np.linspace(z_lo, z_hi, _RAMP_POINTS))
-        current = system.at(z_now, branch)
+        lo, hi = self._z_np_range(system)  # as shown, nm
+        shown = float(z_np)
+        if not lo <= shown <= hi:
+            clipped = min(max(shown, lo), hi)
+            self._note += (f" Z_np {shown:g} nm is outside [{lo:g}, {hi:g}] nm for this tip: "
+                           f"shown at {clipped:g} nm.")
+            shown = clipped
+        self._set_z_np_range(lo, hi, shown)
+        to_si = SLIDERS["z_np"].to_si
+        cycle = system.approach_retract(np.linspace(to_si(lo), to_si(hi), _RAMP_POINTS))
+        current = system.at(to_si(shown), branch)
         extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
                      30e-9)
         curves = contact_curves(cycle, current, shape, extent)
