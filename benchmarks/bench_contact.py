@@ -19,18 +19,20 @@ from scipy.optimize import brentq
 sys.path.insert(0, str(Path(__file__).parent))
 from _timing import best_time, report  # noqa: E402
 
-from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, indent,  # noqa: E402
-                               reduced_modulus)
+from afmsmiler.contact import (Conical, ContactSystem, Parabolic, Pyramidal,  # noqa: E402
+                               Spherical, reduced_modulus)
 
 K, E, NU = 0.1, 1e6, 0.3
 E_STAR = reduced_modulus(E, NU)
 TIPS = [Parabolic(20e-9), Spherical(500e-9), Conical(math.radians(20)), Pyramidal(math.radians(35))]
+SYSTEMS = [ContactSystem(spring_constant=K, tip=tip, youngs_modulus=E, poisson_ratio=NU)
+           for tip in TIPS]
 Z = np.linspace(-50e-9, 300e-9, 1000)
 
 
 def ours():
-    for tip in TIPS:
-        indent(Z, K, tip, E, NU)
+    for system in SYSTEMS:
+        system.indent(Z)
 
 
 def _scalar_law(tip):
@@ -49,7 +51,7 @@ def _scalar_law(tip):
             return K * (z - s) - c * s * math.sqrt(s)
     else:
         t = math.tan(tip.half_angle) * 2.0 / math.pi if isinstance(tip, Conical) else \
-            math.tan(tip.face_angle) / math.sqrt(2.0)
+            math.tan(tip.face_angle) / math.sqrt(2.0)  # Rico's form, the Pyramidal default
         c = t * E_STAR
 
         def g(s, z):
@@ -73,13 +75,13 @@ def peer():
 
 
 def main():
-    for tip in TIPS:  # same answers before timing anything
-        np.testing.assert_allclose(indent(Z, K, tip, E, NU).z_s, peer_tip(tip), rtol=1e-12,
+    for system in SYSTEMS:  # same answers before timing anything
+        np.testing.assert_allclose(system.indent(Z).z_s, peer_tip(system.tip), rtol=1e-12,
                                    atol=1e-24)
     rows = []
-    for tip in TIPS:
-        t = best_time(lambda tip=tip: indent(Z, K, tip, E, NU))
-        rows.append((f"indent, 1000 points, {tip.key}", t, None, None))
+    for system in SYSTEMS:
+        t = best_time(lambda system=system: system.indent(Z))
+        rows.append((f"indent, 1000 points, {system.tip.key}", t, None, None))
     t_ours = best_time(ours)
     t_peer = best_time(peer, repeat=3)
     rows.append(("indent, 1000 points x 4 tips (afmsmiler)", t_ours, 5e-3, t_peer))

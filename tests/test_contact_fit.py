@@ -2,6 +2,7 @@
 data, calibration of that uncertainty over many noise draws, files read with afmformats, the
 vendor's fit of a real JPK curve, and the refusal to fit a curve without contact."""
 import math
+import re
 from pathlib import Path
 
 import numpy as np
@@ -20,14 +21,20 @@ CP, F0, NOISE = 50e-9, 1e-10, 20e-12
 
 
 def _curve(tip, seed, noise=NOISE):
-    return synthetic_curve(tip, E_TRUE, NU, K, z_np_range=(-300e-9, 500e-9), points=800,
+    return synthetic_curve(tip, spring_constant=K, youngs_modulus=E_TRUE, poisson_ratio=NU,
+                           z_np_range=(-300e-9, 500e-9), points=800,
                            contact_point=CP, baseline=F0, noise=noise, seed=seed)
+
+
+def _form(tip):
+    """The pyramid form the synthetic curve was made with (fit_curve defaults to Bilodeau)."""
+    return getattr(tip, "form", "bilodeau")
 
 
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
 def test_noiseless_curve_is_fitted_exactly(tip):
     c = _curve(tip, 0, noise=0.0)
-    r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K)
+    r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K, pyramid_form=_form(tip))
     assert r.youngs_modulus == pytest.approx(E_TRUE, rel=1e-9)
     assert r.contact_point == pytest.approx(CP, rel=1e-9)
     assert r.baseline == pytest.approx(F0, rel=1e-9)
@@ -37,7 +44,7 @@ def test_noiseless_curve_is_fitted_exactly(tip):
 @pytest.mark.parametrize("seed", [3, 11])
 def test_noisy_curve_recovers_e_within_its_uncertainty(tip, seed):
     c = _curve(tip, seed)
-    r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K)
+    r = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K, pyramid_form=_form(tip))
     # 3 sigma: a 0.3 % chance per case for a correct fit with a correct uncertainty
     assert abs(r.youngs_modulus - E_TRUE) <= 3 * r.youngs_modulus_error
     assert abs(r.contact_point - CP) <= 3 * r.contact_point_error
@@ -46,6 +53,7 @@ def test_noisy_curve_recovers_e_within_its_uncertainty(tip, seed):
     assert r.residual_rms == pytest.approx(NOISE, rel=0.15)
 
 
+@pytest.mark.slow
 def test_reported_uncertainty_is_calibrated():
     # over 200 fixed noise draws, (fit - truth) / sigma of E and of the contact point behave like
     # standard normal variables; the windows are 3 standard errors wide for n = 200 (std: 0.05,
@@ -80,7 +88,8 @@ def test_no_contact_is_refused():
     with pytest.raises(ValueError, match="no contact"):
         fit_curve(z, np.zeros(z.size), Parabolic(20e-9), NU, spring_constant=K)
     # a curve that stops before the contact point
-    c = synthetic_curve(Parabolic(20e-9), E_TRUE, NU, K, z_np_range=(-300e-9, 40e-9),
+    c = synthetic_curve(Parabolic(20e-9), spring_constant=K, youngs_modulus=E_TRUE,
+                        poisson_ratio=NU, z_np_range=(-300e-9, 40e-9),
                         contact_point=CP, noise=NOISE, seed=2)
     with pytest.raises(ValueError, match="no contact"):
         fit_curve(c.z_np, c.force, Parabolic(20e-9), NU, spring_constant=K)
@@ -88,7 +97,7 @@ def test_no_contact_is_refused():
 
 @pytest.mark.parametrize("kwargs, match", [
     (dict(poisson_ratio=0.5), "poisson_ratio"), (dict(spring_constant=0.0), "spring_constant"),
-    (dict(force=np.zeros(5)), "force must have"), (dict(tip=None), "tip must be a Tip")])
+    (dict(force=np.zeros(5)), "force must have")])
 def test_fit_bad_input(kwargs, match):
     c = _curve(Parabolic(20e-9), 0)
     args = dict(position=c.z_np, force=c.force, tip=Parabolic(20e-9), poisson_ratio=NU,
@@ -150,3 +159,84 @@ def test_reproduces_the_vendor_fit_of_a_real_jpk_curve():
     assert r.youngs_modulus_error < 0.01 * r.youngs_modulus
     with pytest.raises(ValueError, match="segment must be one of"):
         load_curve(JPK, segment="extend")
+
+
+# --- the four-sided pyramid: two published prefactors ---------------------------------------------
+def test_pyramid_prefactors_are_the_published_values():
+    # Rico et al. 2005 (the source paper's Eq. 12): F = E* tan(beta) Z^2 / sqrt(2);
+    # Bilodeau 1992 (as vendor software reports it): F = 0.7453 E* tan(beta) Z^2
+    beta, e_star, z = math.radians(35), 1e6, 40e-9
+    rico = Pyramidal(beta).force(z, e_star)
+    bilodeau = Pyramidal(beta, form="bilodeau").force(z, e_star)
+    assert rico == pytest.approx(e_star * math.tan(beta) * z ** 2 / math.sqrt(2), rel=1e-14)
+    assert bilodeau == pytest.approx(0.7453 * e_star * math.tan(beta) * z ** 2, rel=1e-14)
+    assert bilodeau / rico == pytest.approx(1.054, abs=5e-4)  # the review's 5.4 %
+    assert "Bilodeau" in Pyramidal(form="bilodeau").source and "Eq. 12" in Pyramidal().source
+    with pytest.raises(ValueError, match="form must be one of"):
+        Pyramidal(form="sneddon")
+
+
+def test_fits_of_a_pyramid_default_to_bilodeau_and_say_so():
+    tip = Pyramidal(math.radians(35))  # the paper's form, as the module's reproduction uses
+    c = _curve(tip, 0, noise=0.0)
+    vendor = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K)
+    paper = fit_curve(c.z_np, c.force, tip, NU, spring_constant=K, pyramid_form="rico")
+    assert vendor.tip.form == "bilodeau" and "Bilodeau" in vendor.model and "0.7453" in vendor.model
+    assert paper.tip.form == "rico" and "Rico" in paper.model
+    assert paper.youngs_modulus == pytest.approx(E_TRUE, rel=1e-9)
+    # the same curve fitted with the larger prefactor gives E smaller by 0.7071 / 0.7453
+    assert vendor.youngs_modulus == pytest.approx(E_TRUE / (0.7453 * math.sqrt(2)), rel=1e-6)
+    assert Parabolic(20e-9).title in fit_curve(c.z_np, c.force, Parabolic(20e-9), NU,
+                                               spring_constant=K).model
+
+
+# --- bad files: a ValueError naming the path before any large allocation -------------------------
+def _craft_jpk(tmp_path, name, edit):
+    import zipfile
+    out = tmp_path / name
+    with zipfile.ZipFile(JPK) as zin, zipfile.ZipFile(out, "w") as zout:
+        for info in zin.infolist():
+            zout.writestr(info, edit(info.filename, zin.read(info.filename)))
+    return out
+
+
+def test_a_missing_file_is_a_value_error_naming_the_path(tmp_path):
+    path = tmp_path / "nothing.jpk-force"
+    with pytest.raises(ValueError, match=r"path '.*nothing\.jpk-force': no such file"):
+        load_curve(path)
+    other = tmp_path / "notes.txt"
+    other.write_text("not a curve")
+    with pytest.raises(ValueError, match=r"path '.*notes\.txt': afmformats cannot read it"):
+        load_curve(other)
+
+
+def test_a_header_claiming_1e12_points_is_refused_before_reading(tmp_path):
+    path = _craft_jpk(tmp_path, "huge.jpk-force", lambda n, b: b.replace(
+        b"num-points=2000", b"num-points=1000000000000")
+        if n.endswith("segment-header.properties") else b)
+    with pytest.raises(ValueError, match=r"path .*huge.* claims 2000000000000 points"):
+        load_curve(path)  # before: MemoryError allocating 931 GiB
+
+
+def test_a_truncated_channel_is_a_value_error(tmp_path):
+    path = _craft_jpk(tmp_path, "cut.jpk-force", lambda n, b: b[:1000]
+                      if n == "segments/0/channels/vDeflection.dat" else b)
+    with pytest.raises(ValueError, match=r"path .*cut.*truncated or corrupt"):
+        load_curve(path)  # before: IndexError from afmformats
+
+
+@pytest.mark.parametrize("channel", ["height (measured)", "force"])
+def test_nan_in_a_file_is_a_value_error_naming_the_channel(tmp_path, channel):
+    afmformats = pytest.importorskip("afmformats")
+    c = _curve(Parabolic(20e-9), 5)
+    n = c.z_np.size
+    data_ = {"force": np.r_[c.force, c.force[::-1]],
+             "height (measured)": np.r_[-c.z_np, -c.z_np[::-1]],
+             "segment": np.r_[np.zeros(n, dtype=np.uint8), np.ones(n, dtype=np.uint8)]}
+    data_[channel][17] = math.nan
+    path = tmp_path / "holes.tab"
+    afmformats.AFMForceDistance(data_, metadata={
+        "path": path, "enum": 0, "spring constant": K,
+        "imaging mode": "force-distance"}).export_data(path, fmt="tab")
+    with pytest.raises(ValueError, match=rf"path .*holes.*'{re.escape(channel)}'.*non-finite"):
+        load_curve(path)  # before: NaN heights passed through

@@ -4,7 +4,6 @@ import numpy as np
 import pytest
 
 from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical, indent, surface_displacement
-from afmsmiler.plots.contact import tip_outline
 from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.contact import DEFAULTS, ContactScene, cut_mesh, surface_mesh, tip_mesh
 from recording import Recorder
@@ -21,7 +20,7 @@ def test_half_meshes_are_the_far_half_closed_by_their_cross_sections(tip):
     # the cross-section on y = 0 is the tip's outline: |x| at each height as tip_outline says
     on_cut = np.abs(v[:, 1]) < 1e-6
     on_cut[-1] = False  # the centre of the flat top (the lid), not a point of the outline
-    x, z = tip_outline(tip, 100e-9)
+    x, z = tip.outline(100e-9)
     flank = x >= 0
     expected = np.interp(v[on_cut, 2] * UNIT, z[flank], x[flank])
     np.testing.assert_allclose(np.abs(v[on_cut, 0]) * UNIT, expected, rtol=1e-4, atol=1e-12)

@@ -84,6 +84,7 @@ def test_axisymmetric_tips_match_sneddons_integrals(tip, slope):
         assert tip.force(d, E_STAR) == pytest.approx(f, rel=1e-11)
 
 
+@pytest.mark.slow
 def test_sympy_derivation_of_cone_and_paraboloid_from_sneddon():
     x, a, R, al, E, d = sp.symbols("x a R alpha E delta", positive=True)
     for slope, expected in ((a * x / R, 4 * sp.sqrt(R) / 3 * E * d ** sp.Rational(3, 2)),
@@ -157,10 +158,10 @@ def test_registry_metadata_is_consistent(key):
     assert cls.key == key
     tip = cls()
     assert make_tip(key) == tip
-    assert set(tip.values()) == {p.name for p in cls.parameters}
+    assert {p.name for p in cls.parameters} <= set(tip.values())
     for p in cls.parameters:
         assert p.low < p.slider_low < p.default < p.slider_high < p.high
-        assert p.unit in ("m", "rad") and p.display_scale > 0
+        assert p.unit in ("m", "rad") and p.scale > 0
         assert p.name in (cls.__doc__ or "")
         p.check(p.slider_low), p.check(p.slider_high)
     assert key in tip_table()
@@ -177,7 +178,7 @@ def test_make_tip_rejects_unknown_key_and_parameter():
 @pytest.mark.parametrize("bad", [0.0, -1e-9, math.nan, math.inf])
 @pytest.mark.parametrize("cls", [Parabolic, Spherical])
 def test_bad_radius(cls, bad):
-    with pytest.raises(ValueError, match=r"^radius must be in \(0, inf\) m"):
+    with pytest.raises(ValueError, match=r"^radius must be in \(0, 0.01\] m"):
         cls(bad)
 
 

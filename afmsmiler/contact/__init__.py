@@ -1,5 +1,7 @@
 """Module (d): contact mechanics of a rigid tip on an elastic (or viscoelastic, adhesive) sample.
 
+- :mod:`.system`: :class:`ContactSystem`, tip + lever + sample + adhesion, the object the panel,
+  the notebook and the exercises call (keyword arguments, one order everywhere);
 - :mod:`.tips`: the four tip shapes with F(Z_s), r(Z_s) and their metadata registry :data:`TIPS`;
 - :mod:`.indent`: the cantilever equation k (Z_np - Z_s) = F(Z_s) solved exactly for whole curves,
   approach-retract cycles with DMT or JKR adhesion;
@@ -11,17 +13,20 @@
 All public functions take and return SI units.
 """
 from .fit import FitResult, ForceCurve, fit_curve, load_curve, synthetic_curve
-from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, approach_retract, indent,
+from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesion_extrema,
+                     approach_retract, indent,
                      jkr_curve, jkr_instability, residual, z_np_limit)
-from .surface import surface_displacement
-from .tips import (TIPS, Conical, Parabolic, Pyramidal, Spherical, Tip, TipParameter, make_tip,
+from .surface import contact_surface, surface_displacement
+from .quantities import PARAMETERS
+from .system import BRANCHES, ContactSystem
+from .tips import (PYRAMID_FORMS, TIPS, Conical, Parabolic, Pyramidal, Spherical, Tip, make_tip,
                    reduced_modulus, tip_table)
 from .viscoelastic import (StandardLinearSolid, ViscoelasticCycle, hereditary_force,
                            viscoelastic_approach_retract)
 
-__all__ = ["TIPS", "Tip", "TipParameter", "Parabolic", "Spherical", "Conical", "Pyramidal",
+__all__ = ["ContactSystem", "PARAMETERS", "BRANCHES", "PYRAMID_FORMS", "TIPS", "Tip", "Parabolic", "Spherical", "Conical", "Pyramidal",
            "make_tip", "reduced_modulus", "tip_table", "IndentationCurve", "ApproachRetract",
-           "indent", "approach_retract", "residual", "ADHESION_MODELS", "jkr_curve",
+           "indent", "approach_retract", "adhesion_extrema", "residual", "ADHESION_MODELS", "jkr_curve",
            "jkr_instability", "z_np_limit", "StandardLinearSolid", "ViscoelasticCycle",
            "hereditary_force", "viscoelastic_approach_retract", "ForceCurve", "FitResult",
-           "synthetic_curve", "load_curve", "fit_curve", "surface_displacement"]
+           "synthetic_curve", "load_curve", "fit_curve", "surface_displacement", "contact_surface"]

@@ -19,16 +19,18 @@ tab and HDF5 exports) via :func:`load_curve`.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..validation import check_array, check_integer, check_nonnegative, check_positive, check_range
+from ..validation import (check_array, check_choice, check_instance, check_integer, check_nonnegative,
+                          check_positive, check_range)
 from .indent import indent
-from .tips import Spherical, Tip
+from .tips import PYRAMID_FORMS, Pyramidal, Spherical, Tip
 
-__all__ = ["ForceCurve", "FitResult", "synthetic_curve", "load_curve", "fit_curve"]
+__all__ = ["ForceCurve", "FitResult", "synthetic_curve", "load_curve", "fit_curve",
+           "MAX_FILE_POINTS"]
 
 
 @dataclass(frozen=True)
@@ -82,6 +84,9 @@ class FitResult:
         The abscissa fitted, in m (Z_np with a spring constant, else the tip position).
     model_force : ndarray
         The fitted model on ``x``, in N.
+    model : str
+        The force law fitted and its source (for a pyramid: which prefactor, Bilodeau's or
+        Rico's), so that a modulus is compared with one fitted the same way.
     """
 
     youngs_modulus: float
@@ -95,9 +100,10 @@ class FitResult:
     poisson_ratio: float
     x: np.ndarray = field(repr=False)
     model_force: np.ndarray = field(repr=False)
+    model: str = ""
 
 
-def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *,
+def synthetic_curve(tip, *, spring_constant, youngs_modulus, poisson_ratio,
                     z_np_range=(-100e-9, 200e-9), points=1000, contact_point=0.0, baseline=0.0,
                     noise=0.0, seed=None) -> ForceCurve:
     """An approach curve from the exact model, with optional Gaussian force noise.
@@ -106,12 +112,13 @@ def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *,
     ----------
     tip : Tip
         The tip shape.
+    spring_constant : float
+        k in N/m (keyword: the quantities come in the order of
+        :class:`~afmsmiler.contact.ContactSystem`).
     youngs_modulus : float
         E of the sample in Pa.
     poisson_ratio : float
         nu of the sample, in [0, 0.5).
-    spring_constant : float
-        k in N/m.
     z_np_range : (float, float)
         First and last Z_np in m (the ramp), relative to ``contact_point``'s frame.
     points : int
@@ -143,6 +150,11 @@ def synthetic_curve(tip, youngs_modulus, poisson_ratio, spring_constant, *,
                       f"synthetic {tip.key}, E = {youngs_modulus:g} Pa, noise {sigma:g} N")
 
 
+#: Most points a curve read from a file may have (a JPK map's curve has a few thousand; this many
+#: doubles are 80 MB): a header claiming more is refused before anything is allocated.
+MAX_FILE_POINTS = 10_000_000
+
+
 def load_curve(path, *, segment="approach", index=0) -> ForceCurve:
     """Read one force-distance segment from a file with ``afmformats``.
 
@@ -164,22 +176,66 @@ def load_curve(path, *, segment="approach", index=0) -> ForceCurve:
     Raises
     ------
     ValueError
-        For an unknown segment or a curve index beyond the file.
+        Naming ``path``: for a missing file, one afmformats cannot read, a header that claims
+        more than :data:`MAX_FILE_POINTS` points (checked before any data is read), channels of
+        different lengths (a truncated file) or non-finite heights or forces; and for an unknown
+        segment or a curve index beyond the file.
     """
+    import os
+
     import afmformats  # a kept library of the field, imported only when a file is read
 
-    if segment not in ("approach", "retract"):
-        raise ValueError(f"segment must be one of ['approach', 'retract'], got {segment!r}")
-    data = afmformats.load_data(path, modality="force-distance")
+    if not isinstance(path, (str, os.PathLike)):
+        raise TypeError(f"path must be a str or path-like, got {type(path).__name__}")
+    segment = check_choice("segment", segment, ("approach", "retract"))
+    where = f"path {os.fspath(path)!r}"
+    if not os.path.isfile(path):
+        raise ValueError(f"{where}: no such file")
+    # afmformats' own errors derive from BaseException, not Exception
+    errors = (Exception, getattr(getattr(afmformats, "errors", None), "AFMFileFormatError",
+                                 Exception))
+    try:
+        data = afmformats.load_data(path, modality="force-distance")
+    except errors as exc:  # format not supported, corrupt archive...
+        raise ValueError(f"{where}: afmformats cannot read it as a force-distance curve "
+                         f"({type(exc).__name__}: {exc})") from exc
+    if len(data) == 0:
+        raise ValueError(f"{where}: no force-distance curve in the file")
     index = check_integer("index", index, 0, len(data) - 1)
     fd = data[index]
-    seg = fd.appr if segment == "approach" else fd.retr
-    column = "height (measured)" if "height (measured)" in fd.columns else "height (piezo)"
-    height = seg[column]
+    claimed = fd.metadata.get("point count") if hasattr(fd.metadata, "get") else None
+    if claimed is not None and not (0 < float(claimed) <= MAX_FILE_POINTS):
+        raise ValueError(f"{where}: its header claims {claimed} points, outside "
+                         f"[1, {MAX_FILE_POINTS}]: refused before reading (a corrupt header?)")
+    try:
+        columns = fd.columns
+        column = "height (measured)" if "height (measured)" in columns else "height (piezo)"
+        seg = fd.appr if segment == "approach" else fd.retr
+        height = np.asarray(seg[column], dtype=float)
+        force = np.asarray(seg["force"], dtype=float)
+    except (MemoryError, OverflowError) as exc:
+        raise ValueError(f"{where}: too large to read ({exc})") from exc
+    except errors as exc:  # e.g. IndexError when a channel is shorter than the others
+        raise ValueError(f"{where}: its channels cannot be read together, the file is "
+                         f"truncated or corrupt ({type(exc).__name__}: {exc})") from exc
+    for name, values in ((column, height), ("force", force)):
+        if values.size < 2:
+            raise ValueError(f"{where}: channel {name!r} of the {segment} has "
+                             f"{values.size} points")
+        bad = np.flatnonzero(~np.isfinite(values))
+        if bad.size:
+            raise ValueError(f"{where}: channel {name!r} of the {segment} has {bad.size} "
+                             f"non-finite values (first at index {bad[0]})")
+    if height.size != force.size:
+        raise ValueError(f"{where}: channels {column!r} ({height.size} points) and 'force' "
+                         f"({force.size}) differ in length: the file is truncated or corrupt")
     k = fd.metadata.get("spring constant") if hasattr(fd.metadata, "get") else None
-    k = float(k) if k is not None and math.isfinite(float(k)) and k > 0 else None
-    return ForceCurve(-np.asarray(height, dtype=float), np.asarray(seg["force"], dtype=float), k,
-                      str(path))
+    try:
+        k = float(k) if k is not None else None
+    except (TypeError, ValueError):
+        k = None
+    k = k if k is not None and math.isfinite(k) and k > 0 else None
+    return ForceCurve(-height, force, k, str(path))
 
 
 def _baseline_stats(x, force):
@@ -191,7 +247,14 @@ def _baseline_stats(x, force):
     return med, sigma
 
 
-def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> FitResult:
+def _model_description(tip) -> str:
+    if isinstance(tip, Pyramidal):
+        return f"{tip.title}, form {tip.form!r}: {tip.source}"
+    return tip.title
+
+
+def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None,
+              pyramid_form="bilodeau") -> FitResult:
     """Fit E, the contact point and the baseline of an approach curve.
 
     Parameters
@@ -209,6 +272,11 @@ def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> F
         k in N/m. With it, the model is the full cantilever solution F(Z_np - x_0) of
         :func:`~afmsmiler.contact.indent` (so the noise of F does not leak into the abscissa, as
         it would through x = Z_np - F / k); without it, the tip-shape law F(x - x_0) itself.
+    pyramid_form : {"bilodeau", "rico"}
+        For a :class:`~afmsmiler.contact.Pyramidal` tip, the prefactor fitted (it replaces the
+        tip's own ``form``): Bilodeau's 0.7453 by default, as vendor software (JPK) reports, so
+        that a fitted E compares with theirs; ``"rico"`` for the source paper's Eq. 12
+        (1/sqrt(2): E comes out 5.4 % higher). ``FitResult.model`` says which was used.
 
     Returns
     -------
@@ -227,8 +295,10 @@ def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> F
     """
     x = check_array("position", position, "m", ndim=1, min_size=10)
     f = check_array("force", force, "N", ndim=1, size=x.size)
-    if not isinstance(tip, Tip):
-        raise ValueError(f"tip must be a Tip, got {tip!r}")
+    check_instance("tip", tip, Tip)
+    check_choice("pyramid_form", pyramid_form, tuple(PYRAMID_FORMS))
+    if isinstance(tip, Pyramidal):
+        tip = replace(tip, form=pyramid_form)
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
     k = None
     if spring_constant is not None:
@@ -312,4 +382,5 @@ def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None) -> F
     inv = np.empty_like(order)
     inv[order] = np.arange(order.size)
     return FitResult(float(e), float(err[0]), float(x0), float(err[1]), float(b), float(err[2]),
-                     float(math.sqrt(s2) * f_scale), tip, nu, x[inv], fitted[inv])
+                     float(math.sqrt(s2) * f_scale), tip, nu, x[inv], fitted[inv],
+                     _model_description(tip))

@@ -38,15 +38,21 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..validation import check_array, check_choice, check_nonnegative, check_positive
+from ..validation import (check_array, check_choice, check_instance, check_nonnegative,
+                          check_positive)
 from ._solvers import bracketed_newton
-from .tips import Parabolic, Spherical, Tip, reduced_modulus
+from .quantities import PARAMETERS
+from .tips import Spherical, Tip, reduced_modulus
 
 __all__ = ["IndentationCurve", "ApproachRetract", "indent", "approach_retract", "residual",
+           "adhesion_extrema",
            "ADHESION_MODELS", "jkr_curve", "jkr_instability", "z_np_limit"]
 
 #: Adhesion models offered by :func:`approach_retract` (None: purely elastic).
 ADHESION_MODELS = (None, "dmt", "jkr")
+
+#: Bracket doublings allowed before a JKR search gives up (2^1100 overflows any float range).
+_MAX_DOUBLINGS = 1100
 
 
 @dataclass(frozen=True)
@@ -117,13 +123,19 @@ class ApproachRetract:
     adhesion: str | None
 
 
+#: Most Z_np points one call solves (a slider ramp has 400; a JKR cycle of this many takes a few s).
+MAX_POINTS = 100_000
+
+
 def _check_common(z_np, spring_constant, tip, youngs_modulus, poisson_ratio):
-    z = check_array("z_np", z_np, "m")
-    k = check_positive("spring_constant", spring_constant, "N/m")
-    if not isinstance(tip, Tip):
-        raise ValueError(
-            f"tip must be a Tip (Parabolic, Spherical, Conical, Pyramidal), got {tip!r}")
-    e_star = reduced_modulus(youngs_modulus, poisson_ratio)
+    if np.size(z_np) > MAX_POINTS:
+        raise ValueError(f"z_np must have at most {MAX_POINTS} points, got {np.size(z_np)}")
+    zp = PARAMETERS["z_np"]
+    z = check_array("z_np", z_np, "m", low=zp.low, high=zp.high)
+    k = PARAMETERS["spring_constant"].check(spring_constant)
+    check_instance("tip", tip, Tip)
+    e = PARAMETERS["youngs_modulus"].check(youngs_modulus)
+    e_star = reduced_modulus(e, PARAMETERS["poisson_ratio"].check(poisson_ratio))
     return z, k, e_star
 
 
@@ -212,6 +224,8 @@ def residual(curve: IndentationCurve, spring_constant, tip, youngs_modulus, pois
         The residual of every point, with F(Z_s) recomputed from the returned Z_s by the tip's
         public :meth:`~afmsmiler.contact.tips.Tip.force`.
     """
+    check_instance("curve", curve, IndentationCurve)
+    check_instance("tip", tip, Tip)
     k = check_positive("spring_constant", spring_constant, "N/m")
     e_star = reduced_modulus(youngs_modulus, poisson_ratio)
     c = curve.in_contact
@@ -223,7 +237,7 @@ def residual(curve: IndentationCurve, spring_constant, tip, youngs_modulus, pois
 
 # --- adhesion -----------------------------------------------------------------------------------
 def _adhesive_radius(tip) -> float:
-    if not isinstance(tip, (Parabolic, Spherical)):
+    if not tip.adhesive:
         raise ValueError("adhesion (DMT, JKR) needs a parabolic or spherical tip, "
                          f"got {type(tip).__name__}")
     return tip.radius
@@ -267,17 +281,30 @@ def jkr_instability(spring_constant, radius, work_of_adhesion,
     """
     k = check_positive("spring_constant", spring_constant, "N/m")
     radius = check_positive("radius", radius, "m")
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     e_star = check_positive("reduced_modulus", reduced_modulus, "Pa")
     c1 = 0.5 * math.sqrt(2.0 * math.pi * w / e_star)
     c2 = 1.5 * math.sqrt(8.0 * math.pi * w * e_star)
 
     def p(t):
-        return 2.0 * t ** 3 / radius - c1 + (4.0 * e_star * t ** 5 / radius - c2 * t * t) / k
+        t = np.float64(t)  # overflow to inf rather than OverflowError
+        with np.errstate(over="ignore", invalid="ignore"):
+            return float(2.0 * t ** 3 / radius - c1 + (4.0 * e_star * t ** 5 / radius - c2 * t * t)
+                         / k)
 
     hi = max((c1 * radius / 2.0) ** (1 / 3), (c2 * radius / (4.0 * e_star)) ** (1 / 3))
-    while p(hi) <= 0:
+    for _ in range(_MAX_DOUBLINGS):
+        with np.errstate(over="ignore", invalid="ignore"):
+            above = p(hi) > 0
+        if above or not math.isfinite(hi):
+            break
         hi *= 2.0
+    if not (math.isfinite(hi) and math.isfinite(c1) and math.isfinite(c2) and p(hi) > 0):
+        raise ValueError(
+            "the JKR snap-off point cannot be bracketed in floating point for spring_constant = "
+            f"{k:g} N/m, radius = {radius:g} m, work_of_adhesion = {w:g} J/m^2, reduced_modulus "
+            f"= {e_star:g} Pa: choose values nearer the physical ranges (k in [1e-4, 1e3] N/m, "
+            "R in [1e-10, 1e-3] m, w in [1e-4, 1] J/m^2, E* in [1e2, 1e12] Pa)")
     t = brentq(p, 0.0, hi, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
     a = t * t
     z_s, force, _ = _jkr_terms(np.array(a), radius, w, e_star, k)
@@ -318,11 +345,18 @@ def _jkr_stable(z, k, radius, w, e_star, a_min, z_min) -> IndentationCurve:
     # bracket: a_min below; above, grow a_hi until Z_np(a_hi) >= max z
     z_hi = z.max()
     a_hi = max(2.0 * a_min, math.sqrt(radius * max(z_hi, 0.0)) * 2.0)
-    while True:
-        zs, f, _ = _jkr_terms(np.array(a_hi), radius, w, e_star, k)
-        if zs + f / k >= z_hi:
+    for _ in range(_MAX_DOUBLINGS):
+        with np.errstate(over="ignore", invalid="ignore"):
+            zs, f, _ = _jkr_terms(np.array(a_hi), radius, w, e_star, k)
+            reached = zs + f / k >= z_hi
+        if reached or not math.isfinite(a_hi):
             break
         a_hi *= 2.0
+    if not (reached and math.isfinite(a_hi)):
+        raise ValueError(
+            f"z_np up to {z_hi:g} m cannot be reached on the JKR branch in floating point "
+            f"(spring_constant = {k:g} N/m, radius = {radius:g} m, work_of_adhesion = {w:g} J/m^2, "
+            f"reduced_modulus = {e_star:g} Pa): choose values nearer the physical ranges")
 
     def g(a):
         zs, f, dz = _jkr_terms(a, radius, w, e_star, k)
@@ -373,7 +407,7 @@ def z_np_limit(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion=
         return math.inf
     if adhesion is None:
         return tip.max_z_np(k, e_star)
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     if adhesion == "dmt":
         return tip.max_z_np(k, e_star) - 2.0 * math.pi * tip.radius * w / k
     a_min, _, _ = jkr_instability(k, tip.radius, w, e_star)
@@ -430,7 +464,32 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
                                app.contact_radius[::-1], app.in_contact[::-1])
         return ApproachRetract(app, ret, 0.0, 0.0, 0.0, None)
     radius = _adhesive_radius(tip)
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
+    try:
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            cycle = _adhesive_cycle(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion,
+                                    radius, w)
+    except (OverflowError, ZeroDivisionError, FloatingPointError) as exc:
+        cycle, cause = None, exc
+    else:
+        cause = None
+    if cycle is None or not _finite(cycle):
+        raise ValueError(
+            f"the {adhesion.upper()} cycle is out of floating-point range for spring_constant = "
+            f"{k:g} N/m, radius = {radius:g} m, work_of_adhesion = {w:g} J/m^2, reduced_modulus = "
+            f"{e_star:g} Pa: choose values nearer the physical ranges") from cause
+    return cycle
+
+
+def _finite(cycle: ApproachRetract) -> bool:
+    arrays = [getattr(b, f) for b in (cycle.approach, cycle.retract)
+              for f in ("z_s", "z_c", "force", "contact_radius")]
+    return all(np.isfinite(a).all() for a in arrays) and all(
+        math.isfinite(x) for x in (cycle.pull_off_force, cycle.snap_off_force, cycle.snap_off_z_np))
+
+
+def _adhesive_cycle(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion, radius, w):
+    """The DMT or JKR cycle of :func:`approach_retract` (inputs checked)."""
     limit = z_np_limit(k, tip, youngs_modulus, poisson_ratio, adhesion=adhesion, work_of_adhesion=w)
     if z.max() >= limit:
         raise ValueError(
@@ -451,6 +510,7 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
 
         return ApproachRetract(dmt(z, z >= 0), dmt(rz, rz + shift > 0), f_ad, -f_ad, -shift, "dmt")
     a_min, z_min, f_min = jkr_instability(k, radius, w, e_star)
+    pull_off = _jkr_pull_off(k, radius, w, e_star, a_min, f_min)
 
     def jkr(zz, contact):
         z_s = np.zeros_like(zz)
@@ -461,9 +521,61 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
                 zz[contact], k, radius, w, e_star, a_min, z_min)
         return _branch(zz, k, z_s, force, a, contact)
 
-    # the most adhesive point of the stable branch: dF/da = 0 at a^3 = 9 pi w R^2 / (8 E*) when
-    # it lies on the branch (it always does: there dZ_s/da > 0), else the snap-off point
-    a_c = max(a_min, (9.0 * math.pi * w * radius ** 2 / (8.0 * e_star)) ** (1.0 / 3.0))
+    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), pull_off, f_min, z_min, "jkr")
+
+
+def _jkr_pull_off(k, radius, w, e_star, a_min, f_min) -> float:
+    """The most adhesive force of the stable JKR branch, magnitude in N."""
+    # dF/da = 0 at a^3 = 9 pi w R^2 / (8 E*) when it lies on the branch (it always does: there
+    # dZ_s/da > 0), else the snap-off point
+    a_c = max(a_min, (9.0 * math.pi * w / (8.0 * e_star)) ** (1.0 / 3.0) * radius ** (2.0 / 3.0))
     f_c = float(_jkr_terms(np.array(a_c), radius, w, e_star, k)[1])
-    return ApproachRetract(jkr(z, z >= 0), jkr(rz, rz >= z_min), -min(f_c, f_min), f_min, z_min,
-                           "jkr")
+    return -min(f_c, f_min)
+
+
+def adhesion_extrema(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion,
+                     work_of_adhesion) -> tuple[float, float, float]:
+    """Snap-off Z_np, snap-off force and pull-off force of an adhesive contact (no curve solved).
+
+    Parameters
+    ----------
+    spring_constant : float
+        k in N/m, > 0.
+    tip : Tip
+        A tip with a smooth apex (``tip.adhesive``: paraboloid or sphere).
+    youngs_modulus : float
+        E in Pa, > 0.
+    poisson_ratio : float
+        nu, in [0, 0.5).
+    adhesion : {"dmt", "jkr"}
+        The adhesion model.
+    work_of_adhesion : float
+        w in J/m^2, > 0.
+
+    Returns
+    -------
+    (snap_off_z_np, snap_off_force, pull_off_force) : tuple of float
+        In m, N (signed) and N (magnitude): the values :func:`approach_retract` reports.
+
+    Raises
+    ------
+    ValueError
+        On bad parameters or values out of floating-point range.
+    """
+    _, k, e_star = _check_common(0.0, spring_constant, tip, youngs_modulus, poisson_ratio)
+    check_choice("adhesion", adhesion, ("dmt", "jkr"))
+    radius = _adhesive_radius(tip)
+    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        if adhesion == "dmt":
+            f_ad = 2.0 * math.pi * radius * w
+            out = (-f_ad / k, -f_ad, f_ad)
+        else:
+            a_min, z_min, f_min = jkr_instability(k, radius, w, e_star)
+            out = (z_min, f_min, _jkr_pull_off(k, radius, w, e_star, a_min, f_min))
+    if not all(math.isfinite(x) for x in out):
+        raise ValueError(
+            f"the {adhesion.upper()} snap-off is out of floating-point range for spring_constant = "
+            f"{k:g} N/m, radius = {radius:g} m, work_of_adhesion = {w:g} J/m^2, reduced_modulus = "
+            f"{e_star:g} Pa: choose values nearer the physical ranges")
+    return out

@@ -10,15 +10,24 @@ Bilodeau, J. Appl. Mech. 59, 519 (1992))::
     spherical,  radius R:        F = E* [(r^2 + R^2)/2 ln((R + r)/(R - r)) - r R],
                                  Z_s = (r / 2) ln((R + r)/(R - r)),   r < R
     conical,    half angle a:    F = E* (2 tan(a) / pi) Z_s^2,          Z_s = pi r / (2 tan(a))
-    pyramidal,  face angle b:    F = E* (tan(b) / sqrt(2)) Z_s^2,       Z_s = sqrt(2) r / tan(b)
+    pyramidal,  face angle b:    F = c E* tan(b) Z_s^2,                 Z_s = r / (c tan(b))
+
+with, for the four-sided pyramid, c = 1/sqrt(2) = 0.7071 (Rico et al., Phys. Rev. E 72, 021914
+(2005); the source paper's Eq. 12: ``Pyramidal(form="rico")``, the default, which the course's
+paper reproduction keeps) or c = 0.7453 (Bilodeau, J. Appl. Mech. 59, 519 (1992), the form vendor
+software such as JPK's reports: ``Pyramidal(form="bilodeau")``, the default of
+:func:`~afmsmiler.contact.fit_curve`). The two differ by 5.4 %: a modulus fitted with one is
+1.054 times the one fitted with the other.
 
 For every axisymmetric punch the contact stiffness is dF/dZ_s = 2 E* r (Sneddon); the four
 formulas above share it, which the solvers use as the derivative.
 
 Each shape is a frozen dataclass carrying its metadata (:data:`TIPS` maps a key to the class; each
-class lists its :class:`TipParameter` entries with SI unit, default, valid range, the practical unit
-and range of its slider), so widgets, tables and the book are generated from the data instead of
-being typed twice, as in nanite's model registry.
+class lists its :class:`~afmsmiler.parameters.Parameter` entries with SI unit, default, valid range,
+the practical unit and range of its slider), so widgets, tables and the book are generated from the
+data instead of being typed twice, as in nanite's model registry. Each shape also draws itself
+(:meth:`Tip.outline`, the cross-section the figures and the 3D view share) and says whether the
+adhesion models apply to it (:attr:`Tip.adhesive`).
 
 The sphere is evaluated in the dimensionless contact radius u = r / R: Z_s = R u artanh(u) and
 F = E* R^2 [(1 + u^2) artanh(u) - u]. The bracket vanishes like 4 u^3 / 3, so for u < 0.3 it is
@@ -33,10 +42,11 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..validation import check_array, check_range
+from ..parameters import Parameter
+from ..validation import check_array, check_choice, check_integer, check_positive, check_range
 from ._solvers import bracketed_newton
 
-__all__ = ["TipParameter", "Tip", "Parabolic", "Spherical", "Conical", "Pyramidal", "TIPS",
+__all__ = ["Tip", "Parabolic", "Spherical", "Conical", "Pyramidal", "TIPS",
            "make_tip", "reduced_modulus", "tip_table"]
 
 
@@ -66,69 +76,36 @@ def reduced_modulus(youngs_modulus, poisson_ratio) -> float:
     return e / (1.0 - nu * nu)
 
 
-@dataclass(frozen=True)
-class TipParameter:
-    """Metadata of one tip parameter (the registry's entry from which widgets are built).
+# the registry's parameters, with their defaults, in one place (SI; display units through UNITS)
+RADIUS = Parameter(name="radius", unit="m", display_unit="nm", default=20e-9, low=0.0,
+                   high=1e-2, low_inclusive=False, slider_low=1e-9, slider_high=5e-6, log=True,
+                   label="tip radius R")
+HALF_ANGLE = Parameter(name="half_angle", unit="rad", display_unit="deg",
+                       default=math.radians(20.0), low=0.0, high=math.pi / 2, low_inclusive=False,
+                       high_inclusive=False, slider_low=math.radians(5.0),
+                       slider_high=math.radians(85.0), label="half opening angle alpha")
+FACE_ANGLE = Parameter(name="face_angle", unit="rad", display_unit="deg",
+                       default=math.radians(35.0), low=0.0, high=math.pi / 2, low_inclusive=False,
+                       high_inclusive=False, slider_low=math.radians(5.0),
+                       slider_high=math.radians(85.0), label="face angle beta")
 
-    Parameters
-    ----------
-    name : str
-        Attribute name on the tip (``"radius"``).
-    label : str
-        Human-readable label (``"tip radius"``).
-    unit : str
-        SI unit of the attribute (``"m"``, ``"rad"``).
-    default : float
-        Default value in SI units.
-    low, high : float
-        Valid open interval (low, high) in SI units.
-    display_unit : str
-        Practical unit shown on sliders and plots (``"nm"``, ``"deg"``).
-    display_scale : float
-        SI value of one display unit (1e-9 for nm, pi/180 for deg).
-    slider_low, slider_high : float
-        Slider range in SI units, strictly inside (low, high).
-    log : bool
-        Whether the slider is logarithmic.
-    """
+#: The four-sided pyramid's prefactor c in F = c E* tan(beta) Z_s^2, with its source.
+PYRAMID_FORMS = {
+    "rico": (1.0 / math.sqrt(2.0), "Rico et al., Phys. Rev. E 72, 021914 (2005): "
+             "c = 1/sqrt(2) = 0.7071 (the source paper's Eq. 12)"),
+    "bilodeau": (0.7453, "Bilodeau, J. Appl. Mech. 59, 519 (1992): c = 0.7453 "
+                 "(vendor software, e.g. JPK's)"),
+}
 
-    name: str
-    label: str
-    unit: str
-    default: float
-    low: float
-    high: float
-    display_unit: str
-    display_scale: float
-    slider_low: float
-    slider_high: float
-    log: bool = False
-
-    def check(self, value) -> float:
-        """Return ``value`` as float; raise ``ValueError`` unless it is inside (low, high).
-
-        Parameters
-        ----------
-        value : float
-            Candidate value in SI units.
-        """
-        return check_range(self.name, value, self.low, self.high, self.unit, low_inclusive=False,
-                           high_inclusive=False)
-
-
-# the registry's parameters, with their defaults, in one place
-_RADIUS = TipParameter("radius", "tip radius", "m", 20e-9, 0.0, math.inf, "nm", 1e-9,
-                       1e-9, 5e-6, log=True)
-_HALF_ANGLE = TipParameter("half_angle", "half opening angle", "rad", math.radians(20.0), 0.0,
-                           math.pi / 2, "deg", math.pi / 180, math.radians(5.0), math.radians(85.0))
-_FACE_ANGLE = TipParameter("face_angle", "face angle", "rad", math.radians(35.0), 0.0, math.pi / 2,
-                           "deg", math.pi / 180, math.radians(5.0), math.radians(85.0))
+_N_OUTLINE = 121
+_MAX_OUTLINE = 100_000
 
 
 class Tip:
     """Base class of a tip shape: subclasses are frozen dataclasses with registry metadata.
 
-    Subclasses define ``key``, ``title``, ``parameters`` (tuple of :class:`TipParameter`), the
+    Subclasses define ``key``, ``title``, ``parameters`` (tuple of
+    :class:`~afmsmiler.parameters.Parameter`), ``adhesive``, the
     closed forms ``_force_unit(z)`` (F at E* = 1 Pa), ``_radius(z)``, ``_depth(r)`` and
     ``profile(r)``, and ``_solve(z_np, k, e_star)`` for the cantilever equation.
     """
@@ -136,7 +113,12 @@ class Tip:
     key: ClassVar[str]
     title: ClassVar[str]
     formula: ClassVar[str]
-    parameters: ClassVar[tuple[TipParameter, ...]]
+    parameters: ClassVar[tuple[Parameter, ...]]
+    #: Whether the adhesion models (DMT, JKR: a smooth apex of radius R) apply to this shape.
+    adhesive: ClassVar[bool] = False
+    #: Number of flat faces (4 for the pyramid), or None for a body of revolution: how to draw it.
+    faces: ClassVar[int | None] = None
+
     def __post_init__(self):
         for p in self.parameters:
             object.__setattr__(self, p.name, p.check(getattr(self, p.name)))
@@ -229,15 +211,77 @@ class Tip:
                              low_inclusive=False, high_inclusive=False)
         return 2.0 * e_star * np.asarray(self.contact_radius(z_s))
 
+    @property
+    def max_profile_radius(self) -> float:
+        """Largest distance from the axis in m at which :meth:`profile` is defined (inf, or R)."""
+        return math.inf
+
     def profile(self, r):
         """Height of the tip surface above its apex at distance ``r`` from the axis, in m.
+
+        Paraboloid r^2 / (2 R); sphere R - sqrt(R^2 - r^2) (r <= R); cone r / tan(alpha);
+        pyramid r / tan(beta) across a face.
 
         Parameters
         ----------
         r : float or array_like
-            Distance from the axis in m (for the pyramid, across a face).
+            Distance from the axis in m, >= 0 (<= R for a sphere; for the pyramid, measured
+            perpendicular to a face's base edge).
+
+        Returns
+        -------
+        float or ndarray
+            The height in m, shaped like ``r``.
+
+        Raises
+        ------
+        ValueError
+            On a negative or non-finite distance, or (sphere) one beyond R.
         """
+        r = check_array("r", r, "m", low=0.0, high=self.max_profile_radius)
+        out = self._profile(r)
+        return out if out.ndim else float(out)
+
+    def _profile(self, r):
         raise NotImplementedError
+
+    def _outline_radii(self, height: float, n: int) -> np.ndarray:
+        """Distances from the axis (m, from 0 outwards) at which the outline is sampled."""
+        raise NotImplementedError
+
+    def outline(self, height, n: int = _N_OUTLINE):
+        """Outline (x, z) in m of the tip's cross-section, apex at the origin, up to ``height``.
+
+        The one drawing of the tip that the figures (:mod:`afmsmiler.plots.contact`) and the 3D
+        view (:mod:`afmsmiler.scenes.contact`) share.
+
+        Parameters
+        ----------
+        height : float
+            Height of the drawn part above the apex in m, > 0.
+        n : int
+            Points on each flank, 3 to 100000.
+
+        Returns
+        -------
+        (x, z) : tuple of ndarray
+            A path from the left flank's top through the apex to the right flank's top (2 n - 1
+            points, or 2 n + 1 for a sphere drawn taller than its radius, which continues as a
+            cylindrical shank of its radius); a pyramid is cut through the centres of two
+            opposite faces.
+
+        Raises
+        ------
+        ValueError
+            If ``height`` is not finite and positive or ``n`` is out of range.
+        """
+        height = check_positive("height", height, "m")
+        n = check_integer("n", n, 3, _MAX_OUTLINE)
+        r = self._outline_radii(height, n)
+        z = self._profile(r)
+        if isinstance(self, Spherical) and height > self.radius:
+            r, z = np.r_[r, self.radius], np.r_[z, height]
+        return np.r_[-r[::-1], r[1:]], np.r_[z[::-1], z[1:]]
 
     def values(self) -> dict:
         """The tip's parameters as a dict name -> SI value."""
@@ -291,11 +335,12 @@ class Parabolic(Tip):
         If ``radius`` is not finite and positive.
     """
 
-    radius: float = _RADIUS.default
+    radius: float = RADIUS.default
     key: ClassVar[str] = "parabolic"
     title: ClassVar[str] = "paraboloid (Hertz)"
+    adhesive: ClassVar[bool] = True
     formula: ClassVar[str] = r"F = \frac{4\sqrt{R}}{3} E^* Z_s^{3/2},\quad Z_s = r^2/R"
-    parameters: ClassVar[tuple[TipParameter, ...]] = (_RADIUS,)
+    parameters: ClassVar[tuple[Parameter, ...]] = (RADIUS,)
 
     def _force_unit(self, z):
         return 4.0 / 3.0 * math.sqrt(self.radius) * z * np.sqrt(z)
@@ -306,16 +351,11 @@ class Parabolic(Tip):
     def _depth(self, r):
         return r * r / self.radius
 
-    def profile(self, r):
-        """Height r^2 / (2 R) of the paraboloid above its apex, in m.
-
-        Parameters
-        ----------
-        r : float or array_like
-            Distance from the axis in m.
-        """
-        r = np.asarray(r, dtype=float)
+    def _profile(self, r):
         return r * r / (2.0 * self.radius)
+
+    def _outline_radii(self, height, n):
+        return np.linspace(0.0, math.sqrt(2.0 * self.radius * height), n)
 
     def _solve(self, z_np, k, e_star):
         # with s = sqrt(Z_s): beta s^3 + s^2 - Z_np = 0, beta = 4 sqrt(R) E* / (3 k); the left side
@@ -393,12 +433,13 @@ class Spherical(Tip):
         If ``radius`` is not finite and positive.
     """
 
-    radius: float = _RADIUS.default
+    radius: float = RADIUS.default
     key: ClassVar[str] = "spherical"
     title: ClassVar[str] = "sphere (Sneddon)"
+    adhesive: ClassVar[bool] = True
     formula: ClassVar[str] = (r"F = E^*\left[\frac{r^2+R^2}{2}\ln\frac{R+r}{R-r} - rR\right],\quad "
                               r"Z_s = \frac{r}{2}\ln\frac{R+r}{R-r}")
-    parameters: ClassVar[tuple[TipParameter, ...]] = (_RADIUS,)
+    parameters: ClassVar[tuple[Parameter, ...]] = (RADIUS,)
 
     @property
     def depth_limit(self) -> float:
@@ -432,16 +473,18 @@ class Spherical(Tip):
     def _depth(self, r):
         return self.radius * _sphere_depth(r / self.radius)
 
-    def profile(self, r):
-        """Height R - sqrt(R^2 - r^2) of the sphere above its apex, in m (r <= R).
+    @property
+    def max_profile_radius(self) -> float:
+        """The sphere's radius R in m: its profile ends at the equator."""
+        return self.radius
 
-        Parameters
-        ----------
-        r : float or array_like
-            Distance from the axis in m.
-        """
-        r = np.minimum(np.asarray(r, dtype=float), self.radius)
+    def _profile(self, r):
+        r = np.minimum(r, self.radius)
         return r * r / (self.radius + np.sqrt((self.radius - r) * (self.radius + r)))
+
+    def _outline_radii(self, height, n):
+        top = min(height, self.radius)
+        return self.radius * np.sin(np.linspace(0.0, math.acos(1.0 - top / self.radius), n))
 
     def max_z_np(self, spring_constant: float, reduced_modulus: float) -> float:
         """Largest Z_np in m before the solved indentation exceeds R: R + F(R) / k.
@@ -449,10 +492,22 @@ class Spherical(Tip):
         Parameters
         ----------
         spring_constant : float
-            k in N/m.
+            k in N/m, > 0.
         reduced_modulus : float
-            E* in Pa.
+            E* in Pa, > 0.
+
+        Returns
+        -------
+        float
+            The limit in m.
+
+        Raises
+        ------
+        ValueError
+            If k or E* is not finite and positive.
         """
+        spring_constant = check_positive("spring_constant", spring_constant, "N/m")
+        reduced_modulus = check_positive("reduced_modulus", reduced_modulus, "Pa")
         return self.radius + reduced_modulus * self.radius ** 2 * float(
             _sphere_force(np.array(_U_AT_RADIUS))) / spring_constant
 
@@ -497,65 +552,80 @@ class Conical(_PowerLaw):
         If ``half_angle`` is outside (0, pi/2).
     """
 
-    half_angle: float = _HALF_ANGLE.default
+    half_angle: float = HALF_ANGLE.default
     key: ClassVar[str] = "conical"
     title: ClassVar[str] = "cone (Sneddon)"
     formula: ClassVar[str] = (r"F = E^* \frac{2\tan\alpha}{\pi} Z_s^2,\quad "
                               r"Z_s = \frac{\pi r}{2\tan\alpha}")
-    parameters: ClassVar[tuple[TipParameter, ...]] = (_HALF_ANGLE,)
+    parameters: ClassVar[tuple[Parameter, ...]] = (HALF_ANGLE,)
 
     def _coefficients(self):
         t = math.tan(self.half_angle)
         return 2.0 * t / math.pi, 2.0 * t / math.pi
 
-    def profile(self, r):
-        """Height r / tan(alpha) of the cone above its apex, in m.
+    def _profile(self, r):
+        return r / math.tan(self.half_angle)
 
-        Parameters
-        ----------
-        r : float or array_like
-            Distance from the axis in m.
-        """
-        return np.asarray(r, dtype=float) / math.tan(self.half_angle)
+    def _outline_radii(self, height, n):
+        return np.linspace(0.0, height * math.tan(self.half_angle), n)
 
 
 @dataclass(frozen=True)
 class Pyramidal(_PowerLaw):
-    """A four-sided pyramid of face angle beta (Bilodeau): F = E* (tan(beta) / sqrt 2) Z_s^2.
+    """A four-sided pyramid of face angle beta: F = c E* tan(beta) Z_s^2, Z_s = r / (c tan(beta)).
 
-    Z_s = sqrt(2) r / tan(beta); beta is the angle between a face and the axis.
+    beta is the angle between a face and the axis. Two published prefactors c (see
+    :data:`PYRAMID_FORMS`): ``form="rico"``, c = 1/sqrt(2) = 0.7071 (Rico et al., Phys. Rev. E 72,
+    021914 (2005); the source paper's Eq. 12, the default here) and ``form="bilodeau"``,
+    c = 0.7453 (Bilodeau, J. Appl. Mech. 59, 519 (1992), what vendor software reports and the
+    default of :func:`~afmsmiler.contact.fit_curve`).
 
     Parameters
     ----------
     face_angle : float
         Face angle beta in rad, in (0, pi/2).
+    form : {"rico", "bilodeau"}
+        Which published prefactor to use.
 
     Raises
     ------
     ValueError
-        If ``face_angle`` is outside (0, pi/2).
+        If ``face_angle`` is outside (0, pi/2) or ``form`` is unknown.
     """
 
-    face_angle: float = _FACE_ANGLE.default
+    face_angle: float = FACE_ANGLE.default
+    form: str = "rico"
     key: ClassVar[str] = "pyramidal"
-    title: ClassVar[str] = "four-sided pyramid (Bilodeau)"
-    formula: ClassVar[str] = (r"F = E^* \frac{\tan\beta}{\sqrt{2}} Z_s^2,\quad "
-                              r"Z_s = \frac{\sqrt{2}\, r}{\tan\beta}")
-    parameters: ClassVar[tuple[TipParameter, ...]] = (_FACE_ANGLE,)
+    title: ClassVar[str] = "4-sided pyramid (Rico/Bilodeau)"
+    formula: ClassVar[str] = (r"F = c\, E^* \tan\beta\, Z_s^2,\quad "
+                              r"Z_s = \frac{r}{c \tan\beta},\quad c = 1/\sqrt{2}\ "
+                              r"\mathrm{(Rico)}\ \mathrm{or}\ 0.7453\ \mathrm{(Bilodeau)}")
+    parameters: ClassVar[tuple[Parameter, ...]] = (FACE_ANGLE,)
+    faces: ClassVar[int | None] = 4
+
+    def __post_init__(self):
+        super().__post_init__()
+        check_choice("form", self.form, tuple(PYRAMID_FORMS))
+
+    @property
+    def prefactor(self) -> float:
+        """The prefactor c of the chosen form (0.7071 or 0.7453)."""
+        return PYRAMID_FORMS[self.form][0]
+
+    @property
+    def source(self) -> str:
+        """The publication the chosen form follows."""
+        return PYRAMID_FORMS[self.form][1]
 
     def _coefficients(self):
-        t = math.tan(self.face_angle)
-        return t / math.sqrt(2.0), t / math.sqrt(2.0)
+        c = self.prefactor * math.tan(self.face_angle)
+        return c, c
 
-    def profile(self, r):
-        """Height r / tan(beta) of a face above the apex, across the face, in m.
+    def _profile(self, r):
+        return r / math.tan(self.face_angle)
 
-        Parameters
-        ----------
-        r : float or array_like
-            Distance from the axis in m, measured perpendicular to a face's base edge.
-        """
-        return np.asarray(r, dtype=float) / math.tan(self.face_angle)
+    def _outline_radii(self, height, n):
+        return np.linspace(0.0, height * math.tan(self.face_angle), n)
 
 
 #: The registry: key -> tip class, in teaching order.
@@ -570,7 +640,8 @@ def make_tip(key: str, **parameters) -> Tip:
     key : str
         One of :data:`TIPS` (``"parabolic"``, ``"spherical"``, ``"conical"``, ``"pyramidal"``).
     **parameters
-        The tip's parameters in SI units; missing ones take their registry defaults.
+        The tip's parameters in SI units (and the pyramid's ``form``); missing ones take their
+        registry defaults.
 
     Returns
     -------
@@ -586,7 +657,7 @@ def make_tip(key: str, **parameters) -> Tip:
     if key not in TIPS:
         raise ValueError(f"key must be one of {sorted(TIPS)}, got {key!r}")
     cls = TIPS[key]
-    names = {p.name for p in cls.parameters}
+    names = {f.name for f in fields(cls)}
     unknown = set(parameters) - names
     if unknown:
         raise TypeError(f"{cls.__name__} has no parameter(s) {sorted(unknown)}; "
@@ -600,9 +671,8 @@ def tip_table() -> str:
             "|---|---|---|---|---|---|"]
     for key, cls in TIPS.items():
         for p in cls.parameters:
-            d = p.display_scale
-            high = "inf" if not math.isfinite(p.high) else f"{p.high / d:g}"
+            high = "inf" if not math.isfinite(p.high) else f"{p.to_display(p.high):g}"
             rows.append(f"| `{key}` | {cls.title} | ${cls.formula}$ | "
-                        f"{p.label} [{p.display_unit}] | {p.default / d:g} | "
-                        f"({p.low / d:g}, {high}) |")
+                        f"{p.title} | {p.to_display(p.default):g} | "
+                        f"({p.to_display(p.low):g}, {high}) |")
     return "\n".join(rows)

@@ -46,7 +46,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..validation import check_array, check_positive, check_range
+from ..validation import check_array, check_instance, check_positive, check_range
 from .indent import IndentationCurve, _check_common, _check_depth
 from .tips import Tip
 
@@ -203,10 +203,8 @@ def hereditary_force(time, indentation, tip, material, poisson_ratio):
     """
     t = check_array("time", time, "s", ndim=1, min_size=2, increasing=True)
     z = check_array("indentation", indentation, "m", ndim=1, size=t.size, low=0.0)
-    if not isinstance(tip, Tip):
-        raise ValueError(f"tip must be a Tip, got {tip!r}")
-    if not isinstance(material, StandardLinearSolid):
-        raise ValueError(f"material must be a StandardLinearSolid, got {material!r}")
+    check_instance("tip", tip, Tip)
+    check_instance("material", material, StandardLinearSolid)
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
     psi = tip.force(z, 1.0)
     e_inf = material.relaxed_modulus
@@ -290,8 +288,7 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
     Ting's a(t) = a(t1), not r(Z_s(t)).
     """
     z = check_array("z_np", z_np, "m", ndim=1, min_size=2, increasing=True)
-    if not isinstance(material, StandardLinearSolid):
-        raise ValueError(f"material must be a StandardLinearSolid, got {material!r}")
+    check_instance("material", material, StandardLinearSolid)
     z, k, e0 = _check_common(z, spring_constant, tip, material.instantaneous_modulus, poisson_ratio)
     v = check_positive("speed", speed, "m/s")
     _check_depth(tip, z, k, e0)  # E_0 bounds the indentation from below; E_inf from above

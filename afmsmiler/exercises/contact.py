@@ -5,6 +5,11 @@ sample of unknown Young's modulus; the student recovers E (and the contact point
 :func:`check_fitted_modulus` / :func:`check_contact_point` compare with the values the curve was
 made from. Exercise 2 (adhesion): :func:`check_pull_off_force` compares a predicted pull-off force
 with the one of the simulated approach-retract cycle.
+
+The hints name only what a notebook has (the exercise is ``ex``, as notebook 04 calls it; a test
+runs every piece of code a hint quotes in backticks), say where to look rather than give the
+answer, and the checkers name the common slips (a unit prefix, the sign) through
+:func:`~afmsmiler.exercises.check_close` and :func:`~afmsmiler.exercises.diagnose_slip`.
 """
 from __future__ import annotations
 
@@ -13,17 +18,32 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact import ForceCurve, Parabolic, Tip, approach_retract, synthetic_curve
+from ..contact import ContactSystem, ForceCurve, Parabolic, Tip, synthetic_curve
+from ..parameters import read_only
 from ..validation import check_choice, check_integer, check_positive, check_range
-from . import Feedback, check_close
+from . import Feedback, check_close, diagnose_slip
 
-__all__ = ["DEFAULTS", "FitExercise", "fitting_exercise", "check_fitted_modulus",
+__all__ = ["DEFAULTS", "HINTS", "FitExercise", "fitting_exercise", "check_fitted_modulus",
            "check_contact_point", "check_pull_off_force"]
 
 #: The exercises' givens, in one place (SI units).
-DEFAULTS = dict(radius=20e-9, poisson_ratio=0.5 - 0.05, spring_constant=0.05, noise=15e-12,
-                modulus_range=(20e3, 2e6), points=800, z_np_range=(-300e-9, 400e-9),
-                contact_range=(-40e-9, 60e-9), youngs_modulus=1e7, pull_off_k=0.1)
+DEFAULTS = read_only(dict(
+    radius=20e-9, poisson_ratio=0.5 - 0.05, spring_constant=0.05, noise=15e-12,
+    modulus_range=(20e3, 2e6), points=800, z_np_range=(-300e-9, 400e-9),
+    contact_range=(-40e-9, 60e-9), youngs_modulus=1e7, pull_off_k=0.1))
+
+#: The hints, in one place (code in backticks runs in notebook 04 with its exercise ``ex``).
+HINTS = read_only(dict(
+    modulus=("Fit the curve with the lever's bending taken into account: "
+             "`fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio, "
+             "spring_constant=ex.curve.spring_constant)` and give E in Pa "
+             "(the result's youngs_modulus)."),
+    contact_point=("The fit returns it as contact_point, in m on the Z_np axis "
+                   "(1 nm = 1e-9 m)."),
+    pull_off=("Look up the pull-off force of each model in the book chapter's section on "
+              "adhesion (it cites Derjaguin-Muller-Toporov 1975 and Johnson-Kendall-Roberts "
+              "1971), or read the panel's readout with adhesion on. Give the magnitude in N."),
+))
 
 
 @dataclass(frozen=True)
@@ -68,7 +88,8 @@ def fitting_exercise(seed: int = 0) -> FitExercise:
     e = float(math.exp(rng.uniform(math.log(lo), math.log(hi))))
     cp = float(rng.uniform(*DEFAULTS["contact_range"]))
     tip = Parabolic(DEFAULTS["radius"])
-    curve = synthetic_curve(tip, e, DEFAULTS["poisson_ratio"], DEFAULTS["spring_constant"],
+    curve = synthetic_curve(tip, spring_constant=DEFAULTS["spring_constant"], youngs_modulus=e,
+                            poisson_ratio=DEFAULTS["poisson_ratio"],
                             z_np_range=DEFAULTS["z_np_range"], points=DEFAULTS["points"],
                             contact_point=cp, baseline=float(rng.normal(0.0, 50e-12)),
                             noise=DEFAULTS["noise"], seed=int(rng.integers(2 ** 31)))
@@ -94,8 +115,7 @@ def check_fitted_modulus(answer, exercise: FitExercise, rtol: float = 0.05) -> F
     if not isinstance(exercise, FitExercise):
         raise ValueError(f"exercise must be a FitExercise, got {exercise!r}")
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
-    hint = ("Fit F(Z_np) with fit_curve(curve.z_np, curve.force, exercise.tip, "
-            "exercise.poisson_ratio, spring_constant=curve.spring_constant) and give E in Pa.")
+    hint = HINTS["modulus"]
     if answer is None:
         return Feedback(False, f"enter E in Pa. {hint}")
     return check_close("E", answer, exercise._youngs_modulus, rtol, "Pa", hint)
@@ -120,17 +140,21 @@ def check_contact_point(answer, exercise: FitExercise, tolerance: float = 2e-9) 
     if not isinstance(exercise, FitExercise):
         raise ValueError(f"exercise must be a FitExercise, got {exercise!r}")
     tolerance = check_positive("tolerance", tolerance, "m")
-    hint = "The fit returns it as contact_point (in m, on the Z_np axis)."
+    hint = HINTS["contact_point"]
     try:
         value = float(answer)
     except (TypeError, ValueError):
         return Feedback(False, f"enter the contact point in m. {hint}")
     if not math.isfinite(value):
         return Feedback(False, f"the contact point must be finite, got {value!r}. {hint}")
-    err = abs(value - exercise._contact_point)
+    truth = exercise._contact_point
+    err = abs(value - truth)
     if err <= tolerance:
         return Feedback(True, f"contact point {value * 1e9:.4g} nm "
-                              f"(truth {exercise._contact_point * 1e9:.4g} nm).")
+                              f"(truth {truth * 1e9:.4g} nm).")
+    slip = diagnose_slip(value, truth, min(tolerance / abs(truth), 0.2), "m") if truth else None
+    if slip:
+        return Feedback(False, f"contact point: {slip} {hint}")
     return Feedback(False, f"contact point {value * 1e9:.4g} nm is {err * 1e9:.3g} nm off "
                            f"(needs to be within {tolerance * 1e9:g} nm). {hint}")
 
@@ -162,12 +186,12 @@ def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
     radius = check_positive("radius", radius, "m")
     w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
-    cycle = approach_retract(np.array([-1e-9, 0.0]), DEFAULTS["pull_off_k"], Parabolic(radius),
-                             DEFAULTS["youngs_modulus"], 0.3, adhesion=model, work_of_adhesion=w)
-    hint = ("DMT: F = 2 pi R w; JKR: F = (3/2) pi R w (Derjaguin-Muller-Toporov 1975, "
-            "Johnson-Kendall-Roberts 1971). Give the magnitude in N.")
+    system = ContactSystem(tip=Parabolic(radius), spring_constant=DEFAULTS["pull_off_k"],
+                           youngs_modulus=DEFAULTS["youngs_modulus"], poisson_ratio=0.3,
+                           adhesion=model, work_of_adhesion=w)
+    hint = HINTS["pull_off"]
     if answer is None:
         return Feedback(False, f"enter the pull-off force in N. {hint}")
-    return check_close(f"{model.upper()} pull-off force", answer, cycle.pull_off_force, rtol, "N",
+    return check_close(f"{model.upper()} pull-off force", answer, system.pull_off_force, rtol, "N",
                        hint)
 

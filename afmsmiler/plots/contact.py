@@ -13,12 +13,12 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve, Spherical,
-                       surface_displacement)
+from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve,
+                       contact_surface)
 from ..contact.viscoelastic import ViscoelasticCycle
-from ..validation import check_integer, check_positive, check_range
+from ..validation import check_positive, check_range
 
-__all__ = ["DEFAULTS", "UNITS", "tip_outline", "tip_geometries_figure", "ContactCurves",
+__all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
            "contact_curves", "ContactFigure", "cycles_figure", "fit_figure", "fit_label",
            "fit_window"]
 
@@ -29,44 +29,11 @@ DEFAULTS = dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121, surf
 #: Factors from SI to the units shown (value_shown = value_SI * factor).
 UNITS = dict(length=1e9, force=1e9)
 
+#: Legends sit above the axes, outside the data (a legend "best" placed can still cover it).
+_LEGEND_ABOVE = dict(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=3, fontsize=8,
+                     frameon=False, borderaxespad=0.0)
+
 _COLORS = dict(approach="#1f77b4", retract="#d62728", point="k", tip="#555555", sample="#b5651d")
-
-
-def tip_outline(tip, height, n=DEFAULTS["n_profile"]):
-    """Outline (x, z) in m of a tip's cross-section, apex at the origin, up to ``height``.
-
-    Parameters
-    ----------
-    tip : Tip
-        The tip shape (a pyramid is cut through the centres of two opposite faces).
-    height : float
-        Height of the drawn part in m, > 0.
-    n : int
-        Points on each flank.
-
-    Returns
-    -------
-    (x, z) : tuple of ndarray
-        A closed path from the left flank's top through the apex to the right flank's top; a
-        sphere continues as a cylindrical shank of its radius above its equator.
-    """
-    height = check_positive("height", height, "m")
-    n = check_integer("n", n, 3, 100_000)
-    if isinstance(tip, Spherical):
-        top = min(height, tip.radius)
-        r = tip.radius * np.sin(np.linspace(0.0, math.acos(1 - top / tip.radius), n)) \
-            if top < tip.radius else tip.radius * np.sin(np.linspace(0.0, math.pi / 2, n))
-        z = tip.profile(r)
-        if height > tip.radius:
-            r, z = np.r_[r, tip.radius], np.r_[z, height]
-    elif hasattr(tip, "radius"):
-        r = np.linspace(0.0, math.sqrt(2 * tip.radius * height), n)
-        z = tip.profile(r)
-    else:
-        angle = getattr(tip, "half_angle", getattr(tip, "face_angle", None))
-        r = np.linspace(0.0, height * math.tan(angle), n)
-        z = tip.profile(r)
-    return np.r_[-r[::-1], r[1:]], np.r_[z[::-1], z[1:]]
 
 
 def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=None) -> Figure:
@@ -90,12 +57,12 @@ def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=Non
     axes = fig.subplots(1, len(tips), sharex=True, sharey=True, squeeze=False)[0]
     s = UNITS["length"]
     for ax, tip in zip(axes, tips):
-        x, z = tip_outline(tip, height)
+        x, z = tip.outline(height)
         ax.fill_between(x * s, z * s, height * s, color=_COLORS["tip"], alpha=0.35, lw=0)
         ax.plot(x * s, z * s, color=_COLORS["tip"], lw=1.5)
         ax.axhline(0.0, color=_COLORS["sample"], lw=2)
         params = ", ".join(
-            f"{p.label} {getattr(tip, p.name) / p.display_scale:.3g} {p.display_unit}"
+            f"{p.label} {p.to_display(getattr(tip, p.name)):.3g} {p.display_unit}"
             for p in tip.parameters)
         ax.set_title(f"{tip.title}\n{params}", fontsize=9)
         ax.set_aspect("equal")
@@ -168,13 +135,11 @@ def contact_curves(cycle, current, tip, extent) -> ContactCurves:
     s, f = UNITS["length"], UNITS["force"]
     rho = np.linspace(-extent, extent, 2 * DEFAULTS["n_profile"] + 1)
     z_s = float(current.z_s[0])
-    # the apex sits at the separation Z_c - Z_np: -Z_s in contact, above the surface off contact
+    # the apex sits at the separation Z_c - Z_np: -Z_s in contact (above the undeformed surface
+    # on a JKR neck, Z_s < 0), above the surface off contact
     apex = float(current.separation[0])
-    if current.in_contact[0] and z_s > 0:
-        u = surface_displacement(tip, z_s, np.abs(rho))
-    else:
-        u = np.zeros_like(rho)
-    x, z = tip_outline(tip, 2 * extent)
+    u = contact_surface(tip, current, np.abs(rho))
+    x, z = tip.outline(2 * extent)
     return ContactCurves(
         cycle.approach.z_np * s, cycle.approach.force * f, cycle.retract.z_np * s,
         cycle.retract.force * f, float(current.z_np[0]) * s, float(current.force[0]) * f,
@@ -208,7 +173,7 @@ class ContactFigure:
         ax.axhline(0.0, color="0.7", lw=0.8)
         ax.set_xlabel("nano-positioner displacement Z_np [nm]")
         ax.set_ylabel("tip-sample force F [nN]")
-        ax.legend(loc="upper left", fontsize=8)
+        ax.legend(**_LEGEND_ABOVE)
         ax.grid(alpha=0.3)
         ax = self.ax_contact
         (self.surface,) = ax.plot([], [], color=_COLORS["sample"], lw=2, label="sample surface")
@@ -216,7 +181,8 @@ class ContactFigure:
         ax.set_aspect("equal", adjustable="box")
         ax.set_xlabel("x [nm] (to scale)")
         ax.set_ylabel("z [nm]")
-        ax.legend(loc="upper right", fontsize=8)
+        ax.legend(loc="upper center", bbox_to_anchor=(0.5, -0.2), ncol=2, fontsize=8,
+                  frameon=False)  # under the x label: never on the drawing
         self.update(curves)
         self.fig.tight_layout()
 
@@ -270,7 +236,7 @@ def cycles_figure(cycles, fig=None) -> Figure:
     ax.axhline(0.0, color="0.7", lw=0.8)
     ax.set_xlabel("nano-positioner displacement Z_np [nm]")
     ax.set_ylabel("tip-sample force F [nN]")
-    ax.legend(fontsize=8)
+    ax.legend(loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize=8, frameon=False)
     ax.grid(alpha=0.3)
     fig.tight_layout()
     return fig
@@ -327,7 +293,7 @@ def fit_figure(curve, result, *, report_poisson_ratio=None, zoom=DEFAULTS["fit_z
             label=fit_label(result, report_poisson_ratio))
     ax.axvline(result.contact_point * s, color="k", lw=0.8, ls=":", label="contact point")
     ax.set_ylabel("force [nN]")
-    ax.legend(fontsize=8, loc="best")
+    ax.legend(**{**_LEGEND_ABOVE, "ncol": 2})  # above the data; the zoom is told under the axes
     axr.plot(result.x * s, (curve.force - result.model_force) * f, ".", ms=2, color="0.3")
     axr.set_ylabel("residual [nN]")
     axr.set_xlabel("position (Z_np, or tip position) [nm]")
@@ -339,8 +305,8 @@ def fit_figure(curve, result, *, report_poisson_ratio=None, zoom=DEFAULTS["fit_z
                      (axr, (curve.force - result.model_force)[inside])):
             pad = 0.05 * (np.ptp(y) or 1e-12)
             a.set_ylim((y.min() - pad) * f, (y.max() + pad) * f)
-        ax.set_title(f"zoom: {(hi - lo) * 1e6:.2g} um around the contact point "
-                     f"(full curve: {np.ptp(result.x) * 1e6:.2g} um)", fontsize=9)
+        axr.set_xlabel(f"{axr.get_xlabel()}\nzoom: {(hi - lo) * 1e6:.2g} um around the contact "
+                       f"point (full curve: {np.ptp(result.x) * 1e6:.2g} um)")
     fig.tight_layout()
     return fig
 
@@ -369,6 +335,9 @@ def fit_label(result, report_poisson_ratio=None) -> str:
     text = (f"fit at nu = {nu:g}: E = {result.youngs_modulus / 1e3:.4g} +/- "
             f"{result.youngs_modulus_error / 1e3:.2g} kPa, E* = E/(1 - nu^2) = "
             f"{e_star / 1e3:.4g} kPa")
+    form = getattr(result.tip, "form", None)
+    if form is not None:  # a pyramid: which published prefactor the modulus rests on
+        text += f"\npyramid law: {form} (c = {result.tip.prefactor:.4g})"
     if report_poisson_ratio is not None:
         nu2 = check_range("report_poisson_ratio", report_poisson_ratio, 0.0, 0.5)
         text += (f"\nE(nu = {nu2:g}) = (1 - nu^2) E* = {(1 - nu2 ** 2) * e_star / 1e3:.4g} +/- "

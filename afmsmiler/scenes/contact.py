@@ -24,9 +24,8 @@ import meshcat
 import meshcat.geometry as g
 import numpy as np
 
-from ..contact import IndentationCurve, Pyramidal, Tip, surface_displacement
-from ..plots.contact import tip_outline
-from ..validation import check_integer, check_positive
+from ..contact import IndentationCurve, Tip, contact_surface
+from ..validation import check_instance, check_integer, check_positive
 from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend
@@ -97,11 +96,9 @@ def surface_mesh(tip, current, extent, unit, n_grid=DEFAULTS["n_grid"], *, half=
     x = np.linspace(-extent, extent, 2 * n + 1)
     y = x[n:] if half else x
     rho = np.hypot(x[None, :], y[:, None])
-    z_s = float(current.z_s[0])
-    depth = np.zeros_like(rho)
-    if current.in_contact[0] and z_s > 0:
-        rho_1, where = np.unique(rho, return_inverse=True)  # the grid's symmetry: fewer radii
-        depth = surface_displacement(tip, z_s, rho_1)[where].reshape(rho.shape)
+    # the state the readout gives, an adhesive neck included (the figure draws the same)
+    rho_1, where = np.unique(rho, return_inverse=True)  # the grid's symmetry: fewer radii
+    depth = contact_surface(tip, current, rho_1)[where].reshape(rho.shape)
     mesh = height_map_mesh(-depth, extent / n, unit=unit, origin=(-extent, y[0]), values=depth)
     return mesh.vertices, mesh.faces, mesh.values
 
@@ -159,10 +156,11 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     (vertices, faces) : tuple of ndarray
     """
     unit = check_positive("unit", unit, "m")
-    x, z = tip_outline(tip, height)
+    check_instance("tip", tip, Tip)
+    x, z = tip.outline(height)
     mid = x.size // 2
     r, z = x[mid:], z[mid:]  # one flank: from the apex outwards
-    pyramid = isinstance(tip, Pyramidal)
+    pyramid = tip.faces == 4  # the model says how the shape is drawn, not its class name
     if pyramid:
         # the outline is cut across the faces; the corners (at 45 deg) lie sqrt(2) further out
         corner = [math.pi / 4, 3 * math.pi / 4, 5 * math.pi / 4, 7 * math.pi / 4]
@@ -227,8 +225,7 @@ class ContactScene:
     def __init__(self, tip, current, *, vis: meshcat.Visualizer | None = None,
                  path: str = "afmsmiler/contact", unit: float = DEFAULTS["unit"],
                  extent: float = DEFAULTS["extent"], camera: bool = True):
-        if not isinstance(tip, Tip):
-            raise ValueError(f"tip must be a Tip, got {tip!r}")
+        check_instance("tip", tip, Tip)
         self.unit = check_positive("unit", unit, "m")
         self.extent = check_positive("extent", extent, "m")
         self.root = vis if vis is not None else get_viewer()
@@ -261,8 +258,8 @@ class ContactScene:
         current : IndentationCurve
             The state to draw (its first point).
         """
-        if not isinstance(current, IndentationCurve):
-            raise ValueError(f"current must be an IndentationCurve, got {current!r}")
+        check_instance("tip", tip, Tip)
+        check_instance("current", current, IndentationCurve)
         z_s = max(float(current.z_s[0]), 0.0) if current.in_contact[0] else 0.0
         # the drawn tip doubles in height when an indentation would bury 2/3 of it
         height = DEFAULTS["tip_height"] * 2.0 ** max(
@@ -275,10 +272,14 @@ class ContactScene:
         n_grid = DEFAULTS["n_grid"]
         e = self.extent / self.unit
         v, f, depth = surface_mesh(tip, current, self.extent, self.unit, n_grid, half=True)
-        limit = nice_ceil(float(depth.max()) * 1e9, DEFAULTS["depth_floor"] * 1e9)
-        if limit != self.depth_scale.vmax:
-            self.depth_scale = ColorScale(0.0, limit, cmap="viridis_r", label="depression",
-                                          unit="nm")
+        floor = DEFAULTS["depth_floor"] * 1e9
+        limit = nice_ceil(float(depth.max()) * 1e9, floor)
+        # an adhesive neck pulls the surface up (negative depth): the scale reaches down to it
+        low = -nice_ceil(-float(depth.min()) * 1e9, floor) if depth.min() < 0 else 0.0
+        if (low, limit) != (self.depth_scale.vmin, self.depth_scale.vmax):
+            self.depth_scale = ColorScale(low, limit, cmap="viridis_r",
+                                            label="depression (< 0: pulled up)" if low else
+                                            "depression", unit="nm")
             self.legend.set(self.depth_scale)
         colors = self.depth_scale.rgb(depth * 1e9)
         self.vis["surface"].set_object(g.TriangularMeshGeometry(v, f, colors),

@@ -1,15 +1,20 @@
 """The widget panel of module (d): tip shape and parameters, lever, sample, Z_np and adhesion.
 
-The tip-parameter sliders are generated from the registry :data:`afmsmiler.contact.TIPS` (their
-labels, practical units, ranges and defaults come from each shape's
-:class:`~afmsmiler.contact.TipParameter`), and only the current shape's sliders are shown.
-:meth:`ContactPanel.update` converts the values to SI, runs
-:func:`~afmsmiler.contact.approach_retract` over the Z_np ramp and at the current Z_np, and updates
-the figure (:class:`~afmsmiler.plots.contact.ContactFigure`) and the 3D scene
-(:class:`~afmsmiler.scenes.contact.ContactScene`) in place.
+Every slider is built by :func:`afmsmiler.ui.controls.control` from a
+:class:`~afmsmiler.parameters.Parameter` of the model layer: the tip parameters from the registry
+:data:`afmsmiler.contact.TIPS`, k, E, nu, Z_np and w from :data:`afmsmiler.contact.PARAMETERS`
+(labels, display units, ranges and defaults on the slider grid, so the browser's echo never
+changes a value nobody chose). Only the current shape's sliders are shown.
+
+:meth:`ContactPanel.update` converts the values it is given to SI, builds one
+:class:`~afmsmiler.contact.ContactSystem`, runs its approach-retract cycle over the Z_np ramp once
+and its state at the current Z_np once, and hands both to the figure
+(:class:`~afmsmiler.plots.contact.ContactFigure`) and the 3D scene
+(:class:`~afmsmiler.scenes.contact.ContactScene`), which draw them and compute no physics.
 
 Every slider lies inside the model's valid range; the Z_np slider's upper end is lowered for a
-sphere so that it can never be indented past its radius.
+sphere so that it can never be indented past its radius, and its lower end reaches below the
+snap-off with adhesion.
 """
 from __future__ import annotations
 
@@ -19,32 +24,35 @@ from dataclasses import dataclass
 import ipywidgets as widgets
 import numpy as np
 
-from ..contact import (TIPS, ApproachRetract, IndentationCurve, Tip, approach_retract, make_tip,
-                       reduced_modulus, z_np_limit)
+from ..contact import (PARAMETERS, TIPS, ApproachRetract, ContactSystem, IndentationCurve, Tip,
+                       make_tip)
+from ..parameters import read_only
 from ..plots.contact import ContactCurves, ContactFigure, contact_curves
-from .panel import Panel, log_slider, slider
+from ..validation import check_choice
+from .controls import control
+from .panel import Panel, check_control_value
 
-__all__ = ["ContactPanel", "ContactState", "DEFAULTS", "BOUNDS", "TIP_CONTROLS"]
+__all__ = ["ContactPanel", "ContactState", "DEFAULTS", "TIP_CONTROLS", "SLIDERS"]
+
+#: Tip-parameter controls generated from the registry: name -> Parameter (shared names once).
+TIP_CONTROLS = read_only({p.name: p for cls in TIPS.values() for p in cls.parameters})
+
+#: The other sliders: control name -> Parameter of the model layer.
+SLIDERS = read_only({name: PARAMETERS[name] for name in
+                     ("spring_constant", "youngs_modulus", "poisson_ratio", "z_np",
+                      "work_of_adhesion")})
+
+_ADHESION = read_only({"none": None, "DMT": "dmt", "JKR": "jkr"})
 
 #: Initial control values in the units shown (a soft sample under a contact-mode lever).
-DEFAULTS = dict(tip="parabolic", spring_constant=0.1, youngs_modulus=1.0, poisson_ratio=0.3,
-                z_np=60.0, branch="approach", adhesion="none", work_of_adhesion=20.0)
+DEFAULTS = read_only(dict(
+    tip="parabolic", branch="approach", adhesion="none",
+    **{name: p.to_display(p.default) for name, p in SLIDERS.items()}))
 
-#: Slider bounds (low, high) in the units shown; all inside the model's valid ranges.
-BOUNDS = dict(spring_constant=(0.005, 100.0), youngs_modulus=(1e-3, 1e5), poisson_ratio=(0.0, 0.49),
-              z_np=(-50.0, 200.0), work_of_adhesion=(1.0, 200.0))
-
-#: Tip-parameter controls generated from the registry: name -> TipParameter (shared names once).
-TIP_CONTROLS = {}
-for _cls in TIPS.values():
-    for _p in _cls.parameters:
-        TIP_CONTROLS.setdefault(_p.name, _p)
-
-_ADHESION = {"none": None, "DMT": "dmt", "JKR": "jkr"}
 _RAMP_POINTS = 400
 _SPHERE_MARGIN = 0.9  # the Z_np slider stops at 90 % of the depth at which the sphere is buried
 _MIN_RANGE = 1e-9  # m: below this much room, adhesion is switched off for a sphere
-_Z_NP_FLOOR = -2000.0  # nm: the Z_np slider never reaches lower (a very soft lever's snap-off)
+_Z_NP_FLOOR = -2000e-9  # m: the Z_np slider never reaches lower (a very soft lever's snap-off)
 
 
 @dataclass(frozen=True)
@@ -53,14 +61,8 @@ class ContactState:
 
     Attributes
     ----------
-    tip : Tip
-        The tip built from the controls.
-    spring_constant, youngs_modulus, poisson_ratio : float
-        k [N/m], E [Pa], nu.
-    adhesion : str or None
-        The adhesion model used.
-    work_of_adhesion : float
-        w in J/m^2 (used only with adhesion).
+    system : ContactSystem
+        The tip, lever, sample and adhesion the controls describe.
     cycle : ApproachRetract
         The approach-retract curves over the ramp.
     current : IndentationCurve
@@ -69,41 +71,53 @@ class ContactState:
         What the figure shows (nm, nN).
     """
 
-    tip: Tip
-    spring_constant: float
-    youngs_modulus: float
-    poisson_ratio: float
-    adhesion: str | None
-    work_of_adhesion: float
+    system: ContactSystem
     cycle: ApproachRetract
     current: IndentationCurve
     curves: ContactCurves
 
+    @property
+    def tip(self) -> Tip:
+        """The tip built from the controls."""
+        return self.system.tip
 
-def _tip_slider(p):
-    d = p.display_scale
-    lo, hi, v = p.slider_low / d, p.slider_high / d, p.default / d
-    label = f"{p.label}"
-    if p.log:
-        return log_slider(label, v, lo, hi, unit=p.display_unit)
-    return slider(label, v, lo, hi, unit=p.display_unit)
+    @property
+    def spring_constant(self) -> float:
+        """k in N/m."""
+        return self.system.spring_constant
 
+    @property
+    def youngs_modulus(self) -> float:
+        """E in Pa."""
+        return self.system.youngs_modulus
 
-def _point(curve: IndentationCurve, i: int) -> IndentationCurve:
-    return IndentationCurve(*(getattr(curve, f)[i:i + 1] for f in
-                              ("z_np", "z_s", "z_c", "force", "contact_radius", "in_contact")))
+    @property
+    def poisson_ratio(self) -> float:
+        """nu."""
+        return self.system.poisson_ratio
+
+    @property
+    def adhesion(self) -> str | None:
+        """The adhesion model used (None, "dmt", "jkr")."""
+        return self.system.adhesion
+
+    @property
+    def work_of_adhesion(self) -> float:
+        """w in J/m^2 (used only with adhesion)."""
+        return self.system.work_of_adhesion
 
 
 class ContactPanel(Panel):
     """Sliders for the tip (shape and its parameters), k, E, nu, Z_np and adhesion.
 
-    Controls (units as shown): ``tip`` (a key of :data:`~afmsmiler.contact.TIPS`), one slider per
-    tip parameter of the registry (``radius`` [nm], ``half_angle`` [deg], ``face_angle`` [deg];
-    only the current shape's are visible), ``spring_constant`` [N/m], ``youngs_modulus`` [MPa],
-    ``poisson_ratio``, ``z_np`` [nm], ``branch`` ("approach" or "retract": which branch of the
-    cycle the current point follows; they differ with adhesion, where on retract the tip stays
-    stuck below Z_np = 0 down to the snap-off), ``adhesion`` ("none", "DMT", "JKR"; only for a
-    paraboloid or a sphere) and ``work_of_adhesion`` [mJ/m^2].
+    Controls (units as shown, from the Parameters): ``tip`` (a key of
+    :data:`~afmsmiler.contact.TIPS`), one slider per tip parameter of the registry (``radius``
+    [nm], ``half_angle`` [deg], ``face_angle`` [deg]; only the current shape's are visible),
+    ``spring_constant`` [N/m], ``youngs_modulus`` [MPa], ``poisson_ratio``, ``z_np`` [nm],
+    ``branch`` ("approach" or "retract": which branch of the cycle the current point follows;
+    they differ with adhesion, where on retract the tip stays stuck below Z_np = 0 down to the
+    snap-off), ``adhesion`` ("none", "DMT", "JKR"; only for a paraboloid or a sphere) and
+    ``work_of_adhesion`` [mJ/m^2].
 
     Parameters
     ----------
@@ -112,6 +126,13 @@ class ContactPanel(Panel):
         ``get_viewer().jupyter_cell()``; close it with ``close_viewer()``).
     **initial
         Initial control values (keys of :data:`DEFAULTS` or :data:`TIP_CONTROLS`), as shown.
+
+    Raises
+    ------
+    TypeError
+        For an unknown control name.
+    ValueError
+        For a value outside a slider's range or not among a drop-down's options, naming it.
 
     Attributes
     ----------
@@ -130,33 +151,34 @@ class ContactPanel(Panel):
         unknown = set(initial) - valid
         if unknown:
             raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(valid)}")
-        v = {**DEFAULTS, **initial}
-        b = BOUNDS
         options = [(cls.title, key) for key, cls in TIPS.items()]
-        controls = dict(tip=widgets.Dropdown(options=options, value=v["tip"], description="tip"))
+        controls = dict(
+            tip=widgets.Dropdown(options=options, value=DEFAULTS["tip"], description="tip"))
         for name, p in TIP_CONTROLS.items():
-            controls[name] = _tip_slider(p)
-            if name in initial:
-                controls[name].value = initial[name]
-        controls.update(
-            spring_constant=log_slider("k", v["spring_constant"], *b["spring_constant"],
-                                       unit="N/m"),
-            youngs_modulus=log_slider("E", v["youngs_modulus"], *b["youngs_modulus"], unit="MPa"),
-            poisson_ratio=slider("nu", v["poisson_ratio"], *b["poisson_ratio"], step=0.01),
-            z_np=slider("Z_np", v["z_np"], *b["z_np"], step=0.5, unit="nm"),
-            branch=widgets.ToggleButtons(options=["approach", "retract"], value=v["branch"],
-                                         description="branch"),
-            adhesion=widgets.Dropdown(options=list(_ADHESION), value=v["adhesion"],
-                                      description="adhesion"),
-            work_of_adhesion=slider("w", v["work_of_adhesion"], *b["work_of_adhesion"], step=1.0,
-                                    unit="mJ/m^2"),
-        )
+            controls[name] = control(p)
+        for name, p in SLIDERS.items():
+            if name == "work_of_adhesion":
+                controls["branch"] = widgets.ToggleButtons(
+                    options=["approach", "retract"], value=DEFAULTS["branch"],
+                    description="branch")
+                controls["adhesion"] = widgets.Dropdown(options=list(_ADHESION),
+                                                        value=DEFAULTS["adhesion"],
+                                                        description="adhesion")
+            controls[name] = control(p)
+        for name, value in initial.items():  # named errors, then the grid through the value
+            check_control_value(name, controls[name], value)
+            p = TIP_CONTROLS.get(name) or SLIDERS.get(name)
+            if p is not None:
+                controls[name] = control(p, p.to_si(value))
+            else:
+                controls[name].value = value
         self.controls = controls
         self.readout = widgets.HTML()
         self.figure = None
         self.scene = None
+        self._note = ""
         self._want_scene = bool(scene)
-        self.fig = self.new_figure(figsize=(10.5, 4.2))
+        self.fig = self.new_figure(figsize=(10.5, 4.6))
         super().__init__()
 
     # -- helpers --------------------------------------------------------------------------------
@@ -164,58 +186,105 @@ class ContactPanel(Panel):
         names = {p.name for p in TIPS[key].parameters}
         for name in TIP_CONTROLS:
             self.controls[name].layout.display = None if name in names else "none"
-        adhesive = key in ("parabolic", "spherical")
+        adhesive = TIPS[key].adhesive
         self.controls["adhesion"].disabled = not adhesive
         self.controls["work_of_adhesion"].disabled = not adhesive
 
-    def _set_z_np_range(self, low: float, high: float) -> None:
-        """Move the Z_np slider's ends (nm) without triggering an update."""
+    def _set_z_np_range(self, low: float, high: float, value: float) -> None:
+        """Move the Z_np slider's ends and value (nm) without triggering an update."""
         z = self.controls["z_np"]
-        if (z.min, z.max) != (low, high):
-            hold, self._hold = self._hold, True
-            try:  # ipywidgets clamps the value into the new range; keep min < max throughout
+        hold, self._hold = self._hold, True
+        try:  # ipywidgets clamps the value into the new range; keep min < max throughout
+            if (z.min, z.max) != (low, high):
                 if low < z.max:
                     z.min, z.max = low, high
                 else:
                     z.max, z.min = high, low
-            finally:
-                self._hold = hold
+            if z.value != value:
+                z.value = value
+        finally:
+            self._hold = hold
+
+    def _z_np_range(self, system: ContactSystem) -> tuple[float, float]:
+        """The Z_np slider's range as shown (nm, on its grid): below the snap-off, up to 90 % of
+        the model's limit."""
+        p = SLIDERS["z_np"]
+        step = self.controls["z_np"].step
+        low = p.slider_low
+        if system.adhesion:  # extend the ramp below the snap-off so that the retract is complete
+            low = min(low, 1.25 * system.snap_off_z_np)
+        low = max(low, _Z_NP_FLOOR)
+        high = min(p.slider_high, _SPHERE_MARGIN * system.z_np_limit)
+        # whole steps in the display unit (in SI, 200e-9 / 1e-9 is 199.99999999999997)
+        n_low = math.floor(p.to_display(low) / step + 1e-9)
+        n_high = max(math.floor(p.to_display(high) / step + 1e-9), n_low + 1)
+        return n_low * step, n_high * step
 
     # -- the callback ------------------------------------------------------------------------------
     def update(self, tip, spring_constant, youngs_modulus, poisson_ratio, z_np, branch, adhesion,
                work_of_adhesion, **tip_parameters) -> None:
-        """Convert the control values to SI, run the model, update figure, scene and readouts."""
+        """Run the model once for the ramp and once for the current Z_np with exactly these values.
+
+        Parameters
+        ----------
+        tip : str
+            A key of :data:`~afmsmiler.contact.TIPS`.
+        spring_constant : float
+            k in N/m.
+        youngs_modulus : float
+            E in MPa.
+        poisson_ratio : float
+            nu.
+        z_np : float
+            The current positioner displacement in nm (clipped, with a note, to the range the
+            model allows for this tip: a sphere's limit, the snap-off below).
+        branch : {"approach", "retract"}
+            Which branch the current point follows.
+        adhesion : {"none", "DMT", "JKR"}
+            Adhesion model (ignored for a cone or a pyramid).
+        work_of_adhesion : float
+            w in mJ/m^2.
+        **tip_parameters
+            The tip sliders' values as shown (nm, deg); those of other shapes are ignored.
+
+        Raises
+        ------
+        ValueError
+            For an unknown tip, branch or adhesion model, naming the choices, or a value the
+            model rejects.
+        TypeError
+            For an unknown tip parameter.
+        """
+        check_choice("tip", tip, tuple(TIPS))
+        check_choice("branch", branch, ("approach", "retract"))
+        check_choice("adhesion", adhesion, tuple(_ADHESION))
+        unknown = set(tip_parameters) - set(TIP_CONTROLS)
+        if unknown:
+            raise TypeError(f"unknown tip parameter(s) {sorted(unknown)}; "
+                            f"valid: {sorted(TIP_CONTROLS)}")
         self._show_tip_controls(tip)
-        params = {p.name: tip_parameters[p.name] * p.display_scale for p in TIPS[tip].parameters}
-        shape = make_tip(tip, **params)
-        k = spring_constant
-        e = youngs_modulus * 1e6
-        nu = poisson_ratio
-        model = _ADHESION[adhesion] if tip in ("parabolic", "spherical") else None
-        w = work_of_adhesion * 1e-3
+        shape = make_tip(tip, **{p.name: p.to_si(tip_parameters[p.name])
+                                 for p in TIPS[tip].parameters})
+        si = {name: SLIDERS[name].to_si(v) for name, v in
+              dict(spring_constant=spring_constant, youngs_modulus=youngs_modulus,
+                   poisson_ratio=poisson_ratio, work_of_adhesion=work_of_adhesion).items()}
+        model = _ADHESION[adhesion] if shape.adhesive else None
+        system = ContactSystem(tip=shape, adhesion=model, **si)
         self._note = ""
-        # the model's own limit (finite for a sphere): the slider stops at 90 % of it
-        limit = z_np_limit(k, shape, e, nu, adhesion=model, work_of_adhesion=w)
-        if model and _SPHERE_MARGIN * limit < _MIN_RANGE:  # adhesion alone would bury the sphere
+        if model and _SPHERE_MARGIN * system.z_np_limit < _MIN_RANGE:
             self._note = "adhesion would pull this sphere in past its radius: shown without it"
-            model = None
-            limit = z_np_limit(k, shape, e, nu)
-        kwargs = dict(adhesion=model, work_of_adhesion=w) if model else {}
-        z_lo = BOUNDS["z_np"][0]  # nm
-        if model:  # extend the ramp below the snap-off point so that the retract is complete
-            probe = approach_retract(np.array([-1e-9, 0.0]), k, shape, e, nu, **kwargs)
-            z_lo = min(z_lo, math.floor(1.25 * probe.snap_off_z_np * 1e9))
-        # the slider reaches below the snap-off (so that the retract branch can let go), down to
-        # _Z_NP_FLOOR, and stops at 90 % of the model's limit
-        self._set_z_np_range(max(z_lo, _Z_NP_FLOOR),
-                             min(BOUNDS["z_np"][1], _SPHERE_MARGIN * limit * 1e9))
-        z_lo *= 1e-9
-        z_now = self.controls["z_np"].value * 1e-9
-        z_hi = self.controls["z_np"].max * 1e-9
-        cycle = approach_retract(np.linspace(z_lo, z_hi, _RAMP_POINTS), k, shape, e, nu, **kwargs)
-        here = approach_retract(np.array([z_now - 1e-9, z_now]), k, shape, e, nu, **kwargs)
-        # the point at Z_np = z_now: last of the approach, first of the retract
-        current = _point(here.retract, 0) if branch == "retract" else _point(here.approach, 1)
+            system = system.replace(adhesion=None)
+        lo, hi = self._z_np_range(system)  # as shown, nm
+        shown = float(z_np)
+        if not lo <= shown <= hi:
+            clipped = min(max(shown, lo), hi)
+            self._note += (f" Z_np {shown:g} nm is outside [{lo:g}, {hi:g}] nm for this tip: "
+                           f"shown at {clipped:g} nm.")
+            shown = clipped
+        self._set_z_np_range(lo, hi, shown)
+        to_si = SLIDERS["z_np"].to_si
+        cycle = system.approach_retract(np.linspace(to_si(lo), to_si(hi), _RAMP_POINTS))
+        current = system.at(to_si(shown), branch)
         extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
                      30e-9)
         curves = contact_curves(cycle, current, shape, extent)
@@ -229,7 +298,7 @@ class ContactPanel(Panel):
                 self.scene = ContactScene(shape, current)
             else:
                 self.scene.update(shape, current)
-        self.last = ContactState(shape, k, e, nu, model, w, cycle, current, curves)
+        self.last = ContactState(system, cycle, current, curves)
         self.readout.value = self._readout_html()
         self.redraw()
 
@@ -240,14 +309,13 @@ class ContactPanel(Panel):
                 ("indentation Z_s", f"{float(c.z_s[0]) * 1e9:.4g} nm"),
                 ("lever deflection Z_c", f"{float(c.z_c[0]) * 1e9:.4g} nm"),
                 ("contact radius r", f"{float(c.contact_radius[0]) * 1e9:.4g} nm"),
-                ("reduced modulus E*",
-                 f"{reduced_modulus(s.youngs_modulus, s.poisson_ratio) / 1e6:.4g} MPa")]
+                ("reduced modulus E*", f"{s.system.reduced_modulus / 1e6:.4g} MPa")]
         if s.adhesion:
             rows.append(("pull-off force", f"{s.cycle.pull_off_force * 1e9:.4g} nN"))
             rows.append(("snap-off at Z_np", f"{s.cycle.snap_off_z_np * 1e9:.4g} nm"))
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
-        note = f"<div><i>{self._note}</i></div>" if self._note else ""
+        note = f"<div><i>{self._note.strip()}</i></div>" if self._note else ""
         if self.scene is not None:
             note += f"<div>3D view: 1 unit = {self.scene.unit * 1e9:g} nm, true to scale</div>"
         return f"<table>{table}</table>{note}"
@@ -257,6 +325,3 @@ class ContactPanel(Panel):
         box = super().widget()
         left = widgets.VBox(list(self.controls.values()) + [self.readout])
         return widgets.HBox([left, box.children[1]])
-
-
-del _cls, _p
