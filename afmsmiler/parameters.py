@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from collections.abc import Mapping
 from types import MappingProxyType
 
 import numpy as np
@@ -51,7 +52,14 @@ def read_only(mapping) -> MappingProxyType:
     -------
     types.MappingProxyType
         Reads like a dict; item assignment raises ``TypeError``.
+
+    Raises
+    ------
+    TypeError
+        If ``mapping`` is not a mapping.
     """
+    if not isinstance(mapping, Mapping):
+        raise TypeError(f"mapping must be a mapping (a dict), got {type(mapping).__name__}")
     return MappingProxyType(dict(mapping))
 
 
@@ -114,6 +122,10 @@ def unit_scale(display_unit: str, unit: str | None = None) -> float:
     ValueError
         If the display unit is unknown or measures another quantity than ``unit``.
     """
+    if not isinstance(display_unit, str):
+        raise TypeError(f"display_unit must be a str, got {display_unit!r}")
+    if unit is not None and not isinstance(unit, str):
+        raise TypeError(f"unit must be a str, got {unit!r}")
     if display_unit not in UNITS:
         raise ValueError(f"display_unit must be one of {sorted(UNITS)}, got {display_unit!r}")
     si, factor = UNITS[display_unit]
@@ -139,12 +151,17 @@ def _exact_inverse(factor: float) -> float | None:
     return None
 
 
-def _convert(value, factor: float, to_si: bool):
+def _convert(value, factor: float, to_si: bool, name: str = "value"):
     """``value`` times ``factor`` (to SI) or divided by it (to display), correctly rounded."""
     inverse = _exact_inverse(factor)
     if np.ndim(value):
         value = np.asarray(value)
+        if value.dtype.kind not in "iuf":
+            raise TypeError(f"{name} must be real numbers, got an array of {value.dtype}")
     else:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
+                                                                         np.floating)):
+            raise TypeError(f"{name} must be a real number, got {value!r}")
         value = float(value)
     if inverse is None:
         out = value * factor if to_si else value / factor
@@ -234,8 +251,15 @@ class Parameter:
         if not isinstance(self.label, str):
             raise TypeError(f"{where}: label must be a str, got {self.label!r}")
         if not self.low < self.high:
-            raise ValueError(f"{where}: the valid range [{self.low}, {self.high}] is empty")
-        object.__setattr__(self, "default", self.check(self.default))
+            raise ValueError(f"{where}: low must be below high, got low={self.low}, "
+                             f"high={self.high}")
+        try:
+            object.__setattr__(self, "default", self.check(self.default))
+        except ValueError:
+            left, right = "[" if self.low_inclusive else "(", "]" if self.high_inclusive else ")"
+            raise ValueError(f"{where}: default must be a real number in [low, high] = "
+                             f"{left}{self.low:g}, {self.high:g}{right} {self.unit}".rstrip()
+                             + f", got {self.default!r}") from None
         lo = self.low if self.slider_low is None else self.slider_low
         hi = self.high if self.slider_high is None else self.slider_high
         for field, bound in (("slider_low", lo), ("slider_high", hi)):
@@ -246,10 +270,11 @@ class Parameter:
         object.__setattr__(self, "slider_low", float(lo))
         object.__setattr__(self, "slider_high", float(hi))
         if not self.slider_low < self.slider_high:
-            raise ValueError(f"{where}: slider range [{lo}, {hi}] is empty")
+            raise ValueError(f"{where}: slider_low must be below slider_high, got "
+                             f"slider_low={lo}, slider_high={hi}")
         if not (self.low <= self.slider_low and self.slider_high <= self.high):
-            raise ValueError(f"{where}: slider range [{lo}, {hi}] leaves the valid range "
-                             f"[{self.low}, {self.high}]")
+            raise ValueError(f"{where}: slider_low and slider_high must lie in the valid range "
+                             f"[{self.low}, {self.high}], got [{lo}, {hi}]")
         if self.log and not self.slider_low > 0:
             raise ValueError(f"{where}: a log slider needs slider_low > 0, got {lo}")
 
@@ -265,9 +290,15 @@ class Parameter:
         Parameters
         ----------
         si_value : float or array_like
-            Value(s) in SI units.
+            Value(s) in SI units; NaN stays NaN (a gap in a plotted curve), :meth:`check`
+            validates.
+
+        Raises
+        ------
+        TypeError
+            If ``si_value`` is not a real number or an array of them.
         """
-        return _convert(si_value, UNITS[self.display_unit][1], to_si=False)
+        return _convert(si_value, UNITS[self.display_unit][1], to_si=False, name="si_value")
 
     def to_si(self, display_value):
         """``display_value`` (in the display unit) in SI.
@@ -275,9 +306,15 @@ class Parameter:
         Parameters
         ----------
         display_value : float or array_like
-            Value(s) in the display unit.
+            Value(s) in the display unit; NaN stays NaN.
+
+        Raises
+        ------
+        TypeError
+            If ``display_value`` is not a real number or an array of them.
         """
-        return _convert(display_value, UNITS[self.display_unit][1], to_si=True)
+        return _convert(display_value, UNITS[self.display_unit][1], to_si=True,
+                        name="display_value")
 
     @property
     def title(self) -> str:

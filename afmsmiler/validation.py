@@ -247,8 +247,8 @@ def check_choice(name: str, value, choices):
         The valid values.
     """
     try:
-        ok = value in choices
-    except TypeError:  # an unhashable value (a list) asked of a set
+        ok = bool(value in choices)
+    except (TypeError, ValueError):  # unhashable (a list) for a set; an array's ambiguous truth
         ok = False
     if not ok:
         raise ValueError(f"{name} must be one of {sorted(map(str, choices))}, "

@@ -114,13 +114,15 @@ LEVER = dict(name="length", unit="m", display_unit="um", default=450e-6, low=20e
 
 
 @pytest.mark.parametrize("changes, message", [
-    (dict(default=2e-3), r"^length must be in \[2e-05, 0.001\] m, got 0.002$"),
-    (dict(default=math.nan), r"^length must be in .* got nan$"),
-    (dict(default="450e-6"), r"^length must be a real number"),
-    (dict(default=True), r"^length must be a real number"),
-    (dict(slider_low=10e-6), r"^parameter length: slider range .* leaves the valid range"),
-    (dict(slider_high=2e-3), r"^parameter length: slider range .* leaves the valid range"),
-    (dict(slider_low=500e-6, slider_high=400e-6), r"^parameter length: slider range .* is empty"),
+    (dict(default=2e-3), r"^parameter length: default must be a real number in \[low, high\] = "
+                         r"\[2e-05, 0.001\] m, got 0.002$"),
+    (dict(default=math.nan), r"^parameter length: default must be .* got nan$"),
+    (dict(default="450e-6"), r"^parameter length: default must be a real number"),
+    (dict(default=True), r"^parameter length: default must be a real number .* got True"),
+    (dict(slider_low=10e-6), r"^parameter length: slider_low and slider_high must lie in the "),
+    (dict(slider_high=2e-3), r"^parameter length: slider_low and slider_high must lie in the "),
+    (dict(slider_low=500e-6, slider_high=400e-6),
+     r"^parameter length: slider_low must be below slider_high"),
     (dict(low=0.0, log=True), r"^parameter length: a log slider needs slider_low > 0"),
     (dict(slider_low=0.0, low=-1.0, log=True), r"a log slider needs slider_low > 0"),
     (dict(display_unit="nN"), r"display_unit 'nN' measures 'N', not 'm'"),
@@ -129,7 +131,7 @@ LEVER = dict(name="length", unit="m", display_unit="um", default=450e-6, low=20e
     (dict(unit="N", display_unit="um"), r"unit must be an SI unit|measures 'm', not 'N'"),
     (dict(low=math.nan), r"^parameter length: low must be a real number"),
     (dict(high=math.nan), r"^parameter length: high must be a real number"),
-    (dict(low=1e-3, high=20e-6), r"^parameter length: the valid range .* is empty"),
+    (dict(low=1e-3, high=20e-6), r"^parameter length: low must be below high"),
     (dict(slider_low=math.nan), r"slider_low must be a real number"),
     (dict(name="lever length"), r"^Parameter name must be a Python identifier"),
     (dict(name=3), r"^Parameter name must be a Python identifier"),
@@ -155,7 +157,7 @@ def test_parameter_is_keyword_only_frozen_and_checks_open_bounds():
     with pytest.raises(Exception):
         p.default = 0.4  # frozen
     assert p.with_(default=0.2).default == 0.2 and p.default == 0.3
-    with pytest.raises(ValueError, match="nu must be in"):
+    with pytest.raises(ValueError, match=r"parameter nu: default must be .* \[0, 0.5\)"):
         p.with_(default=0.5)
     assert p.title == "nu" and LEVER_P.title == "lever length L [um]"
 
@@ -168,6 +170,15 @@ def test_read_only_defaults():
     assert d["a"] == 1
     with pytest.raises(TypeError):
         d["a"] = 2
+    with pytest.raises(TypeError, match=r"^mapping must be a mapping \(a dict\), got list"):
+        read_only([("a", 1)])
+
+
+def test_unit_scale_names_a_wrong_type():
+    with pytest.raises(TypeError, match=r"^display_unit must be a str, got \['nm'\]"):
+        unit_scale(["nm"])
+    with pytest.raises(TypeError, match=r"^unit must be a str"):
+        unit_scale("nm", 1)
 
 
 @given(st.floats(-1e30, 1e30, allow_nan=False, allow_infinity=False),
@@ -177,3 +188,12 @@ def test_conversions_round_trip_to_an_ulp(x, display):
     p = Parameter(name="q", unit=si, display_unit=display, default=0.0)
     back = p.to_si(p.to_display(x))
     assert back == pytest.approx(x, rel=4e-16, abs=1e-300)
+
+
+@pytest.mark.parametrize("bad", ["20", True, 1j, None, ["a"], np.array([1j])])
+def test_conversions_reject_what_is_not_a_number(bad):
+    # to_si("20") read the string as a number and to_display(True) gave 1e6
+    with pytest.raises(TypeError, match=r"^display_value must be (a )?real number"):
+        LEVER_P.to_si(bad)
+    with pytest.raises(TypeError, match=r"^si_value must be (a )?real number"):
+        LEVER_P.to_display(bad)

@@ -82,6 +82,9 @@ def test_choice_of_an_unhashable_value_is_named():
     # `[1] in {"a"}` raised TypeError: unhashable type: 'list'
     with pytest.raises(ValueError, match=r"^tip must be one of \['cone'\], got \[1\]"):
         check_choice("tip", [1], {"cone"})
+    # an array asked of a tuple raised "The truth value of an array ... is ambiguous"
+    with pytest.raises(ValueError, match=r"^mode must be one of \['a', 'b'\], got array"):
+        check_choice("mode", np.ones(3), ("a", "b"))
 
 
 def test_integer_messages_give_the_range():
