@@ -9,9 +9,14 @@ Passes today and keeps passing as the modules migrate their descriptions to ``Pa
 import gc
 import importlib
 import inspect
+import json
 import pkgutil
+import subprocess
+import sys
 from collections import defaultdict
 from collections.abc import Mapping
+from pathlib import Path
+from types import SimpleNamespace
 
 import afmsmiler
 from afmsmiler.parameters import Parameter
@@ -64,8 +69,19 @@ def clashes(found):
     return {name: dict(by_unit) for name, by_unit in units.items() if len(by_unit) > 1}
 
 
+def _collect_in_a_fresh_interpreter():
+    """collect() in a new process: Parameters that other tests built are not the package's."""
+    code = ("import json, sys; sys.path.insert(0, sys.argv[1]); "
+            "from test_parameters_registry import collect; "
+            "print(json.dumps([(p.name, p.unit, where) for p, where in collect()]))")
+    out = subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent)],
+                         capture_output=True, text=True, timeout=300, check=True)
+    return [(SimpleNamespace(name=n, unit=u), where)
+            for n, u, where in json.loads(out.stdout.strip().splitlines()[-1])]
+
+
 def test_a_name_means_one_si_unit_everywhere():
-    found = collect()
+    found = _collect_in_a_fresh_interpreter()
     bad = clashes(found)
     assert not bad, "names with more than one SI unit: " + "; ".join(
         f"{name}: " + ", ".join(f"{unit or '(none)'} in {wheres[:3]}" for unit, wheres in u.items())
