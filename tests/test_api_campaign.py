@@ -220,7 +220,7 @@ PROBES = {
     "StandardLinearSolid": lambda o: o.modulus(np.linspace(0.0, 1e-2, 5)),
     "Sample": lambda o: (o.x, o.size),
     "Parabolic": lambda o: o.force(np.linspace(0.0, 10e-9, 5), 1e6),
-    "Spherical": lambda o: o.force(np.linspace(0.0, 10e-9, 5), 1e6),
+    "Spherical": lambda o: o.force(np.linspace(0.0, 0.5 * o.radius, 5), 1e6),
     "Conical": lambda o: o.force(np.linspace(0.0, 10e-9, 5), 1e6),
     "Pyramidal": lambda o: o.force(np.linspace(0.0, 10e-9, 5), 1e6),
 }
