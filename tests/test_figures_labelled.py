@@ -114,9 +114,11 @@ def _texts(ax):
             if t.get_visible() and t.get_text().strip()]
 
 
-# Building a figure takes about a second for these; `make unit` checks one transducer principle
-# (the first) and the rest run under `make test`.
-SLOW = {f"transducer panel: {k}" for k in _principles()[1:]} | {"controller figures"}
+# Building a figure takes about a second for these; `make unit` checks each panel once in its
+# default state (one transducer principle, the first) and the rest run under `make test`.
+SLOW = {f"transducer panel: {k}" for k in _principles()[1:]} | {
+    "controller figures", "contact figures", "cantilever panel, no force",
+    "cantilever panel, pulled down, section mid-way"}
 
 
 @pytest.fixture(scope="module", ids=list(FIGURES),

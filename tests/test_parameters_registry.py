@@ -18,6 +18,8 @@ from collections.abc import Mapping
 from pathlib import Path
 from types import SimpleNamespace
 
+import pytest
+
 import afmsmiler
 from afmsmiler.parameters import Parameter
 
@@ -80,6 +82,7 @@ def _collect_in_a_fresh_interpreter():
             for n, u, where in json.loads(out.stdout.strip().splitlines()[-1])]
 
 
+@pytest.mark.slow  # imports the whole package in a new interpreter (seconds)
 def test_a_name_means_one_si_unit_everywhere():
     found = _collect_in_a_fresh_interpreter()
     bad = clashes(found)
