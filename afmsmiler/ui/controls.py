@@ -1,4 +1,5 @@
-"""The one slider factory: every panel control is built from a :class:`~afmsmiler.parameters.Parameter`.
+"""The one slider factory: every panel control is built from a
+:class:`~afmsmiler.parameters.Parameter`.
 
 :func:`control` turns a parameter's description into an ipywidgets slider in the parameter's
 display unit, bounded by its slider range (inside the valid range, so no position makes the model
