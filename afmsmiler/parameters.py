@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, replace
+from collections.abc import Mapping
 from types import MappingProxyType
 
 import numpy as np
@@ -51,7 +52,14 @@ def read_only(mapping) -> MappingProxyType:
     -------
     types.MappingProxyType
         Reads like a dict; item assignment raises ``TypeError``.
+
+    Raises
+    ------
+    TypeError
+        If ``mapping`` is not a mapping.
     """
+    if not isinstance(mapping, Mapping):
+        raise TypeError(f"mapping must be a mapping (a dict), got {type(mapping).__name__}")
     return MappingProxyType(dict(mapping))
 
 
@@ -113,20 +121,67 @@ def unit_scale(display_unit: str, unit: str | None = None) -> float:
     Returns
     -------
     float
-        ``1 / (SI value of one display unit)``.
+        ``1 / (SI value of one display unit)``, exactly 1e9 for ``"nm"`` (``1 / 1e-9`` in
+        floating point is 999999999.9999999).
 
     Raises
     ------
     ValueError
         If the display unit is unknown or measures another quantity than ``unit``.
     """
+    if not isinstance(display_unit, str):
+        raise TypeError(f"display_unit must be a str, got {display_unit!r}")
+    if unit is not None and not isinstance(unit, str):
+        raise TypeError(f"unit must be a str, got {unit!r}")
     if display_unit not in UNITS:
         raise ValueError(f"display_unit must be one of {sorted(UNITS)}, got {display_unit!r}")
     si, factor = UNITS[display_unit]
     if unit is not None and si != unit:
         raise ValueError(f"display_unit {display_unit!r} measures {si or 'a pure number'!r}, "
                          f"not {unit or 'a pure number'!r}")
-    return 1.0 / factor
+    inverse = _exact_inverse(factor)
+    return 1.0 / factor if inverse is None else inverse
+
+
+def _exact_inverse(factor: float) -> float | None:
+    """``1 / factor`` when it is an integer that a float holds exactly (1e6 for "um"), else None.
+
+    Dividing by such an integer is correctly rounded, so ``20 um`` becomes exactly the float
+    ``2e-05``; multiplying by the factor ``1e-6`` (itself not exact in binary) gave
+    ``1.9999999999999998e-05``, which a model bounded at 20 um rejected at the slider's end.
+    """
+    if factor >= 1.0:
+        return None
+    inverse = round(1.0 / factor)
+    if inverse < 2 ** 53 and abs(1.0 / factor - inverse) <= 1e-9 * inverse:
+        return float(inverse)
+    return None
+
+
+def _convert(value, factor: float, to_si: bool, name: str = "value"):
+    """``value`` times ``factor`` (to SI) or divided by it (to display), correctly rounded."""
+    inverse = _exact_inverse(factor)
+    if np.ndim(value):
+        value = np.asarray(value)
+        if value.dtype.kind not in "iuf":
+            raise TypeError(f"{name} must be real numbers, got an array of {value.dtype}")
+    else:
+        if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
+                                                                         np.floating)):
+            raise TypeError(f"{name} must be a real number, got {value!r}")
+        value = float(value)
+    if inverse is None:
+        out = value * factor if to_si else value / factor
+    else:
+        out = value / inverse if to_si else value * inverse
+    if not to_si and not np.ndim(out) and math.isfinite(out):
+        # A product is off the decimal by an ulp (1.5e-08 * 1e9 = 14.999999999999998): show
+        # the shortest nearby decimal when it converts back to the same SI value, so a default
+        # reads 15 nm on its slider and the model gets exactly the default back.
+        short = float(f"{out:.15g}")
+        if short != out and _convert(short, factor, to_si=True) == value:
+            return short
+    return out
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -176,20 +231,57 @@ class Parameter:
     label: str = ""
 
     def __post_init__(self):
+        if not (isinstance(self.name, str) and self.name.isidentifier()):
+            raise ValueError(f"Parameter name must be a Python identifier (the model's keyword), "
+                             f"got {self.name!r}")
+        where = f"parameter {self.name}"
+        if not isinstance(self.unit, str):
+            raise TypeError(f"{where}: unit must be a str, got {self.unit!r}")
         if self.display_unit is None:
             object.__setattr__(self, "display_unit", self.unit)
+        elif not isinstance(self.display_unit, str):
+            raise TypeError(f"{where}: display_unit must be a str, got {self.display_unit!r}")
+        if self.unit not in {si for si, _ in UNITS.values()}:
+            raise ValueError(f"{where}: unit must be an SI unit of UNITS, got {self.unit!r}")
         unit_scale(self.display_unit, self.unit)  # raises on a unit mismatch
+        for field in ("low", "high"):
+            bound = getattr(self, field)
+            if isinstance(bound, bool) or not isinstance(bound, (int, float, np.integer,
+                                                                 np.floating)) \
+                    or math.isnan(bound):
+                raise ValueError(f"{where}: {field} must be a real number (inf for none), "
+                                 f"got {bound!r}")
+        for field in ("low_inclusive", "high_inclusive", "log"):
+            if not isinstance(getattr(self, field), bool):
+                raise TypeError(f"{where}: {field} must be True or False, "
+                                f"got {getattr(self, field)!r}")
+        if not isinstance(self.label, str):
+            raise TypeError(f"{where}: label must be a str, got {self.label!r}")
+        if not self.low < self.high:
+            raise ValueError(f"{where}: low must be below high, got low={self.low}, "
+                             f"high={self.high}")
+        try:
+            object.__setattr__(self, "default", self.check(self.default))
+        except ValueError:
+            left, right = "[" if self.low_inclusive else "(", "]" if self.high_inclusive else ")"
+            raise ValueError(f"{where}: default must be a real number in [low, high] = "
+                             f"{left}{self.low:g}, {self.high:g}{right} {self.unit}".rstrip()
+                             + f", got {self.default!r}") from None
         lo = self.low if self.slider_low is None else self.slider_low
         hi = self.high if self.slider_high is None else self.slider_high
+        for field, bound in (("slider_low", lo), ("slider_high", hi)):
+            if isinstance(bound, bool) or not isinstance(bound, (int, float, np.integer,
+                                                                 np.floating)) \
+                    or math.isnan(bound):
+                raise ValueError(f"{where}: {field} must be a real number, got {bound!r}")
         object.__setattr__(self, "slider_low", float(lo))
         object.__setattr__(self, "slider_high", float(hi))
-        where = f"parameter {self.name}"
-        self.check(self.default)
         if not self.slider_low < self.slider_high:
-            raise ValueError(f"{where}: slider range [{lo}, {hi}] is empty")
+            raise ValueError(f"{where}: slider_low must be below slider_high, got "
+                             f"slider_low={lo}, slider_high={hi}")
         if not (self.low <= self.slider_low and self.slider_high <= self.high):
-            raise ValueError(f"{where}: slider range [{lo}, {hi}] leaves the valid range "
-                             f"[{self.low}, {self.high}]")
+            raise ValueError(f"{where}: slider_low and slider_high must lie in the valid range "
+                             f"[{self.low}, {self.high}], got [{lo}, {hi}]")
         if self.log and not self.slider_low > 0:
             raise ValueError(f"{where}: a log slider needs slider_low > 0, got {lo}")
 
@@ -205,11 +297,15 @@ class Parameter:
         Parameters
         ----------
         si_value : float or array_like
-            Value(s) in SI units.
+            Value(s) in SI units; NaN stays NaN (a gap in a plotted curve), :meth:`check`
+            validates.
+
+        Raises
+        ------
+        TypeError
+            If ``si_value`` is not a real number or an array of them.
         """
-        if np.ndim(si_value):
-            return np.asarray(si_value) * self.scale
-        return float(si_value) * self.scale
+        return _convert(si_value, UNITS[self.display_unit][1], to_si=False, name="si_value")
 
     def to_si(self, display_value):
         """``display_value`` (in the display unit) in SI.
@@ -217,12 +313,15 @@ class Parameter:
         Parameters
         ----------
         display_value : float or array_like
-            Value(s) in the display unit.
+            Value(s) in the display unit; NaN stays NaN.
+
+        Raises
+        ------
+        TypeError
+            If ``display_value`` is not a real number or an array of them.
         """
-        factor = UNITS[self.display_unit][1]
-        if np.ndim(display_value):
-            return np.asarray(display_value) * factor
-        return float(display_value) * factor
+        return _convert(display_value, UNITS[self.display_unit][1], to_si=True,
+                        name="display_value")
 
     @property
     def title(self) -> str:

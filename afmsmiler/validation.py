@@ -25,7 +25,15 @@ __all__ = [
     "check_choice",
     "check_integer",
     "check_instance",
+    "check_size",
+    "check_shape",
+    "MAX_SIZE",
 ]
+
+#: Default bound of a size parameter (number of points, pixels, mesh segments): about a second
+#: of numpy work per pass on a laptop, and 80 MB as a float64 array. A function whose cost grows
+#: faster than linearly sets a lower bound of its own.
+MAX_SIZE = 10_000_000
 
 
 def _fmt(value) -> str:
@@ -46,11 +54,17 @@ def _in(unit: str) -> str:
 
 
 def _as_float(name: str, value) -> float:
-    if isinstance(value, bool) or not isinstance(value, (Real, np.number)):
+    # np.number would let np.complex128 through, and float() would drop its imaginary part
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, np.integer,
+                                                                    np.floating)):
         if isinstance(value, np.ndarray) and value.ndim == 0:
             return _as_float(name, value.item())
-        raise ValueError(f"{name} must be a real number, got {value!r}")
-    return float(value)
+        raise ValueError(f"{name} must be a real number, got {_short(value)}")
+    try:
+        return float(value)
+    except OverflowError:  # an int beyond float range (10**400)
+        raise ValueError(f"{name} must be a finite number, got an integer of "
+                         f"{len(str(abs(value)))} digits") from None
 
 
 def check_finite(name: str, value, unit: str = "") -> float:
@@ -137,7 +151,8 @@ def check_range(name: str, value, low, high, unit: str = "", *,
     x = _as_float(name, value)
     if not (math.isfinite(x) and _inside(x, low, high, low_inclusive, high_inclusive)):
         raise ValueError(
-            f"{name} must be in {_interval(low, high, low_inclusive, high_inclusive)}{_unit(unit)}, "
+            f"{name} must be in "
+            f"{_interval(low, high, low_inclusive, high_inclusive)}{_unit(unit)}, "
             f"got {_fmt(x)}")
     return x
 
@@ -145,7 +160,7 @@ def check_range(name: str, value, low, high, unit: str = "", *,
 def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.inf,
                 low_inclusive: bool = True, high_inclusive: bool = True, ndim: int | None = None,
                 min_size: int = 0, increasing: bool = False, nondecreasing: bool = False,
-                size: int | None = None) -> np.ndarray:
+                size: int | None = None, max_size: int | None = MAX_SIZE) -> np.ndarray:
     """Return ``values`` as a float ndarray; raise unless every element is finite and in range.
 
     Parameters
@@ -166,7 +181,18 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
         Require strictly increasing (or non-decreasing) values along a 1-D array.
     size : int, optional
         Required number of elements (used for "arrays of the same length" checks).
+    max_size : int or None
+        Largest number of elements accepted (default :data:`MAX_SIZE`), checked before the
+        array is copied; None for no bound.
+
+    Returns
+    -------
+    numpy.ndarray
+        A float copy of ``values``.
     """
+    n = getattr(values, "size", None)
+    if max_size is not None and isinstance(n, (int, np.integer)) and n > max_size:
+        raise ValueError(f"{name} must have at most {max_size} elements, got {n}")
     try:
         raw = np.asarray(values)
     except (TypeError, ValueError):  # ragged nested sequences
@@ -174,13 +200,16 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
     if raw.dtype.kind not in "iuf":  # complex (the imaginary part would be lost), bool, str, object
         raise ValueError(f"{name} must be an array of real numbers, got an array of "
                          f"{raw.dtype} ({_short(values)})")
+    if max_size is not None and raw.size > max_size:
+        raise ValueError(f"{name} must have at most {max_size} elements, got {raw.size}")
     arr = raw.astype(float)
     if ndim is not None and arr.ndim != ndim:
         raise ValueError(f"{name} must be a {ndim}-D array, got shape {arr.shape}")
     if arr.size < min_size:
         raise ValueError(f"{name} must have at least {min_size} elements, got {arr.size}")
     if size is not None and arr.size != size:
-        raise ValueError(f"{name} must have {size} elements (same as its companion array), got {arr.size}")
+        raise ValueError(f"{name} must have {size} elements (same as its companion array), "
+                         f"got {arr.size}")
     flat = arr.ravel()
     bad = ~np.isfinite(flat)
     if bad.any():
@@ -190,7 +219,8 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
     if not ok.all():
         i = int(np.argmin(ok))
         raise ValueError(
-            f"{name} must be in {_interval(low, high, low_inclusive, high_inclusive)}{_unit(unit)}, "
+            f"{name} must be in "
+            f"{_interval(low, high, low_inclusive, high_inclusive)}{_unit(unit)}, "
             f"got {_fmt(float(flat[i]))} (at index {i})")
     if (increasing or nondecreasing) and arr.ndim == 1 and arr.size > 1:
         d = np.diff(arr)
@@ -198,7 +228,8 @@ def check_array(name: str, values, unit: str = "", *, low=-math.inf, high=math.i
         if wrong.any():
             i = int(np.argmax(wrong))
             kind = "strictly increasing" if increasing else "non-decreasing"
-            raise ValueError(f"{name} must be {kind}, but element {i + 1} ({_fmt(float(arr[i + 1]))}) "
+            raise ValueError(f"{name} must be {kind}, but element {i + 1} "
+                             f"({_fmt(float(arr[i + 1]))}) "
                              f"follows {_fmt(float(arr[i]))}")
     return arr
 
@@ -215,8 +246,13 @@ def check_choice(name: str, value, choices):
     choices : collection
         The valid values.
     """
-    if value not in choices:
-        raise ValueError(f"{name} must be one of {sorted(map(str, choices))}, got {value!r}")
+    try:
+        ok = bool(value in choices)
+    except (TypeError, ValueError):  # unhashable (a list) for a set; an array's ambiguous truth
+        ok = False
+    if not ok:
+        raise ValueError(f"{name} must be one of {sorted(map(str, choices))}, "
+                         f"got {_short(value)}")
     return value
 
 
@@ -232,11 +268,93 @@ def check_integer(name: str, value, low: int = -math.inf, high: int = math.inf) 
     low, high : int
         Inclusive bounds.
     """
-    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        raise ValueError(f"{name} must be an integer, got {value!r}")
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)):
+        raise ValueError(f"{name} must be an integer in [{low}, {high}], got {_short(value)}")
     if not (low <= value <= high):
-        raise ValueError(f"{name} must be an integer in [{low}, {high}], got {value}")
+        raise ValueError(f"{name} must be an integer in [{low}, {high}], got {_short(value)}")
     return int(value)
+
+
+def check_size(name: str, value, limit: int = MAX_SIZE, low: int = 1) -> int:
+    """Return a size (a number of points, pixels, segments, iterations) as int, bounded.
+
+    Every size parameter has a limit that the machine honours in seconds; the message says so,
+    so that a student who asks for ``n_length=10**9`` learns the bound instead of waiting.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : int
+        The size to check.
+    limit : int
+        The largest size accepted (default :data:`MAX_SIZE`).
+    low : int
+        The smallest size accepted.
+
+    Returns
+    -------
+    int
+        ``value``.
+
+    Raises
+    ------
+    ValueError
+        Unless ``value`` is an integer in ``[low, limit]``.
+
+    Examples
+    --------
+    >>> check_size("n_length", 10**9, 100_000)  # doctest: +ELLIPSIS
+    Traceback (most recent call last):
+    ...
+    ValueError: n_length must be an integer in [1, 100000] (...), got 1000000000
+    """
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, np.integer)) \
+            or not low <= value <= limit:
+        raise ValueError(f"{name} must be an integer in [{low}, {limit}] (a size this machine runs "
+                         f"in seconds), got {_short(value)}")
+    return int(value)
+
+
+def check_shape(name: str, value, ndim: int = 2, limit: int = MAX_SIZE) -> tuple[int, ...]:
+    """Return an array shape (``(rows, columns)``) as a tuple of ints, its size bounded.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : tuple of int
+        The shape: ``ndim`` positive integers (an int is accepted for ``ndim=1``).
+    ndim : int
+        Required number of dimensions.
+    limit : int
+        The largest number of elements (the product) accepted.
+
+    Returns
+    -------
+    tuple of int
+
+    Raises
+    ------
+    ValueError
+        Unless ``value`` is ``ndim`` positive integers whose product is at most ``limit``.
+
+    Examples
+    --------
+    >>> check_shape("shape", (64, 64))
+    (64, 64)
+    """
+    if ndim == 1 and isinstance(value, (int, np.integer)) and not isinstance(value, bool):
+        value = (value,)
+    if not isinstance(value, (tuple, list)) or len(value) != ndim:
+        raise ValueError(f"{name} must be a tuple of {ndim} positive integers, got "
+                         f"{_short(value)}")
+    shape = tuple(check_size(f"{name}[{i}]", v, limit) for i, v in enumerate(value))
+    total = math.prod(shape)
+    if total > limit:
+        raise ValueError(f"{name} must have at most {limit} elements in all (a size this machine "
+                         f"runs in seconds), got {shape} = {total}")
+    return shape
 
 
 def check_instance(name: str, value, kind, what: str | None = None):

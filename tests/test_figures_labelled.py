@@ -114,7 +114,16 @@ def _texts(ax):
             if t.get_visible() and t.get_text().strip()]
 
 
-@pytest.fixture(scope="module", params=list(FIGURES), ids=list(FIGURES))
+# Building a figure takes about a second for these; `make unit` checks each panel once in its
+# default state (one transducer principle, the first) and the rest run under `make test`.
+SLOW = {f"transducer panel: {k}" for k in _principles()[1:]} | {
+    "controller figures", "contact figures", "cantilever panel, no force",
+    "cantilever panel, pulled down, section mid-way"}
+
+
+@pytest.fixture(scope="module", ids=list(FIGURES),
+                params=[pytest.param(k, marks=pytest.mark.slow) if k in SLOW else k
+                        for k in FIGURES])
 def drawn(request):
     figs = FIGURES[request.param]()
     for fig in figs:

@@ -2,6 +2,8 @@ import math
 
 import numpy as np
 import pytest
+from hypothesis import given
+from hypothesis import strategies as st
 
 from afmsmiler.validation import (check_array, check_choice, check_integer, check_nonnegative,
                                   check_positive, check_range)
@@ -60,3 +62,89 @@ def test_objects_are_checked_by_name():
         check_instance("lever", "silicon", Cantilever)
     lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
     assert check_instance("lever", lever, Cantilever) is lever
+
+
+@pytest.mark.parametrize("bad", [np.complex128(1 + 2j), np.bool_(True), 1j, None, "1", [1.0],
+                                 {"a": 1}, object()])
+def test_scalars_reject_what_is_not_a_real_number(bad):
+    # np.complex128 passed as an np.number and float() dropped its imaginary part
+    with pytest.raises(ValueError, match=r"^x must be a real number, got "):
+        check_positive("x", bad)
+
+
+def test_an_integer_beyond_float_range_is_named():
+    # float(10**400) raised OverflowError
+    with pytest.raises(ValueError, match=r"^x must be a finite number, got an integer of 401"):
+        check_range("x", 10**400, 0, 1)
+
+
+def test_choice_of_an_unhashable_value_is_named():
+    # `[1] in {"a"}` raised TypeError: unhashable type: 'list'
+    with pytest.raises(ValueError, match=r"^tip must be one of \['cone'\], got \[1\]"):
+        check_choice("tip", [1], {"cone"})
+    # an array asked of a tuple raised "The truth value of an array ... is ambiguous"
+    with pytest.raises(ValueError, match=r"^mode must be one of \['a', 'b'\], got array"):
+        check_choice("mode", np.ones(3), ("a", "b"))
+
+
+def test_integer_messages_give_the_range():
+    with pytest.raises(ValueError, match=r"^mode must be an integer in \[1, 5\], got 1.0$"):
+        check_integer("mode", 1.0, 1, 5)
+    with pytest.raises(ValueError,
+                       match=r"^mode must be an integer in \[1, 5\], got (np\.)?True_?$"):
+        check_integer("mode", np.bool_(True), 1, 5)
+
+
+def test_sizes_and_shapes_are_bounded():
+    from afmsmiler.validation import MAX_SIZE, check_shape, check_size
+    assert check_size("n_length", 200, 10_000) == 200
+    for bad in (0, -1, 10**9, 2.0, True, None, "10"):
+        with pytest.raises(ValueError, match=r"^n_length must be an integer in \[1, 10000\] "
+                                             r"\(a size this machine runs in seconds\), got "):
+            check_size("n_length", bad, 10_000)
+    assert check_shape("shape", (64, 32)) == (64, 32)
+    assert check_shape("n", 5, ndim=1) == (5,)
+    with pytest.raises(ValueError, match=r"^shape must have at most 10000000 elements in all"):
+        check_shape("shape", (10**4, 10**4))
+    assert MAX_SIZE == 10_000_000
+    with pytest.raises(ValueError, match=r"^shape\[1\] must be an integer in"):
+        check_shape("shape", (64, 0))
+    for bad in ((64,), (1, 2, 3), 64, "64x64", None, (64.0, 64)):
+        with pytest.raises(ValueError, match=r"^shape"):
+            check_shape("shape", bad)
+
+
+def test_array_size_is_bounded_before_copying():
+    with pytest.raises(ValueError, match=r"^x must have at most 10 elements, got 11$"):
+        check_array("x", np.zeros(11), max_size=10)
+    with pytest.raises(ValueError, match=r"^x must have at most 10 elements, got 11$"):
+        check_array("x", [0.0] * 11, max_size=10)
+    assert check_array("x", np.zeros(11), max_size=None).size == 11
+
+
+@given(st.one_of(st.floats(), st.integers(-10**400, 10**400), st.complex_numbers(),
+                 st.text(max_size=5), st.none(), st.booleans(), st.lists(st.floats(), max_size=3)))
+def test_scalar_checks_raise_only_named_value_errors(value):
+    for check in (lambda v: check_positive("k_s", v, "N/m"),
+                  lambda v: check_nonnegative("k_s", v, "N/m"),
+                  lambda v: check_range("k_s", v, 0, 1, "N/m", high_inclusive=False),
+                  lambda v: check_integer("k_s", v, 0, 10)):
+        try:
+            out = check(value)
+        except ValueError as exc:
+            assert str(exc).startswith("k_s must be"), str(exc)
+        else:
+            assert math.isfinite(out)
+
+
+@given(st.one_of(st.lists(st.one_of(st.floats(), st.integers(-10**30, 10**30)), max_size=6),
+                 st.lists(st.lists(st.floats(), max_size=3), max_size=3),
+                 st.lists(st.complex_numbers(), min_size=1, max_size=3),
+                 st.text(max_size=5), st.none()))
+def test_array_check_raises_only_named_value_errors(values):
+    try:
+        out = check_array("x", values, "m", low=0.0)
+    except ValueError as exc:
+        assert str(exc).startswith("x must"), str(exc)
+    else:
+        assert np.isfinite(out).all() and (out >= 0).all()

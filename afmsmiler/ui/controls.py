@@ -1,4 +1,5 @@
-"""The one slider factory: every panel control is built from a :class:`~afmsmiler.parameters.Parameter`.
+"""The one slider factory: every panel control is built from a
+:class:`~afmsmiler.parameters.Parameter`.
 
 :func:`control` turns a parameter's description into an ipywidgets slider in the parameter's
 display unit, bounded by its slider range (inside the valid range, so no position makes the model
@@ -16,7 +17,8 @@ import math
 import ipywidgets as widgets
 
 from ..parameters import Parameter
-from ..validation import check_integer
+from ..validation import (check_finite, check_instance, check_integer, check_positive,
+                          check_range)
 
 __all__ = ["control", "nice_step", "grid", "WIDTH"]
 
@@ -41,9 +43,13 @@ def nice_step(span: float, steps: int = STEPS) -> float:
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        If ``span`` is not a finite positive number or ``steps`` not an integer in range.
     """
-    if not (math.isfinite(span) and span > 0):
-        raise ValueError(f"span must be > 0 and finite, got {span!r}")
+    span = check_positive("span", span)
     check_integer("steps", steps, 1, _MAX_STEPS)
     target = span / steps
     exponent = math.floor(math.log10(target))
@@ -74,38 +80,80 @@ def grid(value: float, low: float, high: float, step: float, *,
     value : float
         The value that must lie on the grid, in [low, high].
     low, high : float
-        The range the grid must stay inside.
+        The finite range the grid must stay inside, ``low <= high``.
     step : float
-        The largest step wanted, > 0.
+        The largest step wanted, > 0; at most 100000 steps may fit in ``[low, high]``.
     search : bool
         Look for a smaller nice step that divides ``value`` (linear sliders); else anchor at once.
 
     Returns
     -------
     tuple of float
-        ``(min, max, step)`` with min >= low, max <= high and value = min + n step.
+        ``(min, max, step)`` with ``low <= min <= value <= max <= high`` and value = min + n step.
+
+    Raises
+    ------
+    ValueError
+        If a number is not finite, the range is empty or holds more than 100000 steps, or
+        ``value`` lies outside it.
     """
-    if not (low <= value <= high):
-        raise ValueError(f"value must be in [{low:g}, {high:g}], got {value:g}")
+    low = check_finite("low", low)
+    high = check_finite("high", high)
+    if not low <= high:
+        raise ValueError(f"low must be <= high, got low={low:g}, high={high:g}")
+    value = check_range("value", value, low, high)
+    step = check_positive("step", step)
+    if (high - low) / step > _MAX_STEPS:
+        raise ValueError(f"step must divide [{low:g}, {high:g}] into at most {_MAX_STEPS} steps, "
+                         f"got {step:g} ({(high - low) / step:.3g} steps)")
     chosen = step
     if search and value != 0 and not _on_grid(value, step):
         for k in range(0, 3):
             for m in (5.0, 2.5, 2.0, 1.0):
                 s = m * 10.0 ** (math.floor(math.log10(step)) - k)
-                if s <= step and _on_grid(value, s):
+                if s <= step and _on_grid(value, s) and (high - low) / s <= _MAX_STEPS:
                     chosen = s
                     break
             else:
                 continue
             break
+    # An end that lies on the grid up to round-off is kept (the tolerance), but never overshot:
+    # a grid end 1e-12 beyond ``low`` would be a slider position the model rejects.
     below = math.floor((value - low) / chosen * (1 + 1e-12))
     above = math.floor((high - value) / chosen * (1 + 1e-12))
-    return value - below * chosen, value + above * chosen, chosen
+    return max(value - below * chosen, low), min(value + above * chosen, high), chosen
 
 
 def _inside(p: Parameter) -> tuple[float, float]:
-    """The slider's range in display units, closed (an open valid bound is never reached)."""
+    """The slider's range in display units (before the grid keeps clear of open bounds)."""
     return p.to_display(p.slider_low), p.to_display(p.slider_high)
+
+
+def _valid(p: Parameter, display_value: float) -> bool:
+    """Whether the model accepts a slider position (converted to SI as a panel does)."""
+    try:
+        p.check(p.to_si(display_value))
+    except ValueError:
+        return False
+    return True
+
+
+def _keep_inside(p: Parameter, lo: float, hi: float, step: float, value: float,
+                 position) -> tuple[float, float]:
+    """Move a grid end that the model would reject (an open bound, round-off) a step inwards.
+
+    ``position(x)`` is the display value of grid coordinate ``x`` (``10 ** x`` for a log slider).
+    """
+    for _ in range(2):  # round-off moves an end by less than a step; an open bound by one
+        if lo < value and not _valid(p, position(lo)):
+            lo = min(lo + step, value)
+        if hi > value and not _valid(p, position(hi)):
+            hi = max(hi - step, value)
+    # An end at the value itself is the value's own position (valid; a log end may miss it by
+    # an ulp, which the panel takes as the browser's echo).
+    if not all(end == value or _valid(p, position(end)) for end in (lo, hi)):  # pragma: no cover
+        raise ValueError(f"{p.name}: no slider grid through {value!r} stays in the valid range")
+    return lo, hi
 
 
 def control(p: Parameter, value: float | None = None, *, high: float | None = None,
@@ -132,26 +180,49 @@ def control(p: Parameter, value: float | None = None, *, high: float | None = No
     Raises
     ------
     ValueError
-        If ``value`` is not valid for ``p`` or ``high`` is below the slider's lower end.
+        If ``value`` is not valid for ``p``, ``p`` has no finite slider range or ``high`` is
+        below the slider's lower end.
+    TypeError
+        If ``p`` is not a :class:`~afmsmiler.parameters.Parameter`.
     """
+    check_instance("p", p, Parameter)
     v = p.check(p.default if value is None else value)
     lo, hi = _inside(p)
+    if not (math.isfinite(lo) and math.isfinite(hi)):
+        raise ValueError(f"parameter {p.name} needs a finite slider range for a control, got "
+                         f"[{p.slider_low:g}, {p.slider_high:g}] {p.unit}")
     if high is not None:
-        hi = min(hi, p.to_display(p.check(high)))
-        if not hi > lo:
+        high = check_finite("high", high, p.unit)
+        if not high > p.slider_low:
             raise ValueError(f"high must be above {p.name}'s slider minimum "
                              f"{p.slider_low:g} {p.unit}, got {high!r}")
+        hi = min(hi, p.to_display(p.check(high)))
+    if not isinstance(readout_format, str):
+        raise TypeError(f"readout_format must be a str, got {readout_format!r}")
     shown = min(max(p.to_display(v), lo), hi)
     common = dict(description=p.title, readout_format=readout_format, continuous_update=True,
                   style={"description_width": "initial"}, layout=widgets.Layout(width=WIDTH))
     if p.log:
         step = 1.0 / STEPS_PER_DECADE
-        e_lo, e_hi, step = grid(math.log10(shown), math.log10(lo), math.log10(hi), step,
-                                  search=False)
+        e_v = math.log10(shown)
+        e_lo, e_hi, step = grid(e_v, min(math.log10(lo), e_v), max(math.log10(hi), e_v), step,
+                                search=False)
+        e_lo, e_hi = _keep_inside(p, e_lo, e_hi, step, e_v, lambda e: 10.0 ** e)
+        # 10 ** log10(x) can miss x by an ulp; ipywidgets then clamps the value to the end
+        # (38.72 um became 38.720000000000006). Move such an end out by a few ulps of exponent.
+        for _ in range(64):
+            if 10.0 ** e_lo <= shown:
+                break
+            e_lo = math.nextafter(e_lo, -math.inf)
+        for _ in range(64):
+            if 10.0 ** e_hi >= shown:
+                break
+            e_hi = math.nextafter(e_hi, math.inf)
         w = widgets.FloatLogSlider(value=shown, base=10, min=e_lo, max=e_hi, step=step, **common)
     else:
         step = nice_step(hi - lo)
         g_lo, g_hi, step = grid(shown, lo, hi, step)
+        g_lo, g_hi = _keep_inside(p, g_lo, g_hi, step, shown, lambda x: x)
         w = widgets.FloatSlider(value=shown, min=g_lo, max=g_hi, step=step, **common)
     w.parameter = p
     return w
