@@ -47,6 +47,8 @@ import pytest
 from hypothesis import HealthCheck, Phase, given, settings
 from hypothesis import strategies as st
 
+from afmsmiler.parameters import Parameter
+
 from api_campaign_known import KNOWN
 
 if os.environ.get("AFMSMILER_CAMPAIGN_RECORD"):  # tests/api_campaign_record.py: see everything
@@ -529,6 +531,8 @@ def _non_finite(obj, depth=0, seen=None):
         return None
     seen.add(id(obj))
     if isinstance(obj, (bool, np.bool_, str, type)) or obj is None:
+        return None
+    if isinstance(obj, Parameter):  # a description: an infinite bound means "no bound"
         return None
     if isinstance(obj, (int, np.integer)):
         return None
