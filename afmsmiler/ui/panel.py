@@ -1,6 +1,7 @@
-"""The base of every widget panel, and slider helpers in practical units.
+"""The base of every widget panel.
 
-A panel owns a dict of controls (ipywidgets), a matplotlib figure and optionally a meshcat
+A panel owns a dict of controls (ipywidgets; every slider made by the one factory,
+:func:`afmsmiler.ui.controls.control`), a matplotlib figure and optionally a meshcat
 scene. Its :meth:`Panel.update` callback receives the control values (in the units the sliders
 show), converts them to SI, calls the models and updates the artists and the scene in place.
 Tests construct a panel, call :meth:`Panel.set` and check the figure data against the model.
@@ -17,10 +18,9 @@ import matplotlib
 import matplotlib.pyplot as plt
 from IPython.display import display
 
-from ..validation import check_choice, check_finite, check_integer
+from ..validation import check_choice, check_finite
 
-__all__ = ["Panel", "arrange", "slider", "log_slider", "check_control_value", "running_as_notebook",
-           "setup_notebook"]
+__all__ = ["Panel", "arrange", "check_control_value", "running_as_notebook", "setup_notebook"]
 
 
 def running_as_notebook() -> bool:
@@ -47,38 +47,6 @@ def setup_notebook() -> None:
             get_ipython().run_line_magic("matplotlib", "widget")
         except Exception:  # ipympl missing: fall back to inline figures re-rendered by panels
             get_ipython().run_line_magic("matplotlib", "inline")
-
-
-def slider(description: str, value: float, low: float, high: float, step: float | None = None,
-           unit: str = "", readout_format: str = ".3g") -> widgets.FloatSlider:
-    """A linear float slider whose label carries its (practical) unit.
-
-    The bounds must lie inside the model's valid range, so the slider cannot produce a value the
-    model rejects.
-    """
-    if not (low < high and low <= value <= high):
-        raise ValueError(f"slider {description!r}: value {value} must lie in [{low}, {high}]")
-    if step is not None and not (math.isfinite(step) and 0 < step <= high - low):
-        raise ValueError(f"step must be in (0, {high - low:g}], got {step!r}")
-    label = f"{description} [{unit}]" if unit else description
-    return widgets.FloatSlider(value=value, min=low, max=high, step=step or (high - low) / 200,
-                               description=label, readout_format=readout_format,
-                               continuous_update=True, style={"description_width": "initial"},
-                               layout=widgets.Layout(width="420px"))
-
-
-def log_slider(description: str, value: float, low: float, high: float, unit: str = "",
-               steps_per_decade: int = 20, readout_format: str = ".3g") -> widgets.FloatLogSlider:
-    """A log-scale slider for a parameter that spans decades (bounds are values, not exponents)."""
-    if not (0 < low < high and low <= value <= high):
-        raise ValueError(f"log slider {description!r}: value {value} must lie in [{low}, {high}] > 0")
-    check_integer("steps_per_decade", steps_per_decade, 1, 10_000)
-    label = f"{description} [{unit}]" if unit else description
-    return widgets.FloatLogSlider(value=value, base=10, min=math.log10(low), max=math.log10(high),
-                                  step=1 / steps_per_decade, description=label,
-                                  readout_format=readout_format, continuous_update=True,
-                                  style={"description_width": "initial"},
-                                  layout=widgets.Layout(width="420px"))
 
 
 _MISSING = object()
