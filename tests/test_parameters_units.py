@@ -18,7 +18,7 @@ from hypothesis import strategies as st
 from afmsmiler.parameters import UNITS, Parameter, read_only, unit_scale
 
 # -- an independent spelling of the units: SI prefixes and base units -----------------------------
-PREFIXES = {"": 1.0, "p": sc.pico, "n": sc.nano, "u": sc.micro, "\u00b5": sc.micro,
+PREFIXES = {"": 1.0, "f": sc.femto, "p": sc.pico, "n": sc.nano, "u": sc.micro, "\u00b5": sc.micro,
             "m": sc.milli, "c": sc.centi, "k": sc.kilo, "M": sc.mega, "G": sc.giga}
 #: base unit -> (the SI unit it is measured in, SI value of one base unit)
 BASES = {"m": ("m", 1.0), "g": ("kg", sc.gram), "s": ("s", 1.0), "N": ("N", 1.0),
@@ -44,10 +44,17 @@ def _factor(term: str) -> tuple[str, float]:
     raise AssertionError(f"cannot spell unit term {term!r}; add its base or prefix to this test")
 
 
+#: pure numbers with a name: parts per million (1e-6, SI brochure's ppm) and the strain unit
+#: microstrain (1e-6 m/m)
+RATIOS = {"ppm": 1e-6, "microstrain": sc.micro}
+
+
 def _spell(unit: str) -> tuple[str, float]:
     """A unit name -> (its SI unit, the SI value of one of it), from prefixes and bases."""
     if unit in ("", "x"):
         return "", 1.0
+    if unit in RATIOS:
+        return "", RATIOS[unit]
     num, _, den = unit.partition("/")
     si_parts, value = [], 1.0
     for i, side in enumerate((num, den)):
