@@ -200,8 +200,8 @@ def test_fin_response_stays_finite_up_to_the_largest_frequency(cls):
     f = np.array([1e12, 1e60, 1e300, 1.7e308])
     lag = model.thermal_lag(f)
     assert np.isfinite(lag).all()
-    # the fin's asymptotes (test_thermal_lag_solves_the_heat_equation): 6 / u^3 (tip) or 4 / u^2 (uniform), to
-    # double precision once tanh u = 1 and sech u = 0; beyond, towards their limit 0
+    # the fin's closed forms with tanh u = 1 and sech u = 0, exact to double precision for large u:
+    # 6 / u^3 (heat at the tip), 4 / u^2 - 8 / u^3 + 8 / u^4 (uniform); beyond, their limit 0
     u = model.length * np.sqrt(2j * math.pi * f[:2] / diffusivity)
     far = 6 / u ** 3 if cls is Photothermal else 4 / u ** 2 - 8 / u ** 3 + 8 / u ** 4
     np.testing.assert_allclose(lag[:2], far, rtol=1e-12)
