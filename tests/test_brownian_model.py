@@ -92,6 +92,7 @@ def test_each_mode_spectrum_integrates_to_its_share(mode):
         == pytest.approx(ref, rel=1e-6)
 
 
+@pytest.mark.slow  # a sympy derivative and quadratures at four Q, ~0.7-0.8 s
 def test_band_integral_of_the_brownian_spectrum():
     # the closed-form antiderivative differentiates back to |H|^2 (sympy, 30 digits)
     r, q = sp.symbols("r Q", positive=True)

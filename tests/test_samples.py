@@ -1,9 +1,13 @@
 """Sample generators: shapes, physical sizes and statistics against their definitions; the real
 WSxM image read in SI units, checked against its own header and AFMReader's published values."""
+import math
+import re
+
 import numpy as np
 import pytest
 
 from afmsmiler import samples
+from afmsmiler.samples.synthetic import MAX_HEIGHT
 
 
 def test_step_and_grating_geometry():
@@ -267,3 +271,31 @@ def test_the_header_is_checked_from_the_first_bytes(tmp_path):
 def test_bad_input(call, match):
     with pytest.raises(ValueError, match=match):
         call()
+
+
+# -- found by the bad-input campaign (tests/test_api_campaign.py) ------------------------------
+@pytest.mark.parametrize("call, named", [
+    # before: "period must be in [2e+300, inf] m, got 5e-07", the pixel size unnamed
+    (lambda: samples.grating(pixel_size=1e300), "pixel_size = 1e+300 m"),
+    # before: "correlation_length must be in (0, 6.4e-299] m", the pixel size unnamed
+    (lambda: samples.rough_surface(pixel_size=1e-300), "pixel_size = 1e-300 m"),
+])
+def test_a_bound_set_by_the_pixel_size_names_it(call, named):
+    with pytest.raises(ValueError, match=re.escape(named)):
+        call()
+
+
+def test_particle_radius_is_bounded_by_the_z_range_not_an_overflow():
+    # before: OverflowError "cannot convert float infinity to integer" (radius / pixel_size)
+    with pytest.raises(ValueError, match=r"radius must be in \(0, 0.0005\] m, got 1e\+300"):
+        samples.particles((32, 32), radius=1e300)
+    # the largest radius and the smallest pixels: particles as large as the image, finite
+    img = samples.particles((16, 16), pixel_size=1e-300, count=2, radius=MAX_HEIGHT / 2)
+    assert np.isfinite(img.heights).all() and img.heights.max() <= MAX_HEIGHT + 1e-9
+
+
+@pytest.mark.parametrize("name", [math.nan, True, 1 + 1j, object(), np.array([0.0, np.nan])])
+def test_sample_name_must_be_text(name):
+    # before: accepted silently, then printed as a title
+    with pytest.raises(TypeError, match="name must be a str"):
+        samples.Sample(np.zeros((2, 2)), 1e-9, name)

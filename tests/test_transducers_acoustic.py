@@ -99,3 +99,20 @@ def test_base_excitation_says_when_mode_2_matters():
         assert bool(model.validity(0.1)) == (share > 0.05)
     assert PiezoAcoustic(drive_ratio=1.0).validity(1.0) == ()
     assert "second mode" in PiezoAcoustic(drive_ratio=3.0).validity(1.0)[0]
+
+
+def test_base_transfer_tends_to_minus_the_participation_factor_far_above_resonance():
+    # before: NaN at f = 1e300 (r^2 = inf times a response of 0); the limit of
+    # gamma r^2 / (1 - r^2 + j r / Q) as r -> inf is -gamma: the tip stays still in space
+    model = PiezoAcoustic()
+    f = np.array([1e300, 1.7e308])
+    u = model.base_transfer(f)
+    assert np.isfinite(u).all()
+    np.testing.assert_allclose(u, -participation_factor(), rtol=1e-15)
+    assert np.isfinite(model.frequency_response(f).response).all()
+    # and the same function on both sides of resonance, where the formula switches
+    r = np.array([0.5, 0.999, 1.0, 1.001, 2.0, 1e3])
+    q = model.quality_factor
+    expected = participation_factor() * r * r / (1 - r * r + 1j * r / q)
+    np.testing.assert_allclose(model.base_transfer(r * model.resonance_frequency), expected,
+                               rtol=1e-12)

@@ -216,8 +216,9 @@ HELPER_CASES = [
     (lambda v: OpticalBeamDeflection().spot_displacement(v), "slope",
      (math.nan, 0.8, -math.pi / 4)),
     (lambda v: OpticalBeamDeflection().split_signal(v), "spot", (math.nan, math.inf)),
-    (lambda v: AstigmaticDetection().spot_radii(v), "d", (math.nan, -math.inf)),
-    (lambda v: AstigmaticDetection().focus_error([0.0, v]), "d", (math.nan, math.inf)),
+    # beyond the pickup's 1 mm working distance, before: radii inf and FES NaN at d = 1e300
+    (lambda v: AstigmaticDetection().spot_radii(v), "d", (math.nan, -math.inf, 1.1e-3, -1e300)),
+    (lambda v: AstigmaticDetection().focus_error([0.0, v]), "d", (math.nan, math.inf, 1e300)),
     (lambda v: Interferometer().fringe(v), "d", (math.nan, math.inf)),
     (lambda v: Optomechanical().transmission(v), "x", (math.nan, math.inf)),
     (lambda v: Electromagnetic().lorentz_force(v), "current", (math.nan, math.inf)),
@@ -417,3 +418,12 @@ def test_the_model_says_how_its_lever_bends():
     np.testing.assert_allclose(shape, phi(u) / phi(1.0), rtol=1e-9, atol=1e-12)
     with pytest.raises(ValueError, match="^u must be in"):
         PiezoAcoustic().deflection_shape([1.5])
+
+
+@pytest.mark.parametrize("name", [np.ones((3, 3)), np.array([]), 3.0, None])
+def test_chain_stage_name_must_be_a_str(name):
+    # before: numpy's "truth value of an array is ambiguous" for an array, naming nothing
+    chain = OpticalBeamDeflection().chain([1e-9, 2e-9])
+    with pytest.raises(TypeError, match="^name must be a str"):
+        chain.stage(name)
+    assert chain.stage(chain.names[-1]) is chain.output

@@ -63,6 +63,7 @@ def test_parallel_plate_gradient_and_distributed_load():
     assert model.sensitivity(at=10.0) == pytest.approx(expected, rel=1e-10)
 
 
+@pytest.mark.slow  # a sympy derivation, ~0.6-0.8 s
 def test_pull_in_voltage_against_sympy():
     # spring k against the parallel-plate pull eps0 A V^2 / (2 (g - x)^2): the equilibrium is lost
     # where the total stiffness vanishes too (Senturia, Microsystem Design, sec. 6.4)

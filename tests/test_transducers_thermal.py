@@ -190,3 +190,20 @@ def test_electrothermal_power_harmonics_against_sympy_and_fft():
     # the 1-omega gain equals the small-signal sensitivity at the bias (slow drive)
     slow = model.deflection_components(0.8, 1e-3)
     assert abs(slow.first) / 1.5 == pytest.approx(abs(model.sensitivity(at=0.8)), rel=1e-6)
+
+
+@pytest.mark.parametrize("cls", [Photothermal, Electrothermal])
+def test_fin_response_stays_finite_up_to_the_largest_frequency(cls):
+    # before: NaN at f = 1e300 (u^3 of a huge complex u overflowed into inf - inf)
+    model = cls()
+    diffusivity = model.thermal_diffusivity
+    f = np.array([1e12, 1e60, 1e300, 1.7e308])
+    lag = model.thermal_lag(f)
+    assert np.isfinite(lag).all()
+    # the fin's closed forms with tanh u = 1 and sech u = 0, exact to double precision for large u:
+    # 6 / u^3 (heat at the tip), 4 / u^2 - 8 / u^3 + 8 / u^4 (uniform); beyond, their limit 0
+    u = model.length * np.sqrt(2j * math.pi * f[:2] / diffusivity)
+    far = 6 / u ** 3 if cls is Photothermal else 4 / u ** 2 - 8 / u ** 3 + 8 / u ** 4
+    np.testing.assert_allclose(lag[:2], far, rtol=1e-12)
+    assert abs(lag[3]) <= abs(lag[2]) < 1e-200
+    assert np.isfinite(model.frequency_response(f).response).all()

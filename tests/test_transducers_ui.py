@@ -101,6 +101,7 @@ def test_piezoelectric_offers_both_modes(panel):
     assert panel.controls["mode"].disabled and panel.last.mode == "sensing"
 
 
+@pytest.mark.slow  # two principle changes, each a full panel rebuild (~0.6-1 s)
 def test_readout_says_where_models_stop_holding(panel):
     # a stubby piezoresistive lever bent 2 um: the clamp sees 1.5 E h z / L^2 = 127 GPa
     panel.set(principle="piezoresistive", length=20.0, thickness=10.0, resistor_length=4.0,

@@ -114,6 +114,7 @@ def test_ipympl_figure_has_no_figure_n_header():
         plt.switch_backend(old)
 
 
+@pytest.mark.viewer  # starts a real meshcat server (about 4 s)
 def test_scene_open_drops_a_scene_whose_viewer_was_closed():
     from types import SimpleNamespace
 

@@ -5,7 +5,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
-from ..validation import check_array, check_integer, check_positive
+from ..validation import check_array, check_instance, check_integer, check_positive
 
 __all__ = ["Sample", "MAX_PIXELS", "MAX_LINE_PIXELS", "check_shape"]
 
@@ -60,7 +60,7 @@ class Sample:
     pixel_size : float
         Distance between neighbouring pixels along x (the fast axis) in m.
     name : str
-        A short description.
+        A short description (a str; anything else is a TypeError naming ``name``).
     pixel_size_y : float, optional
         Distance between neighbouring rows in m, if the pixels are not square; default
         ``pixel_size``.
@@ -72,6 +72,7 @@ class Sample:
     pixel_size_y: float | None = None
 
     def __post_init__(self):
+        check_instance("name", self.name, str)
         h = check_array("heights", self.heights, "m", min_size=2)
         if h.ndim not in (1, 2):
             raise ValueError(f"heights must be a 1-D or 2-D array, got shape {h.shape}")

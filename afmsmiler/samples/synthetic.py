@@ -64,7 +64,7 @@ def grating(pixels: int = 512, pixel_size: float = 4e-9, period: float = 500e-9,
     pixel_size : float
         Pixel size in m.
     period : float
-        Grating period in m, at least two pixels (a shorter one would alias).
+        Grating period in m, at least two pixels, ``2 * pixel_size`` (a shorter one would alias).
     height : float
         Height of the lines in m.
     duty : float
@@ -76,8 +76,13 @@ def grating(pixels: int = 512, pixel_size: float = 4e-9, period: float = 500e-9,
     """
     n = _n(pixels)
     pixel_size = check_positive("pixel_size", pixel_size, "m")
-    # a period under two pixels would alias into a different, longer one (Nyquist)
-    period = check_range("period", period, 2 * pixel_size, np.inf, "m")
+    # a period under two pixels would alias into a different, longer one (Nyquist); the message
+    # names pixel_size too, since either may be the one the caller got wrong
+    try:
+        period = check_range("period", period, 2 * pixel_size, np.inf, "m")
+    except ValueError as exc:
+        raise ValueError(f"{exc} (at least two pixels, 2 * pixel_size, with pixel_size = "
+                         f"{pixel_size:g} m)") from None
     height = check_finite("height", height, "m")
     duty = check_range("duty", duty, 0, 1, low_inclusive=False, high_inclusive=False)
     phase = np.mod(np.arange(n) * pixel_size / period, 1.0)
@@ -153,8 +158,12 @@ def rough_surface(shape=(256, 256), pixel_size: float = 4e-9, rms: float = 2e-9,
     pixel_size = check_positive("pixel_size", pixel_size, "m")
     rms = check_range("rms", rms, 0, MAX_HEIGHT, "m")
     longest = max(shape) * pixel_size
-    correlation_length = check_range("correlation_length", correlation_length, 0, longest / 4,
-                                     "m", low_inclusive=False)
+    try:
+        correlation_length = check_range("correlation_length", correlation_length, 0,
+                                         longest / 4, "m", low_inclusive=False)
+    except ValueError as exc:  # name all three: any of them may be the one that is off
+        raise ValueError(f"{exc} (at most a quarter of the image, max(shape) * pixel_size / 4, "
+                         f"with shape = {shape} and pixel_size = {pixel_size:g} m)") from None
     rng = np.random.default_rng(check_integer("seed", seed, 0))
     return Sample(rms * _gaussian_field(shape, pixel_size, correlation_length, rng), pixel_size,
                   "rough surface")
@@ -178,7 +187,8 @@ def particles(shape=(256, 256), pixel_size: float = 4e-9, count: int = 30,
     count : int
         Number of particles, 0 to 10000.
     radius : float
-        Particle radius in m (> 0).
+        Particle radius in m, in (0, ``MAX_HEIGHT / 2``]: a particle's top is at 2 r, and every
+        synthetic height is at most :data:`MAX_HEIGHT` (an AFM's z range).
     rms : float
         RMS roughness of the substrate in m.
     seed : int
@@ -201,8 +211,11 @@ def particles(shape=(256, 256), pixel_size: float = 4e-9, count: int = 30,
     rows, cols = shape
     pixel_size = check_positive("pixel_size", pixel_size, "m")
     count = check_integer("count", count, 0, 10000)
-    radius = check_positive("radius", radius, "m")
-    half = int(math.ceil(radius / pixel_size))  # a particle's square: (2 half + 1)^2 pixels
+    # a particle's top is at 2 r: at most MAX_HEIGHT, an AFM's z range, like every height here
+    radius = check_range("radius", radius, 0, MAX_HEIGHT / 2, "m", low_inclusive=False)
+    # a particle's square: (2 half + 1)^2 pixels, clipped to the image (no overflow to int for a
+    # radius of very many pixels)
+    half = int(math.ceil(min(radius / pixel_size, max(rows, cols))))
     work = count * min(2 * half + 1, rows) * min(2 * half + 1, cols)
     if work > MAX_PARTICLE_WORK:
         raise ValueError(f"count and radius must cover at most {MAX_PARTICLE_WORK} pixels in "

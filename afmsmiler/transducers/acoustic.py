@@ -120,11 +120,26 @@ class PiezoAcoustic(Transducer):
         ----------
         f : array_like
             Frequencies in Hz, >= 0.
+
+        Returns
+        -------
+        ndarray of complex
+            gamma r^2 H(r), r = f / f_1 and H the first mode's
+            :func:`~afmsmiler.brownian.mechanical_response`: 0 at DC, tending to -gamma (the
+            tip stays still while the base moves) as f -> inf, finite for every finite ``f``.
         """
         f = check_array("f", f, "Hz", low=0.0)
         r = f / self.resonance_frequency
-        return participation_factor() * r * r * mechanical_response(
-            f, resonance_frequency=self.resonance_frequency, quality_factor=self.quality_factor)
+        q = self.quality_factor
+        # r^2 / (1 - r^2 + j r / Q); above resonance divided through by r^2, so that no r^2
+        # overflows into inf * 0 (NaN) for a huge f
+        u = 1 / np.maximum(r, 1.0)                    # 1 / r above resonance
+        above = 1 / (u * u - 1 + 1j * u / q)
+        low = np.minimum(r, 1.0)
+        below = low * low * mechanical_response(low * self.resonance_frequency,
+                                                resonance_frequency=self.resonance_frequency,
+                                                quality_factor=q)
+        return participation_factor() * np.where(r > 1, above, below)
 
     @property
     def _gain(self) -> float:

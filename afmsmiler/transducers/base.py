@@ -45,8 +45,8 @@ from ..brownian import (QUALITY_FACTOR, TEMPERATURE, mechanical_response, therma
                         thermal_noise_density)
 from ..cantilever import Cantilever
 from ..parameters import Parameter
-from ..validation import (check_array, check_choice, check_integer, check_positive,
-                          check_range)
+from ..validation import (check_array, check_choice, check_instance, check_integer,
+                          check_positive, check_range)
 
 __all__ = ["quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
            "Harmonics", "Transducer", "Operation", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",
@@ -144,7 +144,21 @@ class SignalChain:
         return self.stages[-1]
 
     def stage(self, name: str) -> Stage:
-        """The stage whose quantity is called ``name``."""
+        """The stage whose quantity is called ``name``.
+
+        Parameters
+        ----------
+        name : str
+            One of :attr:`names`.
+
+        Raises
+        ------
+        TypeError
+            If ``name`` is not a str.
+        ValueError
+            If no stage is called ``name``.
+        """
+        check_instance("name", name, str)
         for s in self.stages:
             if s.quantity.name == name:
                 return s

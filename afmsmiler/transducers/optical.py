@@ -163,6 +163,11 @@ class AstigmaticDetection(Transducer):
                                        display_unit="1/um",
                                        label="FES slope")}
     RATIO = quantity(name="axis_ratio", unit="", label="spot axis ratio w_y / w_x")
+    #: The largest displacement from focus in m that :meth:`spot_radii` and :meth:`focus_error`
+    #: accept: the objective of a DVD pickup works about 1 mm from the disc (its working
+    #: distance), so no reflector in front of it is farther than that from focus (and the
+    #: near-focus Gaussian beam of this model has long stopped describing the spot).
+    MAX_DISPLACEMENT = 1e-3
 
     @property
     def rayleigh_range(self) -> float:
@@ -175,9 +180,20 @@ class AstigmaticDetection(Transducer):
         Parameters
         ----------
         d : float or array_like
-            Displacement of the reflector (the lever) from focus in m.
+            Displacement of the reflector (the lever) from focus in m, at most
+            :attr:`MAX_DISPLACEMENT` (1 mm, the pickup's working distance) either way.
+
+        Returns
+        -------
+        tuple of ndarray
+            (w_x, w_y), each of the shape of ``d``.
+
+        Raises
+        ------
+        ValueError
+            If a displacement is not finite or beyond :attr:`MAX_DISPLACEMENT`.
         """
-        d = check_array("d", d, "m")
+        d = check_array("d", d, "m", low=-self.MAX_DISPLACEMENT, high=self.MAX_DISPLACEMENT)
         a, zr = self.astigmatic_distance / 2, self.rayleigh_range
         return np.sqrt(1 + ((2 * d - a) / zr) ** 2), np.sqrt(1 + ((2 * d + a) / zr) ** 2)
 
@@ -187,7 +203,18 @@ class AstigmaticDetection(Transducer):
         Parameters
         ----------
         d : float or array_like
-            Displacement of the reflector from focus in m.
+            Displacement of the reflector from focus in m, at most :attr:`MAX_DISPLACEMENT`
+            (1 mm) either way.
+
+        Returns
+        -------
+        ndarray
+            FES, in (-1, 1), of the shape of ``d``.
+
+        Raises
+        ------
+        ValueError
+            As :meth:`spot_radii`.
         """
         wx, wy = self.spot_radii(d)
         return 4 / math.pi * np.arctan(wy / wx) - 1
