@@ -567,7 +567,4 @@ KNOWN = {
         "materials.get_material(name=nan-array) -> TypeError not naming name: 'material must b"
         "e a key of MATERIALS (str) or a Material, got ndarray array([ 0., nan])'...'"
     ), False),
-    'transducers.quantity:label': ((
-        'transducers.quantity(label=str) -> accepted silently'
-    ), False),
 }

@@ -690,8 +690,8 @@ def test_bad_input_is_named_or_harmless(t, name):
         return
     valid = kwargs.get(name, _default_of(t, name, inst))
     signature_default = _default_of(t, name, inst)
-    free_text = name in FREE_TEXT and isinstance(valid, str) and inspect.isclass(t.func) \
-        and t.method is None
+    free_text = name in FREE_TEXT and isinstance(valid, str) and (
+        (inspect.isclass(t.func) and t.method is None) or name == "label")  # labels: any text
     for label, (value, can_return) in BAD.items():
         if not _applicable(label, valid) or (label == "None" and signature_default is None
                                               and name in _signature(t).parameters):
