@@ -418,3 +418,23 @@ def test_update_names_a_bad_value_before_any_work():
         with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
             p.update(**{**good, name: bad})
     assert p.last is last
+
+
+def test_model_and_values_hold_the_decimals_shown_after_the_browser_echo():
+    # In JupyterLab after Run All the panel held force 99.99999999999999 nN and a lever of
+    # width 4.999999999999999e-05 m (a unit conversion's round-off), while the sliders read 100
+    # and 50. The independent reference: notebook 01's lever, 450 x 50 x 2 um of silicon under
+    # F = 100 nN, typed as decimals.
+    shown = dict(force=100.0, length=450.0, width=50.0, thickness=2.0, youngs_modulus=169.0,
+                 density=2330.0, section=0.0, exaggeration=100.0)
+    from afmsmiler.ui.cantilever import DEFAULTS as PANEL
+    assert {n: PANEL[n] for n in shown} == shown
+    p = CantileverPanel(scene=False)
+    for name, c in p.controls.items():  # the browser echoes the value it drew, as a decimal
+        if name in shown:
+            c.value = float(f"{c.value:.6g}")
+    assert {n: p.values()[n] for n in shown} == shown
+    assert p.last.lever == Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
+    assert p.last.force == 100e-9
+    p.set(width=40.0, length=300.0)
+    assert (p.last.lever.width, p.last.lever.length) == (40e-6, 300e-6)
