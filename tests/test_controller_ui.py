@@ -1,5 +1,6 @@
 """Module (c) panel, figures and exercises without a browser: the plotted data equal the model,
 slider bounds cannot produce a loop the model rejects, checkers judge by simulating the answer."""
+import math
 import itertools
 import re
 from dataclasses import astuple
@@ -473,3 +474,23 @@ def test_preset_after_a_small_move_restores_the_preset_exactly(how, detour):
     assert p.last.loop.kp == ref.kp and p.last.loop.b_c == pytest.approx(ref.b_c, rel=1e-12)
     np.testing.assert_allclose(np.sort_complex(p.last.loop.poles), np.sort_complex(ref.poles),
                                rtol=1e-12)
+
+
+@pytest.mark.parametrize("kp, kd", [(0.0, 0.0), (100.0, 0.0), (1e4, 0.0), (100.0, 1e-9),
+                                    (1e6, 0.0), (1e7, 0.0)])
+def test_critical_ki_against_the_hurwitz_condition_by_hand(kp, kd):
+    # B C = A D for A s^3 + B s^2 + C s + D = s (M s^2 + b s + k) + (b_s s + k_s)(K_D s^2 +
+    # K_P s + K_I) solved for K_I by hand: K_I = B C0 / (A k_s - B b_s), and no K_I makes the
+    # loop unstable when A k_s <= B b_s. For K_P = 1e6 the search used to leave the valid range
+    # of K_I and raise "ki must be in [0, 1e+15] 1/s" for a K_I nobody gave.
+    loop = PRESETS["d_unstable"].loop
+    A = loop.m_c + loop.m_s + loop.b_s * kd
+    B = loop.b_c + loop.b_s + loop.b_s * kp + loop.k_s * kd
+    C0 = loop.k_c + loop.k_s + loop.k_s * kp
+    den = A * loop.k_s - B * loop.b_s
+    expected = B * C0 / den if den > 0 else math.inf
+    got = ex.critical_ki(kp, kd)
+    if math.isinf(expected):
+        assert got == math.inf
+    else:
+        assert got == pytest.approx(expected, rel=1e-6)
