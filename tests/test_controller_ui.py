@@ -494,3 +494,32 @@ def test_critical_ki_against_the_hurwitz_condition_by_hand(kp, kd):
         assert got == math.inf
     else:
         assert got == pytest.approx(expected, rel=1e-6)
+
+
+def test_model_and_values_hold_the_decimals_shown_after_the_browser_echo():
+    # In JupyterLab after Run All the model ran with a setpoint of 9.999999999999998 nm (the
+    # slider's value, 10e-9 * 1e9) while the slider read 10. The reference: preset (a) as the
+    # paper and notebook 03 state it, typed as decimals (ng, ng/us, N/m, 1/us, us, um/s, nm).
+    shown = dict(m_c=1.0, m_s=1.0, b_c=0.015, b_s=0.015, k_c=1.0, k_s=100.0, kp=0.5, ki=0.01,
+                 kd=0.0, speed=10.0, setpoint=10.0, height=50.0)
+    p = ControllerPanel()
+    for name, c in p.controls.items():  # the browser echoes the value it drew, as a decimal
+        if name in shown:
+            c.value = float(f"{c.value:.6g}")
+    assert {n: p.values()[n] for n in shown} == shown
+    assert p.last.loop == ContactLoop(m_c=1e-12, m_s=1e-12, b_c=1.5e-8, b_s=1.5e-8, k_c=1.0,
+                                      k_s=100.0, kp=0.5, ki=1e4, kd=0.0)
+    assert p.last.scan.offset == pytest.approx(-1e-10, rel=1e-12)  # k_c R / k_s, R = 10 nm
+    assert (p.last.scan.setpoint, p.last.scan.speed) == (10e-9, 10e-6)
+
+
+def test_update_names_a_bad_value_before_any_work():
+    # "lots" and None raised float()'s own errors, an unknown profile named "name", and a
+    # negative feature height was drawn although the height parameter rejects it
+    p = ControllerPanel()
+    good, last = p.values(), p.last
+    for name, bad in (("kp", "lots"), ("kp", None), ("ki", math.nan), ("speed", 1e300),
+                      ("profile", "cube"), ("preset", "e_magic"), ("height", -5.0)):
+        with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
+            p.update(**{**good, name: bad})
+    assert p.last is last
