@@ -72,8 +72,8 @@ def _decimal(x: float) -> float:
     """``x`` to 15 significant digits: the round-off of a unit conversion removed.
 
     The slider of a 10 nm setpoint holds 9.999999999999998 (10e-9 m converted to nm); the model
-    ran with that after Run All. Rounded to 15 digits (more than any slider or typed value carries), the
-    model and :meth:`Panel.values` hold the decimals the sliders show.
+    ran with that after Run All. Rounded to 15 digits (more than any slider or typed value
+    carries), the model and :meth:`Panel.values` hold the decimals the sliders show.
     """
     return float(f"{x:.15g}")
 
