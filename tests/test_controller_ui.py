@@ -523,3 +523,26 @@ def test_update_names_a_bad_value_before_any_work():
         with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
             p.update(**{**good, name: bad})
     assert p.last is last
+
+
+@pytest.mark.parametrize("preset", ["a_good_tracking", "c_fast_scan", "d_unstable"])
+def test_pole_map_ticks_tell_the_decade_of_each_real_part(preset):
+    # The symlog real axis was labelled -10, 0, 10 only, so it looked linear: preset (a)'s poles
+    # at Re p = -0.006 1/us sat where a student read about -3. Now a labelled tick lies within
+    # two decades of every pole's |Re p| (the poles from numpy's roots of the characteristic
+    # polynomial written out by hand), and the labels stay few enough to read.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    p = ControllerPanel(preset=preset)
+    loop = p.last.loop
+    A, B = loop.m_c + loop.m_s + loop.b_s * loop.kd, loop.b_c + loop.b_s + loop.b_s * loop.kp \
+        + loop.k_s * loop.kd
+    C, D = loop.k_c + loop.k_s + loop.b_s * loop.ki + loop.k_s * loop.kp, loop.k_s * loop.ki
+    poles_per_us = np.roots([A, B, C, D]) * 1e-6
+    ax = p.figure.axes["poles"]
+    FigureCanvasAgg(p.fig).draw()
+    ticks = [t for t in ax.get_xticks() if ax.get_xlim()[0] <= t <= ax.get_xlim()[1]]
+    labels = [t.get_text() for t in ax.get_xticklabels() if t.get_text()]
+    assert 3 <= len(labels) <= 9
+    for re_p in poles_per_us.real:
+        near = min(abs(math.log10(abs(t) / abs(re_p))) for t in ticks if t != 0)
+        assert near <= 2.0, (re_p, ticks)
