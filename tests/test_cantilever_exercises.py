@@ -137,3 +137,14 @@ def test_extreme_answers_get_feedback_not_an_exception(answer):
     for checker in (check_thickness_for_spring_constant, check_mode_ratio, check_tip_slope):
         fb = checker(answer)
         assert not fb and str(fb).startswith("Not yet")
+
+
+@pytest.mark.parametrize("mode", [2, 3])
+def test_mode_ratio_upside_down_is_named_without_the_answer(mode):
+    # f1/f2 = (1.8751 / 4.6941)^2 = 0.1596 (Blevins) was "off by a factor of about 39"
+    inverse = (BL[0] / BL[mode - 1]) ** 2
+    fb = check_mode_ratio(inverse, mode=mode)
+    assert not fb and f"f1/f{mode}" in str(fb)
+    right = (BL[mode - 1] / BL[0]) ** 2
+    assert f"{right:.4g}" not in str(fb) and f"{right:.3g}" not in str(fb)
+    assert check_mode_ratio(right, mode=mode)

@@ -418,3 +418,54 @@ def test_update_names_a_bad_value_before_any_work():
         with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
             p.update(**{**good, name: bad})
     assert p.last is last
+
+
+def test_model_and_values_hold_the_decimals_shown_after_the_browser_echo():
+    # In JupyterLab after Run All the panel held force 99.99999999999999 nN and a lever of
+    # width 4.999999999999999e-05 m (a unit conversion's round-off), while the sliders read 100
+    # and 50. The independent reference: notebook 01's lever, 450 x 50 x 2 um of silicon under
+    # F = 100 nN, typed as decimals.
+    shown = dict(force=100.0, length=450.0, width=50.0, thickness=2.0, youngs_modulus=169.0,
+                 density=2330.0, section=0.0, exaggeration=100.0)
+    from afmsmiler.ui.cantilever import DEFAULTS as PANEL
+    assert {n: PANEL[n] for n in shown} == shown
+    p = CantileverPanel(scene=False)
+    for name, c in p.controls.items():  # the browser echoes the value it drew, as a decimal
+        if name in shown:
+            c.value = float(f"{c.value:.6g}")
+    assert {n: p.values()[n] for n in shown} == shown
+    assert p.last.lever == Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
+    assert p.last.force == 100e-9
+    p.set(width=40.0, length=300.0)
+    assert (p.last.lever.width, p.last.lever.length) == (40e-6, 300e-6)
+
+
+def _texts_under_the_toolbar(fig):
+    """Visible texts (titles, labels, ticks, legend) whose box meets the toolbar's corner."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.text import Text
+    from afmsmiler.plots.cantilever import TOOLBAR
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    r = canvas.get_renderer()
+    w, h = fig.get_size_inches() * fig.dpi
+    x0, y0 = w - TOOLBAR["width"] * fig.dpi, h - TOOLBAR["height"] * fig.dpi
+    hits = []
+    for t in fig.findobj(Text):
+        if t.get_visible() and t.get_text().strip():
+            b = t.get_window_extent(r)
+            if b.x1 > x0 and b.y1 > y0:
+                hits.append(t.get_text())
+    return hits
+
+
+def test_the_toolbar_covers_no_text():
+    # In JupyterLab the ipympl toolbar (top right, over the canvas) covered the end of the title
+    # "slope theta(x)" (seen in a screenshot); both figures now keep that corner free of text.
+    # The toolbar's size is measured from the screenshot (five 34 px buttons, 30 px high).
+    p = CantileverPanel(scene=False)
+    p.show_modes()
+    for length in (20.0, 450.0, 1000.0):
+        p.set(length=length, section=0.5)
+        assert _texts_under_the_toolbar(p.figure.fig) == []
+        assert _texts_under_the_toolbar(p.modes_figure.fig) == []

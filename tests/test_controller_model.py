@@ -728,8 +728,16 @@ def test_loop_from_cantilever_rejects_bad_input():
         ContactLoop.from_cantilever("silicon")
     with pytest.raises(ValueError, match="quality_factor"):
         ContactLoop.from_cantilever(lever, quality_factor=0.0)
-    with pytest.raises(ValueError, match="k_s"):
-        ContactLoop.from_cantilever(lever, sample_stiffness=-1.0)
+    # named as the caller spells them (they said k_s, m_s, b_s, which the caller never typed)
+    for name in ("sample_stiffness", "sample_mass", "sample_damping"):
+        with pytest.raises(ValueError, match=f"^{name} must be in"):
+            ContactLoop.from_cantilever(lever, **{name: -1.0})
+    # a lever whose k_c, m_c or b_c the loop cannot hold is named as the lever (it said
+    # "m_c must be in ..." for an argument nobody gave): a 1 m cube of 10 TPa, a 1 nm cube
+    for dims, key in (((1.0, 1.0, 1.0, 1e13, 1e5), "k_c"), ((1e-9, 1e-9, 1e-9, 1.0, 1.0), "k_c"),
+                      ((1.0, 1e-3, 1e-3, 1e12, 1e5), "m_c")):
+        with pytest.raises(ValueError, match=f"^lever must give the loop a valid {key} "):
+            ContactLoop.from_cantilever(Cantilever(*dims))
     with pytest.raises(TypeError):
         ContactLoop.from_cantilever(lever, 10.0)  # keyword-only
 

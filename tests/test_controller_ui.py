@@ -1,5 +1,6 @@
 """Module (c) panel, figures and exercises without a browser: the plotted data equal the model,
 slider bounds cannot produce a loop the model rejects, checkers judge by simulating the answer."""
+import math
 import itertools
 import re
 from dataclasses import astuple
@@ -388,7 +389,17 @@ def test_things_to_try_recipe_of_notebook_03():
     p.set(ki=0.02)
     assert p.last.max_error * nm > err0 and p.last.scan.gap * nm > gap0
     assert p.last.loop.is_stable()
-    # ... and just above 0.028 /us the complex pair crosses into the right half-plane
+    # ... (book chapter 03: 2.7 nm at K_I = 0.01, 3.3 nm at 0.02, 4.9 nm at 0.028 /us) ...
+    assert round(err0, 1) == 2.7 and round(p.last.max_error * nm, 1) == 3.3
+    p.set(ki=0.028)
+    assert p.last.loop.is_stable() and round(p.last.max_error * nm, 1) == 4.9
+    # ... and just above 0.028 /us the complex pair crosses into the right half-plane: the
+    # Hurwitz condition B C > A D written out by hand (not the model's verdict) fails at 0.029
+    loop = p.last.loop
+    for ki, stable in ((0.028e6, True), (0.029e6, False)):
+        A, B = loop.m_c + loop.m_s, loop.b_c + loop.b_s + loop.b_s * loop.kp
+        C = loop.k_c + loop.k_s + loop.b_s * ki + loop.k_s * loop.kp
+        assert (B * C > A * loop.k_s * ki) == stable
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", RuntimeWarning)  # the growing oscillation overflows
         p.set(ki=0.03)
@@ -473,3 +484,75 @@ def test_preset_after_a_small_move_restores_the_preset_exactly(how, detour):
     assert p.last.loop.kp == ref.kp and p.last.loop.b_c == pytest.approx(ref.b_c, rel=1e-12)
     np.testing.assert_allclose(np.sort_complex(p.last.loop.poles), np.sort_complex(ref.poles),
                                rtol=1e-12)
+
+
+@pytest.mark.parametrize("kp, kd", [(0.0, 0.0), (100.0, 0.0), (1e4, 0.0), (100.0, 1e-9),
+                                    (1e6, 0.0), (1e7, 0.0)])
+def test_critical_ki_against_the_hurwitz_condition_by_hand(kp, kd):
+    # B C = A D for A s^3 + B s^2 + C s + D = s (M s^2 + b s + k) + (b_s s + k_s)(K_D s^2 +
+    # K_P s + K_I) solved for K_I by hand: K_I = B C0 / (A k_s - B b_s), and no K_I makes the
+    # loop unstable when A k_s <= B b_s. For K_P = 1e6 the search used to leave the valid range
+    # of K_I and raise "ki must be in [0, 1e+15] 1/s" for a K_I nobody gave.
+    loop = PRESETS["d_unstable"].loop
+    A = loop.m_c + loop.m_s + loop.b_s * kd
+    B = loop.b_c + loop.b_s + loop.b_s * kp + loop.k_s * kd
+    C0 = loop.k_c + loop.k_s + loop.k_s * kp
+    den = A * loop.k_s - B * loop.b_s
+    expected = B * C0 / den if den > 0 else math.inf
+    got = ex.critical_ki(kp, kd)
+    if math.isinf(expected):
+        assert got == math.inf
+    else:
+        assert got == pytest.approx(expected, rel=1e-6)
+
+
+def test_model_and_values_hold_the_decimals_shown_after_the_browser_echo():
+    # In JupyterLab after Run All the model ran with a setpoint of 9.999999999999998 nm (the
+    # slider's value, 10e-9 * 1e9) while the slider read 10. The reference: preset (a) as the
+    # paper and notebook 03 state it, typed as decimals (ng, ng/us, N/m, 1/us, us, um/s, nm).
+    shown = dict(m_c=1.0, m_s=1.0, b_c=0.015, b_s=0.015, k_c=1.0, k_s=100.0, kp=0.5, ki=0.01,
+                 kd=0.0, speed=10.0, setpoint=10.0, height=50.0)
+    p = ControllerPanel()
+    for name, c in p.controls.items():  # the browser echoes the value it drew, as a decimal
+        if name in shown:
+            c.value = float(f"{c.value:.6g}")
+    assert {n: p.values()[n] for n in shown} == shown
+    assert p.last.loop == ContactLoop(m_c=1e-12, m_s=1e-12, b_c=1.5e-8, b_s=1.5e-8, k_c=1.0,
+                                      k_s=100.0, kp=0.5, ki=1e4, kd=0.0)
+    assert p.last.scan.offset == pytest.approx(-1e-10, rel=1e-12)  # k_c R / k_s, R = 10 nm
+    assert (p.last.scan.setpoint, p.last.scan.speed) == (10e-9, 10e-6)
+
+
+def test_update_names_a_bad_value_before_any_work():
+    # "lots" and None raised float()'s own errors, an unknown profile named "name", and a
+    # negative feature height was drawn although the height parameter rejects it
+    p = ControllerPanel()
+    good, last = p.values(), p.last
+    for name, bad in (("kp", "lots"), ("kp", None), ("ki", math.nan), ("speed", 1e300),
+                      ("profile", "cube"), ("preset", "e_magic"), ("height", -5.0)):
+        with pytest.raises((TypeError, ValueError), match=f"^{name} must"):
+            p.update(**{**good, name: bad})
+    assert p.last is last
+
+
+@pytest.mark.parametrize("preset", ["a_good_tracking", "c_fast_scan", "d_unstable"])
+def test_pole_map_ticks_tell_the_decade_of_each_real_part(preset):
+    # The symlog real axis was labelled -10, 0, 10 only, so it looked linear: preset (a)'s poles
+    # at Re p = -0.006 1/us sat where a student read about -3. Now a labelled tick lies within
+    # two decades of every pole's |Re p| (the poles from numpy's roots of the characteristic
+    # polynomial written out by hand), and the labels stay few enough to read.
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    p = ControllerPanel(preset=preset)
+    loop = p.last.loop
+    A, B = loop.m_c + loop.m_s + loop.b_s * loop.kd, loop.b_c + loop.b_s + loop.b_s * loop.kp \
+        + loop.k_s * loop.kd
+    C, D = loop.k_c + loop.k_s + loop.b_s * loop.ki + loop.k_s * loop.kp, loop.k_s * loop.ki
+    poles_per_us = np.roots([A, B, C, D]) * 1e-6
+    ax = p.figure.axes["poles"]
+    FigureCanvasAgg(p.fig).draw()
+    ticks = [t for t in ax.get_xticks() if ax.get_xlim()[0] <= t <= ax.get_xlim()[1]]
+    labels = [t.get_text() for t in ax.get_xticklabels() if t.get_text()]
+    assert 3 <= len(labels) <= 9
+    for re_p in poles_per_us.real:
+        near = min(abs(math.log10(abs(t) / abs(re_p))) for t in ticks if t != 0)
+        assert near <= 2.0, (re_p, ticks)

@@ -411,7 +411,8 @@ class ContactLoop:
         TypeError
             If ``lever`` is not a Cantilever.
         ValueError
-            If a value is out of its range (named).
+            If a value is out of its range, named as given (``sample_stiffness``, ...), or if
+            the lever's k_c, m_c or b_c lies outside the loop's range (named ``lever``).
 
         Notes
         -----
@@ -430,11 +431,23 @@ class ContactLoop:
         """
         check_instance("lever", lever, Cantilever)
         q = _P["quality_factor"].check(quality_factor)
+        sample = {name: _P[key].with_(name=name).check(value) for name, key, value in (
+            ("sample_stiffness", "k_s", sample_stiffness), ("sample_mass", "m_s", sample_mass),
+            ("sample_damping", "b_s", sample_damping))}  # named as the caller spells them
         k_c = lever.spring_constant
         m_c = lever.effective_mass
         omega = 2 * np.pi * lever.resonance_frequency(1)
-        return cls(m_c=m_c, m_s=sample_mass, b_c=m_c * omega / q, b_s=sample_damping, k_c=k_c,
-                   k_s=sample_stiffness, kp=kp, ki=ki, kd=kd)
+        derived = (("k_c", k_c, "its spring constant"), ("m_c", m_c, "its effective mass"),
+                   ("b_c", m_c * omega / q, "its damping m_c omega_1 / Q"))
+        for key, value, what in derived:  # a lever the loop cannot hold is named as the lever
+            try:
+                _P[key].check(value)
+            except ValueError as err:
+                raise ValueError(f"lever must give the loop a valid {key} ({what}): {err}, "
+                                 f"for {lever!r}") from None
+        return cls(m_c=m_c, m_s=sample["sample_mass"], b_c=derived[2][1],
+                   b_s=sample["sample_damping"], k_c=k_c, k_s=sample["sample_stiffness"],
+                   kp=kp, ki=ki, kd=kd)
 
     def replace(self, **changes) -> "ContactLoop":
         """A copy with some parameters changed (validated again).

@@ -95,12 +95,13 @@ def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
     mode : int
         The higher mode n (2 to 50).
     rtol : float
-        Accepted relative error.
+        Accepted relative error, in (0, 1).
 
     Returns
     -------
     Feedback
-        Compared with the model's f_n / f_1 (the same for every rectangular lever).
+        Compared with the model's f_n / f_1 (the same for every rectangular lever); the
+        inverse ratio f_1 / f_n is told so (without the answer).
     """
     mode = check_integer("mode", mode, 2, MAX_MODE)
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
@@ -112,6 +113,9 @@ def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
     value = _number(f"f{mode}/f1", "", ratio, hint)
     if isinstance(value, Feedback):
         return value
+    if value > 0 and abs(value * expected - 1.0) <= rtol:  # the ratio upside down
+        return Feedback(False, f"f{mode}/f1 = {value:.4g} is below 1, but mode {mode} rings "
+                               f"faster than mode 1: that looks like f1/f{mode}. {hint}")
     return check_close(f"f{mode}/f1", value, expected, rtol, "", hint)
 
 

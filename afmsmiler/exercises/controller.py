@@ -157,7 +157,8 @@ def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -
     """The K_I (1/s) at which the loop of ``plant`` with gains kp, kd loses stability.
 
     Found numerically, without the Routh-Hurwitz formula: the root of the largest real part of
-    the closed-loop poles as a function of K_I (Brent's method on a bracket found by doubling).
+    the closed-loop poles as a function of K_I (Brent's method on a bracket found by growing
+    K_I four-fold from 1000 1/s up to the largest K_I the model accepts).
 
     Parameters
     ----------
@@ -171,7 +172,8 @@ def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -
     Returns
     -------
     float
-        Critical K_I in 1/s (inf if the loop is stable for every K_I).
+        Critical K_I in 1/s (inf if the loop is stable for every K_I the model accepts, up to
+        ``PARAMETERS["ki"].high``).
     """
     check_choice("plant", plant, list(PRESETS))
     base = PRESETS[plant].loop.replace(kp=check_nonnegative("kp", kp),
@@ -180,11 +182,12 @@ def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -
     def growth(ki):
         return float(np.max(base.replace(ki=ki).poles.real))
 
-    low, high = 1.0, 1e3
+    top = PARAMETERS["ki"].high  # beyond it ContactLoop rejects K_I: at most 16 steps
+    low, high = 0.0, 1e3  # K_I = 0 is a second-order loop with positive coefficients: stable
     while growth(high) < 0:
-        low, high = high, high * 4
-        if high > 1e16:
+        if high >= top:
             return float("inf")
+        low, high = high, min(high * 4, top)
     return float(brentq(growth, low, high, xtol=1e-12 * high, rtol=1e-12))
 
 

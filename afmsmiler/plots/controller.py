@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from matplotlib.figure import Figure
-from matplotlib.ticker import FixedLocator, FuncFormatter, NullLocator
+from matplotlib.ticker import FixedLocator, FuncFormatter
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
 from ..parameters import unit_scale
@@ -226,13 +226,18 @@ class ScanFigure:
         linthresh = min(small / 10, r * 1e-3)
         ax.set_xscale("symlog", linthresh=linthresh, linscale=0.5)
         ax.set_xlim(-r, r)
-        # three ticks (symlog's default crowds a label on every decade): 0 and +-10^k
+        # labels on every second decade 10^hi, 10^(hi-2), ... down to the linear zone and on 0,
+        # a minor tick on every decade (symlog's default crowds a label on every decade; only
+        # 0 and +-10^hi made the axis look linear: a pole at Re p = -0.006 1/us read as -3)
         hi = math.floor(math.log10(r))
-        ticks = [-(10.0 ** hi), 0.0, 10.0 ** hi]
+        lo = math.ceil(math.log10(linthresh)) + 1
+        decades = [10.0 ** k for k in range(hi, max(lo, hi - 12) - 1, -1)]
+        labelled = decades[::2] or [10.0 ** hi]
+        ticks = sorted([-t for t in labelled] + [0.0] + labelled)
         ax.set_xlabel(f"Re p [1/us] (symlog, linear within {linthresh:.1g})")
         ax.xaxis.set_major_locator(FixedLocator(ticks))
         ax.xaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
-        ax.xaxis.set_minor_locator(NullLocator())
+        ax.xaxis.set_minor_locator(FixedLocator(sorted([-t for t in decades] + decades)))
         ax.set_ylim(-r, r)
         verdict = "STABLE" if c.stable else "UNSTABLE"
         ax.set_title(f"closed-loop poles: {verdict}\nRouth-Hurwitz margin {c.margin:.3g}\n"
