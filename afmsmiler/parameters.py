@@ -29,6 +29,7 @@ ValueError: length must be in [2e-05, 0.001] m, got 0.002
 from __future__ import annotations
 
 import math
+from decimal import Decimal
 from dataclasses import dataclass, replace
 from collections.abc import Mapping
 from types import MappingProxyType
@@ -172,6 +173,12 @@ def _convert(value, factor: float, to_si: bool, name: str = "value"):
         value = float(value)
     if inverse is None:
         out = value * factor if to_si else value / factor
+    elif not np.ndim(value) and math.isfinite(value):
+        # the decimal the value reads as, shifted by the power of ten, then rounded once:
+        # 0.1 um is the float nearest 1e-7 m (0.1 / 1e6 gives 1.0000000000000001e-07, above a
+        # bound of 1e-7 m that the slider's end stands for)
+        d = Decimal(repr(value))
+        out = float(d / Decimal(int(inverse)) if to_si else d * Decimal(int(inverse)))
     else:
         out = value / inverse if to_si else value * inverse
     if not to_si and not np.ndim(out) and math.isfinite(out):

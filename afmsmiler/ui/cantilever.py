@@ -12,7 +12,6 @@ nothing themselves.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import ipywidgets as widgets
@@ -35,20 +34,9 @@ SLIDERS = ("force", "length", "width", "thickness", "youngs_modulus", "density",
            "exaggeration")
 
 
-def _decimal(x: float) -> float:
-    """``x`` to 15 significant digits: the round-off of a unit conversion removed.
-
-    ``50e-6 * 1e6`` is 49.99999999999999 and ``50 * 1e-6`` is 4.9999999999999996e-05, one unit
-    in the last place off the decimal the student reads. Rounded to 15 digits (more than any
-    slider or typed value carries), the panel's defaults, :meth:`Panel.values` and the model's
-    lever hold the decimals shown (50 um is the model's 5e-05 m), as module (c)'s panel does.
-    """
-    return float(f"{x:.15g}")
-
-
 #: Initial control values in the units shown, from the parameters' defaults (a contact-mode
 #: silicon lever like BudgetSensors ContAl-G: 450 x 50 x 2 um, nominal k = 0.2 N/m, f0 = 13 kHz).
-DEFAULTS = read_only({**{n: _decimal(PARAMETERS[n].to_display(PARAMETERS[n].default))
+DEFAULTS = read_only({**{n: PARAMETERS[n].to_display(PARAMETERS[n].default)
                          for n in SLIDERS}, "material": "silicon"})
 
 _N_MODES = 3
@@ -183,11 +171,6 @@ class CantileverPanel(Panel):
             values = {"material": values.pop("material"), **values}
         super().set(**values)
 
-    def _run(self, values: dict) -> None:
-        """Run the update with the values as the decimals the sliders show (:func:`_decimal`)."""
-        super()._run({k: _decimal(v) if isinstance(v, float) and math.isfinite(v) else v
-                      for k, v in values.items()})
-
     def _on_material(self, change) -> None:
         """A material was chosen: move E and rho to its values without an update of their own
         (the drop-down's own change then runs the one update)."""
@@ -226,8 +209,8 @@ class CantileverPanel(Panel):
         given = dict(force=force, length=length, width=width, thickness=thickness,
                      youngs_modulus=youngs_modulus, density=density, section=section,
                      exaggeration=exaggeration)
-        si = {name: PARAMETERS[name].check(_decimal(PARAMETERS[name].to_si(
-            check_finite(name, value, PARAMETERS[name].display_unit))))
+        si = {name: PARAMETERS[name].check(PARAMETERS[name].to_si(
+            check_finite(name, value, PARAMETERS[name].display_unit)))
             for name, value in given.items()}  # named errors before any work
         lever = Cantilever(si["length"], si["width"], si["thickness"], si["youngs_modulus"],
                            si["density"])

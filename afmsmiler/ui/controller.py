@@ -13,7 +13,6 @@ Choosing a preset runs one update with exactly the preset's values.
 from __future__ import annotations
 
 import html
-import math
 from dataclasses import dataclass
 
 import ipywidgets as widgets
@@ -66,16 +65,6 @@ def preset_values(name: str) -> dict:
 DEFAULTS = read_only(dict(preset="a_good_tracking", **preset_values("a_good_tracking"),
                           height=float(f"{PARAMETERS['height'].to_display(LINE['height']):.12g}"),
                           profile=LINE["name"]))
-
-
-def _decimal(x: float) -> float:
-    """``x`` to 15 significant digits: the round-off of a unit conversion removed.
-
-    The slider of a 10 nm setpoint holds 9.999999999999998 (10e-9 m converted to nm); the model
-    ran with that after Run All. Rounded to 15 digits (more than any slider or typed value
-    carries), the model and :meth:`Panel.values` hold the decimals the sliders show.
-    """
-    return float(f"{x:.15g}")
 
 
 def format_poles(poles, unit: str = "1/us") -> str:
@@ -196,11 +185,6 @@ class ControllerPanel(Panel):
             values = {**preset_values(values["preset"]), **values}
         super().set(**values)
 
-    def _run(self, values: dict) -> None:
-        """Run the update with the values as the decimals the sliders show (:func:`_decimal`)."""
-        super()._run({k: _decimal(v) if isinstance(v, float) and math.isfinite(v) else v
-                      for k, v in values.items()})
-
     def _on_preset(self, change) -> None:
         """The student chose a preset: every slider moves to it and the model runs once with
         exactly the preset's values (the sliders' grids, the browser's echoes and the values
@@ -248,8 +232,8 @@ class ControllerPanel(Panel):
         check_choice("profile", profile, list(PROFILES))
         shown = dict(m_c=m_c, m_s=m_s, b_c=b_c, b_s=b_s, k_c=k_c, k_s=k_s, kp=kp, ki=ki, kd=kd,
                      speed=speed, setpoint=setpoint, height=height)
-        si = {k: PARAMETERS[k].check(_decimal(PARAMETERS[k].to_si(
-            check_finite(k, v, PARAMETERS[k].display_unit)))) for k, v in shown.items()}
+        si = {k: PARAMETERS[k].check(PARAMETERS[k].to_si(
+            check_finite(k, v, PARAMETERS[k].display_unit))) for k, v in shown.items()}
         loop = ContactLoop(**{k: si[k] for k in LOOP_PARAMETERS})
         sample = _profile(profile, si["height"])
         scan = loop.scan_line(sample.x, sample.heights, speed=si["speed"],

@@ -52,6 +52,13 @@ def setup_notebook() -> None:
 _MISSING = object()
 
 
+def _decimal(value):
+    """A finite float to 15 significant digits (the round-off of a grid or a conversion gone)."""
+    if isinstance(value, float) and math.isfinite(value):
+        return float(f"{value:.15g}")
+    return value
+
+
 def _same(value, last, control) -> bool:
     """Whether a control's ``value`` is ``last`` snapped to its grid (a browser echo, not a move).
 
@@ -150,7 +157,14 @@ class Panel:
         return out
 
     def _run(self, values: dict) -> None:
-        """Run :meth:`update` once with ``values`` and remember them as applied."""
+        """Run :meth:`update` once with ``values`` and remember them as applied.
+
+        Numbers are taken to 15 significant digits, more than a slider or a typed value carries:
+        a grid point the browser computes as ``min + n * step`` (29.999999999999996 for 30) and a
+        unit conversion (50e-6 m * 1e6 = 49.99999999999999 um) are one unit in the last place off
+        the decimal the student reads, and the model runs with the decimal.
+        """
+        values = {k: _decimal(v) for k, v in values.items()}
         self.update(**values)
         self._applied = dict(values)
 

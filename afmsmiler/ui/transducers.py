@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import ipywidgets as widgets
 
-from ..parameters import UNITS, Parameter, read_only
+from ..parameters import Parameter, read_only
 from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves, frequency_grid
 from ..transducers import PRINCIPLES
 from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalChain,
@@ -44,7 +44,7 @@ _LEVER = tuple(p.name for p in LEVER_PARAMETERS)
 def to_si(p: Parameter, display_value: float) -> float:
     """A control's value (display unit) in SI, checked against ``p``'s valid range.
 
-    Display units below their SI unit divide by the exact power of ten (120 um -> 0.00012 m).
+    The conversion is :meth:`Parameter.to_si` (120 um -> 0.00012 m, the decimal shifted).
     A slider's end converted to SI can land one rounding error outside the range
     (20 mW -> 0.020000000000000004 W); such a value, within 1e-12 of a slider end, is that end.
     Anything else outside the valid range raises (nothing is clamped).
@@ -66,12 +66,7 @@ def to_si(p: Parameter, display_value: float) -> float:
     ValueError
         Naming the parameter and its valid range, if the value is outside it or not finite.
     """
-    v = check_finite(p.name, display_value, p.display_unit)
-    factor = UNITS[p.display_unit][1]   # SI value of one display unit
-    per_si = round(1.0 / factor)
-    # divide by an exact power of ten where there is one: 120 um is 0.00012 m, where
-    # 120 * 1e-6 gives 0.00011999999999999999 m (1e-6 is not exact in binary)
-    x = v / per_si if per_si >= 1 and abs(1.0 / factor - per_si) <= 1e-9 * per_si else v * factor
+    x = p.to_si(check_finite(p.name, display_value, p.display_unit))
     # the default shown on a slider (1.31e-6 m * 1e9 = 1309.9999999999998 nm) comes back as
     # the default, not as 1.3099999999999997e-6 m
     if math.isclose(x, p.default, rel_tol=1e-14):
