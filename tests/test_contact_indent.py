@@ -267,6 +267,7 @@ def test_surface_profile_matches_hertz_and_follows_the_tip():
 
 
 # --- viscoelasticity ------------------------------------------------------------------------------
+@pytest.mark.slow  # about a second a case (make unit skips it)
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
 def test_sls_limits_are_the_elastic_curves(tip):
     k, nu, e_inf, e_0 = 0.1, 0.3, 1e6, 4e6
@@ -380,6 +381,7 @@ def _ting_reference(t, tip_c, exponent, mat, nu, v, t_m):
     return quad(lambda s: e(t - s) * d_psi(s), 0, t1, **q)[0] / (1 - nu ** 2)
 
 
+@pytest.mark.slow  # about a second a case (make unit skips it)
 @pytest.mark.parametrize("tip, c, n", [
     (Conical(0.6), 2 * math.tan(0.6) / math.pi, 2.0),
     (Parabolic(R), 4 * math.sqrt(R) / 3, 1.5)], ids=["conical", "parabolic"])
@@ -406,6 +408,7 @@ def test_retract_follows_tings_solution(tip, c, n):
     np.testing.assert_allclose(both, ref, rtol=0, atol=2e-5 * ref.max())
 
 
+@pytest.mark.slow  # about a second a case (make unit skips it)
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
 @pytest.mark.parametrize("tau", [0.005, 0.05, 0.5])
 def test_sls_retract_never_pulls_and_leaves_at_zero_force(tip, tau):

@@ -122,6 +122,7 @@ def test_contact_stiffness_is_2_e_star_r():
 
 
 # --- the sphere tends to the paraboloid -----------------------------------------------------------
+@pytest.mark.slow  # sympy series: about a second
 def test_sphere_tends_to_paraboloid_with_the_sympy_series_correction():
     u, zeta = sp.symbols("u zeta", positive=True)
     # F_sphere / F_paraboloid at the same depth, as a series in zeta = Z_s / R
