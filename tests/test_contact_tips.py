@@ -233,3 +233,10 @@ def test_make_tip_names_key_for_an_unhashable_or_missing_key(key):
     # a list or an array raised "unhashable type: 'list'", naming nothing
     with pytest.raises(ValueError, match="^key must be one of"):
         make_tip(key)
+
+
+def test_tip_table_writes_each_range_with_its_own_brackets():
+    # the radius range is closed, [1 pm, 1 cm] (1e-3 to 1e7 nm); the angles are open at both ends
+    table = tip_table()
+    assert "| [0.001, 1e+07] |" in table
+    assert "| (0, 90) |" in table

@@ -689,7 +689,8 @@ def tip_table() -> str:
     for key, cls in TIPS.items():
         for p in cls.parameters:
             high = "inf" if not math.isfinite(p.high) else f"{p.to_display(p.high):g}"
+            left, right = "[" if p.low_inclusive else "(", "]" if p.high_inclusive else ")"
             rows.append(f"| `{key}` | {cls.title} | ${cls.formula}$ | "
                         f"{p.title} | {p.to_display(p.default):g} | "
-                        f"({p.to_display(p.low):g}, {high}) |")
+                        f"{left}{p.to_display(p.low):g}, {high}{right} |")
     return "\n".join(rows)
