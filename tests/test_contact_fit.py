@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, fit_curve, load_curve,
-                               synthetic_curve)
+from afmsmiler.contact import (Conical, ForceCurve, Parabolic, Pyramidal, Spherical, fit_curve,
+                               load_curve, synthetic_curve)
 
 from afmsmiler import data
 
@@ -240,3 +240,37 @@ def test_nan_in_a_file_is_a_value_error_naming_the_channel(tmp_path, channel):
         "imaging mode": "force-distance"}).export_data(path, fmt="tab")
     with pytest.raises(ValueError, match=rf"path .*holes.*'{re.escape(channel)}'.*non-finite"):
         load_curve(path)  # before: NaN heights passed through
+
+
+# --- bad input: named errors (bad-input campaign, issue 8) ----------------------------------------
+@pytest.mark.parametrize("change, match", [
+    (dict(z_np_range=0.0), "^z_np_range must be a pair"),  # was "'float' ... not subscriptable"
+    (dict(z_np_range=np.array([])), "^z_np_range must be a pair"),  # was an IndexError
+    (dict(z_np_range=(-1e-7, 1e300)), r"^z_np_range\[1\] must be in"),
+    (dict(contact_point=1e300), "^contact_point must be in"),      # was blamed on z_np
+    (dict(z_np_range=(0.0, 50.0), contact_point=-60.0),
+     r"^z_np_range - contact_point must be in \[-100, 100\] m"),
+    (dict(seed=0.0), "^seed must be an integer"),  # was numpy's SeedSequence error
+    (dict(seed=True), "^seed must be an integer"),                  # was accepted as seed 1
+    (dict(noise=1e308), r"^noise must be in \[0, 1e\+10\] N"),      # normal(0, 1e308) overflows
+])
+def test_synthetic_curve_names_the_bad_argument(change, match):
+    kwargs = dict(spring_constant=0.1, youngs_modulus=20e6, poisson_ratio=0.3, points=50,
+                  noise=1e-11, seed=1)
+    with pytest.raises(ValueError, match=match):
+        synthetic_curve(Parabolic(50e-9), **{**kwargs, **change})
+
+
+def test_force_curve_checks_its_arrays_and_spring_constant():
+    # a ForceCurve took NaN, mismatched arrays and any spring constant silently
+    z = np.linspace(-1e-7, 1e-7, 20)
+    with pytest.raises(ValueError, match="^z_np must be finite"):
+        ForceCurve(np.r_[z[:-1], math.nan], np.zeros(20))
+    with pytest.raises(ValueError, match="^force and z_np must have the same length"):
+        ForceCurve(z, np.zeros(3))
+    with pytest.raises(ValueError, match=r"^spring_constant must be in \[1e-06, 1e\+06\] N/m"):
+        ForceCurve(z, np.zeros(20), 1e-300)  # its tip position z - F / k would overflow
+    with pytest.raises(TypeError, match="^name must be a str"):
+        ForceCurve(z, np.zeros(20), 0.1, None)
+    curve = ForceCurve(list(z), [0.0] * 20, 0.1)
+    assert isinstance(curve.z_np, np.ndarray) and curve.tip_position.shape == (20,)

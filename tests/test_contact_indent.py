@@ -13,7 +13,7 @@ from scipy.optimize import brentq
 from afmsmiler.contact import (Conical, Parabolic, Pyramidal, Spherical, StandardLinearSolid,
                                approach_retract, hereditary_force, indent, jkr_curve,
                                jkr_instability, reduced_modulus, residual, surface_displacement,
-                               viscoelastic_approach_retract)
+                               viscoelastic_approach_retract, z_np_limit)
 
 TIPS = [Parabolic(20e-9), Spherical(500e-9), Conical(math.radians(20)), Pyramidal(math.radians(35))]
 IDS = [t.key for t in TIPS]
@@ -267,6 +267,7 @@ def test_surface_profile_matches_hertz_and_follows_the_tip():
 
 
 # --- viscoelasticity ------------------------------------------------------------------------------
+@pytest.mark.slow  # about a second a case (make unit skips it)
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
 def test_sls_limits_are_the_elastic_curves(tip):
     k, nu, e_inf, e_0 = 0.1, 0.3, 1e6, 4e6
@@ -324,11 +325,11 @@ def test_hereditary_integral_against_closed_forms():
 
 
 def test_sls_bad_input():
-    with pytest.raises(ValueError, match="instantaneous_modulus must be in"):
+    with pytest.raises(ValueError, match=r"instantaneous_modulus must be >= relaxed_modulus"):
         StandardLinearSolid(2e6, 1e6, 0.1)
     with pytest.raises(ValueError, match="relaxation_time must be > 0"):
         StandardLinearSolid(1e6, 2e6, 0.0)
-    with pytest.raises(ValueError, match="speed must be > 0"):
+    with pytest.raises(ValueError, match=r"speed must be in \[1e-12, 1000\] m/s"):
         viscoelastic_approach_retract([0, 1e-9], 0.1, Parabolic(R),
                                       StandardLinearSolid(1e6, 2e6, 1.0), 0.3, 0)
 
@@ -380,6 +381,7 @@ def _ting_reference(t, tip_c, exponent, mat, nu, v, t_m):
     return quad(lambda s: e(t - s) * d_psi(s), 0, t1, **q)[0] / (1 - nu ** 2)
 
 
+@pytest.mark.slow  # about a second a case (make unit skips it)
 @pytest.mark.parametrize("tip, c, n", [
     (Conical(0.6), 2 * math.tan(0.6) / math.pi, 2.0),
     (Parabolic(R), 4 * math.sqrt(R) / 3, 1.5)], ids=["conical", "parabolic"])
@@ -406,6 +408,7 @@ def test_retract_follows_tings_solution(tip, c, n):
     np.testing.assert_allclose(both, ref, rtol=0, atol=2e-5 * ref.max())
 
 
+@pytest.mark.slow  # about a second a case (make unit skips it)
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
 @pytest.mark.parametrize("tau", [0.005, 0.05, 0.5])
 def test_sls_retract_never_pulls_and_leaves_at_zero_force(tip, tau):
@@ -476,3 +479,51 @@ def test_sls_cycles_over_random_parameters_are_physical():
                                                                     mat.instantaneous_modulus, nu)
         assert np.all(cyc.approach.force >= lo.force * (1 - 1e-9))
         assert np.all(cyc.approach.force <= hi.force * (1 + 1e-9))
+
+
+# --- extreme and wrong input: named errors (bad-input campaign, issue 8) --------------------------
+@pytest.mark.parametrize("w", [math.nan, None, "0.03", True, 1 + 1j, np.array([0.0, math.nan]),
+                               11.0])
+def test_work_of_adhesion_is_checked_even_without_adhesion(w):
+    # without an adhesion model w was ignored: NaN, None or a string passed silently
+    tip = Parabolic(R)
+    with pytest.raises(ValueError, match="^work_of_adhesion must be"):
+        approach_retract(np.linspace(-10e-9, 10e-9, 5), 0.1, tip, 1e6, 0.3, work_of_adhesion=w)
+    with pytest.raises(ValueError, match="^work_of_adhesion must be"):
+        z_np_limit(0.1, tip, 1e6, 0.3, work_of_adhesion=w)
+
+
+def test_jkr_functions_name_values_that_would_overflow():
+    # each returned inf before: a^3 of a = 1e300 m, w = 1e300 J/m^2, w / E* with E* = 1e-320 Pa,
+    # and a snap-off of a 1e300 m tip
+    e_star = reduced_modulus(1e7, 0.3)
+    a = np.linspace(1e-9, 15e-9, 10)
+    with pytest.raises(ValueError, match=r"^contact_radius must be in \[0, 100\] m"):
+        jkr_curve(1e300, R, W, e_star)
+    with pytest.raises(ValueError, match=r"^work_of_adhesion must be in \[0, 10\] J/m\^2"):
+        jkr_curve(a, R, 1e300, e_star)
+    with pytest.raises(ValueError, match=r"^reduced_modulus must be in \[1, 1\.33333e\+13\] Pa"):
+        jkr_curve(a, R, W, 1e-320)
+    with pytest.raises(ValueError, match=r"^radius must be in \[1e-12, 0\.01\] m"):
+        jkr_instability(0.1, 1e300, W, e_star)
+    # the corners of the ranges stay finite
+    for args in ((100.0, 1e-12, 10.0, 1.0), (100.0, 1e-2, 0.0, 1e13 / 0.75)):
+        assert all(np.isfinite(x).all() for x in jkr_curve(*args))
+
+
+def test_sls_and_cycle_name_the_quantity_at_fault():
+    # relaxed_modulus = 1e300 was blamed on instantaneous_modulus; a 2-sample time on the
+    # indentation; speed = 1e-320 m/s gave infinite times
+    with pytest.raises(ValueError, match=r"^relaxed_modulus must be in \[1, 1e\+13\] Pa"):
+        StandardLinearSolid(1e300, 2e6, 1e-3)
+    with pytest.raises(ValueError, match="^instantaneous_modulus must be >= relaxed_modulus"):
+        StandardLinearSolid(1e9, 2e6, 1e-3)
+    mat = StandardLinearSolid(1e6, 2e6, 1e-3)
+    with pytest.raises(ValueError, match="^indentation and time must have the same length"):
+        hereditary_force([0.0, 1.0], np.linspace(0.0, 20e-9, 50), Parabolic(R), mat, 0.3)
+    with pytest.raises(ValueError, match=r"^speed must be in \[1e-12, 1000\] m/s"):
+        viscoelastic_approach_retract(np.linspace(-1e-8, 1e-8, 9), 0.1, Parabolic(R), mat, 0.3,
+                                      1e-320)
+    slow = viscoelastic_approach_retract(np.linspace(-1e-8, 1e-8, 9), 0.1, Parabolic(R), mat,
+                                         0.3, 1e-12)
+    assert np.isfinite(slow.time).all()

@@ -123,7 +123,7 @@ def test_adhesion_extrema_rejects_out_of_range_values_by_name():
     with pytest.raises(ValueError, match=r"spring_constant must be in \[1e-06, 1e\+06\] N/m"):
         adhesion_extrema(1e-300, Parabolic(1e-3), 1e6, 0.3, adhesion="jkr",
                          work_of_adhesion=0.01)
-    with pytest.raises(ValueError, match=r"radius must be in \(0, 0.01\] m"):
+    with pytest.raises(ValueError, match=r"radius must be in \[1e-12, 0.01\] m"):
         Parabolic(1e300)
     with pytest.raises(ValueError, match=r"work_of_adhesion must be in \[1e-06, 10\] J/m\^2"):
         adhesion_extrema(0.1, Parabolic(), 1e6, 0.3, adhesion="dmt", work_of_adhesion=1e300)
@@ -159,9 +159,9 @@ def test_public_helpers_validate():
 def test_tip_parameters_are_shared_parameters_with_open_bounds():
     for cls in TIPS.values():
         for p in cls.parameters:
-            assert isinstance(p, Parameter) and not p.low_inclusive  # open at 0
-            assert p.display_unit in ("nm", "deg")
-            assert p.high_inclusive == (p.name == "radius")  # angles open at pi/2, R <= 1 cm
+            assert isinstance(p, Parameter) and p.display_unit in ("nm", "deg")
+            # angles open at 0 and pi/2; 1 pm <= R <= 1 cm
+            assert p.low_inclusive == p.high_inclusive == (p.name == "radius")
     assert Conical.parameters[0].to_display(math.radians(20)) == pytest.approx(20.0, rel=1e-15)
 
 
@@ -228,7 +228,7 @@ def test_campaign_over_the_valid_ranges_finds_only_finite_results_or_named_error
     from hypothesis import HealthCheck, given, settings
     from hypothesis import strategies as st
     angle = st.floats(1e-9, math.pi / 2 - 1e-9)
-    radius = st.floats(1e-300, 1e-2)
+    radius = st.floats(1e-12, 1e-2)
     tips = st.one_of(radius.map(lambda r: Parabolic(radius=r)),
                      radius.map(lambda r: Spherical(radius=r)),
                      angle.map(lambda a: Conical(half_angle=a)),
@@ -256,3 +256,20 @@ def test_campaign_over_the_valid_ranges_finds_only_finite_results_or_named_error
             assert np.isfinite(getattr(point, f)).all(), (f, point)
 
     check()
+
+
+@pytest.mark.parametrize("z_s", [[1e-9, 2e-9], np.ones((3, 3)), np.array([]), 1e300])
+def test_surface_displacement_names_a_z_s_that_is_not_one_depth(z_s):
+    # an array raised numpy's "only 0-dimensional arrays can be converted", naming nothing
+    with pytest.raises(ValueError, match="^z_s must be"):
+        surface_displacement(Parabolic(), z_s, [0.0, 1e-8])
+
+
+def test_contact_surface_checks_tip_and_rho_out_of_contact_too():
+    # out of contact it returned zeros for any tip and for NaN distances
+    off = indent(np.array([-10e-9]), 0.1, Parabolic(), 1e6, 0.3)
+    assert not off.in_contact[0]
+    with pytest.raises(TypeError, match="^tip must be a Tip"):
+        contact_surface("parabolic", off, [0.0, 1e-8])
+    with pytest.raises(ValueError, match="^rho must be finite"):
+        contact_surface(Parabolic(), off, [0.0, math.nan])

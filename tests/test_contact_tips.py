@@ -122,6 +122,7 @@ def test_contact_stiffness_is_2_e_star_r():
 
 
 # --- the sphere tends to the paraboloid -----------------------------------------------------------
+@pytest.mark.slow  # sympy series: about a second
 def test_sphere_tends_to_paraboloid_with_the_sympy_series_correction():
     u, zeta = sp.symbols("u zeta", positive=True)
     # F_sphere / F_paraboloid at the same depth, as a series in zeta = Z_s / R
@@ -175,10 +176,11 @@ def test_make_tip_rejects_unknown_key_and_parameter():
 
 
 # --- bad input -----------------------------------------------------------------------------------
-@pytest.mark.parametrize("bad", [0.0, -1e-9, math.nan, math.inf])
+@pytest.mark.parametrize("bad", [0.0, -1e-9, 1e-13, 1e-320, math.nan, math.inf])
 @pytest.mark.parametrize("cls", [Parabolic, Spherical])
 def test_bad_radius(cls, bad):
-    with pytest.raises(ValueError, match=r"^radius must be in \(0, 0.01\] m"):
+    # below 1 pm no tip exists, and R-divided terms (a^2 / R) would overflow
+    with pytest.raises(ValueError, match=r"^radius must be in \[1e-12, 0.01\] m"):
         cls(bad)
 
 
@@ -207,3 +209,34 @@ def test_bad_depths(z):
 def test_reduced_modulus_is_for_a_rigid_tip():
     assert reduced_modulus(1e6, 0.0) == 1e6
     assert reduced_modulus(3e6, 0.5 - 1e-12) == pytest.approx(4e6, rel=1e-11)
+
+
+# --- extreme input: a physical bound instead of an overflow (bad-input campaign, issue 8) --------
+@pytest.mark.parametrize("tip", [Parabolic(), Conical(), Pyramidal()], ids=["par", "cone", "pyr"])
+def test_depths_and_radii_beyond_the_positioner_travel_are_named_errors(tip):
+    # Z_s <= Z_np <= 100 m: deeper was accepted and returned F = inf (1e300 m)
+    with pytest.raises(ValueError, match=r"^z_s must be in \[0, 100\] m, got 1e\+300"):
+        tip.force(1e300, 1e6)
+    with pytest.raises(ValueError, match=r"^contact_radius must be in \[0, "):
+        tip.depth_for_radius(1e300)
+    with pytest.raises(ValueError, match=r"^r must be in \[0, 100\] m"):
+        tip.profile(1e300)
+    # at the bounds, with the stiffest sample the ranges allow, every law is finite
+    e_star = reduced_modulus(1e13, 0.4999)
+    assert math.isfinite(tip.force(100.0, e_star))
+    assert tip.depth_for_radius(tip.max_radius) == pytest.approx(100.0, rel=1e-12)
+    assert math.isfinite(tip.profile(100.0))
+
+
+@pytest.mark.parametrize("key", [["parabolic"], np.array([1.0, math.nan]), None])
+def test_make_tip_names_key_for_an_unhashable_or_missing_key(key):
+    # a list or an array raised "unhashable type: 'list'", naming nothing
+    with pytest.raises(ValueError, match="^key must be one of"):
+        make_tip(key)
+
+
+def test_tip_table_writes_each_range_with_its_own_brackets():
+    # the radius range is closed, [1 pm, 1 cm] (1e-3 to 1e7 nm); the angles are open at both ends
+    table = tip_table()
+    assert "| [0.001, 1e+07] |" in table
+    assert "| (0, 90) |" in table

@@ -112,8 +112,8 @@ def test_fit_window_geometry():
     ex = fitting_exercise(1)
     r = fit_curve(ex.curve.z_np, ex.curve.force, ex.tip, ex.poisson_ratio,
                   spring_constant=ex.curve.spring_constant)
-    # the contact region (Z_np from the contact point, ~55 nm, to 400 nm) is narrower than 1 um: the view
-    # reaches the curve's end and goes 1 um back, clipped to the data (from -300 nm)
+    # the contact region (Z_np from the contact point, ~55 nm, to 400 nm) is narrower than 1 um:
+    # the view reaches the curve's end and goes 1 um back, clipped to the data (from -300 nm)
     assert fit_window(r, 1e-6) == (pytest.approx(ex.curve.z_np.min()),
                                    pytest.approx(ex.curve.z_np.max()))
     lo, hi = fit_window(r, 0.3e-6)
@@ -323,7 +323,7 @@ def test_panel_follows_the_retract_branch_through_the_hysteresis():
     assert panel.last.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)
 
 
-# --- the panel uses what it is given, once per move, on the slider grid ----------------------------
+# --- the panel uses what it is given, once per move, on the slider grid ---------------------------
 def test_update_uses_the_values_it_is_given():
     panel = ContactPanel()
     assert panel.last.current.z_np[0] == pytest.approx(60e-9, rel=1e-12)
@@ -450,7 +450,7 @@ def test_legends_do_not_cover_data():
                 assert not _overlaps(fig, ax, ax.get_legend()), ax.get_xlabel()
 
 
-# --- hints that run, hints that do not give the answer away, slips named ---------------------------
+# --- hints that run, hints that do not give the answer away, slips named --------------------------
 def _notebook_namespace():
     import json
     from pathlib import Path

@@ -24,9 +24,10 @@ from .tips import (PYRAMID_FORMS, TIPS, Conical, Parabolic, Pyramidal, Spherical
 from .viscoelastic import (StandardLinearSolid, ViscoelasticCycle, hereditary_force,
                            viscoelastic_approach_retract)
 
-__all__ = ["ContactSystem", "PARAMETERS", "BRANCHES", "PYRAMID_FORMS", "TIPS", "Tip", "Parabolic", "Spherical", "Conical", "Pyramidal",
-           "make_tip", "reduced_modulus", "tip_table", "IndentationCurve", "ApproachRetract",
-           "indent", "approach_retract", "adhesion_extrema", "residual", "ADHESION_MODELS", "jkr_curve",
-           "jkr_instability", "z_np_limit", "StandardLinearSolid", "ViscoelasticCycle",
-           "hereditary_force", "viscoelastic_approach_retract", "ForceCurve", "FitResult",
-           "synthetic_curve", "load_curve", "fit_curve", "surface_displacement", "contact_surface"]
+__all__ = ["ContactSystem", "PARAMETERS", "BRANCHES", "PYRAMID_FORMS", "TIPS", "Tip", "Parabolic",
+           "Spherical", "Conical", "Pyramidal", "make_tip", "reduced_modulus", "tip_table",
+           "IndentationCurve", "ApproachRetract", "indent", "approach_retract", "adhesion_extrema",
+           "residual", "ADHESION_MODELS", "jkr_curve", "jkr_instability", "z_np_limit",
+           "StandardLinearSolid", "ViscoelasticCycle", "hereditary_force",
+           "viscoelastic_approach_retract", "ForceCurve", "FitResult", "synthetic_curve",
+           "load_curve", "fit_curve", "surface_displacement", "contact_surface"]

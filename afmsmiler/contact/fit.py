@@ -24,9 +24,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 from scipy.optimize import least_squares
 
-from ..validation import (check_array, check_choice, check_instance, check_integer, check_nonnegative,
+from ..validation import (check_array, check_choice, check_instance, check_integer,
                           check_positive, check_range)
 from .indent import indent
+from .quantities import PARAMETERS
 from .tips import PYRAMID_FORMS, Pyramidal, Spherical, Tip
 
 __all__ = ["ForceCurve", "FitResult", "synthetic_curve", "load_curve", "fit_curve",
@@ -40,19 +41,42 @@ class ForceCurve:
     Parameters
     ----------
     z_np : ndarray
-        Positioner displacement towards the tip in m (for files: minus the measured height).
+        Positioner displacement towards the tip in m (for files: minus the measured height), a
+        1-D array of finite values (at least 2).
     force : ndarray
-        Force on the tip in N.
+        Force on the tip in N, finite, as many values as ``z_np``.
     spring_constant : float or None
-        Lever spring constant in N/m, if known (needed for the tip position).
+        Lever spring constant in N/m, if known (needed for the tip position), in the range of
+        ``PARAMETERS["spring_constant"]`` ([1e-6, 1e6] N/m).
     name : str
         Where the curve comes from.
+
+    Raises
+    ------
+    ValueError
+        On non-finite or mismatched arrays or a spring constant out of range.
+    TypeError
+        If ``name`` is not a str.
     """
 
     z_np: np.ndarray
     force: np.ndarray
     spring_constant: float | None = None
     name: str = ""
+
+    def __post_init__(self):
+        z = check_array("z_np", self.z_np, "m", ndim=1, min_size=2)
+        f = check_array("force", self.force, "N", ndim=1)
+        if f.size != z.size:
+            raise ValueError(f"force and z_np must have the same length, got {f.size} forces for "
+                             f"{z.size} positions")
+        k = self.spring_constant
+        if k is not None:
+            k = PARAMETERS["spring_constant"].check(k)
+        check_instance("name", self.name, str)
+        object.__setattr__(self, "z_np", z)
+        object.__setattr__(self, "force", f)
+        object.__setattr__(self, "spring_constant", k)
 
     @property
     def tip_position(self) -> np.ndarray:
@@ -120,34 +144,55 @@ def synthetic_curve(tip, *, spring_constant, youngs_modulus, poisson_ratio,
     poisson_ratio : float
         nu of the sample, in [0, 0.5).
     z_np_range : (float, float)
-        First and last Z_np in m (the ramp), relative to ``contact_point``'s frame.
+        First and last Z_np in m (the ramp), increasing, each in [-100, 100] (the range of
+        ``PARAMETERS["z_np"]``), relative to ``contact_point``'s frame.
     points : int
-        Number of samples, >= 10.
+        Number of samples, in [10, 1e7].
     contact_point : float
-        Z_np at which the tip touches the sample, in m.
+        Z_np at which the tip touches the sample, in m, such that the ramp shifted by it,
+        ``z_np_range - contact_point``, stays in [-100, 100].
     baseline : float
-        Force offset in N (a deflection offset of the detector).
+        Force offset in N (a deflection offset of the detector), |baseline| <= 1e10
+        (:data:`MAX_FORCE`).
     noise : float
-        Standard deviation of the Gaussian force noise in N, >= 0.
+        Standard deviation of the Gaussian force noise in N, in [0, 1e10] (:data:`MAX_FORCE`).
     seed : int or None
-        Seed of the noise generator.
+        Seed of the noise generator, an integer in [0, 2^63 - 1], or None for a fresh one.
+
+    Raises
+    ------
+    ValueError
+        On a value outside its range (naming it), or a ramp that is not a pair of increasing
+        numbers.
 
     Returns
     -------
     ForceCurve
     """
     points = check_integer("points", points, 10, 10 ** 7)
-    lo = check_range("z_np_range[0]", z_np_range[0], -math.inf, math.inf, "m")
-    hi = check_range("z_np_range[1]", z_np_range[1], lo, math.inf, "m", low_inclusive=False)
-    cp = check_range("contact_point", contact_point, -math.inf, math.inf, "m")
-    f0 = check_range("baseline", baseline, -math.inf, math.inf, "N")
-    sigma = check_nonnegative("noise", noise, "N")
+    zp = PARAMETERS["z_np"]
+    if isinstance(z_np_range, (str, bytes)) or np.shape(z_np_range) != (2,):
+        raise ValueError("z_np_range must be a pair (first, last) of positioner displacements in "
+                         f"m, got {z_np_range!r:.60}")
+    lo = check_range("z_np_range[0]", z_np_range[0], zp.low, zp.high, "m")
+    hi = check_range("z_np_range[1]", z_np_range[1], lo, zp.high, "m", low_inclusive=False)
+    cp = check_range("contact_point", contact_point, zp.low, zp.high, "m")
+    f0 = check_range("baseline", baseline, -MAX_FORCE, MAX_FORCE, "N")
+    sigma = check_range("noise", noise, 0.0, MAX_FORCE, "N")
+    if seed is not None:
+        seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
     z = np.linspace(lo, hi, points)
-    curve = indent(z - cp, spring_constant, tip, youngs_modulus, poisson_ratio)
+    shifted = check_array("z_np_range - contact_point", z - cp, "m", low=zp.low, high=zp.high)
+    curve = indent(shifted, spring_constant, tip, youngs_modulus, poisson_ratio)
     rng = np.random.default_rng(seed)
     force = curve.force + f0 + (rng.normal(0.0, sigma, points) if sigma > 0 else 0.0)
     return ForceCurve(z, force, float(spring_constant),
                       f"synthetic {tip.key}, E = {youngs_modulus:g} Pa, noise {sigma:g} N")
+
+
+#: Largest force in N a synthetic curve's baseline and noise may have: far beyond any force a lever
+#: carries (k Z_np <= 1e6 N/m * 100 m = 1e8 N); it keeps the noise finite in floating point.
+MAX_FORCE = 1e10
 
 
 #: Most points a curve read from a file may have (a JPK map's curve has a few thousand; this many
@@ -234,7 +279,8 @@ def load_curve(path, *, segment="approach", index=0) -> ForceCurve:
         k = float(k) if k is not None else None
     except (TypeError, ValueError):
         k = None
-    k = k if k is not None and math.isfinite(k) and k > 0 else None
+    kp = PARAMETERS["spring_constant"]
+    k = k if k is not None and math.isfinite(k) and kp.low <= k <= kp.high else None
     return ForceCurve(-height, force, k, str(path))
 
 

@@ -38,11 +38,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.optimize import brentq
 
-from ..validation import (check_array, check_choice, check_instance, check_nonnegative,
-                          check_positive)
+from ..validation import check_array, check_choice, check_instance, check_positive, check_range
 from ._solvers import bracketed_newton
 from .quantities import PARAMETERS
-from .tips import Spherical, Tip, reduced_modulus
+from .tips import MAX_EXTENT, RADIUS, Spherical, Tip, reduced_modulus
 
 __all__ = ["IndentationCurve", "ApproachRetract", "indent", "approach_retract", "residual",
            "adhesion_extrema",
@@ -53,6 +52,20 @@ ADHESION_MODELS = (None, "dmt", "jkr")
 
 #: Bracket doublings allowed before a JKR search gives up (2^1100 overflows any float range).
 _MAX_DOUBLINGS = 1100
+
+#: Range of the reduced modulus E* = E / (1 - nu^2) in Pa that the JKR functions accept: what
+#: E and nu in their ranges (:data:`PARAMETERS`) give, [E_min, E_max / (1 - 0.5^2)].
+E_STAR_RANGE = (PARAMETERS["youngs_modulus"].low, PARAMETERS["youngs_modulus"].high / 0.75)
+
+
+def _check_reduced_modulus(value) -> float:
+    return check_range("reduced_modulus", value, *E_STAR_RANGE, "Pa")
+
+
+def _check_work(value) -> float:
+    """w in [0, w_max] J/m^2: 0 (no adhesion) is valid where no adhesion model is asked for."""
+    return check_range("work_of_adhesion", value, 0.0, PARAMETERS["work_of_adhesion"].high,
+                       "J/m^2")
 
 
 @dataclass(frozen=True)
@@ -261,13 +274,13 @@ def jkr_instability(spring_constant, radius, work_of_adhesion,
     Parameters
     ----------
     spring_constant : float
-        k in N/m.
+        k in N/m, > 0 (beyond the lever range, for the soft and stiff limits).
     radius : float
-        Tip radius R in m.
+        Tip radius R in m, in [1e-12, 1e-2].
     work_of_adhesion : float
-        w in J/m^2.
+        w in J/m^2, in [1e-6, 10].
     reduced_modulus : float
-        E* in Pa.
+        E* in Pa, in :data:`E_STAR_RANGE` ([1, 1.33e13]: what E and nu in their ranges give).
 
     Returns
     -------
@@ -279,10 +292,10 @@ def jkr_instability(spring_constant, radius, work_of_adhesion,
     With t = sqrt(a), t dZ_np/da = 2 t^3 / R - c1 + (4 E* t^5 / R - c2 t^2) / k, which is negative
     at t = 0, first falls and then rises: it has exactly one positive root, found by Brent's method.
     """
-    k = check_positive("spring_constant", spring_constant, "N/m")
-    radius = check_positive("radius", radius, "m")
+    k = check_positive("spring_constant", spring_constant, "N/m")  # the limits k -> 0, inf too
+    radius = RADIUS.check(radius)
     w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
-    e_star = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    e_star = _check_reduced_modulus(reduced_modulus)
     c1 = 0.5 * math.sqrt(2.0 * math.pi * w / e_star)
     c2 = 1.5 * math.sqrt(8.0 * math.pi * w * e_star)
 
@@ -318,23 +331,24 @@ def jkr_curve(contact_radius, radius, work_of_adhesion,
     Parameters
     ----------
     contact_radius : float or array_like
-        a in m, >= 0.
+        a in m, in [0, 100] (the positioner's travel bounds the contact, see
+        :data:`~afmsmiler.contact.tips.MAX_EXTENT`).
     radius : float
-        Tip radius R in m.
+        Tip radius R in m, in [1e-12, 1e-2].
     work_of_adhesion : float
-        w in J/m^2, >= 0 (0 gives Hertz).
+        w in J/m^2, in [0, 10] (0 gives Hertz).
     reduced_modulus : float
-        E* in Pa.
+        E* in Pa, in :data:`E_STAR_RANGE` ([1, 1.33e13]: what E and nu in their ranges give).
 
     Returns
     -------
     (z_s, force) : tuple of ndarray
         Z_s = a^2/R - sqrt(2 pi w a / E*) in m and F = 4 E* a^3 / (3R) - sqrt(8 pi w E* a^3) in N.
     """
-    a = check_array("contact_radius", contact_radius, "m", low=0.0)
-    radius = check_positive("radius", radius, "m")
-    w = check_nonnegative("work_of_adhesion", work_of_adhesion, "J/m^2")
-    e_star = check_positive("reduced_modulus", reduced_modulus, "Pa")
+    a = check_array("contact_radius", contact_radius, "m", low=0.0, high=MAX_EXTENT)
+    radius = RADIUS.check(radius)
+    w = _check_work(work_of_adhesion)
+    e_star = _check_reduced_modulus(reduced_modulus)
     z_s = a * a / radius - np.sqrt(2.0 * math.pi * w * a / e_star)
     force = 4.0 * e_star * a ** 3 / (3.0 * radius) - np.sqrt(8.0 * math.pi * w * e_star * a ** 3)
     return z_s, force
@@ -392,7 +406,7 @@ def z_np_limit(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion=
     adhesion : {None, "dmt", "jkr"}
         Adhesion model, as for :func:`approach_retract`.
     work_of_adhesion : float
-        w in J/m^2 (with adhesion).
+        w in J/m^2, in [0, 10] (checked even without adhesion); in [1e-6, 10] with adhesion.
 
     Returns
     -------
@@ -403,6 +417,7 @@ def z_np_limit(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion=
     """
     _, k, e_star = _check_common(0.0, spring_constant, tip, youngs_modulus, poisson_ratio)
     check_choice("adhesion", adhesion, ADHESION_MODELS)
+    _check_work(work_of_adhesion)
     if not isinstance(tip, Spherical):
         return math.inf
     if adhesion is None:
@@ -436,7 +451,8 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
     adhesion : {None, "dmt", "jkr"}
         Adhesion model (see the module docstring).
     work_of_adhesion : float
-        w in J/m^2, > 0 when ``adhesion`` is given.
+        w in J/m^2, in [0, 10] (checked even without adhesion); in [1e-6, 10] when
+        ``adhesion`` is given.
 
     Returns
     -------
@@ -456,6 +472,7 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
     z = check_array("z_np", z_np, "m", ndim=1, min_size=2, increasing=True)
     z, k, e_star = _check_common(z, spring_constant, tip, youngs_modulus, poisson_ratio)
     check_choice("adhesion", adhesion, ADHESION_MODELS)
+    _check_work(work_of_adhesion)
     if adhesion is None:
         _check_depth(tip, z, k, e_star)
         app = _elastic(tip, z, k, e_star)

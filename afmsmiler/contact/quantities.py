@@ -3,9 +3,12 @@
 The valid ranges are physical ones, wide enough for every AFM experiment (a 1 uN/m to 1 MN/m lever,
 a 1 Pa gel to 10 TPa, works of adhesion up to 10 J/m^2; positioner displacements within +-100 m,
 far beyond any positioner, since a soft lever on a stiff sample needs metres of travel before a
-micrometre sphere would be buried, a limit the tests probe) and narrow enough that every model computes finite numbers in floating point: inside them no model
-returns an overflow, and outside them the models raise a ``ValueError`` naming the quantity.
-The tip parameters are described with the tips (:mod:`afmsmiler.contact.tips`).
+micrometre sphere would be buried, a limit the tests probe) and narrow enough that every model
+computes finite numbers in floating point: inside them no model returns an overflow, and outside
+them the models raise a ``ValueError`` naming the quantity. The tip parameters, and the 100 m
+bound on indentations and contact radii that the positioner's travel implies, are described with
+the tips (:mod:`afmsmiler.contact.tips`); the reduced modulus E* that the JKR functions take
+ranges over what E and nu give (:data:`afmsmiler.contact.indent.E_STAR_RANGE`).
 """
 from __future__ import annotations
 

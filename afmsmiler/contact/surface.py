@@ -67,8 +67,8 @@ def surface_displacement(tip, z_s, rho, *, contact_radius=None):
     check_instance("tip", tip, Tip)
     rho = check_array("rho", rho, "m", low=0.0)
     if contact_radius is None:
+        z_s = check_range("z_s", z_s, 0.0, tip.depth_limit, "m")
         a = tip.contact_radius(z_s)
-        z_s = float(z_s)
     else:
         z_s = check_finite("z_s", z_s, "m")
         a = check_range("contact_radius", contact_radius, 0.0, tip.max_radius, "m",
@@ -114,8 +114,9 @@ def contact_surface(tip, current, rho):
     ndarray
         u in m, shaped like ``rho``.
     """
+    check_instance("tip", tip, Tip)
     check_instance("current", current, IndentationCurve)
-    rho = np.asarray(rho, dtype=float)
+    rho = check_array("rho", rho, "m", low=0.0)
     if current.in_contact[0] and float(current.contact_radius[0]) > 0:
         return surface_displacement(tip, float(current.z_s[0]), rho,
                                     contact_radius=float(current.contact_radius[0]))

@@ -13,8 +13,9 @@ course's modules join up.
 
 The quantities always come in one order, the free functions' (:func:`indent`,
 :func:`approach_retract`, :func:`z_np_limit`, :func:`adhesion_extrema`): spring_constant, tip,
-youngs_modulus, poisson_ratio, adhesion, work_of_adhesion; the system takes them as keywords. :data:`PARAMETERS` describes the user-settable ones (SI units,
-display units, defaults, valid and slider ranges) for the panel and the docs.
+youngs_modulus, poisson_ratio, adhesion, work_of_adhesion; the system takes them as keywords.
+:data:`PARAMETERS` describes the user-settable ones (SI units, display units, defaults, valid and
+slider ranges) for the panel and the docs.
 
 Examples
 --------

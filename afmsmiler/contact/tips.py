@@ -47,7 +47,7 @@ from ..validation import check_array, check_choice, check_integer, check_positiv
 from ._solvers import bracketed_newton
 
 __all__ = ["Tip", "Parabolic", "Spherical", "Conical", "Pyramidal", "TIPS",
-           "make_tip", "reduced_modulus", "tip_table"]
+           "make_tip", "reduced_modulus", "tip_table", "MAX_EXTENT"]
 
 
 def reduced_modulus(youngs_modulus, poisson_ratio) -> float:
@@ -77,8 +77,10 @@ def reduced_modulus(youngs_modulus, poisson_ratio) -> float:
 
 
 # the registry's parameters, with their defaults, in one place (SI; display units through UNITS)
-RADIUS = Parameter(name="radius", unit="m", display_unit="nm", default=20e-9, low=0.0,
-                   high=1e-2, low_inclusive=False, slider_low=1e-9, slider_high=5e-6, log=True,
+# R >= 1 pm: a hundredth of an atom, below any tip; a smaller R would overflow R-divided terms
+# (the JKR curve's a^2 / R) for contact radii inside the valid range
+RADIUS = Parameter(name="radius", unit="m", display_unit="nm", default=20e-9, low=1e-12,
+                   high=1e-2, slider_low=1e-9, slider_high=5e-6, log=True,
                    label="tip radius R")
 HALF_ANGLE = Parameter(name="half_angle", unit="rad", display_unit="deg",
                        default=math.radians(20.0), low=0.0, high=math.pi / 2, low_inclusive=False,
@@ -99,6 +101,11 @@ PYRAMID_FORMS = {
 
 _N_OUTLINE = 121
 _MAX_OUTLINE = 100_000
+
+#: Largest indentation Z_s and largest distance from the axis (contact radius, profile) in m that
+#: the tips accept: the positioner's travel (``PARAMETERS["z_np"]``, +-100 m, far beyond any
+#: positioner), which bounds Z_s <= Z_np. Physical, and inside it no force law overflows.
+MAX_EXTENT = 100.0
 
 
 class Tip:
@@ -129,8 +136,12 @@ class Tip:
 
     @property
     def depth_limit(self) -> float:
-        """Largest indentation Z_s in m the model accepts (inf, or R for the sphere)."""
-        return math.inf
+        """Largest indentation Z_s in m the model accepts (:data:`MAX_EXTENT`, or R for a sphere).
+
+        Z_s <= Z_np, and the positioner's travel is bounded by :data:`MAX_EXTENT` (100 m, beyond
+        any positioner); the bound keeps every force law finite in floating point.
+        """
+        return MAX_EXTENT
 
     def force(self, z_s, reduced_modulus):
         """Force F(Z_s) in N on the tip at indentation ``z_s``.
@@ -138,7 +149,8 @@ class Tip:
         Parameters
         ----------
         z_s : float or array_like
-            Indentation Z_s of the sample at the apex in m, >= 0 (and <= R for a sphere).
+            Indentation Z_s of the sample at the apex in m, in [0, :attr:`depth_limit`] (100 m,
+            or R for a sphere).
         reduced_modulus : float
             E* = E / (1 - nu^2) of the sample in Pa (see :func:`reduced_modulus`).
 
@@ -181,21 +193,23 @@ class Tip:
         Parameters
         ----------
         contact_radius : float or array_like
-            r in m, >= 0 (and < R for a sphere).
+            r in m, in [0, :attr:`max_radius`] (r at the deepest indentation accepted; < R for a
+            sphere).
 
         Returns
         -------
         float or ndarray
             Z_s in m.
         """
-        r = check_array("contact_radius", contact_radius, "m", low=0.0)
+        r = check_array("contact_radius", contact_radius, "m", low=0.0, high=self.max_radius)
         out = self._depth(r)
         return out if out.ndim else float(out)
 
     @property
     def max_radius(self) -> float:
-        """Largest contact radius in m the shape allows (inf, or R for the sphere)."""
-        return math.inf
+        """Largest contact radius in m the shape allows: r at :attr:`depth_limit` (R for a sphere).
+        """
+        return float(self._radius(np.array(self.depth_limit)))
 
     def contact_stiffness(self, z_s, reduced_modulus):
         """dF/dZ_s = 2 E* r(Z_s) in N/m (Sneddon's result, shared by every shape here).
@@ -213,8 +227,12 @@ class Tip:
 
     @property
     def max_profile_radius(self) -> float:
-        """Largest distance from the axis in m at which :meth:`profile` is defined (inf, or R)."""
-        return math.inf
+        """Largest distance from the axis in m at which :meth:`profile` is defined.
+
+        :data:`MAX_EXTENT` (100 m: a tip is far smaller, and the bound keeps the profile finite),
+        or R for a sphere.
+        """
+        return MAX_EXTENT
 
     def profile(self, r):
         """Height of the tip surface above its apex at distance ``r`` from the axis, in m.
@@ -225,7 +243,7 @@ class Tip:
         Parameters
         ----------
         r : float or array_like
-            Distance from the axis in m, >= 0 (<= R for a sphere; for the pyramid, measured
+            Distance from the axis in m, in [0, 100] (<= R for a sphere; for the pyramid, measured
             perpendicular to a face's base edge).
 
         Returns
@@ -327,12 +345,12 @@ class Parabolic(Tip):
     Parameters
     ----------
     radius : float
-        Apex radius of curvature R in m, > 0.
+        Apex radius of curvature R in m, in [1e-12, 1e-2].
 
     Raises
     ------
     ValueError
-        If ``radius`` is not finite and positive.
+        If ``radius`` is outside [1e-12, 1e-2] m.
     """
 
     radius: float = RADIUS.default
@@ -425,12 +443,12 @@ class Spherical(Tip):
     Parameters
     ----------
     radius : float
-        Sphere radius R in m, > 0.
+        Sphere radius R in m, in [1e-12, 1e-2].
 
     Raises
     ------
     ValueError
-        If ``radius`` is not finite and positive.
+        If ``radius`` is outside [1e-12, 1e-2] m.
     """
 
     radius: float = RADIUS.default
@@ -654,8 +672,7 @@ def make_tip(key: str, **parameters) -> Tip:
     TypeError
         For a parameter the tip does not have.
     """
-    if key not in TIPS:
-        raise ValueError(f"key must be one of {sorted(TIPS)}, got {key!r}")
+    check_choice("key", key, tuple(TIPS))
     cls = TIPS[key]
     names = {f.name for f in fields(cls)}
     unknown = set(parameters) - names
@@ -672,7 +689,8 @@ def tip_table() -> str:
     for key, cls in TIPS.items():
         for p in cls.parameters:
             high = "inf" if not math.isfinite(p.high) else f"{p.to_display(p.high):g}"
+            left, right = "[" if p.low_inclusive else "(", "]" if p.high_inclusive else ")"
             rows.append(f"| `{key}` | {cls.title} | ${cls.formula}$ | "
                         f"{p.title} | {p.to_display(p.default):g} | "
-                        f"({p.to_display(p.low):g}, {high}) |")
+                        f"{left}{p.to_display(p.low):g}, {high}{right} |")
     return "\n".join(rows)

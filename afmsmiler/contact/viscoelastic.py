@@ -48,10 +48,15 @@ from scipy.optimize import brentq
 
 from ..validation import check_array, check_instance, check_positive, check_range
 from .indent import IndentationCurve, _check_common, _check_depth
+from .quantities import PARAMETERS
 from .tips import Tip
 
 __all__ = ["StandardLinearSolid", "hereditary_force", "viscoelastic_approach_retract",
            "ViscoelasticCycle"]
+
+
+#: Positioner speeds in m/s that :func:`viscoelastic_approach_retract` accepts.
+SPEED_RANGE = (1e-12, 1e3)
 
 
 @dataclass(frozen=True)
@@ -61,16 +66,17 @@ class StandardLinearSolid:
     Parameters
     ----------
     relaxed_modulus : float
-        Long-time modulus E_inf in Pa, > 0.
+        Long-time modulus E_inf in Pa, in the range of ``PARAMETERS["youngs_modulus"]``
+        ([1, 1e13] Pa: a gel to diamond and beyond).
     instantaneous_modulus : float
-        Short-time modulus E_0 in Pa, >= E_inf.
+        Short-time modulus E_0 in Pa, in the same range and >= E_inf.
     relaxation_time : float
         tau in s, > 0.
 
     Raises
     ------
     ValueError
-        If a modulus is not positive, E_0 < E_inf, or tau is not positive.
+        If a modulus is outside its range, E_0 < E_inf, or tau is not positive.
     """
 
     relaxed_modulus: float
@@ -78,9 +84,14 @@ class StandardLinearSolid:
     relaxation_time: float
 
     def __post_init__(self):
-        e_inf = check_positive("relaxed_modulus", self.relaxed_modulus, "Pa")
-        e_0 = check_range("instantaneous_modulus", self.instantaneous_modulus, e_inf, math.inf,
-                          "Pa", high_inclusive=False)
+        e_range = PARAMETERS["youngs_modulus"]
+        e_inf = check_range("relaxed_modulus", self.relaxed_modulus, e_range.low, e_range.high,
+                            "Pa")
+        e_0 = check_range("instantaneous_modulus", self.instantaneous_modulus, e_range.low,
+                          e_range.high, "Pa")
+        if e_0 < e_inf:
+            raise ValueError(f"instantaneous_modulus must be >= relaxed_modulus ({e_inf:g} Pa), "
+                             f"got {e_0:g} Pa")
         tau = check_positive("relaxation_time", self.relaxation_time, "s")
         object.__setattr__(self, "relaxed_modulus", e_inf)
         object.__setattr__(self, "instantaneous_modulus", e_0)
@@ -202,7 +213,10 @@ def hereditary_force(time, indentation, tip, material, poisson_ratio):
         On bad parameters (see :func:`viscoelastic_approach_retract`).
     """
     t = check_array("time", time, "s", ndim=1, min_size=2, increasing=True)
-    z = check_array("indentation", indentation, "m", ndim=1, size=t.size, low=0.0)
+    z = check_array("indentation", indentation, "m", ndim=1, low=0.0)
+    if z.size != t.size:
+        raise ValueError(f"indentation and time must have the same length, got {z.size} "
+                         f"indentations for {t.size} times")
     check_instance("tip", tip, Tip)
     check_instance("material", material, StandardLinearSolid)
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
@@ -268,7 +282,9 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
     poisson_ratio : float
         nu of the sample, in [0, 0.5).
     speed : float
-        Positioner speed |dZ_np/dt| in m/s, > 0.
+        Positioner speed |dZ_np/dt| in m/s, in [1e-12, 1e3] (:data:`SPEED_RANGE`: from a ramp of
+        a picometre a second to beyond any positioner; a slower one would make the times
+        overflow).
 
     Returns
     -------
@@ -290,7 +306,7 @@ def viscoelastic_approach_retract(z_np, spring_constant, tip, material, poisson_
     z = check_array("z_np", z_np, "m", ndim=1, min_size=2, increasing=True)
     check_instance("material", material, StandardLinearSolid)
     z, k, e0 = _check_common(z, spring_constant, tip, material.instantaneous_modulus, poisson_ratio)
-    v = check_positive("speed", speed, "m/s")
+    v = check_range("speed", speed, *SPEED_RANGE, "m/s")
     _check_depth(tip, z, k, e0)  # E_0 bounds the indentation from below; E_inf from above
     scale = e0 / material.instantaneous_modulus  # 1 / (1 - nu^2)
     _check_depth(tip, z, k, material.relaxed_modulus * scale)
