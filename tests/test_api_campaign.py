@@ -112,7 +112,8 @@ def _curve():
 
 def _synthetic():
     from afmsmiler.contact import Parabolic, synthetic_curve
-    return synthetic_curve(Parabolic(50e-9), 20e6, 0.3, 0.1, points=200, noise=1e-11, seed=1)
+    return synthetic_curve(Parabolic(50e-9), spring_constant=0.1, youngs_modulus=20e6,
+                           poisson_ratio=0.3, points=200, noise=1e-11, seed=1)
 
 
 def _input_default(inst):
@@ -159,6 +160,9 @@ VALID = {
 OVERRIDES = {
     "afmsmiler.transducers.get_principle": {"key": "optical_beam_deflection"},
     "afmsmiler.contact.make_tip": {"key": "parabolic"},
+    "afmsmiler.contact.adhesion_extrema": {"adhesion": "jkr", "work_of_adhesion": 0.03},
+    "afmsmiler.contact.ContactSystem.at": {"z_np": 10e-9},
+    "afmsmiler.contact.contact_surface": {"current": lambda: _curve()},
     "afmsmiler.materials.get_material": {"name": "silicon"},
     "afmsmiler.materials.Material": {"name": "test", "youngs_modulus": 169e9},
     "afmsmiler.cantilever.Cantilever": {"youngs_modulus": 169e9},
