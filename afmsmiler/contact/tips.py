@@ -42,7 +42,7 @@ from typing import ClassVar
 
 import numpy as np
 
-from ..parameters import Parameter
+from ..parameters import Parameter, read_only
 from ..validation import check_array, check_choice, check_integer, check_positive, check_range
 from ._solvers import bracketed_newton
 
@@ -92,12 +92,12 @@ FACE_ANGLE = Parameter(name="face_angle", unit="rad", display_unit="deg",
                        slider_high=math.radians(85.0), label="face angle beta")
 
 #: The four-sided pyramid's prefactor c in F = c E* tan(beta) Z_s^2, with its source.
-PYRAMID_FORMS = {
+PYRAMID_FORMS = read_only({
     "rico": (1.0 / math.sqrt(2.0), "Rico et al., Phys. Rev. E 72, 021914 (2005): "
              "c = 1/sqrt(2) = 0.7071 (the source paper's Eq. 12)"),
     "bilodeau": (0.7453, "Bilodeau, J. Appl. Mech. 59, 519 (1992): c = 0.7453 "
                  "(vendor software, e.g. JPK's)"),
-}
+})
 
 _N_OUTLINE = 121
 _MAX_OUTLINE = 100_000

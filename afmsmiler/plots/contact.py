@@ -7,7 +7,6 @@ figure.
 """
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,6 +15,7 @@ from matplotlib.figure import Figure
 from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve,
                        contact_surface)
 from ..contact.viscoelastic import ViscoelasticCycle
+from ..parameters import read_only, unit_scale
 from ..validation import check_positive, check_range
 
 __all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
@@ -23,11 +23,11 @@ __all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
            "fit_window"]
 
 #: Defaults of the figures, in one place.
-DEFAULTS = dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121, surface_extent=3.0,
-                fit_zoom=1e-6)
+DEFAULTS = read_only(dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121,
+                          surface_extent=3.0, fit_zoom=1e-6))
 
-#: Factors from SI to the units shown (value_shown = value_SI * factor).
-UNITS = dict(length=1e9, force=1e9)
+#: Factors from SI to the units shown (value_shown = value_SI * factor), from the unit table.
+UNITS = read_only(dict(length=unit_scale("nm", "m"), force=unit_scale("nN", "N")))
 
 #: Legends sit above the axes, outside the data (a legend "best" placed can still cover it).
 _LEGEND_ABOVE = dict(loc="lower left", bbox_to_anchor=(0.0, 1.02), ncol=3, fontsize=8,

@@ -16,19 +16,20 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
-from ..parameters import unit_scale
+from ..parameters import read_only, unit_scale
 
 __all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
            "block_diagram", "polygon_figure", "image_figure"]
 
 #: Factors from SI to the units shown (value_shown = value_SI * factor), from the one unit table.
-UNITS = dict(x=unit_scale("um", "m"), z=unit_scale("nm", "m"), pole=unit_scale("1/us", "1/s"))
+UNITS = read_only(dict(x=unit_scale("um", "m"), z=unit_scale("nm", "m"),
+                       pole=unit_scale("1/us", "1/s")))
 
 #: Default figure sizes in inches, at most 10 in wide: JupyterLab's output area is about 1000 px
 #: (10 in at 100 dpi) wide and clipped wider figures on the right. ``"fig4"`` is (width, height
 #: per scenario row), ``"image"`` (width per image, height).
-FIGSIZE = dict(scan=(10.0, 6.0), fig4=(10.0, 2.2), block=(10.0, 2.9), polygon=(10.0, 3.2),
-               image=(3.3, 3.2))
+FIGSIZE = read_only(dict(scan=(10.0, 6.0), fig4=(10.0, 2.2), block=(10.0, 2.9),
+                         polygon=(10.0, 3.2), image=(3.3, 3.2)))
 
 
 @dataclass(frozen=True)

@@ -25,6 +25,7 @@ import meshcat.geometry as g
 import numpy as np
 
 from ..contact import IndentationCurve, Tip, contact_surface
+from ..parameters import read_only
 from ..validation import check_instance, check_integer, check_positive
 from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
@@ -36,12 +37,12 @@ from .viewer import get_viewer
 __all__ = ["DEFAULTS", "ContactScene", "surface_mesh", "tip_mesh", "cut_mesh"]
 
 #: Defaults of the scene, in one place.
-DEFAULTS = dict(unit=20e-9, extent=150e-9, n_grid=40, n_angular=48, tip_height=120e-9,
-                depth_floor=1e-9,
-                slab=0.35,                       # drawn sample thickness, as a fraction of extent
-                camera_direction=(0.25, -1.0, 0.42),  # from the contact, slightly from above
-                camera_distance=1.6,             # in units of the extent
-                lowered=0.2)                     # the drawing's shift down, in units of the extent
+DEFAULTS = read_only(dict(
+    unit=20e-9, extent=150e-9, n_grid=40, n_angular=48, tip_height=120e-9, depth_floor=1e-9,
+    slab=0.35,                       # drawn sample thickness, as a fraction of extent
+    camera_direction=(0.25, -1.0, 0.42),  # from the contact, slightly from above
+    camera_distance=1.6,             # in units of the extent
+    lowered=0.2))                    # the drawing's shift down, in units of the extent
 
 _CUT_COLOR = 0xb89f7a
 
