@@ -30,7 +30,7 @@ import numpy as np
 
 from ..cantilever import Cantilever
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_finite, check_instance
+from ..validation import check_array, check_choice, check_finite, check_instance
 from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
 
@@ -153,10 +153,24 @@ def polished_roots(den) -> np.ndarray:
     -------
     numpy.ndarray
         The roots (complex), in 1/s for a loop's denominator.
+
+    Raises
+    ------
+    ValueError
+        If ``den`` is not 3 or 4 finite numbers with a nonzero leading one, or its ratios to the
+        leading coefficient overflow.
     """
-    den = np.asarray(den, dtype=float)
+    den = check_array("den", den, ndim=1)
+    if den.size not in (3, 4):
+        raise ValueError(f"den must have 3 or 4 coefficients, got {den.size}")
+    if den[0] == 0:
+        raise ValueError(f"den's leading coefficient must be nonzero, got {den.tolist()}")
     companion = np.diag(np.ones(den.size - 2), -1)
-    companion[0] = -den[1:] / den[0]
+    with np.errstate(over="ignore"):
+        companion[0] = -den[1:] / den[0]
+    if not np.all(np.isfinite(companion)):
+        raise ValueError(f"den's coefficients over the leading one overflow double precision, "
+                         f"got {den.tolist()}")
     roots = np.linalg.eigvals(companion).astype(complex)
     k = int(np.argmin(np.abs(roots)))
     others = np.delete(roots, k)
@@ -429,6 +443,11 @@ class ContactLoop:
         0.2427
         """
         check_instance("lever", lever, Cantilever)
+        # checked under the names the caller passed (not the loop's k_s, m_s, b_s)
+        for name, key, value in (("sample_stiffness", "k_s", sample_stiffness),
+                                 ("sample_mass", "m_s", sample_mass),
+                                 ("sample_damping", "b_s", sample_damping)):
+            _P[key].with_(name=name).check(value)
         q = _P["quality_factor"].check(quality_factor)
         k_c = lever.spring_constant
         m_c = lever.effective_mass
@@ -567,8 +586,7 @@ class ContactLoop:
         tuple of ClosedForm
             (Z_c, Z_np), callables of the time in s.
         """
-        if input not in ("step", "ramp"):
-            raise ValueError(f"input must be one of ['ramp', 'step'], got {input!r}")
+        check_choice("input", input, ("step", "ramp"))
         return self._forms[input]
 
     @cached_property
@@ -658,7 +676,9 @@ class ContactLoop:
         """
         check_size("x", x, MAX_LINE_PIXELS)
         x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True)
-        h = check_array("height", height, "m", ndim=1, size=x.size)
+        h = check_array("height", height, "m", ndim=1)
+        if h.size != x.size:  # name both: either may be the wrong one
+            raise ValueError(f"height must have as many values as x ({x.size}), got {h.size}")
         speed = _P["speed"].check(speed)
         setpoint = _P["setpoint"].check(setpoint)
         n = x.size
