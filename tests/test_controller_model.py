@@ -854,7 +854,7 @@ def test_loop_methods_name_their_arguments():
         with pytest.raises(ValueError, match="^input must be one of"):
             loop.closed_forms(bad)  # "The truth value of an array ... is ambiguous"
     with pytest.raises(ValueError, match=r"as many values as x \(2\)"):
-        loop.scan_line([1.0, 2.0], np.zeros(16))  # named only height, the x was the odd one
+        loop.scan_line([1e-6, 2e-6], np.zeros(16))  # named only height, the x was the odd one
 
 
 def test_scan_image_pixel_size_is_bounded_and_line_takes_integers():
@@ -867,3 +867,19 @@ def test_scan_image_pixel_size_is_bounded_and_line_takes_integers():
     with pytest.raises(ValueError, match="^row must be an integer"):
         image.line(True)  # a bool passed as row 1
     assert image.line(-1).trace.x[-1] == pytest.approx(7 * MAX_PIXEL_SIZE)
+
+
+def test_times_and_positions_are_bounded_where_the_forms_would_overflow():
+    # a line of 1e300 m, or knots 1e300 s apart, gave nan (inf - inf in the ramps' q1 t)
+    from afmsmiler.controller.loop import MAX_POSITION, MAX_TIME
+    loop = PRESETS["a_good_tracking"].loop
+    with pytest.raises(ValueError, match=r"^x must be in \[-1, 1\] m"):
+        loop.scan_line([0.0, 1e300], [0.0, 0.0])
+    with pytest.raises(ValueError, match=r"^t_knots must be in \[-1e\+12, 1e\+12\] s"):
+        loop.response([0.0, 1e300], [0.0, 1.0])
+    with pytest.raises(ValueError, match=r"^t_eval must be in"):
+        loop.response([0.0, 1.0], [0.0, 1.0], [-1e300])
+    r = loop.scan_line([0.0, MAX_POSITION], [0.0, 1e-9], speed=1e-9)
+    assert all(np.all(np.isfinite(p.z_np)) for p in (r.trace, r.retrace))
+    z_c, z_np = loop.response([-MAX_TIME, MAX_TIME], [0.0, 1e-9])
+    assert np.all(np.isfinite(z_c)) and np.all(np.isfinite(z_np))
