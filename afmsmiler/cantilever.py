@@ -39,7 +39,7 @@ from functools import lru_cache
 import numpy as np
 from scipy.optimize import brentq
 
-from .materials import DENSITY, YOUNGS_MODULUS, Material, get_material
+from .materials import DENSITY, YOUNGS_MODULUS, Material, lookup
 from .parameters import Parameter, read_only
 from .validation import check_array, check_integer, check_range
 
@@ -283,7 +283,7 @@ class Cantilever:
         TypeError
             If ``material`` is neither a string nor a Material.
         """
-        m = get_material(material)
+        m = lookup(material, "material")
         return cls(length, width, thickness, m.youngs_modulus, m.density)
 
     # -- statics --------------------------------------------------------------------------
@@ -396,7 +396,13 @@ class Cantilever:
             End force in N.
         """
         z_b = self._z_b(z_b)
-        return -z_b * self.curvature(x, force)
+        curvature = self.curvature(x, force)
+        try:
+            np.broadcast_shapes(z_b.shape, curvature.shape)
+        except ValueError:
+            raise ValueError(f"z_b must broadcast against x: z_b has shape {z_b.shape}, "
+                             f"x has shape {curvature.shape}") from None
+        return -z_b * curvature
 
     def stress(self, x, z_b, force):
         """Axial bending stress sigma = -E z_b z''(x) in Pa (negative is compressive).

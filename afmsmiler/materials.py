@@ -91,9 +91,30 @@ def get_material(name: str | Material) -> Material:
     ValueError
         If ``name`` is not a key of :data:`MATERIALS`.
     """
-    if isinstance(name, Material):
-        return name
-    check_instance("material", name, str, "key of MATERIALS (str) or a Material")
-    if name not in MATERIALS:
-        raise ValueError(f"material must be one of {sorted(MATERIALS)} or a Material, got {name!r}")
-    return MATERIALS[name]
+    return lookup(name, "name")
+
+
+def lookup(value, parameter: str) -> Material:
+    """:func:`get_material` for a caller whose own parameter is called ``parameter``.
+
+    The errors name the parameter the caller's user passed (``material`` for
+    :meth:`~afmsmiler.cantilever.Cantilever.from_material`), not ``name``.
+
+    Parameters
+    ----------
+    value : str or Material
+        A key of :data:`MATERIALS` or a Material.
+    parameter : str
+        The name of the caller's parameter, for the messages.
+
+    Returns
+    -------
+    Material
+    """
+    if isinstance(value, Material):
+        return value
+    check_instance(parameter, value, str, "key of MATERIALS (str) or a Material")
+    if value not in MATERIALS:
+        raise ValueError(f"{parameter} must be one of {sorted(MATERIALS)} or a Material, "
+                         f"got {value!r}")
+    return MATERIALS[value]

@@ -246,7 +246,7 @@ def test_bending_sizes_are_bounded_and_named():
 
 
 def test_materials_and_from_material_validate_their_inputs():
-    with pytest.raises(TypeError, match="material must be"):
+    with pytest.raises(TypeError, match="name must be"):
         get_material(["silicon"])
     with pytest.raises(TypeError, match="material must be"):
         Cantilever.from_material(3.0, 1e-4, 1e-5, 1e-6)
@@ -280,3 +280,23 @@ def test_mode_sequences_are_checked_by_name():
                       ((1, 0), ValueError), ((1.5,), ValueError), (list(range(1, 60)), ValueError)):
         with pytest.raises(kind, match="^modes must"):
             check_modes(bad)
+
+
+def test_bad_input_found_by_the_campaign_is_named():
+    # get_material's errors said "material" for its parameter name; from_material's must still
+    # say "material"; a z_b that does not broadcast against x failed in numpy ("operands could
+    # not be broadcast together") without naming z_b
+    for bad in (0.0, None, ["silicon"]):
+        with pytest.raises(TypeError, match="^name must be a key of MATERIALS"):
+            get_material(bad)
+    with pytest.raises(ValueError, match="^name must be one of"):
+        get_material("unobtainium")
+    with pytest.raises(ValueError, match="^material must be one of"):
+        Cantilever.from_material("unobtainium", 1e-4, 1e-5, 1e-6)
+    x = np.linspace(0.0, LEVER.length, 11)
+    for method in (LEVER.strain, LEVER.stress):
+        with pytest.raises(ValueError, match=r"^z_b must broadcast against x"):
+            method(x, np.array([]), 1e-9)
+    h2 = LEVER.thickness / 2  # sigma = -E z_b F (L - x) / (E J) at the clamp surface
+    assert LEVER.stress(0.0, h2, 1e-9) == pytest.approx(
+        -h2 * 1e-9 * LEVER.length / (LEVER.width * LEVER.thickness ** 3 / 12))

@@ -38,13 +38,15 @@ like 1/omega but multiplies sin(omega t), itself of order omega t).
 from __future__ import annotations
 
 from dataclasses import dataclass
+from numbers import Number
 
 import numpy as np
 
+from ..validation import check_array, check_choice, check_range
 from ._generated import FUNCTIONS
 
-__all__ = ["ClosedForm", "MERGE_TOLERANCE", "TRIPLE_TOLERANCE", "classify_roots", "closed_form",
-           "normalise"]
+__all__ = ["ClosedForm", "MERGE_TOLERANCE", "TRIPLE_TOLERANCE", "STRUCTURES", "classify_roots",
+           "closed_form", "normalise"]
 
 #: Relative distance below which two roots are treated as one repeated (double) root. Computed
 #: double roots scatter by about sqrt(eps) ~ 1.5e-8 (relative) around the true one; 1e-5
@@ -58,6 +60,11 @@ TRIPLE_TOLERANCE = 1e-2
 #: Most terms of the cluster series, in the Taylor coefficients of g and in t (all of them for
 #: an unstable cluster; a stable one takes as many as make (d / m)^(n - 2) <= 1e-13).
 _CLUSTER_TERMS = 16
+#: The root structures of each order, and how many root parameters each takes (a triple that is
+#: a cluster of three distinct roots takes its mean and the three roots: 1 or 4).
+STRUCTURES = {2: {"distinct": (2,), "double": (1,), "complex": (2,)},
+              3: {"distinct": (3,), "real_complex": (3,), "double_single": (2,),
+                  "triple": (1, 4)}}
 # A conjugate pair sigma +- i omega is merged when 2 |omega| <= tol |p|; any pair left is complex,
 # so a root counts as complex above a quarter of tol (no gap at tol / 2; real roots computed as
 # eigenvalues of a real matrix have no imaginary part at all).
@@ -144,7 +151,8 @@ def classify_roots(roots, tol: float = MERGE_TOLERANCE):
     roots : array_like of complex
         The 2 or 3 roots (conjugate pairs for complex roots).
     tol : float
-        Relative distance under which roots are merged into a repeated root.
+        Relative distance under which roots are merged into a repeated root, in [0, 1) (a
+        relative distance of 1 or more would merge roots of opposite signs).
 
     Returns
     -------
@@ -155,7 +163,8 @@ def classify_roots(roots, tol: float = MERGE_TOLERANCE):
         The roots the generated function takes (see ``derivation.ROOT_PARAMETERS``), floats;
         for a triple that is a cluster of distinct roots, followed by the three roots (complex).
     """
-    r = np.asarray(roots, dtype=complex)
+    r = _check_roots(roots)
+    tol = check_range("tol", tol, 0.0, 1.0, high_inclusive=False)
     scale = np.maximum(np.abs(r), np.finfo(float).tiny)
 
     def close(a, b):
@@ -168,8 +177,6 @@ def classify_roots(roots, tol: float = MERGE_TOLERANCE):
         if abs(p1.imag) > _IMAG_FRACTION * tol * scale[0]:  # a pair that was not merged
             return "complex", (float(p1.real), float(abs(p1.imag)))
         return "distinct", tuple(sorted(float(x.real) for x in r))
-    if r.size != 3:
-        raise ValueError(f"roots must hold 2 or 3 values, got {r.size}")
     pairs = [(i, j) for i in range(3) for j in range(i + 1, 3) if close(r[i], r[j])]
     spread = max(abs(r[i] - r[j]) for i in range(3) for j in range(i + 1, 3))
     if len(pairs) >= 2 or spread <= TRIPLE_TOLERANCE * max(np.max(scale), np.finfo(float).tiny):
@@ -187,6 +194,61 @@ def classify_roots(roots, tol: float = MERGE_TOLERANCE):
         top = max(cplx, key=lambda z: z.imag)
         return "real_complex", (float(real.real), float(top.real), float(abs(top.imag)))
     return "distinct", tuple(sorted(float(x.real) for x in r))
+
+
+def _check_roots(roots) -> np.ndarray:
+    """``roots`` as a 1-D complex array of 2 or 3 finite values, else ValueError naming it."""
+    try:
+        r = np.asarray(roots)
+        ok = r.dtype.kind in "iufc" and r.ndim == 1 and r.size in (2, 3)
+    except (TypeError, ValueError):  # ragged sequences
+        ok = False
+    if not ok:
+        raise ValueError(f"roots must be a 1-D array of 2 or 3 real or complex numbers, got "
+                         f"{roots!r:.80}")
+    r = r.astype(complex)
+    if not np.all(np.isfinite(r)):
+        raise ValueError(f"roots must be finite, got {r}")
+    return r
+
+
+def _check_params(structure, params, order) -> tuple:
+    """The root parameters of ``structure`` as numbers, else ValueError naming ``params``."""
+    counts = STRUCTURES[order][structure]
+    try:
+        values = tuple(params)
+    except TypeError:
+        values = None
+    if values is None or len(values) not in counts or not all(
+            isinstance(v, (Number, np.number)) and not isinstance(v, (bool, np.bool_))
+            for v in values):
+        raise ValueError(f"params must be a sequence of {' or '.join(map(str, counts))} numbers "
+                         f"(the root parameters of structure {structure!r}, as classify_roots "
+                         f"returns them), got {params!r:.80}")
+    cluster = structure == "triple" and len(values) == 4
+    roots = np.array([complex(v) for v in values])
+    if not np.all(np.isfinite(roots)):
+        raise ValueError(f"params must be finite, got {params!r:.80}")
+    head = roots[:1] if cluster else roots
+    if np.any(head.imag != 0):
+        raise ValueError(f"params must be real numbers for structure {structure!r} (the real "
+                         f"and imaginary parts of complex roots are separate), got "
+                         f"{params!r:.80}")
+    real = tuple(float(v.real) for v in head)
+    if structure in ("complex", "real_complex"):  # (p1,) sigma, omega: the pair is never 0
+        if real[-1] <= 0:
+            raise ValueError(f"params must end with omega > 0 (the pair sigma +- i omega) for "
+                             f"structure {structure!r}, got {params!r:.80}")
+        real_roots = real[:-2]
+    else:
+        real_roots = real
+    if any(v == 0 for v in real_roots) or (cluster and np.any(roots[1:] == 0)):
+        raise ValueError(f"params must hold nonzero roots (a root at 0 is an integrator, which "
+                         f"the step and ramp forms do not cover), got {params!r:.80}")
+    if structure in ("distinct", "double_single") and len(set(real)) != len(real):
+        raise ValueError(f"params must hold different roots for structure {structure!r}, got "
+                         f"{params!r:.80}")
+    return real + tuple(complex(v) for v in roots[1:]) if cluster else real
 
 
 def _blocks(structure, params, modes):
@@ -225,12 +287,36 @@ def closed_form(b, structure: str, params, input: str = "step") -> ClosedForm:
     Returns
     -------
     ClosedForm
+
+    Raises
+    ------
+    ValueError
+        If ``b`` is not 3 or 4 finite numbers, ``structure`` is not one of its order's,
+        ``params`` does not fit the structure (count, finite, nonzero and different roots),
+        ``input`` is neither "step" nor "ramp", or the form overflows (roots within about 1e-300
+        of each other, or coefficients near the largest double).
     """
-    name = f"{input}_o{len(b) - 1}_{structure}"
-    if structure == "triple" and len(params) == 4:
-        return _cluster_form(b, params[0], params[1:], input, name)
-    q0, q1, modes = FUNCTIONS[name](b, *params)
-    return ClosedForm(float(q0), float(q1), _blocks(structure, params, modes), name, float(b[-1]))
+    input = check_choice("input", input, ("step", "ramp"))
+    b = check_array("b", b, ndim=1)
+    if b.size not in (3, 4):
+        raise ValueError(f"b must hold 3 or 4 coefficients (order 2 or 3), got {b.size}")
+    order = b.size - 1
+    structure = check_choice("structure", structure, tuple(STRUCTURES[order]))
+    params = _check_params(structure, params, order)
+    b = tuple(b.tolist())
+    name = f"{input}_o{order}_{structure}"
+    with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+        if structure == "triple" and len(params) == 4:
+            form = _cluster_form(b, params[0], params[1:], input, name)
+        else:
+            q0, q1, modes = FUNCTIONS[name](b, *params)
+            form = ClosedForm(float(q0), float(q1), _blocks(structure, params, modes), name,
+                              float(b[-1]))
+    numbers = [form.q0, form.q1] + [c for _, cs in form.blocks for c in cs]
+    if not np.all(np.isfinite(numbers)):
+        raise ValueError(f"b and params give a closed form that overflows double precision "
+                         f"(b={b}, params={params})")
+    return form
 
 
 def _cluster_form(b, m, roots, input, name):

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 
 from .. import samples
 from ..parameters import read_only
+from ..validation import check_instance
 from .loop import LOOP_PARAMETERS, PARAMETERS, ContactLoop
 
 __all__ = ["Preset", "PRESETS", "BASE", "SETPOINT", "LINE", "line_profile"]
@@ -82,8 +83,21 @@ class Preset:
         Returns
         -------
         afmsmiler.controller.ScanLine
+
+        Raises
+        ------
+        TypeError
+            If ``sample`` is not a Sample.
+        ValueError
+            If ``sample`` is not 1-D (a line: take a row with ``Sample.line``).
         """
-        sample = line_profile() if sample is None else sample
+        if sample is None:
+            sample = line_profile()
+        check_instance("sample", sample, samples.Sample)
+        if sample.heights.ndim != 1:
+            raise ValueError(f"sample must be a 1-D Sample (a line; take one row of an image "
+                             f"with sample.line(row)), got heights of shape "
+                             f"{sample.heights.shape}")
         return self.loop.scan_line(sample.x, sample.heights, speed=self.speed,
                                    setpoint=self.setpoint)
 

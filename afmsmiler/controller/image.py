@@ -19,14 +19,17 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_array, check_instance, check_positive
+from ..validation import check_array, check_instance, check_integer, check_range
 from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass, check_size
 
 #: Most pixels of a scanned image (2048 x 2048 take about 4 s).
 MAX_IMAGE_PIXELS = 2048 * 2048
+#: Largest pixel size in m: 1 mm, ten times the scan range of any AFM (about 100 um). Beyond
+#: some 1e300 m the image's times (pixel / speed, times the pixel count) overflow double precision.
+MAX_PIXEL_SIZE = 1e-3
 from .polygon import polygon_response
 
-__all__ = ["ScanImage", "scan_image", "MAX_IMAGE_PIXELS"]
+__all__ = ["ScanImage", "scan_image", "MAX_IMAGE_PIXELS", "MAX_PIXEL_SIZE"]
 
 
 @dataclass(frozen=True)
@@ -119,9 +122,7 @@ class ScanImage:
         rows, n = self.trace.shape
         if self.heights is None:
             raise ValueError("line() needs the heights: build the ScanImage with scan_image")
-        if not isinstance(row, (int, np.integer)) or not -rows <= row < rows:
-            raise ValueError(f"row must be an integer in [{-rows}, {rows - 1}], got {row!r}")
-        row = int(row) % rows
+        row = check_integer("row", row, -rows, rows - 1) % rows  # rejects a bool too
         x = np.arange(n) * self.pixel_size
         t0 = row * self.line_time if self.chained else 0.0
         t_trace = t0 + np.arange(n) * self.pixel_time
@@ -147,7 +148,7 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
         Topography in m, shape (rows, columns), at most :data:`MAX_IMAGE_PIXELS` values; the
         fast axis is along the columns, rows are scanned in increasing order.
     pixel_size : float
-        Pixel size in m (> 0).
+        Pixel size in m, in (0, :data:`MAX_PIXEL_SIZE`] (1 mm, beyond any AFM's scan range).
     speed : float
         Scan speed in m/s (> 0; keyword-only, like ``setpoint`` and ``chained``).
     setpoint : float
@@ -166,8 +167,8 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
     Raises
     ------
     ValueError
-        On non-finite heights, a non-2-D array, fewer than 2 columns, pixel_size <= 0 or
-        speed <= 0.
+        On non-finite heights, a non-2-D array, fewer than 2 columns, pixel_size outside
+        (0, 1 mm] or speed out of its range.
 
     Notes
     -----
@@ -180,7 +181,8 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
     h = check_array("heights", heights, "m", ndim=2)
     if h.shape[1] < 2:
         raise ValueError(f"heights must have at least 2 columns, got shape {h.shape}")
-    pixel_size = check_positive("pixel_size", pixel_size, "m")
+    pixel_size = check_range("pixel_size", pixel_size, 0.0, MAX_PIXEL_SIZE, "m",
+                             low_inclusive=False)
     speed = PARAMETERS["speed"].check(speed)
     setpoint = PARAMETERS["setpoint"].check(setpoint)
     if not isinstance(chained, (bool, np.bool_)):

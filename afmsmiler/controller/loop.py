@@ -30,12 +30,13 @@ import numpy as np
 
 from ..cantilever import Cantilever
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_finite, check_instance
+from ..validation import check_array, check_choice, check_finite, check_instance
 from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
 
 __all__ = ["ContactLoop", "Stability", "LoopResponse", "ScanPass", "ScanLine", "routh_hurwitz",
-           "polished_roots", "check_size", "MAX_LINE_PIXELS", "MAX_KNOTS", "PARAMETERS",
+           "polished_roots", "check_size", "MAX_LINE_PIXELS", "MAX_KNOTS", "MAX_TIME",
+           "MAX_POSITION", "PARAMETERS",
            "LOOP_PARAMETERS"]
 
 
@@ -88,6 +89,12 @@ PARAMETERS = read_only({p.name: p for p in (
 MAX_LINE_PIXELS = 2 ** 18
 #: Most knots, topography values and evaluation times of :meth:`ContactLoop.response`.
 MAX_KNOTS = 2 ** 19
+#: Largest |time| in s of :meth:`ContactLoop.response` (1e12 s, some 30 000 years: beyond any
+#: experiment; near 1e300 s the forced parts q1 t of the ramps overflow to inf - inf = nan).
+MAX_TIME = 1e12
+#: Largest |x| in m of :meth:`ContactLoop.scan_line` (1 m, beyond any AFM's scan range of about
+#: 100 um; at slow speeds lines near 1e300 m overflowed the same way).
+MAX_POSITION = 1.0
 
 
 def check_size(name: str, values, limit: int) -> None:
@@ -153,10 +160,24 @@ def polished_roots(den) -> np.ndarray:
     -------
     numpy.ndarray
         The roots (complex), in 1/s for a loop's denominator.
+
+    Raises
+    ------
+    ValueError
+        If ``den`` is not 3 or 4 finite numbers with a nonzero leading one, or its ratios to the
+        leading coefficient overflow.
     """
-    den = np.asarray(den, dtype=float)
+    den = check_array("den", den, ndim=1)
+    if den.size not in (3, 4):
+        raise ValueError(f"den must have 3 or 4 coefficients, got {den.size}")
+    if den[0] == 0:
+        raise ValueError(f"den's leading coefficient must be nonzero, got {den.tolist()}")
     companion = np.diag(np.ones(den.size - 2), -1)
-    companion[0] = -den[1:] / den[0]
+    with np.errstate(over="ignore"):
+        companion[0] = -den[1:] / den[0]
+    if not np.all(np.isfinite(companion)):
+        raise ValueError(f"den's coefficients over the leading one overflow double precision, "
+                         f"got {den.tolist()}")
     roots = np.linalg.eigvals(companion).astype(complex)
     k = int(np.argmin(np.abs(roots)))
     others = np.delete(roots, k)
@@ -430,6 +451,11 @@ class ContactLoop:
         0.2427
         """
         check_instance("lever", lever, Cantilever)
+        # checked under the names the caller passed (not the loop's k_s, m_s, b_s)
+        for name, key, value in (("sample_stiffness", "k_s", sample_stiffness),
+                                 ("sample_mass", "m_s", sample_mass),
+                                 ("sample_damping", "b_s", sample_damping)):
+            _P[key].with_(name=name).check(value)
         q = _P["quality_factor"].check(quality_factor)
         sample = {name: _P[key].with_(name=name).check(value) for name, key, value in (
             ("sample_stiffness", "k_s", sample_stiffness), ("sample_mass", "m_s", sample_mass),
@@ -580,8 +606,7 @@ class ContactLoop:
         tuple of ClosedForm
             (Z_c, Z_np), callables of the time in s.
         """
-        if input not in ("step", "ramp"):
-            raise ValueError(f"input must be one of ['ramp', 'step'], got {input!r}")
+        check_choice("input", input, ("step", "ramp"))
         return self._forms[input]
 
     @cached_property
@@ -605,8 +630,9 @@ class ContactLoop:
         Parameters
         ----------
         t_knots : array_like
-            Knot times in s, 1-D, strictly increasing (spacing may vary), at most
-        :data:`MAX_KNOTS` (4 times that for ``T_knots`` and ``t_eval``).
+            Knot times in s, 1-D, strictly increasing (spacing may vary), within
+            +-:data:`MAX_TIME` (like ``t_eval``), at most :data:`MAX_KNOTS` of them (4 times that
+            for ``T_knots`` and ``t_eval``).
         T_knots : array_like
             Topography at the knots in m, same length (or shape (..., N) for a batch).
         t_eval : array_like, optional
@@ -626,12 +652,14 @@ class ContactLoop:
         check_size("T_knots", T_knots, 4 * MAX_KNOTS)
         if t_eval is not None:
             check_size("t_eval", t_eval, 4 * MAX_KNOTS)
-        t = check_array("t_knots", t_knots, "s", ndim=1, min_size=1, increasing=True)
+        t = check_array("t_knots", t_knots, "s", ndim=1, min_size=1, increasing=True,
+                        low=-MAX_TIME, high=MAX_TIME)
         T = check_array("T_knots", T_knots, "m", min_size=1)
         if T.ndim == 0 or T.shape[-1] != t.size:
             raise ValueError(f"T_knots must have {t.size} values along its last axis (same as "
                              f"t_knots), got shape {T.shape}")
-        te = None if t_eval is None else check_array("t_eval", t_eval, "s", ndim=1)
+        te = None if t_eval is None else check_array("t_eval", t_eval, "s", ndim=1,
+                                                     low=-MAX_TIME, high=MAX_TIME)
         steps, ramps = self._forms["step"], self._forms["ramp"]
         z_c, z_np = polygon_response(steps, ramps, t, T, te)
         return LoopResponse(z_c, z_np)
@@ -649,8 +677,8 @@ class ContactLoop:
         Parameters
         ----------
         x : array_like
-            Pixel positions along the line in m, 1-D, strictly increasing, 2 to
-        :data:`MAX_LINE_PIXELS` of them.
+            Pixel positions along the line in m, 1-D, strictly increasing, within
+            +-:data:`MAX_POSITION` (1 m), 2 to :data:`MAX_LINE_PIXELS` of them.
         height : array_like
             Topography at the pixels in m, same length.
         speed : float
@@ -670,8 +698,11 @@ class ContactLoop:
             On non-finite values, non-increasing x, mismatched lengths or speed <= 0.
         """
         check_size("x", x, MAX_LINE_PIXELS)
-        x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True)
-        h = check_array("height", height, "m", ndim=1, size=x.size)
+        x = check_array("x", x, "m", ndim=1, min_size=2, increasing=True, low=-MAX_POSITION,
+                        high=MAX_POSITION)
+        h = check_array("height", height, "m", ndim=1)
+        if h.size != x.size:  # name both: either may be the wrong one
+            raise ValueError(f"height must have as many values as x ({x.size}), got {h.size}")
         speed = _P["speed"].check(speed)
         setpoint = _P["setpoint"].check(setpoint)
         n = x.size

@@ -8,7 +8,7 @@ from __future__ import annotations
 import math
 
 from ..cantilever import FORCE, LENGTH, MAX_MODE, WIDTH, Cantilever
-from ..materials import get_material
+from ..materials import lookup
 from ..parameters import read_only, unit_scale
 from ..validation import check_integer, check_range
 from . import Feedback, check_close
@@ -67,7 +67,7 @@ def check_thickness_for_spring_constant(thickness, *, target_k: float = DEFAULTS
     """
     target_k = check_range("target_k", target_k, 0.0, 1e6, "N/m", low_inclusive=False)
     length, width = LENGTH.check(length), WIDTH.check(width)
-    get_material(material)
+    lookup(material, "material")  # named as this checker's parameter
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
     hint = ("k = 3 E J / L^3 with J = w h^3 / 12: solve for h, and mind that k grows as h^3. "
             "Give h in metres.")
