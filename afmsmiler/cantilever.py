@@ -41,7 +41,7 @@ from scipy.optimize import brentq
 
 from .materials import DENSITY, YOUNGS_MODULUS, Material, lookup
 from .parameters import Parameter, read_only
-from .validation import check_array, check_integer, check_range
+from .validation import check_array, check_instance, check_integer, check_range
 
 __all__ = ["Cantilever", "Bending", "eigenvalue", "check_modes", "MAX_MODE", "PARAMETERS",
            "FORCE", "LENGTH", "WIDTH", "THICKNESS", "SECTION", "EXAGGERATION", "LIMITS"]
@@ -97,6 +97,7 @@ def check_modes(modes, name: str = "modes") -> list:
     -------
     list of int
     """
+    check_instance("name", name, str)
     if isinstance(modes, (str, bytes)) or not isinstance(modes, (list, tuple, range, np.ndarray)):
         raise TypeError(f"{name} must be a sequence of mode numbers, got "
                         f"{type(modes).__name__} {modes!r:.60}")

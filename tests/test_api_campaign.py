@@ -68,11 +68,14 @@ MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machin
 NOT_INPUTS = {"name", "unit", "what", "label", "description", "readout_format"}
 # Free text that a constructor stores as given (a curve's or a material's name, a source).
 FREE_TEXT = {"name", "source", "label", "description"}
+#: Parameters that name another one in an error message (any text will do; a non-str is refused).
+MESSAGE_NAMES = {"cantilever.check_modes:name"}
 # Returned by the models, not built by a user: their constructors are not part of the input API
 # (their methods are called on a result the model returned, see INSTANCES).
 RESULTS = {"Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
-           "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset"}
+           "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
+           "Operation", "Bending"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -154,12 +157,15 @@ VALID = {
     "display_unit": "nm", "values": [1.0, 2.0], "low": 0.0, "high": 10.0, "choices": ("a", "b"),
     "kind": float, "limit": 100, "ndim": 2, "span": 1.0, "steps": 10,
     "name": "q_x", "unit": "m", "si_value": 1e-4, "display_value": 100.0,
+    "u": lambda: np.linspace(0.0, 1.0, 11), "resonance_frequency": 13e3, "section": 0.5,
+    "modes": 3,
 }
 
 # Valid values for one callable (by its qualified name), where the name table does not fit.
 OVERRIDES = {
     "afmsmiler.transducers.get_principle": {"key": "optical_beam_deflection"},
     "afmsmiler.contact.make_tip": {"key": "parabolic"},
+    "afmsmiler.cantilever.check_modes": {"modes": (1, 2, 3)},
     "afmsmiler.contact.adhesion_extrema": {"adhesion": "jkr", "work_of_adhesion": 0.03},
     "afmsmiler.contact.ContactSystem.at": {"z_np": 10e-9},
     "afmsmiler.contact.contact_surface": {"current": lambda: _curve()},
@@ -252,7 +258,7 @@ INSTANCES = {
     "IndentationCurve": _curve,
     "ForceCurve": lambda: _synthetic(),
     "ScanImage": lambda: __import__("afmsmiler.controller", fromlist=["scan_image"]).scan_image(
-        _loop(), np.zeros((4, 8)), 10e-9, 1e-6, 10e-9),
+        _loop(), np.zeros((4, 8)), 10e-9, speed=1e-6, setpoint=10e-9),
     "Preset": lambda: next(iter(__import__("afmsmiler.controller",
                                            fromlist=["PRESETS"]).PRESETS.values())),
     "Sample": lambda: __import__("afmsmiler.samples", fromlist=["Sample"]).Sample(
@@ -695,7 +701,8 @@ def test_bad_input_is_named_or_harmless(t, name):
     valid = kwargs.get(name, _default_of(t, name, inst))
     signature_default = _default_of(t, name, inst)
     free_text = name in FREE_TEXT and isinstance(valid, str) and (
-        (inspect.isclass(t.func) and t.method is None) or name == "label")  # labels: any text
+        (inspect.isclass(t.func) and t.method is None) or name == "label"
+        or f"{t.id}:{name}" in MESSAGE_NAMES)  # labels and names for messages: any text
     for label, (value, can_return) in BAD.items():
         if not _applicable(label, valid) or (label == "None" and signature_default is None
                                               and name in _signature(t).parameters):
