@@ -38,7 +38,7 @@ import numpy as np
 
 from .validation import check_range
 
-__all__ = ["UNITS", "Parameter", "unit_scale", "read_only"]
+__all__ = ["UNITS", "Parameter", "unit_scale", "read_only", "shown"]
 
 
 def read_only(mapping) -> MappingProxyType:
@@ -189,6 +189,39 @@ def _convert(value, factor: float, to_si: bool, name: str = "value"):
         if short != out and _convert(short, factor, to_si=True) == value:
             return short
     return out
+
+
+def shown(si_value, display_unit: str, spec: str = ".4g") -> str:
+    """``si_value`` written in ``display_unit`` with its unit, for readouts and messages.
+
+    The factor comes from :data:`UNITS`, as every slider's does, so a readout never types one.
+
+    Parameters
+    ----------
+    si_value : float
+        The value in SI units.
+    display_unit : str
+        A key of :data:`UNITS`.
+    spec : str
+        Format specification of the number.
+
+    Returns
+    -------
+    str
+        e.g. ``"1.739 nN"``.
+
+    Examples
+    --------
+    >>> shown(-1.739e-9, "nN")
+    '-1.739 nN'
+    """
+    if isinstance(si_value, (bool, np.bool_)) or not isinstance(si_value, (int, float, np.integer,
+                                                                          np.floating)):
+        raise TypeError(f"si_value must be a real number, got {si_value!r}")
+    if not math.isfinite(si_value):
+        raise ValueError(f"si_value must be a finite number, got {si_value!r}")
+    value = float(si_value) * unit_scale(display_unit)
+    return f"{value:{spec}} {display_unit}".rstrip()
 
 
 @dataclass(frozen=True, kw_only=True)

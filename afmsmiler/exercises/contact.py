@@ -19,7 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from ..contact import ContactSystem, ForceCurve, Parabolic, Tip, synthetic_curve
-from ..parameters import read_only
+from ..parameters import read_only, shown
 from ..validation import check_choice, check_integer, check_positive, check_range
 from . import Feedback, check_close, diagnose_slip
 
@@ -150,13 +150,13 @@ def check_contact_point(answer, exercise: FitExercise, tolerance: float = 2e-9) 
     truth = exercise._contact_point
     err = abs(value - truth)
     if err <= tolerance:
-        return Feedback(True, f"contact point {value * 1e9:.4g} nm "
-                              f"(truth {truth * 1e9:.4g} nm).")
+        return Feedback(True, f"contact point {shown(value, 'nm')} "
+                              f"(truth {shown(truth, 'nm')}).")
     slip = diagnose_slip(value, truth, min(tolerance / abs(truth), 0.2), "m") if truth else None
     if slip:
         return Feedback(False, f"contact point: {slip} {hint}")
-    return Feedback(False, f"contact point {value * 1e9:.4g} nm is {err * 1e9:.3g} nm off "
-                           f"(needs to be within {tolerance * 1e9:g} nm). {hint}")
+    return Feedback(False, f"contact point {shown(value, 'nm')} is {shown(err, 'nm', '.3g')} off "
+                           f"(needs to be within {shown(tolerance, 'nm', 'g')}). {hint}")
 
 
 def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..contact import (PARAMETERS, TIPS, ApproachRetract, ContactSystem, IndentationCurve, Tip,
                        make_tip)
-from ..parameters import read_only
+from ..parameters import read_only, shown
 from ..plots.contact import ContactCurves, ContactFigure, contact_curves
 from ..validation import check_choice
 from .controls import control
@@ -305,19 +305,19 @@ class ContactPanel(Panel):
     def _readout_html(self) -> str:
         s = self.last
         c = s.current
-        rows = [("force F", f"{float(c.force[0]) * 1e9:.4g} nN"),
-                ("indentation Z_s", f"{float(c.z_s[0]) * 1e9:.4g} nm"),
-                ("lever deflection Z_c", f"{float(c.z_c[0]) * 1e9:.4g} nm"),
-                ("contact radius r", f"{float(c.contact_radius[0]) * 1e9:.4g} nm"),
-                ("reduced modulus E*", f"{s.system.reduced_modulus / 1e6:.4g} MPa")]
+        rows = [("force F", shown(float(c.force[0]), "nN")),
+                ("indentation Z_s", shown(float(c.z_s[0]), "nm")),
+                ("lever deflection Z_c", shown(float(c.z_c[0]), "nm")),
+                ("contact radius r", shown(float(c.contact_radius[0]), "nm")),
+                ("reduced modulus E*", shown(s.system.reduced_modulus, "MPa"))]
         if s.adhesion:
-            rows.append(("pull-off force", f"{s.cycle.pull_off_force * 1e9:.4g} nN"))
-            rows.append(("snap-off at Z_np", f"{s.cycle.snap_off_z_np * 1e9:.4g} nm"))
+            rows.append(("pull-off force", shown(s.cycle.pull_off_force, "nN")))
+            rows.append(("snap-off at Z_np", shown(s.cycle.snap_off_z_np, "nm")))
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
                         for k, v in rows)
         note = f"<div><i>{self._note.strip()}</i></div>" if self._note else ""
         if self.scene is not None:
-            note += f"<div>3D view: 1 unit = {self.scene.unit * 1e9:g} nm, true to scale</div>"
+            note += f"<div>3D view: 1 unit = {shown(self.scene.unit, 'nm', 'g')}, true to scale</div>"
         return f"<table>{table}</table>{note}"
 
     def widget(self) -> widgets.Widget:

@@ -21,7 +21,7 @@ from dataclasses import dataclass
 
 import ipywidgets as widgets
 
-from ..parameters import Parameter, read_only
+from ..parameters import Parameter, read_only, shown
 from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves, frequency_grid
 from ..transducers import PRINCIPLES
 from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalChain,
@@ -345,9 +345,9 @@ class TransducerPanel(Panel):
         total = q.to_display(res.total) if math.isfinite(res.total) else math.inf
         rows = [("Table I", f"{m.function}; {m.signal}; {m.size}"),
                 ("lever k, f1",
-                 f"{m.spring_constant:.3g} N/m, {m.resonance_frequency / 1e3:.4g} kHz"),
+                 f"{m.spring_constant:.3g} N/m, {shown(m.resonance_frequency, 'kHz')}"),
                 ("sensitivity here", f"{sq.to_display(s.sensitivity) + 0.0:.4g} {sq.display_unit}"),
-                (f"resolution in {DEFAULTS['bandwidth'] / 1e3:g} kHz",
+                (f"resolution in {shown(DEFAULTS['bandwidth'], 'kHz', 'g')}",
                  (f"{total:.3g} {q.display_unit} (mostly {res.dominant})"
                   if math.isfinite(total) else "no small-signal response here"))]
         table = "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td></tr>"
