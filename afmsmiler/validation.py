@@ -316,7 +316,8 @@ def check_size(name: str, value, limit: int = MAX_SIZE, low: int = 1) -> int:
     return int(value)
 
 
-def check_shape(name: str, value, ndim: int = 2, limit: int = MAX_SIZE) -> tuple[int, ...]:
+def check_shape(name: str, value, ndim: int = 2, limit: int = MAX_SIZE,
+                low: int = 1) -> tuple[int, ...]:
     """Return an array shape (``(rows, columns)``) as a tuple of ints, its size bounded.
 
     Parameters
@@ -329,6 +330,8 @@ def check_shape(name: str, value, ndim: int = 2, limit: int = MAX_SIZE) -> tuple
         Required number of dimensions.
     limit : int
         The largest number of elements (the product) accepted.
+    low : int
+        The fewest elements along each dimension.
 
     Returns
     -------
@@ -349,7 +352,7 @@ def check_shape(name: str, value, ndim: int = 2, limit: int = MAX_SIZE) -> tuple
     if not isinstance(value, (tuple, list)) or len(value) != ndim:
         raise ValueError(f"{name} must be a tuple of {ndim} positive integers, got "
                          f"{_short(value)}")
-    shape = tuple(check_size(f"{name}[{i}]", v, limit) for i, v in enumerate(value))
+    shape = tuple(check_size(f"{name}[{i}]", v, limit, low) for i, v in enumerate(value))
     total = math.prod(shape)
     if total > limit:
         raise ValueError(f"{name} must have at most {limit} elements in all (a size this machine "

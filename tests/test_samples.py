@@ -105,7 +105,7 @@ def test_particles_too_much_work_is_named():
     # before: 10000 particles each painted over the whole 256 x 256 image (minutes at 2048^2)
     with pytest.raises(ValueError, match="count and radius must cover at most"):
         samples.particles((256, 256), count=10000, radius=1e-6)
-    with pytest.raises(ValueError, match="shape must have at most 4194304 pixels"):
+    with pytest.raises(ValueError, match="shape must have at most 4194304 elements"):
         samples.particles((4096, 4096))
     with pytest.raises(ValueError, match="shape must have at most"):
         samples.rough_surface((3000, 3000), correlation_length=4e-9)

@@ -6,20 +6,14 @@ from scipy import integrate
 
 from afmsmiler.transducers import Electromagnetic, Electrostatic
 
-
-def _fourier_coefficients(expr, th):
-    """DC, cos(theta) and cos(2 theta) amplitudes of a 2 pi-periodic expression (sympy)."""
-    dc = sp.integrate(expr, (th, 0, 2 * sp.pi)) / (2 * sp.pi)
-    first = sp.integrate(expr * sp.cos(th), (th, 0, 2 * sp.pi)) / sp.pi
-    second = sp.integrate(expr * sp.cos(2 * th), (th, 0, 2 * sp.pi)) / sp.pi
-    return sp.simplify(dc), sp.simplify(first), sp.simplify(second)
+from sympy_reference import fourier_coefficients
 
 
 # --- electrostatic -------------------------------------------------------------------------------
 @pytest.mark.slow  # a sympy derivation or a heat-equation reference, ~1-4 s
 def test_electrostatic_harmonics_against_sympy():
     th, vdc, vac, dc_dz = sp.symbols("theta V_dc V_ac Cprime", real=True)
-    dc, first, second = _fourier_coefficients(dc_dz / 2 * (vdc + vac * sp.cos(th)) ** 2, th)
+    dc, first, second = fourier_coefficients(dc_dz / 2 * (vdc + vac * sp.cos(th)) ** 2, th)
     assert sp.simplify(first - dc_dz * vdc * vac) == 0
     assert sp.simplify(second - dc_dz * vac ** 2 / 4) == 0
     model = Electrostatic(ac_voltage=2.0)

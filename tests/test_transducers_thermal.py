@@ -13,6 +13,8 @@ from afmsmiler.materials import get_material
 from afmsmiler.transducers import Electrothermal, Photothermal
 from afmsmiler.transducers.thermal import THERMAL, bimorph_curvature
 
+from sympy_reference import fourier_coefficients
+
 
 # --- photothermal and electrothermal bimorphs ----------------------------------------------------
 def test_timoshenko_curvature_against_sympy_bilayer():
@@ -155,18 +157,10 @@ def test_thermal_lag_solves_the_heat_equation(cls):
                                * lever(2j * math.pi * f), rtol=1e-12)
 
 
-def _fourier_coefficients(expr, th):
-    """DC, cos(theta) and cos(2 theta) amplitudes of a 2 pi-periodic expression (sympy)."""
-    dc = sp.integrate(expr, (th, 0, 2 * sp.pi)) / (2 * sp.pi)
-    first = sp.integrate(expr * sp.cos(th), (th, 0, 2 * sp.pi)) / sp.pi
-    second = sp.integrate(expr * sp.cos(2 * th), (th, 0, 2 * sp.pi)) / sp.pi
-    return sp.simplify(dc), sp.simplify(first), sp.simplify(second)
-
-
 @pytest.mark.slow  # a sympy derivation or a heat-equation reference, ~1-4 s
 def test_electrothermal_power_harmonics_against_sympy_and_fft():
     th, vdc, vac, r = sp.symbols("theta V_dc V_ac R", positive=True)
-    dc, first, second = _fourier_coefficients((vdc + vac * sp.cos(th)) ** 2 / r, th)
+    dc, first, second = fourier_coefficients((vdc + vac * sp.cos(th)) ** 2 / r, th)
     assert sp.simplify(first - 2 * vdc * vac / r) == 0
     assert sp.simplify(second - vac ** 2 / (2 * r)) == 0      # the 2-omega term of P = V^2 / R
     assert sp.simplify(dc - (vdc ** 2 + vac ** 2 / 2) / r) == 0

@@ -5,6 +5,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .. import validation
 from ..validation import check_array, check_instance, check_integer, check_positive
 
 __all__ = ["Sample", "MAX_PIXELS", "MAX_LINE_PIXELS", "check_shape"]
@@ -42,11 +43,7 @@ def check_shape(shape) -> tuple[int, ...]:
         raise ValueError(f"shape must be an int or a pair of ints, got {shape!r}")
     if len(shape) == 1:
         return (check_integer("shape", shape[0], 2, MAX_LINE_PIXELS),)
-    rows, cols = (check_integer("shape", n, 2, MAX_PIXELS // 2) for n in shape)
-    if rows * cols > MAX_PIXELS:
-        raise ValueError(f"shape must have at most {MAX_PIXELS} pixels (2048 x 2048), got "
-                         f"{rows} x {cols} = {rows * cols}")
-    return rows, cols
+    return validation.check_shape("shape", shape, 2, MAX_PIXELS, low=2)
 
 
 @dataclass(frozen=True)
