@@ -6,7 +6,18 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.afmsmiler-installed
 export MPLBACKEND ?= Agg
 
-.PHONY: install lab test unit notebooks bench book clean
+.PHONY: install lab test unit notebooks bench book clean browser
+
+## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
+## missing and we are root (as in CI); otherwise those tests are skipped and say why.
+BROWSER ?= /usr/bin/chromium
+browser:
+	@test -x $(BROWSER) || { \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing Debian's chromium for the browser tests"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null \
+	      || echo "apt-get could not install chromium: the browser tests will be skipped"; \
+	  else echo "no $(BROWSER) and not root: the browser tests will be skipped"; fi; }
 
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
@@ -23,7 +34,7 @@ lab: $(STAMP)
 
 ## Everything: every test (slow and viewer ones too), the docstrings' examples, every notebook
 ## under nbval, then the check that no 3D server outlived them.
-test: $(STAMP)
+test: $(STAMP) browser
 	$(PY) -m pytest tests
 	$(PY) -m pytest -p no:cacheprovider -p tests.doctest_no_viewer --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
@@ -39,7 +50,7 @@ notebooks: $(STAMP)
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env notebooks
 
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
-bench: $(STAMP)
+bench: $(STAMP) browser
 	$(PY) benchmarks/run_all.py
 
 ## The course book (Jupyter Book 1.x) into book/_build/html.
