@@ -117,8 +117,11 @@ function thin(u, key, splits, labels) {
   });
 }
 
+// the kernel's limits, verbatim (uPlot pads and rounds a range it is asked for without data)
+const exactRange = (u, min, max) => [min, max];
+
 function scaleOpts(axis) {
-  const s = { time: false, auto: false };
+  const s = { time: false, auto: false, range: exactRange };
   if (axis.scale === "log") Object.assign(s, { distr: 3, log: 10 });
   if (axis.scale === "symlog") Object.assign(s, { distr: 4, asinh: axis.linthresh || 1 });
   return s;
@@ -141,7 +144,8 @@ class Axes {
     this.spec = spec;
     this.cell = cell;
     this.title = el("div", "afm-live-title", cell);
-    this.plotBox = el("div", "afm-live-plot", cell);
+    this.row = el("div", "afm-live-row", cell);
+    this.plotBox = el("div", "afm-live-plot", this.row);
     this.legend = el("div", "afm-live-legend", cell);
     this.frame = null;
     this.images = [];
@@ -160,10 +164,17 @@ class Axes {
       if (marker && !sr.line) { o.width = Math.max(sr.edge || 1, 1); o.dash = undefined; }
       series.push(o);
     }
+    // uPlot's mode 2 takes its x scale from the first series: an axes holding only images gets
+    // an empty one
+    this.placeholder = s.series.length === 0;
+    if (this.placeholder) {
+      series.push({ label: "", stroke: "transparent", width: 0, points: { show: false },
+        facets: [{ scale: "x", auto: false }, { scale: "y", auto: false }], paths: linePath("x", "y") });
+    }
     const scales = { x: scaleOpts(s.x), y: scaleOpts(s.y) };
     const axes = [axisOpts("x", 2, s.x, true), axisOpts("y", 3, s.y, true)];
     if (s.y2) { scales.y2 = scaleOpts(s.y2); axes.push(axisOpts("y2", 1, s.y2, s.y2.visible !== false)); }
-    if (s.x2) { scales.x2 = { time: false, auto: false, ori: 0 }; axes.push(axisOpts("x2", 0, s.x2, true)); }
+    if (s.x2) { scales.x2 = { time: false, auto: false, ori: 0, range: exactRange }; axes.push(axisOpts("x2", 0, s.x2, true)); }
     const self = this;
     this.u = new uPlot({
       mode: 2, width: 100, height: 100, pxAlign: 0, series, scales, axes,
@@ -174,18 +185,21 @@ class Axes {
         drawAxes: [(u) => self.drawRefs(u)],
         draw: [(u) => self.drawOver(u)],
       },
-    }, [null, ...s.series.map(() => [[], []])], this.plotBox);
+    }, [null, ...series.slice(1).map(() => [[], []])], this.plotBox);
     // uPlot's own tick placement and labels, for the axes whose ticks the kernel leaves free
     this.tickDefaults = this.u.axes.map((a) => [a.splits, a.values]);
     if (s.colorbar) {
-      this.cbBox = el("div", "afm-live-colorbar", cell);
+      this.cbBox = el("div", "afm-live-colorbar", this.row);
       this.cb = new uPlot({
-        mode: 2, width: 70, height: 100, series: [{}],
-        scales: { x: { time: false, auto: false, range: [0, 1] }, c: { time: false, auto: false } },
+        mode: 2, width: 70, height: 100,
+        series: [{}, { stroke: "transparent", width: 0, points: { show: false },
+          facets: [{ scale: "x", auto: false }, { scale: "c", auto: false }], paths: linePath("x", "c") }],
+        scales: { x: { time: false, auto: false, range: exactRange },
+          c: { time: false, auto: false, range: exactRange } },
         axes: [{ scale: "x", show: false }, Object.assign(axisOpts("c", 1, { label: s.colorbar.label }, true))],
         legend: { show: false }, cursor: { show: false }, select: { show: false },
         hooks: { drawClear: [(u) => self.drawColorbar(u)] },
-      }, [null], this.cbBox);
+      }, [null, [[], []]], this.cbBox);
       // uPlot hides an axis whose scale no series uses: keep it
       this.cb.axes[1].show = true;
     }
@@ -195,6 +209,7 @@ class Axes {
     const titleH = this.title.offsetHeight, legendH = this.legend.offsetHeight;
     const cbW = this.cb ? 80 : 0;
     const w = Math.max(60, width - cbW), h = Math.max(60, height - titleH - legendH - 4);
+    this.full = [w, h];
     this.u.setSize({ width: w, height: h });
     if (this.cb) this.cb.setSize({ width: cbW, height: h });
   }
@@ -246,6 +261,7 @@ class Axes {
     for (const d of frame.series) {
       data.push([buf.subarray(d.x[0], d.x[0] + d.x[1]), buf.subarray(d.y[0], d.y[0] + d.y[1])]);
     }
+    if (this.placeholder) data.push([[], []]);
     this.images = (frame.images || []).map((im) => this.image(im, buf));
     const lim = {};
     for (const [key] of keys) lim[key] = frame.axes[key].lim.slice();
@@ -266,17 +282,20 @@ class Axes {
     }
   }
 
+  // equal aspect as matplotlib's adjustable="box": the plot box shrinks, the limits stay
   equalAspect(lim) {
-    const bb = this.u.bbox;
-    if (!bb.width || !bb.height) return;
-    const [x0, x1] = lim.x, [y0, y1] = lim.y;
-    const ux = (x1 - x0) / bb.width, uy = (y1 - y0) / bb.height; // data per pixel
-    if (ux > uy) {
-      const c = 0.5 * (y0 + y1), half = 0.5 * ux * bb.height;
-      lim.y = [c - half, c + half];
-    } else {
-      const c = 0.5 * (x0 + x1), half = 0.5 * uy * bb.width;
-      lim.x = [c - half, c + half];
+    if (!this.full) return;
+    const [w, h] = this.full, u = this.u, r = devicePixelRatio;
+    const extraW = u.width - u.bbox.width / r, extraH = u.height - u.bbox.height / r;
+    const bw = w - extraW, bh = h - extraH; // the plot box the whole cell would give
+    const ratio = Math.abs((lim.x[1] - lim.x[0]) / (lim.y[1] - lim.y[0]));
+    if (!(bw > 0 && bh > 0 && Number.isFinite(ratio) && ratio > 0)) return;
+    let pw = bw, ph = bh;
+    if (bw / bh > ratio) pw = bh * ratio; else ph = bw / ratio;
+    const size = { width: Math.round(pw + extraW), height: Math.round(ph + extraH) };
+    if (size.width !== u.width || size.height !== u.height) {
+      u.setSize(size);
+      if (this.cb) this.cb.setSize({ width: this.cb.width, height: size.height });
     }
   }
 
