@@ -118,3 +118,17 @@ def test_twin_axis_curves_use_their_own_scale(page):
     assert r > 200 and b < 80
     r, g, b, _ = _pixel(page, 0, 0.25, 0.25)  # on the blue line of the left axis
     assert b > 200 and r < 80
+
+
+def test_the_static_copy_draws_alone_and_steps_aside_for_a_live_figure(page):
+    fig = Figure(figsize=(4, 3))
+    fig.add_subplot().plot([0, 1], [0, 1])
+    alone = f"<div class='jp-OutputArea'>{static_html(fig)}</div>"
+    beside = (f"<div class='jp-OutputArea'><div class='afm-live' data-frames='1'></div>"
+              f"{static_html(fig)}</div>")
+    page.set_content(f"<html><body>{alone}{beside}</body></html>")
+    page.wait_for_function("""Array.from(document.querySelectorAll('.afm-live-static')).every(
+        (c) => c.style.display === 'none' || c.querySelector('canvas'))""", timeout=10000)
+    shown = page.evaluate("""Array.from(document.querySelectorAll('.afm-live-static'))
+        .map((c) => getComputedStyle(c).display !== 'none' && c.querySelectorAll('canvas').length)""")
+    assert shown[0] >= 1 and shown[1] is False, shown

@@ -25,7 +25,7 @@ from ..plots.cantilever import (CantileverCurves, CantileverFigure, ModeShapesFi
                                 cantilever_curves)
 from ..validation import check_choice, check_finite, check_range
 from .controls import control
-from .panel import Panel
+from .panel import Panel, show_static
 
 __all__ = ["CantileverPanel", "CantileverState", "DEFAULTS", "SLIDERS"]
 
@@ -256,6 +256,7 @@ class CantileverPanel(Panel):
     def show_modes(self) -> None:
         """Display the mode shapes under the cell; every later slider move updates them."""
         display(self.modes_widget())
+        show_static(self.modes_fig)
 
     def redraw(self) -> None:
         """Send the figure and, once shown, the mode shapes to the browser (see

@@ -21,7 +21,8 @@ from matplotlib.figure import Figure
 
 from ..validation import check_choice, check_finite
 
-__all__ = ["Panel", "arrange", "check_control_value", "running_as_notebook", "setup_notebook"]
+__all__ = ["Panel", "arrange", "check_control_value", "running_as_notebook", "setup_notebook",
+           "show_static"]
 
 
 def running_as_notebook() -> bool:
@@ -295,24 +296,35 @@ class Panel:
         children = [box] if self.live is None else [box, self.live]
         return arrange(widgets.HBox(children))
 
-    def static_html(self) -> str:
-        """The panel's figure as a static page fragment (what an exported notebook shows)."""
-        from ..plots.live import static_html
-        return "" if self.fig is None or not self.fig.axes else static_html(self.fig)
-
     def show(self) -> None:
         """Display the panel (call as the last line of a notebook cell).
 
         The panel is laid out with :func:`arrange` (controls keep their width; the figure moves
         below them when the notebook is too narrow for both), with a line under it where a
-        failed update is reported. Beside the widget, the output holds the figure as static
-        HTML, which an exported notebook (nbconvert, the book) shows where no kernel runs.
+        failed update is reported; then :func:`show_static` adds the figure's static copy.
         """
         box = self._shown = widgets.VBox([arrange(self.widget()), self._error_box])
-        bundle = {"application/vnd.jupyter.widget-view+json": {
-            "version_major": 2, "version_minor": 0, "model_id": box.model_id},
-            "text/plain": repr(self), "text/html": self.static_html()}
-        display(bundle, raw=True)
+        display(box)
+        if self.fig is not None and self.fig.axes:
+            show_static(self.fig)
+
+
+def show_static(fig) -> None:
+    """Display ``fig``'s static copy, for the pages where no widget manager draws its live one.
+
+    An exported notebook (nbconvert, the book) or a saved one opened without a kernel cannot draw
+    a widget, and an export that stored the widgets' state draws them only with the network. The
+    copy is the same renderer with the frame embedded (:func:`afmsmiler.plots.live.static_html`);
+    where the live figure is drawn beside it (JupyterLab, voila), the copy hides itself.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A figure drawn live beside this output.
+    """
+    from ..plots.live import static_html
+    display({"text/html": static_html(fig),
+             "text/plain": "(the figure above, drawn without a kernel)"}, raw=True)
 
 
 def arrange(box: widgets.Widget) -> widgets.Widget:

@@ -539,10 +539,31 @@ function floats(view) {
   return new Float32Array(bytes);
 }
 
+// The static copy of a figure (static_html) sits beside its widget in the same output area, for the
+// pages where no widget manager runs (an export without network, a saved notebook without kernel).
+// Wherever the live figure is drawn, its static copy steps aside.
+function outputArea(node) {
+  return node.closest(".jp-OutputArea, .output_area, .output, .cell") || document.body;
+}
+
+function hideStaticCopies(node) {
+  for (const copy of outputArea(node).querySelectorAll(".afm-live-static")) {
+    copy.style.display = "none";
+  }
+}
+
+function liveBeside(node) {
+  for (const fig of outputArea(node).querySelectorAll(".afm-live")) {
+    if (!fig.closest(".afm-live-static")) return true;
+  }
+  return false;
+}
+
 // anywidget's entry point: a view of the LiveFigure widget
 function render({ model, el: host }) {
   const root = document.createElement("div");
   host.appendChild(root);
+  requestAnimationFrame(() => hideStaticCopies(host));
   const fig = new Figure(root);
   const show = () => fig.push(model.get("_layout"), model.get("_frame"), floats(model.get("_buffer")));
   model.on("change:_frame", show);
@@ -553,6 +574,8 @@ function render({ model, el: host }) {
 
 // a static page (an exported notebook, the book): the frame is embedded in the page
 function drawStatic(root, layout, frame, base64) {
+  const copy = root.closest(".afm-live-static") || root;
+  if (liveBeside(copy)) { copy.style.display = "none"; return null; }
   const s = atob(base64), bytes = new Uint8Array(s.length);
   for (let i = 0; i < s.length; i++) bytes[i] = s.charCodeAt(i);
   const fig = new Figure(root);
