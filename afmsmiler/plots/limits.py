@@ -167,7 +167,7 @@ def sticky_limits(current, low, high, *, log: bool = False, margin: float = DEFA
         if log:
             new_lo, new_hi = new_lo / 2.0, new_hi * 2.0
         else:
-            pad = max(abs(new_lo), 1.0) * 0.5
+            pad = 0.1 * abs(new_lo) or 1.0
             new_lo, new_hi = new_lo - pad, new_hi + pad
     return new_lo, new_hi
 
