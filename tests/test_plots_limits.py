@@ -124,7 +124,9 @@ def test_log_axes_work_in_decades():
 def test_non_finite_values_are_ignored_and_no_data_keeps_the_limits():
     assert sticky_limits((0.0, 1.0), math.nan, math.nan) == (0.0, 1.0)
     assert sticky_limits((0.0, 1.0), math.inf, -math.inf) == (0.0, 1.0)
-    assert sticky_limits((0.0, 1.0), math.nan, 0.5) == (0.0, 1.0)   # one end, inside
+    # one end ignored: the other is the data
+    assert sticky_limits((0.0, 1.0), math.nan, 0.5) == sticky_limits((0.0, 1.0), 0.5, 0.5)
+    assert sticky_limits((0.0, 1.0), 0.2, math.inf) == sticky_limits((0.0, 1.0), 0.2, 0.2)
     assert sticky_limits(None, math.nan, math.nan) == (0.0, 1.0)
     assert sticky_limits(None, math.nan, math.nan, log=True) == (1.0, 10.0)
     # unusable current limits: a first fit
