@@ -101,9 +101,11 @@ def test_all_zero_data_gets_the_floor_span():
     lo, hi = sticky_limits(None, 0.0, 0.0, floor=1e-3)
     assert lo < 0 < hi and hi - lo == pytest.approx(1e-3 * (1 + 2 * DEFAULTS["margin"]))
     assert sticky_limits((lo, hi), 0.0, 0.0, floor=1e-3) == (lo, hi)
-    # without a floor one value still gets a span around it
-    lo, hi = sticky_limits(None, 3.0, 3.0)
-    assert lo < 3.0 < hi
+    # without a floor one value still gets a span around it: 10 % of it, or 1 around 0
+    assert sticky_limits(None, 3.0, 3.0) == pytest.approx((2.7, 3.3))
+    assert sticky_limits(None, 0.0, 0.0) == (-1.0, 1.0)
+    assert sticky_limits(None, 1e-300, 1e-300)[0] < 1e-300 < sticky_limits(None, 1e-300,
+                                                                           1e-300)[1]
 
 
 def test_log_axes_work_in_decades():

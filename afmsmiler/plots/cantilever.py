@@ -202,7 +202,9 @@ class CantileverFigure:
             self.lines[key].set_data(L, y)
             self.lines[f"section_marker_{key}"].set_xdata([curves.section_x_um] * 2)
             ax = self.axes[key]
-            hold(ax, "x", 0.0, float(L[-1]), reset=reset, margin=0.0)
+            # from the clamp; a quarter of the length as room after a length change (not a
+            # half: beyond the longest lever on the slider the axis would be mostly empty)
+            hold(ax, "x", 0.0, float(L[-1]), reset=reset, margin=0.0, headroom=0.25)
             lo, hi = data_range(y, 0.0)
             hold(ax, "y", lo, hi, reset=reset, floor=floor)
         self.lines["section"].set_data(curves.section_stress_mpa, curves.z_b_um)
