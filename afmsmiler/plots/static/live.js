@@ -447,8 +447,11 @@ class Figure {
   build(layout) {
     for (const a of this.axes) a.destroy();
     this.root.innerHTML = "";
-    this.layout = layout;
-    const L = layout;
+    // a static page narrower than the figure (a book's column) gets the figure scaled to fit
+    const avail = this.fit && this.root.parentElement ? this.root.parentElement.clientWidth : 0;
+    const k = avail > 200 && avail < layout.width ? avail / layout.width : 1;
+    this.layout = Object.assign({}, layout, { width: layout.width * k, height: layout.height * k });
+    const L = this.layout;
     this.root.style.width = `${L.width}px`;
     this.header = el("div", "afm-live-header", this.root);
     this.suptitle = el("div", "afm-live-suptitle", this.header);
@@ -579,6 +582,7 @@ function drawStatic(root, layout, frame, base64) {
   const s = atob(base64), bytes = new Uint8Array(s.length);
   for (let i = 0; i < s.length; i++) bytes[i] = s.charCodeAt(i);
   const fig = new Figure(root);
+  fig.fit = true;
   fig.draw(layout, frame, new Float32Array(bytes.buffer));
   return fig;
 }
