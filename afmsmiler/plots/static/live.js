@@ -86,6 +86,25 @@ function markerPath(xKey, yKey, marker, size) {
   };
 }
 
+// a legend's entries as HTML, rebuilt only when they change
+function legendHtml(box, entries, owner) {
+  const key = JSON.stringify(entries);
+  if (box.dataset.key === key) return;
+  box.dataset.key = key;
+  box.innerHTML = "";
+  for (const e of entries) {
+    const item = el("span", "afm-live-key", box);
+    const sw = el("span", "afm-live-swatch", item);
+    if (e.marker && !e.line) {
+      sw.textContent = e.marker === "x" ? "\u00d7" : e.marker === "+" ? "+" : "\u25cf";
+      sw.style.color = e.color;
+    } else {
+      sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
+    }
+    el("span", "", item).textContent = e.label;
+  }
+}
+
 // -- one axes: a uPlot with its title above and its legend below ---------------------------------
 
 // tick labels: plain decimals, exponents for the very small and large (uPlot's own wrote 1e-4 as 0)
@@ -217,24 +236,14 @@ class Axes {
   update(frame, buf) {
     this.frame = frame;
     const s = this.spec;
-    // title, legend (HTML), axis labels and ticks
-    this.title.innerHTML = "";
-    if (frame.title) {
-      this.title.textContent = frame.title.text;
-      this.title.style.color = frame.title.color || "";
+    // title and legend (HTML), touched only when they change: the page's layout stays put
+    const title = frame.title ? frame.title.text : "", color = frame.title ? frame.title.color : "";
+    if (title !== this.shownTitle || color !== this.shownColor) {
+      this.title.textContent = title;
+      this.title.style.color = color || "";
+      this.shownTitle = title; this.shownColor = color;
     }
-    this.legend.innerHTML = "";
-    for (const e of frame.legend || []) {
-      const item = el("span", "afm-live-key", this.legend);
-      const sw = el("span", "afm-live-swatch", item);
-      if (e.marker && !e.line) {
-        sw.textContent = e.marker === "x" ? "\u00d7" : e.marker === "+" ? "+" : "\u25cf";
-        sw.style.color = e.color;
-      } else {
-        sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
-      }
-      el("span", "", item).textContent = e.label;
-    }
+    legendHtml(this.legend, frame.legend || [], this);
     const keys = [["x", 0], ["y", 1]];
     if (s.y2) keys.push(["y2", 2]);
     if (s.x2) keys.push(["x2", s.y2 ? 3 : 2]);
@@ -468,6 +477,23 @@ class Figure {
     });
   }
 
+  // the heights of the texts around the plots (0 while the figure is not in the page yet)
+  chromeHeights() {
+    return [this.header.offsetHeight, ...this.axes.map((a) => a.title.offsetHeight + a.legend.offsetHeight)].join();
+  }
+
+  // shown after it was drawn detached (a collapsed output, a tab shown later): measure again
+  watch() {
+    if (this.observer || typeof ResizeObserver === "undefined") return;
+    this.observer = new ResizeObserver(() => {
+      if (!this.last || this.chromeHeights() === this.measured) return;
+      this.measured = this.chromeHeights();
+      this.resize();
+      this.last[1].axes.forEach((f, i) => this.axes[i].update(f, this.last[2]));
+    });
+    this.observer.observe(this.root);
+  }
+
   resize() {
     const L = this.layout;
     const headerH = this.header.offsetHeight;
@@ -518,19 +544,16 @@ class Figure {
     const rebuilt = key !== this.layoutKey;
     if (rebuilt) { this.build(layout); this.layoutKey = key; }
     this.suptitle.textContent = frame.suptitle || "";
-    this.figLegend.innerHTML = "";
-    for (const e of frame.legend || []) {
-      const item = el("span", "afm-live-key", this.figLegend);
-      const sw = el("span", "afm-live-swatch", item);
-      sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
-      el("span", "", item).textContent = e.label;
-    }
+    legendHtml(this.figLegend, frame.legend || [], this);
     // titles and legends first: their heights set the plots' sizes
     frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
-    if (rebuilt) {
+    const heights = this.chromeHeights();
+    if (rebuilt || heights !== this.measured) {
+      this.measured = heights;
       this.resize();
       frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
     }
+    this.last = [layout, frame, buffer];
     this.root.dataset.frames = String(Number(this.root.dataset.frames) + 1);
     this.root.dataset.seq = String(frame.seq);
   }
@@ -568,11 +591,16 @@ function render({ model, el: host }) {
   host.appendChild(root);
   requestAnimationFrame(() => hideStaticCopies(host));
   const fig = new Figure(root);
+  fig.watch();
   const show = () => fig.push(model.get("_layout"), model.get("_frame"), floats(model.get("_buffer")));
   model.on("change:_frame", show);
   // the first frame once the element is in the page (sizes are measured)
   requestAnimationFrame(show);
-  return () => { model.off("change:_frame", show); for (const a of fig.axes) a.destroy(); };
+  return () => {
+    model.off("change:_frame", show);
+    if (fig.observer) fig.observer.disconnect();
+    for (const a of fig.axes) a.destroy();
+  };
 }
 
 // a static page (an exported notebook, the book): the frame is embedded in the page
