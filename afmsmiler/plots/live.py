@@ -237,6 +237,14 @@ def _patches(ax):
     return spans
 
 
+def _lut(cmap, luts):
+    """Put ``cmap`` into ``luts`` as 256 RGB bytes (base64), once per figure; return it."""
+    if cmap.name not in luts:
+        rgb = (cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
+        luts[cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+    return cmap
+
+
 def _images(ax, packer, luts):
     layout, frame = [], []
     for im in ax.images:
@@ -245,10 +253,7 @@ def _images(ax, packer, luts):
             raise NotImplementedError("a live figure shows 2-D height maps (with a colour map), "
                                       f"not arrays of shape {a.shape}")
         im.norm.autoscale_None(a)
-        cmap = im.get_cmap()
-        if cmap.name not in luts:
-            rgb = (cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
-            luts[cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+        cmap = _lut(im.get_cmap(), luts)
         layout.append({"cmap": cmap.name})
         frame.append(dict(data=packer.add(_floats(a)), shape=list(a.shape), cmap=cmap.name,
                           extent=[_num(v) for v in im.get_extent()], origin=im.origin,
@@ -379,9 +384,7 @@ def describe(fig: Figure) -> Description:
             la["colorbar"] = True
             fa["colorbar"] = dict(label=cb.ax.get_ylabel(), cmap=cb.cmap.name,
                                   vmin=_num(cb.norm.vmin), vmax=_num(cb.norm.vmax))
-            if cb.cmap.name not in luts:
-                rgb = (cb.cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
-                luts[cb.cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+            _lut(cb.cmap, luts)
         layout_axes.append(la)
         frame_axes.append(fa)
     unplaced = set(colorbars) - {id(ax) for ax in hosts}
