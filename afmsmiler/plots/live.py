@@ -25,6 +25,7 @@ from functools import lru_cache
 from pathlib import Path
 
 import anywidget
+import ipywidgets as widgets
 import numpy as np
 import traitlets
 from matplotlib import colors as mcolors
@@ -423,12 +424,43 @@ class LiveFigure(anywidget.AnyWidget):
     _layout = traitlets.Dict().tag(sync=True)
     _frame = traitlets.Dict().tag(sync=True)
     _buffer = traitlets.Bytes().tag(sync=True)
+    #: Sliders whose every step the browser forwards (see :meth:`link`), by name.
+    _controls = traitlets.Dict().tag(sync=True, **widgets.widget_serialization)
 
     def __init__(self, figure: Figure, **kwargs):
         super().__init__(**kwargs)
         self.figure = check_instance("figure", figure, Figure)
         self.frames_sent = 0
+        self._on_control = None
+        self.on_msg(self._handle_message)
         self.sync()
+
+    def link(self, controls: dict, on_control) -> None:
+        """Have the browser forward every step of ``controls`` to ``on_control(name, value)``.
+
+        ipywidgets keeps one update of a widget in flight and merges the moves made meanwhile,
+        so a quick drag reached the kernel a few times in 15 steps. Linked sliders send each value
+        they take in the browser as a message of this widget, which is not merged, and
+        ``on_control`` runs the model for it; the slider's own (merged) update still arrives and
+        finds its value applied. Only sliders are linked (a drop-down syncs an index).
+
+        Parameters
+        ----------
+        controls : dict
+            Name -> widget; the sliders among them are linked.
+        on_control : callable
+            Called as ``on_control(name, value)`` for each step, in the order of the steps.
+        """
+        if not callable(on_control):
+            raise TypeError(f"on_control must be callable, got {on_control!r}")
+        sliders = (widgets.FloatSlider, widgets.FloatLogSlider, widgets.IntSlider)
+        self._on_control = on_control
+        self._controls = {name: c for name, c in controls.items() if isinstance(c, sliders)}
+
+    def _handle_message(self, _widget, content, _buffers) -> None:
+        if (self._on_control is not None and isinstance(content, dict)
+                and content.get("control") in self._controls and "value" in content):
+            self._on_control(content["control"], content["value"])
 
     def sync(self) -> Description:
         """Send the figure's current state to the browser as one message; return it.

@@ -615,5 +615,25 @@ function drawStatic(root, layout, frame, base64) {
   return fig;
 }
 
-export default { render };
+// Every step of a slider reaches the kernel: ipywidgets keeps one update of a widget in flight
+// and merges the moves made meanwhile, so a quick drag reached the model 3 times in 15 steps.
+// The controls the kernel links (LiveFigure.link) send each new value as a custom message of this
+// widget, which is not merged; the kernel runs the model for each and this view paints each frame.
+// Linked once per model (not per view), in anywidget's initialize.
+function initialize({ model }) {
+  const cleanup = [];
+  const manager = model.widget_manager;
+  const refs = model.get("_controls") || {};
+  for (const [name, ref] of Object.entries(refs)) {
+    if (!manager || typeof ref !== "string") continue;
+    manager.get_model(ref.replace(/^IPY_MODEL_/, "")).then((control) => {
+      const send = () => model.send({ control: name, value: control.get("value") });
+      control.on("change:value", send);
+      cleanup.push(() => control.off("change:value", send));
+    }).catch((e) => console.warn("afmsmiler: a control of the live figure is missing", e));
+  }
+  return () => cleanup.forEach((f) => f());
+}
+
+export default { initialize, render };
 export { drawStatic };
