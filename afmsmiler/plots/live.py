@@ -45,7 +45,6 @@ _PX = DPI / 72  # px per point (line widths, marker and font sizes are given in 
 #: Largest buffer one frame may send (float32 values): 4 M values, 16 MB, about 0.1 s on loopback.
 MAX_VALUES = 4_000_000
 
-_DASHES = {"--": [3.7, 1.6], ":": [1.0, 1.65], "-.": [6.4, 1.6, 1.0, 1.6]}  # matplotlib's, in lw
 _MARKERS = {"o", ".", "x", "+", "s", "D", "^", "v"}
 
 
@@ -114,11 +113,11 @@ def _kind(artist, ax) -> str:
 
 
 def _linestyle(line):
-    ls = line.get_linestyle()
-    if ls in ("None", "none", "", " "):
+    """None (no line), [] (solid) or the dash pattern in px (matplotlib's, scaled with the width)."""
+    if line.get_linestyle() in ("None", "none", "", " "):
         return None
-    lw = line.get_linewidth()
-    return [d * lw * _PX for d in _DASHES[ls]] if ls in _DASHES else []
+    _offset, seq = line._dash_pattern  # in points, already scaled by the line width
+    return [] if not seq else [float(d) * _PX for d in seq]
 
 
 def _line_specs(line, axis, packer):
@@ -127,20 +126,24 @@ def _line_specs(line, axis, packer):
     marker = line.get_marker()
     marker = None if marker in (None, "None", "none", "", " ") else str(marker)
     if marker is not None and marker not in _MARKERS:
-        marker = "o"
+        raise NotImplementedError(f"{line!r}: a live figure draws the markers {sorted(_MARKERS)}, "
+                                  f"not {marker!r}")
     dash = _linestyle(line)
     label = line.get_label()
     label = "" if label.startswith("_") else label
-    refs = {"x": packer.add(_floats(line.get_xdata())), "y": packer.add(_floats(line.get_ydata()))}
+    refs = {"x": packer.add(_floats(line.get_xdata())), "y": packer.add(_floats(line.get_ydata())),
+            "label": label}  # labels change with the data (the mode shapes' frequencies)
     layout, frame = [], []
-    base = dict(color=color, axis=axis, label=label, visible=bool(line.get_visible()))
+    base = dict(color=color, axis=axis, visible=bool(line.get_visible()))
     if dash is not None:
         layout.append(dict(base, width=line.get_linewidth() * _PX, dash=dash or None,
                            marker=None, line=True))
         frame.append(refs)
     if marker is not None:
         size = line.get_markersize() * (0.5 if marker == "." else 1.0)
-        layout.append(dict(base, marker=marker, size=size, line=False,
+        layout.append(dict(base, color=_color(line.get_markeredgecolor(), line.get_alpha()),
+                           fill=_color(line.get_markerfacecolor(), line.get_alpha()),
+                           marker=marker, size=size, line=False,
                            filled=marker not in ("x", "+") and line.get_fillstyle() != "none",
                            edge=line.get_markeredgewidth() * _PX, width=1.0, dash=None))
         frame.append(refs)
@@ -153,7 +156,8 @@ def _axis(ax, which: str) -> tuple[dict, dict]:
     scale = axis.get_scale()
     if scale not in ("linear", "log", "symlog"):
         raise NotImplementedError(f"a live figure shows linear, log and symlog axes, not {scale!r}")
-    layout = {"scale": scale, "grid": bool(axis._major_tick_kw.get("gridOn", False))}
+    layout = {"scale": scale, "grid": bool(axis._major_tick_kw.get("gridOn", False)),
+              "show": bool(ax.axison and axis.get_visible())}
     label = axis.label
     frame = {"label": label.get_text() if label.get_visible() else "",
              "color": _color(label.get_color()), "lim": [_num(lo), _num(hi)]}
@@ -194,6 +198,8 @@ def _texts(ax):
         kind = _kind(t, ax)
         if kind not in ("data", "axes"):
             raise NotImplementedError(f"{t!r}: texts are placed in data or axes coordinates")
+        if t.get_rotation() % 360:
+            raise NotImplementedError(f"{t!r}: a live figure draws texts unrotated")
         x, y = t.get_position()
         out.append(dict(text=t.get_text(), x=_num(x), y=_num(y), coords=kind,
                         color=_color(t.get_color()), ha=t.get_horizontalalignment(),
@@ -322,7 +328,8 @@ def describe(fig: Figure) -> Description:
         host = next((h for h in hosts if h.get_subplotspec() == ss), None)
         if host is None:
             hosts.append(ax)
-        elif host in ax._twinned_axes.get_siblings(ax) and id(host) not in twins:
+        elif (host in ax._twinned_axes.get_siblings(ax) and id(host) not in twins
+              and host.get_shared_x_axes().joined(host, ax)):
             twins[id(host)] = ax
         else:
             raise NotImplementedError(f"{ax!r} shares its place with another axes")
@@ -335,6 +342,8 @@ def describe(fig: Figure) -> Description:
         ss = ax.get_subplotspec()
         if ss.get_gridspec() is not gs:
             raise NotImplementedError("a live figure's axes must share one grid")
+        if ax._left_title.get_text() or ax._right_title.get_text():
+            raise NotImplementedError(f"{ax!r}: a live figure shows centred titles only")
         xl, xf = _axis(ax, "x")
         yl, yf = _axis(ax, "y")
         la = dict(row=ss.rowspan.start, rowspan=len(ss.rowspan), col=ss.colspan.start,
@@ -356,7 +365,9 @@ def describe(fig: Figure) -> Description:
         for member, axis in members:
             if not member.get_visible():
                 continue
-            for line in member.lines:
+            data_lines = [(ln.get_zorder(), i) for i, ln in enumerate(member.lines)
+                          if _kind(ln, member) == "data"]
+            for index, line in enumerate(member.lines):
                 kind = _kind(line, member)
                 if kind == "data":
                     lay, fr = _line_specs(line, axis, packer)
@@ -369,7 +380,9 @@ def describe(fig: Figure) -> Description:
                                            **{"from": _num(min(a, b)), "to": _num(max(a, b))},
                                            color=_color(line.get_color(), line.get_alpha()),
                                            width=line.get_linewidth() * _PX,
-                                           dash=_linestyle(line) or None))
+                                           dash=_linestyle(line) or None,
+                                           over=any((line.get_zorder(), index) > d
+                                                    for d in data_lines)))
                 elif kind not in ("v", "h"):
                     raise NotImplementedError(f"{line!r}: a line in axes coordinates")
             fa["texts"] += _texts(member)

@@ -13,7 +13,8 @@
 //
 // This file holds no physics: every number comes from the kernel.
 
-const PX = 100 / 72; // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
+const PX = 100 / 72;
+const MAX_PENDING = 30; // frames waiting to be painted, one per animation frame (0.5 s at 60 Hz) // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
 
 function el(tag, cls, parent) {
   const e = document.createElement(tag);
@@ -86,6 +87,20 @@ function markerPath(xKey, yKey, marker, size) {
   };
 }
 
+// An axis label on one line (uPlot draws one), its font shrunk so that it fits the axis' length.
+const measure = document.createElement("canvas").getContext("2d");
+function fitLabel(axis, text, length) {
+  const line = text.replace(/\s*\n\s*/g, " ");
+  measure.font = font(12);
+  const width = measure.measureText(line).width;
+  const size = length > 0 && width > length ? Math.max(8, Math.floor(12 * length / width)) : 12;
+  const css = font(size), px = Math.round(size * devicePixelRatio);
+  if (axis.labelFont[0] !== css.replace(/(\d+)px/, `${px}px`)) {
+    axis.labelFont = [css.replace(/(\d+)px/, `${px}px`), px, size];
+  }
+  return line;
+}
+
 // a legend's entries as HTML, rebuilt only when they change
 function legendHtml(box, entries, owner) {
   const key = JSON.stringify(entries);
@@ -107,19 +122,53 @@ function legendHtml(box, entries, owner) {
 
 // -- one axes: a uPlot with its title above and its legend below ---------------------------------
 
-// tick labels: plain decimals, exponents for the very small and large (uPlot's own wrote 1e-4 as 0)
-function fmtTick(v) {
+// Tick labels. uPlot's own kept 3 decimals and the browser's locale ("-0" at F = 0, "0,5",
+// "-4,000"); these are plain decimals with as many digits as the tick step needs, and exponents
+// for the very small and large.
+function fmtTick(v, step) {
   if (v == null || !Number.isFinite(v)) return "";
   const a = Math.abs(v);
-  if (a !== 0 && (a < 1e-3 || a >= 1e5)) {
-    return v.toExponential().replace(/\.?0+e/, "e").replace("e+", "e");
+  if (a !== 0 && (a < 1e-3 || a >= 1e5) && !(step && a >= 1e5 && step >= 1)) {
+    const digits = step && a > 0 ? Math.max(0, Math.min(6, Math.floor(Math.log10(a)) - Math.floor(Math.log10(step)))) : 3;
+    return v.toExponential(digits).replace(/\.?0+e/, "e").replace("e+", "e");
   }
-  return String(+v.toPrecision(6));
+  const decimals = step > 0 ? Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9))) : 6;
+  const text = step > 0 ? v.toFixed(decimals) : String(+v.toPrecision(6));
+  return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;
 }
 
 function isDecade(v) {
   const e = Math.log10(Math.abs(v));
   return Number.isFinite(e) && Math.abs(e - Math.round(e)) < 1e-9;
+}
+
+// Ticks of a log axis between min and max: every decade (labelled every k-th, k the same for
+// all, so that labels fit) with 2..9 between them when few decades show. uPlot's own loop hung
+// the page (34 s) for a lower limit just below a power of ten.
+function logSplits(min, max) {
+  if (!(min > 0 && max > min)) return [];
+  const lo = Math.floor(Math.log10(min)), hi = Math.ceil(Math.log10(max));
+  const decades = Math.min(hi - lo, 300), minor = decades <= 8, out = [];
+  for (let e = lo; e <= lo + decades; e++) {
+    for (let m = 1; m <= (minor ? 9 : 1); m++) {
+      const v = m * Math.pow(10, e);
+      if (v >= min * (1 - 1e-12) && v <= max * (1 + 1e-12)) out.push(v);
+    }
+  }
+  return out;
+}
+
+function logLabels(u, key, splits) {
+  const decades = splits.filter(isDecade);
+  const horizontal = u.scales[key].ori === 0;
+  const length = horizontal ? u.bbox.width / devicePixelRatio : u.bbox.height / devicePixelRatio;
+  const room = horizontal ? 42 : 16;
+  const k = Math.max(1, Math.ceil(decades.length * room / Math.max(length, 1)));
+  return splits.map((v) => {
+    if (!isDecade(v)) return "";
+    const e = Math.round(Math.log10(v));
+    return e % k === 0 ? fmtTick(v) : "";
+  });
 }
 
 // drop the labels that would overlap the one shown before them
@@ -174,12 +223,13 @@ class Axes {
       const xKey = "x", yKey = sr.axis === "y2" ? "y2" : "y";
       const marker = sr.marker;
       const o = {
-        label: sr.label || "", stroke: sr.color, width: sr.width, dash: sr.dash || undefined,
+        label: "", stroke: sr.color, width: sr.width,
+        dash: sr.dash ? sr.dash.map((d) => d * devicePixelRatio) : undefined,
         show: sr.visible !== false, spanGaps: false, points: { show: false },
         facets: [{ scale: xKey, auto: false }, { scale: yKey, auto: false }],
         paths: marker ? markerPath(xKey, yKey, marker, sr.size) : linePath(xKey, yKey),
       };
-      if (marker && sr.filled) o.fill = sr.color;
+      if (marker && sr.filled) o.fill = sr.fill || sr.color;
       if (marker && !sr.line) { o.width = Math.max(sr.edge || 1, 1); o.dash = undefined; }
       series.push(o);
     }
@@ -191,7 +241,7 @@ class Axes {
         facets: [{ scale: "x", auto: false }, { scale: "y", auto: false }], paths: linePath("x", "y") });
     }
     const scales = { x: scaleOpts(s.x), y: scaleOpts(s.y) };
-    const axes = [axisOpts("x", 2, s.x, true), axisOpts("y", 3, s.y, true)];
+    const axes = [axisOpts("x", 2, s.x, s.x.show !== false), axisOpts("y", 3, s.y, s.y.show !== false)];
     if (s.y2) { scales.y2 = scaleOpts(s.y2); axes.push(axisOpts("y2", 1, s.y2, s.y2.visible !== false)); }
     if (s.x2) { scales.x2 = { time: false, auto: false, ori: 0, range: exactRange }; axes.push(axisOpts("x2", 0, s.x2, true)); }
     const self = this;
@@ -201,8 +251,8 @@ class Axes {
       select: { show: false },
       hooks: {
         drawClear: [(u) => self.drawUnder(u)],
-        drawAxes: [(u) => self.drawRefs(u)],
-        draw: [(u) => self.drawOver(u)],
+        drawAxes: [(u) => self.drawRefs(u, false)],
+        draw: [(u) => { self.drawRefs(u, true); self.drawFrame(u); self.drawOver(u); }],
       },
     }, [null, ...series.slice(1).map(() => [[], []])], this.plotBox);
     // uPlot's own tick placement and labels, for the axes whose ticks the kernel leaves free
@@ -250,19 +300,24 @@ class Axes {
     for (const [key, i] of keys) {
       const axis = frame.axes[key];
       const a = this.u.axes[i], [splits, values] = this.tickDefaults[i];
-      a.label = axis.label || "";
+      const horizontal = key === "x" || key === "x2";
+      const length = (horizontal ? this.u.bbox.width : this.u.bbox.height) / devicePixelRatio;
+      a.label = fitLabel(a, axis.label || "", length);
       a.stroke = () => axis.color || "#222";
-      // ticks the kernel chose (a FixedLocator), with its labels; else uPlot's own
       const scale = (s[key] && s[key].scale) || "linear";
       if (scale === "symlog") this.u.scales[key].asinh = axis.linthresh || 1;
-      a.splits = axis.ticks ? () => axis.ticks : splits;
+      // ticks the kernel chose (a FixedLocator) with its labels; log axes by decades; else
+      // uPlot's placement with our labels
       if (axis.ticks) {
-        const labels = axis.ticklabels || axis.ticks.map(fmtTick);
+        const labels = axis.ticklabels || axis.ticks.map((v) => fmtTick(v));
+        a.splits = () => axis.ticks;
         a.values = (u, sp) => thin(u, key, sp, labels);
       } else if (scale === "log") {
-        a.values = (u, sp) => thin(u, key, sp, sp.map((v) => (isDecade(v) ? fmtTick(v) : "")));
+        a.splits = (u, ai, min, max) => logSplits(min, max);
+        a.values = (u, sp) => logLabels(u, key, sp);
       } else {
-        a.values = values;
+        a.splits = splits;
+        a.values = (u, sp, ai, space, incr) => thin(u, key, sp, sp.map((v) => fmtTick(v, incr)));
       }
     }
     // data
@@ -277,7 +332,12 @@ class Axes {
     if (s.aspect === "equal") this.equalAspect(lim);
     this.u.batch(() => {
       this.u.setData(data, false);
-      for (const key in lim) this.u.setScale(key, { min: lim[key][0], max: lim[key][1] });
+      for (const key in lim) {
+        // a reversed pair of limits (set_xlim(1, 0)) runs the axis the other way
+        const [a, b] = lim[key];
+        this.u.scales[key].dir = a > b ? -1 : 1;
+        this.u.setScale(key, { min: Math.min(a, b), max: Math.max(a, b) });
+      }
       this.u.redraw(false, true);
     });
     if (this.cb && frame.colorbar) {
@@ -366,14 +426,15 @@ class Axes {
     return u.valToPos(Math.max(lo, Math.min(hi, v)), key, true);
   }
 
-  // reference lines: over the grid, under the curves
-  drawRefs(u) {
+  // reference lines, under the curves or over them (as matplotlib stacks them: zorder, order)
+  drawRefs(u, over) {
     const f = this.frame;
     if (!f) return;
     const ctx = u.ctx, bb = u.bbox, r = devicePixelRatio;
     ctx.save();
     ctx.beginPath(); ctx.rect(bb.left, bb.top, bb.width, bb.height); ctx.clip();
     for (const ln of f.refs || []) {
+      if (!!ln.over !== over) continue;
       ctx.strokeStyle = ln.color; ctx.lineWidth = ln.width * r;
       ctx.setLineDash((ln.dash || []).map((d) => d * r));
       ctx.beginPath();
@@ -386,6 +447,16 @@ class Axes {
       }
       ctx.stroke();
     }
+    ctx.restore();
+  }
+
+  // the axes' frame (matplotlib's spines)
+  drawFrame(u) {
+    if (this.spec.x.show === false && this.spec.y.show === false) return;
+    const ctx = u.ctx, bb = u.bbox, r = devicePixelRatio;
+    ctx.save();
+    ctx.strokeStyle = "#000"; ctx.lineWidth = 0.8 * r; ctx.setLineDash([]);
+    ctx.strokeRect(bb.left, bb.top, bb.width, bb.height);
     ctx.restore();
   }
 
@@ -515,6 +586,9 @@ class Figure {
   // a frame from the kernel: draw it now, or at the next animation frame if one was just painted
   push(layout, frame, buffer) {
     this.pending.push([layout, frame, buffer]);
+    // every frame is painted while the page keeps up; a backlog longer than half a second
+    // (a hidden page, a burst) is cut to the newest frame
+    if (this.pending.length > MAX_PENDING || document.hidden) this.pending = this.pending.slice(-1);
     if (!this.paintedThisFrame) this.drain();
     else this.schedule();
   }
@@ -569,17 +643,23 @@ function floats(view) {
 // pages where no widget manager runs (an export without network, a saved notebook without kernel).
 // Wherever the live figure is drawn, its static copy steps aside.
 function outputArea(node) {
-  return node.closest(".jp-OutputArea, .output_area, .output, .cell") || document.body;
+  return node.isConnected ? node.closest(".jp-OutputArea, .output_area, .output, .cell") : null;
 }
 
-function hideStaticCopies(node) {
-  for (const copy of outputArea(node).querySelectorAll(".afm-live-static")) {
-    copy.style.display = "none";
+// hide the static copies of this output area once the view is in the page (a few tries)
+function hideStaticCopies(node, tries = 60) {
+  const area = outputArea(node);
+  if (!area) {
+    if (tries > 0) requestAnimationFrame(() => hideStaticCopies(node, tries - 1));
+    return;
   }
+  for (const copy of area.querySelectorAll(".afm-live-static")) copy.style.display = "none";
 }
 
 function liveBeside(node) {
-  for (const fig of outputArea(node).querySelectorAll(".afm-live")) {
+  const area = outputArea(node);
+  if (!area) return false;
+  for (const fig of area.querySelectorAll(".afm-live")) {
     if (!fig.closest(".afm-live-static")) return true;
   }
   return false;
