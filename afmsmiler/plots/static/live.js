@@ -126,15 +126,27 @@ function legendHtml(box, entries, owner) {
 // "-4,000"); these are plain decimals with as many digits as the tick step needs, and exponents
 // for the very small and large.
 function fmtTick(v, step) {
-  if (v == null || !Number.isFinite(v)) return "";
-  const a = Math.abs(v);
-  if (a !== 0 && (a < 1e-3 || a >= 1e5) && !(step && a >= 1e5 && step >= 1)) {
-    const digits = step && a > 0 ? Math.max(0, Math.min(6, Math.floor(Math.log10(a)) - Math.floor(Math.log10(step)))) : 3;
-    return v.toExponential(digits).replace(/\.?0+e/, "e").replace("e+", "e");
-  }
-  const decimals = step > 0 ? Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9))) : 6;
-  const text = step > 0 ? v.toFixed(decimals) : String(+v.toPrecision(6));
-  return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;
+  return fmtTicks([v], step)[0];
+}
+
+// one format for all the labels of an axis: decimals with the digits of the step, or, for steps
+// below 1e-3 and values from 1e5, exponents with the mantissa digits of the step
+function fmtTicks(values, step) {
+  const finite = values.filter((v) => v != null && Number.isFinite(v));
+  const big = Math.max(0, ...finite.map(Math.abs));
+  if (!(step > 0)) step = finite.length > 1 ? Math.abs(finite[1] - finite[0]) : big || 1;
+  const exponent = step < 1e-3 || big >= 1e5;
+  return values.map((v) => {
+    if (v == null || !Number.isFinite(v)) return "";
+    if (Math.abs(v) < 1e-9 * step) return "0";
+    if (exponent) {
+      const digits = Math.max(0, Math.min(6, Math.floor(Math.log10(Math.abs(v))) - Math.floor(Math.log10(step) + 1e-9)));
+      return v.toExponential(digits).replace(/\.?0+e/, "e").replace("e+", "e");
+    }
+    const decimals = Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9)));
+    const text = v.toFixed(decimals);
+    return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;
+  });
 }
 
 function isDecade(v) {
@@ -317,7 +329,7 @@ class Axes {
         a.values = (u, sp) => logLabels(u, key, sp);
       } else {
         a.splits = splits;
-        a.values = (u, sp, ai, space, incr) => thin(u, key, sp, sp.map((v) => fmtTick(v, incr)));
+        a.values = (u, sp, ai, space, incr) => thin(u, key, sp, fmtTicks(sp, incr));
       }
     }
     // data
