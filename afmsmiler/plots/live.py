@@ -13,6 +13,23 @@ fast charting library shipped in ``static/`` (fetched and hash-checked by ``tool
 No physics here and none in the browser: every number comes from the figure's artists.
 
 Artists this cannot show raise ``NotImplementedError`` naming them (nothing is dropped silently).
+
+A panel links its sliders (:meth:`LiveFigure.link`): the browser then forwards every step of a
+drag to the kernel as a message of the figure (ipywidgets itself merges the moves made while one
+update is in flight), and paints every frame that comes back, one per animation frame.
+
+Examples
+--------
+A module's panel (``Panel.redraw`` does this for every panel):
+
+>>> from matplotlib.figure import Figure
+>>> fig = Figure(figsize=(4, 3))
+>>> line, = fig.add_subplot().plot([0.0, 1.0], [0.0, 1.0])
+>>> live = LiveFigure(fig)           # display it as any widget
+>>> line.set_ydata([0.0, 2.0])       # the figure class updates its artists ...
+>>> d = live.sync()                  # ... and one message carries the new frame
+>>> live.frames_sent, d.values(d.frame["axes"][0]["series"][0]["y"]).tolist()
+(2, [0.0, 2.0])
 """
 from __future__ import annotations
 
