@@ -713,18 +713,25 @@ function drawStatic(root, layout, frame, base64) {
 // widget, which is not merged; the kernel runs the model for each and this view paints each frame.
 // Linked once per model (not per view), in anywidget's initialize.
 function initialize({ model }) {
-  const cleanup = [];
-  const manager = model.widget_manager;
-  const refs = model.get("_controls") || {};
-  for (const [name, ref] of Object.entries(refs)) {
-    if (!manager || typeof ref !== "string") continue;
-    manager.get_model(ref.replace(/^IPY_MODEL_/, "")).then((control) => {
-      const send = () => model.send({ control: name, value: control.get("value") });
-      control.on("change:value", send);
-      cleanup.push(() => control.off("change:value", send));
-    }).catch((e) => console.warn("afmsmiler: a control of the live figure is missing", e));
-  }
-  return () => cleanup.forEach((f) => f());
+  let cleanup = [];
+  const unlink = () => { cleanup.forEach((f) => f()); cleanup = []; };
+  // (re)link whenever the kernel names the controls: it may do so after the model was made
+  const link = () => {
+    unlink();
+    const manager = model.widget_manager, refs = model.get("_controls") || {}, mine = cleanup;
+    for (const [name, ref] of Object.entries(refs)) {
+      if (!manager || typeof ref !== "string") continue;
+      manager.get_model(ref.replace(/^IPY_MODEL_/, "")).then((control) => {
+        if (mine !== cleanup) return; // relinked meanwhile
+        const send = () => model.send({ control: name, value: control.get("value") });
+        control.on("change:value", send);
+        cleanup.push(() => control.off("change:value", send));
+      }).catch((e) => console.warn("afmsmiler: a control of the live figure is missing", e));
+    }
+  };
+  model.on("change:_controls", link);
+  link();
+  return () => { model.off("change:_controls", link); unlink(); };
 }
 
 export default { initialize, render };
