@@ -566,3 +566,21 @@ def test_a_big_move_rescales_the_force_curve_and_keeps_it_inside():
             assert x0 <= x.min() and x.max() <= x1 and y0 <= y.min() and y.max() <= y1, values
         assert y0 < 0.0 < y1
         before = after
+
+
+def test_a_forwarded_drag_of_z_np_never_sends_an_older_step_back():
+    # During a drag the browser forwards each Z_np step before the slider's own (merged) update
+    # reaches the kernel; the panel set the kernel's stale copy of the slider to the value it
+    # drew, which reached the browser as an older step: the slider jumped back and forth.
+    p = ContactPanel(scene=False)
+    z = p.controls["z_np"]
+    sent = []
+    z.observe(lambda change: sent.append(change["new"]), names="value")
+    start = z.value
+    steps = [start + k * z.step for k in range(1, 6)]
+    for v in steps:
+        p._from_browser("z_np", v)
+    assert float(p.last.current.z_np[0]) == pytest.approx(steps[-1] * 1e-9)  # the model ran for the last step
+    assert sent == []  # and the kernel sent the slider no value of its own
+    p._from_browser("z_np", z.max + 10 * z.step)  # beyond the slider: ignored as input
+    assert sent == [] and float(p.last.current.z_np[0]) == pytest.approx(steps[-1] * 1e-9)

@@ -190,17 +190,24 @@ class ContactPanel(Panel):
         self.controls["adhesion"].disabled = not adhesive
         self.controls["work_of_adhesion"].disabled = not adhesive
 
-    def _set_z_np_range(self, low: float, high: float, value: float) -> None:
-        """Move the Z_np slider's ends and value (nm) without triggering an update."""
+    def _set_z_np_range(self, low: float, high: float, value: float, clipped: bool) -> None:
+        """Move the Z_np slider's ends (nm) without triggering an update, and its value where the
+        model moved it (``clipped``) or the new ends would.
+
+        Otherwise the value is left alone: during a drag the browser forwards each step before the
+        slider's own (merged) update reaches the kernel, so the kernel's copy of the value lags the
+        student's; setting it sent an older step back and the slider jumped back and forth.
+        """
         z = self.controls["z_np"]
         hold, self._hold = self._hold, True
         try:  # ipywidgets clamps the value into the new range; keep min < max throughout
-            if (z.min, z.max) != (low, high):
+            moved = (z.min, z.max) != (low, high)
+            if moved:
                 if low < z.max:
                     z.min, z.max = low, high
                 else:
                     z.max, z.min = high, low
-            if z.value != value:
+            if (clipped or moved) and z.value != value:
                 z.value = value
         finally:
             self._hold = hold
@@ -276,12 +283,13 @@ class ContactPanel(Panel):
             system = system.replace(adhesion=None)
         lo, hi = self._z_np_range(system)  # as shown, nm
         shown = float(z_np)
-        if not lo <= shown <= hi:
-            clipped = min(max(shown, lo), hi)
+        clipped = not lo <= shown <= hi
+        if clipped:
+            inside = min(max(shown, lo), hi)
             self._note += (f" Z_np {shown:g} nm is outside [{lo:g}, {hi:g}] nm for this tip: "
-                           f"shown at {clipped:g} nm.")
-            shown = clipped
-        self._set_z_np_range(lo, hi, shown)
+                           f"shown at {inside:g} nm.")
+            shown = inside
+        self._set_z_np_range(lo, hi, shown, clipped)
         to_si = SLIDERS["z_np"].to_si
         cycle = system.approach_retract(np.linspace(to_si(lo), to_si(hi), _RAMP_POINTS))
         current = system.at(to_si(shown), branch)
