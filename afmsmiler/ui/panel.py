@@ -309,9 +309,11 @@ class Panel:
         from ..plots.live import LiveFigure
         if self.live is None:
             self.live = LiveFigure(self.fig)
-            self.live.link(self.controls, self._from_browser)
         else:
             self.live.sync()
+        # the sliders whose every step the browser forwards; a panel that rebuilt its controls
+        # (another transducer principle) links the new ones (no message when they are the same)
+        self.live.link(self.controls, self._from_browser)
 
     def widget(self) -> widgets.Widget:
         """The panel as one widget: controls on the left, the figure on the right."""
