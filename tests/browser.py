@@ -420,15 +420,37 @@ afm.quiet = (sel, quietMs, timeoutMs) => new Promise(resolve => {
 
 # -- notebooks in JupyterLab and voila -----------------------------------------------------
 def open_lab(page, server: Server, notebook: str, *, timeout: float = 90.0) -> None:
-    """Open ``notebook`` in JupyterLab and wait until its kernel is ready."""
-    page.goto(server.url(notebook), timeout=timeout * 1000)
+    """Open ``notebook`` in JupyterLab and wait until its kernel is ready.
+
+    On a page where JupyterLab already runs, the notebooks open there are closed unsaved and
+    every kernel shut down first, and the notebook is opened in the same page (no reload).
+    """
+    if page.evaluate("() => !!window.jupyterapp"):
+        page.evaluate(
+            """() => { const a = window.jupyterapp;
+                       for (const w of Array.from(a.shell.widgets('main'))) {
+                         if (w.context) w.context.model.dirty = false;
+                         w.dispose(); } }""")
+        server.shutdown_kernels()
+        page.evaluate("(path) => window.jupyterapp.commands.execute('docmanager:open', {path})",
+                      notebook)
+    else:
+        page.goto(server.url(notebook), timeout=timeout * 1000)
     page.wait_for_function(
-        """() => { const a = window.jupyterapp; if (!a) return false;
+        """(path) => { const a = window.jupyterapp; if (!a) return false;
                    const w = a.shell.currentWidget;
-                   return !!(w && w.content && w.sessionContext && w.sessionContext.session
+                   return !!(w && w.content && w.context && w.context.path === path
+                             && w.sessionContext && w.sessionContext.session
                              && w.sessionContext.session.kernel
                              && w.sessionContext.session.kernel.status === 'idle'); }""",
-        timeout=timeout * 1000, polling=250)
+        arg=notebook, timeout=timeout * 1000, polling=250)
+
+
+def close_lab_notebook(page, server: Server) -> None:
+    """Leave JupyterLab's page and shut every kernel down (gracefully: exit handlers run)."""
+    with contextlib.suppress(Exception):
+        page.goto("about:blank")
+    server.shutdown_kernels()
 
 
 def run_all(page, *, timeout: float = 300.0) -> float:
@@ -518,6 +540,18 @@ def slider_value(slider) -> str:
     """The value a slider's readout shows."""
     return slider.evaluate(
         "h => h.closest('.widget-slider').querySelector('.widget-readout').textContent.trim()")
+
+
+def keys(slider) -> tuple[str, str]:
+    """(towards the far end, back): the arrow key with the more room on ``slider`` first.
+
+    A notebook may leave a slider at an end (notebook 02 sweeps the input up to its maximum),
+    where a press towards that end changes nothing.
+    """
+    low, now, high = slider.evaluate(
+        "h => ['aria-valuemin', 'aria-valuenow', 'aria-valuemax']"
+        ".map(a => parseFloat(h.getAttribute(a)))")
+    return ("ArrowRight", "ArrowLeft") if high - now >= now - low else ("ArrowLeft", "ArrowRight")
 
 
 def focus_panel(page, slider, selector: str, *, quiet: float = 0.6,
