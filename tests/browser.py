@@ -375,24 +375,27 @@ afm.arm = (sel, mode, timeoutMs) => {
 // arm a drag: record on every frame the painted data-seq and pixel states, until quiet
 afm.armDrag = (sel, quietMs, timeoutMs) => {
   const root = afm.root();
-  const st = {t0: null, seqs: [], states: 0, times: []};
+  const st = {t0: null, seqs: [], states: 0, times: [], values: [], keys: 0};
+  const readout = () => { const e = document.activeElement, w = e && e.closest && e.closest('.widget-slider');
+                          const r = w && w.querySelector('.widget-readout'); return r ? r.textContent.trim() : null; };
   let lastSeq = afm.seqs(root, sel), lastHash = afm.checksum(root, sel).hash;
   const baseSeq = lastSeq;
-  const onKey = () => { if (st.t0 === null) st.t0 = performance.now(); };
+  const onKey = () => { st.keys++; if (st.t0 === null) st.t0 = performance.now(); };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
   let lastChange = null;
   st.promise = new Promise(resolve => {
     const tick = (ts) => {
       const now = performance.now();
-      const seq = afm.seqs(root, sel), hash = afm.checksum(root, sel).hash;
+      const seq = afm.seqs(root, sel), hash = afm.checksum(root, sel).hash, v = readout();
+      if (v !== null && v !== st.values[st.values.length - 1]) st.values.push(v);
       if (seq !== lastSeq) { if (seq !== baseSeq && !st.seqs.includes(seq)) st.seqs.push(seq); lastSeq = seq; lastChange = now; }
       if (hash !== lastHash) { st.states++; st.times.push(ts - (st.t0 || ts)); lastHash = hash; lastChange = now; }
       const quietFrom = lastChange === null ? (st.t0 === null ? null : st.t0) : lastChange;
       if ((quietFrom !== null && now - quietFrom > quietMs) || now - start > timeoutMs) {
         window.removeEventListener('keydown', onKey, true);
         resolve({seqs: st.seqs, states: st.states, times: st.times, timedOut: now - start > timeoutMs,
-                 baseSeq: baseSeq});
+                 baseSeq: baseSeq, values: st.values, keys: st.keys});
       } else requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
@@ -646,12 +649,30 @@ class DragResult:
     states: int = 0  # distinct pixel states painted
     timed_out: bool = False
     last_frame_s: float | None = None  # s from the first keydown to the last change painted
+    values: list = field(default_factory=list)  # the slider's readout, as it changed per frame
+    keys: int = 0  # keydown events the page saw
 
     @property
     def steps_drawn(self) -> int:
         """Steps seen drawn: distinct data-seq values when the figure has them, else pixel
         states."""
         return len(self.seqs) if self.seqs and self.seqs[0] not in ("", None) else self.states
+
+    @property
+    def jumped_back(self) -> list:
+        """Readouts at which the slider moved against the keys (a value from the kernel
+        overriding the student's later presses), e.g. ``["69.00 -> 61.00"]``."""
+        def num(text):
+            return float(text.replace(",", "").replace("\u2212", "-"))
+        try:
+            v = [num(x) for x in self.values]
+        except ValueError:
+            return []
+        if len(v) < 3:
+            return []
+        sign = 1 if v[-1] >= v[0] else -1
+        return [f"{self.values[i]} -> {self.values[i + 1]}" for i in range(len(v) - 1)
+                if (v[i + 1] - v[i]) * sign < 0]
 
 
 def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
@@ -665,7 +686,8 @@ def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
     r = page.evaluate("() => window.__afm.current.promise")
     seqs = [s for s in r["seqs"] if s.strip(",")]
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
-                      last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None)
+                      last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
+                      values=r["values"], keys=r["keys"])
 
 
 # -- static export -------------------------------------------------------------------------

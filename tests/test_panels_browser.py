@@ -70,7 +70,7 @@ def voila(chromium, root):
 
 
 def _shown(text: str) -> float:
-    return float(text.replace(",", ""))
+    return float(text.replace(",", "").replace("\u2212", "-"))  # U+2212: the readout's minus
 
 
 def _check_presses(page, name):
