@@ -57,6 +57,7 @@ bench: $(STAMP) browser
 ## The course book (Jupyter Book 1.x) into book/_build/html.
 book: $(STAMP)
 	$(PY) -m pip install --quiet -e '.[book]'
+	$(PY) -m afmsmiler.ui.pages book/_static/panels
 	$(VENV)/bin/jupyter-book build book
 
 clean:

@@ -6,7 +6,8 @@ Target (issue 2): well under 30 ms per update. Split into its parts:
   slope and the 121 x 9 stress field, a 41-point section, f1..f3 and their mode shapes), then
   convert it to the units shown;
 - plots: move the line data of the four panels in place (``CantileverFigure.update``; the pixels
-  are drawn later by the browser/ipympl, timed separately for information);
+  are drawn by the browser from the data the panel sends, see bench_browser.py for key press to
+  pixels; the kernel's part, describing the artists for the browser, is timed here for information);
 - scene: rebuild the beam mesh (121 x 9) with vertex colors from the same result and send it,
   move tip and arrow (``CantileverScene.update``, into a running meshcat server);
 - the whole ``CantileverPanel.update``, and its worst case, when every update moves the color
@@ -25,6 +26,8 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _timing import best_time, report  # noqa: E402
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
+
+from afmsmiler.plots.live import describe  # noqa: E402
 
 from afmsmiler.cantilever import PARAMETERS, Cantilever  # noqa: E402
 from afmsmiler.plots.cantilever import CantileverFigure, cantilever_curves  # noqa: E402
@@ -72,6 +75,7 @@ def main():
             panel.update(**{**values, "force": 70.0 if state["i"] % 2 else 80.0})
 
         t_cross = best_time(crossing)
+        t_describe = best_time(lambda: describe(panel.fig))
         canvas = FigureCanvasAgg(panel.fig)
         t_draw = best_time(canvas.draw, repeat=3)
 
@@ -82,14 +86,16 @@ def main():
             CantileverScene(b, path="bench_naive", camera=False)
 
         t_naive = best_time(naive, repeat=3)
-        print("one slider update of CantileverPanel (meshcat server running, figure not rasterised)")
+        print("one slider update of CantileverPanel (meshcat server running; the figure is sent as data,"
+              " not rasterised; the browser's drawing is in bench_browser.py)")
         report([
             ("model: Cantilever.bending once (121 x 9 + 41 pts, 3 modes)", t_model, None, None),
             ("plots: CantileverFigure.update (line data in place)", t_plots, None, None),
             ("scene: CantileverScene.update (121 x 9 mesh, tip, arrow)", t_scene, None, None),
             ("whole CantileverPanel.update (model + plots + scene)", t_panel, TARGET, t_naive),
             ("  same, each update re-rendering the legend texture", t_cross, TARGET, t_naive),
-            ("(info) rasterising the 4-panel figure with Agg", t_draw, None, None),
+            ("(info) of which: the figure described for the browser", t_describe, None, None),
+            ("(info) what a move cost before: Agg rasterising the figure", t_draw, None, None),
         ])
         print(f"peer = naive update rebuilding figure and scene objects: {t_naive * 1e3:.1f} ms")
     finally:

@@ -6,7 +6,8 @@ here: 5 ms). Split into its parts, for the slowest of the eleven principles and 
 - model: build the model from slider values, sample its chain over the input range (201 points),
   the small-signal sensitivity, the frequency response (400 points) and the resolution;
 - plots: move the line data of the three panels in place (``TransducerFigure.update``; the pixels
-  are drawn later by the browser/ipympl, timed separately for information);
+  are drawn by the browser from the data the panel sends, see bench_browser.py for key press to
+  pixels; the kernel's part, describing the artists for the browser, is timed here for information);
 - scene: redraw the bent lever and move the principle's parts (``TransducerScene.update``, into a
   running meshcat server);
 - the whole ``TransducerPanel.update``.
@@ -23,6 +24,8 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _timing import best_time, report  # noqa: E402
 
 from matplotlib.backends.backend_agg import FigureCanvasAgg  # noqa: E402
+
+from afmsmiler.plots.live import describe  # noqa: E402
 
 from afmsmiler.plots.transducers import (TransducerFigure, chain_curves,  # noqa: E402
                                          frequency_grid)
@@ -72,6 +75,7 @@ def main():
                 FigureCanvasAgg(fig.fig).draw()
 
             rows["naive"].append(best_time(naive, repeat=3, number=3))
+        t_describe = best_time(lambda: describe(panel.fig), repeat=3, min_time=0.05)
         canvas = FigureCanvasAgg(panel.fig)
         t_draw = best_time(canvas.draw, repeat=3, number=3)
         keys = list(PRINCIPLES)
@@ -86,7 +90,8 @@ def main():
             ("TransducerPanel.update (all of it), mean", mean["panel"], TARGET, mean["naive"]),
             (f"TransducerPanel.update, slowest ({worst['panel'][1]})", worst["panel"][0], TARGET,
              None),
-            ("(info) Agg draw of the figure's pixels", t_draw, None, None),
+            ("(info) of which: the figure described for the browser", t_describe, None, None),
+            ("(info) what a move cost before: Agg draw of the figure", t_draw, None, None),
             ("(peer) new figure + Agg draw per update, mean", mean["naive"], None, None),
         ])
     finally:

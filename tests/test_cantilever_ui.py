@@ -469,3 +469,60 @@ def test_the_toolbar_covers_no_text():
         p.set(length=length, section=0.5)
         assert _texts_under_the_toolbar(p.figure.fig) == []
         assert _texts_under_the_toolbar(p.modes_figure.fig) == []
+
+
+# --- limits that hold while the curves stay inside them (issue 9) ---------------------------------
+def _limits(panel, key, axis="y"):
+    return getattr(panel.figure.axes[key], f"get_{axis}lim")()
+
+
+def test_one_force_step_moves_the_curve_not_the_axes(panel):
+    # the axes autoscaled with the force, so the curves never seemed to move (issue 9)
+    before = {k: _limits(panel, k) for k in ("z", "theta", "stress_top", "section")}
+    section_x = _limits(panel, "section", "x")
+    z_before = float(np.max(panel.figure.lines["z"].get_data()[1]))
+    step = panel.controls["force"].step
+    panel.set(force=SET["force"] + step)
+    z_after = float(np.max(panel.figure.lines["z"].get_data()[1]))
+    assert z_after == pytest.approx(z_before * (SET["force"] + step) / SET["force"], rel=1e-12)
+    for key, lim in before.items():
+        assert _limits(panel, key) == lim, key
+    assert _limits(panel, "section", "x") == section_x
+    panel.set(force=SET["force"] - step)
+    assert _limits(panel, "z") == before["z"]
+
+
+def test_a_big_force_move_rescales_and_shows_the_curve(panel):
+    lo, hi = _limits(panel, "z")
+    for force in (500.0, 20.0, -300.0):   # out through the top, shrunk to 8 %, sign flipped
+        panel.set(force=force)
+        z = np.asarray(panel.figure.lines["z"].get_data()[1])
+        new = _limits(panel, "z")
+        assert new != (lo, hi), force
+        # the curve lies inside and fills at least the shrink fraction of the axis
+        assert new[0] <= min(z.min(), 0.0) and max(z.max(), 0.0) <= new[1]
+        assert np.ptp(np.r_[z, 0.0]) >= 0.3 * (new[1] - new[0])
+        lo, hi = new
+
+
+def test_the_first_draw_fits_the_data_and_f_0_stays_readable():
+    p = CantileverPanel(scene=False, **SET)
+    z = np.asarray(p.figure.lines["z"].get_data()[1])
+    lo, hi = _limits(p, "z")
+    assert lo < 0.0 < hi and hi < 1.5 * z.max()    # 8 % margins around [0, max z]
+    assert _limits(p, "z", "x") == (0.0, pytest.approx(SET["length"]))
+    p.set(force=0.0)
+    for key in ("z", "theta", "stress_top"):
+        lo, hi = _limits(p, key)
+        assert lo < 0.0 < hi and np.isfinite(hi - lo) and hi - lo > 0, key
+
+
+def test_the_lever_gets_longer_on_fixed_axes(panel):
+    # one length step: the curve ends further along an x axis that stays put; a big one refits
+    x_lim = _limits(panel, "z", "x")
+    step = panel.controls["length"].step
+    panel.set(length=SET["length"] - step)
+    assert _limits(panel, "z", "x") == x_lim
+    panel.set(length=600.0)
+    lo, hi = _limits(panel, "z", "x")
+    assert lo == 0.0 and 600.0 <= hi

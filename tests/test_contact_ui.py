@@ -534,3 +534,35 @@ def test_the_z_np_slider_keeps_its_ends():
     assert (panel.controls["z_np"].min, panel.controls["z_np"].max) == (-50.0, 200.0)
     panel.set(youngs_modulus=2.0)
     assert panel.controls["z_np"].max == 200.0
+
+
+# --- limits that hold while the curves stay inside them (issue 9) ---------------------------------
+def _curve_limits(panel):
+    return panel.figure.ax_curve.get_xlim(), panel.figure.ax_curve.get_ylim()
+
+
+def test_one_slider_step_moves_the_force_curve_not_the_axes():
+    panel = ContactPanel()
+    before = _curve_limits(panel)
+    top = np.max(panel.figure.approach.get_data()[1])
+    e = panel.controls["youngs_modulus"]
+    panel.set(youngs_modulus=e.value * 10 ** e.step)   # a log slider: its step in decades
+    assert np.max(panel.figure.approach.get_data()[1]) > top
+    assert _curve_limits(panel) == before
+    panel.set(z_np=panel.controls["z_np"].value + panel.controls["z_np"].step)
+    assert _curve_limits(panel) == before
+
+
+def test_a_big_move_rescales_the_force_curve_and_keeps_it_inside():
+    panel = ContactPanel()
+    before = _curve_limits(panel)
+    for values in (dict(youngs_modulus=100.0), dict(adhesion="JKR", work_of_adhesion=200.0),
+                   dict(youngs_modulus=0.01, adhesion="none")):
+        panel.set(**values)
+        (x0, x1), (y0, y1) = after = _curve_limits(panel)
+        assert after != before, values
+        for line in (panel.figure.approach, panel.figure.retract, panel.figure.point):
+            x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+            assert x0 <= x.min() and x.max() <= x1 and y0 <= y.min() and y.max() <= y1, values
+        assert y0 < 0.0 < y1
+        before = after

@@ -556,3 +556,46 @@ def test_pole_map_ticks_tell_the_decade_of_each_real_part(preset):
     for re_p in poles_per_us.real:
         near = min(abs(math.log10(abs(t) / abs(re_p))) for t in ticks if t != 0)
         assert near <= 2.0, (re_p, ticks)
+
+
+# --- limits that hold while the curves stay inside them (issue 9) ---------------------------------
+def _ylims(figure):
+    return {k: figure.axes[k].get_ylim() for k in ("znp", "topo")}
+
+
+def test_one_slider_step_moves_the_curves_not_the_axes():
+    p = ControllerPanel()
+    before = _ylims(p.figure)
+    top = np.nanmax(p.figure.lines["topo_trace"].get_data()[1])
+    p.set(height=p.controls["height"].value + p.controls["height"].step)   # 50 -> 52 nm
+    assert np.nanmax(p.figure.lines["topo_trace"].get_data()[1]) > top
+    assert _ylims(p.figure) == before
+    znp = np.nanmin(p.figure.lines["znp_trace"].get_data()[1])
+    p.set(setpoint=p.controls["setpoint"].value + p.controls["setpoint"].step)  # Z_np shifts
+    assert np.nanmin(p.figure.lines["znp_trace"].get_data()[1]) < znp
+    assert _ylims(p.figure) == before
+
+
+def test_a_big_move_rescales_and_keeps_the_curves_inside():
+    p = ControllerPanel()
+    before = _ylims(p.figure)
+    p.set(height=300.0)
+    after = _ylims(p.figure)
+    for key in ("znp", "topo"):
+        assert after[key] != before[key], key
+        lo, hi = after[key]
+        for line in (f"{key}_trace", f"{key}_retrace"):
+            y = np.asarray(p.figure.lines[line].get_data()[1], dtype=float)
+            assert lo <= np.nanmin(y) and np.nanmax(y) <= hi, line
+    p.set(height=4.0)   # shrunk to about 1 % of the axis: refitted, not a flat line
+    lo, hi = p.figure.axes["topo"].get_ylim()
+    assert hi - lo < 3 * 4.0 * 1.5
+
+
+def test_an_unstable_loop_is_masked_against_the_limits_shown():
+    p = ControllerPanel()
+    p.set(preset="d_unstable")
+    lo, hi = p.figure.axes["znp"].get_ylim()
+    y = np.asarray(p.figure.lines["znp_retrace"].get_data()[1], dtype=float)
+    assert np.all(np.isnan(y) | ((y > lo - (hi - lo)) & (y < hi + (hi - lo))))
+    assert "off scale" in p.figure.texts["znp"].get_text()

@@ -399,3 +399,44 @@ def test_the_notebooks_things_to_try_do_what_it_says(panel):
     panel.set(drive_ratio=0.5)
     # |gamma r^2 H(r)| at r = 1/2: 1.566 / 4 / 0.75 = 0.52 against 1.566 Q = 235 at resonance
     assert abs(panel.last.sensitivity) < at_resonance / 100
+
+
+# --- limits that hold while the curves stay inside them (issue 9) ---------------------------------
+def _ylims(figure):
+    return {k: a.get_ylim() for k, a in figure.axes.items()}
+
+
+def test_one_slider_step_moves_the_curves_not_the_axes(panel):
+    # slope = 1.5 z / L: one length step changes the slope curve, on the same axes
+    before = _ylims(panel.figure)
+    slope = np.max(panel.figure.lines["left"].get_data()[1])
+    length = panel.controls["length"]
+    panel.set(length=length.value + length.step)
+    assert np.max(panel.figure.lines["left"].get_data()[1]) != slope
+    assert _ylims(panel.figure) == before
+    # one Q step moves the resonance peak of |H(f)|, not its axis
+    peak = np.max(panel.figure.lines["magnitude"].get_data()[1])
+    q = panel.controls["quality_factor"]
+    panel.set(quality_factor=q.value * 10 ** q.step)   # a log slider: its step in decades
+    assert np.max(panel.figure.lines["magnitude"].get_data()[1]) > peak
+    assert _ylims(panel.figure) == before
+
+
+def test_a_big_move_rescales_and_keeps_the_curves_inside(panel):
+    before = _ylims(panel.figure)
+    panel.set(length=40.0, quality_factor=10 ** panel.controls["quality_factor"].max)
+    after = _ylims(panel.figure)
+    for key, line in (("lever", "left"), ("lever_right", "right"), ("response", "magnitude")):
+        y = np.asarray(panel.figure.lines[line].get_data()[1])
+        lo, hi = after[key]
+        assert after[key] != before[key], key
+        assert lo <= y.min() and y.max() <= hi, key
+
+
+def test_a_new_principle_fits_its_own_quantities(panel):
+    # other quantities on the axes: the limits of a fresh figure, not the old principle's
+    panel.set(length=40.0)
+    for key in ("electrostatic", "photothermal", "optical_beam_deflection"):
+        panel.set(principle=key)
+        fresh = TransducerFigure(panel.last.curves)
+        assert _ylims(panel.figure) == _ylims(fresh), key

@@ -2,10 +2,10 @@
 
 Each test here stands for a problem seen in a real JupyterLab (headless Chromium): a failing update
 from a slider that only reached the log console while the panel froze, controls squeezed into a
-clipped strip next to the fixed-size ipympl canvas, and the canvas's "Figure N" header.
+clipped strip next to the figure, a panel figure that was pyplot's current one, and a figure
+that only an Agg redraw could update (now it is sent to the browser as data, one message a move).
 """
 import ipywidgets as widgets
-import matplotlib
 import matplotlib.pyplot as plt
 import pytest
 
@@ -87,31 +87,40 @@ def test_arrange_keeps_controls_unsqueezed_and_wraps_the_figure():
     assert arrange(right) is right  # a non-box passes through
 
 
-def test_show_displays_the_arranged_panel_and_its_error_line(monkeypatch):
+def test_show_displays_the_arranged_panel_and_a_static_copy_of_its_figure(monkeypatch):
     shown = []
-    monkeypatch.setattr(panel_module, "display", lambda *objs: shown.extend(objs))
+    monkeypatch.setattr(panel_module, "display",
+                        lambda *objs, **kw: shown.extend((o, kw) for o in objs))
     p = Square()
-    shown.clear()  # the first redraw, outside ipympl, displays the figure into the panel
+    assert shown == []  # building and updating a panel displays nothing
     p.show()
-    outer = shown[0]
-    assert isinstance(outer, widgets.VBox)
+    (outer, kw), (copy, kw_copy) = shown
+    assert isinstance(outer, widgets.VBox) and kw == {}
     body, errors = outer.children
     assert errors is p._error_box
     assert body.layout.flex_flow == "row wrap"
     assert body.children[0].layout.flex == "0 0 auto"
+    assert body.children[1] is p.live  # the figure drawn in the browser
+    # an export without a widget manager shows the same figure, drawn by the same renderer
+    assert kw_copy == {"raw": True} and set(copy) == {"text/html", "text/plain"}
+    html = copy["text/html"]
+    assert "afm-live-static" in html and "drawStatic(" in html and "<script" in html
 
 
-def test_ipympl_figure_has_no_figure_n_header():
-    old = matplotlib.get_backend()
-    plt.switch_backend("module://ipympl.backend_nbagg")
-    try:
-        p = Square()
-        assert p.fig.canvas.header_visible is False
-        w = p.widget()
-        assert w.children[1] is p.fig.canvas and w.layout.flex_flow == "row wrap"
-        plt.close(p.fig)
-    finally:
-        plt.switch_backend(old)
+def test_a_slider_move_sends_one_frame_and_never_rasterises(monkeypatch):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    p = Square()
+    drawn, messages = [], []
+    monkeypatch.setattr(FigureCanvasAgg, "draw", lambda self: drawn.append(self))
+    monkeypatch.setattr(p.live, "send_state", lambda key=None: messages.append(set(key or ())))
+    sent = p.live.frames_sent
+    p.controls["x"].value = 1.5
+    assert p.live.frames_sent == sent + 1 and drawn == []
+    # hold_sync gathers the frame's traits into one message
+    assert len(messages) == 1 and {"_frame", "_buffer"} <= set(messages[0])
+    d = p.live.sync()
+    x, y = (d.values(d.frame["axes"][0]["series"][0][k]) for k in ("x", "y"))
+    assert x[0] == pytest.approx(1.5) and y[0] == pytest.approx(2.25)
 
 
 @pytest.mark.viewer  # starts a real meshcat server (about 4 s)
@@ -161,52 +170,18 @@ def test_controls_swapped_into_an_arranged_column_are_aligned_too():
     assert len(column._trait_notifiers["children"]["change"]) == 1
 
 
-def test_ipympl_panel_figure_stays_out_of_pyplot():
+def test_panel_figure_stays_out_of_pyplot():
     # made with plt.figure, the panel's figure was pyplot's current one: a student's next
     # plt.plot(...) drew into the panel, and each re-run of the panel cell added a figure
-    old = matplotlib.get_backend()
-    plt.switch_backend("module://ipympl.backend_nbagg")
-    try:
-        before = plt.get_fignums()
-        panels = [Square() for _ in range(3)]
-        assert plt.get_fignums() == before
-        assert all(type(p.fig.canvas).__name__ == "Canvas" for p in panels)  # ipympl's widget
-        fig, ax = plt.subplots()
-        assert plt.gcf() is fig and all(p.fig is not fig for p in panels)
-        plt.close(fig)
-        p = panels[0]
-        p.controls["x"].value = 1.5  # still updates in place
-        assert p.line.get_ydata()[0] == 2.25
-        p.fig.canvas.draw()  # and draws through its own manager
-        assert p.fig.canvas.manager is not None
-    finally:
-        plt.switch_backend(old)
-
-
-def test_ipympl_redraw_pushes_the_new_image_without_a_browser_round_trip(monkeypatch):
-    # draw_idle only asked the browser to request a draw, and ipympl's browser side drops that
-    # request while it waits for an image: after quick slider moves the figure stayed stale
-    old = matplotlib.get_backend()
-    plt.switch_backend("module://ipympl.backend_nbagg")
-    try:
-        p = Square()
-        sent, events = [], []
-        monkeypatch.setattr(p.fig.canvas, "send_binary", sent.append)
-        monkeypatch.setattr(p.fig.canvas, "send_event", lambda *a, **k: events.append(a))
-        # before the browser shows the canvas, ipympl would send raw pixels for a PNG: ask
-        assert p.fig.canvas.syncing_data_url
-        p.controls["x"].value = 1.1
-        assert sent == [] and events == [("draw",)]
-        events.clear()
-        p.fig.canvas._handle_message(None, {"type": "initialized"}, [])  # the browser view
-        for x in (1.2, 1.4, 1.6):
-            p.controls["x"].value = x
-        assert len(sent) == 3 and all(png[:8] == b"\x89PNG\r\n\x1a\n" for png in sent)
-        assert ("draw",) not in events
-        # the last image is the last state: y = x^2 = 2.56 is where the line is drawn
-        assert p.line.get_ydata()[0] == pytest.approx(2.56)
-    finally:
-        plt.switch_backend(old)
+    before = plt.get_fignums()
+    panels = [Square() for _ in range(3)]
+    assert plt.get_fignums() == before
+    fig, ax = plt.subplots()
+    assert plt.gcf() is fig and all(p.fig is not fig for p in panels)
+    plt.close(fig)
+    p = panels[0]
+    p.controls["x"].value = 1.5  # still updates in place
+    assert p.line.get_ydata()[0] == 2.25
 
 
 class Lever(Panel):

@@ -18,6 +18,7 @@ from matplotlib.figure import Figure
 from ..cantilever import Bending, Cantilever, check_modes
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance
+from .limits import data_range, hold
 
 __all__ = ["DEFAULTS", "UNITS", "CantileverCurves", "cantilever_curves", "CantileverFigure",
            "ModeShapesFigure", "mode_shapes_figure"]
@@ -122,12 +123,6 @@ def cantilever_curves(bending: Bending) -> CantileverCurves:
     )
 
 
-def _pad(lo, hi, floor):
-    span = max(hi - lo, floor)
-    mid = 0.5 * (hi + lo)
-    return mid - 0.55 * span, mid + 0.55 * span
-
-
 def _clear_the_toolbar(fig: Figure) -> None:
     """Lay the figure out below a band as high as the floating toolbar (:data:`TOOLBAR`)."""
     band = TOOLBAR["height"] / fig.get_figheight()
@@ -187,32 +182,42 @@ class CantileverFigure:
         self.update(curves)
 
     def update(self, curves: CantileverCurves) -> None:
-        """Show new curves: set the line data and rescale the axes (no new artists).
+        """Show new curves: set the line data and the limits (no new artists).
+
+        The limits hold while the curves stay inside them and fill a fair part of them, so that
+        a slider move shows the curve move (:func:`~afmsmiler.plots.limits.sticky_limits`); the
+        first draw fits the data. The y axes always show z = 0, theta = 0, stress = 0; x runs
+        from the clamp (0) and keeps room beyond the tip after the length changed.
 
         Parameters
         ----------
         curves : CantileverCurves
             From :func:`cantilever_curves`.
         """
+        reset = not getattr(self, "_limits_held", False)  # the first draw fits the data
+        floor = DEFAULTS["min_span"]
         L = curves.x_um
         for key, y in (("z", curves.z_nm), ("theta", curves.theta_mrad),
                        ("stress_top", curves.stress_top_mpa)):
             self.lines[key].set_data(L, y)
             self.lines[f"section_marker_{key}"].set_xdata([curves.section_x_um] * 2)
             ax = self.axes[key]
-            ax.set_xlim(0.0, L[-1])
-            lo, hi = float(np.min(y)), float(np.max(y))
-            ax.set_ylim(*_pad(min(lo, 0.0), max(hi, 0.0),
-                              max(1e-3 * max(abs(lo), abs(hi)), DEFAULTS["min_span"])))
+            # from the clamp; a quarter of the length as room after a length change (not a
+            # half: beyond the longest lever on the slider the axis would be mostly empty)
+            hold(ax, "x", 0.0, float(L[-1]), reset=reset, margin=0.0, headroom=0.25)
+            lo, hi = data_range(y, 0.0)
+            hold(ax, "y", lo, hi, reset=reset, floor=floor)
         self.lines["section"].set_data(curves.section_stress_mpa, curves.z_b_um)
         ax = self.axes["section"]
-        # the whole lever's peak (at least min_span / 2, so that F = 0 gives readable ticks)
-        smax = max(float(np.abs(curves.stress_top_mpa).max()), DEFAULTS["min_span"] / 2)
-        ax.set_xlim(-1.1 * smax, 1.1 * smax)
-        h2 = float(curves.z_b_um[-1])
-        ax.set_ylim(-1.1 * h2, 1.1 * h2)
+        # the whole lever's peak (at least min_span / 2, so that F = 0 gives readable ticks),
+        # symmetric about 0: tension on one side of the neutral plane, compression on the other
+        smax = max(float(np.abs(curves.stress_top_mpa).max()), floor / 2)
+        hold(ax, "x", -smax, smax, reset=reset, margin=0.1)
+        h2 = abs(float(curves.z_b_um[-1]))
+        hold(ax, "y", -h2, h2, reset=reset, margin=0.1)
         ax.set_title(f"cross-section at x = {curves.section_x_um:.4g} {UNITS['x']}")
         self._e_gpa = curves.youngs_modulus_gpa
+        self._limits_held = True
 
 
 class ModeShapesFigure:

@@ -17,6 +17,7 @@ from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, Indentation
 from ..contact.viscoelastic import ViscoelasticCycle
 from ..parameters import read_only, unit_scale
 from ..validation import check_positive, check_range
+from .limits import data_range, hold
 
 __all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
            "contact_curves", "ContactFigure", "cycles_figure", "fit_figure", "fit_label",
@@ -187,26 +188,36 @@ class ContactFigure:
         self.fig.tight_layout()
 
     def update(self, curves: ContactCurves) -> None:
-        """Swap in new data and rescale the axes.
+        """Swap in new data and set the limits (no new artists).
+
+        The force curve's axes hold their limits while the curves stay inside them and fill a
+        fair part of them (:func:`~afmsmiler.plots.limits.sticky_limits`; the first draw fits
+        the data and F = 0), so that a slider move shows the curves move. The drawing of the
+        contact keeps its equal-aspect box of the cross-section's extent.
 
         Parameters
         ----------
         curves : ContactCurves
             The new state.
         """
+        reset = not getattr(self, "_limits_held", False)  # the first draw fits the data
         self.curves = curves
         self.approach.set_data(curves.approach_nm, curves.approach_nN)
         self.retract.set_data(curves.retract_nm, curves.retract_nN)
         self.point.set_data([curves.point_nm], [curves.point_nN])
         self.surface.set_data(curves.rho_nm, curves.surface_nm)
         self.tip.set_data(curves.tip_x_nm, curves.tip_z_nm)
-        self.ax_curve.relim()
-        self.ax_curve.autoscale_view()
+        # F = 0 always in view (autoscale_view included the axhline at 0 too)
+        hold(self.ax_curve, "x", *data_range(curves.approach_nm, curves.retract_nm,
+                                             curves.point_nm), reset=reset)
+        hold(self.ax_curve, "y", *data_range(curves.approach_nN, curves.retract_nN,
+                                             curves.point_nN, 0.0), reset=reset)
         ext = float(curves.rho_nm.max())
         self.ax_contact.set_xlim(-ext, ext)
         self.ax_contact.set_ylim(-ext, ext)
         self.ax_contact.set_title(f"Z_s = {curves.depth_nm:.3g} nm, r = {curves.radius_nm:.3g} nm",
                                   fontsize=9)
+        self._limits_held = True
 
 
 def cycles_figure(cycles, fig=None) -> Figure:

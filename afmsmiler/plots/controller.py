@@ -17,6 +17,7 @@ from matplotlib.ticker import FixedLocator, FuncFormatter
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
 from ..parameters import read_only, unit_scale
+from .limits import hold
 
 __all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
            "block_diagram", "polygon_figure", "image_figure"]
@@ -192,7 +193,13 @@ class ScanFigure:
         self.update(curves)
 
     def update(self, curves: ScanCurves) -> None:
-        """Show new curves: set the data, rescale, retitle the pole map (no new artists).
+        """Show new curves: set the data and limits, retitle the pole map (no new artists).
+
+        The -Z_np and topography axes hold their limits while the curves stay inside them and
+        fill a fair part of them (:func:`~afmsmiler.plots.limits.sticky_limits`; the first draw
+        fits the data), so that a slider move shows the curves move; an unstable loop's signals
+        still count only up to 4 topography ranges beyond it. The scan line's x range and the
+        pole map (symmetric log, fitted to the poles) are set exactly.
 
         Parameters
         ----------
@@ -200,6 +207,7 @@ class ScanFigure:
             From :func:`scan_curves`.
         """
         c = curves
+        reset = not getattr(self, "_limits_held", False)  # the first draw fits the data
         x_lim = (float(c.x_trace_um[0]), float(c.x_trace_um[-1]))
         self.lines["height"].set_data(c.x_trace_um, c.height_nm)
         for key, ref, (tr, rt) in (
@@ -208,8 +216,8 @@ class ScanFigure:
                 ("topo", c.height_nm, (c.topo_trace_nm, c.topo_retrace_nm))):
             ax = self.axes[key]
             ax.set_xlim(*x_lim)
-            lim = _limits(ref, tr, rt)
-            ax.set_ylim(*lim)
+            # the data's range (8 % margins on a fit, as _limits pads; at least 1 pm high)
+            lim = hold(ax, "y", *_limits(ref, tr, rt, pad=0.0), reset=reset, floor=1e-3)
             self.lines[f"{key}_trace"].set_data(c.x_trace_um, _on_scale(tr, lim))
             self.lines[f"{key}_retrace"].set_data(c.x_retrace_um, _on_scale(rt, lim))
             worst = _off_scale(lim, tr, rt)
@@ -244,6 +252,7 @@ class ScanFigure:
         ax.set_title(f"closed-loop poles: {verdict}\nRouth-Hurwitz margin {c.margin:.3g}\n"
                      f"max Re p = {float(np.max(p.real)):.3g} 1/us",
                      color="C2" if c.stable else "C3", fontsize="medium")
+        self._limits_held = True
 
     def poles(self) -> np.ndarray:
         """The poles drawn (stable and unstable markers together), in 1/us.

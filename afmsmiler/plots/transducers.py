@@ -22,6 +22,7 @@ from matplotlib.figure import Figure
 from ..parameters import Parameter, read_only
 from ..transducers.base import Operation, Transducer
 from ..validation import check_instance, check_integer
+from .limits import data_range, hold
 
 __all__ = ["DEFAULTS", "ChainCurves", "chain_curves", "TransducerFigure", "frequency_grid"]
 
@@ -167,14 +168,6 @@ def chain_curves(operation: Operation) -> ChainCurves:
     )
 
 
-def _pad(lo, hi):
-    span = hi - lo
-    if not span > 0:
-        span = max(abs(hi), abs(lo), 1e-12) * 0.1 or 1.0
-    mid = 0.5 * (hi + lo)
-    return mid - 0.55 * span, mid + 0.55 * span
-
-
 def _title(q: Parameter) -> str:
     """The axis label of ``q``: ``"label [unit]"``, or ``"label (dimensionless)"`` for a ratio."""
     return q.title if q.display_unit else f"{q.title} (dimensionless)"
@@ -242,12 +235,20 @@ class TransducerFigure:
     def update(self, curves: ChainCurves) -> None:
         """Show new curves: set the line data, labels and limits (no new artists).
 
+        The stages' and the response's axes hold their limits while the curves stay inside them
+        and fill a fair part of them (:func:`~afmsmiler.plots.limits.sticky_limits`), so that a
+        slider move shows the curves move; the first draw and a change of principle or mode
+        (other quantities on the axes) fit the data. The input sweep, the frequency grid and
+        the phase (multiples of 90 deg) keep exact limits.
+
         Parameters
         ----------
         curves : ChainCurves
             From :func:`chain_curves`.
         """
         ax, ln = self.axes, self.lines
+        key = (curves.title, curves.quantities)
+        reset = getattr(self, "_limits_key", None) != key  # first draw, or other quantities
         q, x = curves.quantities, curves.x
         n = len(q)
         left = 1
@@ -258,14 +259,12 @@ class TransducerFigure:
         ax["lever"].set(xlabel=xlabel)
         ax["lever"].set_ylabel(_title(q[left]), color="C0")
         ax["lever"].set_xlim(x[0], x[-1])
-        ax["lever"].set_ylim(*_pad(float(np.min(curves.stages[left])),
-                                   float(np.max(curves.stages[left]))))
+        hold(ax["lever"], "y", *data_range(curves.stages[left]), reset=reset)
         if right is not None:
             ln["right"].set_data(x, curves.stages[right])
             ln["point_right"].set_data([curves.value], [curves.point[right]])
             ax["lever_right"].set_ylabel(_title(q[right]), color="C1")
-            ax["lever_right"].set_ylim(*_pad(float(np.min(curves.stages[right])),
-                                             float(np.max(curves.stages[right]))))
+            hold(ax["lever_right"], "y", *data_range(curves.stages[right]), reset=reset)
             ax["lever_right"].set_visible(True)
         else:
             ln["right"].set_data([], [])
@@ -279,16 +278,17 @@ class TransducerFigure:
         ln["tangent"].set_data(tx, curves.point[-1] + curves.sensitivity * (tx - curves.value))
         ax["output"].set(xlabel=xlabel, ylabel=_title(q[-1]))
         ax["output"].set_xlim(x[0], x[-1])
-        ax["output"].set_ylim(*_pad(float(np.min(y)), float(np.max(y))))
+        hold(ax["output"], "y", *data_range(y), reset=reset)
         ax["output"].set_title(f"{curves.title}\nslope {curves.sensitivity_display:.4g} "
                                f"{curves.sensitivity_display_unit}", fontsize="medium")
         f, mag = curves.frequency, curves.magnitude
         ln["magnitude"].set_data(f, mag)
         ln["phase"].set_data(f, curves.phase_deg)
         ax["phase"].set_ylim(*_phase_limits(curves.phase_deg))
-        positive = mag[mag > 0]
         ax["response"].set_xlim(f[0], f[-1])
-        if positive.size:
-            ax["response"].set_ylim(positive.min() / 3, positive.max() * 3)
+        # |H| on a log axis: the policy in decades, at least one decade shown
+        hold(ax["response"], "y", *data_range(mag, log=True), reset=reset, log=True,
+             margin=0.1, floor=1.0)
         ax["response"].set_ylabel(_wrap(curves.response_label), fontsize="small")
         ln["f1"].set_xdata([f[-1] / DEFAULTS["f_high_ratio"]] * 2)
+        self._limits_key = key

@@ -25,7 +25,7 @@ from ..plots.cantilever import (CantileverCurves, CantileverFigure, ModeShapesFi
                                 cantilever_curves)
 from ..validation import check_choice, check_finite, check_range
 from .controls import control
-from .panel import Panel, _interactive_backend
+from .panel import Panel, show_static
 
 __all__ = ["CantileverPanel", "CantileverState", "DEFAULTS", "SLIDERS"]
 
@@ -148,7 +148,7 @@ class CantileverPanel(Panel):
         self.figure = None
         self.modes_figure = None  # the mode shapes, once show_modes() drew them
         self.modes_fig = None
-        self._modes_output = widgets.Output()
+        self.modes_live = None  # the mode shapes drawn in the browser
         self.scene = None
         self._want_scene = bool(scene)
         self.fig = self.new_figure(figsize=_FIGSIZE)
@@ -243,39 +243,27 @@ class CantileverPanel(Panel):
 
         Returns
         -------
-        ipywidgets.Widget
-            An ipympl canvas in a live notebook, else an Output the figure is rendered into.
+        LiveFigure
+            Drawn in the browser (see :class:`~afmsmiler.plots.live.LiveFigure`).
         """
         if self.modes_figure is None:
+            from ..plots.live import LiveFigure
             self.modes_fig = self.new_figure(figsize=PLOTS["modes_figsize"])
             self.modes_figure = ModeShapesFigure(self.last.curves, fig=self.modes_fig)
-        if _interactive_backend():
-            return self.modes_fig.canvas
-        return self._modes_output
+            self.modes_live = LiveFigure(self.modes_fig)
+        return self.modes_live
 
     def show_modes(self) -> None:
         """Display the mode shapes under the cell; every later slider move updates them."""
         display(self.modes_widget())
-        self._redraw_modes()
-
-    def _redraw_modes(self) -> None:
-        if self.modes_fig is None:
-            return
-        if _interactive_backend():
-            canvas = self.modes_fig.canvas
-            if getattr(canvas, "syncing_data_url", True):
-                canvas.draw_idle()
-            else:
-                canvas.draw()
-        else:
-            with self._modes_output:
-                self._modes_output.clear_output(wait=True)
-                display(self.modes_fig)
+        show_static(self.modes_fig)
 
     def redraw(self) -> None:
-        """Redraw the figure and, once shown, the mode shapes (see :meth:`Panel.redraw`)."""
+        """Send the figure and, once shown, the mode shapes to the browser (see
+        :meth:`Panel.redraw`)."""
         super().redraw()
-        self._redraw_modes()
+        if self.modes_live is not None:
+            self.modes_live.sync()
 
     def _readout_html(self) -> str:
         s, u = self.last, _READOUT

@@ -4,6 +4,8 @@ A panel owns a dict of controls (ipywidgets; every slider made by the one factor
 :func:`afmsmiler.ui.controls.control`), a matplotlib figure and optionally a meshcat
 scene. Its :meth:`Panel.update` callback receives the control values (in the units the sliders
 show), converts them to SI, calls the models and updates the artists and the scene in place.
+The figure is never rasterised in the kernel: :meth:`Panel.redraw` sends its artists' data to the
+browser, which draws them (:class:`~afmsmiler.plots.live.LiveFigure`, uPlot).
 Tests construct a panel, call :meth:`Panel.set` and check the figure data against the model.
 """
 from __future__ import annotations
@@ -14,13 +16,13 @@ import os
 import traceback
 
 import ipywidgets as widgets
-import matplotlib
-import matplotlib.pyplot as plt
 from IPython.display import display
+from matplotlib.figure import Figure
 
 from ..validation import check_choice, check_finite
 
-__all__ = ["Panel", "arrange", "check_control_value", "running_as_notebook", "setup_notebook"]
+__all__ = ["Panel", "arrange", "check_control_value", "running_as_notebook", "setup_notebook",
+           "show_static"]
 
 
 def running_as_notebook() -> bool:
@@ -40,13 +42,19 @@ def running_as_notebook() -> bool:
 
 
 def setup_notebook() -> None:
-    """First line of every notebook: interactive figures (ipympl) live, static ones under test."""
-    if running_as_notebook():
+    """First line of every notebook: static figures inline (PNG, kept by an export).
+
+    The panels' live figures are drawn in the browser whatever the backend
+    (:class:`~afmsmiler.plots.live.LiveFigure`); the notebooks' other figures are static
+    matplotlib images, which an exported notebook and the book keep.
+    """
+    try:
         from IPython import get_ipython
-        try:
-            get_ipython().run_line_magic("matplotlib", "widget")
-        except Exception:  # ipympl missing: fall back to inline figures re-rendered by panels
-            get_ipython().run_line_magic("matplotlib", "inline")
+        shell = get_ipython()
+    except ImportError:
+        return
+    if shell is not None and type(shell).__name__ == "ZMQInteractiveShell":
+        shell.run_line_magic("matplotlib", "inline")
 
 
 _MISSING = object()
@@ -118,10 +126,6 @@ def check_control_value(name: str, control, value):
     return value
 
 
-def _interactive_backend() -> bool:
-    return "ipympl" in matplotlib.get_backend().lower() or "widget" in matplotlib.get_backend().lower()
-
-
 class Panel:
     """Base class of a widget panel.
 
@@ -130,10 +134,11 @@ class Panel:
     """
 
     controls: dict
-    fig: plt.Figure | None = None
+    fig: Figure | None = None
+    #: The figure drawn in the browser (made at the first :meth:`redraw`).
+    live = None
 
     def __init__(self):
-        self._output = widgets.Output()
         self.last = None  # the last model result, for tests and exercises
         self.error = None  # the message of the last failed update from a control, else None
         self._error_box = widgets.HTML()
@@ -262,66 +267,64 @@ class Panel:
 
     # -- display --------------------------------------------------------------------------
     @staticmethod
-    def new_figure(**kwargs) -> plt.Figure:
-        """A figure for a panel: an ipympl canvas in a live notebook, else a pyplot-free Figure.
+    def new_figure(**kwargs) -> Figure:
+        """A figure for a panel: a pyplot-free Figure, drawn in the browser by :meth:`redraw`.
 
-        Either way the figure is not shown automatically at the end of the cell; the panel
-        shows it (so it never appears twice). Nor is it pyplot's current figure: made with
-        ``plt.figure`` it was, so a student's next ``plt.plot(...)`` drew into the panel's
-        axes, and every re-run of a panel cell added a figure to pyplot's list (warning after
-        20).
+        It is not pyplot's current figure: made with ``plt.figure`` it was, so a student's next
+        ``plt.plot(...)`` drew into the panel's axes, and every re-run of a panel cell added a
+        figure to pyplot's list (warning after 20).
         """
-        from matplotlib.figure import Figure
-        fig = Figure(**kwargs)
-        if _interactive_backend():
-            from ipympl.backend_nbagg import new_figure_manager_given_figure
-            with plt.ioff():  # not queued for display at the end of the cell
-                new_figure_manager_given_figure(0, fig)  # an ipympl canvas, outside pyplot
-            fig.canvas.header_visible = False  # the panel is its own title; save the room
-            fig.canvas.toolbar_position = "top"  # at the left it covered the y-axis labels
-        return fig
+        return Figure(**kwargs)
 
     def redraw(self) -> None:
-        """Redraw the figure in place (ipympl), or re-render it into the panel's output.
+        """Send the figure's current artists to the browser (one message; nothing rasterised).
 
-        With ipympl the figure is drawn here and its image pushed to the browser at once.
-        ``draw_idle`` only asks the browser to request a draw, and the browser drops that request
-        while it waits for an image: after a quick series of slider moves the figure then stayed
-        on an intermediate state while the readouts showed the last one, and a loop of
-        ``panel.set`` in one cell showed only its last frame (the requests wait for the cell).
-        Until the browser has shown the canvas (ipympl's ``syncing_data_url``), ``draw_idle``
-        is kept: ipympl would push that first image as raw pixels, which the browser cannot
-        decode ("broken" image), and the canvas would then stop updating.
+        The first call makes :attr:`live`; a view of it shows every later frame, including those
+        sent before the browser displayed it.
         """
         if self.fig is None:
             return
-        if _interactive_backend():
-            canvas = self.fig.canvas
-            if getattr(canvas, "syncing_data_url", True):
-                canvas.draw_idle()  # no browser view yet: it draws when it asks
-            else:
-                canvas.draw()
+        from ..plots.live import LiveFigure
+        if self.live is None:
+            self.live = LiveFigure(self.fig)
         else:
-            with self._output:
-                self._output.clear_output(wait=True)
-                display(self.fig)
+            self.live.sync()
 
     def widget(self) -> widgets.Widget:
         """The panel as one widget: controls on the left, the figure on the right."""
         box = widgets.VBox(list(self.controls.values()))
-        if self.fig is not None and _interactive_backend():
-            return arrange(widgets.HBox([box, self.fig.canvas]))
-        return arrange(widgets.HBox([box, self._output]))
+        children = [box] if self.live is None else [box, self.live]
+        return arrange(widgets.HBox(children))
 
     def show(self) -> None:
         """Display the panel (call as the last line of a notebook cell).
 
         The panel is laid out with :func:`arrange` (controls keep their width; the figure moves
         below them when the notebook is too narrow for both), with a line under it where a
-        failed update is reported.
+        failed update is reported; then :func:`show_static` adds the figure's static copy.
         """
-        display(widgets.VBox([arrange(self.widget()), self._error_box]))
-        self.redraw()
+        box = self._shown = widgets.VBox([arrange(self.widget()), self._error_box])
+        display(box)
+        if self.fig is not None and self.fig.axes:
+            show_static(self.fig)
+
+
+def show_static(fig) -> None:
+    """Display ``fig``'s static copy, for the pages where no widget manager draws its live one.
+
+    An exported notebook (nbconvert, the book) or a saved one opened without a kernel cannot draw
+    a widget, and an export that stored the widgets' state draws them only with the network. The
+    copy is the same renderer with the frame embedded (:func:`afmsmiler.plots.live.static_html`);
+    where the live figure is drawn beside it (JupyterLab, voila), the copy hides itself.
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        A figure drawn live beside this output.
+    """
+    from ..plots.live import static_html
+    display({"text/html": static_html(fig),
+             "text/plain": "(the figure above, drawn without a kernel)"}, raw=True)
 
 
 def arrange(box: widgets.Widget) -> widgets.Widget:

@@ -1,0 +1,474 @@
+"""Live figures: a panel's matplotlib figure drawn in the browser with uPlot, frame by frame.
+
+A panel's figure classes (:mod:`afmsmiler.plots.cantilever` and the others) describe what to show
+with matplotlib's artists and update them in place; that description is what tests read and what a
+static page or the book renders with Agg. Rasterising it with Agg in the kernel at every slider move
+and shipping a PNG took most of a second. :class:`LiveFigure` instead reads the artists
+(:func:`describe`: lines, reference lines and spans, texts, titles, legends, images with their
+colour bars, limits, log/symlog scales, twin and secondary axes, equal aspect, the grid of axes)
+into a small JSON description and ONE binary buffer of float32 holding every curve and image, and
+sends both in one comm message; the browser (``static/live.js``) draws them with uPlot, the small
+fast charting library shipped in ``static/`` (fetched and hash-checked by ``tools/vendor_uplot.py``).
+
+No physics here and none in the browser: every number comes from the figure's artists.
+
+Artists this cannot show raise ``NotImplementedError`` naming them (nothing is dropped silently).
+"""
+from __future__ import annotations
+
+import base64
+import json
+import math
+import uuid
+from dataclasses import dataclass
+from functools import lru_cache
+from pathlib import Path
+
+import anywidget
+import numpy as np
+import traitlets
+from matplotlib import colors as mcolors
+from matplotlib.artist import Artist
+from matplotlib.figure import Figure
+from matplotlib.patches import Polygon, Rectangle
+from matplotlib.ticker import FixedLocator
+
+from ..validation import check_instance
+
+__all__ = ["Description", "LiveFigure", "describe", "static_html"]
+
+STATIC = Path(__file__).with_name("static")
+#: Pixels per inch of a live figure (as ipympl's canvas): figsize (10, 6) is 1000 x 600 px.
+DPI = 100
+_PX = DPI / 72  # px per point (line widths, marker and font sizes are given in points)
+#: Largest buffer one frame may send (float32 values): 4 M values, 16 MB, about 0.1 s on loopback.
+MAX_VALUES = 4_000_000
+
+_DASHES = {"--": [3.7, 1.6], ":": [1.0, 1.65], "-.": [6.4, 1.6, 1.0, 1.6]}  # matplotlib's, in lw
+_MARKERS = {"o", ".", "x", "+", "s", "D", "^", "v"}
+
+
+@lru_cache(maxsize=None)
+def _read(name: str) -> str:
+    return (STATIC / name).read_text(encoding="utf-8")
+
+
+def _esm() -> str:
+    """The widget's module: uPlot's release file, then the renderer (one module, no network)."""
+    return _read("uPlot.iife.min.js") + "\n" + _read("live.js")
+
+
+def _css() -> str:
+    return _read("uPlot.min.css") + "\n" + _read("live.css")
+
+
+# -- reading the artists ------------------------------------------------------------------------
+
+def _num(v) -> float | None:
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def _color(c, alpha=None) -> str:
+    return mcolors.to_hex(mcolors.to_rgba(c, alpha), keep_alpha=True)
+
+
+def _floats(values) -> np.ndarray:
+    a = np.ma.asarray(values, dtype=float)
+    return np.ma.filled(a, np.nan).ravel()
+
+
+class _Packer:
+    """Arrays appended into one float32 buffer; each is referred to as [offset, length]."""
+
+    def __init__(self):
+        self.parts, self.size = [], 0
+
+    def add(self, values) -> list:
+        a = np.asarray(values, dtype=np.float32).ravel()
+        ref = [self.size, int(a.size)]
+        self.parts.append(a)
+        self.size += a.size
+        if self.size > MAX_VALUES:
+            raise ValueError(f"a live figure's frame must hold at most {MAX_VALUES} values, "
+                             f"got {self.size}")
+        return ref
+
+    def bytes(self) -> bytes:
+        return np.concatenate(self.parts).tobytes() if self.parts else b""
+
+
+def _kind(artist, ax) -> str:
+    """'data', 'v' (x in data, y in axes fraction), 'h' (the other way) or 'axes'."""
+    t = Artist.get_transform(artist)
+    if t is ax.transData:
+        return "data"
+    if t is ax.get_xaxis_transform():
+        return "v"
+    if t is ax.get_yaxis_transform():
+        return "h"
+    if t is ax.transAxes:
+        return "axes"
+    raise NotImplementedError(f"{artist!r} on {ax!r} uses a transform a live figure cannot show")
+
+
+def _linestyle(line):
+    ls = line.get_linestyle()
+    if ls in ("None", "none", "", " "):
+        return None
+    lw = line.get_linewidth()
+    return [d * lw * _PX for d in _DASHES[ls]] if ls in _DASHES else []
+
+
+def _line_specs(line, axis, packer):
+    """The layout entries and frame entries of one Line2D of the data (a line and/or markers)."""
+    color = _color(line.get_color(), line.get_alpha())
+    marker = line.get_marker()
+    marker = None if marker in (None, "None", "none", "", " ") else str(marker)
+    if marker is not None and marker not in _MARKERS:
+        marker = "o"
+    dash = _linestyle(line)
+    label = line.get_label()
+    label = "" if label.startswith("_") else label
+    refs = {"x": packer.add(_floats(line.get_xdata())), "y": packer.add(_floats(line.get_ydata()))}
+    layout, frame = [], []
+    base = dict(color=color, axis=axis, label=label, visible=bool(line.get_visible()))
+    if dash is not None:
+        layout.append(dict(base, width=line.get_linewidth() * _PX, dash=dash or None,
+                           marker=None, line=True))
+        frame.append(refs)
+    if marker is not None:
+        size = line.get_markersize() * (0.5 if marker == "." else 1.0)
+        layout.append(dict(base, marker=marker, size=size, line=False,
+                           filled=marker not in ("x", "+") and line.get_fillstyle() != "none",
+                           edge=line.get_markeredgewidth() * _PX, width=1.0, dash=None))
+        frame.append(refs)
+    return layout, frame
+
+
+def _axis(ax, which: str) -> tuple[dict, dict]:
+    axis = ax.xaxis if which == "x" else ax.yaxis
+    lo, hi = ax.get_xlim() if which == "x" else ax.get_ylim()
+    scale = axis.get_scale()
+    if scale not in ("linear", "log", "symlog"):
+        raise NotImplementedError(f"a live figure shows linear, log and symlog axes, not {scale!r}")
+    layout = {"scale": scale, "grid": bool(axis._major_tick_kw.get("gridOn", False))}
+    label = axis.label
+    frame = {"label": label.get_text() if label.get_visible() else "",
+             "color": _color(label.get_color()), "lim": [_num(lo), _num(hi)]}
+    if scale == "symlog":
+        frame["linthresh"] = float(axis.get_transform().linthresh)
+    locator = axis.get_major_locator()
+    if isinstance(locator, FixedLocator):
+        a, b = min(lo, hi), max(lo, hi)
+        ticks = [float(t) for t in locator.locs if a <= t <= b]
+        frame["ticks"] = ticks
+        frame["ticklabels"] = list(axis.get_major_formatter().format_ticks(ticks))
+    return layout, frame
+
+
+def _secondary(ax):
+    """The linear secondary x axis on top of ``ax`` (``secondary_xaxis``), as factor and offset."""
+    for child in ax.child_axes:
+        if type(child).__name__ != "SecondaryAxis":
+            raise NotImplementedError(f"{child!r}: a live figure shows no inset axes")
+        if child._orientation != "x":
+            raise NotImplementedError("a live figure shows secondary x axes only")
+        forward = child._functions[0]
+        lo, hi = ax.get_xlim()
+        f0, f1, fm = (float(forward(np.array(v))) for v in (lo, hi, 0.5 * (lo + hi)))
+        if not math.isclose(fm, 0.5 * (f0 + f1), rel_tol=1e-9, abs_tol=1e-12 * abs(f1 - f0)):
+            raise NotImplementedError("a live figure shows linear secondary axes only")
+        label = child.xaxis.label
+        return {"label": label.get_text(), "color": _color(label.get_color()),
+                "lim": [_num(f0), _num(f1)]}
+    return None
+
+
+def _texts(ax):
+    out = []
+    for t in ax.texts:
+        if not t.get_visible():
+            continue
+        kind = _kind(t, ax)
+        if kind not in ("data", "axes"):
+            raise NotImplementedError(f"{t!r}: texts are placed in data or axes coordinates")
+        x, y = t.get_position()
+        out.append(dict(text=t.get_text(), x=_num(x), y=_num(y), coords=kind,
+                        color=_color(t.get_color()), ha=t.get_horizontalalignment(),
+                        va=t.get_verticalalignment(), size=t.get_fontsize() * _PX))
+    return out
+
+
+def _legend(legend):
+    if legend is None or not legend.get_visible():
+        return []
+    out = []
+    for handle, text in zip(legend.legend_handles, legend.get_texts()):
+        if handle is None:
+            continue
+        if hasattr(handle, "get_linestyle") and hasattr(handle, "get_marker"):
+            marker = handle.get_marker()
+            marker = None if marker in (None, "None", "none", "", " ") else str(marker)
+            ls = handle.get_linestyle()
+            out.append(dict(label=text.get_text(), color=_color(handle.get_color(),
+                                                                handle.get_alpha()),
+                            dash=ls not in ("-", "solid"), line=ls not in ("None", "", " "),
+                            marker=marker, width=handle.get_linewidth() * _PX))
+        else:  # a patch
+            out.append(dict(label=text.get_text(), color=_color(handle.get_facecolor()),
+                            dash=False, line=True, marker=None, width=8))
+    return out
+
+
+def _patches(ax):
+    spans = []
+    for p in ax.patches:
+        if not p.get_visible():
+            continue
+        kind = _kind(p, ax)
+        if kind not in ("v", "h") or not isinstance(p, (Rectangle, Polygon)):
+            raise NotImplementedError(f"{p!r}: a live figure shows axvspan and axhspan patches")
+        xy = p.get_path().vertices if isinstance(p, Rectangle) else p.get_xy()
+        xy = p.get_patch_transform().transform(xy) if isinstance(p, Rectangle) else xy
+        coords = xy[:, 0] if kind == "v" else xy[:, 1]
+        spans.append(dict(kind=kind, lo=_num(np.min(coords)), hi=_num(np.max(coords)),
+                          color=_color(p.get_facecolor())))
+    return spans
+
+
+def _images(ax, packer, luts):
+    layout, frame = [], []
+    for im in ax.images:
+        a = np.ma.asarray(im.get_array())
+        if a.ndim != 2:
+            raise NotImplementedError("a live figure shows 2-D height maps (with a colour map), "
+                                      f"not arrays of shape {a.shape}")
+        im.norm.autoscale_None(a)
+        cmap = im.get_cmap()
+        if cmap.name not in luts:
+            rgb = (cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
+            luts[cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+        layout.append({"cmap": cmap.name})
+        frame.append(dict(data=packer.add(_floats(a)), shape=list(a.shape), cmap=cmap.name,
+                          extent=[_num(v) for v in im.get_extent()], origin=im.origin,
+                          vmin=_num(im.norm.vmin), vmax=_num(im.norm.vmax)))
+    return layout, frame
+
+
+@dataclass(frozen=True)
+class Description:
+    """A figure as the browser draws it.
+
+    Attributes
+    ----------
+    layout : dict
+        What rarely changes: the grid of axes, their scales, the series' styles and labels. A new
+        layout rebuilds the charts in the browser.
+    frame : dict
+        What changes with the data: limits, titles, axis labels, texts, reference lines, spans,
+        legends, and for each series and image its place in ``buffer``.
+    buffer : bytes
+        Every curve and image of the frame, float32, little-endian.
+    """
+
+    layout: dict
+    frame: dict
+    buffer: bytes
+
+    def values(self, ref) -> np.ndarray:
+        """The array at ``ref`` (``[offset, length]`` from the frame) as float32."""
+        offset, length = ref
+        return np.frombuffer(self.buffer, dtype="<f4", count=length, offset=4 * offset)
+
+
+def describe(fig: Figure) -> Description:
+    """Read a matplotlib figure's artists into a :class:`Description` (no rendering).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+        Its axes on one grid (``subplots``/``add_gridspec``), with twins (``twinx``), linear
+        secondary x axes, colour bars.
+
+    Returns
+    -------
+    Description
+
+    Raises
+    ------
+    TypeError
+        If ``fig`` is not a Figure.
+    NotImplementedError
+        For an artist a live figure cannot show (named).
+    """
+    fig = check_instance("fig", fig, Figure)
+    packer, luts = _Packer(), {}
+    hosts, twins, colorbars = [], {}, {}
+    for ax in fig.axes:
+        if hasattr(ax, "_colorbar"):
+            cb = ax._colorbar
+            colorbars[id(cb.mappable.axes)] = cb
+            continue
+        ss = ax.get_subplotspec()
+        if ss is None:
+            raise NotImplementedError(f"{ax!r} is not on a grid of subplots")
+        host = next((h for h in hosts if h.get_subplotspec() == ss), None)
+        if host is None:
+            hosts.append(ax)
+        elif host in ax._twinned_axes.get_siblings(ax) and id(host) not in twins:
+            twins[id(host)] = ax
+        else:
+            raise NotImplementedError(f"{ax!r} shares its place with another axes")
+    if not hosts:
+        raise ValueError("fig must hold at least one axes")
+    gs = hosts[0].get_subplotspec().get_gridspec()
+    rows, cols = gs.get_geometry()
+    layout_axes, frame_axes = [], []
+    for ax in hosts:
+        ss = ax.get_subplotspec()
+        if ss.get_gridspec() is not gs:
+            raise NotImplementedError("a live figure's axes must share one grid")
+        xl, xf = _axis(ax, "x")
+        yl, yf = _axis(ax, "y")
+        la = dict(row=ss.rowspan.start, rowspan=len(ss.rowspan), col=ss.colspan.start,
+                  colspan=len(ss.colspan), visible=bool(ax.get_visible()), x=xl, y=yl,
+                  aspect="equal" if ax.get_aspect() == 1.0 else None, series=[], images=[])
+        fa = dict(axes=dict(x=xf, y=yf), series=[], refs=[], texts=[], spans=[], legend=[],
+                  title=dict(text=ax.get_title(), color=_color(ax.title.get_color())))
+        members = [(ax, "y")]
+        twin = twins.get(id(ax))
+        if twin is not None:
+            tl, tf = _axis(twin, "y")
+            la["y2"] = dict(tl, visible=bool(twin.get_visible()))
+            fa["axes"]["y2"] = tf
+            members.append((twin, "y2"))
+        sec = _secondary(ax)
+        if sec is not None:
+            la["x2"] = {"scale": "linear", "grid": False}
+            fa["axes"]["x2"] = sec
+        for member, axis in members:
+            if not member.get_visible():
+                continue
+            for line in member.lines:
+                kind = _kind(line, member)
+                if kind == "data":
+                    lay, fr = _line_specs(line, axis, packer)
+                    la["series"] += lay
+                    fa["series"] += fr
+                elif kind in ("v", "h") and line.get_visible():
+                    x, y = _floats(line.get_xdata()), _floats(line.get_ydata())
+                    at, (a, b) = (x[0], y) if kind == "v" else (y[0], x)
+                    fa["refs"].append(dict(kind=kind, at=_num(at), axis=axis,
+                                           **{"from": _num(min(a, b)), "to": _num(max(a, b))},
+                                           color=_color(line.get_color(), line.get_alpha()),
+                                           width=line.get_linewidth() * _PX,
+                                           dash=_linestyle(line) or None))
+                elif kind not in ("v", "h"):
+                    raise NotImplementedError(f"{line!r}: a line in axes coordinates")
+            fa["texts"] += _texts(member)
+            fa["spans"] += [dict(s, axis=axis) for s in _patches(member)]
+            fa["legend"] += _legend(member.get_legend())
+            if member.collections:
+                raise NotImplementedError(f"{member.collections[0]!r}: a live figure shows lines, "
+                                          "markers, spans and images, not collections")
+        il, fi = _images(ax, packer, luts)
+        la["images"], fa["images"] = il, fi
+        cb = colorbars.get(id(ax))
+        if cb is not None:
+            la["colorbar"] = True
+            fa["colorbar"] = dict(label=cb.ax.get_ylabel(), cmap=cb.cmap.name,
+                                  vmin=_num(cb.norm.vmin), vmax=_num(cb.norm.vmax))
+            if cb.cmap.name not in luts:
+                rgb = (cb.cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
+                luts[cb.cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+        layout_axes.append(la)
+        frame_axes.append(fa)
+    unplaced = set(colorbars) - {id(ax) for ax in hosts}
+    if unplaced:
+        raise NotImplementedError("a colour bar's image must be on one of the figure's axes")
+    width, height = (float(v) * DPI for v in fig.get_size_inches())
+    ratios = gs.get_width_ratios() or [1] * cols, gs.get_height_ratios() or [1] * rows
+    layout = dict(width=round(width), height=round(height), rows=rows, cols=cols,
+                  col_ratios=[float(r) for r in ratios[0]],
+                  row_ratios=[float(r) for r in ratios[1]], axes=layout_axes, luts=luts)
+    suptitle = fig._suptitle.get_text() if getattr(fig, "_suptitle", None) is not None else ""
+    legend = [e for lg in fig.legends for e in _legend(lg)]
+    frame = dict(axes=frame_axes, suptitle=suptitle, legend=legend)
+    return Description(layout, frame, packer.bytes())
+
+
+# -- the widget and the static page -------------------------------------------------------------
+
+class LiveFigure(anywidget.AnyWidget):
+    """A matplotlib figure drawn in the browser; :meth:`sync` sends its current state.
+
+    Parameters
+    ----------
+    figure : matplotlib.figure.Figure
+        The figure to mirror; its figure class updates the artists, then calls :meth:`sync`.
+
+    Attributes
+    ----------
+    figure : matplotlib.figure.Figure
+    frames_sent : int
+        Frames sent so far (one per :meth:`sync`); the browser shows it as ``data-seq``.
+    """
+
+    _esm = _esm()
+    _css = _css()
+    _layout = traitlets.Dict().tag(sync=True)
+    _frame = traitlets.Dict().tag(sync=True)
+    _buffer = traitlets.Bytes().tag(sync=True)
+
+    def __init__(self, figure: Figure, **kwargs):
+        super().__init__(**kwargs)
+        self.figure = check_instance("figure", figure, Figure)
+        self.frames_sent = 0
+        self.sync()
+
+    def sync(self) -> Description:
+        """Send the figure's current state to the browser as one message; return it.
+
+        Returns
+        -------
+        Description
+        """
+        d = describe(self.figure)
+        self.frames_sent += 1
+        with self.hold_sync():
+            self._layout = d.layout
+            self._buffer = d.buffer
+            self._frame = dict(d.frame, seq=self.frames_sent)
+        return d
+
+    def static_html(self) -> str:
+        """The figure as a self-contained HTML fragment (uPlot inlined, no network, no kernel)."""
+        return static_html(self.figure)
+
+
+def _script_json(value) -> str:
+    return json.dumps(value, allow_nan=False).replace("</", "<\\/")
+
+
+def static_html(fig: Figure) -> str:
+    """``fig`` drawn by the live figure's renderer in a static page (an export, the book).
+
+    Parameters
+    ----------
+    fig : matplotlib.figure.Figure
+
+    Returns
+    -------
+    str
+        A ``<div>`` with its style and an inline module script: uPlot, the renderer and the frame
+        (its buffer in base64). It needs no network and no kernel.
+    """
+    d = describe(fig)
+    key = f"afm-live-{uuid.uuid4().hex}"
+    data = base64.b64encode(d.buffer).decode()
+    css = _css().replace("</", "<\\/")
+    return (f'<div class="afm-live-static"><style>{css}</style>'
+            f'<div id="{key}"></div><script type="module">\n{_esm()}\n'
+            f'drawStatic(document.getElementById("{key}"), {_script_json(d.layout)}, '
+            f'{_script_json(dict(d.frame, seq=0))}, "{data}");\n</script></div>')

@@ -1,0 +1,587 @@
+// The browser side of afmsmiler's live figures (afmsmiler/plots/live.py).
+//
+// The kernel describes a figure as a layout (axes on a grid, series styles, labels: what rarely
+// changes), a frame (limits, titles, texts, reference lines, legends: small) and one binary buffer
+// of float32 holding every curve and image of the frame. A new layout rebuilds the uPlot charts;
+// a new frame only swaps data and limits. uPlot (the kept library, shipped beside this file) draws
+// axes and curves; images, spans, reference lines and texts are drawn in its hooks.
+//
+// Every frame the kernel sends is painted for at least one animation frame: a frame arriving while
+// another was already drawn in this animation frame waits for the next one, so a quick drag shows
+// every step. The root element counts painted frames (data-frames) and names the kernel's sequence
+// number shown last (data-seq), which the browser tests read.
+//
+// This file holds no physics: every number comes from the kernel.
+
+const PX = 100 / 72; // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
+
+function el(tag, cls, parent) {
+  const e = document.createElement(tag);
+  if (cls) e.className = cls;
+  if (parent) parent.appendChild(e);
+  return e;
+}
+
+function font(size, weight) {
+  return `${weight || ""} ${Math.round(size)}px sans-serif`.trim();
+}
+
+// -- series paths: lines with NaN gaps, in any order of x (uPlot's mode 2 gives each series its x),
+// -- and markers ---------------------------------------------------------------------------------
+
+function finitePos(u, v, key) {
+  if (v == null || !Number.isFinite(v)) return NaN;
+  const p = u.valToPos(v, key, true);
+  return Number.isFinite(p) ? p : NaN;
+}
+
+function linePath(xKey, yKey) {
+  return (u, si) => {
+    const [xs, ys] = u.data[si];
+    const stroke = new Path2D();
+    let pen = false;
+    for (let i = 0; i < xs.length; i++) {
+      const px = finitePos(u, xs[i], xKey), py = finitePos(u, ys[i], yKey);
+      if (Number.isNaN(px) || Number.isNaN(py)) { pen = false; continue; }
+      if (pen) stroke.lineTo(px, py); else { stroke.moveTo(px, py); pen = true; }
+    }
+    return { stroke, fill: null, clip: null, band: null, gaps: null, flags: 0 };
+  };
+}
+
+function markerPath(xKey, yKey, marker, size) {
+  return (u, si) => {
+    const [xs, ys] = u.data[si];
+    const r = 0.5 * size * PX * devicePixelRatio;
+    const stroke = new Path2D();
+    const filled = marker === "o" || marker === "." || marker === "s" || marker === "D" ||
+      marker === "^" || marker === "v";
+    const fill = filled ? new Path2D() : null;
+    for (let i = 0; i < xs.length; i++) {
+      const x = finitePos(u, xs[i], xKey), y = finitePos(u, ys[i], yKey);
+      if (Number.isNaN(x) || Number.isNaN(y)) continue;
+      const shape = new Path2D();
+      if (marker === "x") {
+        shape.moveTo(x - r, y - r); shape.lineTo(x + r, y + r);
+        shape.moveTo(x - r, y + r); shape.lineTo(x + r, y - r);
+      } else if (marker === "+") {
+        shape.moveTo(x - r, y); shape.lineTo(x + r, y);
+        shape.moveTo(x, y - r); shape.lineTo(x, y + r);
+      } else if (marker === "s") {
+        shape.rect(x - r, y - r, 2 * r, 2 * r);
+      } else if (marker === "D") {
+        shape.moveTo(x, y - r); shape.lineTo(x + r, y); shape.lineTo(x, y + r);
+        shape.lineTo(x - r, y); shape.closePath();
+      } else if (marker === "^" || marker === "v") {
+        const s = marker === "^" ? 1 : -1;
+        shape.moveTo(x, y - s * r); shape.lineTo(x + r, y + s * r); shape.lineTo(x - r, y + s * r);
+        shape.closePath();
+      } else {
+        shape.moveTo(x + r, y); shape.arc(x, y, r, 0, 2 * Math.PI);
+      }
+      stroke.addPath(shape);
+      if (fill) fill.addPath(shape);
+    }
+    return { stroke, fill, clip: null, band: null, gaps: null, flags: 0 };
+  };
+}
+
+// -- one axes: a uPlot with its title above and its legend below ---------------------------------
+
+// tick labels: plain decimals, exponents for the very small and large (uPlot's own wrote 1e-4 as 0)
+function fmtTick(v) {
+  if (v == null || !Number.isFinite(v)) return "";
+  const a = Math.abs(v);
+  if (a !== 0 && (a < 1e-3 || a >= 1e5)) {
+    return v.toExponential().replace(/\.?0+e/, "e").replace("e+", "e");
+  }
+  return String(+v.toPrecision(6));
+}
+
+function isDecade(v) {
+  const e = Math.log10(Math.abs(v));
+  return Number.isFinite(e) && Math.abs(e - Math.round(e)) < 1e-9;
+}
+
+// drop the labels that would overlap the one shown before them
+function thin(u, key, splits, labels) {
+  const horizontal = u.scales[key].ori === 0;
+  const width = (text) => (horizontal ? text.length * 6.5 : 12);
+  let last = -Infinity, lastWidth = 0;
+  return labels.map((text, i) => {
+    if (!text) return "";
+    const p = u.valToPos(splits[i], key), w = width(text);
+    if (Math.abs(p - last) < 0.5 * (w + lastWidth) + 6) return "";
+    last = p; lastWidth = w;
+    return text;
+  });
+}
+
+// the kernel's limits, verbatim (uPlot pads and rounds a range it is asked for without data)
+const exactRange = (u, min, max) => [min, max];
+
+function scaleOpts(axis) {
+  const s = { time: false, auto: false, range: exactRange };
+  if (axis.scale === "log") Object.assign(s, { distr: 3, log: 10 });
+  if (axis.scale === "symlog") Object.assign(s, { distr: 4, asinh: axis.linthresh || 1 });
+  return s;
+}
+
+function axisOpts(scale, side, axis, show) {
+  const a = {
+    scale, side, show, label: axis.label || "", stroke: axis.color || "#222",
+    labelFont: font(12), font: font(11), labelSize: 18, gap: 3, size: side % 2 ? 60 : 36,
+    grid: { show: !!axis.grid && (side === 2 || side === 3), stroke: "#0000001a", width: 1 },
+    ticks: { show: true, stroke: "#00000066", width: 1, size: 4 },
+    filter: (u, splits) => splits, // every split reaches values(), which thins the labels itself
+  };
+  return a;
+}
+
+class Axes {
+  constructor(fig, spec, cell) {
+    this.fig = fig;
+    this.spec = spec;
+    this.cell = cell;
+    this.title = el("div", "afm-live-title", cell);
+    this.row = el("div", "afm-live-row", cell);
+    this.plotBox = el("div", "afm-live-plot", this.row);
+    this.legend = el("div", "afm-live-legend", cell);
+    this.frame = null;
+    this.images = [];
+    const s = spec;
+    const series = [{}];
+    for (const sr of s.series) {
+      const xKey = "x", yKey = sr.axis === "y2" ? "y2" : "y";
+      const marker = sr.marker;
+      const o = {
+        label: sr.label || "", stroke: sr.color, width: sr.width, dash: sr.dash || undefined,
+        show: sr.visible !== false, spanGaps: false, points: { show: false },
+        facets: [{ scale: xKey, auto: false }, { scale: yKey, auto: false }],
+        paths: marker ? markerPath(xKey, yKey, marker, sr.size) : linePath(xKey, yKey),
+      };
+      if (marker && sr.filled) o.fill = sr.color;
+      if (marker && !sr.line) { o.width = Math.max(sr.edge || 1, 1); o.dash = undefined; }
+      series.push(o);
+    }
+    // uPlot's mode 2 takes its x scale from the first series: an axes holding only images gets
+    // an empty one
+    this.placeholder = s.series.length === 0;
+    if (this.placeholder) {
+      series.push({ label: "", stroke: "transparent", width: 0, points: { show: false },
+        facets: [{ scale: "x", auto: false }, { scale: "y", auto: false }], paths: linePath("x", "y") });
+    }
+    const scales = { x: scaleOpts(s.x), y: scaleOpts(s.y) };
+    const axes = [axisOpts("x", 2, s.x, true), axisOpts("y", 3, s.y, true)];
+    if (s.y2) { scales.y2 = scaleOpts(s.y2); axes.push(axisOpts("y2", 1, s.y2, s.y2.visible !== false)); }
+    if (s.x2) { scales.x2 = { time: false, auto: false, ori: 0, range: exactRange }; axes.push(axisOpts("x2", 0, s.x2, true)); }
+    const self = this;
+    this.u = new uPlot({
+      mode: 2, width: 100, height: 100, pxAlign: 0, series, scales, axes,
+      legend: { show: false }, cursor: { show: false, drag: { x: false, y: false } },
+      select: { show: false },
+      hooks: {
+        drawClear: [(u) => self.drawUnder(u)],
+        drawAxes: [(u) => self.drawRefs(u)],
+        draw: [(u) => self.drawOver(u)],
+      },
+    }, [null, ...series.slice(1).map(() => [[], []])], this.plotBox);
+    // uPlot's own tick placement and labels, for the axes whose ticks the kernel leaves free
+    this.tickDefaults = this.u.axes.map((a) => [a.splits, a.values]);
+    if (s.colorbar) {
+      this.cbBox = el("div", "afm-live-colorbar", this.row);
+      this.cb = new uPlot({
+        mode: 2, width: 70, height: 100,
+        series: [{}, { stroke: "transparent", width: 0, points: { show: false },
+          facets: [{ scale: "x", auto: false }, { scale: "c", auto: false }], paths: linePath("x", "c") }],
+        scales: { x: { time: false, auto: false, range: exactRange },
+          c: { time: false, auto: false, range: exactRange } },
+        axes: [{ scale: "x", show: false }, Object.assign(axisOpts("c", 1, { label: s.colorbar.label }, true))],
+        legend: { show: false }, cursor: { show: false }, select: { show: false },
+        hooks: { drawClear: [(u) => self.drawColorbar(u)] },
+      }, [null, [[], []]], this.cbBox);
+      // uPlot hides an axis whose scale no series uses: keep it
+      this.cb.axes[1].show = true;
+    }
+  }
+
+  size(width, height) {
+    const titleH = this.title.offsetHeight, legendH = this.legend.offsetHeight;
+    const cbW = this.cb ? 80 : 0;
+    const w = Math.max(60, width - cbW), h = Math.max(60, height - titleH - legendH - 4);
+    this.full = [w, h];
+    this.u.setSize({ width: w, height: h });
+    if (this.cb) this.cb.setSize({ width: cbW, height: h });
+  }
+
+  update(frame, buf) {
+    this.frame = frame;
+    const s = this.spec;
+    // title, legend (HTML), axis labels and ticks
+    this.title.innerHTML = "";
+    if (frame.title) {
+      this.title.textContent = frame.title.text;
+      this.title.style.color = frame.title.color || "";
+    }
+    this.legend.innerHTML = "";
+    for (const e of frame.legend || []) {
+      const item = el("span", "afm-live-key", this.legend);
+      const sw = el("span", "afm-live-swatch", item);
+      if (e.marker && !e.line) {
+        sw.textContent = e.marker === "x" ? "\u00d7" : e.marker === "+" ? "+" : "\u25cf";
+        sw.style.color = e.color;
+      } else {
+        sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
+      }
+      el("span", "", item).textContent = e.label;
+    }
+    const keys = [["x", 0], ["y", 1]];
+    if (s.y2) keys.push(["y2", 2]);
+    if (s.x2) keys.push(["x2", s.y2 ? 3 : 2]);
+    for (const [key, i] of keys) {
+      const axis = frame.axes[key];
+      const a = this.u.axes[i], [splits, values] = this.tickDefaults[i];
+      a.label = axis.label || "";
+      a.stroke = () => axis.color || "#222";
+      // ticks the kernel chose (a FixedLocator), with its labels; else uPlot's own
+      const scale = (s[key] && s[key].scale) || "linear";
+      if (scale === "symlog") this.u.scales[key].asinh = axis.linthresh || 1;
+      a.splits = axis.ticks ? () => axis.ticks : splits;
+      if (axis.ticks) {
+        const labels = axis.ticklabels || axis.ticks.map(fmtTick);
+        a.values = (u, sp) => thin(u, key, sp, labels);
+      } else if (scale === "log") {
+        a.values = (u, sp) => thin(u, key, sp, sp.map((v) => (isDecade(v) ? fmtTick(v) : "")));
+      } else {
+        a.values = values;
+      }
+    }
+    // data
+    const data = [null];
+    for (const d of frame.series) {
+      data.push([buf.subarray(d.x[0], d.x[0] + d.x[1]), buf.subarray(d.y[0], d.y[0] + d.y[1])]);
+    }
+    if (this.placeholder) data.push([[], []]);
+    this.images = (frame.images || []).map((im) => this.image(im, buf));
+    const lim = {};
+    for (const [key] of keys) lim[key] = frame.axes[key].lim.slice();
+    if (s.aspect === "equal") this.equalAspect(lim);
+    this.u.batch(() => {
+      this.u.setData(data, false);
+      for (const key in lim) this.u.setScale(key, { min: lim[key][0], max: lim[key][1] });
+      this.u.redraw(false, true);
+    });
+    if (this.cb && frame.colorbar) {
+      const c = frame.colorbar;
+      this.cb.axes[1].label = c.label || "";
+      this.cb.batch(() => {
+        this.cb.setScale("x", { min: 0, max: 1 });
+        this.cb.setScale("c", { min: c.vmin, max: c.vmax });
+        this.cb.redraw(false, true);
+      });
+    }
+  }
+
+  // equal aspect as matplotlib's adjustable="box": the plot box shrinks, the limits stay
+  equalAspect(lim) {
+    if (!this.full) return;
+    const [w, h] = this.full, u = this.u, r = devicePixelRatio;
+    const extraW = u.width - u.bbox.width / r, extraH = u.height - u.bbox.height / r;
+    const bw = w - extraW, bh = h - extraH; // the plot box the whole cell would give
+    const ratio = Math.abs((lim.x[1] - lim.x[0]) / (lim.y[1] - lim.y[0]));
+    if (!(bw > 0 && bh > 0 && Number.isFinite(ratio) && ratio > 0)) return;
+    let pw = bw, ph = bh;
+    if (bw / bh > ratio) pw = bh * ratio; else ph = bw / ratio;
+    const size = { width: Math.round(pw + extraW), height: Math.round(ph + extraH) };
+    if (size.width !== u.width || size.height !== u.height) {
+      u.setSize(size);
+      if (this.cb) this.cb.setSize({ width: this.cb.width, height: size.height });
+    }
+  }
+
+  image(im, buf) {
+    const [ny, nx] = im.shape;
+    const values = buf.subarray(im.data[0], im.data[0] + nx * ny);
+    const lut = this.fig.lut(im.cmap);
+    const canvas = document.createElement("canvas");
+    canvas.width = nx; canvas.height = ny;
+    const ctx = canvas.getContext("2d");
+    const img = ctx.createImageData(nx, ny);
+    const span = im.vmax - im.vmin || 1;
+    for (let r = 0; r < ny; r++) {
+      const row = im.origin === "lower" ? ny - 1 - r : r; // the data row drawn at canvas row r
+      for (let c = 0; c < nx; c++) {
+        const v = values[row * nx + c], o = 4 * (r * nx + c);
+        if (!Number.isFinite(v)) { img.data[o + 3] = 0; continue; }
+        const k = Math.max(0, Math.min(255, Math.round(255 * (v - im.vmin) / span)));
+        img.data[o] = lut[3 * k]; img.data[o + 1] = lut[3 * k + 1]; img.data[o + 2] = lut[3 * k + 2];
+        img.data[o + 3] = 255;
+      }
+    }
+    ctx.putImageData(img, 0, 0);
+    return { canvas, extent: im.extent };
+  }
+
+  // spans and images, under everything
+  drawUnder(u) {
+    const f = this.frame;
+    if (!f) return;
+    const ctx = u.ctx, bb = u.bbox;
+    ctx.save();
+    ctx.beginPath(); ctx.rect(bb.left, bb.top, bb.width, bb.height); ctx.clip();
+    for (const im of this.images) {
+      const [x0, x1, y0, y1] = im.extent;
+      const px0 = u.valToPos(x0, "x", true), px1 = u.valToPos(x1, "x", true);
+      const py0 = u.valToPos(y0, "y", true), py1 = u.valToPos(y1, "y", true);
+      ctx.imageSmoothingEnabled = false;
+      ctx.drawImage(im.canvas, Math.min(px0, px1), Math.min(py0, py1), Math.abs(px1 - px0),
+        Math.abs(py1 - py0));
+    }
+    for (const sp of f.spans || []) {
+      ctx.fillStyle = sp.color;
+      if (sp.kind === "v") {
+        const a = this.clampPos(u, sp.lo, "x"), b = this.clampPos(u, sp.hi, "x");
+        ctx.fillRect(Math.min(a, b), bb.top, Math.abs(b - a), bb.height);
+      } else {
+        const key = sp.axis || "y";
+        const a = this.clampPos(u, sp.lo, key), b = this.clampPos(u, sp.hi, key);
+        ctx.fillRect(bb.left, Math.min(a, b), bb.width, Math.abs(b - a));
+      }
+    }
+    ctx.restore();
+  }
+
+  clampPos(u, v, key) {
+    const sc = u.scales[key];
+    const lo = Math.min(sc.min, sc.max), hi = Math.max(sc.min, sc.max);
+    return u.valToPos(Math.max(lo, Math.min(hi, v)), key, true);
+  }
+
+  // reference lines: over the grid, under the curves
+  drawRefs(u) {
+    const f = this.frame;
+    if (!f) return;
+    const ctx = u.ctx, bb = u.bbox, r = devicePixelRatio;
+    ctx.save();
+    ctx.beginPath(); ctx.rect(bb.left, bb.top, bb.width, bb.height); ctx.clip();
+    for (const ln of f.refs || []) {
+      ctx.strokeStyle = ln.color; ctx.lineWidth = ln.width * r;
+      ctx.setLineDash((ln.dash || []).map((d) => d * r));
+      ctx.beginPath();
+      if (ln.kind === "v") {
+        const x = u.valToPos(ln.at, "x", true);
+        ctx.moveTo(x, bb.top + (1 - ln.to) * bb.height); ctx.lineTo(x, bb.top + (1 - ln.from) * bb.height);
+      } else {
+        const y = u.valToPos(ln.at, ln.axis || "y", true);
+        ctx.moveTo(bb.left + ln.from * bb.width, y); ctx.lineTo(bb.left + ln.to * bb.width, y);
+      }
+      ctx.stroke();
+    }
+    ctx.restore();
+  }
+
+  // texts, over everything
+  drawOver(u) {
+    const f = this.frame;
+    if (!f) return;
+    const ctx = u.ctx, bb = u.bbox, r = devicePixelRatio;
+    ctx.save();
+    for (const t of f.texts || []) {
+      if (!t.text) continue;
+      let x, y;
+      if (t.coords === "axes") { x = bb.left + t.x * bb.width; y = bb.top + (1 - t.y) * bb.height; }
+      else { x = u.valToPos(t.x, "x", true); y = u.valToPos(t.y, "y", true); }
+      ctx.fillStyle = t.color || "#222";
+      ctx.font = font(t.size * r);
+      ctx.textAlign = t.ha === "center" ? "center" : t.ha === "right" ? "right" : "left";
+      const lines = t.text.split("\n"), lh = 1.2 * t.size * r;
+      const top = t.va === "top" ? y : t.va === "center" ? y - 0.5 * lh * (lines.length - 1)
+        : y - lh * (lines.length - 1);
+      ctx.textBaseline = t.va === "top" ? "top" : t.va === "center" ? "middle" : "alphabetic";
+      lines.forEach((line, i) => ctx.fillText(line, x, top + i * lh));
+    }
+    ctx.restore();
+  }
+
+  drawColorbar(u) {
+    const f = this.frame;
+    if (!f || !f.colorbar) return;
+    const lut = this.fig.lut(f.colorbar.cmap), bb = u.bbox, ctx = u.ctx;
+    const n = 256, h = bb.height / n;
+    for (let k = 0; k < n; k++) {
+      ctx.fillStyle = `rgb(${lut[3 * k]},${lut[3 * k + 1]},${lut[3 * k + 2]})`;
+      ctx.fillRect(bb.left, bb.top + bb.height - (k + 1) * h, bb.width, h + 1);
+    }
+  }
+
+  destroy() {
+    this.u.destroy();
+    if (this.cb) this.cb.destroy();
+  }
+}
+
+// -- the figure: a grid of axes, a suptitle and a figure legend ------------------------------------
+
+function decodeLut(b64) {
+  const s = atob(b64), out = new Uint8Array(s.length);
+  for (let i = 0; i < s.length; i++) out[i] = s.charCodeAt(i);
+  return out;
+}
+
+class Figure {
+  constructor(root) {
+    this.root = root;
+    root.classList.add("afm-live");
+    root.dataset.frames = "0";
+    root.afmFigure = this; // for the browser tests and the console
+    this.layoutKey = null;
+    this.axes = [];
+    this.luts = {};
+    this.pending = [];
+    this.paintedThisFrame = false;
+    this.scheduled = false;
+  }
+
+  lut(name) { return this.luts[name] || new Uint8Array(768); }
+
+  build(layout) {
+    for (const a of this.axes) a.destroy();
+    this.root.innerHTML = "";
+    this.layout = layout;
+    const L = layout;
+    this.root.style.width = `${L.width}px`;
+    this.header = el("div", "afm-live-header", this.root);
+    this.suptitle = el("div", "afm-live-suptitle", this.header);
+    this.figLegend = el("div", "afm-live-legend", this.header);
+    this.grid = el("div", "afm-live-grid", this.root);
+    this.grid.style.gridTemplateColumns = L.col_ratios.map((r) => `${r}fr`).join(" ");
+    this.grid.style.gridTemplateRows = L.row_ratios.map((r) => `${r}fr`).join(" ");
+    this.axes = L.axes.map((spec) => {
+      const cell = el("div", "afm-live-cell", this.grid);
+      cell.style.gridColumn = `${spec.col + 1} / span ${spec.colspan}`;
+      cell.style.gridRow = `${spec.row + 1} / span ${spec.rowspan}`;
+      if (spec.visible === false) cell.style.visibility = "hidden";
+      return new Axes(this, spec, cell);
+    });
+  }
+
+  resize() {
+    const L = this.layout;
+    const headerH = this.header.offsetHeight;
+    const gridH = Math.max(100, L.height - headerH);
+    this.grid.style.height = `${gridH}px`;
+    const gap = 8, colSum = L.col_ratios.reduce((a, b) => a + b, 0);
+    const rowSum = L.row_ratios.reduce((a, b) => a + b, 0);
+    const span = (ratios, start, n) => ratios.slice(start, start + n).reduce((a, b) => a + b, 0);
+    for (const a of this.axes) {
+      const s = a.spec;
+      const w = (L.width - gap * (L.col_ratios.length - 1)) * span(L.col_ratios, s.col, s.colspan)
+        / colSum + gap * (s.colspan - 1);
+      const h = (gridH - gap * (L.row_ratios.length - 1)) * span(L.row_ratios, s.row, s.rowspan)
+        / rowSum + gap * (s.rowspan - 1);
+      a.size(w, h);
+    }
+  }
+
+  // a frame from the kernel: draw it now, or at the next animation frame if one was just painted
+  push(layout, frame, buffer) {
+    this.pending.push([layout, frame, buffer]);
+    if (!this.paintedThisFrame) this.drain();
+    else this.schedule();
+  }
+
+  schedule() {
+    if (this.scheduled) return;
+    this.scheduled = true;
+    requestAnimationFrame(() => {
+      this.scheduled = false;
+      this.paintedThisFrame = false;
+      if (this.pending.length) this.drain();
+    });
+  }
+
+  drain() {
+    const [layout, frame, buffer] = this.pending.shift();
+    this.draw(layout, frame, buffer);
+    this.paintedThisFrame = true;
+    this.schedule();
+  }
+
+  draw(layout, frame, buffer) {
+    const key = JSON.stringify(layout);
+    for (const [name, b64] of Object.entries(layout.luts || {})) {
+      if (!this.luts[name]) this.luts[name] = decodeLut(b64);
+    }
+    const rebuilt = key !== this.layoutKey;
+    if (rebuilt) { this.build(layout); this.layoutKey = key; }
+    this.suptitle.textContent = frame.suptitle || "";
+    this.figLegend.innerHTML = "";
+    for (const e of frame.legend || []) {
+      const item = el("span", "afm-live-key", this.figLegend);
+      const sw = el("span", "afm-live-swatch", item);
+      sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
+      el("span", "", item).textContent = e.label;
+    }
+    // titles and legends first: their heights set the plots' sizes
+    frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
+    if (rebuilt) {
+      this.resize();
+      frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
+    }
+    this.root.dataset.frames = String(Number(this.root.dataset.frames) + 1);
+    this.root.dataset.seq = String(frame.seq);
+  }
+}
+
+function floats(view) {
+  if (!view) return new Float32Array(0);
+  const bytes = view.buffer.slice(view.byteOffset, view.byteOffset + view.byteLength);
+  return new Float32Array(bytes);
+}
+
+// The static copy of a figure (static_html) sits beside its widget in the same output area, for the
+// pages where no widget manager runs (an export without network, a saved notebook without kernel).
+// Wherever the live figure is drawn, its static copy steps aside.
+function outputArea(node) {
+  return node.closest(".jp-OutputArea, .output_area, .output, .cell") || document.body;
+}
+
+function hideStaticCopies(node) {
+  for (const copy of outputArea(node).querySelectorAll(".afm-live-static")) {
+    copy.style.display = "none";
+  }
+}
+
+function liveBeside(node) {
+  for (const fig of outputArea(node).querySelectorAll(".afm-live")) {
+    if (!fig.closest(".afm-live-static")) return true;
+  }
+  return false;
+}
+
+// anywidget's entry point: a view of the LiveFigure widget
+function render({ model, el: host }) {
+  const root = document.createElement("div");
+  host.appendChild(root);
+  requestAnimationFrame(() => hideStaticCopies(host));
+  const fig = new Figure(root);
+  const show = () => fig.push(model.get("_layout"), model.get("_frame"), floats(model.get("_buffer")));
+  model.on("change:_frame", show);
+  // the first frame once the element is in the page (sizes are measured)
+  requestAnimationFrame(show);
+  return () => { model.off("change:_frame", show); for (const a of fig.axes) a.destroy(); };
+}
+
+// a static page (an exported notebook, the book): the frame is embedded in the page
+function drawStatic(root, layout, frame, base64) {
+  const copy = root.closest(".afm-live-static") || root;
+  if (liveBeside(copy)) { copy.style.display = "none"; return null; }
+  const s = atob(base64), bytes = new Uint8Array(s.length);
+  for (let i = 0; i < s.length; i++) bytes[i] = s.charCodeAt(i);
+  const fig = new Figure(root);
+  fig.draw(layout, frame, new Float32Array(bytes.buffer));
+  return fig;
+}
+
+export default { render };
+export { drawStatic };

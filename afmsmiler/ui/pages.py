@@ -1,0 +1,98 @@
+"""Static pages of the panels' figures, for the book (``make book``) and any page without a kernel.
+
+Each page is the panel's live figure at its default settings, drawn by the same renderer as in
+JupyterLab (:func:`afmsmiler.plots.live.static_html`: uPlot inlined, the data embedded), so the book
+shows what the notebook's panel shows before the student moves a slider. Run as
+
+    python -m afmsmiler.ui.pages DIRECTORY
+
+to write one ``<panel>.html`` per panel into ``DIRECTORY``.
+"""
+from __future__ import annotations
+
+import argparse
+import html
+import importlib
+import inspect
+import sys
+from pathlib import Path
+
+from ..plots.live import static_html
+
+__all__ = ["PANELS", "panel_page", "write_panel_pages"]
+
+#: Page name -> (module of afmsmiler.ui, panel class, title).
+PANELS = {
+    "cantilever": ("cantilever", "CantileverPanel", "Module (a): the cantilever panel's figure"),
+    "transducers": ("transducers", "TransducerPanel", "Module (b): the transducer panel's figure"),
+    "controller": ("controller", "ControllerPanel", "Module (c): the controller panel's figure"),
+    "contact": ("contact", "ContactPanel", "Module (d): the contact panel's figure"),
+}
+
+
+def _panel(name: str):
+    module, cls, _ = PANELS[name]
+    panel_cls = getattr(importlib.import_module(f"afmsmiler.ui.{module}"), cls)
+    has_scene = "scene" in inspect.signature(panel_cls).parameters
+    return panel_cls(scene=False) if has_scene else panel_cls()  # no 3D server for a page
+
+
+def panel_page(name: str) -> str:
+    """A complete HTML page with panel ``name``'s figure at its defaults.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`PANELS`.
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``name``, listing the panels.
+    """
+    if name not in PANELS:
+        raise ValueError(f"name must be one of {sorted(PANELS)}, got {name!r}")
+    title = html.escape(PANELS[name][2])
+    body = static_html(_panel(name).fig)
+    return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title></head>"
+            f"<body style='margin:0'>{body}</body></html>\n")
+
+
+def write_panel_pages(directory) -> list[Path]:
+    """Write ``<name>.html`` for every panel of :data:`PANELS` into ``directory``.
+
+    Parameters
+    ----------
+    directory : str or os.PathLike
+        Created if missing.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The pages written.
+    """
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name in PANELS:
+        path = out / f"{name}.html"
+        path.write_text(panel_page(name), encoding="utf-8")
+        written.append(path)
+    return written
+
+
+def main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description="Write the panels' figures as static pages.")
+    parser.add_argument("directory")
+    args = parser.parse_args(argv)
+    for path in write_panel_pages(args.directory):
+        print(path)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,134 @@
+"""The live figure's renderer (``afmsmiler/plots/static/live.js``) read back in a real browser.
+
+Figures are drawn by the renderer in headless Chromium (Debian's ``/usr/bin/chromium``, driven by
+Playwright) from :func:`afmsmiler.plots.live.static_html`, and their pixels are compared with what
+matplotlib says should be there: a curve passes through its data points and not through its NaN
+gap, an image pixel has matplotlib's colour-map colour for its value, an equal-aspect box has the
+data's aspect, and a frame sent to a view is counted. Skipped, with the reason, without a browser.
+"""
+import os
+import shutil
+
+import matplotlib
+import numpy as np
+import pytest
+from matplotlib.figure import Figure
+
+from afmsmiler.plots.live import static_html
+
+pytestmark = pytest.mark.slow
+CHROMIUM = os.environ.get("AFMSMILER_CHROMIUM", "/usr/bin/chromium")
+ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+        "--disable-background-networking", "--disable-component-update", "--disable-sync"]
+
+
+@pytest.fixture(scope="module")
+def page():
+    if not shutil.which(CHROMIUM) and not os.path.exists(CHROMIUM):
+        pytest.skip(f"no browser at {CHROMIUM} (make test installs Debian's chromium as root)")
+    sync_api = pytest.importorskip("playwright.sync_api", reason="playwright is not installed")
+    with sync_api.sync_playwright() as p:
+        browser = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        try:
+            pg = browser.new_page(viewport={"width": 900, "height": 700})
+            errors = []
+            pg.on("pageerror", lambda e: errors.append(str(e)))
+            pg.errors = errors
+            yield pg
+        finally:
+            browser.close()
+
+
+def _show(page, fig):
+    page.set_content(f"<html><body style='margin:0'>{static_html(fig)}</body></html>")
+    page.wait_for_function("document.querySelector('.afm-live')?.dataset.frames === '1'",
+                           timeout=10000)
+    assert page.errors == []
+
+
+def _pixel(page, axes, x, y, key="y"):
+    """RGBA of the canvas pixel at data (x, y) of the ``axes``-th plot."""
+    return page.evaluate("""([i, x, y, key]) => {
+        const u = document.querySelector('.afm-live').afmFigure.axes[i].u;
+        const px = Math.round(u.valToPos(x, 'x', true)), py = Math.round(u.valToPos(y, key, true));
+        return Array.from(u.ctx.getImageData(px, py, 1, 1).data);
+    }""", [axes, x, y, key])
+
+
+def _blank(rgba):
+    """Nothing drawn: the transparent canvas (the page shows through) or white."""
+    return rgba[3] == 0 or min(rgba[:3]) > 240
+
+
+def test_a_curve_passes_through_its_points_and_leaves_its_nan_gap_empty(page):
+    fig = Figure(figsize=(5, 4))
+    ax = fig.add_subplot()
+    x = np.linspace(0.0, 1.0, 101)
+    y = x.copy()
+    y[(x > 0.6) & (x < 0.8)] = np.nan
+    ax.plot(x, y, color="#ff0000", lw=3)
+    ax.set(xlim=(0, 1), ylim=(0, 1))
+    _show(page, fig)
+    for v in (0.25, 0.5, 0.9):
+        r, g, b, a = _pixel(page, 0, v, v)
+        assert r > 200 and g < 80 and b < 80, (v, (r, g, b, a))  # on the red line
+    assert _blank(_pixel(page, 0, 0.7, 0.7))  # the gap: no line drawn
+    assert _blank(_pixel(page, 0, 0.25, 0.75))  # away from the line: background
+
+
+def test_image_pixels_have_matplotlibs_colour_for_their_value(page):
+    fig = Figure(figsize=(4, 4))
+    ax = fig.add_subplot()
+    z = np.array([[0.0, 1.0], [2.0, np.nan]])
+    ax.imshow(z, origin="lower", extent=(0, 2, 0, 2), cmap="viridis", vmin=0, vmax=3)
+    _show(page, fig)
+    cmap = matplotlib.colormaps["viridis"]
+    for (row, col), value in np.ndenumerate(z):
+        rgba = _pixel(page, 0, col + 0.5, row + 0.5)  # origin lower: row 0 at the bottom
+        if np.isnan(value):
+            assert _blank(rgba)  # not scanned: not drawn
+            continue
+        expected = np.round(np.array(cmap(value / 3)[:3]) * 255)
+        np.testing.assert_allclose(rgba[:3], expected, atol=3, err_msg=f"value {value}")
+
+
+def test_equal_aspect_gives_the_plot_box_the_datas_aspect(page):
+    fig = Figure(figsize=(8, 4))
+    ax = fig.add_subplot()
+    ax.plot([0, 3], [0, 1])
+    ax.set(xlim=(0, 3), ylim=(0, 1))
+    ax.set_aspect("equal")
+    _show(page, fig)
+    w, h = page.evaluate("""(() => {
+        const u = document.querySelector('.afm-live').afmFigure.axes[0].u;
+        return [u.bbox.width, u.bbox.height]; })()""")
+    assert w / h == pytest.approx(3.0, rel=0.02)
+
+
+def test_twin_axis_curves_use_their_own_scale(page):
+    fig = Figure(figsize=(5, 4))
+    ax = fig.add_subplot()
+    ax.plot([0, 1], [0, 1], color="#0000ff", lw=3)
+    ax.set(xlim=(0, 1), ylim=(0, 1))
+    twin = ax.twinx()
+    twin.plot([0, 1], [100, 0], color="#ff0000", lw=3)
+    twin.set_ylim(0, 100)
+    _show(page, fig)
+    r, g, b, _ = _pixel(page, 0, 0.25, 75.0, key="y2")  # on the red line of the right axis
+    assert r > 200 and b < 80
+    r, g, b, _ = _pixel(page, 0, 0.25, 0.25)  # on the blue line of the left axis
+    assert b > 200 and r < 80
+
+
+def test_the_static_copy_draws_alone_and_steps_aside_for_a_live_figure(page):
+    fig = Figure(figsize=(4, 3))
+    fig.add_subplot().plot([0, 1], [0, 1])
+    alone = f"<div class='jp-OutputArea'>{static_html(fig)}</div>"
+    beside = (f"<div class='jp-OutputArea'><div class='afm-live' data-frames='1'></div>"
+              f"{static_html(fig)}</div>")
+    page.set_content(f"<html><body>{alone}{beside}</body></html>")
+    page.wait_for_function("""Array.from(document.querySelectorAll('.afm-live-static')).every(
+        (c) => c.style.display === 'none' || c.querySelector('canvas'))""", timeout=10000)
+    shown = page.evaluate("""Array.from(document.querySelectorAll('.afm-live-static'))
+        .map((c) => getComputedStyle(c).display !== 'none' && c.querySelectorAll('canvas').length)""")
+    assert shown[0] >= 1 and shown[1] is False, shown
