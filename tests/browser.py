@@ -725,7 +725,7 @@ def static_figures(page, html: Path, selector: str = LIVE_FIGURE, *,
     """
     page.goto(Path(html).resolve().as_uri(), wait_until="load", timeout=timeout * 1000)
     script = """(sel) => Array.from(document.querySelectorAll(sel)).map(f => {
-                   const c = window.__afm.checksum(f, 'canvas');
+                   const c = window.__afm.checksum(f, sel);
                    return {canvases: f.querySelectorAll('canvas').length, lit: c.lit,
                            frames: f.getAttribute('data-frames')}; })"""
     deadline = time.monotonic() + timeout
