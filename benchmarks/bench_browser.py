@@ -63,7 +63,10 @@ def _panel(where, server, page, name, selector):
     B.focus_panel(page, slider, selector)
     key, _ = B.keys(slider)
     B.press(page, slider, key, 1, selector=selector)  # warm-up
-    stats = B.summary(B.press(page, slider, key, PRESSES, selector=selector))
+    detail = B.press_detail(page, slider, key, PRESSES, selector=selector)
+    stats = B.summary([d["dt"] for d in detail])
+    readouts = [d["readout"] for d in detail if d["readout"] is not None]
+    stats["readout"] = statistics.median(readouts) if readouts else None
     drag = B.drag(page, slider, key, DRAG, selector=selector)
     B.settle(page, selector, quiet=0.5, timeout=5)
     stats.update(ready=ready, drag=drag, shown=B.slider_value(slider))
@@ -90,7 +93,8 @@ def _row(where, name, s, floor):
     elif "shown" in s:
         kernel += f"slider {s['shown']}"
     print(f"{where:<6s}{name:<13s}{_ms(s.get('median'))} ms {_ms(s.get('worst'))} ms "
-          f"{s['failed']:3d}/{s['n']:<3d} {ratio:<13s} {drawn:<16s} {kernel}", flush=True)
+          f"{s['failed']:3d}/{s['n']:<3d} {ratio:<13s} {_ms(s.get('readout'))} ms  "
+          f"{drawn:<16s} {kernel}", flush=True)
 
 
 def main():
@@ -105,7 +109,9 @@ def main():
     print(f"target: median <= {TARGET_RATIO}x the floor (slider -> kernel -> label text, same "
           f"run), every step of a {DRAG}-press drag drawn")
     print(f"{'where':<6s}{'panel':<13s}{'median':>10s} {'worst':>10s} {'failed':>7s} "
-          f"{'median/floor':<13s} {'drag drawn':<16s} value after the drag")
+          f"{'median/floor':<13s} {'readouts':>10s}  {'drag drawn':<16s} value after the drag")
+    print("(readouts: median key press -> the panel's own text readouts changed, the kernel's "
+          "answer without the figure; - when the pixels changed first)")
     results = {}
     with B.browser() as b:
         for where in WHERE:

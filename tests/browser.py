@@ -351,6 +351,10 @@ afm.arm = (sel, mode, timeoutMs) => {
   const st = {t0: null};
   const probe = mode === 'text' ? () => root.textContent : () => afm.checksum(root, sel).hash;
   const base = probe();
+  // the panel's own readouts (HTML widgets): their change times the kernel's answer itself
+  const readouts = () => Array.from(root.querySelectorAll('.widget-html')).map(e => e.textContent).join('|');
+  const readBase = mode === 'text' ? null : readouts();
+  let tRead = null;
   let dirty = mode !== 'text';
   const obs = mode === 'text' ? new MutationObserver(() => { dirty = true; }) : null;
   if (obs) obs.observe(root, {subtree: true, childList: true, characterData: true, attributes: true});
@@ -361,8 +365,10 @@ afm.arm = (sel, mode, timeoutMs) => {
     const finish = (r) => { window.removeEventListener('keydown', onKey, true); if (obs) obs.disconnect(); resolve(r); };
     const tick = (ts) => {
       const now = performance.now();
+      if (st.t0 !== null && tRead === null && readBase !== null && readouts() !== readBase) tRead = ts;
       if (st.t0 !== null && dirty && probe() !== base) {
-        finish({dt: Math.max(ts, st.t0) - st.t0, frame: ts, keydown: st.t0});
+        finish({dt: Math.max(ts, st.t0) - st.t0, frame: ts, keydown: st.t0,
+                readout: tRead === null ? null : Math.max(tRead, st.t0) - st.t0});
       } else if (now - start > timeoutMs) {
         finish({dt: null, keydown: st.t0});
       } else requestAnimationFrame(tick);
@@ -588,12 +594,26 @@ def figure_state(page, selector: str) -> dict:
                               seq: figs.map(f => f.getAttribute('data-seq'))}; }""", selector)
 
 
-def _press_once(page, slider, key: str, selector: str, mode: str, timeout: float):
+def _press_once(page, slider, key: str, selector: str, mode: str, timeout: float) -> dict:
     page.evaluate("([sel, mode, ms]) => window.__afm.arm(sel, mode, ms)",
                   [selector, mode, timeout * 1000])
     slider.press(key)
     r = page.evaluate("() => window.__afm.current.promise")
-    return None if r["dt"] is None else r["dt"] / 1000.0
+    return {k: None if r.get(k) is None else r[k] / 1000.0 for k in ("dt", "readout")}
+
+
+def press_detail(page, slider, key: str = "ArrowRight", n: int = 1, *, selector: str,
+                 timeout: float = PRESS_TIMEOUT, settle_s: float = 0.3) -> list:
+    """As :func:`press`, each press as ``{"dt": key-to-pixels, "readout": key-to-readouts}``.
+
+    ``readout`` is the first frame at which the panel's own HTML readouts (``.widget-html``)
+    changed, if before the pixels (else None): the kernel's answer without the figure.
+    """
+    out = []
+    for _ in range(n):
+        out.append(_press_once(page, slider, key, selector, "pixels", timeout))
+        settle(page, selector, quiet=settle_s, timeout=timeout)
+    return out
 
 
 def press(page, slider, key: str = "ArrowRight", n: int = 1, *, selector: str,
@@ -604,11 +624,8 @@ def press(page, slider, key: str = "ArrowRight", n: int = 1, *, selector: str,
     let settle (its pixels unchanged for ``settle_s`` s, at most ``timeout``), so each press
     starts from a still picture.
     """
-    out = []
-    for _ in range(n):
-        out.append(_press_once(page, slider, key, selector, "pixels", timeout))
-        settle(page, selector, quiet=settle_s, timeout=timeout)
-    return out
+    return [r["dt"] for r in press_detail(page, slider, key, n, selector=selector,
+                                          timeout=timeout, settle_s=settle_s)]
 
 
 def press_text(page, slider, key: str = "ArrowRight", n: int = 1, *,
@@ -620,7 +637,7 @@ def press_text(page, slider, key: str = "ArrowRight", n: int = 1, *,
     """
     out = []
     for _ in range(n):
-        out.append(_press_once(page, slider, key, "canvas", "text", timeout))
+        out.append(_press_once(page, slider, key, "canvas", "text", timeout)["dt"])
         time.sleep(settle_s)
     return out
 
