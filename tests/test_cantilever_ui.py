@@ -203,7 +203,7 @@ def test_layout_fits_one_screen():
     assert readout.layout.width == "460px"  # a long line (the slope warning) wraps inside it
     width, height = p.fig.get_size_inches() * p.fig.dpi
     assert width <= 1000 and height <= 600
-    # the toolbar sits above the figure (panel base); the labels must lie inside the canvas
+    # the labels lie inside the figure (its static, Agg-drawn copy for the book)
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     canvas = FigureCanvasAgg(p.fig)
     canvas.draw()
@@ -438,37 +438,6 @@ def test_model_and_values_hold_the_decimals_shown_after_the_browser_echo():
     assert p.last.force == 100e-9
     p.set(width=40.0, length=300.0)
     assert (p.last.lever.width, p.last.lever.length) == (40e-6, 300e-6)
-
-
-def _texts_under_the_toolbar(fig):
-    """Visible texts (titles, labels, ticks, legend) whose box meets the toolbar's corner."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.text import Text
-    from afmsmiler.plots.cantilever import TOOLBAR
-    canvas = FigureCanvasAgg(fig)
-    canvas.draw()
-    r = canvas.get_renderer()
-    w, h = fig.get_size_inches() * fig.dpi
-    x0, y0 = w - TOOLBAR["width"] * fig.dpi, h - TOOLBAR["height"] * fig.dpi
-    hits = []
-    for t in fig.findobj(Text):
-        if t.get_visible() and t.get_text().strip():
-            b = t.get_window_extent(r)
-            if b.x1 > x0 and b.y1 > y0:
-                hits.append(t.get_text())
-    return hits
-
-
-def test_the_toolbar_covers_no_text():
-    # In JupyterLab the ipympl toolbar (top right, over the canvas) covered the end of the title
-    # "slope theta(x)" (seen in a screenshot); both figures now keep that corner free of text.
-    # The toolbar's size is measured from the screenshot (five 34 px buttons, 30 px high).
-    p = CantileverPanel(scene=False)
-    p.show_modes()
-    for length in (20.0, 450.0, 1000.0):
-        p.set(length=length, section=0.5)
-        assert _texts_under_the_toolbar(p.figure.fig) == []
-        assert _texts_under_the_toolbar(p.modes_figure.fig) == []
 
 
 # --- limits that hold while the curves stay inside them (issue 9) ---------------------------------

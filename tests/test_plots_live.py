@@ -37,9 +37,13 @@ def test_lines_arrive_as_float32_with_their_nan_gaps_and_styles():
     np.testing.assert_array_equal(y0[~np.isnan(y)], y[~np.isnan(y)].astype(np.float32))
     line, marker = d.layout["axes"][0]["series"]
     assert line["color"] == matplotlib.colors.to_hex("C3", keep_alpha=True)
-    assert line["label"] == "curve" and line["line"] and line["marker"] is None
-    assert line["width"] == pytest.approx(2 * 100 / 72) and line["dash"]  # points -> px at 100 dpi
-    assert marker["marker"] == "o" and marker["filled"] and marker["label"] == ""  # "_child1"
+    assert line["line"] and line["marker"] is None
+    assert line["width"] == pytest.approx(2 * 100 / 72)  # points -> px at 100 dpi
+    # matplotlib's dash pattern for "--", in points scaled by the width, then in px
+    assert line["dash"] == pytest.approx([3.7 * 2 * 100 / 72, 1.6 * 2 * 100 / 72])
+    assert marker["marker"] == "o" and marker["filled"]
+    # labels travel with the frame (they change with the data); "_child1" is matplotlib's "none"
+    assert [s["label"] for s in d.frame["axes"][0]["series"]] == ["curve", ""]
     assert d.layout["width"] == 400 and d.layout["height"] == 300
 
 
@@ -189,7 +193,34 @@ def test_images_carry_their_values_extent_and_matplotlibs_colour_map():
     assert cb["label"] == "height [nm]" and (cb["vmin"], cb["vmax"]) == (0, 11)
 
 
+def test_reference_lines_stack_over_or_under_the_curves_as_matplotlib_draws_them():
+    fig = Figure()
+    ax = fig.add_subplot()
+    ax.axhline(0.0)  # before the curve: under it
+    ax.plot([0, 1], [0, 1])
+    ax.axvline(0.5)  # after it: over it
+    ax.axvline(0.7, zorder=1)  # a lower zorder: under it whatever the order
+    refs = describe(fig).frame["axes"][0]["refs"]
+    assert [(r["at"], r["over"]) for r in refs] == [(0.0, False), (0.5, True), (0.7, False)]
+
+
+def test_custom_dashes_reversed_limits_and_hidden_axes():
+    fig = Figure()
+    ax = fig.add_subplot()
+    ax.plot([0, 1], [0, 1], ls=(0, (5, 1)), lw=1)
+    ax.set_xlim(1, 0)
+    ax.axis("off")
+    d = describe(fig)
+    assert d.layout["axes"][0]["series"][0]["dash"] == pytest.approx([5 * 100 / 72, 100 / 72])
+    assert d.frame["axes"][0]["axes"]["x"]["lim"] == [1, 0]  # the browser draws it reversed
+    assert not d.layout["axes"][0]["x"]["show"] and not d.layout["axes"][0]["y"]["show"]
+
+
 @pytest.mark.parametrize("make, match", [
+    (lambda ax: ax.plot([0, 1], [0, 1], "*"), "markers"),
+    (lambda ax: ax.set_title("left", loc="left"), "centred titles"),
+    (lambda ax: ax.text(0.5, 0.5, "up", rotation=90), "unrotated"),
+    (lambda ax: ax.twiny().plot([0, 100], [0, 1]), "shares its place"),
     (lambda ax: ax.fill_between([0, 1], [0, 1]), "collections"),
     (lambda ax: ax.inset_axes([0.5, 0.5, 0.4, 0.4]), "inset"),
     (lambda ax: ax.imshow(np.zeros((2, 2, 3))), "2-D height maps"),

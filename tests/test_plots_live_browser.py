@@ -132,3 +132,53 @@ def test_the_static_copy_draws_alone_and_steps_aside_for_a_live_figure(page):
     shown = page.evaluate("""Array.from(document.querySelectorAll('.afm-live-static'))
         .map((c) => getComputedStyle(c).display !== 'none' && c.querySelectorAll('canvas').length)""")
     assert shown[0] >= 1 and shown[1] is False, shown
+
+
+def test_a_log_axis_just_under_a_decade_draws_at_once_with_decade_labels(page):
+    # uPlot's own log ticks looped for 34 s (then threw) on a lower limit just below 10^-3
+    fig = Figure(figsize=(4, 3))
+    ax = fig.add_subplot()
+    ax.loglog([1, 10, 100], [0.001, 1, 100])
+    ax.set(xlim=(1, 100), ylim=(0.000972, 108))
+    _show(page, fig)  # within its 10 s timeout
+    labels = page.evaluate("""(() => { const u = document.querySelector('.afm-live')
+        .afmFigure.axes[0].u; return u.axes[1]._values.filter((v) => v); })()""")
+    decades = [float(v) for v in labels]
+    assert decades and all(np.isclose(np.log10(d), round(np.log10(d))) for d in decades)
+    steps = np.diff(np.log10(decades))
+    assert np.allclose(steps, steps[0])  # one decade step for all labels
+
+
+def _tick_labels(page, axes, axis):
+    return page.evaluate("""([i, k]) => document.querySelector('.afm-live').afmFigure.axes[i]
+        .u.axes[k]._values.filter((v) => v)""", [axes, axis])
+
+
+def test_tick_labels_are_plain_decimals_with_the_digits_of_their_step(page):
+    fig = Figure(figsize=(5, 3))
+    a, b = fig.subplots(1, 2)
+    a.plot([0, 1], [0, 0])
+    a.set(xlim=(-0.0006, 0.0006), ylim=(-4000, 4000))  # matplotlib: 0.0004 steps, no separators
+    b.plot([0, 1], [0, 1])
+    b.set(xlim=(0, 1), ylim=(-1e-3, 1e-3))
+    _show(page, fig)
+    x, y = _tick_labels(page, 0, 0), _tick_labels(page, 0, 1)
+    assert "-0" not in x and "0" in x and len(set(x)) == len(x) > 1, x
+    assert all("," not in t for t in y) and len(set(y)) == len(y) > 1, y
+    values = [float(t) for t in x]
+    assert max(values) <= 0.0006 and min(values) >= -0.0006
+
+
+def test_every_principle_of_the_transducer_panel_draws(page):
+    # the panel's states a student reaches with one drop-down: each draws, with no page error
+    from afmsmiler.transducers import PRINCIPLES
+    from afmsmiler.ui.transducers import TransducerPanel
+    panel = TransducerPanel(scene=False)
+    for principle in PRINCIPLES:
+        panel.set(principle=principle)
+        for length in (50.0, 500.0):  # the ends of the slider where the log axes change most
+            try:
+                panel.set(length=length)
+            except (ValueError, TypeError):
+                continue  # a principle without a length, or with another range
+            _show(page, panel.fig)

@@ -233,3 +233,30 @@ def test_set_rejects_what_a_control_cannot_hold_instead_of_clamping_it():
                                                  "shape": "a"}
     p.set(length=300.0, shape="b")  # two values, one update, exactly the values given
     assert p.calls[-1] == (300.0, 150.0, "b") and len(p.calls) == 2
+
+
+def test_every_step_the_browser_forwards_runs_the_model_once():
+    # ipywidgets sends one update of a slider at a time and merges the moves made meanwhile
+    # (a quick drag reached the model 3 times in 15 steps); the live figure forwards each step
+    p = Lever()
+    p.redraw = lambda: None  # Lever has no figure; link its controls by hand
+    from matplotlib.figure import Figure
+    from afmsmiler.plots.live import LiveFigure
+    fig = Figure()
+    fig.add_subplot().plot([0, 1], [0, 1])
+    live = LiveFigure(fig)
+    live.link(p.controls, p._from_browser)
+    assert set(live._controls) == {"length", "quality_factor"}  # the drop-down syncs an index
+    length = p.controls["length"]
+    steps = [225.0 + k * length.step for k in range(1, 16)]
+    for v in steps:  # as the browser sends them, before the slider's own update arrives
+        live._handle_message(live, {"control": "length", "value": v}, [])
+    assert [c[0] for c in p.calls[1:]] == pytest.approx(steps)
+    length.value = steps[-1]  # the slider's merged update: its value is already applied
+    assert len(p.calls) == 16
+    for bad in ({"control": "length", "value": 1e9}, {"control": "length", "value": "x"},
+                {"control": "shape", "value": "b"}, {"control": "nope", "value": 1.0}, "text"):
+        live._handle_message(live, bad, [])  # a value no control could hold: ignored
+    assert len(p.calls) == 16 and p.values()["shape"] == "a"
+    with pytest.raises(TypeError, match="on_control must be callable"):
+        live.link(p.controls, None)

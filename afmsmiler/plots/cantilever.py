@@ -28,11 +28,6 @@ DEFAULTS = read_only(dict(
     n_points=121, figsize=(10.0, 6.5), modes_figsize=(6.0, 3.2),
     min_span=1e-3))  # smallest y span in the units shown (1 pm, 1 urad, 1 kPa)
 
-#: The ipympl toolbar floats over a figure's top-right corner, about this wide and high in inches
-#: at the canvas's 100 px per inch (five 34 px buttons, 30 px high, in JupyterLab): the figures
-#: keep text out of that corner (it covered the end of the slope plot's title).
-TOOLBAR = read_only(dict(width=1.9, height=0.4))
-
 #: Display unit of each quantity shown (value_shown = value_SI * unit_scale(unit)).
 UNITS = read_only(dict(x="um", z="nm", theta="mrad", stress="MPa", z_b="um",
                        strain="microstrain", youngs_modulus="GPa", frequency="kHz"))
@@ -123,12 +118,6 @@ def cantilever_curves(bending: Bending) -> CantileverCurves:
     )
 
 
-def _clear_the_toolbar(fig: Figure) -> None:
-    """Lay the figure out below a band as high as the floating toolbar (:data:`TOOLBAR`)."""
-    band = TOOLBAR["height"] / fig.get_figheight()
-    fig.get_layout_engine().set(rect=(0.0, 0.0, 1.0, 1.0 - band))
-
-
 class CantileverFigure:
     """Four panels: z(x) [nm], theta(x) [mrad], top-surface stress [MPa] and a cross-section
     profile sigma(z_b) [MPa vs um] with its strain [microstrain] on the top axis.
@@ -178,7 +167,6 @@ class CantileverFigure:
             "top", functions=(lambda s: s / self._e_gpa * r, lambda e: e * self._e_gpa / r))
         self.strain_axis.set_xlabel(f"strain [{u['strain']}]")
         self.fig.set_layout_engine("constrained")
-        _clear_the_toolbar(self.fig)
         self.update(curves)
 
     def update(self, curves: CantileverCurves) -> None:
@@ -253,7 +241,6 @@ class ModeShapesFigure:
             self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["modes_figsize"])
             ax = self.fig.add_subplot()
             self.fig.set_layout_engine("constrained")
-            _clear_the_toolbar(self.fig)
         else:
             self.fig = ax.figure
         self.ax = ax

@@ -13,6 +13,23 @@ fast charting library shipped in ``static/`` (fetched and hash-checked by ``tool
 No physics here and none in the browser: every number comes from the figure's artists.
 
 Artists this cannot show raise ``NotImplementedError`` naming them (nothing is dropped silently).
+
+A panel links its sliders (:meth:`LiveFigure.link`): the browser then forwards every step of a
+drag to the kernel as a message of the figure (ipywidgets itself merges the moves made while one
+update is in flight), and paints every frame that comes back, one per animation frame.
+
+Examples
+--------
+A module's panel (``Panel.redraw`` does this for every panel):
+
+>>> from matplotlib.figure import Figure
+>>> fig = Figure(figsize=(4, 3))
+>>> line, = fig.add_subplot().plot([0.0, 1.0], [0.0, 1.0])
+>>> live = LiveFigure(fig)           # display it as any widget
+>>> line.set_ydata([0.0, 2.0])       # the figure class updates its artists ...
+>>> d = live.sync()                  # ... and one message carries the new frame
+>>> live.frames_sent, d.values(d.frame["axes"][0]["series"][0]["y"]).tolist()
+(2, [0.0, 2.0])
 """
 from __future__ import annotations
 
@@ -25,6 +42,7 @@ from functools import lru_cache
 from pathlib import Path
 
 import anywidget
+import ipywidgets as widgets
 import numpy as np
 import traitlets
 from matplotlib import colors as mcolors
@@ -44,7 +62,6 @@ _PX = DPI / 72  # px per point (line widths, marker and font sizes are given in 
 #: Largest buffer one frame may send (float32 values): 4 M values, 16 MB, about 0.1 s on loopback.
 MAX_VALUES = 4_000_000
 
-_DASHES = {"--": [3.7, 1.6], ":": [1.0, 1.65], "-.": [6.4, 1.6, 1.0, 1.6]}  # matplotlib's, in lw
 _MARKERS = {"o", ".", "x", "+", "s", "D", "^", "v"}
 
 
@@ -113,11 +130,11 @@ def _kind(artist, ax) -> str:
 
 
 def _linestyle(line):
-    ls = line.get_linestyle()
-    if ls in ("None", "none", "", " "):
+    """None (no line), [] (solid) or the dash pattern in px (matplotlib's, scaled with the width)."""
+    if line.get_linestyle() in ("None", "none", "", " "):
         return None
-    lw = line.get_linewidth()
-    return [d * lw * _PX for d in _DASHES[ls]] if ls in _DASHES else []
+    _offset, seq = line._dash_pattern  # in points, already scaled by the line width
+    return [] if not seq else [float(d) * _PX for d in seq]
 
 
 def _line_specs(line, axis, packer):
@@ -126,20 +143,24 @@ def _line_specs(line, axis, packer):
     marker = line.get_marker()
     marker = None if marker in (None, "None", "none", "", " ") else str(marker)
     if marker is not None and marker not in _MARKERS:
-        marker = "o"
+        raise NotImplementedError(f"{line!r}: a live figure draws the markers {sorted(_MARKERS)}, "
+                                  f"not {marker!r}")
     dash = _linestyle(line)
     label = line.get_label()
     label = "" if label.startswith("_") else label
-    refs = {"x": packer.add(_floats(line.get_xdata())), "y": packer.add(_floats(line.get_ydata()))}
+    refs = {"x": packer.add(_floats(line.get_xdata())), "y": packer.add(_floats(line.get_ydata())),
+            "label": label}  # labels change with the data (the mode shapes' frequencies)
     layout, frame = [], []
-    base = dict(color=color, axis=axis, label=label, visible=bool(line.get_visible()))
+    base = dict(color=color, axis=axis, visible=bool(line.get_visible()))
     if dash is not None:
         layout.append(dict(base, width=line.get_linewidth() * _PX, dash=dash or None,
                            marker=None, line=True))
         frame.append(refs)
     if marker is not None:
         size = line.get_markersize() * (0.5 if marker == "." else 1.0)
-        layout.append(dict(base, marker=marker, size=size, line=False,
+        layout.append(dict(base, color=_color(line.get_markeredgecolor(), line.get_alpha()),
+                           fill=_color(line.get_markerfacecolor(), line.get_alpha()),
+                           marker=marker, size=size, line=False,
                            filled=marker not in ("x", "+") and line.get_fillstyle() != "none",
                            edge=line.get_markeredgewidth() * _PX, width=1.0, dash=None))
         frame.append(refs)
@@ -152,7 +173,8 @@ def _axis(ax, which: str) -> tuple[dict, dict]:
     scale = axis.get_scale()
     if scale not in ("linear", "log", "symlog"):
         raise NotImplementedError(f"a live figure shows linear, log and symlog axes, not {scale!r}")
-    layout = {"scale": scale, "grid": bool(axis._major_tick_kw.get("gridOn", False))}
+    layout = {"scale": scale, "grid": bool(axis._major_tick_kw.get("gridOn", False)),
+              "show": bool(ax.axison and axis.get_visible())}
     label = axis.label
     frame = {"label": label.get_text() if label.get_visible() else "",
              "color": _color(label.get_color()), "lim": [_num(lo), _num(hi)]}
@@ -193,6 +215,8 @@ def _texts(ax):
         kind = _kind(t, ax)
         if kind not in ("data", "axes"):
             raise NotImplementedError(f"{t!r}: texts are placed in data or axes coordinates")
+        if t.get_rotation() % 360:
+            raise NotImplementedError(f"{t!r}: a live figure draws texts unrotated")
         x, y = t.get_position()
         out.append(dict(text=t.get_text(), x=_num(x), y=_num(y), coords=kind,
                         color=_color(t.get_color()), ha=t.get_horizontalalignment(),
@@ -237,6 +261,14 @@ def _patches(ax):
     return spans
 
 
+def _lut(cmap, luts):
+    """Put ``cmap`` into ``luts`` as 256 RGB bytes (base64), once per figure; return it."""
+    if cmap.name not in luts:
+        rgb = (cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
+        luts[cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+    return cmap
+
+
 def _images(ax, packer, luts):
     layout, frame = [], []
     for im in ax.images:
@@ -245,10 +277,7 @@ def _images(ax, packer, luts):
             raise NotImplementedError("a live figure shows 2-D height maps (with a colour map), "
                                       f"not arrays of shape {a.shape}")
         im.norm.autoscale_None(a)
-        cmap = im.get_cmap()
-        if cmap.name not in luts:
-            rgb = (cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
-            luts[cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+        cmap = _lut(im.get_cmap(), luts)
         layout.append({"cmap": cmap.name})
         frame.append(dict(data=packer.add(_floats(a)), shape=list(a.shape), cmap=cmap.name,
                           extent=[_num(v) for v in im.get_extent()], origin=im.origin,
@@ -316,7 +345,8 @@ def describe(fig: Figure) -> Description:
         host = next((h for h in hosts if h.get_subplotspec() == ss), None)
         if host is None:
             hosts.append(ax)
-        elif host in ax._twinned_axes.get_siblings(ax) and id(host) not in twins:
+        elif (host in ax._twinned_axes.get_siblings(ax) and id(host) not in twins
+              and host.get_shared_x_axes().joined(host, ax)):
             twins[id(host)] = ax
         else:
             raise NotImplementedError(f"{ax!r} shares its place with another axes")
@@ -329,6 +359,8 @@ def describe(fig: Figure) -> Description:
         ss = ax.get_subplotspec()
         if ss.get_gridspec() is not gs:
             raise NotImplementedError("a live figure's axes must share one grid")
+        if ax._left_title.get_text() or ax._right_title.get_text():
+            raise NotImplementedError(f"{ax!r}: a live figure shows centred titles only")
         xl, xf = _axis(ax, "x")
         yl, yf = _axis(ax, "y")
         la = dict(row=ss.rowspan.start, rowspan=len(ss.rowspan), col=ss.colspan.start,
@@ -350,7 +382,9 @@ def describe(fig: Figure) -> Description:
         for member, axis in members:
             if not member.get_visible():
                 continue
-            for line in member.lines:
+            data_lines = [(ln.get_zorder(), i) for i, ln in enumerate(member.lines)
+                          if _kind(ln, member) == "data"]
+            for index, line in enumerate(member.lines):
                 kind = _kind(line, member)
                 if kind == "data":
                     lay, fr = _line_specs(line, axis, packer)
@@ -363,7 +397,9 @@ def describe(fig: Figure) -> Description:
                                            **{"from": _num(min(a, b)), "to": _num(max(a, b))},
                                            color=_color(line.get_color(), line.get_alpha()),
                                            width=line.get_linewidth() * _PX,
-                                           dash=_linestyle(line) or None))
+                                           dash=_linestyle(line) or None,
+                                           over=any((line.get_zorder(), index) > d
+                                                    for d in data_lines)))
                 elif kind not in ("v", "h"):
                     raise NotImplementedError(f"{line!r}: a line in axes coordinates")
             fa["texts"] += _texts(member)
@@ -379,9 +415,7 @@ def describe(fig: Figure) -> Description:
             la["colorbar"] = True
             fa["colorbar"] = dict(label=cb.ax.get_ylabel(), cmap=cb.cmap.name,
                                   vmin=_num(cb.norm.vmin), vmax=_num(cb.norm.vmax))
-            if cb.cmap.name not in luts:
-                rgb = (cb.cmap(np.linspace(0.0, 1.0, 256))[:, :3] * 255).round().astype(np.uint8)
-                luts[cb.cmap.name] = base64.b64encode(rgb.tobytes()).decode()
+            _lut(cb.cmap, luts)
         layout_axes.append(la)
         frame_axes.append(fa)
     unplaced = set(colorbars) - {id(ax) for ax in hosts}
@@ -420,12 +454,43 @@ class LiveFigure(anywidget.AnyWidget):
     _layout = traitlets.Dict().tag(sync=True)
     _frame = traitlets.Dict().tag(sync=True)
     _buffer = traitlets.Bytes().tag(sync=True)
+    #: Sliders whose every step the browser forwards (see :meth:`link`), by name.
+    _controls = traitlets.Dict().tag(sync=True, **widgets.widget_serialization)
 
     def __init__(self, figure: Figure, **kwargs):
         super().__init__(**kwargs)
         self.figure = check_instance("figure", figure, Figure)
         self.frames_sent = 0
+        self._on_control = None
+        self.on_msg(self._handle_message)
         self.sync()
+
+    def link(self, controls: dict, on_control) -> None:
+        """Have the browser forward every step of ``controls`` to ``on_control(name, value)``.
+
+        ipywidgets keeps one update of a widget in flight and merges the moves made meanwhile,
+        so a quick drag reached the kernel a few times in 15 steps. Linked sliders send each value
+        they take in the browser as a message of this widget, which is not merged, and
+        ``on_control`` runs the model for it; the slider's own (merged) update still arrives and
+        finds its value applied. Only sliders are linked (a drop-down syncs an index).
+
+        Parameters
+        ----------
+        controls : dict
+            Name -> widget; the sliders among them are linked.
+        on_control : callable
+            Called as ``on_control(name, value)`` for each step, in the order of the steps.
+        """
+        if not callable(on_control):
+            raise TypeError(f"on_control must be callable, got {on_control!r}")
+        sliders = (widgets.FloatSlider, widgets.FloatLogSlider, widgets.IntSlider)
+        self._on_control = on_control
+        self._controls = {name: c for name, c in controls.items() if isinstance(c, sliders)}
+
+    def _handle_message(self, _widget, content, _buffers) -> None:
+        if (self._on_control is not None and isinstance(content, dict)
+                and content.get("control") in self._controls and "value" in content):
+            self._on_control(content["control"], content["value"])
 
     def sync(self) -> Description:
         """Send the figure's current state to the browser as one message; return it.

@@ -213,6 +213,28 @@ class Panel:
         values = self.values()
         if values == self._applied:  # a browser echo of what the model already shows
             return
+        self._apply(values)
+
+    def _from_browser(self, name: str, value) -> None:
+        """One step of a slider, forwarded by the live figure (:meth:`LiveFigure.link`).
+
+        The step runs the model at once, so a quick drag shows every step; the slider's own
+        update, which ipywidgets merges and sends later, then finds its value applied. A value
+        the control could not hold (a message is input) is ignored.
+        """
+        control = self.controls.get(name)
+        if control is None or self._hold:
+            return
+        try:
+            check_control_value(name, control, value)
+        except (TypeError, ValueError):
+            return
+        last = self._applied.get(name, _MISSING)
+        if last is not _MISSING and _same(value, last, control):
+            return
+        self._apply({**self.values(), name: value})
+
+    def _apply(self, values: dict) -> None:
         try:
             self._run(values)
         except Exception as exc:
@@ -287,6 +309,7 @@ class Panel:
         from ..plots.live import LiveFigure
         if self.live is None:
             self.live = LiveFigure(self.fig)
+            self.live.link(self.controls, self._from_browser)
         else:
             self.live.sync()
 

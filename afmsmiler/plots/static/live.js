@@ -13,7 +13,8 @@
 //
 // This file holds no physics: every number comes from the kernel.
 
-const PX = 100 / 72; // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
+const PX = 100 / 72;
+const MAX_PENDING = 30; // frames waiting to be painted, one per animation frame (0.5 s at 60 Hz) // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
 
 function el(tag, cls, parent) {
   const e = document.createElement(tag);
@@ -86,21 +87,100 @@ function markerPath(xKey, yKey, marker, size) {
   };
 }
 
+// An axis label on one line (uPlot draws one), its font shrunk so that it fits the axis' length.
+const measure = document.createElement("canvas").getContext("2d");
+function fitLabel(axis, text, length) {
+  const line = text.replace(/\s*\n\s*/g, " ");
+  measure.font = font(12);
+  const width = measure.measureText(line).width;
+  const size = length > 0 && width > length ? Math.max(8, Math.floor(12 * length / width)) : 12;
+  const css = font(size), px = Math.round(size * devicePixelRatio);
+  if (axis.labelFont[0] !== css.replace(/(\d+)px/, `${px}px`)) {
+    axis.labelFont = [css.replace(/(\d+)px/, `${px}px`), px, size];
+  }
+  return line;
+}
+
+// a legend's entries as HTML, rebuilt only when they change
+function legendHtml(box, entries, owner) {
+  const key = JSON.stringify(entries);
+  if (box.dataset.key === key) return;
+  box.dataset.key = key;
+  box.innerHTML = "";
+  for (const e of entries) {
+    const item = el("span", "afm-live-key", box);
+    const sw = el("span", "afm-live-swatch", item);
+    if (e.marker && !e.line) {
+      sw.textContent = e.marker === "x" ? "\u00d7" : e.marker === "+" ? "+" : "\u25cf";
+      sw.style.color = e.color;
+    } else {
+      sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
+    }
+    el("span", "", item).textContent = e.label;
+  }
+}
+
 // -- one axes: a uPlot with its title above and its legend below ---------------------------------
 
-// tick labels: plain decimals, exponents for the very small and large (uPlot's own wrote 1e-4 as 0)
-function fmtTick(v) {
-  if (v == null || !Number.isFinite(v)) return "";
-  const a = Math.abs(v);
-  if (a !== 0 && (a < 1e-3 || a >= 1e5)) {
-    return v.toExponential().replace(/\.?0+e/, "e").replace("e+", "e");
-  }
-  return String(+v.toPrecision(6));
+// Tick labels. uPlot's own kept 3 decimals and the browser's locale ("-0" at F = 0, "0,5",
+// "-4,000"); these are plain decimals with as many digits as the tick step needs, and exponents
+// for the very small and large.
+function fmtTick(v, step) {
+  return fmtTicks([v], step)[0];
+}
+
+// one format for all the labels of an axis: decimals with the digits of the step, or, for steps
+// below 1e-3 and values from 1e5, exponents with the mantissa digits of the step
+function fmtTicks(values, step) {
+  const finite = values.filter((v) => v != null && Number.isFinite(v));
+  const big = Math.max(0, ...finite.map(Math.abs));
+  if (!(step > 0)) step = finite.length > 1 ? Math.abs(finite[1] - finite[0]) : big || 1;
+  const exponent = step < 1e-3 || big >= 1e5;
+  return values.map((v) => {
+    if (v == null || !Number.isFinite(v)) return "";
+    if (Math.abs(v) < 1e-9 * step) return "0";
+    if (exponent) {
+      const digits = Math.max(0, Math.min(6, Math.floor(Math.log10(Math.abs(v))) - Math.floor(Math.log10(step) + 1e-9)));
+      return v.toExponential(digits).replace(/\.?0+e/, "e").replace("e+", "e");
+    }
+    const decimals = Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9)));
+    const text = v.toFixed(decimals);
+    return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;
+  });
 }
 
 function isDecade(v) {
   const e = Math.log10(Math.abs(v));
   return Number.isFinite(e) && Math.abs(e - Math.round(e)) < 1e-9;
+}
+
+// Ticks of a log axis between min and max: every decade (labelled every k-th, k the same for
+// all, so that labels fit) with 2..9 between them when few decades show. uPlot's own loop hung
+// the page (34 s) for a lower limit just below a power of ten.
+function logSplits(min, max) {
+  if (!(min > 0 && max > min)) return [];
+  const lo = Math.floor(Math.log10(min)), hi = Math.ceil(Math.log10(max));
+  const decades = Math.min(hi - lo, 300), minor = decades <= 8, out = [];
+  for (let e = lo; e <= lo + decades; e++) {
+    for (let m = 1; m <= (minor ? 9 : 1); m++) {
+      const v = m * Math.pow(10, e);
+      if (v >= min * (1 - 1e-12) && v <= max * (1 + 1e-12)) out.push(v);
+    }
+  }
+  return out;
+}
+
+function logLabels(u, key, splits) {
+  const decades = splits.filter(isDecade);
+  const horizontal = u.scales[key].ori === 0;
+  const length = horizontal ? u.bbox.width / devicePixelRatio : u.bbox.height / devicePixelRatio;
+  const room = horizontal ? 42 : 16;
+  const k = Math.max(1, Math.ceil(decades.length * room / Math.max(length, 1)));
+  return splits.map((v) => {
+    if (!isDecade(v)) return "";
+    const e = Math.round(Math.log10(v));
+    return e % k === 0 ? fmtTick(v) : "";
+  });
 }
 
 // drop the labels that would overlap the one shown before them
@@ -155,12 +235,13 @@ class Axes {
       const xKey = "x", yKey = sr.axis === "y2" ? "y2" : "y";
       const marker = sr.marker;
       const o = {
-        label: sr.label || "", stroke: sr.color, width: sr.width, dash: sr.dash || undefined,
+        label: "", stroke: sr.color, width: sr.width,
+        dash: sr.dash ? sr.dash.map((d) => d * devicePixelRatio) : undefined,
         show: sr.visible !== false, spanGaps: false, points: { show: false },
         facets: [{ scale: xKey, auto: false }, { scale: yKey, auto: false }],
         paths: marker ? markerPath(xKey, yKey, marker, sr.size) : linePath(xKey, yKey),
       };
-      if (marker && sr.filled) o.fill = sr.color;
+      if (marker && sr.filled) o.fill = sr.fill || sr.color;
       if (marker && !sr.line) { o.width = Math.max(sr.edge || 1, 1); o.dash = undefined; }
       series.push(o);
     }
@@ -172,7 +253,7 @@ class Axes {
         facets: [{ scale: "x", auto: false }, { scale: "y", auto: false }], paths: linePath("x", "y") });
     }
     const scales = { x: scaleOpts(s.x), y: scaleOpts(s.y) };
-    const axes = [axisOpts("x", 2, s.x, true), axisOpts("y", 3, s.y, true)];
+    const axes = [axisOpts("x", 2, s.x, s.x.show !== false), axisOpts("y", 3, s.y, s.y.show !== false)];
     if (s.y2) { scales.y2 = scaleOpts(s.y2); axes.push(axisOpts("y2", 1, s.y2, s.y2.visible !== false)); }
     if (s.x2) { scales.x2 = { time: false, auto: false, ori: 0, range: exactRange }; axes.push(axisOpts("x2", 0, s.x2, true)); }
     const self = this;
@@ -182,8 +263,8 @@ class Axes {
       select: { show: false },
       hooks: {
         drawClear: [(u) => self.drawUnder(u)],
-        drawAxes: [(u) => self.drawRefs(u)],
-        draw: [(u) => self.drawOver(u)],
+        drawAxes: [(u) => self.drawRefs(u, false)],
+        draw: [(u) => { self.drawRefs(u, true); self.drawFrame(u); self.drawOver(u); }],
       },
     }, [null, ...series.slice(1).map(() => [[], []])], this.plotBox);
     // uPlot's own tick placement and labels, for the axes whose ticks the kernel leaves free
@@ -217,43 +298,38 @@ class Axes {
   update(frame, buf) {
     this.frame = frame;
     const s = this.spec;
-    // title, legend (HTML), axis labels and ticks
-    this.title.innerHTML = "";
-    if (frame.title) {
-      this.title.textContent = frame.title.text;
-      this.title.style.color = frame.title.color || "";
+    // title and legend (HTML), touched only when they change: the page's layout stays put
+    const title = frame.title ? frame.title.text : "", color = frame.title ? frame.title.color : "";
+    if (title !== this.shownTitle || color !== this.shownColor) {
+      this.title.textContent = title;
+      this.title.style.color = color || "";
+      this.shownTitle = title; this.shownColor = color;
     }
-    this.legend.innerHTML = "";
-    for (const e of frame.legend || []) {
-      const item = el("span", "afm-live-key", this.legend);
-      const sw = el("span", "afm-live-swatch", item);
-      if (e.marker && !e.line) {
-        sw.textContent = e.marker === "x" ? "\u00d7" : e.marker === "+" ? "+" : "\u25cf";
-        sw.style.color = e.color;
-      } else {
-        sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
-      }
-      el("span", "", item).textContent = e.label;
-    }
+    legendHtml(this.legend, frame.legend || [], this);
     const keys = [["x", 0], ["y", 1]];
     if (s.y2) keys.push(["y2", 2]);
     if (s.x2) keys.push(["x2", s.y2 ? 3 : 2]);
     for (const [key, i] of keys) {
       const axis = frame.axes[key];
       const a = this.u.axes[i], [splits, values] = this.tickDefaults[i];
-      a.label = axis.label || "";
+      const horizontal = key === "x" || key === "x2";
+      const length = (horizontal ? this.u.bbox.width : this.u.bbox.height) / devicePixelRatio;
+      a.label = fitLabel(a, axis.label || "", length);
       a.stroke = () => axis.color || "#222";
-      // ticks the kernel chose (a FixedLocator), with its labels; else uPlot's own
       const scale = (s[key] && s[key].scale) || "linear";
       if (scale === "symlog") this.u.scales[key].asinh = axis.linthresh || 1;
-      a.splits = axis.ticks ? () => axis.ticks : splits;
+      // ticks the kernel chose (a FixedLocator) with its labels; log axes by decades; else
+      // uPlot's placement with our labels
       if (axis.ticks) {
-        const labels = axis.ticklabels || axis.ticks.map(fmtTick);
+        const labels = axis.ticklabels || axis.ticks.map((v) => fmtTick(v));
+        a.splits = () => axis.ticks;
         a.values = (u, sp) => thin(u, key, sp, labels);
       } else if (scale === "log") {
-        a.values = (u, sp) => thin(u, key, sp, sp.map((v) => (isDecade(v) ? fmtTick(v) : "")));
+        a.splits = (u, ai, min, max) => logSplits(min, max);
+        a.values = (u, sp) => logLabels(u, key, sp);
       } else {
-        a.values = values;
+        a.splits = splits;
+        a.values = (u, sp, ai, space, incr) => thin(u, key, sp, fmtTicks(sp, incr));
       }
     }
     // data
@@ -268,7 +344,12 @@ class Axes {
     if (s.aspect === "equal") this.equalAspect(lim);
     this.u.batch(() => {
       this.u.setData(data, false);
-      for (const key in lim) this.u.setScale(key, { min: lim[key][0], max: lim[key][1] });
+      for (const key in lim) {
+        // a reversed pair of limits (set_xlim(1, 0)) runs the axis the other way
+        const [a, b] = lim[key];
+        this.u.scales[key].dir = a > b ? -1 : 1;
+        this.u.setScale(key, { min: Math.min(a, b), max: Math.max(a, b) });
+      }
       this.u.redraw(false, true);
     });
     if (this.cb && frame.colorbar) {
@@ -357,14 +438,15 @@ class Axes {
     return u.valToPos(Math.max(lo, Math.min(hi, v)), key, true);
   }
 
-  // reference lines: over the grid, under the curves
-  drawRefs(u) {
+  // reference lines, under the curves or over them (as matplotlib stacks them: zorder, order)
+  drawRefs(u, over) {
     const f = this.frame;
     if (!f) return;
     const ctx = u.ctx, bb = u.bbox, r = devicePixelRatio;
     ctx.save();
     ctx.beginPath(); ctx.rect(bb.left, bb.top, bb.width, bb.height); ctx.clip();
     for (const ln of f.refs || []) {
+      if (!!ln.over !== over) continue;
       ctx.strokeStyle = ln.color; ctx.lineWidth = ln.width * r;
       ctx.setLineDash((ln.dash || []).map((d) => d * r));
       ctx.beginPath();
@@ -377,6 +459,16 @@ class Axes {
       }
       ctx.stroke();
     }
+    ctx.restore();
+  }
+
+  // the axes' frame (matplotlib's spines)
+  drawFrame(u) {
+    if (this.spec.x.show === false && this.spec.y.show === false) return;
+    const ctx = u.ctx, bb = u.bbox, r = devicePixelRatio;
+    ctx.save();
+    ctx.strokeStyle = "#000"; ctx.lineWidth = 0.8 * r; ctx.setLineDash([]);
+    ctx.strokeRect(bb.left, bb.top, bb.width, bb.height);
     ctx.restore();
   }
 
@@ -447,8 +539,11 @@ class Figure {
   build(layout) {
     for (const a of this.axes) a.destroy();
     this.root.innerHTML = "";
-    this.layout = layout;
-    const L = layout;
+    // a static page narrower than the figure (a book's column) gets the figure scaled to fit
+    const avail = this.fit && this.root.parentElement ? this.root.parentElement.clientWidth : 0;
+    const k = avail > 200 && avail < layout.width ? avail / layout.width : 1;
+    this.layout = Object.assign({}, layout, { width: layout.width * k, height: layout.height * k });
+    const L = this.layout;
     this.root.style.width = `${L.width}px`;
     this.header = el("div", "afm-live-header", this.root);
     this.suptitle = el("div", "afm-live-suptitle", this.header);
@@ -463,6 +558,23 @@ class Figure {
       if (spec.visible === false) cell.style.visibility = "hidden";
       return new Axes(this, spec, cell);
     });
+  }
+
+  // the heights of the texts around the plots (0 while the figure is not in the page yet)
+  chromeHeights() {
+    return [this.header.offsetHeight, ...this.axes.map((a) => a.title.offsetHeight + a.legend.offsetHeight)].join();
+  }
+
+  // shown after it was drawn detached (a collapsed output, a tab shown later): measure again
+  watch() {
+    if (this.observer || typeof ResizeObserver === "undefined") return;
+    this.observer = new ResizeObserver(() => {
+      if (!this.last || this.chromeHeights() === this.measured) return;
+      this.measured = this.chromeHeights();
+      this.resize();
+      this.last[1].axes.forEach((f, i) => this.axes[i].update(f, this.last[2]));
+    });
+    this.observer.observe(this.root);
   }
 
   resize() {
@@ -486,6 +598,9 @@ class Figure {
   // a frame from the kernel: draw it now, or at the next animation frame if one was just painted
   push(layout, frame, buffer) {
     this.pending.push([layout, frame, buffer]);
+    // every frame is painted while the page keeps up; a backlog longer than half a second
+    // (a hidden page, a burst) is cut to the newest frame
+    if (this.pending.length > MAX_PENDING || document.hidden) this.pending = this.pending.slice(-1);
     if (!this.paintedThisFrame) this.drain();
     else this.schedule();
   }
@@ -515,19 +630,16 @@ class Figure {
     const rebuilt = key !== this.layoutKey;
     if (rebuilt) { this.build(layout); this.layoutKey = key; }
     this.suptitle.textContent = frame.suptitle || "";
-    this.figLegend.innerHTML = "";
-    for (const e of frame.legend || []) {
-      const item = el("span", "afm-live-key", this.figLegend);
-      const sw = el("span", "afm-live-swatch", item);
-      sw.style.borderTop = `${Math.max(2, e.width || 2)}px ${e.dash ? "dashed" : "solid"} ${e.color}`;
-      el("span", "", item).textContent = e.label;
-    }
+    legendHtml(this.figLegend, frame.legend || [], this);
     // titles and legends first: their heights set the plots' sizes
     frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
-    if (rebuilt) {
+    const heights = this.chromeHeights();
+    if (rebuilt || heights !== this.measured) {
+      this.measured = heights;
       this.resize();
       frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
     }
+    this.last = [layout, frame, buffer];
     this.root.dataset.frames = String(Number(this.root.dataset.frames) + 1);
     this.root.dataset.seq = String(frame.seq);
   }
@@ -543,17 +655,23 @@ function floats(view) {
 // pages where no widget manager runs (an export without network, a saved notebook without kernel).
 // Wherever the live figure is drawn, its static copy steps aside.
 function outputArea(node) {
-  return node.closest(".jp-OutputArea, .output_area, .output, .cell") || document.body;
+  return node.isConnected ? node.closest(".jp-OutputArea, .output_area, .output, .cell") : null;
 }
 
-function hideStaticCopies(node) {
-  for (const copy of outputArea(node).querySelectorAll(".afm-live-static")) {
-    copy.style.display = "none";
+// hide the static copies of this output area once the view is in the page (a few tries)
+function hideStaticCopies(node, tries = 60) {
+  const area = outputArea(node);
+  if (!area) {
+    if (tries > 0) requestAnimationFrame(() => hideStaticCopies(node, tries - 1));
+    return;
   }
+  for (const copy of area.querySelectorAll(".afm-live-static")) copy.style.display = "none";
 }
 
 function liveBeside(node) {
-  for (const fig of outputArea(node).querySelectorAll(".afm-live")) {
+  const area = outputArea(node);
+  if (!area) return false;
+  for (const fig of area.querySelectorAll(".afm-live")) {
     if (!fig.closest(".afm-live-static")) return true;
   }
   return false;
@@ -565,11 +683,16 @@ function render({ model, el: host }) {
   host.appendChild(root);
   requestAnimationFrame(() => hideStaticCopies(host));
   const fig = new Figure(root);
+  fig.watch();
   const show = () => fig.push(model.get("_layout"), model.get("_frame"), floats(model.get("_buffer")));
   model.on("change:_frame", show);
   // the first frame once the element is in the page (sizes are measured)
   requestAnimationFrame(show);
-  return () => { model.off("change:_frame", show); for (const a of fig.axes) a.destroy(); };
+  return () => {
+    model.off("change:_frame", show);
+    if (fig.observer) fig.observer.disconnect();
+    for (const a of fig.axes) a.destroy();
+  };
 }
 
 // a static page (an exported notebook, the book): the frame is embedded in the page
@@ -579,9 +702,37 @@ function drawStatic(root, layout, frame, base64) {
   const s = atob(base64), bytes = new Uint8Array(s.length);
   for (let i = 0; i < s.length; i++) bytes[i] = s.charCodeAt(i);
   const fig = new Figure(root);
+  fig.fit = true;
   fig.draw(layout, frame, new Float32Array(bytes.buffer));
   return fig;
 }
 
-export default { render };
+// Every step of a slider reaches the kernel: ipywidgets keeps one update of a widget in flight
+// and merges the moves made meanwhile, so a quick drag reached the model 3 times in 15 steps.
+// The controls the kernel links (LiveFigure.link) send each new value as a custom message of this
+// widget, which is not merged; the kernel runs the model for each and this view paints each frame.
+// Linked once per model (not per view), in anywidget's initialize.
+function initialize({ model }) {
+  let cleanup = [];
+  const unlink = () => { cleanup.forEach((f) => f()); cleanup = []; };
+  // (re)link whenever the kernel names the controls: it may do so after the model was made
+  const link = () => {
+    unlink();
+    const manager = model.widget_manager, refs = model.get("_controls") || {}, mine = cleanup;
+    for (const [name, ref] of Object.entries(refs)) {
+      if (!manager || typeof ref !== "string") continue;
+      manager.get_model(ref.replace(/^IPY_MODEL_/, "")).then((control) => {
+        if (mine !== cleanup) return; // relinked meanwhile
+        const send = () => model.send({ control: name, value: control.get("value") });
+        control.on("change:value", send);
+        cleanup.push(() => control.off("change:value", send));
+      }).catch((e) => console.warn("afmsmiler: a control of the live figure is missing", e));
+    }
+  };
+  model.on("change:_controls", link);
+  link();
+  return () => { model.off("change:_controls", link); unlink(); };
+}
+
+export default { initialize, render };
 export { drawStatic };
