@@ -81,7 +81,7 @@ def unavailable() -> str | None:
         return (f"no {CHROMIUM}: install Debian's chromium (`make test` does so as root) to run "
                 "the browser tests")
     try:
-        import playwright.sync_api  # noqa: F401
+        import playwright.sync_api  # noqa: F401 (only whether it imports)
     except ImportError:
         return "playwright is not installed (pip install -e '.[test]')"
     for tool in ("jupyter-lab", "voila"):
@@ -322,7 +322,11 @@ afm.checksum = (root, sel) => {    // FNV-1a over the pixels of every canvas of 
     const ctx = c.getContext('2d');
     if (!ctx) continue;
     const d = new Uint32Array(ctx.getImageData(0, 0, c.width, c.height).data.buffer);
-    for (let i = 0; i < d.length; i++) { const v = d[i]; h = Math.imul(h ^ v, 16777619); if (v) lit++; }
+    for (let i = 0; i < d.length; i++) {
+      const v = d[i];
+      h = Math.imul(h ^ v, 16777619);
+      if (v) lit++;
+    }
     h = Math.imul(h ^ c.width, 16777619);
   }
   return {hash: (h >>> 0) + ':' + cs.length, lit: lit, n: cs.length};
@@ -352,20 +356,28 @@ afm.arm = (sel, mode, timeoutMs) => {
   const probe = mode === 'text' ? () => root.textContent : () => afm.checksum(root, sel).hash;
   const base = probe();
   // the panel's own readouts (HTML widgets): their change times the kernel's answer itself
-  const readouts = () => Array.from(root.querySelectorAll('.widget-html')).map(e => e.textContent).join('|');
+  const readouts = () => Array.from(root.querySelectorAll('.widget-html'))
+                              .map(e => e.textContent).join('|');
   const readBase = mode === 'text' ? null : readouts();
   let tRead = null;
   let dirty = mode !== 'text';
   const obs = mode === 'text' ? new MutationObserver(() => { dirty = true; }) : null;
-  if (obs) obs.observe(root, {subtree: true, childList: true, characterData: true, attributes: true});
+  if (obs) obs.observe(root, {subtree: true, childList: true, characterData: true,
+                              attributes: true});
   const onKey = () => { if (st.t0 === null) st.t0 = performance.now(); };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
   st.promise = new Promise(resolve => {
-    const finish = (r) => { window.removeEventListener('keydown', onKey, true); if (obs) obs.disconnect(); resolve(r); };
+    const finish = (r) => {
+      window.removeEventListener('keydown', onKey, true);
+      if (obs) obs.disconnect();
+      resolve(r);
+    };
     const tick = (ts) => {
       const now = performance.now();
-      if (st.t0 !== null && tRead === null && readBase !== null && readouts() !== readBase) tRead = ts;
+      if (st.t0 !== null && tRead === null && readBase !== null && readouts() !== readBase) {
+        tRead = ts;
+      }
       if (st.t0 !== null && dirty && probe() !== base) {
         finish({dt: Math.max(ts, st.t0) - st.t0, frame: ts, keydown: st.t0,
                 readout: tRead === null ? null : Math.max(tRead, st.t0) - st.t0});
@@ -382,8 +394,11 @@ afm.arm = (sel, mode, timeoutMs) => {
 afm.armDrag = (sel, quietMs, timeoutMs) => {
   const root = afm.root();
   const st = {t0: null, seqs: [], states: 0, times: [], values: [], keys: 0};
-  const readout = () => { const e = document.activeElement, w = e && e.closest && e.closest('.widget-slider');
-                          const r = w && w.querySelector('.widget-readout'); return r ? r.textContent.trim() : null; };
+  const readout = () => {
+    const e = document.activeElement, w = e && e.closest && e.closest('.widget-slider');
+    const r = w && w.querySelector('.widget-readout');
+    return r ? r.textContent.trim() : null;
+  };
   let lastSeq = afm.seqs(root, sel), lastHash = afm.checksum(root, sel).hash;
   const baseSeq = lastSeq;
   const onKey = () => { st.keys++; if (st.t0 === null) st.t0 = performance.now(); };
@@ -395,13 +410,23 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
       const now = performance.now();
       const seq = afm.seqs(root, sel), hash = afm.checksum(root, sel).hash, v = readout();
       if (v !== null && v !== st.values[st.values.length - 1]) st.values.push(v);
-      if (seq !== lastSeq) { if (seq !== baseSeq && !st.seqs.includes(seq)) st.seqs.push(seq); lastSeq = seq; lastChange = now; }
-      if (hash !== lastHash) { st.states++; st.times.push(ts - (st.t0 || ts)); lastHash = hash; lastChange = now; }
+      if (seq !== lastSeq) {
+        if (seq !== baseSeq && !st.seqs.includes(seq)) st.seqs.push(seq);
+        lastSeq = seq;
+        lastChange = now;
+      }
+      if (hash !== lastHash) {
+        st.states++;
+        st.times.push(ts - (st.t0 || ts));
+        lastHash = hash;
+        lastChange = now;
+      }
       const quietFrom = lastChange === null ? (st.t0 === null ? null : st.t0) : lastChange;
       if ((quietFrom !== null && now - quietFrom > quietMs) || now - start > timeoutMs) {
         window.removeEventListener('keydown', onKey, true);
-        resolve({seqs: st.seqs, states: st.states, times: st.times, timedOut: now - start > timeoutMs,
-                 baseSeq: baseSeq, values: st.values, keys: st.keys});
+        resolve({seqs: st.seqs, states: st.states, times: st.times,
+                 timedOut: now - start > timeoutMs, baseSeq: baseSeq, values: st.values,
+                 keys: st.keys});
       } else requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
@@ -649,7 +674,8 @@ def mark_text(page, slider, text_selector: str = ".widget-label") -> None:
                     document.querySelectorAll('[data-afm-panel]')
                       .forEach(e => e.removeAttribute('data-afm-panel'));
                     // the label only (the slider's own readout changes at once, in the browser)
-                    const labels = Array.from(p.children).filter(c => !c.classList.contains('widget-slider'));
+                    const labels = Array.from(p.children)
+                                        .filter(c => !c.classList.contains('widget-slider'));
                     if (!labels.length) return false;
                     labels[0].setAttribute('data-afm-panel', '1'); return true; }""")
     if not ok:

@@ -5,8 +5,9 @@ voila serving copies of the course notebooks, run as a student would (Run All; n
 For each panel: no cell shows an error, each key press on the panel's slider changes the pixels
 of the panel's figure within :data:`browser.PRESS_TIMEOUT` (never hangs), and the kernel's panel
 holds the value the slider shows. With the live component (``div.afm-live``): every step of a
-15-press drag is drawn (distinct ``data-seq`` values painted), and each panel's figure has
-pixels in a static HTML export (nbconvert) opened from a file.
+15-press drag is drawn (distinct ``data-seq`` values painted), the slider never jumps back
+against the keys and ends where the kernel is, and each panel's figure has pixels in a static
+HTML export (nbconvert) opened from a file.
 
 Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why, when Chromium
 or Playwright is missing. One JupyterLab and one voila server and one browser per module.
@@ -90,28 +91,40 @@ def _check_presses(page, name):
     return slider, away
 
 
-#: Issue 9's target "every step of a 15-step drag drawn" is not met yet: ipywidgets sends a
-#: slider's newest value only once the kernel has answered the previous one, so a burst of key
-#: presses reaches the kernel as 2-3 values and 2-3 frames are drawn. Until a browser-side path
-#: draws every step, a short drag is reported as an expected failure (xfail) with its numbers;
-#: set this to False when it lands, and the drag must draw every step.
-DRAG_SHORTFALL_KNOWN = True
+#: Panels whose drag is known not to meet issue 9's target, with why: their drag is reported
+#: as an expected failure (xfail) with its numbers; every other panel must draw each of the 15
+#: steps, its slider must never jump back against the keys, and (JupyterLab) the kernel's panel
+#: must hold the value the slider shows once the drag is over. Remove an entry when it is fixed.
+DRAG_KNOWN_BROKEN = {
+    "contact": "after a fast Z_np drag the slider jumps back and forth and never settles "
+               "(hundreds of frames; the slider and the kernel disagree at the end)",
+}
+DRAG_TIMEOUT = 10.0  # s: a drag still drawing after this never settled
 
 
-def _drag(page, slider, key):
-    """A 15-press drag (live figures only); None without a live figure."""
+def _check_drag(page, slider, key, name, *, kernel=None):
+    """A 15-press drag of a live figure: every step drawn, no jump back, kernel agrees."""
     if not LIVE:
-        return None
-    return B.drag(page, slider, key, DRAG, selector=SELECTOR)
-
-
-def _check_drag(result, name):
-    if result is None or result.steps_drawn == DRAG:
         return
-    message = (f"{name}: {result.steps_drawn} of {DRAG} drag steps drawn (data-seq painted "
-               f"{result.seqs}; slider readouts {result.values})")
-    if DRAG_SHORTFALL_KNOWN:
-        pytest.xfail(message)
+    result = B.drag(page, slider, key, DRAG, selector=SELECTOR, timeout=DRAG_TIMEOUT)
+    problems = []
+    if result.steps_drawn != DRAG:
+        problems.append(f"{result.steps_drawn} of {DRAG} steps drawn (data-seq painted "
+                        f"{result.seqs[:20]})")
+    if result.jumped_back:
+        problems.append(f"the slider jumped back {result.jumped_back[:5]}")
+    if result.timed_out:
+        problems.append(f"still drawing after {DRAG_TIMEOUT:g} s")
+    if kernel is not None and not problems:
+        B.settle(page, SELECTOR, quiet=0.5, timeout=5)
+        value, shown = kernel(), _shown(B.slider_value(slider))
+        if not math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9):
+            problems.append(f"the slider shows {shown}, the kernel holds {value}")
+    if not problems:
+        return
+    message = f"{name} drag: {'; '.join(problems)}; slider readouts {result.values[:30]}"
+    if name in DRAG_KNOWN_BROKEN:
+        pytest.xfail(f"known: {DRAG_KNOWN_BROKEN[name]} -- {message}")
     raise AssertionError(message)
 
 
@@ -123,14 +136,17 @@ def test_lab_panel_follows_its_slider(lab, name):
     B.run_all(page)
     assert B.lab_errors(page) == [], f"{notebook} shows errors after Run All"
     slider, key = _check_presses(page, name)
-    drag = _drag(page, slider, key)
     B.settle(page, SELECTOR, quiet=0.5, timeout=5)
-    kernel = B.kernel_eval(page, f"print(repr(panel.values()[{CONTROL[name]!r}]))").strip()
-    shown = _shown(B.slider_value(slider))
-    assert math.isclose(float(kernel), shown, rel_tol=5e-3, abs_tol=1e-9), \
-        f"{notebook}: the slider shows {shown}, the kernel's {cls} holds {kernel}"
+
+    def kernel():
+        return B.kernel_eval(page, f"print(repr(panel.values()[{CONTROL[name]!r}]))").strip()
+
+    value, shown = kernel(), _shown(B.slider_value(slider))
+    assert math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9), \
+        f"{notebook}: the slider shows {shown}, the kernel's {cls} holds {value}"
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the key presses"
-    _check_drag(drag, name)
+    _check_drag(page, slider, key, name, kernel=kernel)
+    assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
 
 
 @pytest.mark.parametrize("name", list(B.PANELS))
@@ -139,11 +155,13 @@ def test_voila_panel_follows_its_slider(voila, name):
     notebook, _, description = B.PANELS[name]
     B.open_voila(page, server, notebook, description)
     assert B.voila_errors(page) == [], f"{notebook} shows errors in voila"
-    slider, key = _check_presses(page, name)
-    drag = _drag(page, slider, key)
-    assert B.voila_errors(page) == [], f"{notebook} shows errors after the key presses"
-    page.goto("about:blank")  # voila shuts the kernel down when its page goes
-    _check_drag(drag, name)
+    try:
+        slider, key = _check_presses(page, name)
+        assert B.voila_errors(page) == [], f"{notebook} shows errors after the key presses"
+        _check_drag(page, slider, key, name)
+        assert B.voila_errors(page) == [], f"{notebook} shows errors after the drag"
+    finally:
+        page.goto("about:blank")  # voila shuts the kernel down when its page goes
 
 
 def test_lab_floor_label_follows_its_slider(lab):
