@@ -87,7 +87,9 @@ def _row(where, name, s, floor):
         drawn = f"{drag.steps_drawn:2d} of {DRAG} {'OK' if drag.steps_drawn == DRAG else 'MISSED'}"
     kernel = ""
     if drag is not None and drag.jumped_back:
-        kernel = f"(slider jumped back {', '.join(drag.jumped_back)} during the drag) "
+        back = drag.jumped_back
+        kernel = (f"(slider jumped back {len(back)} times, e.g. {', '.join(back[:3])}; "
+                  f"{'never settled' if drag.timed_out else 'settled'}) "
     if "kernel" in s:
         kernel += f"slider {s['shown']} / kernel {s['kernel']}"
     elif "shown" in s:
