@@ -89,7 +89,7 @@ def _row(where, name, s, floor):
     if drag is not None and drag.jumped_back:
         back = drag.jumped_back
         kernel = (f"(slider jumped back {len(back)} times, e.g. {', '.join(back[:3])}; "
-                  f"{'never settled' if drag.timed_out else 'settled'}) "
+                  f"{'never settled' if drag.timed_out else 'settled'}) ")
     if "kernel" in s:
         kernel += f"slider {s['shown']} / kernel {s['kernel']}"
     elif "shown" in s:
