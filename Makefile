@@ -42,9 +42,10 @@ test: $(STAMP) browser
 
 ## The fast suite while you work: every test except those marked `slow` (a second or more each:
 ## reference solutions, many fits, code generation, the deep bad-input campaign) and `viewer`
-## (they start a real meshcat server). No doctests, notebooks or server check: `make test` runs those.
+## (they start a real meshcat server) and `browser` (headless Chromium against JupyterLab and voila).
+## No doctests, notebooks or server check: `make test` runs those.
 unit: $(STAMP)
-	$(PY) -m pytest -m "not slow and not viewer" tests
+	$(PY) -m pytest -m "not slow and not viewer and not browser" tests
 
 notebooks: $(STAMP)
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env notebooks

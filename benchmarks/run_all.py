@@ -2,7 +2,9 @@
 
 Each ``bench_*.py`` measures one issue's speed targets as ratios against the named peer, in one
 run on this machine, and prints a short table. Nothing here is asserted by the tests: tests check
-correctness, benchmarks report speed.
+correctness, benchmarks report speed. ``bench_browser`` measures end to end in headless Chromium
+(key press -> pixels, against the slider -> label floor of the same run; a few minutes; it prints
+why when there is no browser). Name scripts to run only those: ``run_all.py browser contact``.
 """
 import runpy
 import sys

@@ -1,0 +1,156 @@
+"""Issue 9: slider key press -> changed pixels of each live panel's figure, in a real browser.
+
+Headless Debian Chromium (Playwright, ``/usr/bin/chromium``) against JupyterLab and voila
+serving copies of the course notebooks, driven by ``tests/browser.py``: Run All (voila runs
+the notebook itself), then per panel one warm-up press and ``PRESSES`` timed presses of the
+panel's slider key. A press is timed from its ``keydown`` (``performance.now()`` in a
+capture-phase listener) to the first animation frame at which the pixels of the panel's figure
+canvases differ; one that changes nothing within 5 s counts as failed. Then a drag: 15 presses
+sent without waiting, and the steps seen painted (distinct ``data-seq`` values of a live figure
+on animation frames; for an ipympl figure, distinct pixel states).
+
+Peer (the floor), measured in the same run and the same server: an ipywidgets IntSlider whose
+observer sets a Label's value, key press -> the label's text changed (the next animation frame
+after a MutationObserver saw it): browser -> kernel -> browser, which no figure drawn from the
+kernel can beat. Target (issue 9): each panel's median within 1.5x the floor, every drag step
+drawn. ``BENCH_BROWSER_PRESSES`` (default 20) and ``BENCH_BROWSER_WHERE`` (default
+``lab,voila``) change the run. Prints a reason and exits 0 when the browser cannot run.
+"""
+import os
+import statistics
+import sys
+import time
+import traceback
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
+import browser as B  # noqa: E402
+
+PRESSES = int(os.environ.get("BENCH_BROWSER_PRESSES", "20"))
+WHERE = [w for w in os.environ.get("BENCH_BROWSER_WHERE", "lab,voila").split(",") if w]
+DRAG = 15
+TARGET_RATIO = 1.5
+CONTROL = {"cantilever": "force", "transducers": "input", "controller": "ki", "contact": "z_np"}
+
+
+def _ms(t):
+    return "      -" if t is None else f"{t * 1e3:7.1f}"
+
+
+def _floor(where, server, page):
+    if where == "lab":
+        B.open_lab(page, server, B.FLOOR_NOTEBOOK)
+        B.run_all(page)
+    else:
+        B.open_voila(page, server, B.FLOOR_NOTEBOOK, B.FLOOR_SLIDER)
+    slider = B.find_slider(page, B.FLOOR_SLIDER)
+    B.mark_text(page, slider)
+    B.press_text(page, slider, "ArrowRight", 2)  # warm-up
+    return B.summary(B.press_text(page, slider, "ArrowRight", PRESSES))
+
+
+def _panel(where, server, page, name, selector):
+    notebook, _, description = B.PANELS[name]
+    t0 = time.monotonic()
+    if where == "lab":
+        B.open_lab(page, server, notebook)
+        B.run_all(page)
+    else:
+        B.open_voila(page, server, notebook, description)
+    ready = time.monotonic() - t0
+    slider = B.find_slider(page, description)
+    B.focus_panel(page, slider, selector)
+    key, _ = B.keys(slider)
+    B.press(page, slider, key, 1, selector=selector)  # warm-up
+    detail = B.press_detail(page, slider, key, PRESSES, selector=selector)
+    stats = B.summary([d["dt"] for d in detail])
+    readouts = [d["readout"] for d in detail if d["readout"] is not None]
+    stats["readout"] = statistics.median(readouts) if readouts else None
+    drag = B.drag(page, slider, key, DRAG, selector=selector)
+    B.settle(page, selector, quiet=0.5, timeout=5)
+    stats.update(ready=ready, drag=drag, shown=B.slider_value(slider))
+    if where == "lab":
+        stats["kernel"] = B.kernel_eval(
+            page, f"print(repr(panel.values()[{CONTROL[name]!r}]))").strip()
+    return stats
+
+
+def _row(where, name, s, floor):
+    ratio = ""
+    if s.get("median") is not None and floor and floor.get("median"):
+        r = s["median"] / floor["median"]
+        ratio = f"{r:6.1f}x {'OK' if r <= TARGET_RATIO else 'MISSED'}"
+    drag = s.get("drag")
+    drawn = ""
+    if drag is not None:
+        drawn = f"{drag.steps_drawn:2d} of {DRAG} {'OK' if drag.steps_drawn == DRAG else 'MISSED'}"
+    kernel = ""
+    if drag is not None and drag.jumped_back:
+        back = drag.jumped_back
+        kernel = (f"(slider jumped back {len(back)} times, e.g. {', '.join(back[:3])}; "
+                  f"{'never settled' if drag.timed_out else 'settled'}) ")
+    if "kernel" in s:
+        kernel += f"slider {s['shown']} / kernel {s['kernel']}"
+    elif "shown" in s:
+        kernel += f"slider {s['shown']}"
+    print(f"{where:<6s}{name:<13s}{_ms(s.get('median'))} ms {_ms(s.get('worst'))} ms "
+          f"{s['failed']:3d}/{s['n']:<3d} {ratio:<13s} {_ms(s.get('readout'))} ms  "
+          f"{drawn:<16s} {kernel}", flush=True)
+
+
+def main():
+    reason = B.unavailable()
+    if reason:
+        print(f"browser benchmark not run: {reason}")
+        return
+    selector = B.figure_selector()
+    root = B.notebook_root(prefix="afm-bench-browser-")
+    print(f"key press -> changed pixels in headless {B.CHROMIUM}, {PRESSES} presses per panel "
+          f"(after one warm-up); figure element {selector!r}")
+    print(f"target: median <= {TARGET_RATIO}x the floor (slider -> kernel -> label text, same "
+          f"run), every step of a {DRAG}-press drag drawn")
+    print(f"{'where':<6s}{'panel':<13s}{'median':>10s} {'worst':>10s} {'failed':>7s} "
+          f"{'median/floor':<13s} {'readouts':>10s}  {'drag drawn':<16s} value after the drag")
+    print("(readouts: median key press -> the panel's own text readouts changed, the kernel's "
+          "answer without the figure; - when the pixels changed first)")
+    results = {}
+    with B.browser() as b:
+        for where in WHERE:
+            server = None
+            page = B.new_page(b)
+            try:
+                server = B.Server(where, root).start()
+                floor = None
+                try:
+                    floor = _floor(where, server, page)
+                    _row(where, "floor", floor, None)
+                except Exception as exc:
+                    print(f"{where:<6s}floor        failed: {type(exc).__name__}: {exc}")
+                for name in B.PANELS:
+                    try:
+                        s = _panel(where, server, page, name, selector)
+                        results[where, name] = (s, floor)
+                        _row(where, name, s, floor)
+                    except Exception as exc:
+                        print(f"{where:<6s}{name:<13s}failed: {type(exc).__name__}: "
+                              f"{str(exc).splitlines()[0] if str(exc) else ''}", flush=True)
+                        traceback.print_exc(limit=2, file=sys.stdout)
+                    if where == "voila":
+                        page.goto("about:blank")  # voila ends that notebook's kernel
+            except Exception as exc:
+                print(f"{where}: could not run: {type(exc).__name__}: {exc}")
+            finally:
+                page.close()
+                if server is not None:
+                    server.stop()
+    ratios = [s["median"] / f["median"] for s, f in results.values()
+              if s.get("median") and f and f.get("median")]
+    if ratios:
+        print(f"median/floor over the panels: best {min(ratios):.1f}x, "
+              f"median {statistics.median(ratios):.1f}x, worst {max(ratios):.1f}x "
+              f"(target <= {TARGET_RATIO}x)")
+
+
+if __name__ == "__main__":
+    main()

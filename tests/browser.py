@@ -1,0 +1,789 @@
+"""Drive JupyterLab and voila in headless Chromium: time a slider key press to changed pixels.
+
+A small driver library (not a test file) shared by ``tests/test_panels_browser.py`` and
+``benchmarks/bench_browser.py``. It starts a JupyterLab or voila server on 127.0.0.1 (a free
+port, token auth, copies of the notebooks in a temporary root, the checkout on ``PYTHONPATH``,
+``MPLBACKEND`` and ``AFMSMILER_TESTING`` unset, as a student's kernel), drives Debian's Chromium
+through Playwright (``executable_path=/usr/bin/chromium``; never Playwright's own download), runs
+a notebook, finds a panel's slider by the text of its description and presses its keys.
+
+How a press is timed (:func:`press`): before the press the page takes a checksum of the pixels
+of every ``<canvas>`` in the panel's figure element(s) (``getImageData``, an FNV-1a hash), a
+capture-phase ``keydown`` listener on ``window`` records ``performance.now()`` when the key goes
+down, and a ``requestAnimationFrame`` loop compares the checksums on every frame; the time of the
+first frame at which they differ, minus the key-down time, is the press's key-to-pixels time. A
+press that changes nothing within ``timeout`` seconds is a failure (``None``), never a hang. The
+floor (:func:`press_text`) is timed the same way on a label's text (a ``MutationObserver`` marks
+it, the next animation frame is its time): slider -> kernel -> label, the round trip no figure
+can beat. :func:`drag` sends a burst of key presses without waiting and records which frames
+were painted: the distinct ``data-seq`` values of live figures (``div.afm-live``) seen on
+animation frames, and the number of distinct pixel states.
+
+Every wait is bounded; servers are started in their own process group and killed in ``stop``
+(called from ``finally``/context managers). :func:`unavailable` says why the browser tests
+cannot run here, for a visible ``pytest.skip(reason)``.
+"""
+from __future__ import annotations
+
+import contextlib
+import json
+import os
+import shutil
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.request
+from dataclasses import dataclass, field
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = ROOT / "notebooks"
+CHROMIUM = os.environ.get("AFMSMILER_CHROMIUM", "/usr/bin/chromium")  # Debian's, never a download
+CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update",
+                 "--disable-sync"]
+BIN = Path(sys.executable).parent  # jupyter and voila of the interpreter running the tests
+TOKEN = "afm-browser-test"
+PRESS_TIMEOUT = 5.0  # s: a press whose pixels have not changed by then is a failure
+VIEWPORT = {"width": 1500, "height": 1000}
+
+#: The element of a live figure (afmsmiler.plots.live): it holds <canvas> elements and carries
+#: ``data-frames`` (frames drawn) and ``data-seq`` (the kernel's sequence number shown last).
+LIVE_FIGURE = ".afm-live"
+#: The element of an ipympl figure (the panels' figures before the live component).
+IPYMPL_FIGURE = ".jupyter-matplotlib-figure"
+
+#: Each live panel: notebook, the panel class, and (part of) its slider's description.
+PANELS = {
+    "cantilever": ("01_cantilever_mechanics.ipynb", "CantileverPanel", "end force F"),
+    "transducers": ("02_probe_transducers.ipynb", "TransducerPanel", "tip deflection"),
+    "controller": ("03_controller_tuning.ipynb", "ControllerPanel", "K_I"),
+    "contact": ("04_contact_mechanics.ipynb", "ContactPanel", "Z_np"),
+}
+
+
+def figure_selector() -> str:
+    """The CSS selector of a panel's figure on this checkout.
+
+    The live component (``afmsmiler/plots/live.py``) draws ``div.afm-live``; before it, the
+    panels' figures are ipympl canvases.
+    """
+    return LIVE_FIGURE if (ROOT / "afmsmiler" / "plots" / "live.py").exists() else IPYMPL_FIGURE
+
+
+def unavailable() -> str | None:
+    """Why the browser tests cannot run here, or None when they can."""
+    if not os.access(CHROMIUM, os.X_OK):
+        return (f"no {CHROMIUM}: install Debian's chromium (`make test` does so as root) to run "
+                "the browser tests")
+    try:
+        import playwright.sync_api  # noqa: F401 (only whether it imports)
+    except ImportError:
+        return "playwright is not installed (pip install -e '.[test]')"
+    for tool in ("jupyter-lab", "voila"):
+        if not (BIN / tool).exists() and shutil.which(tool) is None:
+            return f"{tool} is not installed (pip install -e '.[test,lab]')"
+    return None
+
+
+def free_port() -> int:
+    """A TCP port on 127.0.0.1 that nobody listens on now."""
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def _tool(name: str) -> str:
+    path = BIN / name
+    return str(path) if path.exists() else (shutil.which(name) or name)
+
+
+def kernel_env(checkout: Path = ROOT) -> dict:
+    """The environment of a student's kernel: the checkout importable, no test flags."""
+    env = dict(os.environ)
+    env["PYTHONPATH"] = str(checkout) + (os.pathsep + env["PYTHONPATH"]
+                                         if env.get("PYTHONPATH") else "")
+    for name in ("MPLBACKEND", "AFMSMILER_TESTING", "CI", "NBVAL", "PYTEST_CURRENT_TEST"):
+        env.pop(name, None)
+    return env
+
+
+def floor_notebook(path: Path) -> Path:
+    """Write the floor notebook: an IntSlider whose observer sets a Label's value.
+
+    A key press on that slider travels browser -> kernel -> browser and changes a text: the
+    round trip that bounds any figure drawn from the kernel.
+    """
+    import nbformat
+    code = ("import ipywidgets as w\n"
+            "slider = w.IntSlider(value=50, min=0, max=1000, description='floor slider')\n"
+            "label = w.Label('50', layout=w.Layout(width='200px'))\n"
+            "slider.observe(lambda change: setattr(label, 'value', str(change['new'])), 'value')\n"
+            "w.VBox([slider, label])")
+    nb = nbformat.v4.new_notebook()
+    nb.cells = [nbformat.v4.new_code_cell(code)]
+    nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
+                                 "language": "python"}
+    nbformat.write(nb, str(path))
+    return path
+
+
+FLOOR_NOTEBOOK = "00_floor.ipynb"
+FLOOR_SLIDER = "floor slider"
+
+
+def notebook_root(prefix: str = "afm-browser-") -> Path:
+    """A temporary root holding copies of the course notebooks and the floor notebook."""
+    root = Path(tempfile.mkdtemp(prefix=prefix))
+    nbdir = root / "notebooks"
+    nbdir.mkdir()
+    for nb in NOTEBOOKS.glob("*.ipynb"):
+        shutil.copy2(nb, nbdir / nb.name)
+    floor_notebook(nbdir / FLOOR_NOTEBOOK)
+    return root
+
+
+# -- servers -------------------------------------------------------------------------------
+class Server:
+    """A JupyterLab (``kind="lab"``) or voila (``kind="voila"``) server on 127.0.0.1.
+
+    Parameters
+    ----------
+    kind : {"lab", "voila"}
+        Which server.
+    root : pathlib.Path
+        A temporary directory from :func:`notebook_root` (its ``notebooks`` folder is served).
+    notebook : str, optional
+        voila only: serve this one notebook at ``/`` (else the folder, at
+        ``/voila/render/<name>``).
+    startup_timeout : float
+        Seconds to wait for the server to answer.
+    """
+
+    def __init__(self, kind: str, root: Path, *, notebook: str | None = None,
+                 startup_timeout: float = 90.0):
+        if kind not in ("lab", "voila"):
+            raise ValueError(f"kind must be 'lab' or 'voila', got {kind!r}")
+        self.kind, self.root, self.notebook = kind, Path(root), notebook
+        self.port = free_port()
+        self.proc = None
+        self.log = self.root / f"{kind}-{self.port}.log"
+        self.startup_timeout = startup_timeout
+
+    @property
+    def base(self) -> str:
+        return f"http://127.0.0.1:{self.port}"
+
+    def url(self, notebook: str | None = None) -> str:
+        """The address that opens ``notebook`` (lab: in a fresh workspace)."""
+        if self.kind == "lab":
+            return f"{self.base}/lab/tree/{notebook}?reset&token={TOKEN}"
+        if self.notebook is not None:
+            return f"{self.base}/?token={TOKEN}"
+        return f"{self.base}/voila/render/{notebook}?token={TOKEN}"
+
+    def _settings(self) -> Path:
+        """User settings for JupyterLab: no news/update pop-ups, every cell kept in the DOM."""
+        settings = self.root / "settings"
+        for ext, name, values in (
+                ("@jupyterlab/notebook-extension", "tracker", {"windowingMode": "none"}),
+                ("@jupyterlab/apputils-extension", "notification",
+                 {"fetchNews": "false", "checkForUpdates": False})):
+            d = settings / ext
+            d.mkdir(parents=True, exist_ok=True)
+            (d / f"{name}.jupyterlab-settings").write_text(json.dumps(values))
+        return settings
+
+    def start(self) -> "Server":
+        nbdir = self.root / "notebooks"
+        if self.kind == "lab":
+            cmd = [_tool("jupyter-lab"), "--no-browser", "--ServerApp.ip=127.0.0.1",
+                   f"--ServerApp.port={self.port}", "--ServerApp.port_retries=0",
+                   f"--IdentityProvider.token={TOKEN}", f"--ServerApp.root_dir={nbdir}",
+                   f"--LabApp.workspaces_dir={self.root / 'workspaces'}",
+                   f"--LabApp.user_settings_dir={self._settings()}",
+                   "--LabApp.expose_app_in_browser=True", "--ServerApp.open_browser=False"]
+            if hasattr(os, "geteuid") and os.geteuid() == 0:
+                cmd.append("--allow-root")
+        else:
+            target = nbdir / self.notebook if self.notebook else nbdir
+            cmd = [_tool("voila"), "--no-browser", "--Voila.ip=127.0.0.1",
+                   f"--port={self.port}", "--show_tracebacks=True", f"--token={TOKEN}",
+                   str(target)]
+        with open(self.log, "wb") as log:
+            self.proc = subprocess.Popen(cmd, env=kernel_env(), cwd=nbdir, stdout=log,
+                                         stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                         start_new_session=True)
+        deadline = time.monotonic() + self.startup_timeout
+        probe = f"{self.base}/api/status?token={TOKEN}" if self.kind == "lab" else self.base
+        while time.monotonic() < deadline:
+            if self.proc.poll() is not None:
+                raise RuntimeError(f"{self.kind} exited ({self.proc.returncode}): {self.tail()}")
+            try:
+                urllib.request.urlopen(probe, timeout=2).read(1)
+                return self
+            except Exception:  # not up yet
+                time.sleep(0.3)
+        self.stop()
+        raise RuntimeError(f"{self.kind} did not answer within {self.startup_timeout:g} s: "
+                           f"{self.tail()}")
+
+    def tail(self, n: int = 1500) -> str:
+        try:
+            return self.log.read_text(errors="replace")[-n:]
+        except OSError:
+            return ""
+
+    def api(self, method: str, path: str):
+        """Call the server's REST API (lab only) and return the decoded JSON (or None)."""
+        req = urllib.request.Request(f"{self.base}{path}?token={TOKEN}", method=method)
+        with urllib.request.urlopen(req, timeout=10) as r:
+            body = r.read()
+        return json.loads(body) if body else None
+
+    def shutdown_kernels(self) -> None:
+        """Shut every kernel down gracefully (lab), so their exit handlers close servers."""
+        if self.kind != "lab" or self.proc is None or self.proc.poll() is not None:
+            return
+        with contextlib.suppress(Exception):
+            for k in self.api("GET", "/api/kernels") or []:
+                with contextlib.suppress(Exception):
+                    self.api("DELETE", f"/api/kernels/{k['id']}")
+
+    def stop(self) -> None:
+        """Stop the server and everything it started (its process group), bounded."""
+        if self.proc is None:
+            return
+        self.shutdown_kernels()
+        for sig, wait in ((signal.SIGTERM, 8.0), (signal.SIGKILL, 5.0)):
+            if self.proc.poll() is None or _group_alive(self.proc.pid):
+                with contextlib.suppress(ProcessLookupError, PermissionError):
+                    os.killpg(self.proc.pid, sig)
+                with contextlib.suppress(subprocess.TimeoutExpired):
+                    self.proc.wait(timeout=wait)
+        self.proc = None
+
+    def __enter__(self):
+        return self.start()
+
+    def __exit__(self, *exc):
+        self.stop()
+
+
+def _group_alive(pgid: int) -> bool:
+    try:
+        os.killpg(pgid, 0)
+        return True
+    except (ProcessLookupError, PermissionError):
+        return False
+
+
+# -- the browser ---------------------------------------------------------------------------
+@contextlib.contextmanager
+def browser():
+    """A headless Debian Chromium driven by Playwright; yields the Browser, closes it after."""
+    from playwright.sync_api import sync_playwright
+    with sync_playwright() as p:
+        b = p.chromium.launch(executable_path=CHROMIUM, headless=True, args=CHROMIUM_ARGS)
+        try:
+            yield b
+        finally:
+            b.close()
+
+
+def new_page(b):
+    """A page with the timing helpers installed (``window.__afm``)."""
+    page = b.new_page(viewport=VIEWPORT)
+    page.add_init_script(_PAGE_JS)
+    page.set_default_timeout(30_000)
+    return page
+
+
+_PAGE_JS = r"""
+(() => {
+if (window.__afm) return;
+const afm = {};
+window.__afm = afm;
+afm.canvases = (root, sel) => {
+  const out = [];
+  const figs = root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel));
+  for (const f of figs) for (const c of f.querySelectorAll('canvas')) out.push(c);
+  return out;
+};
+afm.checksum = (root, sel) => {    // FNV-1a over the pixels of every canvas of the figure(s)
+  let h = 2166136261 >>> 0, lit = 0;
+  const cs = afm.canvases(root, sel);
+  for (const c of cs) {
+    if (!c.width || !c.height) continue;
+    const ctx = c.getContext('2d');
+    if (!ctx) continue;
+    const d = new Uint32Array(ctx.getImageData(0, 0, c.width, c.height).data.buffer);
+    for (let i = 0; i < d.length; i++) {
+      const v = d[i];
+      h = Math.imul(h ^ v, 16777619);
+      if (v) lit++;
+    }
+    h = Math.imul(h ^ c.width, 16777619);
+  }
+  return {hash: (h >>> 0) + ':' + cs.length, lit: lit, n: cs.length};
+};
+afm.seqs = (root, sel) => {
+  const figs = root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel));
+  return figs.map(f => f.getAttribute('data-seq')).join(',');
+};
+// the closest ancestor of el that holds a figure: the panel's own box
+afm.panelOf = (el, sel) => {
+  let p = el;
+  while (p && !(p.querySelector && p.querySelector(sel))) p = p.parentElement;
+  return p;
+};
+afm.mark = (el, sel) => {
+  const p = afm.panelOf(el, sel);
+  if (!p) return false;
+  document.querySelectorAll('[data-afm-panel]').forEach(e => e.removeAttribute('data-afm-panel'));
+  p.setAttribute('data-afm-panel', '1');
+  return true;
+};
+afm.root = () => document.querySelector('[data-afm-panel]');
+// arm one press: resolves {dt} (ms from keydown to the first frame with other pixels/text)
+afm.arm = (sel, mode, timeoutMs) => {
+  const root = afm.root();
+  const st = {t0: null};
+  const probe = mode === 'text' ? () => root.textContent : () => afm.checksum(root, sel).hash;
+  const base = probe();
+  // the panel's own readouts (HTML widgets): their change times the kernel's answer itself
+  const readouts = () => Array.from(root.querySelectorAll('.widget-html'))
+                              .map(e => e.textContent).join('|');
+  const readBase = mode === 'text' ? null : readouts();
+  let tRead = null;
+  let dirty = mode !== 'text';
+  const obs = mode === 'text' ? new MutationObserver(() => { dirty = true; }) : null;
+  if (obs) obs.observe(root, {subtree: true, childList: true, characterData: true,
+                              attributes: true});
+  const onKey = () => { if (st.t0 === null) st.t0 = performance.now(); };
+  window.addEventListener('keydown', onKey, true);
+  const start = performance.now();
+  st.promise = new Promise(resolve => {
+    const finish = (r) => {
+      window.removeEventListener('keydown', onKey, true);
+      if (obs) obs.disconnect();
+      resolve(r);
+    };
+    const tick = (ts) => {
+      const now = performance.now();
+      if (st.t0 !== null && tRead === null && readBase !== null && readouts() !== readBase) {
+        tRead = ts;
+      }
+      if (st.t0 !== null && dirty && probe() !== base) {
+        finish({dt: Math.max(ts, st.t0) - st.t0, frame: ts, keydown: st.t0,
+                readout: tRead === null ? null : Math.max(tRead, st.t0) - st.t0});
+      } else if (now - start > timeoutMs) {
+        finish({dt: null, keydown: st.t0});
+      } else requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  });
+  afm.current = st;
+  return base.length;
+};
+// arm a drag: record on every frame the painted data-seq and pixel states, until quiet
+afm.armDrag = (sel, quietMs, timeoutMs) => {
+  const root = afm.root();
+  const st = {t0: null, seqs: [], states: 0, times: [], values: [], keys: 0};
+  const readout = () => {
+    const e = document.activeElement, w = e && e.closest && e.closest('.widget-slider');
+    const r = w && w.querySelector('.widget-readout');
+    return r ? r.textContent.trim() : null;
+  };
+  let lastSeq = afm.seqs(root, sel), lastHash = afm.checksum(root, sel).hash;
+  const baseSeq = lastSeq;
+  const onKey = () => { st.keys++; if (st.t0 === null) st.t0 = performance.now(); };
+  window.addEventListener('keydown', onKey, true);
+  const start = performance.now();
+  let lastChange = null;
+  st.promise = new Promise(resolve => {
+    const tick = (ts) => {
+      const now = performance.now();
+      const seq = afm.seqs(root, sel), hash = afm.checksum(root, sel).hash, v = readout();
+      if (v !== null && v !== st.values[st.values.length - 1]) st.values.push(v);
+      if (seq !== lastSeq) {
+        if (seq !== baseSeq && !st.seqs.includes(seq)) st.seqs.push(seq);
+        lastSeq = seq;
+        lastChange = now;
+      }
+      if (hash !== lastHash) {
+        st.states++;
+        st.times.push(ts - (st.t0 || ts));
+        lastHash = hash;
+        lastChange = now;
+      }
+      const quietFrom = lastChange === null ? (st.t0 === null ? null : st.t0) : lastChange;
+      if ((quietFrom !== null && now - quietFrom > quietMs) || now - start > timeoutMs) {
+        window.removeEventListener('keydown', onKey, true);
+        resolve({seqs: st.seqs, states: st.states, times: st.times,
+                 timedOut: now - start > timeoutMs, baseSeq: baseSeq, values: st.values,
+                 keys: st.keys});
+      } else requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  });
+  afm.current = st;
+  return true;
+};
+// wait until the figure's pixels stay the same for quietMs (bounded); resolves the check
+afm.quiet = (sel, quietMs, timeoutMs) => new Promise(resolve => {
+  const root = afm.root();
+  let last = afm.checksum(root, sel).hash, since = performance.now();
+  const start = since;
+  const tick = () => {
+    const now = performance.now(), h = afm.checksum(root, sel).hash;
+    if (h !== last) { last = h; since = now; }
+    if (now - since >= quietMs) resolve(true);
+    else if (now - start > timeoutMs) resolve(false);
+    else requestAnimationFrame(tick);
+  };
+  requestAnimationFrame(tick);
+});
+})();
+"""
+
+
+# -- notebooks in JupyterLab and voila -----------------------------------------------------
+def open_lab(page, server: Server, notebook: str, *, timeout: float = 90.0) -> None:
+    """Open ``notebook`` in JupyterLab and wait until its kernel is ready.
+
+    On a page where JupyterLab already runs, the notebooks open there are closed unsaved and
+    every kernel shut down first, and the notebook is opened in the same page (no reload).
+    """
+    if page.evaluate("() => !!window.jupyterapp"):
+        page.evaluate(
+            """() => { const a = window.jupyterapp;
+                       for (const w of Array.from(a.shell.widgets('main'))) {
+                         if (w.context) w.context.model.dirty = false;
+                         w.dispose(); } }""")
+        server.shutdown_kernels()
+        page.evaluate("(path) => window.jupyterapp.commands.execute('docmanager:open', {path})",
+                      notebook)
+    else:
+        page.goto(server.url(notebook), timeout=timeout * 1000)
+    page.wait_for_function(
+        """(path) => { const a = window.jupyterapp; if (!a) return false;
+                   const w = a.shell.currentWidget;
+                   return !!(w && w.content && w.context && w.context.path === path
+                             && w.sessionContext && w.sessionContext.session
+                             && w.sessionContext.session.kernel
+                             && w.sessionContext.session.kernel.status === 'idle'); }""",
+        arg=notebook, timeout=timeout * 1000, polling=250)
+
+
+def close_lab_notebook(page, server: Server) -> None:
+    """Leave JupyterLab's page and shut every kernel down (gracefully: exit handlers run)."""
+    with contextlib.suppress(Exception):
+        page.goto("about:blank")
+    server.shutdown_kernels()
+
+
+def run_all(page, *, timeout: float = 300.0) -> float:
+    """Run All in JupyterLab and wait until every cell ran and the kernel is idle; seconds."""
+    t0 = time.monotonic()
+    page.evaluate(
+        """(ms) => Promise.race([
+               window.jupyterapp.commands.execute('notebook:run-all-cells'),
+               new Promise(r => setTimeout(() => r('timeout'), ms))])""", timeout * 1000)
+    left = max(1.0, timeout - (time.monotonic() - t0))
+    page.wait_for_function(
+        """() => { const w = window.jupyterapp.shell.currentWidget;
+                   const k = w.sessionContext.session.kernel;
+                   if (!k || k.status !== 'idle') return false;
+                   const cells = w.content.model.cells;
+                   for (let i = 0; i < cells.length; i++) {
+                     const c = cells.get(i);
+                     if (c.type === 'code' && c.executionCount === null) return false;
+                   }
+                   return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
+                               .some(p => p.textContent.includes('*')); }""",
+        timeout=left * 1000, polling=250)
+    return time.monotonic() - t0
+
+
+def lab_errors(page) -> list[str]:
+    """The error outputs of the open notebook: tracebacks and panels that could not update."""
+    return page.evaluate(
+        """() => { const w = window.jupyterapp.shell.currentWidget, out = [];
+                   const cells = w.content.model.cells;
+                   for (let j = 0; j < cells.length; j++) {
+                     const c = cells.get(j);
+                     if (c.type !== 'code') continue;
+                     for (let i = 0; i < c.outputs.length; i++) {
+                       const o = c.outputs.get(i).toJSON();
+                       if (o.output_type === 'error') out.push(o.ename + ': ' + o.evalue);
+                     }
+                   }
+                   for (const e of document.querySelectorAll('.jp-OutputArea-output'))
+                     if (e.textContent.includes('The panel could not update'))
+                       out.push(e.textContent.slice(0, 300));
+                   return out; }""")
+
+
+def kernel_eval(page, code: str, *, timeout: float = 30.0) -> str:
+    """Run ``code`` silently in the open notebook's kernel (lab); return what it printed."""
+    return page.evaluate(
+        """async ([code, ms]) => {
+             const k = window.jupyterapp.shell.currentWidget.sessionContext.session.kernel;
+             let text = '';
+             const f = k.requestExecute({code, silent: false, store_history: false});
+             f.onIOPub = (m) => {
+               const t = m.header.msg_type;
+               if (t === 'stream') text += m.content.text;
+               else if (t === 'error') text += m.content.ename + ': ' + m.content.evalue;
+             };
+             await Promise.race([f.done, new Promise(r => setTimeout(r, ms))]);
+             return text; }""", [code, timeout * 1000])
+
+
+def open_voila(page, server: Server, notebook: str | None, slider: str, *,
+               timeout: float = 240.0) -> None:
+    """Open a notebook in voila and wait until the slider described ``slider`` is shown."""
+    page.goto(server.url(notebook), timeout=timeout * 1000, wait_until="domcontentloaded")
+    find_slider(page, slider).wait_for(state="visible", timeout=timeout * 1000)
+
+
+def voila_errors(page) -> list[str]:
+    """Tracebacks and failed panel updates shown on a voila page."""
+    return page.evaluate(
+        """() => { const out = [];
+                   for (const e of document.querySelectorAll(
+                       '.jp-OutputArea-output, .voila-error, .jp-RenderedText'))
+                     if (/Traceback|The panel could not update/.test(e.textContent))
+                       out.push(e.textContent.slice(0, 300));
+                   return Array.from(new Set(out)); }""")
+
+
+def find_slider(page, description: str):
+    """The slider whose description contains ``description``: a Locator of its handle."""
+    row = page.locator(".widget-slider").filter(
+        has=page.locator(".widget-label", has_text=description))
+    return row.locator(".noUi-handle").first
+
+
+def slider_value(slider) -> str:
+    """The value a slider's readout shows."""
+    return slider.evaluate(
+        "h => h.closest('.widget-slider').querySelector('.widget-readout').textContent.trim()")
+
+
+def keys(slider) -> tuple[str, str]:
+    """(towards the far end, back): the arrow key with the more room on ``slider`` first.
+
+    A notebook may leave a slider at an end (notebook 02 sweeps the input up to its maximum),
+    where a press towards that end changes nothing.
+    """
+    low, now, high = slider.evaluate(
+        "h => ['aria-valuemin', 'aria-valuenow', 'aria-valuemax']"
+        ".map(a => parseFloat(h.getAttribute(a)))")
+    return ("ArrowRight", "ArrowLeft") if high - now >= now - low else ("ArrowLeft", "ArrowRight")
+
+
+def focus_panel(page, slider, selector: str, *, quiet: float = 0.6,
+                timeout: float = 30.0) -> bool:
+    """Mark the panel holding ``slider`` (the closest box with a figure), scroll it into view
+    and wait until its figure's pixels stay the same for ``quiet`` s (bounded)."""
+    if not slider.evaluate("(h, sel) => window.__afm.mark(h, sel)", selector):
+        raise LookupError(f"no figure ({selector}) in the box of the slider")
+    slider.scroll_into_view_if_needed()
+    page.evaluate(
+        "() => { const r = window.__afm.root(); "
+        "const f = r.querySelector('canvas'); if (f) f.scrollIntoView({block: 'center'}); }")
+    slider.scroll_into_view_if_needed()
+    return settle(page, selector, quiet=quiet, timeout=timeout)
+
+
+def settle(page, selector: str, *, quiet: float = 0.3, timeout: float = 5.0) -> bool:
+    """Wait until the marked panel's figure keeps its pixels for ``quiet`` s (at most
+    ``timeout`` s); whether it did."""
+    return page.evaluate("([sel, q, t]) => window.__afm.quiet(sel, q, t)",
+                         [selector, quiet * 1000, timeout * 1000])
+
+
+def figure_state(page, selector: str) -> dict:
+    """Canvases and lit pixels of the marked panel's figure(s), and their data-frames/-seq."""
+    return page.evaluate(
+        """(sel) => { const r = window.__afm.root(), c = window.__afm.checksum(r, sel);
+                      const figs = Array.from(r.querySelectorAll(sel));
+                      return {canvases: c.n, lit: c.lit, figures: figs.length,
+                              frames: figs.map(f => f.getAttribute('data-frames')),
+                              seq: figs.map(f => f.getAttribute('data-seq'))}; }""", selector)
+
+
+def _press_once(page, slider, key: str, selector: str, mode: str, timeout: float) -> dict:
+    page.evaluate("([sel, mode, ms]) => window.__afm.arm(sel, mode, ms)",
+                  [selector, mode, timeout * 1000])
+    slider.press(key)
+    r = page.evaluate("() => window.__afm.current.promise")
+    return {k: None if r.get(k) is None else r[k] / 1000.0 for k in ("dt", "readout")}
+
+
+def press_detail(page, slider, key: str = "ArrowRight", n: int = 1, *, selector: str,
+                 timeout: float = PRESS_TIMEOUT, settle_s: float = 0.3) -> list:
+    """As :func:`press`, each press as ``{"dt": key-to-pixels, "readout": key-to-readouts}``.
+
+    ``readout`` is the first frame at which the panel's own HTML readouts (``.widget-html``)
+    changed, if before the pixels (else None): the kernel's answer without the figure.
+    """
+    out = []
+    for _ in range(n):
+        out.append(_press_once(page, slider, key, selector, "pixels", timeout))
+        settle(page, selector, quiet=settle_s, timeout=timeout)
+    return out
+
+
+def press(page, slider, key: str = "ArrowRight", n: int = 1, *, selector: str,
+          timeout: float = PRESS_TIMEOUT, settle_s: float = 0.3) -> list:
+    """Press ``key`` on ``slider`` ``n`` times; each press's key-to-pixels time in s (or None).
+
+    The figure is the marked panel's (:func:`focus_panel`); between presses the figure is
+    let settle (its pixels unchanged for ``settle_s`` s, at most ``timeout``), so each press
+    starts from a still picture.
+    """
+    return [r["dt"] for r in press_detail(page, slider, key, n, selector=selector,
+                                          timeout=timeout, settle_s=settle_s)]
+
+
+def press_text(page, slider, key: str = "ArrowRight", n: int = 1, *,
+               timeout: float = PRESS_TIMEOUT, settle_s: float = 0.2) -> list:
+    """The floor: press ``key`` ``n`` times; each press's key-to-changed-text time (or None).
+
+    The marked element is the slider's box (:func:`mark_text`); the time is the first
+    animation frame after its text changed (seen by a MutationObserver).
+    """
+    out = []
+    for _ in range(n):
+        out.append(_press_once(page, slider, key, "canvas", "text", timeout)["dt"])
+        time.sleep(settle_s)
+    return out
+
+
+def mark_text(page, slider, text_selector: str = ".widget-label") -> None:
+    """Mark the box that holds ``slider`` and a second widget (the floor's Label)."""
+    ok = slider.evaluate(
+        """(h) => { let p = h.closest('.widget-slider').parentElement;
+                    document.querySelectorAll('[data-afm-panel]')
+                      .forEach(e => e.removeAttribute('data-afm-panel'));
+                    // the label only (the slider's own readout changes at once, in the browser)
+                    const labels = Array.from(p.children)
+                                        .filter(c => !c.classList.contains('widget-slider'));
+                    if (!labels.length) return false;
+                    labels[0].setAttribute('data-afm-panel', '1'); return true; }""")
+    if not ok:
+        raise LookupError("no label beside the floor slider")
+    slider.scroll_into_view_if_needed()
+
+
+@dataclass
+class DragResult:
+    """A burst of key presses: what was painted."""
+
+    presses: int
+    seqs: list = field(default_factory=list)  # distinct data-seq values painted (live figure)
+    states: int = 0  # distinct pixel states painted
+    timed_out: bool = False
+    last_frame_s: float | None = None  # s from the first keydown to the last change painted
+    values: list = field(default_factory=list)  # the slider's readout, as it changed per frame
+    keys: int = 0  # keydown events the page saw
+
+    @property
+    def steps_drawn(self) -> int:
+        """Steps seen drawn: distinct data-seq values when the figure has them, else pixel
+        states."""
+        return len(self.seqs) if self.seqs and self.seqs[0] not in ("", None) else self.states
+
+    @property
+    def jumped_back(self) -> list:
+        """Readouts at which the slider moved against the keys (a value from the kernel
+        overriding the student's later presses), e.g. ``["69.00 -> 61.00"]``."""
+        def num(text):
+            return float(text.replace(",", "").replace("\u2212", "-"))
+        try:
+            v = [num(x) for x in self.values]
+        except ValueError:
+            return []
+        if len(v) < 3:
+            return []
+        sign = 1 if v[-1] >= v[0] else -1
+        return [f"{self.values[i]} -> {self.values[i + 1]}" for i in range(len(v) - 1)
+                if (v[i + 1] - v[i]) * sign < 0]
+
+
+def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
+         quiet: float = 1.5, timeout: float = 20.0) -> DragResult:
+    """Send ``n`` presses of ``key`` as fast as possible and record the frames painted."""
+    page.evaluate("([sel, q, t]) => window.__afm.armDrag(sel, q, t)",
+                  [selector, quiet * 1000, timeout * 1000])
+    slider.focus()
+    for _ in range(n):
+        page.keyboard.press(key)
+    r = page.evaluate("() => window.__afm.current.promise")
+    seqs = [s for s in r["seqs"] if s.strip(",")]
+    return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
+                      last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
+                      values=r["values"], keys=r["keys"])
+
+
+# -- static export -------------------------------------------------------------------------
+def export_html(notebook: Path, outdir: Path, *, timeout: float = 300.0) -> Path:
+    """``jupyter nbconvert --to html --execute`` a copy of ``notebook`` into ``outdir``."""
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    src = outdir / notebook.name
+    shutil.copy2(notebook, src)
+    cmd = [_tool("jupyter-nbconvert"), "--to", "html", "--execute",
+           f"--ExecutePreprocessor.timeout={int(timeout)}", f"--output-dir={outdir}", str(src)]
+    proc = subprocess.Popen(cmd, env=kernel_env(), cwd=outdir, stdout=subprocess.PIPE,
+                            stderr=subprocess.STDOUT, start_new_session=True)
+    try:
+        out, _ = proc.communicate(timeout=timeout + 30)
+    except subprocess.TimeoutExpired:
+        os.killpg(proc.pid, signal.SIGKILL)
+        proc.communicate()
+        raise RuntimeError(f"nbconvert of {notebook.name} took more than {timeout + 30:g} s")
+    finally:
+        if _group_alive(proc.pid):
+            with contextlib.suppress(ProcessLookupError, PermissionError):
+                os.killpg(proc.pid, signal.SIGKILL)
+    html = outdir / (notebook.stem + ".html")
+    if proc.returncode != 0 or not html.exists():
+        raise RuntimeError(f"nbconvert of {notebook.name} failed: {out.decode()[-2000:]}")
+    return html
+
+
+def static_figures(page, html: Path, selector: str = LIVE_FIGURE, *,
+                   timeout: float = 30.0) -> list:
+    """Open an exported HTML file and return, per figure element, its canvases and lit pixels.
+
+    Waits (bounded) until every figure has a canvas with pixels drawn.
+    """
+    page.goto(Path(html).resolve().as_uri(), wait_until="load", timeout=timeout * 1000)
+    script = """(sel) => Array.from(document.querySelectorAll(sel)).map(f => {
+                   const c = window.__afm.checksum(f, sel);
+                   return {canvases: f.querySelectorAll('canvas').length, lit: c.lit,
+                           frames: f.getAttribute('data-frames')}; })"""
+    deadline = time.monotonic() + timeout
+    figs = []
+    while time.monotonic() < deadline:
+        figs = page.evaluate(script, selector)
+        if figs and all(f["lit"] > 0 for f in figs):
+            break
+        time.sleep(0.25)
+    return figs
+
+
+# -- summaries -----------------------------------------------------------------------------
+def summary(times: list) -> dict:
+    """Median and worst of the presses that changed pixels, and the failures, in s."""
+    ok = [t for t in times if t is not None]
+    return {"n": len(times), "failed": len(times) - len(ok),
+            "median": statistics.median(ok) if ok else None, "worst": max(ok) if ok else None}

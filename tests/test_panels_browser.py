@@ -1,0 +1,192 @@
+"""The four live panels in a real browser: a slider key press changes the figure's pixels.
+
+Headless Debian Chromium driven by Playwright (``tests/browser.py``), against JupyterLab and
+voila serving copies of the course notebooks, run as a student would (Run All; no test flags).
+For each panel: no cell shows an error, each key press on the panel's slider changes the pixels
+of the panel's figure within :data:`browser.PRESS_TIMEOUT` (never hangs), and the kernel's panel
+holds the value the slider shows. With the live component (``div.afm-live``): every step of a
+15-press drag is drawn (distinct ``data-seq`` values painted), the slider never jumps back
+against the keys and ends where the kernel is, and each panel's figure has pixels in a static
+HTML export (nbconvert) opened from a file.
+
+Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why, when Chromium
+or Playwright is missing. One JupyterLab and one voila server and one browser per module.
+"""
+import math
+import shutil
+import sys
+from pathlib import Path
+
+import pytest
+
+sys.path.insert(0, str(Path(__file__).parent))
+
+import browser as B  # noqa: E402
+
+pytestmark = [pytest.mark.slow, pytest.mark.browser]
+
+PRESSES = 3  # key presses timed per panel
+DRAG = 15  # key presses of a drag
+CONTROL = {"cantilever": "force", "transducers": "input", "controller": "ki", "contact": "z_np"}
+SELECTOR = B.figure_selector()
+LIVE = SELECTOR == B.LIVE_FIGURE
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    reason = B.unavailable()
+    if reason:
+        pytest.skip(reason)
+    with B.browser() as b:
+        yield b
+
+
+@pytest.fixture(scope="module")
+def root(tmp_path_factory):
+    path = B.notebook_root()
+    yield path
+    shutil.rmtree(path, ignore_errors=True)
+
+
+@pytest.fixture(scope="module")
+def lab(chromium, root):
+    server = B.Server("lab", root).start()
+    page = B.new_page(chromium)
+    try:
+        yield server, page
+    finally:
+        page.close()
+        server.stop()
+
+
+@pytest.fixture(scope="module")
+def voila(chromium, root):
+    server = B.Server("voila", root).start()
+    page = B.new_page(chromium)
+    try:
+        yield server, page
+    finally:
+        page.close()
+        server.stop()
+
+
+def _shown(text: str) -> float:
+    return float(text.replace(",", "").replace("\u2212", "-"))  # U+2212: the readout's minus
+
+
+def _check_presses(page, name):
+    """Press the panel's slider: every press changes the figure's pixels; return the slider."""
+    notebook, _, description = B.PANELS[name]
+    slider = B.find_slider(page, description)
+    B.focus_panel(page, slider, SELECTOR)
+    state = B.figure_state(page, SELECTOR)
+    assert state["figures"] >= 1 and state["canvases"] >= 1, (name, state)
+    away, _ = B.keys(slider)
+    before = B.slider_value(slider)
+    times = B.press(page, slider, away, PRESSES, selector=SELECTOR)
+    assert B.slider_value(slider) != before, f"{description}: {away} did not move the slider"
+    failed = [i for i, t in enumerate(times) if t is None]
+    assert not failed, (f"{notebook}: presses {failed} of {description} changed no pixel of the "
+                        f"figure within {B.PRESS_TIMEOUT:g} s (times {times})")
+    return slider, away
+
+
+#: Panels whose drag is known not to meet issue 9's target, with why: their drag is reported
+#: as an expected failure (xfail) with its numbers; every other panel must draw each of the 15
+#: steps, its slider must never jump back against the keys, and (JupyterLab) the kernel's panel
+#: must hold the value the slider shows once the drag is over. Remove an entry when it is fixed.
+DRAG_KNOWN_BROKEN = {
+    "contact": "after a fast Z_np drag the slider jumps back and forth and never settles "
+               "(hundreds of frames; the slider and the kernel disagree at the end)",
+}
+DRAG_TIMEOUT = 10.0  # s: a drag still drawing after this never settled
+
+
+def _check_drag(page, slider, key, name, *, kernel=None):
+    """A 15-press drag of a live figure: every step drawn, no jump back, kernel agrees."""
+    if not LIVE:
+        return
+    result = B.drag(page, slider, key, DRAG, selector=SELECTOR, timeout=DRAG_TIMEOUT)
+    problems = []
+    if result.steps_drawn != DRAG:
+        problems.append(f"{result.steps_drawn} of {DRAG} steps drawn (data-seq painted "
+                        f"{result.seqs[:20]})")
+    if result.jumped_back:
+        problems.append(f"the slider jumped back {result.jumped_back[:5]}")
+    if result.timed_out:
+        problems.append(f"still drawing after {DRAG_TIMEOUT:g} s")
+    if kernel is not None and not problems:
+        B.settle(page, SELECTOR, quiet=0.5, timeout=5)
+        value, shown = kernel(), _shown(B.slider_value(slider))
+        if not math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9):
+            problems.append(f"the slider shows {shown}, the kernel holds {value}")
+    if not problems:
+        return
+    message = f"{name} drag: {'; '.join(problems)}; slider readouts {result.values[:30]}"
+    if name in DRAG_KNOWN_BROKEN:
+        pytest.xfail(f"known: {DRAG_KNOWN_BROKEN[name]} -- {message}")
+    raise AssertionError(message)
+
+
+@pytest.mark.parametrize("name", list(B.PANELS))
+def test_lab_panel_follows_its_slider(lab, name):
+    server, page = lab
+    notebook, cls, description = B.PANELS[name]
+    B.open_lab(page, server, notebook)
+    B.run_all(page)
+    assert B.lab_errors(page) == [], f"{notebook} shows errors after Run All"
+    slider, key = _check_presses(page, name)
+    B.settle(page, SELECTOR, quiet=0.5, timeout=5)
+
+    def kernel():
+        return B.kernel_eval(page, f"print(repr(panel.values()[{CONTROL[name]!r}]))").strip()
+
+    value, shown = kernel(), _shown(B.slider_value(slider))
+    assert math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9), \
+        f"{notebook}: the slider shows {shown}, the kernel's {cls} holds {value}"
+    assert B.lab_errors(page) == [], f"{notebook} shows errors after the key presses"
+    _check_drag(page, slider, key, name, kernel=kernel)
+    assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
+
+
+@pytest.mark.parametrize("name", list(B.PANELS))
+def test_voila_panel_follows_its_slider(voila, name):
+    server, page = voila
+    notebook, _, description = B.PANELS[name]
+    B.open_voila(page, server, notebook, description)
+    assert B.voila_errors(page) == [], f"{notebook} shows errors in voila"
+    try:
+        slider, key = _check_presses(page, name)
+        assert B.voila_errors(page) == [], f"{notebook} shows errors after the key presses"
+        _check_drag(page, slider, key, name)
+        assert B.voila_errors(page) == [], f"{notebook} shows errors after the drag"
+    finally:
+        page.goto("about:blank")  # voila shuts the kernel down when its page goes
+
+
+def test_lab_floor_label_follows_its_slider(lab):
+    """The floor the benchmark divides by: slider -> kernel -> a label's text, in time."""
+    server, page = lab
+    B.open_lab(page, server, B.FLOOR_NOTEBOOK)
+    B.run_all(page)
+    slider = B.find_slider(page, B.FLOOR_SLIDER)
+    B.mark_text(page, slider)
+    times = B.press_text(page, slider, "ArrowRight", 3)
+    assert None not in times, times
+    assert B.slider_value(slider) == "53"
+
+
+@pytest.mark.skipif(not LIVE, reason="the panels' figures are ipympl canvases (blank in a "
+                                     "static export) until afmsmiler/plots/live.py lands")
+@pytest.mark.parametrize("name", list(B.PANELS))
+def test_static_export_shows_the_panel_figures(chromium, tmp_path, name):
+    notebook = B.NOTEBOOKS / B.PANELS[name][0]
+    html = B.export_html(notebook, tmp_path)
+    page = B.new_page(chromium)
+    try:
+        figures = B.static_figures(page, html, B.LIVE_FIGURE)
+    finally:
+        page.close()
+    assert figures, f"no {B.LIVE_FIGURE} in the export of {notebook.name}"
+    blank = [i for i, f in enumerate(figures) if not f["canvases"] or not f["lit"]]
+    assert not blank, f"{notebook.name}: figures {blank} blank in the static export ({figures})"
