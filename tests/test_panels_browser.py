@@ -95,10 +95,7 @@ def _check_presses(page, name):
 #: as an expected failure (xfail) with its numbers; every other panel must draw each of the 15
 #: steps, its slider must never jump back against the keys, and (JupyterLab) the kernel's panel
 #: must hold the value the slider shows once the drag is over. Remove an entry when it is fixed.
-DRAG_KNOWN_BROKEN = {
-    "contact": "after a fast Z_np drag the slider jumps back and forth and never settles "
-               "(hundreds of frames; the slider and the kernel disagree at the end)",
-}
+DRAG_KNOWN_BROKEN = {}  # panel -> why its drag is known to fail (none now)
 DRAG_TIMEOUT = 10.0  # s: a drag still drawing after this never settled
 
 

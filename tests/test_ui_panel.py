@@ -260,3 +260,16 @@ def test_every_step_the_browser_forwards_runs_the_model_once():
     assert len(p.calls) == 16 and p.values()["shape"] == "a"
     with pytest.raises(TypeError, match="on_control must be callable"):
         live.link(p.controls, None)
+
+
+def test_a_sweep_shows_each_value_and_leaves_the_control_where_it_was():
+    p = Lever()
+    start = p.values()["length"]
+    p.sweep("length", [100.0, 200.0, 300.0])
+    assert [c[0] for c in p.calls[1:]] == [100.0, 200.0, 300.0, start]
+    assert p.values()["length"] == start
+    with pytest.raises(ValueError, match="length must be in"):
+        p.sweep("length", [100.0, 1e9])  # checked before any update
+    assert len(p.calls) == 5
+    with pytest.raises(TypeError, match="unknown control"):
+        p.sweep("width", [1.0])

@@ -200,6 +200,32 @@ class Panel:
 
     _hold = False
 
+    def sweep(self, name: str, values) -> None:
+        """Move control ``name`` through ``values`` (one update each, an animation), then back.
+
+        The control ends where the student left it: a sweep left at the slider's end made the
+        student's next key press do nothing.
+
+        Parameters
+        ----------
+        name : str
+            A control.
+        values : iterable
+            The values to show in turn (in the units the control shows), each checked as by
+            :meth:`set` before the sweep starts.
+        """
+        if name not in self.controls:
+            raise TypeError(f"unknown control {name!r}; valid: {sorted(self.controls)}")
+        values = list(values)
+        for v in values:
+            check_control_value(name, self.controls[name], v)
+        start = self.values()[name]
+        try:
+            for v in values:
+                self.set(**{name: v})
+        finally:
+            self.set(**{name: start})
+
     def _on_change(self, _change) -> None:
         """A control moved: update, and show a failure in the panel instead of losing it.
 
