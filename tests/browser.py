@@ -787,3 +787,29 @@ def summary(times: list) -> dict:
     ok = [t for t in times if t is not None]
     return {"n": len(times), "failed": len(times) - len(ok),
             "median": statistics.median(ok) if ok else None, "worst": max(ok) if ok else None}
+
+
+def headless_frames(notebook: str, *, timeout: float = 300.0) -> int:
+    """Frames the notebook's ``panel`` sent when the notebook runs with no browser at all.
+
+    A copy with one more cell (``print(panel.live.frames_sent)``) runs under nbclient in a
+    student's environment (:func:`kernel_env`); with a browser attached, every frame beyond this
+    count was caused by the page itself (an echo of a slider, a redraw on display).
+    """
+    import nbformat
+    from nbclient import NotebookClient
+    nb = nbformat.read(NOTEBOOKS / notebook, as_version=4)
+    nb.cells.append(nbformat.v4.new_code_cell("print(panel.live.frames_sent)"))
+    workdir = Path(tempfile.mkdtemp(prefix="afm-headless-"))
+    old = dict(os.environ)
+    try:
+        os.environ.clear()
+        os.environ.update(kernel_env())
+        NotebookClient(nb, timeout=int(timeout), kernel_name="python3",
+                       resources={"metadata": {"path": str(workdir)}}).execute()
+    finally:
+        os.environ.clear()
+        os.environ.update(old)
+        shutil.rmtree(workdir, ignore_errors=True)
+    out = "".join(o.get("text", "") for o in nb.cells[-1].outputs if o.get("name") == "stdout")
+    return int(out.strip())

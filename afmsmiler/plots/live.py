@@ -87,12 +87,27 @@ def _num(v) -> float | None:
 
 
 def _color(c, alpha=None) -> str:
-    return mcolors.to_hex(mcolors.to_rgba(c, alpha), keep_alpha=True)
+    """``c`` with ``alpha`` as #rrggbbaa (cached: a figure repeats a handful of colours)."""
+    key = (tuple(np.ravel(c).tolist()) if not isinstance(c, str) else c, alpha)
+    try:
+        return _COLORS[key]
+    except KeyError:
+        if len(_COLORS) > 4096:  # bounded: a figure recolouring every frame cannot grow it
+            _COLORS.clear()
+        out = _COLORS[key] = mcolors.to_hex(mcolors.to_rgba(c, alpha), keep_alpha=True)
+        return out
+    except TypeError:  # an unhashable colour
+        return mcolors.to_hex(mcolors.to_rgba(c, alpha), keep_alpha=True)
+
+
+_COLORS: dict = {}
 
 
 def _floats(values) -> np.ndarray:
-    a = np.ma.asarray(values, dtype=float)
-    return np.ma.filled(a, np.nan).ravel()
+    """A flat float array; masked values (an image's unscanned pixels) become NaN."""
+    if isinstance(values, np.ma.MaskedArray):
+        return np.ma.filled(values.astype(float), np.nan).ravel()
+    return np.asarray(values, dtype=float).ravel()
 
 
 class _Packer:
