@@ -500,7 +500,10 @@ class LiveFigure(anywidget.AnyWidget):
             raise TypeError(f"on_control must be callable, got {on_control!r}")
         sliders = (widgets.FloatSlider, widgets.FloatLogSlider, widgets.IntSlider)
         self._on_control = on_control
-        self._controls = {name: c for name, c in controls.items() if isinstance(c, sliders)}
+        linked = {name: c for name, c in controls.items() if isinstance(c, sliders)}
+        if linked.keys() != self._controls.keys() or \
+                any(linked[n] is not self._controls[n] for n in linked):
+            self._controls = linked  # sent only when the sliders are others
 
     def _handle_message(self, _widget, content, _buffers) -> None:
         if (self._on_control is not None and isinstance(content, dict)

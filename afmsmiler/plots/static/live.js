@@ -723,7 +723,14 @@ function initialize({ model }) {
       if (!manager || typeof ref !== "string") continue;
       manager.get_model(ref.replace(/^IPY_MODEL_/, "")).then((control) => {
         if (mine !== cleanup) return; // relinked meanwhile
-        const send = () => model.send({ control: name, value: control.get("value") });
+        const send = () => {
+          // only the student's moves: a value the kernel set (ipywidgets' state lock holds it
+          // while applying the kernel's state) is not sent back; a cell that swept a slider
+          // ran its sweep a second time from these echoes
+          const lock = control._state_lock;
+          if (lock && Object.prototype.hasOwnProperty.call(lock, "value")) return;
+          model.send({ control: name, value: control.get("value") });
+        };
         control.on("change:value", send);
         cleanup.push(() => control.off("change:value", send));
       }).catch((e) => console.warn("afmsmiler: a control of the live figure is missing", e));
