@@ -223,6 +223,7 @@ class CantileverPanel(Panel):
             self.figure.update(curves)
         if self.modes_figure is not None:
             self.modes_figure.update(curves)
+        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
         if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.cantilever import CantileverScene
@@ -235,7 +236,6 @@ class CantileverPanel(Panel):
             spring_constant=bending.spring_constant, frequencies=bending.frequencies,
             tip_deflection=bending.tip_deflection, max_stress=bending.max_stress)
         self.readout.value = self._readout_html()
-        self.redraw()
 
     # -- the mode shapes ------------------------------------------------------------------
     def modes_widget(self) -> widgets.Widget:

@@ -300,6 +300,7 @@ class ContactPanel(Panel):
             self.figure = ContactFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
+        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
         if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.contact import ContactScene
@@ -308,7 +309,6 @@ class ContactPanel(Panel):
                 self.scene.update(shape, current)
         self.last = ContactState(system, cycle, current, curves)
         self.readout.value = self._readout_html()
-        self.redraw()
 
     def _readout_html(self) -> str:
         s = self.last

@@ -243,11 +243,11 @@ class ControllerPanel(Panel):
             self.figure = ScanFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
+        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
         err = max(float(abs(scan.trace.error - scan.offset).max()),
                   float(abs(scan.retrace.error - scan.offset).max()))
         self.last = ControllerState(loop, scan, curves, err)
         self.indicator.value = self._indicator_html()
-        self.redraw()
 
     def _indicator_html(self) -> str:
         s = self.last

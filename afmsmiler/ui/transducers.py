@@ -324,6 +324,7 @@ class TransducerPanel(Panel):
             self.figure = TransducerFigure(curves, fig=self.fig)
         else:
             self.figure.update(curves)
+        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
         if self._want_scene and self.scene_open():  # not after close_viewer()
             if self.scene is None:
                 from ..scenes.transducers import TransducerScene
@@ -334,7 +335,6 @@ class TransducerPanel(Panel):
             model=model, mode=mode, value=value, chain=op.point, curves=curves,
             sensitivity=op.sensitivity, resolution=op.resolution, operation=op)
         self.readout.value = self._readout_html()
-        self.redraw()
 
     def _readout_html(self) -> str:
         s = self.last
