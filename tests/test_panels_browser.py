@@ -48,26 +48,25 @@ def root(tmp_path_factory):
     shutil.rmtree(path, ignore_errors=True)
 
 
-@pytest.fixture(scope="module")
-def lab(chromium, root):
-    server = B.Server("lab", root).start()
+def _served(kind, chromium, root):
+    """A JupyterLab or voila server on the notebooks' copies, and a page; both closed after."""
+    server = B.Server(kind, root).start()
     page = B.new_page(chromium)
     try:
         yield server, page
     finally:
         page.close()
         server.stop()
+
+
+@pytest.fixture(scope="module")
+def lab(chromium, root):
+    yield from _served("lab", chromium, root)
 
 
 @pytest.fixture(scope="module")
 def voila(chromium, root):
-    server = B.Server("voila", root).start()
-    page = B.new_page(chromium)
-    try:
-        yield server, page
-    finally:
-        page.close()
-        server.stop()
+    yield from _served("voila", chromium, root)
 
 
 def _shown(text: str) -> float:
