@@ -260,6 +260,8 @@ def test_every_step_the_browser_forwards_runs_the_model_once():
     assert len(p.calls) == 16 and p.values()["shape"] == "a"
     with pytest.raises(TypeError, match="on_control must be callable"):
         live.link(p.controls, None)
+    with pytest.raises(TypeError, match="controls"):
+        live.link(list(p.controls.values()), p._from_browser)
 
 
 def test_a_sweep_shows_each_value_and_leaves_the_control_where_it_was():

@@ -498,6 +498,7 @@ class LiveFigure(anywidget.AnyWidget):
         """
         if not callable(on_control):
             raise TypeError(f"on_control must be callable, got {on_control!r}")
+        check_instance("controls", controls, dict)
         sliders = (widgets.FloatSlider, widgets.FloatLogSlider, widgets.IntSlider)
         self._on_control = on_control
         linked = {name: c for name, c in controls.items() if isinstance(c, sliders)}

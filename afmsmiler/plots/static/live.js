@@ -102,7 +102,7 @@ function fitLabel(axis, text, length) {
 }
 
 // a legend's entries as HTML, rebuilt only when they change
-function legendHtml(box, entries, owner) {
+function legendHtml(box, entries) {
   const key = JSON.stringify(entries);
   if (box.dataset.key === key) return;
   box.dataset.key = key;
@@ -305,7 +305,7 @@ class Axes {
       this.title.style.color = color || "";
       this.shownTitle = title; this.shownColor = color;
     }
-    legendHtml(this.legend, frame.legend || [], this);
+    legendHtml(this.legend, frame.legend || []);
     const keys = [["x", 0], ["y", 1]];
     if (s.y2) keys.push(["y2", 2]);
     if (s.x2) keys.push(["x2", s.y2 ? 3 : 2]);
@@ -630,7 +630,7 @@ class Figure {
     const rebuilt = key !== this.layoutKey;
     if (rebuilt) { this.build(layout); this.layoutKey = key; }
     this.suptitle.textContent = frame.suptitle || "";
-    legendHtml(this.figLegend, frame.legend || [], this);
+    legendHtml(this.figLegend, frame.legend || []);
     // titles and legends first: their heights set the plots' sizes
     frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
     const heights = this.chromeHeights();
