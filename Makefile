@@ -22,7 +22,7 @@ browser:
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,lab,files]'
+	$(PY) -m pip install --quiet -e '.[test,lab,files,bench]'
 	touch $(STAMP)
 
 install: $(STAMP)
