@@ -264,6 +264,11 @@ def test_sync_sends_the_state_the_artists_hold_in_one_message(monkeypatch):
     np.testing.assert_array_equal(got, [0, 1, 2, 3, 4, 5])
     assert w._frame["axes"][0]["axes"]["y"]["lim"] == [2, 6]
     json.dumps(w._layout, allow_nan=False), json.dumps(w._frame, allow_nan=False)  # valid JSON
+    w.sync()  # nothing changed since: no message, the browser draws nothing
+    assert len(messages) == 1 and w.frames_sent == 2
+    line.set_ydata([3, 4, 6])
+    w.sync()
+    assert len(messages) == 2 and w._frame["seq"] == 3
 
 
 def test_static_html_is_self_contained():

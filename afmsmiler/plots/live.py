@@ -461,7 +461,8 @@ class LiveFigure(anywidget.AnyWidget):
     ----------
     figure : matplotlib.figure.Figure
     frames_sent : int
-        Frames sent so far (one per :meth:`sync`); the browser shows it as ``data-seq``.
+        Frames sent so far (one per :meth:`sync` that changed something); the browser shows it
+        as ``data-seq``.
     """
 
     _esm = _esm()
@@ -476,6 +477,7 @@ class LiveFigure(anywidget.AnyWidget):
         super().__init__(**kwargs)
         self.figure = check_instance("figure", figure, Figure)
         self.frames_sent = 0
+        self._sent_frame = None
         self._on_control = None
         self.on_msg(self._handle_message)
         self.sync()
@@ -514,11 +516,16 @@ class LiveFigure(anywidget.AnyWidget):
     def sync(self) -> Description:
         """Send the figure's current state to the browser as one message; return it.
 
+        A state equal to the last one sent is not sent again.
+
         Returns
         -------
         Description
         """
         d = describe(self.figure)
+        if d.frame == self._sent_frame and d.buffer == self._buffer and d.layout == self._layout:
+            return d  # nothing changed (the mode shapes on a force step): no message, no redraw
+        self._sent_frame = d.frame
         self.frames_sent += 1
         with self.hold_sync():
             self._layout = d.layout
