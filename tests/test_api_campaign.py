@@ -185,6 +185,7 @@ OVERRIDES = {
     "afmsmiler.samples.channels": {"path": lambda: __import__(
         "afmsmiler.data", fromlist=["path"]).path("bruker_d3100.spm")},
     "afmsmiler.samples.Sample": {"heights": lambda: np.zeros((8, 8))},
+    "afmsmiler.samples.Sample.resample": {"pixel_size": 5e-9},
     "afmsmiler.validation.check_choice": {"value": "a"},
     "afmsmiler.validation.check_integer": {"value": 3},
     "afmsmiler.validation.check_size": {"value": 3},

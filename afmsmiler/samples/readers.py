@@ -262,8 +262,8 @@ def _spm_scan(p: Path):
 
 
 def _read_spm(p: Path, channel: str):
-    from AFMReader.spm import spm_pixel_to_nm_scaling
     scan, images = _spm_scan(p)
+    from AFMReader.spm import spm_pixel_to_nm_scaling
     names = [im["_name"] for im in images]
     channel = _pick(p, channel, names)
     image = scan.get_channel(channel)

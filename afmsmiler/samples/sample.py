@@ -182,7 +182,7 @@ class Sample:
         ValueError
             If the shape differs or a value is not finite.
         """
-        h = np.asarray(heights, dtype=float)
+        h = check_array("heights", heights, self.unit, min_size=2)
         if h.shape != self.heights.shape:
             raise ValueError(f"heights must have this sample's shape {self.heights.shape}, got "
                              f"{h.shape}")
