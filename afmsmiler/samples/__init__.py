@@ -22,5 +22,5 @@ from .sample import MAX_LINE_PIXELS, MAX_PIXELS, Sample
 from .synthetic import fibres, grating, particles, rough_surface, step, terraces
 
 __all__ = ["Sample", "MAX_PIXELS", "MAX_LINE_PIXELS", "step", "grating", "terraces",
-           "rough_surface", "particles", "fibres", "PROFILES", "profile", "REAL_LINE_ROW", "load", "channels", "save_gwy",
-           "SUFFIXES", "from_file", "REAL_IMAGE", "real_image"]
+           "rough_surface", "particles", "fibres", "PROFILES", "profile", "REAL_LINE_ROW",
+           "load", "channels", "save_gwy", "SUFFIXES", "from_file", "REAL_IMAGE", "real_image"]
