@@ -75,6 +75,18 @@ def test_real_image_levelled_and_its_line():
         samples.profile("real line", 600)
 
 
+def test_the_real_line_claims_of_notebook_03():
+    """Notebook 03, exercise 1: on the real line (row REAL_LINE_ROW, scaled to 50 nm on 4 nm
+    pixels) preset (a)'s own gains at 1000 um/s "give about 5 nm" of RMS height error, and
+    faster gains can bring it under 1 nm (the checker's own example answer)."""
+    from afmsmiler.controller import PRESETS
+    from afmsmiler.exercises.controller import height_error
+    assert samples.REAL_LINE_ROW == 256
+    loop = PRESETS["a_good_tracking"].loop
+    assert 4.5e-9 < height_error(loop, 1e-3) < 5.5e-9
+    assert height_error(loop.replace(kp=30, ki=3e6, kd=1e-7), 1e-3) < 1e-9
+
+
 # --- WSxM (.top): AFMReader's own test file ---------------------------------------------------
 def test_wsxm_top_matches_its_header_and_afmreader_published_values():
     """AFMReader 0.0.7 tests/test_top.py on this file: pixel scaling 0.9765625 nm and image sum
