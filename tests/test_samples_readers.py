@@ -221,6 +221,18 @@ def test_bad_files_are_named_before_any_work(tmp_path):
             samples.load(bad)
 
 
+def test_an_unreadable_file_is_named(tmp_path, monkeypatch):
+    locked = tmp_path / "locked.spm"
+    locked.write_bytes(SPM.read_bytes()[:1000])
+
+    def refuse(*args, **kwargs):  # as open() on a file without read permission (root reads all)
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(readers, "open", refuse, raising=False)
+    with pytest.raises(ValueError, match="locked.spm: the file cannot be read "
+                                         r"\(Permission denied\)"):
+        samples.load(locked)
+
+
 def test_truncated_and_hostile_headers(tmp_path):
     # a 2 GiB file (sparse) that is not an image: refused from its size, no read of its body
     big = tmp_path / "big.top"
