@@ -186,6 +186,10 @@ OVERRIDES = {
         "afmsmiler.data", fromlist=["path"]).path("bruker_d3100.spm")},
     "afmsmiler.samples.Sample": {"heights": lambda: np.zeros((8, 8))},
     "afmsmiler.samples.Sample.resample": {"pixel_size": 5e-9},
+    "afmsmiler.samples.save_gwy": {
+        "sample": lambda: __import__("afmsmiler.samples", fromlist=["Sample"]).Sample(
+            np.zeros((8, 8)), 1e-9),
+        "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.gwy"},
     "afmsmiler.validation.check_choice": {"value": "a"},
     "afmsmiler.validation.check_integer": {"value": 3},
     "afmsmiler.validation.check_size": {"value": 3},
