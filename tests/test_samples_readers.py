@@ -250,6 +250,25 @@ def test_an_unreadable_file_is_named(tmp_path, monkeypatch):
         samples.load(locked)
 
 
+def test_files_of_the_afmreader_only_formats_are_checked_first(tmp_path):
+    # no small real .ibw, .jpk or .asd file with a licence that allows it was found (see
+    # tests/data/README.md): these check the pre-flight checks on files made here
+    import tifffile
+    plain = tmp_path / "plain.jpk"  # a TIFF without JPK's channels
+    tifffile.imwrite(plain, np.zeros((8, 8), np.float32))
+    with pytest.raises(ValueError, match=r"channel must be one of the channels of plain.jpk: "
+                                         r"\[\]"):
+        samples.load(plain)
+    asd = tmp_path / "cut.asd"
+    asd.write_bytes(b"\x01\x00\x00\x00" + bytes(40))  # version 1, header cut short
+    with pytest.raises(ValueError, match="cut.asd: not a readable .asd file"):
+        samples.load(asd)
+    ibw = tmp_path / "cut.ibw"
+    ibw.write_bytes(b"\x05\x00" + bytes(100))  # version 5, header cut short
+    with pytest.raises(ValueError, match="cut.ibw: not a readable Igor binary wave"):
+        samples.load(ibw)
+
+
 def test_truncated_and_hostile_headers(tmp_path):
     # a 2 GiB file (sparse) that is not an image: refused from its size, no read of its body
     big = tmp_path / "big.top"
