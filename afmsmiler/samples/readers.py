@@ -268,23 +268,22 @@ def _read_wsxm(p: Path, channel: str):
     _pick(p, channel, [name])
     x_span = _wsxm_length(p, header, "X Amplitude")
     y_span = _wsxm_length(p, header, "Y Amplitude")
+    if p.suffix.lower() == ".top":
+        z_range = _wsxm_length(p, header, "Z Amplitude")
+        # AFMReader 0.0.7 spreads the counts over the integer part of Z Amplitude's number
+        # (59 for "59.7449 nm") whatever its unit; Gwyddion's wsxmfile.c spreads them over the
+        # whole Z Amplitude: rescale to that
+        whole = int(re.match(r"\s*(\d*)", header["Z Amplitude"]).group(1) or 0)
+        if whole == 0:
+            raise ValueError(f"{p}: AFMReader reads only the integer part of Z Amplitude "
+                             f"({header['Z Amplitude']!r} gives 0): not readable")
     try:
         if p.suffix.lower() == ".top":
-            z_range = _wsxm_length(p, header, "Z Amplitude")
-            nm, _ = top.load_top(p)
-            # AFMReader 0.0.7 spreads the counts over the integer part of Z Amplitude's number
-            # (59 for "59.7449 nm") whatever its unit; Gwyddion's wsxmfile.c spreads them over
-            # the whole Z Amplitude: rescale to that
-            whole = int(re.match(r"\s*(\d+)", header["Z Amplitude"]).group(1))
-            if whole == 0:
-                raise ValueError(f"{p}: AFMReader reads only the integer part of Z Amplitude "
-                                 f"({header['Z Amplitude']!r} gives 0): not readable")
-            heights = nm / whole * z_range
+            heights = top.load_top(p)[0] / whole * z_range
         else:
-            nm, _ = stp.load_stp(p)
-            heights = nm * 1e-9
-    except NotImplementedError as exc:  # AFMReader reads square scans only
-        raise ValueError(f"{p}: {exc}") from None
+            heights = stp.load_stp(p)[0] * 1e-9
+    except (ValueError, NotImplementedError) as exc:  # e.g. AFMReader reads square scans only
+        raise ValueError(f"{p}: AFMReader cannot read it ({exc})") from None
     meta = {k: v for k, v in header.items() if not k.startswith("_")}
     return heights, x_span / header["_cols"], y_span / header["_rows"], name, "m", meta
 
