@@ -388,3 +388,41 @@ def test_the_mode_tip_must_be_the_scan_tip(image):
     mode = ConstantHeight(system(), 1e-9, 1e-6)
     with pytest.raises(ValueError, match="tip .* must be the tip of the mode"):
         Scan(image, Parabolic(radius=30e-9), mode, whole(image))
+
+
+# -- with a real tip ---------------------------------------------------------------------------
+def test_a_tip_scans_the_dilated_surface(image):
+    from afmsmiler.imaging.dilation import dilate
+    tip = Parabolic(radius=15e-9)
+    lp = loop()
+    run = Scan(image, tip, ConstantForce(lp), whole(image))
+    result = run.run()
+    apex = dilate(image, tip)
+    np.testing.assert_array_equal(run.plan.apex.heights, apex.heights)
+    assert (apex.heights >= image.heights).all() and (apex.heights > image.heights).any()
+    ref = scan_image(lp, apex.heights, PX, speed=SPEED)
+    np.testing.assert_allclose(result.images["height trace"], ref.height_trace, rtol=0,
+                               atol=1e-12 * np.ptp(image.heights))
+    np.testing.assert_allclose(result.images["error retrace"],
+                               ref.retrace + ref.retrace_z_np - 10e-9, rtol=0,
+                               atol=1e-12 * np.ptp(image.heights))
+
+
+def test_constant_height_with_its_tip_follows_the_dilated_surface(image):
+    from afmsmiler.imaging.dilation import dilate
+    sy = system()
+    result = scan(image, sy.tip, ConstantHeight(sy, 2e-9, 1.0), whole(image))
+    z = 2e-9 + dilate(image, sy.tip).heights
+    np.testing.assert_allclose(result.images["deflection trace"],
+                               sy.indent(z.ravel()).z_c.reshape(z.shape), rtol=1e-14, atol=0)
+
+
+def test_tilt_is_added_before_the_dilation():
+    from afmsmiler.imaging.dilation import dilate
+    sample = particles((32, 32), PX, count=3, seed=2)
+    tip, tilt = Parabolic(radius=20e-9), (math.radians(3.0), 0.0)
+    result = scan(sample, tip, Topography(), whole(sample, tilt=tilt))
+    x = np.arange(32) * PX
+    tilted = Sample(sample.heights + math.tan(tilt[0]) * (x - x[-1] / 2)[None, :], PX)
+    np.testing.assert_allclose(result.images["height trace"], dilate(tilted, tip).heights,
+                               rtol=0, atol=1e-22)
