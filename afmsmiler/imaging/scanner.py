@@ -412,8 +412,8 @@ def _bilinear(heights, px, py):
         i0 = np.minimum(np.floor(p).astype(np.intp), max(n - 2, 0))
         out.append((i0, p - i0))
     (j0, fx), (i0, fy) = out
-    if rows == 1:
-        i0, fy = np.zeros_like(i0), np.zeros_like(fy)
+    if not fx.any() and not fy.any():  # every point on a pixel of the sample (a grid aligned)
+        return heights[i0, j0]
     j1 = np.minimum(j0 + 1, cols - 1)
     i1 = np.minimum(i0 + 1, rows - 1)
     top = heights[i0, j0] * (1 - fx) + heights[i0, j1] * fx
@@ -571,6 +571,9 @@ class Scan:
             sample, s = self.sample, self.settings
             passes = {}
             for name, (x, y, t) in self._positions.items():
+                if name == "retrace" and not s.moves:  # the same points as the trace
+                    passes[name] = passes["trace"].copy()
+                    continue
                 passes[name] = _bilinear(apex.heights, x / sample.pixel_size,
                                          y / sample.pixel_size_y)
             (xt, yt, tt), (xr, yr, tr) = self._positions["trace"], self._positions["retrace"]
