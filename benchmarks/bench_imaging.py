@@ -17,7 +17,6 @@ work. Target (issue 10): ours < 0.5 s and >= 20x faster than the peer.
 """
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import numpy as np

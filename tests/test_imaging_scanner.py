@@ -379,9 +379,6 @@ def test_constant_height_validates_its_arguments():
         ConstantHeight(system(), 1e-9, 0.0)
     with pytest.raises(ValueError, match="z_np"):
         ConstantHeight(system(), math.nan, 1e-8)
-    adhesive = ContactSystem(tip=Parabolic(radius=10e-9), adhesion="dmt")
-    with pytest.raises(ValueError, match="adhesion"):
-        ConstantHeight(adhesive, 1e-9, 1e-8)
 
 
 def test_the_mode_tip_must_be_the_scan_tip(image):
@@ -426,3 +423,39 @@ def test_tilt_is_added_before_the_dilation():
     tilted = Sample(sample.heights + math.tan(tilt[0]) * (x - x[-1] / 2)[None, :], PX)
     np.testing.assert_allclose(result.images["height trace"], dilate(tilted, tip).heights,
                                rtol=0, atol=1e-22)
+
+
+def adhesive(model):
+    return ContactSystem(spring_constant=0.5, tip=Parabolic(radius=10e-9), youngs_modulus=1e9,
+                         poisson_ratio=0.3, adhesion=model, work_of_adhesion=0.05)
+
+
+@pytest.mark.parametrize("model", ["dmt", "jkr"])
+def test_adhesive_constant_height_follows_approach_then_retract(model):
+    sy = adhesive(model)
+    assert -12e-9 < sy.snap_off_z_np < -2e-9
+    x = np.arange(40) * PX
+    sample = Sample(np.tile(x * 14e-9 / x[-1], (3, 1)), PX)  # a slope: 0 to 14 nm along x
+    result = scan(sample, None, ConstantHeight(sy, -10e-9, 1.0), whole(sample))
+    cycle = sy.approach_retract(-10e-9 + sample.heights[0])  # module (d) on the same ramp
+    for row in range(3):  # every line snaps off before its end: each starts afresh
+        np.testing.assert_allclose(result.images["deflection trace"][row], cycle.approach.z_c,
+                                   rtol=1e-12, atol=0)
+        np.testing.assert_allclose(result.images["deflection retrace"][row][::-1],
+                                   cycle.retract.z_c, rtol=1e-12, atol=0)
+    retrace = result.images["deflection retrace"][0]
+    trace = result.images["deflection trace"][0]
+    stuck = (retrace < 0) & (trace == 0)  # held by adhesion on the way back only
+    assert stuck.any()
+
+
+def test_an_adhesive_contact_carries_over_to_the_next_line():
+    sy = adhesive("dmt")
+    x = np.arange(40) * PX
+    sample = Sample(np.tile(x * 10e-9 / x[-1], (3, 1)), PX)
+    z_np = 0.4 * sy.snap_off_z_np  # above the snap-off, below 0: stuck if in contact
+    result = scan(sample, None, ConstantHeight(sy, z_np, 1.0), whole(sample))
+    first = result.images["deflection trace"]
+    assert first[0, 0] == 0.0  # line 0 starts out of contact (approach branch)
+    assert first[1, 0] < 0.0 and first[2, 0] < 0.0  # later lines start stuck (retract branch)
+    assert first[1, 0] == pytest.approx(sy.at(z_np, "retract").z_c[0], rel=1e-12)
