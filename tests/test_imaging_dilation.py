@@ -38,8 +38,12 @@ def textbook_t(tip, u, v):
     return np.maximum(abs(u), abs(v)) / math.tan(tip.face_angle)
 
 
-def scipy_dilation(heights, tip, dx, dy=None):
-    """scipy's grey dilation by b = -t over a footprint covering the whole image."""
+def scipy_dilation(heights, tip, dx, dy=None, cut=True):
+    """scipy's grey dilation by b = -t over a footprint covering the whole image.
+
+    With ``cut``, the footprint is cropped to the box where the textbook t stays below the
+    heights' range (the rest cannot win; the tests with ``cut=False`` show it), for speed.
+    """
     if heights.ndim == 1:
         n = heights.shape[0]
         u = np.arange(-(n - 1), n) * dx
@@ -49,6 +53,10 @@ def scipy_dilation(heights, tip, dx, dy=None):
         u = np.arange(-(nx - 1), nx) * dx
         v = np.arange(-(ny - 1), ny) * dy
         b = -textbook_t(tip, u[None, :], v[:, None])
+    if cut:
+        keep = -b <= np.ptp(heights) * (1 + 1e-9)
+        box = tuple(slice(ix.min(), ix.max() + 1) for ix in np.nonzero(keep))
+        b = b[box]
     return ndimage.grey_dilation(heights, structure=b, mode="constant", cval=-np.inf)
 
 
@@ -105,7 +113,7 @@ def test_dilate_image_equals_scipy_grey_dilation(tip):
     h = rough((24, 31), 1e-9, seed=1)
     sample = Sample(h, 0.8e-9, "rough", pixel_size_y=1.1e-9)
     out = dilate(sample, tip)
-    ref = scipy_dilation(h, tip, 0.8e-9, 1.1e-9)
+    ref = scipy_dilation(h, tip, 0.8e-9, 1.1e-9, cut=False)
     np.testing.assert_allclose(out.heights, ref, rtol=0, atol=round_off(h))
     assert out.pixel_size == 0.8e-9 and out.pixel_size_y == 1.1e-9 and out.name == "rough"
     assert np.all(out.heights >= h)
@@ -115,23 +123,38 @@ def test_dilate_image_equals_scipy_grey_dilation(tip):
 def test_dilate_line_equals_scipy_grey_dilation(tip):
     h = rough((301,), 3e-9, seed=2)
     out = dilate(Sample(h, 0.5e-9), tip)
-    np.testing.assert_allclose(out.heights, scipy_dilation(h, tip, 0.5e-9), rtol=0,
+    np.testing.assert_allclose(out.heights, scipy_dilation(h, tip, 0.5e-9, cut=False), rtol=0,
                                atol=round_off(h))
 
 
 @pytest.mark.parametrize("shape, dx, dy", [((40, 40), 1e-9, 1e-9), ((33, 57), 0.7e-9, 2.3e-9),
                                            ((64, 21), 1.9e-9, 0.6e-9)])
-def test_parabolic_separable_path_equals_general_path(shape, dx, dy):
-    """Felzenszwalb-Huttenlocher envelope (rows, then columns) = the loop over the tip's pixels."""
+@pytest.mark.parametrize("method", ["envelope", "window", "auto"])
+def test_parabolic_separable_path_equals_general_path(shape, dx, dy, method):
+    """Rows then columns, by the Felzenszwalb-Huttenlocher envelope or by the direct window,
+    equal the loop over the tip's pixels and scipy."""
     tip = Parabolic(radius=7e-9)
     h = rough(shape, 1e-9, seed=3)
     h[5, 3] = h.max() + 2e-9  # a spike, so the envelope has long stretches of one parabola
     height = float(np.ptp(h))
     t = tip_surface(tip, dx, dy, max_height=height)
     general = dilation._dilate_general(h, t, height)
-    fast = dilate(Sample(h, dx, pixel_size_y=dy), tip).heights
+    fast = dilation._dilate_parabolic(h, tip.radius, dx, dy, height, method)
     np.testing.assert_allclose(fast, general, rtol=0, atol=round_off(h))
     np.testing.assert_allclose(fast, scipy_dilation(h, tip, dx, dy), rtol=0, atol=round_off(h))
+    line = dilation._dilate_parabolic(h[0], tip.radius, dx, dy, float(np.ptp(h[0])), method)
+    np.testing.assert_allclose(line, scipy_dilation(h[0], tip, dx), rtol=0, atol=round_off(h))
+
+
+def test_dilate_takes_the_envelope_beyond_the_window_limit():
+    """A blunt paraboloid on a fine grid: window of more than WINDOW_LIMIT pixels, O(N) path."""
+    tip = Parabolic(radius=30e-9)
+    h = rough((20, 300), 1e-9, seed=4)
+    a = 0.2e-9 ** 2 / (2 * tip.radius)
+    assert math.sqrt(np.ptp(h) / a) > dilation.WINDOW_LIMIT
+    out = dilate(Sample(h, 0.2e-9, pixel_size_y=3e-9), tip).heights
+    np.testing.assert_allclose(out, scipy_dilation(h, tip, 0.2e-9, 3e-9), rtol=0,
+                               atol=round_off(h))
 
 
 def test_parabolic_envelope_on_adversarial_lines():
@@ -140,11 +163,10 @@ def test_parabolic_envelope_on_adversarial_lines():
     lines = np.array([np.zeros(50), -(x - 25) ** 2 * 1e-3, (x - 25) ** 2 * 1e-3,
                       np.where(x % 7 == 0, 1.0, 0.0), x * 0.3, -x * 0.3,
                       np.repeat([0.0, 1.0], 25)])
-    a = 0.05
-    got = dilation._envelope_lines(lines, a)
-    p = x[None, :]
-    ref = np.max(lines[:, None, :] - a * (x[:, None] - p) ** 2, axis=-1)
-    np.testing.assert_allclose(got, ref, rtol=0, atol=1e-13)
+    for a in (1e-4, 0.05, 10.0):  # from one parabola over everything to none over another
+        got = dilation._envelope_lines(lines, a)
+        ref = np.max(lines[:, None, :] - a * (x[:, None] - x[None, :]) ** 2, axis=-1)
+        np.testing.assert_allclose(got, ref, rtol=0, atol=1e-13)
 
 
 def test_flat_sample_is_its_own_image():
