@@ -75,6 +75,7 @@ WINDOW_LIMIT = 64
 
 _BISECTIONS = 200
 _DEPTH = 16
+_SCALAR_LINES = 16
 
 
 def _cut_radius(tip: Tip, max_height: float) -> float:
@@ -236,11 +237,20 @@ def _envelope_lines(g: np.ndarray, a: float) -> np.ndarray:
     test the top :data:`_DEPTH` entries at once, so a step rarely takes more than one extra pass.
     The winning parabola at each q is found for all lines in one ``searchsorted`` and the value
     computed from it as g[p] - a (q - p)^2, the same expression as the general path. O(N) per
-    line, whatever the tip's size.
+    line, whatever the tip's size. Up to :data:`_SCALAR_LINES` lines, the algorithm runs line by
+    line in plain Python (:func:`_envelope_scalar`), faster there.
     """
     lines, n = g.shape
     if n == 1:
         return g.copy()
+    if lines <= _SCALAR_LINES:
+        return np.array([_envelope_scalar(line, a) for line in g]).reshape(g.shape)
+    return _envelope_vector(g, a)
+
+
+def _envelope_vector(g: np.ndarray, a: float) -> np.ndarray:
+    """:func:`_envelope_lines` vectorised over the lines (a loop over q, n >= 2)."""
+    lines, n = g.shape
     rows = np.arange(lines)
     hh = (-g / a + np.arange(n, dtype=float) ** 2).ravel()   # h(p) + p^2, flat
     off, offz = rows * n, rows * (n + 1)   # each line's start in v and hh, and in z
@@ -287,6 +297,30 @@ def _envelope_lines(g: np.ndarray, a: float) -> np.ndarray:
     j -= rows[:, None] * (n - 1)
     p = v.reshape(lines, n)[rows[:, None], j]
     return g[rows[:, None], p] - a * (np.arange(n)[None, :] - p) ** 2
+
+
+def _envelope_scalar(g: np.ndarray, a: float) -> np.ndarray:
+    """One line of :func:`_envelope_lines` in plain Python floats (Algorithm 1 as printed).
+
+    For a few lines NumPy's per-call cost makes the vectorised loop slower than this one.
+    """
+    n = g.shape[0]
+    hh = (-g / a + np.arange(n, dtype=float) ** 2).tolist()
+    v, z = [0], [-math.inf]
+    for q in range(1, n):
+        hq = hh[q]
+        while True:
+            p = v[-1]
+            s = (hq - hh[p]) / (2.0 * (q - p))
+            if s > z[-1]:
+                break
+            v.pop()
+            z.pop()
+        v.append(q)
+        z.append(s)
+    q = np.arange(n)
+    p = np.asarray(v)[np.searchsorted(np.asarray(z[1:]), q, side="left")]
+    return g[p] - a * (q - p) ** 2
 
 
 def _window_lines(g: np.ndarray, a: float, w: int) -> np.ndarray:
