@@ -125,6 +125,9 @@ def test_nan_heights_and_wrong_types_are_rejected(image):
         Scan(image, 20e-9, ConstantForce(loop()), whole(image))
     with pytest.raises(TypeError, match="loop"):
         ConstantForce(ContactSystem())
+    volts = Sample(image.heights * 1e9, PX, channel="deflection", unit="V")
+    with pytest.raises(ValueError, match="sample must hold heights in m"):
+        Scan(volts, None, ConstantForce(loop()), whole(image))
     with pytest.raises(ValueError, match="sample must be a 2-D"):
         Scan(Sample(np.zeros(16), PX), None, ConstantForce(loop()), ScanSettings(40e-9))
 
@@ -153,6 +156,7 @@ def test_a_mode_defined_elsewhere_plugs_in_and_keeps_its_state(image):
     np.testing.assert_array_equal(result.images["height trace"], image.heights)
     np.testing.assert_array_equal(result.images["height retrace"], image.heights)
     assert result.units["phase trace"] == "rad" and result.units["height trace"] == "m"
+    assert result.channels["phase trace"].unit == "rad"
     s = Scan(image, None, Topography(), whole(image))
     s.run()
     assert s._state == 48  # the state went from line to line
@@ -307,6 +311,9 @@ def test_a_scan_stopped_half_way_keeps_its_finished_lines(image):
     assert result.progress == pytest.approx(20 / 48)
     height = result.channels["height trace"]
     assert isinstance(height, Sample) and height.heights.shape == (20, 64)
+    assert (height.channel, height.unit) == ("height trace", "m")
+    assert height.metadata["lines_done"] == 20 and height.metadata["scan_speed"] == SPEED
+    assert height.metadata["mode"] == "ConstantForce"
     assert height.pixel_size == PX and height.pixel_size_y == PX
     np.testing.assert_array_equal(height.heights, full.images["height trace"][:20])
     assert np.isnan(result.images["height trace"][20:]).all()

@@ -29,7 +29,7 @@ images of the lines done so far, whether the scan was stopped, and where the tip
 from __future__ import annotations
 
 import math
-from dataclasses import KW_ONLY, dataclass, fields, replace
+from dataclasses import KW_ONLY, asdict, dataclass, field, replace
 from types import MappingProxyType
 from typing import Callable, Iterator, Mapping
 
@@ -348,6 +348,8 @@ class ScanResult:
         Pixel spacing of the images in m.
     name : str
         The scanned sample's name.
+    metadata : Mapping
+        The scan settings (SI), given to every channel's Sample as its metadata.
     """
 
     images: Mapping
@@ -358,6 +360,7 @@ class ScanResult:
     pixel_size: float
     pixel_size_y: float
     name: str = ""
+    metadata: Mapping = field(default_factory=lambda: MappingProxyType({}))
 
     @property
     def lines(self) -> int:
@@ -382,20 +385,16 @@ class ScanResult:
         """
         if self.lines_done == 0:
             return {}
+        meta = {"lines_done": self.lines_done, **self.metadata}
         return {name: _sample(image[:self.lines_done], self.pixel_size, self.pixel_size_y,
                               f"{self.name}: {name}" if self.name else name, name,
-                              self.units[name])
+                              self.units[name], meta)
                 for name, image in self.images.items()}
 
 
-_SAMPLE_FIELDS = {f.name for f in fields(Sample)}
-
-
-def _sample(values, pixel_size, pixel_size_y, name, channel, unit):
-    extra = {}
-    if "channel" in _SAMPLE_FIELDS:  # the Sample of issue 10 says what it holds
-        extra = {"channel": channel, "unit": unit}
-    return Sample(values, pixel_size, name, pixel_size_y=pixel_size_y, **extra)
+def _sample(values, pixel_size, pixel_size_y, name, channel, unit, metadata=None):
+    return Sample(values, pixel_size, name, pixel_size_y=pixel_size_y, channel=channel,
+                  unit=unit, metadata=metadata)
 
 
 def _bilinear(heights, px, py):
@@ -472,6 +471,9 @@ class Scan:
         self.mode = check_instance("mode", mode, Mode)
         self.settings = check_instance("settings", settings, ScanSettings)
         h = sample.heights
+        if sample.unit != "m":
+            raise ValueError(f"sample must hold heights in m, got a {sample.channel!r} channel in "
+                             f"{sample.unit!r}")
         if h.ndim != 2 or min(h.shape) < 2:
             raise ValueError(f"sample must be a 2-D image of at least 2 x 2 pixels, got heights "
                              f"of shape {h.shape}")
@@ -485,6 +487,8 @@ class Scan:
         if any(c not in self._units_of(mode) for c in mode.channels):
             raise ValueError(f"mode must list its channels, got {mode.channels!r}")
         self._positions = self._geometry()
+        self._metadata = MappingProxyType({"mode": type(mode).__name__, "tip": repr(tip),
+                                           **asdict(settings)})
         self._plan = None
         self._state = None
         self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
@@ -662,7 +666,7 @@ class Scan:
         images = MappingProxyType({k: v.copy() for k, v in self._images.items()})
         return ScanResult(images, MappingProxyType(self._units_of(self.mode)), self._lines_done,
                           self._crashed, self._stopped, self.settings.pixel_size,
-                          self.settings.pixel_size_y, self.sample.name)
+                          self.settings.pixel_size_y, self.sample.name, self._metadata)
 
     def position(self, row: int, column: int, direction: str = "trace") -> tuple[float, float]:
         """Where the apex is on the sample at a pixel, in m from the sample's first pixel.
