@@ -466,3 +466,24 @@ def test_an_adhesive_contact_carries_over_to_the_next_line():
     assert first[0, 0] == 0.0  # line 0 starts out of contact (approach branch)
     assert first[1, 0] < 0.0 and first[2, 0] < 0.0  # later lines start stuck (retract branch)
     assert first[1, 0] == pytest.approx(sy.at(z_np, "retract").z_c[0], rel=1e-12)
+
+
+def test_a_scan_can_start_at_a_later_row(image):
+    lp = loop()
+    full = scan(image, None, ConstantForce(lp), whole(image))
+    run = Scan(image, None, ConstantForce(lp), whole(image))
+    rows = [record.row for record in run.lines(start=10)]
+    assert rows == list(range(10, 48))
+    result = run.result
+    assert (result.first_row, result.lines_done, result.finished_lines) == (10, 48, 38)
+    assert result.finished and np.isnan(result.images["height trace"][:10]).all()
+    np.testing.assert_array_equal(result.channels["height trace"].heights,
+                                  full.images["height trace"][10:])
+    assert result.channels["height trace"].metadata["first_row"] == 10
+    with pytest.raises(ValueError, match="start must be an integer"):
+        list(Scan(image, None, Topography(), whole(image)).lines(start=48))
+    begun = Scan(image, None, Topography(), whole(image))
+    begun.step()
+    with pytest.raises(ValueError, match="start must be given before the first line"):
+        next(begun.lines(start=5))
+    assert next(begun.lines(start=1)).row == 1  # where it is: no change

@@ -339,7 +339,8 @@ class ScanResult:
     units : Mapping
         Channel name -> SI unit.
     lines_done : int
-        Finished lines (rows 0 to lines_done - 1).
+        The row after the last finished line: rows ``first_row`` to lines_done - 1 are
+        finished (rows 0 to lines_done - 1 for a scan from the first line).
     crashed : Crash or None
         Where the tip crashed (row, column, force in N), or None.
     stopped : bool
@@ -350,6 +351,9 @@ class ScanResult:
         The scanned sample's name.
     metadata : Mapping
         The scan settings (SI), given to every channel's Sample as its metadata.
+    first_row : int
+        The row the scan started at (0 unless :meth:`Scan.lines` was given ``start``); the rows
+        before it were not scanned (NaN).
     """
 
     images: Mapping
@@ -361,6 +365,7 @@ class ScanResult:
     pixel_size_y: float
     name: str = ""
     metadata: Mapping = field(default_factory=lambda: MappingProxyType({}))
+    first_row: int = 0
 
     @property
     def lines(self) -> int:
@@ -378,15 +383,21 @@ class ScanResult:
         return self.lines_done / self.lines if self.lines else 0.0
 
     @property
+    def finished_lines(self) -> int:
+        """Number of lines this scan finished (lines_done - first_row)."""
+        return self.lines_done - self.first_row
+
+    @property
     def channels(self) -> dict:
         """Channel name -> :class:`~afmsmiler.samples.Sample` of the finished lines ({} if none).
 
-        Each sample holds rows 0 to lines_done - 1 with the scan's pixel sizes.
+        Each sample holds rows ``first_row`` to lines_done - 1 with the scan's pixel sizes.
         """
-        if self.lines_done == 0:
+        if self.lines_done <= self.first_row:
             return {}
-        meta = {"lines_done": self.lines_done, **self.metadata}
-        return {name: _sample(image[:self.lines_done], self.pixel_size, self.pixel_size_y,
+        meta = {"lines_done": self.lines_done, "first_row": self.first_row, **self.metadata}
+        rows = slice(self.first_row, self.lines_done)
+        return {name: _sample(image[rows], self.pixel_size, self.pixel_size_y,
                               f"{self.name}: {name}" if self.name else name, name,
                               self.units[name], meta)
                 for name, image in self.images.items()}
@@ -493,6 +504,8 @@ class Scan:
         self._state = None
         self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
         self._lines_done = 0
+        self._first_row = 0
+        self._started = False
         self._crashed = None
         self._stopped = False
         self._rng = np.random.default_rng(settings.seed)
@@ -604,8 +617,9 @@ class Scan:
             return None
         plan = self.plan
         row = self._lines_done
-        if row == 0:
+        if not self._started:
             self._state = self.mode.start(plan)
+            self._started = True
         out = self.mode.line(plan, row, self._state)
         channels = {}
         for name in self.mode.channels:
@@ -624,13 +638,36 @@ class Scan:
             self._lines_done += 1
         return LineRecord(row, MappingProxyType(channels), out.crash)
 
-    def lines(self) -> Iterator[LineRecord]:
+    def lines(self, start: int | None = None) -> Iterator[LineRecord]:
         """Scan line after line, yielding each as it is done (a crashed line last).
+
+        Parameters
+        ----------
+        start : int, optional
+            Begin at this row instead of the first (only before any line was scanned): the rows
+            before it are left unscanned (NaN), as when a panel applies new settings from the
+            next line on. The mode still starts once (:meth:`Mode.start`) and is then asked
+            for the rows from ``start`` on; :class:`~afmsmiler.imaging.modes.ConstantForce`
+            solves the whole image with the new settings, so its row ``start`` is the loop's
+            state as if the new settings had scanned all the earlier lines.
 
         Yields
         ------
         LineRecord
+
+        Raises
+        ------
+        ValueError
+            If ``start`` is not a row, or lines were already scanned.
         """
+        if start is not None:
+            start = check_integer("start", start, 0, self.settings.lines - 1)
+            if self._started:
+                if start != self._lines_done:
+                    raise ValueError(f"start must be given before the first line (the scan is "
+                                     f"at row {self._lines_done}), got {start}")
+            else:
+                self._lines_done = self._first_row = start
         while (record := self.step()) is not None:
             yield record
 
@@ -666,7 +703,8 @@ class Scan:
         images = MappingProxyType({k: v.copy() for k, v in self._images.items()})
         return ScanResult(images, MappingProxyType(self._units_of(self.mode)), self._lines_done,
                           self._crashed, self._stopped, self.settings.pixel_size,
-                          self.settings.pixel_size_y, self.sample.name, self._metadata)
+                          self.settings.pixel_size_y, self.sample.name, self._metadata,
+                          self._first_row)
 
     def position(self, row: int, column: int, direction: str = "trace") -> tuple[float, float]:
         """Where the apex is on the sample at a pixel, in m from the sample's first pixel.
