@@ -315,8 +315,9 @@ class ConstantForce(Mode):
         Returns
         -------
         ModeLine
+            Its channels are views of ``state`` (the scanner copies them).
         """
-        return ModeLine({name: image[row].copy() for name, image in state.items()}, state)
+        return ModeLine({name: image[row] for name, image in state.items()}, state)
 
 
 class ConstantHeight(Mode):

@@ -431,6 +431,18 @@ def _bilinear(heights, px, py):
     return top * (1 - fy) + bottom * fy
 
 
+def _sampled(heights, px, py, straight):
+    """The heights at fractional (column px, row py): a slice when the grid is the sample's."""
+    if straight:  # the scan's columns and rows may be runs of the sample's own pixels
+        cols, rows = px[0], py[:, 0]
+        c0, r0 = round(float(cols[0])), round(float(rows[0]))
+        if (np.all(np.abs(cols - (c0 + np.arange(cols.size))) < 1e-9)
+                and np.all(np.abs(rows - (r0 + np.arange(rows.size))) < 1e-9)
+                and np.all(px == cols[None, :]) and np.all(py == rows[:, None])):
+            return heights[r0:r0 + rows.size, c0:c0 + cols.size].copy()
+    return _bilinear(heights, px, py)
+
+
 def _fmt(x):
     return f"{x * 1e6:.4g} um"
 
@@ -591,8 +603,8 @@ class Scan:
                 if name == "retrace" and not s.moves:  # the same points as the trace
                     passes[name] = passes["trace"].copy()
                     continue
-                passes[name] = _bilinear(apex.heights, x / sample.pixel_size,
-                                         y / sample.pixel_size_y)
+                passes[name] = _sampled(apex.heights, x / sample.pixel_size,
+                                        y / sample.pixel_size_y, s.angle == 0.0)
             (xt, yt, tt), (xr, yr, tr) = self._positions["trace"], self._positions["retrace"]
             self._plan = ScanPlan(passes["trace"], passes["retrace"], tt, tr, xt, yt, xr, yr,
                                   s.pixel_size, s.pixel_size_y, s.scan_speed, apex, self.tip, s)
