@@ -424,5 +424,7 @@ class ConstantHeight(Mode):
             column = k if k < n else 2 * n - 1 - k
             crash = Crash(int(row), int(column), float(forces[k]), direction)
             deflection[k + 1:] = np.nan
+            if not np.isfinite(deflection[k]):  # a sphere buried: no deflection to show
+                deflection[k] = np.nan
         return ModeLine({"deflection trace": deflection[:n],
                          "deflection retrace": deflection[n:][::-1].copy()}, contact, crash)

@@ -466,14 +466,17 @@ class Scan:
     TypeError
         If an argument is of the wrong type.
     ValueError
-        If the sample is not 2-D or holds NaN, the scan range (with its angle, offset, drift
-        and creep) reaches beyond the sample, or the mode's own tip is not ``tip``.
+        If the sample is not 2-D heights in m or holds NaN, the scan range (with its angle,
+        offset, drift and creep) reaches beyond the sample, the tip is wider than the image at
+        the sample's height range (named ``tip``, from the dilation), the mode's own tip is not
+        ``tip`` or the mode lists no channels.
 
     Notes
     -----
-    Nothing is computed before the first line (the constructor only checks the geometry): the
-    dilation and the sampling run on the first call of :meth:`step`, :meth:`lines` or
-    :meth:`run`, then :meth:`Mode.start`. One line per :meth:`step` keeps a notebook responsive.
+    The constructor checks everything and dilates the sample (some 10 ms for 256 x 256 with a
+    paraboloid), so that a tip too wide for the image is refused at once; the sampling of the
+    apex surface (:attr:`plan`) and :meth:`Mode.start` run on the first call of :meth:`step`,
+    :meth:`lines` or :meth:`run`. One line per :meth:`step` keeps a notebook responsive.
 
     Examples
     --------
@@ -507,11 +510,15 @@ class Scan:
         if mode_tip is not None and tip is not None and mode_tip != tip:
             raise ValueError(f"tip ({tip!r}) must be the tip of the mode's physics "
                              f"({mode_tip!r}): one tip both blurs and touches")
-        if any(c not in self._units_of(mode) for c in mode.channels):
-            raise ValueError(f"mode must list its channels, got {mode.channels!r}")
+        names = mode.channels
+        if (not isinstance(names, tuple) or not names or len(set(names)) != len(names)
+                or not all(isinstance(c, str) for c in names)):
+            raise ValueError(f"mode must list its channels as a tuple of distinct names, got "
+                             f"{names!r}")
         self._positions = self._geometry()
         self._metadata = MappingProxyType({"mode": type(mode).__name__, "tip": repr(tip),
                                            **asdict(settings)})
+        self._apex_surface = self._apex()
         self._plan = None
         self._state = None
         self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
@@ -537,8 +544,6 @@ class Scan:
         width, height = (cols - 1) * sample.pixel_size, (rows - 1) * sample.pixel_size_y
         cx, cy = width / 2 + s.offset[0], height / 2 + s.offset[1]
         c, sn = math.cos(s.angle), math.sin(s.angle)
-        if s.angle == 0.0:
-            c, sn = 1.0, 0.0
         uu, vv = np.meshgrid(u, v)
         x0 = cx + c * uu - sn * vv
         y0 = cy + sn * uu + c * vv
@@ -596,7 +601,7 @@ class Scan:
     def plan(self) -> ScanPlan:
         """The :class:`~afmsmiler.imaging.modes.ScanPlan` the mode scans (computed once)."""
         if self._plan is None:
-            apex = self._apex()
+            apex = self._apex_surface
             sample, s = self.sample, self.settings
             passes = {}
             for name, (x, y, t) in self._positions.items():
@@ -634,6 +639,10 @@ class Scan:
             self._started = True
         out = self.mode.line(plan, row, self._state)
         channels = {}
+        missing = [name for name in self.mode.channels if name not in out.channels]
+        if missing:
+            raise ValueError(f"mode {type(self.mode).__name__} gave no channel {missing[0]!r} "
+                             f"for line {row}")
         for name in self.mode.channels:
             values = np.array(out.channels[name], dtype=float)
             if values.shape != (self.settings.pixels,):
