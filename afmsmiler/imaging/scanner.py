@@ -71,17 +71,15 @@ def _drift(name, label):
 
 _SPEED = LOOP_PARAMETERS["speed"]
 
-#: The scanner's user-settable quantities (SI; display units through ``UNITS``). Scan ranges up to
-#: 100 um (the largest AFM scanners'); 2 to 2048 pixels and 1 to 2048 lines (at most
-#: :data:`MAX_SCAN_PIXELS` in all); the scan speed is module (c)'s ``speed`` (1 nm/s to 1 m/s),
-#: also settable as a line rate; the angle in (-180, 180) deg; offsets within 100 um; sensor noise
-#: up to 1 um RMS; drift up to 1 um/s; creep up to 50 % per decade after 1 ms to 1000 s; tilts in
-#: (-90, 90) deg.
+#: The scanner's user-settable quantities (SI; display units through ``UNITS``). Scan ranges
+#: from 0.1 nm (an atom) to 100 um (the largest AFM scanners'); 2 to 2048 pixels and 1 to 2048
+#: lines (at most :data:`MAX_SCAN_PIXELS` in all); the scan speed is module (c)'s ``speed``
+#: (1 nm/s to 1 m/s), also settable as a line rate; the angle in (-180, 180) deg; offsets within
+#: 100 um; sensor noise up to 1 um RMS; drift up to 1 um/s; creep up to 50 % per decade after
+#: 1 ms to 1000 s; tilts in (-90, 90) deg.
 PARAMETERS = read_only({p.name: p for p in (
-    _length("scan_size", "scan size", 1e-6, 0.0, 100e-6, 10e-9, 100e-6, log=True,
-            low_inclusive=False),
-    _length("scan_size_y", "scan size y", 1e-6, 0.0, 100e-6, 10e-9, 100e-6, log=True,
-            low_inclusive=False),
+    _length("scan_size", "scan size", 1e-6, 1e-10, 100e-6, 10e-9, 100e-6, log=True),
+    _length("scan_size_y", "scan size y", 1e-6, 1e-10, 100e-6, 10e-9, 100e-6, log=True),
     Parameter(name="pixels", unit="", default=256, low=2, high=_MAX_SIDE, slider_low=16,
               slider_high=1024, log=True, label="pixels per line"),
     Parameter(name="lines", unit="", default=256, low=1, high=_MAX_SIDE, slider_low=16,
