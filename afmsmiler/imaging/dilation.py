@@ -6,7 +6,7 @@ lowered onto a sample of heights s(x) until it touches, stops with its apex at::
     i(x) = max_u [ s(x + u) - t(u) ]                                        (the image)
 
 the grey-scale dilation of s by the reflected tip (Villarrubia, J. Res. Natl. Inst. Stand.
-Technol. 102, 425 (1997), Eq. 9; in mathematical morphology i = s (+) b with the structuring
+Technol. 102, 425 (1997); in mathematical morphology i = s (+) b with the structuring
 function b(y) = -t(-y), what ``scipy.ndimage.grey_dilation(s, structure=b)`` computes). All four
 tips of module (d) are symmetric, t(-u) = t(u). Its inverse is the reconstruction (Villarrubia's
 "surface reconstruction", a grey-scale erosion)::
@@ -431,7 +431,7 @@ def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
 def erode(image, tip) -> Sample:
     """The reconstruction r(x) = min_u [i(x - u) + t(u)] of the surface from its image.
 
-    Villarrubia's surface reconstruction (J. Res. NIST 102, 425 (1997), Eq. 10), a grey-scale
+    Villarrubia's surface reconstruction (J. Res. NIST 102, 425 (1997)), a grey-scale
     erosion by the tip. Applied to an image of a surface s, ``erode(dilate(s, tip), tip)`` is the
     morphological closing of s: it is >= s everywhere (narrow holes the tip cannot enter stay
     bridged), and equals s where :func:`certainty_map` is True.
@@ -464,7 +464,7 @@ def certainty_map(image, tip) -> np.ndarray:
 
     With the apex at x0 the tip touches the reconstruction r (:func:`erode`) at the points
     x0 + u where r(x0 + u) - t(u) = i(x0). Where it touches at a single point, that point of r is
-    certain: the true surface is there (Villarrubia, J. Res. NIST 102, 425 (1997), Sec. 6).
+    certain: the true surface is there (Villarrubia, J. Res. NIST 102, 425 (1997)).
     Elsewhere r is only an upper bound of the surface. Equality is tested to a few units of
     round-off of the image's heights. Work as the general path of :func:`dilate`
     (:data:`MAX_WORK`), for every tip.
@@ -519,7 +519,7 @@ def estimate_tip_radius(image, *, peaks=1) -> float:
     >= -dy^2 / R. Each local maximum therefore bounds R from above,
     R <= dx^2 / (-second difference), with equality at a peak made by a feature sharper than the
     tip, where the image is the inverted tip itself. This is the paraboloid form of blind tip
-    estimation (Villarrubia, J. Res. NIST 102, 425 (1997), Sec. 7: the estimate is an upper
+    estimation (Villarrubia, J. Res. NIST 102, 425 (1997): the estimate is an upper
     bound of the tip, exact where the sample has sharp spikes).
 
     Parameters
