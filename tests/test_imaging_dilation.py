@@ -7,12 +7,14 @@ structuring function b(y) = -t(-y) written out here from the tips' textbook form
 round-off: a few ulps of the heights.
 """
 import math
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 import pytest
 from scipy import ndimage
 
-from afmsmiler.contact.tips import Conical, Parabolic, Pyramidal, Spherical
+from afmsmiler.contact.tips import Conical, Parabolic, Pyramidal, Spherical, Tip
 from afmsmiler.imaging import dilation
 from afmsmiler.imaging.dilation import (certainty_map, dilate, erode, estimate_tip_radius,
                                         sphere_apparent_width, tip_surface)
@@ -94,6 +96,32 @@ def test_tip_surface_default_cut_and_sphere_shank():
     assert s[0, 0] == 10e-9  # beyond R: the shank, clipped at the cut
 
 
+@dataclass(frozen=True)
+class Quartic(Tip):
+    """A tip shape the module does not know: t = L (rho / L)^4, L = 10 nm (bisection path)."""
+
+    key: ClassVar[str] = "quartic"
+    title: ClassVar[str] = "quartic"
+    formula: ClassVar[str] = "t = L (rho / L)^4"
+    parameters: ClassVar[tuple] = ()
+
+    def _profile(self, r):
+        return 1e-8 * (r / 1e-8) ** 4
+
+
+def test_any_tip_shape_is_dilated_exactly():
+    tip = Quartic()
+    t = tip_surface(tip, 1e-9, max_height=5e-9)
+    n = t.shape[1] // 2
+    assert 1e-8 * (n * 1e-9 / 1e-8) ** 4 <= 5e-9 < 1e-8 * ((n + 1) * 1e-9 / 1e-8) ** 4
+    h = rough((30, 30), 1e-9, seed=9)
+    u = np.arange(-29, 30) * 1e-9
+    b = -1e-8 * (np.hypot(u[None, :], u[:, None]) / 1e-8) ** 4
+    ref = ndimage.grey_dilation(h, structure=b, mode="constant", cval=-np.inf)
+    np.testing.assert_allclose(dilate(Sample(h, 1e-9), tip).heights, ref, rtol=0,
+                               atol=round_off(h))
+
+
 def test_tip_surface_rejects_bad_input():
     with pytest.raises(TypeError, match="tip"):
         tip_surface("parabolic", 1e-9)
@@ -146,14 +174,18 @@ def test_parabolic_separable_path_equals_general_path(shape, dx, dy, method):
     np.testing.assert_allclose(line, scipy_dilation(h[0], tip, dx), rtol=0, atol=round_off(h))
 
 
-def test_dilate_takes_the_envelope_beyond_the_window_limit():
-    """A blunt paraboloid on a fine grid: window of more than WINDOW_LIMIT pixels, O(N) path."""
+def test_dilate_takes_the_envelope_beyond_the_window_limit(monkeypatch):
+    """A window wider than WINDOW_LIMIT pixels: dilate takes the O(N) envelope, same image."""
+    calls = []
+    envelope = dilation._envelope_lines
+    monkeypatch.setattr(dilation, "_envelope_lines", lambda g, a: calls.append(g.shape) or
+                        envelope(g, a))
+    monkeypatch.setattr(dilation, "WINDOW_LIMIT", 3)
     tip = Parabolic(radius=30e-9)
-    h = rough((20, 300), 1e-9, seed=4)
-    a = 0.2e-9 ** 2 / (2 * tip.radius)
-    assert math.sqrt(np.ptp(h) / a) > dilation.WINDOW_LIMIT
-    out = dilate(Sample(h, 0.2e-9, pixel_size_y=3e-9), tip).heights
-    np.testing.assert_allclose(out, scipy_dilation(h, tip, 0.2e-9, 3e-9), rtol=0,
+    h = rough((60, 90), 1e-9, seed=4)
+    out = dilate(Sample(h, 0.5e-9, pixel_size_y=0.9e-9), tip).heights
+    assert calls == [(60, 90), (90, 60)]  # rows, then columns, all lines at once
+    np.testing.assert_allclose(out, scipy_dilation(h, tip, 0.5e-9, 0.9e-9), rtol=0,
                                atol=round_off(h))
 
 
@@ -286,3 +318,107 @@ def test_dilated_sphere_image_has_the_analytic_width_on_its_centre_row():
     centre = image[image.shape[0] // 2]
     assert measured_width(centre, dx) == pytest.approx(width, abs=2 * dx)
     assert image.max() == pytest.approx(2 * r)  # the top is where the sphere's top is
+
+
+# --- reconstruction, certainty map, blind estimation -----------------------------------------
+def holes_and_spikes(shape=(40, 48), seed=5):
+    """A gently rough surface with narrow deep holes (the tip cannot enter) and sharp spikes."""
+    h = rough(shape, 0.3e-9, seed)
+    h[10, 10] -= 6e-9
+    h[25, 30:32] -= 5e-9
+    h[30, 12] += 4e-9
+    h[8, 38] += 3e-9
+    return h
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+def test_erode_equals_scipy_grey_erosion(tip):
+    h = rough((24, 31), 1e-9, seed=6)
+    dx, dy = 0.8e-9, 1.1e-9
+    got = erode(Sample(h, dx, pixel_size_y=dy), tip).heights
+    ny, nx = h.shape
+    u = np.arange(-(nx - 1), nx) * dx
+    v = np.arange(-(ny - 1), ny) * dy
+    b = -textbook_t(tip, u[None, :], v[:, None])
+    ref = ndimage.grey_erosion(h, structure=b, mode="constant", cval=np.inf)
+    np.testing.assert_allclose(got, ref, rtol=0, atol=round_off(h))
+
+
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+def test_reconstruction_bounds_the_surface_and_is_exact_where_certain(tip):
+    """Villarrubia: r = erode(dilate(s)) is the closing of s, r >= s, and r = s where certain.
+
+    (r <= s would be the opening, erode then dilate; the reconstruction of an image is the
+    other order.) The image is open: dilating its reconstruction gives it back.
+    """
+    h = holes_and_spikes()
+    sample = Sample(h, 1e-9, pixel_size_y=1.2e-9)
+    image = dilate(sample, tip)
+    r = erode(image, tip).heights
+    tol = round_off(h)
+    assert np.all(r >= h - tol) and np.all(r <= image.heights + tol)
+    certain = certainty_map(image, tip)
+    assert certain.shape == h.shape and certain.dtype == bool
+    np.testing.assert_allclose(r[certain], h[certain], rtol=0, atol=tol)
+    # the holes' bottoms are out of the tip's reach, so neither reconstructed nor certain
+    assert not certain[10, 10] and r[10, 10] > h[10, 10] + 1e-9
+    # the spikes' tops are where the tip touched
+    assert certain[30, 12] and certain[8, 38]
+    reimaged = dilate(Sample(r, 1e-9, pixel_size_y=1.2e-9), tip).heights
+    np.testing.assert_allclose(reimaged, image.heights, rtol=0, atol=tol)
+
+
+def test_certainty_map_of_a_line():
+    h = rough((200,), 0.5e-9, seed=7)
+    h[50] += 5e-9
+    h[120] -= 5e-9
+    tip = Conical(half_angle=math.radians(20))
+    image = dilate(Sample(h, 1e-9), tip)
+    certain = certainty_map(image, tip)
+    r = erode(image, tip).heights
+    assert certain[50] and not certain[120]
+    np.testing.assert_allclose(r[certain], h[certain], rtol=0, atol=round_off(h))
+
+
+def spikes(shape, pixel_size, heights, seed=8):
+    """Single-pixel spikes on a flat substrate, well apart and away from the edges."""
+    rng = np.random.default_rng(seed)
+    h = np.zeros(shape)
+    ny, nx = shape
+    for k, height in enumerate(heights):
+        h[rng.integers(ny // 4, 3 * ny // 4) if k else ny // 2,
+          (k + 1) * nx // (len(heights) + 1)] = height
+    return h
+
+
+@pytest.mark.parametrize("radius, dx, dy", [(20e-9, 2e-9, 2e-9), (5e-9, 0.5e-9, 0.8e-9),
+                                            (200e-9, 5e-9, 5e-9)])
+def test_estimate_tip_radius_from_sharp_spikes(radius, dx, dy):
+    """A spike sharper than the tip images as the inverted paraboloid: R back to 1e-9."""
+    h = spikes((64, 200), dx, [10e-9, 14e-9, 8e-9, 12e-9])
+    image = dilate(Sample(h, dx, pixel_size_y=dy), Parabolic(radius=radius))
+    assert estimate_tip_radius(image) == pytest.approx(radius, rel=1e-9)
+    assert estimate_tip_radius(image, peaks=4) == pytest.approx(radius, rel=1e-9)
+    line = dilate(Sample(h[32], dx), Parabolic(radius=radius))
+    assert estimate_tip_radius(line) == pytest.approx(radius, rel=1e-9)
+
+
+def test_estimate_tip_radius_is_an_upper_bound_on_any_image():
+    """Blind estimation gives an upper bound of the tip: no image of R is sharper than R."""
+    for seed in range(3):
+        h = rough((50, 60), 2e-9, seed)
+        image = dilate(Sample(h, 1e-9), Parabolic(radius=8e-9))
+        assert estimate_tip_radius(image) >= 8e-9 * (1 - 1e-9)
+    flat = Sample(np.zeros((5, 5)), 1e-9)
+    assert estimate_tip_radius(flat) == math.inf
+
+
+def test_reconstruction_rejects_bad_input():
+    with pytest.raises(TypeError, match="image"):
+        erode(np.zeros((4, 4)), Parabolic())
+    with pytest.raises(TypeError, match="tip"):
+        certainty_map(Sample(np.zeros((4, 4)), 1e-9), "cone")
+    with pytest.raises(ValueError, match="peaks"):
+        estimate_tip_radius(Sample(np.zeros((4, 4)), 1e-9), peaks=0)
+    with pytest.raises(ValueError, match="image"):
+        estimate_tip_radius(Sample(np.zeros((2, 8)), 1e-9))

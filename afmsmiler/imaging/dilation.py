@@ -6,7 +6,7 @@ lowered onto a sample of heights s(x) until it touches, stops with its apex at::
     i(x) = max_u [ s(x + u) - t(u) ]                                        (the image)
 
 the grey-scale dilation of s by the reflected tip (Villarrubia, J. Res. Natl. Inst. Stand.
-Technol. 102, 425 (1997), Eq. 9; in mathematical morphology i = s (+) b with the structuring
+Technol. 102, 425 (1997); in mathematical morphology i = s (+) b with the structuring
 function b(y) = -t(-y), what ``scipy.ndimage.grey_dilation(s, structure=b)`` computes). All four
 tips of module (d) are symmetric, t(-u) = t(u). Its inverse is the reconstruction (Villarrubia's
 "surface reconstruction", a grey-scale erosion)::
@@ -36,10 +36,13 @@ Two paths compute the same image:
   :data:`MAX_WORK`;
 - the paraboloid's separable path: t(u, v) = (u^2 + v^2) / (2 R) = t_x(u) + t_y(v), so the 2-D
   dilation is a 1-D dilation by the parabola u^2 / (2 R) along every row followed by one along
-  every column. Each 1-D dilation is a lower envelope of parabolas computed in O(N) per line by
-  the algorithm of Felzenszwalb and Huttenlocher ("Distance transforms of sampled functions",
-  Theory of Computing 8, 415 (2012), Algorithm 1), vectorised across the lines with NumPy. Its
-  cost does not depend on the tip's size.
+  every column. Each 1-D dilation is either the lower envelope of parabolas, computed in O(N) per
+  line whatever the tip's size by the algorithm of Felzenszwalb and Huttenlocher ("Distance
+  transforms of sampled functions", Theory of Computing 8, 415 (2012), Algorithm 1), vectorised
+  across the lines with NumPy; or, for windows of up to :data:`WINDOW_LIMIT` pixels (the offsets
+  d with d^2 dx^2 / (2 R) below the cut), the direct maximum over the window, 2 w whole-image
+  passes, which NumPy runs faster than the envelope's Python loop over the pixels of a line.
+  Both are exact; which one runs changes only the time.
 
 Image edges: only sample points inside the image are touched (the sample outside the image is
 unknown), the same as scipy's ``mode="constant", cval=-inf``.
@@ -51,7 +54,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..contact.tips import Parabolic, Spherical, Tip
+from ..contact.tips import Conical, Parabolic, Pyramidal, Spherical, Tip
 from ..samples.sample import MAX_PIXELS, Sample
 from ..validation import check_instance, check_integer, check_nonnegative, check_positive
 
@@ -68,10 +71,11 @@ MAX_WORK = 1 << 28
 #: x) from the apex (or at its full height R for a sphere that fits in that distance).
 DEFAULT_HALF_WIDTH = 32
 
-#: The paraboloid's separable path takes the direct window (2 w whole-image passes) for windows
-#: up to this many pixels from the apex, the O(N) envelope beyond (measured crossover here: the
-#: envelope's Python loop over the N pixels of a line costs about 64 such passes).
-WINDOW_LIMIT = 64
+#: The paraboloid's separable path takes the direct window (2 w whole-image passes, about 3 ns per
+#: pixel per pixel of window here) for windows up to this many pixels from the apex, and the O(N)
+#: envelope beyond (about 0.7 us per pixel in NumPy, whatever the window): the crossover measured
+#: by ``benchmarks/bench_dilation.py``.
+WINDOW_LIMIT = 200
 
 _BISECTIONS = 200
 _DEPTH = 16
@@ -79,8 +83,17 @@ _SCALAR_LINES = 16
 
 
 def _cut_radius(tip: Tip, max_height: float) -> float:
-    """Largest rho in m with profile(rho) <= max_height (bisection on the monotone profile)."""
+    """Largest rho in m with profile(rho) <= max_height: closed forms, else bisection."""
     top = tip.max_profile_radius
+    if isinstance(tip, Parabolic):
+        return min(math.sqrt(2.0 * tip.radius * max_height), top)
+    if isinstance(tip, Spherical):
+        h = min(max_height, tip.radius)
+        return math.sqrt(h * (2.0 * tip.radius - h))
+    if isinstance(tip, Conical):
+        return min(max_height * math.tan(tip.half_angle), top)
+    if isinstance(tip, Pyramidal):
+        return min(max_height * math.tan(tip.face_angle), top)
     if tip._profile(np.array(top)) <= max_height:
         return float(top)
     lo, hi = 0.0, float(top)
@@ -95,6 +108,14 @@ def _cut_radius(tip: Tip, max_height: float) -> float:
     return lo
 
 
+def _half_widths(tip: Tip, dx: float, dy: float | None, max_height: float):
+    """(n_x, n_y, rho_cut): the tip's grid reaches n pixels from the apex along each axis."""
+    rho_cut = _cut_radius(tip, max_height)
+    nx = int(math.floor(rho_cut / dx * (1.0 + 1e-12)))
+    ny = 0 if dy is None else int(math.floor(rho_cut / dy * (1.0 + 1e-12)))
+    return nx, ny, rho_cut
+
+
 def _rho(tip: Tip, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """The distance from the axis at which the profile is read (max-norm for a faceted tip)."""
     if tip.faces == 4:
@@ -104,9 +125,7 @@ def _rho(tip: Tip, u: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 def _tip_grid(tip: Tip, dx: float, dy: float | None, max_height: float) -> np.ndarray:
     """t on the grid (2-D, or 1-D along x if dy is None), clipped at max_height (unchecked)."""
-    rho_cut = _cut_radius(tip, max_height)
-    nx = int(math.floor(rho_cut / dx * (1.0 + 1e-12)))
-    ny = 0 if dy is None else int(math.floor(rho_cut / dy * (1.0 + 1e-12)))
+    nx, ny, rho_cut = _half_widths(tip, dx, dy, max_height)
     pixels = (2 * nx + 1) * (2 * ny + 1)
     if pixels > MAX_TIP_PIXELS:
         raise ValueError(
@@ -172,11 +191,13 @@ def tip_surface(tip, pixel_size, pixel_size_y=None, *, max_height=None) -> np.nd
     return _tip_grid(tip, dx, dy, max_height)
 
 
-def _check_fits(t: np.ndarray, shape: tuple[int, ...], sample: Sample, height: float) -> None:
+def _check_fits(image: Sample, tip: Tip, height: float) -> None:
     """A tip whose footprint at the cut is wider than the image is an error naming ``tip``."""
-    for axis, (k, n, d, name) in enumerate(zip(t.shape[::-1], shape[::-1],
-                                               (sample.pixel_size, sample.pixel_size_y),
-                                               ("x", "y"))):
+    h = image.heights
+    dy = None if h.ndim == 1 else image.pixel_size_y
+    nx, ny, _ = _half_widths(tip, image.pixel_size, dy, height)
+    sides = (2 * nx + 1,) if h.ndim == 1 else (2 * ny + 1, 2 * nx + 1)
+    for k, n, d, name in zip(sides[::-1], h.shape[::-1], (image.pixel_size, dy), ("x", "y")):
         if k > n:
             raise ValueError(
                 f"tip: at the sample's height range ({height:g} m) the tip is {k} pixels "
@@ -186,11 +207,9 @@ def _check_fits(t: np.ndarray, shape: tuple[int, ...], sample: Sample, height: f
 
 def _kernel(image: Sample, tip: Tip, height: float) -> np.ndarray:
     """The tip grid for ``image`` cut at ``height``, checked to fit in the image."""
-    h = image.heights
-    dy = None if h.ndim == 1 else image.pixel_size_y
-    t = _tip_grid(tip, image.pixel_size, dy, height)
-    _check_fits(t, h.shape, image, height)
-    return t
+    _check_fits(image, tip, height)
+    dy = None if image.heights.ndim == 1 else image.pixel_size_y
+    return _tip_grid(tip, image.pixel_size, dy, height)
 
 
 def _offsets(t: np.ndarray, height: float, image_pixels: int):
@@ -268,19 +287,21 @@ def _envelope_vector(g: np.ndarray, a: float) -> np.ndarray:
             idx = np.flatnonzero(pop)
             kk, hqi, oi, ozi = k[idx] - 1, hq[idx], off[idx, None], offz[idx, None]
             while True:  # at most n / _DEPTH passes: every pass pops _DEPTH or stops
-                kb = kk[:, None] - steps[None, :]
-                valid = kb >= 0
-                kb = np.maximum(kb, 0)
+                # the top _DEPTH entries, clipped at the bottom one, whose z = -inf stops it
+                kb = np.maximum(kk[:, None] - steps, 0)
                 vb = v[oi + kb]
-                sb = (hqi[:, None] - hh[oi + vb]) / (2.0 * (q - vb))
-                stay = (sb > z[ozi + kb]) & valid
+                sb = (hqi[:, None] - hh[oi + vb]) / (2 * q - 2 * vb)
+                stay = sb > z[ozi + kb]
                 found = stay.any(axis=1)
-                j = np.argmax(stay, axis=1)[found]
+                j = np.argmax(stay, axis=1)
+                if found.all():
+                    k[idx] = kk - j
+                    s[idx] = sb[np.arange(idx.size), j]
+                    break
+                j = j[found]
                 done = idx[found]
                 k[done] = kk[found] - j
                 s[done] = sb[found, j]
-                if found.all():
-                    break
                 nf = ~found
                 idx, kk, hqi, oi, ozi = idx[nf], kk[nf] - _DEPTH, hqi[nf], oi[nf], ozi[nf]
         k += 1
@@ -323,18 +344,23 @@ def _envelope_scalar(g: np.ndarray, a: float) -> np.ndarray:
     return g[p] - a * (q - p) ** 2
 
 
-def _window_lines(g: np.ndarray, a: float, w: int) -> np.ndarray:
-    """f[l, q] = max_{|d| <= w} [g[l, q + d] - a d^2]: 2 w vectorised passes over the image."""
+def _window_axis0(g: np.ndarray, a: float, w: int) -> np.ndarray:
+    """f[q] = max_{|d| <= w} [g[q + d] - a d^2] along axis 0: 2 w whole-array passes.
+
+    Along axis 0 of a C-ordered array every pass reads and writes contiguous blocks, about three
+    times faster than along the last axis.
+    """
     out = g.copy()
-    for d in range(1, min(w, g.shape[1] - 1) + 1):
+    for d in range(1, min(w, g.shape[0] - 1) + 1):
         c = a * d * d
-        np.maximum(out[:, :-d], g[:, d:] - c, out=out[:, :-d])
-        np.maximum(out[:, d:], g[:, :-d] - c, out=out[:, d:])
+        np.maximum(out[:-d], g[d:] - c, out=out[:-d])
+        np.maximum(out[d:], g[:-d] - c, out=out[d:])
     return out
 
 
-def _parabola_lines(g: np.ndarray, a: float, height: float, method: str) -> np.ndarray:
-    """The exact 1-D paraboloid dilation of every line, by the window or by the envelope.
+def _parabola_axis(g: np.ndarray, axis: int, a: float, height: float,
+                   method: str) -> np.ndarray:
+    """The exact 1-D paraboloid dilation of ``g`` along ``axis``, by the window or the envelope.
 
     Only offsets d with a d^2 < height can win (the cut), so a window of w = sqrt(height / a)
     pixels is exact. Up to :data:`WINDOW_LIMIT` pixels its 2 w whole-image passes are faster in
@@ -342,8 +368,11 @@ def _parabola_lines(g: np.ndarray, a: float, height: float, method: str) -> np.n
     """
     w = int(math.floor(math.sqrt(height / a) * (1.0 + 1e-12))) if height > 0 else 0
     if method == "window" or (method == "auto" and w <= WINDOW_LIMIT):
-        return _window_lines(g, a, w)
-    return _envelope_lines(np.ascontiguousarray(g), a)
+        moved = np.ascontiguousarray(np.moveaxis(g, axis, 0))
+        return np.moveaxis(_window_axis0(moved, a, w), 0, axis)
+    moved = np.ascontiguousarray(np.moveaxis(g, axis, -1))
+    out = _envelope_lines(moved.reshape(-1, moved.shape[-1]), a).reshape(moved.shape)
+    return np.moveaxis(out, -1, axis)
 
 
 def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height: float,
@@ -353,10 +382,10 @@ def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height
     The cut at ``height`` (the sample's range) stays exact for the second pass: the first one
     leaves the maximum unchanged and raises the minimum, so its range is at most ``height``.
     """
-    if h.ndim == 1:
-        return _parabola_lines(h[None, :], dx * dx / (2.0 * radius), height, method)[0]
-    out = _parabola_lines(h, dx * dx / (2.0 * radius), height, method)
-    return _parabola_lines(out.T, dy * dy / (2.0 * radius), height, method).T
+    out = _parabola_axis(h, h.ndim - 1, dx * dx / (2.0 * radius), height, method)
+    if h.ndim == 2:
+        out = _parabola_axis(out, 0, dy * dy / (2.0 * radius), height, method)
+    return np.ascontiguousarray(out)
 
 
 def _range(h: np.ndarray) -> float:
@@ -411,27 +440,27 @@ def dilate(sample, tip) -> Sample:
     sample, tip = _checked("sample", sample, tip)
     h = sample.heights
     height = _range(h)
-    t = _kernel(sample, tip, height)
     if isinstance(tip, Parabolic):
+        _check_fits(sample, tip, height)
         out = _dilate_parabolic(h, tip.radius, sample.pixel_size, sample.pixel_size_y, height)
     else:
-        out = _dilate_general(h, t, height)
+        out = _dilate_general(h, _kernel(sample, tip, height), height)
     return replace(sample, heights=out)
 
 
 def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
     """min_u [i(x - u) + t(u)] = -max_u [-i(x + u) - t(u)] for a symmetric tip."""
     height = _range(i)
-    t = _kernel(image, tip, height)
     if isinstance(tip, Parabolic):
+        _check_fits(image, tip, height)
         return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y, height)
-    return -_dilate_general(-i, t, height)
+    return -_dilate_general(-i, _kernel(image, tip, height), height)
 
 
 def erode(image, tip) -> Sample:
     """The reconstruction r(x) = min_u [i(x - u) + t(u)] of the surface from its image.
 
-    Villarrubia's surface reconstruction (J. Res. NIST 102, 425 (1997), Eq. 10), a grey-scale
+    Villarrubia's surface reconstruction (J. Res. NIST 102, 425 (1997)), a grey-scale
     erosion by the tip. Applied to an image of a surface s, ``erode(dilate(s, tip), tip)`` is the
     morphological closing of s: it is >= s everywhere (narrow holes the tip cannot enter stay
     bridged), and equals s where :func:`certainty_map` is True.
@@ -464,7 +493,7 @@ def certainty_map(image, tip) -> np.ndarray:
 
     With the apex at x0 the tip touches the reconstruction r (:func:`erode`) at the points
     x0 + u where r(x0 + u) - t(u) = i(x0). Where it touches at a single point, that point of r is
-    certain: the true surface is there (Villarrubia, J. Res. NIST 102, 425 (1997), Sec. 6).
+    certain: the true surface is there (Villarrubia, J. Res. NIST 102, 425 (1997)).
     Elsewhere r is only an upper bound of the surface. Equality is tested to a few units of
     round-off of the image's heights. Work as the general path of :func:`dilate`
     (:data:`MAX_WORK`), for every tip.
@@ -519,7 +548,7 @@ def estimate_tip_radius(image, *, peaks=1) -> float:
     >= -dy^2 / R. Each local maximum therefore bounds R from above,
     R <= dx^2 / (-second difference), with equality at a peak made by a feature sharper than the
     tip, where the image is the inverted tip itself. This is the paraboloid form of blind tip
-    estimation (Villarrubia, J. Res. NIST 102, 425 (1997), Sec. 7: the estimate is an upper
+    estimation (Villarrubia, J. Res. NIST 102, 425 (1997): the estimate is an upper
     bound of the tip, exact where the sample has sharp spikes).
 
     Parameters

@@ -19,8 +19,8 @@ cropping, resampling and unit conversion are one call each and keep the pixel si
 from .profiles import PROFILES, REAL_LINE_ROW, profile
 from .readers import REAL_IMAGE, SUFFIXES, channels, from_file, load, real_image, save_gwy
 from .sample import MAX_LINE_PIXELS, MAX_PIXELS, Sample
-from .synthetic import grating, particles, rough_surface, step
+from .synthetic import fibres, grating, particles, rough_surface, step, terraces
 
-__all__ = ["Sample", "MAX_PIXELS", "MAX_LINE_PIXELS", "step", "grating", "rough_surface",
-           "particles", "PROFILES", "profile", "REAL_LINE_ROW", "load", "channels", "save_gwy",
-           "SUFFIXES", "from_file", "REAL_IMAGE", "real_image"]
+__all__ = ["Sample", "MAX_PIXELS", "MAX_LINE_PIXELS", "step", "grating", "terraces",
+           "rough_surface", "particles", "fibres", "PROFILES", "profile", "REAL_LINE_ROW",
+           "load", "channels", "save_gwy", "SUFFIXES", "from_file", "REAL_IMAGE", "real_image"]

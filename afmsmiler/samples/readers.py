@@ -262,8 +262,8 @@ def _spm_scan(p: Path):
 
 
 def _read_spm(p: Path, channel: str):
-    from AFMReader.spm import spm_pixel_to_nm_scaling
     scan, images = _spm_scan(p)
+    from AFMReader.spm import spm_pixel_to_nm_scaling
     names = [im["_name"] for im in images]
     channel = _pick(p, channel, names)
     image = scan.get_channel(channel)
@@ -472,6 +472,7 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
     >>> s.shape, s.pixel_size, s.unit
     ((512, 512), 3.90625e-09, 'm')
     """
+    check_instance("unit", unit, str)
     p = _path(path)
     if p.suffix.lower() in (".npy", ".txt", ".csv", ".asc"):
         check_instance("channel", channel, str)
