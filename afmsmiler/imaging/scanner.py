@@ -7,7 +7,8 @@ tilt). It
 
 1. adds the tilt's plane to the sample and dilates the result by the tip
    (:func:`afmsmiler.imaging.dilation.dilate`): the apex surface, the surface the tip's apex
-   follows;
+   follows (only over the part of the sample the scan can feel: its bounding box widened by the
+   tip's reach at the sample's height range, which gives the whole dilation's values there);
 2. lays the scan grid on the sample: line i, pixel j of the image is at
    (u_j, v_i) = ((j + 1/2) dx - S_x / 2, (i + 1/2) dy - S_y / 2) in the scan frame, with
    dx = S_x / pixels and dy = S_y / lines (the scan range covers pixels x lines square cells, as
@@ -471,8 +472,9 @@ class Scan:
 
     Notes
     -----
-    The constructor checks everything and dilates the sample (some 10 ms for 256 x 256 with a
-    paraboloid), so that a tip too wide for the image is refused at once; the sampling of the
+    The constructor checks everything and dilates the part of the sample the scan can feel (a
+    few ms for 256 x 256 with a paraboloid), so that a tip too wide for the image is refused at
+    once; the sampling of the
     apex surface (:attr:`plan`) and :meth:`Mode.start` run on the first call of :meth:`step`,
     :meth:`lines` or :meth:`run`. One line per :meth:`step` keeps a notebook responsive.
 
