@@ -21,7 +21,6 @@ Edit and Correction" (Mark Scars / Remove Scars), https://gwyddion.net/documenta
 """
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
@@ -101,8 +100,7 @@ def _weights(sample: Sample, mask, masking: str) -> np.ndarray | None:
 
 def _with_heights(sample: Sample, heights: np.ndarray, what: str) -> Sample:
     """``sample`` with new values on the same grid (every other field kept)."""
-    name = f"{sample.name}, {what}" if sample.name else what
-    return replace(sample, heights=heights, name=name)
+    return sample.with_heights(heights, f"{sample.name}, {what}" if sample.name else what)
 
 
 def fit_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Plane:
