@@ -182,6 +182,8 @@ def test_flatten_lines_rejects_bad_settings_naming_them():
         level_plane(s, masking="exclusive")
     with pytest.raises(ValueError, match="mask"):
         level_plane(s, np.ones((4, 6), bool))
+    with pytest.raises(ValueError, match="one line"):  # a diagonal fixes no plane
+        level_plane(Sample(np.zeros((5, 5)), DX), np.eye(5, dtype=bool), masking="include")
     with pytest.raises(ValueError, match="sample"):
         flatten_lines(Sample(np.zeros(6), DX))
     with pytest.raises(TypeError, match="sample"):
