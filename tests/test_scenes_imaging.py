@@ -199,3 +199,39 @@ def test_real_viewer_takes_the_meshes_and_a_scan_does_not_grow_the_scene():
     finally:
         close_viewer()
     assert not viewer.viewer_running()
+
+
+def test_a_real_scan_is_drawn_line_by_line_with_the_tip_where_the_scanner_says():
+    """With module (f)'s scanner (constant force through module (c)'s loop): one image mesh per
+    finished line, the tip moved by transforms to Scan.position, the last mesh the result."""
+    from afmsmiler.controller import ContactLoop
+    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scanner import Scan, ScanSettings
+    from afmsmiler.samples import particles
+
+    sample = particles((24, 32), 4e-9, count=3, radius=10e-9, seed=1)
+    settings = ScanSettings(32 * 4e-9, scan_size_y=24 * 4e-9, pixels=32, lines=24,
+                            scan_speed=1e-3)
+    tip = Parabolic(10e-9)
+    run = Scan(sample, tip, ConstantForce(ContactLoop(kp=0.3, ki=5e3)), settings)
+    sc, rec = _scene(sample, tip=tip)
+    rec.calls.clear()
+    for record in run.lines():
+        result = run.result
+        for column in range(32):  # the tip along the line just scanned
+            x, y = run.position(record.row, column)
+            z = float(result.images["height trace"][record.row, column])
+            sc.move_tip(x, y, z)
+            sc.show_scan(result)
+    image = run.result.channels["height trace"]
+    sent = [c for c in rec.calls if c[1] == "/img/image" and c[0] == "set_object"]
+    assert len(sent) == 23  # lines 2 to 24
+    v = _geometry(rec, "image").vertices.reshape(24, 32, 3).astype(float)
+    np.testing.assert_allclose(v[..., 2] * sc.unit / sc.exaggeration,
+                               image.heights - image.heights.min(), rtol=1e-5,
+                               atol=1e-6 * np.ptp(image.heights))
+    m = rec.log["/img/tip"]["transform"]
+    x, y = run.position(23, 31)
+    np.testing.assert_allclose(m[:2, 3] * sc.unit, [sc.sample_origin[0] + x,
+                                                    sc.sample_origin[1] + y], rtol=1e-6)
+    assert rec.log["/img/tip"]["n_objects"] == 1
