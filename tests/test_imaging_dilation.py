@@ -203,6 +203,18 @@ def test_parabolic_envelope_on_adversarial_lines():
         np.testing.assert_allclose(scalar, ref, rtol=0, atol=1e-13)
 
 
+@pytest.mark.parametrize("n", [2, 7, 8])
+def test_window_up_to_the_whole_line(n):
+    """The direct window for every w from 0 to beyond the line (edges, 2 d >= n)."""
+    g = np.random.default_rng(n).normal(size=(n, 3))
+    x = np.arange(n)
+    for w in range(n + 2):
+        d = x[:, None] - x[None, :]
+        cost = np.where(abs(d) <= w, 0.3 * d * d, np.inf)
+        ref = np.max(g[None, :, :] - cost[:, :, None], axis=1)
+        np.testing.assert_array_equal(dilation._window_axis0(g, 0.3, w), ref)
+
+
 def test_flat_sample_is_its_own_image():
     h = np.full((8, 9), 3e-9)
     for tip in TIPS:
