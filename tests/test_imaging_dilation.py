@@ -229,6 +229,11 @@ def test_dilate_rejects_bad_input(monkeypatch):
         dilate(h, Parabolic())
     with pytest.raises(TypeError, match="tip"):
         dilate(sample, 20e-9)
+    phase = Sample(h, 1e-9, channel="Phase", unit="deg")
+    with pytest.raises(ValueError, match="sample must hold heights in m.*'Phase'.*'deg'"):
+        dilate(phase, Parabolic())
+    with pytest.raises(ValueError, match="image must hold heights"):
+        estimate_tip_radius(phase)
     # a tip wider than the image at the sample's height range: sqrt(2 R H) = 45 nm > 19 nm
     with pytest.raises(ValueError, match="tip.*wider than the image"):
         dilate(sample, Parabolic(radius=20e-9))

@@ -401,8 +401,18 @@ def _range(h: np.ndarray) -> float:
     return float(np.max(h) - np.min(h))
 
 
-def _checked(name: str, image, tip) -> tuple[Sample, Tip]:
+def _check_heights(name: str, image) -> Sample:
+    """A Sample of heights in m: a tip dilates topography, not a deflection or phase channel."""
     check_instance(name, image, Sample)
+    unit = getattr(image, "unit", "m")
+    if unit != "m":
+        raise ValueError(f"{name} must hold heights in m, got a "
+                         f"{getattr(image, 'channel', '')!r} channel in {unit!r}")
+    return image
+
+
+def _checked(name: str, image, tip) -> tuple[Sample, Tip]:
+    _check_heights(name, image)
     check_instance("tip", tip, Tip)
     return image, tip
 
@@ -434,7 +444,8 @@ def dilate(sample, tip) -> Sample:
     TypeError
         If ``sample`` is not a Sample or ``tip`` not a Tip.
     ValueError
-        Naming ``tip``, if at the sample's height range the tip is wider than the image, or (not
+        Naming ``sample`` if its values are not heights in m (``unit`` other than "m");
+        naming ``tip``, if at the sample's height range the tip is wider than the image, or (not
         a paraboloid) the work exceeds :data:`MAX_WORK`.
 
     Examples
@@ -581,7 +592,7 @@ def estimate_tip_radius(image, *, peaks=1) -> float:
     ValueError
         If ``peaks`` is out of range or the image has fewer than 3 pixels along x.
     """
-    check_instance("image", image, Sample)
+    _check_heights("image", image)
     peaks = check_integer("peaks", peaks, 1, 10_000)
     i = image.heights
     if i.shape[-1] < 3 or (i.ndim == 2 and i.shape[0] < 3):
