@@ -133,6 +133,8 @@ def test_tip_surface_rejects_bad_input():
         tip_surface(Parabolic(), 1e-9, max_height=-1e-9)
     with pytest.raises(ValueError, match="max_height"):  # a grid beyond MAX_TIP_PIXELS
         tip_surface(Conical(half_angle=1.5), 1e-9, max_height=1e-6)
+    with pytest.raises(ValueError, match="pixel_size_y"):  # the same, from a tiny pixel
+        tip_surface(Parabolic(), 1e-9, 1e-300)
 
 
 # --- dilate: equal to scipy for every tip -----------------------------------------------------
@@ -288,8 +290,13 @@ def test_sphere_width_limits():
         2 * r + 2 * math.sqrt(2 * r * sharp), rel=1e-4)
     assert sphere_apparent_width(r, Spherical(radius=40e-9)) == pytest.approx(4 * 20e-9)
     assert sphere_apparent_width(r, Spherical(radius=4e-9)) == pytest.approx(28e-9)
+    # a vanishing particle: the closed form stays free of cancellation (no 0 / 0)
+    assert sphere_apparent_width(1e-300, Parabolic(radius=20e-9)) == pytest.approx(
+        4 * math.sqrt(1e-300 * 20e-9), rel=1e-9)
     with pytest.raises(ValueError, match="particle_radius"):
         sphere_apparent_width(0.0, Parabolic())
+    with pytest.raises(ValueError, match="particle_radius"):
+        sphere_apparent_width(1e300, Parabolic())
     with pytest.raises(TypeError, match="tip"):
         sphere_apparent_width(r, Conical())
 

@@ -54,9 +54,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..contact.tips import Conical, Parabolic, Pyramidal, Spherical, Tip
+from ..contact.tips import MAX_EXTENT, Conical, Parabolic, Pyramidal, Spherical, Tip
 from ..samples.sample import MAX_PIXELS, Sample
-from ..validation import check_instance, check_integer, check_nonnegative, check_positive
+from ..validation import (check_instance, check_integer, check_nonnegative, check_positive,
+                          check_range)
 
 __all__ = ["tip_surface", "dilate", "erode", "certainty_map", "estimate_tip_radius",
            "sphere_apparent_width", "MAX_TIP_PIXELS", "MAX_WORK", "DEFAULT_HALF_WIDTH",
@@ -78,6 +79,7 @@ DEFAULT_HALF_WIDTH = 32
 WINDOW_LIMIT = 200
 
 _BISECTIONS = 200
+_MAX_HALF_WIDTH = 2.0 ** 40
 _DEPTH = 16
 _SCALAR_LINES = 16
 
@@ -111,9 +113,11 @@ def _cut_radius(tip: Tip, max_height: float) -> float:
 def _half_widths(tip: Tip, dx: float, dy: float | None, max_height: float):
     """(n_x, n_y, rho_cut): the tip's grid reaches n pixels from the apex along each axis."""
     rho_cut = _cut_radius(tip, max_height)
-    nx = int(math.floor(rho_cut / dx * (1.0 + 1e-12)))
-    ny = 0 if dy is None else int(math.floor(rho_cut / dy * (1.0 + 1e-12)))
-    return nx, ny, rho_cut
+
+    def pixels(d):  # capped, so that a tiny pixel size cannot overflow the conversion
+        return int(math.floor(min(rho_cut / d * (1.0 + 1e-12), _MAX_HALF_WIDTH)))
+
+    return pixels(dx), 0 if dy is None else pixels(dy), rho_cut
 
 
 def _rho(tip: Tip, u: np.ndarray, v: np.ndarray) -> np.ndarray:
@@ -129,9 +133,10 @@ def _tip_grid(tip: Tip, dx: float, dy: float | None, max_height: float) -> np.nd
     pixels = (2 * nx + 1) * (2 * ny + 1)
     if pixels > MAX_TIP_PIXELS:
         raise ValueError(
-            f"max_height: a tip cut at {max_height:g} m is {2 * rho_cut:g} m wide, "
-            f"{2 * nx + 1} x {2 * ny + 1} pixels; at most {MAX_TIP_PIXELS} pixels "
-            f"(lower max_height or use larger pixels)")
+            f"max_height, pixel_size, pixel_size_y: a tip cut at max_height = {max_height:g} m "
+            f"is {2 * rho_cut:g} m wide, {2 * nx + 1} x {2 * ny + 1} pixels of pixel_size = "
+            f"{dx:g} m x pixel_size_y = {dy if dy is not None else dx:g} m; at most "
+            f"{MAX_TIP_PIXELS} pixels (lower max_height or use larger pixels)")
     u = np.arange(-nx, nx + 1) * dx
     v = np.arange(-ny, ny + 1) * (0.0 if dy is None else dy)
     rho = _rho(tip, u[None, :], v[:, None])
@@ -635,7 +640,8 @@ def sphere_apparent_width(particle_radius, tip) -> float:
     Parameters
     ----------
     particle_radius : float
-        The sphere's radius r in m, > 0.
+        The sphere's radius r in m, in (0, 100] (the tips'
+        :data:`~afmsmiler.contact.tips.MAX_EXTENT`).
     tip : Parabolic or Spherical
         The tip.
 
@@ -649,13 +655,16 @@ def sphere_apparent_width(particle_radius, tip) -> float:
     TypeError
         If ``tip`` is neither a Parabolic nor a Spherical tip.
     ValueError
-        If ``particle_radius`` is not finite and positive.
+        If ``particle_radius`` is outside (0, 100] m.
     """
-    r = check_positive("particle_radius", particle_radius, "m")
+    r = check_range("particle_radius", particle_radius, 0.0, MAX_EXTENT, "m", low_inclusive=False)
     check_instance("tip", tip, (Parabolic, Spherical))
     big_r = tip.radius
     if isinstance(tip, Spherical):
         return 4.0 * math.sqrt(big_r * r) if big_r >= r else 2.0 * (r + big_r)
-    c = (math.sqrt(big_r * big_r + 8.0 * r * big_r) - big_r) / (4.0 * r)
-    m = math.sqrt(max(1.0 - c * c, 0.0)) / c
+    # c = (sqrt(R^2 + 8 r R) - R) / (4 r) and 1 - c, written free of cancellation
+    root = math.sqrt(big_r * big_r + 8.0 * r * big_r)
+    c = 2.0 * big_r / (root + big_r)
+    one_minus_c = 8.0 * r * big_r / (root + big_r) ** 2
+    m = math.sqrt(one_minus_c * (1.0 + c)) / c
     return 2.0 * m * (big_r + r * c)
