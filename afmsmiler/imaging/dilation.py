@@ -54,14 +54,14 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..contact.tips import MAX_EXTENT, Conical, Parabolic, Pyramidal, Spherical, Tip
+from ..contact.tips import MAX_EXTENT, RADIUS, Conical, Parabolic, Pyramidal, Spherical, Tip
 from ..samples.sample import MAX_PIXELS, Sample
 from ..validation import (check_instance, check_integer, check_nonnegative, check_positive,
                           check_range)
 
 __all__ = ["tip_surface", "dilate", "erode", "certainty_map", "estimate_tip_radius",
-           "sphere_apparent_width", "MAX_TIP_PIXELS", "MAX_WORK", "DEFAULT_HALF_WIDTH",
-           "WINDOW_LIMIT"]
+           "sphere_apparent_width", "tip_radius_from_width", "MAX_TIP_PIXELS", "MAX_WORK",
+           "DEFAULT_HALF_WIDTH", "WINDOW_LIMIT"]
 
 #: The most pixels of a tip grid (:func:`tip_surface`): 2048 x 2048, 32 MB as float64.
 MAX_TIP_PIXELS = MAX_PIXELS
@@ -668,3 +668,58 @@ def sphere_apparent_width(particle_radius, tip) -> float:
     one_minus_c = 8.0 * r * big_r / (root + big_r) ** 2
     m = math.sqrt(one_minus_c * (1.0 + c)) / c
     return 2.0 * m * (big_r + r * c)
+
+
+def tip_radius_from_width(particle_radius, width) -> float:
+    """The paraboloid tip radius R in m that images a sphere of radius r with apparent width W.
+
+    Inverts :func:`sphere_apparent_width` for a :class:`~afmsmiler.contact.tips.Parabolic` tip
+    (W grows monotonically with R, from 2 r for a sharp tip; for R >> r, R -> W^2 / (16 r)), by
+    Brent's method on log R over the tips' radius range.
+
+    Parameters
+    ----------
+    particle_radius : float
+        The sphere's radius r in m, in (0, 100] (its height on the substrate is 2 r).
+    width : float
+        Its apparent width W in m (the image's width at the substrate's level).
+
+    Returns
+    -------
+    float
+        R in m.
+
+    Raises
+    ------
+    ValueError
+        If ``particle_radius`` is out of range, or ``width`` is not what a paraboloid of radius
+        1 pm to 1 cm (:data:`~afmsmiler.contact.tips.RADIUS`) gives: a width of 2 r or less
+        means a tip sharper than any (or a particle flattened by the tip).
+
+    Examples
+    --------
+    >>> from afmsmiler.contact.tips import Parabolic
+    >>> w = sphere_apparent_width(10e-9, Parabolic(radius=20e-9))
+    >>> round(tip_radius_from_width(10e-9, w) * 1e9, 9)
+    20.0
+    """
+    from scipy.optimize import brentq
+
+    r = check_range("particle_radius", particle_radius, 0.0, MAX_EXTENT, "m", low_inclusive=False)
+    w = check_positive("width", width, "m")
+    low, high = RADIUS.low, RADIUS.high
+    w_low = sphere_apparent_width(r, Parabolic(radius=low))
+    w_high = sphere_apparent_width(r, Parabolic(radius=high))
+    if not w_low <= w <= w_high:
+        raise ValueError(f"width must be in [{w_low:g}, {w_high:g}] m for a sphere of "
+                         f"particle_radius {r:g} m and a paraboloid of radius {low:g} to "
+                         f"{high:g} m, got {w:g}")
+
+    def radius(log_r):  # exp(log(R)) may round beyond the range's ends
+        return min(max(math.exp(log_r), low), high)
+
+    def excess(log_r):
+        return sphere_apparent_width(r, Parabolic(radius=radius(log_r))) - w
+
+    return radius(brentq(excess, math.log(low), math.log(high), xtol=1e-14,
+                         rtol=4 * np.finfo(float).eps, maxiter=200))
