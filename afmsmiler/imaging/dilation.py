@@ -38,14 +38,16 @@ Two paths compute the same image:
   dilation is a 1-D dilation by the parabola u^2 / (2 R) along every row followed by one along
   every column. Each 1-D dilation is either the lower envelope of parabolas, computed in O(N) per
   line whatever the tip's size by the algorithm of Felzenszwalb and Huttenlocher ("Distance
-  transforms of sampled functions", Theory of Computing 8, 415 (2012), Algorithm 1), vectorised
+  transforms of sampled functions", Theory of Computing 8, 415 (2012)), vectorised
   across the lines with NumPy; or, for windows of up to :data:`WINDOW_LIMIT` pixels (the offsets
   d with d^2 dx^2 / (2 R) below the cut), the direct maximum over the window, w whole-image
   passes, which NumPy runs faster than the envelope's Python loop over the pixels of a line.
   Both are exact; which one runs changes only the time.
 
 Image edges: only sample points inside the image are touched (the sample outside the image is
-unknown), the same as scipy's ``mode="constant", cval=-inf``.
+unknown), the same as scipy's ``mode="constant", cval=-inf``. A tip wider than the image where it
+has risen by H (its footprint at the cut) is refused with a ValueError naming ``tip``: such an
+image would show the tip's shape more than the sample's.
 """
 from __future__ import annotations
 
@@ -257,7 +259,7 @@ def _envelope_lines(g: np.ndarray, a: float) -> np.ndarray:
     """f[l, q] = max_p [g[l, p] - a (q - p)^2] along the last axis (Felzenszwalb-Huttenlocher).
 
     The lower envelope of the parabolas (q - p)^2 + h(p), h = -g / a (Felzenszwalb and
-    Huttenlocher, Theory of Computing 8, 415 (2012), Algorithm 1), built for all lines at once:
+    Huttenlocher, Theory of Computing 8, 415 (2012)), built for all lines at once:
     a loop over q in Python, each step vectorised over the lines. The lines whose stack must pop
     test the top :data:`_DEPTH` entries at once, so a step rarely takes more than one extra pass.
     The winning parabola at each q is found for all lines in one ``searchsorted`` and the value
@@ -327,7 +329,7 @@ def _envelope_vector(g: np.ndarray, a: float) -> np.ndarray:
 
 
 def _envelope_scalar(g: np.ndarray, a: float) -> np.ndarray:
-    """One line of :func:`_envelope_lines` in plain Python floats (Algorithm 1 as printed).
+    """One line of :func:`_envelope_lines` in plain Python floats, the paper's algorithm as printed.
 
     For a few lines NumPy's per-call cost makes the vectorised loop slower than this one.
     """
@@ -475,12 +477,13 @@ def dilate(sample, tip) -> Sample:
 
 
 def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
-    """min_u [i(x - u) + t(u)] = -max_u [-i(x + u) - t(u)] for a symmetric tip."""
+    """min_u [i(x - u) + t(u)] = -max_u [-i(x + u) - t(-u)]: a dilation by the reflected tip."""
     height = _range(i)
     if isinstance(tip, Parabolic):
         _check_fits(image, tip, height)
         return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y, height)
-    return -_dilate_general(-i, _kernel(image, tip, height), height)
+    t = _kernel(image, tip, height)
+    return -_dilate_general(-i, t[(slice(None, None, -1),) * t.ndim], height)  # t(-u)
 
 
 def erode(image, tip) -> Sample:
@@ -496,7 +499,7 @@ def erode(image, tip) -> Sample:
     image : Sample
         The image i in m (1-D or 2-D), e.g. from :func:`dilate` or a scan.
     tip : Tip
-        The tip that made it (symmetric, as all tips of module (d) are).
+        The tip that made it.
 
     Returns
     -------
@@ -547,7 +550,7 @@ def certainty_map(image, tip) -> np.ndarray:
     i = image.heights
     height = _range(i)
     t = _kernel(image, tip, height)
-    r = -_dilate_general(-i, t, height)
+    r = -_dilate_general(-i, t[(slice(None, None, -1),) * t.ndim], height)  # as erode
     tol = 8.0 * np.finfo(float).eps * (float(np.max(np.abs(i))) + height)
     # the apex term (u = 0) first, then every other tip pixel below the cut
     contacts = (r >= i - tol).astype(np.int64)
