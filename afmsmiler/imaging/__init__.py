@@ -10,7 +10,7 @@
 from .corrections import (Plane, fit_plane, flatten_lines, level_plane, mark_scars, mask_features,
                           remove_scars)
 from .dilation import (certainty_map, dilate, erode, estimate_tip_radius, sphere_apparent_width,
-                       tip_surface)
+                       tip_radius_from_width, tip_surface)
 from .modes import ConstantForce, ConstantHeight, Crash, Mode, ModeLine, ScanPlan
 from .modes import PARAMETERS as MODE_PARAMETERS
 from .scanner import PARAMETERS as SCAN_PARAMETERS
@@ -18,7 +18,7 @@ from .scanner import LineRecord, Scan, ScanResult, ScanSettings, scan
 from .statistics import Histogram, Profile, histogram, line_profile, ra, rms
 
 __all__ = ["tip_surface", "dilate", "erode", "certainty_map", "estimate_tip_radius",
-           "sphere_apparent_width", "ScanSettings", "Scan", "ScanResult", "LineRecord", "scan",
+           "sphere_apparent_width", "tip_radius_from_width", "ScanSettings", "Scan", "ScanResult", "LineRecord", "scan",
            "SCAN_PARAMETERS", "Mode", "ScanPlan", "ModeLine", "Crash", "ConstantForce",
            "ConstantHeight", "MODE_PARAMETERS", "Plane", "fit_plane", "level_plane",
            "flatten_lines", "mask_features", "mark_scars", "remove_scars", "rms", "ra",
