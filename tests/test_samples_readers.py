@@ -278,6 +278,7 @@ def test_jpk_image_matches_afmreader_and_its_tags():
         tags = {t.code: t.value for t in tif.pages[0].tags.values()}
         assert tags[32843] == "bottomUp" and (tags[32838], tags[32839]) == (256, 256)
         assert img.pixel_size == pytest.approx(tags[32834] / tags[32838], rel=1e-15)
+        assert img.pixel_size_y == pytest.approx(tags[32835] / tags[32839], rel=1e-15)
         for page, channel, unit in ((6, "height_trace", "m"), (9, "phase_trace", "deg"),
                                     (10, "error_trace", "V")):
             t = {tag.code: tag.value for tag in tif.pages[page].tags.values()}
@@ -344,7 +345,8 @@ def test_gwy_made_by_gwyddion_matches_gwyfile_afmreader_and_scifireaders():
         np.testing.assert_array_equal(img.heights, field.data)
         assert img.pixel_size == img.pixel_size_y == pytest.approx(1e-5 / 255, rel=1e-15)
     img = samples.load(GWY)
-    assert img.channel == "HeightRetrace"
+    assert img.channel == "HeightRetrace" and img.metadata["ScanSize"] == "1e-05"
+    assert img.metadata["MicroscopeModel"] == "Cypher" and img.metadata["xres"] == 256
     nm, px_nm = load_gwy(GWY, "HeightRetrace")
     np.testing.assert_allclose(img.heights, nm * 1e-9, rtol=1e-15)
     assert px_nm == pytest.approx(1e4 / 255, rel=1e-12)
@@ -470,8 +472,7 @@ def test_an_unreadable_file_is_named(tmp_path, monkeypatch):
 
 
 def test_files_of_the_afmreader_only_formats_are_checked_first(tmp_path):
-    # no small real .ibw, .jpk or .asd file with a licence that allows it was found (see
-    # tests/data/README.md): these check the pre-flight checks on files made here
+    # files made here, beside the real ones: a TIFF without JPK's tags, headers cut short
     import tifffile
     plain = tmp_path / "plain.jpk"  # a TIFF without JPK's channels
     tifffile.imwrite(plain, np.zeros((8, 8), np.float32))

@@ -357,12 +357,17 @@ def _read_gwy(p: Path, channel: str):
     from gwyfile.util import get_datafields
     _gwy_check(p)
     try:
-        fields = get_datafields(gwyfile.load(str(p)))
+        container = gwyfile.load(str(p))
+        fields = get_datafields(container)
     except Exception as exc:  # gwyfile raises struct.error, ValueError, ... on a corrupt file
         raise ValueError(f"{p}: not a readable Gwyddion file ({type(exc).__name__}: {exc})"
                          ) from None
     channel = _pick(p, channel, list(fields))
     field = fields[channel]
+    # the instrument's metadata that Gwyddion keeps beside the channel ("/0/meta")
+    index = next((key[:-len("/data")] for key, value in container.items()
+                  if value is field and key.endswith("/data")), None)
+    kept = container.get(f"{index}/meta") if index is not None else None
     try:
         values = np.array(field.data, dtype=float)
     except ValueError:
@@ -374,8 +379,9 @@ def _read_gwy(p: Path, channel: str):
         raise ValueError(f"{p}: channel {channel!r} must have lateral unit 'm' and values in "
                          f"one of {sorted(_FILE_UNITS)}, got {xy!r} and {z!r}")
     unit, scale = _FILE_UNITS[z]
-    meta = {"xres": field["xres"], "yres": field["yres"], "xreal": field.xreal,
-            "yreal": field.yreal, "si_unit_xy": xy, "si_unit_z": z}
+    meta = {str(k): v for k, v in kept.items()} if hasattr(kept, "items") else {}
+    meta.update({"xres": field["xres"], "yres": field["yres"], "xreal": field.xreal,
+                 "yreal": field.yreal, "si_unit_xy": xy, "si_unit_z": z})
     return (values * scale, field.xreal / values.shape[1], field.yreal / values.shape[0],
             channel, unit, meta)
 
@@ -388,6 +394,9 @@ def _jpk_channels(p: Path) -> dict:
     units = {}
     try:
         with tifffile.TiffFile(str(p)) as tif:
+            first = {tag.code: tag.value for tag in tif.pages[0].tags.values()}
+            # grid-uLength / grid-iLength along the lines, grid-vLength / grid-jLength across
+            grid = tuple(first.get(code) for code in (32834, 32838, 32835, 32839))
             for page in tif.pages[1:]:  # the first page is a thumbnail
                 tags = {tag.code: tag.value for tag in page.tags.values()}
                 if 32848 not in tags:
@@ -400,6 +409,15 @@ def _jpk_channels(p: Path) -> dict:
     except Exception as exc:
         raise ValueError(f"{p}: not a readable JPK image ({type(exc).__name__}: {exc})"
                          ) from None
+    if units:
+        try:
+            dx, dy = float(grid[0]) / int(grid[1]), float(grid[2]) / int(grid[3])
+        except (TypeError, ValueError, ZeroDivisionError):
+            dx = dy = float("nan")
+        if not (0 < dx < 1 and 0 < dy < 1):
+            raise ValueError(f"{p}: the JPK grid tags (lengths in m over pixels) must give "
+                             f"positive pixel sizes, got {grid}")
+        units["_pixel"] = (dx, dy)
     return units
 
 
@@ -455,6 +473,7 @@ def _read_jpk(p: Path, channel: str):
     _quiet()
     from AFMReader import jpk
     units = _jpk_channels(p)
+    dx, dy = units.pop("_pixel", (None, None))
     channel = _pick(p, channel, list(units))
     unit, scale = _FILE_UNITS.get(units[channel], (None, None))
     if unit is None:
@@ -466,7 +485,8 @@ def _read_jpk(p: Path, channel: str):
         raise ValueError(f"{p}: {exc}") from None
     if units[channel] == "m":  # AFMReader gives heights and amplitudes in nm
         scale = 1e-9
-    return np.asarray(values, dtype=float) * scale, px_nm * 1e-9, px_nm * 1e-9, channel, unit, {}
+    # the pixel sizes of the grid tags, as AFMReader's scaling along the lines (in nm)
+    return np.asarray(values, dtype=float) * scale, dx, dy, channel, unit, {}
 
 
 def _read_asd(p: Path, channel: str):
@@ -666,7 +686,7 @@ def channels(path) -> list[str]:
     if suffix == ".ibw":
         return _ibw_channels(_ibw_wave(p))
     if suffix == ".jpk":
-        return list(_jpk_channels(p))
+        return [name for name in _jpk_channels(p) if name != "_pixel"]
     return _asd_header(p)["_channels"]
 
 
