@@ -259,6 +259,30 @@ def test_ibw_asylum_image_matches_igor_and_scifireaders():
         samples.load(IBW, "PhaseRetracerace")
 
 
+def test_ibw_units_and_orientation_follow_gwyddion(tmp_path):
+    """Gwyddion's igorfile.c (igor_read_data_field, channel_title_to_units): an image is
+    n_dim[0] x n_dim[1] points with x fast, xreal = sfA[0] * xres, then inverted about the x
+    axis (first stored line at the bottom), as load() and AFMReader orient the rows (tested
+    above); units by the channel's name after a "DAC" or "Nap" prefix:
+    Height, ZSensor, Deflection, Amplitude in m, Phase in deg, Current in A, Frequency in Hz,
+    Potential and any other channel in V. Here the file's labels renamed (same length)."""
+    raw = IBW.read_bytes()
+    for old, new, unit in ((b"DeflectionRetrace", b"NapCurrentRetrace", "A"),
+                           (b"DeflectionRetrace", b"UserIn0Retrace\0\0\0", "V"),
+                           (b"AmplitudeRetrace", b"FrequencyRetrace", "Hz")):
+        assert raw.count(old) >= 1 and len(old) == len(new)
+        path = tmp_path / f"{unit}.ibw"
+        path.write_bytes(raw.replace(old, new, 1))
+        name = new.rstrip(b"\0").decode()
+        assert name in samples.channels(path)
+        assert samples.load(path, name, unit=unit).unit == unit
+    capacitance = tmp_path / "F.ibw"
+    capacitance.write_bytes(raw.replace(b"AmplitudeRetrace", b"CapacitanceRetra", 1))
+    with pytest.raises(ValueError, match="channel 'CapacitanceRetra' is in 'F', which a sample "
+                                         "does not carry"):
+        samples.load(capacitance, "CapacitanceRetra", unit="F")
+
+
 # --- JPK (.jpk): a NanoWizard image --------------------------------------------------------------
 def test_jpk_image_matches_afmreader_and_its_tags():
     """AFMReader 0.0.7 tests/test_jpk.py, sample_0.jpk, "height_trace": pixel scaling

@@ -24,7 +24,7 @@ import numpy as np
 from .. import data
 from ..parameters import UNITS
 from ..validation import check_instance, check_positive
-from .sample import MAX_PIXELS, Sample
+from .sample import MAX_PIXELS, SAMPLE_UNITS, Sample
 
 __all__ = ["load", "channels", "save_gwy", "from_file", "REAL_IMAGE", "REAL_CHANNEL",
            "real_image", "SUFFIXES", "MAX_FILE_BYTES", "MAX_HEADER_BYTES"]
@@ -53,9 +53,12 @@ SUFFIXES = {".spm": "Bruker NanoScope (AFMReader, pySPM)", ".ibw": "Igor/Asylum 
 _HEIGHT_CHANNELS = {".ibw": ("HeightTracee", "HeightTrace", "HeightRetrace"),
                     ".jpk": ("height_trace", "height_retrace"), ".asd": ("TP",),
                     ".gwy": ("HeightTrace", "HeightRetrace", "ZSensor")}
-#: Asylum .ibw channels by the start of their name: their unit (the wave holds one for all).
-_IBW_UNITS = {"Height": "m", "ZSensor": "m", "Amplitude": "m", "Deflection": "m",
-              "Phase": "deg"}
+#: Asylum .ibw channels by the start of their name (after a "DAC" or "Nap" prefix): their SI
+#: unit, as Gwyddion's igorfile.c (channel_title_to_units) gives it; any other channel is in V.
+#: The wave itself holds one unit for all its channels.
+_IBW_UNITS = {"Height": "m", "ZSensor": "m", "Deflection": "m", "Amplitude": "m",
+              "Phase": "deg", "Current": "A", "Frequency": "Hz", "Capacitance": "F",
+              "Potential": "V", "Count": "", "QFactor": ""}
 #: JPK channels that AFMReader returns in nm (the others in the unit of their page's tags).
 _JPK_NM = ("height", "measuredHeight", "amplitude")
 #: .asd channels this course reads: topography, which AFMReader returns in nm.
@@ -447,10 +450,11 @@ def _read_ibw(p: Path, channel: str):
     wave = _ibw_wave(p)
     names = _ibw_channels(wave)
     channel = _pick(p, channel, names)
-    unit = next((u for start, u in _IBW_UNITS.items() if channel.startswith(start)), None)
-    if unit is None:
-        raise ValueError(f"{p}: the unit of channel {channel!r} is unknown (this course reads "
-                         f"the channels starting with {sorted(_IBW_UNITS)})")
+    title = channel[3:] if channel.startswith(("DAC", "Nap")) else channel
+    unit = next((u for start, u in _IBW_UNITS.items() if title.startswith(start)), "V")
+    if unit not in SAMPLE_UNITS:
+        raise ValueError(f"{p}: channel {channel!r} is in {unit!r}, which a sample does not "
+                         f"carry (one of {SAMPLE_UNITS})")
     header = wave["wave_header"]
     dims = [u.decode("latin-1") if isinstance(u, bytes) else str(u)
             for u in header["dimUnits"][:2, 0]] if np.ndim(header["dimUnits"]) == 2 else []
@@ -613,8 +617,9 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
 
     An Asylum ``.ibw`` image's pixel size is Igor's own wave scaling, as Igor and Gwyddion
     show it (2 um over 256 points: 2 um / 255); AFMReader 0.0.7 divides the scan size by the
-    points instead (0.4 % less). Its channels' units follow their names (Height, ZSensor,
-    Amplitude, Deflection in m; Phase in deg). A ``.jpk`` channel's unit is that of its
+    points instead (0.4 % less). Its channels' units follow their names as in Gwyddion's
+    igorfile.c (Height, ZSensor, Amplitude, Deflection in m; Phase in deg; Current in A;
+    others in V), and its rows are oriented as both Gwyddion and AFMReader show them. A ``.jpk`` channel's unit is that of its
     calibration slot (m, deg, V); an ``.asd`` movie gives its first frame, topography only.
 
     Examples
