@@ -619,8 +619,9 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
     show it (2 um over 256 points: 2 um / 255); AFMReader 0.0.7 divides the scan size by the
     points instead (0.4 % less). Its channels' units follow their names as in Gwyddion's
     igorfile.c (Height, ZSensor, Amplitude, Deflection in m; Phase in deg; Current in A;
-    others in V), and its rows are oriented as both Gwyddion and AFMReader show them. A ``.jpk`` channel's unit is that of its
-    calibration slot (m, deg, V); an ``.asd`` movie gives its first frame, topography only.
+    others in V), and its rows are oriented as both Gwyddion and AFMReader show them. A
+    ``.jpk`` channel's unit is that of its calibration slot (m, deg, V); an ``.asd`` movie
+    gives its first frame, topography only.
 
     Examples
     --------
