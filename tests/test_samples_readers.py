@@ -33,14 +33,14 @@ def test_data_files_are_the_ones_the_readmes_name():
         return hashlib.sha256(p.read_bytes()).hexdigest()
     readme = (DATA / "README.md").read_text()
     files = sorted(p for p in DATA.iterdir() if p.name != "README.md")
-    assert len(files) == 8
+    assert len(files) == 9
     for path in files:
         assert f"`{path.name}`" in readme and sha(path) in readme, path.name
     assert sha(SPM) in (SPM.parent / "README.md").read_text()
     assert "wsxm_sample_0.top" not in data.names()  # the GPL file no longer ships
     # under 1.2 MB, or under 2.7 MB where no smaller real file of the format was found
     assert all(p.stat().st_size < 2.7e6 for p in files)
-    assert sum(p.stat().st_size < 1.2e6 for p in files) == 4
+    assert sum(p.stat().st_size < 1.2e6 for p in files) == 5
 
 
 # --- Bruker NanoScope (.spm): the shipped real image ------------------------------------------
@@ -276,6 +276,13 @@ def test_ibw_units_and_orientation_follow_gwyddion(tmp_path):
         name = new.rstrip(b"\0").decode()
         assert name in samples.channels(path)
         assert samples.load(path, name, unit=unit).unit == unit
+    # dimUnits, 4 characters per dimension at byte 64 + 152 of a version-5 file: "um", not "m"
+    scaled = bytearray(raw)
+    assert scaled[216:224] == b"m\0\0\0m\0\0\0"
+    scaled[216:224] = b"um\0\0um\0\0"
+    (tmp_path / "um.ibw").write_bytes(scaled)
+    img = samples.load(tmp_path / "um.ibw")
+    assert (img.pixel_size, img.pixel_size_y) == pytest.approx((2e-12 / 255,) * 2, rel=1e-7)
     capacitance = tmp_path / "F.ibw"
     capacitance.write_bytes(raw.replace(b"AmplitudeRetrace", b"CapacitanceRetra", 1))
     with pytest.raises(ValueError, match="channel 'CapacitanceRetra' is in 'F', which a sample "
@@ -312,6 +319,28 @@ def test_jpk_image_matches_afmreader_and_its_tags():
             got = samples.load(JPK, channel, unit=unit)
             assert got.unit == unit
             np.testing.assert_allclose(got.heights, np.flipud(expected), rtol=1e-12)
+
+
+def test_jpk_qi_image_channels_in_their_own_units():
+    """AFMReader 0.0.7 tests/test_jpk.py, sample_0.jpk-qi-image (a JPK QI map: one force curve
+    per pixel, its results as images): pixel scaling 4.999999999999986 nm, shape (100, 100),
+    sums height_trace 31593146.16051172 nm, measuredHeight_trace 32181137.138706185 nm,
+    vDeflection_trace -1.3615033224242345e-05 and adhesion_trace 1.579363986493833e-06 (N, the
+    calibration slot "force"), slope_trace 626.3810326940231 (N/m). Before, every channel was
+    read as nm: forces came back 1e9 times too small, in 'm'."""
+    qi = DATA / "afmreader_sample_0_qi.jpk"
+    assert samples.channels(qi) == ["measuredHeight_trace", "vDeflection_trace",
+                                    "adhesion_trace", "height_trace", "slope_trace"]
+    for channel, unit, total in (("height_trace", "m", 31593146.16051172e-9),
+                                 ("measuredHeight_trace", "m", 32181137.138706185e-9),
+                                 ("vDeflection_trace", "N", -1.3615033224242345e-05),
+                                 ("adhesion_trace", "N", 1.579363986493833e-06),
+                                 ("slope_trace", "N/m", 626.3810326940231)):
+        img = samples.load(qi, channel, unit=unit)
+        assert img.shape == (100, 100) and img.unit == unit
+        assert img.pixel_size == img.pixel_size_y == pytest.approx(5e-9, rel=1e-12)
+        assert np.sum(img.heights) == pytest.approx(total, rel=1e-12)
+    assert samples.load(qi).channel == "height_trace"
 
 
 # --- high-speed AFM (.asd): a movie of 32 frames ---------------------------------------------

@@ -407,8 +407,7 @@ def _jpk_channels(p: Path) -> dict:
                 name = f"{tags[32848]}_{'trace' if tags.get(32849) == 0 else 'retrace'}"
                 slots = [k for k in range(int(tags.get(32896, 0)))
                          if tags.get(32912 + 48 * k) == tags.get(32897)]
-                units[name] = ("m" if tags[32848] in _JPK_NM
-                               else str(tags.get(32930 + 48 * slots[0], "")) if slots else "")
+                units[name] = str(tags.get(32930 + 48 * slots[0], "")) if slots else ""
     except Exception as exc:
         raise ValueError(f"{p}: not a readable JPK image ({type(exc).__name__}: {exc})"
                          ) from None
@@ -456,12 +455,13 @@ def _read_ibw(p: Path, channel: str):
         raise ValueError(f"{p}: channel {channel!r} is in {unit!r}, which a sample does not "
                          f"carry (one of {SAMPLE_UNITS})")
     header = wave["wave_header"]
-    dims = [u.decode("latin-1") if isinstance(u, bytes) else str(u)
-            for u in header["dimUnits"][:2, 0]] if np.ndim(header["dimUnits"]) == 2 else []
-    dx, dy = (float(v) for v in header["sfA"][:2])
-    if dims != ["m", "m"] or not (0 < dx < 1 and 0 < dy < 1):
-        raise ValueError(f"{p}: the wave's x and y scaling must be positive lengths in m, got "
-                         f"{dx!r} {dims[:1]}, {dy!r} {dims[1:2]}")
+    # dimUnits: up to 4 characters per dimension ("m", "um", ...)
+    dims = [b"".join(row).decode("latin-1") for row in np.atleast_2d(header["dimUnits"])[:2]]
+    scales = [_FILE_UNITS.get(u, ("", 0.0)) for u in dims]
+    dx, dy = (float(v) * s for v, (_, s) in zip(header["sfA"][:2], scales))
+    if [si for si, _ in scales] != ["m", "m"] or not (0 < dx < 1 and 0 < dy < 1):
+        raise ValueError(f"{p}: the wave's x and y scaling must be positive lengths, got "
+                         f"{header['sfA'][:2]} in {dims}")
     data = wave["wData"]
     if data.ndim != 3 or data.shape[2] != len(names) or min(data.shape[:2]) < 2:
         raise ValueError(f"{p}: the wave must hold one 2-D image per channel {names}, got "
@@ -479,18 +479,19 @@ def _read_jpk(p: Path, channel: str):
     units = _jpk_channels(p)
     dx, dy = units.pop("_pixel", (None, None))
     channel = _pick(p, channel, list(units))
-    unit, scale = _FILE_UNITS.get(units[channel], (None, None))
-    if unit is None:
-        raise ValueError(f"{p}: channel {channel!r} has values in {units[channel]!r}, not one "
-                         f"of {sorted(_FILE_UNITS)}")
+    stored = units[channel]
+    # AFMReader returns heights and amplitudes in nm, the other channels as calibrated
+    in_nm = channel.rsplit("_", 1)[0] in _JPK_NM
+    unit, scale = _FILE_UNITS.get(stored, (stored, 1.0) if stored in SAMPLE_UNITS else (None, 0))
+    if unit is None or (in_nm and stored != "m"):
+        raise ValueError(f"{p}: channel {channel!r} has values in {stored!r}, not one of "
+                         f"{sorted(_FILE_UNITS)} or the SI units {SAMPLE_UNITS}")
     try:
-        values, px_nm = jpk.load_jpk(p, channel)
+        values, _ = jpk.load_jpk(p, channel)
     except ValueError as exc:
         raise ValueError(f"{p}: {exc}") from None
-    if units[channel] == "m":  # AFMReader gives heights and amplitudes in nm
-        scale = 1e-9
-    # the pixel sizes of the grid tags, as AFMReader's scaling along the lines (in nm)
-    return np.asarray(values, dtype=float) * scale, dx, dy, channel, unit, {}
+    return (np.asarray(values, dtype=float) * (1e-9 if in_nm else scale), dx, dy, channel, unit,
+            {})
 
 
 def _read_asd(p: Path, channel: str):
