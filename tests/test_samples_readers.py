@@ -3,6 +3,7 @@ software reports (the reader's own tests) or its header, decoded here independen
 named before any work; a .gwy export read back by gwyfile and AFMReader."""
 import hashlib
 import re
+import struct
 import time
 
 import numpy as np
@@ -18,14 +19,28 @@ SPM = samples.REAL_IMAGE
 SPM_OFFSETS = {"Height": 40960, "Amplitude": 565248}  # "Data offset" of each Ciao image
 
 
+IBW = DATA / "scifidatasets_btfo_dso.ibw"
+GWY = DATA / "scifidatasets_pto_110_virgin0001.gwy"
+JPK = DATA / "afmreader_sample_0.jpk"
+STP = DATA / "afmreader_sample_0.stp"
+ASD = DATA / "playnano_asd_sample_0.asd"
+#: one real file of every instrument format that load() reads
+REAL_FILES = (SPM, WSXM, STP, IBW, JPK, ASD, GWY)
+
+
 def test_data_files_are_the_ones_the_readmes_name():
     def sha(p):
         return hashlib.sha256(p.read_bytes()).hexdigest()
-    for name in ("afmreader_sample_0.top", "afmreader_sample_1_um_scale.top"):
-        assert sha(DATA / name) in (DATA / "README.md").read_text()
+    readme = (DATA / "README.md").read_text()
+    files = sorted(p for p in DATA.iterdir() if p.name != "README.md")
+    assert len(files) == 9
+    for path in files:
+        assert f"`{path.name}`" in readme and sha(path) in readme, path.name
     assert sha(SPM) in (SPM.parent / "README.md").read_text()
     assert "wsxm_sample_0.top" not in data.names()  # the GPL file no longer ships
-    assert all(p.stat().st_size < 2e6 for p in DATA.iterdir())
+    # under 1.2 MB, or under 2.7 MB where no smaller real file of the format was found
+    assert all(p.stat().st_size < 2.7e6 for p in files)
+    assert sum(p.stat().st_size < 1.2e6 for p in files) == 5
 
 
 # --- Bruker NanoScope (.spm): the shipped real image ------------------------------------------
@@ -183,6 +198,245 @@ def test_wsxm_stp_doubles_are_nm_and_rectangular_scans_are_named(tmp_path):
         samples.load(wide)
 
 
+def test_wsxm_stp_real_file_matches_afmreader_and_its_top_twin():
+    """AFMReader 0.0.7 tests/test_stp.py, sample_0.stp: pixel scaling 0.9765625 nm and image
+    sum -15070620.440757688 nm. The same scan as the .top above, saved by WSxM as doubles in nm:
+    the .top's int16 counts times 13.6 nm/V ("Conversion Factor 00") x 20 V / 2^16 (to the
+    5e-5 nm the .stp was rounded to), between the header's "Minimum: -80.7998" and
+    "Maximum: -21.0549" (nm)."""
+    img = samples.load(STP)
+    assert img.shape == (512, 512) and img.channel == "Topography" and img.unit == "m"
+    assert (img.pixel_size, img.pixel_size_y) == pytest.approx((0.9765625e-9,) * 2, rel=1e-12)
+    assert np.sum(img.heights) * 1e9 == pytest.approx(-15070620.440757688, rel=1e-12)
+    doubles = np.fromfile(STP, "<f8", offset=5272).reshape(512, 512)  # Image header size 5272
+    np.testing.assert_allclose(img.heights, doubles * 1e-9, rtol=1e-14)
+    counts = np.fromfile(WSXM, "<i2", offset=WSXM_HEADER).reshape(512, 512)
+    np.testing.assert_allclose(img.heights, counts * (13.6 * 20 / 2 ** 16) * 1e-9, rtol=0,
+                               atol=5e-14)
+    assert img.heights.min() * 1e9 == pytest.approx(-80.7998, abs=5e-5)
+    assert img.heights.max() * 1e9 == pytest.approx(-21.0549, abs=5e-5)
+    assert samples.channels(STP) == ["Topography"] and img.metadata["Z Amplitude"] == "59.7449 nm"
+
+
+# --- Asylum Research / Igor (.ibw): a Cypher image --------------------------------------------
+def _igor_wave():
+    from igor2 import binarywave
+    return binarywave.load(str(IBW))["wave"]
+
+
+def test_ibw_asylum_image_matches_igor_and_scifireaders():
+    """A Cypher PFM image, read with igor2 directly. SciFiReaders' tests/.../test_igor.py on this
+    file publish its channels (HeightRetrace, AmplitudeRetrace, DeflectionRetrace in m,
+    PhaseRetrace in deg) and note (ScanSize 2e-06, ScanPoints 256, ScanLines 256). The pixel
+    size is Igor's own wave scaling (``SetScale`` delta, m), 2 um / 255 points as Asylum's
+    software writes it and Gwyddion's igorfile.c reads it (see the .gwy test below); AFMReader
+    divides ScanSize by 256 instead. The default "Height" takes "HeightRetrace" (it failed
+    with this real file before)."""
+    wave = _igor_wave()
+    note = wave["note"].decode("latin-1")
+    assert "ScanSize: 2e-06\r" in note and "ScanPoints: 256\r" in note
+    assert "ScanLines: 256\r" in note
+    scaling = wave["wave_header"]["sfA"][:2]
+    assert list(wave["wave_header"]["dimUnits"][:2, 0]) == [b"m", b"m"]
+    np.testing.assert_allclose(scaling, 2e-6 / 255, rtol=1e-7)  # float32 in the file
+    img = samples.load(IBW)
+    assert img.shape == (256, 256) and img.channel == "HeightRetrace" and img.unit == "m"
+    assert (img.pixel_size, img.pixel_size_y) == tuple(scaling)
+    # Igor's image has x (fast) first and y up: the rows, top down, are y reversed
+    stored = wave["wData"].astype(float)
+    np.testing.assert_array_equal(img.heights, np.flipud(stored[:, :, 0].T))
+    from AFMReader.ibw import load_ibw  # the same orientation; its nm are float32 (rel 6e-8)
+    np.testing.assert_allclose(img.heights, load_ibw(IBW, "HeightRetrace")[0] * 1e-9, rtol=2e-7)
+    assert img.metadata["ScanRate"] == "2.0032" and img.metadata["MicroscopeModel"] == "Cypher"
+    assert samples.channels(IBW) == ["HeightRetrace", "AmplitudeRetrace", "DeflectionRetrace",
+                                     "PhaseRetracerace"]  # Asylum's label, as stored
+    phase = samples.load(IBW, "PhaseRetracerace", unit="deg")
+    np.testing.assert_array_equal(phase.heights, np.flipud(stored[:, :, 3].T))
+    amp = samples.load(IBW, "AmplitudeRetrace")
+    np.testing.assert_array_equal(amp.heights, np.flipud(stored[:, :, 1].T))
+    with pytest.raises(ValueError, match="channel 'PhaseRetracerace' of "
+                                         "scifidatasets_btfo_dso.ibw is in 'deg', not 'm'"):
+        samples.load(IBW, "PhaseRetracerace")
+
+
+def test_ibw_units_and_orientation_follow_gwyddion(tmp_path):
+    """Gwyddion's igorfile.c (igor_read_data_field, channel_title_to_units): an image is
+    n_dim[0] x n_dim[1] points with x fast, xreal = sfA[0] * xres, then inverted about the x
+    axis (first stored line at the bottom), as load() and AFMReader orient the rows (tested
+    above); units by the channel's name after a "DAC" or "Nap" prefix:
+    Height, ZSensor, Deflection, Amplitude in m, Phase in deg, Current in A, Frequency in Hz,
+    Potential and any other channel in V. Here the file's labels renamed (same length)."""
+    raw = IBW.read_bytes()
+    for old, new, unit in ((b"DeflectionRetrace", b"NapCurrentRetrace", "A"),
+                           (b"DeflectionRetrace", b"UserIn0Retrace\0\0\0", "V"),
+                           (b"AmplitudeRetrace", b"FrequencyRetrace", "Hz")):
+        assert raw.count(old) >= 1 and len(old) == len(new)
+        path = tmp_path / f"{unit}.ibw"
+        path.write_bytes(raw.replace(old, new, 1))
+        name = new.rstrip(b"\0").decode()
+        assert name in samples.channels(path)
+        assert samples.load(path, name, unit=unit).unit == unit
+    # dimUnits, 4 characters per dimension at byte 64 + 152 of a version-5 file: "um", not "m"
+    scaled = bytearray(raw)
+    assert scaled[216:224] == b"m\0\0\0m\0\0\0"
+    scaled[216:224] = b"um\0\0um\0\0"
+    (tmp_path / "um.ibw").write_bytes(scaled)
+    img = samples.load(tmp_path / "um.ibw")
+    assert (img.pixel_size, img.pixel_size_y) == pytest.approx((2e-12 / 255,) * 2, rel=1e-7)
+    capacitance = tmp_path / "F.ibw"
+    capacitance.write_bytes(raw.replace(b"AmplitudeRetrace", b"CapacitanceRetra", 1))
+    with pytest.raises(ValueError, match="channel 'CapacitanceRetra' is in 'F', which a sample "
+                                         "does not carry"):
+        samples.load(capacitance, "CapacitanceRetra", unit="F")
+
+
+# --- JPK (.jpk): a NanoWizard image --------------------------------------------------------------
+def test_jpk_image_matches_afmreader_and_its_tags():
+    """AFMReader 0.0.7 tests/test_jpk.py, sample_0.jpk, "height_trace": pixel scaling
+    1.2770176335964876 nm, shape (256, 256), image sum 219242202.8256843 nm. The JPK TIFF tags
+    (as Gwyddion's jpkscan.c names them): grid-uLength (32834) 3.269e-7 m over grid-iLength
+    (32838) 256 pixels; each channel page's int32 values times the multiplier plus the offset
+    of its default calibration slot, in that slot's unit (m, deg, V), lines stored bottom up
+    (tag 32843 "bottomUp"). Phase and error came back as 'm' divided by 1e9 before."""
+    import tifffile
+    img = samples.load(JPK)
+    assert img.shape == (256, 256) and img.channel == "height_trace" and img.unit == "m"
+    assert img.pixel_size * 1e9 == pytest.approx(1.2770176335964876, rel=1e-12)
+    assert np.sum(img.heights) * 1e9 == pytest.approx(219242202.8256843, rel=1e-12)
+    names = ["height", "measuredHeight", "amplitude", "phase", "error"]
+    assert samples.channels(JPK) == [f"{n}_retrace" for n in names] + [f"{n}_trace" for n in names]
+    with tifffile.TiffFile(str(JPK)) as tif:
+        tags = {t.code: t.value for t in tif.pages[0].tags.values()}
+        assert tags[32843] == "bottomUp" and (tags[32838], tags[32839]) == (256, 256)
+        assert img.pixel_size == pytest.approx(tags[32834] / tags[32838], rel=1e-15)
+        assert img.pixel_size_y == pytest.approx(tags[32835] / tags[32839], rel=1e-15)
+        for page, channel, unit in ((6, "height_trace", "m"), (9, "phase_trace", "deg"),
+                                    (10, "error_trace", "V")):
+            t = {tag.code: tag.value for tag in tif.pages[page].tags.values()}
+            slot = [k for k in range(t[32896]) if t[32912 + 48 * k] == t[32897]][0]
+            assert t[32930 + 48 * slot] == unit and t[32849] == 0
+            expected = tif.pages[page].asarray() * t[32932 + 48 * slot] + t[32933 + 48 * slot]
+            got = samples.load(JPK, channel, unit=unit)
+            assert got.unit == unit
+            np.testing.assert_allclose(got.heights, np.flipud(expected), rtol=1e-12)
+
+
+def test_jpk_qi_image_channels_in_their_own_units():
+    """AFMReader 0.0.7 tests/test_jpk.py, sample_0.jpk-qi-image (a JPK QI map: one force curve
+    per pixel, its results as images): pixel scaling 4.999999999999986 nm, shape (100, 100),
+    sums height_trace 31593146.16051172 nm, measuredHeight_trace 32181137.138706185 nm,
+    vDeflection_trace -1.3615033224242345e-05 and adhesion_trace 1.579363986493833e-06 (N, the
+    calibration slot "force"), slope_trace 626.3810326940231 (N/m). Before, every channel was
+    read as nm: forces came back 1e9 times too small, in 'm'."""
+    qi = DATA / "afmreader_sample_0_qi.jpk"
+    assert samples.channels(qi) == ["measuredHeight_trace", "vDeflection_trace",
+                                    "adhesion_trace", "height_trace", "slope_trace"]
+    for channel, unit, total in (("height_trace", "m", 31593146.16051172e-9),
+                                 ("measuredHeight_trace", "m", 32181137.138706185e-9),
+                                 ("vDeflection_trace", "N", -1.3615033224242345e-05),
+                                 ("adhesion_trace", "N", 1.579363986493833e-06),
+                                 ("slope_trace", "N/m", 626.3810326940231)):
+        img = samples.load(qi, channel, unit=unit)
+        assert img.shape == (100, 100) and img.unit == unit
+        assert img.pixel_size == img.pixel_size_y == pytest.approx(5e-9, rel=1e-12)
+        assert np.sum(img.heights) == pytest.approx(total, rel=1e-12)
+    assert samples.load(qi).channel == "height_trace"
+
+
+# --- high-speed AFM (.asd): a movie of 32 frames ---------------------------------------------
+def test_asd_movie_matches_playnano_and_its_header():
+    """playNano's tests/test_formats.py (test_read_asd_valid_file) on this file: channel "TP",
+    pixel size 0.5 nm, 32 frames of 200 x 200, stack sum -251179816.91781396 nm. Decoded here
+    from the bytes: a version-1 header of 174 bytes, then per frame a 32-byte frame header and
+    200 x 200 int16 levels; topography = -level x 9.99 V / 4096 (AD range code 3: 0 to 9.99 V,
+    12 bits) x z piezo gain (2.0, float32 at byte 161) x z piezo extension (12.48 nm/V, float32
+    at byte 157), as AFMReader's asd.py converts them. load() returns the first frame."""
+    raw = ASD.read_bytes()
+    version, header_size, frame_header = struct.unpack_from("<3i", raw, 0)
+    assert (version, header_size, frame_header) == (1, 174, 32)
+    assert raw[24:26] == b"TP" and raw[28:32] == bytes(4)  # channel 1, no channel 2
+    frames, _, _, _, nx, ny, x_nm = struct.unpack_from("<7i", raw, 32)
+    y_nm = struct.unpack_from("<i", raw, 60)[0]
+    assert (frames, nx, ny, x_nm, y_nm) == (32, 200, 200, 100, 100)
+    extension, gain = struct.unpack_from("<2f", raw, 157)
+    assert (round(extension, 5), gain) == (12.48, 2.0)
+    step = frame_header + nx * ny * 2
+    assert len(raw) == header_size + frames * step
+    levels = np.stack([np.frombuffer(raw, "<i2", nx * ny, header_size + k * step + frame_header)
+                       for k in range(frames)]).reshape(frames, ny, nx)
+    nm = -levels * (9.99 / 4096) * gain * extension
+    assert np.sum(nm) == pytest.approx(-251179816.91781396, rel=1e-12)
+    img = samples.load(ASD)
+    assert img.shape == (200, 200) and img.channel == "TP" and img.unit == "m"
+    assert (img.pixel_size, img.pixel_size_y) == (0.5e-9, 0.5e-9)
+    np.testing.assert_allclose(img.heights, nm[0] * 1e-9, rtol=1e-12)
+    assert samples.channels(ASD) == ["TP"] and img.metadata["num_frames"] == 32
+
+
+# --- Gwyddion (.gwy): a file Gwyddion made, and one written here ------------------------------
+def test_gwy_made_by_gwyddion_matches_gwyfile_afmreader_and_scifireaders():
+    """Gwyddion's own import of an Asylum Cypher image (its log: "file::igorfile(...)"):
+    SciFiReaders' tests/.../test_gwy.py on this file publish four 256-pixel channels
+    HeightRetrace, AmplitudeRetrace, DeflectionRetrace (m) and PhaseRetrace (deg). gwyfile and
+    AFMReader's own .gwy parser read it here independently. Gwyddion's pixel size,
+    xreal / xres = 1e-5 m / 255, is Igor's wave scaling of the instrument's "ScanSize: 1e-05"
+    over 256 points (the metadata it kept): the same as the .ibw reader's. The default
+    "Height" takes HeightRetrace (it failed with this real file before)."""
+    import gwyfile
+    from AFMReader.gwy import load_gwy
+    container = gwyfile.load(str(GWY))
+    assert container["/0/data/log"]["strings"][0].startswith("file::igorfile(")
+    assert container["/0/meta"]["ScanSize"] == "1e-05"
+    assert samples.channels(GWY) == ["HeightRetrace", "AmplitudeRetrace", "DeflectionRetrace",
+                                     "PhaseRetrace"]
+    for index, channel, unit in ((0, "HeightRetrace", "m"), (1, "AmplitudeRetrace", "m"),
+                                 (2, "DeflectionRetrace", "m"), (3, "PhaseRetrace", "deg")):
+        field = container[f"/{index}/data"]
+        assert (field["xres"], field["yres"]) == (256, 256)
+        assert (field.si_unit_xy.unitstr, field.si_unit_z.unitstr) == ("m", unit)
+        img = samples.load(GWY, channel, unit=unit)
+        np.testing.assert_array_equal(img.heights, field.data)
+        assert img.pixel_size == img.pixel_size_y == pytest.approx(1e-5 / 255, rel=1e-15)
+    img = samples.load(GWY)
+    assert img.channel == "HeightRetrace" and img.metadata["ScanSize"] == "1e-05"
+    assert img.metadata["MicroscopeModel"] == "Cypher" and img.metadata["xres"] == 256
+    nm, px_nm = load_gwy(GWY, "HeightRetrace")
+    np.testing.assert_allclose(img.heights, nm * 1e-9, rtol=1e-15)
+    assert px_nm == pytest.approx(1e4 / 255, rel=1e-12)
+
+
+def test_gwyfile_own_test_file_without_units_is_named():
+    """gwyfile's tests/test.gwy, made by Gwyddion's lattice synthesis (its log: "lat_synth"):
+    gwyfile's test_gwyobject.py publishes channel "Test", 128 x 128, data[0][0] = 0.00082494 and
+    data[44][33] = 0.00085301. Its lateral and value units are empty (dimensionless): load()
+    names that, as a sample needs lengths in m."""
+    import gwyfile
+    field = gwyfile.load(str(DATA / "gwyfile_test.gwy"))["/0/data"]
+    assert field.data.shape == (128, 128)
+    assert field.data[0][0] == pytest.approx(0.00082494, rel=1e-5)
+    assert field.data[44][33] == pytest.approx(0.00085301, rel=1e-5)
+    assert samples.channels(DATA / "gwyfile_test.gwy") == ["Test"]
+    with pytest.raises(ValueError, match="gwyfile_test.gwy: channel 'Test' must have lateral "
+                                         "unit 'm' and values in one of .*, got '' and ''"):
+        samples.load(DATA / "gwyfile_test.gwy", "Test")
+
+
+@pytest.mark.slow
+def test_afmreader_logs_nothing_when_files_are_read():
+    """AFMReader logs every step at INFO to stderr (loguru, enabled as each of its modules is
+    imported): a fresh interpreter reading every format through channels() and load() prints
+    nothing (this printed ".asd ... file version: 1" from channels() before)."""
+    import subprocess
+    import sys
+    code = ("import sys\nfrom afmsmiler import samples\n"
+            "for p in sys.argv[1:]:\n    samples.channels(p)\n    samples.load(p)\n")
+    args = [str(p) for p in REAL_FILES[::-1]]  # the .asd before any other AFMReader format
+    run = subprocess.run([sys.executable, "-c", code, *args], capture_output=True, text=True,
+                         timeout=120)
+    assert run.returncode == 0, run.stderr
+    assert run.stderr == "" and run.stdout == ""
+
+
 # --- Gwyddion (.gwy): written here, read by gwyfile and AFMReader -----------------------------
 def test_gwy_export_round_trips_through_gwyfile_and_afmreader(tmp_path):
     import gwyfile
@@ -271,8 +525,7 @@ def test_an_unreadable_file_is_named(tmp_path, monkeypatch):
 
 
 def test_files_of_the_afmreader_only_formats_are_checked_first(tmp_path):
-    # no small real .ibw, .jpk or .asd file with a licence that allows it was found (see
-    # tests/data/README.md): these check the pre-flight checks on files made here
+    # files made here, beside the real ones: a TIFF without JPK's tags, headers cut short
     import tifffile
     plain = tmp_path / "plain.jpk"  # a TIFF without JPK's channels
     tifffile.imwrite(plain, np.zeros((8, 8), np.float32))
@@ -325,6 +578,34 @@ def test_truncated_and_hostile_headers(tmp_path):
     cut.write_bytes(path.read_bytes()[:20000])
     with pytest.raises(ValueError, match="cut.gwy"):
         samples.load(cut)
+
+
+def test_truncated_real_files_are_named_before_their_data_is_read(tmp_path, capfd):
+    """Each real file cut in half: its header announces more than the file holds. Before, a cut
+    .ibw went to igor2, which logged the raw bytes of the file to stderr."""
+    for path, what in ((IBW, r"the Igor header announces 1069782 bytes, the file has 567815"),
+                       (JPK, r"a page of \(256, 256\) pixels, its data ending at byte"),
+                       (ASD, r"the header's 32 frames of 200 x 200 pixels in channels \['TP'\] "
+                             r"need 2561198 bytes, the file has 1280599"),
+                       (STP, r"the header's 512 x 512 double values need 2102424 bytes, the "
+                             r"file has 1051212"),
+                       (GWY, r"not a readable Gwyddion file")):
+        raw = path.read_bytes()
+        cut = tmp_path / f"cut{path.suffix}"
+        cut.write_bytes(raw[:len(raw) // 2])
+        for read in (samples.channels, samples.load):
+            with pytest.raises(ValueError, match=f"cut{path.suffix}: {what}"):
+                read(cut)
+    bad = tmp_path / "bad.ibw"  # a version-5 header whose sizes sum past the file
+    bad.write_bytes(IBW.read_bytes()[:64] + bytes(100))
+    with pytest.raises(ValueError, match="bad.ibw: the Igor header announces 1069782 bytes"):
+        samples.load(bad)
+    garbled = tmp_path / "garbled.ibw"  # sizes that fit, contents that do not parse
+    garbled.write_bytes(b"\x05\x00" + bytes(62) + bytes(range(256)) * 8)
+    with pytest.raises(ValueError, match="garbled.ibw: not a readable Igor binary wave"):
+        samples.load(garbled)
+    out, err = capfd.readouterr()
+    assert out == "" and err == ""
 
 
 def test_from_file_is_load():

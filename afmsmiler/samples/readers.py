@@ -14,7 +14,6 @@ never an attempt to allocate what a corrupt header claims.
 """
 from __future__ import annotations
 
-import ast
 import os
 import re
 import struct
@@ -25,7 +24,7 @@ import numpy as np
 from .. import data
 from ..parameters import UNITS
 from ..validation import check_instance, check_positive
-from .sample import MAX_PIXELS, Sample
+from .sample import MAX_PIXELS, SAMPLE_UNITS, Sample
 
 __all__ = ["load", "channels", "save_gwy", "from_file", "REAL_IMAGE", "REAL_CHANNEL",
            "real_image", "SUFFIXES", "MAX_FILE_BYTES", "MAX_HEADER_BYTES"]
@@ -51,8 +50,19 @@ SUFFIXES = {".spm": "Bruker NanoScope (AFMReader, pySPM)", ".ibw": "Igor/Asylum 
             "(pixel_size required)", ".asc": "text height map (pixel_size required)"}
 
 #: The height channel of each format, taken when the default ``"Height"`` is not in a file.
-_HEIGHT_CHANNELS = {".ibw": ("HeightTracee", "HeightTrace"), ".jpk": ("height_trace",),
-                    ".asd": ("TP",)}
+_HEIGHT_CHANNELS = {".ibw": ("HeightTracee", "HeightTrace", "HeightRetrace"),
+                    ".jpk": ("height_trace", "height_retrace"), ".asd": ("TP",),
+                    ".gwy": ("HeightTrace", "HeightRetrace", "ZSensor")}
+#: Asylum .ibw channels by the start of their name (after a "DAC" or "Nap" prefix): their SI
+#: unit, as Gwyddion's igorfile.c (channel_title_to_units) gives it; any other channel is in V.
+#: The wave itself holds one unit for all its channels.
+_IBW_UNITS = {"Height": "m", "ZSensor": "m", "Deflection": "m", "Amplitude": "m",
+              "Phase": "deg", "Current": "A", "Frequency": "Hz", "Capacitance": "F",
+              "Potential": "V", "Count": "", "QFactor": ""}
+#: JPK channels that AFMReader returns in nm (the others in the unit of their page's tags).
+_JPK_NM = ("height", "measuredHeight", "amplitude")
+#: .asd channels this course reads: topography, which AFMReader returns in nm.
+_ASD_UNITS = {"TP": "m"}
 #: Units in which instruments write lengths and other channels: (SI unit, SI value of one).
 _FILE_UNITS = {"m": ("m", 1.0), "mm": ("m", 1e-3), "um": ("m", 1e-6), "\u00b5m": ("m", 1e-6),
                "~m": ("m", 1e-6), "nm": ("m", 1e-9), "pm": ("m", 1e-12), "\u00c5": ("m", 1e-10),
@@ -204,10 +214,23 @@ def _gwy_check(p: Path) -> None:
 
 
 def _ibw_check(p: Path) -> None:
-    head = _head(p, 8)
-    if len(head) < 8 or struct.unpack("<h", head[:2])[0] not in (1, 2, 3, 5) \
-            and struct.unpack(">h", head[:2])[0] not in (1, 2, 3, 5):
+    """An Igor binary wave's header (version 1, 2, 3 or 5, either byte order) must announce no
+    more bytes (wave header and data, note, formula, units, labels) than the file holds."""
+    head = _head(p, 64)
+    order = next((o for o in "<>" if len(head) >= 8
+                  and struct.unpack(o + "h", head[:2])[0] in (1, 2, 3, 5)), None)
+    if order is None:
         raise ValueError(f"{p} is not an Igor binary wave (its first bytes give no version)")
+    version = struct.unpack(order + "h", head[:2])[0]
+    # BinHeader1/2/3/5 of Igor's Technical Note PTN003: the sizes of what follows the header
+    layout = {1: (8, "2xi"), 2: (16, "2x3i"), 3: (20, "2x4i"), 5: (64, "4x15i")}[version]
+    if len(head) < layout[0]:
+        raise ValueError(f"{p}: the Igor header is cut short (truncated?)")
+    sizes = struct.unpack(order + layout[1], head[:struct.calcsize(order + layout[1])])
+    need = layout[0] + sum(sizes)
+    if min(sizes) < 0 or need > p.stat().st_size:
+        raise ValueError(f"{p}: the Igor header announces {need} bytes, the file has "
+                         f"{p.stat().st_size} (truncated or corrupt?)")
 
 
 def _tiff_check(p: Path) -> None:
@@ -233,9 +256,10 @@ def _tiff_check(p: Path) -> None:
                          ) from None
 
 
-def _asd_check(p: Path) -> None:
-    """The frames that an .asd header announces (AFMReader's own header readers) must fit in
-    the file before AFMReader reads them."""
+def _asd_header(p: Path) -> dict:
+    """The .asd header (AFMReader's own header readers), after checking that the frames it
+    announces fit in the file, before AFMReader reads them."""
+    _quiet()
     from AFMReader import asd
     size = p.stat().st_size
     try:
@@ -253,10 +277,15 @@ def _asd_check(p: Path) -> None:
         raise ValueError(f"{p}: not a readable .asd file ({type(exc).__name__}: {exc})"
                          ) from None
     frames, nx, ny = header["num_frames"], header["x_pixels"], header["y_pixels"]
-    need = data_start + frames * (header["frame_header_length"] + nx * ny * 2)
-    if not (frames >= 1 and nx >= 2 and ny >= 2 and nx * ny <= MAX_PIXELS) or need > size:
-        raise ValueError(f"{p}: the header's {frames} frames of {nx} x {ny} pixels need {need} "
-                         f"bytes, the file has {size} (truncated or corrupt?)")
+    names = [c for c in (header["channel1"], header["channel2"]) if c]
+    need = data_start + len(names) * frames * (header["frame_header_length"] + nx * ny * 2)
+    if not (frames >= 1 and nx >= 2 and ny >= 2 and nx * ny <= MAX_PIXELS and names) \
+            or need > size:
+        raise ValueError(f"{p}: the header's {frames} frames of {nx} x {ny} pixels in channels "
+                         f"{names} need {need} bytes, the file has {size} (truncated or "
+                         f"corrupt?)")
+    header["_channels"] = names
+    return header
 
 
 # --- the readers ------------------------------------------------------------------------------
@@ -331,12 +360,17 @@ def _read_gwy(p: Path, channel: str):
     from gwyfile.util import get_datafields
     _gwy_check(p)
     try:
-        fields = get_datafields(gwyfile.load(str(p)))
+        container = gwyfile.load(str(p))
+        fields = get_datafields(container)
     except Exception as exc:  # gwyfile raises struct.error, ValueError, ... on a corrupt file
         raise ValueError(f"{p}: not a readable Gwyddion file ({type(exc).__name__}: {exc})"
                          ) from None
     channel = _pick(p, channel, list(fields))
     field = fields[channel]
+    # the instrument's metadata that Gwyddion keeps beside the channel ("/0/meta")
+    index = next((key[:-len("/data")] for key, value in container.items()
+                  if value is field and key.endswith("/data")), None)
+    kept = container.get(f"{index}/meta") if index is not None else None
     try:
         values = np.array(field.data, dtype=float)
     except ValueError:
@@ -348,60 +382,133 @@ def _read_gwy(p: Path, channel: str):
         raise ValueError(f"{p}: channel {channel!r} must have lateral unit 'm' and values in "
                          f"one of {sorted(_FILE_UNITS)}, got {xy!r} and {z!r}")
     unit, scale = _FILE_UNITS[z]
-    meta = {"xres": field["xres"], "yres": field["yres"], "xreal": field.xreal,
-            "yreal": field.yreal, "si_unit_xy": xy, "si_unit_z": z}
+    meta = {str(k): v for k, v in kept.items()} if hasattr(kept, "items") else {}
+    meta.update({"xres": field["xres"], "yres": field["yres"], "xreal": field.xreal,
+                 "yreal": field.yreal, "si_unit_xy": xy, "si_unit_z": z})
     return (values * scale, field.xreal / values.shape[1], field.yreal / values.shape[0],
             channel, unit, meta)
 
 
-def _afmreader_channels(p: Path) -> list[str]:
-    """The channels AFMReader lists when asked for one that no file has."""
-    _quiet()
-    from AFMReader import asd, jpk
-    loader = {".jpk": jpk.load_jpk, ".asd": asd.load_asd}[p.suffix.lower()]
+def _jpk_channels(p: Path) -> dict:
+    """A JPK image's channels as AFMReader names them ("height_trace", ...), each with the unit
+    of its default calibration slot (JPK's TIFF tags, as Gwyddion's jpkscan.c reads them)."""
+    _tiff_check(p)
+    import tifffile
+    units = {}
     try:
-        loader(p, "\x00 no channel")
-    except ValueError as exc:
-        match = re.search(r"channel list: (.*)$", str(exc))
-        if match:
-            listed = ast.literal_eval(match.group(1))
-            return list(listed)
-        raise ValueError(f"{p}: {exc}") from None
+        with tifffile.TiffFile(str(p)) as tif:
+            first = {tag.code: tag.value for tag in tif.pages[0].tags.values()}
+            # grid-uLength / grid-iLength along the lines, grid-vLength / grid-jLength across
+            grid = tuple(first.get(code) for code in (32834, 32838, 32835, 32839))
+            for page in tif.pages[1:]:  # the first page is a thumbnail
+                tags = {tag.code: tag.value for tag in page.tags.values()}
+                if 32848 not in tags:
+                    continue
+                name = f"{tags[32848]}_{'trace' if tags.get(32849) == 0 else 'retrace'}"
+                slots = [k for k in range(int(tags.get(32896, 0)))
+                         if tags.get(32912 + 48 * k) == tags.get(32897)]
+                units[name] = str(tags.get(32930 + 48 * slots[0], "")) if slots else ""
     except Exception as exc:
-        raise ValueError(f"{p}: not readable by AFMReader ({type(exc).__name__}: {exc})"
+        raise ValueError(f"{p}: not a readable JPK image ({type(exc).__name__}: {exc})"
                          ) from None
-    return []
+    if units:
+        try:
+            dx, dy = float(grid[0]) / int(grid[1]), float(grid[2]) / int(grid[3])
+        except (TypeError, ValueError, ZeroDivisionError):
+            dx = dy = float("nan")
+        if not (0 < dx < 1 and 0 < dy < 1):
+            raise ValueError(f"{p}: the JPK grid tags (lengths in m over pixels) must give "
+                             f"positive pixel sizes, got {grid}")
+        units["_pixel"] = (dx, dy)
+    return units
 
 
-def _ibw_channels(p: Path) -> list[str]:
+def _ibw_wave(p: Path) -> dict:
+    import logging
     from igor2 import binarywave
+    # igor2 logs a failed read with the raw bytes; the ValueError below says it instead
+    logging.getLogger("igor2").addHandler(logging.NullHandler())
     _ibw_check(p)
     try:
-        wave = binarywave.load(str(p))
+        return binarywave.load(str(p))["wave"]
     except Exception as exc:
         raise ValueError(f"{p}: not a readable Igor binary wave ({type(exc).__name__}: {exc})"
                          ) from None
-    return [label.decode() for labels in wave["wave"]["labels"] for label in labels if label]
 
 
-def _read_afmreader(p: Path, channel: str):
-    _quiet()
-    from AFMReader import asd, ibw, jpk
-    suffix = p.suffix.lower()
-    {".ibw": _ibw_check, ".jpk": _tiff_check, ".asd": _asd_check}[suffix](p)
-    names = _ibw_channels(p) if suffix == ".ibw" else _afmreader_channels(p)
+def _ibw_channels(wave: dict) -> list[str]:
+    return [label.decode() for labels in wave["labels"] for label in labels if label]
+
+
+def _read_ibw(p: Path, channel: str):
+    """Asylum's image wave, read by igor2 (AFMReader's own backend) once and oriented as
+    AFMReader's ``load_ibw`` does (rows along the slow axis, top down), without its float32
+    round trip through nm. The pixel size is Igor's own wave scaling (``SetScale`` delta, in
+    the wave's dimension unit), which Igor and Gwyddion's igorfile.c show; AFMReader 0.0.7
+    divides the note's ScanSize by the points instead (0.4 % smaller for 256 points)."""
+    wave = _ibw_wave(p)
+    names = _ibw_channels(wave)
     channel = _pick(p, channel, names)
+    title = channel[3:] if channel.startswith(("DAC", "Nap")) else channel
+    unit = next((u for start, u in _IBW_UNITS.items() if title.startswith(start)), "V")
+    if unit not in SAMPLE_UNITS:
+        raise ValueError(f"{p}: channel {channel!r} is in {unit!r}, which a sample does not "
+                         f"carry (one of {SAMPLE_UNITS})")
+    header = wave["wave_header"]
+    # dimUnits: up to 4 characters per dimension ("m", "um", ...)
+    dims = [b"".join(row).decode("latin-1") for row in np.atleast_2d(header["dimUnits"])[:2]]
+    scales = [_FILE_UNITS.get(u, ("", 0.0)) for u in dims]
+    dx, dy = (float(v) * s for v, (_, s) in zip(header["sfA"][:2], scales))
+    if [si for si, _ in scales] != ["m", "m"] or not (0 < dx < 1 and 0 < dy < 1):
+        raise ValueError(f"{p}: the wave's x and y scaling must be positive lengths, got "
+                         f"{header['sfA'][:2]} in {dims}")
+    data = wave["wData"]
+    if data.ndim != 3 or data.shape[2] != len(names) or min(data.shape[:2]) < 2:
+        raise ValueError(f"{p}: the wave must hold one 2-D image per channel {names}, got "
+                         f"shape {data.shape}")
+    values = np.flipud(data[:, :, names.index(channel)].T).astype(float)
+    note = wave["note"].decode("latin-1") if isinstance(wave["note"], bytes) else ""
+    meta = dict(line.split(":", 1) for line in note.split("\r") if ":" in line)
+    meta = {k.strip(): v.strip() for k, v in meta.items()}
+    return values, dx, dy, channel, unit, meta
+
+
+def _read_jpk(p: Path, channel: str):
+    _quiet()
+    from AFMReader import jpk
+    units = _jpk_channels(p)
+    dx, dy = units.pop("_pixel", (None, None))
+    channel = _pick(p, channel, list(units))
+    stored = units[channel]
+    # AFMReader returns heights and amplitudes in nm, the other channels as calibrated
+    in_nm = channel.rsplit("_", 1)[0] in _JPK_NM
+    unit, scale = _FILE_UNITS.get(stored, (stored, 1.0) if stored in SAMPLE_UNITS else (None, 0))
+    if unit is None or (in_nm and stored != "m"):
+        raise ValueError(f"{p}: channel {channel!r} has values in {stored!r}, not one of "
+                         f"{sorted(_FILE_UNITS)} or the SI units {SAMPLE_UNITS}")
     try:
-        if suffix == ".ibw":
-            nm, px = ibw.load_ibw(p, channel)
-        elif suffix == ".jpk":
-            nm, px = jpk.load_jpk(p, channel)
-        else:
-            frames, px, _ = asd.load_asd(p, channel)
-            nm = frames[0]
+        values, _ = jpk.load_jpk(p, channel)
     except ValueError as exc:
         raise ValueError(f"{p}: {exc}") from None
-    return np.asarray(nm, dtype=float) * 1e-9, px * 1e-9, px * 1e-9, channel, "m", {}
+    return (np.asarray(values, dtype=float) * (1e-9 if in_nm else scale), dx, dy, channel, unit,
+            {})
+
+
+def _read_asd(p: Path, channel: str):
+    from AFMReader import asd
+    header = _asd_header(p)  # quiets AFMReader
+    channel = _pick(p, channel, header["_channels"])
+    if channel not in _ASD_UNITS:
+        raise ValueError(f"{p}: this course reads the .asd channels {sorted(_ASD_UNITS)}, got "
+                         f"{channel!r}")
+    try:
+        frames, _, _ = asd.load_asd(p, channel)
+    except ValueError as exc:
+        raise ValueError(f"{p}: {exc}") from None
+    dx = header["x_nm"] * 1e-9 / header["x_pixels"]
+    dy = header["y_nm"] * 1e-9 / header["y_pixels"]
+    meta = {k: v for k, v in header.items() if not k.startswith("_")}
+    return np.asarray(frames[0], dtype=float) * 1e-9, dx, dy, channel, _ASD_UNITS[channel], meta
 
 
 def _pick(p: Path, channel: str, names: list) -> str:
@@ -420,7 +527,7 @@ def _pick(p: Path, channel: str, names: list) -> str:
 
 
 _READERS = {".spm": _read_spm, ".gwy": _read_gwy, ".top": _read_wsxm, ".stp": _read_wsxm,
-            ".ibw": _read_afmreader, ".jpk": _read_afmreader, ".asd": _read_afmreader}
+            ".ibw": _read_ibw, ".jpk": _read_jpk, ".asd": _read_asd}
 
 
 def _read_array(p: Path, pixel_size, unit: str) -> Sample:
@@ -474,8 +581,9 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
     channel : str
         The channel's name as the file gives it (see :func:`channels`). The default
         ``"Height"`` also takes a format's own height channel where the file has no "Height"
-        (``"HeightTracee"`` of ``.ibw``, ``"height_trace"`` of ``.jpk``, ``"TP"`` of ``.asd``,
-        the one channel of a WSxM file).
+        (``"HeightTracee"``, ``"HeightTrace"`` or ``"HeightRetrace"`` of ``.ibw`` and of a
+        ``.gwy`` that Gwyddion made from one, ``"height_trace"`` of ``.jpk``, ``"TP"`` of
+        ``.asd``, the one channel of a WSxM file).
     pixel_size : float, optional
         Pixel size in m of a ``.npy`` or text map (required there; instrument files carry it).
     unit : str
@@ -507,6 +615,14 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
     59 nm for "59.7449 nm", a 1.3 % height error corrected here); NanoScope 5 headers spell
     ``Scan size`` and ``Line direction`` where pySPM looks for ``Scan Size`` and
     ``Line Direction``, and are given both before pySPM reads them.
+
+    An Asylum ``.ibw`` image's pixel size is Igor's own wave scaling, as Igor and Gwyddion
+    show it (2 um over 256 points: 2 um / 255); AFMReader 0.0.7 divides the scan size by the
+    points instead (0.4 % less). Its channels' units follow their names as in Gwyddion's
+    igorfile.c (Height, ZSensor, Amplitude, Deflection in m; Phase in deg; Current in A;
+    others in V), and its rows are oriented as both Gwyddion and AFMReader show them. A
+    ``.jpk`` channel's unit is that of its calibration slot (m, deg, V); an ``.asd`` movie
+    gives its first frame, topography only.
 
     Examples
     --------
@@ -575,9 +691,10 @@ def channels(path) -> list[str]:
             raise ValueError(f"{p}: not a readable Gwyddion file ({type(exc).__name__}: "
                              f"{exc})") from None
     if suffix == ".ibw":
-        return _ibw_channels(p)
-    (_tiff_check if suffix == ".jpk" else _asd_check)(p)
-    return _afmreader_channels(p)
+        return _ibw_channels(_ibw_wave(p))
+    if suffix == ".jpk":
+        return [name for name in _jpk_channels(p) if name != "_pixel"]
+    return _asd_header(p)["_channels"]
 
 
 def save_gwy(sample: Sample, path) -> Path:
