@@ -1,0 +1,292 @@
+"""Paraxial optics of an optical-beam-deflection head: rays, a steering mirror, Gaussian beams.
+
+The pieces that :mod:`afmsmiler.instrument.alignment` assembles into the laser path of an AFM
+head, each a textbook formula (SI units throughout):
+
+* Ray transfer (ABCD) matrices of free space and a thin lens, acting on a paraxial ray
+  (height x in m, slope theta in rad) (Siegman, *Lasers*, University Science Books 1986, ch. 15;
+  Saleh and Teich, *Fundamentals of Photonics*, Wiley 2007, sec. 1.4). A collimated beam tilted
+  by theta and a lens of focal length f meet in the lens's back focal plane at x = f theta, and a
+  steering mirror in the front focal plane makes the focused beam telecentric (its slope there is
+  zero, whatever theta): :func:`focal_plane_ray`.
+* The law of reflection in vector form, r = d - 2 (d . n) n, for the beam deviation of a tilted
+  fold mirror: a tilt phi about the normal of the plane of incidence turns the beam by 2 phi in
+  that plane, a tilt psi about the in-plane axis by 2 psi cos(i) out of it (i the angle of
+  incidence) to first order: :func:`mirror_deviation`.
+* A Gaussian beam (1/e^2 intensity radius w): the waist w0 = w_in f / sqrt(f^2 + z_in^2) that a
+  lens of focal length f makes of a collimated beam of radius w_in with its waist at the lens
+  (z_in = pi w_in^2 / lambda its Rayleigh range; ~ lambda f / (pi w_in) for f << z_in), the
+  Rayleigh range z_R = pi w0^2 / lambda and the radius w(z) = w0 sqrt(1 + (z / z_R)^2) a distance
+  z from the waist (Saleh and Teich, sec. 3.1-3.2, eqs. (3.1-8), (3.1-11) and (3.2-9)).
+* The share of a Gaussian spot's power inside an interval, a rectangle, and the spot's
+  intensity-weighted first and second moments over an interval (truncated normal moments, with
+  sigma = w / 2 because exp(-2 x^2 / w^2) = exp(-x^2 / (2 sigma^2))).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from scipy.special import ndtr
+
+from ..validation import check_array, check_positive, check_range
+
+__all__ = ["free_space", "thin_lens", "focal_plane_ray", "mirror_deviation", "focused_waist",
+           "rayleigh_range", "beam_radius_at", "interval_fraction", "rectangle_fraction",
+           "interval_moments"]
+
+
+def free_space(distance: float) -> np.ndarray:
+    """The ray transfer matrix [[1, d], [0, 1]] of free space of length ``distance``.
+
+    Parameters
+    ----------
+    distance : float
+        Propagation distance d in m, >= 0.
+
+    Returns
+    -------
+    ndarray, shape (2, 2)
+        Acts on a column (height in m, slope in rad).
+    """
+    d = check_range("distance", distance, 0.0, math.inf, "m")
+    return np.array([[1.0, d], [0.0, 1.0]])
+
+
+def thin_lens(focal_length: float) -> np.ndarray:
+    """The ray transfer matrix [[1, 0], [-1/f, 1]] of a thin lens of focal length f.
+
+    Parameters
+    ----------
+    focal_length : float
+        f in m, > 0 (a converging lens).
+
+    Returns
+    -------
+    ndarray, shape (2, 2)
+    """
+    f = check_positive("focal_length", focal_length, "m")
+    return np.array([[1.0, 0.0], [-1.0 / f, 1.0]])
+
+
+def focal_plane_ray(slope, focal_length: float):
+    """Height and slope in the back focal plane of a ray leaving the front focal plane on axis.
+
+    The steering mirror sits on the axis in the lens's front focal plane and sends the collimated
+    beam off with a ``slope``; after free space f, the lens and free space f the ray is at
+    x = f slope with slope 0 (the matrix [[0, f], [-1/f, 0]]): the spot moves across the chip
+    parallel to itself, so moving it does not tilt the reflected beam.
+
+    Parameters
+    ----------
+    slope : float or array_like
+        Slope of the beam leaving the mirror in rad (a paraxial slope, tan of the angle), at most
+        1 either way.
+    focal_length : float
+        f in m, > 0.
+
+    Returns
+    -------
+    tuple of ndarray
+        (height in m, slope in rad), each of the shape of ``slope``.
+    """
+    slope = check_array("slope", slope, "rad", low=-1.0, high=1.0)
+    f = check_positive("focal_length", focal_length, "m")
+    m = free_space(f) @ thin_lens(f) @ free_space(f)  # the ray starts on the axis: (0, slope)
+    return m[0, 1] * slope, m[1, 1] * slope
+
+
+def mirror_deviation(tilt_in_plane: float, tilt_out_of_plane: float,
+                     incidence: float = math.pi / 4):
+    """Slopes of the beam after a fold mirror tilted from its nominal orientation.
+
+    The beam arrives along +x, the mirror (nominal normal at ``incidence`` to it, in the x-z
+    plane) sends it down along -z. The mirror's normal is rotated by ``tilt_in_plane`` about y
+    (the normal of the plane of incidence) and by ``tilt_out_of_plane`` about the in-plane axis
+    of the mirror's surface; the reflected direction is r = d - 2 (d . n) n exactly, returned as
+    paraxial slopes about the nominal direction. To first order the in-plane slope is
+    2 tilt_in_plane and the out-of-plane slope 2 tilt_out_of_plane cos(incidence).
+
+    Parameters
+    ----------
+    tilt_in_plane : float
+        Rotation of the mirror about the normal of the plane of incidence in rad, |.| <= 0.2.
+    tilt_out_of_plane : float
+        Rotation about the in-plane axis of the mirror's surface in rad, |.| <= 0.2.
+    incidence : float
+        Nominal angle of incidence i in rad, in (0, pi/2) (pi/4: a 90 degree fold).
+
+    Returns
+    -------
+    tuple of float
+        (in-plane slope, out-of-plane slope) in rad of the reflected beam (tangents of the
+        angles to the nominal reflected direction).
+    """
+    a = check_range("tilt_in_plane", tilt_in_plane, -0.2, 0.2, "rad")
+    b = check_range("tilt_out_of_plane", tilt_out_of_plane, -0.2, 0.2, "rad")
+    i = check_range("incidence", incidence, 0.0, math.pi / 2, "rad", low_inclusive=False,
+                    high_inclusive=False)
+    u, w = _mirror_slopes(np.asarray(a), np.asarray(b), i)
+    return float(u), float(w)
+
+
+def _mirror_slopes(a, b, i):
+    """:func:`mirror_deviation` without checks, for arrays of tilts ``a``, ``b`` (rad)."""
+    a, b = np.broadcast_arrays(np.asarray(a, float), np.asarray(b, float))
+    d = np.array([1.0, 0.0, 0.0])
+    e_w = np.array([0.0, 1.0, 0.0])
+    normal0 = np.array([-math.cos(i), 0.0, -math.sin(i)])
+    reflected0 = d - 2 * (d @ normal0) * normal0        # the nominal output direction
+    in_plane_axis = np.cross(normal0, e_w)              # in the mirror, in the x-z plane
+    n = _rotate(_rotate(np.broadcast_to(normal0, a.shape + (3,)), e_w, a), in_plane_axis, b)
+    r = d - 2 * (n @ d)[..., None] * n                  # the law of reflection, exactly
+    e_u = np.cross(e_w, reflected0)                     # the output frame, normal to r0
+    along = r @ reflected0
+    return r @ e_u / along, r @ e_w / along
+
+
+def _rotate(v, axis, angle):
+    """Rodrigues' rotation of vectors ``v`` (..., 3) about the unit ``axis`` by ``angle`` (...)."""
+    k = np.asarray(axis, float) / np.linalg.norm(axis)
+    c, s = np.cos(angle)[..., None], np.sin(angle)[..., None]
+    return v * c + np.cross(k, v) * s + k * (v @ k)[..., None] * (1 - c)
+
+
+def focused_waist(beam_radius: float, focal_length: float, wavelength: float) -> float:
+    """Waist radius w0 in m that a thin lens makes of a collimated Gaussian beam.
+
+    w0 = w_in f / sqrt(f^2 + z_in^2) with z_in = pi w_in^2 / lambda (the input waist at the lens;
+    Saleh and Teich eq. (3.2-9)), ~ lambda f / (pi w_in) when f << z_in.
+
+    Parameters
+    ----------
+    beam_radius : float
+        1/e^2 intensity radius w_in of the collimated beam in m, > 0.
+    focal_length : float
+        f in m, > 0.
+    wavelength : float
+        lambda in m, > 0.
+    """
+    w_in = check_positive("beam_radius", beam_radius, "m")
+    f = check_positive("focal_length", focal_length, "m")
+    lam = check_positive("wavelength", wavelength, "m")
+    z_in = math.pi * w_in ** 2 / lam
+    return w_in * f / math.hypot(f, z_in)
+
+
+def rayleigh_range(waist: float, wavelength: float) -> float:
+    """z_R = pi w0^2 / lambda in m.
+
+    Parameters
+    ----------
+    waist : float
+        Waist radius w0 in m, > 0.
+    wavelength : float
+        lambda in m, > 0.
+    """
+    w0 = check_positive("waist", waist, "m")
+    return math.pi * w0 ** 2 / check_positive("wavelength", wavelength, "m")
+
+
+def beam_radius_at(distance: float, waist: float, wavelength: float) -> float:
+    """Radius w(z) = w0 sqrt(1 + (z / z_R)^2) in m a ``distance`` z from the waist.
+
+    Parameters
+    ----------
+    distance : float
+        z in m, >= 0.
+    waist : float
+        w0 in m, > 0.
+    wavelength : float
+        lambda in m, > 0.
+    """
+    z = check_range("distance", distance, 0.0, math.inf, "m")
+    return waist * math.hypot(1.0, z / rayleigh_range(waist, wavelength))
+
+
+def interval_fraction(centre, radius, low, high):
+    """Share of a 1D Gaussian's power (centre m, 1/e^2 radius w) inside [low, high].
+
+    Phi((high - m) / sigma) - Phi((low - m) / sigma), sigma = w / 2, Phi the standard normal
+    distribution function; for the 2D spot it multiplies with the other axis's share.
+
+    Parameters
+    ----------
+    centre : float or array_like
+        The spot's centre m in m.
+    radius : float
+        Its 1/e^2 intensity radius w in m along this axis, > 0.
+    low, high : float
+        The interval's ends in m (``-inf``/``inf`` allowed), low <= high.
+
+    Returns
+    -------
+    ndarray
+        In [0, 1], of the shape of ``centre``.
+    """
+    m = check_array("centre", centre, "m")
+    sigma = check_positive("radius", radius, "m") / 2
+    return np.clip(ndtr((high - m) / sigma) - ndtr((low - m) / sigma), 0.0, 1.0)
+
+
+def rectangle_fraction(centre_x, centre_y, radius_x, radius_y, x_range, y_range):
+    """Share of an elliptical Gaussian spot's power on an axis-aligned rectangle (closed form).
+
+    The product of :func:`interval_fraction` along x and along y (the spot separates).
+
+    Parameters
+    ----------
+    centre_x, centre_y : float or array_like
+        The spot's centre in m (broadcast together).
+    radius_x, radius_y : float
+        Its 1/e^2 radii in m along x and y, > 0.
+    x_range, y_range : tuple of float
+        (low, high) of the rectangle along x and y in m.
+
+    Returns
+    -------
+    ndarray
+        In [0, 1].
+    """
+    return (interval_fraction(centre_x, radius_x, *x_range)
+            * interval_fraction(centre_y, radius_y, *y_range))
+
+
+def interval_moments(centre, radius, low, high):
+    """Mass, mean and mean square of a 1D Gaussian spot's intensity restricted to [low, high].
+
+    With t = x - m and g = exp(-t^2 / (2 sigma^2)) (sigma = w / 2), over [a, b]:
+    int g = sigma sqrt(2 pi) (Phi(beta) - Phi(alpha)), int t g = sigma^2 (g(a) - g(b)),
+    int t^2 g = sigma^2 ((a - m) g(a) - (b - m) g(b)) + sigma^2 int g (integration by parts).
+
+    Parameters
+    ----------
+    centre : float or array_like
+        The spot's centre m in m.
+    radius : float
+        1/e^2 radius w in m, > 0.
+    low, high : float
+        The finite interval [a, b] in m, a < b.
+
+    Returns
+    -------
+    tuple of ndarray
+        (fraction of the spot's power in [a, b], mean of x there in m, mean of x^2 there in
+        m^2); where the fraction is below 1e-12 (rounding would swamp the moments) the means
+        are those of the interval's nearer end.
+    """
+    m = check_array("centre", centre, "m")
+    sigma = check_positive("radius", radius, "m") / 2
+    a = check_range("low", low, -math.inf, math.inf, "m")
+    b = check_range("high", high, a, math.inf, "m", low_inclusive=False)
+    mass = np.clip(ndtr((b - m) / sigma) - ndtr((a - m) / sigma), 0.0, 1.0)
+    norm = sigma * math.sqrt(2 * math.pi)
+    ga, gb = np.exp(-0.5 * ((a - m) / sigma) ** 2), np.exp(-0.5 * ((b - m) / sigma) ** 2)
+    first = sigma ** 2 * (ga - gb) / norm
+    second = sigma ** 2 * ((a - m) * ga - (b - m) * gb) / norm + sigma ** 2 * mass
+    ok = mass > 1e-12
+    safe = np.where(ok, mass, 1.0)
+    nearer = np.where(m < a, a, np.where(m > b, b, m))
+    mean_t = np.clip(np.where(ok, first / safe, nearer - m), a - m, b - m)
+    mean_t2 = np.where(ok, second / safe, (nearer - m) ** 2)
+    return mass, m + mean_t, m ** 2 + 2 * m * mean_t + mean_t2
