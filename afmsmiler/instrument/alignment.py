@@ -69,7 +69,7 @@ by :data:`HEAD`, the alignment checks by :data:`TOLERANCES`; every one a
 :class:`~afmsmiler.parameters.Parameter`.
 
 References: Meyer and Amer, Appl. Phys. Lett. 53, 1045 (1988) (the optical lever); Siegman,
-*Lasers* (1986), ch. 15 (ray matrices) and ch. 17 (Gaussian beams); Saleh and Teich,
+*Lasers* (1986), ch. 15 (ray matrices) and ch. 16-17 (Gaussian beams); Saleh and Teich,
 *Fundamentals of Photonics* (2007), ch. 1 and 3; the MultiMode 8 instruction manual (Bruker,
 2011), "Laser alignment" (the procedure); the AFM SMILER paper ("AFM SMILER: A Scale Model
 Interactive Learning Extended Reality Toolkit for Atomic Force Microscopy Created with Digital
@@ -502,6 +502,14 @@ class OpticalHead:
         return (getattr(hi, name) - getattr(lo, name)) / (2 * h)
 
     @property
+    def best_overlap(self) -> float:
+        """The largest share of the spot on the lever: the spot at the lever's centre."""
+        cos_a = math.cos(self.holder_tilt)
+        lever = self.lever
+        return float(rectangle_fraction(lever.length / 2, 0.0, self.waist / cos_a, self.waist,
+                                        (0.0, lever.length), (-lever.width / 2, lever.width / 2)))
+
+    @property
     def best_sum(self) -> float:
         """The largest sum in V: the spot at the lever's centre, the photodiode centred on it.
 
@@ -509,10 +517,7 @@ class OpticalHead:
         photodiode's half side: the overlap of the symmetric Gaussian with the symmetric
         rectangle is largest at its centre.
         """
-        cos_a = math.cos(self.holder_tilt)
-        lever = self.lever
-        overlap = rectangle_fraction(lever.length / 2, 0.0, self.waist / cos_a, self.waist,
-                                     (0.0, lever.length), (-lever.width / 2, lever.width / 2))
+        overlap = self.best_overlap
         capture = interval_fraction(0.0, self.detector_spot_radius, -self.detector_size / 2,
                                     self.detector_size / 2) ** 2
         return float(self.transimpedance_gain * self.responsivity * self.laser_power
@@ -588,16 +593,20 @@ def align(head: OpticalHead, *, end_margin: float = 0.02) -> AlignmentRun:
 
     1. *Search*: sweep laser_y across its travel on lines of laser_x (spaced a third of the
        lever's length apart, points half a lever width apart) and go to the setting nearest the
-       start whose sum exceeds a quarter of :attr:`OpticalHead.best_sum` (from a misaligned
-       start the sum is near zero, so there is no gradient to follow).
-    2. *Across*: maximise the sum over laser_y (``scipy.optimize.minimize_scalar``, bounded).
-    3. *Photodiode*: zero vertical / sum and lateral / sum with the photodiode knobs
-       (``scipy.optimize.brentq``: each is monotonic in its knob), so the detector catches the
-       whole spot.
+       start where the lever reflects at least a quarter of :attr:`OpticalHead.best_overlap`
+       (from a misaligned start the sum is near zero, so there is no gradient to follow; the
+       student watches the spot on the lever, or the reflection on a card held in its path,
+       since the photodiode may not catch it yet).
+    2. *Photodiode*: zero vertical / sum and lateral / sum with the photodiode knobs
+       (``scipy.optimize.brentq`` after a coarse scan of the travel: each is monotonic in its
+       knob where light arrives), so the detector catches the whole spot.
+    3. *Across*: maximise the sum over laser_y (``scipy.optimize.minimize_scalar``, bounded).
     4. *Along*: step laser_x towards the free end until the sum falls below half the largest
        seen (the spot's centre has passed the end), then back to where the sum is
        (1 - ``end_margin``) of that largest (``brentq``): about one spot radius inside the end.
-    5. *Photodiode* again (the spot moved on the detector as it moved on the lever).
+    5. *Across* again (turning laser_x also moves the spot across a little: the mirror's two
+       tilts couple in the exact reflection), and the *photodiode* again (the spot moved on the
+       detector as it moved on the lever).
 
     Parameters
     ----------
@@ -620,28 +629,33 @@ def align(head: OpticalHead, *, end_margin: float = 0.02) -> AlignmentRun:
         count[0] += 1
         return head._sum(**knobs)
 
-    # 1. search
+    # 1. search, by the light the lever reflects (a card held in the reflected beam shows it)
     xs, ys, gain_x = _search_grid(head)
     gx, gy = np.meshgrid(xs, ys, indexing="ij")
     k = head.knobs
-    quads = head._evaluate(gx, gy, k["detector_vertical"], k["detector_lateral"], 0.0)[0]
-    sums = head._volts(quads)[0]
-    count[0] += sums.size
-    hits = np.argwhere(sums > 0.25 * head.best_sum)
+    _, lever_share, chip_share, _, _ = head._evaluate(gx, gy, k["detector_vertical"],
+                                                      k["detector_lateral"], 0.0)
+    reflected = lever_share + head.chip_reflectance * chip_share
+    count[0] += reflected.size
+    hits = np.argwhere(reflected > 0.25 * head.best_overlap)
     if not len(hits):
         steps.append(("search: no reflection found", head.signals()))
         return AlignmentRun(tuple(steps), count[0], head.aligned())
     distance = np.hypot(xs[hits[:, 0]] - k["laser_x"], ys[hits[:, 1]] - k["laser_y"])
     i, j = hits[np.argmin(distance)]
     steps.append(("search", head.set(laser_x=float(xs[i]), laser_y=float(ys[j]))))
-    # 2. across the lever
-    dy = ys[1] - ys[0]
-    lo, hi = max(ys[j] - 2 * dy, ys[0]), min(ys[j] + 2 * dy, ys[-1])
-    best = minimize_scalar(lambda y: -total(laser_y=y), bounds=(lo, hi), method="bounded",
-                           options={"xatol": 1e-4 * dy, "maxiter": 100})
-    steps.append(("across", head.set(laser_y=float(best.x))))
-    # 3. photodiode
+    # 2. photodiode under the reflection
     steps.append(("photodiode", _centre_detector(head, count)))
+    # 3. across the lever
+    dy = ys[1] - ys[0]
+
+    def across():
+        y = head.knobs["laser_y"]
+        lo, hi = max(y - 2 * dy, ys[0]), min(y + 2 * dy, ys[-1])
+        best = minimize_scalar(lambda u: -total(laser_y=u), bounds=(lo, hi), method="bounded",
+                               options={"xatol": 1e-4 * dy, "maxiter": 100})
+        return head.set(laser_y=float(best.x))
+    steps.append(("across", across()))
     # 4. along, to the free end
     step = head.waist / 2 / gain_x
     x, largest = head.knobs["laser_x"], total()
@@ -665,7 +679,9 @@ def align(head: OpticalHead, *, end_margin: float = 0.02) -> AlignmentRun:
     else:
         x = back
     steps.append(("along", head.set(laser_x=float(x))))
-    # 5. photodiode again
+    # the mirror's two tilts couple a little (exact reflection): centre across once more
+    steps.append(("across", across()))
+    # 5. photodiode again (the spot moved on the detector as it moved on the lever)
     steps.append(("photodiode", _centre_detector(head, count)))
     return AlignmentRun(tuple(steps), count[0], head.aligned())
 

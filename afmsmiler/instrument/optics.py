@@ -17,7 +17,7 @@ head, each a textbook formula (SI units throughout):
   lens of focal length f makes of a collimated beam of radius w_in with its waist at the lens
   (z_in = pi w_in^2 / lambda its Rayleigh range; ~ lambda f / (pi w_in) for f << z_in), the
   Rayleigh range z_R = pi w0^2 / lambda and the radius w(z) = w0 sqrt(1 + (z / z_R)^2) a distance
-  z from the waist (Saleh and Teich, sec. 3.1-3.2, eqs. (3.1-8), (3.1-11) and (3.2-9)).
+  z from the waist (Saleh and Teich, sec. 3.1 and 3.2, "transmission through a thin lens").
 * The share of a Gaussian spot's power inside an interval, a rectangle, and the spot's
   intensity-weighted first and second moments over an interval (truncated normal moments, with
   sigma = w / 2 because exp(-2 x^2 / w^2) = exp(-x^2 / (2 sigma^2))).
@@ -156,7 +156,8 @@ def focused_waist(beam_radius: float, focal_length: float, wavelength: float) ->
     """Waist radius w0 in m that a thin lens makes of a collimated Gaussian beam.
 
     w0 = w_in f / sqrt(f^2 + z_in^2) with z_in = pi w_in^2 / lambda (the input waist at the lens;
-    Saleh and Teich eq. (3.2-9)), ~ lambda f / (pi w_in) when f << z_in.
+    Saleh and Teich sec. 3.2), ~ lambda f / (pi w_in) when f << z_in. The new waist lies
+    f z_in^2 / (f^2 + z_in^2) behind the lens, at the focal plane when f << z_in.
 
     Parameters
     ----------
