@@ -352,3 +352,12 @@ def test_another_lever_from_module_a():
     run = align(head)
     assert run.alignment.ok, run.alignment.reason
     assert head.signals().sum == pytest.approx(head.best_sum, rel=0.03)
+
+
+def test_every_knob_and_head_parameter_makes_a_slider():
+    """The walkthrough builds its sliders with the one factory, from these tables."""
+    from afmsmiler.ui.controls import control
+    for p in (*KNOBS.values(), *HEAD.values(), *TOLERANCES.values()):
+        w = control(p)
+        assert w.description == p.title
+        assert p.check(p.to_si(w.value)) == pytest.approx(p.default, rel=1e-12, abs=1e-15)
