@@ -371,7 +371,12 @@ class OpticalHead:
         check_instance("knob", knob, str)
         check_choice("knob", knob, KNOBS)
         angle = check_range("angle", angle, -math.inf, math.inf, "rad")
-        self._knobs[knob] = _check_knob(knob, self._knobs[knob] + angle)
+        target = self._knobs[knob] + angle
+        try:
+            self._knobs[knob] = _check_knob(knob, target)
+        except ValueError as err:
+            raise ValueError(f"turning {knob} by angle = {angle:.4g} rad "
+                             f"({angle / _TURN:.4g} turn): {err}") from None
         return self.signals()
 
     def set(self, **knobs) -> Signals:
@@ -486,7 +491,7 @@ class OpticalHead:
         Parameters
         ----------
         deflection : float
-            Tip deflection z in m at which to take it.
+            Tip deflection z in m at which to take it (as :meth:`signals`, less 1 nm).
         normalised : bool
             True: d(vertical / sum)/dz in 1/m (module (b)'s sensitivity); False: d vertical/dz
             in V/m.
@@ -495,8 +500,10 @@ class OpticalHead:
         -------
         float
         """
-        check_instance("normalised", normalised, bool)
         h = 1e-9
+        limit = self.lever.length / 10 - h
+        deflection = check_range("deflection", deflection, -limit, limit, "m")
+        check_instance("normalised", normalised, bool)
         lo, hi = self.signals(deflection - h), self.signals(deflection + h)
         name = "vertical_normalised" if normalised else "vertical"
         return (getattr(hi, name) - getattr(lo, name)) / (2 * h)

@@ -29,11 +29,30 @@ import math
 import numpy as np
 from scipy.special import ndtr
 
-from ..validation import check_array, check_positive, check_range
+from ..validation import check_array, check_range
 
-__all__ = ["free_space", "thin_lens", "focal_plane_ray", "mirror_deviation", "focused_waist",
-           "rayleigh_range", "beam_radius_at", "interval_fraction", "rectangle_fraction",
+#: Largest length in m the functions accept (a bench is metres long; beyond, nothing is optics
+#: of an AFM and the squares of lengths would leave double precision).
+MAX_LENGTH = 1e3
+#: Shortest waist and wavelength in m (an X-ray's): below, a Gaussian beam is meaningless here.
+MIN_LENGTH = 1e-12
+
+__all__ = ["MAX_LENGTH", "MIN_LENGTH", "free_space", "thin_lens", "focal_plane_ray",
+           "mirror_deviation", "focused_waist", "rayleigh_range", "beam_radius_at", "interval_fraction", "rectangle_fraction",
            "interval_moments"]
+
+
+def _length(name, value, low=MIN_LENGTH, high=MAX_LENGTH):
+    """A length in m in [low, high] (ValueError naming it otherwise)."""
+    return check_range(name, value, low, high, "m")
+
+
+def _end(name, value):
+    """An interval's end in m: a real number in [-MAX_LENGTH, MAX_LENGTH] or -inf/inf."""
+    if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
+            value, (bool, np.bool_)) and math.isinf(value):
+        return float(value)
+    return check_range(name, value, -MAX_LENGTH, MAX_LENGTH, "m")
 
 
 def free_space(distance: float) -> np.ndarray:
@@ -42,14 +61,14 @@ def free_space(distance: float) -> np.ndarray:
     Parameters
     ----------
     distance : float
-        Propagation distance d in m, >= 0.
+        Propagation distance d in m, in [0, MAX_LENGTH].
 
     Returns
     -------
     ndarray, shape (2, 2)
         Acts on a column (height in m, slope in rad).
     """
-    d = check_range("distance", distance, 0.0, math.inf, "m")
+    d = _length("distance", distance, 0.0)
     return np.array([[1.0, d], [0.0, 1.0]])
 
 
@@ -59,13 +78,13 @@ def thin_lens(focal_length: float) -> np.ndarray:
     Parameters
     ----------
     focal_length : float
-        f in m, > 0 (a converging lens).
+        f in m, in [MIN_LENGTH, MAX_LENGTH] (a converging lens).
 
     Returns
     -------
     ndarray, shape (2, 2)
     """
-    f = check_positive("focal_length", focal_length, "m")
+    f = _length("focal_length", focal_length)
     return np.array([[1.0, 0.0], [-1.0 / f, 1.0]])
 
 
@@ -83,7 +102,7 @@ def focal_plane_ray(slope, focal_length: float):
         Slope of the beam leaving the mirror in rad (a paraxial slope, tan of the angle), at most
         1 either way.
     focal_length : float
-        f in m, > 0.
+        f in m, in [MIN_LENGTH, MAX_LENGTH].
 
     Returns
     -------
@@ -91,7 +110,7 @@ def focal_plane_ray(slope, focal_length: float):
         (height in m, slope in rad), each of the shape of ``slope``.
     """
     slope = check_array("slope", slope, "rad", low=-1.0, high=1.0)
-    f = check_positive("focal_length", focal_length, "m")
+    f = _length("focal_length", focal_length)
     m = free_space(f) @ thin_lens(f) @ free_space(f)  # the ray starts on the axis: (0, slope)
     return m[0, 1] * slope, m[1, 1] * slope
 
@@ -162,15 +181,15 @@ def focused_waist(beam_radius: float, focal_length: float, wavelength: float) ->
     Parameters
     ----------
     beam_radius : float
-        1/e^2 intensity radius w_in of the collimated beam in m, > 0.
+        1/e^2 intensity radius w_in of the collimated beam in m, in [MIN_LENGTH, 1].
     focal_length : float
-        f in m, > 0.
+        f in m, in [MIN_LENGTH, MAX_LENGTH].
     wavelength : float
-        lambda in m, > 0.
+        lambda in m, in [MIN_LENGTH, 1 mm].
     """
-    w_in = check_positive("beam_radius", beam_radius, "m")
-    f = check_positive("focal_length", focal_length, "m")
-    lam = check_positive("wavelength", wavelength, "m")
+    w_in = _length("beam_radius", beam_radius, high=1.0)
+    f = _length("focal_length", focal_length)
+    lam = _length("wavelength", wavelength, high=1e-3)
     z_in = math.pi * w_in ** 2 / lam
     return w_in * f / math.hypot(f, z_in)
 
@@ -181,12 +200,12 @@ def rayleigh_range(waist: float, wavelength: float) -> float:
     Parameters
     ----------
     waist : float
-        Waist radius w0 in m, > 0.
+        Waist radius w0 in m, in [MIN_LENGTH, 1].
     wavelength : float
-        lambda in m, > 0.
+        lambda in m, in [MIN_LENGTH, 1 mm].
     """
-    w0 = check_positive("waist", waist, "m")
-    return math.pi * w0 ** 2 / check_positive("wavelength", wavelength, "m")
+    w0 = _length("waist", waist, high=1.0)
+    return math.pi * w0 ** 2 / _length("wavelength", wavelength, high=1e-3)
 
 
 def beam_radius_at(distance: float, waist: float, wavelength: float) -> float:
@@ -195,14 +214,15 @@ def beam_radius_at(distance: float, waist: float, wavelength: float) -> float:
     Parameters
     ----------
     distance : float
-        z in m, >= 0.
+        z in m, in [0, MAX_LENGTH].
     waist : float
-        w0 in m, > 0.
+        w0 in m, in [MIN_LENGTH, 1].
     wavelength : float
-        lambda in m, > 0.
+        lambda in m, in [MIN_LENGTH, 1 mm].
     """
-    z = check_range("distance", distance, 0.0, math.inf, "m")
-    return waist * math.hypot(1.0, z / rayleigh_range(waist, wavelength))
+    z = _length("distance", distance, 0.0)
+    z_r = rayleigh_range(waist, wavelength)
+    return waist * math.hypot(1.0, z / z_r)
 
 
 def interval_fraction(centre, radius, low, high):
@@ -214,19 +234,33 @@ def interval_fraction(centre, radius, low, high):
     Parameters
     ----------
     centre : float or array_like
-        The spot's centre m in m.
+        The spot's centre m in m, |m| <= MAX_LENGTH.
     radius : float
-        Its 1/e^2 intensity radius w in m along this axis, > 0.
+        Its 1/e^2 intensity radius w in m along this axis, in [MIN_LENGTH, MAX_LENGTH].
     low, high : float
-        The interval's ends in m (``-inf``/``inf`` allowed), low <= high.
+        The interval's ends in m (``-inf``/``inf`` allowed, else |.| <= MAX_LENGTH),
+        low <= high.
 
     Returns
     -------
     ndarray
         In [0, 1], of the shape of ``centre``.
     """
-    m = check_array("centre", centre, "m")
-    sigma = check_positive("radius", radius, "m") / 2
+    m = check_array("centre", centre, "m", low=-MAX_LENGTH, high=MAX_LENGTH)
+    w = _length("radius", radius)
+    lo, hi = _interval("low", low, "high", high)
+    return _fraction(m, w / 2, lo, hi)
+
+
+def _interval(low_name, low, high_name, high):
+    lo, hi = _end(low_name, low), _end(high_name, high)
+    if not lo <= hi:
+        raise ValueError(f"{high_name} must be >= {low_name} = {lo:g} m, got {hi:g}")
+    return lo, hi
+
+
+def _fraction(m, sigma, low, high):
+    """Phi((high - m) / sigma) - Phi((low - m) / sigma), unchecked."""
     return np.clip(ndtr((high - m) / sigma) - ndtr((low - m) / sigma), 0.0, 1.0)
 
 
@@ -238,9 +272,9 @@ def rectangle_fraction(centre_x, centre_y, radius_x, radius_y, x_range, y_range)
     Parameters
     ----------
     centre_x, centre_y : float or array_like
-        The spot's centre in m (broadcast together).
+        The spot's centre in m (broadcast together), |.| <= MAX_LENGTH.
     radius_x, radius_y : float
-        Its 1/e^2 radii in m along x and y, > 0.
+        Its 1/e^2 radii in m along x and y, in [MIN_LENGTH, MAX_LENGTH].
     x_range, y_range : tuple of float
         (low, high) of the rectangle along x and y in m.
 
@@ -249,8 +283,15 @@ def rectangle_fraction(centre_x, centre_y, radius_x, radius_y, x_range, y_range)
     ndarray
         In [0, 1].
     """
-    return (interval_fraction(centre_x, radius_x, *x_range)
-            * interval_fraction(centre_y, radius_y, *y_range))
+    mx = check_array("centre_x", centre_x, "m", low=-MAX_LENGTH, high=MAX_LENGTH)
+    my = check_array("centre_y", centre_y, "m", low=-MAX_LENGTH, high=MAX_LENGTH)
+    wx, wy = _length("radius_x", radius_x), _length("radius_y", radius_y)
+    ranges = []
+    for name, pair in (("x_range", x_range), ("y_range", y_range)):
+        if not isinstance(pair, (tuple, list)) or len(pair) != 2:
+            raise TypeError(f"{name} must be a (low, high) pair in m, got {pair!r:.60}")
+        ranges.append(_interval(f"{name}[0]", pair[0], f"{name}[1]", pair[1]))
+    return _fraction(mx, wx / 2, *ranges[0]) * _fraction(my, wy / 2, *ranges[1])
 
 
 def interval_moments(centre, radius, low, high):
@@ -263,11 +304,11 @@ def interval_moments(centre, radius, low, high):
     Parameters
     ----------
     centre : float or array_like
-        The spot's centre m in m.
+        The spot's centre m in m, |m| <= MAX_LENGTH.
     radius : float
-        1/e^2 radius w in m, > 0.
+        1/e^2 radius w in m, in [MIN_LENGTH, MAX_LENGTH].
     low, high : float
-        The finite interval [a, b] in m, a < b.
+        The finite interval [a, b] in m, a < b, |.| <= MAX_LENGTH.
 
     Returns
     -------
@@ -276,10 +317,12 @@ def interval_moments(centre, radius, low, high):
         m^2); where the fraction is below 1e-12 (rounding would swamp the moments) the means
         are those of the interval's nearer end.
     """
-    m = check_array("centre", centre, "m")
-    sigma = check_positive("radius", radius, "m") / 2
-    a = check_range("low", low, -math.inf, math.inf, "m")
-    b = check_range("high", high, a, math.inf, "m", low_inclusive=False)
+    m = check_array("centre", centre, "m", low=-MAX_LENGTH, high=MAX_LENGTH)
+    sigma = _length("radius", radius) / 2
+    a = check_range("low", low, -MAX_LENGTH, MAX_LENGTH, "m")
+    b = check_range("high", high, -MAX_LENGTH, MAX_LENGTH, "m")
+    if not a < b:
+        raise ValueError(f"high must be > low = {a:g} m, got {b:g}")
     mass = np.clip(ndtr((b - m) / sigma) - ndtr((a - m) / sigma), 0.0, 1.0)
     norm = sigma * math.sqrt(2 * math.pi)
     ga, gb = np.exp(-0.5 * ((a - m) / sigma) ** 2), np.exp(-0.5 * ((b - m) / sigma) ** 2)
