@@ -38,8 +38,8 @@ MAX_LENGTH = 1e3
 MIN_LENGTH = 1e-12
 
 __all__ = ["MAX_LENGTH", "MIN_LENGTH", "free_space", "thin_lens", "focal_plane_ray",
-           "mirror_deviation", "focused_waist", "rayleigh_range", "beam_radius_at", "interval_fraction", "rectangle_fraction",
-           "interval_moments"]
+           "mirror_deviation", "focused_waist", "rayleigh_range", "beam_radius_at",
+           "interval_fraction", "rectangle_fraction", "interval_moments"]
 
 
 def _length(name, value, low=MIN_LENGTH, high=MAX_LENGTH):
