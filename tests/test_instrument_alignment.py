@@ -188,6 +188,50 @@ def test_a_deflection_moves_the_spot_up_by_module_b_optical_lever(head):
     assert s1.spot_on_detector[1] == pytest.approx(s0.spot_on_detector[1], abs=1e-15)
 
 
+def _exact_detector_coordinate(x_beam, tilt, tilt_error, distance):
+    """Where the reflected ray meets the photodiode, by exact 2D ray tracing (x-z plane).
+
+    The incident ray comes down (0, -1) at height x_beam; the lever's surface through the origin
+    is tilted by ``tilt`` (its free end towards +x) plus ``tilt_error``; the photodiode is the
+    plane normal to the nominal reflected direction (no error) at ``distance``. Returns the
+    coordinate towards the top quadrants (where a tip-up rotation of the surface sends the ray).
+    """
+    def reflect(angle):
+        n = np.array([-math.sin(angle), math.cos(angle)])
+        d = np.array([0.0, -1.0])
+        return d - 2 * (d @ n) * n
+    r0 = reflect(tilt)
+    r = reflect(tilt + tilt_error)
+    hit = np.array([x_beam, x_beam * math.tan(tilt + tilt_error)])  # on the surface
+    centre = distance * r0
+    t = (centre - hit) @ r0 / (r @ r0)
+    point = hit + t * r - centre
+    dr = reflect(tilt + 1e-7) - r0                                   # a tip-up rotation
+    top = dr / np.linalg.norm(dr)
+    return float(point @ top)
+
+
+@pytest.mark.parametrize("tilt_error", [0.0, math.radians(1), math.radians(-2)])
+def test_spot_on_detector_matches_exact_ray_tracing(tilt_error):
+    """v = -X + D tan(2 tilt_error): the spot's shift across the chip and the lever's rotation."""
+    head = OpticalHead(tilt_error=tilt_error)
+    alpha = head.holder_tilt
+    coords = []
+    for mx in (200e-6, 430e-6, 445e-6):
+        s = place(head, mx, 0.0)
+        dv = head.detector_screw_pitch * s.knobs["detector_vertical"] / TURN
+        x_beam = (mx - head.lever.length) * math.cos(alpha) + head.mount_offset_x
+        got = s.spot_on_detector[0] + dv
+        # exact for a lever at its nominal tilt; otherwise within X tan(alpha) sin(2 delta)
+        tol = 1e-12 + 2 * abs(x_beam) * abs(math.tan(alpha) * math.sin(2 * tilt_error))
+        for sign in (-1, 1):  # the free end down towards the sample, or up: the same
+            exact = _exact_detector_coordinate(x_beam, sign * alpha, tilt_error,
+                                               head.optical_path)
+            assert got == pytest.approx(exact, abs=tol)
+        coords.append(got)
+    assert coords[0] > coords[1]  # towards the free end, the spot goes down on the detector
+
+
 def _sympy_end_slope_over_deflection():
     """theta(L) / z(L) of a clamped lever under an end force, from E J z'''' = 0 (sympy)."""
     x, length, force, ej = sp.symbols("x L F EJ", positive=True)
@@ -311,6 +355,7 @@ def test_knob_beyond_its_travel_names_it_its_value_and_the_travel(head):
         head.turn("laser_x", 2 * TURN)
     msg = str(err.value)
     assert "laser_x" in msg and "travel" in msg and "[-5, 5] turn" in msg and "6 turn" in msg
+    assert "angle" in msg and "2 turn" in msg    # the campaign: turn() names its argument
     assert head.knobs["laser_x"] == pytest.approx(4 * TURN)   # left where it was
     with pytest.raises(ValueError, match=r"detector_vertical.*\[-6, 6\] turn.*-7 turn"):
         head.set(detector_vertical=-7 * TURN)

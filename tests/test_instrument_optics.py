@@ -140,7 +140,30 @@ def test_interval_moments_far_from_the_interval_stay_finite():
     (lambda: interval_fraction(0.0, 0.0, -1.0, 1.0), "radius"),
     (lambda: interval_moments(0.0, 1.0, 1.0, 0.0), "high"),
     (lambda: interval_fraction(float("nan"), 1.0, -1.0, 1.0), "centre"),
+    # found by the bad-input campaign: each was an overflow, a silent NaN or the wrong name
+    (lambda: focused_waist(1e300, 0.02, LAMBDA), "beam_radius"),
+    (lambda: rayleigh_range(1e300, LAMBDA), "waist"),
+    (lambda: beam_radius_at(1.0, 1e-300, LAMBDA), "waist"),
+    (lambda: interval_fraction(0.0, 1.0, float("nan"), 1.0), "low"),
+    (lambda: interval_fraction(0.0, 1.0, -1.0, float("nan")), "high"),
+    (lambda: interval_fraction(0.0, 1.0, 1.0, -1.0), "high"),
+    (lambda: rectangle_fraction(float("nan"), 0.0, 1.0, 1.0, (0, 1), (0, 1)), "centre_x"),
+    (lambda: rectangle_fraction(0.0, 0.0, 1.0, 0.0, (0, 1), (0, 1)), "radius_y"),
+    (lambda: rectangle_fraction(0.0, 0.0, 1.0, 1.0, (0, 1), (1, float("nan"))), "y_range"),
+    (lambda: interval_moments(1e300, 1.0, 0.0, 1.0), "centre"),
+    (lambda: interval_moments(0.0, 1e256, 0.0, 1.0), "radius"),
+    (lambda: interval_moments(0.0, 1.0, 1e300, 1.0), "low"),
 ])
 def test_bad_inputs_name_the_parameter(call, name):
     with pytest.raises(ValueError, match=name):
         call()
+
+
+def test_a_pair_that_is_not_a_pair_is_named():
+    with pytest.raises(TypeError, match="x_range"):
+        rectangle_fraction(0.0, 0.0, 1.0, 1.0, 1.0, (0, 1))
+
+
+def test_infinite_interval_ends_are_allowed():
+    assert float(interval_fraction(0.0, 1.0, -math.inf, math.inf)) == 1.0
+    assert float(interval_fraction(0.0, 1.0, 0.0, math.inf)) == pytest.approx(0.5)
