@@ -1,7 +1,7 @@
 """Laser alignment of an optical-beam-deflection AFM head, as physics (module (e)).
 
 The head (the optical path of a commercial AFM such as the Bruker MultiMode; the dimensions are
-typical values, listed in :data:`HEAD` with their sources):
+typical values, not a vendor's drawing, and each is a parameter of :data:`HEAD`):
 
 1. A laser diode (670 nm, 1 mW, collimated to a 1/e^2 radius w_in = 0.25 mm) sends its beam
    horizontally onto a **steering mirror** at 45 degrees that folds it down. The two
@@ -13,11 +13,12 @@ typical values, listed in :data:`HEAD` with their sources):
    across the chip at x = f slope without tilting (:func:`~.optics.focal_plane_ray`), and the
    lens focuses the beam to a waist w0 = w_in f / sqrt(f^2 + z_in^2) ~ 17 um
    (:func:`~.optics.focused_waist`) in the plane of the **lever**, which the holder tilts by
-   alpha = 12 deg: on the lever the spot is an ellipse of radii w0 / cos(alpha) along it and w0
-   across. The lever (module (a), :class:`~afmsmiler.cantilever.Cantilever`, 450 x 50 um by
-   default) sticks out of a standard **chip** (3.4 x 1.6 mm, the size every vendor's probes
-   share). Its defocus along the tilted lever (L sin alpha ~ 0.1 mm) is far inside the Rayleigh
-   range (1.4 mm) and is neglected.
+   alpha = 12 deg (holders tilt levers by 10 to 15 deg): on the lever the spot is an ellipse of
+   radii w0 / cos(alpha) along it and w0 across. The lever (module (a),
+   :class:`~afmsmiler.cantilever.Cantilever`, 450 x 50 um by default) sticks out of a standard
+   **chip** (3.4 x 1.6 x 0.3 mm, the support chip of the probe vendors' datasheets, e.g.
+   BudgetSensors and NanoWorld). Its defocus along the tilted lever (L sin alpha ~ 0.1 mm) is
+   far inside the Rayleigh range (1.4 mm) and is neglected.
 3. The reflected beam reaches a **four-quadrant photodiode** (3 x 3 mm, e.g. Hamamatsu S4349,
    the gaps between quadrants neglected) at the optical path D = 30 mm (module (b)'s default), as
    a Gaussian spot of radius w(D) = w0 sqrt(1 + (D / z_R)^2) ~ 0.38 mm
@@ -43,7 +44,8 @@ What the model computes (:meth:`OpticalHead.signals`):
   :meth:`~afmsmiler.transducers.OpticalBeamDeflection.spot_displacement`, D tan(2 (tilt_error +
   mean slope)) (the reflection doubles the angle), and by the spot's own shift across the chip
   (a translation X of the incident beam moves the reflected beam by X on the detector, the other
-  way: v = -X + D tan(2 theta); exact for any tilt, from r = d - 2 (d . n) n).
+  way: v = -X + D tan(2 theta); exact for a lever at the holder's tilt, whatever that tilt, and
+  to first order in the tilt error, as exact ray tracing with r = d - 2 (d . n) n shows).
 * **Signals.** Each quadrant (A top-left, B top-right, C bottom-left, D bottom-right, top
   towards positive tip deflection, left towards +y) gets the spot's power on it (erf products
   again); photodiodes of responsivity R (module (b)'s, 0.4 A/W at 670 nm) feed transimpedance
