@@ -74,8 +74,10 @@ by :data:`HEAD`, the alignment checks by :data:`TOLERANCES`; every one a
 
 References: Meyer and Amer, Appl. Phys. Lett. 53, 1045 (1988) (the optical lever); Siegman,
 *Lasers* (1986), ch. 15 (ray matrices) and ch. 16-17 (Gaussian beams); Saleh and Teich,
-*Fundamentals of Photonics* (2007), ch. 1 and 3; the MultiMode 8 instruction manual (Bruker,
-2011), "Laser alignment" (the procedure); the AFM SMILER paper ("AFM SMILER: A Scale Model
+*Fundamentals of Photonics* (2007), ch. 1 and 3; Beaulieu et al., Appl. Phys. Lett. 88, 083108
+(2006) (a fuller model of the photodetector's response to the lever's deflection); the alignment
+procedure as vendors' manuals teach it (e.g. Bruker's MultiMode 8 instruction manual: the laser
+on the lever for the largest sum, then the photodetector centred); the AFM SMILER paper ("AFM SMILER: A Scale Model
 Interactive Learning Extended Reality Toolkit for Atomic Force Microscopy Created with Digital
 Twin Technology"), whose module (e) this re-creates.
 """
