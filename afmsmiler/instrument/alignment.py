@@ -77,9 +77,9 @@ References: Meyer and Amer, Appl. Phys. Lett. 53, 1045 (1988) (the optical lever
 *Fundamentals of Photonics* (2007), ch. 1 and 3; Beaulieu et al., Appl. Phys. Lett. 88, 083108
 (2006) (a fuller model of the photodetector's response to the lever's deflection); the alignment
 procedure as vendors' manuals teach it (e.g. Bruker's MultiMode 8 instruction manual: the laser
-on the lever for the largest sum, then the photodetector centred); the AFM SMILER paper ("AFM SMILER: A Scale Model
-Interactive Learning Extended Reality Toolkit for Atomic Force Microscopy Created with Digital
-Twin Technology"), whose module (e) this re-creates.
+on the lever for the largest sum, then the photodetector centred); the AFM SMILER paper ("AFM
+SMILER: A Scale Model Interactive Learning Extended Reality Toolkit for Atomic Force Microscopy
+Created with Digital Twin Technology"), whose module (e) this re-creates.
 """
 from __future__ import annotations
 
