@@ -417,3 +417,11 @@ def test_every_knob_and_head_parameter_makes_a_slider():
         w = control(p)
         assert w.description == p.title
         assert p.check(p.to_si(w.value)) == pytest.approx(p.default, rel=1e-12, abs=1e-15)
+
+
+def test_the_search_is_bounded():
+    """A tiny lever would need a finer raster than MAX_SEARCH_POINTS allows: refused, named."""
+    from afmsmiler.instrument import MAX_SEARCH_POINTS
+    tiny = Cantilever.from_material("silicon", length=20e-6, width=5e-6, thickness=1e-6)
+    with pytest.raises(ValueError, match=rf"search.*at most {MAX_SEARCH_POINTS}"):
+        align(OpticalHead(tiny))
