@@ -75,6 +75,7 @@ UNITS = MappingProxyType({
     "1/m": ("1/m", 1.0), "1/um": ("1/m", 1e6),
     # angle
     "rad": ("rad", 1.0), "mrad": ("rad", 1e-3), "deg": ("rad", math.pi / 180.0),
+    "turn": ("rad", 2 * math.pi),
     # force, stiffness, pressure, energy per area
     "N": ("N", 1.0), "uN": ("N", 1e-6), "nN": ("N", 1e-9), "pN": ("N", 1e-12),
     "N/m": ("N/m", 1.0), "N m": ("N m", 1.0), "nN m": ("N m", 1e-9),

@@ -25,7 +25,8 @@ BASES = {"m": ("m", 1.0), "g": ("kg", sc.gram), "s": ("s", 1.0), "N": ("N", 1.0)
          "Pa": ("Pa", 1.0), "J": ("J", 1.0), "rad": ("rad", 1.0), "deg": ("rad", sc.degree),
          "Hz": ("Hz", 1.0), "V": ("V", 1.0), "A": ("A", 1.0), "W": ("W", 1.0),
          "ohm": ("ohm", 1.0), "T": ("T", 1.0), "K": ("K", 1.0), "C": ("C", 1.0),
-         "F": ("F", 1.0), "H": ("H", 1.0), "S": ("S", 1.0), "L": ("m^3", 1e-3)}
+         "F": ("F", 1.0), "H": ("H", 1.0), "S": ("S", 1.0), "L": ("m^3", 1e-3),
+         "turn": ("rad", 2 * math.pi)}  # one revolution (SI brochure: a full angle is 2 pi rad)
 
 
 def _factor(term: str) -> tuple[str, float]:
