@@ -130,7 +130,7 @@ DEFAULTS = read_only(dict(
     frames=48,              # frames of the explode animation (one way)
     fps=24,                 # its frame rate
     highlight=0xffb000,     # colour of a highlighted part
-    beam_radius=0.2e-3,     # drawn laser beam (m)
+    beam_radius=0.35e-3,    # drawn laser beam (m)
     beam_color=0xff2020,
     spot_radius=0.6e-3,     # drawn spots (m)
     focus_distance=0.12,    # camera distance from a focused part (m)
@@ -340,7 +340,10 @@ class Instrument:
     parts : tuple of Part
         Its parts.
     camera_mm, exploded_camera_mm : tuple of float
-        Camera positions (mm) that frame it assembled and exploded.
+        Camera positions (mm) that frame it assembled and exploded, relative to ``centre_mm``.
+    centre_mm : tuple of float
+        The point (mm, scene frame) the camera looks at: the middle of the assembled
+        instrument (the scene is shifted to put it at meshcat's camera target).
     anchors_mm : dict
         Name -> point (mm) of the drawn optics (the nominal beam's corners).
     beam : tuple of str
@@ -354,6 +357,7 @@ class Instrument:
     parts: tuple
     camera_mm: tuple
     exploded_camera_mm: tuple
+    centre_mm: tuple = (0.0, 0.0, 0.0)
     anchors_mm: dict = field(default_factory=dict)
     beam: tuple = ()
     spots: tuple = ()
@@ -514,7 +518,8 @@ def _obd() -> Instrument:
     anchors = dict(laser=t(laser), lens=t(lens), lever_end=t(lever_end), mirror=t(mirror),
                    photodiode=t(photodiode))
     return Instrument("obd", "conventional AFM with optical beam deflection (MultiMode-like)",
-                      parts, (190.0, -260.0, 120.0), (330.0, -520.0, 250.0), anchors,
+                      parts, (145.0, -195.0, 90.0), (265.0, -415.0, 200.0), (0.0, 0.0, -45.0),
+                      anchors,
                       ("laser", "lens", "lever_end", "mirror", "photodiode"),
                       ("lever_end", "photodiode"))
 
@@ -555,7 +560,7 @@ def _educational() -> Instrument:
         Part("stepper_motor", "approach", "stepper motor",
              "Turns the lead screw in small steps to lower the probe to the sample (coarse "
              "approach).", "42 x 42 x 34 mm (NEMA 17)", (-40, 0, 100),
-             (Shape("motor", "box", (42, 42, 34), _BLACK),), (-40, 0, 110)),
+             (Shape("motor", "box", (42, 42, 34), _BLACK),), (-100, 0, 60)),
         Part("lead_screw", "approach", "lead screw",
              "Converts the motor's steps into a vertical motion of the carriage.",
              "8 mm dia x 60 mm", (-40, 0, 41),
@@ -625,10 +630,10 @@ def _educational() -> Instrument:
         Part("hood", "housing", "acrylic hood",
              "A clear cover against air currents, sound and dust (made more transparent here).",
              "210 x 170 x 160 mm", (0, 0, 41),
-             (Shape("hood", "box", (210, 170, 160), _ACRYLIC),), (0, 0, 170), housing=True),
+             (Shape("hood", "box", (210, 170, 160), _ACRYLIC),), (0, 0, 200), housing=True),
     )
     return Instrument("educational", "low-cost educational AFM with an active probe", parts,
-                      (230.0, -300.0, 200.0), (380.0, -560.0, 330.0))
+                      (165.0, -215.0, 145.0), (285.0, -420.0, 250.0), (0.0, 0.0, 36.0))
 
 
 #: The two instruments, by key.
@@ -740,6 +745,9 @@ class InstrumentScene:
         Part name -> its highlight colour (0xRRGGBB).
     beam : tuple or None
         ``(points, spots)`` (m) last drawn by :meth:`show_beam`.
+    offset : ndarray
+        The 4 x 4 shift of the whole instrument (scene units) that puts the camera's target
+        (the instrument's middle, or a focused part) at meshcat's origin.
 
     Raises
     ------
@@ -782,9 +790,9 @@ class InstrumentScene:
         self.set_housing_opacity(opacity)
         if self.instrument.beam:
             self.show_beam(*self.nominal_beam())
-        self._camera = camera
+        self.offset = np.eye(4)
         if camera:
-            set_camera(self.root, list(np.asarray(self.instrument.camera_mm) * _MM / SCENE_UNIT))
+            self.focus()
             show_helpers(self.root, grid=False, axes=False)
 
     # -- parts and their descriptions -----------------------------------------------------------
@@ -1195,17 +1203,21 @@ class InstrumentScene:
             raise ValueError(f"distance must be <= 1 m, got {distance}")
         view = np.asarray(self.instrument.camera_mm, float) * _MM
         if name is None:
-            self.vis.set_transform(np.eye(4))
+            self._shift(np.asarray(self.instrument.centre_mm, float) * _MM / SCENE_UNIT)
             set_camera(self.root, list(view / SCENE_UNIT))
             return
-        centre = self.transform(name)[:3, 3]
-        self.vis.set_transform(translation(-centre))
+        self._shift(self.transform(name)[:3, 3])
         set_camera(self.root, list(_unit(view) * distance / SCENE_UNIT))
+
+    def _shift(self, centre) -> None:
+        """Shift the instrument so that ``centre`` (scene units) is at the camera's target."""
+        self.offset = translation(-np.asarray(centre, float))
+        self.vis.set_transform(self.offset)
 
     def exploded_view(self) -> None:
         """Explode the instrument fully and move the camera back to see all of it."""
         self.explode(1.0)
-        self.vis.set_transform(np.eye(4))
+        self._shift(np.asarray(self.instrument.centre_mm, float) * _MM / SCENE_UNIT)
         set_camera(self.root, list(np.asarray(self.instrument.exploded_camera_mm) * _MM
                                    / SCENE_UNIT))
 
