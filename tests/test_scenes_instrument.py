@@ -278,11 +278,18 @@ def test_knobs_turn_about_their_declared_axes():
 def test_a_knob_outside_its_range_or_unknown_is_an_error():
     sc, _ = scene()
     with pytest.raises(ValueError, match=r"knob must be one of \['detector_lateral', "
-                                         r"'detector_vertical', 'laser_x', 'laser_y'\], got 'base'"):
+                                         r"'detector_vertical', 'laser_x', 'laser_y'\], "
+                                         r"got 'base'"):
         sc.turn_knob("base", 0.1)
     with pytest.raises(ValueError, match=r"knob_angle must be in \[-62.8\d*, 62.8\d*\] rad"):
         sc.turn_knob("laser_x", 100.0)
     assert sc.knob_angles["laser_x"] == 0.0
+    with pytest.raises(ValueError, match="knob_angle must be"):
+        sc.set_knobs(laser_y=0.5, laser_x=-100.0)
+    assert sc.knob_angles["laser_y"] == 0.0  # nothing turned
+    sc.set_knobs(laser_y=0.5, detector_vertical=-0.25)
+    assert sc.knob_angles == dict(laser_x=0.0, laser_y=0.5, detector_vertical=-0.25,
+                                  detector_lateral=0.0)
 
 
 def _leg_ends(t):
@@ -296,7 +303,7 @@ def test_show_beam_draws_given_points_and_spots():
                     [0.02, 0.0, 0.03]])
     spots = np.array([[0.0, 0.0, 0.0], [0.03, 0.002, 0.028]])
     sc.show_beam(pts, spots, spot_radius=1e-3)
-    beam = f"/afmsmiler/instrument/obd/beam"
+    beam = "/afmsmiler/instrument/obd/beam"
     for i in range(3):
         a, b = _leg_ends(rec.log[f"{beam}/leg{i:02d}"]["transform"])
         np.testing.assert_allclose(a, pts[i] / SCENE_UNIT, atol=1e-9)
@@ -418,6 +425,10 @@ def test_focus_brings_a_part_to_the_camera_target_and_back():
     np.testing.assert_allclose(root[:3, 3], -sc.transform("probe_chip")[:3, 3], atol=1e-12)
     cam = np.asarray(rec.log["/Cameras/default/rotated/<object>"]["position"])
     assert np.linalg.norm(cam) == pytest.approx(0.02 / SCENE_UNIT)
+    x, z, minus_y = cam   # three.js is y-up
+    direction = np.asarray(DEFAULTS["focus_direction"], float)
+    np.testing.assert_allclose([x, -minus_y, z], 0.02 / SCENE_UNIT * direction
+                               / np.linalg.norm(direction))
     sc.focus()
     np.testing.assert_allclose(rec.log["/afmsmiler/instrument/obd"]["transform"][:3, 3],
                                -np.asarray(INSTRUMENTS["obd"].centre_mm) * MM)
@@ -425,7 +436,7 @@ def test_focus_brings_a_part_to_the_camera_target_and_back():
         sc.focus("base", 2.0)
 
 
-# -- generated meshes and parameters ----------------------------------------------------------------
+# -- generated meshes and parameters ---------------------------------------------------------
 def test_hollow_cylinder_mesh():
     v, f = hollow_cylinder_mesh(2.0, 1.5, 4.0, sides=12)
     r = np.hypot(v[:, 0], v[:, 1])
@@ -462,7 +473,7 @@ def test_parameters_describe_the_settings():
     assert PARAMETERS["housing_opacity"].low == 0 and PARAMETERS["housing_opacity"].high == 1
 
 
-# -- a real browser -----------------------------------------------------------------------------------
+# -- a real browser -------------------------------------------------------------------------
 CHROMIUM = os.environ.get("AFMSMILER_CHROMIUM", "/usr/bin/chromium")
 
 

@@ -97,7 +97,6 @@ from meshcat.animation import Animation
 from ..parameters import Parameter, read_only, unit_scale
 from ..validation import check_array, check_choice, check_integer, check_positive
 from .camera import set_camera, show_helpers
-from .colors import rgb_hex
 from .shapes import Segment, Tube, _show, sphere
 from .transducers import quadrant_photodiode
 from .transforms import rotation_between, translation
@@ -134,6 +133,7 @@ DEFAULTS = read_only(dict(
     beam_color=0xff2020,
     spot_radius=0.6e-3,     # drawn spots (m)
     focus_distance=0.12,    # camera distance from a focused part (m)
+    focus_direction=(1.0, -1.4, 1.3),  # from a focused part to the camera (front right, above)
 ))
 
 
@@ -619,7 +619,8 @@ def _educational() -> Instrument:
              "A small microscope camera that watches the tip come down to the sample during "
              "the coarse approach.", "12 mm dia x 50 mm", tuple(30.0 * look),
              (Shape("body", "cylinder", (12, 50), _BLACK, (0, 0, 25)),
-              Shape("lens", "cylinder", (8, 1), _GLASS, (0, 0, -0.5))), tuple(float(x) for x in 60.0 * look),
+              Shape("lens", "cylinder", (8, 1), _GLASS, (0, 0, -0.5))),
+             tuple(float(x) for x in 60.0 * look),
              axis=look),
         Part("ribbon_cable", "electronics", "ribbon cable",
              "Carries the bridge, heater and piezo signals between the probe side and the "
@@ -1085,6 +1086,27 @@ class InstrumentScene:
         self.knob_angles[name] = PARAMETERS["knob_angle"].check(angle)
         self._place(self._parts[name])
 
+    def set_knobs(self, **angles) -> None:
+        """Turn several knobs at once, e.g. ``set_knobs(laser_x=0.5, laser_y=-0.2)`` (rad).
+
+        All names and angles are checked before any knob turns.
+
+        Parameters
+        ----------
+        **angles
+            Knob name (one of :meth:`knobs`) -> angle, rad.
+
+        Raises
+        ------
+        ValueError
+            If a knob does not exist or an angle is out of range.
+        """
+        checked = {check_choice("knob", name, self.knob_angles):
+                   PARAMETERS["knob_angle"].check(angle) for name, angle in angles.items()}
+        for name, angle in checked.items():
+            self.knob_angles[name] = angle
+            self._place(self._parts[name])
+
     @property
     def anchors(self) -> dict:
         """Name -> position (m, scene frame: origin at the tip, z up) of the drawn optics:
@@ -1183,8 +1205,9 @@ class InstrumentScene:
     def focus(self, name: str | None = None, distance: float = DEFAULTS["focus_distance"],
               ) -> None:
         """Bring the camera to part ``name``: the instrument is shifted so that the part is at
-        the camera's target (the origin) and the camera is ``distance`` away, from the default
-        view's direction. ``focus()`` goes back to the whole instrument.
+        the camera's target (the origin) and the camera is ``distance`` away, from the front
+        right and above (``DEFAULTS["focus_direction"]``). ``focus()`` goes back to the whole
+        instrument.
 
         Parameters
         ----------
@@ -1207,7 +1230,7 @@ class InstrumentScene:
             set_camera(self.root, list(view / SCENE_UNIT))
             return
         self._shift(self.transform(name)[:3, 3])
-        set_camera(self.root, list(_unit(view) * distance / SCENE_UNIT))
+        set_camera(self.root, list(_unit(DEFAULTS["focus_direction"]) * distance / SCENE_UNIT))
 
     def _shift(self, centre) -> None:
         """Shift the instrument so that ``centre`` (scene units) is at the camera's target."""
