@@ -6,6 +6,7 @@ in headless Chromium and checks the screenshot shows it.
 """
 import math
 import os
+import re
 
 import numpy as np
 import pytest
@@ -78,6 +79,14 @@ def test_proportions_are_the_stated_ones():
     # the probe's tip apex is the origin, touching the top of the sample
     top = obd["sample_puck"].shapes[1]
     assert top.at[2] + top.size[2] / 2 == pytest.approx(0.0)
+
+
+def test_the_module_docstring_states_every_part_s_dimensions():
+    import afmsmiler.scenes.instrument as module
+    for inst in INSTRUMENTS.values():
+        for p in inst.parts:
+            assert re.search(rf"^{p.name} +{re.escape(p.dimensions)}$", module.__doc__,
+                             re.MULTILINE), p.name
 
 
 def test_describe_and_the_table():
@@ -434,6 +443,37 @@ def test_focus_brings_a_part_to_the_camera_target_and_back():
                                -np.asarray(INSTRUMENTS["obd"].centre_mm) * MM)
     with pytest.raises(ValueError, match="distance must be"):
         sc.focus("base", 2.0)
+
+
+# -- updates in place -----------------------------------------------------------------------------
+def test_each_action_sends_only_what_it_changes():
+    sc, rec = scene()
+    n_parts = len(sc.parts())
+
+    def sent(action):
+        start = len(rec.calls)
+        action()
+        return [c[0] for c in rec.calls[start:]]
+
+    calls = sent(lambda: sc.explode(0.5))  # one transform per part, the beam hidden once
+    assert calls.count("set_transform") == n_parts and "set_object" not in calls
+    assert calls.count("set_property") == 1
+    assert sent(lambda: sc.explode(0.6)).count("set_property") == 0
+    assert sent(lambda: sc.turn_knob("laser_x", 1.0)) == ["set_transform"]
+    n_shapes = len(sc.part("steering_mirror").shapes)
+    assert sent(lambda: sc.highlight("steering_mirror")) == ["set_property"] * n_shapes
+    housing = [p for p in INSTRUMENTS["obd"].parts if p.housing]
+    calls = sent(lambda: sc.set_housing_opacity(0.5))
+    assert calls == ["set_property"] * sum(len(p.shapes) + 1 for p in housing)
+    assert "set_object" not in sent(lambda: sc.show_beam(*sc.nominal_beam()))
+
+
+def test_parameters_make_sliders():
+    from afmsmiler.ui.controls import control
+    for p in PARAMETERS.values():
+        slider = control(p)
+        assert p.to_si(slider.value) == pytest.approx(p.default)
+    assert control(PARAMETERS["knob_angle"]).max == pytest.approx(3600.0)  # degrees shown
 
 
 # -- generated meshes and parameters ---------------------------------------------------------

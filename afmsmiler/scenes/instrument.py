@@ -18,51 +18,72 @@ The origin is the probe's tip (touching the sample), z up, the lever along +x (i
 the tip): the camera of meshcat orbits the origin, so both instruments are framed around the
 tip. Everything is drawn to scale at **1 scene unit = 1 cm** (:data:`SCENE_UNIT`); the public
 methods take SI (metres, radians). The lever itself (125 um) is drawn to scale too, so it is a
-speck at the instrument's scale: zoom in on the chip to see it.
+speck at the instrument's scale: :meth:`InstrumentScene.focus` zooms in on the chip. The laser
+beam is drawn 0.7 mm thick everywhere (schematic: the focused spot on the lever is a few tens of
+micrometres).
 
-Dimensions assumed (mm; typical values of the commercial parts, read from data sheets and
-photographs, not measured drawings):
+Dimensions assumed: typical values of the commercial parts, from data sheets and photographs,
+not measured drawings. The probe chip (3.4 x 1.6 x 0.3 mm) is the industry's standard size (e.g.
+NanoWorld, BudgetSensors and Bruker data sheets); piezo tubes of 1/2 inch (12.7 mm) outer
+diameter are common in tube scanners; 15 mm steel discs are the usual AFM specimen discs; the
+photodiode is a 3 x 3 mm quadrant cell in a TO-5 can (e.g. Hamamatsu S4349); the laser diode a
+5.6 mm TO can; the stepper motor a NEMA 17 frame (42 mm); the active probe follows the
+self-sensing, self-actuating cantilevers of Rangelow's group (a few hundred micrometres long).
+Placement (mm from the tip): OBD base top 80 below, head plate 8 to 12 above, head cover 12 to
+52 above; laser exit 38 and lens 22 from the lever end along the incident beam (12 degrees
+from vertical), mirror 35 along the reflected beam, photodiode 8 past the mirror. Educational:
+base plate top 39 below, the sample stages stacked up to the tip, the gantry 40 behind it.
 
-=======================  ======================================================================
-OBD AFM part             dimensions (mm)
-=======================  ======================================================================
-base                     150 x 170 x 60 box, top 80 below the tip
-scanner can              45 dia x 75 tall (stainless, around the tube; part of the housing)
-piezo tube               12.7 OD, 10.7 ID, 60 long, four outer quadrant electrodes
-scanner cap              16 dia x 1.2 (magnetic sample stage on the tube's top)
-sample puck              15 dia x 0.8 steel disc (a specimen disc)
-coarse screws            4 dia x 23 shafts, 14 dia x 4 knurled thumb wheels; rear one motorised
-approach motor           20 dia x 30 (gear motor on the rear screw)
-head plate               100 x 100 x 4, 8 above the tip
-head cover               64 x 64 x 40 (the housing: made transparent to see the optics)
-laser diode              5.6 dia TO can in a 9 dia x 14 collimator tube, 49 from the lever
-focusing lens            8 dia x 2.4 biconvex, f about 22, 22 from the lever end
-cantilever holder        24 x 14 x 3 block with a 6 x 4 x 0.5 spring clip, tilted 12 deg
-probe chip               3.4 x 1.6 x 0.3 silicon chip; lever 125 um x 30 um x 4 um, tip 15 um
-steering mirror          10 x 10 x 1.5 first-surface mirror, 35 from the lever along the beam
-photodiode               3 x 3 quadrant cell in a 9 dia TO-5 can, 8 past the mirror
-knobs                    10 dia x 10 knurled (laser x, y on top; photodiode vertical, lateral)
-=======================  ======================================================================
+========================  ======================================================================
+OBD AFM part              assumed dimensions
+========================  ======================================================================
+base                      150 x 170 x 60 mm
+scanner_can               45 mm dia x 68 mm
+support_ring              100 mm OD, 20 mm ID, 4 mm thick
+piezo_tube                12.7 mm OD, 10.7 mm ID, 60 mm long
+scanner_cap               16 mm dia x 1.2 mm
+sample_puck               15 mm dia x 0.8 mm disc, 5 x 5 x 0.5 mm sample
+coarse_screw_left         4 mm dia x 24 mm, 14 mm dia thumb wheel
+coarse_screw_right        4 mm dia x 24 mm, 14 mm dia thumb wheel
+coarse_screw_rear         4 mm dia x 24 mm, 14 mm dia thumb wheel
+approach_motor            20 mm dia x 30 mm
+head_plate                100 x 100 x 4 mm with a 36 x 36 mm window
+cantilever_holder         24 x 14 x 3 mm block, 6 x 4 x 0.5 mm clip
+probe_chip                3.4 x 1.6 x 0.3 mm chip, lever 125 x 30 x 4 um, tip 15 um
+laser_diode               5.6 mm TO can in a 9 mm dia x 14 mm tube
+focusing_lens             8 mm dia biconvex lens, f = 22 mm
+steering_mirror           10 x 10 x 1.5 mm mirror on a 12 x 12 x 3 mm mount
+photodiode                3 x 3 mm quadrant cell, 9 mm dia TO-5 can
+head_cover                64 x 64 x 40 mm
+laser_x                   10 mm dia x 10 mm knurled knob
+laser_y                   10 mm dia x 10 mm knurled knob
+detector_vertical         10 mm dia x 10 mm knurled knob
+detector_lateral          10 mm dia x 10 mm knurled knob
+========================  ======================================================================
 
-=======================  ======================================================================
-educational AFM part     dimensions (mm)
-=======================  ======================================================================
-base plate               200 x 160 x 10 aluminium, top 39 below the tip
-manual x-y stage         60 x 60 x 18 with two 10 dia x 25 micrometer heads
-piezo x-y scanner        40 x 40 x 12 flexure stage (100 um range)
-sample holder            10 dia x 8 magnetic post, 12 dia x 1 sample disc
-gantry                   two 20 x 20 x 110 pillars, 150 x 30 x 12 bridge
-stepper motor            42 x 42 x 34 (NEMA 17) with an 8 dia lead screw
-carriage                 50 x 30 x 15 slide block on the lead screw
-z piezo                  10 x 10 x 20 stack
-probe board              40 x 25 x 1.6 PCB, tilted 5 deg
-active probe             1 x 3 x 0.4 chip; lever 350 um x 140 um x 5 um, tip 10 um
-piezoresistor, heater    U-shaped bridge resistor at the clamp, heater stripe along the lever
-bridge amplifier         30 x 20 x 5 board beside the probe board
-controller, HV amplifier 100 x 70 x 15 and 60 x 40 x 25 boards on the base plate
-USB camera               12 dia x 50 microscope camera looking at the tip
-acrylic hood             210 x 170 x 160 (the housing)
-=======================  ======================================================================
+========================  ======================================================================
+educational AFM part      assumed dimensions
+========================  ======================================================================
+base_plate                200 x 160 x 10 mm
+manual_stage              60 x 60 x 18 mm, two 10 mm dia x 25 mm micrometers
+xy_scanner                40 x 40 x 12 mm
+sample_holder             10 mm dia x 8 mm post, 12 mm dia x 1 mm disc
+gantry                    two 20 x 20 x 110 mm pillars, 30 x 150 x 12 mm bridge
+stepper_motor             42 x 42 x 34 mm (NEMA 17)
+lead_screw                8 mm dia x 60 mm
+carriage                  30 x 50 x 15 mm block, 18 x 20 x 6 mm arm
+z_piezo                   10 x 10 x 20 mm
+probe_board               40 x 25 x 1.6 mm PCB, tilted 5 deg
+active_probe              2 x 1 x 0.4 mm chip, lever 350 x 140 x 5 um, tip 10 um
+piezoresistor             two 60 x 20 um legs and a 20 x 100 um bar
+heater                    250 x 20 um stripe
+bridge_amplifier          30 x 20 x 5 mm board
+controller                60 x 70 x 15 mm
+hv_amplifier              60 x 40 x 25 mm
+usb_camera                12 mm dia x 50 mm
+ribbon_cable              3 mm dia bundle
+hood                      210 x 170 x 160 mm
+========================  ======================================================================
 
 What a scene offers (all one-line calls for the notebook and the guided setup):
 
