@@ -102,10 +102,22 @@ def test_describe_and_the_table():
     assert html.count("<tr>") == len(rows) + 1 and "four-quadrant photodiode" in html
 
 
+def test_pick_highlights_one_part_and_returns_its_description():
+    sc, rec = scene()
+    sc.highlight("base")
+    assert sc.pick("photodiode") == sc.describe("photodiode")
+    assert set(sc.highlighted) == {"photodiode"}
+    assert rec.log[f"{sc.node_path('base')}/body"]["color"] == pytest.approx(
+        rgba(sc.part("base").shapes[0].color, 1.0))
+    sc.pick("laser_diode", focus=True)
+    np.testing.assert_allclose(rec.log["/afmsmiler/instrument/obd"]["transform"][:3, 3],
+                               -sc.part("laser_diode").position / SCENE_UNIT)
+
+
 @pytest.mark.parametrize("call", [
     lambda sc: sc.describe("laser"), lambda sc: sc.part("Base"), lambda sc: sc.highlight("x"),
     lambda sc: sc.unhighlight("nope"), lambda sc: sc.transform("lens"),
-    lambda sc: sc.focus("camera"), lambda sc: sc.node_path(""),
+    lambda sc: sc.focus("camera"), lambda sc: sc.node_path(""), lambda sc: sc.pick("tip"),
 ])
 def test_an_unknown_part_is_a_value_error_listing_the_valid_ones(call):
     sc, _ = scene()

@@ -88,8 +88,9 @@ hood                      210 x 170 x 160 mm
 What a scene offers (all one-line calls for the notebook and the guided setup):
 
 - :meth:`InstrumentScene.parts` and :meth:`~InstrumentScene.describe`: the named parts (meshcat
-  paths ``group/part`` under the scene's path) and their short descriptions, and
-  :meth:`~InstrumentScene.table` for all of them;
+  paths ``group/part`` under the scene's path) and their short descriptions,
+  :meth:`~InstrumentScene.table` for all of them, and :meth:`~InstrumentScene.pick` (highlight
+  one part, optionally focus on it, and return its description: a part menu's callback);
 - :meth:`~InstrumentScene.set_housing_opacity` (0: hidden, 1: opaque);
 - :meth:`~InstrumentScene.explode` (0: assembled, 1: exploded, each part moved along its own
   direction by its own distance, :attr:`Part.explode`) and
@@ -1071,6 +1072,37 @@ class InstrumentScene:
         for n in names:
             if self.highlighted.pop(n, None) is not None:
                 self._paint(n)
+
+    def pick(self, name: str, *, focus: bool = False) -> str:
+        """Pick part ``name`` (the notebook's part menu calls this): highlight it alone, bring
+        the camera to it if ``focus``, and return its :meth:`describe` text.
+
+        meshcat reports no mouse picks to the kernel, so a part is picked from a menu of
+        :meth:`parts`.
+
+        Parameters
+        ----------
+        name : str
+            One of :meth:`parts`.
+        focus : bool
+            Also :meth:`focus` the camera on it (at ``DEFAULTS["focus_distance"]``).
+
+        Returns
+        -------
+        str
+            ``"label: description (dimensions)"``.
+
+        Raises
+        ------
+        ValueError
+            If there is no such part.
+        """
+        text = self.describe(name)
+        self.unhighlight()
+        self.highlight(name)
+        if focus:
+            self.focus(name)
+        return text
 
     def colors(self, name: str) -> dict:
         """Node (under the part) -> ``(0xRRGGBB, opacity)`` as part ``name`` was drawn.
