@@ -93,7 +93,8 @@ What a scene offers (all one-line calls for the notebook and the guided setup):
   one part, optionally focus on it, and return its description: a part menu's callback);
 - :meth:`~InstrumentScene.set_housing_opacity` (0: hidden, 1: opaque);
 - :meth:`~InstrumentScene.explode` (0: assembled, 1: exploded, each part moved along its own
-  direction by its own distance, :attr:`Part.explode`) and
+  direction by its own distance, :attr:`Part.explode_direction` and
+  :attr:`Part.explode_distance`) and
   :meth:`~InstrumentScene.animate_explode` (a meshcat Animation of a bounded number of frames);
 - :meth:`~InstrumentScene.highlight` and :meth:`~InstrumentScene.unhighlight` (colour and back);
 - hooks for the laser-alignment model: :meth:`~InstrumentScene.turn_knob` turns a knob on its
@@ -779,10 +780,12 @@ class InstrumentScene:
 
     Examples
     --------
-    >>> from recording import Recorder  # doctest: +SKIP
-    >>> scene = InstrumentScene("obd", vis=Recorder())  # doctest: +SKIP
-    >>> scene.describe("steering_mirror")  # doctest: +SKIP
-    'steering mirror: A first-surface mirror that folds ...'
+    >>> [p.name for p in INSTRUMENTS["obd"].parts if p.knob]
+    ['laser_x', 'laser_y', 'detector_vertical', 'detector_lateral']
+    >>> scene = InstrumentScene("obd")  # doctest: +SKIP
+    >>> scene.pick("steering_mirror")  # doctest: +SKIP
+    'steering mirror: A first-surface mirror that folds the beam reflected by the lever ...'
+    >>> scene.set_housing_opacity(0.2); scene.animate_explode()  # doctest: +SKIP
     """
 
     def __init__(self, kind: str = "obd", *, vis: meshcat.Visualizer | None = None,
