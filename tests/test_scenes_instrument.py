@@ -4,6 +4,7 @@ declared tables (:data:`afmsmiler.scenes.instrument.INSTRUMENTS`), never against
 methods alone. One test (``browser``, ``viewer``, ``slow``) renders each instrument's static HTML
 in headless Chromium and checks the screenshot shows it.
 """
+import itertools
 import math
 import os
 import re
@@ -405,22 +406,46 @@ def test_the_nominal_beam_joins_the_drawn_optics_by_the_law_of_reflection():
 
 
 # -- camera ---------------------------------------------------------------------------------------
-def _corners(sc, fraction):
-    """World positions (scene units) of every shape's centre +- its half size along each axis."""
+def _shape_corners(shape):
+    """The 8 corners (mm, part frame) of a box around ``shape``, from its table entry."""
+    size = np.asarray(shape.size, float)
+    signs = np.array(list(itertools.product((-1, 1), repeat=3)), float)
+    if shape.kind == "wire":
+        return np.concatenate([np.asarray(q, float) + signs * size[0] / 2 for q in shape.points])
+    half = {"box": size / 2, "ellipsoid": size / 2, "sphere": np.full(3, size[0] / 2),
+            "quadrants": np.array([size[0] / 2, size[0] / 2, 0.05])}.get(
+        shape.kind, np.array([size[0] / 2, size[0] / 2, size[-1] / 2]))  # round: (d, ..., L)
+    rot = np.eye(3) if shape.kind in ("box", "sphere") else Rotation.align_vectors(
+        [shape.axis], [[0.0, 0.0, 1.0]])[0].as_matrix()   # z to the axis (scipy)
+    return np.asarray(shape.at, float) + (rot @ (signs * half).T).T
+
+
+def _corners(sc, fraction, names=None):
+    """World positions (scene units, as shown) of the corners of every shape's box."""
     out = []
-    for name in sc.parts():
-        p = sc.part(name)
+    for name in names or sc.parts():
         t = sc.offset @ sc.transform(name, fraction)
-        for s in p.shapes:
-            if s.kind == "wire":
-                centres = [np.asarray(q, float) * MM for q in s.points]
-            else:
-                centres = [np.asarray(s.at, float) * MM]
-            half = 0.5 * max(s.size) * MM
-            for c in centres:
-                for d in np.vstack([np.eye(3), -np.eye(3)]):
-                    out.append((t @ np.r_[c + half * d, 1.0])[:3])
-    return np.array(out)
+        for s in sc.part(name).shapes:
+            pts = _shape_corners(s) * MM
+            out.append(pts @ t[:3, :3].T + t[:3, 3])
+    return np.concatenate(out)
+
+
+def _boxes(sc, fraction):
+    return {n: (_corners(sc, fraction, [n]).min(0), _corners(sc, fraction, [n]).max(0))
+            for n in sc.parts()}
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_exploded_view_separates_every_part(kind):
+    sc, _ = scene(kind)
+
+    def overlapping(boxes):
+        return [(a, b) for a, b in itertools.combinations(boxes, 2)
+                if np.all(boxes[a][0] < boxes[b][1]) and np.all(boxes[b][0] < boxes[a][1])]
+
+    assert len(overlapping(_boxes(sc, 0.0))) > 10  # assembled, parts sit in and on each other
+    assert overlapping(_boxes(sc, 1.0)) == []      # exploded, no two parts' boxes overlap
 
 
 @pytest.mark.parametrize("kind", KINDS)

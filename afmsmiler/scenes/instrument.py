@@ -650,7 +650,7 @@ def _educational() -> Instrument:
              "controller.", "3 mm dia bundle", (0, 0, 0),
              (Shape("cable", "wire", (3.0,), 0x707070,
                     points=((-38, 8, 4), (-50, 30, 30), (20, 72, 10), (55, 60, -22))),),
-             (0, 40, 20)),
+             (0, 60, -10)),
         Part("hood", "housing", "acrylic hood",
              "A clear cover against air currents, sound and dust (made more transparent here).",
              "210 x 170 x 160 mm", (0, 0, 41),
