@@ -405,6 +405,39 @@ def test_the_nominal_beam_joins_the_drawn_optics_by_the_law_of_reflection():
     assert pts.shape == (5, 3) and spots.shape == (2, 3)
 
 
+@pytest.mark.parametrize("kind", KINDS)
+def test_points_on_the_lever_are_on_its_drawn_top_face(kind):
+    sc, _ = scene(kind)
+    part_name, _, length_mm = INSTRUMENTS[kind].lever
+    part = sc.part(part_name)
+    lever = next(s for s in part.shapes if s.name == "lever")
+    # the lever's box in the part's frame (mm): its top face, clamp end and free end
+    top = lever.at[2] + lever.size[2] / 2
+    clamp_x, free_x = lever.at[0] - lever.size[0] / 2, lever.at[0] + lever.size[0] / 2
+    assert lever.size[0] == pytest.approx(length_mm)
+    for x_mm, y_mm, local_x in ((0.0, 0.0, clamp_x), (length_mm, 0.0, free_x),
+                                (length_mm / 2, lever.size[1] / 2, (clamp_x + free_x) / 2)):
+        local = np.array([local_x, y_mm, top]) * 1e-3
+        expected = part.position + Rotation.align_vectors([part.axis], [[0, 0, 1]])[0].apply(
+            local)
+        np.testing.assert_allclose(sc.lever_point(x_mm * 1e-3, y_mm * 1e-3), expected,
+                                   atol=1e-12)
+    with pytest.raises(ValueError, match="x must be"):
+        sc.lever_point(0.5)
+
+
+def test_points_on_the_photodiode():
+    sc, _ = scene()
+    np.testing.assert_allclose(sc.photodiode_point(0.0), sc.anchors["photodiode"])
+    p = sc.photodiode_point(1e-3, -0.5e-3) - sc.anchors["photodiode"]
+    np.testing.assert_allclose(p, [0.0, -0.5e-3, 1e-3], atol=1e-15)
+    assert p @ np.asarray(sc.part("photodiode").axis) == pytest.approx(0.0)  # in its face
+    with pytest.raises(ValueError, match="lateral must be"):
+        sc.photodiode_point(0.0, math.nan)
+    with pytest.raises(ValueError, match="has no photodiode"):
+        scene("educational")[0].photodiode_point(0.0)
+
+
 # -- camera ---------------------------------------------------------------------------------------
 def _shape_corners(shape):
     """The 8 corners (mm, part frame) of a box around ``shape``, from its table entry."""

@@ -99,8 +99,10 @@ What a scene offers (all one-line calls for the notebook and the guided setup):
 - :meth:`~InstrumentScene.highlight` and :meth:`~InstrumentScene.unhighlight` (colour and back);
 - hooks for the laser-alignment model: :meth:`~InstrumentScene.turn_knob` turns a knob on its
   axis, :meth:`~InstrumentScene.show_beam` draws a beam through given points (metres) with its
-  spots, and :meth:`~InstrumentScene.nominal_beam` / :attr:`InstrumentScene.anchors` give the
-  drawn optics' positions (metres) the model's geometry can be matched to;
+  spots, :meth:`~InstrumentScene.nominal_beam` / :attr:`InstrumentScene.anchors` give the
+  drawn optics' positions (metres) the model's geometry can be matched to, and
+  :meth:`~InstrumentScene.lever_point` / :meth:`~InstrumentScene.photodiode_point` place the
+  model's spot coordinates (on the lever, on the detector) in the scene;
 - :meth:`~InstrumentScene.focus` (the camera near one part) and
   :meth:`~InstrumentScene.static_html` (the page the book embeds).
 
@@ -118,7 +120,8 @@ import numpy as np
 from meshcat.animation import Animation
 
 from ..parameters import Parameter, read_only, unit_scale
-from ..validation import check_array, check_choice, check_integer, check_positive
+from ..validation import (check_array, check_choice, check_integer, check_positive,
+                          check_range)
 from .camera import set_camera, show_helpers
 from .shapes import Segment, Tube, _show, sphere
 from .transducers import quadrant_photodiode
@@ -373,6 +376,9 @@ class Instrument:
         Anchors the nominal beam joins, in order (empty: no laser).
     spots : tuple of str
         Anchors where the nominal beam makes a spot.
+    lever : tuple
+        ``(part, clamp_mm, length_mm)``: the part that carries the lever, the middle of the
+        lever's top face at the clamp in that part's frame (mm), and the lever's length (mm).
     """
 
     key: str
@@ -384,6 +390,7 @@ class Instrument:
     anchors_mm: dict = field(default_factory=dict)
     beam: tuple = ()
     spots: tuple = ()
+    lever: tuple = ()
 
 
 # -- colours ---------------------------------------------------------------------------------
@@ -544,7 +551,7 @@ def _obd() -> Instrument:
                       parts, (145.0, -195.0, 90.0), (265.0, -415.0, 200.0), (0.0, 0.0, -45.0),
                       anchors,
                       ("laser", "lens", "lever_end", "mirror", "photodiode"),
-                      ("lever_end", "photodiode"))
+                      ("lever_end", "photodiode"), ("probe_chip", (-0.12, 0.0, 0.019), 0.125))
 
 
 def _educational() -> Instrument:
@@ -657,7 +664,8 @@ def _educational() -> Instrument:
              (Shape("hood", "box", (210, 170, 160), _ACRYLIC),), (0, 0, 200), housing=True),
     )
     return Instrument("educational", "low-cost educational AFM with an active probe", parts,
-                      (165.0, -215.0, 145.0), (285.0, -420.0, 250.0), (0.0, 0.0, 36.0))
+                      (165.0, -215.0, 145.0), (285.0, -420.0, 250.0), (0.0, 0.0, 36.0),
+                      lever=("active_probe", (-0.345, 0.0, 0.015), 0.35))
 
 
 #: The two instruments, by key.
@@ -1169,6 +1177,65 @@ class InstrumentScene:
         ``laser`` (the laser's exit), ``lens``, ``lever_end``, ``mirror``, ``photodiode``
         (empty for an instrument without a laser)."""
         return {k: np.asarray(v, float) * _MM for k, v in self.instrument.anchors_mm.items()}
+
+    def lever_point(self, x: float, y: float = 0.0) -> np.ndarray:
+        """Where a point on the lever's top face is in the scene frame (m, assembled).
+
+        For the alignment model's spot on the lever: module (a)'s coordinates, ``x`` from the
+        clamp towards the free end, ``y`` across the lever (to the left seen from the clamp).
+
+        Parameters
+        ----------
+        x : float
+            Distance from the clamp along the lever, m (0 at the clamp, the lever's length at
+            its free end; outside the lever is allowed: a spot may miss it), |x| <= 0.01 m.
+        y : float
+            Distance from the lever's centre line, m, |y| <= 0.01 m.
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            The point, m.
+
+        Raises
+        ------
+        ValueError
+            If a coordinate is not finite or too far from the lever.
+        """
+        x = check_range("x", x, -0.01, 0.01, "m")
+        y = check_range("y", y, -0.01, 0.01, "m")
+        part, clamp, _ = self.instrument.lever
+        p = self._parts[part]
+        local = np.asarray(clamp, float) * _MM + [x, y, 0.0]
+        return p.position + p.rotation @ local
+
+    def photodiode_point(self, vertical: float, lateral: float = 0.0) -> np.ndarray:
+        """Where a point on the photodiode's face is in the scene frame (m, assembled).
+
+        For the alignment model's spot on the detector: the face is the plane x = const
+        (facing the mirror), ``vertical`` is along +z (towards the top quadrants) and
+        ``lateral`` along +y, from the detector's centre.
+
+        Parameters
+        ----------
+        vertical, lateral : float
+            Offsets from the centre, m, each within +-0.01 m.
+
+        Returns
+        -------
+        ndarray, shape (3,)
+            The point, m.
+
+        Raises
+        ------
+        ValueError
+            If the instrument has no photodiode or an offset is out of range.
+        """
+        if "photodiode" not in self.instrument.anchors_mm:
+            raise ValueError(f"the {self.instrument.title} has no photodiode")
+        vertical = check_range("vertical", vertical, -0.01, 0.01, "m")
+        lateral = check_range("lateral", lateral, -0.01, 0.01, "m")
+        return self.anchors["photodiode"] + [0.0, lateral, vertical]
 
     def nominal_beam(self) -> tuple[np.ndarray, np.ndarray]:
         """The aligned beam through the drawn optics' centres: ``(points, spots)`` in m.
