@@ -211,6 +211,25 @@ def test_the_longest_animation_stays_within_the_transform_budget():
     assert n <= LIMITS["animation_transforms"]
 
 
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_coarse_approach_lifts_the_probe_and_its_carrier_only(kind):
+    sc, rec = scene(kind)
+    lifted = set(INSTRUMENTS[kind].approach_parts)
+    probe = INSTRUMENTS[kind].lever[0]
+    assert probe in lifted and "base" not in lifted and "base_plate" not in lifted
+    sc.set_gap(2e-3)
+    for p in INSTRUMENTS[kind].parts:
+        z = rec.log[sc.node_path(p.name)]["transform"][2, 3]
+        lift = 2e-3 / SCENE_UNIT if p.name in lifted else 0.0
+        assert z == pytest.approx(p.position_mm[2] * MM + lift, abs=1e-12), p.name
+    if INSTRUMENTS[kind].beam:  # the beam goes with the head
+        assert rec.log[f"/afmsmiler/instrument/{kind}/beam"]["transform"][2, 3] == \
+            pytest.approx(2e-3 / SCENE_UNIT)
+    with pytest.raises(ValueError, match=r"approach_gap must be in \[0, 0.01\] m"):
+        sc.set_gap(-1e-6)
+    assert sc.gap == 2e-3
+
+
 # -- housing and highlighting -----------------------------------------------------------------
 @pytest.mark.parametrize("kind", KINDS)
 def test_housing_opacity_reaches_only_the_housing(kind):

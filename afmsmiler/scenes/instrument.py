@@ -97,6 +97,8 @@ What a scene offers (all one-line calls for the notebook and the guided setup):
   :attr:`Part.explode_distance`) and
   :meth:`~InstrumentScene.animate_explode` (a meshcat Animation of a bounded number of frames);
 - :meth:`~InstrumentScene.highlight` and :meth:`~InstrumentScene.unhighlight` (colour and back);
+- :meth:`~InstrumentScene.set_gap` (the coarse approach: the probe and what carries it lifted
+  above the sample, for the walkthrough's approach step);
 - hooks for the laser-alignment model: :meth:`~InstrumentScene.turn_knob` turns a knob on its
   axis, :meth:`~InstrumentScene.show_beam` draws a beam through given points (metres) with its
   spots, :meth:`~InstrumentScene.nominal_beam` / :attr:`InstrumentScene.anchors` give the
@@ -143,6 +145,8 @@ PARAMETERS = read_only(dict(
                                high=1.0, label="exploded view"),
     knob_angle=Parameter(name="knob_angle", unit="rad", display_unit="deg", default=0.0,
                          low=-20 * math.pi, high=20 * math.pi, label="knob angle"),
+    approach_gap=Parameter(name="approach_gap", unit="m", display_unit="mm", default=0.0,
+                           low=0.0, high=0.01, label="tip-sample gap (coarse approach)"),
 ))
 
 #: Bounds that keep every call within seconds: animation frames, transforms sent by one
@@ -376,6 +380,9 @@ class Instrument:
         Anchors the nominal beam joins, in order (empty: no laser).
     spots : tuple of str
         Anchors where the nominal beam makes a spot.
+    approach_parts : tuple of str
+        The parts the coarse approach lifts and lowers (the head, or the carriage and what it
+        carries).
     lever : tuple
         ``(part, clamp_mm, length_mm)``: the part that carries the lever, the middle of the
         lever's top face at the clamp in that part's frame (mm), and the lever's length (mm).
@@ -391,6 +398,7 @@ class Instrument:
     beam: tuple = ()
     spots: tuple = ()
     lever: tuple = ()
+    approach_parts: tuple = ()
 
 
 # -- colours ---------------------------------------------------------------------------------
@@ -551,7 +559,8 @@ def _obd() -> Instrument:
                       parts, (145.0, -195.0, 90.0), (265.0, -415.0, 200.0), (0.0, 0.0, -45.0),
                       anchors,
                       ("laser", "lens", "lever_end", "mirror", "photodiode"),
-                      ("lever_end", "photodiode"), ("probe_chip", (-0.12, 0.0, 0.019), 0.125))
+                      ("lever_end", "photodiode"), ("probe_chip", (-0.12, 0.0, 0.019), 0.125),
+                      tuple(p.name for p in parts if p.group in ("head", "probe", "knobs")))
 
 
 def _educational() -> Instrument:
@@ -665,7 +674,9 @@ def _educational() -> Instrument:
     )
     return Instrument("educational", "low-cost educational AFM with an active probe", parts,
                       (165.0, -215.0, 145.0), (285.0, -420.0, 250.0), (0.0, 0.0, 36.0),
-                      lever=("active_probe", (-0.345, 0.0, 0.015), 0.35))
+                      lever=("active_probe", (-0.345, 0.0, 0.015), 0.35),
+                      approach_parts=("carriage", "z_piezo", "probe_board", "active_probe",
+                                      "piezoresistor", "heater", "bridge_amplifier"))
 
 
 #: The two instruments, by key.
@@ -775,6 +786,9 @@ class InstrumentScene:
         Knob name -> its angle, rad.
     highlighted : dict
         Part name -> its highlight colour (0xRRGGBB).
+    gap : float
+        How far the coarse approach has lifted the probe above the sample, m
+        (:meth:`set_gap`).
     beam : tuple or None
         ``(points, spots)`` (m) last drawn by :meth:`show_beam`.
     offset : ndarray
@@ -808,6 +822,7 @@ class InstrumentScene:
         self.vis = self.root[self.path]
         self.vis.delete()
         self.fraction = 0.0
+        self.gap = 0.0
         self.housing_opacity = 1.0
         self.knob_angles = {p.name: 0.0 for p in self.instrument.parts if p.knob}
         self.highlighted = {}
@@ -905,7 +920,8 @@ class InstrumentScene:
         Returns
         -------
         ndarray
-            translation(position + fraction x explode) @ rotation(axis) @ the knob's turn.
+            translation(position + fraction x explode (+ the approach's lift)) @
+            rotation(axis) @ the knob's turn.
         """
         p = self.part(name)
         f = self.fraction if fraction is None else PARAMETERS["explode_fraction"].check(
@@ -916,6 +932,8 @@ class InstrumentScene:
         turn = np.eye(4)
         turn[:2, :2] = [[math.cos(angle), -math.sin(angle)], [math.sin(angle), math.cos(angle)]]
         origin = (p.position + f * p.explode_distance * p.explode_direction) / SCENE_UNIT
+        if name in self.instrument.approach_parts:
+            origin[2] += self.gap / SCENE_UNIT
         return translation(origin) @ rot @ turn
 
     def _place(self, part: Part) -> None:
@@ -941,6 +959,26 @@ class InstrumentScene:
         for part in self.instrument.parts:
             self._place(part)
         self._show_beam_group(self.fraction == 0.0)
+
+    def set_gap(self, gap: float) -> None:
+        """Lift the probe (and what the coarse approach moves with it) ``gap`` above the
+        sample: 0 is in contact. The beam of :meth:`show_beam` moves with the head.
+
+        Parameters
+        ----------
+        gap : float
+            Tip-sample distance, m (:data:`PARAMETERS` ``["approach_gap"]``, 0 to 10 mm).
+
+        Raises
+        ------
+        ValueError
+            If ``gap`` is out of range.
+        """
+        self.gap = PARAMETERS["approach_gap"].check(gap)
+        for name in self.instrument.approach_parts:
+            self._place(self._parts[name])
+        if self.instrument.beam:
+            self.vis["beam"].set_transform(translation([0.0, 0.0, self.gap / SCENE_UNIT]))
 
     def animate_explode(self, frames: int = DEFAULTS["frames"], *, fps: int = DEFAULTS["fps"],
                         back: bool = True, repetitions: int = 1,
@@ -1179,7 +1217,8 @@ class InstrumentScene:
         return {k: np.asarray(v, float) * _MM for k, v in self.instrument.anchors_mm.items()}
 
     def lever_point(self, x: float, y: float = 0.0) -> np.ndarray:
-        """Where a point on the lever's top face is in the scene frame (m, assembled).
+        """Where a point on the lever's top face is in the scene frame (m, assembled, in
+        contact: the frame of :meth:`show_beam`'s points).
 
         For the alignment model's spot on the lever: module (a)'s coordinates, ``x`` from the
         clamp towards the free end, ``y`` across the lever (to the left seen from the clamp).
