@@ -557,7 +557,7 @@ def _obd() -> Instrument:
                    photodiode=t(photodiode))
     return Instrument("obd", "conventional AFM with optical beam deflection (MultiMode-like)",
                       parts, (145.0, -195.0, 90.0), (265.0, -415.0, 200.0), (0.0, 0.0, -45.0),
-                      anchors,
+                      read_only(anchors),
                       ("laser", "lens", "lever_end", "mirror", "photodiode"),
                       ("lever_end", "photodiode"), ("probe_chip", (-0.12, 0.0, 0.019), 0.125),
                       tuple(p.name for p in parts if p.group in ("head", "probe", "knobs")))
