@@ -204,6 +204,7 @@ def test_animation_bounds(kwargs, match):
     assert "animation" not in rec.log
 
 
+@pytest.mark.slow
 def test_the_longest_animation_stays_within_the_transform_budget():
     sc, _ = scene("obd")
     anim = sc.animate_explode(LIMITS["frames"], back=False, play=False)
