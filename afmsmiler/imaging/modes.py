@@ -39,7 +39,7 @@ from ..controller import PARAMETERS as LOOP_PARAMETERS
 from ..controller import ContactLoop, scan_image
 from ..controller.polygon import polygon_response
 from ..parameters import Parameter, read_only
-from ..validation import check_instance
+from ..validation import check_choice, check_instance, check_integer
 
 __all__ = ["Mode", "ScanPlan", "ModeLine", "Crash", "ConstantForce", "ConstantHeight",
            "PARAMETERS", "DIRECTIONS"]
@@ -160,6 +160,12 @@ class ModeLine:
     crash: Crash | None = None
 
 
+def _short(value) -> str:
+    """``repr(value)`` cut to a line, for a message."""
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
 class Mode(ABC):
     """An imaging mode: turns the apex surface along each line into channels.
 
@@ -209,7 +215,13 @@ class Mode(ABC):
         Returns
         -------
         str
+
+        Raises
+        ------
+        ValueError
+            If ``channel`` is not one of :attr:`channels`.
         """
+        check_choice("channel", channel, self.channels)
         return self.units.get(channel, "m")
 
     def start(self, plan: ScanPlan) -> Any:
@@ -224,8 +236,20 @@ class Mode(ABC):
         -------
         object
             The state for :meth:`line` (default None).
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a :class:`ScanPlan`.
         """
+        check_instance("plan", plan, ScanPlan)
         return None
+
+    @staticmethod
+    def _row(plan: ScanPlan, row) -> int:
+        """``row`` checked to be a line of ``plan`` (after checking ``plan``), as an int."""
+        check_instance("plan", plan, ScanPlan)
+        return check_integer("row", row, 0, plan.shape[0] - 1)
 
     @abstractmethod
     def line(self, plan: ScanPlan, row: int, state: Any) -> ModeLine:
@@ -302,7 +326,13 @@ class ConstantForce(Mode):
         -------
         dict
             Channel name -> (lines, pixels) array.
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a :class:`ScanPlan`.
         """
+        check_instance("plan", plan, ScanPlan)
         loop, setpoint = self.loop, self.setpoint
         if np.array_equal(plan.trace, plan.retrace):
             image = scan_image(loop, plan.trace, plan.pixel_size, speed=plan.scan_speed,
@@ -342,8 +372,24 @@ class ConstantForce(Mode):
         -------
         ModeLine
             Its channels are views of ``state`` (the scanner copies them).
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` not what :meth:`start` returned.
+        ValueError
+            If ``row`` is not a line of the plan, or ``state`` holds images of another shape.
         """
-        return ModeLine({name: image[row] for name, image in state.items()}, state)
+        row = self._row(plan, row)
+        if not isinstance(state, Mapping) or set(state) != set(self.channels):
+            raise TypeError(f"state must be the images ConstantForce.start returned (a mapping "
+                            f"of the channels {list(self.channels)}), got {_short(state)}")
+        for name in self.channels:
+            shape = np.shape(state[name])
+            if shape != plan.shape:
+                raise ValueError(f"state must hold images of the plan's shape {plan.shape}, got "
+                                 f"{name!r} of shape {shape}")
+        return ModeLine({name: state[name][row] for name in self.channels}, state)
 
 
 class ConstantHeight(Mode):
@@ -438,7 +484,18 @@ class ConstantHeight(Mode):
         Returns
         -------
         ModeLine
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` neither None nor a bool.
+        ValueError
+            If ``row`` is not a line of the plan.
         """
+        row = self._row(plan, row)
+        if state is not None and not isinstance(state, (bool, np.bool_)):
+            raise TypeError(f"state must be None or a bool (in contact at the end of the "
+                            f"previous line), got {_short(state)}")
         n = plan.shape[1]
         z = self.z_np + np.concatenate((plan.trace[row], plan.retrace[row][::-1]))  # scan order
         deflection, forces, contact = self._states(z, bool(state))
