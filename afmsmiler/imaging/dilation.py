@@ -405,8 +405,13 @@ def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height
     return np.ascontiguousarray(out)
 
 
-def _range(h: np.ndarray) -> float:
-    return float(np.max(h) - np.min(h))
+def _range(h: np.ndarray, name: str = "sample") -> float:
+    """The height range max - min in m; a range that overflows a float names ``name``."""
+    low, high = float(np.min(h)), float(np.max(h))
+    if not math.isfinite(high - low):
+        raise ValueError(f"{name} heights must span a range a float can hold (1.8e308 m), got "
+                         f"{low:g} to {high:g} m")
+    return high - low
 
 
 def _check_heights(name: str, image) -> Sample:
@@ -478,7 +483,7 @@ def dilate(sample, tip) -> Sample:
 
 def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
     """min_u [i(x - u) + t(u)] = -max_u [-i(x + u) - t(-u)]: a dilation by the reflected tip."""
-    height = _range(i)
+    height = _range(i, "image")
     if isinstance(tip, Parabolic):
         _check_fits(image, tip, height)
         return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y, height)
@@ -548,7 +553,7 @@ def certainty_map(image, tip) -> np.ndarray:
     """
     image, tip = _checked("image", image, tip)
     i = image.heights
-    height = _range(i)
+    height = _range(i, "image")
     t = _kernel(image, tip, height)
     r = -_dilate_general(-i, t[(slice(None, None, -1),) * t.ndim], height)  # as erode
     tol = 8.0 * np.finfo(float).eps * (float(np.max(np.abs(i))) + height)
