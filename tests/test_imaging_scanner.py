@@ -640,3 +640,18 @@ def test_heights_whose_range_overflows_a_float_are_named():
     for tip in (None, Parabolic(50e-9)):
         with pytest.raises(ValueError, match="^sample heights must span a range a float"):
             Scan(sample, tip, ConstantForce(loop()), ScanSettings(60e-9, pixels=4))
+
+
+@pytest.mark.parametrize("tip", [Parabolic(radius=400e-9), "cone"])
+def test_a_zoom_into_a_corner_with_a_blunt_tip_scans_the_whole_samples_dilation(tip):
+    # the part of the sample the scan can feel, clipped at the corner, was narrower than the
+    # tip's footprint although the sample is not: the scan was refused as "a tip wider than
+    # the image (22 pixels)"; the reference is the dilation of the whole sample
+    from afmsmiler.contact import Conical
+    from afmsmiler.imaging.dilation import dilate
+    tip = Conical(half_angle=math.radians(75)) if tip == "cone" else tip
+    sample = particles((64, 64), 10e-9, seed=1)
+    settings = ScanSettings(40e-9, pixels=4, offset=(-280e-9, -280e-9), scan_speed=SPEED)
+    plan = Scan(sample, tip, ConstantForce(loop()), settings).plan
+    np.testing.assert_allclose(plan.trace, dilate(sample, tip).heights[2:6, 2:6], rtol=0,
+                               atol=1e-15 * np.ptp(sample.heights))

@@ -447,6 +447,20 @@ def _sampled(heights, px, py, straight):
     return _bilinear(heights, px, py)
 
 
+def _at_least(lo: int, hi: int, need: int, size: int) -> tuple[int, int]:
+    """lo:hi widened inside 0:size to at least ``need`` pixels (or all of them).
+
+    A box clipped at an edge of the sample (a zoom into its corner) can be narrower than the
+    tip's footprint although the sample is not: the dilation would refuse the part as an image
+    narrower than the tip. Widening it into the sample only adds points the tip cannot reach
+    first, so the apex surface over the scan does not change.
+    """
+    need = min(need, size)
+    if hi - lo >= need:
+        return lo, hi
+    return (0, max(hi, need)) if lo == 0 else (min(lo, size - need), size)
+
+
 def _fmt(x):
     return f"{x * 1e6:.4g} um"
 
@@ -646,7 +660,8 @@ class Scan:
         c_hi = math.ceil(max(float(a.max()) for a in xs)) + nx + 2
         r_lo = math.floor(min(float(a.min()) for a in ys)) - ny - 1
         r_hi = math.ceil(max(float(a.max()) for a in ys)) + ny + 2
-        return max(r_lo, 0), min(r_hi, rows), max(c_lo, 0), min(c_hi, cols)
+        return (*_at_least(max(r_lo, 0), min(r_hi, rows), 2 * ny + 1, rows),
+                *_at_least(max(c_lo, 0), min(c_hi, cols), 2 * nx + 1, cols))
 
     @property
     def plan(self) -> ScanPlan:
