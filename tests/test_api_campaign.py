@@ -159,7 +159,7 @@ def _image():
 def _settings(**changes):
     """A scan that fits in :func:`_image`: 100 nm (its centre), 8 x 8 pixels."""
     from afmsmiler.imaging.scanner import ScanSettings
-    return ScanSettings(100e-9, **{"pixels": 8, "scan_speed": 1e-6, **changes})
+    return ScanSettings(**{"scan_size": 100e-9, "pixels": 8, "scan_speed": 1e-6, **changes})
 
 
 def _system():
@@ -465,6 +465,25 @@ def _bad_tips(valid):
             "tip-bluntest-sphere": Spherical(RADIUS.high),
             "tip-flat-cone": Conical(wide), "tip-sharp-cone": Conical(1e-12),
             "tip-flat-pyramid": Pyramidal(wide)}
+
+
+def _bad_settings(valid):
+    """Scan settings at the ends of their ranges that still fit :func:`_image` (the scan then
+    runs: a scan that is built must finish with finite numbers)."""
+    from afmsmiler.imaging.scanner import PARAMETERS as P
+    near = 1 - 1e-9
+    return {
+        "settings-fastest": _settings(scan_speed=P["scan_speed"].high),
+        "settings-slowest": _settings(scan_speed=P["scan_speed"].low),
+        "settings-one-long-line": _settings(pixels=2048, lines=1),
+        "settings-two-pixel-lines": _settings(pixels=2, lines=2048),
+        "settings-half-turn": _settings(angle=math.pi * near),
+        "settings-steepest-tilt": _settings(tilt=(math.pi / 2 * near, -math.pi / 2 * near)),
+        "settings-most-noise": _settings(noise=P["noise"].high, seed=0),
+        "settings-most-creep": _settings(creep=P["creep"].high, creep_time=P["creep_time"].low,
+                                         offset=(1e-9, -1e-9)),
+        "settings-tiny-range": _settings(scan_size=P["scan_size"].low),
+    }
 
 
 def _input_names(inst):
@@ -896,7 +915,8 @@ def test_bad_input_is_named_or_harmless(t, name):
         problem = _judge(t, name, label, value, can_return, kwargs, inst)
         if problem:
             failures.append(problem)
-    extremes = {"Sample": _bad_samples, "Parabolic": _bad_tips}.get(type(valid).__name__)
+    extremes = {"Sample": _bad_samples, "Parabolic": _bad_tips,
+                "ScanSettings": _bad_settings}.get(type(valid).__name__)
     if extremes is _bad_tips and not t.module.startswith("afmsmiler.imaging"):
         extremes = None  # module (d)'s own functions: a 1 pm sphere cannot reach their default
         # depths and they say so naming the depth (z_s, z_np); the tips' ranges are its own
