@@ -308,3 +308,19 @@ def test_a_correction_that_would_overflow_names_the_sample():
     h[:, 0] = -1.7e308  # each row's median is 1.7e308: -1.7e308 - 1.7e308 overflows
     with pytest.raises(ValueError, match="^sample values must stay finite when lines flattened"):
         flatten_lines(Sample(h, DX))
+
+
+@pytest.mark.parametrize("unit", [1e-290, 1e290])
+def test_scars_are_found_whatever_the_scale_of_the_values(unit):
+    # the row-to-row RMS squared its differences: it underflowed to 0 for values of 1e-290
+    # (no scar found) and overflowed to inf for 1e290 (none found either)
+    h = _ramp()
+    h[20:22, 30:70] += 6e-9
+    h[40, 80:120] -= 6e-9
+    expected = mark_scars(Sample(h, DX, pixel_size_y=DY))
+    assert expected.sum() == 120
+    scaled = Sample(h / 1e-9 * unit, DX, pixel_size_y=DY)
+    np.testing.assert_array_equal(mark_scars(scaled), expected)
+    np.testing.assert_allclose(remove_scars(scaled).heights / unit,
+                               remove_scars(Sample(h, DX, pixel_size_y=DY)).heights / 1e-9,
+                               rtol=1e-12, atol=1e-12)

@@ -416,7 +416,7 @@ def mark_scars(sample: Sample, threshold: float = PARAMETERS["threshold"].defaul
     min_px = _min_length_pixels(sample, min_length)
     max_width = check_integer("max_width", max_width, 1, MAX_SCAR_WIDTH)
     check_choice("kind", kind, ("both", "positive", "negative"))
-    h = sample.heights
+    h = sample.heights / _scale_of(sample.heights)  # exact: sigma^2 cannot over- or underflow
     rows, cols = h.shape
     sigma = float(np.sqrt(np.sum(np.diff(h, axis=0) ** 2) / h.size))
     marks = np.zeros(h.shape, bool)
