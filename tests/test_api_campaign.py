@@ -467,6 +467,15 @@ def _bad_tips(valid):
             "tip-flat-pyramid": Pyramidal(wide)}
 
 
+def _bad_loops(valid):
+    """Loops at the ends of module (c)'s gain ranges: unstable ones diverge and overflow."""
+    from afmsmiler.controller import PARAMETERS as P
+    return {"loop-unstable": valid.replace(ki=P["ki"].high),
+            "loop-slightly-unstable": valid.replace(kp=P["kp"].low, ki=2.2e6),
+            "loop-stiffest": valid.replace(kp=P["kp"].high, ki=P["ki"].high),
+            "loop-no-gain": valid.replace(kp=P["kp"].low, ki=P["ki"].low)}
+
+
 def _bad_settings(valid):
     """Scan settings at the ends of their ranges that still fit :func:`_image` (the scan then
     runs: a scan that is built must finish with finite numbers)."""
@@ -916,7 +925,9 @@ def test_bad_input_is_named_or_harmless(t, name):
         if problem:
             failures.append(problem)
     extremes = {"Sample": _bad_samples, "Parabolic": _bad_tips,
-                "ScanSettings": _bad_settings}.get(type(valid).__name__)
+                "ScanSettings": _bad_settings, "ContactLoop": _bad_loops}.get(type(valid).__name__)
+    if extremes is _bad_loops and not t.module.startswith("afmsmiler.imaging"):
+        extremes = None  # module (c)'s own campaign covers its loops
     if extremes is _bad_tips and not t.module.startswith("afmsmiler.imaging"):
         extremes = None  # module (d)'s own functions: a 1 pm sphere cannot reach their default
         # depths and they say so naming the depth (z_s, z_np); the tips' ranges are its own

@@ -655,3 +655,29 @@ def test_a_zoom_into_a_corner_with_a_blunt_tip_scans_the_whole_samples_dilation(
     plan = Scan(sample, tip, ConstantForce(loop()), settings).plan
     np.testing.assert_allclose(plan.trace, dilate(sample, tip).heights[2:6, 2:6], rtol=0,
                                atol=1e-15 * np.ptp(sample.heights))
+
+
+def test_an_unstable_loop_crashes_where_it_overflows_and_keeps_the_finished_lines():
+    # module (c) scans an unstable loop too (its signals grow to inf, then NaN); the image used
+    # to come back NaN from there on with nothing said. Reference: module (c)'s scan_image
+    unstable = ContactLoop(ki=2.2e6)
+    assert not unstable.is_stable().stable
+    sample = particles((48, 48), 10e-9, seed=2)
+    settings = ScanSettings(400e-9, pixels=16, lines=40, scan_speed=3e-3)
+    run = Scan(sample, None, ConstantForce(unstable, setpoint=5e-9), settings)
+    result = run.run()
+    ref = scan_image(unstable, run.plan.trace, settings.pixel_size, speed=3e-3, setpoint=5e-9)
+    with np.errstate(invalid="ignore"):  # inf - inf where module (c)'s signals overflowed
+        error = ref.trace + ref.trace_z_np - 5e-9
+    row = int(np.argmin(np.isfinite(error).all(axis=1)))  # the first line that overflows
+    assert 0 < row < 40 and result.crashed is not None and not result.finished
+    assert (result.crashed.row, result.lines_done, result.crashed.direction) == (
+        row, row, "trace")
+    assert result.crashed.force == math.inf
+    assert result.crashed.column == int(np.argmin(np.isfinite(error[row])))
+    for name, image in result.channels.items():  # the finished lines, finite
+        assert np.isfinite(image.heights).all() and image.heights.shape == (row, 16), name
+    np.testing.assert_array_equal(result.images["error trace"][:row], error[:row])
+    np.testing.assert_array_equal(result.images["height trace"][:row], ref.height_trace[:row])
+    assert np.isnan(result.images["height trace"][row, result.crashed.column:]).all()
+    assert np.isnan(result.images["height retrace"][row:]).all()

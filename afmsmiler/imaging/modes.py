@@ -128,7 +128,8 @@ class Crash:
     row, column : int
         The pixel (line index, column index) at which |force| first passed the threshold.
     force : float
-        The force there in N (signed; inf when the tip would have been buried).
+        The force there in N (signed; inf when the tip would have been buried, or when an
+        unstable loop's signals overflowed).
     direction : str
         ``"trace"`` or ``"retrace"``.
     """
@@ -303,6 +304,11 @@ class ConstantForce(Mode):
     retrace pass over other points than the trace, the same chained polygon goes through module
     (c)'s solver directly (:func:`afmsmiler.controller.polygon.polygon_response`, as in
     ``scan_image``), with the retrace's own heights.
+
+    An unstable loop (:meth:`ContactLoop.is_stable`) still scans, as in module (c): its signals
+    grow until they overflow. The line on which they stop being finite is a :class:`Crash` (the
+    tip, driven by a diverging loop, hits the sample): the scan stops there with force inf, the
+    pixels from there on are NaN, and the finished lines are kept.
     """
 
     channels = ("height trace", "height retrace", "error trace", "error retrace")
@@ -333,6 +339,10 @@ class ConstantForce(Mode):
             If ``plan`` is not a :class:`ScanPlan`.
         """
         check_instance("plan", plan, ScanPlan)
+        with np.errstate(over="ignore", invalid="ignore"):  # an unstable loop: see line()
+            return self._images(plan)
+
+    def _images(self, plan: ScanPlan) -> dict:
         loop, setpoint = self.loop, self.setpoint
         if np.array_equal(plan.trace, plan.retrace):
             image = scan_image(loop, plan.trace, plan.pixel_size, speed=plan.scan_speed,
@@ -371,7 +381,8 @@ class ConstantForce(Mode):
         Returns
         -------
         ModeLine
-            Its channels are views of ``state`` (the scanner copies them).
+            Its channels are views of ``state`` (the scanner copies them); where an unstable
+            loop's signals overflowed, a :class:`Crash` (force inf) and NaN from that pixel on.
 
         Raises
         ------
@@ -389,7 +400,26 @@ class ConstantForce(Mode):
             if shape != plan.shape:
                 raise ValueError(f"state must hold images of the plan's shape {plan.shape}, got "
                                  f"{name!r} of shape {shape}")
-        return ModeLine({name: state[name][row] for name in self.channels}, state)
+        channels = {name: state[name][row] for name in self.channels}
+        passes = {d: [name for name in self.channels if name.endswith(" " + d)]
+                  for d in DIRECTIONS}
+        # where a diverging loop first overflowed, in scan order (trace, then retrace backwards)
+        bad = [np.logical_or.reduce([~np.isfinite(channels[name]) for name in passes[d]])
+               for d in DIRECTIONS]
+        bad = np.concatenate((bad[0], bad[1][::-1]))
+        if not bad.any():
+            return ModeLine(channels, state)
+        n = plan.shape[1]
+        k = int(np.argmax(bad))
+        direction = DIRECTIONS[k // n]
+        column = k if k < n else 2 * n - 1 - k
+        channels = {name: values.copy() for name, values in channels.items()}
+        not_reached = {"trace": (slice(column, None), slice(None)),
+                       "retrace": (None, slice(None, column + 1))}[direction]
+        for d, cut in zip(DIRECTIONS, not_reached):
+            for name in passes[d] if cut is not None else ():
+                channels[name][cut] = np.nan
+        return ModeLine(channels, state, Crash(row, column, math.inf, direction))
 
 
 class ConstantHeight(Mode):
