@@ -476,6 +476,22 @@ def _bad_loops(valid):
             "loop-no-gain": valid.replace(kp=P["kp"].low, ki=P["ki"].low)}
 
 
+def _bad_systems(valid):
+    """Contact systems with adhesion (the path-dependent branch of constant height) and at the
+    ends of module (d)'s ranges."""
+    from afmsmiler.contact import PARAMETERS as P
+    from afmsmiler.contact import Spherical
+    return {"system-jkr": dataclasses.replace(valid, adhesion="jkr", work_of_adhesion=0.03),
+            "system-dmt-most": dataclasses.replace(valid, adhesion="dmt",
+                                                   work_of_adhesion=P["work_of_adhesion"].high),
+            "system-sphere-jkr": dataclasses.replace(valid, tip=Spherical(50e-9),
+                                                     adhesion="jkr", work_of_adhesion=0.03),
+            "system-stiffest": dataclasses.replace(valid, spring_constant=P["spring_constant"].high,
+                                                   youngs_modulus=P["youngs_modulus"].high),
+            "system-softest": dataclasses.replace(valid, spring_constant=P["spring_constant"].low,
+                                                  youngs_modulus=P["youngs_modulus"].low)}
+
+
 def _bad_settings(valid):
     """Scan settings at the ends of their ranges that still fit :func:`_image` (the scan then
     runs: a scan that is built must finish with finite numbers)."""
@@ -925,9 +941,10 @@ def test_bad_input_is_named_or_harmless(t, name):
         if problem:
             failures.append(problem)
     extremes = {"Sample": _bad_samples, "Parabolic": _bad_tips,
-                "ScanSettings": _bad_settings, "ContactLoop": _bad_loops}.get(type(valid).__name__)
-    if extremes is _bad_loops and not t.module.startswith("afmsmiler.imaging"):
-        extremes = None  # module (c)'s own campaign covers its loops
+                "ScanSettings": _bad_settings, "ContactLoop": _bad_loops,
+                "ContactSystem": _bad_systems}.get(type(valid).__name__)
+    if extremes in (_bad_loops, _bad_systems) and not t.module.startswith("afmsmiler.imaging"):
+        extremes = None  # modules (c) and (d)'s own campaigns cover their loops and systems
     if extremes is _bad_tips and not t.module.startswith("afmsmiler.imaging"):
         extremes = None  # module (d)'s own functions: a 1 pm sphere cannot reach their default
         # depths and they say so naming the depth (z_s, z_np); the tips' ranges are its own
