@@ -557,19 +557,30 @@ def certainty_map(image, tip) -> np.ndarray:
     t = _kernel(image, tip, height)
     r = -_dilate_general(-i, t[(slice(None, None, -1),) * t.ndim], height)  # as erode
     tol = 8.0 * np.finfo(float).eps * (float(np.max(np.abs(i))) + height)
-    # the apex term (u = 0) first, then every other tip pixel below the cut
-    contacts = (r >= i - tol).astype(np.int64)
-    where = np.zeros(i.shape + (i.ndim,), dtype=np.int64)  # offset of the (last) contact
-    for off, tu in _offsets(t, height, i.size):
+    # the apex term (u = 0) first, then every other tip pixel below the cut: where the tip
+    # touches once (``once`` and not ``many``), remember which offset touched (``which``; -1:
+    # the apex, the last entry of ``offsets``); bool and int32 arrays, in place (the loop runs
+    # over up to MAX_WORK pixels)
+    i_tol = i - tol
+    once = r >= i_tol
+    many = np.zeros(i.shape, dtype=bool)
+    which = np.full(i.shape, -1, dtype=np.int32)
+    buf, hit, both = np.empty(i.shape), np.empty(i.shape, bool), np.empty(i.shape, bool)
+    offsets = []
+    for k, (off, tu) in enumerate(_offsets(t, height, i.size)):
         dst, src = _slices(off, i.shape)
-        touch = r[src] - tu >= i[dst] - tol
-        contacts[dst] += touch
-        where[dst][touch] = off
+        touch = hit[dst]
+        np.greater_equal(np.subtract(r[src], tu, out=buf[dst]), i_tol[dst], out=touch)
+        many[dst] |= np.logical_and(once[dst], touch, out=both[dst])
+        once[dst] |= touch
+        np.copyto(which[dst], k, where=touch)
+        offsets.append(off)
+    offsets = np.array(offsets + [(0,) * i.ndim], dtype=np.intp).reshape(-1, i.ndim)
     certain = np.zeros(i.shape, dtype=bool)
-    x0 = np.argwhere(contacts == 1)
+    x0 = np.argwhere(once & ~many)
     if len(x0):
-        hit = x0 + where[tuple(x0.T)]
-        certain[tuple(hit.T)] = True
+        touched = x0 + offsets[which[tuple(x0.T)]]
+        certain[tuple(touched.T)] = True
     return certain
 
 
