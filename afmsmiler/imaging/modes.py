@@ -492,11 +492,23 @@ class ConstantHeight(Mode):
             stuck = cycle.retract.in_contact[::-1]  # on the ramp's points, increasing z
             f_in, zc_in = cycle.retract.force[::-1], cycle.retract.z_c[::-1]
             f_out, zc_out = cycle.approach.force, cycle.approach.z_c
-        for k in np.flatnonzero(ok):
-            i = int(np.searchsorted(ramp, z[k]))
-            contact = bool(z[k] >= 0.0 or (contact and stuck[i]))
-            force[k], deflection[k] = (f_in[i], zc_in[i]) if contact else (f_out[i], zc_out[i])
-        return deflection, force, contact
+        if not ramp.size:
+            return deflection, force, contact
+        # along the pixels in scan order, contact_k = z_k >= 0 or (contact_(k-1) and stuck there):
+        # a latch, set where z >= 0 and reset where it is out of contact on both branches; in
+        # contact wherever the last set comes after the last reset (the previous line's contact
+        # counts as a set before the first pixel)
+        zk = z[ok]
+        i = np.searchsorted(ramp, zk)
+        sets = zk >= 0.0
+        resets = ~sets & ~stuck[i]
+        index = np.arange(zk.size)
+        last_set = np.maximum.accumulate(np.where(sets, index, -1 if contact else -2))
+        last_reset = np.maximum.accumulate(np.where(resets, index, -2))
+        touching = last_set > last_reset
+        force[ok] = np.where(touching, f_in[i], f_out[i])
+        deflection[ok] = np.where(touching, zc_in[i], zc_out[i])
+        return deflection, force, bool(touching[-1])
 
     def line(self, plan: ScanPlan, row: int, state: Any = None) -> ModeLine:
         """Deflection along line ``row``, trace and retrace; a :class:`Crash` if the tip broke.
