@@ -1,13 +1,17 @@
 """The bad-input campaign over the public API of the model layer.
 
 Every public function, class and method of the physics modules (cantilever, materials,
-transducers, controller, contact, samples, brownian when present) and of the house modules
-(parameters, validation) is first called with valid arguments, built from its signature: the
-defaults, and a small table of valid values by parameter name (``lever`` -> a Cantilever, ``tip``
--> a Parabolic tip, ``loop`` -> a ContactLoop, ...). The signatures are read at collection time, so
-the campaign follows the modules as their signatures change. Then each parameter in turn gets bad
-values (NaN, +-inf, a string, None, a bool, a complex, a list, a foreign object, a wrong shape,
-zero, negative, huge and tiny numbers, a huge integer), the others staying valid.
+transducers, controller, contact, samples, brownian when present), of module (f)'s imaging
+modules (dilation, scanner, modes, corrections, statistics) and PNG export, and of the house
+modules (parameters, validation) is first called with valid arguments, built from its signature:
+the defaults, and a small table of valid values by parameter name (``lever`` -> a Cantilever,
+``tip`` -> a Parabolic tip, ``loop`` -> a ContactLoop, ``sample`` -> a 16 x 16 image, ...). The
+signatures are read at collection time, so the campaign follows the modules as their signatures
+change. Then each parameter in turn gets bad values (NaN, +-inf, a string, None, a bool, a
+complex, a list, a foreign object, a wrong shape, zero, negative, huge and tiny numbers, a huge
+integer), the others staying valid; a Sample parameter also gets extreme samples (a line, 2 x 2,
+flat, heights near 1e308, pixels of 1e-300 m, a deflection channel ...) and an imaging
+function's tip the ends of module (d)'s tip ranges. A generator is consumed under the guard.
 
 A call passes when it either
 
@@ -59,7 +63,12 @@ pytestmark = pytest.mark.filterwarnings("ignore::RuntimeWarning")
 
 MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers",
            "afmsmiler.controller", "afmsmiler.contact", "afmsmiler.samples",
-           "afmsmiler.brownian", "afmsmiler.parameters", "afmsmiler.validation"]
+           "afmsmiler.brownian", "afmsmiler.parameters", "afmsmiler.validation",
+           # module (f): each public module of the imaging package (not the package, whose
+           # re-exports would give the classes twice), and the PNG export
+           "afmsmiler.imaging.dilation", "afmsmiler.imaging.scanner", "afmsmiler.imaging.modes",
+           "afmsmiler.imaging.corrections", "afmsmiler.imaging.statistics",
+           "afmsmiler.plots.images"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s per call: the issue's bound
 MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machine, shared)
@@ -70,14 +79,31 @@ NOT_INPUTS = {"name", "unit", "what", "label", "description", "readout_format"}
 FREE_TEXT = {"name", "source", "label", "description", "channel"}
 #: Parameters that name another one in an error message (any text will do; a non-str is refused).
 MESSAGE_NAMES = {"cantilever.check_modes:name"}
+#: Methods that take a new name for the object they return (any text will do; a non-str is
+#: refused): a label, as a constructor's ``name`` is.
+NEW_NAMES = {"samples.Sample.with_heights:name"}
+#: "callable:parameter" -> (bad-value labels that are in fact valid there, why): documented values
+#: that the table of bad values cannot know about.
+ACCEPTED = {
+    "imaging.scanner.Scan:tip": (("None",), "None is the documented ideal, infinitely sharp tip"),
+    "imaging.scanner.scan:tip": (("None",), "None is the documented ideal, infinitely sharp tip"),
+    "imaging.modes.ConstantHeight.line:state": (("bool",), "the documented state: whether the "
+                                                "tip was in contact at the end of the line"),
+    # any text is a file name; "1e-6" would also write a PNG into the working directory
+    "plots.images.save_png:path": (("str",), "any text is a file name"),
+}
 # Returned by the models, not built by a user: their constructors are not part of the input API
 # (their methods are called on a result the model returned, see INSTANCES).
 RESULTS = {"Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
            "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
-           "Operation", "Bending"}
+           "Operation", "Bending",
+           # module (f): the scanner's and the corrections' results, and what a mode returns
+           # (the scanner checks a ModeLine's channels when it receives one)
+           "ScanResult", "LineRecord", "ScanPlan", "ModeLine", "Crash", "Plane", "Histogram",
+           "Profile", "PngExport"}
 # Abstract bases: their methods are called on each concrete subclass instead.
-ABSTRACT = {"Tip", "Transducer"}
+ABSTRACT = {"Tip", "Transducer", "Mode"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
 LEGACY = {"afmsmiler.contact.TipParameter", "afmsmiler.transducers.Quantity",
           "afmsmiler.transducers.Parameter"}
@@ -87,7 +113,9 @@ HOUSE_INPUTS = {"value", "values"}
 # Conversions that carry NaN through (a gap in a plotted curve); check() validates.
 NAN_PASSES = {"afmsmiler.parameters.Parameter.to_si", "afmsmiler.parameters.Parameter.to_display"}
 # Callables whose documented answer for valid input may be infinite ("no limit").
-INFINITE_OK = {"afmsmiler.contact.z_np_limit": "inf means no limit (documented)"}
+INFINITE_OK = {"afmsmiler.contact.z_np_limit": "inf means no limit (documented)",
+               "afmsmiler.imaging.dilation.estimate_tip_radius":
+                   "inf: an image without a strict local maximum bounds no radius (documented)"}
 
 
 # -- valid values by parameter name ------------------------------------------------------------
@@ -117,6 +145,48 @@ def _synthetic():
     from afmsmiler.contact import Parabolic, synthetic_curve
     return synthetic_curve(Parabolic(50e-9), spring_constant=0.1, youngs_modulus=20e6,
                            poisson_ratio=0.3, points=200, noise=1e-11, seed=1)
+
+
+def _image():
+    """A small image (16 x 16 pixels of 10 nm) with a 3 nm bump and a ripple: every imaging
+    function works on it in milliseconds, and a 50 nm tip fits in it."""
+    from afmsmiler.samples import Sample
+    y, x = np.mgrid[0:16, 0:16].astype(float)
+    h = 3e-9 * np.exp(-((x - 7.0) ** 2 + (y - 8.0) ** 2) / 8.0) + 0.2e-9 * np.sin(x)
+    return Sample(h, 10e-9, "campaign")
+
+
+def _settings(**changes):
+    """A scan that fits in :func:`_image`: 100 nm (its centre), 8 x 8 pixels."""
+    from afmsmiler.imaging.scanner import ScanSettings
+    return ScanSettings(**{"scan_size": 100e-9, "pixels": 8, "scan_speed": 1e-6, **changes})
+
+
+def _system():
+    from afmsmiler.contact import ContactSystem, Parabolic
+    return ContactSystem(tip=Parabolic(50e-9))
+
+
+def _constant_force():
+    from afmsmiler.imaging.modes import ConstantForce
+    return ConstantForce(_loop())
+
+
+def _constant_height():
+    from afmsmiler.imaging.modes import ConstantHeight
+    return ConstantHeight(_system(), z_np=1e-9)
+
+
+def _scan(mode=None, **settings):
+    from afmsmiler.contact import Parabolic
+    from afmsmiler.imaging.scanner import Scan
+    mode = _constant_force() if mode is None else mode
+    tip = mode.tip if mode.tip is not None else Parabolic(50e-9)
+    return Scan(_image(), tip, mode, _settings(**settings))
+
+
+def _plan(mode):
+    return _scan(mode).plan
 
 
 def _input_default(inst):
@@ -159,6 +229,12 @@ VALID = {
     "name": "q_x", "unit": "m", "si_value": 1e-4, "display_value": 100.0,
     "u": lambda: np.linspace(0.0, 1.0, 11), "resonance_frequency": 13e3, "section": 0.5,
     "modes": 3,
+    # module (f)
+    "sample": _image, "image": _image, "particle_radius": 10e-9, "scan_size": 100e-9,
+    "settings": _settings, "system": _system, "column": 0,
+    "plan": Ctx(_plan), "state": Ctx(lambda inst: inst.start(_plan(inst))),
+    "channel": Ctx(lambda inst: inst.channels[0] if hasattr(inst, "channels") else "height"),
+    "start": (10e-9, 20e-9), "end": (120e-9, 100e-9), "line_rate": 1.0, "t": 1e-3,
 }
 
 # Valid values for one callable (by its qualified name), where the name table does not fit.
@@ -213,6 +289,14 @@ OVERRIDES = {
     "afmsmiler.controller.ContactLoop": {
         f.name: Ctx(lambda inst, f=f.name: getattr(_loop(), f))
         for f in dataclasses.fields(importlib.import_module("afmsmiler.controller").ContactLoop)},
+    "afmsmiler.imaging.dilation.tip_radius_from_width": {"width": lambda: __import__(
+        "afmsmiler.imaging.dilation", fromlist=["sphere_apparent_width"]).sphere_apparent_width(
+        10e-9, __import__("afmsmiler.contact", fromlist=["Parabolic"]).Parabolic(20e-9))},
+    # "mode" is a lever's mode number elsewhere
+    "afmsmiler.imaging.scanner.Scan": {"mode": _constant_force},
+    "afmsmiler.imaging.scanner.scan": {"mode": _constant_force},
+    "afmsmiler.plots.images.save_png": {
+        "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.png"},
     "afmsmiler.controller.ContactLoop.scan_line": {
         "x": lambda: np.linspace(0.0, 1.5e-6, 16), "height": lambda: np.zeros(16)},
 }
@@ -237,6 +321,30 @@ VARIANTS = {
                                             "z_np": lambda: np.linspace(-60e-9, 20e-9, 40)}},
 }
 
+
+def _tips():
+    """The general dilation path: module (d)'s other three tips."""
+    from afmsmiler.contact import Conical, Pyramidal
+    return {"sphere": {"tip": _sphere}, "cone": {"tip": lambda: Conical()},
+            "pyramid": {"tip": lambda: Pyramidal()}}
+
+
+def _scans():
+    """The scanner's other branches: constant height, a rotated, drifting, creeping, tilted,
+    noisy scan (bilinear sampling, separate retrace), and the general dilation (a cone)."""
+    from afmsmiler.contact import Conical
+    moving = {"settings": lambda: _settings(angle=0.3, drift=(1e-9, -1e-9), creep=0.01,
+                                            offset=(5e-9, 0.0), tilt=(0.01, -0.02), noise=1e-10,
+                                            seed=1)}
+    return {"height": {"mode": _constant_height, "tip": lambda: _system().tip},
+            "moving": moving, "cone": {"tip": lambda: Conical()}}
+
+
+for _name in ("dilate", "erode", "certainty_map", "tip_surface"):
+    VARIANTS[f"afmsmiler.imaging.dilation.{_name}"] = _tips()
+for _name in ("Scan", "scan"):
+    VARIANTS[f"afmsmiler.imaging.scanner.{_name}"] = _scans()
+
 # A system object is probed after it is built (its derived quantities, its main methods), so
 # that a bad value the constructor lets through shows where it breaks.
 PROBES = {
@@ -250,6 +358,11 @@ PROBES = {
     "Spherical": lambda o: o.force(np.linspace(0.0, 0.5 * o.radius, 5), 1e6),
     "Conical": lambda o: o.force(np.linspace(0.0, 10e-9, 5), 1e6),
     "Pyramidal": lambda o: o.force(np.linspace(0.0, 10e-9, 5), 1e6),
+    "ScanSettings": lambda o: (o.pixel_size, o.pixel_size_y, o.line_time, o.scan_time,
+                               o.displacement(o.scan_time)),
+    "Scan": lambda o: o.run(),
+    "ConstantForce": lambda o: _scan(o).run(),
+    "ConstantHeight": lambda o: _scan(o).run(),
 }
 
 
@@ -276,6 +389,12 @@ INSTANCES = {
     "SignalChain": lambda: _obd().chain(_obd().input_quantity().default),
     "Material": lambda: __import__("afmsmiler.materials",
                                    fromlist=["get_material"]).get_material("silicon"),
+    "Scan": _scan,
+    "ConstantForce": _constant_force,
+    "ConstantHeight": _constant_height,
+    "Profile": lambda: __import__("afmsmiler.imaging.statistics",
+                                  fromlist=["line_profile"]).line_profile(
+        _image(), (10e-9, 20e-9), (120e-9, 100e-9)),
 }
 
 
@@ -311,6 +430,85 @@ BAD = {
     "2d": (np.ones((3, 3)), True), "empty": (np.array([]), True),
     "nan-array": (np.array([0.0, math.nan]), False),
 }
+
+
+def _bad_samples(valid):
+    """Samples of the right type that are extreme: every imaging function must work on them
+    (finite numbers) or raise naming a parameter, within the time and memory guard."""
+    from afmsmiler.samples import Sample
+    h = valid.heights
+    image = h if h.ndim == 2 else np.tile(h, (len(h), 1))
+    return {
+        "sample-line": Sample(image[0], valid.pixel_size),
+        "sample-2x2": Sample(image[:2, :2], valid.pixel_size),
+        "sample-2-rows": Sample(image[:2], valid.pixel_size),
+        "sample-flat": Sample(np.zeros_like(image), valid.pixel_size),
+        "sample-huge-heights": Sample(image * 1e290, valid.pixel_size),
+        "sample-extreme": Sample(np.where(image > np.median(image), 1.7e308, -1.7e308),
+                                 valid.pixel_size),  # the range overflows a float
+        "sample-tiny-heights": Sample(image * 1e-290, valid.pixel_size),
+        "sample-tiny-pixels": Sample(image, 1e-300),
+        "sample-huge-pixels": Sample(image, 1e3),
+        "sample-anisotropic": Sample(image, 1e-10, pixel_size_y=1e-3),
+        "sample-volts": Sample(image, valid.pixel_size, channel="deflection", unit="V"),
+    }
+
+
+def _bad_tips(valid):
+    """Tips at the ends of module (d)'s ranges: the sharpest and bluntest paraboloid and sphere,
+    a cone and a pyramid of nearly 90 degrees (far wider than any small image)."""
+    from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical
+    from afmsmiler.contact.tips import RADIUS
+    wide = math.pi / 2 * (1 - 1e-12)
+    return {"tip-sharpest": Parabolic(RADIUS.low), "tip-bluntest": Parabolic(RADIUS.high),
+            "tip-sharpest-sphere": Spherical(RADIUS.low),
+            "tip-bluntest-sphere": Spherical(RADIUS.high),
+            "tip-flat-cone": Conical(wide), "tip-sharp-cone": Conical(1e-12),
+            "tip-flat-pyramid": Pyramidal(wide)}
+
+
+def _bad_loops(valid):
+    """Loops at the ends of module (c)'s gain ranges: unstable ones diverge and overflow."""
+    from afmsmiler.controller import PARAMETERS as P
+    return {"loop-unstable": valid.replace(ki=P["ki"].high),
+            "loop-slightly-unstable": valid.replace(kp=P["kp"].low, ki=2.2e6),
+            "loop-stiffest": valid.replace(kp=P["kp"].high, ki=P["ki"].high),
+            "loop-no-gain": valid.replace(kp=P["kp"].low, ki=P["ki"].low)}
+
+
+def _bad_systems(valid):
+    """Contact systems with adhesion (the path-dependent branch of constant height) and at the
+    ends of module (d)'s ranges."""
+    from afmsmiler.contact import PARAMETERS as P
+    from afmsmiler.contact import Spherical
+    return {"system-jkr": dataclasses.replace(valid, adhesion="jkr", work_of_adhesion=0.03),
+            "system-dmt-most": dataclasses.replace(valid, adhesion="dmt",
+                                                   work_of_adhesion=P["work_of_adhesion"].high),
+            "system-sphere-jkr": dataclasses.replace(valid, tip=Spherical(50e-9),
+                                                     adhesion="jkr", work_of_adhesion=0.03),
+            "system-stiffest": dataclasses.replace(valid, spring_constant=P["spring_constant"].high,
+                                                   youngs_modulus=P["youngs_modulus"].high),
+            "system-softest": dataclasses.replace(valid, spring_constant=P["spring_constant"].low,
+                                                  youngs_modulus=P["youngs_modulus"].low)}
+
+
+def _bad_settings(valid):
+    """Scan settings at the ends of their ranges that still fit :func:`_image` (the scan then
+    runs: a scan that is built must finish with finite numbers)."""
+    from afmsmiler.imaging.scanner import PARAMETERS as P
+    near = 1 - 1e-9
+    return {
+        "settings-fastest": _settings(scan_speed=P["scan_speed"].high),
+        "settings-slowest": _settings(scan_speed=P["scan_speed"].low),
+        "settings-one-long-line": _settings(pixels=2048, lines=1),
+        "settings-two-pixel-lines": _settings(pixels=2, lines=2048),
+        "settings-half-turn": _settings(angle=math.pi * near),
+        "settings-steepest-tilt": _settings(tilt=(math.pi / 2 * near, -math.pi / 2 * near)),
+        "settings-most-noise": _settings(noise=P["noise"].high, seed=0),
+        "settings-most-creep": _settings(creep=P["creep"].high, creep_time=P["creep_time"].low,
+                                         offset=(1e-9, -1e-9)),
+        "settings-tiny-range": _settings(scan_size=P["scan_size"].low),
+    }
 
 
 def _input_names(inst):
@@ -502,6 +700,16 @@ def _valid_kwargs(t: Target, inst):
     return kwargs
 
 
+def _field_default(t: Target, name):
+    """The default of field ``name`` of the dataclass whose ``replace`` is called (else a
+    sentinel): ``replace(lines=None)`` means the field's default, as the constructor does."""
+    if t.method == "replace" and dataclasses.is_dataclass(t.owner):
+        for f in dataclasses.fields(t.owner):
+            if f.name == name and f.default is not dataclasses.MISSING:
+                return f.default
+    return dataclasses.MISSING
+
+
 def _default_of(t: Target, name, inst):
     sig = _signature(t)
     p = sig.parameters.get(name)
@@ -553,6 +761,10 @@ def _non_finite(obj, depth=0, seen=None):
         return None
     if isinstance(obj, Parameter):  # a description: an infinite bound means "no bound"
         return None
+    if type(obj).__name__ == "ScanResult":  # NaN marks the lines not scanned (documented):
+        return _non_finite(obj.channels, depth + 1, seen)  # the finished lines must be finite
+    if type(obj).__name__ in ("LineRecord", "ModeLine") and obj.crash is not None:
+        return None  # a crashed line: NaN on the pixels not reached (documented)
     if isinstance(obj, (int, np.integer)):
         return None
     if isinstance(obj, (float, np.floating, complex, np.complexfloating)):
@@ -584,6 +796,8 @@ def _call(t: Target, kwargs, inst):
     func = t.func if t.method is None else getattr(inst, t.method)
     with guarded():
         result = func(**kwargs)
+        if inspect.isgenerator(result):  # a generator must check its arguments when called,
+            result = list(result)        # and what it yields counts
         if t.method is None and inspect.isclass(t.func):
             return result, _probe(result)
         return result
@@ -593,9 +807,9 @@ def _describe(t: Target, name, label):
     return f"{t.id}({name}={label})"
 
 
-def _judge(t: Target, name, label, value, can_return, kwargs, inst):
-    """None if the call behaved, else what went wrong."""
-    names = [name]
+def _judge(t: Target, name, label, value, can_return, kwargs, inst, also=()):
+    """None if the call behaved, else what went wrong (a message may name ``also`` too)."""
+    names = [name, *also]
     if name in ALIASES and inst is not None:
         names += ALIASES[name](inst)
     if t.module == "afmsmiler.validation" and "name" in kwargs:
@@ -712,15 +926,35 @@ def test_bad_input_is_named_or_harmless(t, name):
     free_text = name in FREE_TEXT and isinstance(valid, str) and (
         (inspect.isclass(t.func) and t.method is None) or name == "label"
         or f"{t.id}:{name}" in MESSAGE_NAMES)  # labels and names for messages: any text
+    free_text = free_text or f"{t.id}:{name}" in NEW_NAMES  # a new name (default: the old)
     for label, (value, can_return) in BAD.items():
         if not _applicable(label, valid) or (label == "None" and signature_default is None
                                               and name in _signature(t).parameters):
             continue
+        if label in ACCEPTED.get(f"{t.id.split('[')[0]}:{name}", ((),))[0]:
+            continue  # a documented value of this parameter (see ACCEPTED)
+        if label == "None" and _field_default(t, name) is None:
+            continue  # replace() of a dataclass: None is this field's default (e.g. "as x")
         if free_text and label in ("str", "None"):
             continue  # a label stored as given; a choice (get_material's name) must reject it
         problem = _judge(t, name, label, value, can_return, kwargs, inst)
         if problem:
             failures.append(problem)
+    extremes = {"Sample": _bad_samples, "Parabolic": _bad_tips,
+                "ScanSettings": _bad_settings, "ContactLoop": _bad_loops,
+                "ContactSystem": _bad_systems}.get(type(valid).__name__)
+    if extremes in (_bad_loops, _bad_systems) and not t.module.startswith("afmsmiler.imaging"):
+        extremes = None  # modules (c) and (d)'s own campaigns cover their loops and systems
+    if extremes is _bad_tips and not t.module.startswith("afmsmiler.imaging"):
+        extremes = None  # module (d)'s own functions: a 1 pm sphere cannot reach their default
+        # depths and they say so naming the depth (z_s, z_np); the tips' ranges are its own
+    if extremes is not None:  # well-typed samples and tips that a function may not handle
+        for label, value in extremes(valid).items():
+            # the misfit may be the combination (a tip wider than a 2 x 2 image): the message
+            # may name any parameter of the call
+            problem = _judge(t, name, label, value, True, kwargs, inst, also=list(kwargs))
+            if problem:
+                failures.append(problem)
     assert not failures, "\n".join(failures)
 
 

@@ -277,3 +277,50 @@ def test_levelling_removes_the_tilt_the_scanner_adds_to_the_sample():
     assert p1.slope_y - p0.slope_y == pytest.approx(np.tan(tilt[1]), rel=1e-9)
     np.testing.assert_allclose(level_plane(tilted).heights, level_plane(flat).heights,
                                atol=1e-9 * 1e-6)
+
+
+# -- bad input found by the API campaign (tests/test_api_campaign.py) -------------------------
+def test_a_plane_is_fitted_whatever_the_pixel_size():
+    # the fit runs in pixel indices: the squares of tiny pixel sizes (1e-400) no longer
+    # underflow to a zero determinant ("pixels on one line")
+    x, y = _grid(8, 16, 1.0, 1.0)
+    for px in (1e-200, 1e-12, 1e3):
+        sample = Sample(1e-9 * (2.0 + 0.5 * x - 0.25 * y), px)
+        p = fit_plane(sample)
+        assert p.offset == pytest.approx(2e-9, rel=1e-12)
+        assert p.slope_x == pytest.approx(0.5e-9 / px, rel=1e-12)
+        assert p.slope_y == pytest.approx(-0.25e-9 / px, rel=1e-12)
+        assert np.abs(level_plane(sample).heights).max() < 1e-12 * 1e-9
+
+
+def test_heights_near_the_largest_float_are_levelled_and_flattened_without_overflow():
+    # a tilted plane reaching 1.6e308: its sums and its rows' medians overflowed a float before
+    x, y = _grid(8, 16, 1.0, 1.0)
+    sample = Sample(1e307 * (1.0 + x / 2.0 - y / 2.0 + 3.5), DX, pixel_size_y=DY)
+    assert np.abs(level_plane(sample).heights).max() < 1e-10 * 1e307
+    rows = Sample(np.full((4, 6), 1.7e308), DX)  # the median of two 1.7e308 was inf
+    assert not flatten_lines(rows).heights.any()
+    assert np.abs(flatten_lines(rows, "polynomial", 2).heights).max() <= 1e-14 * 1.7e308
+
+
+def test_a_correction_that_would_overflow_names_the_sample():
+    h = np.full((4, 6), 1.7e308)
+    h[:, 0] = -1.7e308  # each row's median is 1.7e308: -1.7e308 - 1.7e308 overflows
+    with pytest.raises(ValueError, match="^sample values must stay finite when lines flattened"):
+        flatten_lines(Sample(h, DX))
+
+
+@pytest.mark.parametrize("unit", [1e-290, 1e290])
+def test_scars_are_found_whatever_the_scale_of_the_values(unit):
+    # the row-to-row RMS squared its differences: it underflowed to 0 for values of 1e-290
+    # (no scar found) and overflowed to inf for 1e290 (none found either)
+    h = _ramp()
+    h[20:22, 30:70] += 6e-9
+    h[40, 80:120] -= 6e-9
+    expected = mark_scars(Sample(h, DX, pixel_size_y=DY))
+    assert expected.sum() == 120
+    scaled = Sample(h / 1e-9 * unit, DX, pixel_size_y=DY)
+    np.testing.assert_array_equal(mark_scars(scaled), expected)
+    np.testing.assert_allclose(remove_scars(scaled).heights / unit,
+                               remove_scars(Sample(h, DX, pixel_size_y=DY)).heights / 1e-9,
+                               rtol=1e-12, atol=1e-12)

@@ -465,3 +465,16 @@ def test_reconstruction_rejects_bad_input():
         estimate_tip_radius(Sample(np.zeros((4, 4)), 1e-9), peaks=0)
     with pytest.raises(ValueError, match="image"):
         estimate_tip_radius(Sample(np.zeros((2, 8)), 1e-9))
+
+
+# -- bad input found by the API campaign (tests/test_api_campaign.py) -------------------------
+def test_heights_whose_range_overflows_a_float_name_the_sample_not_the_tip():
+    h = np.full((8, 8), 1.7e308)
+    h[::2] = -1.7e308  # every value finite, max - min = inf
+    sample = Sample(h, 1e-9)
+    for tip in (Parabolic(radius=5e-9), Conical()):
+        with pytest.raises(ValueError, match="^sample heights must span a range a float"):
+            dilate(sample, tip)
+        for f in (erode, certainty_map):
+            with pytest.raises(ValueError, match="^image heights must span a range a float"):
+                f(sample, tip)

@@ -553,3 +553,131 @@ def test_a_zoomed_scan_dilates_only_what_it_can_feel_and_gets_the_same_surface(t
     part = plan.apex.heights[rows.start - r0:rows.stop - r0, cols.start - c0:cols.stop - c0]
     np.testing.assert_allclose(part, whole_apex[rows, cols], rtol=0,
                                atol=1e-15 * np.ptp(whole_apex))
+
+
+# -- bad input found by the API campaign (tests/test_api_campaign.py) -------------------------
+def small_scan(mode):
+    sample = Sample(np.zeros((8, 8)), 10e-9)
+    return Scan(sample, getattr(mode, "tip", None), mode, ScanSettings(60e-9, pixels=4))
+
+
+def height_mode():
+    return ConstantHeight(ContactSystem(tip=Parabolic(50e-9)), z_np=1e-9)
+
+
+@pytest.mark.parametrize("make", [lambda: ConstantForce(loop()), height_mode])
+def test_a_mode_names_a_plan_that_is_not_a_plan_and_a_row_outside_it(make):
+    mode = make()
+    plan = small_scan(mode).plan
+    state = mode.start(plan)
+    for bad in (None, 0.0, "plan", plan.trace):
+        with pytest.raises(TypeError, match="^plan"):
+            mode.start(bad)
+        with pytest.raises(TypeError, match="^plan"):
+            mode.line(bad, 0, state)
+    for bad in (-1, 4, 1.0, True, np.nan, "0"):
+        with pytest.raises(ValueError, match=r"^row must be an integer in \[0, 3\]"):
+            mode.line(plan, bad, state)
+
+
+def test_constant_force_names_a_state_that_start_did_not_return():
+    mode = ConstantForce(loop())
+    plan = small_scan(mode).plan
+    for bad in (None, 1.0, {"height trace": plan.trace}):
+        with pytest.raises(TypeError, match="^state must be the images ConstantForce.start"):
+            mode.line(plan, 0, bad)
+    other = mode.start(Scan(Sample(np.zeros((8, 8)), 10e-9), None, mode,
+                            ScanSettings(60e-9, pixels=2, lines=2)).plan)
+    with pytest.raises(ValueError, match=r"^state must hold images of the plan's shape \(4, 4\)"):
+        mode.line(plan, 0, other)
+
+
+def test_constant_height_state_is_none_or_a_bool():
+    mode = height_mode()
+    plan = small_scan(mode).plan
+    assert mode.line(plan, 0, True).channels.keys() == mode.line(plan, 0, None).channels.keys()
+    for bad in (np.nan, "no", np.ones(3)):
+        with pytest.raises(TypeError, match="^state must be None or a bool"):
+            mode.line(plan, 0, bad)
+
+
+def test_a_mode_names_a_channel_it_does_not_have():
+    mode = ConstantForce(loop())
+    assert mode.unit("error trace") == "m"
+    for bad in ("deflection trace", np.nan, ["error trace"]):
+        with pytest.raises(ValueError, match="^channel must be one of"):
+            mode.unit(bad)
+
+
+def test_displacement_names_a_time_that_is_not_finite_and_non_negative():
+    s = ScanSettings(1e-6, pixels=16, drift=(1e-9, 0.0))
+    dx, dy = s.displacement(np.array([[0.0, 2.0]]))
+    assert dx.shape == (1, 2) and dx[0, 1] == 2e-9 and not dy.any()
+    for bad in (np.nan, -1.0, np.inf, "1", [0.0, np.nan]):
+        with pytest.raises(ValueError, match="^t must be"):
+            s.displacement(bad)
+
+
+def test_lines_checks_its_start_at_the_call_not_at_the_first_line():
+    scan_ = small_scan(ConstantForce(loop()))
+    for bad in (-1, 4, 1.5, "1"):
+        with pytest.raises(ValueError, match="^start must be an integer"):
+            scan_.lines(bad)  # not iterated: a generator would have raised nothing here
+    assert scan_.result.lines_done == 0 and [r.row for r in scan_.lines(2)] == [2, 3]
+
+
+def test_position_names_a_direction_that_is_not_one():
+    scan_ = small_scan(ConstantForce(loop()))
+    for bad in (np.ones(3), "up", None):
+        with pytest.raises(ValueError, match="^direction must be one of"):
+            scan_.position(0, 0, bad)
+
+
+def test_heights_whose_range_overflows_a_float_are_named():
+    h = np.full((8, 8), 1.7e308)
+    h[::2] = -1.7e308  # each value finite, max - min = inf
+    sample = Sample(h, 10e-9)
+    for tip in (None, Parabolic(50e-9)):
+        with pytest.raises(ValueError, match="^sample heights must span a range a float"):
+            Scan(sample, tip, ConstantForce(loop()), ScanSettings(60e-9, pixels=4))
+
+
+@pytest.mark.parametrize("tip", [Parabolic(radius=400e-9), "cone"])
+def test_a_zoom_into_a_corner_with_a_blunt_tip_scans_the_whole_samples_dilation(tip):
+    # the part of the sample the scan can feel, clipped at the corner, was narrower than the
+    # tip's footprint although the sample is not: the scan was refused as "a tip wider than
+    # the image (22 pixels)"; the reference is the dilation of the whole sample
+    from afmsmiler.contact import Conical
+    from afmsmiler.imaging.dilation import dilate
+    tip = Conical(half_angle=math.radians(75)) if tip == "cone" else tip
+    sample = particles((64, 64), 10e-9, seed=1)
+    settings = ScanSettings(40e-9, pixels=4, offset=(-280e-9, -280e-9), scan_speed=SPEED)
+    plan = Scan(sample, tip, ConstantForce(loop()), settings).plan
+    np.testing.assert_allclose(plan.trace, dilate(sample, tip).heights[2:6, 2:6], rtol=0,
+                               atol=1e-15 * np.ptp(sample.heights))
+
+
+def test_an_unstable_loop_crashes_where_it_overflows_and_keeps_the_finished_lines():
+    # module (c) scans an unstable loop too (its signals grow to inf, then NaN); the image used
+    # to come back NaN from there on with nothing said. Reference: module (c)'s scan_image
+    unstable = ContactLoop(ki=2.2e6)
+    assert not unstable.is_stable().stable
+    sample = particles((48, 48), 10e-9, seed=2)
+    settings = ScanSettings(400e-9, pixels=16, lines=40, scan_speed=3e-3)
+    run = Scan(sample, None, ConstantForce(unstable, setpoint=5e-9), settings)
+    result = run.run()
+    ref = scan_image(unstable, run.plan.trace, settings.pixel_size, speed=3e-3, setpoint=5e-9)
+    with np.errstate(invalid="ignore"):  # inf - inf where module (c)'s signals overflowed
+        error = ref.trace + ref.trace_z_np - 5e-9
+    row = int(np.argmin(np.isfinite(error).all(axis=1)))  # the first line that overflows
+    assert 0 < row < 40 and result.crashed is not None and not result.finished
+    assert (result.crashed.row, result.lines_done, result.crashed.direction) == (
+        row, row, "trace")
+    assert result.crashed.force == math.inf
+    assert result.crashed.column == int(np.argmin(np.isfinite(error[row])))
+    for name, image in result.channels.items():  # the finished lines, finite
+        assert np.isfinite(image.heights).all() and image.heights.shape == (row, 16), name
+    np.testing.assert_array_equal(result.images["error trace"][:row], error[:row])
+    np.testing.assert_array_equal(result.images["height trace"][:row], ref.height_trace[:row])
+    assert np.isnan(result.images["height trace"][row, result.crashed.column:]).all()
+    assert np.isnan(result.images["height retrace"][row:]).all()

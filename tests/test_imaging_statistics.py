@@ -112,3 +112,29 @@ def test_line_profile_rejects_points_outside_the_image_naming_them():
         line_profile(s, (0.0, 0.0), (5e-9, 0.0), order=2)
     with pytest.raises(ValueError, match="image"):
         line_profile(Sample(np.zeros(10), DX), (0.0, 0.0), (5e-9, 0.0))
+
+
+# -- bad input found by the API campaign (tests/test_api_campaign.py) -------------------------
+def test_roughness_of_heights_near_the_largest_float_is_finite_and_exact():
+    # (z - mean)^2 overflowed to inf for z ~ 1e300; the closed forms hold at any scale
+    a = 1e300
+    s = _sine(a)
+    assert rms(s) == pytest.approx(a / math.sqrt(2), rel=1e-12)
+    assert ra(s) == pytest.approx(a * 2 / 50 / math.tan(math.pi / 50), rel=1e-12)
+
+
+def test_a_histogram_of_heights_spanning_more_than_a_float_holds():
+    h = np.tile(np.linspace(-1.0, 1.0, 10) * 1.7e308, (3, 1))  # max - min overflows
+    hist = histogram(Sample(h, DX), bins=5)
+    assert np.all(np.isfinite(hist.edges)) and hist.edges[0] == -1.7e308
+    assert hist.edges[-1] == 1.7e308 and hist.counts.tolist() == [6] * 5
+    # numpy's own edges, in units where the range fits: the same bins
+    ref_counts, ref_edges = np.histogram(h / 2.0 ** 1023, bins=5)
+    assert np.array_equal(hist.edges, ref_edges * 2.0 ** 1023)
+
+
+@pytest.mark.parametrize("order", [True, 0.0, 1.5, "1", 2])
+def test_profile_order_must_be_0_1_or_3(order):
+    s = Sample(np.zeros((4, 4)), DX)
+    with pytest.raises(ValueError, match="^order must be"):
+        line_profile(s, (0.0, 0.0), (3 * DX, 3 * DX), order=order)

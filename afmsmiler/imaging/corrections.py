@@ -29,6 +29,7 @@ from scipy import ndimage
 from ..parameters import Parameter, read_only
 from ..samples import Sample
 from ..validation import check_choice, check_instance, check_integer, check_range
+from .statistics import _scale_of
 
 __all__ = ["PARAMETERS", "DEFAULTS", "MASKING", "METHODS", "MAX_DEGREE", "MAX_SCAR_WIDTH", "Plane",
            "fit_plane", "level_plane", "flatten_lines", "mask_features", "mark_scars",
@@ -100,8 +101,52 @@ def _weights(sample: Sample, mask, masking: str) -> np.ndarray | None:
 
 
 def _with_heights(sample: Sample, heights: np.ndarray, what: str) -> Sample:
-    """``sample`` with new values on the same grid (every other field kept)."""
+    """``sample`` with new values on the same grid (every other field kept).
+
+    Values near the largest float (1.8e308) can overflow in the subtraction: that is an error
+    naming ``sample``, never an infinite image.
+    """
+    if not np.all(np.isfinite(heights)):
+        raise ValueError(f"sample values must stay finite when {what}: values from "
+                         f"{float(np.min(sample.heights)):g} to {float(np.max(sample.heights)):g} "
+                         f"{sample.unit} overflow a float (1.8e308) there")
     return sample.with_heights(heights, f"{sample.name}, {what}" if sample.name else what)
+
+
+def _fit(sample: Sample, mask, masking: str) -> tuple[float, float, float, float]:
+    """(scale, offset, slope per column, slope per row) of the plane, in units of ``scale``.
+
+    The fit runs in pixel indices and in heights divided by ``scale`` (a power of two near the
+    largest |height|, :func:`~afmsmiler.imaging.statistics._scale_of`), both exact changes of
+    unit: no pixel size is too small (its square would underflow) and no height too large (its
+    sums would overflow).
+    """
+    use = _weights(sample, mask, masking)
+    rows, cols = sample.heights.shape
+    w = np.ones((rows, cols)) if use is None else use.astype(float)
+    wx, wy = w.sum(axis=0), w.sum(axis=1)  # pixels used per column and per row
+    n = float(wx.sum())
+    if n < 3 or np.count_nonzero(wx) < 2 or np.count_nonzero(wy) < 2:
+        raise ValueError(f"mask must leave at least three pixels not on one line to fit a plane "
+                         f"(masking={masking!r}), got {int(n)} pixels")
+    scale = _scale_of(sample.heights)
+    z = sample.heights / scale * w
+    x = np.arange(cols, dtype=float)
+    y = np.arange(rows, dtype=float)
+    # the sums of the centred normal equations, a pass each (no copy of the pixels used); the
+    # offset decouples, the slopes solve a 2 x 2 system
+    xm, ym = wx @ x / n, wy @ y / n
+    dx, dy = x - xm, y - ym
+    zm = float(z.sum()) / n
+    sxx, syy, sxy = wx @ dx ** 2, wy @ dy ** 2, dy @ w @ dx
+    sxz, syz = z.sum(axis=0) @ dx, z.sum(axis=1) @ dy
+    det = sxx * syy - sxy * sxy
+    if not det > 1e-9 * sxx * syy:  # the pixels used lie on one line (a diagonal, say)
+        raise ValueError(f"mask must leave at least three pixels not on one line to fit a plane "
+                         f"(masking={masking!r}), got {int(n)} pixels on one line")
+    slope_x = (syy * sxz - sxy * syz) / det
+    slope_y = (sxx * syz - sxy * sxz) / det
+    return scale, float(zm - slope_x * xm - slope_y * ym), float(slope_x), float(slope_y)
 
 
 def fit_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Plane:
@@ -126,34 +171,19 @@ def fit_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Plane:
     Raises
     ------
     ValueError
-        If the mask does not fit the image or leaves fewer than three pixels not on a line.
+        If the mask does not fit the image or leaves fewer than three pixels not on a line, or
+        (naming ``sample``) a slope in m/m overflows a float (heights near 1e308 m over tiny
+        pixels).
     """
     sample = _check_sample(sample)
-    use = _weights(sample, mask, masking)
-    rows, cols = sample.heights.shape
-    w = np.ones((rows, cols)) if use is None else use.astype(float)
-    wx, wy = w.sum(axis=0), w.sum(axis=1)  # pixels used per column and per row
-    n = float(wx.sum())
-    if n < 3 or np.count_nonzero(wx) < 2 or np.count_nonzero(wy) < 2:
-        raise ValueError(f"mask must leave at least three pixels not on one line to fit a plane "
-                         f"(masking={masking!r}), got {int(n)} pixels")
-    z = sample.heights * w
-    x = np.arange(cols) * sample.pixel_size
-    y = np.arange(rows) * sample.pixel_size_y
-    # the sums of the centred normal equations, a pass each (no copy of the pixels used); the
-    # offset decouples, the slopes solve a 2 x 2 system
-    xm, ym = wx @ x / n, wy @ y / n
-    dx, dy = x - xm, y - ym
-    zm = float(z.sum()) / n
-    sxx, syy, sxy = wx @ dx ** 2, wy @ dy ** 2, dy @ w @ dx
-    sxz, syz = z.sum(axis=0) @ dx, z.sum(axis=1) @ dy
-    det = sxx * syy - sxy * sxy
-    if not det > 1e-9 * sxx * syy:  # the pixels used lie on one line (a diagonal, say)
-        raise ValueError(f"mask must leave at least three pixels not on one line to fit a plane "
-                         f"(masking={masking!r}), got {int(n)} pixels on one line")
-    slope_x = (syy * sxz - sxy * syz) / det
-    slope_y = (sxx * syz - sxy * sxz) / det
-    return Plane(float(zm - slope_x * xm - slope_y * ym), float(slope_x), float(slope_y))
+    scale, offset, per_column, per_row = _fit(sample, mask, masking)
+    plane = Plane(offset * scale, per_column * scale / sample.pixel_size,
+                  per_row * scale / sample.pixel_size_y)
+    if not all(np.isfinite(plane)):
+        raise ValueError(f"sample's plane must be finite, got {plane} (values up to "
+                         f"{float(np.max(np.abs(sample.heights))):g} {sample.unit} over pixels "
+                         f"of {sample.pixel_size:g} x {sample.pixel_size_y:g} m)")
+    return plane
 
 
 def level_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Sample:
@@ -178,11 +208,14 @@ def level_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Sampl
     Sample
         The levelled image, same grid.
     """
-    p = fit_plane(sample, mask, masking=masking)
+    sample = _check_sample(sample)
+    scale, offset, per_column, per_row = _fit(sample, mask, masking)
     rows, cols = sample.heights.shape
-    plane = (p.offset + p.slope_x * sample.pixel_size * np.arange(cols)[None, :]
-             + p.slope_y * sample.pixel_size_y * np.arange(rows)[:, None])
-    return _with_heights(sample, sample.heights - plane, "plane levelled")
+    plane = (offset + per_column * np.arange(cols)[None, :]
+             + per_row * np.arange(rows)[:, None])
+    with np.errstate(over="ignore"):  # an overflow is named by _with_heights
+        values = (sample.heights / scale - plane) * scale
+    return _with_heights(sample, values, "plane levelled")
 
 
 def _fill_rows(values: np.ndarray, valid: np.ndarray) -> np.ndarray:
@@ -270,14 +303,17 @@ def flatten_lines(sample: Sample, method: str = "median", degree: int = 1, mask=
     check_choice("method", method, METHODS)
     degree = check_integer("degree", degree, 0, MAX_DEGREE)
     use = _weights(sample, mask, masking)
-    h = sample.heights
+    scale = _scale_of(sample.heights)  # an exact change of unit: no sum can overflow
+    h = sample.heights / scale
     if method == "median":
         background = _row_medians(h, use)[:, None]
         what = "lines flattened (median)"
     else:
         background = _row_polynomials(h, use, degree)
         what = f"lines flattened (polynomial, degree {degree})"
-    return _with_heights(sample, h - background, what)
+    with np.errstate(over="ignore"):  # an overflow is named by _with_heights
+        values = (h - background) * scale
+    return _with_heights(sample, values, what)
 
 
 def mask_features(sample: Sample, min_height: float = PARAMETERS["min_height"].default,
@@ -380,7 +416,7 @@ def mark_scars(sample: Sample, threshold: float = PARAMETERS["threshold"].defaul
     min_px = _min_length_pixels(sample, min_length)
     max_width = check_integer("max_width", max_width, 1, MAX_SCAR_WIDTH)
     check_choice("kind", kind, ("both", "positive", "negative"))
-    h = sample.heights
+    h = sample.heights / _scale_of(sample.heights)  # exact: sigma^2 cannot over- or underflow
     rows, cols = h.shape
     sigma = float(np.sqrt(np.sum(np.diff(h, axis=0) ** 2) / h.size))
     marks = np.zeros(h.shape, bool)

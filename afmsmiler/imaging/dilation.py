@@ -405,8 +405,13 @@ def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height
     return np.ascontiguousarray(out)
 
 
-def _range(h: np.ndarray) -> float:
-    return float(np.max(h) - np.min(h))
+def _range(h: np.ndarray, name: str = "sample") -> float:
+    """The height range max - min in m; a range that overflows a float names ``name``."""
+    low, high = float(np.min(h)), float(np.max(h))
+    if not math.isfinite(high - low):
+        raise ValueError(f"{name} heights must span a range a float can hold (1.8e308 m), got "
+                         f"{low:g} to {high:g} m")
+    return high - low
 
 
 def _check_heights(name: str, image) -> Sample:
@@ -478,7 +483,7 @@ def dilate(sample, tip) -> Sample:
 
 def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
     """min_u [i(x - u) + t(u)] = -max_u [-i(x + u) - t(-u)]: a dilation by the reflected tip."""
-    height = _range(i)
+    height = _range(i, "image")
     if isinstance(tip, Parabolic):
         _check_fits(image, tip, height)
         return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y, height)
@@ -548,23 +553,34 @@ def certainty_map(image, tip) -> np.ndarray:
     """
     image, tip = _checked("image", image, tip)
     i = image.heights
-    height = _range(i)
+    height = _range(i, "image")
     t = _kernel(image, tip, height)
     r = -_dilate_general(-i, t[(slice(None, None, -1),) * t.ndim], height)  # as erode
     tol = 8.0 * np.finfo(float).eps * (float(np.max(np.abs(i))) + height)
-    # the apex term (u = 0) first, then every other tip pixel below the cut
-    contacts = (r >= i - tol).astype(np.int64)
-    where = np.zeros(i.shape + (i.ndim,), dtype=np.int64)  # offset of the (last) contact
-    for off, tu in _offsets(t, height, i.size):
+    # the apex term (u = 0) first, then every other tip pixel below the cut: where the tip
+    # touches once (``once`` and not ``many``), remember which offset touched (``which``; -1:
+    # the apex, the last entry of ``offsets``); bool and int32 arrays, in place (the loop runs
+    # over up to MAX_WORK pixels)
+    i_tol = i - tol
+    once = r >= i_tol
+    many = np.zeros(i.shape, dtype=bool)
+    which = np.full(i.shape, -1, dtype=np.int32)
+    buf, hit, both = np.empty(i.shape), np.empty(i.shape, bool), np.empty(i.shape, bool)
+    offsets = []
+    for k, (off, tu) in enumerate(_offsets(t, height, i.size)):
         dst, src = _slices(off, i.shape)
-        touch = r[src] - tu >= i[dst] - tol
-        contacts[dst] += touch
-        where[dst][touch] = off
+        touch = hit[dst]
+        np.greater_equal(np.subtract(r[src], tu, out=buf[dst]), i_tol[dst], out=touch)
+        many[dst] |= np.logical_and(once[dst], touch, out=both[dst])
+        once[dst] |= touch
+        np.copyto(which[dst], k, where=touch)
+        offsets.append(off)
+    offsets = np.array(offsets + [(0,) * i.ndim], dtype=np.intp).reshape(-1, i.ndim)
     certain = np.zeros(i.shape, dtype=bool)
-    x0 = np.argwhere(contacts == 1)
+    x0 = np.argwhere(once & ~many)
     if len(x0):
-        hit = x0 + where[tuple(x0.T)]
-        certain[tuple(hit.T)] = True
+        touched = x0 + offsets[which[tuple(x0.T)]]
+        certain[tuple(touched.T)] = True
     return certain
 
 

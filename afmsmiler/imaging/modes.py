@@ -39,7 +39,7 @@ from ..controller import PARAMETERS as LOOP_PARAMETERS
 from ..controller import ContactLoop, scan_image
 from ..controller.polygon import polygon_response
 from ..parameters import Parameter, read_only
-from ..validation import check_instance
+from ..validation import check_choice, check_instance, check_integer
 
 __all__ = ["Mode", "ScanPlan", "ModeLine", "Crash", "ConstantForce", "ConstantHeight",
            "PARAMETERS", "DIRECTIONS"]
@@ -128,7 +128,8 @@ class Crash:
     row, column : int
         The pixel (line index, column index) at which |force| first passed the threshold.
     force : float
-        The force there in N (signed; inf when the tip would have been buried).
+        The force there in N (signed; inf when the tip would have been buried, or when an
+        unstable loop's signals overflowed).
     direction : str
         ``"trace"`` or ``"retrace"``.
     """
@@ -158,6 +159,12 @@ class ModeLine:
     channels: Mapping
     state: Any = None
     crash: Crash | None = None
+
+
+def _short(value) -> str:
+    """``repr(value)`` cut to a line, for a message."""
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
 
 
 class Mode(ABC):
@@ -209,7 +216,13 @@ class Mode(ABC):
         Returns
         -------
         str
+
+        Raises
+        ------
+        ValueError
+            If ``channel`` is not one of :attr:`channels`.
         """
+        check_choice("channel", channel, self.channels)
         return self.units.get(channel, "m")
 
     def start(self, plan: ScanPlan) -> Any:
@@ -224,8 +237,20 @@ class Mode(ABC):
         -------
         object
             The state for :meth:`line` (default None).
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a :class:`ScanPlan`.
         """
+        check_instance("plan", plan, ScanPlan)
         return None
+
+    @staticmethod
+    def _row(plan: ScanPlan, row) -> int:
+        """``row`` checked to be a line of ``plan`` (after checking ``plan``), as an int."""
+        check_instance("plan", plan, ScanPlan)
+        return check_integer("row", row, 0, plan.shape[0] - 1)
 
     @abstractmethod
     def line(self, plan: ScanPlan, row: int, state: Any) -> ModeLine:
@@ -279,6 +304,11 @@ class ConstantForce(Mode):
     retrace pass over other points than the trace, the same chained polygon goes through module
     (c)'s solver directly (:func:`afmsmiler.controller.polygon.polygon_response`, as in
     ``scan_image``), with the retrace's own heights.
+
+    An unstable loop (:meth:`ContactLoop.is_stable`) still scans, as in module (c): its signals
+    grow until they overflow. The line on which they stop being finite is a :class:`Crash` (the
+    tip, driven by a diverging loop, hits the sample): the scan stops there with force inf, the
+    pixels from there on are NaN, and the finished lines are kept.
     """
 
     channels = ("height trace", "height retrace", "error trace", "error retrace")
@@ -302,7 +332,17 @@ class ConstantForce(Mode):
         -------
         dict
             Channel name -> (lines, pixels) array.
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a :class:`ScanPlan`.
         """
+        check_instance("plan", plan, ScanPlan)
+        with np.errstate(over="ignore", invalid="ignore"):  # an unstable loop: see line()
+            return self._images(plan)
+
+    def _images(self, plan: ScanPlan) -> dict:
         loop, setpoint = self.loop, self.setpoint
         if np.array_equal(plan.trace, plan.retrace):
             image = scan_image(loop, plan.trace, plan.pixel_size, speed=plan.scan_speed,
@@ -341,9 +381,45 @@ class ConstantForce(Mode):
         Returns
         -------
         ModeLine
-            Its channels are views of ``state`` (the scanner copies them).
+            Its channels are views of ``state`` (the scanner copies them); where an unstable
+            loop's signals overflowed, a :class:`Crash` (force inf) and NaN from that pixel on.
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` not what :meth:`start` returned.
+        ValueError
+            If ``row`` is not a line of the plan, or ``state`` holds images of another shape.
         """
-        return ModeLine({name: image[row] for name, image in state.items()}, state)
+        row = self._row(plan, row)
+        if not isinstance(state, Mapping) or set(state) != set(self.channels):
+            raise TypeError(f"state must be the images ConstantForce.start returned (a mapping "
+                            f"of the channels {list(self.channels)}), got {_short(state)}")
+        for name in self.channels:
+            shape = np.shape(state[name])
+            if shape != plan.shape:
+                raise ValueError(f"state must hold images of the plan's shape {plan.shape}, got "
+                                 f"{name!r} of shape {shape}")
+        channels = {name: state[name][row] for name in self.channels}
+        passes = {d: [name for name in self.channels if name.endswith(" " + d)]
+                  for d in DIRECTIONS}
+        # where a diverging loop first overflowed, in scan order (trace, then retrace backwards)
+        bad = [np.logical_or.reduce([~np.isfinite(channels[name]) for name in passes[d]])
+               for d in DIRECTIONS]
+        bad = np.concatenate((bad[0], bad[1][::-1]))
+        if not bad.any():
+            return ModeLine(channels, state)
+        n = plan.shape[1]
+        k = int(np.argmax(bad))
+        direction = DIRECTIONS[k // n]
+        column = k if k < n else 2 * n - 1 - k
+        channels = {name: values.copy() for name, values in channels.items()}
+        not_reached = {"trace": (slice(column, None), slice(None)),
+                       "retrace": (None, slice(None, column + 1))}[direction]
+        for d, cut in zip(DIRECTIONS, not_reached):
+            for name in passes[d] if cut is not None else ():
+                channels[name][cut] = np.nan
+        return ModeLine(channels, state, Crash(row, column, math.inf, direction))
 
 
 class ConstantHeight(Mode):
@@ -416,11 +492,23 @@ class ConstantHeight(Mode):
             stuck = cycle.retract.in_contact[::-1]  # on the ramp's points, increasing z
             f_in, zc_in = cycle.retract.force[::-1], cycle.retract.z_c[::-1]
             f_out, zc_out = cycle.approach.force, cycle.approach.z_c
-        for k in np.flatnonzero(ok):
-            i = int(np.searchsorted(ramp, z[k]))
-            contact = bool(z[k] >= 0.0 or (contact and stuck[i]))
-            force[k], deflection[k] = (f_in[i], zc_in[i]) if contact else (f_out[i], zc_out[i])
-        return deflection, force, contact
+        if not ramp.size:
+            return deflection, force, contact
+        # along the pixels in scan order, contact_k = z_k >= 0 or (contact_(k-1) and stuck there):
+        # a latch, set where z >= 0 and reset where it is out of contact on both branches; in
+        # contact wherever the last set comes after the last reset (the previous line's contact
+        # counts as a set before the first pixel)
+        zk = z[ok]
+        i = np.searchsorted(ramp, zk)
+        sets = zk >= 0.0
+        resets = ~sets & ~stuck[i]
+        index = np.arange(zk.size)
+        last_set = np.maximum.accumulate(np.where(sets, index, -1 if contact else -2))
+        last_reset = np.maximum.accumulate(np.where(resets, index, -2))
+        touching = last_set > last_reset
+        force[ok] = np.where(touching, f_in[i], f_out[i])
+        deflection[ok] = np.where(touching, zc_in[i], zc_out[i])
+        return deflection, force, bool(touching[-1])
 
     def line(self, plan: ScanPlan, row: int, state: Any = None) -> ModeLine:
         """Deflection along line ``row``, trace and retrace; a :class:`Crash` if the tip broke.
@@ -438,7 +526,18 @@ class ConstantHeight(Mode):
         Returns
         -------
         ModeLine
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` neither None nor a bool.
+        ValueError
+            If ``row`` is not a line of the plan.
         """
+        row = self._row(plan, row)
+        if state is not None and not isinstance(state, (bool, np.bool_)):
+            raise TypeError(f"state must be None or a bool (in contact at the end of the "
+                            f"previous line), got {_short(state)}")
         n = plan.shape[1]
         z = self.z_np + np.concatenate((plan.trace[row], plan.retrace[row][::-1]))  # scan order
         deflection, forces, contact = self._states(z, bool(state))

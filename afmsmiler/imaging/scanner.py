@@ -41,7 +41,7 @@ from ..controller import PARAMETERS as LOOP_PARAMETERS
 from ..controller.image import MAX_IMAGE_PIXELS
 from ..parameters import Parameter, read_only
 from ..samples import Sample
-from ..validation import check_instance, check_integer
+from ..validation import check_array, check_choice, check_instance, check_integer
 from .modes import DIRECTIONS, Crash, Mode, ScanPlan
 
 __all__ = ["ScanSettings", "Scan", "ScanResult", "LineRecord", "scan", "PARAMETERS",
@@ -290,14 +290,19 @@ class ScanSettings:
         Parameters
         ----------
         t : float or numpy.ndarray
-            Time in s, >= 0.
+            Time in s, finite and >= 0.
 
         Returns
         -------
         tuple of numpy.ndarray
             d = drift t + offset gamma log10(1 + t / t0), each shaped like ``t``.
+
+        Raises
+        ------
+        ValueError
+            If a time is not a finite number >= 0 s.
         """
-        t = np.asarray(t, dtype=float)
+        t = check_array("t", t, "s", low=0.0).reshape(np.shape(t))
         creep = self.creep * np.log10(1.0 + t / self.creep_time)
         return tuple(v * t + o * creep for v, o in zip(self.drift, self.offset))
 
@@ -442,6 +447,20 @@ def _sampled(heights, px, py, straight):
     return _bilinear(heights, px, py)
 
 
+def _at_least(lo: int, hi: int, need: int, size: int) -> tuple[int, int]:
+    """lo:hi widened inside 0:size to at least ``need`` pixels (or all of them).
+
+    A box clipped at an edge of the sample (a zoom into its corner) can be narrower than the
+    tip's footprint although the sample is not: the dilation would refuse the part as an image
+    narrower than the tip. Widening it into the sample only adds points the tip cannot reach
+    first, so the apex surface over the scan does not change.
+    """
+    need = min(need, size)
+    if hi - lo >= need:
+        return lo, hi
+    return (0, max(hi, need)) if lo == 0 else (min(lo, size - need), size)
+
+
 def _fmt(x):
     return f"{x * 1e6:.4g} um"
 
@@ -506,6 +525,9 @@ class Scan:
         if not np.all(np.isfinite(h)):
             i = tuple(int(k) for k in np.unravel_index(int(np.argmax(~np.isfinite(h))), h.shape))
             raise ValueError(f"sample heights must be finite m, got {float(h[i])!r} at {i}")
+        if not math.isfinite(float(np.max(h)) - float(np.min(h))):
+            raise ValueError(f"sample heights must span a range a float can hold (1.8e308 m), "
+                             f"got {float(np.min(h)):g} to {float(np.max(h)):g} m")
         mode_tip = getattr(mode, "tip", None)
         if mode_tip is not None and tip is not None and mode_tip != tip:
             raise ValueError(f"tip ({tip!r}) must be the tip of the mode's physics "
@@ -616,7 +638,12 @@ class Scan:
             y = np.arange(rows) * dy - (rows - 1) * dy / 2
             heights = heights + (math.tan(s.tilt[0]) * x[None, :]
                                  + math.tan(s.tilt[1]) * y[:, None])
-        span = float(np.ptp(heights))
+        span = float(np.max(heights)) - float(np.min(heights))
+        if not math.isfinite(span):
+            raise ValueError(f"sample heights with the tilt ({s.tilt[0]:g}, {s.tilt[1]:g}) rad "
+                             f"must span a range a float can hold (1.8e308 m), got "
+                             f"{float(np.min(sample.heights)):g} to "
+                             f"{float(np.max(sample.heights)):g} m before the tilt")
         if isinstance(tip, Parabolic):  # t = rho^2 / (2 R) reaches the span at sqrt(2 R span)
             reach = math.sqrt(2.0 * tip.radius * span)
             nx, ny = math.ceil(reach / dx), math.ceil(reach / dy)
@@ -633,7 +660,8 @@ class Scan:
         c_hi = math.ceil(max(float(a.max()) for a in xs)) + nx + 2
         r_lo = math.floor(min(float(a.min()) for a in ys)) - ny - 1
         r_hi = math.ceil(max(float(a.max()) for a in ys)) + ny + 2
-        return max(r_lo, 0), min(r_hi, rows), max(c_lo, 0), min(c_hi, cols)
+        return (*_at_least(max(r_lo, 0), min(r_hi, rows), 2 * ny + 1, rows),
+                *_at_least(max(c_lo, 0), min(c_hi, cols), 2 * nx + 1, cols))
 
     @property
     def plan(self) -> ScanPlan:
@@ -713,9 +741,10 @@ class Scan:
             solves the whole image with the new settings, so its row ``start`` is the loop's
             state as if the new settings had scanned all the earlier lines.
 
-        Yields
-        ------
-        LineRecord
+        Returns
+        -------
+        iterator of LineRecord
+            The lines as they are scanned (``start`` is checked at the call, before any line).
 
         Raises
         ------
@@ -730,6 +759,9 @@ class Scan:
                                      f"at row {self._lines_done}), got {start}")
             else:
                 self._lines_done = self._first_row = start
+        return self._records()
+
+    def _records(self) -> Iterator[LineRecord]:
         while (record := self.step()) is not None:
             yield record
 
@@ -786,8 +818,7 @@ class Scan:
         s = self.settings
         row = check_integer("row", row, 0, s.lines - 1)
         column = check_integer("column", column, 0, s.pixels - 1)
-        if direction not in DIRECTIONS:
-            raise ValueError(f"direction must be one of {list(DIRECTIONS)}, got {direction!r}")
+        check_choice("direction", direction, DIRECTIONS)
         x, y, _ = self._positions[direction]
         return float(x[row, column]), float(y[row, column])
 

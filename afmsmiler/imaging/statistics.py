@@ -25,13 +25,46 @@ from scipy import ndimage
 from ..samples import Sample
 from ..validation import check_array, check_choice, check_instance, check_integer, check_range
 
-__all__ = ["rms", "ra", "Histogram", "histogram", "Profile", "line_profile", "MAX_BINS",
-           "MAX_PROFILE_POINTS"]
+__all__ = ["rms", "ra", "Histogram", "histogram", "Profile", "line_profile",
+           "MAX_BINS", "MAX_PROFILE_POINTS"]
 
 #: The most bins of a height histogram.
 MAX_BINS = 100_000
 #: The most points of a line profile.
 MAX_PROFILE_POINTS = 1_000_000
+
+
+def _scale_of(values) -> float:
+    """A power of two near the largest |value|: dividing by it is an exact change of unit.
+
+    Sums and squares of values divided by it cannot overflow (they are at most 2 in magnitude)
+    nor underflow, whatever their unit; multiplying a result back by it is exact too (both
+    barring subnormal numbers).
+
+    Parameters
+    ----------
+    values : array_like
+        Finite numbers.
+
+    Returns
+    -------
+    float
+        2^(e - 1) where 2^(e - 1) <= max |value| < 2^e; 1.0 if all values are 0 (or none).
+    """
+    v = np.asarray(values, dtype=float)
+    largest = float(np.max(np.abs(v))) if v.size else 0.0
+    if largest == 0.0 or not math.isfinite(largest):
+        return 1.0
+    return math.ldexp(1.0, math.frexp(largest)[1] - 1)
+
+
+def _finite(name: str, value: float, sample: Sample, what: str) -> float:
+    """``value``, or a ValueError naming the sample if it overflowed a float."""
+    if not math.isfinite(value):
+        raise ValueError(f"{name} values must have a {what} a float can hold (1.8e308), got "
+                         f"values from {float(np.min(sample.heights)):g} to "
+                         f"{float(np.max(sample.heights)):g} {sample.unit}")
+    return value
 
 
 def _values(sample: Sample, mask) -> np.ndarray:
@@ -71,7 +104,10 @@ def rms(sample: Sample, mask=None) -> float:
         In the sample's unit (m for heights).
     """
     v = _values(sample, mask)
-    return float(np.sqrt(np.mean((v - v.mean()) ** 2)))
+    scale = _scale_of(v)  # exact: (v - mean)^2 cannot overflow
+    u = v / scale
+    return _finite("sample", float(np.sqrt(np.mean((u - u.mean()) ** 2))) * scale, sample,
+                   "RMS")
 
 
 def ra(sample: Sample, mask=None) -> float:
@@ -93,7 +129,9 @@ def ra(sample: Sample, mask=None) -> float:
         In the sample's unit (m for heights).
     """
     v = _values(sample, mask)
-    return float(np.mean(np.abs(v - v.mean())))
+    scale = _scale_of(v)  # exact: the sums cannot overflow
+    u = v / scale
+    return _finite("sample", float(np.mean(np.abs(u - u.mean()))) * scale, sample, "Ra")
 
 
 @dataclass(frozen=True)
@@ -144,12 +182,16 @@ def histogram(sample: Sample, bins: int = 100, mask=None, *, range=None) -> Hist
     """
     v = _values(sample, mask)
     bins = check_integer("bins", bins, 1, MAX_BINS)
+    scale = _scale_of(v)
     if range is not None:
         low, high = check_array("range", range, "m", ndim=1, size=2)
         check_range("range[1]", high, low, math.inf, "m", low_inclusive=False)
         range = (low, high)
-    counts, edges = np.histogram(v, bins=bins, range=range)
-    return Histogram(counts, edges)
+        scale = max(scale, _scale_of(range))
+    # in units of a power of two (exact), so that the width of the range cannot overflow
+    counts, edges = np.histogram(v / scale, bins=bins,
+                                 range=None if range is None else (low / scale, high / scale))
+    return Histogram(counts, edges * scale)
 
 
 @dataclass(frozen=True)
@@ -229,7 +271,7 @@ def line_profile(sample: Sample, start, end, *, points: int | None = None,
         points = min(MAX_PROFILE_POINTS,
                      int(math.ceil(length / min(sample.pixel_size, sample.pixel_size_y))) + 1)
     points = check_integer("points", points, 2, MAX_PROFILE_POINTS)
-    order = check_choice("order", order, (0, 1, 3))
+    order = check_choice("order", check_integer("order", order, 0, 3), (0, 1, 3))
     t = np.linspace(0.0, 1.0, points)
     x = x0 + t * (x1 - x0)
     y = y0 + t * (y1 - y0)
