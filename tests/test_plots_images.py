@@ -113,3 +113,21 @@ def test_bad_input_is_named(tmp_path):
         save_png(s, tmp_path / "missing" / "a.png")
     with pytest.raises(ValueError, match="path"):
         save_png(s, tmp_path)
+
+
+def test_save_png_names_a_flag_that_is_not_a_bool_and_a_png_too_long(tmp_path):
+    """Found by the bad-input campaign: ``scale_bar=None`` or ``"no"`` was accepted (drawn or not
+    by its truth value), and a sample with very anisotropic pixels asked matplotlib for a PNG of
+    16 x 160000000 pixels, whose error named no parameter."""
+    from afmsmiler.plots.images import MAX_PNG_SIDE, save_png
+    from afmsmiler.samples import Sample
+    s = Sample(np.zeros((8, 8)), 1e-9)
+    for name in ("scale_bar", "colorbar"):
+        for bad in (None, "no", np.nan, np.ones(2)):
+            with pytest.raises(TypeError, match=name):
+                save_png(s, tmp_path / "x.png", **{name: bad})
+    tall = Sample(np.zeros((16, 16)), 1e-9, pixel_size_y=1e-9 * (MAX_PNG_SIDE / 8))
+    with pytest.raises(ValueError, match=r"sample would need a PNG of 16 x \d+ pixels"):
+        save_png(tall, tmp_path / "y.png")
+    assert not (tmp_path / "y.png").exists()
+    save_png(s, tmp_path / "ok.png", scale_bar=np.bool_(False))  # numpy's bool is a bool

@@ -190,9 +190,16 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
         colormap = matplotlib.colormaps[cmap]
     except (KeyError, TypeError):
         raise ValueError(f"cmap must be a matplotlib colormap name, got {cmap!r}") from None
+    for name, flag in (("scale_bar", scale_bar), ("colorbar", colorbar)):
+        if not isinstance(flag, (bool, np.bool_)):
+            raise TypeError(f"{name} must be True or False, got {flag!r}")
     rows, cols = h.shape
     aspect = sample.pixel_size_y / sample.pixel_size
     longest = max(cols, rows * aspect)
+    if longest > MAX_PNG_SIDE:
+        raise ValueError(f"sample would need a PNG of {cols} x {rows * aspect:.0f} pixels at its "
+                         f"pixel sizes ({sample.pixel_size:.3g} m x {sample.pixel_size_y:.3g} m); "
+                         f"at most {MAX_PNG_SIDE} per side: resample it first")
     max_zoom = max(1, int(MAX_PNG_SIDE // longest))
     if zoom is None:
         zoom = min(max_zoom, max(1, math.ceil(_TARGET_SIDE / longest)))
