@@ -68,7 +68,9 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            # re-exports would give the classes twice), and the PNG export
            "afmsmiler.imaging.dilation", "afmsmiler.imaging.scanner", "afmsmiler.imaging.modes",
            "afmsmiler.imaging.corrections", "afmsmiler.imaging.statistics",
-           "afmsmiler.plots.images"]
+           "afmsmiler.plots.images",
+           # module (e): the optical head's laser alignment
+           "afmsmiler.instrument.optics", "afmsmiler.instrument.alignment"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s per call: the issue's bound
 MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machine, shared)
@@ -94,7 +96,7 @@ ACCEPTED = {
 }
 # Returned by the models, not built by a user: their constructors are not part of the input API
 # (their methods are called on a result the model returned, see INSTANCES).
-RESULTS = {"Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
+RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
            "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
            "Operation", "Bending",
@@ -229,6 +231,15 @@ VALID = {
     "name": "q_x", "unit": "m", "si_value": 1e-4, "display_value": 100.0,
     "u": lambda: np.linspace(0.0, 1.0, 11), "resonance_frequency": 13e3, "section": 0.5,
     "modes": 3,
+    # module (e): the optical head (afmsmiler.instrument)
+    "focal_length": 0.02, "distance": 0.01, "centre": 0.0, "waist": 17e-6,
+    "tilt_in_plane": 0.01, "tilt_out_of_plane": 0.01, "incidence": 0.7, "knob": "laser_x",
+    "head": lambda: __import__("afmsmiler.instrument.alignment",
+                               fromlist=["OpticalHead"]).OpticalHead(),
+    "centre_x": 1e-5, "centre_y": 0.0, "radius_x": 2e-5, "radius_y": 2e-5,
+    "x_range": (0.0, 4.5e-4), "y_range": (-2.5e-5, 2.5e-5), "beam_radius": 0.25e-3,
+    "wavelength": 670e-9, "angle": 1.0, "end_margin": 0.02, "deflection": 1e-8,
+    "normalised": True, "min_sum_fraction": 0.9, "max_difference": 0.02, "end_distance": 4e-5,
     # module (f)
     "sample": _image, "image": _image, "particle_radius": 10e-9, "scan_size": 100e-9,
     "settings": _settings, "system": _system, "column": 0,
