@@ -2,7 +2,8 @@
 
 Every public function, class and method of the physics modules (cantilever, materials,
 transducers, controller, contact, samples, brownian when present), of module (f)'s imaging
-modules (dilation, scanner, modes, corrections, statistics) and PNG export, and of the house
+modules (dilation, scanner, modes, corrections, statistics) and PNG export, of module (e)'s
+optical head (instrument.optics, instrument.alignment), and of the house
 modules (parameters, validation) is first called with valid arguments, built from its signature:
 the defaults, and a small table of valid values by parameter name (``lever`` -> a Cantilever,
 ``tip`` -> a Parabolic tip, ``loop`` -> a ContactLoop, ``sample`` -> a 16 x 16 image, ...). The
