@@ -132,6 +132,11 @@ def test_scene_follows_the_panel(aligned_turns):
     assert scene.fraction == 1.0 and scene.housing_opacity == pytest.approx(0.2)
     np.testing.assert_allclose(rec.log[scene.node_path("head_cover")]["transform"],
                                scene.transform("head_cover", 1.0))
+    scene.animate_explode(2, back=False)          # as the notebook does; then the slider
+    panel.set(explode_fraction=0.0)
+    assert scene.fraction == 0.0
+    np.testing.assert_allclose(rec.log[scene.node_path("head_cover")]["transform"],
+                               scene.transform("head_cover", 0.0))
     panel.set(approach_gap=500.0)
     assert scene.gap == pytest.approx(500e-6)
     panel.set(instrument="educational", part="active_probe")
@@ -204,3 +209,18 @@ def test_errors_name_the_control(panel):
     with pytest.raises(TypeError, match="unknown control"):
         panel.set(laser_z=1.0)
     assert panel.last.instrument == "obd"
+
+
+def test_numbers_the_notebook_states():
+    """Notebook 05 says: a laser knob's turn tilts the mirror ~0.6 deg and moves the spot ~0.4 mm;
+    the waist is ~17 um; the lever is 0.19 N/m and 20 nm of setpoint is ~4 nN."""
+    head = OpticalHead()
+    tilt = math.degrees(math.atan(head.mirror_screw_pitch / head.mirror_arm))
+    assert tilt == pytest.approx(0.6, abs=0.05)
+    x0 = head.signals().spot_on_lever[0]
+    x1 = head.turn("laser_x", TURN).spot_on_lever[0]
+    move = (x1 - x0) * math.cos(head.holder_tilt)       # in the focal plane
+    assert move == pytest.approx(0.4e-3, rel=0.05)
+    assert head.waist == pytest.approx(17e-6, rel=0.05)
+    k = head.lever.spring_constant
+    assert k == pytest.approx(0.19, rel=0.05) and k * 20e-9 == pytest.approx(4e-9, rel=0.1)

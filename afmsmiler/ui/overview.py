@@ -361,7 +361,7 @@ class OverviewPanel(Panel):
             if self.scene is not None:
                 self.scene.vis.delete()
             self.scene = InstrumentScene(instrument, vis=self._vis, housing_opacity=opacity)
-            self._scene_applied = {"housing_opacity": opacity}
+            self._scene_applied = {}
         scene, done = self.scene, self._scene_applied
 
         def changed(key, value):
@@ -370,14 +370,15 @@ class OverviewPanel(Panel):
                 return True
             return False
 
-        if changed("housing_opacity", opacity):
+        # compared with the scene's own state: a notebook may have animated it meanwhile
+        if scene.housing_opacity != opacity:
             scene.set_housing_opacity(opacity)
-        if changed("explode_fraction", fraction):
+        if scene.fraction != fraction:
             scene.explode(fraction)
-        if changed("approach_gap", gap):
-            scene.set_gap(min(gap, SCENE["approach_gap"].high))
+        if scene.gap != gap:
+            scene.set_gap(gap)
         if scene.instrument.beam:
-            if changed("knobs", tuple(knobs.values())):
+            if any(scene.knob_angles[n] != v for n, v in knobs.items()):
                 scene.set_knobs(**knobs)
             beam = self._beam_points(scene, signals, mounted)
             if changed("beam", beam[0]):
