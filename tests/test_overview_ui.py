@@ -224,3 +224,21 @@ def test_numbers_the_notebook_states():
     assert head.waist == pytest.approx(17e-6, rel=0.05)
     k = head.lever.spring_constant
     assert k == pytest.approx(0.19, rel=0.05) and k * 20e-9 == pytest.approx(4e-9, rel=0.1)
+
+
+@pytest.mark.slow
+@pytest.mark.viewer
+def test_instrument_pages_for_the_book(tmp_path):
+    """The book's 3D pages: both instruments exported from a real server, which is closed."""
+    from afmsmiler.scenes import viewer
+    from afmsmiler.ui.pages import INSTRUMENT_PAGES, instrument_page, write_instrument_pages
+    running = viewer.viewer_running()
+    paths = write_instrument_pages(tmp_path / "pages")
+    assert viewer.viewer_running() == running      # a server it started is closed again
+    assert sorted(p.stem for p in paths) == sorted(INSTRUMENT_PAGES)
+    for path in paths:
+        page = path.read_text()
+        assert page.lstrip().lower().startswith("<!doctype html") or "<html" in page[:500]
+        assert "meshcat" in page.lower() and len(page) > 100_000
+    with pytest.raises(ValueError, match="kind"):
+        instrument_page("stm")
