@@ -204,6 +204,7 @@ def test_animation_bounds(kwargs, match):
     assert "animation" not in rec.log
 
 
+@pytest.mark.slow
 def test_the_longest_animation_stays_within_the_transform_budget():
     sc, _ = scene("obd")
     anim = sc.animate_explode(LIMITS["frames"], back=False, play=False)
@@ -455,6 +456,31 @@ def test_points_on_the_photodiode():
         sc.photodiode_point(0.0, math.nan)
     with pytest.raises(ValueError, match="has no photodiode"):
         scene("educational")[0].photodiode_point(0.0)
+
+
+def test_show_alignment_draws_the_beam_through_the_model_s_spots():
+    sc, rec = scene()
+    beam = "/afmsmiler/instrument/obd/beam"
+    pts = sc.show_alignment((100e-6, 5e-6), (0.4e-3, -0.2e-3),
+                            knobs=dict(laser_x=0.3, detector_vertical=-1.0))
+    assert sc.knob_angles["laser_x"] == 0.3 and sc.knob_angles["detector_vertical"] == -1.0
+    a = sc.anchors
+    np.testing.assert_allclose(pts, [a["laser"], a["lens"], sc.lever_point(100e-6, 5e-6),
+                                     a["mirror"], sc.photodiode_point(0.4e-3, -0.2e-3)])
+    a0, b0 = _leg_ends(rec.log[f"{beam}/leg02"]["transform"])  # lever -> mirror
+    np.testing.assert_allclose(a0, pts[2] / SCENE_UNIT, atol=1e-9)
+    np.testing.assert_allclose(rec.log[f"{beam}/spot1"]["transform"][:3, 3],
+                               pts[4] / SCENE_UNIT, atol=1e-12)
+    missed = sc.show_alignment((-0.5e-3, 0.0), (0.0, 0.0), reflected=False)
+    assert len(missed) == 3                       # no light comes back
+    assert rec.log[f"{beam}/leg02"]["visible"] is False
+    assert rec.log[f"{beam}/spot1"]["visible"] is False
+    with pytest.raises(ValueError, match="spot_on_lever must"):
+        sc.show_alignment((0.0,), (0.0, 0.0))
+    with pytest.raises(ValueError, match="knob must be one of"):
+        sc.show_alignment((0.0, 0.0), (0.0, 0.0), knobs=dict(mirror=1.0))
+    with pytest.raises(ValueError, match="has no laser beam"):
+        scene("educational")[0].show_alignment((0.0, 0.0), (0.0, 0.0))
 
 
 # -- camera ---------------------------------------------------------------------------------------

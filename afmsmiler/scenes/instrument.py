@@ -104,7 +104,8 @@ What a scene offers (all one-line calls for the notebook and the guided setup):
   spots, :meth:`~InstrumentScene.nominal_beam` / :attr:`InstrumentScene.anchors` give the
   drawn optics' positions (metres) the model's geometry can be matched to, and
   :meth:`~InstrumentScene.lever_point` / :meth:`~InstrumentScene.photodiode_point` place the
-  model's spot coordinates (on the lever, on the detector) in the scene;
+  model's spot coordinates (on the lever, on the detector) in the scene, and
+  :meth:`~InstrumentScene.show_alignment` draws the beam from them in one call;
 - :meth:`~InstrumentScene.focus` (the camera near one part) and
   :meth:`~InstrumentScene.static_html` (the page the book embeds).
 
@@ -557,7 +558,7 @@ def _obd() -> Instrument:
                    photodiode=t(photodiode))
     return Instrument("obd", "conventional AFM with optical beam deflection (MultiMode-like)",
                       parts, (145.0, -195.0, 90.0), (265.0, -415.0, 200.0), (0.0, 0.0, -45.0),
-                      anchors,
+                      read_only(anchors),
                       ("laser", "lens", "lever_end", "mirror", "photodiode"),
                       ("lever_end", "photodiode"), ("probe_chip", (-0.12, 0.0, 0.019), 0.125),
                       tuple(p.name for p in parts if p.group in ("head", "probe", "knobs")))
@@ -1253,7 +1254,8 @@ class InstrumentScene:
 
         For the alignment model's spot on the detector: the face is the plane x = const
         (facing the mirror), ``vertical`` is along +z (towards the top quadrants) and
-        ``lateral`` along +y, from the detector's centre.
+        ``lateral`` along +y (towards the left quadrants, seen along the incoming beam), from
+        the detector's centre.
 
         Parameters
         ----------
@@ -1275,6 +1277,54 @@ class InstrumentScene:
         vertical = check_range("vertical", vertical, -0.01, 0.01, "m")
         lateral = check_range("lateral", lateral, -0.01, 0.01, "m")
         return self.anchors["photodiode"] + [0.0, lateral, vertical]
+
+    def show_alignment(self, spot_on_lever, spot_on_detector, *, reflected: bool = True,
+                       knobs=None) -> np.ndarray:
+        """Draw the beam for the alignment model's spots, and turn the knobs to its angles.
+
+        The beam runs laser -> lens -> the spot on the lever -> the mirror's centre -> the spot
+        on the photodiode (schematic between the drawn optics; the spots are where the model
+        puts them), e.g. ``scene.show_alignment(s.spot_on_lever, s.spot_on_detector,
+        knobs=s.knobs)`` for a model's signals ``s``.
+
+        Parameters
+        ----------
+        spot_on_lever : (float, float)
+            ``(x, y)`` on the lever in m (:meth:`lever_point`).
+        spot_on_detector : (float, float)
+            ``(vertical, lateral)`` on the photodiode in m (:meth:`photodiode_point`).
+        reflected : bool
+            False when no light comes back (the spot missed the lever): the beam ends on the
+            lever's plane.
+        knobs : mapping, optional
+            Knob name -> angle in rad, for :meth:`set_knobs`.
+
+        Returns
+        -------
+        ndarray, shape (N, 3)
+            The beam's points, m.
+
+        Raises
+        ------
+        ValueError
+            If the instrument has no laser, or a spot, knob or angle is not valid.
+        """
+        lever = check_array("spot_on_lever", spot_on_lever, "m", ndim=1, size=2)
+        detector = check_array("spot_on_detector", spot_on_detector, "m", ndim=1, size=2)
+        if "photodiode" not in self.instrument.anchors_mm:
+            raise ValueError(f"the {self.instrument.title} has no laser beam")
+        a = self.anchors
+        on_lever = self.lever_point(*lever)
+        on_detector = self.photodiode_point(*detector)
+        points = [a["laser"], a["lens"], on_lever]
+        spots = [on_lever]
+        if reflected:
+            points += [a["mirror"], on_detector]
+            spots.append(on_detector)
+        if knobs is not None:
+            self.set_knobs(**dict(knobs))
+        self.show_beam(np.array(points), np.array(spots))
+        return np.array(points)
 
     def nominal_beam(self) -> tuple[np.ndarray, np.ndarray]:
         """The aligned beam through the drawn optics' centres: ``(points, spots)`` in m.
