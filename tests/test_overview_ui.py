@@ -242,3 +242,32 @@ def test_instrument_pages_for_the_book(tmp_path):
         assert "meshcat" in page.lower() and len(page) > 100_000
     with pytest.raises(ValueError, match="kind"):
         instrument_page("stm")
+
+
+def test_browser_changes_and_buttons(count_runs, aligned_turns):
+    panel = OverviewPanel()
+    count_runs["signals"] = 0
+    panel.controls["instrument"].value = "educational"      # as the browser sends it
+    assert count_runs["signals"] == 1 and panel.last.instrument == "educational"
+    assert [v for _, v in panel.controls["part"].options][1:] == \
+        [p.name for p in INSTRUMENTS["educational"].parts]
+    panel.controls["part"].value = "hood"
+    assert panel.last.part == "hood" and "hood" in panel.part_html.value
+    panel.buttons["Next"].click()                          # the walkthrough is on the OBD head
+    assert panel.walkthrough.step.key == "laser" and panel.last.instrument == "obd"
+    panel.buttons["Check"].click()
+    assert "Not yet" in panel.result_html.value and "laser_x" in panel.result_html.value
+    panel.buttons["Back"].click()
+    assert panel.walkthrough.step.key == "mount" and panel.result_html.value == ""
+    box = panel.widget()
+    assert panel.buttons["Check"] in box.children[0].children[1].children[1].children
+
+
+def test_without_a_probe_no_light_comes_back(panel, aligned_turns):
+    panel.set(**aligned_turns, mounted=False)
+    assert "none mounted" in panel.display_html.value
+    assert not panel.figure.lines["detector_spot"].get_visible()
+    assert not panel.check_step() and "holder" in panel.result_html.value
+    panel.set(mounted=True)
+    assert panel.figure.lines["detector_spot"].get_visible()
+    assert panel.check_step()
