@@ -27,13 +27,13 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..instrument import DEFAULT_LEVER, KNOBS, OpticalHead, Signals
-from ..instrument.walkthrough import SETUP, STEP_TOLERANCES, STEPS, SetupState, StepCheck, Walkthrough
+from ..instrument.walkthrough import SETUP, STEP_TOLERANCES, SetupState, StepCheck, Walkthrough
 from ..parameters import read_only, shown, unit_scale
 from ..scenes.instrument import INSTRUMENTS
 from ..scenes.instrument import PARAMETERS as SCENE
 from ..validation import check_choice
 from .controls import control
-from .panel import Panel, check_control_value
+from .panel import Panel
 from .transducers import to_si
 
 __all__ = ["OverviewPanel", "OverviewFigure", "OverviewState", "DEFAULTS"]
@@ -404,7 +404,7 @@ class OverviewPanel(Panel):
                 np.array([on_lever, on_detector]))
 
     def _display_html(self) -> str:
-        s, head, state = self.last.signals, self.head, self.last
+        s, state = self.last.signals, self.last
         mounted = state.setup.mounted
         line = s.readout() if mounted else "SUM 0.00 V  VERT 0.000 V  HORZ 0.000 V"
         rows = [("display", f"<code>{line}</code>")]
