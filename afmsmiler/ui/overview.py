@@ -422,7 +422,7 @@ class OverviewPanel(Panel):
         table = "".join(f"<tr><td>{k}</td><td><b>{v}</b></td></tr>" for k, v in rows)
         return f"<table>{table}</table>{note}"
 
-    # -- the guided setup ---------------------------------------------------------------------------
+    # -- the guided setup ------------------------------------------------------------------------
     def _show_step(self) -> None:
         step = self.walkthrough.step
         self.step_html.value = (f"<h4 style='margin:4px 0'>{html.escape(step.title)}</h4>"
