@@ -124,6 +124,8 @@ def test_scene_follows_the_panel(aligned_turns):
     np.testing.assert_allclose(spots[0], scene.lever_point(*s.spot_on_lever), atol=1e-15)
     np.testing.assert_allclose(spots[1], scene.photodiode_point(*s.spot_on_detector),
                                atol=1e-15)
+    panel.set(part="probe_chip")                  # the notebook: "the camera goes there"
+    np.testing.assert_allclose(scene.offset[:3, 3], -scene.transform("probe_chip")[:3, 3])
     panel.set(part="photodiode")
     assert set(scene.highlighted) == {"photodiode"}
     assert "photodiode" in panel.part_html.value.lower()
@@ -133,6 +135,7 @@ def test_scene_follows_the_panel(aligned_turns):
     np.testing.assert_allclose(rec.log[scene.node_path("head_cover")]["transform"],
                                scene.transform("head_cover", 1.0))
     scene.animate_explode(2, back=False)          # as the notebook does; then the slider
+    assert scene.fraction == 1.0                  # "the exploded view stays when it ends"
     panel.set(explode_fraction=0.0)
     assert scene.fraction == 0.0
     np.testing.assert_allclose(rec.log[scene.node_path("head_cover")]["transform"],
