@@ -274,3 +274,13 @@ def test_without_a_probe_no_light_comes_back(panel, aligned_turns):
     panel.set(mounted=True)
     assert panel.figure.lines["detector_spot"].get_visible()
     assert panel.check_step()
+
+
+def test_the_spot_stays_in_view(panel, aligned_turns):
+    for values in ({}, aligned_turns, dict(laser_x=-5.0, laser_y=5.0), dict(laser_x=5.0)):
+        panel.set(**values)
+        x, y = panel.figure.lines["lever_centre"].get_data()
+        ax = panel.figure.ax_lever
+        assert ax.get_xlim()[0] < x[0] < ax.get_xlim()[1], values
+        assert ax.get_ylim()[0] < y[0] < ax.get_ylim()[1], values
+        assert ax.get_xlim()[0] <= -0.3 * 450 and ax.get_xlim()[1] >= 1.3 * 450  # the lever

@@ -87,7 +87,8 @@ def _circle(cx, cy, rx, ry, n):
 class OverviewFigure:
     """Two views: the laser spot on the lever (top view, um) and on the photodiode (mm).
 
-    The lever is the rectangle [0, L] x [-w/2, w/2] with the chip's edge at x = 0; the spot is
+    The lever is the rectangle [0, L] x [-w/2, w/2], the chip's body the dashed one behind x = 0
+    (the view widens to keep a spot that missed the lever in sight); the spot is
     drawn as its 1/e^2 ellipse (radii w0 / cos(alpha) along the lever and w0 across). The
     photodiode is the square of side ``detector_size`` with its quadrant gaps, seen from the
     lever (vertical up, lateral +y to the left, as the quadrants A B / C D are named); the spot
@@ -111,15 +112,18 @@ class OverviewFigure:
         ax = self.ax_lever
         ax.plot([0, L, L, 0], [-w / 2, -w / 2, w / 2, w / 2], color="0.3", lw=1.5,
                 label="lever")
-        ax.plot([0, 0], [-2 * w, 2 * w], color="0.3", lw=1, ls="--", label="chip edge")
+        cl, cw = head.chip_length * um, head.chip_width * um
+        ax.plot([0, -cl, -cl, 0, 0], [-cw / 2, -cw / 2, cw / 2, cw / 2, -cw / 2], color="0.3",
+                lw=1, ls="--", label="chip")
+        self._lever_box = (-0.3 * L, 1.3 * L, -2 * w, 2 * w)
         self.lines = {}
         self.lines["lever_spot"], = ax.plot([], [], color="#d62728", lw=1.5, label="laser spot")
         self.lines["lever_centre"], = ax.plot([], [], "o", color="#d62728", ms=3)
-        ax.set_xlim(-0.3 * L, 1.3 * L)
-        ax.set_ylim(-2 * w, 2 * w)
+        ax.set_xlim(*self._lever_box[:2])
+        ax.set_ylim(*self._lever_box[2:])
         ax.set_xlabel("along the lever x [um] (free end at L)")
         ax.set_ylabel("across y [um]")
-        ax.set_title("spot on the lever (top view)")
+        ax.set_title("spot on the lever (top view, y stretched)")
         a = head.detector_size / 2 * mm
         ax = self.ax_detector
         ax.plot([-a, a, a, -a, -a], [-a, -a, a, a, -a], color="0.3", lw=1.5, label="photodiode")
@@ -156,6 +160,11 @@ class OverviewFigure:
         rx, ry = head.waist / math.cos(head.holder_tilt), head.waist
         self.lines["lever_spot"].set_data(*_circle(x * um, y * um, rx * um, ry * um, n))
         self.lines["lever_centre"].set_data([x * um], [y * um])
+        # the lever's neighbourhood, widened to keep a spot that missed it in view
+        x0, x1, y0, y1 = self._lever_box
+        mx, my = 1.5 * rx * um, 1.5 * ry * um
+        self.ax_lever.set_xlim(min(x0, x * um - mx), max(x1, x * um + mx))
+        self.ax_lever.set_ylim(min(y0, y * um - my), max(y1, y * um + my))
         v, lat = signals.spot_on_detector
         r = head.detector_spot_radius * mm
         lit = mounted and signals.sum > 0.01 * head.best_sum
