@@ -284,3 +284,23 @@ def test_the_spot_stays_in_view(panel, aligned_turns):
         assert ax.get_xlim()[0] < x[0] < ax.get_xlim()[1], values
         assert ax.get_ylim()[0] < y[0] < ax.get_ylim()[1], values
         assert ax.get_xlim()[0] <= -0.3 * 450 and ax.get_xlim()[1] >= 1.3 * 450  # the lever
+
+
+def test_walkthrough_moves_the_camera_and_highlights_in_the_scene():
+    from afmsmiler.instrument.walkthrough import STEPS
+    rec = Recorder()
+    panel = OverviewPanel(vis=rec)
+    for step in STEPS[1:]:
+        panel.next_step()
+        scene = panel.scene
+        first = step.parts[0]
+        assert set(scene.highlighted) == {first}
+        # the part's nodes were repainted with the highlight colour, and the camera target is it
+        amber = [c / 255 for c in (0xff, 0xb0, 0x00)]
+        painted = [k for k, v in rec.log.items() if k.startswith(scene.node_path(first) + "/")
+                   and "color" in v and np.allclose(v["color"][:3], amber, atol=1e-3)]
+        assert painted, first
+        np.testing.assert_allclose(rec.log[scene.vis.path.lower()]["transform"][:3, 3],
+                                   -scene.transform(first)[:3, 3])
+    panel.back_step()
+    assert set(panel.scene.highlighted) == {STEPS[-2].parts[0]}
