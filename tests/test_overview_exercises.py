@@ -59,10 +59,10 @@ def test_spot_direction_is_what_the_panel_shows(g):
     assert check_spot_direction(up, move="up")
     assert not check_spot_direction(down, move="up")
     assert check_spot_direction(down, move="down")
-    for spelling in ("ccw", "anticlockwise", "counter clockwise", -1):
+    for spelling in ("ccw", "anticlockwise", "counter clockwise", -1, -1.0):
         assert bool(check_spot_direction(spelling, move="up")) == (up == "counter-clockwise")
     assert check_spot_direction("ccw", move="left")     # HORZ rises the same way
-    assert not check_spot_direction("upwards")
+    assert not check_spot_direction("upwards") and not check_spot_direction(True)
     assert not check_spot_direction(None)
     with pytest.raises(ValueError, match="move"):
         check_spot_direction("cw", move="sideways")

@@ -147,6 +147,9 @@ def check_spot_direction(direction, move: str = "up") -> Feedback:
             f"{'VERT' if knob.endswith('vertical') else 'HORZ'}.")
     if direction is None:
         return Feedback(False, f"enter 'clockwise' or 'counter-clockwise'. {hint}")
+    if isinstance(direction, (int, float)) and not isinstance(direction, bool) \
+            and direction in (1, -1):
+        direction = "+" if direction > 0 else "-"          # +1.0 as well as +1
     key = str(direction).strip().lower().replace(" ", "").replace("_", "-")
     if key not in DIRECTIONS:
         return Feedback(False, f"direction must be one of 'clockwise' or 'counter-clockwise' "
