@@ -6,7 +6,9 @@ shows what the notebook's panel shows before the student moves a slider. Run as
 
     python -m afmsmiler.ui.pages DIRECTORY
 
-to write one ``<panel>.html`` per panel into ``DIRECTORY``.
+to write one ``<panel>.html`` per panel into ``DIRECTORY``, and one ``instrument_<kind>.html`` per
+3D instrument of module (e) (:func:`instrument_page`: meshcat's own static page of the scene, which
+needs the kernel's meshcat server for the export; it is started and closed again).
 """
 from __future__ import annotations
 
@@ -18,8 +20,10 @@ import sys
 from pathlib import Path
 
 from ..plots.live import static_html
+from ..validation import check_choice
 
-__all__ = ["PANELS", "panel_page", "write_panel_pages"]
+__all__ = ["PANELS", "INSTRUMENT_PAGES", "panel_page", "write_panel_pages", "instrument_page",
+           "write_instrument_pages"]
 
 #: Page name -> (module of afmsmiler.ui, panel class, title).
 PANELS = {
@@ -27,7 +31,11 @@ PANELS = {
     "transducers": ("transducers", "TransducerPanel", "Module (b): the transducer panel's figure"),
     "controller": ("controller", "ControllerPanel", "Module (c): the controller panel's figure"),
     "contact": ("contact", "ContactPanel", "Module (d): the contact panel's figure"),
+    "overview": ("overview", "OverviewPanel", "Module (e): the instrument panel's figure"),
 }
+
+#: Page name -> the 3D instrument (a key of :data:`afmsmiler.scenes.instrument.INSTRUMENTS`).
+INSTRUMENT_PAGES = {"instrument_obd": "obd", "instrument_educational": "educational"}
 
 
 def _panel(name: str):
@@ -85,11 +93,72 @@ def write_panel_pages(directory) -> list[Path]:
     return written
 
 
+def instrument_page(kind: str) -> str:
+    """The 3D instrument ``kind`` as one self-contained page (meshcat's static HTML).
+
+    The scene is drawn in the kernel's viewer (:func:`~afmsmiler.scenes.get_viewer`, started if
+    needed), exported with its camera and the housing at its default opacity, and deleted again.
+
+    Parameters
+    ----------
+    kind : str
+        A value of :data:`INSTRUMENT_PAGES` (``"obd"`` or ``"educational"``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``kind``, listing the instruments.
+    """
+    from ..scenes.instrument import INSTRUMENTS, InstrumentScene
+    check_choice("kind", kind, INSTRUMENTS)
+    scene = InstrumentScene(kind)
+    try:
+        return scene.static_html()
+    finally:
+        scene.vis.delete()
+
+
+def write_instrument_pages(directory) -> list[Path]:
+    """Write ``instrument_<kind>.html`` for both instruments into ``directory``.
+
+    A meshcat server this call had to start is closed before it returns.
+
+    Parameters
+    ----------
+    directory : str or os.PathLike
+        Created if missing.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The pages written.
+    """
+    from ..scenes import close_viewer
+    from ..scenes.viewer import viewer_running
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    started = not viewer_running()
+    written = []
+    try:
+        for name, kind in INSTRUMENT_PAGES.items():
+            path = out / f"{name}.html"
+            path.write_text(instrument_page(kind), encoding="utf-8")
+            written.append(path)
+    finally:
+        if started:
+            close_viewer()
+    return written
+
+
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description="Write the panels' figures as static pages.")
     parser.add_argument("directory")
     args = parser.parse_args(argv)
-    for path in write_panel_pages(args.directory):
+    for path in [*write_panel_pages(args.directory), *write_instrument_pages(args.directory)]:
         print(path)
     return 0
 

@@ -1,0 +1,488 @@
+"""The widget panel of module (e): the instrument overview, the laser alignment and the setup.
+
+The four knobs of the optical head (:data:`afmsmiler.instrument.KNOBS`), the deflection
+setpoint and the coarse approach (:data:`afmsmiler.instrument.walkthrough.SETUP`), the housing's
+opacity and the exploded view (:data:`afmsmiler.scenes.instrument.PARAMETERS`) are sliders made
+by :func:`~afmsmiler.ui.controls.control`; the instrument and the part to look at are drop-downs;
+"probe mounted" is a check box. One user action is one :meth:`OverviewPanel.update`, which runs
+the head's model once (:meth:`~afmsmiler.instrument.OpticalHead.signals`) and hands the result
+to the display (SUM, VERT, HORZ), to the figure (:class:`OverviewFigure`: the spot on the lever
+and on the four-quadrant photodiode) and, when a viewer is asked for, to the 3D instrument
+(:class:`~afmsmiler.scenes.instrument.InstrumentScene`: knobs turned, beam traced through the
+spots the model computed, housing, exploded view, the approach's gap, the picked part
+highlighted). The guided setup (:mod:`afmsmiler.instrument.walkthrough`) runs under the panel:
+Back / Next move through its steps (the step's first part is picked, the camera goes there),
+Check checks the step on the state the model last computed (no model run).
+
+The lever is free (deflection 0) until the approach brings the tip within the scanner's reach;
+then the feedback holds it at the deflection setpoint and the display shows that.
+"""
+from __future__ import annotations
+
+import html
+import math
+from dataclasses import dataclass
+
+import ipywidgets as widgets
+import numpy as np
+
+from ..instrument import DEFAULT_LEVER, KNOBS, OpticalHead, Signals
+from ..instrument.walkthrough import SETUP, STEP_TOLERANCES, SetupState, StepCheck, Walkthrough
+from ..parameters import read_only, shown, unit_scale
+from ..scenes.instrument import INSTRUMENTS
+from ..scenes.instrument import PARAMETERS as SCENE
+from ..validation import check_choice
+from .controls import control
+from .panel import Panel
+from .transducers import to_si
+
+__all__ = ["OverviewPanel", "OverviewFigure", "OverviewState", "DEFAULTS"]
+
+#: The panel's defaults in one place: the first instrument, the figure's size (inches), the
+#: knob sliders' step (turn: a fine screw; 1/200 turn moves the photodiode 2.5 um, so the
+#: differences can be brought within the walkthrough's tolerance), points of a drawn spot.
+DEFAULTS = read_only(dict(instrument="obd", figsize=(9.0, 3.6), knob_step=0.005,
+                          spot_points=65))
+
+_KNOB_NAMES = tuple(KNOBS)
+_WHOLE = ""   # the part picker's "whole instrument"
+
+
+@dataclass(frozen=True)
+class OverviewState:
+    """What the panel last computed (SI units), for tests and exercises.
+
+    Attributes
+    ----------
+    head : OpticalHead
+        The head with its knobs as the sliders set them.
+    signals : Signals
+        The display's signals (one model run).
+    setup : SetupState
+        What the walkthrough's checks read.
+    deflection : float
+        The lever's deflection the signals were computed at, m (0 while the lever is free).
+    instrument : str
+        The instrument shown.
+    part : str
+        The picked part ("" for the whole instrument).
+    description : str
+        The picked part's description.
+    """
+
+    head: OpticalHead
+    signals: Signals
+    setup: SetupState
+    deflection: float
+    instrument: str
+    part: str
+    description: str
+
+
+def _circle(cx, cy, rx, ry, n):
+    t = np.linspace(0.0, 2 * math.pi, n)
+    return cx + rx * np.cos(t), cy + ry * np.sin(t)
+
+
+class OverviewFigure:
+    """Two views: the laser spot on the lever (top view, um) and on the photodiode (mm).
+
+    The lever is the rectangle [0, L] x [-w/2, w/2], the chip's body the dashed one behind x = 0
+    (the view widens to keep a spot that missed the lever in sight); the spot is
+    drawn as its 1/e^2 ellipse (radii w0 / cos(alpha) along the lever and w0 across). The
+    photodiode is the square of side ``detector_size`` with its quadrant gaps, seen from the
+    lever (vertical up, lateral +y to the left, as the quadrants A B / C D are named); the spot
+    is its 1/e^2 circle of radius w(D). Only Line2D artists and texts: a live figure draws them.
+
+    Parameters
+    ----------
+    head : OpticalHead
+        Sets the fixed outlines (lever, photodiode) and the spots' radii.
+    fig : matplotlib.figure.Figure
+        The figure to draw into (two axes are added).
+    """
+
+    def __init__(self, head: OpticalHead, fig):
+        self.fig = fig
+        um, mm = unit_scale("um"), unit_scale("mm")
+        self._um, self._mm = um, mm
+        self.ax_lever, self.ax_detector = fig.subplots(1, 2)
+        lever = head.lever
+        L, w = lever.length * um, lever.width * um
+        ax = self.ax_lever
+        ax.plot([0, L, L, 0], [-w / 2, -w / 2, w / 2, w / 2], color="0.3", lw=1.5,
+                label="lever")
+        cl, cw = head.chip_length * um, head.chip_width * um
+        ax.plot([0, -cl, -cl, 0, 0], [-cw / 2, -cw / 2, cw / 2, cw / 2, -cw / 2], color="0.3",
+                lw=1, ls="--", label="chip")
+        self._lever_box = (-0.3 * L, 1.3 * L, -2 * w, 2 * w)
+        self.lines = {}
+        self.lines["lever_spot"], = ax.plot([], [], color="#d62728", lw=1.5, label="laser spot")
+        self.lines["lever_centre"], = ax.plot([], [], "o", color="#d62728", ms=3)
+        ax.set_xlim(*self._lever_box[:2])
+        ax.set_ylim(*self._lever_box[2:])
+        ax.set_xlabel("along the lever x [um] (free end at L)")
+        ax.set_ylabel("across y [um]")
+        ax.set_title("spot on the lever (top view, y stretched)")
+        a = head.detector_size / 2 * mm
+        ax = self.ax_detector
+        ax.plot([-a, a, a, -a, -a], [-a, -a, a, a, -a], color="0.3", lw=1.5, label="photodiode")
+        ax.plot([-a, a], [0, 0], color="0.3", lw=0.8)
+        ax.plot([0, 0], [-a, a], color="0.3", lw=0.8)
+        for label, (x, y) in zip("ABCD", ((0.5, 0.5), (-0.5, 0.5), (0.5, -0.5), (-0.5, -0.5))):
+            ax.text(x * a, y * a, label, ha="center", va="center", color="0.5")
+        self.lines["detector_spot"], = ax.plot([], [], color="#d62728", lw=1.5,
+                                               label="reflected spot")
+        self.lines["detector_centre"], = ax.plot([], [], "o", color="#d62728", ms=3)
+        ax.set_xlim(1.5 * a, -1.5 * a)      # lateral +y to the left: A and C on the left
+        ax.set_ylim(-1.5 * a, 1.5 * a)
+        ax.set_aspect("equal")
+        ax.set_xlabel("lateral [mm] (+ to the left)")
+        ax.set_ylabel("vertical [mm]")
+        ax.set_title("spot on the photodiode")
+        fig.tight_layout()
+
+    def update(self, head: OpticalHead, signals: Signals, mounted: bool = True) -> None:
+        """Move the spots to where ``signals`` says (no physics here).
+
+        Parameters
+        ----------
+        head : OpticalHead
+            The head the signals come from (spot radii).
+        signals : Signals
+            One model run's result.
+        mounted : bool
+            Without a probe no light comes back: the photodiode's spot is hidden.
+        """
+        n = DEFAULTS["spot_points"]
+        um, mm = self._um, self._mm
+        x, y = signals.spot_on_lever
+        rx, ry = head.waist / math.cos(head.holder_tilt), head.waist
+        self.lines["lever_spot"].set_data(*_circle(x * um, y * um, rx * um, ry * um, n))
+        self.lines["lever_centre"].set_data([x * um], [y * um])
+        # the lever's neighbourhood, widened to keep a spot that missed it in view
+        x0, x1, y0, y1 = self._lever_box
+        mx, my = 1.5 * rx * um, 1.5 * ry * um
+        self.ax_lever.set_xlim(min(x0, x * um - mx), max(x1, x * um + mx))
+        self.ax_lever.set_ylim(min(y0, y * um - my), max(y1, y * um + my))
+        v, lat = signals.spot_on_detector
+        r = head.detector_spot_radius * mm
+        lit = mounted and signals.sum > 0.01 * head.best_sum
+        self.lines["detector_spot"].set_data(*_circle(lat * mm, v * mm, r, r, n))
+        self.lines["detector_centre"].set_data([lat * mm], [v * mm])
+        for name in ("detector_spot", "detector_centre"):
+            self.lines[name].set_visible(bool(lit))
+
+
+class OverviewPanel(Panel):
+    """The instrument overview: knobs, display, photodiode figure, parts, the guided setup.
+
+    Controls: ``instrument`` (``"obd"`` or ``"educational"``, :data:`INSTRUMENTS`), ``part``
+    (a part of that instrument, ``""`` for the whole), ``housing_opacity`` and
+    ``explode_fraction`` (0 to 1), ``mounted`` (the probe in its holder), the four knobs
+    ``laser_x``, ``laser_y``, ``detector_vertical``, ``detector_lateral`` (turns),
+    ``deflection`` (the deflection setpoint, nm) and ``approach_gap`` (the coarse approach's
+    tip-sample gap, um). The knobs, the display and the walkthrough belong to the OBD head; the
+    educational AFM is shown in 3D with its parts.
+
+    Parameters
+    ----------
+    instrument : str
+        The instrument shown first.
+    scene : bool
+        Draw the 3D instrument in the kernel's meshcat viewer (show it with
+        ``get_viewer().jupyter_cell()``; close it with ``close_viewer()``).
+    vis : meshcat.Visualizer, optional
+        Draw the 3D instrument into this visualizer instead (a recorder in tests); implies a
+        scene.
+    lever : Cantilever
+        The lever (module (a)); default :data:`~afmsmiler.instrument.DEFAULT_LEVER`.
+    mounted : bool
+        Whether the probe starts in its holder.
+
+    Attributes
+    ----------
+    head : OpticalHead
+        The head the knobs turn.
+    last : OverviewState
+        The last model result.
+    walkthrough : Walkthrough
+        The guided setup's position and its checks.
+    figure : OverviewFigure
+        The spot on the lever and on the photodiode.
+    scene : InstrumentScene or None
+        The 3D view.
+    display_html, part_html, step_html, result_html : ipywidgets.HTML
+        The instrument's display, the picked part's description, the step's narration and the
+        last check's result.
+    """
+
+    def __init__(self, instrument: str = DEFAULTS["instrument"], *, scene: bool = False,
+                 vis=None, lever=DEFAULT_LEVER, mounted: bool = True):
+        check_choice("instrument", instrument, INSTRUMENTS)
+        self.head = OpticalHead(lever)
+        self.walkthrough = Walkthrough()
+        self._vis = vis
+        self._want_scene = bool(scene) or vis is not None
+        self.scene = None
+        self._scene_applied = {}
+        self.display_html, self.part_html = widgets.HTML(), widgets.HTML()
+        self.step_html, self.result_html = widgets.HTML(), widgets.HTML()
+        c = {"instrument": widgets.Dropdown(
+            options=[(i.title, k) for k, i in INSTRUMENTS.items()], value=instrument,
+            description="instrument")}
+        c["part"] = widgets.Dropdown(options=self._part_options(instrument), value=_WHOLE,
+                                     description="part")
+        c["housing_opacity"] = control(SCENE["housing_opacity"])
+        c["explode_fraction"] = control(SCENE["explode_fraction"])
+        c["mounted"] = widgets.Checkbox(value=bool(mounted), description="probe mounted")
+        for name in _KNOB_NAMES:
+            c[name] = control(KNOBS[name])
+            c[name].step = DEFAULTS["knob_step"]   # a fine screw; the grid still through 0
+        c["deflection"] = control(SETUP["deflection"])
+        c["approach_gap"] = control(SETUP["approach_gap"])
+        self.controls = c
+        self.buttons = {name: widgets.Button(description=name) for name in ("Back", "Next",
+                                                                            "Check")}
+        self.buttons["Back"].on_click(lambda _b: self.back_step())
+        self.buttons["Next"].on_click(lambda _b: self.next_step())
+        self.buttons["Check"].on_click(lambda _b: self.check_step())
+        self.fig = self.new_figure(figsize=DEFAULTS["figsize"])
+        self.figure = OverviewFigure(self.head, self.fig)
+        super().__init__()
+        self._show_step()
+
+    @staticmethod
+    def _part_options(instrument: str) -> list:
+        return [("(whole instrument)", _WHOLE)] + [(p.label, p.name)
+                                                   for p in INSTRUMENTS[instrument].parts]
+
+    # -- setting controls -------------------------------------------------------------------------
+    def set(self, **values) -> None:
+        """Set control values as a user would (one update at the end).
+
+        ``instrument`` is applied first (it changes the part picker's choices), so a part of the
+        new instrument can be picked in the same call.
+
+        Raises
+        ------
+        ValueError
+            For an unknown instrument or part (naming the choices) or a value outside a
+            slider's range (naming the control and the range).
+        TypeError
+            For a name that is not a control.
+        """
+        if "instrument" in values:
+            instrument = check_choice("instrument", values["instrument"], INSTRUMENTS)
+            if "part" in values:
+                check_choice("part", values["part"],
+                             [v for _, v in self._part_options(instrument)])
+            hold, self._hold = self._hold, True
+            try:
+                self._switch_parts(instrument, values.get("part", _WHOLE))
+            finally:
+                self._hold = hold
+        super().set(**values)
+
+    def _switch_parts(self, instrument: str, part: str = _WHOLE) -> None:
+        c = self.controls["part"]
+        options = self._part_options(instrument)
+        if list(c.options) != options:
+            c.options = options
+            c.value = part
+        self.controls["instrument"].value = instrument
+
+    def _on_change(self, change) -> None:
+        # the instrument drop-down changes the part picker's choices before the update
+        if not self._hold and change.get("owner") is self.controls["instrument"]:
+            hold, self._hold = self._hold, True
+            try:
+                self._switch_parts(change["new"])
+            finally:
+                self._hold = hold
+        super()._on_change(change)
+
+    # -- the callback -----------------------------------------------------------------------------
+    def update(self, instrument, part, housing_opacity, explode_fraction, mounted, laser_x,
+               laser_y, detector_vertical, detector_lateral, deflection,
+               approach_gap) -> None:
+        """Run the head's model once with the values given; update display, figure and scene.
+
+        Parameters
+        ----------
+        instrument : str
+            A key of :data:`~afmsmiler.scenes.instrument.INSTRUMENTS`.
+        part : str
+            One of the instrument's parts, or ``""`` for the whole instrument.
+        housing_opacity, explode_fraction : float
+            0 to 1.
+        mounted : bool
+            The probe in its holder.
+        laser_x, laser_y, detector_vertical, detector_lateral : float
+            Knob rotations in turn, within their travel.
+        deflection : float
+            The deflection setpoint in nm.
+        approach_gap : float
+            The tip-sample gap in um.
+
+        Raises
+        ------
+        ValueError
+            For a value outside its valid range or an unknown instrument or part.
+        """
+        instrument = check_choice("instrument", instrument, INSTRUMENTS)
+        parts = {p.name: p for p in INSTRUMENTS[instrument].parts}
+        part = check_choice("part", part, [_WHOLE, *parts])
+        opacity = to_si(SCENE["housing_opacity"], housing_opacity)
+        fraction = to_si(SCENE["explode_fraction"], explode_fraction)
+        knobs = {n: to_si(KNOBS[n], v) for n, v in zip(_KNOB_NAMES, (
+            laser_x, laser_y, detector_vertical, detector_lateral))}
+        setpoint = to_si(SETUP["deflection"], deflection)
+        gap = to_si(SETUP["approach_gap"], approach_gap)
+        mounted = bool(mounted)
+        in_contact = gap <= STEP_TOLERANCES["approach_range"].default
+        z = setpoint if in_contact and mounted else 0.0
+        # OpticalHead.set() evaluates the signals at zero deflection; in contact the display
+        # needs them at the setpoint, so the knobs are put in place (checked against their
+        # travel) and the model runs once, at the deflection the lever has
+        self.head._knobs.update({n: KNOBS[n].check(v) for n, v in knobs.items()})
+        signals = self.head.signals(z)            # the one model run
+        setup = SetupState(self.head, signals=signals, deflection=setpoint, approach_gap=gap,
+                           mounted=mounted)
+        p = parts.get(part)
+        description = (f"{p.label}: {p.description} ({p.dimensions})" if p is not None
+                       else INSTRUMENTS[instrument].title)
+        self.last = OverviewState(head=self.head, signals=signals, setup=setup, deflection=z,
+                                  instrument=instrument, part=part, description=description)
+        self.figure.update(self.head, signals, mounted)
+        self.redraw()
+        if self._want_scene and (self._vis is not None or self.scene_open()):
+            self._update_scene(instrument, part, opacity, fraction, knobs, gap, signals,
+                               mounted)
+        self.display_html.value = self._display_html()
+        self.part_html.value = f"<div style='max-width:560px'>{html.escape(description)}</div>"
+
+    def _update_scene(self, instrument, part, opacity, fraction, knobs, gap, signals,
+                      mounted) -> None:
+        """Send the scene what changed (the scene draws, computes nothing)."""
+        from ..scenes.instrument import InstrumentScene
+        if self.scene is None or self.scene.instrument.key != instrument:
+            if self.scene is not None:
+                self.scene.vis.delete()
+            self.scene = InstrumentScene(instrument, vis=self._vis, housing_opacity=opacity)
+            self._scene_applied = {}
+        scene, done = self.scene, self._scene_applied
+
+        def changed(key, value):
+            if done.get(key, None) is None or not np.array_equal(done[key], value):
+                done[key] = value
+                return True
+            return False
+
+        # compared with the scene's own state: a notebook may have animated it meanwhile
+        if scene.housing_opacity != opacity:
+            scene.set_housing_opacity(opacity)
+        if scene.fraction != fraction:
+            scene.explode(fraction)
+        if scene.gap != gap:
+            scene.set_gap(gap)
+        if scene.instrument.beam:
+            if any(scene.knob_angles[n] != v for n, v in knobs.items()):
+                scene.set_knobs(**knobs)
+            beam = self._beam_points(scene, signals, mounted)
+            if changed("beam", beam[0]):
+                scene.show_beam(*beam)
+        if changed("part", part):
+            if part == _WHOLE:
+                scene.unhighlight()
+                scene.focus()
+            else:
+                scene.pick(part, focus=True)
+
+    @staticmethod
+    def _beam_points(scene, signals: Signals, mounted: bool):
+        """The beam through the drawn optics and the model's two spots (m, scene frame)."""
+        a = scene.anchors
+        x, y = (float(np.clip(c, -0.0099, 0.0099)) for c in signals.spot_on_lever)
+        v, lat = (float(np.clip(c, -0.0099, 0.0099)) for c in signals.spot_on_detector)
+        on_lever = scene.lever_point(x, y)
+        if not mounted:
+            return np.array([a["laser"], a["lens"], on_lever]), np.array([on_lever])
+        on_detector = scene.photodiode_point(v, lat)
+        return (np.array([a["laser"], a["lens"], on_lever, a["mirror"], on_detector]),
+                np.array([on_lever, on_detector]))
+
+    def _display_html(self) -> str:
+        s, state = self.last.signals, self.last
+        mounted = state.setup.mounted
+        line = s.readout() if mounted else "SUM 0.00 V  VERT 0.000 V  HORZ 0.000 V"
+        rows = [("display", f"<code>{line}</code>")]
+        if mounted:
+            rows += [("VERT / SUM, HORZ / SUM",
+                      f"{s.vertical_normalised + 0.0:.3f}, {s.lateral_normalised + 0.0:.3f}"),
+                     ("lever deflection", shown(state.deflection, "nm", ".3g")
+                      + (" (in contact: the setpoint)" if state.deflection else
+                         " (the lever is free)"))]
+        else:
+            rows += [("probe", "none mounted: no light comes back")]
+        note = ("" if state.instrument == "obd" else
+                "<div><i>The knobs and the display belong to the optical head of the OBD AFM; "
+                "the educational AFM senses with a piezoresistive bridge on its probe.</i></div>")
+        table = "".join(f"<tr><td>{k}</td><td><b>{v}</b></td></tr>" for k, v in rows)
+        return f"<table>{table}</table>{note}"
+
+    # -- the guided setup ------------------------------------------------------------------------
+    def _show_step(self) -> None:
+        step = self.walkthrough.step
+        self.step_html.value = (f"<h4 style='margin:4px 0'>{html.escape(step.title)}</h4>"
+                                f"<div style='max-width:560px'>{html.escape(step.text)}</div>"
+                                f"<div><small>look at: {', '.join(step.parts)}; use: "
+                                f"{', '.join(step.controls)}</small></div>")
+        self.result_html.value = ""
+
+    def _go_to_step(self) -> None:
+        self._show_step()
+        step = self.walkthrough.step
+        self.set(instrument="obd", part=step.parts[0])   # one update: highlight, camera
+
+    def next_step(self) -> None:
+        """Go to the next step of the guided setup: its text, its part picked (one update)."""
+        self.walkthrough.next()
+        self._go_to_step()
+
+    def back_step(self) -> None:
+        """Go back one step of the guided setup (one update)."""
+        self.walkthrough.back()
+        self._go_to_step()
+
+    def check_step(self) -> StepCheck:
+        """Check the current step on what the model last computed (no model run).
+
+        Returns
+        -------
+        StepCheck
+            Also shown under the step's text.
+        """
+        result = self.walkthrough.check(self.last.setup)
+        colour = "#1a7f37" if result else "#b00020"
+        self.result_html.value = f"<div style='color:{colour}'>{html.escape(str(result))}</div>"
+        return result
+
+    # -- layout ---------------------------------------------------------------------------------
+    def widget(self) -> widgets.Widget:
+        """Controls and the display on the left, the walkthrough on the right, the figure below.
+
+        Returns
+        -------
+        ipywidgets.VBox
+        """
+        figure = super().widget().children[1:]
+        c = self.controls
+        left = widgets.VBox([c["instrument"], c["part"], self.part_html, c["housing_opacity"],
+                             c["explode_fraction"], c["mounted"],
+                             *(c[n] for n in _KNOB_NAMES), c["deflection"], c["approach_gap"],
+                             self.display_html])
+        right = widgets.VBox([self.step_html, widgets.HBox(list(self.buttons.values())),
+                              self.result_html])
+        right.layout.margin = "0 0 0 16px"
+        return widgets.VBox([widgets.HBox([left, right]), *figure])
