@@ -86,6 +86,9 @@ def test_with_heights_and_line_keep_the_grid():
     with pytest.raises(ValueError, match=r"heights must have this sample's shape \(30, 50\)"):
         s.with_heights(np.zeros((3, 5)))
     assert s.line(2).pixel_size == 2e-9 and s.line(2).channel == "height"
+    assert s.with_heights(np.zeros((30, 50)), "levelled").name == "levelled"
+    with pytest.raises(TypeError, match="name must be a str"):
+        s.with_heights(np.zeros((30, 50)), 3)  # a non-str name was kept as given
 
 
 @pytest.mark.parametrize("kwargs, error, match", [

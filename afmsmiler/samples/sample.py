@@ -186,6 +186,8 @@ class Sample:
         if h.shape != self.heights.shape:
             raise ValueError(f"heights must have this sample's shape {self.heights.shape}, got "
                              f"{h.shape}")
+        if name is not None:
+            check_instance("name", name, str)
         return replace(self, heights=h, name=self.name if name is None else name)
 
     def crop(self, x=None, y=None) -> "Sample":
