@@ -392,11 +392,14 @@ class OpticalHead:
                              f"({angle / _TURN:.4g} turn): {err}") from None
         return self.signals()
 
-    def set(self, **knobs) -> Signals:
+    def set(self, *, deflection: float = 0.0, **knobs) -> Signals:
         """Set knobs to absolute rotations (rad) and return the new signals.
 
         Parameters
         ----------
+        deflection : float
+            Deflection of the lever's free end in m at which the signals are evaluated (as in
+            :meth:`signals`); the knobs are set and the model runs once.
         **knobs : float
             Knob name (of :data:`KNOBS`) -> rotation in rad within its travel.
 
@@ -412,7 +415,7 @@ class OpticalHead:
         """
         checked = {name: _check_knob(name, value) for name, value in knobs.items()}
         self._knobs.update(checked)
-        return self.signals()
+        return self.signals(deflection)
 
     # -- the optics -----------------------------------------------------------------------
     def _focal(self, laser_x, laser_y):
