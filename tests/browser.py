@@ -364,11 +364,15 @@ afm.arm = (sel, mode, timeoutMs) => {
   // checksum of every canvas on every frame took the page's main thread for 3-6 ms a frame, the
   // harness's load and not the student's. A live figure stamps data-seq on each draw; a figure
   // without it (ipympl's canvas, drawn without DOM changes) is read on every frame.
+  // Only the figure's own elements are watched: the slider's readout beside it changes at the
+  // key press, and a checksum then (6 ms for four canvases) delayed the kernel's frame.
   const observed = mode === 'text' || afm.seqs(root, sel).split(',').some(s => s !== '');
   let dirty = !observed;
   const obs = observed ? new MutationObserver(() => { dirty = true; }) : null;
-  if (obs) obs.observe(root, {subtree: true, childList: true, characterData: true,
-                              attributes: true});
+  const watched = mode === 'text' ? [root]
+    : (root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel)));
+  if (obs) for (const w of watched) obs.observe(w, {subtree: true, childList: true,
+                                                     characterData: true, attributes: true});
   const onKey = () => { if (st.t0 === null) st.t0 = performance.now(); };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
