@@ -38,7 +38,8 @@ every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I is evaluated in
 without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
 the two parts of the period with contact (the contact part in the variable s, theta = theta_c +
 (pi - theta_c) s^2, which makes the square-root edge smooth). All roots at every z_c are found at
-once: g on a grid of :data:`AMPLITUDE_GRID` amplitudes, every sign change refined by the Illinois
+once: g on a grid of :data:`AMPLITUDE_GRID` even steps up to A_max (and 11 geometric steps
+from 1e-5 A_max up to the first), every sign change refined by the Illinois
 method, all vectorised over z_c. A root is stable where g rises through zero (dg/dA > 0: the
 slow flow of the averaged equations pushes a slightly larger amplitude back down; the middle of
 three roots is the saddle, Nayfeh and Mook, *Nonlinear Oscillations*, Sec. 4.1). Two roots
@@ -93,6 +94,10 @@ _FREE_NODES, _CONTACT_NODES = 48, 32
 _X_FREE, _W_FREE = np.polynomial.legendre.leggauss(_FREE_NODES)
 _X_CONTACT, _W_CONTACT = np.polynomial.legendre.leggauss(_CONTACT_NODES)
 _ILLINOIS_STEPS = 40
+# the amplitude grid as a fraction of the largest amplitude: AMPLITUDE_GRID even steps, below the
+# first of them a geometric run down to 1e-5 (the small amplitudes of a tip held near the sample)
+_GRID = np.concatenate((np.geomspace(1e-5, 1.0 / AMPLITUDE_GRID, 12)[:-1],
+                        np.arange(1, AMPLITUDE_GRID + 1) / AMPLITUDE_GRID))
 # transient criterion: estimated remaining error in amplitude (fraction of A0) and phase (deg)
 _AMPLITUDE_TOL, _PHASE_TOL = 1e-4, 1e-2
 
@@ -338,7 +343,13 @@ class AmplitudeCurve:
     stable : ndarray of bool, shape (n, r)
         Whether each root is stable.
     attractive : ndarray of bool, shape (n, r)
-        Whether the net interaction over a cycle is attractive (I_c > 0; else repulsive).
+        Whether the net interaction over a cycle is attractive (I_c > 0, phase lag above the
+        free one; else repulsive).
+    repulsive_branch : ndarray of bool, shape (n, r)
+        Whether a stable root lies on the high-amplitude (repulsive, H) branch rather than the
+        low (attractive, L) one: the higher of two coexisting stable roots, or a lone stable
+        root with a net repulsion. (At the far end of the H branch its net force turns
+        attractive while it is still the higher root.)
     dissipated_energy : ndarray, shape (n, r)
         E_dis in J per cycle from the phase.
     """
@@ -349,6 +360,7 @@ class AmplitudeCurve:
     phase: np.ndarray
     stable: np.ndarray
     attractive: np.ndarray
+    repulsive_branch: np.ndarray
     dissipated_energy: np.ndarray
 
     def branch(self, name: str) -> tuple[np.ndarray, np.ndarray]:
@@ -366,7 +378,8 @@ class AmplitudeCurve:
             one of largest amplitude.
         """
         check_choice("name", name, BRANCHES)
-        mask = self.stable & (self.attractive if name == "attractive" else ~self.attractive)
+        mask = self.stable & (~self.repulsive_branch if name == "attractive"
+                              else self.repulsive_branch)
         amp = np.where(mask, self.amplitude, -np.inf)
         j = np.argmax(amp, axis=1)
         rows = np.arange(self.distance.size)
@@ -384,9 +397,10 @@ class AmplitudeCurve:
     def sweep(self, direction: str = "approach"):
         """The state a slow approach (or retraction) follows, with its jump.
 
-        The tip stays on the branch it is on while that branch exists; where it ends it jumps to
-        the stable root nearest in amplitude. Far from the sample (approach start) the tip is on
-        the attractive branch.
+        The tip stays on the branch it is on (the lower or the higher of two coexisting stable
+        roots) while that branch exists; where it ends (two stable roots become one, nearer the
+        other branch's amplitude) it jumps. The approach starts far away, on the low branch;
+        the retraction starts close in, on the highest stable root.
 
         Parameters
         ----------
@@ -404,25 +418,26 @@ class AmplitudeCurve:
         order = order[::-1] if direction == "approach" else order
         n = self.distance.size
         amp, phs = np.full(n, np.nan), np.full(n, np.nan)
-        jumps, current = [], None
-        for i in order:
-            ok = self.stable[i] & np.isfinite(self.amplitude[i])
-            if not ok.any():
+        jumps, prev, side = [], None, None  # side: 0 lowest, -1 highest of the stable roots
+        for i in order:  # bounded: one pass over the distances
+            js = np.flatnonzero(self.stable[i] & np.isfinite(self.amplitude[i]))
+            if js.size == 0:
                 continue
-            js = np.flatnonzero(ok)
-            same = [j for j in js if current is not None and self.attractive[i, j] == current]
-            if current is None:
-                att = [j for j in js if self.attractive[i, j]]
-                pick = (att or list(js))[-1] if direction == "approach" else js[-1]
-            elif same:
-                prev = amp[last]
-                pick = min(same, key=lambda j: abs(self.amplitude[i, j] - prev))
-            else:
-                prev = amp[last]
-                pick = min(js, key=lambda j: abs(self.amplitude[i, j] - prev))
-                jumps.append(float(self.distance[i]))
-            amp[i], phs[i] = self.amplitude[i, pick], self.phase[i, pick]
-            current, last = bool(self.attractive[i, pick]), i
+            js = js[np.argsort(self.amplitude[i, js])]
+            here = self.amplitude[i, js]
+            if prev is None:  # far away: the one (low) root; close in: the highest
+                pick = 0 if direction == "approach" else js.size - 1
+            elif js.size >= 2 and prev.size >= 2:
+                pick = 0 if side == 0 else js.size - 1  # stay on the branch
+            else:  # entering or leaving a coexistence: follow the nearest root
+                mine = prev[side]
+                pick = int(np.argmin(np.abs(here - mine)))
+                if prev.size >= 2 and js.size == 1 and \
+                        np.argmin(np.abs(prev - here[0])) != (side % prev.size):
+                    jumps.append(float(self.distance[i]))  # our branch ended
+            side = 0 if pick == 0 else -1
+            amp[i], phs[i] = here[pick], self.phase[i, js[pick]]
+            prev = here
         return amp, phs, jumps
 
 
@@ -457,9 +472,10 @@ def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCu
     zp = PARAMETERS["distance"]
     zc = check_array("distances", distances, "m", low=zp.low, high=zp.high,
                      low_inclusive=False, max_size=MAX_DISTANCES).ravel()
-    n, m = zc.size, AMPLITUDE_GRID
+    n = zc.size
     a_max = lever.max_amplitude * (1.0 + 1e-9)
-    grid = a_max * np.arange(1, m + 1) / m
+    grid = a_max * _GRID
+    m = grid.size
     zz = np.repeat(zc, m)
     aa = np.tile(grid, n)
     g = _balance(lever, zz, aa)[0].reshape(n, m)
@@ -494,11 +510,20 @@ def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCu
     phase[rows, slot] = np.arctan2(s, p)
     stable[rows, slot] = rising
     attractive[rows, slot] = i_c > 0
+    # branch labels: where two stable roots coexist the higher is the repulsive (H) branch and
+    # the lower the attractive (L) one, whatever the sign of the net force (which turns at the
+    # far end of the H branch); a lone stable root is named by the sign of its net force
+    high = stable & ~attractive
+    two = stable.sum(axis=1) >= 2
+    if two.any():
+        top = np.argmax(np.where(stable, np.nan_to_num(amplitude, nan=-1.0), -1.0), axis=1)
+        high[two] = False
+        high[np.flatnonzero(two), top[two]] = True
     e_dis = np.full(shape, np.nan)
     e_dis[rows, slot] = math.pi * root * (lever.drive_force * np.sin(phase[rows, slot]) -
                                           lever.spring_constant * lever.frequency_ratio * root /
                                           lever.quality_factor)
-    return AmplitudeCurve(lever, zc, amplitude, phase, stable, attractive, e_dis)
+    return AmplitudeCurve(lever, zc, amplitude, phase, stable, attractive, high, e_dis)
 
 
 @dataclass(frozen=True)
@@ -691,7 +716,7 @@ def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
     -------
     (float, float, float, bool)
         Rest distance z_c in m, phase lag in rad, E_dis in J per cycle there, and whether the
-        state is on the attractive branch.
+        state is on the attractive (low) branch.
 
     Raises
     ------
@@ -714,5 +739,6 @@ def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
     f = (amp[i - 1] - target) / (amp[i - 1] - amp[i])
     zc = z[i - 1] + f * (z[i] - z[i - 1])
     phase = phs[i - 1] + f * (phs[i] - phs[i - 1])
-    att = bool(curve.attractive[i][np.nanargmin(np.abs(curve.amplitude[i] - amp[i]))])
-    return float(zc), float(phase), float(lever.dissipated_energy(target, phase)), att
+    j = int(np.nanargmin(np.abs(curve.amplitude[i] - amp[i])))
+    return (float(zc), float(phase), float(lever.dissipated_energy(target, phase)),
+            not bool(curve.repulsive_branch[i, j]))
