@@ -7,9 +7,9 @@
 from ._forces import FORCE_PARAMETERS, tip_sample_force, work_of_adhesion
 from .tapping import (PARAMETERS as TAPPING_PARAMETERS, AmplitudeCurve, SteadyState,
                       TappingLever, amplitude_curve, free_response, integrate,
-                      setpoint_state)
+                      setpoint_state, TappingMode)
 # frequency modulation and lateral force (h-fmlfm): the lead adds their exports here
 
 __all__ = ["FORCE_PARAMETERS", "tip_sample_force", "work_of_adhesion", "TAPPING_PARAMETERS",
            "AmplitudeCurve", "SteadyState", "TappingLever", "amplitude_curve", "free_response",
-           "integrate", "setpoint_state"]
+           "integrate", "setpoint_state", "TappingMode"]

@@ -11,9 +11,9 @@ with the tip-sample force F_ts of :mod:`afmsmiler.modes._forces` (van der Waals,
 optional sample damping; Garcia and Perez, Surf. Sci. Rep. 47, 197 (2002)).
 
 **Reference: time integration** (:func:`integrate`). scipy's ``solve_ivp`` (DOP853, relative
-tolerance 1e-9, absolute 1e-11 A0) integrates the equation in the dimensionless time w0 t from a chosen start (the
-top of a harmonic motion of given amplitude and phase, so that the tip starts out of contact on
-the branch the start lies on) in blocks of :data:`BLOCK_PERIODS` drive periods. The amplitude A
+tolerance 1e-9, absolute 1e-11 A0) integrates the equation in the dimensionless time w0 t from a
+chosen start (the top of a harmonic motion of given amplitude and phase, so that the tip starts
+out of contact on the branch the start lies on) in blocks of :data:`BLOCK_PERIODS` drive periods. The amplitude A
 and phase lag phi of the first harmonic, z ~ A cos(w t - phi), are taken by lock-in over the last
 whole period of each block (64 samples a period, an exact quadrature for a periodic signal's
 first harmonic up to the 63rd harmonic). A transient decays as exp(-pi W n / Q), so a change c
@@ -61,6 +61,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from types import MappingProxyType
 
 import numpy as np
 from scipy.integrate import solve_ivp
@@ -68,13 +69,15 @@ from scipy.integrate import solve_ivp
 from ..brownian import QUALITY_FACTOR
 from ..contact.quantities import PARAMETERS as CONTACT
 from ..contact.tips import reduced_modulus
+from ..imaging.modes import Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
 from ..validation import check_array, check_choice, check_integer, check_range
 from ._forces import FORCE_PARAMETERS, _force
 
 __all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "amplitude_curve",
-           "integrate", "free_response", "setpoint_state", "BRANCHES", "AMPLITUDE_GRID", "MAX_DISTANCES",
-           "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS", "SETPOINT_GRID"]
+           "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
+           "AMPLITUDE_GRID", "MAX_DISTANCES", "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS",
+           "SETPOINT_GRID"]
 
 #: The two branches of the amplitude-distance curve.
 BRANCHES = ("attractive", "repulsive")
@@ -90,7 +93,7 @@ LOCKIN_PERIODS = 10
 #: Samples per period of the lock-in.
 _SAMPLES = 64
 # Gauss-Legendre nodes on the free and the contact part of a half period
-_FREE_NODES, _CONTACT_NODES = 48, 32
+_FREE_NODES, _CONTACT_NODES = 32, 16
 _X_FREE, _W_FREE = np.polynomial.legendre.leggauss(_FREE_NODES)
 _X_CONTACT, _W_CONTACT = np.polynomial.legendre.leggauss(_CONTACT_NODES)
 _ILLINOIS_STEPS = 40
@@ -568,7 +571,7 @@ class SteadyState:
 
     @property
     def dissipated_energy(self) -> float:
-        """E_dis in J from this state's amplitude and phase (:meth:`TappingLever.dissipated_energy`)."""
+        """E_dis in J from this state's amplitude and phase (``lever.dissipated_energy``)."""
         return self.lever.dissipated_energy(self.amplitude, self.phase)
 
 
@@ -742,3 +745,93 @@ def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
     j = int(np.nanargmin(np.abs(curve.amplitude[i] - amp[i])))
     return (float(zc), float(phase), float(lever.dissipated_energy(target, phase)),
             not bool(curve.repulsive_branch[i, j]))
+
+
+class TappingMode(Mode):
+    """Amplitude-modulation imaging through module (f)'s scanner: height and phase channels.
+
+    An ideal (infinitely fast) amplitude feedback holds the amplitude at the setpoint r A0: at
+    every pixel the lever rests at the distance z_c(material) of :func:`setpoint_state` above
+    the apex surface, with the phase lag and the dissipation of that state. The height channels
+    are the apex surface plus z_c(material) - z_c(first material): the topography where the
+    sample is the first material, plus the apparent step a change of material makes (a stiffer
+    or less adhesive material lifts the lever). The phase channels show the materials' contrast,
+    which dissipation in the sample makes (E_dis = (pi k A^2 / Q)[(A0 / A) sin(phi) - W]).
+
+    Parameters
+    ----------
+    levers : TappingLever or sequence of TappingLever
+        The lever on each material (same lever, a different sample: modulus, viscosity, ...);
+        at most 16.
+    setpoint_ratio : float
+        Setpoint r = A_sp / A0, in (0, 1).
+    material : callable, optional
+        ``material(x, y)`` -> integer array (index into ``levers``) of the material at positions
+        x, y in m on the sample (arrays of one shape); default: the first everywhere.
+
+    Raises
+    ------
+    ValueError
+        On a setpoint outside (0, 1) or no lever, before any scan.
+    TypeError
+        If a lever is not a :class:`TappingLever` or ``material`` is not callable.
+    """
+
+    channels = ("height trace", "height retrace", "phase trace", "phase retrace",
+                "dissipation trace")
+    units = MappingProxyType({"phase trace": "rad", "phase retrace": "rad",
+                              "dissipation trace": "J"})
+
+    def __init__(self, levers, setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
+                 material=None):
+        levers = (levers,) if isinstance(levers, TappingLever) else tuple(levers)
+        if not 1 <= len(levers) <= 16:
+            raise ValueError(f"levers must hold 1 to 16 levers, got {len(levers)}")
+        self.levers = tuple(_check_lever(lever) for lever in levers)
+        self.setpoint_ratio = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
+        if material is not None and not callable(material):
+            raise TypeError(f"material must be a callable material(x, y), got "
+                            f"{type(material).__name__}")
+        self.material = material
+        states = [setpoint_state(self.setpoint_ratio, lever) for lever in self.levers]
+        #: Per material: rest distance z_c in m, phase lag in rad, E_dis in J.
+        self.distance = np.array([s[0] for s in states])
+        self.phase = np.array([s[1] for s in states])
+        self.dissipation = np.array([s[2] for s in states])
+
+    def _which(self, x, y):
+        if self.material is None:
+            return np.zeros(np.shape(x), dtype=int)
+        m = np.asarray(self.material(x, y))
+        if m.shape != np.shape(x) or m.dtype.kind not in "iu" or m.size and \
+                (m.min() < 0 or m.max() >= len(self.levers)):
+            raise ValueError(f"material(x, y) must give integers in [0, {len(self.levers) - 1}] "
+                             f"shaped like x, got {m.dtype} {m.shape}")
+        return m
+
+    def line(self, plan: ScanPlan, row: int, state=None) -> ModeLine:
+        """One line: height, phase and dissipation at each pixel of trace and retrace.
+
+        Parameters
+        ----------
+        plan : afmsmiler.imaging.modes.ScanPlan
+            The scan.
+        row : int
+            Line index.
+        state : object
+            Unused (the feedback is ideal: nothing carries over).
+
+        Returns
+        -------
+        afmsmiler.imaging.modes.ModeLine
+        """
+        out = {}
+        ref = self.distance[0]
+        for name, heights, x, y in (("trace", plan.trace, plan.x_trace, plan.y_trace),
+                                    ("retrace", plan.retrace, plan.x_retrace, plan.y_retrace)):
+            m = self._which(x[row], y[row])
+            out[f"height {name}"] = heights[row] + self.distance[m] - ref
+            out[f"phase {name}"] = self.phase[m]
+            if name == "trace":
+                out["dissipation trace"] = self.dissipation[m]
+        return ModeLine(out, None)
