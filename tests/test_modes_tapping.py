@@ -145,7 +145,7 @@ def test_dissipated_energy_from_phase_is_the_damping_work(runs):
     lever, _, out = runs
     for zc, att, a, phi, e_fast, state in out:
         scale = math.pi * lever.spring_constant * state.amplitude ** 2 / lever.quality_factor
-        assert state.damping_work > 0
+        assert state.damping_work >= 0  # 0 where the tip never touches (10 nm)
         assert abs(state.dissipated_energy - state.damping_work) < 1e-3 * scale, (zc, att)
         # the fast solver's own E_dis carries its phase error: dE/dphi = pi F0 A cos(phi), some
         # 0.01 pi k A^2 / Q for the 0.2 deg it has on the repulsive branch

@@ -3,7 +3,7 @@
 A sphere of radius R above a flat sample at distance d (m; d < a0 means contact, indentation
 delta = a0 - d) feels, in the model that Garcia and Perez use for amplitude-modulation AFM
 (R. Garcia and R. Perez, "Dynamic atomic force microscopy methods", Surf. Sci. Rep. 47, 197
-(2002), Eqs. 19-21)::
+(2002))::
 
     F(d) = -H R / (6 d^2)                                         d >  a0  (van der Waals)
     F(d) = -H R / (6 a0^2) + (4/3) E* sqrt(R) (a0 - d)^(3/2)       d <= a0  (DMT contact)

@@ -13,15 +13,14 @@ optional sample damping; Garcia and Perez, Surf. Sci. Rep. 47, 197 (2002)).
 **Reference: time integration** (:func:`integrate`). scipy's ``solve_ivp`` (DOP853, relative
 tolerance 1e-9, absolute 1e-11 A0) integrates the equation in the dimensionless time w0 t from a
 chosen start (the top of a harmonic motion of given amplitude and phase, so that the tip starts
-out of contact on the branch the start lies on) in blocks of :data:`BLOCK_PERIODS` drive periods. The amplitude A
-and phase lag phi of the first harmonic, z ~ A cos(w t - phi), are taken by lock-in over the last
-whole period of each block (64 samples a period, an exact quadrature for a periodic signal's
-first harmonic up to the 63rd harmonic). A transient decays as exp(-pi W n / Q), so a change c
-between two successive blocks leaves at most c r / (1 - r) to come, r = exp(-pi W
+out of contact on the branch the start lies on) in blocks of :data:`BLOCK_PERIODS` drive periods.
+The amplitude A and phase lag phi of the first harmonic, z ~ A cos(w t - phi), are taken by
+lock-in over the last whole period of each block (64 samples a period, an exact quadrature for a
+periodic signal's first harmonic up to the 63rd harmonic). A transient decays as exp(-pi W n / Q),
+so a change c between two successive blocks leaves at most c r / (1 - r) to come, r = exp(-pi W
 BLOCK_PERIODS / Q); the transient is over when that estimate is below 1e-4 A0 in amplitude and
-0.01 deg in phase (far below the 1 % and 2 deg the comparisons need), at most
-:data:`MAX_PERIODS` periods. The result is then the lock-in over
-:data:`LOCKIN_PERIODS` whole periods.
+0.01 deg in phase (far below the 1 % and 2 deg the comparisons need), at most :data:`MAX_PERIODS`
+periods. The result is then the lock-in over :data:`LOCKIN_PERIODS` whole periods.
 
 **Fast steady state: first-harmonic balance** (:func:`amplitude_curve`). With z = A cos(theta),
 theta = w t - phi, projecting the equation on cos(theta) and sin(theta) over one period (the
@@ -649,8 +648,6 @@ def integrate(distance: float, lever: TappingLever | None = None, *, start=None,
     period = 2.0 * math.pi / w
     tau = phi_start / w
     y = np.array([a_start / scale, 0.0, 0.0])
-    samples = np.arange(_SAMPLES) / _SAMPLES
-    cos_ref, sin_ref = np.cos(2 * math.pi * samples), np.sin(2 * math.pi * samples)
 
     def run(n, tau, y):
         """n periods from tau; returns the end state and the last n periods' samples."""
