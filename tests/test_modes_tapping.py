@@ -71,11 +71,11 @@ def test_harmonic_integrals_equal_quadrature_of_their_definition(zc, a):
     u = (lever.intermolecular_distance - zc) / a
     if -1 < u < 1:
         brk = [math.acos(u), 2 * math.pi - math.acos(u)]
-    opts = dict(points=brk or None, limit=400, epsabs=0, epsrel=1e-11)
+    scale = H * R / (6 * lever.intermolecular_distance ** 2)  # the contact force scale
+    opts = dict(points=brk or None, limit=400, epsabs=1e-12 * scale, epsrel=1e-11)
     i_c = quad(lambda t: f(t) * math.cos(t), 0, 2 * math.pi, **opts)[0] / math.pi
     i_s = quad(lambda t: f(t) * math.sin(t), 0, 2 * math.pi, **opts)[0] / math.pi
     got_c, got_s = tapping._integrals(lever, np.array([zc]), np.array([a]))
-    scale = H * R / (6 * lever.intermolecular_distance ** 2)  # the contact force scale
     assert got_c[0] == pytest.approx(i_c, rel=1e-5, abs=1e-6 * scale)
     assert got_s[0] == pytest.approx(i_s, rel=1e-4, abs=1e-6 * scale)
 
@@ -153,6 +153,16 @@ def test_dissipated_energy_from_phase_is_the_damping_work(runs):
             (zc, att)
         if not att:  # repulsive: the sample takes a sizeable share, compare it relatively
             assert state.dissipated_energy == pytest.approx(state.damping_work, rel=0.01)
+
+
+def test_dissipated_energy_is_cleveland_formula_at_resonance_and_positive_for_a_lossy_sample():
+    """(pi k A^2 / Q)[(A0 / A) sin(phi) - w / w0] (Cleveland et al. 1998), typed here."""
+    lever = TappingLever()
+    a, phi = 6e-9, math.radians(70.0)
+    typed = math.pi * 40.0 * a ** 2 / 400.0 * (10e-9 / a * math.sin(phi) - 1.0)
+    assert lever.dissipated_energy(a, phi) == pytest.approx(typed, rel=1e-12)
+    assert typed > 0  # energy lost to the sample counts positive
+    assert lever.dissipated_energy(10e-9, math.pi / 2) == pytest.approx(0.0, abs=1e-30)
 
 
 def test_without_sample_damping_no_energy_is_dissipated():
