@@ -137,6 +137,20 @@ def test_fast_solver_matches_time_integration_on_both_branches(runs):
 
 
 @pytest.mark.slow
+@pytest.mark.parametrize("ratio", [0.998, 1.002])
+def test_fast_solver_matches_time_integration_off_resonance(ratio):
+    lever = TappingLever(frequency_ratio=ratio, sample_viscosity=100.0)
+    curve = amplitude_curve([3e-9, 6e-9], lever)
+    for i, zc in enumerate(curve.distance):
+        for j in np.flatnonzero(curve.stable[i]):
+            a, phi = curve.amplitude[i, j], curve.phase[i, j]
+            state = integrate(zc, lever, start=(a, phi))
+            assert state.converged
+            assert state.amplitude == pytest.approx(a, rel=0.01), (zc, j)
+            assert abs(math.degrees(state.phase - phi)) < 2.0, (zc, j)
+
+
+@pytest.mark.slow
 def test_dissipated_energy_from_phase_is_the_damping_work(runs):
     """E_dis = pi F0 A sin(phi) - pi k W A^2 / Q counts only the first harmonic of the lever's
     own damping, and assumes the stored energy no longer changes: the higher harmonics and the
