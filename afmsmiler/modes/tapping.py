@@ -31,8 +31,10 @@ Lee and Jhe, Phys. Rev. Lett. 97, 036104 (2006) in the same form)::
     F0 sin(phi) = (k W / Q) A + I_s(z_c, A),       I_s = (1/pi) int_0^2pi F_ts sin(theta) d theta
 
 so the amplitude solves g(A) = |(k (1 - W^2) A - I_c, (k W / Q) A + I_s)| - F0 = 0. I_c > 0 is
-a net attraction (the attractive, low-amplitude branch, phi > 90 deg at resonance), I_c < 0 a
-net repulsion (the repulsive, high-amplitude branch). Since I_s >= 0 (damping only takes energy),
+a net attraction (phi above the free phase), I_c < 0 a net repulsion. Where two stable roots
+coexist, the lower is the attractive (L) branch and the higher the repulsive (H) one (whose net
+force turns attractive at its far end); a slow approach or retraction follows its branch until
+it ends and jumps there (:meth:`AmplitudeCurve.sweep`). Since I_s >= 0 (damping only takes energy),
 every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I is evaluated in closed form
 without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
 the two parts of the period with contact (the contact part in the variable s, theta = theta_c +
@@ -41,7 +43,7 @@ once: g on a grid of :data:`AMPLITUDE_GRID` even steps up to A_max (and 11 geome
 from 1e-5 A_max up to the first), every sign change refined by the Illinois
 method, all vectorised over z_c. A root is stable where g rises through zero (dg/dA > 0: the
 slow flow of the averaged equations pushes a slightly larger amplitude back down; the middle of
-three roots is the saddle, Nayfeh and Mook, *Nonlinear Oscillations*, Sec. 4.1). Two roots
+three roots is the saddle; Nayfeh and Mook, *Nonlinear Oscillations* (1979)). Two roots
 closer than one grid step (at the very ends of a coexistence region) can be missed; the region
 then looks at most one grid step (A_max / AMPLITUDE_GRID) shorter in amplitude.
 
