@@ -81,10 +81,11 @@ UNITS = MappingProxyType({
     "N/m": ("N/m", 1.0), "N m": ("N m", 1.0), "nN m": ("N m", 1e-9),
     "Pa": ("Pa", 1.0), "kPa": ("Pa", 1e3), "MPa": ("Pa", 1e6), "GPa": ("Pa", 1e9),
     "J/m^2": ("J/m^2", 1.0), "mJ/m^2": ("J/m^2", 1e-3),
+    "J": ("J", 1.0), "aJ": ("J", 1e-18), "zJ": ("J", 1e-21),
     "1/Pa": ("1/Pa", 1.0), "1e-11/Pa": ("1/Pa", 1e-11),
     # mass, density, damping
     "kg": ("kg", 1.0), "ng": ("kg", 1e-12), "kg/m^3": ("kg/m^3", 1.0),
-    "kg/s": ("kg/s", 1.0), "ng/us": ("kg/s", 1e-12 / 1e-6),
+    "kg/s": ("kg/s", 1.0), "ng/us": ("kg/s", 1e-12 / 1e-6), "Pa s": ("Pa s", 1.0),
     # time, frequency, speed
     "s": ("s", 1.0), "ms": ("s", 1e-3), "us": ("s", 1e-6),
     "1/s": ("1/s", 1.0), "1/us": ("1/s", 1e6),

@@ -18,7 +18,8 @@ from hypothesis import strategies as st
 from afmsmiler.parameters import UNITS, Parameter, read_only, unit_scale
 
 # -- an independent spelling of the units: SI prefixes and base units -----------------------------
-PREFIXES = {"": 1.0, "f": sc.femto, "p": sc.pico, "n": sc.nano, "u": sc.micro, "\u00b5": sc.micro,
+PREFIXES = {"": 1.0, "z": sc.zepto, "a": sc.atto,
+            "f": sc.femto, "p": sc.pico, "n": sc.nano, "u": sc.micro, "\u00b5": sc.micro,
             "m": sc.milli, "c": sc.centi, "k": sc.kilo, "M": sc.mega, "G": sc.giga}
 #: base unit -> (the SI unit it is measured in, SI value of one base unit)
 BASES = {"m": ("m", 1.0), "g": ("kg", sc.gram), "s": ("s", 1.0), "N": ("N", 1.0),

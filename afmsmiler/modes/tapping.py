@@ -1,0 +1,836 @@
+"""Amplitude-modulation (tapping) AFM: a driven cantilever tapping a sample, two solvers.
+
+The cantilever is a point mass m = k / w0^2 on a spring k with quality factor Q (module (a)'s
+first flexural mode), its rest position a distance z_c above the sample, driven at the angular
+frequency w = 2 pi f by the force F0 cos(w t) that gives the free amplitude A0::
+
+    m z'' + (m w0 / Q) z' + k z = F0 cos(w t) + F_ts(z_c + z, z'),
+    F0 = k A0 sqrt((1 - W^2)^2 + (W / Q)^2),     W = w / w0
+
+with the tip-sample force F_ts of :mod:`afmsmiler.modes._forces` (van der Waals, DMT contact,
+optional sample damping; Garcia and Perez, Surf. Sci. Rep. 47, 197 (2002)).
+
+**Reference: time integration** (:func:`integrate`). scipy's ``solve_ivp`` (DOP853, relative
+tolerance 1e-9, absolute 1e-11 A0) integrates the equation in the dimensionless time w0 t from a
+chosen start (the top of a harmonic motion of given amplitude and phase, so that the tip starts
+out of contact on the branch the start lies on) in blocks of :data:`BLOCK_PERIODS` drive periods.
+The amplitude A and phase lag phi of the first harmonic, z ~ A cos(w t - phi), are taken by
+lock-in over the last whole period of each block (64 samples a period, an exact quadrature for a
+periodic signal's first harmonic up to the 63rd harmonic). A transient decays as exp(-pi W n / Q),
+so a change c between two successive blocks leaves at most c r / (1 - r) to come, r = exp(-pi W
+BLOCK_PERIODS / Q); the transient is over when that estimate is below 1e-4 A0 in amplitude and
+0.01 deg in phase (far below the 1 % and 2 deg the comparisons need), at most :data:`MAX_PERIODS`
+periods. The result is then the lock-in over :data:`LOCKIN_PERIODS` whole periods.
+
+**Fast steady state: first-harmonic balance** (:func:`amplitude_curve`). With z = A cos(theta),
+theta = w t - phi, projecting the equation on cos(theta) and sin(theta) over one period (the
+virial and energy-balance equations of San Paulo and Garcia, Phys. Rev. B 64, 193411 (2001);
+Lee and Jhe, Phys. Rev. Lett. 97, 036104 (2006) in the same form)::
+
+    F0 cos(phi) = k (1 - W^2) A - I_c(z_c, A),     I_c = (1/pi) int_0^2pi F_ts cos(theta) d theta
+    F0 sin(phi) = (k W / Q) A + I_s(z_c, A),       I_s = (1/pi) int_0^2pi F_ts sin(theta) d theta
+
+so the amplitude solves g(A) = |(k (1 - W^2) A - I_c, (k W / Q) A + I_s)| - F0 = 0. I_c > 0 is
+a net attraction (phi above the free phase), I_c < 0 a net repulsion. Where two stable roots
+coexist, the lower is the attractive (L) branch and the higher the repulsive (H) one (whose net
+force turns attractive at its far end); a slow approach or retraction follows its branch until
+it ends and jumps there (:meth:`AmplitudeCurve.sweep`). Since I_s >= 0 (damping only takes energy),
+every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I is evaluated in closed form
+without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
+the two parts of the period with contact (the contact part in the variable s, theta = theta_c +
+(pi - theta_c) s^2, which makes the square-root edge smooth). All roots at every z_c are found at
+once: g on a grid of :data:`AMPLITUDE_GRID` even steps up to A_max (and 11 geometric steps
+from 1e-5 A_max up to the first), every sign change refined by the Illinois
+method, all vectorised over z_c. A root is stable where g rises through zero (dg/dA > 0: the
+slow flow of the averaged equations pushes a slightly larger amplitude back down; the middle of
+three roots is the saddle; Nayfeh and Mook, *Nonlinear Oscillations* (1979)). Two roots
+closer than one grid step (at the very ends of a coexistence region) can be missed; the region
+then looks at most one grid step (A_max / AMPLITUDE_GRID) shorter in amplitude.
+
+The energy the sample takes per cycle follows from the phase (energy balance: the drive's work
+pi F0 A sin(phi) minus the lever's damping pi k W A^2 / Q; Cleveland et al., Appl. Phys. Lett. 72,
+2613 (1998))::
+
+    E_dis = pi F0 A sin(phi) - pi k W A^2 / Q = (pi k A^2 / Q) [(A0 / A) sin(phi) - W]   (W = 1)
+
+in the convention that the phase lag phi is 90 deg for the free lever at resonance and that
+positive E_dis is energy lost to the sample. The first-harmonic balance leaves out the static
+deflection <F_ts> / k and the higher harmonics; for a stiff lever of high Q (k = 40 N/m, Q = 400,
+the defaults) both move A by well under 1 % (the tests compare it with the time integration).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields
+from types import MappingProxyType
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from ..brownian import QUALITY_FACTOR
+from ..contact.quantities import PARAMETERS as CONTACT
+from ..contact.tips import reduced_modulus
+from ..imaging.modes import Mode, ModeLine, ScanPlan
+from ..parameters import Parameter, read_only
+from ..validation import check_array, check_choice, check_integer, check_range
+from ._forces import FORCE_PARAMETERS, _force
+
+__all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "amplitude_curve",
+           "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
+           "AMPLITUDE_GRID", "MAX_DISTANCES", "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS",
+           "SETPOINT_GRID"]
+
+#: The two branches of the amplitude-distance curve.
+BRANCHES = ("attractive", "repulsive")
+#: Amplitudes on which g(A) is sampled for its sign changes, per distance.
+AMPLITUDE_GRID = 160
+#: Most distances one :func:`amplitude_curve` call solves (10 000 take about a second).
+MAX_DISTANCES = 10_000
+#: Longest time integration in drive periods (bounded loop; the transient criterion stops first).
+MAX_PERIODS = 20_000
+#: Drive periods per block of the transient criterion, and periods of the final lock-in.
+BLOCK_PERIODS = 10
+LOCKIN_PERIODS = 10
+#: Samples per period of the lock-in.
+_SAMPLES = 64
+# Gauss-Legendre nodes on the free and the contact part of a half period
+_FREE_NODES, _CONTACT_NODES = 32, 16
+_X_FREE, _W_FREE = np.polynomial.legendre.leggauss(_FREE_NODES)
+_X_CONTACT, _W_CONTACT = np.polynomial.legendre.leggauss(_CONTACT_NODES)
+_ILLINOIS_STEPS = 40
+# the amplitude grid as a fraction of the largest amplitude: AMPLITUDE_GRID even steps, below the
+# first of them a geometric run down to 1e-5 (the small amplitudes of a tip held near the sample)
+_GRID = np.concatenate((np.geomspace(1e-5, 1.0 / AMPLITUDE_GRID, 12)[:-1],
+                        np.arange(1, AMPLITUDE_GRID + 1) / AMPLITUDE_GRID))
+# transient criterion: estimated remaining error in amplitude (fraction of A0) and phase (deg)
+_AMPLITUDE_TOL, _PHASE_TOL = 1e-4, 1e-2
+
+#: The user-settable quantities of the tapping model (SI), with :data:`FORCE_PARAMETERS`: a
+#: tapping lever (k = 40 N/m, f0 = 300 kHz, Q = 400 in air) at A0 = 10 nm, driven at resonance.
+PARAMETERS = read_only({**{p.name: p for p in (
+    CONTACT["spring_constant"].with_(default=40.0, slider_low=0.5, slider_high=100.0),
+    Parameter(name="resonance_frequency", unit="Hz", display_unit="kHz", default=300e3,
+              low=100.0, high=1e8, slider_low=10e3, slider_high=2e6, log=True,
+              label="resonance frequency f0"),
+    QUALITY_FACTOR.with_(default=400.0, low=0.0, low_inclusive=False, slider_low=1.0,
+                         slider_high=2000.0),
+    Parameter(name="frequency_ratio", unit="", default=1.0, low=0.5, high=1.5,
+              slider_low=0.98, slider_high=1.02, label="drive frequency / f0"),
+    Parameter(name="free_amplitude", unit="m", display_unit="nm", default=10e-9, low=0.0,
+              high=1e-6, low_inclusive=False, slider_low=1e-9, slider_high=100e-9,
+              label="free amplitude A0"),
+    Parameter(name="distance", unit="m", display_unit="nm", default=8e-9, low=0.0, high=1e-5,
+              low_inclusive=False, slider_low=0.2e-9, slider_high=30e-9,
+              label="rest tip-sample distance z_c"),
+    Parameter(name="setpoint_ratio", unit="", default=0.8, low=0.0, high=1.0,
+              low_inclusive=False, high_inclusive=False, slider_low=0.05, slider_high=0.99,
+              label="setpoint A_sp / A0"),
+)}, **FORCE_PARAMETERS})
+
+
+@dataclass(frozen=True)
+class TappingLever:
+    """A driven lever and a sample: every quantity of the tapping model, validated (SI units).
+
+    Parameters
+    ----------
+    spring_constant : float
+        Spring constant k in N/m.
+    resonance_frequency : float
+        Free resonance frequency f0 in Hz.
+    quality_factor : float
+        Quality factor Q, > 0.
+    frequency_ratio : float
+        Drive frequency over f0, W = w / w0, in [0.5, 1.5] (a drive near resonance).
+    free_amplitude : float
+        Free amplitude A0 in m (the drive force F0 is the one that gives it far from the sample).
+    radius : float
+        Tip radius R in m.
+    hamaker_constant : float
+        Hamaker constant H in J.
+    youngs_modulus : float
+        Young's modulus E of the sample in Pa (rigid tip).
+    poisson_ratio : float
+        Poisson's ratio nu of the sample.
+    intermolecular_distance : float
+        Intermolecular distance a0 in m.
+    sample_viscosity : float
+        Sample viscosity eta in Pa s (0: no dissipation in the sample).
+
+    Raises
+    ------
+    ValueError
+        Naming the first parameter outside its range (:data:`PARAMETERS`), before any work.
+
+    Examples
+    --------
+    >>> lever = TappingLever()
+    >>> round(lever.drive_force * 1e9, 3)  # F0 = k A0 / Q at resonance, in nN
+    1.0
+    """
+
+    spring_constant: float = PARAMETERS["spring_constant"].default
+    resonance_frequency: float = PARAMETERS["resonance_frequency"].default
+    quality_factor: float = PARAMETERS["quality_factor"].default
+    frequency_ratio: float = PARAMETERS["frequency_ratio"].default
+    free_amplitude: float = PARAMETERS["free_amplitude"].default
+    radius: float = PARAMETERS["radius"].default
+    hamaker_constant: float = PARAMETERS["hamaker_constant"].default
+    youngs_modulus: float = PARAMETERS["youngs_modulus"].default
+    poisson_ratio: float = PARAMETERS["poisson_ratio"].default
+    intermolecular_distance: float = PARAMETERS["intermolecular_distance"].default
+    sample_viscosity: float = PARAMETERS["sample_viscosity"].default
+
+    def __post_init__(self):
+        for f in fields(self):
+            object.__setattr__(self, f.name, PARAMETERS[f.name].check(getattr(self, f.name)))
+
+    @property
+    def reduced_modulus(self) -> float:
+        """E* = E / (1 - nu^2) in Pa (module (d), rigid tip)."""
+        return reduced_modulus(self.youngs_modulus, self.poisson_ratio)
+
+    @property
+    def drive_force(self) -> float:
+        """Drive amplitude F0 = k A0 sqrt((1 - W^2)^2 + (W / Q)^2) in N."""
+        w, q = self.frequency_ratio, self.quality_factor
+        return self.spring_constant * self.free_amplitude * math.hypot(1.0 - w * w, w / q)
+
+    @property
+    def free_phase(self) -> float:
+        """Phase lag of the free lever, atan2(W / Q, 1 - W^2), in rad (pi / 2 at resonance)."""
+        w = self.frequency_ratio
+        return math.atan2(w / self.quality_factor, 1.0 - w * w)
+
+    @property
+    def max_amplitude(self) -> float:
+        """Bound F0 Q / (k W) in m on every steady amplitude (the sample only takes energy)."""
+        return self.drive_force * self.quality_factor / (self.spring_constant *
+                                                         self.frequency_ratio)
+
+    def force(self, distance, velocity=0.0):
+        """Tip-sample force F_ts(d, v) in N (see :func:`~afmsmiler.modes.tip_sample_force`).
+
+        Parameters
+        ----------
+        distance : float or array_like
+            Tip-sample distance d in m.
+        velocity : float or array_like
+            Tip velocity in m/s, positive away from the sample.
+
+        Returns
+        -------
+        float or ndarray
+        """
+        d = check_array("distance", distance, "m", low=-1e-6)
+        v = check_array("velocity", velocity, "m/s")
+        out = _force(d, v, self.radius, self.hamaker_constant, self.reduced_modulus,
+                     self.intermolecular_distance, self.sample_viscosity)
+        return out if out.ndim else float(out)
+
+    def dissipated_energy(self, amplitude, phase):
+        """E_dis = pi F0 A sin(phi) - pi k W A^2 / Q in J from amplitude and phase lag.
+
+        Parameters
+        ----------
+        amplitude : float or array_like
+            Amplitude A of the first harmonic in m.
+        phase : float or array_like
+            Phase lag phi of the tip behind the drive in rad (pi / 2: free, at resonance).
+
+        Returns
+        -------
+        float or ndarray
+            Energy in J the sample takes per cycle ((pi k A^2 / Q)[(A0 / A) sin(phi) - W]).
+        """
+        a = check_array("amplitude", amplitude, "m", low=0.0)
+        phi = check_array("phase", phase, "rad", low=-2 * math.pi, high=2 * math.pi)
+        out = math.pi * a * (self.drive_force * np.sin(phi) - self.spring_constant *
+                             self.frequency_ratio * a / self.quality_factor)
+        return out if out.ndim else float(out)
+
+
+def free_response(lever: TappingLever | None = None) -> tuple[float, float]:
+    """Amplitude and phase lag of the driven harmonic oscillator far from the sample.
+
+    Parameters
+    ----------
+    lever : TappingLever, optional
+        The lever (default: :class:`TappingLever` ()).
+
+    Returns
+    -------
+    (float, float)
+        A = F0 / (k sqrt((1 - W^2)^2 + (W / Q)^2)) in m (= A0 by construction) and
+        phi = atan2(W / Q, 1 - W^2) in rad.
+    """
+    lever = TappingLever() if lever is None else _check_lever(lever)
+    w, q = lever.frequency_ratio, lever.quality_factor
+    return (lever.drive_force / (lever.spring_constant * math.hypot(1.0 - w * w, w / q)),
+            lever.free_phase)
+
+
+def _check_lever(lever):
+    if not isinstance(lever, TappingLever):
+        raise TypeError(f"lever must be a TappingLever, got {type(lever).__name__}")
+    return lever
+
+
+# -- the first-harmonic integrals -----------------------------------------------------------------
+def _integrals(lever: TappingLever, zc: np.ndarray, a: np.ndarray):
+    """I_c and I_s in N for arrays of distances and amplitudes of one shape (a > 0)."""
+    hr = lever.hamaker_constant * lever.radius
+    a0 = lever.intermolecular_distance
+    i_c = np.empty_like(a)
+    i_s = np.zeros_like(a)
+    u = (a0 - zc) / a  # cos(theta_c): contact where cos(theta) < u
+    free = u <= -1.0
+    if free.any():
+        z, b = zc[free], a[free]
+        i_c[free] = hr / 3.0 * b / (z * z - b * b) ** 1.5
+    touch = ~free
+    if touch.any():
+        z, b = zc[touch, None], a[touch, None]
+        tc = np.arccos(np.clip(u[touch], -1.0, 1.0))[:, None]
+        # free part, theta in [0, theta_c] (empty when the tip never leaves the sample)
+        th = 0.5 * tc * (_X_FREE + 1.0)
+        c = np.cos(th)
+        d = z + b * c
+        free_part = np.sum(_W_FREE * (-hr / 6.0) / (d * d) * c, axis=1) * 0.5 * tc[:, 0]
+        # contact part, theta = theta_c + (pi - theta_c) s^2, s in [0, 1]
+        s = 0.5 * (_X_CONTACT + 1.0)
+        span = math.pi - tc
+        th = tc + span * s * s
+        c = np.cos(th)
+        delta = np.maximum(a0 - z - b * c, 0.0)
+        jac = _W_CONTACT * span * s  # 0.5 (GL on [0, 1]) * 2 s span
+        sq = np.sqrt(lever.radius * delta)
+        elastic = 4.0 / 3.0 * lever.reduced_modulus * sq * delta
+        contact_part = (-hr / (6.0 * a0 * a0) * (-np.sin(tc[:, 0]) + 0.0)
+                        + np.sum(jac * elastic * c, axis=1))
+        # the constant adhesion integrates exactly: int_{theta_c}^{pi} cos = -sin(theta_c)
+        i_c[touch] = 2.0 / math.pi * (free_part + contact_part)
+        if lever.sample_viscosity > 0.0:
+            w = 2.0 * math.pi * lever.resonance_frequency * lever.frequency_ratio
+            gamma = lever.sample_viscosity * sq
+            i_s[touch] = 2.0 / math.pi * w * b[:, 0] * np.sum(jac * gamma * np.sin(th) ** 2,
+                                                              axis=1)
+    return i_c, i_s
+
+
+def _balance(lever: TappingLever, zc, a):
+    """(g, P, S): g = |(P, S)| - F0 with P = F0 cos(phi), S = F0 sin(phi) of amplitude a."""
+    i_c, i_s = _integrals(lever, zc, a)
+    k, w, q = lever.spring_constant, lever.frequency_ratio, lever.quality_factor
+    p = k * (1.0 - w * w) * a - i_c
+    s = k * w / q * a + i_s
+    return np.hypot(p, s) - lever.drive_force, p, s
+
+
+@dataclass(frozen=True)
+class AmplitudeCurve:
+    """Every steady state of the first-harmonic balance at each distance (SI units).
+
+    Arrays are (distances, roots), roots in increasing amplitude, NaN where a distance has fewer
+    roots than the most any distance has.
+
+    Parameters
+    ----------
+    lever : TappingLever
+        The lever and sample.
+    distance : ndarray, shape (n,)
+        Rest tip-sample distances z_c in m.
+    amplitude : ndarray, shape (n, r)
+        Amplitudes A in m.
+    phase : ndarray, shape (n, r)
+        Phase lags phi in rad (pi / 2 for the free lever at resonance).
+    stable : ndarray of bool, shape (n, r)
+        Whether each root is stable.
+    attractive : ndarray of bool, shape (n, r)
+        Whether the net interaction over a cycle is attractive (I_c > 0, phase lag above the
+        free one; else repulsive).
+    repulsive_branch : ndarray of bool, shape (n, r)
+        Whether a stable root lies on the high-amplitude (repulsive, H) branch rather than the
+        low (attractive, L) one: the higher of two coexisting stable roots, or a lone stable
+        root with a net repulsion. (At the far end of the H branch its net force turns
+        attractive while it is still the higher root.)
+    dissipated_energy : ndarray, shape (n, r)
+        E_dis in J per cycle from the phase.
+    """
+
+    lever: TappingLever
+    distance: np.ndarray
+    amplitude: np.ndarray
+    phase: np.ndarray
+    stable: np.ndarray
+    attractive: np.ndarray
+    repulsive_branch: np.ndarray
+    dissipated_energy: np.ndarray
+
+    def branch(self, name: str) -> tuple[np.ndarray, np.ndarray]:
+        """Amplitude and phase of the stable root on one branch at each distance (NaN if none).
+
+        Parameters
+        ----------
+        name : str
+            ``"attractive"`` (low) or ``"repulsive"`` (high).
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            A in m and phi in rad, shape (n,); where a branch has two stable roots (rare), the
+            one of largest amplitude.
+        """
+        check_choice("name", name, BRANCHES)
+        mask = self.stable & (~self.repulsive_branch if name == "attractive"
+                              else self.repulsive_branch)
+        amp = np.where(mask, self.amplitude, -np.inf)
+        j = np.argmax(amp, axis=1)
+        rows = np.arange(self.distance.size)
+        has = mask.any(axis=1)
+        return (np.where(has, self.amplitude[rows, j], np.nan),
+                np.where(has, self.phase[rows, j], np.nan))
+
+    @property
+    def coexist(self) -> np.ndarray:
+        """Distances where both branches have a stable root, as a bool mask (n,)."""
+        a, _ = self.branch("attractive")
+        r, _ = self.branch("repulsive")
+        return np.isfinite(a) & np.isfinite(r)
+
+    def sweep(self, direction: str = "approach"):
+        """The state a slow approach (or retraction) follows, with its jump.
+
+        The tip stays on the branch it is on (the lower or the higher of two coexisting stable
+        roots) while that branch exists; where it ends (two stable roots become one, nearer the
+        other branch's amplitude) it jumps. The approach starts far away, on the low branch;
+        the retraction starts close in, on the highest stable root.
+
+        Parameters
+        ----------
+        direction : str
+            ``"approach"`` (decreasing z_c) or ``"retract"`` (increasing z_c).
+
+        Returns
+        -------
+        (ndarray, ndarray, list of float)
+            Amplitude in m and phase lag in rad at each distance (in this curve's order), and
+            the distances in m at which the tip jumped between branches.
+        """
+        check_choice("direction", direction, ("approach", "retract"))
+        order = np.argsort(self.distance)
+        order = order[::-1] if direction == "approach" else order
+        n = self.distance.size
+        amp, phs = np.full(n, np.nan), np.full(n, np.nan)
+        jumps, prev, side = [], None, None  # side: 0 lowest, -1 highest of the stable roots
+        for i in order:  # bounded: one pass over the distances
+            js = np.flatnonzero(self.stable[i] & np.isfinite(self.amplitude[i]))
+            if js.size == 0:
+                continue
+            js = js[np.argsort(self.amplitude[i, js])]
+            here = self.amplitude[i, js]
+            if prev is None:  # far away: the one (low) root; close in: the highest
+                pick = 0 if direction == "approach" else js.size - 1
+            elif js.size >= 2 and prev.size >= 2:
+                pick = 0 if side == 0 else js.size - 1  # stay on the branch
+            else:  # entering or leaving a coexistence: follow the nearest root
+                mine = prev[side]
+                pick = int(np.argmin(np.abs(here - mine)))
+                if prev.size >= 2 and js.size == 1 and \
+                        np.argmin(np.abs(prev - here[0])) != (side % prev.size):
+                    jumps.append(float(self.distance[i]))  # our branch ended
+            side = 0 if pick == 0 else -1
+            amp[i], phs[i] = here[pick], self.phase[i, js[pick]]
+            prev = here
+        return amp, phs, jumps
+
+
+def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCurve:
+    """All steady states (both branches, with stability) of the tapping lever at each distance.
+
+    Parameters
+    ----------
+    distances : array_like
+        Rest tip-sample distances z_c in m, each in (0, 1e-5], at most :data:`MAX_DISTANCES`.
+    lever : TappingLever, optional
+        Lever and sample (default :class:`TappingLever` ()).
+
+    Returns
+    -------
+    AmplitudeCurve
+
+    Raises
+    ------
+    ValueError
+        On distances out of range or too many of them.
+    TypeError
+        If ``lever`` is not a :class:`TappingLever`.
+
+    Examples
+    --------
+    >>> curve = amplitude_curve([30e-9, 5e-9])
+    >>> round(float(curve.branch("attractive")[0][0]) * 1e9, 3)  # far: the free amplitude
+    10.0
+    """
+    lever = TappingLever() if lever is None else _check_lever(lever)
+    zp = PARAMETERS["distance"]
+    zc = check_array("distances", distances, "m", low=zp.low, high=zp.high,
+                     low_inclusive=False, max_size=MAX_DISTANCES).ravel()
+    n = zc.size
+    a_max = lever.max_amplitude * (1.0 + 1e-9)
+    grid = a_max * _GRID
+    m = grid.size
+    zz = np.repeat(zc, m)
+    aa = np.tile(grid, n)
+    g = _balance(lever, zz, aa)[0].reshape(n, m)
+    # sign changes of g between neighbouring grid amplitudes (an exact zero counts once)
+    lo_neg = g[:, :-1] < 0
+    change = lo_neg != (g[:, 1:] < 0)
+    rows, cols = np.nonzero(change)
+    lo, hi = grid[cols], grid[cols + 1]
+    glo, ghi = g[rows, cols], g[rows, cols + 1]
+    z = zc[rows]
+    root = lo.copy()
+    for _ in range(_ILLINOIS_STEPS):  # Illinois: regula falsi that halves a retained end's g
+        new = hi - ghi * (hi - lo) / np.where(ghi != glo, ghi - glo, 1.0)
+        gnew = _balance(lever, z, new)[0]
+        keep = np.sign(gnew) == np.sign(ghi)  # hi is replaced; lo is retained once more
+        lo, glo = np.where(keep, lo, hi), np.where(keep, 0.5 * glo, ghi)
+        hi, ghi = new, gnew
+        done = np.all(np.abs(new - root) <= 1e-13 * a_max)
+        root = new
+        if done:
+            break
+    _, p, s = _balance(lever, z, root)
+    i_c = lever.spring_constant * (1.0 - lever.frequency_ratio ** 2) * root - p
+    rising = g[rows, cols] < 0
+    counts = np.bincount(rows, minlength=n)
+    r = max(int(counts.max()) if counts.size else 0, 1)
+    slot = np.arange(rows.size) - np.concatenate(([0], np.cumsum(counts)[:-1]))[rows]
+    shape = (n, r)
+    amplitude, phase = np.full(shape, np.nan), np.full(shape, np.nan)
+    stable, attractive = np.zeros(shape, bool), np.zeros(shape, bool)
+    amplitude[rows, slot] = root
+    phase[rows, slot] = np.arctan2(s, p)
+    stable[rows, slot] = rising
+    attractive[rows, slot] = i_c > 0
+    # branch labels: where two stable roots coexist the higher is the repulsive (H) branch and
+    # the lower the attractive (L) one, whatever the sign of the net force (which turns at the
+    # far end of the H branch); a lone stable root is named by the sign of its net force
+    high = stable & ~attractive
+    two = stable.sum(axis=1) >= 2
+    if two.any():
+        top = np.argmax(np.where(stable, np.nan_to_num(amplitude, nan=-1.0), -1.0), axis=1)
+        high[two] = False
+        high[np.flatnonzero(two), top[two]] = True
+    e_dis = np.full(shape, np.nan)
+    e_dis[rows, slot] = math.pi * root * (lever.drive_force * np.sin(phase[rows, slot]) -
+                                          lever.spring_constant * lever.frequency_ratio * root /
+                                          lever.quality_factor)
+    return AmplitudeCurve(lever, zc, amplitude, phase, stable, attractive, high, e_dis)
+
+
+@dataclass(frozen=True)
+class SteadyState:
+    """The steady state of a time integration (SI units), from lock-in over whole periods.
+
+    Parameters
+    ----------
+    lever : TappingLever
+        The lever and sample.
+    distance : float
+        Rest tip-sample distance z_c in m.
+    amplitude : float
+        Amplitude A of the first harmonic in m.
+    phase : float
+        Phase lag phi of the first harmonic behind the drive in rad.
+    mean_deflection : float
+        Mean deflection <z> in m (the static part, <F_ts> / k).
+    damping_work : float
+        Energy in J the sample's damping force took per period, -(1/N) int F_damp z' dt over
+        the N lock-in periods (integrated with the motion, as a third state variable).
+    periods : int
+        Drive periods integrated in all (transient included).
+    converged : bool
+        Whether the transient criterion was met before :data:`MAX_PERIODS`.
+    time : ndarray
+        Times in s of the samples of the last period.
+    deflection : ndarray
+        Deflection z in m at those times (for plots of the motion).
+    """
+
+    lever: TappingLever
+    distance: float
+    amplitude: float
+    phase: float
+    mean_deflection: float
+    damping_work: float
+    periods: int
+    converged: bool
+    time: np.ndarray
+    deflection: np.ndarray
+
+    @property
+    def dissipated_energy(self) -> float:
+        """E_dis in J from this state's amplitude and phase (``lever.dissipated_energy``)."""
+        return self.lever.dissipated_energy(self.amplitude, self.phase)
+
+
+def integrate(distance: float, lever: TappingLever | None = None, *, start=None,
+              max_periods: int = MAX_PERIODS) -> SteadyState:
+    """Integrate the driven lever at one distance to its steady state (the reference solver).
+
+    Parameters
+    ----------
+    distance : float
+        Rest tip-sample distance z_c in m, in (0, 1e-5].
+    lever : TappingLever, optional
+        Lever and sample (default :class:`TappingLever` ()).
+    start : (float, float), optional
+        (A, phi): start at the top of the motion A cos(w t - phi), i.e. z = A, z' = 0 at
+        w t = phi, so that a start on a branch of :func:`amplitude_curve` stays on it. Default:
+        the free motion (A0, free phase). The tip must start outside the sample:
+        z_c + A > a0.
+    max_periods : int
+        Most drive periods to integrate, BLOCK_PERIODS + LOCKIN_PERIODS to :data:`MAX_PERIODS`.
+
+    Returns
+    -------
+    SteadyState
+
+    Raises
+    ------
+    ValueError
+        On a distance out of range, a start inside the sample or out of range, or bad
+        ``max_periods``, before any integration.
+    """
+    lever = TappingLever() if lever is None else _check_lever(lever)
+    zp = PARAMETERS["distance"]
+    zc = zp.check(distance)
+    n_max = check_integer("max_periods", max_periods, BLOCK_PERIODS + LOCKIN_PERIODS,
+                          MAX_PERIODS)
+    if start is None:
+        a_start, phi_start = free_response(lever)
+    else:
+        if np.shape(start) != (2,):
+            raise ValueError(f"start must be (amplitude, phase), got {start!r:.60}")
+        fa = PARAMETERS["free_amplitude"]
+        a_start = check_range("start amplitude", start[0], fa.low, fa.high, "m",
+                              low_inclusive=False)
+        phi_start = check_array("start phase", start[1], "rad", low=-2 * math.pi,
+                                high=2 * math.pi).item()
+    a0 = lever.intermolecular_distance
+    if zc + a_start <= a0:
+        raise ValueError(f"start amplitude: the tip would start inside the sample (z_c + A = "
+                         f"{zc + a_start:g} m <= a0 = {a0:g} m); start it above the sample")
+    # dimensionless: x = z / A0, tau = w0 t
+    scale = lever.free_amplitude
+    k, q, w = lever.spring_constant, lever.quality_factor, lever.frequency_ratio
+    f_drive = lever.drive_force / (k * scale)
+    w0 = 2.0 * math.pi * lever.resonance_frequency
+    hr6 = lever.hamaker_constant * lever.radius / 6.0
+    e43 = 4.0 / 3.0 * lever.reduced_modulus * math.sqrt(lever.radius)
+    eta_r = lever.sample_viscosity * math.sqrt(lever.radius)
+    adhesion = hr6 / (a0 * a0)
+    inv = 1.0 / (k * scale)
+
+    def force(d, v):  # F_ts / (k A0) and its damping part, plain floats (the inner loop)
+        if d > a0:
+            return -hr6 / (d * d) * inv, 0.0
+        delta = a0 - d
+        sq = math.sqrt(delta)
+        damp = -eta_r * sq * v
+        return (-adhesion + e43 * sq * delta + damp) * inv, damp * inv
+
+    def rhs(tau, y):  # y[2]: work done on the sample's damping, in units of k A0^2
+        x, xd = y[0], y[1]
+        f, damp = force(zc + scale * x, scale * w0 * xd)
+        return [xd, -x - xd / q + f_drive * math.cos(w * tau) + f, -damp * xd]
+
+    period = 2.0 * math.pi / w
+    tau = phi_start / w
+    y = np.array([a_start / scale, 0.0, 0.0])
+
+    def run(n, tau, y):
+        """n periods from tau; returns the end state and the last n periods' samples."""
+        t_eval = tau + period * (np.arange(n * _SAMPLES + 1) / _SAMPLES)
+        sol = solve_ivp(rhs, (tau, t_eval[-1]), y, method="DOP853", t_eval=t_eval,
+                        rtol=1e-9, atol=1e-11)
+        if not sol.success:  # pragma: no cover - DOP853 on a smooth bounded system
+            raise RuntimeError(f"time integration failed: {sol.message}")
+        return t_eval[-1], sol.y[:, -1], t_eval[:-1], sol.y[:, :-1]
+
+    def lockin(t, x):
+        """(A, phi) of x(t) sampled over whole periods (t on the drive's phase grid)."""
+        c = np.cos(w * t)
+        s = np.sin(w * t)
+        ac = 2.0 * np.mean(x * c)
+        as_ = 2.0 * np.mean(x * s)
+        return math.hypot(ac, as_) * scale, math.atan2(as_, ac)
+
+    # a transient decaying as exp(-pi W n / Q) changes by (1 - r) of what is left per block:
+    # what is left after a change c is at most c r / (1 - r), r = exp(-pi W BLOCK_PERIODS / Q)
+    ratio = math.exp(-math.pi * w * BLOCK_PERIODS / q)
+    tail = ratio / (1.0 - ratio)
+    done, previous, converged = 0, None, False
+    while done + BLOCK_PERIODS + LOCKIN_PERIODS <= n_max:
+        tau, y, t, xs = run(BLOCK_PERIODS, tau, y)
+        done += BLOCK_PERIODS
+        now = lockin(t[-_SAMPLES:], xs[0, -_SAMPLES:])
+        if previous is not None and abs(now[0] - previous[0]) * tail < _AMPLITUDE_TOL * scale \
+                and abs(math.degrees(now[1] - previous[1])) * tail < _PHASE_TOL:
+            converged = True
+            break
+        previous = now
+    tau, y, t, xs = run(LOCKIN_PERIODS, tau, y)
+    done += LOCKIN_PERIODS
+    amp, phi = lockin(t, xs[0])
+    if phi < -0.5 * math.pi:  # the lag lives in (0, pi); atan2 may wrap just below -pi
+        phi += 2.0 * math.pi
+    # the work of the damping force on the tip, sign flipped (the energy the sample took),
+    # integrated as a third state over the lock-in periods, per period
+    work = (y[2] - xs[2, 0]) / LOCKIN_PERIODS * k * scale * scale
+    return SteadyState(lever, zc, amp, phi, float(np.mean(xs[0]) * scale), float(work), done,
+                       converged, t[-_SAMPLES:] / w0, xs[0, -_SAMPLES:] * scale)
+
+
+#: Distances (as multiples of A0 from 0.01 A0 to 1.5 A0) on which :func:`setpoint_state` follows
+#: the approach.
+SETPOINT_GRID = 400
+
+
+def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
+                   lever: TappingLever | None = None) -> tuple[float, float, float, bool]:
+    """Where amplitude feedback holds the lever: the state of a slow approach at A = r A0.
+
+    The approach (:meth:`AmplitudeCurve.sweep`, from far away, on the attractive branch until it
+    ends) is followed on :data:`SETPOINT_GRID` distances from 1.5 A0 down to 0.01 A0, and the
+    first distance at which the amplitude falls to r A0 is interpolated linearly.
+
+    Parameters
+    ----------
+    setpoint_ratio : float
+        Setpoint r = A_sp / A0, in (0, 1).
+    lever : TappingLever, optional
+        Lever and sample (default :class:`TappingLever` ()).
+
+    Returns
+    -------
+    (float, float, float, bool)
+        Rest distance z_c in m, phase lag in rad, E_dis in J per cycle there, and whether the
+        state is on the attractive (low) branch.
+
+    Raises
+    ------
+    ValueError
+        If ``setpoint_ratio`` is outside (0, 1) (a setpoint at or above the free amplitude is
+        never reached), or if the approach never gets down to it.
+    """
+    r = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
+    lever = TappingLever() if lever is None else _check_lever(lever)
+    a0 = lever.free_amplitude
+    z = a0 * np.linspace(1.5, 0.01, SETPOINT_GRID)
+    curve = amplitude_curve(z, lever)
+    amp, phs, _ = curve.sweep("approach")
+    target = r * a0
+    below = np.flatnonzero(np.isfinite(amp) & (amp <= target))
+    if below.size == 0 or below[0] == 0:
+        raise ValueError(f"setpoint_ratio: the approach never reaches A = {r:g} A0 above "
+                         f"z_c = {z[-1]:g} m; choose a larger setpoint_ratio")
+    i = below[0]
+    f = (amp[i - 1] - target) / (amp[i - 1] - amp[i])
+    zc = z[i - 1] + f * (z[i] - z[i - 1])
+    phase = phs[i - 1] + f * (phs[i] - phs[i - 1])
+    j = int(np.nanargmin(np.abs(curve.amplitude[i] - amp[i])))
+    return (float(zc), float(phase), float(lever.dissipated_energy(target, phase)),
+            not bool(curve.repulsive_branch[i, j]))
+
+
+class TappingMode(Mode):
+    """Amplitude-modulation imaging through module (f)'s scanner: height and phase channels.
+
+    An ideal (infinitely fast) amplitude feedback holds the amplitude at the setpoint r A0: at
+    every pixel the lever rests at the distance z_c(material) of :func:`setpoint_state` above
+    the apex surface, with the phase lag and the dissipation of that state. The height channels
+    are the apex surface plus z_c(material) - z_c(first material): the topography where the
+    sample is the first material, plus the apparent step a change of material makes (a stiffer
+    or less adhesive material lifts the lever). The phase channels show the materials' contrast,
+    which dissipation in the sample makes (E_dis = (pi k A^2 / Q)[(A0 / A) sin(phi) - W]).
+
+    Parameters
+    ----------
+    levers : TappingLever or sequence of TappingLever
+        The lever on each material (same lever, a different sample: modulus, viscosity, ...);
+        at most 16.
+    setpoint_ratio : float
+        Setpoint r = A_sp / A0, in (0, 1).
+    material : callable, optional
+        ``material(x, y)`` -> integer array (index into ``levers``) of the material at positions
+        x, y in m on the sample (arrays of one shape); default: the first everywhere.
+
+    Raises
+    ------
+    ValueError
+        On a setpoint outside (0, 1) or no lever, before any scan.
+    TypeError
+        If a lever is not a :class:`TappingLever` or ``material`` is not callable.
+    """
+
+    channels = ("height trace", "height retrace", "phase trace", "phase retrace",
+                "dissipation trace")
+    units = MappingProxyType({"phase trace": "rad", "phase retrace": "rad",
+                              "dissipation trace": "J"})
+
+    def __init__(self, levers, setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
+                 material=None):
+        levers = (levers,) if isinstance(levers, TappingLever) else tuple(levers)
+        if not 1 <= len(levers) <= 16:
+            raise ValueError(f"levers must hold 1 to 16 levers, got {len(levers)}")
+        self.levers = tuple(_check_lever(lever) for lever in levers)
+        self.setpoint_ratio = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
+        if material is not None and not callable(material):
+            raise TypeError(f"material must be a callable material(x, y), got "
+                            f"{type(material).__name__}")
+        self.material = material
+        states = [setpoint_state(self.setpoint_ratio, lever) for lever in self.levers]
+        #: Per material: rest distance z_c in m, phase lag in rad, E_dis in J.
+        self.distance = np.array([s[0] for s in states])
+        self.phase = np.array([s[1] for s in states])
+        self.dissipation = np.array([s[2] for s in states])
+
+    def _which(self, x, y):
+        if self.material is None:
+            return np.zeros(np.shape(x), dtype=int)
+        m = np.asarray(self.material(x, y))
+        if m.shape != np.shape(x) or m.dtype.kind not in "iu" or m.size and \
+                (m.min() < 0 or m.max() >= len(self.levers)):
+            raise ValueError(f"material(x, y) must give integers in [0, {len(self.levers) - 1}] "
+                             f"shaped like x, got {m.dtype} {m.shape}")
+        return m
+
+    def line(self, plan: ScanPlan, row: int, state=None) -> ModeLine:
+        """One line: height, phase and dissipation at each pixel of trace and retrace.
+
+        Parameters
+        ----------
+        plan : afmsmiler.imaging.modes.ScanPlan
+            The scan.
+        row : int
+            Line index.
+        state : object
+            Unused (the feedback is ideal: nothing carries over).
+
+        Returns
+        -------
+        afmsmiler.imaging.modes.ModeLine
+        """
+        out = {}
+        ref = self.distance[0]
+        for name, heights, x, y in (("trace", plan.trace, plan.x_trace, plan.y_trace),
+                                    ("retrace", plan.retrace, plan.x_retrace, plan.y_retrace)):
+            m = self._which(x[row], y[row])
+            out[f"height {name}"] = heights[row] + self.distance[m] - ref
+            out[f"phase {name}"] = self.phase[m]
+            if name == "trace":
+                out["dissipation trace"] = self.dissipation[m]
+        return ModeLine(out, None)

@@ -1,0 +1,344 @@
+"""Tapping (amplitude-modulation) mode: force law, fast steady states against time integration.
+
+References used as independent checks: sympy's derivative of the sphere-plane van der Waals
+energy -H R / (6 d) (Israelachvili, Sec. 13.1), module (d)'s Hertz force of a paraboloid and DMT's
+pull-off force 2 pi R w, scipy.integrate.quad of the first-harmonic integrals' definitions, the
+analytic driven harmonic oscillator, and scipy's solve_ivp run to steady state (the reference
+solver) for the fast solver and the energy balance.
+"""
+import math
+
+import numpy as np
+import pytest
+import sympy as sp
+from scipy.integrate import quad
+
+from afmsmiler.contact import Parabolic, reduced_modulus
+from afmsmiler.modes import (FORCE_PARAMETERS, TAPPING_PARAMETERS, TappingLever, amplitude_curve,
+                             free_response, integrate, setpoint_state, tip_sample_force,
+                             work_of_adhesion)
+from afmsmiler.modes import tapping
+from afmsmiler.parameters import Parameter
+
+H, R, A0_, E, NU = 6.4e-20, 10e-9, 0.165e-9, 1e9, 0.3
+
+
+# -- the force law ---------------------------------------------------------------------------------
+def test_van_der_waals_is_minus_the_derivative_of_the_sphere_plane_energy():
+    d, h, r = sp.symbols("d H R", positive=True)
+    force = sp.lambdify((d, h, r), -sp.diff(-h * r / (6 * d), d))
+    ds = np.array([0.2e-9, 0.5e-9, 2e-9, 30e-9])
+    assert np.allclose(tip_sample_force(ds), force(ds, H, R), rtol=1e-14, atol=0)
+
+
+def test_force_is_continuous_at_a0():
+    below, above = tip_sample_force(A0_ * (1 - 1e-12)), tip_sample_force(A0_ * (1 + 1e-12))
+    contact_value = -H * R / (6 * A0_ ** 2)
+    assert below == pytest.approx(contact_value, rel=1e-9)
+    assert above == pytest.approx(contact_value, rel=1e-9)
+
+
+def test_contact_branch_is_module_d_dmt_force():
+    """Hertz force of module (d)'s paraboloid minus DMT's pull-off force 2 pi R w."""
+    w = work_of_adhesion(H, A0_)
+    assert 2 * math.pi * R * w == pytest.approx(H * R / (6 * A0_ ** 2), rel=1e-14)
+    delta = np.array([0.0, 0.01e-9, 0.3e-9, 2e-9])
+    hertz = Parabolic(R).force(delta, reduced_modulus(E, NU))
+    assert np.allclose(tip_sample_force(A0_ - delta), hertz - 2 * math.pi * R * w,
+                       rtol=1e-12, atol=1e-22)
+
+
+def test_damping_opposes_the_motion_in_contact_only():
+    kw = dict(sample_viscosity=200.0)
+    d = A0_ - 0.5e-9
+    up, still, down = (tip_sample_force(d, v, **kw) for v in (1e-3, 0.0, -1e-3))
+    assert up - still == pytest.approx(-200.0 * math.sqrt(R * 0.5e-9) * 1e-3, rel=1e-12)
+    assert down - still == pytest.approx(-(up - still), rel=1e-12)
+    assert tip_sample_force(1e-9, 1e-3, **kw) == tip_sample_force(1e-9, 0.0, **kw)
+
+
+# -- the first-harmonic integrals against their definitions ----------------------------------------
+@pytest.mark.parametrize("zc, a", [(15e-9, 10e-9), (10.2e-9, 10e-9), (8e-9, 9e-9),
+                                   (2e-9, 3e-9), (0.1e-9, 0.05e-9)])
+def test_harmonic_integrals_equal_quadrature_of_their_definition(zc, a):
+    lever = TappingLever(sample_viscosity=300.0)
+    w = 2 * math.pi * lever.resonance_frequency * lever.frequency_ratio
+
+    def f(theta):
+        return lever.force(zc + a * math.cos(theta), -w * a * math.sin(theta))
+
+    brk = []
+    u = (lever.intermolecular_distance - zc) / a
+    if -1 < u < 1:
+        brk = [math.acos(u), 2 * math.pi - math.acos(u)]
+    scale = H * R / (6 * lever.intermolecular_distance ** 2)  # the contact force scale
+    opts = dict(points=brk or None, limit=400, epsabs=1e-12 * scale, epsrel=1e-11)
+    i_c = quad(lambda t: f(t) * math.cos(t), 0, 2 * math.pi, **opts)[0] / math.pi
+    i_s = quad(lambda t: f(t) * math.sin(t), 0, 2 * math.pi, **opts)[0] / math.pi
+    got_c, got_s = tapping._integrals(lever, np.array([zc]), np.array([a]))
+    assert got_c[0] == pytest.approx(i_c, rel=1e-5, abs=1e-6 * scale)
+    assert got_s[0] == pytest.approx(i_s, rel=1e-4, abs=1e-6 * scale)
+
+
+# -- far from the sample: the driven harmonic oscillator -------------------------------------------
+def _oscillator(k, q, w, f0):
+    return f0 / (k * math.sqrt((1 - w * w) ** 2 + (w / q) ** 2)), math.atan2(w / q, 1 - w * w)
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.998, 1.003])
+def test_far_from_sample_fast_solver_is_the_driven_oscillator(ratio):
+    lever = TappingLever(frequency_ratio=ratio)
+    a, phi = _oscillator(40.0, 400.0, ratio, lever.drive_force)
+    curve = amplitude_curve([5e-6], lever)
+    amp, phase = curve.branch("attractive")
+    assert np.count_nonzero(np.isfinite(curve.amplitude)) == 1
+    assert amp[0] == pytest.approx(a, rel=1e-9)
+    assert phase[0] == pytest.approx(phi, abs=1e-9)
+    assert free_response(lever) == pytest.approx((a, phi), rel=1e-12)
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.998])
+def test_far_from_sample_time_integration_is_the_driven_oscillator(ratio):
+    lever = TappingLever(frequency_ratio=ratio, quality_factor=100.0)
+    a, phi = _oscillator(40.0, 100.0, ratio, lever.drive_force)
+    state = integrate(5e-6, lever, start=(0.8 * a, phi + 0.2))  # off the steady state
+    assert state.converged
+    assert state.amplitude == pytest.approx(a, rel=1e-3)
+    assert math.degrees(state.phase - phi) == pytest.approx(0.0, abs=0.05)
+
+
+# -- fast solver against the time integration, on both branches ------------------------------------
+DISTANCES = [2e-9, 4.5e-9, 7e-9, 8.5e-9, 10e-9]
+
+
+@pytest.fixture(scope="module")
+def runs():
+    """Every stable root of the fast solver at DISTANCES and the integration started on it."""
+    lever = TappingLever(sample_viscosity=100.0)
+    curve = amplitude_curve(DISTANCES, lever)
+    out = []
+    for i, zc in enumerate(DISTANCES):
+        for j in np.flatnonzero(curve.stable[i]):
+            a, phi = curve.amplitude[i, j], curve.phase[i, j]
+            out.append((zc, not curve.repulsive_branch[i, j], a, phi, curve.dissipated_energy[i, j],
+                        integrate(zc, lever, start=(a, phi))))
+    return lever, curve, out
+
+
+@pytest.mark.slow
+def test_fast_solver_matches_time_integration_on_both_branches(runs):
+    lever, curve, out = runs
+    assert curve.coexist[:3].all() and not curve.coexist[-1]  # both branches where they coexist
+    assert {r[1] for r in out} == {True, False}
+    for zc, att, a, phi, _, state in out:
+        assert state.converged
+        assert state.amplitude == pytest.approx(a, rel=0.01), (zc, att)
+        assert abs(math.degrees(state.phase - phi)) < 2.0, (zc, att)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("ratio", [0.998, 1.002])
+def test_fast_solver_matches_time_integration_off_resonance(ratio):
+    lever = TappingLever(frequency_ratio=ratio, sample_viscosity=100.0)
+    curve = amplitude_curve([3e-9, 6e-9], lever)
+    for i, zc in enumerate(curve.distance):
+        for j in np.flatnonzero(curve.stable[i]):
+            a, phi = curve.amplitude[i, j], curve.phase[i, j]
+            state = integrate(zc, lever, start=(a, phi))
+            assert state.converged
+            assert state.amplitude == pytest.approx(a, rel=0.01), (zc, j)
+            assert abs(math.degrees(state.phase - phi)) < 2.0, (zc, j)
+
+
+@pytest.mark.slow
+def test_dissipated_energy_from_phase_is_the_damping_work(runs):
+    """E_dis = pi F0 A sin(phi) - pi k W A^2 / Q counts only the first harmonic of the lever's
+    own damping, and assumes the stored energy no longer changes: the higher harmonics and the
+    transient the criterion leaves (< 1e-4 A0) each carry some 1e-4 of pi k A^2 / Q, the
+    difference of the two terms; the tolerance is 1e-3 of it."""
+    lever, _, out = runs
+    for zc, att, a, phi, e_fast, state in out:
+        scale = math.pi * lever.spring_constant * state.amplitude ** 2 / lever.quality_factor
+        assert state.damping_work >= 0  # 0 where the tip never touches (10 nm)
+        assert abs(state.dissipated_energy - state.damping_work) < 1e-3 * scale, (zc, att)
+        # the fast solver's own E_dis carries its phase error: dE/dphi = pi F0 A cos(phi), some
+        # 0.01 pi k A^2 / Q for the 0.2 deg it has on the repulsive branch
+        assert abs(e_fast - state.damping_work) < 0.02 * scale + 0.03 * state.damping_work, \
+            (zc, att)
+        if not att:  # repulsive: the sample takes a sizeable share, compare it relatively
+            assert state.dissipated_energy == pytest.approx(state.damping_work, rel=0.01)
+
+
+def test_dissipated_energy_is_cleveland_formula_at_resonance_and_positive_for_a_lossy_sample():
+    """(pi k A^2 / Q)[(A0 / A) sin(phi) - w / w0] (Cleveland et al. 1998), typed here."""
+    lever = TappingLever()
+    a, phi = 6e-9, math.radians(70.0)
+    typed = math.pi * 40.0 * a ** 2 / 400.0 * (10e-9 / a * math.sin(phi) - 1.0)
+    assert lever.dissipated_energy(a, phi) == pytest.approx(typed, rel=1e-12)
+    assert typed > 0  # energy lost to the sample counts positive
+    assert lever.dissipated_energy(10e-9, math.pi / 2) == pytest.approx(0.0, abs=1e-30)
+
+
+def test_without_sample_damping_no_energy_is_dissipated():
+    curve = amplitude_curve(np.linspace(1e-9, 12e-9, 30))
+    lever = curve.lever
+    scale = math.pi * lever.spring_constant * lever.free_amplitude ** 2 / lever.quality_factor
+    assert np.nanmax(np.abs(curve.dissipated_energy)) < 1e-6 * scale
+
+
+# -- roots, stability, jumps -----------------------------------------------------------------------
+def test_roots_solve_the_amplitude_equation_and_alternate_in_stability():
+    lever = TappingLever(sample_viscosity=50.0)
+    z = np.linspace(0.5e-9, 14e-9, 200)
+    curve = amplitude_curve(z, lever)
+    ok = np.isfinite(curve.amplitude)
+    zz = np.broadcast_to(z[:, None], ok.shape)[ok]
+    g = tapping._balance(lever, zz, curve.amplitude[ok])[0]
+    assert np.max(np.abs(g)) < 1e-9 * lever.drive_force
+    three = np.isfinite(curve.amplitude).sum(axis=1) == 3
+    assert three.any()
+    assert (curve.stable[three] == [True, False, True]).all()  # the middle root is the saddle
+    assert (~curve.repulsive_branch[three, 0]).all() and curve.repulsive_branch[three, 2].all()
+    assert curve.attractive[three, 0].all()  # the low branch always attracts on the whole
+    # the high branch repels, except at its far end where the net force turns (phase < 90 deg)
+    high = curve.repulsive_branch[three, 2]
+    assert (curve.attractive[three, 2] == (curve.phase[three, 2] > math.pi / 2))[high].all()
+
+
+def test_array_call_equals_point_calls():
+    z = [3e-9, 6e-9, 9.5e-9]
+    curve = amplitude_curve(z)
+    for i, zc in enumerate(z):
+        one = amplitude_curve([zc])
+        n = np.count_nonzero(np.isfinite(one.amplitude))
+        assert np.allclose(one.amplitude[0, :n], curve.amplitude[i, :n], rtol=1e-12)
+
+
+def test_approach_jumps_where_the_attractive_branch_ends_and_retract_where_repulsive_does():
+    # at A0 = 15 nm the low branch ends inside the range (at 10 nm it reaches z_c < 0.2 A0)
+    lever = TappingLever(free_amplitude=15e-9)
+    z = np.linspace(0.2, 1.5, 400) * 15e-9
+    curve = amplitude_curve(z, lever)
+    down_a, _, down = curve.sweep("approach")
+    up_a, _, up = curve.sweep("retract")
+    assert len(down) == 1 and len(up) == 1
+    both = z[curve.coexist]
+    assert both.size > 2
+    assert down[0] == pytest.approx(z[z < both.min()].max())  # the low branch ends
+    assert up[0] == pytest.approx(z[z > both.max()].min())  # the high branch ends
+    i, j = np.flatnonzero(z == down[0])[0], np.flatnonzero(z == up[0])[0]
+    assert down_a[i] - down_a[i + 1] > 5 * abs(down_a[i + 2] - down_a[i + 1])  # a jump up
+    assert up_a[j - 1] - up_a[j] > 5 * abs(up_a[j - 2] - up_a[j - 1])  # a jump down
+    assert up[0] > down[0]  # hysteresis
+
+
+@pytest.mark.slow
+def test_unstable_root_leaves_for_a_stable_one():
+    lever = TappingLever()
+    curve = amplitude_curve([6e-9], lever)
+    middle = np.flatnonzero(np.isfinite(curve.amplitude[0]) & ~curve.stable[0])
+    assert middle.size == 1
+    j = middle[0]
+    state = integrate(6e-9, lever, start=(curve.amplitude[0, j] * 1.003, curve.phase[0, j]))
+    stable = curve.amplitude[0][curve.stable[0]]
+    assert np.min(np.abs(stable - state.amplitude)) < 0.01 * state.amplitude
+    assert abs(state.amplitude - curve.amplitude[0, j]) > 0.03 * state.amplitude
+
+
+def test_setpoint_state_lies_on_the_approach_curve():
+    lever = TappingLever()
+    zc, phase, e_dis, attractive = setpoint_state(0.7, lever)
+    curve = amplitude_curve([zc], lever)
+    amp, phs = curve.branch("attractive" if attractive else "repulsive")
+    assert amp[0] == pytest.approx(0.7 * lever.free_amplitude, rel=2e-3)
+    assert phs[0] == pytest.approx(phase, abs=math.radians(0.5))
+
+
+# -- parameters and bad input ----------------------------------------------------------------------
+def test_parameter_tables_are_parameters_with_their_defaults_in_range():
+    for table in (FORCE_PARAMETERS, TAPPING_PARAMETERS):
+        for name, p in table.items():
+            assert isinstance(p, Parameter) and p.name == name
+            assert p.check(p.default) == p.default
+
+
+@pytest.fixture
+def no_integration(monkeypatch):
+    def boom(*args, **kwargs):
+        raise AssertionError("integration started before the input was checked")
+    monkeypatch.setattr(tapping, "solve_ivp", boom)
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: TappingLever(quality_factor=0.0), "quality_factor"),
+    (lambda: TappingLever(quality_factor=-5.0), "quality_factor"),
+    (lambda: TappingLever(frequency_ratio=3.0), "frequency_ratio"),
+    (lambda: TappingLever(frequency_ratio=0.1), "frequency_ratio"),
+    (lambda: TappingLever(free_amplitude=-1e-9), "free_amplitude"),
+    (lambda: TappingLever(hamaker_constant=-1e-20), "hamaker_constant"),
+    (lambda: integrate(0.1e-9, start=(0.05e-9, 0.0)), "start amplitude"),
+    (lambda: integrate(-1e-9), "distance"),
+    (lambda: integrate(5e-9, max_periods=10**9), "max_periods"),
+    (lambda: amplitude_curve([5e-9, 0.0]), "distances"),
+    (lambda: amplitude_curve(np.full(tapping.MAX_DISTANCES + 1, 5e-9)), "distances"),
+    (lambda: setpoint_state(1.2), "setpoint_ratio"),
+    (lambda: setpoint_state(1.0), "setpoint_ratio"),
+    (lambda: tip_sample_force(1e-9, sample_viscosity=-1.0), "sample_viscosity"),
+])
+def test_bad_input_names_the_parameter_before_any_integration(no_integration, call, name):
+    with pytest.raises(ValueError, match=name):
+        call()
+
+
+def test_lever_is_type_checked():
+    with pytest.raises(TypeError, match="lever"):
+        amplitude_curve([5e-9], lever={"quality_factor": 100})
+
+
+# -- imaging through module (f)'s scanner ----------------------------------------------------------
+def test_tapping_mode_images_a_two_material_sample_with_phase_contrast_from_dissipation():
+    from afmsmiler.imaging.scanner import ScanSettings, scan
+    from afmsmiler.modes import TappingMode
+    from afmsmiler.samples import Sample
+
+    px, n = 2e-9, 16
+    heights = np.zeros((n, n))
+    heights[:, :4] = 1e-9  # a terrace: topography the height channel must show
+    hard = TappingLever(youngs_modulus=1e9)
+    soft = TappingLever(youngs_modulus=1e9, sample_viscosity=300.0)  # same but dissipative
+
+    def material(x, y):  # the right half is the dissipative one
+        return (np.asarray(x) >= n * px / 2).astype(int)
+
+    mode = TappingMode([hard, soft], setpoint_ratio=0.6, material=material)
+    settings = ScanSettings(n * px, pixels=n, lines=n, scan_speed=1e-6)
+    result = scan(Sample(heights, px), None, mode, settings)
+    assert result.finished
+    phase, e_dis = result.images["phase trace"], result.images["dissipation trace"]
+    left, right = np.s_[:, 5:7], np.s_[:, 10:]
+    # each half has the phase and dissipation of its own setpoint state
+    for region, lever in ((left, hard), (right, soft)):
+        _, phi, e, _ = setpoint_state(0.6, lever)
+        assert np.allclose(phase[region], phi) and np.allclose(e_dis[region], e)
+    assert abs(np.ptp(phase)) > math.radians(0.5)  # a contrast a phase image shows
+    scale = math.pi * 40.0 * (0.6 * 10e-9) ** 2 / 400.0
+    assert np.all(np.abs(e_dis[left]) < 1e-6 * scale) and np.all(e_dis[right] > 1e-3 * scale)
+    # the phase contrast is the dissipation: E_dis from each half's phase is its channel value
+    a = 0.6 * hard.free_amplitude
+    assert np.allclose(soft.dissipated_energy(a, phase[right]), e_dis[right], rtol=1e-9)
+    # height: the terrace, and a material step of z_c(soft) - z_c(hard)
+    h = result.images["height trace"]
+    assert np.allclose(h[:, 1] - h[:, 6], 1e-9)
+    step = setpoint_state(0.6, soft)[0] - setpoint_state(0.6, hard)[0]
+    assert np.allclose(h[:, 12] - h[:, 6], step)
+    assert np.allclose(result.images["phase retrace"], phase)
+
+
+def test_tapping_mode_checks_its_arguments_before_any_scan():
+    from afmsmiler.modes import TappingMode
+    with pytest.raises(ValueError, match="setpoint_ratio"):
+        TappingMode(TappingLever(), setpoint_ratio=1.1)
+    with pytest.raises(TypeError, match="lever"):
+        TappingMode([TappingLever(), "soft"])
+    with pytest.raises(TypeError, match="material"):
+        TappingMode(TappingLever(), material=np.zeros((4, 4)))
