@@ -36,6 +36,10 @@ as an adaptive quadrature of Eq. (9) gives). Force -> df -> force agrees within 
 from the first sample on, provided that the samples are spaced by less than lambda / 20 and that
 the force at the last sample is below 1 % of the force recovered (the curve is cut there and
 the force beyond taken as zero: for F ~ 1 / z^2 that is z below a tenth of the last distance).
+For the van der Waals + DMT force of the dynamic modes the same holds for closest distances
+above the contact distance a0 at any amplitude; a curve that starts in contact is recovered to
+some per cent of the adhesion force near a0 (the force's kink there is not a smooth curve), and
+within 1 % again from a few a0 on.
 
 Module (g) of the AFM SMILER toolkit ("AFM SMILER: A Scale Model Interactive Learning Extended
 Reality Toolkit for Atomic Force Microscopy Created with Digital Twin Technology") only animates
