@@ -61,7 +61,7 @@ from ..validation import check_array, check_choice, check_instance, check_intege
 __all__ = ["LateralLever", "FrictionLoop", "FrictionImages", "LateralForceMode",
            "shear_modulus", "lateral_force", "friction_loop", "friction_scan", "friction_sample",
            "PARAMETERS", "MODELS", "SHEAR_MODULUS", "TIP_HEIGHT", "NORMAL_FORCE",
-           "FRICTION_COEFFICIENT", "LATERAL_NOISE", "TILT"]
+           "FRICTION_COEFFICIENT", "LATERAL_STIFFNESS", "LATERAL_NOISE", "TILT"]
 
 #: The two ways of combining friction and slope (module notes).
 MODELS = ("linear", "wedge")
@@ -83,6 +83,11 @@ NORMAL_FORCE = Parameter(name="normal_force", unit="N", display_unit="nN", defau
 FRICTION_COEFFICIENT = Parameter(name="friction_coefficient", unit="", default=0.2, low=0.0,
                                  high=10.0, slider_low=0.0, slider_high=1.0,
                                  label="friction coefficient mu")
+#: Lateral stiffness of the stuck tip at a turn-around: the lever's k_t (about 100 N/m for the
+#: default lever and tip, :class:`LateralLever`), or its series with the contact's.
+LATERAL_STIFFNESS = Parameter(name="lateral_stiffness", unit="N/m", default=100.0, low=0.0,
+                              high=1e6, low_inclusive=False, slider_low=1.0, slider_high=1000.0,
+                              log=True, label="lateral stiffness")
 #: RMS noise of the lateral force channels.
 LATERAL_NOISE = Parameter(name="lateral_noise", unit="N", display_unit="nN", default=0.0,
                           low=0.0, high=1e-3, slider_low=0.0, slider_high=2e-9,
@@ -94,7 +99,8 @@ TILT = Parameter(name="tilt", unit="rad", display_unit="deg", default=0.0,
 
 #: Every user-settable quantity of the lateral-force mode, by keyword name (read-only).
 PARAMETERS = read_only({p.name: p for p in (SHEAR_MODULUS, TIP_HEIGHT, NORMAL_FORCE,
-                                            FRICTION_COEFFICIENT, LATERAL_NOISE, TILT)})
+                                            FRICTION_COEFFICIENT, LATERAL_STIFFNESS,
+                                            LATERAL_NOISE, TILT)})
 
 
 def shear_modulus(material: str | Material) -> float:
@@ -321,13 +327,8 @@ def _passes(heights, mu, pixel_size, normal_force, stiffness, model):
     return trace, retrace
 
 
-def _stiffness(lateral_stiffness):
-    return check_array("lateral_stiffness", lateral_stiffness, "N/m", low=0.0,
-                       low_inclusive=False, high=1e6, ndim=0).item()
-
-
 def friction_loop(heights, friction_coefficient, pixel_size: float, *,
-                  normal_force: float = NORMAL_FORCE.default, lateral_stiffness: float = 100.0,
+                  normal_force: float = NORMAL_FORCE.default, lateral_stiffness: float = LATERAL_STIFFNESS.default,
                   model: str = "linear") -> FrictionLoop:
     """Friction loop (trace and retrace lateral force) of a tip scanning one line.
 
@@ -381,7 +382,7 @@ def friction_loop(heights, friction_coefficient, pixel_size: float, *,
                          f"({h.size}), got shape {mu.shape}")
     px = check_array("pixel_size", pixel_size, "m", low=0.0, low_inclusive=False, ndim=0).item()
     load = NORMAL_FORCE.check(normal_force)
-    k = _stiffness(lateral_stiffness)
+    k = LATERAL_STIFFNESS.check(lateral_stiffness)
     check_choice("model", model, MODELS)
     trace, retrace = _passes(h, mu, px, load, k, model)
     return FrictionLoop(np.arange(h.size) * px, trace[0], retrace[0], load, k)
@@ -428,7 +429,7 @@ def _lateral_sample(values, like: Sample, name):
 
 
 def friction_scan(topography: Sample, friction: Sample, *,
-                  normal_force: float = NORMAL_FORCE.default, lateral_stiffness: float = 100.0,
+                  normal_force: float = NORMAL_FORCE.default, lateral_stiffness: float = LATERAL_STIFFNESS.default,
                   lateral_noise: float = LATERAL_NOISE.default, model: str = "linear",
                   seed: int | None = 0) -> FrictionImages:
     """Trace and retrace lateral-force images of a sample with a friction-coefficient map.
@@ -454,6 +455,13 @@ def friction_scan(topography: Sample, friction: Sample, *,
     -------
     FrictionImages
 
+    Notes
+    -----
+    Every line is a steady loop (:func:`friction_loop`, row by row, vectorised over the rows):
+    the first pixel of the trace and the last of the retrace are always in the stuck
+    turn-around (more of them when 2 mu F_N / lateral_stiffness exceeds a pixel; 0.08 nm at
+    the defaults), so the friction map is 0 in the first and last columns, as on an instrument.
+
     Raises
     ------
     TypeError
@@ -476,7 +484,7 @@ def friction_scan(topography: Sample, friction: Sample, *,
     mu = check_array("friction", friction.heights, "", low=FRICTION_COEFFICIENT.low,
                      high=FRICTION_COEFFICIENT.high)
     load = NORMAL_FORCE.check(normal_force)
-    k = _stiffness(lateral_stiffness)
+    k = LATERAL_STIFFNESS.check(lateral_stiffness)
     noise = LATERAL_NOISE.check(lateral_noise)
     check_choice("model", model, MODELS)
     if seed is not None:
@@ -594,7 +602,7 @@ class LateralForceMode(Mode):
     units = read_only({"lateral trace": "N", "lateral retrace": "N"})
 
     def __init__(self, friction: Sample, *, normal_force: float = NORMAL_FORCE.default,
-                 lateral_stiffness: float = 100.0, model: str = "linear"):
+                 lateral_stiffness: float = LATERAL_STIFFNESS.default, model: str = "linear"):
         self.friction = check_instance("friction", friction, Sample)
         if friction.unit != "":
             raise ValueError(f"friction must hold friction coefficients (unit ''), got unit "
@@ -602,7 +610,7 @@ class LateralForceMode(Mode):
         self.mu = check_array("friction", np.atleast_2d(friction.heights), "",
                               low=FRICTION_COEFFICIENT.low, high=FRICTION_COEFFICIENT.high)
         self.normal_force = NORMAL_FORCE.check(normal_force)
-        self.lateral_stiffness = _stiffness(lateral_stiffness)
+        self.lateral_stiffness = LATERAL_STIFFNESS.check(lateral_stiffness)
         self.model = check_choice("model", model, MODELS)
 
     def __repr__(self) -> str:
