@@ -231,6 +231,21 @@ def test_sader_jarvis_rejects_bad_input(z, df, name):
         fm.sader_jarvis(z, df)
 
 
+def test_frequency_shift_curve_is_the_round_trip_in_one_call():
+    z = np.linspace(0.2e-9, 0.2e-9 + 20 * LAM, 401)
+    curve = fm.frequency_shift_curve(morse, z, amplitude=10 * LAM, **LEVER)
+    assert np.array_equal(curve.force, morse(z))
+    assert np.array_equal(curve.frequency_shift,
+                          fm.frequency_shift(morse, z, amplitude=10 * LAM, **LEVER))
+    assert np.abs(curve.error).max() < 0.01 * np.abs(morse(z)).max()
+    assert np.allclose(curve.gradient_shift, -F0 / (2 * K) * morse_gradient(z),
+                       rtol=0.01, atol=1e-3 * F0 / (2 * K) * np.abs(morse_gradient(z)).max())
+    calls = []
+    with pytest.raises(ValueError, match="amplitude"):
+        fm.frequency_shift_curve(lambda z: calls.append(z) or vdw(z), z, amplitude=0.0)
+    assert not calls
+
+
 def test_parameters_are_consistent():
     for p in fm.PARAMETERS.values():
         assert p.check(p.default) == p.default

@@ -49,13 +49,15 @@ Rev. Mod. Phys. 75, 949 (2003), section V.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 
 import numpy as np
 
 from ..parameters import Parameter, read_only
 from ..validation import check_array, check_integer
 
-__all__ = ["frequency_shift", "sader_jarvis", "force_gradient_shift", "PARAMETERS", "LIMITS",
+__all__ = ["frequency_shift", "sader_jarvis", "force_gradient_shift", "frequency_shift_curve",
+           "FrequencyShiftCurve", "PARAMETERS", "LIMITS",
            "SPRING_CONSTANT", "RESONANCE_FREQUENCY", "AMPLITUDE"]
 
 # -- the parameter vocabulary of the FM mode ------------------------------------------------
@@ -276,3 +278,93 @@ def sader_jarvis(z, df, *, spring_constant: float = SPRING_CONSTANT.default,
         trapezoid = np.sum(0.5 * (om[:-1] + om[1:]) * h)
         force[j] = 2 * k * (trapezoid + c2 * pole(om) - c3 * pole(slope[j:]))
     return force
+
+
+@dataclass(frozen=True)
+class FrequencyShiftCurve:
+    """A force curve, its frequency shift and the force recovered from it
+    (:func:`frequency_shift_curve`), in SI units; figures draw it without computing again.
+
+    Attributes
+    ----------
+    z : ndarray
+        Distances of closest approach in m.
+    force : ndarray
+        The force F(z) in N put in.
+    frequency_shift : ndarray
+        df(z) in Hz at the amplitude (Giessibl).
+    gradient_shift : ndarray
+        The small-amplitude df = -f0 / (2 k) dF/dz in Hz (dF/dz by second-order differences of
+        ``force``), for comparison.
+    recovered_force : ndarray
+        F(z) in N from ``frequency_shift`` by the Sader-Jarvis inversion.
+    spring_constant, resonance_frequency, amplitude : float
+        k in N/m, f0 in Hz, A in m.
+    """
+
+    z: np.ndarray
+    force: np.ndarray
+    frequency_shift: np.ndarray
+    gradient_shift: np.ndarray
+    recovered_force: np.ndarray
+    spring_constant: float
+    resonance_frequency: float
+    amplitude: float
+
+    @property
+    def error(self) -> np.ndarray:
+        """Recovered minus input force in N."""
+        return self.recovered_force - self.force
+
+
+def frequency_shift_curve(force, z, *, spring_constant: float = SPRING_CONSTANT.default,
+                          resonance_frequency: float = RESONANCE_FREQUENCY.default,
+                          amplitude: float = AMPLITUDE.default,
+                          nodes: int = 256) -> FrequencyShiftCurve:
+    """The FM round trip in one call: F(z) -> df(z) -> F(z) (what an FM panel shows).
+
+    Parameters
+    ----------
+    force : callable
+        F(z) in N of distances in m, vectorised (as for :func:`frequency_shift`).
+    z : array_like
+        Distances of closest approach in m, strictly increasing, 3 to
+        ``LIMITS["curve_points"]`` values.
+    spring_constant : float
+        Lever spring constant k in N/m.
+    resonance_frequency : float
+        Free resonance frequency f0 in Hz.
+    amplitude : float
+        Oscillation amplitude A in m.
+    nodes : int
+        Gauss-Chebyshev nodes of :func:`frequency_shift`.
+
+    Returns
+    -------
+    FrequencyShiftCurve
+
+    Raises
+    ------
+    TypeError
+        If ``force`` is not callable.
+    ValueError
+        Naming the argument out of range, before the force is called.
+
+    Examples
+    --------
+    >>> curve = frequency_shift_curve(lambda z: -1e-27 / z ** 2, np.linspace(1e-9, 40e-9, 400),
+    ...                               amplitude=10e-9)
+    >>> bool(abs(curve.error[0] / curve.force[0]) < 0.01)
+    True
+    """
+    _check_force(force)
+    k, f0, a = _check_lever(spring_constant, resonance_frequency, amplitude)
+    z = check_array("z", z, "m", ndim=1, min_size=3, increasing=True,
+                    max_size=LIMITS["curve_points"])
+    nodes = check_integer("nodes", nodes, 2, LIMITS["nodes"])
+    lever = dict(spring_constant=k, resonance_frequency=f0)
+    f = _call_force(force, z)
+    df = frequency_shift(force, z, amplitude=a, nodes=nodes, **lever)
+    gradient = -f0 / (2 * k) * np.gradient(f, z, edge_order=2)
+    return FrequencyShiftCurve(z, f, df, gradient, sader_jarvis(z, df, amplitude=a, **lever),
+                               k, f0, a)

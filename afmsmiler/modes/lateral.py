@@ -328,7 +328,8 @@ def _passes(heights, mu, pixel_size, normal_force, stiffness, model):
 
 
 def friction_loop(heights, friction_coefficient, pixel_size: float, *,
-                  normal_force: float = NORMAL_FORCE.default, lateral_stiffness: float = LATERAL_STIFFNESS.default,
+                  normal_force: float = NORMAL_FORCE.default,
+                  lateral_stiffness: float = LATERAL_STIFFNESS.default,
                   model: str = "linear") -> FrictionLoop:
     """Friction loop (trace and retrace lateral force) of a tip scanning one line.
 
@@ -429,7 +430,8 @@ def _lateral_sample(values, like: Sample, name):
 
 
 def friction_scan(topography: Sample, friction: Sample, *,
-                  normal_force: float = NORMAL_FORCE.default, lateral_stiffness: float = LATERAL_STIFFNESS.default,
+                  normal_force: float = NORMAL_FORCE.default,
+                  lateral_stiffness: float = LATERAL_STIFFNESS.default,
                   lateral_noise: float = LATERAL_NOISE.default, model: str = "linear",
                   seed: int | None = 0) -> FrictionImages:
     """Trace and retrace lateral-force images of a sample with a friction-coefficient map.
