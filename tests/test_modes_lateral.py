@@ -205,6 +205,24 @@ def test_lateral_force_mode_through_the_scanner():
     assert np.allclose((half / (2 * F_N))[:, 1:-1], mu.heights[:, 1:-1])
 
 
+def test_lateral_force_mode_reads_friction_where_the_scan_is():
+    """An offset scan of a friction gradient along x sees the coefficients under it."""
+    px = 10e-9
+    topo = Sample(np.zeros((40, 40)), px)
+    columns = np.arange(40)
+    mu = Sample(np.tile(0.1 + 0.005 * columns, (40, 1)), px, unit="")
+    mode = LateralForceMode(mu, normal_force=F_N)
+    settings = ScanSettings(20 * px, pixels=20, scan_speed=1e-6, offset=(60e-9, 0.0))
+    result = scan(topo, None, mode, settings)
+    got = ((result.images["lateral trace"] - result.images["lateral retrace"])
+           / (2 * F_N))[:, 1:-1]
+    # the scan's centre is 60 nm (6 columns) right of the sample's centre, column 19.5
+    centre = 0.1 + 0.005 * (19.5 + 6)
+    assert got.mean() == pytest.approx(centre, abs=0.005)
+    assert np.all(np.diff(got, axis=1) >= 0) and np.allclose(np.diff(got, axis=0), 0)
+    assert set(np.round(got.ravel(), 12)) <= set(np.round(0.1 + 0.005 * columns, 12))
+
+
 # -- bad input -------------------------------------------------------------------------------
 @pytest.mark.parametrize("call, name", [
     (lambda: LateralLever(LEVER, 0.0), "tip_height"),
