@@ -49,6 +49,16 @@ def test_frequency_shift_matches_adaptive_quadrature(amplitude, z):
     assert got == pytest.approx(giessibl_quad(morse, z, amplitude), rel=1e-5, abs=1e-9)
 
 
+@pytest.mark.parametrize("ratio, nodes, tolerance", [(500, 256, 1e-12), (5000, 256, 1e-4),
+                                                     (5000, 512, 1e-10)])
+def test_quadrature_converges_as_documented(ratio, nodes, tolerance):
+    z = np.linspace(0.2e-9, 2e-9, 10)
+    a = ratio * LAM
+    reference = fm.frequency_shift(morse, z, amplitude=a, nodes=4096, **LEVER)
+    got = fm.frequency_shift(morse, z, amplitude=a, nodes=nodes, **LEVER)
+    assert np.allclose(got, reference, rtol=tolerance, atol=0)
+
+
 def test_frequency_shift_small_amplitude_limit():
     z = np.linspace(0.2e-9, 1e-9, 50)
     a = 1e-13
