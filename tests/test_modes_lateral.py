@@ -1,8 +1,8 @@
 """Lateral force microscopy: torsion, lateral signal, friction loops and maps, the scanner mode.
 
 Independent sources: the closed-form ratio k_t / k = 2 (L / h)^2 / (3 (1 + nu)) of a thin
-rectangular lever (from Saint-Venant torsion and Euler-Bernoulli bending, e.g. Cannara et al.,
-Rev. Sci. Instrum. 77, 053701 (2006)), a force balance on a tilted contact solved with
+rectangular lever (Saint-Venant torsion over Euler-Bernoulli bending, k from module (a)) and
+numbers worked by hand, a force balance on a tilted contact solved with
 numpy.linalg (Ogletree, Carpick and Salmeron, Rev. Sci. Instrum. 67, 3298 (1996)), the
 parallelogram friction loop of a flat sample, and the friction coefficients put into the
 synthetic sample.

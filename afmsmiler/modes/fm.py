@@ -25,7 +25,7 @@ Omega(z) = df(z) / f0::
 accurate to a few per cent for any amplitude (their Fig. 1). The 1 / sqrt(t - z) poles are
 integrated exactly (product integration: Omega and dOmega/dt linear between the samples, their
 products with (t - z)^(-1/2) integrated in closed form), which is the careful version of the
-small correction terms Sader and Jarvis add for the first interval (their Eq. (10) and note 18);
+small correction terms Sader and Jarvis add for the interval next to the pole;
 the force is taken as zero beyond the last sample (:func:`sader_jarvis`).
 
 Validity of the round trip (``tests/test_modes_fm.py``): the formula itself is approximate, to

@@ -4,14 +4,15 @@ A tip of height h (apex to the lever's mid-plane) sliding over a sample feels a 
 F_L at its apex, perpendicular to the lever's long axis. Its torque F_L h twists the lever about
 that axis by phi = F_L h / k_phi, with the torsional stiffness of a thin rectangular beam of
 length L, width w, thickness t and shear modulus G (Saint-Venant torsion of a thin plate,
-w >> t; the expression of Neumeister and Ducker, Rev. Sci. Instrum. 65, 2527 (1994), Eq. (A5)
-in the thin-plate limit; Timoshenko and Goodier, *Theory of Elasticity*, section 109)::
+w >> t: Timoshenko and Goodier, *Theory of Elasticity*; the expression used for AFM levers by
+Neumeister and Ducker, Rev. Sci. Instrum. 65, 2527 (1994), in its thin-plate limit)::
 
     k_phi = G w t^3 / (3 L)          (N m / rad)
     k_t   = k_phi / h^2 = G w t^3 / (3 L h^2)      (N/m, lateral force per apex displacement)
 
-For a plate of finite w / t the factor 1/3 becomes 1/3 (1 - 0.630 t / w) (about 2.5 % less
-for w / t = 25, the default lever); this model keeps the thin-plate value. G = E / (2 (1 + nu))
+For a plate of finite w / t the factor 1/3 becomes about 1/3 (1 - 0.630 t / w) (Roark's
+*Formulas for Stress and Strain*, torsion of a rectangular section; 2.5 % less for w / t = 25,
+the default lever); this model keeps the thin-plate value. G = E / (2 (1 + nu))
 of an isotropic material (:func:`shear_modulus`).
 
 The twist tilts the reflecting end sideways, so the reflected beam turns by 2 phi and the spot
@@ -35,7 +36,8 @@ so that half the trace-minus-retrace difference is the friction force mu F_N (ex
 linear model; mu F_N (1 + tan^2 theta) / (1 - mu^2 tan^2 theta) on the wedge) and half the sum
 the slope term. At each turn-around the tip sticks until the lever has loaded the friction force
 in the other direction: the force then changes at the lateral stiffness (the lever's k_t, or
-its series with the contact's; Carpick et al., Langmuir 13, 6065 (1997)) over a support travel
+its series with the contact's; Carpick, Ogletree and Salmeron, Appl. Phys. Lett. 70, 1548
+(1997)) over a support travel
 of 2 mu F_N / k_t, the vertical edges of a friction loop.
 
 Module (g) of the AFM SMILER toolkit ("AFM SMILER: A Scale Model Interactive Learning Extended
