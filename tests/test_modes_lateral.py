@@ -228,6 +228,7 @@ def test_lateral_force_mode_reads_friction_where_the_scan_is():
     (lambda: LateralLever(LEVER, 0.0), "tip_height"),
     (lambda: LateralLever(LEVER, 15e-6, -1.0), "shear_modulus"),
     (lambda: LateralLever("lever"), "lever"),
+    (lambda: LateralLever(LEVER).signal([0.0, 1e-2]), "lateral_force"),
     (lambda: lateral_force(0.1, 0.2, 0), "direction"),
     (lambda: lateral_force(0.1, -0.2, 1), "friction_coefficient"),
     (lambda: lateral_force(2.0, 0.2, 1), "slope"),

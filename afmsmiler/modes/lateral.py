@@ -206,8 +206,18 @@ class LateralLever:
         -------
         float or ndarray
             erf(sqrt(2) s / w_spot), s = D tan(2 phi) (module (b)'s optical lever, turned).
+
+        Raises
+        ------
+        ValueError
+            If a twist reaches pi / 4, naming ``lateral_force`` and its limit.
         """
         phi = self.twist(lateral_force)
+        if np.any(np.abs(phi) >= math.pi / 4):
+            limit = math.pi / 4 * self.torsional_stiffness / self.tip_height
+            raise ValueError(f"lateral_force must be within +-{limit:g} N (a twist of pi/4, "
+                             f"beyond which the beam misses the detector), got "
+                             f"{np.max(np.abs(lateral_force)):g} N")
         out = self.optics.split_signal(self.optics.spot_displacement(phi))
         return out if np.ndim(out) else float(out)
 
