@@ -230,6 +230,8 @@ def test_lateral_force_mode_reads_friction_where_the_scan_is():
     (lambda: LateralLever("lever"), "lever"),
     (lambda: LateralLever(LEVER).signal([0.0, 1e-2]), "lateral_force"),
     (lambda: lateral_force(0.1, 0.2, 0), "direction"),
+    (lambda: lateral_force(0.1, 0.2, True), "direction"),
+    (lambda: lateral_force(0.1, 0.2, 1.0), "direction"),
     (lambda: lateral_force(0.1, -0.2, 1), "friction_coefficient"),
     (lambda: lateral_force(2.0, 0.2, 1), "slope"),
     (lambda: lateral_force(0.1, 0.2, 1, normal_force=0.0), "normal_force"),

@@ -256,7 +256,7 @@ def lateral_force(slope, friction_coefficient, direction, *,
                         low_inclusive=False, high_inclusive=False)
     mu = check_array("friction_coefficient", friction_coefficient, "",
                      low=FRICTION_COEFFICIENT.low, high=FRICTION_COEFFICIENT.high)
-    s = check_choice("direction", direction, (1, -1))
+    s = check_choice("direction", check_integer("direction", direction, -1, 1), (1, -1))
     load = NORMAL_FORCE.check(normal_force)
     check_choice("model", model, MODELS)
     if model == "linear":
