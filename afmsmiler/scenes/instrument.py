@@ -128,7 +128,7 @@ from ..validation import (check_array, check_choice, check_integer, check_positi
 from .camera import set_camera, show_helpers
 from .shapes import Segment, Tube, _show, sphere
 from .transducers import quadrant_photodiode
-from .transforms import rotation_between, translation
+from .transforms import reflect, rotation_between, translation
 from .viewer import get_viewer, save_static_html as _save_static_html, static_html as _static_html
 
 __all__ = ["SCENE_UNIT", "PARAMETERS", "LIMITS", "DEFAULTS", "Shape", "Part", "Instrument",
@@ -431,7 +431,7 @@ def _obd() -> Instrument:
     laser, lens = 38.0 * to_laser, 22.0 * to_laser
     d = -to_laser
     n = np.asarray(z_lever)
-    reflected = d - 2 * np.dot(d, n) * n               # law of reflection on the tilted lever
+    reflected = reflect(d, n)                          # law of reflection on the tilted lever
     mirror = 35.0 * reflected
     mirror_normal = _unit([1.0, 0.0, 0.0] - reflected)  # folds the beam to +x
     photodiode = mirror + [8.0, 0.0, 0.0]

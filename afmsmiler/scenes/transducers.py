@@ -54,7 +54,7 @@ from .colors import ColorScale
 from .legends import TextPlate
 from .meshes import beam_mesh
 from .shapes import Arrow, cone, Segment, sphere, Tube
-from .transforms import rotation_between, translation
+from .transforms import reflect, rotation_between, translation
 from .viewer import get_viewer
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "TransducerScene", "LeverPose", "lever_pose", "OpticalLever",
@@ -262,7 +262,7 @@ class OpticalLever:
         d /= np.linalg.norm(d)
         n = np.array([-slope, 0.0, 1.0])
         n /= np.linalg.norm(n)
-        r = d - 2 * np.dot(d, n) * n
+        r = reflect(d, n)
         facing = np.dot(r, self.normal)
         if not facing < -1e-9:   # the detector faces the nominal beam: -normal
             raise ValueError(f"slope {slope:g} sends the reflected beam away from the detector")

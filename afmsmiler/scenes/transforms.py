@@ -6,7 +6,7 @@ import numpy as np
 
 from ..validation import check_array
 
-__all__ = ["translation", "rotation_between", "check_point"]
+__all__ = ["reflect", "translation", "rotation_between", "check_point"]
 
 
 def translation(p) -> np.ndarray:
@@ -46,3 +46,33 @@ def check_point(name: str, p) -> np.ndarray:
         The point, in scene units.
     """
     return check_array(name, p, ndim=1, size=3)
+
+
+def reflect(direction, normal) -> np.ndarray:
+    """A ray's direction after a mirror (the law of reflection, r = d - 2 (d . n) n).
+
+    Parameters
+    ----------
+    direction : array_like
+        The incoming direction (3 values, any length).
+    normal : array_like
+        The mirror's normal (3 values, normalised here; either side).
+
+    Returns
+    -------
+    numpy.ndarray
+        The reflected direction, as long as ``direction``.
+
+    Examples
+    --------
+    >>> reflect([1.0, 0.0, -1.0], [0.0, 0.0, 1.0]).tolist()
+    [1.0, 0.0, 1.0]
+    """
+    d = check_array("direction", direction, size=3)
+    n = check_array("normal", normal, size=3)
+    length = np.linalg.norm(n)
+    if not length > 0:
+        raise ValueError("normal must not be zero")
+    n = n / length
+    return d - 2 * np.dot(d, n) * n
+
