@@ -88,7 +88,7 @@ UNITS = MappingProxyType({
     "s": ("s", 1.0), "ms": ("s", 1e-3), "us": ("s", 1e-6),
     "1/s": ("1/s", 1.0), "1/us": ("1/s", 1e6),
     "Hz": ("Hz", 1.0), "kHz": ("Hz", 1e3), "MHz": ("Hz", 1e6), "GHz": ("Hz", 1e9),
-    "m/s": ("m/s", 1.0), "mm/s": ("m/s", 1e-3), "um/s": ("m/s", 1e-6),
+    "m/s": ("m/s", 1.0), "mm/s": ("m/s", 1e-3), "um/s": ("m/s", 1e-6), "nm/s": ("m/s", 1e-9),
     "Hz/m": ("Hz/m", 1.0), "GHz/nm": ("Hz/m", 1e9 / 1e-9),
     # electrical, magnetic, optical
     "V": ("V", 1.0), "mV": ("V", 1e-3), "uV": ("V", 1e-6),

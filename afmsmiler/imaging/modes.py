@@ -1,0 +1,413 @@
+"""Imaging modes: what the tip does at each pixel of a line, behind one interface.
+
+The scanner (:mod:`afmsmiler.imaging.scanner`) decides where the tip is and when: it dilates
+the sample by the tip, samples the apex surface along every line (trace and retrace, with the
+scan angle, offset, drift and creep of its :class:`~afmsmiler.imaging.scanner.ScanSettings`) and
+hands the result to a mode as a :class:`ScanPlan`. A :class:`Mode` turns the plan's lines into
+channels, one line at a time. Two modes live here:
+
+- :class:`ConstantForce`: module (c)'s feedback loop (:class:`~afmsmiler.controller.ContactLoop`)
+  keeps the deflection at its setpoint; the height image is the positioner's motion and the error
+  channel the deflection minus the setpoint. Trace and retrace of every line are one polygon in
+  time, each line continuing from the state the previous retrace left, exactly as
+  :func:`afmsmiler.controller.scan_image` computes it (same numbers).
+- :class:`ConstantHeight`: the lever's base is held at one height and module (d)'s contact
+  solver (:class:`~afmsmiler.contact.ContactSystem`) gives the deflection at every pixel; the tip
+  crashes when the force passes a damage threshold (the line and the scan stop there).
+
+Writing a new mode (module (g) adds tapping, jumping and force-volume this way, without touching
+the scanner): subclass :class:`Mode`, list the channel names it produces in ``channels`` (and
+their SI units in ``units`` when not m), and implement :meth:`Mode.line`, which receives the plan,
+a row index and the state the previous line returned, and gives back a :class:`ModeLine` (the
+line's channels, the state for the next line, and a :class:`Crash` if the tip broke).
+:meth:`Mode.start` runs once before the first line (precompute there). The scanner adds sensor
+noise to every channel in m and assembles the images; a mode never sees noise or the images.
+"""
+from __future__ import annotations
+
+import math
+from abc import ABC, abstractmethod
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import Any, ClassVar, Mapping
+
+import numpy as np
+
+from ..contact import ContactSystem
+from ..contact import PARAMETERS as CONTACT_PARAMETERS
+from ..controller import PARAMETERS as LOOP_PARAMETERS
+from ..controller import ContactLoop, scan_image
+from ..controller.polygon import polygon_response
+from ..parameters import Parameter, read_only
+from ..validation import check_instance
+
+__all__ = ["Mode", "ScanPlan", "ModeLine", "Crash", "ConstantForce", "ConstantHeight",
+           "PARAMETERS", "DIRECTIONS"]
+
+#: The two passes over a line, in scan order.
+DIRECTIONS = ("trace", "retrace")
+
+#: The modes' user-settable quantities that no other module describes: the force in N beyond
+#: which a tip in constant-height mode is damaged (a silicon tip of 10 nm radius blunts above
+#: some 10 nN to 100 nN). The setpoint (module (c)) and z_np (module (d)) are described there.
+PARAMETERS = read_only({p.name: p for p in (
+    Parameter(name="damage_force", unit="N", display_unit="nN", default=100e-9, low=0.0,
+              high=1.0, low_inclusive=False, slider_low=1e-9, slider_high=1e-6, log=True,
+              label="damage force"),
+)})
+
+
+@dataclass(frozen=True)
+class ScanPlan:
+    """Everything the scanner hands a mode: where the tip goes, when, and what it meets there.
+
+    Arrays are (lines, pixels), rows along the slow axis, columns along the fast axis in
+    increasing x for both passes (the retrace runs from the last column to the first in time).
+
+    Parameters
+    ----------
+    trace, retrace : numpy.ndarray
+        Height in m of the apex surface (the sample dilated by the tip, tilt included) under the
+        apex at each pixel of each pass.
+    t_trace, t_retrace : numpy.ndarray
+        Time in s since the start of the scan at which the tip is at each pixel: line i's trace
+        starts at i (2 pixels - 1) pixel times, its retrace starts at the trace's last pixel
+        (shared) and the step to the next line takes one pixel time (as in
+        :func:`afmsmiler.controller.scan_image`).
+    x_trace, y_trace, x_retrace, y_retrace : numpy.ndarray
+        Position of the apex on the sample in m (from the sample's first pixel), drift and
+        creep included.
+    pixel_size, pixel_size_y : float
+        Pixel spacing in m of the image along the fast and the slow axis.
+    scan_speed : float
+        Tip speed along the fast axis in m/s.
+    apex : afmsmiler.samples.Sample
+        The apex surface that was sampled (on the sample's grid).
+    tip : afmsmiler.contact.Tip or None
+        The tip (None: an ideal, infinitely sharp one).
+    settings : afmsmiler.imaging.scanner.ScanSettings
+        The settings of the scan.
+    """
+
+    trace: np.ndarray
+    retrace: np.ndarray
+    t_trace: np.ndarray
+    t_retrace: np.ndarray
+    x_trace: np.ndarray
+    y_trace: np.ndarray
+    x_retrace: np.ndarray
+    y_retrace: np.ndarray
+    pixel_size: float
+    pixel_size_y: float
+    scan_speed: float
+    apex: Any
+    tip: Any
+    settings: Any
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(lines, pixels) of the image."""
+        return self.trace.shape
+
+    @property
+    def pixel_time(self) -> float:
+        """Time in s from one pixel to the next (pixel_size / scan_speed)."""
+        return self.pixel_size / self.scan_speed
+
+
+@dataclass(frozen=True)
+class Crash:
+    """Where and how hard the tip hit the sample (the scan stopped there).
+
+    Parameters
+    ----------
+    row, column : int
+        The pixel (line index, column index) at which |force| first passed the threshold.
+    force : float
+        The force there in N (signed; inf when the tip would have been buried).
+    direction : str
+        ``"trace"`` or ``"retrace"``.
+    """
+
+    row: int
+    column: int
+    force: float
+    direction: str = "trace"
+
+
+@dataclass(frozen=True)
+class ModeLine:
+    """One line as a mode computed it.
+
+    Parameters
+    ----------
+    channels : Mapping
+        Channel name -> 1-D array (pixels,) in the channel's SI unit, columns in increasing x
+        (a retrace too). After a crash, the pixels not reached hold NaN.
+    state : object
+        Whatever the mode needs for the next line (handed back to :meth:`Mode.line`).
+    crash : Crash or None
+        Set when the tip crashed on this line: the scanner keeps the pixels reached, does not
+        count the line as finished and stops the scan.
+    """
+
+    channels: Mapping
+    state: Any = None
+    crash: Crash | None = None
+
+
+class Mode(ABC):
+    """An imaging mode: turns the apex surface along each line into channels.
+
+    Subclasses set ``channels`` (names, e.g. ``("height trace", "height retrace")``) and, for
+    channels not in m, ``units`` (name -> SI unit), and implement :meth:`line`; they may override
+    :meth:`start` to precompute. ``tip`` is the tip the mode's own physics uses, if any (the
+    scanner checks that it is the tip it dilates with).
+    """
+
+    #: Names of the channels the mode produces, in the order a panel shows them.
+    channels: ClassVar[tuple[str, ...]] = ()
+    #: SI unit of each channel that is not in m.
+    units: ClassVar[Mapping[str, str]] = MappingProxyType({})
+    #: The tip of the mode's own physics (None: the mode does not model one).
+    tip = None
+
+    def unit(self, channel: str) -> str:
+        """SI unit of a channel ("m" unless ``units`` says otherwise).
+
+        Parameters
+        ----------
+        channel : str
+            One of :attr:`channels`.
+
+        Returns
+        -------
+        str
+        """
+        return self.units.get(channel, "m")
+
+    def start(self, plan: ScanPlan) -> Any:
+        """Called once before the first line; returns the state handed to line 0.
+
+        Parameters
+        ----------
+        plan : ScanPlan
+            The whole scan's geometry and apex heights.
+
+        Returns
+        -------
+        object
+            The state for :meth:`line` (default None).
+        """
+        return None
+
+    @abstractmethod
+    def line(self, plan: ScanPlan, row: int, state: Any) -> ModeLine:
+        """Scan line ``row`` (trace then retrace).
+
+        Parameters
+        ----------
+        plan : ScanPlan
+            The scan.
+        row : int
+            Line index, 0 to lines - 1, called in increasing order.
+        state : object
+            What :meth:`start` (for row 0) or the previous line's :class:`ModeLine` returned.
+
+        Returns
+        -------
+        ModeLine
+        """
+
+
+class ConstantForce(Mode):
+    """Constant-force contact mode through module (c)'s feedback loop.
+
+    Parameters
+    ----------
+    loop : afmsmiler.controller.ContactLoop
+        Lever, sample and PID gains.
+    setpoint : float
+        Deflection setpoint R in m (module (c)'s ``setpoint``; keyword-only).
+
+    Raises
+    ------
+    TypeError
+        If ``loop`` is not a ContactLoop.
+    ValueError
+        If ``setpoint`` is out of its range.
+
+    Notes
+    -----
+    Channels: ``"height trace"``/``"height retrace"``, the positioner's motion
+    -(Z_np - Z_np,flat) (Z_np,flat: its height at equilibrium over a flat sample at 0), which
+    equals the apex surface once the loop has settled; ``"error trace"``/``"error retrace"``, the
+    deflection minus the setpoint Z_c - R (the error signal the loop acts on).
+
+    The whole scan is one polygon in time (trace 0, retrace 0, trace 1, ...), solved in one call
+    of :func:`afmsmiler.controller.scan_image` when the mode starts (O(lines x pixels), some
+    20 ms for 256 x 256): module (c)'s closed-form recursion carries its state internally and
+    cannot resume from a given one, and running it again over all earlier lines at every line
+    would cost O(lines^2 x pixels). :meth:`line` then hands out row by row, so a scan run line by
+    line gives bitwise the numbers of the whole image in one call. When drift or creep make the
+    retrace pass over other points than the trace, the same chained polygon goes through module
+    (c)'s solver directly (:func:`afmsmiler.controller.polygon.polygon_response`, as in
+    ``scan_image``), with the retrace's own heights.
+    """
+
+    channels = ("height trace", "height retrace", "error trace", "error retrace")
+
+    def __init__(self, loop: ContactLoop, *, setpoint: float = LOOP_PARAMETERS["setpoint"].default):
+        self.loop = check_instance("loop", loop, ContactLoop)
+        self.setpoint = LOOP_PARAMETERS["setpoint"].check(setpoint)
+
+    def __repr__(self) -> str:
+        return f"ConstantForce({self.loop!r}, setpoint={self.setpoint!r})"
+
+    def start(self, plan: ScanPlan) -> dict:
+        """Run the whole scan through the loop (see the class notes); returns the images.
+
+        Parameters
+        ----------
+        plan : ScanPlan
+            The scan.
+
+        Returns
+        -------
+        dict
+            Channel name -> (lines, pixels) array.
+        """
+        loop, setpoint = self.loop, self.setpoint
+        if np.array_equal(plan.trace, plan.retrace):
+            image = scan_image(loop, plan.trace, plan.pixel_size, speed=plan.scan_speed,
+                               setpoint=setpoint)
+            z_np_t, z_np_r = image.trace_z_np, image.retrace_z_np
+            z_c_t, z_c_r = image.trace + z_np_t, image.retrace + z_np_r
+            z_np_flat = image.z_np_flat
+        else:
+            lines, n = plan.shape
+            path = np.concatenate((plan.trace, plan.retrace[:, ::-1][:, 1:]), axis=1).ravel()
+            t = np.arange(path.size) * plan.pixel_time
+            forms = loop.closed_forms("step"), loop.closed_forms("ramp")
+            z_c, z_np = polygon_response(*forms, t, path - path[0], None, uniform=True)
+            zc0, znp0 = loop.steady_state(setpoint, 0.0)
+            zc1, znp1 = loop.steady_state(setpoint, 1.0)
+            z_c = (z_c + zc0 + (zc1 - zc0) * path[0]).reshape(lines, 2 * n - 1)
+            z_np = (z_np + znp0 + (znp1 - znp0) * path[0]).reshape(lines, 2 * n - 1)
+            z_c_t, z_c_r = z_c[:, :n], z_c[:, n - 1:][:, ::-1]
+            z_np_t, z_np_r = z_np[:, :n], z_np[:, n - 1:][:, ::-1]
+            z_np_flat = float(znp0)
+        return {"height trace": -(z_np_t - z_np_flat), "height retrace": -(z_np_r - z_np_flat),
+                "error trace": z_c_t - setpoint, "error retrace": z_c_r - setpoint}
+
+    def line(self, plan: ScanPlan, row: int, state: dict) -> ModeLine:
+        """Row ``row`` of the images computed by :meth:`start`.
+
+        Parameters
+        ----------
+        plan : ScanPlan
+            The scan.
+        row : int
+            Line index.
+        state : dict
+            The images from :meth:`start`.
+
+        Returns
+        -------
+        ModeLine
+        """
+        return ModeLine({name: image[row].copy() for name, image in state.items()}, state)
+
+
+class ConstantHeight(Mode):
+    """Constant-height contact mode: the lever's base held still, the deflection recorded.
+
+    Parameters
+    ----------
+    system : afmsmiler.contact.ContactSystem
+        Tip, lever spring constant and sample (module (d)); elastic (``adhesion=None``).
+    z_np : float
+        Positioner displacement Z_np in m over the sample's height 0: at a pixel where the apex
+        surface is at height r, the tip meets the sample as module (d)'s contact at
+        Z_np = z_np + r (Z_np <= 0: out of contact, no force).
+    damage_force : float
+        Force in N beyond which the tip is damaged (|F| > damage_force crashes the scan).
+
+    Raises
+    ------
+    TypeError
+        If ``system`` is not a ContactSystem.
+    ValueError
+        If ``z_np`` or ``damage_force`` is out of range, or the system has adhesion (its
+        history-dependent branches are not modelled here yet).
+
+    Notes
+    -----
+    Channels ``"deflection trace"``/``"deflection retrace"``: Z_c = F / k in m, from
+    :meth:`ContactSystem.indent` at every pixel (quasi-static: the lever follows the
+    contact without dynamics). The tip touches where the apex surface is; the dilated surface
+    already holds the contact geometry of the tip's flanks, the solver adds the indentation at
+    the apex. When |F| first exceeds ``damage_force`` (in scan order, trace then retrace) the
+    line stops at that pixel (the later ones are NaN) and the scan stops: a :class:`Crash`.
+    A sphere that would be buried beyond its radius crashes too (force inf).
+    """
+
+    channels = ("deflection trace", "deflection retrace")
+
+    def __init__(self, system: ContactSystem, z_np: float = CONTACT_PARAMETERS["z_np"].default,
+                 damage_force: float = PARAMETERS["damage_force"].default):
+        self.system = check_instance("system", system, ContactSystem)
+        if system.adhesion is not None:
+            raise ValueError(f"system must be elastic (adhesion=None) for constant height, got "
+                             f"adhesion={system.adhesion!r}")
+        self.z_np = CONTACT_PARAMETERS["z_np"].check(z_np)
+        self.damage_force = PARAMETERS["damage_force"].check(damage_force)
+        self.tip = system.tip
+
+    def __repr__(self) -> str:
+        return (f"ConstantHeight({self.system!r}, z_np={self.z_np!r}, "
+                f"damage_force={self.damage_force!r})")
+
+    def _pass(self, heights):
+        z = self.z_np + heights
+        force = np.full(z.shape, math.inf)
+        ok = z < self.system.z_np_limit
+        curve = self.system.indent(z[ok])
+        force[ok] = curve.force
+        deflection = np.full(z.shape, math.inf)
+        deflection[ok] = curve.z_c
+        return deflection, force
+
+    def line(self, plan: ScanPlan, row: int, state: Any = None) -> ModeLine:
+        """Deflection along line ``row``, trace and retrace; a :class:`Crash` if the tip broke.
+
+        Parameters
+        ----------
+        plan : ScanPlan
+            The scan.
+        row : int
+            Line index.
+        state : object
+            Unused (the mode has no memory from line to line).
+
+        Returns
+        -------
+        ModeLine
+        """
+        n = plan.shape[1]
+        d_t, f_t = self._pass(plan.trace[row])
+        d_r, f_r = self._pass(plan.retrace[row][::-1])  # scan order
+        forces = np.concatenate((f_t, f_r))
+        over = np.abs(forces) > self.damage_force
+        crash = None
+        if over.any():
+            k = int(np.argmax(over))
+            direction = DIRECTIONS[k // n]
+            column = k if k < n else 2 * n - 1 - k
+            crash = Crash(int(row), int(column), float(forces[k]), direction)
+            scan_order = np.concatenate((d_t, d_r))
+            scan_order[k + 1:] = np.nan
+            d_t, d_r = scan_order[:n], scan_order[n:]
+        return ModeLine({"deflection trace": d_t, "deflection retrace": d_r[::-1].copy()},
+                        None, crash)
+

@@ -1,0 +1,707 @@
+"""The virtual scanner: where the tip goes on the sample, when, and what it records there.
+
+A :class:`Scan` joins a sample (:class:`~afmsmiler.samples.Sample`), a tip (module (d)'s
+:class:`~afmsmiler.contact.Tip`), an imaging mode (:class:`~afmsmiler.imaging.modes.Mode`) and
+the :class:`ScanSettings` (scan range, pixels, lines, speed, angle, offset, noise, drift, creep,
+tilt). It
+
+1. adds the tilt's plane to the sample and dilates the result by the tip
+   (:func:`afmsmiler.imaging.dilation.dilate`): the apex surface, the surface the tip's apex
+   follows;
+2. lays the scan grid on the sample: line i, pixel j of the image is at
+   (u_j, v_i) = ((j + 1/2) dx - S_x / 2, (i + 1/2) dy - S_y / 2) in the scan frame, with
+   dx = S_x / pixels and dy = S_y / lines (the scan range covers pixels x lines square cells, as
+   AFM software counts it), rotated by the scan angle and centred on the sample's centre plus the
+   offset; drift and creep move the points with time (:meth:`ScanSettings.displacement`);
+3. samples the apex surface there by bilinear interpolation (exact at the sample's own pixels), for
+   the trace and the retrace separately (they pass at different times);
+4. hands the mode one line at a time (:meth:`Scan.lines`, :meth:`Scan.run`, :meth:`Scan.step`)
+   and adds the sensor noise to the channels in m.
+
+The times: each line is traced (pixels 0 to n - 1) and retraced (n - 1 to 0, the turn-around
+pixel shared) at the scan speed, one pixel time dt = dx / scan_speed apart, and the step to the
+next line takes one more dt: a line takes (2 n - 1) dt (:attr:`ScanSettings.line_time`), the
+timing of module (c)'s :func:`~afmsmiler.controller.scan_image`.
+
+Finished lines are never lost: :attr:`Scan.result` is a :class:`ScanResult` at any time, with the
+images of the lines done so far, whether the scan was stopped, and where the tip crashed.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import KW_ONLY, dataclass, fields, replace
+from types import MappingProxyType
+from typing import Callable, Iterator, Mapping
+
+import numpy as np
+
+from ..contact import Tip
+from ..controller import PARAMETERS as LOOP_PARAMETERS
+from ..controller.image import MAX_IMAGE_PIXELS
+from ..parameters import Parameter, read_only
+from ..samples import Sample
+from ..validation import check_instance, check_integer
+from .modes import DIRECTIONS, Crash, Mode, ScanPlan
+
+__all__ = ["ScanSettings", "Scan", "ScanResult", "LineRecord", "scan", "PARAMETERS",
+           "MAX_SCAN_PIXELS"]
+
+#: Most pixels of a scan (pixels x lines), the bound of module (c)'s scan_image (about 4 s).
+MAX_SCAN_PIXELS = MAX_IMAGE_PIXELS
+_MAX_SIDE = 2048
+
+
+def _length(name, label, default, low, high, slider_low, slider_high, display="um", log=False,
+            low_inclusive=True):
+    return Parameter(name=name, unit="m", display_unit=display, default=default, low=low,
+                     high=high, low_inclusive=low_inclusive, slider_low=slider_low,
+                     slider_high=slider_high, log=log, label=label)
+
+
+def _angle(name, label, high, slider):
+    return Parameter(name=name, unit="rad", display_unit="deg", default=0.0, low=-high,
+                     high=high, low_inclusive=False, high_inclusive=False, slider_low=-slider,
+                     slider_high=slider, label=label)
+
+
+def _drift(name, label):
+    return Parameter(name=name, unit="m/s", display_unit="nm/s", default=0.0, low=-1e-6,
+                     high=1e-6, slider_low=-5e-9, slider_high=5e-9, label=label)
+
+
+_SPEED = LOOP_PARAMETERS["speed"]
+
+#: The scanner's user-settable quantities (SI; display units through ``UNITS``). Scan ranges up to
+#: 100 um (the largest AFM scanners'); 2 to 2048 pixels and 1 to 2048 lines (at most
+#: :data:`MAX_SCAN_PIXELS` in all); the scan speed is module (c)'s ``speed`` (1 nm/s to 1 m/s),
+#: also settable as a line rate; the angle in (-180, 180) deg; offsets within 100 um; sensor noise
+#: up to 1 um RMS; drift up to 1 um/s; creep up to 50 % per decade after 1 ms to 1000 s; tilts in
+#: (-90, 90) deg.
+PARAMETERS = read_only({p.name: p for p in (
+    _length("scan_size", "scan size", 1e-6, 0.0, 100e-6, 10e-9, 100e-6, log=True,
+            low_inclusive=False),
+    _length("scan_size_y", "scan size y", 1e-6, 0.0, 100e-6, 10e-9, 100e-6, log=True,
+            low_inclusive=False),
+    Parameter(name="pixels", unit="", default=256, low=2, high=_MAX_SIDE, slider_low=16,
+              slider_high=1024, log=True, label="pixels per line"),
+    Parameter(name="lines", unit="", default=256, low=1, high=_MAX_SIDE, slider_low=16,
+              slider_high=1024, log=True, label="lines"),
+    _SPEED.with_(name="scan_speed"),
+    Parameter(name="line_rate", unit="Hz", default=1.0, low=1e-4, high=1e4, slider_low=0.05,
+              slider_high=50.0, log=True, label="line rate"),
+    _angle("angle", "scan angle", math.pi, math.pi / 2),
+    _length("offset_x", "offset x", 0.0, -100e-6, 100e-6, -5e-6, 5e-6),
+    _length("offset_y", "offset y", 0.0, -100e-6, 100e-6, -5e-6, 5e-6),
+    _length("noise", "sensor noise (RMS)", 0.0, 0.0, 1e-6, 0.0, 2e-9, display="nm"),
+    _drift("drift_x", "drift x"),
+    _drift("drift_y", "drift y"),
+    Parameter(name="creep", unit="", default=0.0, low=0.0, high=0.5, slider_low=0.0,
+              slider_high=0.05, label="creep per decade gamma"),
+    Parameter(name="creep_time", unit="s", default=0.1, low=1e-3, high=1e3, slider_low=0.01,
+              slider_high=10.0, log=True, label="creep time t0"),
+    _angle("tilt_x", "sample tilt along x", math.pi / 2, math.radians(5.0)),
+    _angle("tilt_y", "sample tilt along y", math.pi / 2, math.radians(5.0)),
+)})
+
+_P = PARAMETERS
+
+
+def _pair(name, value, keys):
+    """A 2-tuple of floats, each checked with its Parameter (offset -> offset_x, offset_y)."""
+    try:
+        a, b = value
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} must be a pair (x, y), got {value!r}") from None
+    return tuple(_P[k].check(v) for k, v in zip(keys, (a, b)))
+
+
+@dataclass(frozen=True)
+class ScanSettings:
+    """What the user sets on the scanner, validated, in SI units.
+
+    Parameters
+    ----------
+    scan_size : float
+        Scan range along the fast axis in m (the side of pixels square cells: the image's width
+        is pixels x pixel_size, as AFM software counts it).
+    scan_size_y : float, optional
+        Scan range along the slow axis in m; default ``scan_size``.
+    pixels : int
+        Pixels per line, 2 to 2048.
+    lines : int, optional
+        Lines, 1 to 2048; default ``pixels``. At most :data:`MAX_SCAN_PIXELS` pixels in all.
+    scan_speed : float
+        Tip speed along the fast axis in m/s (module (c)'s speed range, 1 nm/s to 1 m/s); see
+        :meth:`with_line_rate` to set it in lines per second.
+    angle : float
+        Scan angle in rad: the scan grid is rotated by it (counter-clockwise) on the sample.
+    offset : tuple of float
+        (x, y) in m of the scan's centre from the sample's centre, in the sample's axes.
+    noise : float
+        RMS in m of the sensor noise added to every channel in m (white, Gaussian, independent
+        per pixel and pass; the loop does not see it).
+    drift : tuple of float
+        (v_x, v_y) in m/s: a constant thermal drift of the sample under the tip.
+    creep : float
+        Piezo creep gamma (fraction of the offset step per decade of time, 0.01 to 0.02 for
+        typical PZT; 0: none).
+    creep_time : float
+        The creep's time scale t0 in s.
+    tilt : tuple of float
+        (alpha_x, alpha_y) in rad: the sample is tilted by adding the plane
+        tan(alpha_x) (x - x_c) + tan(alpha_y) (y - y_c) about its centre before the dilation.
+    seed : int, optional
+        Seed of the noise (numpy's default_rng); None draws a fresh one.
+
+    Raises
+    ------
+    ValueError
+        If a value is out of its range (:data:`PARAMETERS`), names the parameter and the range.
+
+    Notes
+    -----
+    Drift and creep move the sample under the scan grid: the tip at time t is at the nominal
+    point plus :meth:`displacement` (t), with t counted from the start of the scan, when the
+    scanner has just stepped by ``offset``. Creep follows the logarithmic law of PZT actuators
+    after a step x0, x(t) = x0 [1 + gamma log10(t / t0)] (Jung and Gweon, Rev. Sci. Instrum. 71,
+    1896 (2000); Croft, Shed and Devasia, J. Dyn. Syst. Meas. Control 123, 35 (2001)), written
+    here as offset x gamma log10(1 + t / t0) so that it starts at 0. Both are what makes the
+    first lines after an offset bent and an image drawn slowly sheared.
+
+    Examples
+    --------
+    >>> s = ScanSettings(2e-6, pixels=128, scan_speed=4e-6)
+    >>> round(s.pixel_size * 1e9, 3), s.lines
+    (15.625, 128)
+    >>> round(s.with_line_rate(1.0).scan_speed * 1e6, 3)  # 1 line/s: 255 pixel times per line
+    3.984
+    """
+
+    scan_size: float
+    _: KW_ONLY
+    scan_size_y: float | None = None
+    pixels: int = int(_P["pixels"].default)
+    lines: int | None = None
+    scan_speed: float = _P["scan_speed"].default
+    angle: float = _P["angle"].default
+    offset: tuple = (0.0, 0.0)
+    noise: float = _P["noise"].default
+    drift: tuple = (0.0, 0.0)
+    creep: float = _P["creep"].default
+    creep_time: float = _P["creep_time"].default
+    tilt: tuple = (0.0, 0.0)
+    seed: int | None = None
+
+    def __post_init__(self):
+        s = object.__setattr__
+        s(self, "scan_size", _P["scan_size"].check(self.scan_size))
+        y = self.scan_size if self.scan_size_y is None else self.scan_size_y
+        s(self, "scan_size_y", _P["scan_size_y"].check(y))
+        s(self, "pixels", check_integer("pixels", self.pixels, 2, _MAX_SIDE))
+        lines = self.pixels if self.lines is None else self.lines
+        s(self, "lines", check_integer("lines", lines, 1, _MAX_SIDE))
+        if self.pixels * self.lines > MAX_SCAN_PIXELS:
+            raise ValueError(f"pixels x lines must be at most {MAX_SCAN_PIXELS} (a bound the "
+                             f"scan honours in seconds), got {self.pixels} x {self.lines}")
+        for name in ("scan_speed", "angle", "noise", "creep", "creep_time"):
+            s(self, name, _P[name].check(getattr(self, name)))
+        s(self, "offset", _pair("offset", self.offset, ("offset_x", "offset_y")))
+        s(self, "drift", _pair("drift", self.drift, ("drift_x", "drift_y")))
+        s(self, "tilt", _pair("tilt", self.tilt, ("tilt_x", "tilt_y")))
+        if self.seed is not None:
+            s(self, "seed", check_integer("seed", self.seed, 0, 2 ** 63 - 1))
+
+    def replace(self, **changes) -> "ScanSettings":
+        """A copy with some settings changed (validated again).
+
+        Parameters
+        ----------
+        **changes
+            New values of any of the fields.
+
+        Returns
+        -------
+        ScanSettings
+        """
+        return replace(self, **changes)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        """(lines, pixels) of the image."""
+        return (self.lines, self.pixels)
+
+    @property
+    def pixel_size(self) -> float:
+        """Pixel spacing along the fast axis in m: scan_size / pixels."""
+        return self.scan_size / self.pixels
+
+    @property
+    def pixel_size_y(self) -> float:
+        """Line spacing in m: scan_size_y / lines."""
+        return self.scan_size_y / self.lines
+
+    @property
+    def pixel_time(self) -> float:
+        """Time in s from one pixel to the next: pixel_size / scan_speed."""
+        return self.pixel_size / self.scan_speed
+
+    @property
+    def line_time(self) -> float:
+        """Time in s of one line, trace, retrace and the step to the next: (2 pixels - 1) dt."""
+        return (2 * self.pixels - 1) * self.pixel_time
+
+    @property
+    def line_rate(self) -> float:
+        """Lines per second in Hz (1 / :attr:`line_time`), the rate AFM software shows."""
+        return 1.0 / self.line_time
+
+    @property
+    def scan_time(self) -> float:
+        """Time in s of the whole scan (lines x :attr:`line_time`)."""
+        return self.lines * self.line_time
+
+    def with_line_rate(self, line_rate: float) -> "ScanSettings":
+        """A copy whose scan speed gives ``line_rate`` lines per second.
+
+        Parameters
+        ----------
+        line_rate : float
+            Lines per second in Hz (trace, retrace and the step to the next line each).
+
+        Returns
+        -------
+        ScanSettings
+
+        Raises
+        ------
+        ValueError
+            If the line rate, or the scan speed it needs, is out of range.
+        """
+        rate = _P["line_rate"].check(line_rate)
+        speed = (2 * self.pixels - 1) * self.pixel_size * rate
+        try:
+            return self.replace(scan_speed=speed)
+        except ValueError as err:
+            raise ValueError(f"line_rate {rate:g} Hz needs a scan speed out of range: {err}") \
+                from None
+
+    def displacement(self, t):
+        """Drift and creep displacement (d_x, d_y) in m of the sample at time t since the start.
+
+        Parameters
+        ----------
+        t : float or numpy.ndarray
+            Time in s, >= 0.
+
+        Returns
+        -------
+        tuple of numpy.ndarray
+            d = drift t + offset gamma log10(1 + t / t0), each shaped like ``t``.
+        """
+        t = np.asarray(t, dtype=float)
+        creep = self.creep * np.log10(1.0 + t / self.creep_time)
+        return tuple(v * t + o * creep for v, o in zip(self.drift, self.offset))
+
+    @property
+    def moves(self) -> bool:
+        """True when drift or creep move the sample during the scan."""
+        return any(self.drift) or (self.creep > 0 and any(self.offset))
+
+
+@dataclass(frozen=True)
+class LineRecord:
+    """One finished (or crashed) line of a scan, as :meth:`Scan.lines` yields it.
+
+    Parameters
+    ----------
+    row : int
+        Line index.
+    channels : Mapping
+        Channel name -> 1-D array (pixels,) in SI units, columns in increasing x, noise added.
+    crash : Crash or None
+        Where the tip crashed on this line (the line is then not finished).
+    """
+
+    row: int
+    channels: Mapping
+    crash: Crash | None = None
+
+
+@dataclass(frozen=True)
+class ScanResult:
+    """The state of a scan: the images of the lines done, whether it stopped, where it crashed.
+
+    Parameters
+    ----------
+    images : Mapping
+        Channel name -> (lines, pixels) array in SI units, NaN where no line was scanned yet
+        (a crashed line holds the pixels reached).
+    units : Mapping
+        Channel name -> SI unit.
+    lines_done : int
+        Finished lines (rows 0 to lines_done - 1).
+    crashed : Crash or None
+        Where the tip crashed (row, column, force in N), or None.
+    stopped : bool
+        True if :meth:`Scan.run` was stopped before the end.
+    pixel_size, pixel_size_y : float
+        Pixel spacing of the images in m.
+    name : str
+        The scanned sample's name.
+    """
+
+    images: Mapping
+    units: Mapping
+    lines_done: int
+    crashed: Crash | None
+    stopped: bool
+    pixel_size: float
+    pixel_size_y: float
+    name: str = ""
+
+    @property
+    def lines(self) -> int:
+        """Lines of the full image."""
+        return next(iter(self.images.values())).shape[0] if self.images else 0
+
+    @property
+    def finished(self) -> bool:
+        """True when every line was scanned."""
+        return self.lines_done == self.lines
+
+    @property
+    def progress(self) -> float:
+        """Fraction of the lines done, 0 to 1."""
+        return self.lines_done / self.lines if self.lines else 0.0
+
+    @property
+    def channels(self) -> dict:
+        """Channel name -> :class:`~afmsmiler.samples.Sample` of the finished lines ({} if none).
+
+        Each sample holds rows 0 to lines_done - 1 with the scan's pixel sizes.
+        """
+        if self.lines_done == 0:
+            return {}
+        return {name: _sample(image[:self.lines_done], self.pixel_size, self.pixel_size_y,
+                              f"{self.name}: {name}" if self.name else name, name,
+                              self.units[name])
+                for name, image in self.images.items()}
+
+
+_SAMPLE_FIELDS = {f.name for f in fields(Sample)}
+
+
+def _sample(values, pixel_size, pixel_size_y, name, channel, unit):
+    extra = {}
+    if "channel" in _SAMPLE_FIELDS:  # the Sample of issue 10 says what it holds
+        extra = {"channel": channel, "unit": unit}
+    return Sample(values, pixel_size, name, pixel_size_y=pixel_size_y, **extra)
+
+
+def _bilinear(heights, px, py):
+    """Bilinear interpolation of heights[row, column] at fractional (column px, row py).
+
+    Positions within 1e-9 pixel of a node are taken at the node (exact values there).
+    """
+    rows, cols = heights.shape
+    out = []
+    for p, n in ((px, cols), (py, rows)):
+        r = np.rint(p)
+        p = np.where(np.abs(p - r) < 1e-9, r, p)
+        p = np.clip(p, 0.0, n - 1)
+        i0 = np.minimum(np.floor(p).astype(np.intp), max(n - 2, 0))
+        out.append((i0, p - i0))
+    (j0, fx), (i0, fy) = out
+    if rows == 1:
+        i0, fy = np.zeros_like(i0), np.zeros_like(fy)
+    j1 = np.minimum(j0 + 1, cols - 1)
+    i1 = np.minimum(i0 + 1, rows - 1)
+    top = heights[i0, j0] * (1 - fx) + heights[i0, j1] * fx
+    bottom = heights[i1, j0] * (1 - fx) + heights[i1, j1] * fx
+    return top * (1 - fy) + bottom * fy
+
+
+def _fmt(x):
+    return f"{x * 1e6:.4g} um"
+
+
+class Scan:
+    """A scan of a sample with a tip in an imaging mode, run line by line.
+
+    Parameters
+    ----------
+    sample : afmsmiler.samples.Sample
+        The sample, 2-D (at least 2 x 2 pixels), heights in m.
+    tip : afmsmiler.contact.Tip or None
+        The tip whose shape blurs the image (dilation); None: an ideal, infinitely sharp tip.
+    mode : afmsmiler.imaging.modes.Mode
+        The imaging mode.
+    settings : ScanSettings
+        Scan range, pixels, speed, angle, offset, noise, drift, creep, tilt.
+
+    Raises
+    ------
+    TypeError
+        If an argument is of the wrong type.
+    ValueError
+        If the sample is not 2-D or holds NaN, the scan range (with its angle, offset, drift
+        and creep) reaches beyond the sample, or the mode's own tip is not ``tip``.
+
+    Notes
+    -----
+    Nothing is computed before the first line (the constructor only checks the geometry): the
+    dilation and the sampling run on the first call of :meth:`step`, :meth:`lines` or
+    :meth:`run`, then :meth:`Mode.start`. One line per :meth:`step` keeps a notebook responsive.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from afmsmiler.samples import Sample
+    >>> from afmsmiler.controller import ContactLoop
+    >>> from afmsmiler.imaging.modes import ConstantForce
+    >>> sample = Sample(np.zeros((32, 32)), 10e-9)
+    >>> result = Scan(sample, None, ConstantForce(ContactLoop()),
+    ...               ScanSettings(300e-9, pixels=16)).run()
+    >>> result.lines_done, sorted(result.channels)[0]
+    (16, 'error retrace')
+    """
+
+    def __init__(self, sample: Sample, tip: Tip | None, mode: Mode, settings: ScanSettings):
+        self.sample = check_instance("sample", sample, Sample)
+        self.tip = None if tip is None else check_instance("tip", tip, Tip)
+        self.mode = check_instance("mode", mode, Mode)
+        self.settings = check_instance("settings", settings, ScanSettings)
+        h = sample.heights
+        if h.ndim != 2 or min(h.shape) < 2:
+            raise ValueError(f"sample must be a 2-D image of at least 2 x 2 pixels, got heights "
+                             f"of shape {h.shape}")
+        if not np.all(np.isfinite(h)):
+            i = np.unravel_index(int(np.argmax(~np.isfinite(h))), h.shape)
+            raise ValueError(f"sample heights must be finite m, got {h[i]!r} at {i}")
+        mode_tip = getattr(mode, "tip", None)
+        if mode_tip is not None and tip is not None and mode_tip != tip:
+            raise ValueError(f"tip ({tip!r}) must be the tip of the mode's physics "
+                             f"({mode_tip!r}): one tip both blurs and touches")
+        if any(c not in self._units_of(mode) for c in mode.channels):
+            raise ValueError(f"mode must list its channels, got {mode.channels!r}")
+        self._positions = self._geometry()
+        self._plan = None
+        self._state = None
+        self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
+        self._lines_done = 0
+        self._crashed = None
+        self._stopped = False
+        self._rng = np.random.default_rng(settings.seed)
+
+    @staticmethod
+    def _units_of(mode):
+        return {c: mode.unit(c) for c in mode.channels}
+
+    # -- geometry --------------------------------------------------------------------------
+    def _geometry(self):
+        """Apex positions (x, y) on the sample in m and times in s, per pass; range checked."""
+        s, sample = self.settings, self.sample
+        rows, cols = sample.heights.shape
+        dx, dy = s.pixel_size, s.pixel_size_y
+        u = (np.arange(s.pixels) + 0.5) * dx - s.scan_size / 2
+        v = (np.arange(s.lines) + 0.5) * dy - s.scan_size_y / 2
+        width, height = (cols - 1) * sample.pixel_size, (rows - 1) * sample.pixel_size_y
+        cx, cy = width / 2 + s.offset[0], height / 2 + s.offset[1]
+        c, sn = math.cos(s.angle), math.sin(s.angle)
+        if s.angle == 0.0:
+            c, sn = 1.0, 0.0
+        uu, vv = np.meshgrid(u, v)
+        x0 = cx + c * uu - sn * vv
+        y0 = cy + sn * uu + c * vv
+        n, dt = s.pixels, s.pixel_time
+        start = np.arange(s.lines)[:, None] * (2 * n - 1)
+        j = np.arange(n)[None, :]
+        t_trace = (start + j) * dt
+        t_retrace = (start + (n - 1) + (n - 1 - j)) * dt
+        slack_x, slack_y = 1e-9 * max(width, s.scan_size), 1e-9 * max(height, s.scan_size_y)
+
+        def outside(x, y):
+            return (x.min() < -slack_x or x.max() > width + slack_x or y.min() < -slack_y
+                    or y.max() > height + slack_y)
+
+        if outside(x0, y0):
+            raise ValueError(
+                f"scan_size ({_fmt(s.scan_size)} x {_fmt(s.scan_size_y)}, at angle "
+                f"{math.degrees(s.angle):.4g} deg, offset ({_fmt(s.offset[0])}, "
+                f"{_fmt(s.offset[1])})) reaches beyond the sample ({_fmt(width)} x "
+                f"{_fmt(height)}, first to last pixel): its pixels span x in "
+                f"[{_fmt(x0.min())}, {_fmt(x0.max())}], y in [{_fmt(y0.min())}, "
+                f"{_fmt(y0.max())}]; scan a smaller range or load a larger sample")
+        out = {}
+        for name, t in (("trace", t_trace), ("retrace", t_retrace)):
+            if s.moves:
+                ddx, ddy = s.displacement(t)
+                x, y = x0 + ddx, y0 + ddy
+                if outside(x, y):
+                    raise ValueError(
+                        f"drift ({s.drift[0]:g}, {s.drift[1]:g}) m/s and creep {s.creep:g} carry "
+                        f"the scan beyond the sample ({_fmt(width)} x {_fmt(height)}) within "
+                        f"the scan's {s.scan_time:.4g} s: x reaches [{_fmt(x.min())}, "
+                        f"{_fmt(x.max())}], y [{_fmt(y.min())}, {_fmt(y.max())}]")
+            else:
+                x, y = x0, y0
+            out[name] = (x, y, t)
+        return out
+
+    def _apex(self) -> Sample:
+        sample, s = self.sample, self.settings
+        h = sample.heights
+        if any(s.tilt):
+            rows, cols = h.shape
+            x = np.arange(cols) * sample.pixel_size
+            y = np.arange(rows) * sample.pixel_size_y
+            plane = (math.tan(s.tilt[0]) * (x - x[-1] / 2)[None, :]
+                     + math.tan(s.tilt[1]) * (y - y[-1] / 2)[:, None])
+            sample = replace(sample, heights=h + plane)
+        if self.tip is None:
+            return sample
+        from .dilation import dilate
+        return dilate(sample, self.tip)
+
+    @property
+    def plan(self) -> ScanPlan:
+        """The :class:`~afmsmiler.imaging.modes.ScanPlan` the mode scans (computed once)."""
+        if self._plan is None:
+            apex = self._apex()
+            sample, s = self.sample, self.settings
+            passes = {}
+            for name, (x, y, t) in self._positions.items():
+                passes[name] = _bilinear(apex.heights, x / sample.pixel_size,
+                                         y / sample.pixel_size_y)
+            (xt, yt, tt), (xr, yr, tr) = self._positions["trace"], self._positions["retrace"]
+            self._plan = ScanPlan(passes["trace"], passes["retrace"], tt, tr, xt, yt, xr, yr,
+                                  s.pixel_size, s.pixel_size_y, s.scan_speed, apex, self.tip, s)
+        return self._plan
+
+    # -- running ---------------------------------------------------------------------------
+    @property
+    def done(self) -> bool:
+        """True when every line was scanned, the tip crashed or the scan was stopped."""
+        return (self._lines_done >= self.settings.lines or self._crashed is not None
+                or self._stopped)
+
+    def step(self) -> LineRecord | None:
+        """Scan the next line; None when the scan is over.
+
+        Returns
+        -------
+        LineRecord or None
+            The line (its row, channels and crash, if any).
+        """
+        if self.done:
+            return None
+        plan = self.plan
+        row = self._lines_done
+        if row == 0:
+            self._state = self.mode.start(plan)
+        out = self.mode.line(plan, row, self._state)
+        channels = {}
+        for name in self.mode.channels:
+            values = np.array(out.channels[name], dtype=float)
+            if values.shape != (self.settings.pixels,):
+                raise ValueError(f"mode {type(self.mode).__name__} gave channel {name!r} the "
+                                 f"shape {values.shape}, not ({self.settings.pixels},)")
+            if self.settings.noise > 0 and self.mode.unit(name) == "m":
+                values = values + self._rng.normal(0.0, self.settings.noise, values.shape)
+            channels[name] = values
+            self._images[name][row] = values
+        self._state = out.state
+        if out.crash is not None:
+            self._crashed = out.crash
+        else:
+            self._lines_done += 1
+        return LineRecord(row, MappingProxyType(channels), out.crash)
+
+    def lines(self) -> Iterator[LineRecord]:
+        """Scan line after line, yielding each as it is done (a crashed line last).
+
+        Yields
+        ------
+        LineRecord
+        """
+        while (record := self.step()) is not None:
+            yield record
+
+    def run(self, stop: Callable[[], bool] | None = None) -> ScanResult:
+        """Scan to the end, or until ``stop()`` returns True (checked before every line).
+
+        Parameters
+        ----------
+        stop : callable, optional
+            Called with no argument before each line; True stops the scan (the finished lines
+            are kept and :attr:`ScanResult.stopped` is set).
+
+        Returns
+        -------
+        ScanResult
+        """
+        if stop is not None and not callable(stop):
+            raise TypeError(f"stop must be a callable or None, got {stop!r}")
+        while not self.done:
+            if stop is not None and stop():
+                self._stopped = True
+                break
+            self.step()
+        return self.result
+
+    def stop(self) -> None:
+        """Stop the scan after the current line (the finished lines are kept)."""
+        self._stopped = True
+
+    @property
+    def result(self) -> ScanResult:
+        """The images so far (a copy), the lines done, the crash and whether it was stopped."""
+        images = MappingProxyType({k: v.copy() for k, v in self._images.items()})
+        return ScanResult(images, MappingProxyType(self._units_of(self.mode)), self._lines_done,
+                          self._crashed, self._stopped, self.settings.pixel_size,
+                          self.settings.pixel_size_y, self.sample.name)
+
+    def position(self, row: int, column: int, direction: str = "trace") -> tuple[float, float]:
+        """Where the apex is on the sample at a pixel, in m from the sample's first pixel.
+
+        Parameters
+        ----------
+        row, column : int
+            The pixel.
+        direction : {"trace", "retrace"}
+            The pass.
+
+        Returns
+        -------
+        tuple of float
+            (x, y) in m (drift and creep included).
+        """
+        s = self.settings
+        row = check_integer("row", row, 0, s.lines - 1)
+        column = check_integer("column", column, 0, s.pixels - 1)
+        if direction not in DIRECTIONS:
+            raise ValueError(f"direction must be one of {list(DIRECTIONS)}, got {direction!r}")
+        x, y, _ = self._positions[direction]
+        return float(x[row, column]), float(y[row, column])
+
+
+def scan(sample: Sample, tip: Tip | None, mode: Mode, settings: ScanSettings) -> ScanResult:
+    """Scan a sample to the end (or until the tip crashes).
+
+    Parameters
+    ----------
+    sample : afmsmiler.samples.Sample
+        The sample (2-D, heights in m).
+    tip : afmsmiler.contact.Tip or None
+        The tip (None: ideal).
+    mode : afmsmiler.imaging.modes.Mode
+        The imaging mode.
+    settings : ScanSettings
+        The scan settings.
+
+    Returns
+    -------
+    ScanResult
+    """
+    return Scan(sample, tip, mode, settings).run()
+
