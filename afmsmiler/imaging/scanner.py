@@ -476,8 +476,8 @@ class Scan:
             raise ValueError(f"sample must be a 2-D image of at least 2 x 2 pixels, got heights "
                              f"of shape {h.shape}")
         if not np.all(np.isfinite(h)):
-            i = np.unravel_index(int(np.argmax(~np.isfinite(h))), h.shape)
-            raise ValueError(f"sample heights must be finite m, got {h[i]!r} at {i}")
+            i = tuple(int(k) for k in np.unravel_index(int(np.argmax(~np.isfinite(h))), h.shape))
+            raise ValueError(f"sample heights must be finite m, got {float(h[i])!r} at {i}")
         mode_tip = getattr(mode, "tip", None)
         if mode_tip is not None and tip is not None and mode_tip != tip:
             raise ValueError(f"tip ({tip!r}) must be the tip of the mode's physics "

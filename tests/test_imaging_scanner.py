@@ -1,0 +1,390 @@
+"""The virtual scanner and its modes (module (f)).
+
+References: module (c)'s :func:`afmsmiler.controller.scan_image` and
+:meth:`ContactLoop.response` (constant force), module (d)'s :meth:`ContactSystem.indent`
+(constant height), numpy's ``rot90`` (scan angle), exact planes (bilinear sampling, tilt) and the
+drift and creep law written out here (Jung and Gweon 2000).
+"""
+import math
+
+import numpy as np
+import pytest
+
+from afmsmiler.contact import ContactSystem, Parabolic
+from afmsmiler.controller import ContactLoop, scan_image
+from afmsmiler.imaging.modes import (ConstantForce, ConstantHeight, Crash, Mode, ModeLine,
+                                     PARAMETERS as MODE_PARAMETERS)
+from afmsmiler.imaging.scanner import PARAMETERS, Scan, ScanResult, ScanSettings, scan
+from afmsmiler.parameters import UNITS
+from afmsmiler.samples import Sample, particles
+
+PX = 4e-9
+SPEED = 1e-3  # m/s: 4 us per pixel, fast enough that the loop lags visibly
+
+
+@pytest.fixture(scope="module")
+def image():
+    return particles((48, 64), PX, seed=3)
+
+
+def whole(sample, **kw):
+    """Settings whose scan grid is the sample's own pixels."""
+    rows, cols = sample.heights.shape
+    return ScanSettings(cols * sample.pixel_size, scan_size_y=rows * sample.pixel_size_y,
+                        pixels=cols, lines=rows, scan_speed=SPEED, **kw)
+
+
+def loop():
+    return ContactLoop(kp=0.3, ki=5e3)  # a loop that lags: trace and retrace differ
+
+
+# -- settings ---------------------------------------------------------------------------------
+def test_settings_defaults_and_derived_quantities():
+    s = ScanSettings(2e-6, pixels=128, scan_speed=4e-6)
+    assert (s.scan_size_y, s.lines, s.shape) == (2e-6, 128, (128, 128))
+    assert s.pixel_size == pytest.approx(2e-6 / 128, rel=1e-15)
+    assert s.pixel_time == pytest.approx(s.pixel_size / 4e-6, rel=1e-15)
+    assert s.line_time == pytest.approx(255 * s.pixel_time, rel=1e-15)
+    assert s.line_rate == pytest.approx(1 / s.line_time)
+    fast = s.with_line_rate(2.0)
+    assert fast.line_rate == pytest.approx(2.0, rel=1e-12)
+    assert fast.scan_speed == pytest.approx(255 * s.pixel_size * 2.0, rel=1e-12)
+    assert ScanSettings(1e-6, scan_size_y=0.5e-6, pixels=64, lines=32).pixel_size_y == \
+        pytest.approx(0.5e-6 / 32)
+
+
+def test_parameters_are_si_with_display_units_from_the_table():
+    for p in PARAMETERS.values():
+        assert p.display_unit in UNITS and UNITS[p.display_unit][0] == p.unit, p.name
+    assert PARAMETERS["scan_speed"].unit == "m/s" and PARAMETERS["angle"].display_unit == "deg"
+    assert PARAMETERS["drift_x"].display_unit == "nm/s"
+    assert PARAMETERS["drift_x"].to_display(2e-9) == pytest.approx(2.0)
+    assert MODE_PARAMETERS["damage_force"].unit == "N"
+
+
+@pytest.mark.parametrize("kw, name", [
+    (dict(pixels=0), "pixels"), (dict(pixels=1), "pixels"), (dict(lines=0), "lines"),
+    (dict(pixels=2.5), "pixels"), (dict(scan_speed=0.0), "scan_speed"),
+    (dict(scan_speed=10.0), "scan_speed"), (dict(scan_speed=math.nan), "scan_speed"),
+    (dict(angle=4.0), "angle"), (dict(noise=-1e-9), "noise"), (dict(offset=(1.0,)), "offset"),
+    (dict(offset=(1e-3, 0.0)), "offset_x"), (dict(drift=(0.0, 1.0)), "drift_y"),
+    (dict(tilt=(2.0, 0.0)), "tilt_x"), (dict(creep=-0.1), "creep"), (dict(seed=-1), "seed"),
+    (dict(pixels=2048, lines=2048, scan_size_y=1e-6), None),
+])
+def test_settings_reject_bad_values_naming_them(kw, name):
+    if name is None:  # in range one by one: a bound on the product, not an error
+        ScanSettings(1e-6, **kw)
+        return
+    with pytest.raises(ValueError, match=name):
+        ScanSettings(1e-6, **kw)
+    with pytest.raises(ValueError, match="scan_size"):
+        ScanSettings(0.0)
+
+
+def test_line_rate_out_of_range_is_named():
+    with pytest.raises(ValueError, match="line_rate"):
+        ScanSettings(1e-6).with_line_rate(0.0)
+    with pytest.raises(ValueError, match="line_rate .*scan_speed"):
+        ScanSettings(100e-6, pixels=2048, lines=16).with_line_rate(1e4)
+
+
+# -- bad input --------------------------------------------------------------------------------
+def test_a_scan_range_larger_than_the_sample_names_both(image):
+    big = ScanSettings(1e-6, pixels=64)  # the sample is 63 x 4 nm = 252 nm wide
+    with pytest.raises(ValueError, match=r"scan_size \(1 um x 1 um.*beyond the sample \(0.252 um"):
+        Scan(image, None, ConstantForce(loop()), big)
+    rotated = whole(image, angle=math.radians(30))  # its corners leave the sample
+    with pytest.raises(ValueError, match="scan_size .* at angle 30 deg"):
+        Scan(image, None, ConstantForce(loop()), rotated)
+    shifted = ScanSettings(100e-9, pixels=16, offset=(80e-9, 0.0))
+    with pytest.raises(ValueError, match="offset"):
+        Scan(image, None, ConstantForce(loop()), shifted)
+
+
+def test_drift_that_leaves_the_sample_is_named(image):
+    s = ScanSettings(100e-9, pixels=16, scan_speed=1e-7, drift=(5e-9, 0.0))
+    assert s.scan_time == pytest.approx(31.0)  # 16 lines of 31 pixel times of 62.5 ms
+    # 155 nm of drift; the scan's edge is 76 nm from the sample's
+    Scan(image, None, ConstantForce(loop()), s.replace(drift=(2e-9, 0.0)))  # 62 nm: inside
+    with pytest.raises(ValueError, match=r"drift \(5e-09, 0\) m/s"):
+        Scan(image, None, ConstantForce(loop()), s)
+
+
+def test_nan_heights_and_wrong_types_are_rejected(image):
+    with pytest.raises(ValueError, match="heights"):
+        Sample(np.full((8, 8), np.nan), PX)
+    bad = Sample(image.heights.copy(), PX)
+    bad.heights[3, 4] = np.nan  # an array mutated after the Sample was made
+    with pytest.raises(ValueError, match=r"sample heights must be finite.*\(3, 4\)"):
+        Scan(bad, None, ConstantForce(loop()), whole(image))
+    with pytest.raises(TypeError, match="sample"):
+        Scan(image.heights, None, ConstantForce(loop()), whole(image))
+    with pytest.raises(TypeError, match="mode"):
+        Scan(image, None, loop(), whole(image))
+    with pytest.raises(TypeError, match="tip"):
+        Scan(image, 20e-9, ConstantForce(loop()), whole(image))
+    with pytest.raises(TypeError, match="loop"):
+        ConstantForce(ContactSystem())
+    with pytest.raises(ValueError, match="sample must be a 2-D"):
+        Scan(Sample(np.zeros(16), PX), None, ConstantForce(loop()), ScanSettings(40e-9))
+
+
+def test_zero_pixels_is_rejected_before_any_work():
+    with pytest.raises(ValueError, match="pixels must be an integer in"):
+        ScanSettings(1e-6, pixels=0)
+
+
+# -- geometry ---------------------------------------------------------------------------------
+class Topography(Mode):
+    """A tiny mode defined outside the package: records the apex surface it is handed."""
+
+    channels = ("height trace", "height retrace", "phase trace")
+    units = {"phase trace": "rad"}
+
+    def line(self, plan, row, state):
+        count = (state or 0) + 1
+        return ModeLine({"height trace": plan.trace[row], "height retrace": plan.retrace[row],
+                         "phase trace": np.full(plan.shape[1], 0.5)}, count)
+
+
+def test_a_mode_defined_elsewhere_plugs_in_and_keeps_its_state(image):
+    result = scan(image, None, Topography(), whole(image))
+    assert result.finished and result.lines_done == 48 and not result.stopped
+    np.testing.assert_array_equal(result.images["height trace"], image.heights)
+    np.testing.assert_array_equal(result.images["height retrace"], image.heights)
+    assert result.units["phase trace"] == "rad" and result.units["height trace"] == "m"
+    s = Scan(image, None, Topography(), whole(image))
+    s.run()
+    assert s._state == 48  # the state went from line to line
+
+
+def test_the_scan_angle_rotates_the_grid_on_the_sample():
+    h = np.random.default_rng(1).normal(size=(32, 32)) * 1e-9
+    sample = Sample(h, PX)
+    result = scan(sample, None, Topography(), whole(sample, angle=math.pi / 2))
+    np.testing.assert_allclose(result.images["height trace"], np.rot90(h), rtol=0, atol=1e-24)
+
+
+def test_bilinear_sampling_is_exact_on_a_plane_at_any_angle_and_offset():
+    rows, cols = 40, 50
+    x, y = np.arange(cols) * PX, np.arange(rows) * PX
+    a, b, c = 0.03, -0.02, 1e-9
+    sample = Sample(a * x[None, :] + b * y[:, None] + c, PX)
+    s = ScanSettings(90e-9, scan_size_y=60e-9, pixels=30, lines=20, angle=0.4,
+                     offset=(5e-9, -7e-9), scan_speed=SPEED)
+    run = Scan(sample, None, Topography(), s)
+    result = run.run()
+    plan = run.plan
+    expected = a * plan.x_trace + b * plan.y_trace + c
+    np.testing.assert_allclose(result.images["height trace"], expected, rtol=1e-12, atol=1e-22)
+    # the grid is the rotated, offset one: centre of the scan = sample centre + offset
+    u = (np.arange(30) + 0.5) * 3e-9 - 45e-9
+    v = (np.arange(20) + 0.5) * 3e-9 - 30e-9
+    cx, cy = 49 * PX / 2 + 5e-9, 39 * PX / 2 - 7e-9
+    np.testing.assert_allclose(plan.x_trace, cx + np.cos(0.4) * u[None] - np.sin(0.4) * v[:, None],
+                               rtol=0, atol=1e-20)
+    np.testing.assert_allclose(plan.y_trace, cy + np.sin(0.4) * u[None] + np.cos(0.4) * v[:, None],
+                               rtol=0, atol=1e-20)
+
+
+def test_tilt_adds_a_plane_about_the_sample_centre():
+    sample = Sample(np.zeros((20, 30)), PX)
+    tilt = (math.radians(2.0), math.radians(-1.0))
+    result = scan(sample, None, Topography(), whole(sample, tilt=tilt))
+    x, y = np.arange(30) * PX, np.arange(20) * PX
+    expected = (math.tan(tilt[0]) * (x - x[-1] / 2)[None, :]
+                + math.tan(tilt[1]) * (y - y[-1] / 2)[:, None])
+    np.testing.assert_allclose(result.images["height trace"], expected, rtol=1e-12, atol=1e-24)
+
+
+def test_drift_and_creep_follow_the_stated_law(image):
+    drift, gamma, t0, offset = (2e-9, -1e-9), 0.02, 0.05, (20e-9, 10e-9)
+    s = ScanSettings(120e-9, pixels=12, scan_speed=1e-6, drift=drift, creep=gamma,
+                     creep_time=t0, offset=offset)
+    run = Scan(image, None, Topography(), s)
+    nominal = Scan(image, None, Topography(), s.replace(drift=(0.0, 0.0), creep=0.0))
+    dt = 10e-9 / 1e-6
+    for row, col, direction in ((0, 0, "trace"), (5, 7, "trace"), (11, 3, "retrace")):
+        k = row * 23 + (col if direction == "trace" else 11 + (11 - col))
+        t = k * dt
+        creep = gamma * math.log10(1 + t / t0)
+        x0, y0 = nominal.position(row, col, direction)
+        x, y = run.position(row, col, direction)
+        assert x == pytest.approx(x0 + drift[0] * t + offset[0] * creep, rel=1e-12, abs=1e-21)
+        assert y == pytest.approx(y0 + drift[1] * t + offset[1] * creep, rel=1e-12, abs=1e-21)
+    plan = run.plan
+    assert not np.array_equal(plan.trace, plan.retrace)  # the passes see different points
+
+
+def test_noise_is_seeded_gaussian_and_only_on_channels_in_metres(image):
+    s = whole(image, noise=1e-9, seed=7)
+    a = scan(image, None, Topography(), s)
+    b = scan(image, None, Topography(), s)
+    np.testing.assert_array_equal(a.images["height trace"], b.images["height trace"])
+    d = a.images["height trace"] - image.heights
+    assert d.std() == pytest.approx(1e-9, rel=0.05) and abs(d.mean()) < 1e-10
+    np.testing.assert_array_equal(a.images["phase trace"], 0.5)
+    c = scan(image, None, Topography(), s.replace(seed=8))
+    assert not np.array_equal(a.images["height trace"], c.images["height trace"])
+
+
+# -- constant force ---------------------------------------------------------------------------
+def test_constant_force_equals_module_c_called_directly(image):
+    lp = loop()
+    mode = ConstantForce(lp, setpoint=5e-9)
+    result = scan(image, None, mode, whole(image))
+    ref = scan_image(lp, image.heights, PX, speed=SPEED, setpoint=5e-9)
+    assert np.ptp(ref.height_trace - ref.height_retrace) > 1e-10  # the loop lags: a real test
+    for ours, theirs in (("height trace", ref.height_trace),
+                         ("height retrace", ref.height_retrace),
+                         ("error trace", ref.trace + ref.trace_z_np - 5e-9),
+                         ("error retrace", ref.retrace + ref.retrace_z_np - 5e-9)):
+        np.testing.assert_allclose(result.images[ours], theirs, rtol=0,
+                                   atol=1e-12 * np.ptp(image.heights))
+
+
+def test_constant_force_on_a_rotated_grid_equals_scan_image_on_the_sampled_surface(image):
+    lp = loop()
+    s = ScanSettings(150e-9, scan_size_y=100e-9, pixels=40, lines=25, angle=0.3,
+                     offset=(10e-9, 5e-9), scan_speed=SPEED)
+    run = Scan(image, None, ConstantForce(lp), s)
+    result = run.run()
+    ref = scan_image(lp, run.plan.trace, s.pixel_size, speed=SPEED)
+    np.testing.assert_allclose(result.images["height trace"], ref.height_trace, rtol=0,
+                               atol=1e-12 * np.ptp(image.heights))
+    np.testing.assert_allclose(result.images["height retrace"], ref.height_retrace, rtol=0,
+                               atol=1e-12 * np.ptp(image.heights))
+
+
+def test_line_by_line_gives_the_numbers_of_the_whole_image(image):
+    lp = loop()
+    run = Scan(image, None, ConstantForce(lp), whole(image))
+    records = list(run.lines())
+    assert [r.row for r in records] == list(range(48))
+    assert all(r.crash is None for r in records)
+    ref = scan_image(lp, image.heights, PX, speed=SPEED)
+    stacked = np.array([r.channels["height trace"] for r in records])
+    np.testing.assert_array_equal(stacked, ref.height_trace)
+    stacked = np.array([r.channels["height retrace"] for r in records])
+    np.testing.assert_array_equal(stacked, ref.height_retrace)
+
+
+def test_constant_force_with_drift_runs_the_chained_polygon_of_both_passes(image):
+    lp = loop()
+    s = ScanSettings(120e-9, pixels=20, lines=10, scan_speed=1e-4, drift=(3e-8, 1e-8))
+    run = Scan(image, None, ConstantForce(lp), s)
+    result = run.run()
+    plan = run.plan
+    n = 20
+    # module (c)'s public response on the same path, built here: trace i, retrace i, ...
+    path = np.concatenate([np.concatenate((plan.trace[i], plan.retrace[i, ::-1][1:]))
+                           for i in range(10)])
+    t = np.arange(path.size) * s.pixel_time
+    z_c, z_np = lp.response(t, path - path[0])
+    z_np = z_np + lp.steady_state(10e-9, path[0]).z_np
+    z_np = z_np.reshape(10, 2 * n - 1)
+    flat = lp.steady_state(10e-9, 0.0).z_np
+    np.testing.assert_allclose(result.images["height trace"], -(z_np[:, :n] - flat), rtol=0,
+                               atol=1e-9 * np.ptp(path))
+    np.testing.assert_allclose(result.images["height retrace"], -(z_np[:, n - 1:][:, ::-1] - flat),
+                               rtol=0, atol=1e-9 * np.ptp(path))
+
+
+# -- stop, result ------------------------------------------------------------------------------
+def test_a_scan_stopped_half_way_keeps_its_finished_lines(image):
+    lp = loop()
+    full = scan(image, None, ConstantForce(lp), whole(image))
+    run = Scan(image, None, ConstantForce(lp), whole(image))
+    assert run.result.lines_done == 0 and run.result.channels == {}
+    calls = []
+
+    def stop():
+        calls.append(1)
+        return len(calls) > 20
+
+    result = run.run(stop=stop)
+    assert result.stopped and result.lines_done == 20 and not result.finished
+    assert result.progress == pytest.approx(20 / 48)
+    height = result.channels["height trace"]
+    assert isinstance(height, Sample) and height.heights.shape == (20, 64)
+    assert height.pixel_size == PX and height.pixel_size_y == PX
+    np.testing.assert_array_equal(height.heights, full.images["height trace"][:20])
+    assert np.isnan(result.images["height trace"][20:]).all()
+    assert run.step() is None and run.result.lines_done == 20  # a stopped scan stays stopped
+
+
+def test_stop_method_and_result_snapshot(image):
+    run = Scan(image, None, Topography(), whole(image))
+    for record in run.lines():
+        if record.row == 4:
+            run.stop()
+    snapshot = run.result
+    assert isinstance(snapshot, ScanResult) and snapshot.lines_done == 5 and snapshot.stopped
+    snapshot.images["height trace"][0, 0] = 1.0  # a copy: the scan's own data is untouched
+    assert run.result.images["height trace"][0, 0] == image.heights[0, 0]
+    with pytest.raises(TypeError, match="stop"):
+        Scan(image, None, Topography(), whole(image)).run(stop=3)
+
+
+# -- constant height --------------------------------------------------------------------------
+def system():
+    return ContactSystem(spring_constant=0.5, tip=Parabolic(radius=10e-9), youngs_modulus=1e9,
+                         poisson_ratio=0.3)
+
+
+def test_constant_height_equals_module_d_at_every_pixel(image):
+    sy = system()
+    mode = ConstantHeight(sy, z_np=2e-9, damage_force=1.0)
+    result = scan(image, None, mode, whole(image))
+    assert result.crashed is None and result.finished
+    z = 2e-9 + image.heights
+    expected = np.array([[sy.indent(zz).z_c[0] for zz in row] for row in z[::7]])
+    np.testing.assert_allclose(result.images["deflection trace"][::7], expected, rtol=1e-14,
+                               atol=0)
+    np.testing.assert_array_equal(result.images["deflection retrace"],
+                                  result.images["deflection trace"])
+    assert (result.images["deflection trace"] == 0).any()  # out of contact over the holes
+    assert (result.images["deflection trace"] > 0).any()
+
+
+def test_constant_height_crash_is_flagged_and_keeps_the_finished_lines(image):
+    sy = system()
+    z = 2e-9 + image.heights
+    force = sy.indent(z.ravel()).force.reshape(z.shape)
+    peak = np.maximum.accumulate(force.max(axis=1))  # the largest force up to each row
+    first = 5 + int(np.argmax(peak[5:] > peak[4:-1]))  # a row after 5 beats all earlier ones
+    threshold = peak[first - 1]  # passed first on that row (|F| > threshold is strict)
+    over = np.argwhere(np.abs(force) > threshold)
+    row, col = over[0]  # the first in scan order: rows first, then the trace's columns
+    assert row == first
+    result = scan(image, None, ConstantHeight(sy, 2e-9, threshold), whole(image))
+    assert result.crashed == Crash(int(row), int(col), pytest.approx(force[row, col], rel=1e-14),
+                                   "trace")
+    assert result.lines_done == row and not result.finished and not result.stopped
+    safe = scan(image, None, ConstantHeight(sy, 2e-9, 1.0), whole(image))
+    np.testing.assert_array_equal(result.images["deflection trace"][:row],
+                                  safe.images["deflection trace"][:row])
+    line = result.images["deflection trace"][row]
+    np.testing.assert_array_equal(line[:col + 1], safe.images["deflection trace"][row, :col + 1])
+    assert np.isnan(line[col + 1:]).all()
+    assert np.isnan(result.images["deflection trace"][row + 1:]).all()
+    assert np.isnan(result.images["deflection retrace"][row:]).all()
+    assert result.channels["deflection trace"].heights.shape == (row, 64)
+
+
+def test_constant_height_validates_its_arguments():
+    with pytest.raises(TypeError, match="system"):
+        ConstantHeight(loop(), 1e-9, 1e-8)
+    with pytest.raises(ValueError, match="damage_force"):
+        ConstantHeight(system(), 1e-9, 0.0)
+    with pytest.raises(ValueError, match="z_np"):
+        ConstantHeight(system(), math.nan, 1e-8)
+    adhesive = ContactSystem(tip=Parabolic(radius=10e-9), adhesion="dmt")
+    with pytest.raises(ValueError, match="adhesion"):
+        ConstantHeight(adhesive, 1e-9, 1e-8)
+
+
+def test_the_mode_tip_must_be_the_scan_tip(image):
+    mode = ConstantHeight(system(), 1e-9, 1e-6)
+    with pytest.raises(ValueError, match="tip .* must be the tip of the mode"):
+        Scan(image, Parabolic(radius=30e-9), mode, whole(image))
