@@ -179,8 +179,13 @@ OVERRIDES = {
     "afmsmiler.contact.ForceCurve": {"z_np": lambda: _synthetic().z_np,
                                      "force": lambda: _synthetic().force},
     "afmsmiler.samples.from_file": {"path": lambda: __import__(
-        "afmsmiler.data", fromlist=["path"]).path("wsxm_sample_0.top")},
+        "afmsmiler.data", fromlist=["path"]).path("bruker_d3100.spm")},
+    "afmsmiler.samples.load": {"path": lambda: __import__(
+        "afmsmiler.data", fromlist=["path"]).path("bruker_d3100.spm")},
+    "afmsmiler.samples.channels": {"path": lambda: __import__(
+        "afmsmiler.data", fromlist=["path"]).path("bruker_d3100.spm")},
     "afmsmiler.samples.Sample": {"heights": lambda: np.zeros((8, 8))},
+    "afmsmiler.samples.Sample.resample": {"pixel_size": 5e-9},
     "afmsmiler.validation.check_choice": {"value": "a"},
     "afmsmiler.validation.check_integer": {"value": 3},
     "afmsmiler.validation.check_size": {"value": 3},

@@ -57,6 +57,18 @@ def test_level_plane_flattens_an_analytic_tilted_surface_and_keeps_the_grid():
     np.testing.assert_array_equal(sample.heights, tilt)  # the input is untouched
 
 
+@pytest.mark.parametrize("correct", [level_plane, flatten_lines, remove_scars,
+                                     lambda s: flatten_lines(s, "polynomial", 2)])
+def test_every_correction_keeps_the_grid_channel_unit_and_metadata(correct):
+    rng = np.random.default_rng(0)
+    sample = Sample(rng.normal(0, 1, (16, 20)), DX, name="phase", pixel_size_y=DY,
+                    channel="Phase", unit="rad", metadata={"instrument": "twin"})
+    out = correct(sample)
+    assert (out.pixel_size, out.pixel_size_y, out.channel, out.unit) == (DX, DY, "Phase", "rad")
+    assert out.metadata["instrument"] == "twin" and out.name.startswith("phase, ")
+    assert out.heights.shape == (16, 20)
+
+
 def test_a_tall_particle_tilts_the_plane_unless_it_is_masked():
     rows, cols = 64, 64
     x, y = _grid(rows, cols)
@@ -170,6 +182,8 @@ def test_flatten_lines_rejects_bad_settings_naming_them():
         level_plane(s, masking="exclusive")
     with pytest.raises(ValueError, match="mask"):
         level_plane(s, np.ones((4, 6), bool))
+    with pytest.raises(ValueError, match="one line"):  # a diagonal fixes no plane
+        level_plane(Sample(np.zeros((5, 5)), DX), np.eye(5, dtype=bool), masking="include")
     with pytest.raises(ValueError, match="sample"):
         flatten_lines(Sample(np.zeros(6), DX))
     with pytest.raises(TypeError, match="sample"):

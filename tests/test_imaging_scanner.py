@@ -125,6 +125,9 @@ def test_nan_heights_and_wrong_types_are_rejected(image):
         Scan(image, 20e-9, ConstantForce(loop()), whole(image))
     with pytest.raises(TypeError, match="loop"):
         ConstantForce(ContactSystem())
+    volts = Sample(image.heights * 1e9, PX, channel="deflection", unit="V")
+    with pytest.raises(ValueError, match="sample must hold heights in m"):
+        Scan(volts, None, ConstantForce(loop()), whole(image))
     with pytest.raises(ValueError, match="sample must be a 2-D"):
         Scan(Sample(np.zeros(16), PX), None, ConstantForce(loop()), ScanSettings(40e-9))
 
@@ -153,6 +156,7 @@ def test_a_mode_defined_elsewhere_plugs_in_and_keeps_its_state(image):
     np.testing.assert_array_equal(result.images["height trace"], image.heights)
     np.testing.assert_array_equal(result.images["height retrace"], image.heights)
     assert result.units["phase trace"] == "rad" and result.units["height trace"] == "m"
+    assert result.channels["phase trace"].unit == "rad"
     s = Scan(image, None, Topography(), whole(image))
     s.run()
     assert s._state == 48  # the state went from line to line
@@ -307,6 +311,9 @@ def test_a_scan_stopped_half_way_keeps_its_finished_lines(image):
     assert result.progress == pytest.approx(20 / 48)
     height = result.channels["height trace"]
     assert isinstance(height, Sample) and height.heights.shape == (20, 64)
+    assert (height.channel, height.unit) == ("height trace", "m")
+    assert height.metadata["lines_done"] == 20 and height.metadata["scan_speed"] == SPEED
+    assert height.metadata["mode"] == "ConstantForce"
     assert height.pixel_size == PX and height.pixel_size_y == PX
     np.testing.assert_array_equal(height.heights, full.images["height trace"][:20])
     assert np.isnan(result.images["height trace"][20:]).all()
@@ -379,12 +386,104 @@ def test_constant_height_validates_its_arguments():
         ConstantHeight(system(), 1e-9, 0.0)
     with pytest.raises(ValueError, match="z_np"):
         ConstantHeight(system(), math.nan, 1e-8)
-    adhesive = ContactSystem(tip=Parabolic(radius=10e-9), adhesion="dmt")
-    with pytest.raises(ValueError, match="adhesion"):
-        ConstantHeight(adhesive, 1e-9, 1e-8)
 
 
 def test_the_mode_tip_must_be_the_scan_tip(image):
     mode = ConstantHeight(system(), 1e-9, 1e-6)
     with pytest.raises(ValueError, match="tip .* must be the tip of the mode"):
         Scan(image, Parabolic(radius=30e-9), mode, whole(image))
+
+
+# -- with a real tip ---------------------------------------------------------------------------
+def test_a_tip_scans_the_dilated_surface(image):
+    from afmsmiler.imaging.dilation import dilate
+    tip = Parabolic(radius=15e-9)
+    lp = loop()
+    run = Scan(image, tip, ConstantForce(lp), whole(image))
+    result = run.run()
+    apex = dilate(image, tip)
+    np.testing.assert_array_equal(run.plan.apex.heights, apex.heights)
+    assert (apex.heights >= image.heights).all() and (apex.heights > image.heights).any()
+    ref = scan_image(lp, apex.heights, PX, speed=SPEED)
+    np.testing.assert_allclose(result.images["height trace"], ref.height_trace, rtol=0,
+                               atol=1e-12 * np.ptp(image.heights))
+    np.testing.assert_allclose(result.images["error retrace"],
+                               ref.retrace + ref.retrace_z_np - 10e-9, rtol=0,
+                               atol=1e-12 * np.ptp(image.heights))
+
+
+def test_constant_height_with_its_tip_follows_the_dilated_surface(image):
+    from afmsmiler.imaging.dilation import dilate
+    sy = system()
+    result = scan(image, sy.tip, ConstantHeight(sy, 2e-9, 1.0), whole(image))
+    z = 2e-9 + dilate(image, sy.tip).heights
+    np.testing.assert_allclose(result.images["deflection trace"],
+                               sy.indent(z.ravel()).z_c.reshape(z.shape), rtol=1e-14, atol=0)
+
+
+def test_tilt_is_added_before_the_dilation():
+    from afmsmiler.imaging.dilation import dilate
+    sample = particles((32, 32), PX, count=3, seed=2)
+    tip, tilt = Parabolic(radius=20e-9), (math.radians(3.0), 0.0)
+    result = scan(sample, tip, Topography(), whole(sample, tilt=tilt))
+    x = np.arange(32) * PX
+    tilted = Sample(sample.heights + math.tan(tilt[0]) * (x - x[-1] / 2)[None, :], PX)
+    np.testing.assert_allclose(result.images["height trace"], dilate(tilted, tip).heights,
+                               rtol=0, atol=1e-22)
+
+
+def adhesive(model):
+    return ContactSystem(spring_constant=0.5, tip=Parabolic(radius=10e-9), youngs_modulus=1e9,
+                         poisson_ratio=0.3, adhesion=model, work_of_adhesion=0.05)
+
+
+@pytest.mark.parametrize("model", ["dmt", "jkr"])
+def test_adhesive_constant_height_follows_approach_then_retract(model):
+    sy = adhesive(model)
+    assert -12e-9 < sy.snap_off_z_np < -2e-9
+    x = np.arange(40) * PX
+    sample = Sample(np.tile(x * 14e-9 / x[-1], (3, 1)), PX)  # a slope: 0 to 14 nm along x
+    result = scan(sample, None, ConstantHeight(sy, -10e-9, 1.0), whole(sample))
+    cycle = sy.approach_retract(-10e-9 + sample.heights[0])  # module (d) on the same ramp
+    for row in range(3):  # every line snaps off before its end: each starts afresh
+        np.testing.assert_allclose(result.images["deflection trace"][row], cycle.approach.z_c,
+                                   rtol=1e-12, atol=0)
+        np.testing.assert_allclose(result.images["deflection retrace"][row][::-1],
+                                   cycle.retract.z_c, rtol=1e-12, atol=0)
+    retrace = result.images["deflection retrace"][0]
+    trace = result.images["deflection trace"][0]
+    stuck = (retrace < 0) & (trace == 0)  # held by adhesion on the way back only
+    assert stuck.any()
+
+
+def test_an_adhesive_contact_carries_over_to_the_next_line():
+    sy = adhesive("dmt")
+    x = np.arange(40) * PX
+    sample = Sample(np.tile(x * 10e-9 / x[-1], (3, 1)), PX)
+    z_np = 0.4 * sy.snap_off_z_np  # above the snap-off, below 0: stuck if in contact
+    result = scan(sample, None, ConstantHeight(sy, z_np, 1.0), whole(sample))
+    first = result.images["deflection trace"]
+    assert first[0, 0] == 0.0  # line 0 starts out of contact (approach branch)
+    assert first[1, 0] < 0.0 and first[2, 0] < 0.0  # later lines start stuck (retract branch)
+    assert first[1, 0] == pytest.approx(sy.at(z_np, "retract").z_c[0], rel=1e-12)
+
+
+def test_a_scan_can_start_at_a_later_row(image):
+    lp = loop()
+    full = scan(image, None, ConstantForce(lp), whole(image))
+    run = Scan(image, None, ConstantForce(lp), whole(image))
+    rows = [record.row for record in run.lines(start=10)]
+    assert rows == list(range(10, 48))
+    result = run.result
+    assert (result.first_row, result.lines_done, result.finished_lines) == (10, 48, 38)
+    assert result.finished and np.isnan(result.images["height trace"][:10]).all()
+    np.testing.assert_array_equal(result.channels["height trace"].heights,
+                                  full.images["height trace"][10:])
+    assert result.channels["height trace"].metadata["first_row"] == 10
+    with pytest.raises(ValueError, match="start must be an integer"):
+        list(Scan(image, None, Topography(), whole(image)).lines(start=48))
+    begun = Scan(image, None, Topography(), whole(image))
+    begun.step()
+    with pytest.raises(ValueError, match="start must be given before the first line"):
+        next(begun.lines(start=5))
+    assert next(begun.lines(start=1)).row == 1  # where it is: no change

@@ -30,7 +30,7 @@ def path(name: str) -> Path:
     Parameters
     ----------
     name : str
-        One of :func:`names` (``"wsxm_sample_0.top"``, ``"spot3-0192.jpk-force"``).
+        One of :func:`names` (``"bruker_d3100.spm"``, ``"spot3-0192.jpk-force"``).
 
     Returns
     -------
@@ -43,8 +43,8 @@ def path(name: str) -> Path:
 
     Examples
     --------
-    >>> path("wsxm_sample_0.top").name
-    'wsxm_sample_0.top'
+    >>> path("bruker_d3100.spm").name
+    'bruker_d3100.spm'
     """
     valid = names()
     if not isinstance(name, str) or name not in valid:

@@ -21,7 +21,6 @@ Edit and Correction" (Mark Scars / Remove Scars), https://gwyddion.net/documenta
 """
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import NamedTuple
 
 import numpy as np
@@ -101,8 +100,7 @@ def _weights(sample: Sample, mask, masking: str) -> np.ndarray | None:
 
 def _with_heights(sample: Sample, heights: np.ndarray, what: str) -> Sample:
     """``sample`` with new values on the same grid (every other field kept)."""
-    name = f"{sample.name}, {what}" if sample.name else what
-    return replace(sample, heights=heights, name=name)
+    return sample.with_heights(heights, f"{sample.name}, {what}" if sample.name else what)
 
 
 def fit_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Plane:
@@ -132,19 +130,28 @@ def fit_plane(sample: Sample, mask=None, *, masking: str = "exclude") -> Plane:
     sample = _check_sample(sample)
     use = _weights(sample, mask, masking)
     rows, cols = sample.heights.shape
-    i, j = np.nonzero(np.ones((rows, cols), bool) if use is None else use)
-    if i.size < 3 or np.unique(i).size < 2 or np.unique(j).size < 2:
+    w = np.ones((rows, cols)) if use is None else use.astype(float)
+    wx, wy = w.sum(axis=0), w.sum(axis=1)  # pixels used per column and per row
+    n = float(wx.sum())
+    if n < 3 or np.count_nonzero(wx) < 2 or np.count_nonzero(wy) < 2:
         raise ValueError(f"mask must leave at least three pixels not on one line to fit a plane "
-                         f"(masking={masking!r}), got {i.size} pixels")
-    z = sample.heights[i, j]
-    x = j * sample.pixel_size
-    y = i * sample.pixel_size_y
-    # centred normal equations: the offset decouples, the slopes solve a 2 x 2 system
-    xm, ym, zm = x.mean(), y.mean(), z.mean()
-    dx, dy, dz = x - xm, y - ym, z - zm
-    a = np.array([[dx @ dx, dx @ dy], [dx @ dy, dy @ dy]])
-    b = np.array([dx @ dz, dy @ dz])
-    slope_x, slope_y = np.linalg.solve(a, b)
+                         f"(masking={masking!r}), got {int(n)} pixels")
+    z = sample.heights * w
+    x = np.arange(cols) * sample.pixel_size
+    y = np.arange(rows) * sample.pixel_size_y
+    # the sums of the centred normal equations, a pass each (no copy of the pixels used); the
+    # offset decouples, the slopes solve a 2 x 2 system
+    xm, ym = wx @ x / n, wy @ y / n
+    dx, dy = x - xm, y - ym
+    zm = float(z.sum()) / n
+    sxx, syy, sxy = wx @ dx ** 2, wy @ dy ** 2, dy @ w @ dx
+    sxz, syz = z.sum(axis=0) @ dx, z.sum(axis=1) @ dy
+    det = sxx * syy - sxy * sxy
+    if not det > 1e-9 * sxx * syy:  # the pixels used lie on one line (a diagonal, say)
+        raise ValueError(f"mask must leave at least three pixels not on one line to fit a plane "
+                         f"(masking={masking!r}), got {int(n)} pixels on one line")
+    slope_x = (syy * sxz - sxy * syz) / det
+    slope_y = (sxx * syz - sxy * sxz) / det
     return Plane(float(zm - slope_x * xm - slope_y * ym), float(slope_x), float(slope_y))
 
 
@@ -383,24 +390,28 @@ def mark_scars(sample: Sample, threshold: float = PARAMETERS["threshold"].defaul
     for sign in signs:
         z = sign * h
         score = np.zeros(h.shape)
+        z_1d, score_1d = z.reshape(-1), score.reshape(-1)  # views, indexed by row * cols + col
         found = np.zeros((rows - 2, cols), bool)  # start rows whose smallest strip was found
+        inner = np.full((rows - 2, cols), np.inf)  # lowest value of rows s+1 .. s+k
         for k in range(1, width + 1):
             n_start = rows - 1 - k  # strips of k rows: rows s+1 .. s+k, neighbours s and s+k+1
-            above = z[:n_start]
-            below = z[k + 1:k + 1 + n_start]
-            inner = np.min(np.stack([z[s:s + n_start] for s in range(1, k + 1)]), axis=0)
-            ref = np.maximum(above, below)
-            hit = (inner - ref >= low * sigma) & ~found[:n_start]
+            inner = np.minimum(inner[:n_start], z[k:k + n_start])
+            ref = np.maximum(z[:n_start], z[k + 1:k + 1 + n_start])
+            hit = inner - ref >= low * sigma
+            hit &= ~found[:n_start]
             found[:n_start] |= hit
+            flat = np.flatnonzero(hit)  # = start row * cols + column
+            base = ref.ravel()[flat]
             for s in range(1, k + 1):  # score each pixel of the strip against the neighbours
-                part = np.where(hit, (z[s:s + n_start] - ref) / sigma, 0.0)
-                score[s:s + n_start] = np.maximum(score[s:s + n_start], part)
+                at = flat + s * cols
+                score_1d[at] = np.maximum(score_1d[at], (z_1d[at] - base) / sigma)
 
         candidates = score >= low
 
-        def has_hard(labels, n, score=score):
-            peak = ndimage.maximum(score, labels, index=np.arange(n + 1))
-            return np.asarray(peak) >= high
+        def has_hard(labels, n, hard=score >= high):
+            keep = np.zeros(n + 1, bool)
+            keep[labels[hard]] = True
+            return keep
 
         scars = _runs_keep(candidates, has_hard)
         scars = _runs_keep(scars, lambda labels, n: np.bincount(labels.ravel(),

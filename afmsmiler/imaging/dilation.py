@@ -6,7 +6,7 @@ lowered onto a sample of heights s(x) until it touches, stops with its apex at::
     i(x) = max_u [ s(x + u) - t(u) ]                                        (the image)
 
 the grey-scale dilation of s by the reflected tip (Villarrubia, J. Res. Natl. Inst. Stand.
-Technol. 102, 425 (1997), Eq. 9; in mathematical morphology i = s (+) b with the structuring
+Technol. 102, 425 (1997); in mathematical morphology i = s (+) b with the structuring
 function b(y) = -t(-y), what ``scipy.ndimage.grey_dilation(s, structure=b)`` computes). All four
 tips of module (d) are symmetric, t(-u) = t(u). Its inverse is the reconstruction (Villarrubia's
 "surface reconstruction", a grey-scale erosion)::
@@ -56,7 +56,8 @@ from ..samples.sample import MAX_PIXELS, Sample
 from ..validation import check_instance, check_integer, check_nonnegative, check_positive
 
 __all__ = ["tip_surface", "dilate", "erode", "certainty_map", "estimate_tip_radius",
-           "sphere_apparent_width", "MAX_TIP_PIXELS", "MAX_WORK", "DEFAULT_HALF_WIDTH"]
+           "sphere_apparent_width", "MAX_TIP_PIXELS", "MAX_WORK", "DEFAULT_HALF_WIDTH",
+           "WINDOW_LIMIT"]
 
 #: The most pixels of a tip grid (:func:`tip_surface`): 2048 x 2048, 32 MB as float64.
 MAX_TIP_PIXELS = MAX_PIXELS
@@ -67,7 +68,14 @@ MAX_WORK = 1 << 28
 #: x) from the apex (or at its full height R for a sphere that fits in that distance).
 DEFAULT_HALF_WIDTH = 32
 
+#: The paraboloid's separable path takes the direct window (2 w whole-image passes) for windows
+#: up to this many pixels from the apex, the O(N) envelope beyond (measured crossover here: the
+#: envelope's Python loop over the N pixels of a line costs about 64 such passes).
+WINDOW_LIMIT = 64
+
 _BISECTIONS = 200
+_DEPTH = 16
+_SCALAR_LINES = 16
 
 
 def _cut_radius(tip: Tip, max_height: float) -> float:
@@ -225,58 +233,130 @@ def _envelope_lines(g: np.ndarray, a: float) -> np.ndarray:
 
     The lower envelope of the parabolas (q - p)^2 + h(p), h = -g / a (Felzenszwalb and
     Huttenlocher, Theory of Computing 8, 415 (2012), Algorithm 1), built for all lines at once:
-    a loop over q in Python, the stack operations vectorised over the lines. The value at q is
-    computed from the winning p as g[p] - a (q - p)^2, the same expression as the general path.
+    a loop over q in Python, each step vectorised over the lines. The lines whose stack must pop
+    test the top :data:`_DEPTH` entries at once, so a step rarely takes more than one extra pass.
+    The winning parabola at each q is found for all lines in one ``searchsorted`` and the value
+    computed from it as g[p] - a (q - p)^2, the same expression as the general path. O(N) per
+    line, whatever the tip's size. Up to :data:`_SCALAR_LINES` lines, the algorithm runs line by
+    line in plain Python (:func:`_envelope_scalar`), faster there.
     """
     lines, n = g.shape
-    rows = np.arange(lines)
     if n == 1:
         return g.copy()
-    p2 = np.arange(n, dtype=float) ** 2
-    hh = -g / a + p2                      # h(p) + p^2
-    v = np.zeros((lines, n), dtype=np.intp)  # the parabolas of the envelope (their p)
-    z = np.empty((lines, n + 1))          # the envelope's breakpoints
-    z[:, 0] = -np.inf
-    z[:, 1] = np.inf
-    k = np.zeros(lines, dtype=np.intp)    # index of the last parabola of each line's envelope
-    s_new = np.empty(lines)
+    if lines <= _SCALAR_LINES:
+        return np.array([_envelope_scalar(line, a) for line in g]).reshape(g.shape)
+    return _envelope_vector(g, a)
+
+
+def _envelope_vector(g: np.ndarray, a: float) -> np.ndarray:
+    """:func:`_envelope_lines` vectorised over the lines (a loop over q, n >= 2)."""
+    lines, n = g.shape
+    rows = np.arange(lines)
+    hh = (-g / a + np.arange(n, dtype=float) ** 2).ravel()   # h(p) + p^2, flat
+    off, offz = rows * n, rows * (n + 1)   # each line's start in v and hh, and in z
+    v = np.zeros(lines * n, dtype=np.intp)  # the envelope's parabolas (their p), a stack a line
+    z = np.empty(lines * (n + 1))           # the envelope's breakpoints
+    z[offz] = -np.inf
+    k = np.zeros(lines, dtype=np.intp)      # top of each line's stack
+    steps = np.arange(_DEPTH)
     for q in range(1, n):
-        hq = hh[:, q]
-        idx = rows
-        kk = k
-        while idx.size:
-            vk = v[idx, kk]
-            s = (hq[idx] - hh[idx, vk]) / (2.0 * (q - vk))
-            pop = s <= z[idx, kk]
-            keep = ~pop
-            s_new[idx[keep]] = s[keep]
-            idx = idx[pop]
-            kk = kk[pop] - 1
-            k[idx] = kk
+        hq = hh[off + q]
+        vk = v[off + k]
+        s = (hq - hh[off + vk]) / (2.0 * (q - vk))
+        pop = s <= z[offz + k]
+        if pop.any():
+            idx = np.flatnonzero(pop)
+            kk, hqi, oi, ozi = k[idx] - 1, hq[idx], off[idx, None], offz[idx, None]
+            while True:  # at most n / _DEPTH passes: every pass pops _DEPTH or stops
+                kb = kk[:, None] - steps[None, :]
+                valid = kb >= 0
+                kb = np.maximum(kb, 0)
+                vb = v[oi + kb]
+                sb = (hqi[:, None] - hh[oi + vb]) / (2.0 * (q - vb))
+                stay = (sb > z[ozi + kb]) & valid
+                found = stay.any(axis=1)
+                j = np.argmax(stay, axis=1)[found]
+                done = idx[found]
+                k[done] = kk[found] - j
+                s[done] = sb[found, j]
+                if found.all():
+                    break
+                nf = ~found
+                idx, kk, hqi, oi, ozi = idx[nf], kk[nf] - _DEPTH, hqi[nf], oi[nf], ozi[nf]
         k += 1
-        v[rows, k] = q
-        z[rows, k] = s_new
-        z[rows, k + 1] = np.inf
+        v[off + k] = q
+        z[offz + k] = s
     # the parabola that wins at q is the last one whose breakpoint z[j] < q: count the
     # breakpoints z[1..k] below q, for all lines in one searchsorted (lines shifted apart)
-    zz = z[:, 1:n].copy()
+    zz = z.reshape(lines, n + 1)[:, 1:n].copy()
     zz[np.arange(1, n)[None, :] > k[:, None]] = np.inf
-    span = n + 2.0
-    shift = rows[:, None] * span
+    shift = rows[:, None] * (n + 2.0)
     zz = np.clip(zz, -1.0, n) + shift
-    q = np.arange(n, dtype=float)[None, :] + shift
-    j = np.searchsorted(zz.ravel(), q.ravel(), side="left").reshape(lines, n)
+    qq = np.arange(n, dtype=float)[None, :] + shift
+    j = np.searchsorted(zz.ravel(), qq.ravel(), side="left").reshape(lines, n)
     j -= rows[:, None] * (n - 1)
-    p = v[rows[:, None], j]
-    return g[rows[:, None], p] - a * (q - shift - p) ** 2
+    p = v.reshape(lines, n)[rows[:, None], j]
+    return g[rows[:, None], p] - a * (np.arange(n)[None, :] - p) ** 2
 
 
-def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float) -> np.ndarray:
-    """The separable paraboloid dilation: rows by u^2 / (2R), then columns by v^2 / (2R)."""
+def _envelope_scalar(g: np.ndarray, a: float) -> np.ndarray:
+    """One line of :func:`_envelope_lines` in plain Python floats (Algorithm 1 as printed).
+
+    For a few lines NumPy's per-call cost makes the vectorised loop slower than this one.
+    """
+    n = g.shape[0]
+    hh = (-g / a + np.arange(n, dtype=float) ** 2).tolist()
+    v, z = [0], [-math.inf]
+    for q in range(1, n):
+        hq = hh[q]
+        while True:
+            p = v[-1]
+            s = (hq - hh[p]) / (2.0 * (q - p))
+            if s > z[-1]:
+                break
+            v.pop()
+            z.pop()
+        v.append(q)
+        z.append(s)
+    q = np.arange(n)
+    p = np.asarray(v)[np.searchsorted(np.asarray(z[1:]), q, side="left")]
+    return g[p] - a * (q - p) ** 2
+
+
+def _window_lines(g: np.ndarray, a: float, w: int) -> np.ndarray:
+    """f[l, q] = max_{|d| <= w} [g[l, q + d] - a d^2]: 2 w vectorised passes over the image."""
+    out = g.copy()
+    for d in range(1, min(w, g.shape[1] - 1) + 1):
+        c = a * d * d
+        np.maximum(out[:, :-d], g[:, d:] - c, out=out[:, :-d])
+        np.maximum(out[:, d:], g[:, :-d] - c, out=out[:, d:])
+    return out
+
+
+def _parabola_lines(g: np.ndarray, a: float, height: float, method: str) -> np.ndarray:
+    """The exact 1-D paraboloid dilation of every line, by the window or by the envelope.
+
+    Only offsets d with a d^2 < height can win (the cut), so a window of w = sqrt(height / a)
+    pixels is exact. Up to :data:`WINDOW_LIMIT` pixels its 2 w whole-image passes are faster in
+    NumPy than the envelope's Python loop over q; beyond, the envelope's O(N) wins.
+    """
+    w = int(math.floor(math.sqrt(height / a) * (1.0 + 1e-12))) if height > 0 else 0
+    if method == "window" or (method == "auto" and w <= WINDOW_LIMIT):
+        return _window_lines(g, a, w)
+    return _envelope_lines(np.ascontiguousarray(g), a)
+
+
+def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height: float,
+                      method: str = "auto") -> np.ndarray:
+    """The separable paraboloid dilation: rows by u^2 / (2R), then columns by v^2 / (2R).
+
+    The cut at ``height`` (the sample's range) stays exact for the second pass: the first one
+    leaves the maximum unchanged and raises the minimum, so its range is at most ``height``.
+    """
     if h.ndim == 1:
-        return _envelope_lines(h[None, :], dx * dx / (2.0 * radius))[0]
-    out = _envelope_lines(h, dx * dx / (2.0 * radius))
-    return _envelope_lines(out.T, dy * dy / (2.0 * radius)).T
+        return _parabola_lines(h[None, :], dx * dx / (2.0 * radius), height, method)[0]
+    out = _parabola_lines(h, dx * dx / (2.0 * radius), height, method)
+    return _parabola_lines(out.T, dy * dy / (2.0 * radius), height, method).T
 
 
 def _range(h: np.ndarray) -> float:
@@ -333,7 +413,7 @@ def dilate(sample, tip) -> Sample:
     height = _range(h)
     t = _kernel(sample, tip, height)
     if isinstance(tip, Parabolic):
-        out = _dilate_parabolic(h, tip.radius, sample.pixel_size, sample.pixel_size_y)
+        out = _dilate_parabolic(h, tip.radius, sample.pixel_size, sample.pixel_size_y, height)
     else:
         out = _dilate_general(h, t, height)
     return replace(sample, heights=out)
@@ -344,14 +424,14 @@ def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
     height = _range(i)
     t = _kernel(image, tip, height)
     if isinstance(tip, Parabolic):
-        return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y)
+        return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y, height)
     return -_dilate_general(-i, t, height)
 
 
 def erode(image, tip) -> Sample:
     """The reconstruction r(x) = min_u [i(x - u) + t(u)] of the surface from its image.
 
-    Villarrubia's surface reconstruction (J. Res. NIST 102, 425 (1997), Eq. 10), a grey-scale
+    Villarrubia's surface reconstruction (J. Res. NIST 102, 425 (1997)), a grey-scale
     erosion by the tip. Applied to an image of a surface s, ``erode(dilate(s, tip), tip)`` is the
     morphological closing of s: it is >= s everywhere (narrow holes the tip cannot enter stay
     bridged), and equals s where :func:`certainty_map` is True.
@@ -384,7 +464,7 @@ def certainty_map(image, tip) -> np.ndarray:
 
     With the apex at x0 the tip touches the reconstruction r (:func:`erode`) at the points
     x0 + u where r(x0 + u) - t(u) = i(x0). Where it touches at a single point, that point of r is
-    certain: the true surface is there (Villarrubia, J. Res. NIST 102, 425 (1997), Sec. 6).
+    certain: the true surface is there (Villarrubia, J. Res. NIST 102, 425 (1997)).
     Elsewhere r is only an upper bound of the surface. Equality is tested to a few units of
     round-off of the image's heights. Work as the general path of :func:`dilate`
     (:data:`MAX_WORK`), for every tip.
@@ -439,7 +519,7 @@ def estimate_tip_radius(image, *, peaks=1) -> float:
     >= -dy^2 / R. Each local maximum therefore bounds R from above,
     R <= dx^2 / (-second difference), with equality at a peak made by a feature sharper than the
     tip, where the image is the inverted tip itself. This is the paraboloid form of blind tip
-    estimation (Villarrubia, J. Res. NIST 102, 425 (1997), Sec. 7: the estimate is an upper
+    estimation (Villarrubia, J. Res. NIST 102, 425 (1997): the estimate is an upper
     bound of the tip, exact where the sample has sharp spikes).
 
     Parameters

@@ -325,11 +325,11 @@ class ConstantHeight(Mode):
     Parameters
     ----------
     system : afmsmiler.contact.ContactSystem
-        Tip, lever spring constant and sample (module (d)); elastic (``adhesion=None``).
+        Tip, lever spring constant, sample and adhesion (module (d)).
     z_np : float
         Positioner displacement Z_np in m over the sample's height 0: at a pixel where the apex
         surface is at height r, the tip meets the sample as module (d)'s contact at
-        Z_np = z_np + r (Z_np <= 0: out of contact, no force).
+        Z_np = z_np + r (Z_np <= 0: out of contact, no force without adhesion).
     damage_force : float
         Force in N beyond which the tip is damaged (|F| > damage_force crashes the scan).
 
@@ -338,18 +338,24 @@ class ConstantHeight(Mode):
     TypeError
         If ``system`` is not a ContactSystem.
     ValueError
-        If ``z_np`` or ``damage_force`` is out of range, or the system has adhesion (its
-        history-dependent branches are not modelled here yet).
+        If ``z_np`` or ``damage_force`` is out of range.
 
     Notes
     -----
-    Channels ``"deflection trace"``/``"deflection retrace"``: Z_c = F / k in m, from
-    :meth:`ContactSystem.indent` at every pixel (quasi-static: the lever follows the
-    contact without dynamics). The tip touches where the apex surface is; the dilated surface
-    already holds the contact geometry of the tip's flanks, the solver adds the indentation at
-    the apex. When |F| first exceeds ``damage_force`` (in scan order, trace then retrace) the
-    line stops at that pixel (the later ones are NaN) and the scan stops: a :class:`Crash`.
-    A sphere that would be buried beyond its radius crashes too (force inf).
+    Channels ``"deflection trace"``/``"deflection retrace"``: Z_c = F / k in m, module (d)'s
+    quasi-static state at every pixel (the lever follows the contact without dynamics). The tip
+    touches where the apex surface is; the dilated surface already holds the contact geometry of
+    the tip's flanks, the solver adds the indentation at the apex.
+
+    Elastic (``adhesion=None``): :meth:`ContactSystem.indent` at Z_np = z_np + r, pixel by pixel.
+    With DMT or JKR adhesion the state depends on the path: the tip touches down where
+    Z_np >= 0 (the approach branch) and, once in contact, stays stuck until Z_np falls below
+    the snap-off :attr:`ContactSystem.snap_off_z_np` (the retract branch), along the scan order
+    (trace, retrace, next line), as :meth:`ContactSystem.approach_retract` gives it on a ramp.
+
+    When |F| first exceeds ``damage_force`` (in scan order, trace then retrace) the line stops at
+    that pixel (the later ones are NaN) and the scan stops: a :class:`Crash`. A sphere that would
+    be buried beyond its radius crashes too (force inf).
     """
 
     channels = ("deflection trace", "deflection retrace")
@@ -357,9 +363,6 @@ class ConstantHeight(Mode):
     def __init__(self, system: ContactSystem, z_np: float = CONTACT_PARAMETERS["z_np"].default,
                  damage_force: float = PARAMETERS["damage_force"].default):
         self.system = check_instance("system", system, ContactSystem)
-        if system.adhesion is not None:
-            raise ValueError(f"system must be elastic (adhesion=None) for constant height, got "
-                             f"adhesion={system.adhesion!r}")
         self.z_np = CONTACT_PARAMETERS["z_np"].check(z_np)
         self.damage_force = PARAMETERS["damage_force"].check(damage_force)
         self.tip = system.tip
@@ -368,15 +371,29 @@ class ConstantHeight(Mode):
         return (f"ConstantHeight({self.system!r}, z_np={self.z_np!r}, "
                 f"damage_force={self.damage_force!r})")
 
-    def _pass(self, heights):
-        z = self.z_np + heights
+    def _states(self, z, contact):
+        """Deflection and force at Z_np = z (scan order), from the contact state before."""
+        sy = self.system
         force = np.full(z.shape, math.inf)
-        ok = z < self.system.z_np_limit
-        curve = self.system.indent(z[ok])
-        force[ok] = curve.force
         deflection = np.full(z.shape, math.inf)
-        deflection[ok] = curve.z_c
-        return deflection, force
+        ok = z < sy.z_np_limit
+        if sy.adhesion is None:
+            curve = sy.indent(z[ok])
+            force[ok], deflection[ok] = curve.force, curve.z_c
+            return deflection, force, contact
+        ramp = np.unique(z[ok])
+        if ramp.size == 1:  # approach_retract needs a ramp: add a point below (as ``at`` does)
+            ramp = np.concatenate((ramp - max(1e-9, 1e-9 * abs(ramp[0])), ramp))
+        if ramp.size:
+            cycle = sy.approach_retract(ramp)
+            stuck = cycle.retract.in_contact[::-1]  # on the ramp's points, increasing z
+            f_in, zc_in = cycle.retract.force[::-1], cycle.retract.z_c[::-1]
+            f_out, zc_out = cycle.approach.force, cycle.approach.z_c
+        for k in np.flatnonzero(ok):
+            i = int(np.searchsorted(ramp, z[k]))
+            contact = bool(z[k] >= 0.0 or (contact and stuck[i]))
+            force[k], deflection[k] = (f_in[i], zc_in[i]) if contact else (f_out[i], zc_out[i])
+        return deflection, force, contact
 
     def line(self, plan: ScanPlan, row: int, state: Any = None) -> ModeLine:
         """Deflection along line ``row``, trace and retrace; a :class:`Crash` if the tip broke.
@@ -388,16 +405,16 @@ class ConstantHeight(Mode):
         row : int
             Line index.
         state : object
-            Unused (the mode has no memory from line to line).
+            Whether the tip was in contact at the end of the previous line (None before the
+            first: not in contact).
 
         Returns
         -------
         ModeLine
         """
         n = plan.shape[1]
-        d_t, f_t = self._pass(plan.trace[row])
-        d_r, f_r = self._pass(plan.retrace[row][::-1])  # scan order
-        forces = np.concatenate((f_t, f_r))
+        z = self.z_np + np.concatenate((plan.trace[row], plan.retrace[row][::-1]))  # scan order
+        deflection, forces, contact = self._states(z, bool(state))
         over = np.abs(forces) > self.damage_force
         crash = None
         if over.any():
@@ -405,9 +422,6 @@ class ConstantHeight(Mode):
             direction = DIRECTIONS[k // n]
             column = k if k < n else 2 * n - 1 - k
             crash = Crash(int(row), int(column), float(forces[k]), direction)
-            scan_order = np.concatenate((d_t, d_r))
-            scan_order[k + 1:] = np.nan
-            d_t, d_r = scan_order[:n], scan_order[n:]
-        return ModeLine({"deflection trace": d_t, "deflection retrace": d_r[::-1].copy()},
-                        None, crash)
-
+            deflection[k + 1:] = np.nan
+        return ModeLine({"deflection trace": deflection[:n],
+                         "deflection retrace": deflection[n:][::-1].copy()}, contact, crash)

@@ -29,7 +29,7 @@ images of the lines done so far, whether the scan was stopped, and where the tip
 from __future__ import annotations
 
 import math
-from dataclasses import KW_ONLY, dataclass, fields, replace
+from dataclasses import KW_ONLY, asdict, dataclass, field, replace
 from types import MappingProxyType
 from typing import Callable, Iterator, Mapping
 
@@ -339,7 +339,8 @@ class ScanResult:
     units : Mapping
         Channel name -> SI unit.
     lines_done : int
-        Finished lines (rows 0 to lines_done - 1).
+        The row after the last finished line: rows ``first_row`` to lines_done - 1 are
+        finished (rows 0 to lines_done - 1 for a scan from the first line).
     crashed : Crash or None
         Where the tip crashed (row, column, force in N), or None.
     stopped : bool
@@ -348,6 +349,11 @@ class ScanResult:
         Pixel spacing of the images in m.
     name : str
         The scanned sample's name.
+    metadata : Mapping
+        The scan settings (SI), given to every channel's Sample as its metadata.
+    first_row : int
+        The row the scan started at (0 unless :meth:`Scan.lines` was given ``start``); the rows
+        before it were not scanned (NaN).
     """
 
     images: Mapping
@@ -358,6 +364,8 @@ class ScanResult:
     pixel_size: float
     pixel_size_y: float
     name: str = ""
+    metadata: Mapping = field(default_factory=lambda: MappingProxyType({}))
+    first_row: int = 0
 
     @property
     def lines(self) -> int:
@@ -375,27 +383,29 @@ class ScanResult:
         return self.lines_done / self.lines if self.lines else 0.0
 
     @property
+    def finished_lines(self) -> int:
+        """Number of lines this scan finished (lines_done - first_row)."""
+        return self.lines_done - self.first_row
+
+    @property
     def channels(self) -> dict:
         """Channel name -> :class:`~afmsmiler.samples.Sample` of the finished lines ({} if none).
 
-        Each sample holds rows 0 to lines_done - 1 with the scan's pixel sizes.
+        Each sample holds rows ``first_row`` to lines_done - 1 with the scan's pixel sizes.
         """
-        if self.lines_done == 0:
+        if self.lines_done <= self.first_row:
             return {}
-        return {name: _sample(image[:self.lines_done], self.pixel_size, self.pixel_size_y,
+        meta = {"lines_done": self.lines_done, "first_row": self.first_row, **self.metadata}
+        rows = slice(self.first_row, self.lines_done)
+        return {name: _sample(image[rows], self.pixel_size, self.pixel_size_y,
                               f"{self.name}: {name}" if self.name else name, name,
-                              self.units[name])
+                              self.units[name], meta)
                 for name, image in self.images.items()}
 
 
-_SAMPLE_FIELDS = {f.name for f in fields(Sample)}
-
-
-def _sample(values, pixel_size, pixel_size_y, name, channel, unit):
-    extra = {}
-    if "channel" in _SAMPLE_FIELDS:  # the Sample of issue 10 says what it holds
-        extra = {"channel": channel, "unit": unit}
-    return Sample(values, pixel_size, name, pixel_size_y=pixel_size_y, **extra)
+def _sample(values, pixel_size, pixel_size_y, name, channel, unit, metadata=None):
+    return Sample(values, pixel_size, name, pixel_size_y=pixel_size_y, channel=channel,
+                  unit=unit, metadata=metadata)
 
 
 def _bilinear(heights, px, py):
@@ -412,8 +422,8 @@ def _bilinear(heights, px, py):
         i0 = np.minimum(np.floor(p).astype(np.intp), max(n - 2, 0))
         out.append((i0, p - i0))
     (j0, fx), (i0, fy) = out
-    if rows == 1:
-        i0, fy = np.zeros_like(i0), np.zeros_like(fy)
+    if not fx.any() and not fy.any():  # every point on a pixel of the sample (a grid aligned)
+        return heights[i0, j0]
     j1 = np.minimum(j0 + 1, cols - 1)
     i1 = np.minimum(i0 + 1, rows - 1)
     top = heights[i0, j0] * (1 - fx) + heights[i0, j1] * fx
@@ -472,6 +482,9 @@ class Scan:
         self.mode = check_instance("mode", mode, Mode)
         self.settings = check_instance("settings", settings, ScanSettings)
         h = sample.heights
+        if sample.unit != "m":
+            raise ValueError(f"sample must hold heights in m, got a {sample.channel!r} channel in "
+                             f"{sample.unit!r}")
         if h.ndim != 2 or min(h.shape) < 2:
             raise ValueError(f"sample must be a 2-D image of at least 2 x 2 pixels, got heights "
                              f"of shape {h.shape}")
@@ -485,10 +498,14 @@ class Scan:
         if any(c not in self._units_of(mode) for c in mode.channels):
             raise ValueError(f"mode must list its channels, got {mode.channels!r}")
         self._positions = self._geometry()
+        self._metadata = MappingProxyType({"mode": type(mode).__name__, "tip": repr(tip),
+                                           **asdict(settings)})
         self._plan = None
         self._state = None
         self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
         self._lines_done = 0
+        self._first_row = 0
+        self._started = False
         self._crashed = None
         self._stopped = False
         self._rng = np.random.default_rng(settings.seed)
@@ -571,6 +588,9 @@ class Scan:
             sample, s = self.sample, self.settings
             passes = {}
             for name, (x, y, t) in self._positions.items():
+                if name == "retrace" and not s.moves:  # the same points as the trace
+                    passes[name] = passes["trace"].copy()
+                    continue
                 passes[name] = _bilinear(apex.heights, x / sample.pixel_size,
                                          y / sample.pixel_size_y)
             (xt, yt, tt), (xr, yr, tr) = self._positions["trace"], self._positions["retrace"]
@@ -597,8 +617,9 @@ class Scan:
             return None
         plan = self.plan
         row = self._lines_done
-        if row == 0:
+        if not self._started:
             self._state = self.mode.start(plan)
+            self._started = True
         out = self.mode.line(plan, row, self._state)
         channels = {}
         for name in self.mode.channels:
@@ -617,13 +638,36 @@ class Scan:
             self._lines_done += 1
         return LineRecord(row, MappingProxyType(channels), out.crash)
 
-    def lines(self) -> Iterator[LineRecord]:
+    def lines(self, start: int | None = None) -> Iterator[LineRecord]:
         """Scan line after line, yielding each as it is done (a crashed line last).
+
+        Parameters
+        ----------
+        start : int, optional
+            Begin at this row instead of the first (only before any line was scanned): the rows
+            before it are left unscanned (NaN), as when a panel applies new settings from the
+            next line on. The mode still starts once (:meth:`Mode.start`) and is then asked
+            for the rows from ``start`` on; :class:`~afmsmiler.imaging.modes.ConstantForce`
+            solves the whole image with the new settings, so its row ``start`` is the loop's
+            state as if the new settings had scanned all the earlier lines.
 
         Yields
         ------
         LineRecord
+
+        Raises
+        ------
+        ValueError
+            If ``start`` is not a row, or lines were already scanned.
         """
+        if start is not None:
+            start = check_integer("start", start, 0, self.settings.lines - 1)
+            if self._started:
+                if start != self._lines_done:
+                    raise ValueError(f"start must be given before the first line (the scan is "
+                                     f"at row {self._lines_done}), got {start}")
+            else:
+                self._lines_done = self._first_row = start
         while (record := self.step()) is not None:
             yield record
 
@@ -659,7 +703,8 @@ class Scan:
         images = MappingProxyType({k: v.copy() for k, v in self._images.items()})
         return ScanResult(images, MappingProxyType(self._units_of(self.mode)), self._lines_done,
                           self._crashed, self._stopped, self.settings.pixel_size,
-                          self.settings.pixel_size_y, self.sample.name)
+                          self.settings.pixel_size_y, self.sample.name, self._metadata,
+                          self._first_row)
 
     def position(self, row: int, column: int, direction: str = "trace") -> tuple[float, float]:
         """Where the apex is on the sample at a pixel, in m from the sample's first pixel.

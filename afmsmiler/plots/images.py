@@ -134,9 +134,8 @@ def _png_path(path) -> str:
 
 def _value_unit(sample: Sample):
     """(factor, unit label) to show the sample's values in: nm or um for heights."""
-    unit = getattr(sample, "unit", "m")
-    if unit != "m":
-        return 1.0, unit
+    if sample.unit != "m":
+        return 1.0, sample.unit
     span = float(np.ptp(sample.heights)) or float(np.abs(sample.heights).max())
     display = "um" if span >= 1e-6 else "nm"
     return unit_scale(display, "m"), "µm" if display == "um" else display
@@ -232,7 +231,7 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
         cax = fig.add_axes((width_px / fig_w + 0.12 * bar_strip / fig_w, 0.08,
                             0.12 * bar_strip / fig_w, 0.84))
         bar = fig.colorbar(image, cax=cax)
-        channel = getattr(sample, "channel", "height") or "height"
+        channel = sample.channel or "height"
         bar.set_label(f"{channel} [{unit}]" if unit else channel, fontsize=font_px * 0.6)
         bar.ax.tick_params(labelsize=font_px * 0.5)
     try:

@@ -14,8 +14,8 @@ __all__ = ["PROFILES", "REAL_LINE_ROW", "profile"]
 #: Line profiles offered by the controller panel, by name.
 PROFILES = ("step", "grating", "real line", "particles")
 #: The row of :func:`~afmsmiler.samples.readers.real_image` that ``profile("real line")`` takes
-#: (two molecules crossed).
-REAL_LINE_ROW = 202
+#: (it crosses three islands and their terraces).
+REAL_LINE_ROW = 256
 
 
 def profile(name: str, pixels: int = 512, pixel_size: float = 4e-9,
@@ -23,10 +23,11 @@ def profile(name: str, pixels: int = 512, pixel_size: float = 4e-9,
     """A named line profile, scaled to a feature ``height``.
 
     ``"step"`` and ``"grating"`` (4 periods) are ideal; ``"real line"`` is a row of the real AFM
-    image :func:`real_image` (row :data:`REAL_LINE_ROW`, two molecules and the substrate's
-    noise), its first ``pixels`` pixels put on the requested pixel size and its range scaled
-    to ``height``: the shape of a real line at the scale of the other profiles (for the
-    line at its own scale, 0.98 nm pixels and 2 nm high, use ``real_image().line(202)``);
+    image :func:`real_image` (row :data:`REAL_LINE_ROW`, islands a few nm high and the
+    surface's roughness), its first ``pixels`` pixels put on the requested pixel size and its
+    range scaled to ``height``: the shape of a real line at the scale of the other profiles
+    (for the line at its own scale, 3.9 nm pixels and about 17 nm high, use
+    ``real_image().line(REAL_LINE_ROW)``);
     ``"particles"`` is the highest row of :func:`particles`, a synthetic image.
 
     Parameters
