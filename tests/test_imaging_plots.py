@@ -105,3 +105,19 @@ def test_a_stopped_or_crashed_scan_says_so():
     r.crashed = "row 3, 120 nN"
     v = scan_view(r)
     assert v.status == "crashed: row 3, 120 nN"
+
+
+def test_images_side_by_side_in_nm_with_their_own_colour_scales():
+    a = Sample(np.arange(12.0).reshape(3, 4) * 1e-9, 0.5e-6, "a")
+    b = Sample(np.ones((3, 4)) * 2e-9, 0.5e-6, "b")
+    from afmsmiler.plots.imaging import images_figure
+    fig = images_figure(a, b, titles=["first", "second"])
+    (ia,), (ib,) = fig.axes[0].images, fig.axes[1].images
+    np.testing.assert_allclose(ia.get_array(), a.heights * NM)
+    assert ia.get_clim() == pytest.approx((0, 11)) and fig.axes[1].get_title() == "second"
+    assert fig.axes[0].get_xlabel() == "x [um]"  # 2 um wide
+    describe(fig)
+    with pytest.raises(ValueError, match="one title per image"):
+        images_figure(a, titles=["x", "y"])
+    with pytest.raises(ValueError, match="1 to 4"):
+        images_figure()

@@ -252,3 +252,55 @@ def test_layout_holds_every_control_once():
     for c in p.controls.values():
         assert sum(x is c for x in shown) == 1
     assert any(x is p.start_button for x in shown) and any(x is p.progress for x in shown)
+
+
+# --- what notebook 06 suggests, followed step by step -------------------------------------------
+def _rms(a):
+    return float(np.sqrt(np.nanmean(np.asarray(a) ** 2)))
+
+
+@pytest.mark.slow
+def test_notebook_faster_mid_scan_the_error_grows_from_the_next_line():
+    # "Start, and after a few lines raise the speed to 1000 um/s: from the next line on the
+    # error image lights up (several times the RMS) and trace and retrace part"
+    p = ImagingPanel()
+    p.start(run=False)
+    for _ in range(20):
+        p.step()
+    p.set(scan_speed=1000.0)
+    while p.step():
+        pass
+    e = p.last.channels["error trace"].heights
+    assert _rms(e[20:]) > 4 * _rms(e[:20])
+    gap = np.abs(p.last.channels["height trace"].heights
+                 - p.last.channels["height retrace"].heights)
+    assert gap[20:].max() > 2 * gap[:20].max()
+
+
+@pytest.mark.slow
+def test_notebook_a_blunt_tip_widens_the_particles():
+    # "a 100 nm tip instead of 5 nm: the particles cover several times the area"
+    cover = {}
+    for radius in (5.0, 100.0):
+        p = ImagingPanel(radius=radius)
+        p.start()
+        cover[radius] = float((p.last.channels["height trace"].heights > 5e-9).mean())
+    assert cover[100.0] > 3 * cover[5.0]
+
+
+@pytest.mark.slow
+def test_notebook_a_lower_damage_force_mid_scan_crashes_a_later_line():
+    # "in constant height, lower the damage force to 2 nN half-way: the tip breaks on a
+    # particle of a later line; the scan stops there and the lines before stay"
+    p = ImagingPanel(mode="constant height")
+    p.start(run=False)
+    for _ in range(20):
+        p.step()
+    before = p.last.channels["deflection trace"].heights[:20].copy()
+    p.set(damage_force=2.0)
+    while p.step():
+        pass
+    r = p.last
+    assert r.crashed is not None and 20 <= r.crashed.row == r.lines_done < r.lines
+    np.testing.assert_array_equal(r.channels["deflection trace"].heights[:20], before)
+    assert "crashed" in p.status.value

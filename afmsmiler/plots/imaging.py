@@ -25,7 +25,7 @@ from ..validation import check_choice, check_integer
 from .limits import data_range, hold
 
 __all__ = ["FIGSIZE", "DISPLAY_UNITS", "ScanView", "scan_view", "ImagingFigure",
-           "main_channel", "error_channel", "length_unit"]
+           "main_channel", "error_channel", "length_unit", "images_figure"]
 
 #: Figure size in inches (10 in: JupyterLab's output area is about 1000 px wide).
 FIGSIZE = (10.0, 7.0)
@@ -330,3 +330,59 @@ class ImagingFigure:
         if math.isfinite(lo):
             hold(p, "y", lo, hi, reset=reset, floor=1e-3)
             self._held = v.image_label
+
+
+def images_figure(*images, titles=None, cmap: str = "afmhot", fig: Figure | None = None) -> Figure:
+    """Images side by side, each with its colour bar (values in nm for m), axes in um or nm.
+
+    A static figure for the notebook (a sample, its dilation, a levelled copy ...); each image
+    keeps its own colour scale.
+
+    Parameters
+    ----------
+    *images : Sample
+        One to four 2-D samples (their ``unit``, default m, decides the colour bar's unit).
+    titles : sequence of str, optional
+        One per image; default the samples' names.
+    cmap : str
+        Colour map.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 10 in wide.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        If no image, more than four, a 1-D one, or a number of titles that does not match.
+    """
+    if not 1 <= len(images) <= 4:
+        raise ValueError(f"images must be 1 to 4 samples, got {len(images)}")
+    titles = [getattr(im, "name", "") for im in images] if titles is None else list(titles)
+    if len(titles) != len(images):
+        raise ValueError(f"titles must give one title per image ({len(images)}), got "
+                         f"{len(titles)}")
+    fig = fig if fig is not None else Figure(figsize=(10.0, 10.0 / max(len(images), 2) + 0.6))
+    fig.set_layout_engine("constrained")
+    axes = fig.subplots(1, len(images), squeeze=False)[0]
+    for ax, image, title in zip(axes, images, titles):
+        values = np.asarray(image.heights, dtype=float)
+        if values.ndim != 2:
+            raise ValueError(f"images must be 2-D, got an array of shape {values.shape}")
+        unit, factor = _value_unit(getattr(image, "unit", "m"))
+        rows, cols = values.shape
+        dx = float(image.pixel_size)
+        dy = float(getattr(image, "pixel_size_y", None) or dx)
+        lu = length_unit(max(cols * dx, rows * dy))
+        k = unit_scale(lu, "m")
+        shown = values * factor
+        im = ax.imshow(np.ma.masked_invalid(shown), origin="lower", cmap=cmap,
+                       interpolation="nearest", extent=(-0.5 * dx * k, (cols - 0.5) * dx * k,
+                                                        -0.5 * dy * k, (rows - 0.5) * dy * k))
+        im.set_clim(*_clim(shown))
+        channel = getattr(image, "channel", "height")
+        fig.colorbar(im, ax=ax, shrink=0.8, label=f"{channel} [{unit}]")
+        ax.set(title=title, xlabel=f"x [{lu}]", ylabel=f"y [{lu}]")
+    return fig
