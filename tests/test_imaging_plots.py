@@ -113,6 +113,8 @@ def test_images_side_by_side_in_nm_with_their_own_colour_scales():
     from afmsmiler.plots.imaging import images_figure
     fig = images_figure(a, b, titles=["first", "second"])
     (ia,), (ib,) = fig.axes[0].images, fig.axes[1].images
+    lo, hi = ib.get_clim()  # a flat image still gets a span
+    assert lo < 2 < hi
     np.testing.assert_allclose(ia.get_array(), a.heights * NM)
     assert ia.get_clim() == pytest.approx((0, 11)) and fig.axes[1].get_title() == "second"
     assert fig.axes[0].get_xlabel() == "x [um]"  # 2 um wide
