@@ -304,3 +304,54 @@ def test_notebook_a_lower_damage_force_mid_scan_crashes_a_later_line():
     assert r.crashed is not None and 20 <= r.crashed.row == r.lines_done < r.lines
     np.testing.assert_array_equal(r.channels["deflection trace"].heights[:20], before)
     assert "crashed" in p.status.value
+
+
+@pytest.mark.slow
+def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
+    # a Jupyter kernel as the notebook has it: Start returns at once, the scan proceeds line by
+    # line on the kernel's loop, and requests (here: cells; in JupyterLab also the widgets'
+    # messages) are answered between two lines; Stop ends it with the lines finished kept
+    import os
+    import time
+    from pathlib import Path
+
+    from jupyter_client.manager import start_new_kernel
+
+    root = str(Path(ui.__file__).parents[2])
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("AFMSMILER_TESTING", "CI", "NBVAL", "PYTEST_CURRENT_TEST")}
+    env["PYTHONPATH"] = os.pathsep.join([root, env.get("PYTHONPATH", "")])
+    km, kc = start_new_kernel(kernel_name="python3", env=env, cwd=root)
+
+    def run(code):
+        msg_id = kc.execute(code)
+        out = []
+        while True:
+            m = kc.get_iopub_msg(timeout=60)
+            if m["parent_header"].get("msg_id") != msg_id:
+                continue
+            if m["msg_type"] == "stream":
+                out.append(m["content"]["text"])
+            elif m["msg_type"] == "error":
+                raise AssertionError("\n".join(m["content"]["traceback"]))
+            elif m["msg_type"] == "status" and m["content"]["execution_state"] == "idle":
+                return "".join(out).split()
+
+    try:
+        run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel(pixels=256)")
+        assert run("p.start(); print(p.running, p.last.lines_done)") == ["True", "0"]
+        seen = []
+        for _ in range(50):
+            running, done = run("print(p.running, p.last.lines_done)")
+            seen.append(int(done))
+            if seen[-1] > 0:
+                break
+            time.sleep(0.05)
+        assert running == "True" and 0 < seen[-1] < 256
+        done = run("p.stop(); print(p.running, p.last.lines_done, p.last.stopped)")
+        assert done[0] == "False" and done[2] == "True" and int(done[1]) < 256
+        time.sleep(0.3)  # the cancelled task scans nothing more
+        assert run("print(p.last.lines_done, p.error)") == [done[1], "None"]
+    finally:
+        kc.stop_channels()
+        km.shutdown_kernel(now=True)
