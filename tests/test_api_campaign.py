@@ -67,7 +67,7 @@ MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machin
 # Parameters that are not inputs of the physics: the name and unit a validation helper prints.
 NOT_INPUTS = {"name", "unit", "what", "label", "description", "readout_format"}
 # Free text that a constructor stores as given (a curve's or a material's name, a source).
-FREE_TEXT = {"name", "source", "label", "description"}
+FREE_TEXT = {"name", "source", "label", "description", "channel"}
 #: Parameters that name another one in an error message (any text will do; a non-str is refused).
 MESSAGE_NAMES = {"cantilever.check_modes:name"}
 # Returned by the models, not built by a user: their constructors are not part of the input API
@@ -186,6 +186,10 @@ OVERRIDES = {
         "afmsmiler.data", fromlist=["path"]).path("bruker_d3100.spm")},
     "afmsmiler.samples.Sample": {"heights": lambda: np.zeros((8, 8))},
     "afmsmiler.samples.Sample.resample": {"pixel_size": 5e-9},
+    "afmsmiler.samples.save_gwy": {
+        "sample": lambda: __import__("afmsmiler.samples", fromlist=["Sample"]).Sample(
+            np.zeros((8, 8)), 1e-9),
+        "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.gwy"},
     "afmsmiler.validation.check_choice": {"value": "a"},
     "afmsmiler.validation.check_integer": {"value": 3},
     "afmsmiler.validation.check_size": {"value": 3},

@@ -246,3 +246,34 @@ def test_scar_settings_are_checked():
     assert PARAMETERS["extension_threshold"].default == 0.25
     # a flat image has no scars (and no division by its zero row-to-row RMS)
     assert not mark_scars(Sample(np.zeros((8, 32)), DX)).any()
+
+
+# -- with the scanner -------------------------------------------------------------------------
+
+def test_levelling_removes_the_tilt_the_scanner_adds_to_the_sample():
+    """The issue's lesson end to end: a sample scanned tilted by (alpha_x, alpha_y) levels back
+    to the untilted scan; the fitted slopes differ by tan(alpha) (the plane the scanner adds)."""
+    from afmsmiler.imaging.modes import Mode, ModeLine
+    from afmsmiler.imaging.scanner import ScanSettings, scan
+    from afmsmiler.samples import particles
+
+    class Topography(Mode):  # the apex surface itself: no loop between the tilt and the image
+        channels = ("height trace", "height retrace")
+
+        def line(self, plan, row, state):
+            return ModeLine({"height trace": plan.trace[row],
+                             "height retrace": plan.retrace[row]}, state)
+
+    sample = particles((32, 40), 4e-9, count=4, radius=12e-9, seed=2)
+    tilt = (np.radians(2.0), np.radians(-1.0))
+
+    def image(**kw):
+        settings = ScanSettings(40 * 4e-9, scan_size_y=32 * 4e-9, pixels=40, lines=32, **kw)
+        return scan(sample, None, Topography(), settings).channels["height trace"]
+
+    flat, tilted = image(), image(tilt=tilt)
+    p0, p1 = fit_plane(flat), fit_plane(tilted)
+    assert p1.slope_x - p0.slope_x == pytest.approx(np.tan(tilt[0]), rel=1e-9)
+    assert p1.slope_y - p0.slope_y == pytest.approx(np.tan(tilt[1]), rel=1e-9)
+    np.testing.assert_allclose(level_plane(tilted).heights, level_plane(flat).heights,
+                               atol=1e-9 * 1e-6)

@@ -7,12 +7,14 @@ structuring function b(y) = -t(-y) written out here from the tips' textbook form
 round-off: a few ulps of the heights.
 """
 import math
+from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 import pytest
 from scipy import ndimage
 
-from afmsmiler.contact.tips import Conical, Parabolic, Pyramidal, Spherical
+from afmsmiler.contact.tips import Conical, Parabolic, Pyramidal, Spherical, Tip
 from afmsmiler.imaging import dilation
 from afmsmiler.imaging.dilation import (certainty_map, dilate, erode, estimate_tip_radius,
                                         sphere_apparent_width, tip_surface)
@@ -94,6 +96,32 @@ def test_tip_surface_default_cut_and_sphere_shank():
     assert s[0, 0] == 10e-9  # beyond R: the shank, clipped at the cut
 
 
+@dataclass(frozen=True)
+class Quartic(Tip):
+    """A tip shape the module does not know: t = L (rho / L)^4, L = 10 nm (bisection path)."""
+
+    key: ClassVar[str] = "quartic"
+    title: ClassVar[str] = "quartic"
+    formula: ClassVar[str] = "t = L (rho / L)^4"
+    parameters: ClassVar[tuple] = ()
+
+    def _profile(self, r):
+        return 1e-8 * (r / 1e-8) ** 4
+
+
+def test_any_tip_shape_is_dilated_exactly():
+    tip = Quartic()
+    t = tip_surface(tip, 1e-9, max_height=5e-9)
+    n = t.shape[1] // 2
+    assert 1e-8 * (n * 1e-9 / 1e-8) ** 4 <= 5e-9 < 1e-8 * ((n + 1) * 1e-9 / 1e-8) ** 4
+    h = rough((30, 30), 1e-9, seed=9)
+    u = np.arange(-29, 30) * 1e-9
+    b = -1e-8 * (np.hypot(u[None, :], u[:, None]) / 1e-8) ** 4
+    ref = ndimage.grey_dilation(h, structure=b, mode="constant", cval=-np.inf)
+    np.testing.assert_allclose(dilate(Sample(h, 1e-9), tip).heights, ref, rtol=0,
+                               atol=round_off(h))
+
+
 def test_tip_surface_rejects_bad_input():
     with pytest.raises(TypeError, match="tip"):
         tip_surface("parabolic", 1e-9)
@@ -146,14 +174,18 @@ def test_parabolic_separable_path_equals_general_path(shape, dx, dy, method):
     np.testing.assert_allclose(line, scipy_dilation(h[0], tip, dx), rtol=0, atol=round_off(h))
 
 
-def test_dilate_takes_the_envelope_beyond_the_window_limit():
-    """A blunt paraboloid on a fine grid: window of more than WINDOW_LIMIT pixels, O(N) path."""
+def test_dilate_takes_the_envelope_beyond_the_window_limit(monkeypatch):
+    """A window wider than WINDOW_LIMIT pixels: dilate takes the O(N) envelope, same image."""
+    calls = []
+    envelope = dilation._envelope_lines
+    monkeypatch.setattr(dilation, "_envelope_lines", lambda g, a: calls.append(g.shape) or
+                        envelope(g, a))
+    monkeypatch.setattr(dilation, "WINDOW_LIMIT", 3)
     tip = Parabolic(radius=30e-9)
-    h = rough((20, 300), 1e-9, seed=4)
-    a = 0.2e-9 ** 2 / (2 * tip.radius)
-    assert math.sqrt(np.ptp(h) / a) > dilation.WINDOW_LIMIT
-    out = dilate(Sample(h, 0.2e-9, pixel_size_y=3e-9), tip).heights
-    np.testing.assert_allclose(out, scipy_dilation(h, tip, 0.2e-9, 3e-9), rtol=0,
+    h = rough((60, 90), 1e-9, seed=4)
+    out = dilate(Sample(h, 0.5e-9, pixel_size_y=0.9e-9), tip).heights
+    assert calls == [(60, 90), (90, 60)]  # rows, then columns, all lines at once
+    np.testing.assert_allclose(out, scipy_dilation(h, tip, 0.5e-9, 0.9e-9), rtol=0,
                                atol=round_off(h))
 
 
@@ -171,6 +203,18 @@ def test_parabolic_envelope_on_adversarial_lines():
         np.testing.assert_allclose(scalar, ref, rtol=0, atol=1e-13)
 
 
+@pytest.mark.parametrize("n", [2, 7, 8])
+def test_window_up_to_the_whole_line(n):
+    """The direct window for every w from 0 to beyond the line (edges, 2 d >= n)."""
+    g = np.random.default_rng(n).normal(size=(n, 3))
+    x = np.arange(n)
+    for w in range(n + 2):
+        d = x[:, None] - x[None, :]
+        cost = np.where(abs(d) <= w, 0.3 * d * d, np.inf)
+        ref = np.max(g[None, :, :] - cost[:, :, None], axis=1)
+        np.testing.assert_array_equal(dilation._window_axis0(g, 0.3, w), ref)
+
+
 def test_flat_sample_is_its_own_image():
     h = np.full((8, 9), 3e-9)
     for tip in TIPS:
@@ -185,6 +229,11 @@ def test_dilate_rejects_bad_input(monkeypatch):
         dilate(h, Parabolic())
     with pytest.raises(TypeError, match="tip"):
         dilate(sample, 20e-9)
+    phase = Sample(h, 1e-9, channel="Phase", unit="deg")
+    with pytest.raises(ValueError, match="sample must hold heights in m.*'Phase'.*'deg'"):
+        dilate(phase, Parabolic())
+    with pytest.raises(ValueError, match="image must hold heights"):
+        estimate_tip_radius(phase)
     # a tip wider than the image at the sample's height range: sqrt(2 R H) = 45 nm > 19 nm
     with pytest.raises(ValueError, match="tip.*wider than the image"):
         dilate(sample, Parabolic(radius=20e-9))

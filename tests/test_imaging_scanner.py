@@ -487,3 +487,38 @@ def test_a_scan_can_start_at_a_later_row(image):
     with pytest.raises(ValueError, match="start must be given before the first line"):
         next(begun.lines(start=5))
     assert next(begun.lines(start=1)).row == 1  # where it is: no change
+
+
+def test_a_tip_wider_than_the_image_is_refused_at_once(image):
+    with pytest.raises(ValueError, match="tip"):
+        Scan(image, Parabolic(radius=1e-6), ConstantForce(loop()), whole(image))
+
+
+class Broken(Mode):
+    channels = ("a", "b")
+
+    def line(self, plan, row, state):
+        return ModeLine({"a": np.zeros(plan.shape[1])})
+
+
+def test_a_mode_that_breaks_the_interface_is_named(image):
+    with pytest.raises(ValueError, match="gave no channel 'b'"):
+        Scan(image, None, Broken(), whole(image)).step()
+
+    class Empty(Broken):
+        channels = ()
+
+    with pytest.raises(ValueError, match="mode must list its channels"):
+        Scan(image, None, Empty(), whole(image))
+    with pytest.raises(TypeError):
+        Mode()  # abstract: line() is required
+
+
+def test_a_sphere_buried_crashes_with_an_infinite_force():
+    from afmsmiler.contact import Spherical
+    sy = ContactSystem(spring_constant=100.0, tip=Spherical(radius=5e-9), youngs_modulus=1e6,
+                       poisson_ratio=0.3)
+    sample = Sample(np.zeros((4, 8)), PX)
+    result = scan(sample, None, ConstantHeight(sy, 1.5 * sy.z_np_limit, 1.0), whole(sample))
+    assert result.crashed == Crash(0, 0, math.inf, "trace") and result.lines_done == 0
+    assert np.isnan(result.images["deflection trace"]).all() and result.channels == {}

@@ -69,10 +69,10 @@ def test_scale_bar_pixels_match_its_label_through_the_pixel_size(tmp_path, pixel
     assert {1.0: 2.0, 2.0: 2.5, 5.0: 2.0}[round(mantissa, 9)] * length > BAR_FRACTION * width
 
 
-def test_first_row_on_top_in_the_colormap_colours(tmp_path):
+def test_first_row_at_the_bottom_in_the_colormap_colours(tmp_path):
     rows, cols = 20, 30
     h = np.zeros((rows, cols))
-    h[0, 0] = 4e-9   # top left, the highest
+    h[0, 0] = 4e-9   # y = 0, x = 0: bottom left (y grows upwards), the highest
     h[-1, -1] = -4e-9
     h[5, 20] = 1e-9
     out = save_png(Sample(h, 1e-9), tmp_path / "a.png", scale_bar=False, zoom=8)
@@ -81,7 +81,7 @@ def test_first_row_on_top_in_the_colormap_colours(tmp_path):
     cmap = matplotlib.colormaps["afmhot"]
     for (i, j) in [(0, 0), (rows - 1, cols - 1), (5, 20), (10, 10)]:
         expected = np.array(cmap((h[i, j] + 4e-9) / 8e-9)[:3]) * 255
-        pixel = png[i * 8 + 4, j * 8 + 4]
+        pixel = png[(rows - 1 - i) * 8 + 4, j * 8 + 4]
         np.testing.assert_allclose(pixel, expected, atol=1.5)
 
 

@@ -21,7 +21,8 @@ SPM_OFFSETS = {"Height": 40960, "Amplitude": 565248}  # "Data offset" of each Ci
 def test_data_files_are_the_ones_the_readmes_name():
     def sha(p):
         return hashlib.sha256(p.read_bytes()).hexdigest()
-    assert sha(WSXM) in (DATA / "README.md").read_text()
+    for name in ("afmreader_sample_0.top", "afmreader_sample_1_um_scale.top"):
+        assert sha(DATA / name) in (DATA / "README.md").read_text()
     assert sha(SPM) in (SPM.parent / "README.md").read_text()
     assert "wsxm_sample_0.top" not in data.names()  # the GPL file no longer ships
     assert all(p.stat().st_size < 2e6 for p in DATA.iterdir())
@@ -44,6 +45,23 @@ def test_spm_height_is_the_header_scale_times_the_stored_counts():
     # NanoScope stores the lines from the bottom up: the first stored line is the last row
     np.testing.assert_allclose(img.heights, np.flipud(counts) * nm_per_count * 1e-9, rtol=2e-5)
     assert img.metadata["Samps/line"] == "512" and img.metadata["Frame direction"] == "Down"
+
+
+def test_spm_height_statistics_match_the_nanoscope_library():
+    """nanoscope's tests/test_image.py on this file, after its process(order=1) (a straight
+    line fitted to each scan line and subtracted, in counts rounded to integers, then converted
+    to nm): Ra 3.433 nm, RMS 4.325 nm, highest peak 14.478 nm and deepest valley 12.918 nm above
+    and below the mean (to 0.001 nm). The rounding to whole counts (0.087 nm) moves the RMS and
+    Ra by about 1e-4 nm and an extreme by up to 0.043 nm."""
+    h = samples.load(SPM).heights * 1e9
+    x = np.arange(h.shape[1])
+    fits = np.polynomial.polynomial.polyfit(x, h.T, 1)  # one line per row
+    flat = h - (fits[0][:, None] + fits[1][:, None] * x[None, :])
+    dev = flat - flat.mean()
+    assert np.mean(np.abs(dev)) == pytest.approx(3.433, abs=0.002)
+    assert np.sqrt(np.mean(dev ** 2)) == pytest.approx(4.325, abs=0.002)
+    assert dev.max() == pytest.approx(14.478, abs=0.05)
+    assert -dev.min() == pytest.approx(12.918, abs=0.05)
 
 
 def test_spm_channels_and_units():
@@ -75,6 +93,18 @@ def test_real_image_levelled_and_its_line():
         samples.profile("real line", 600)
 
 
+def test_the_real_line_claims_of_notebook_03():
+    """Notebook 03, exercise 1: on the real line (row REAL_LINE_ROW, scaled to 50 nm on 4 nm
+    pixels) preset (a)'s own gains at 1000 um/s "give about 5 nm" of RMS height error, and
+    faster gains can bring it under 1 nm (the checker's own example answer)."""
+    from afmsmiler.controller import PRESETS
+    from afmsmiler.exercises.controller import height_error
+    assert samples.REAL_LINE_ROW == 256
+    loop = PRESETS["a_good_tracking"].loop
+    assert 4.5e-9 < height_error(loop, 1e-3) < 5.5e-9
+    assert height_error(loop.replace(kp=30, ki=3e6, kd=1e-7), 1e-3) < 1e-9
+
+
 # --- WSxM (.top): AFMReader's own test file ---------------------------------------------------
 def test_wsxm_top_matches_its_header_and_afmreader_published_values():
     """AFMReader 0.0.7 tests/test_top.py on this file: pixel scaling 0.9765625 nm and image sum
@@ -95,6 +125,20 @@ def test_wsxm_top_matches_its_header_and_afmreader_published_values():
                                rtol=2e-5, atol=1e-14)
     assert samples.channels(WSXM) == ["Topography"]
     assert img.metadata["X Amplitude"] == "500 nm"
+
+
+def test_wsxm_top_in_micrometres_matches_afmreader_published_values():
+    """AFMReader 0.0.7 tests/test_top.py, sample_1_um_scale.top: pixel scaling 3.90625 nm
+    ("X Amplitude: 2 um" over 512 columns) and image sum 125175.99999999997 nm, its counts spread
+    over 4 nm, the integer part of the header's "Z Amplitude: 4.53125 nm" (a 12 % height error
+    that this reader does not make: the heights span 4.53125 nm)."""
+    img = samples.load(DATA / "afmreader_sample_1_um_scale.top")
+    assert img.pixel_size == pytest.approx(3.90625e-9, rel=1e-12)
+    assert np.ptp(img.heights) == pytest.approx(4.53125e-9, rel=1e-12)
+    z_nm = (img.heights - img.heights.min()) * 1e9
+    assert np.sum(z_nm * 4 / 4.53125) == pytest.approx(125175.99999999997, rel=1e-12)
+    counts = np.fromfile(DATA / "afmreader_sample_1_um_scale.top", "<i2", offset=3193)
+    assert counts.min() == -2848 and counts.max() == -2616  # the header's Minimum, Maximum
 
 
 def _wsxm(tmp_path, old, new, name="image.top"):
@@ -192,6 +236,18 @@ def test_bad_files_are_named_before_any_work(tmp_path):
         bad.write_bytes(b"not an image" * 10)
         with pytest.raises(ValueError, match=what):
             samples.load(bad)
+
+
+def test_an_unreadable_file_is_named(tmp_path, monkeypatch):
+    locked = tmp_path / "locked.spm"
+    locked.write_bytes(SPM.read_bytes()[:1000])
+
+    def refuse(*args, **kwargs):  # as open() on a file without read permission (root reads all)
+        raise PermissionError(13, "Permission denied")
+    monkeypatch.setattr(readers, "open", refuse, raising=False)
+    with pytest.raises(ValueError, match="locked.spm: the file cannot be read "
+                                         r"\(Permission denied\)"):
+        samples.load(locked)
 
 
 def test_truncated_and_hostile_headers(tmp_path):

@@ -2,6 +2,8 @@
 stated factor and decimated to the vertex bound, coloured by matplotlib's colormap; the tip's
 apex lands on the drawn surface; during a scan the tip only moves (transforms) and the image's
 mesh is replaced once per finished line; the camera frames both fields."""
+from types import SimpleNamespace
+
 import matplotlib
 import numpy as np
 import pytest
@@ -87,20 +89,28 @@ def test_tip_apex_lands_on_the_drawn_surface_and_only_moves():
         sc2.move_tip(0.0, 0.0, 0.0)
 
 
+def _partial(image, first, done):
+    """Rows first .. done - 1 of image, as a scan's result gives its finished lines."""
+    return Sample(image.heights[first:done], image.pixel_size, pixel_size_y=image.pixel_size_y)
+
+
 def test_during_a_scan_the_image_mesh_is_replaced_once_per_line_and_the_tip_only_moves():
     sample = _sample(40, 50)
     sc, rec = _scene(sample, tip=Conical(0.3))
     image = Sample(sample.heights[5:25, 10:40] + 7e-9, DX, pixel_size_y=1.5 * DX)
     rows, cols = image.heights.shape
     rec.calls.clear()
-    for line in range(rows):
+    corner = None
+    for line in range(1, rows + 1):  # line = lines finished
         for j in range(cols):  # the tip moves along the line, many times per line
-            sc.update(image, lines_done=line, tip_position=((10 + j) * DX,
-                                                            (5 + line) * 1.5 * DX, 20e-9))
-    sc.update(image, lines_done=rows)
+            sc.update(_partial(image, 0, line), ((10 + j) * DX, (5 + line) * 1.5 * DX, 20e-9),
+                      lines=rows)
+        if line >= 2:  # the rows drawn stay where they are as lines are added
+            v0 = _geometry(rec, "image").vertices[0]
+            corner = v0 if corner is None else corner
+            np.testing.assert_array_equal(v0[:2], corner[:2])
     sent = [c for c in rec.calls if c[1] == "/img/image" and c[0] in ("set_object", "delete")]
-    assert len(sent) == rows + 1  # lines_done = 0, 1, ..., rows: one each
-    assert sum(c[0] == "set_object" for c in sent) == rows - 1  # two rows make the first mesh
+    assert len(sent) == rows - 1  # one mesh per finished line from the second (two rows) on
     tip_calls = [c for c in rec.calls if c[1] == "/img/tip"]
     assert [c[0] for c in tip_calls].count("set_object") == 0
     assert [c[0] for c in tip_calls].count("set_transform") == rows * cols
@@ -110,10 +120,36 @@ def test_during_a_scan_the_image_mesh_is_replaced_once_per_line_and_the_tip_only
     np.testing.assert_allclose(v[..., 2] * sc.unit / sc.exaggeration,
                                image.heights - image.heights.min(), rtol=1e-5, atol=1e-13)
     assert np.ptp(v[..., 0]) * sc.unit == pytest.approx((cols - 1) * DX, rel=1e-5)
+    assert np.ptp(v[..., 1]) * sc.unit == pytest.approx((rows - 1) * 1.5 * DX, rel=1e-5)
     assert v[..., 0].min() > 0  # on the right of the sample
-    # a complete image (lines_done=None) is always drawn; a new scan starts over
-    assert sc.show_image(image) is True
-    assert sc.show_image(image, 0) is True and sc.show_image(image, 0) is False
+    assert sc.image_lines == rows
+    # new values on the same rows are drawn only when asked
+    assert sc.show_image(image) is False and sc.show_image(image, force=True) is True
+
+
+def test_a_decimated_scan_keeps_its_rows_in_place_and_a_result_is_shown_as_is():
+    big = Sample(np.random.default_rng(0).normal(0, 1e-9, (120, 90)), DX)
+    sc, rec = _scene(_sample(), max_vertices=1000)
+    s = decimation((120, 90), 1000)
+    assert s > 1
+    sc.show_image(_partial(big, 7, 61), lines=120, first_row=7)
+    v = _geometry(rec, "image").vertices.astype(float)
+    y = np.unique(np.round(v[:, 1] * sc.unit / DX, 6))  # drawn rows, in pixels
+    full = np.round(np.arange(0, 120, s) - 119 / 2, 6)   # the full image's drawn rows, centred
+    np.testing.assert_allclose(y, full[(full + 119 / 2 >= 7) & (full + 119 / 2 < 61)],
+                               atol=1e-3)
+    # a ScanResult: its channels (finished rows), lines and first_row
+    result = SimpleNamespace(channels={"height trace": _partial(big, 0, 30)}, lines=120,
+                             first_row=0)
+    assert sc.show_scan(result) is True and sc.show_scan(result) is False
+    assert sc.image_lines == 30
+    with pytest.raises(ValueError, match="channel"):
+        sc.show_scan(result, "phase")
+    empty = SimpleNamespace(channels={}, lines=120, first_row=0)
+    assert sc.show_scan(empty) is True and "/img/image" not in rec.log
+    assert sc.show_scan(empty) is False
+    with pytest.raises(TypeError, match="result"):
+        sc.show_scan(big)
 
 
 def test_camera_frames_both_fields_and_the_legend():
@@ -138,8 +174,10 @@ def test_bad_input_is_named():
     with pytest.raises(ValueError, match="exaggeration"):
         ImagingScene(_sample(), vis=Recorder(), exaggeration=0.0)
     sc, _ = _scene()
-    with pytest.raises(ValueError, match="lines_done"):
-        sc.show_image(_sample(), 61)
+    with pytest.raises(ValueError, match="lines"):
+        sc.show_image(_sample(), lines=59)
+    with pytest.raises(ValueError, match="first_row"):
+        sc.show_image(_sample(), first_row=-1)
     with pytest.raises(TypeError, match="image"):
         sc.show_image(np.zeros((4, 4)))
 
@@ -151,13 +189,49 @@ def test_real_viewer_takes_the_meshes_and_a_scan_does_not_grow_the_scene():
     try:
         sample = _sample(40, 50)
         sc = ImagingScene(sample, tip=Parabolic(20e-9))
-        sc.show_image(sample, 2)
+        sc.show_image(_partial(sample, 0, 2), lines=40)
         size0 = len(static_html())
-        for line in range(3, 40):
-            sc.update(sample, lines_done=line, tip_position=(50e-9, line * 6e-9, 20e-9))
+        for line in range(3, 41):
+            sc.update(_partial(sample, 0, line), (50e-9, line * 6e-9, 20e-9), lines=40)
         # the image's mesh is replaced in place: the stored scene grows only with its rows
         assert len(static_html()) < 3 * size0
         assert viewer.viewer_running()
     finally:
         close_viewer()
     assert not viewer.viewer_running()
+
+
+def test_a_real_scan_is_drawn_line_by_line_with_the_tip_where_the_scanner_says():
+    """With module (f)'s scanner (constant force through module (c)'s loop): one image mesh per
+    finished line, the tip moved by transforms to Scan.position, the last mesh the result."""
+    from afmsmiler.controller import ContactLoop
+    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scanner import Scan, ScanSettings
+    from afmsmiler.samples import particles
+
+    sample = particles((24, 32), 4e-9, count=3, radius=10e-9, seed=1)
+    settings = ScanSettings(32 * 4e-9, scan_size_y=24 * 4e-9, pixels=32, lines=24,
+                            scan_speed=1e-3)
+    tip = Parabolic(10e-9)
+    run = Scan(sample, tip, ConstantForce(ContactLoop(kp=0.3, ki=5e3)), settings)
+    sc, rec = _scene(sample, tip=tip)
+    rec.calls.clear()
+    for record in run.lines():
+        result = run.result
+        for column in range(32):  # the tip along the line just scanned
+            x, y = run.position(record.row, column)
+            z = float(result.images["height trace"][record.row, column])
+            sc.move_tip(x, y, z)
+            sc.show_scan(result)
+    image = run.result.channels["height trace"]
+    sent = [c for c in rec.calls if c[1] == "/img/image" and c[0] == "set_object"]
+    assert len(sent) == 23  # lines 2 to 24
+    v = _geometry(rec, "image").vertices.reshape(24, 32, 3).astype(float)
+    np.testing.assert_allclose(v[..., 2] * sc.unit / sc.exaggeration,
+                               image.heights - image.heights.min(), rtol=1e-5,
+                               atol=1e-6 * np.ptp(image.heights))
+    m = rec.log["/img/tip"]["transform"]
+    x, y = run.position(23, 31)
+    np.testing.assert_allclose(m[:2, 3] * sc.unit, [sc.sample_origin[0] + x,
+                                                    sc.sample_origin[1] + y], rtol=1e-6)
+    assert rec.log["/img/tip"]["n_objects"] == 1

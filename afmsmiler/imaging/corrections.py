@@ -30,7 +30,7 @@ from ..parameters import Parameter, read_only
 from ..samples import Sample
 from ..validation import check_choice, check_instance, check_integer, check_range
 
-__all__ = ["PARAMETERS", "MASKING", "METHODS", "MAX_DEGREE", "MAX_SCAR_WIDTH", "Plane",
+__all__ = ["PARAMETERS", "DEFAULTS", "MASKING", "METHODS", "MAX_DEGREE", "MAX_SCAR_WIDTH", "Plane",
            "fit_plane", "level_plane", "flatten_lines", "mask_features", "mark_scars",
            "remove_scars"]
 
@@ -56,7 +56,8 @@ PARAMETERS = read_only({p.name: p for p in (
               label="feature height above the line's median"),
 )})
 
-_DEFAULT_MIN_SCAR_PIXELS = 16  # Gwyddion's default minimum scar length
+#: Defaults of the corrections that are counts, not Parameters (Gwyddion's for the scars).
+DEFAULTS = read_only(dict(max_width=4, min_length_pixels=16, grow=1))
 
 
 class Plane(NamedTuple):
@@ -280,7 +281,7 @@ def flatten_lines(sample: Sample, method: str = "median", degree: int = 1, mask=
 
 
 def mask_features(sample: Sample, min_height: float = PARAMETERS["min_height"].default,
-                  *, grow: int = 1) -> np.ndarray:
+                  *, grow: int = DEFAULTS["grow"]) -> np.ndarray:
     """Mark the pixels that stand more than ``min_height`` above their line's background.
 
     The background of each row is its median; pixels above median + min_height are marked and
@@ -314,7 +315,7 @@ def mask_features(sample: Sample, min_height: float = PARAMETERS["min_height"].d
 
 def _min_length_pixels(sample: Sample, min_length) -> int:
     if min_length is None:
-        return min(_DEFAULT_MIN_SCAR_PIXELS, sample.heights.shape[1])
+        return min(DEFAULTS["min_length_pixels"], sample.heights.shape[1])
     row = (sample.heights.shape[1] - 1) * sample.pixel_size
     length = check_range("min_length", min_length, 0.0, row, "m", low_inclusive=False)
     return max(1, int(np.ceil(length / sample.pixel_size - 1e-9)))
@@ -333,7 +334,7 @@ def _runs_keep(flags: np.ndarray, keep_run) -> np.ndarray:
 
 def mark_scars(sample: Sample, threshold: float = PARAMETERS["threshold"].default, *,
                extension_threshold: float = PARAMETERS["extension_threshold"].default,
-               min_length: float | None = None, max_width: int = 4,
+               min_length: float | None = None, max_width: int = DEFAULTS["max_width"],
                kind: str = "both") -> np.ndarray:
     """Find scars: short strips of rows that stand out from the rows above and below.
 
@@ -422,7 +423,7 @@ def mark_scars(sample: Sample, threshold: float = PARAMETERS["threshold"].defaul
 
 def remove_scars(sample: Sample, threshold: float = PARAMETERS["threshold"].default, *,
                  extension_threshold: float = PARAMETERS["extension_threshold"].default,
-                 min_length: float | None = None, max_width: int = 4,
+                 min_length: float | None = None, max_width: int = DEFAULTS["max_width"],
                  kind: str = "both") -> Sample:
     """Remove scars: Gwyddion's "Remove Scars".
 

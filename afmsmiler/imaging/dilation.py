@@ -36,10 +36,13 @@ Two paths compute the same image:
   :data:`MAX_WORK`;
 - the paraboloid's separable path: t(u, v) = (u^2 + v^2) / (2 R) = t_x(u) + t_y(v), so the 2-D
   dilation is a 1-D dilation by the parabola u^2 / (2 R) along every row followed by one along
-  every column. Each 1-D dilation is a lower envelope of parabolas computed in O(N) per line by
-  the algorithm of Felzenszwalb and Huttenlocher ("Distance transforms of sampled functions",
-  Theory of Computing 8, 415 (2012), Algorithm 1), vectorised across the lines with NumPy. Its
-  cost does not depend on the tip's size.
+  every column. Each 1-D dilation is either the lower envelope of parabolas, computed in O(N) per
+  line whatever the tip's size by the algorithm of Felzenszwalb and Huttenlocher ("Distance
+  transforms of sampled functions", Theory of Computing 8, 415 (2012), Algorithm 1), vectorised
+  across the lines with NumPy; or, for windows of up to :data:`WINDOW_LIMIT` pixels (the offsets
+  d with d^2 dx^2 / (2 R) below the cut), the direct maximum over the window, w whole-image
+  passes, which NumPy runs faster than the envelope's Python loop over the pixels of a line.
+  Both are exact; which one runs changes only the time.
 
 Image edges: only sample points inside the image are touched (the sample outside the image is
 unknown), the same as scipy's ``mode="constant", cval=-inf``.
@@ -51,7 +54,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ..contact.tips import Parabolic, Spherical, Tip
+from ..contact.tips import Conical, Parabolic, Pyramidal, Spherical, Tip
 from ..samples.sample import MAX_PIXELS, Sample
 from ..validation import check_instance, check_integer, check_nonnegative, check_positive
 
@@ -68,10 +71,11 @@ MAX_WORK = 1 << 28
 #: x) from the apex (or at its full height R for a sphere that fits in that distance).
 DEFAULT_HALF_WIDTH = 32
 
-#: The paraboloid's separable path takes the direct window (2 w whole-image passes) for windows
-#: up to this many pixels from the apex, the O(N) envelope beyond (measured crossover here: the
-#: envelope's Python loop over the N pixels of a line costs about 64 such passes).
-WINDOW_LIMIT = 64
+#: The paraboloid's separable path takes the direct window (w whole-image passes, about 3 ns per
+#: pixel per pixel of window here) for windows up to this many pixels from the apex, and the O(N)
+#: envelope beyond (about 0.7 us per pixel in NumPy, whatever the window): the crossover measured
+#: by ``benchmarks/bench_dilation.py``.
+WINDOW_LIMIT = 200
 
 _BISECTIONS = 200
 _DEPTH = 16
@@ -79,8 +83,17 @@ _SCALAR_LINES = 16
 
 
 def _cut_radius(tip: Tip, max_height: float) -> float:
-    """Largest rho in m with profile(rho) <= max_height (bisection on the monotone profile)."""
+    """Largest rho in m with profile(rho) <= max_height: closed forms, else bisection."""
     top = tip.max_profile_radius
+    if isinstance(tip, Parabolic):
+        return min(math.sqrt(2.0 * tip.radius * max_height), top)
+    if isinstance(tip, Spherical):
+        h = min(max_height, tip.radius)
+        return math.sqrt(h * (2.0 * tip.radius - h))
+    if isinstance(tip, Conical):
+        return min(max_height * math.tan(tip.half_angle), top)
+    if isinstance(tip, Pyramidal):
+        return min(max_height * math.tan(tip.face_angle), top)
     if tip._profile(np.array(top)) <= max_height:
         return float(top)
     lo, hi = 0.0, float(top)
@@ -95,6 +108,14 @@ def _cut_radius(tip: Tip, max_height: float) -> float:
     return lo
 
 
+def _half_widths(tip: Tip, dx: float, dy: float | None, max_height: float):
+    """(n_x, n_y, rho_cut): the tip's grid reaches n pixels from the apex along each axis."""
+    rho_cut = _cut_radius(tip, max_height)
+    nx = int(math.floor(rho_cut / dx * (1.0 + 1e-12)))
+    ny = 0 if dy is None else int(math.floor(rho_cut / dy * (1.0 + 1e-12)))
+    return nx, ny, rho_cut
+
+
 def _rho(tip: Tip, u: np.ndarray, v: np.ndarray) -> np.ndarray:
     """The distance from the axis at which the profile is read (max-norm for a faceted tip)."""
     if tip.faces == 4:
@@ -104,9 +125,7 @@ def _rho(tip: Tip, u: np.ndarray, v: np.ndarray) -> np.ndarray:
 
 def _tip_grid(tip: Tip, dx: float, dy: float | None, max_height: float) -> np.ndarray:
     """t on the grid (2-D, or 1-D along x if dy is None), clipped at max_height (unchecked)."""
-    rho_cut = _cut_radius(tip, max_height)
-    nx = int(math.floor(rho_cut / dx * (1.0 + 1e-12)))
-    ny = 0 if dy is None else int(math.floor(rho_cut / dy * (1.0 + 1e-12)))
+    nx, ny, rho_cut = _half_widths(tip, dx, dy, max_height)
     pixels = (2 * nx + 1) * (2 * ny + 1)
     if pixels > MAX_TIP_PIXELS:
         raise ValueError(
@@ -172,11 +191,13 @@ def tip_surface(tip, pixel_size, pixel_size_y=None, *, max_height=None) -> np.nd
     return _tip_grid(tip, dx, dy, max_height)
 
 
-def _check_fits(t: np.ndarray, shape: tuple[int, ...], sample: Sample, height: float) -> None:
+def _check_fits(image: Sample, tip: Tip, height: float) -> None:
     """A tip whose footprint at the cut is wider than the image is an error naming ``tip``."""
-    for axis, (k, n, d, name) in enumerate(zip(t.shape[::-1], shape[::-1],
-                                               (sample.pixel_size, sample.pixel_size_y),
-                                               ("x", "y"))):
+    h = image.heights
+    dy = None if h.ndim == 1 else image.pixel_size_y
+    nx, ny, _ = _half_widths(tip, image.pixel_size, dy, height)
+    sides = (2 * nx + 1,) if h.ndim == 1 else (2 * ny + 1, 2 * nx + 1)
+    for k, n, d, name in zip(sides[::-1], h.shape[::-1], (image.pixel_size, dy), ("x", "y")):
         if k > n:
             raise ValueError(
                 f"tip: at the sample's height range ({height:g} m) the tip is {k} pixels "
@@ -186,11 +207,9 @@ def _check_fits(t: np.ndarray, shape: tuple[int, ...], sample: Sample, height: f
 
 def _kernel(image: Sample, tip: Tip, height: float) -> np.ndarray:
     """The tip grid for ``image`` cut at ``height``, checked to fit in the image."""
-    h = image.heights
-    dy = None if h.ndim == 1 else image.pixel_size_y
-    t = _tip_grid(tip, image.pixel_size, dy, height)
-    _check_fits(t, h.shape, image, height)
-    return t
+    _check_fits(image, tip, height)
+    dy = None if image.heights.ndim == 1 else image.pixel_size_y
+    return _tip_grid(tip, image.pixel_size, dy, height)
 
 
 def _offsets(t: np.ndarray, height: float, image_pixels: int):
@@ -268,19 +287,21 @@ def _envelope_vector(g: np.ndarray, a: float) -> np.ndarray:
             idx = np.flatnonzero(pop)
             kk, hqi, oi, ozi = k[idx] - 1, hq[idx], off[idx, None], offz[idx, None]
             while True:  # at most n / _DEPTH passes: every pass pops _DEPTH or stops
-                kb = kk[:, None] - steps[None, :]
-                valid = kb >= 0
-                kb = np.maximum(kb, 0)
+                # the top _DEPTH entries, clipped at the bottom one, whose z = -inf stops it
+                kb = np.maximum(kk[:, None] - steps, 0)
                 vb = v[oi + kb]
-                sb = (hqi[:, None] - hh[oi + vb]) / (2.0 * (q - vb))
-                stay = (sb > z[ozi + kb]) & valid
+                sb = (hqi[:, None] - hh[oi + vb]) / (2 * q - 2 * vb)
+                stay = sb > z[ozi + kb]
                 found = stay.any(axis=1)
-                j = np.argmax(stay, axis=1)[found]
+                j = np.argmax(stay, axis=1)
+                if found.all():
+                    k[idx] = kk - j
+                    s[idx] = sb[np.arange(idx.size), j]
+                    break
+                j = j[found]
                 done = idx[found]
                 k[done] = kk[found] - j
                 s[done] = sb[found, j]
-                if found.all():
-                    break
                 nf = ~found
                 idx, kk, hqi, oi, ozi = idx[nf], kk[nf] - _DEPTH, hqi[nf], oi[nf], ozi[nf]
         k += 1
@@ -323,27 +344,44 @@ def _envelope_scalar(g: np.ndarray, a: float) -> np.ndarray:
     return g[p] - a * (q - p) ** 2
 
 
-def _window_lines(g: np.ndarray, a: float, w: int) -> np.ndarray:
-    """f[l, q] = max_{|d| <= w} [g[l, q + d] - a d^2]: 2 w vectorised passes over the image."""
+def _window_axis0(g: np.ndarray, a: float, w: int) -> np.ndarray:
+    """f[q] = max_{|d| <= w} [g[q + d] - a d^2] along axis 0: w whole-array passes.
+
+    Along axis 0 of a C-ordered array every pass reads and writes contiguous blocks, about three
+    times faster than along the last axis. Inside, the offsets +d and -d share their subtraction:
+    max(g[q + d], g[q - d]) - a d^2 (the same floats, as rounding is monotone).
+    """
     out = g.copy()
-    for d in range(1, min(w, g.shape[1] - 1) + 1):
+    n = g.shape[0]
+    tmp = np.empty_like(g)
+    for d in range(1, min(w, n - 1) + 1):
         c = a * d * d
-        np.maximum(out[:, :-d], g[:, d:] - c, out=out[:, :-d])
-        np.maximum(out[:, d:], g[:, :-d] - c, out=out[:, d:])
+        if 2 * d < n:
+            t = tmp[:n - 2 * d]
+            np.maximum(g[2 * d:], g[:n - 2 * d], out=t)
+            t -= c
+            np.maximum(out[d:n - d], t, out=out[d:n - d])
+        e = min(d, n - d)  # the edges, where only one of q + d and q - d is in the image
+        np.maximum(out[:e], g[d:d + e] - c, out=out[:e])
+        np.maximum(out[n - e:], g[n - e - d:n - d] - c, out=out[n - e:])
     return out
 
 
-def _parabola_lines(g: np.ndarray, a: float, height: float, method: str) -> np.ndarray:
-    """The exact 1-D paraboloid dilation of every line, by the window or by the envelope.
+def _parabola_axis(g: np.ndarray, axis: int, a: float, height: float,
+                   method: str) -> np.ndarray:
+    """The exact 1-D paraboloid dilation of ``g`` along ``axis``, by the window or the envelope.
 
     Only offsets d with a d^2 < height can win (the cut), so a window of w = sqrt(height / a)
-    pixels is exact. Up to :data:`WINDOW_LIMIT` pixels its 2 w whole-image passes are faster in
+    pixels is exact. Up to :data:`WINDOW_LIMIT` pixels its w whole-image passes are faster in
     NumPy than the envelope's Python loop over q; beyond, the envelope's O(N) wins.
     """
     w = int(math.floor(math.sqrt(height / a) * (1.0 + 1e-12))) if height > 0 else 0
     if method == "window" or (method == "auto" and w <= WINDOW_LIMIT):
-        return _window_lines(g, a, w)
-    return _envelope_lines(np.ascontiguousarray(g), a)
+        moved = np.ascontiguousarray(np.moveaxis(g, axis, 0))
+        return np.moveaxis(_window_axis0(moved, a, w), 0, axis)
+    moved = np.ascontiguousarray(np.moveaxis(g, axis, -1))
+    out = _envelope_lines(moved.reshape(-1, moved.shape[-1]), a).reshape(moved.shape)
+    return np.moveaxis(out, -1, axis)
 
 
 def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height: float,
@@ -353,18 +391,28 @@ def _dilate_parabolic(h: np.ndarray, radius: float, dx: float, dy: float, height
     The cut at ``height`` (the sample's range) stays exact for the second pass: the first one
     leaves the maximum unchanged and raises the minimum, so its range is at most ``height``.
     """
-    if h.ndim == 1:
-        return _parabola_lines(h[None, :], dx * dx / (2.0 * radius), height, method)[0]
-    out = _parabola_lines(h, dx * dx / (2.0 * radius), height, method)
-    return _parabola_lines(out.T, dy * dy / (2.0 * radius), height, method).T
+    out = _parabola_axis(h, h.ndim - 1, dx * dx / (2.0 * radius), height, method)
+    if h.ndim == 2:
+        out = _parabola_axis(out, 0, dy * dy / (2.0 * radius), height, method)
+    return np.ascontiguousarray(out)
 
 
 def _range(h: np.ndarray) -> float:
     return float(np.max(h) - np.min(h))
 
 
-def _checked(name: str, image, tip) -> tuple[Sample, Tip]:
+def _check_heights(name: str, image) -> Sample:
+    """A Sample of heights in m: a tip dilates topography, not a deflection or phase channel."""
     check_instance(name, image, Sample)
+    unit = getattr(image, "unit", "m")
+    if unit != "m":
+        raise ValueError(f"{name} must hold heights in m, got a "
+                         f"{getattr(image, 'channel', '')!r} channel in {unit!r}")
+    return image
+
+
+def _checked(name: str, image, tip) -> tuple[Sample, Tip]:
+    _check_heights(name, image)
     check_instance("tip", tip, Tip)
     return image, tip
 
@@ -396,7 +444,8 @@ def dilate(sample, tip) -> Sample:
     TypeError
         If ``sample`` is not a Sample or ``tip`` not a Tip.
     ValueError
-        Naming ``tip``, if at the sample's height range the tip is wider than the image, or (not
+        Naming ``sample`` if its values are not heights in m (``unit`` other than "m");
+        naming ``tip``, if at the sample's height range the tip is wider than the image, or (not
         a paraboloid) the work exceeds :data:`MAX_WORK`.
 
     Examples
@@ -411,21 +460,21 @@ def dilate(sample, tip) -> Sample:
     sample, tip = _checked("sample", sample, tip)
     h = sample.heights
     height = _range(h)
-    t = _kernel(sample, tip, height)
     if isinstance(tip, Parabolic):
+        _check_fits(sample, tip, height)
         out = _dilate_parabolic(h, tip.radius, sample.pixel_size, sample.pixel_size_y, height)
     else:
-        out = _dilate_general(h, t, height)
+        out = _dilate_general(h, _kernel(sample, tip, height), height)
     return replace(sample, heights=out)
 
 
 def _erode_array(i: np.ndarray, image: Sample, tip: Tip) -> np.ndarray:
     """min_u [i(x - u) + t(u)] = -max_u [-i(x + u) - t(u)] for a symmetric tip."""
     height = _range(i)
-    t = _kernel(image, tip, height)
     if isinstance(tip, Parabolic):
+        _check_fits(image, tip, height)
         return -_dilate_parabolic(-i, tip.radius, image.pixel_size, image.pixel_size_y, height)
-    return -_dilate_general(-i, t, height)
+    return -_dilate_general(-i, _kernel(image, tip, height), height)
 
 
 def erode(image, tip) -> Sample:
@@ -543,7 +592,7 @@ def estimate_tip_radius(image, *, peaks=1) -> float:
     ValueError
         If ``peaks`` is out of range or the image has fewer than 3 pixels along x.
     """
-    check_instance("image", image, Sample)
+    _check_heights("image", image)
     peaks = check_integer("peaks", peaks, 1, 10_000)
     i = image.heights
     if i.shape[-1] < 3 or (i.ndim == 2 and i.shape[0] < 3):

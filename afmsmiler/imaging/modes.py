@@ -163,6 +163,28 @@ class Mode(ABC):
     channels not in m, ``units`` (name -> SI unit), and implement :meth:`line`; they may override
     :meth:`start` to precompute. ``tip`` is the tip the mode's own physics uses, if any (the
     scanner checks that it is the tip it dilates with).
+
+    Examples
+    --------
+    A mode that records the apex surface itself (an ideal, infinitely fast feedback) and counts
+    its lines in its state:
+
+    >>> import numpy as np
+    >>> from afmsmiler.samples import Sample
+    >>> from afmsmiler.imaging.scanner import ScanSettings, scan
+    >>> class Ideal(Mode):
+    ...     channels = ("height trace", "lines so far")
+    ...     units = {"lines so far": ""}
+    ...     def line(self, plan, row, state):
+    ...         count = (state or 0) + 1
+    ...         return ModeLine({"height trace": plan.trace[row],
+    ...                          "lines so far": np.full(plan.shape[1], count)}, count)
+    >>> sample = Sample(np.arange(64.0).reshape(8, 8) * 1e-9, 1e-9)
+    >>> result = scan(sample, None, Ideal(), ScanSettings(8e-9, pixels=8, scan_speed=1e-6))
+    >>> bool(np.array_equal(result.images["height trace"], sample.heights))
+    True
+    >>> result.images["lines so far"][:, 0]
+    array([1., 2., 3., 4., 5., 6., 7., 8.])
     """
 
     #: Names of the channels the mode produces, in the order a panel shows them.
@@ -315,8 +337,9 @@ class ConstantForce(Mode):
         Returns
         -------
         ModeLine
+            Its channels are views of ``state`` (the scanner copies them).
         """
-        return ModeLine({name: image[row].copy() for name, image in state.items()}, state)
+        return ModeLine({name: image[row] for name, image in state.items()}, state)
 
 
 class ConstantHeight(Mode):
@@ -423,5 +446,7 @@ class ConstantHeight(Mode):
             column = k if k < n else 2 * n - 1 - k
             crash = Crash(int(row), int(column), float(forces[k]), direction)
             deflection[k + 1:] = np.nan
+            if not np.isfinite(deflection[k]):  # a sphere buried: no deflection to show
+                deflection[k] = np.nan
         return ModeLine({"deflection trace": deflection[:n],
                          "deflection retrace": deflection[n:][::-1].copy()}, contact, crash)

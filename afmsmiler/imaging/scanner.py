@@ -71,17 +71,15 @@ def _drift(name, label):
 
 _SPEED = LOOP_PARAMETERS["speed"]
 
-#: The scanner's user-settable quantities (SI; display units through ``UNITS``). Scan ranges up to
-#: 100 um (the largest AFM scanners'); 2 to 2048 pixels and 1 to 2048 lines (at most
-#: :data:`MAX_SCAN_PIXELS` in all); the scan speed is module (c)'s ``speed`` (1 nm/s to 1 m/s),
-#: also settable as a line rate; the angle in (-180, 180) deg; offsets within 100 um; sensor noise
-#: up to 1 um RMS; drift up to 1 um/s; creep up to 50 % per decade after 1 ms to 1000 s; tilts in
-#: (-90, 90) deg.
+#: The scanner's user-settable quantities (SI; display units through ``UNITS``). Scan ranges
+#: from 0.1 nm (an atom) to 100 um (the largest AFM scanners'); 2 to 2048 pixels and 1 to 2048
+#: lines (at most :data:`MAX_SCAN_PIXELS` in all); the scan speed is module (c)'s ``speed``
+#: (1 nm/s to 1 m/s), also settable as a line rate; the angle in (-180, 180) deg; offsets within
+#: 100 um; sensor noise up to 1 um RMS; drift up to 1 um/s; creep up to 50 % per decade after
+#: 1 ms to 1000 s; tilts in (-90, 90) deg.
 PARAMETERS = read_only({p.name: p for p in (
-    _length("scan_size", "scan size", 1e-6, 0.0, 100e-6, 10e-9, 100e-6, log=True,
-            low_inclusive=False),
-    _length("scan_size_y", "scan size y", 1e-6, 0.0, 100e-6, 10e-9, 100e-6, log=True,
-            low_inclusive=False),
+    _length("scan_size", "scan size", 1e-6, 1e-10, 100e-6, 10e-9, 100e-6, log=True),
+    _length("scan_size_y", "scan size y", 1e-6, 1e-10, 100e-6, 10e-9, 100e-6, log=True),
     Parameter(name="pixels", unit="", default=256, low=2, high=_MAX_SIDE, slider_low=16,
               slider_high=1024, log=True, label="pixels per line"),
     Parameter(name="lines", unit="", default=256, low=1, high=_MAX_SIDE, slider_low=16,
@@ -431,6 +429,18 @@ def _bilinear(heights, px, py):
     return top * (1 - fy) + bottom * fy
 
 
+def _sampled(heights, px, py, straight):
+    """The heights at fractional (column px, row py): a slice when the grid is the sample's."""
+    if straight:  # the scan's columns and rows may be runs of the sample's own pixels
+        cols, rows = px[0], py[:, 0]
+        c0, r0 = round(float(cols[0])), round(float(rows[0]))
+        if (np.all(np.abs(cols - (c0 + np.arange(cols.size))) < 1e-9)
+                and np.all(np.abs(rows - (r0 + np.arange(rows.size))) < 1e-9)
+                and np.all(px == cols[None, :]) and np.all(py == rows[:, None])):
+            return heights[r0:r0 + rows.size, c0:c0 + cols.size].copy()
+    return _bilinear(heights, px, py)
+
+
 def _fmt(x):
     return f"{x * 1e6:.4g} um"
 
@@ -454,14 +464,17 @@ class Scan:
     TypeError
         If an argument is of the wrong type.
     ValueError
-        If the sample is not 2-D or holds NaN, the scan range (with its angle, offset, drift
-        and creep) reaches beyond the sample, or the mode's own tip is not ``tip``.
+        If the sample is not 2-D heights in m or holds NaN, the scan range (with its angle,
+        offset, drift and creep) reaches beyond the sample, the tip is wider than the image at
+        the sample's height range (named ``tip``, from the dilation), the mode's own tip is not
+        ``tip`` or the mode lists no channels.
 
     Notes
     -----
-    Nothing is computed before the first line (the constructor only checks the geometry): the
-    dilation and the sampling run on the first call of :meth:`step`, :meth:`lines` or
-    :meth:`run`, then :meth:`Mode.start`. One line per :meth:`step` keeps a notebook responsive.
+    The constructor checks everything and dilates the sample (some 10 ms for 256 x 256 with a
+    paraboloid), so that a tip too wide for the image is refused at once; the sampling of the
+    apex surface (:attr:`plan`) and :meth:`Mode.start` run on the first call of :meth:`step`,
+    :meth:`lines` or :meth:`run`. One line per :meth:`step` keeps a notebook responsive.
 
     Examples
     --------
@@ -495,11 +508,15 @@ class Scan:
         if mode_tip is not None and tip is not None and mode_tip != tip:
             raise ValueError(f"tip ({tip!r}) must be the tip of the mode's physics "
                              f"({mode_tip!r}): one tip both blurs and touches")
-        if any(c not in self._units_of(mode) for c in mode.channels):
-            raise ValueError(f"mode must list its channels, got {mode.channels!r}")
+        names = mode.channels
+        if (not isinstance(names, tuple) or not names or len(set(names)) != len(names)
+                or not all(isinstance(c, str) for c in names)):
+            raise ValueError(f"mode must list its channels as a tuple of distinct names, got "
+                             f"{names!r}")
         self._positions = self._geometry()
         self._metadata = MappingProxyType({"mode": type(mode).__name__, "tip": repr(tip),
                                            **asdict(settings)})
+        self._apex_surface = self._apex()
         self._plan = None
         self._state = None
         self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
@@ -525,8 +542,6 @@ class Scan:
         width, height = (cols - 1) * sample.pixel_size, (rows - 1) * sample.pixel_size_y
         cx, cy = width / 2 + s.offset[0], height / 2 + s.offset[1]
         c, sn = math.cos(s.angle), math.sin(s.angle)
-        if s.angle == 0.0:
-            c, sn = 1.0, 0.0
         uu, vv = np.meshgrid(u, v)
         x0 = cx + c * uu - sn * vv
         y0 = cy + sn * uu + c * vv
@@ -584,15 +599,15 @@ class Scan:
     def plan(self) -> ScanPlan:
         """The :class:`~afmsmiler.imaging.modes.ScanPlan` the mode scans (computed once)."""
         if self._plan is None:
-            apex = self._apex()
+            apex = self._apex_surface
             sample, s = self.sample, self.settings
             passes = {}
             for name, (x, y, t) in self._positions.items():
                 if name == "retrace" and not s.moves:  # the same points as the trace
                     passes[name] = passes["trace"].copy()
                     continue
-                passes[name] = _bilinear(apex.heights, x / sample.pixel_size,
-                                         y / sample.pixel_size_y)
+                passes[name] = _sampled(apex.heights, x / sample.pixel_size,
+                                        y / sample.pixel_size_y, s.angle == 0.0)
             (xt, yt, tt), (xr, yr, tr) = self._positions["trace"], self._positions["retrace"]
             self._plan = ScanPlan(passes["trace"], passes["retrace"], tt, tr, xt, yt, xr, yr,
                                   s.pixel_size, s.pixel_size_y, s.scan_speed, apex, self.tip, s)
@@ -622,6 +637,10 @@ class Scan:
             self._started = True
         out = self.mode.line(plan, row, self._state)
         channels = {}
+        missing = [name for name in self.mode.channels if name not in out.channels]
+        if missing:
+            raise ValueError(f"mode {type(self.mode).__name__} gave no channel {missing[0]!r} "
+                             f"for line {row}")
         for name in self.mode.channels:
             values = np.array(out.channels[name], dtype=float)
             if values.shape != (self.settings.pixels,):

@@ -3,8 +3,9 @@
 :func:`save_png` draws a :class:`~afmsmiler.samples.Sample` as AFM software exports it
 (Gwyddion's "Export to image": the image at a whole number of PNG pixels per image pixel, an
 inset scale bar of a round length, a false-colour map such as ``"afmhot"``), with matplotlib's
-Agg renderer (a static file, not a live figure). The first row of the image is at the top, as
-AFM software shows it. :func:`scale_bar_length` picks the bar's round length.
+Agg renderer (a static file, not a live figure). The first row of the image (y = 0) is at the
+bottom and y grows upwards, as in the panel's live figure (:mod:`afmsmiler.plots.imaging`) and
+the 3D view. :func:`scale_bar_length` picks the bar's round length.
 """
 from __future__ import annotations
 
@@ -148,7 +149,8 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
     Every image pixel becomes ``zoom`` x ``zoom`` PNG pixels (``zoom`` x ``zoom`` times
     pixel_size_y / pixel_size for rectangular pixels), so the image keeps its aspect ratio and a
     length L spans L / pixel_size x zoom PNG pixels: that is how long the scale bar is drawn
-    (white, bottom left, labelled above), for the round length :func:`scale_bar_length` picks.
+    (white with a black rim, bottom left, labelled above), for the round length
+    :func:`scale_bar_length` picks.
     The colour bar, on the right, is labelled with the channel and its unit (heights in nm or
     um).
 
@@ -205,10 +207,10 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
     ax = fig.add_axes((0.0, 0.0, width_px / fig_w, 1.0))
     ax.set_axis_off()
     factor, unit = _value_unit(sample)
-    image = ax.imshow(h * factor, cmap=colormap, interpolation="nearest", origin="upper",
+    image = ax.imshow(h * factor, cmap=colormap, interpolation="nearest", origin="lower",
                       aspect=aspect)
     ax.set_xlim(-0.5, cols - 0.5)
-    ax.set_ylim(rows - 0.5, -0.5)
+    ax.set_ylim(-0.5, rows - 0.5)
     font_px = max(10.0, 0.045 * height_px)
     length, label, bar_px = None, "", 0.0
     if scale_bar:
@@ -220,12 +222,16 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
         margin = round(0.04 * cols * zoom) / zoom
         thick = max(2.0, round(0.012 * height_px)) / (zoom * aspect)
         x0 = -0.5 + margin
-        y0 = rows - 0.5 - margin / aspect - thick
+        y0 = -0.5 + margin / aspect
+        rim_x, rim_y = 1.0 / zoom, 1.0 / (zoom * aspect)  # one PNG pixel of black around it
+        ax.add_patch(Rectangle((x0 - rim_x, y0 - rim_y), length / sample.pixel_size + 2 * rim_x,
+                               thick + 2 * rim_y, facecolor="black", edgecolor="none",
+                               antialiased=False))
         ax.add_patch(Rectangle((x0, y0), length / sample.pixel_size, thick,
                                facecolor=_BAR_COLOR, edgecolor="none", antialiased=False))
-        text = ax.text(x0 + 0.5 * length / sample.pixel_size, y0 - 0.3 * font_px / (zoom * aspect),
-                       label, color=_BAR_COLOR, ha="center", va="bottom",
-                       fontsize=font_px * 72 / _DPI)
+        above = y0 + thick + 0.3 * font_px / (zoom * aspect)
+        text = ax.text(x0 + 0.5 * length / sample.pixel_size, above, label, color=_BAR_COLOR,
+                       ha="center", va="bottom", fontsize=font_px * 72 / _DPI)
         text.set_path_effects([patheffects.withStroke(linewidth=2, foreground="black")])
     if colorbar:
         cax = fig.add_axes((width_px / fig_w + 0.12 * bar_strip / fig_w, 0.08,

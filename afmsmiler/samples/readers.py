@@ -472,6 +472,7 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
     >>> s.shape, s.pixel_size, s.unit
     ((512, 512), 3.90625e-09, 'm')
     """
+    check_instance("unit", unit, str)
     p = _path(path)
     if p.suffix.lower() in (".npy", ".txt", ".csv", ".asc"):
         check_instance("channel", channel, str)

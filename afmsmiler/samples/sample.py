@@ -163,15 +163,13 @@ class Sample:
         return (rows - 1) * self.pixel_size_y
 
     # --- new samples on a stated grid ----------------------------------------------------------
-    def with_heights(self, heights, name: str | None = None) -> "Sample":
+    def with_heights(self, heights) -> "Sample":
         """The same grid, channel, unit and metadata with new values.
 
         Parameters
         ----------
         heights : array_like
             New values in :attr:`unit`, of the same shape as :attr:`heights`.
-        name : str, optional
-            A new name (default: this sample's).
 
         Returns
         -------
@@ -186,7 +184,7 @@ class Sample:
         if h.shape != self.heights.shape:
             raise ValueError(f"heights must have this sample's shape {self.heights.shape}, got "
                              f"{h.shape}")
-        return replace(self, heights=h, name=self.name if name is None else name)
+        return replace(self, heights=h)
 
     def crop(self, x=None, y=None) -> "Sample":
         """The pixels inside a window, positions in m from the image's origin (its first pixel).

@@ -356,6 +356,7 @@ def particles(shape=(256, 256), pixel_size: float = 4e-9, count: int = 30,
         raise ValueError(f"shape must be a pair (rows, columns), got {shape!r}")
     rows, cols = shape
     pixel_size = check_positive("pixel_size", pixel_size, "m")
+    seed = check_integer("seed", seed, 0)
     # a particle's top is at 2 r: at most MAX_HEIGHT, an AFM's z range, like every height here
     radius = check_range("radius", radius, 0, MAX_HEIGHT / 2, "m", low_inclusive=False)
     spread = check_range("spread", spread, 0, 1, high_inclusive=False)
@@ -457,9 +458,14 @@ def fibres(shape=(256, 256), pixel_size: float = 2e-9, count: int = 5,
     rows, cols = shape
     pixel_size = check_positive("pixel_size", pixel_size, "m")
     count = check_integer("count", count, 0, 1000)
+    seed = check_integer("seed", seed, 0)
     longest = max(rows, cols) * pixel_size
-    contour_length = check_range("contour_length", contour_length, 0, 100 * longest, "m",
-                                 low_inclusive=False)
+    try:
+        contour_length = check_range("contour_length", contour_length, 0, 100 * longest, "m",
+                                     low_inclusive=False)
+    except ValueError as exc:
+        raise ValueError(f"{exc} (at most 100 x the image's longer side, with shape = {shape} "
+                         f"and pixel_size = {pixel_size:g} m)") from None
     persistence_length = check_positive("persistence_length", persistence_length, "m")
     width = check_range("width", width, 0, longest, "m", low_inclusive=False)
     height = check_range("height", height, 0, MAX_HEIGHT, "m", low_inclusive=False)
@@ -468,8 +474,11 @@ def fibres(shape=(256, 256), pixel_size: float = 2e-9, count: int = 5,
     n = int(math.ceil(contour_length / step)) + 1
     if count * n > MAX_FIBRE_POINTS:
         raise ValueError(f"count and contour_length must give at most {MAX_FIBRE_POINTS} chain "
-                         f"points ({step:g} m apart), got count={count} fibres of "
-                         f"{contour_length:g} m: {count * n} points")
+                         f"points, got count={count} fibres of {contour_length:g} m: "
+                         f"{count * n} points {step:g} m apart (the smallest of pixel_size / 4, "
+                         f"persistence_length / 20 and width / 4, with pixel_size = "
+                         f"{pixel_size:g} m, persistence_length = {persistence_length:g} m, "
+                         f"width = {width:g} m)")
     step = contour_length / (n - 1)
     correlation = min(4.0, max(rows, cols) / 4) * pixel_size
     h = rough_surface((rows, cols), pixel_size, rms, correlation, seed=seed).heights.copy()

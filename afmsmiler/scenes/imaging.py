@@ -12,7 +12,8 @@ right, the colour legend of the sample below both.
 
 The tip is module (d)'s tip (:func:`~afmsmiler.scenes.contact.tip_mesh` of its outline), drawn
 once; while a scan runs, :meth:`ImagingScene.move_tip` only sends a transform, and
-:meth:`ImagingScene.show_image` replaces the image's mesh only when a new line has finished.
+:meth:`ImagingScene.show_image` (or :meth:`ImagingScene.show_scan`, from a scan's result)
+replaces the image's mesh only when a new line has finished.
 Scenes take ``vis=`` (a :class:`meshcat.Visualizer`, or ``tests/recording.py``'s recorder).
 """
 from __future__ import annotations
@@ -142,9 +143,9 @@ class ImagingScene:
     exaggeration : float
         The factor on the heights, as the caption states it.
     stride, image_stride : int
-        Rows and columns skipped between vertices of the sample's and the image's meshes.
+        Every how many rows and columns of the sample and of the image a vertex is drawn.
     image_lines : int or None
-        Rows of the image drawn (None before any).
+        The row after the last row of the image given (None before any image).
     """
 
     def __init__(self, sample: Sample, *, tip: Tip | None = None,
@@ -176,7 +177,8 @@ class ImagingScene:
         self.stride = decimation(sample.heights.shape, self.max_vertices)
         self.image_stride = None
         self.image_lines = None
-        self._image_shape = None
+        self._image_key = None
+        self._image_drawn = False
         self.sample_floor = float(sample.heights.min())
         self.scale = _scale_of(sample.heights * 1e9, DEFAULTS["cmap"])
         self.image_scale = None
@@ -221,19 +223,30 @@ class ImagingScene:
         node.set_object(mesh.geometry(scale), g.MeshLambertMaterial(vertexColors=True, side=2))
         return mesh
 
-    def show_image(self, image: Sample, lines_done: int | None = None) -> bool:
-        """Draw the image's first ``lines_done`` rows (all if None) on the right.
+    def show_image(self, image: Sample, *, lines: int | None = None, first_row: int = 0,
+                   force: bool = False) -> bool:
+        """Draw an image, or the finished rows of one being scanned, on the right.
 
-        The mesh is replaced only when ``lines_done`` differs from the last call's (at most once
-        per finished line during a scan) or for a complete image (``lines_done=None``).
+        ``image`` holds rows ``first_row`` to ``first_row + rows - 1`` of an image of ``lines``
+        rows (a scan's finished lines, as :attr:`ScanResult.channels
+        <afmsmiler.imaging.scanner.ScanResult.channels>` gives them); the full image is centred
+        in its place, so the rows do not move as lines are added. The mesh is replaced only when
+        these rows or the grid differ from the last call's: during a scan, at most once per
+        finished line however often this is called. An image of fewer than two (drawn) rows
+        removes the mesh.
 
         Parameters
         ----------
         image : Sample
-            The image (2-D, heights in m), on its own grid (a scan may cover part of the
+            The rows to draw (2-D, heights in m), on their own grid (a scan may cover part of the
             sample).
-        lines_done : int, optional
-            Rows finished, 0 to the image's rows.
+        lines : int, optional
+            Rows of the full image, at least ``first_row`` + the image's rows; default the
+            image's rows (a complete image).
+        first_row : int
+            The full image's row that the image's first row is, >= 0.
+        force : bool
+            Redraw even if nothing changed (new values on the same rows).
 
         Returns
         -------
@@ -244,30 +257,72 @@ class ImagingScene:
         if image.heights.ndim != 2:
             raise ValueError(f"image must be 2-D, got shape {image.heights.shape}")
         rows, cols = image.heights.shape
-        if lines_done is not None:
-            lines_done = check_integer("lines_done", lines_done, 0, rows)
-            if lines_done == self.image_lines and image.heights.shape == self._image_shape:
-                return False
-        n = rows if lines_done is None else lines_done
-        self.image_lines, self._image_shape = lines_done, image.heights.shape
-        if self.image_stride is None or image.heights.shape != getattr(self, "_stride_shape",
-                                                                        None):
-            self.image_stride = decimation(image.heights.shape, self.max_vertices)
-            self._stride_shape = image.heights.shape
-        s = self.image_stride
-        done = image.heights[:n]
-        if done[::s].shape[0] < 2 or cols < 2:
-            self.vis["image"].delete()
+        first_row = check_integer("first_row", first_row, 0)
+        lines = rows + first_row if lines is None else check_integer(
+            "lines", lines, rows + first_row, MAX_VERTICES)
+        key = (rows, cols, first_row, lines, image.pixel_size, image.pixel_size_y)
+        if key == self._image_key and not force:
+            return False
+        self._image_key = key
+        self.image_lines = first_row + rows
+        s = self.image_stride = decimation((lines, cols), self.max_vertices)
+        # the full image's rows 0, s, 2s ... that are among the rows given
+        start = (-first_row) % s
+        done = image.heights[start::s, ::s]
+        if done.shape[0] < 2 or done.shape[1] < 2:
+            if self._image_drawn:
+                self.vis["image"].delete()
+                self._image_drawn = False
             return True
         floor = float(done.min())
         self.image_scale = _scale_of(done * 1e9, DEFAULTS["cmap"])
-        # the image centred in its slot (a scan range smaller than the sample is drawn smaller)
+        # the full image centred in its slot (a scan range smaller than the sample, smaller)
         w = (cols - 1) * image.pixel_size
-        d = (rows - 1) * image.pixel_size_y
-        origin = (self.image_slot[0] + (self.width - w) / 2, -d / 2)
-        self.image_mesh = self._draw_field(self.vis["image"], done, image, s, origin, floor,
-                                           self.image_scale)
+        d = (lines - 1) * image.pixel_size_y
+        origin = (self.image_slot[0] + (self.width - w) / 2,
+                  -d / 2 + (first_row + start) * image.pixel_size_y)
+        h = done
+        mesh = height_map_mesh(h - floor, image.pixel_size * s, unit=self.unit,
+                               pixel_size_y=image.pixel_size_y * s, origin=origin,
+                               exaggeration=self.exaggeration, values=h * 1e9)
+        self.vis["image"].set_object(mesh.geometry(self.image_scale),
+                                     g.MeshLambertMaterial(vertexColors=True, side=2))
+        self.image_mesh = mesh
+        self._image_drawn = True
         return True
+
+    def show_scan(self, result, channel: str = "height trace") -> bool:
+        """Draw a scan's finished lines of one channel (see :meth:`show_image`).
+
+        Parameters
+        ----------
+        result : ScanResult
+            A :class:`~afmsmiler.imaging.scanner.ScanResult` (its ``channels``, ``lines`` and
+            ``first_row``), at any time during the scan.
+        channel : str
+            The channel to draw, a height in m (``"height trace"`` ...).
+
+        Returns
+        -------
+        bool
+            True if the mesh was sent (or removed).
+        """
+        for attr in ("channels", "lines", "first_row"):
+            if not hasattr(result, attr):
+                raise TypeError(f"result must be a ScanResult (with channels, lines and "
+                                f"first_row), got {type(result).__name__}")
+        channels = result.channels
+        if channel not in channels:
+            if channels:
+                raise ValueError(f"channel must be one of {sorted(channels)}, got {channel!r}")
+            # no line finished yet: nothing to draw
+            changed = self._image_drawn
+            if changed:
+                self.vis["image"].delete()
+            self._image_drawn, self._image_key, self.image_lines = False, None, 0
+            return changed
+        return self.show_image(channels[channel], lines=result.lines,
+                               first_row=result.first_row)
 
     # -- tip ------------------------------------------------------------------------------
     def move_tip(self, x: float, y: float, z: float) -> None:
@@ -296,20 +351,22 @@ class ImagingScene:
         self.vis["tip"].set_transform(matrix)
         self.tip_position = (x, y, z)
 
-    def update(self, image: Sample | None = None, lines_done: int | None = None,
-               tip_position=None) -> None:
-        """One step of a scan: the image (if a line finished) and the tip's position.
+    def update(self, image: Sample | None = None, tip_position=None, *,
+               lines: int | None = None, first_row: int = 0) -> None:
+        """One step of a scan: the image (redrawn if a line finished) and the tip's position.
 
         Parameters
         ----------
         image : Sample, optional
-            The image so far (see :meth:`show_image`).
-        lines_done : int, optional
-            Rows of ``image`` finished.
+            The finished rows so far (see :meth:`show_image`).
         tip_position : (float, float, float), optional
             The apex's (x, y, z) in m (see :meth:`move_tip`).
+        lines : int, optional
+            Rows of the full image (see :meth:`show_image`).
+        first_row : int
+            The full image's row that ``image``'s first row is.
         """
         if image is not None:
-            self.show_image(image, lines_done)
+            self.show_image(image, lines=lines, first_row=first_row)
         if tip_position is not None:
             self.move_tip(*tip_position)
