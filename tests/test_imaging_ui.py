@@ -355,3 +355,35 @@ def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
     finally:
         kc.stop_channels()
         km.shutdown_kernel(now=True)
+
+
+def test_the_3d_view_shows_the_finished_lines_and_the_tip_where_the_last_line_ended():
+    import sys
+    from pathlib import Path
+    sys.path.insert(0, str(Path(__file__).parent))
+    from recording import Recorder
+
+    rec = Recorder()
+    p = ImagingPanel(pixels=PIXELS, vis=rec)
+    scene = p.scene
+    assert scene is not None and scene.tip == make_tip("parabolic", radius=20e-9)
+    assert scene.image_lines is None  # nothing scanned: no image mesh
+    p.start(run=False)
+    for _ in range(5):
+        p.step()
+    assert scene.image_lines == 5  # the rows drawn: the lines finished
+    job = p._job.scan
+    x, y = job.position(4, 0, "retrace")
+    assert scene.tip_position == pytest.approx((x, y, job.plan.retrace[4, 0]), rel=1e-12)
+    meshes = rec.log[scene.vis["image"].key]["n_objects"]
+    p.set(kp=2.0)  # a slider move: the figure and the scene shown again, no new image mesh
+    assert rec.log[scene.vis["image"].key]["n_objects"] == meshes
+    p.step()
+    assert rec.log[scene.vis["image"].key]["n_objects"] == meshes + 1  # one mesh per line
+    p.set(radius=40.0, on_change="restart")  # another tip: the scene is drawn anew
+    assert p.scene is not scene and p.scene.tip.radius == pytest.approx(40e-9)
+    p.step()
+    p.step()
+    assert p.scene.image_lines == 2
+    p.set(pixels=32)  # another image: the old lines' mesh goes
+    assert p.scene.image_lines == 1 and p.last.lines_done == 0

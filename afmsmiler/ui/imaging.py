@@ -211,6 +211,12 @@ class ImagingPanel(Panel):
 
     Parameters
     ----------
+    scene : bool
+        Draw the 3D view (:class:`~afmsmiler.scenes.imaging.ImagingScene`: the sample, the
+        image's finished lines, the tip where the last line ended) in the kernel's viewer.
+    vis : meshcat.Visualizer, optional
+        Where the 3D view draws instead of the kernel's viewer (tests pass a recorder); implies
+        ``scene``.
     **initial
         Initial control values (keys of :data:`DEFAULTS`), in the units shown.
 
@@ -220,13 +226,15 @@ class ImagingPanel(Panel):
         The image so far.
     figure : ImagingFigure
         The image, the error channel and the last line's profiles.
+    scene : ImagingScene or None
+        The 3D view (None without ``scene``).
     progress : ipywidgets.IntProgress
         Lines done out of the lines of the scan.
     running : bool
         A scan is under way (started, neither finished nor stopped).
     """
 
-    def __init__(self, **initial):
+    def __init__(self, scene: bool = False, vis=None, **initial):
         unknown = set(initial) - set(DEFAULTS)
         if unknown:
             raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
@@ -271,6 +279,11 @@ class ImagingPanel(Panel):
         self.stop_button.on_click(lambda _b: self.stop())
         self.status = widgets.HTML()
         self.figure = None
+        self.scene = None
+        self._vis = vis
+        self._want_scene = bool(scene) or vis is not None
+        self._scene_key = None
+        self._tip_at = None  # where the last line ended: (x, y, z) in m on the sample
         self.fig = self.new_figure(figsize=(10.0, 7.0))
         self.running = False
         self._task = None
@@ -390,6 +403,7 @@ class ImagingPanel(Panel):
         n = config.settings.pixels
         name = "height trace" if isinstance(config.mode, _modes.ConstantForce) \
             else "deflection trace"
+        self._tip_at = None
         self._image = {name: np.full((n, n), np.nan)}
         self._units = {name: "m"}
         self._pixel = (config.settings.scan_size / n,) * 2
@@ -469,6 +483,9 @@ class ImagingPanel(Panel):
             self._units[name] = job.scan.mode.unit(name)
         self._pixel = (settings.pixel_size, settings.pixel_size_y)
         self._done = row + (record.crash is None)
+        if self._want_scene:  # the apex where the line ended: the retrace's first pixel
+            x, y = job.scan.position(row, 0, "retrace")
+            self._tip_at = (x, y, float(job.scan.plan.retrace[row, 0]))
         if record.crash is not None:
             self._crashed = record.crash
         if self._done >= self.progress.max or record.crash is not None:
@@ -518,13 +535,36 @@ class ImagingPanel(Panel):
             self.figure = ImagingFigure(view, fig=self.fig)
         else:
             self.figure.update(view)
-        self.redraw()
+        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self._draw_scene()
         self.progress.value = self._done
         self.progress.description = f"{self._done}/{self.progress.max} lines"
         state = ("scanning" if self.running else "crashed" if self._crashed is not None
                  else "stopped" if self._stopped else
                  "done" if self._done and self._done == self.progress.max else "ready")
         self.status.value = f"<b>{state}</b>"
+
+    def _draw_scene(self) -> None:
+        """The 3D view: the sample (rebuilt for another sample or tip), the finished lines of
+        the main channel in m, the tip where the last line ended (no physics here)."""
+        if not self._want_scene or (self._vis is None and not self.scene_open()):
+            return
+        config = self._config
+        key = (id(config.sample), config.tip)
+        if self.scene is None or key != self._scene_key:
+            from ..scenes.imaging import ImagingScene
+            self.scene = ImagingScene(config.sample, tip=config.tip, vis=self._vis)
+            self._scene_key = key
+        channel = self.last.channels.get("height trace")  # constant force's image
+        drawn = self.scene.image_lines or 0
+        if channel is not None and (self._done >= 2 or drawn >= 2):
+            # one row (a scan restarted) removes the image's mesh, as show_image says
+            rows = max(self._done, 1)
+            heights = np.nan_to_num(channel.heights[:rows])
+            self.scene.show_image(Sample(heights, channel.pixel_size, "height trace",
+                                         channel.pixel_size_y), lines=self.last.lines)
+        if self._tip_at is not None and self.scene.tip is not None:
+            self.scene.move_tip(*self._tip_at)
 
     def widget(self) -> widgets.Widget:
         """Controls on the left (sample, tip, scan, mode), buttons and progress, the figure below.
