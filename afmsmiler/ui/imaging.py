@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import asyncio
 from dataclasses import dataclass, field
+from functools import lru_cache
 
 import ipywidgets as widgets
 import numpy as np
@@ -38,7 +39,7 @@ from .controls import WIDTH, control
 from .panel import Panel, running_as_notebook
 
 __all__ = ["ImagingPanel", "ImagingResult", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE",
-           "SCAN_SLIDERS", "ChannelImage", "sample", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
+           "SCAN_SLIDERS", "ChannelImage", "sample", "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
 
 #: The samples to scan: name -> (generator in :mod:`afmsmiler.samples`, its arguments in SI).
 #: Every synthetic one is 256 x 256 pixels of 2 nm (0.51 um); the real image is 2 um wide.
@@ -97,6 +98,7 @@ def _extent(s: Sample) -> float:
     return min((cols - 1) * s.pixel_size, (rows - 1) * s.pixel_size_y)
 
 
+@lru_cache(maxsize=1)
 def max_scan_size() -> float:
     """The largest scan range in m that fits on every sample of :data:`SAMPLES` at any angle.
 
@@ -128,7 +130,6 @@ DEFAULTS = read_only(dict(sample="particles", mode="constant force", tip="parabo
                           on_change="apply on next line", **_slider_defaults()))
 
 _SAMPLE_CACHE: dict = {}
-MAX_SCAN_SIZE = None  # max_scan_size(), once the first panel has made the samples
 
 
 def sample(name: str) -> Sample:
@@ -244,9 +245,6 @@ class ImagingPanel(Panel):
         check_choice("tip", v["tip"], list(TIPS))
         check_choice("pixels", v["pixels"], list(PIXELS))
         check_choice("on_change", v["on_change"], list(ON_CHANGE))
-        global MAX_SCAN_SIZE
-        if MAX_SCAN_SIZE is None:
-            MAX_SCAN_SIZE = max_scan_size()
         layout = widgets.Layout(width=WIDTH)
         c = {"sample": widgets.Dropdown(options=list(SAMPLES), value=v["sample"],
                                         description="sample", layout=layout),
@@ -261,7 +259,7 @@ class ImagingPanel(Panel):
         for name in SCAN_SLIDERS:
             p = _scanner.PARAMETERS[name]
             c[name] = control(p, p.to_si(v[name]),
-                              high=MAX_SCAN_SIZE if name == "scan_size" else None)
+                              high=max_scan_size() if name == "scan_size" else None)
         for sliders in MODE_SLIDERS.values():
             for name, p in sliders.items():
                 c[name] = control(p, p.to_si(v[name]))
