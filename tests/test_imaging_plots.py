@@ -123,3 +123,12 @@ def test_images_side_by_side_in_nm_with_their_own_colour_scales():
         images_figure(a, titles=["x", "y"])
     with pytest.raises(ValueError, match="1 to 4"):
         images_figure()
+
+
+def test_the_error_colour_scale_is_centred_on_zero():
+    r = _result(7)
+    f = ImagingFigure(scan_view(r))
+    e = r.channels["error trace"].heights[:7] * NM
+    lo, hi = f.images["error"].get_clim()
+    assert lo == pytest.approx(-np.abs(e).max()) and hi == pytest.approx(np.abs(e).max())
+    assert f.axes["profile"].get_ylabel() == "height [nm]"

@@ -290,7 +290,8 @@ class ImagingFigure:
 
         The profile's y axis holds its limits while the lines stay inside them
         (:func:`~afmsmiler.plots.limits.hold`), so that line after line the eye compares
-        them on one scale; the images' colour scales span the finished lines.
+        them on one scale; the images' colour scales span the finished lines (the error's
+        symmetric about zero, the middle of its diverging colour map).
 
         Parameters
         ----------
@@ -305,7 +306,10 @@ class ImagingFigure:
             im = self.images[key]
             im.set_data(np.ma.masked_invalid(values))
             im.set_extent(v.extent)
-            im.set_clim(*_clim(values))
+            lo, hi = _clim(values)
+            if key == "error":  # a diverging map: zero error in its middle
+                lo, hi = -max(abs(lo), abs(hi)), max(abs(lo), abs(hi))
+            im.set_clim(lo, hi)
             self.colorbars[key].set_label(label)
             ax[key].set(xlim=v.extent[:2], ylim=v.extent[2:], xlabel=f"x [{lu}] (fast axis)",
                         ylabel=f"y [{lu}]")
@@ -322,7 +326,8 @@ class ImagingFigure:
         self.lines["retrace"].set_data(v.x, v.retrace)
         p = ax["profile"]
         p.set_xlim(v.extent[0], v.extent[1])
-        p.set(xlabel=f"x [{lu}]", ylabel=f"{name} [{v.value_unit}]",
+        quantity = name.removesuffix(" trace")  # trace and retrace share the axis
+        p.set(xlabel=f"x [{lu}]", ylabel=f"{quantity} [{v.value_unit}]",
               title="last line" if v.row is None else f"line {v.row}: trace and retrace")
         # a new quantity on the axis (another channel) is fitted afresh
         reset = getattr(self, "_held", None) != v.image_label
