@@ -94,6 +94,12 @@ def test_stop_half_way_keeps_the_finished_lines(panel):
                                                                               PIXELS)
     assert "stopped" in panel.figure.axes["image"].get_title()
     assert "stopped" in panel.status.value
+    # a slider moved now scans nothing, but the image says it was made with other values
+    panel.set(kp=1.0)
+    assert panel.last.lines_done == PIXELS // 2
+    assert "settings changed" in panel.figure.axes["image"].get_title()
+    panel.start(run=False)
+    assert "settings changed" not in panel.figure.axes["image"].get_title()
 
 
 def test_a_slider_moved_during_a_scan_applies_from_the_next_line(panel, runs):

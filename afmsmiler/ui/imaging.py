@@ -288,6 +288,7 @@ class ImagingPanel(Panel):
         self._job = None
         self._pending = None
         self._config = None
+        self._scanned = None  # the values the image shown was started with
         self._image, self._units, self._pixel = {}, {}, (1.0, 1.0)
         self._done = 0
         self._stopped = False
@@ -414,12 +415,14 @@ class ImagingPanel(Panel):
         scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
         self._job = _Job(scan, scan.lines(), 0)
         self._pending = None
+        self._scanned = config
 
     def _continue(self, config: _Config) -> None:
         """Scan the lines from the next one on with ``config`` (the finished lines kept)."""
         scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
         self._job = _Job(scan, _lines_from(scan, self._done), self._done)
         self._pending = None
+        self._scanned = config
         self._changes.append(self._done)
 
     def start(self, run: bool = True) -> None:
@@ -528,7 +531,11 @@ class ImagingPanel(Panel):
     def _show(self) -> None:
         """The image so far into the figure (one redraw), the progress bar and the status."""
         self.last = self._result()
-        view = scan_view(self.last)
+        # an image on screen made with other values than the controls now show says so
+        changed = (not self.running and self._done > 0 and self._scanned is not None
+                   and self._config is not self._scanned)
+        view = scan_view(self.last, status="settings changed: Start scans with them"
+                         if changed else None)
         if self.figure is None:
             self.figure = ImagingFigure(view, fig=self.fig)
         else:
