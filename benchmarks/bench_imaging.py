@@ -25,7 +25,7 @@ sys.path.insert(0, str(Path(__file__).parent))
 from _timing import best_time, report  # noqa: E402
 
 from afmsmiler.contact import Parabolic  # noqa: E402
-from afmsmiler.controller import ContactLoop  # noqa: E402
+from afmsmiler.controller import ContactLoop, scan_image  # noqa: E402
 from afmsmiler.imaging.dilation import dilate, tip_surface  # noqa: E402
 from afmsmiler.imaging.modes import ConstantForce  # noqa: E402
 from afmsmiler.imaging.scanner import Scan, ScanSettings  # noqa: E402
@@ -91,8 +91,12 @@ if __name__ == "__main__":
     assert result.finished and result.images["height trace"].shape == (N, N)
     t_ours = best_time(ours, repeat=5, number=1)
     t_warm = best_time(peer, repeat=3, number=1)
+    t_dilate = best_time(lambda: dilate(sample, tip), repeat=5, number=1)
+    t_loop = best_time(lambda: scan_image(loop, apex * 1e-9, PX, speed=SPEED), repeat=5, number=1)
     report([
         ("256 x 256 constant force, trace+retrace, paraboloid (ours)", t_ours, 0.5, t_cold),
+        ("  of which the paraboloid dilation", t_dilate, None, None),
+        ("  of which module (c)'s scan_image (the loop)", t_loop, None, None),
         ("  spmsimu tip_scan + pi_loop x 2, first call (peer, cold)", t_cold, None, None),
         ("  spmsimu, later calls (peer, warm)", t_warm, None, None),
     ])

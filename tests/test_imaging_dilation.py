@@ -17,7 +17,8 @@ from scipy import ndimage
 from afmsmiler.contact.tips import Conical, Parabolic, Pyramidal, Spherical, Tip
 from afmsmiler.imaging import dilation
 from afmsmiler.imaging.dilation import (certainty_map, dilate, erode, estimate_tip_radius,
-                                        sphere_apparent_width, tip_surface)
+                                        sphere_apparent_width, tip_radius_from_width,
+                                        tip_surface)
 from afmsmiler.samples import Sample
 
 TIPS = [Parabolic(radius=6e-9), Spherical(radius=5e-9), Conical(half_angle=math.radians(25)),
@@ -133,6 +134,8 @@ def test_tip_surface_rejects_bad_input():
         tip_surface(Parabolic(), 1e-9, max_height=-1e-9)
     with pytest.raises(ValueError, match="max_height"):  # a grid beyond MAX_TIP_PIXELS
         tip_surface(Conical(half_angle=1.5), 1e-9, max_height=1e-6)
+    with pytest.raises(ValueError, match="pixel_size_y"):  # the same, from a tiny pixel
+        tip_surface(Parabolic(), 1e-9, 1e-300)
 
 
 # --- dilate: equal to scipy for every tip -----------------------------------------------------
@@ -288,10 +291,33 @@ def test_sphere_width_limits():
         2 * r + 2 * math.sqrt(2 * r * sharp), rel=1e-4)
     assert sphere_apparent_width(r, Spherical(radius=40e-9)) == pytest.approx(4 * 20e-9)
     assert sphere_apparent_width(r, Spherical(radius=4e-9)) == pytest.approx(28e-9)
+    # a vanishing particle: the closed form stays free of cancellation (no 0 / 0)
+    assert sphere_apparent_width(1e-300, Parabolic(radius=20e-9)) == pytest.approx(
+        4 * math.sqrt(1e-300 * 20e-9), rel=1e-9)
     with pytest.raises(ValueError, match="particle_radius"):
         sphere_apparent_width(0.0, Parabolic())
+    with pytest.raises(ValueError, match="particle_radius"):
+        sphere_apparent_width(1e300, Parabolic())
     with pytest.raises(TypeError, match="tip"):
         sphere_apparent_width(r, Conical())
+
+
+def test_tip_radius_from_width_inverts_the_apparent_width():
+    r = 10e-9
+    radii = np.logspace(-11, -4, 30)
+    widths = [sphere_apparent_width(r, Parabolic(radius=R)) for R in radii]
+    assert np.all(np.diff(widths) > 0)  # monotone: the inversion is unique
+    for R, w in zip(radii, widths):
+        assert tip_radius_from_width(r, w) == pytest.approx(R, rel=1e-9)
+    # the blunt-tip limit, the classic W^2 / (16 r)
+    w = 4 * math.sqrt(1e-3 * r)
+    assert tip_radius_from_width(r, w) == pytest.approx(1e-3, rel=1e-4)
+    with pytest.raises(ValueError, match="width"):
+        tip_radius_from_width(r, 2 * r)  # the particle's own width: no tip is that sharp
+    with pytest.raises(ValueError, match="width"):
+        tip_radius_from_width(r, -1.0)
+    with pytest.raises(ValueError, match="particle_radius"):
+        tip_radius_from_width(float("nan"), 30e-9)
 
 
 def sphere_on_substrate(r, dx, half_width, dy=None):

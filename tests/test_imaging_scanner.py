@@ -522,3 +522,34 @@ def test_a_sphere_buried_crashes_with_an_infinite_force():
     result = scan(sample, None, ConstantHeight(sy, 1.5 * sy.z_np_limit, 1.0), whole(sample))
     assert result.crashed == Crash(0, 0, math.inf, "trace") and result.lines_done == 0
     assert np.isnan(result.images["deflection trace"]).all() and result.channels == {}
+
+
+@pytest.mark.parametrize("tip", [Parabolic(radius=15e-9), "sphere", "cone", "pyramid"])
+def test_a_zoomed_scan_dilates_only_what_it_can_feel_and_gets_the_same_surface(tip):
+    from scipy.ndimage import map_coordinates
+
+    from afmsmiler.contact import Conical, Pyramidal, Spherical
+    from afmsmiler.imaging.dilation import dilate
+    tip = {"sphere": Spherical(radius=12e-9), "cone": Conical(half_angle=math.radians(30)),
+           "pyramid": Pyramidal(face_angle=math.radians(40))}.get(tip, tip)
+    big = particles((120, 160), PX, seed=5)
+    s = ScanSettings(120e-9, scan_size_y=80e-9, pixels=40, lines=30, angle=0.5,
+                     offset=(60e-9, -40e-9), scan_speed=SPEED, tilt=(0.02, -0.01))
+    run = Scan(big, tip, Topography(), s)
+    plan = run.plan
+    assert plan.apex.heights.size < 0.6 * big.heights.size  # a part of the sample
+    x, y = np.arange(160) * PX, np.arange(120) * PX
+    tilted = Sample(big.heights + math.tan(0.02) * (x - x[-1] / 2)[None, :]
+                    + math.tan(-0.01) * (y - y[-1] / 2)[:, None], PX)
+    whole_apex = dilate(tilted, tip).heights
+    expected = map_coordinates(whole_apex, [plan.y_trace / PX, plan.x_trace / PX], order=1)
+    np.testing.assert_allclose(plan.trace, expected, rtol=0, atol=1e-12 * np.ptp(whole_apex))
+    # inside the scan's bounding box the part equals the whole sample's dilation
+    c0, r0 = (round(v / PX) for v in plan.apex_origin)
+    xs = np.concatenate((plan.x_trace, plan.x_retrace)) / PX
+    ys = np.concatenate((plan.y_trace, plan.y_retrace)) / PX
+    cols = slice(int(np.floor(xs.min())), int(np.ceil(xs.max())) + 1)
+    rows = slice(int(np.floor(ys.min())), int(np.ceil(ys.max())) + 1)
+    part = plan.apex.heights[rows.start - r0:rows.stop - r0, cols.start - c0:cols.stop - c0]
+    np.testing.assert_allclose(part, whole_apex[rows, cols], rtol=0,
+                               atol=1e-15 * np.ptp(whole_apex))

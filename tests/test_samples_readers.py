@@ -163,6 +163,26 @@ def test_wsxm_units_from_the_header(tmp_path):
             samples.load(_wsxm(tmp_path, old, new))
 
 
+def test_wsxm_stp_doubles_are_nm_and_rectangular_scans_are_named(tmp_path):
+    """AFMReader reads .stp doubles as nm (its sample_0.stp of the .top above sums to
+    -15070620 nm: a mean of -57.5 nm, the .top's counts times 13.6 nm/V x 20 V / 2^16). Here the
+    .top's counts stored as doubles in nm, under the .top's header made a double one."""
+    raw = WSXM.read_bytes()
+    header = raw[:WSXM_HEADER].replace(b"Image Data Type: short", b"Image Data Type: double")
+    header = header.replace(b"Image header size: 2996", b"Image header size: 2997")
+    counts = np.frombuffer(raw, "<i2", offset=WSXM_HEADER).reshape(512, 512)
+    nm = counts * (13.6 * 20 / 2 ** 16)
+    path = tmp_path / "doubles.stp"
+    path.write_bytes(header + nm.astype("<f8").tobytes())
+    img = samples.load(path)
+    np.testing.assert_allclose(img.heights, nm * 1e-9, rtol=1e-15)
+    assert img.pixel_size == pytest.approx(500e-9 / 512, rel=1e-12)
+    assert np.mean(nm) == pytest.approx(-15070620.440757688 / 512 ** 2, rel=0.01)
+    wide = _wsxm(tmp_path, "Y Amplitude: 500 nm", "Y Amplitude: 400 nm")
+    with pytest.raises(ValueError, match="image.top: AFMReader cannot read it .*square"):
+        samples.load(wide)
+
+
 # --- Gwyddion (.gwy): written here, read by gwyfile and AFMReader -----------------------------
 def test_gwy_export_round_trips_through_gwyfile_and_afmreader(tmp_path):
     import gwyfile
@@ -248,6 +268,25 @@ def test_an_unreadable_file_is_named(tmp_path, monkeypatch):
     with pytest.raises(ValueError, match="locked.spm: the file cannot be read "
                                          r"\(Permission denied\)"):
         samples.load(locked)
+
+
+def test_files_of_the_afmreader_only_formats_are_checked_first(tmp_path):
+    # no small real .ibw, .jpk or .asd file with a licence that allows it was found (see
+    # tests/data/README.md): these check the pre-flight checks on files made here
+    import tifffile
+    plain = tmp_path / "plain.jpk"  # a TIFF without JPK's channels
+    tifffile.imwrite(plain, np.zeros((8, 8), np.float32))
+    with pytest.raises(ValueError, match=r"channel must be one of the channels of plain.jpk: "
+                                         r"\[\]"):
+        samples.load(plain)
+    asd = tmp_path / "cut.asd"
+    asd.write_bytes(b"\x01\x00\x00\x00" + bytes(40))  # version 1, header cut short
+    with pytest.raises(ValueError, match="cut.asd: not a readable .asd file"):
+        samples.load(asd)
+    ibw = tmp_path / "cut.ibw"
+    ibw.write_bytes(b"\x05\x00" + bytes(100))  # version 5, header cut short
+    with pytest.raises(ValueError, match="cut.ibw: not a readable Igor binary wave"):
+        samples.load(ibw)
 
 
 def test_truncated_and_hostile_headers(tmp_path):

@@ -82,11 +82,14 @@ class ScanPlan:
     scan_speed : float
         Tip speed along the fast axis in m/s.
     apex : afmsmiler.samples.Sample
-        The apex surface that was sampled (on the sample's grid).
+        The apex surface that was sampled, on the sample's grid: the part of it the scan can
+        feel (the scan's bounding box widened by the tip's reach), from ``apex_origin`` on.
     tip : afmsmiler.contact.Tip or None
         The tip (None: an ideal, infinitely sharp one).
     settings : afmsmiler.imaging.scanner.ScanSettings
         The settings of the scan.
+    apex_origin : tuple of float
+        (x, y) in m of ``apex``'s first pixel on the sample.
     """
 
     trace: np.ndarray
@@ -103,6 +106,7 @@ class ScanPlan:
     apex: Any
     tip: Any
     settings: Any
+    apex_origin: tuple = (0.0, 0.0)
 
     @property
     def shape(self) -> tuple[int, int]:

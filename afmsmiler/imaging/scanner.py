@@ -7,7 +7,8 @@ tilt). It
 
 1. adds the tilt's plane to the sample and dilates the result by the tip
    (:func:`afmsmiler.imaging.dilation.dilate`): the apex surface, the surface the tip's apex
-   follows;
+   follows (only over the part of the sample the scan can feel: its bounding box widened by the
+   tip's reach at the sample's height range, which gives the whole dilation's values there);
 2. lays the scan grid on the sample: line i, pixel j of the image is at
    (u_j, v_i) = ((j + 1/2) dx - S_x / 2, (i + 1/2) dy - S_y / 2) in the scan frame, with
    dx = S_x / pixels and dy = S_y / lines (the scan range covers pixels x lines square cells, as
@@ -35,7 +36,7 @@ from typing import Callable, Iterator, Mapping
 
 import numpy as np
 
-from ..contact import Tip
+from ..contact import Parabolic, Tip
 from ..controller import PARAMETERS as LOOP_PARAMETERS
 from ..controller.image import MAX_IMAGE_PIXELS
 from ..parameters import Parameter, read_only
@@ -471,8 +472,9 @@ class Scan:
 
     Notes
     -----
-    The constructor checks everything and dilates the sample (some 10 ms for 256 x 256 with a
-    paraboloid), so that a tip too wide for the image is refused at once; the sampling of the
+    The constructor checks everything and dilates the part of the sample the scan can feel (a
+    few ms for 256 x 256 with a paraboloid), so that a tip too wide for the image is refused at
+    once; the sampling of the
     apex surface (:attr:`plan`) and :meth:`Mode.start` run on the first call of :meth:`step`,
     :meth:`lines` or :meth:`run`. One line per :meth:`step` keeps a notebook responsive.
 
@@ -516,7 +518,7 @@ class Scan:
         self._positions = self._geometry()
         self._metadata = MappingProxyType({"mode": type(mode).__name__, "tip": repr(tip),
                                            **asdict(settings)})
-        self._apex_surface = self._apex()
+        self._apex_surface, self._apex_row, self._apex_column = self._apex()
         self._plan = None
         self._state = None
         self._images = {c: np.full(settings.shape, np.nan) for c in mode.channels}
@@ -580,20 +582,58 @@ class Scan:
             out[name] = (x, y, t)
         return out
 
-    def _apex(self) -> Sample:
+    def _apex(self) -> tuple[Sample, int, int]:
+        """The apex surface over the part of the sample the scan can feel, and its first pixel.
+
+        Only the scan's bounding box, widened by the tip's reach at the sample's height range
+        (where its surface rises by that range: farther sample points can never touch first, the
+        argument that makes the dilation's cut exact), is dilated; the values there are those of
+        the whole sample's dilation. Returns (apex, first row, first column).
+        """
         sample, s = self.sample, self.settings
-        h = sample.heights
+        rows, cols = sample.heights.shape
+        r0, r1, c0, c1 = self._box() if self.tip is not None else (0, rows, 0, cols)
+        h = sample.heights[r0:r1, c0:c1]
         if any(s.tilt):
-            rows, cols = h.shape
-            x = np.arange(cols) * sample.pixel_size
-            y = np.arange(rows) * sample.pixel_size_y
-            plane = (math.tan(s.tilt[0]) * (x - x[-1] / 2)[None, :]
-                     + math.tan(s.tilt[1]) * (y - y[-1] / 2)[:, None])
-            sample = replace(sample, heights=h + plane)
+            x = np.arange(c0, c1) * sample.pixel_size - (cols - 1) * sample.pixel_size / 2
+            y = np.arange(r0, r1) * sample.pixel_size_y - (rows - 1) * sample.pixel_size_y / 2
+            h = h + (math.tan(s.tilt[0]) * x[None, :] + math.tan(s.tilt[1]) * y[:, None])
+        part = replace(sample, heights=h)
         if self.tip is None:
-            return sample
+            return part, r0, c0
         from .dilation import dilate
-        return dilate(sample, self.tip)
+        return dilate(part, self.tip), r0, c0
+
+    def _box(self) -> tuple[int, int, int, int]:
+        """Rows r0:r1 and columns c0:c1 of the sample that the scan's apex surface depends on."""
+        sample, s, tip = self.sample, self.settings, self.tip
+        rows, cols = sample.heights.shape
+        dx, dy = sample.pixel_size, sample.pixel_size_y
+        full = (0, rows, 0, cols)
+        heights = sample.heights
+        if any(s.tilt):
+            x = np.arange(cols) * dx - (cols - 1) * dx / 2
+            y = np.arange(rows) * dy - (rows - 1) * dy / 2
+            heights = heights + (math.tan(s.tilt[0]) * x[None, :]
+                                 + math.tan(s.tilt[1]) * y[:, None])
+        span = float(np.ptp(heights))
+        if isinstance(tip, Parabolic):  # t = rho^2 / (2 R) reaches the span at sqrt(2 R span)
+            reach = math.sqrt(2.0 * tip.radius * span)
+            nx, ny = math.ceil(reach / dx), math.ceil(reach / dy)
+        else:
+            from .dilation import tip_surface
+            try:
+                grid = tip_surface(tip, dx, dy, max_height=span)
+            except ValueError:  # a grid too large to build: dilate everything (dilate decides)
+                return full
+            ny, nx = (grid.shape[0] - 1) // 2, (grid.shape[1] - 1) // 2
+        xs = [p[0] / dx for p in self._positions.values()]
+        ys = [p[1] / dy for p in self._positions.values()]
+        c_lo = math.floor(min(float(a.min()) for a in xs)) - nx - 1
+        c_hi = math.ceil(max(float(a.max()) for a in xs)) + nx + 2
+        r_lo = math.floor(min(float(a.min()) for a in ys)) - ny - 1
+        r_hi = math.ceil(max(float(a.max()) for a in ys)) + ny + 2
+        return max(r_lo, 0), min(r_hi, rows), max(c_lo, 0), min(c_hi, cols)
 
     @property
     def plan(self) -> ScanPlan:
@@ -606,11 +646,14 @@ class Scan:
                 if name == "retrace" and not s.moves:  # the same points as the trace
                     passes[name] = passes["trace"].copy()
                     continue
-                passes[name] = _sampled(apex.heights, x / sample.pixel_size,
-                                        y / sample.pixel_size_y, s.angle == 0.0)
+                passes[name] = _sampled(apex.heights, x / sample.pixel_size - self._apex_column,
+                                        y / sample.pixel_size_y - self._apex_row,
+                                        s.angle == 0.0)
             (xt, yt, tt), (xr, yr, tr) = self._positions["trace"], self._positions["retrace"]
+            origin = (self._apex_column * sample.pixel_size, self._apex_row * sample.pixel_size_y)
             self._plan = ScanPlan(passes["trace"], passes["retrace"], tt, tr, xt, yt, xr, yr,
-                                  s.pixel_size, s.pixel_size_y, s.scan_speed, apex, self.tip, s)
+                                  s.pixel_size, s.pixel_size_y, s.scan_speed, apex, self.tip, s,
+                                  origin)
         return self._plan
 
     # -- running ---------------------------------------------------------------------------

@@ -211,8 +211,52 @@ def _ibw_check(p: Path) -> None:
 
 
 def _tiff_check(p: Path) -> None:
+    """A JPK image is a TIFF file: each page's pixels and strips within the file and the limits
+    (tifffile reads the tags only, lazily)."""
     if _head(p, 4) not in (b"II*\x00", b"MM\x00*"):
         raise ValueError(f"{p} is not a JPK image (a TIFF file)")
+    import tifffile
+    size = p.stat().st_size
+    try:
+        with tifffile.TiffFile(str(p)) as tif:
+            for page in tif.pages:
+                pixels = int(np.prod(page.shape, dtype=float))
+                ends = [o + c for o, c in zip(page.dataoffsets, page.databytecounts)]
+                if pixels > 4 * MAX_PIXELS or (ends and max(ends) > size):
+                    raise ValueError(f"{p}: a page of {page.shape} pixels, its data ending at "
+                                     f"byte {max(ends, default=0)}: the file has {size} bytes "
+                                     f"and an image at most {MAX_PIXELS} pixels (corrupt?)")
+    except ValueError:
+        raise
+    except Exception as exc:
+        raise ValueError(f"{p}: not a readable TIFF/JPK file ({type(exc).__name__}: {exc})"
+                         ) from None
+
+
+def _asd_check(p: Path) -> None:
+    """The frames that an .asd header announces (AFMReader's own header readers) must fit in
+    the file before AFMReader reads them."""
+    from AFMReader import asd
+    size = p.stat().st_size
+    try:
+        with open(p, "rb") as f:
+            version = asd.read_file_version(f)
+            reader = {0: asd.read_header_file_version_0, 1: asd.read_header_file_version_1,
+                      2: asd.read_header_file_version_2}.get(version)
+            if reader is None:
+                raise ValueError(f"{p}: .asd file version must be 0, 1 or 2, got {version}")
+            header = reader(f)
+            data_start = f.tell()
+    except ValueError:
+        raise
+    except Exception as exc:
+        raise ValueError(f"{p}: not a readable .asd file ({type(exc).__name__}: {exc})"
+                         ) from None
+    frames, nx, ny = header["num_frames"], header["x_pixels"], header["y_pixels"]
+    need = data_start + frames * (header["frame_header_length"] + nx * ny * 2)
+    if not (frames >= 1 and nx >= 2 and ny >= 2 and nx * ny <= MAX_PIXELS) or need > size:
+        raise ValueError(f"{p}: the header's {frames} frames of {nx} x {ny} pixels need {need} "
+                         f"bytes, the file has {size} (truncated or corrupt?)")
 
 
 # --- the readers ------------------------------------------------------------------------------
@@ -224,23 +268,22 @@ def _read_wsxm(p: Path, channel: str):
     _pick(p, channel, [name])
     x_span = _wsxm_length(p, header, "X Amplitude")
     y_span = _wsxm_length(p, header, "Y Amplitude")
+    if p.suffix.lower() == ".top":
+        z_range = _wsxm_length(p, header, "Z Amplitude")
+        # AFMReader 0.0.7 spreads the counts over the integer part of Z Amplitude's number
+        # (59 for "59.7449 nm") whatever its unit; Gwyddion's wsxmfile.c spreads them over the
+        # whole Z Amplitude: rescale to that
+        whole = int(re.match(r"\s*(\d*)", header["Z Amplitude"]).group(1) or 0)
+        if whole == 0:
+            raise ValueError(f"{p}: AFMReader reads only the integer part of Z Amplitude "
+                             f"({header['Z Amplitude']!r} gives 0): not readable")
     try:
         if p.suffix.lower() == ".top":
-            z_range = _wsxm_length(p, header, "Z Amplitude")
-            nm, _ = top.load_top(p)
-            # AFMReader 0.0.7 spreads the counts over the integer part of Z Amplitude's number
-            # (59 for "59.7449 nm") whatever its unit; Gwyddion's wsxmfile.c spreads them over
-            # the whole Z Amplitude: rescale to that
-            whole = int(re.match(r"\s*(\d+)", header["Z Amplitude"]).group(1))
-            if whole == 0:
-                raise ValueError(f"{p}: AFMReader reads only the integer part of Z Amplitude "
-                                 f"({header['Z Amplitude']!r} gives 0): not readable")
-            heights = nm / whole * z_range
+            heights = top.load_top(p)[0] / whole * z_range
         else:
-            nm, _ = stp.load_stp(p)
-            heights = nm * 1e-9
-    except NotImplementedError as exc:  # AFMReader reads square scans only
-        raise ValueError(f"{p}: {exc}") from None
+            heights = stp.load_stp(p)[0] * 1e-9
+    except (ValueError, NotImplementedError) as exc:  # e.g. AFMReader reads square scans only
+        raise ValueError(f"{p}: AFMReader cannot read it ({exc})") from None
     meta = {k: v for k, v in header.items() if not k.startswith("_")}
     return heights, x_span / header["_cols"], y_span / header["_rows"], name, "m", meta
 
@@ -345,8 +388,7 @@ def _read_afmreader(p: Path, channel: str):
     _quiet()
     from AFMReader import asd, ibw, jpk
     suffix = p.suffix.lower()
-    (_ibw_check if suffix == ".ibw" else _tiff_check if suffix == ".jpk" else
-     lambda _: None)(p)
+    {".ibw": _ibw_check, ".jpk": _tiff_check, ".asd": _asd_check}[suffix](p)
     names = _ibw_channels(p) if suffix == ".ibw" else _afmreader_channels(p)
     channel = _pick(p, channel, names)
     try:
@@ -534,7 +576,7 @@ def channels(path) -> list[str]:
                              f"{exc})") from None
     if suffix == ".ibw":
         return _ibw_channels(p)
-    (_tiff_check if suffix == ".jpk" else lambda _: None)(p)
+    (_tiff_check if suffix == ".jpk" else _asd_check)(p)
     return _afmreader_channels(p)
 
 
