@@ -75,6 +75,9 @@ def test_tip_radius_wrong_then_slip_then_right():
     c_true = brentq(lambda c: (1 + c) ** 1.5 / (1 - c) ** 0.5
                     - _brute_force_width(r, ex._TIP_RADIUS) / (2 * r), 1e-9, 1 - 1e-9)
     assert 2 * r * c_true ** 2 / (1 - c_true) == pytest.approx(ex._TIP_RADIUS, rel=1e-6)
+    # and it agrees with the dilation module's own inverse (Brent on the forward formula)
+    from afmsmiler.imaging.dilation import tip_radius_from_width
+    assert tip_radius_from_width(r, width) == pytest.approx(radius, rel=1e-6)
     slip = ex.check_tip_radius(radius * 1e9)
     assert not slip and "10^9" in str(slip)
     sign = ex.check_tip_radius(-radius)
