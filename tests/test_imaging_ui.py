@@ -393,3 +393,14 @@ def test_the_3d_view_shows_the_finished_lines_and_the_tip_where_the_last_line_en
     assert p.scene.image_lines == 2
     p.set(pixels=32)  # another image: the old lines' mesh goes
     assert p.scene.image_lines == 1 and p.last.lines_done == 0
+
+
+def test_choosing_what_later_moves_do_changes_nothing_now(panel, runs):
+    panel.start(run=False)
+    for _ in range(3):
+        panel.step()
+    starts = runs["start"]
+    panel.set(on_change="restart")
+    assert panel.running and panel.last.lines_done == 3
+    panel.step()
+    assert runs["start"] == starts and panel.last.lines_done == 4 and panel.last.changes == ()

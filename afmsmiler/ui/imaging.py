@@ -289,6 +289,7 @@ class ImagingPanel(Panel):
         self._pending = None
         self._config = None
         self._scanned = None  # the values the image shown was started with
+        self._physics = None  # the values (but on_change) of self._config
         self._image, self._units, self._pixel = {}, {}, (1.0, 1.0)
         self._done = 0
         self._stopped = False
@@ -385,8 +386,12 @@ class ImagingPanel(Panel):
                             f"{sorted(sliders)}")
         values = dict(sliders, sample=sample, mode=mode, tip=tip, pixels=pixels,
                       on_change=on_change)
+        physics = {k: v for k, v in values.items() if k != "on_change"}
+        if self._config is not None and physics == self._physics:
+            self._show()  # only the choice for later moves changed: the scan goes on as it was
+            return
         config = self._configure(values)
-        previous, self._config = self._config, config
+        previous, self._config, self._physics = self._config, config, physics
         if self.running:
             if on_change == "restart" or previous is None or config.key != previous.key:
                 self._begin(config)
@@ -436,7 +441,9 @@ class ImagingPanel(Panel):
             once. With ``run=False`` the scan only starts: call :meth:`step` for each line.
         """
         self.stop(redraw=False)
-        self._config = self._configure(self.values())
+        values = self.values()
+        self._config = self._configure(values)
+        self._physics = {k: v for k, v in values.items() if k != "on_change"}
         self._begin(self._config)
         self.running = True
         self.start_button.disabled, self.stop_button.disabled = True, False
