@@ -388,6 +388,7 @@ def images_figure(*images, titles=None, cmap: str = "afmhot", fig: Figure | None
                                                         -0.5 * dy * k, (rows - 0.5) * dy * k))
         im.set_clim(*_clim(shown))
         channel = getattr(image, "channel", "height")
-        fig.colorbar(im, ax=ax, shrink=0.8, label=f"{channel} [{unit}]")
+        fig.colorbar(im, ax=ax, shrink=0.6 if len(images) > 2 else 0.8,
+                     label=f"{channel} [{unit}]")
         ax.set(title=title, xlabel=f"x [{lu}]", ylabel=f"y [{lu}]")
     return fig
