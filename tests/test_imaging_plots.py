@@ -132,3 +132,23 @@ def test_the_error_colour_scale_is_centred_on_zero():
     lo, hi = f.images["error"].get_clim()
     assert lo == pytest.approx(-np.abs(e).max()) and hi == pytest.approx(np.abs(e).max())
     assert f.axes["profile"].get_ylabel() == "height [nm]"
+
+
+def test_a_scanners_result_is_shown_as_it_grows():
+    from afmsmiler.controller import ContactLoop
+    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scanner import Scan, ScanSettings
+    sample = Sample(np.random.default_rng(1).normal(size=(40, 40)) * 1e-9, 10e-9)
+    scan = Scan(sample, None, ConstantForce(ContactLoop()), ScanSettings(300e-9, pixels=16))
+    for _ in range(5):
+        scan.step()
+    r = scan.result
+    v = scan_view(r)
+    assert v.lines == 16 and v.lines_done == 5 and v.row == 4
+    np.testing.assert_allclose(v.image[:5], r.images["height trace"][:5] * NM, rtol=1e-12)
+    assert np.isnan(v.image[5:]).all()
+    dx = 300e-9 / 16 * NM
+    assert v.extent == pytest.approx((-dx / 2, 16 * dx - dx / 2, -dx / 2, 16 * dx - dx / 2))
+    np.testing.assert_allclose(v.retrace, r.images["height retrace"][4] * NM, rtol=1e-12)
+    assert v.error_label == "error trace [nm]"
+    describe(ImagingFigure(v).fig)

@@ -164,16 +164,40 @@ def _shown_rows(sample, lines_done: int, factor: float) -> np.ndarray:
     return values * factor
 
 
+@dataclass(frozen=True)
+class _Channel:
+    """One channel of a scan's full image (rows not scanned NaN), as :func:`scan_view` reads it."""
+
+    heights: np.ndarray
+    pixel_size: float
+    pixel_size_y: float
+    unit: str
+
+
+def _full_images(result) -> dict:
+    """Channel name -> its full image: a ScanResult's ``images`` (all lines, NaN where none was
+    scanned), else ``channels`` (already the full image, e.g. the imaging panel's)."""
+    images = getattr(result, "images", None)
+    if images is None:
+        return dict(result.channels)
+    units = getattr(result, "units", {})
+    return {name: _Channel(np.asarray(a, dtype=float), float(result.pixel_size),
+                           float(result.pixel_size_y), units.get(name, "m"))
+            for name, a in images.items()}
+
+
 def scan_view(result, *, main: str | None = None, status: str | None = None) -> ScanView:
     """Read a scan's result (at any time during the scan) into the units shown.
 
     Parameters
     ----------
     result : ScanResult
-        ``result.channels`` maps channel names to Samples on the scan's grid (heights in the
-        channel's SI unit, ``pixel_size`` and ``pixel_size_y`` in m); ``result.lines_done`` is
-        the number of finished lines (rows 0 to ``lines_done - 1``). ``crashed`` and
-        ``stopped`` are read if present.
+        A :class:`~afmsmiler.imaging.scanner.ScanResult` (its full ``images`` with their
+        ``units`` and pixel sizes are read), or any object whose ``channels`` map channel names
+        to the full images (``heights`` of shape (lines, pixels) in the channel's SI ``unit``,
+        ``pixel_size`` and ``pixel_size_y`` in m). ``result.lines_done`` is the number of
+        finished lines (rows 0 to ``lines_done - 1``; rows never scanned are NaN). ``crashed``
+        and ``stopped`` are read if present.
     main : str, optional
         The channel to show as the image (default :func:`main_channel`); its ``" retrace"``
         twin gives the retrace profile.
@@ -189,7 +213,7 @@ def scan_view(result, *, main: str | None = None, status: str | None = None) -> 
     ValueError
         If ``main`` is not a channel, or ``lines_done`` is not in [0, lines].
     """
-    channels = result.channels
+    channels = _full_images(result)
     main = main_channel(channels) if main is None else check_choice("main", main, list(channels))
     image = channels[main]
     shape = np.shape(image.heights)
