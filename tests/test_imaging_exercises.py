@@ -13,7 +13,6 @@ from afmsmiler.samples import Sample
 
 
 # -- 1. the fastest scan -------------------------------------------------------------------------
-@pytest.mark.slow
 def test_fastest_scan_wrong_then_slip_then_right():
     best = ex.fastest_speed()
     bound = ex.DEFAULTS["max_rms_error"]

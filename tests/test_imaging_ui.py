@@ -149,7 +149,6 @@ def test_another_image_always_restarts(panel, change):
     assert panel.running and panel.last.lines_done == 0
 
 
-@pytest.mark.slow
 def test_an_idle_slider_move_scans_nothing_and_keeps_the_image(panel, runs):
     panel.start()  # not in a live notebook: runs to the end at once
     assert panel.last.lines_done == PIXELS and not panel.running and runs["line"] == PIXELS
@@ -162,7 +161,6 @@ def test_an_idle_slider_move_scans_nothing_and_keeps_the_image(panel, runs):
     np.testing.assert_allclose(panel.last.channels["height trace"].heights, ref, rtol=1e-12)
 
 
-@pytest.mark.slow
 def test_a_crash_in_constant_height_stops_the_scan_and_keeps_the_lines(runs):
     p = ImagingPanel(pixels=PIXELS, mode="constant height", sample="particles")
     # a damage force above line 0's largest force and below the scan's: a later line crashes
@@ -265,7 +263,6 @@ def _rms(a):
     return float(np.sqrt(np.nanmean(np.asarray(a) ** 2)))
 
 
-@pytest.mark.slow
 def test_notebook_faster_mid_scan_the_error_grows_from_the_next_line():
     # "Start, and after a few lines raise the speed to 1000 um/s: from the next line on the
     # error image lights up (several times the RMS) and trace and retrace part"
@@ -294,7 +291,6 @@ def test_notebook_a_blunt_tip_widens_the_particles():
     assert cover[100.0] > 3 * cover[5.0]
 
 
-@pytest.mark.slow
 def test_notebook_a_lower_damage_force_mid_scan_crashes_a_later_line():
     # "in constant height, lower the damage force to 2 nN half-way: the tip breaks on a
     # particle of a later line; the scan stops there and the lines before stay"
