@@ -350,6 +350,13 @@ def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
                 break
             time.sleep(0.05)
         assert running == "True" and 0 < seen[-1] < 256
+        # a slider moved now (a widget's message is handled like this cell) applies from the
+        # next line on
+        moved = run("print(p.running)\nif p.running: p.set(scan_speed=1000.0)")
+        time.sleep(0.05)
+        changes = run("print(*p.last.changes)")
+        if moved == ["True"]:  # (still scanning when the cell ran)
+            assert changes and int(changes[0]) >= seen[-1]
         done = run("p.stop(); print(p.running, p.last.lines_done, p.last.stopped)")
         assert done[0] == "False" and done[2] == "True" and int(done[1]) < 256
         time.sleep(0.3)  # the cancelled task scans nothing more
