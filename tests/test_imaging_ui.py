@@ -407,3 +407,22 @@ def test_choosing_what_later_moves_do_changes_nothing_now(panel, runs):
     assert panel.running and panel.last.lines_done == 3
     panel.step()
     assert runs["start"] == starts and panel.last.lines_done == 4 and panel.last.changes == ()
+
+
+def test_a_failure_during_a_live_scan_is_shown_under_the_panel(monkeypatch):
+    # a task's exception would be lost in the kernel's log: the panel shows it and can start again
+    monkeypatch.setattr(ui, "running_as_notebook", lambda: True)
+    p = ImagingPanel(pixels=PIXELS)
+
+    def broken(self, *args, **kwargs):
+        raise RuntimeError("the loop broke")
+
+    async def session():
+        monkeypatch.setattr(modes.ConstantForce, "line", broken)
+        p.start()
+        for _ in range(3):
+            await asyncio.sleep(0)
+
+    asyncio.run(session())
+    assert not p.running and "the loop broke" in p.error
+    assert not p.start_button.disabled and p.stop_button.disabled

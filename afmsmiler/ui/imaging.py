@@ -461,7 +461,8 @@ class ImagingPanel(Panel):
             while self.step():
                 await asyncio.sleep(0)  # the kernel handles the widgets' messages here
         except Exception as exc:  # shown under the panel: a task's exception is otherwise lost
-            self.running = False
+            self.running, self._task = False, None
+            self.start_button.disabled, self.stop_button.disabled = False, True
             self._report_error(exc)
 
     def step(self) -> bool:
