@@ -1,0 +1,640 @@
+"""The widget panel of module (f): scan a sample and watch the image form, line by line.
+
+Controls: the sample (synthetic generators of :mod:`afmsmiler.samples` and the real image that
+ships), the imaging mode, the tip, the scan settings and the mode's own settings, every slider
+built by :func:`~afmsmiler.ui.controls.control` from a :class:`~afmsmiler.parameters.Parameter`
+of the model layer (:data:`afmsmiler.imaging.scanner.PARAMETERS`, the controller's and the contact
+model's), and the choice of what a slider moved during a scan does: apply from the next line on,
+or restart the scan. Start and Stop buttons and a progress bar sit beside them.
+
+The scan runs one line per step: :meth:`ImagingPanel.step` asks the
+:class:`~afmsmiler.imaging.scanner.Scan` for its next line (one model run), copies the finished
+line into the panel's image and redraws the figure once. In a live notebook :meth:`start` runs
+the steps in an asyncio task on the kernel's event loop with ``await asyncio.sleep(0)`` between
+lines, so the kernel keeps handling the widgets' messages: a slider moved or Stop pressed during
+the scan takes effect before the next line. Tests (and nbval) drive the steps synchronously:
+``start(run=False)``, then ``step()`` / ``stop()``. Lines already finished are never lost.
+"""
+from __future__ import annotations
+
+import asyncio
+from dataclasses import dataclass, field
+from functools import lru_cache
+
+import ipywidgets as widgets
+import numpy as np
+
+from .. import samples as _samples
+from ..contact import PARAMETERS as CONTACT
+from ..contact import TIPS, ContactSystem, Tip, make_tip
+from ..controller import PARAMETERS as LOOP, PRESETS
+from ..imaging import modes as _modes
+from ..imaging import scanner as _scanner
+from ..imaging.modes import PARAMETERS as MODE_PARAMETERS
+from ..parameters import read_only
+from ..plots.imaging import ImagingFigure, scan_view
+from ..samples import Sample
+from ..validation import check_choice, check_finite
+from .controls import WIDTH, control
+from .panel import Panel, running_as_notebook
+
+__all__ = ["ImagingPanel", "ImagingResult", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE",
+           "SCAN_SLIDERS", "ChannelImage", "sample", "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
+
+#: The samples to scan: name -> (generator in :mod:`afmsmiler.samples`, its arguments in SI).
+#: Every synthetic one is 256 x 256 pixels of 2 nm (0.51 um); the real image is 2 um wide.
+SAMPLES = read_only({
+    "particles": ("particles", read_only(dict(shape=(256, 256), pixel_size=2e-9, count=12,
+                                              radius=15e-9, rms=0.3e-9, seed=1))),
+    "grating": ("grating", read_only(dict(pixels=(256, 256), pixel_size=2e-9, period=100e-9,
+                                          height=20e-9, duty=0.5))),
+    "terraces": ("terraces", read_only(dict(shape=(256, 256), pixel_size=2e-9,
+                                            step_height=1e-9, terrace_width=60e-9,
+                                            direction=0.3))),
+    "fibres (DNA-like)": ("fibres", read_only(dict(shape=(256, 256), pixel_size=2e-9,
+                                                   count=5, seed=2))),
+    "rough surface": ("rough_surface", read_only(dict(shape=(256, 256), pixel_size=2e-9,
+                                                      rms=3e-9, correlation_length=20e-9,
+                                                      seed=1))),
+    "real image (Bruker, 2 um)": ("real_image", read_only({})),
+})
+
+#: Imaging modes: name -> class of :mod:`afmsmiler.imaging.modes`.
+MODES = ("constant force", "constant height")
+
+#: What a slider moved during a scan does.
+ON_CHANGE = ("apply on next line", "restart")
+
+#: Pixels per line (and lines) offered; a scan of 256 x 256 takes a few seconds live.
+PIXELS = (16, 32, 64, 128, 256)
+
+#: The scan's sliders, from :data:`afmsmiler.imaging.scanner.PARAMETERS`.
+SCAN_SLIDERS = ("scan_size", "scan_speed", "angle", "tilt_x", "noise")
+
+#: The modes' sliders: mode -> control name -> Parameter of the model layer.
+MODE_SLIDERS = read_only({
+    "constant force": read_only({name: LOOP[name] for name in ("kp", "ki", "setpoint")}),
+    "constant height": read_only({"z_np": CONTACT["z_np"],
+                                  "damage_force": MODE_PARAMETERS["damage_force"]}),
+})
+
+#: Tip-parameter controls from the registry :data:`afmsmiler.contact.TIPS` (shared names once).
+TIP_CONTROLS = read_only({p.name: p for cls in TIPS.values() for p in cls.parameters})
+
+#: Controls whose change makes another image (another grid, channel or sample): they restart
+#: the scan whatever ``on_change`` says.
+RESTART = ("sample", "mode", "pixels", "scan_size", "angle")
+
+#: The scan range at the start in m (a 300 nm square: every sample holds it at any angle).
+SCAN_SIZE = 300e-9
+
+#: The mechanics of constant force: preset (a) of module (c) (a stiff sample, stable gains).
+PLANT = "a_good_tracking"
+
+
+def _extent(s: Sample) -> float:
+    """The shorter side of a sample in m (first to last pixel)."""
+    rows, cols = np.shape(s.heights)
+    return min((cols - 1) * s.pixel_size, (rows - 1) * s.pixel_size_y)
+
+
+@lru_cache(maxsize=1)
+def max_scan_size() -> float:
+    """The largest scan range in m that fits on every sample of :data:`SAMPLES` at any angle.
+
+    A square scan of side S rotated by any angle stays within a square of side S sqrt(2), so
+    S <= W / sqrt(2) for the smallest sample side W (first to last pixel) keeps every scan
+    angle and every sample valid: no slider position makes the scanner refuse the scan.
+
+    Returns
+    -------
+    float
+    """
+    return min(_extent(sample(name)) for name in SAMPLES) / np.sqrt(2.0)
+
+
+def _slider_defaults() -> dict:
+    out = {name: _scanner.PARAMETERS[name].to_display(_scanner.PARAMETERS[name].default)
+           for name in SCAN_SLIDERS}
+    for sliders in MODE_SLIDERS.values():
+        out.update({name: p.to_display(p.default) for name, p in sliders.items()})
+    out.update({name: p.to_display(p.default) for name, p in TIP_CONTROLS.items()})
+    loop = PRESETS[PLANT].loop
+    out.update(kp=loop.kp, ki=LOOP["ki"].to_display(loop.ki),
+               scan_size=_scanner.PARAMETERS["scan_size"].to_display(SCAN_SIZE))
+    return {k: float(f"{v:.12g}") for k, v in out.items()}
+
+
+#: Initial control values, in the units the controls show.
+DEFAULTS = read_only(dict(sample="particles", mode="constant force", tip="parabolic", pixels=64,
+                          on_change="apply on next line", **_slider_defaults()))
+
+_SAMPLE_CACHE: dict = {}
+
+
+def sample(name: str) -> Sample:
+    """The sample ``name`` of :data:`SAMPLES` (made once per kernel).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SAMPLES`.
+
+    Returns
+    -------
+    Sample
+    """
+    check_choice("sample", name, list(SAMPLES))
+    if name not in _SAMPLE_CACHE:
+        generator, kwargs = SAMPLES[name]
+        _SAMPLE_CACHE[name] = getattr(_samples, generator)(**kwargs)
+    return _SAMPLE_CACHE[name]
+
+
+@dataclass(frozen=True)
+class ImagingResult:
+    """The image the panel holds (what it shows), for tests and exercises; SI units.
+
+    Attributes
+    ----------
+    channels : dict
+        Channel name -> Sample (rows not scanned yet are NaN).
+    lines_done : int
+        Lines finished, rows 0 to ``lines_done - 1``.
+    lines : int
+        Lines of the whole image.
+    stopped : bool
+        Stop was pressed before the end.
+    crashed : object
+        None, or what the scan reported when the tip crashed (the line is then the last one).
+    changes : tuple of int
+        The rows from which a slider moved during the scan applied (``apply on next line``).
+    """
+
+    channels: dict
+    lines_done: int
+    lines: int
+    stopped: bool = False
+    crashed: object = None
+    changes: tuple = ()
+
+
+@dataclass
+class _Job:
+    """One Scan and the rows of the panel's image it fills (from ``first_row`` on)."""
+
+    scan: object
+    lines: object
+    first_row: int
+
+
+@dataclass
+class _Config:
+    """What one update decided (SI), to build a Scan from."""
+
+    sample: Sample
+    tip: Tip
+    mode: object
+    settings: object
+    key: tuple = field(default=())
+
+
+class ImagingPanel(Panel):
+    """Scan a sample in a chosen mode and watch the image grow, line by line.
+
+    Controls (units as shown): ``sample``, ``mode`` (constant force, constant height), ``tip``
+    and its parameters (only the chosen shape's are shown), ``pixels`` (pixels per line = lines),
+    ``scan_size`` [um], ``scan_speed`` [um/s], ``angle`` [deg], ``tilt_x`` [deg] (the sample's
+    tilt along x), ``noise`` [nm], the mode's sliders (constant force: ``kp``, ``ki`` [1/us],
+    ``setpoint`` [nm] on the mechanics of module (c)'s preset (a); constant height: ``z_np``
+    [nm], ``damage_force`` [nN]), and ``on_change`` (``"apply on next line"`` or ``"restart"``).
+    Buttons: Start, Stop; a progress bar.
+
+    Parameters
+    ----------
+    scene : bool
+        Draw the 3D view (:class:`~afmsmiler.scenes.imaging.ImagingScene`: the sample, the
+        image's finished lines, the tip where the last line ended) in the kernel's viewer.
+    vis : meshcat.Visualizer, optional
+        Where the 3D view draws instead of the kernel's viewer (tests pass a recorder); implies
+        ``scene``.
+    **initial
+        Initial control values (keys of :data:`DEFAULTS`), in the units shown.
+
+    Attributes
+    ----------
+    last : ImagingResult
+        The image so far.
+    figure : ImagingFigure
+        The image, the error channel and the last line's profiles.
+    scene : ImagingScene or None
+        The 3D view (None without ``scene``).
+    progress : ipywidgets.IntProgress
+        Lines done out of the lines of the scan.
+    running : bool
+        A scan is under way (started, neither finished nor stopped).
+    """
+
+    def __init__(self, scene: bool = False, vis=None, **initial):
+        unknown = set(initial) - set(DEFAULTS)
+        if unknown:
+            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
+        v = {**DEFAULTS, **initial}
+        check_choice("sample", v["sample"], list(SAMPLES))
+        check_choice("mode", v["mode"], list(MODES))
+        check_choice("tip", v["tip"], list(TIPS))
+        check_choice("pixels", v["pixels"], list(PIXELS))
+        check_choice("on_change", v["on_change"], list(ON_CHANGE))
+        layout = widgets.Layout(width=WIDTH)
+        c = {"sample": widgets.Dropdown(options=list(SAMPLES), value=v["sample"],
+                                        description="sample", layout=layout),
+             "mode": widgets.Dropdown(options=list(MODES), value=v["mode"], description="mode",
+                                      layout=layout),
+             "tip": widgets.Dropdown(options=[(cls.title, key) for key, cls in TIPS.items()],
+                                     value=v["tip"], description="tip", layout=layout)}
+        for name, p in TIP_CONTROLS.items():
+            c[name] = control(p, p.to_si(v[name]))
+        c["pixels"] = widgets.Dropdown(options=list(PIXELS), value=v["pixels"],
+                                       description="pixels per line", layout=layout)
+        for name in SCAN_SLIDERS:
+            p = _scanner.PARAMETERS[name]
+            c[name] = control(p, p.to_si(v[name]),
+                              high=max_scan_size() if name == "scan_size" else None)
+        for sliders in MODE_SLIDERS.values():
+            for name, p in sliders.items():
+                c[name] = control(p, p.to_si(v[name]))
+        c["on_change"] = widgets.ToggleButtons(options=list(ON_CHANGE), value=v["on_change"],
+                                               description="slider during a scan",
+                                               style={"description_width": "initial"})
+        self.controls = c
+        self.progress = widgets.IntProgress(min=0, max=1, value=0, description="0 lines",
+                                            style={"description_width": "initial"})
+        self.start_button = widgets.Button(description="Start", icon="play",
+                                           button_style="success")
+        self.stop_button = widgets.Button(description="Stop", icon="stop", button_style="danger",
+                                          disabled=True)
+        self.start_button.on_click(lambda _b: self.start())
+        self.stop_button.on_click(lambda _b: self.stop())
+        self.status = widgets.HTML()
+        self.figure = None
+        self.scene = None
+        self._vis = vis
+        self._want_scene = bool(scene) or vis is not None
+        self._scene_key = None
+        self._tip_at = None  # where the last line ended: (x, y, z) in m on the sample
+        self.fig = self.new_figure(figsize=(10.0, 7.0))
+        self.running = False
+        self._task = None
+        self._job = None
+        self._pending = None
+        self._config = None
+        self._scanned = None  # the values the image shown was started with
+        self._physics = None  # the values (but on_change) of self._config
+        self._image, self._units, self._pixel = {}, {}, (1.0, 1.0)
+        self._done = 0
+        self._stopped = False
+        self._crashed = None
+        self._changes = []
+        self.line_runs = 0  # lines the scanner computed for this panel (one per step)
+        self.controls["tip"].observe(lambda ch: self._show_controls(), names="value")
+        self.controls["mode"].observe(lambda ch: self._show_controls(), names="value")
+        self._show_controls(v["tip"], v["mode"])
+        super().__init__()
+
+    # -- controls ---------------------------------------------------------------------------
+    def _show_controls(self, tip: str | None = None, mode: str | None = None) -> None:
+        """Show only the chosen tip's and the chosen mode's sliders."""
+        tip = self.controls["tip"].value if tip is None else tip
+        mode = self.controls["mode"].value if mode is None else mode
+        shown = {p.name for p in TIPS[tip].parameters} | set(MODE_SLIDERS[mode])
+        hidden = set(TIP_CONTROLS) | {n for s in MODE_SLIDERS.values() for n in s}
+        for name in hidden:
+            self.controls[name].layout.display = None if name in shown else "none"
+
+    # -- the callback -----------------------------------------------------------------------
+    def _configure(self, values: dict) -> _Config:
+        """Check the values (units shown) and turn them into a sample, tip, mode and settings."""
+        check_choice("sample", values["sample"], list(SAMPLES))
+        mode = check_choice("mode", values["mode"], list(MODES))
+        key = check_choice("tip", values["tip"], list(TIPS))
+        pixels = check_choice("pixels", values["pixels"], list(PIXELS))
+        check_choice("on_change", values["on_change"], list(ON_CHANGE))
+
+        def si(name, p):
+            return p.check(p.to_si(check_finite(name, values[name], p.display_unit)))
+
+        tip = make_tip(key, **{p.name: si(p.name, p) for p in TIPS[key].parameters})
+        scan = {name: si(name, _scanner.PARAMETERS[name]) for name in SCAN_SLIDERS}
+        scan["tilt"] = (scan.pop("tilt_x"), 0.0)
+        knobs = {name: si(name, p) for name, p in MODE_SLIDERS[mode].items()}
+        if mode == "constant force":
+            loop = PRESETS[PLANT].loop.replace(kp=knobs["kp"], ki=knobs["ki"])
+            model = _modes.ConstantForce(loop, setpoint=knobs["setpoint"])
+        else:
+            model = _modes.ConstantHeight(ContactSystem(tip=tip), z_np=knobs["z_np"],
+                                          damage_force=knobs["damage_force"])
+        settings = _scanner.ScanSettings(scan.pop("scan_size"), pixels=pixels, lines=pixels,
+                                         **scan)
+        s = sample(values["sample"])
+        return _Config(s, tip, model, settings,
+                       key=tuple(values[name] for name in RESTART))
+
+    def update(self, sample, mode, tip, pixels, on_change, **sliders) -> None:
+        """Apply the controls' values (units shown): prepare, restart or change the scan.
+
+        Idle, the values are kept for the next Start (the image shown stays). During a scan,
+        ``on_change="restart"`` (or a change of sample, mode, pixels, scan size or angle, which
+        make another image) starts the scan again from the first line; ``"apply on next
+        line"`` keeps the lines finished and scans the following ones with the new values.
+        Nothing is scanned here: lines are scanned by :meth:`step`, one model run each.
+
+        Parameters
+        ----------
+        sample : str
+            A key of :data:`SAMPLES`.
+        mode : str
+            One of :data:`MODES`.
+        tip : str
+            A key of :data:`afmsmiler.contact.TIPS`.
+        pixels : int
+            Pixels per line (and lines), one of :data:`PIXELS`.
+        on_change : str
+            One of :data:`ON_CHANGE`.
+        **sliders : float
+            The sliders' values in the units shown: ``scan_size`` [nm], ``scan_speed``
+            [um/s], ``angle`` [deg], ``noise`` [nm], ``kp``, ``ki`` [1/us], ``setpoint`` [nm],
+            ``z_np`` [nm] and the tips' parameters (``radius`` [nm], angles [deg]).
+
+        Raises
+        ------
+        TypeError, ValueError
+            For an unknown or missing control, or a value outside its valid range, before any
+            work.
+
+        Notes
+        -----
+        "Apply on next line" builds a new :class:`~afmsmiler.imaging.scanner.Scan` with the new
+        values and takes its lines from the next one on (the lines before are not scanned
+        again). In constant force the loop of the new scan has run with the new values from the
+        first line (:class:`~afmsmiler.imaging.modes.ConstantForce` solves the whole image as
+        one polygon in time), so the line after the change shows the settled loop, not the
+        transient a real instrument shows right after its gains change.
+        """
+        expected = set(DEFAULTS) - {"sample", "mode", "tip", "pixels", "on_change"}
+        if set(sliders) != expected:
+            raise TypeError(f"update needs exactly the sliders {sorted(expected)}, got "
+                            f"{sorted(sliders)}")
+        values = dict(sliders, sample=sample, mode=mode, tip=tip, pixels=pixels,
+                      on_change=on_change)
+        physics = {k: v for k, v in values.items() if k != "on_change"}
+        if self._config is not None and physics == self._physics:
+            self._show()  # only the choice for later moves changed: the scan goes on as it was
+            return
+        config = self._configure(values)
+        previous, self._config, self._physics = self._config, config, physics
+        if self.running:
+            if on_change == "restart" or previous is None or config.key != previous.key:
+                self._begin(config)
+            else:
+                self._pending = config  # the next step scans with it
+        elif self.figure is None or previous is None or config.key != previous.key:
+            self._clear(config)
+        self._show()
+
+    # -- the scan ---------------------------------------------------------------------------
+    def _clear(self, config: _Config) -> None:
+        """An empty image of the scan ``config`` describes (its first channel all NaN)."""
+        n = config.settings.pixels
+        name = "height trace" if isinstance(config.mode, _modes.ConstantForce) \
+            else "deflection trace"
+        self._tip_at = None
+        self._image = {name: np.full((n, n), np.nan)}
+        self._units = {name: "m"}
+        self._pixel = (config.settings.scan_size / n,) * 2
+        self._done, self._stopped, self._crashed, self._changes = 0, False, None, []
+        self.progress.max, self.progress.value = n, 0
+
+    def _begin(self, config: _Config) -> None:
+        """A new scan from the first line (the image cleared)."""
+        self._clear(config)
+        scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
+        self._job = _Job(scan, scan.lines(), 0)
+        self._pending = None
+        self._scanned = config
+
+    def _continue(self, config: _Config) -> None:
+        """Scan the lines from the next one on with ``config`` (the finished lines kept)."""
+        scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
+        self._job = _Job(scan, _lines_from(scan, self._done), self._done)
+        self._pending = None
+        self._scanned = config
+        self._changes.append(self._done)
+
+    def start(self, run: bool = True) -> None:
+        """Start a scan from the first line with the controls' values.
+
+        Parameters
+        ----------
+        run : bool
+            Run it: in a live notebook as an asyncio task on the kernel's loop (one line per
+            step, the kernel responsive between lines); elsewhere (tests, nbval) to the end at
+            once. With ``run=False`` the scan only starts: call :meth:`step` for each line.
+        """
+        self.stop(redraw=False)
+        values = self.values()
+        self._config = self._configure(values)
+        self._physics = {k: v for k, v in values.items() if k != "on_change"}
+        self._begin(self._config)
+        self.running = True
+        self.start_button.disabled, self.stop_button.disabled = True, False
+        self._show()
+        if not run:
+            return
+        if running_as_notebook():
+            self._task = asyncio.ensure_future(self._run_async())
+        else:
+            while self.step():
+                pass
+
+    async def _run_async(self) -> None:
+        try:
+            while self.step():
+                await asyncio.sleep(0)  # the kernel handles the widgets' messages here
+        except Exception as exc:  # shown under the panel: a task's exception is otherwise lost
+            self.running, self._task = False, None
+            self.start_button.disabled, self.stop_button.disabled = False, True
+            self._report_error(exc)
+
+    def step(self) -> bool:
+        """Scan the next line (one model run), add it to the image and redraw once.
+
+        Returns
+        -------
+        bool
+            True while lines remain (the scan is running), False once it has ended (finished,
+            stopped or crashed).
+        """
+        if not self.running:
+            return False
+        if self._pending is not None:
+            self._continue(self._pending)
+        job = self._job
+        try:
+            record = next(job.lines)
+        except StopIteration:
+            return self._finish()
+        self.line_runs += 1
+        row, settings = record.row, job.scan.settings
+        for name, values in record.channels.items():
+            if name not in self._image or self._image[name].shape != settings.shape:
+                self._image[name] = np.full(settings.shape, np.nan)
+            self._image[name][row] = values
+            self._units[name] = job.scan.mode.unit(name)
+        self._pixel = (settings.pixel_size, settings.pixel_size_y)
+        self._done = row + (record.crash is None)
+        if self._want_scene:  # the apex where the line ended: the retrace's first pixel
+            x, y = job.scan.position(row, 0, "retrace")
+            self._tip_at = (x, y, float(job.scan.plan.retrace[row, 0]))
+        if record.crash is not None:
+            self._crashed = record.crash
+        if self._done >= self.progress.max or record.crash is not None:
+            return self._finish()
+        self._show()
+        return True
+
+    def _finish(self) -> bool:
+        self.running = False
+        self._task = None
+        self.start_button.disabled, self.stop_button.disabled = False, True
+        self._show()
+        return False
+
+    def stop(self, redraw: bool = True) -> None:
+        """Stop the scan: the lines finished so far stay in the image.
+
+        Parameters
+        ----------
+        redraw : bool
+            Show the stopped image (one redraw).
+        """
+        task, self._task = self._task, None
+        if task is not None and not task.done():
+            task.cancel()
+        if not self.running:
+            return
+        self.running = False
+        self._stopped = True
+        self.start_button.disabled, self.stop_button.disabled = False, True
+        if redraw:
+            self._show()
+
+    # -- what is shown ----------------------------------------------------------------------
+    def _result(self) -> ImagingResult:
+        dx, dy = self._pixel
+        channels = {name: ChannelImage(a.copy(), dx, dy, self._units.get(name, "m"), name)
+                    for name, a in self._image.items()}
+        return ImagingResult(channels, self._done, self.progress.max, self._stopped,
+                             self._crashed, tuple(self._changes))
+
+    def _show(self) -> None:
+        """The image so far into the figure (one redraw), the progress bar and the status."""
+        self.last = self._result()
+        # an image on screen made with other values than the controls now show says so
+        changed = (not self.running and self._done > 0 and self._scanned is not None
+                   and self._config is not self._scanned)
+        view = scan_view(self.last, status="settings changed: Start scans with them"
+                         if changed else None)
+        if self.figure is None:
+            self.figure = ImagingFigure(view, fig=self.fig)
+        else:
+            self.figure.update(view)
+        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self._draw_scene()
+        self.progress.value = self._done
+        self.progress.description = f"{self._done}/{self.progress.max} lines"
+        state = ("scanning" if self.running else "crashed" if self._crashed is not None
+                 else "stopped" if self._stopped else
+                 "done" if self._done and self._done == self.progress.max else "ready")
+        self.status.value = f"<b>{state}</b>"
+
+    def _draw_scene(self) -> None:
+        """The 3D view: the sample (rebuilt for another sample or tip), the finished lines of
+        the main channel in m, the tip where the last line ended (no physics here)."""
+        if not self._want_scene or (self._vis is None and not self.scene_open()):
+            return
+        config = self._config
+        key = (id(config.sample), config.tip)
+        if self.scene is None or key != self._scene_key:
+            from ..scenes.imaging import ImagingScene
+            self.scene = ImagingScene(config.sample, tip=config.tip, vis=self._vis)
+            self._scene_key = key
+        channel = self.last.channels.get("height trace")  # constant force's image
+        drawn = self.scene.image_lines or 0
+        if channel is not None and (self._done >= 2 or drawn >= 2):
+            # one row (a scan restarted) removes the image's mesh, as show_image says
+            rows = max(self._done, 1)
+            heights = np.nan_to_num(channel.heights[:rows])
+            self.scene.show_image(Sample(heights, channel.pixel_size, "height trace",
+                                         channel.pixel_size_y), lines=self.last.lines)
+        if self._tip_at is not None and self.scene.tip is not None:
+            self.scene.move_tip(*self._tip_at)
+
+    def widget(self) -> widgets.Widget:
+        """Controls on the left (sample, tip, scan, mode), buttons and progress, the figure below.
+
+        Returns
+        -------
+        ipywidgets.VBox
+        """
+        figure = super().widget().children[1]
+        left = widgets.VBox([self.controls[n] for n in ("sample", "mode", "tip", *TIP_CONTROLS,
+                                                        "pixels")])
+        right = widgets.VBox([self.controls[n] for n in (*SCAN_SLIDERS,
+                                                         *[n for s in MODE_SLIDERS.values()
+                                                           for n in s])])
+        run = widgets.VBox([self.controls["on_change"],
+                            widgets.HBox([self.start_button, self.stop_button]),
+                            self.progress, self.status])
+        return widgets.VBox([widgets.HBox([left, right, run]), figure])
+
+
+@dataclass(frozen=True)
+class ChannelImage:
+    """One channel of the panel's image, rows not scanned yet NaN (a Sample refuses NaN).
+
+    Attributes
+    ----------
+    heights : numpy.ndarray
+        Values in ``unit``, shape (lines, pixels).
+    pixel_size, pixel_size_y : float
+        Spacing of the pixels along x and of the lines along y in m.
+    unit : str
+        SI unit of the values (``"m"`` for heights and deflections).
+    name : str
+        The channel's name.
+    """
+
+    heights: np.ndarray
+    pixel_size: float
+    pixel_size_y: float
+    unit: str = "m"
+    name: str = ""
+
+    def finished(self, lines_done: int) -> Sample:
+        """The finished lines as a Sample (rows 0 to ``lines_done - 1``).
+
+        Parameters
+        ----------
+        lines_done : int
+            Lines finished, at least 2 (a Sample holds at least two values per axis).
+
+        Returns
+        -------
+        Sample
+        """
+        return Sample(self.heights[:lines_done], self.pixel_size, self.name, self.pixel_size_y)
+
+
+def _lines_from(scan, row: int):
+    """``scan``'s lines from ``row`` on, the lines before it not scanned (one mode run each)."""
+    return scan.lines(start=row)
