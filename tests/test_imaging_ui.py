@@ -428,3 +428,19 @@ def test_a_failure_during_a_live_scan_is_shown_under_the_panel(monkeypatch):
     asyncio.run(session())
     assert not p.running and "the loop broke" in p.error
     assert not p.start_button.disabled and p.stop_button.disabled
+
+
+def test_a_line_not_shown_appears_in_the_next_picture(panel, runs):
+    """A live scan draws at most one picture per FRAME_INTERVAL (``step(show=False)`` between):
+    every line drawn sent a 0.5 MB image pair and a cell run during the scan waited seconds for
+    its answer behind them. The lines scanned meanwhile are all in the next picture."""
+    panel.start(run=False)
+    frames = panel.live.frames_sent
+    for _ in range(3):
+        assert panel.step(show=False)
+    assert runs["line"] == 3 and panel.live.frames_sent == frames  # scanned, not drawn
+    assert panel.step()
+    assert panel.live.frames_sent == frames + 1 and panel.progress.value == 4
+    image = np.ma.getmaskarray(panel.figure.images["image"].get_array())
+    assert not image[:4].any() and image[4:].all()  # the four lines, and only those
+

@@ -10,14 +10,17 @@ or restart the scan. Start and Stop buttons and a progress bar sit beside them.
 The scan runs one line per step: :meth:`ImagingPanel.step` asks the
 :class:`~afmsmiler.imaging.scanner.Scan` for its next line (one model run), copies the finished
 line into the panel's image and redraws the figure once. In a live notebook :meth:`start` runs
-the steps in an asyncio task on the kernel's event loop with ``await asyncio.sleep(0)`` between
-lines, so the kernel keeps handling the widgets' messages: a slider moved or Stop pressed during
-the scan takes effect before the next line. Tests (and nbval) drive the steps synchronously:
+the steps in an asyncio task on the kernel's event loop, one line per line time of the instrument
+(at most :attr:`ImagingPanel.MAX_LINE_WAIT`), waiting between lines, so the kernel keeps handling
+the widgets' messages: a slider moved or Stop pressed during the scan takes effect before the next
+line; it draws at most one picture per :attr:`ImagingPanel.FRAME_INTERVAL` (the lines finished
+meanwhile appear in the next one). Tests (and nbval) drive the steps synchronously:
 ``start(run=False)``, then ``step()`` / ``stop()``. Lines already finished are never lost.
 """
 from __future__ import annotations
 
 import asyncio
+import time
 from dataclasses import dataclass, field
 from functools import lru_cache
 
@@ -456,17 +459,43 @@ class ImagingPanel(Panel):
             while self.step():
                 pass
 
+    #: s between two pictures of a running scan in a live notebook. Every line drawn sent a
+    #: 256 x 256 image pair (0.5 MB) 18 times a second, and a cell run during the scan waited
+    #: 3.5 s for its answer behind them; the lines scanned meanwhile appear in the next picture.
+    FRAME_INTERVAL = 0.1
+    #: s: the longest a live scan waits per line. A live scan takes the instrument's own line
+    #: time (trace and retrace at the scan speed, :attr:`ScanSettings.line_time`), so that a
+    #: student can move a slider "after some 20 lines" and a faster scan visibly runs faster;
+    #: a slower scan than this waits this long (and is computed, not waited, beyond).
+    MAX_LINE_WAIT = 0.25
+
     async def _run_async(self) -> None:
         try:
-            while self.step():
-                await asyncio.sleep(0)  # the kernel handles the widgets' messages here
+            shown = due_line = time.monotonic()
+            while True:
+                now = time.monotonic()
+                picture = now - shown >= self.FRAME_INTERVAL
+                if not self.step(show=picture):
+                    break
+                if picture:
+                    shown = now
+                line_time = min(self._job.scan.settings.line_time, self.MAX_LINE_WAIT)
+                due_line = max(due_line + line_time, time.monotonic() - line_time)
+                # the kernel handles the widgets' messages (a slider, Stop) while it waits
+                await asyncio.sleep(max(0.0, due_line - time.monotonic()))
         except Exception as exc:  # shown under the panel: a task's exception is otherwise lost
             self.running, self._task = False, None
             self.start_button.disabled, self.stop_button.disabled = False, True
             self._report_error(exc)
 
-    def step(self) -> bool:
+    def step(self, show: bool = True) -> bool:
         """Scan the next line (one model run), add it to the image and redraw once.
+
+        Parameters
+        ----------
+        show : bool
+            Redraw (figure, progress, 3D view) after the line; the scan's last line is always
+            shown. A live scan shows at most one picture per :attr:`FRAME_INTERVAL`.
 
         Returns
         -------
@@ -499,7 +528,10 @@ class ImagingPanel(Panel):
             self._crashed = record.crash
         if self._done >= self.progress.max or record.crash is not None:
             return self._finish()
-        self._show()
+        if show:
+            self._show()
+        else:
+            self.last = self._result()  # the state is current; only the picture waits
         return True
 
     def _finish(self) -> bool:
