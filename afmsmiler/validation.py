@@ -12,6 +12,7 @@ write ``length = check_positive("length", length, "m")``.
 from __future__ import annotations
 
 import math
+import os
 from numbers import Real
 
 import numpy as np
@@ -27,6 +28,7 @@ __all__ = [
     "check_instance",
     "check_size",
     "check_shape",
+    "check_writable_path",
     "MAX_SIZE",
 ]
 
@@ -396,3 +398,41 @@ def check_instance(name: str, value, kind, what: str | None = None):
             what = " or ".join(k.__name__ for k in kinds)
         raise TypeError(f"{name} must be a {what}, got {type(value).__name__} {_short(value)}")
     return value
+
+
+def check_writable_path(name: str, path, what: str = "a file") -> str:
+    """``path`` as a str naming a file that can be written (its folder exists), before any work.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    path : str or os.PathLike
+        The file to write.
+    what : str
+        What the file is, for the message ("a PNG file").
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        If ``path`` is not a path, names a folder, or lies in a folder that does not exist.
+    """
+    try:
+        path = os.fspath(path)
+    except TypeError:
+        raise ValueError(f"{name} must be a str or os.PathLike naming {what}, got "
+                         f"{path!r} ({type(path).__name__})") from None
+    if isinstance(path, bytes):
+        path = os.fsdecode(path)
+    if not path or os.path.isdir(path):
+        raise ValueError(f"{name} must name a file, got the folder {path!r}")
+    parent = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(parent):
+        raise ValueError(f"{name} must be in an existing folder, got {path!r} ({parent!r} does "
+                         f"not exist)")
+    return path
+

@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
-__all__ = ["Feedback", "check_close", "diagnose_slip"]
+__all__ = ["Feedback", "check_close", "diagnose_slip", "read_number"]
 
 
 @dataclass(frozen=True)
@@ -124,3 +124,32 @@ def check_close(quantity: str, answer, expected: float, rtol: float, unit: str =
                                f"{100 * rtol:g}%). {hint}".strip())
     return Feedback(False, f"{quantity} = {value:.4g}{u} is off by {100 * err:.1f}% "
                            f"(needs to be within {100 * rtol:g}%). {hint}".strip())
+
+
+def read_number(name: str, answer, hint: str):
+    """A student's answer as a finite float, or the feedback that asks for one.
+
+    Parameters
+    ----------
+    name : str
+        What is asked for, as the message names it ("a length").
+    answer : object
+        The student's answer (None when not yet given).
+    hint : str
+        Added to the message.
+
+    Returns
+    -------
+    (value, feedback) : tuple
+        ``(float, None)`` for a finite number, else ``(None, Feedback)`` saying what is wrong.
+    """
+    if answer is None:
+        return None, Feedback(False, f"enter {name}. {hint}")
+    try:
+        value = float(answer)
+    except (TypeError, ValueError):
+        return None, Feedback(False, f"{name} must be a number, got {answer!r}. {hint}")
+    if not math.isfinite(value):
+        return None, Feedback(False, f"{name} must be finite, got {value!r}. {hint}")
+    return value, None
+

@@ -17,7 +17,7 @@ from ..instrument import OpticalHead, align
 from ..instrument.optics import interval_fraction
 from ..parameters import read_only
 from ..validation import check_choice, check_range
-from . import Feedback, check_close
+from . import Feedback, check_close, read_number
 
 __all__ = ["givens", "check_deflection_sensitivity", "check_spot_direction",
            "check_half_off_sum", "DIRECTIONS"]
@@ -64,18 +64,6 @@ def givens() -> dict:
                 spot_from_end=head.lever.length - s.spot_on_lever[0], knobs=dict(s.knobs))
 
 
-def _number(name, answer, hint):
-    if answer is None:
-        return None, Feedback(False, f"enter {name}. {hint}")
-    try:
-        value = float(answer)
-    except (TypeError, ValueError):
-        return None, Feedback(False, f"{name} must be a number, got {answer!r}. {hint}")
-    if not math.isfinite(value):
-        return None, Feedback(False, f"{name} must be finite, got {value!r}. {hint}")
-    return value, None
-
-
 def check_deflection_sensitivity(answer, rtol: float = 0.03) -> Feedback:
     """Exercise 1: the aligned head's deflection sensitivity (the "InvOLS") in m/V.
 
@@ -101,7 +89,7 @@ def check_deflection_sensitivity(answer, rtol: float = 0.03) -> Feedback:
     hint = ("dVERT/dz = SUM sqrt(8/pi) / w(D) x 3 D / L (the reflection doubles the lever's end "
             "slope 3 z / (2 L)); the sensitivity is its inverse. Use givens() and give it in "
             "m/V.")
-    value, fail = _number("a deflection sensitivity", answer, hint)
+    value, fail = read_number("a deflection sensitivity", answer, hint)
     if fail is not None:
         return fail
     expected = 1.0 / _aligned_head().sensitivity(normalised=False)
@@ -185,7 +173,7 @@ def check_half_off_sum(ratio, rtol: float = 0.02) -> Feedback:
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
     hint = ("the spot is a 2-D Gaussian; along the lever its centre sits on the edge, across it "
             "nothing changed. Give a plain ratio, not a per cent.")
-    value, fail = _number("a ratio", ratio, hint)
+    value, fail = read_number("a ratio", ratio, hint)
     if fail is not None:
         return fail
     head = OpticalHead()

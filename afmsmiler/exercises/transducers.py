@@ -10,25 +10,13 @@ import math
 from ..parameters import read_only
 from ..transducers import Electrothermal, Interferometer, OpticalBeamDeflection, Piezoresistive
 from ..validation import check_range
-from . import Feedback, check_close
+from . import Feedback, check_close, read_number
 
 __all__ = ["DEFAULTS", "check_length_doubling_sensitivity", "check_two_omega_power",
            "check_bridge_output", "check_quadrature_phase"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(length=225e-6, ac_voltage=2.0, resistance=1e3, deflection=100e-9))
-
-
-def _number(name, answer, hint):
-    if answer is None:
-        return None, Feedback(False, f"enter {name}. {hint}")
-    try:
-        value = float(answer)
-    except (TypeError, ValueError):
-        return None, Feedback(False, f"{name} must be a number, got {answer!r}. {hint}")
-    if not math.isfinite(value):
-        return None, Feedback(False, f"{name} must be finite, got {value!r}. {hint}")
-    return value, None
 
 
 def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS["length"],
@@ -56,7 +44,7 @@ def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
     hint = ("The spot moves by 2 D theta and theta = 3 z / (2 L) for a tip deflection z: how does "
             "the signal per nm depend on L? Give L in metres.")
-    value, fail = _number("a length", length, hint)
+    value, fail = read_number("a length", length, hint)
     if fail is not None:
         return fail
     if not p.low <= value <= p.high:
@@ -92,7 +80,7 @@ def check_two_omega_power(amplitude, ac_voltage: float = DEFAULTS["ac_voltage"],
     model = Electrothermal(ac_voltage=ac_voltage, resistance=resistance)
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
     hint = "Expand (V_ac cos wt)^2 / R with cos^2 x = (1 + cos 2x) / 2. Give it in W."
-    value, fail = _number("a power amplitude", amplitude, hint)
+    value, fail = read_number("a power amplitude", amplitude, hint)
     if fail is not None:
         return fail
     return check_close("the 2-omega power amplitude", value, model.power_components(0.0).second,
@@ -124,7 +112,7 @@ def check_bridge_output(voltage, deflection: float = DEFAULTS["deflection"],
     hint = ("F = k z; the stress at the resistor is 6 F (L - l_r/2) / (w h^2) scaled to the "
             "junction's mid-depth, dR/R = pi_l sigma and V_out = V_b dR / (4 R). A lever bent up "
             "compresses its top. Give V_out in V.")
-    value, fail = _number("a voltage", voltage, hint)
+    value, fail = read_number("a voltage", voltage, hint)
     if fail is not None:
         return fail
     expected = float(model.respond(deflection))
@@ -151,7 +139,7 @@ def check_quadrature_phase(phase, rtol: float = 0.01) -> Feedback:
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
     hint = ("P = P0 (1 + V cos(4 pi d / lambda + phi)): where is the fringe steepest? "
             "Give phi in rad.")
-    value, fail = _number("a phase", phase, hint)
+    value, fail = read_number("a phase", phase, hint)
     if fail is not None:
         return fail
     wrapped = math.remainder(value, 2 * math.pi)

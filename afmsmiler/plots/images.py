@@ -10,7 +10,6 @@ the 3D view. :func:`scale_bar_length` picks the bar's round length.
 from __future__ import annotations
 
 import math
-import os
 from dataclasses import dataclass
 
 import matplotlib
@@ -21,7 +20,8 @@ from matplotlib.patches import Rectangle
 
 from ..parameters import unit_scale
 from ..samples import Sample
-from ..validation import check_instance, check_integer, check_positive, check_range
+from ..validation import (check_instance, check_integer, check_positive, check_range,
+                          check_writable_path)
 
 __all__ = ["PngExport", "save_png", "scale_bar_length", "scale_bar_label", "MAX_PNG_SIDE",
            "BAR_FRACTION"]
@@ -116,23 +116,6 @@ def scale_bar_label(length: float) -> str:
     return f"{value:g} {shown}"
 
 
-def _png_path(path) -> str:
-    try:
-        path = os.fspath(path)
-    except TypeError:
-        raise ValueError(f"path must be a str or os.PathLike naming a PNG file, got "
-                         f"{path!r} ({type(path).__name__})") from None
-    if isinstance(path, bytes):
-        path = os.fsdecode(path)
-    if not path or os.path.isdir(path):
-        raise ValueError(f"path must name a file, got the folder {path!r}")
-    parent = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(parent):
-        raise ValueError(f"path must be in an existing folder, got {path!r} ({parent!r} does not "
-                         f"exist)")
-    return path
-
-
 def _value_unit(sample: Sample):
     """(factor, unit label) to show the sample's values in: nm or um for heights."""
     if sample.unit != "m":
@@ -185,7 +168,7 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
     h = sample.heights
     if h.ndim != 2:
         raise ValueError(f"sample must be an image (2-D heights), got shape {h.shape}")
-    path = _png_path(path)
+    path = check_writable_path("path", path, "a PNG file")
     try:
         colormap = matplotlib.colormaps[cmap]
     except (KeyError, TypeError):

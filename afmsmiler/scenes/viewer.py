@@ -21,7 +21,7 @@ import threading
 import meshcat
 from meshcat.visualizer import ViewerWindow
 
-from ..validation import check_instance
+from ..validation import check_instance, check_writable_path
 
 __all__ = ["get_viewer", "close_viewer", "viewer_running", "static_html", "save_static_html",
            "OWNER_ENV"]
@@ -133,24 +133,6 @@ def static_html(vis: meshcat.Visualizer | None = None) -> str:
     return vis.static_html()
 
 
-def _html_path(path) -> str:
-    """``path`` as a str naming a file that can be written, or a ValueError naming ``path``."""
-    try:
-        path = os.fspath(path)
-    except TypeError:
-        raise ValueError(f"path must be a str or os.PathLike naming an HTML file, got "
-                         f"{path!r} ({type(path).__name__})") from None
-    if isinstance(path, bytes):
-        path = os.fsdecode(path)
-    if not path or os.path.isdir(path):
-        raise ValueError(f"path must name a file, got the folder {path!r}")
-    parent = os.path.dirname(os.path.abspath(path))
-    if not os.path.isdir(parent):
-        raise ValueError(f"path must be in an existing folder, got {path!r} ({parent!r} does not "
-                         f"exist)")
-    return path
-
-
 def save_static_html(path, vis: meshcat.Visualizer | None = None) -> str:
     """Write :func:`static_html` to ``path`` (for the course book) and return the path.
 
@@ -169,7 +151,7 @@ def save_static_html(path, vis: meshcat.Visualizer | None = None) -> str:
     TypeError
         If ``vis`` is not a :class:`meshcat.Visualizer`.
     """
-    path = _html_path(path)
+    path = check_writable_path("path", path, "an HTML file")
     if vis is not None:
         check_instance("vis", vis, meshcat.Visualizer)
     html = static_html(vis)  # before the file is opened: a failed export leaves no empty file
