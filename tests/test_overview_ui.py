@@ -304,3 +304,22 @@ def test_walkthrough_moves_the_camera_and_highlights_in_the_scene():
                                    -scene.transform(first)[:3, 3])
     panel.back_step()
     assert set(panel.scene.highlighted) == {STEPS[-2].parts[0]}
+
+
+def test_align_sets_the_knobs_where_the_manuals_procedure_ends(panel):
+    """Notebook 05's one-line call: the panel runs align() from a freshly mounted head and sets
+    the sliders (in turns) to its knobs; the display is then that head's, aligned."""
+    run = panel.align()
+    assert run.alignment
+    reference = align(OpticalHead()).alignment.signals  # the same procedure, run again
+    for name, angle in reference.knobs.items():
+        assert panel.values()[name] == pytest.approx(angle / TURN, abs=1e-9)
+    assert panel.last.signals.sum == pytest.approx(reference.sum, rel=1e-9)
+
+
+def test_a_bad_deflection_moves_no_knob():
+    head = OpticalHead()
+    before = dict(head.knobs)
+    with pytest.raises(ValueError, match="deflection"):
+        head.set(laser_x=KNOBS["laser_x"].to_si(1.0), deflection=1.0)  # a metre: out of range
+    assert dict(head.knobs) == before

@@ -411,9 +411,10 @@ class OpticalHead:
         ------
         ValueError
             For an unknown knob name or a value beyond its travel (naming it, the value and the
-            travel), before any knob moves.
+            travel), or a deflection out of range, before any knob moves.
         """
         checked = {name: _check_knob(name, value) for name, value in knobs.items()}
+        self._check_deflection(deflection)  # before any knob moves
         self._knobs.update(checked)
         return self.signals(deflection)
 
@@ -470,6 +471,10 @@ class OpticalHead:
                                k["detector_lateral"], 0.0)[0]
         return self._volts(quads)[0]
 
+    def _check_deflection(self, deflection) -> float:
+        return check_range("deflection", deflection, -self.lever.length / 10,
+                           self.lever.length / 10, "m")
+
     def signals(self, deflection: float = 0.0) -> Signals:
         """The display for the current knobs with the tip deflected by ``deflection``.
 
@@ -483,8 +488,7 @@ class OpticalHead:
         -------
         Signals
         """
-        z = check_range("deflection", deflection, -self.lever.length / 10,
-                        self.lever.length / 10, "m")
+        z = self._check_deflection(deflection)
         k = self._knobs
         quads, lever_share, chip_share, (mx, my), (v, lat) = self._evaluate(
             k["laser_x"], k["laser_y"], k["detector_vertical"], k["detector_lateral"], z)

@@ -428,7 +428,7 @@ class ImagingPanel(Panel):
     def _continue(self, config: _Config) -> None:
         """Scan the lines from the next one on with ``config`` (the finished lines kept)."""
         scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
-        self._job = _Job(scan, _lines_from(scan, self._done), self._done)
+        self._job = _Job(scan, scan.lines(start=self._done), self._done)
         self._pending = None
         self._scanned = config
         self._changes.append(self._done)
@@ -665,8 +665,3 @@ class ChannelImage:
         Sample
         """
         return Sample(self.heights[:lines_done], self.pixel_size, self.name, self.pixel_size_y)
-
-
-def _lines_from(scan, row: int):
-    """``scan``'s lines from ``row`` on, the lines before it not scanned (one mode run each)."""
-    return scan.lines(start=row)

@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import ipywidgets as widgets
 import numpy as np
 
-from ..instrument import DEFAULT_LEVER, KNOBS, OpticalHead, Signals
+from ..instrument import DEFAULT_LEVER, KNOBS, AlignmentRun, OpticalHead, Signals, align
 from ..instrument.walkthrough import SETUP, STEP_TOLERANCES, SetupState, StepCheck, Walkthrough
 from ..parameters import read_only, shown
 from ..scenes.instrument import INSTRUMENTS
@@ -354,6 +354,22 @@ class OverviewPanel(Panel):
         """Go back one step of the guided setup (one update)."""
         self.walkthrough.back()
         self._go_to_step()
+
+    def align(self) -> AlignmentRun:
+        """Align a freshly mounted head as the manual does and set the knobs to the result.
+
+        Runs :func:`afmsmiler.instrument.align` from the just-mounted state (not from the knobs
+        shown), then sets the four knob sliders to where it ended (one update).
+
+        Returns
+        -------
+        AlignmentRun
+            The steps it took and the alignment reached.
+        """
+        run = align(OpticalHead(self.head.lever))
+        self.set(**{name: KNOBS[name].to_display(angle)
+                    for name, angle in run.alignment.signals.knobs.items()})
+        return run
 
     def check_step(self) -> StepCheck:
         """Check the current step on what the model last computed (no model run).
