@@ -6,7 +6,7 @@ PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.afmsmiler-installed
 export MPLBACKEND ?= Agg
 
-.PHONY: install lab test unit notebooks bench book clean browser
+.PHONY: install lab test unit notebooks bench book clean browser firmware
 
 ## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
 ## missing and we are root (as in CI); otherwise those tests are skipped and say why.
@@ -19,10 +19,24 @@ browser:
 	      || echo "apt-get could not install chromium: the browser tests will be skipped"; \
 	  else echo "no $(BROWSER) and not root: the browser tests will be skipped"; fi; }
 
+## avr-gcc, the Arduino core and simavr for the firmware tests (tests/test_hardware_firmware*.py):
+## the macroscopic AFM's real firmware is built and run in an emulated ATmega2560. Installed with
+## apt-get when missing and we are root (as in CI); otherwise those tests are skipped and say why.
+FIRMWARE_PACKAGES := gcc-avr avr-libc arduino-core-avr simavr libsimavr-dev
+firmware:
+	@{ command -v avr-gcc >/dev/null && test -d /usr/share/arduino/hardware/arduino/avr \
+	    && test -f /usr/include/simavr/sim_avr.h; } || { \
+	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing avr-gcc, the Arduino core and simavr for the firmware tests"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
+	      $(FIRMWARE_PACKAGES) >/dev/null \
+	      || echo "apt-get could not install them: the firmware tests will be skipped"; \
+	  else echo "no avr-gcc/simavr and not root: the firmware tests will be skipped"; fi; }
+
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,lab,files,bench]'
+	$(PY) -m pip install --quiet -e '.[test,lab,files,bench,hardware]'
 	touch $(STAMP)
 
 install: $(STAMP)
@@ -34,7 +48,7 @@ lab: $(STAMP)
 
 ## Everything: every test (slow and viewer ones too), the docstrings' examples, every notebook
 ## under nbval, then the check that no 3D server outlived them.
-test: $(STAMP) browser
+test: $(STAMP) browser firmware
 	$(PY) -m pytest tests
 	$(PY) -m pytest -p no:cacheprovider -p tests.doctest_no_viewer --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
