@@ -71,7 +71,10 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            "afmsmiler.imaging.corrections", "afmsmiler.imaging.statistics",
            "afmsmiler.plots.images",
            # module (e): the optical head's laser alignment
-           "afmsmiler.instrument.optics", "afmsmiler.instrument.alignment"]
+           "afmsmiler.instrument.optics", "afmsmiler.instrument.alignment",
+           # module (g): the imaging modalities
+           "afmsmiler.modes._forces", "afmsmiler.modes.fm",
+           "afmsmiler.modes.lateral"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s per call: the issue's bound
 MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machine, shared)
@@ -94,6 +97,10 @@ ACCEPTED = {
                                                 "tip was in contact at the end of the line"),
     # any text is a file name; "1e-6" would also write a PNG into the working directory
     "plots.images.save_png:path": (("str",), "any text is a file name"),
+    "modes.lateral.LateralForceMode.line:state": (
+        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        "unused and documented so: each line is a steady friction loop"),
+    "modes.lateral.friction_scan:seed": (("None",), "None is the documented fresh noise"),
 }
 # Returned by the models, not built by a user: their constructors are not part of the input API
 # (their methods are called on a result the model returned, see INSTANCES).
@@ -104,7 +111,10 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            # module (f): the scanner's and the corrections' results, and what a mode returns
            # (the scanner checks a ModeLine's channels when it receives one)
            "ScanResult", "LineRecord", "ScanPlan", "ModeLine", "Crash", "Plane", "Histogram",
-           "Profile", "PngExport"}
+           "Profile", "PngExport",
+           # module (g): what the modalities' models return
+           "AmplitudeCurve", "SteadyState", "FrequencyShiftCurve", "FrictionLoop",
+           "FrictionImages"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -247,6 +257,14 @@ VALID = {
     "plan": Ctx(_plan), "state": Ctx(lambda inst: inst.start(_plan(inst))),
     "channel": Ctx(lambda inst: inst.channels[0] if hasattr(inst, "channels") else "height"),
     "start": (10e-9, 20e-9), "end": (120e-9, 100e-9), "line_rate": 1.0, "t": 1e-3,
+    # module (g)
+    "hamaker_constant": 6.4e-20, "intermolecular_distance": 1.65e-10, "amplitude": 10e-9,
+    "phase": 1.0, "distances": lambda: np.linspace(2e-9, 12e-9, 20),
+    "levers": lambda: __import__("afmsmiler.modes", fromlist=["TappingLever"]).TappingLever(),
+    "z": lambda: np.linspace(0.3e-9, 10e-9, 64), "force_gradient": 0.1,
+    "lateral_force": 1e-9, "friction_coefficient": 0.2, "direction": 1,
+    "topography": _image, "friction": lambda: __import__("afmsmiler.samples", fromlist=[
+        "Sample"]).Sample(np.full((16, 16), 0.2), 10e-9, "friction", unit=""),
 }
 
 # Valid values for one callable (by its qualified name), where the name table does not fit.
@@ -309,6 +327,14 @@ OVERRIDES = {
     "afmsmiler.imaging.scanner.scan": {"mode": _constant_force},
     "afmsmiler.plots.images.save_png": {
         "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.png"},
+    # module (g)
+    "afmsmiler.modes.tapping.integrate": {"distance": 12e-9},
+    "afmsmiler.modes.fm.frequency_shift": {"force": lambda: _vdw},
+    "afmsmiler.modes.fm.frequency_shift_curve": {"force": lambda: _vdw},
+    "afmsmiler.modes.fm.sader_jarvis": {"df": lambda: -10.0 * (0.3e-9 / np.linspace(
+        0.3e-9, 10e-9, 64)) ** 2},
+    "afmsmiler.modes.lateral.friction_loop": {"heights": lambda: np.zeros(32)},
+    "afmsmiler.modes.lateral.lateral_force": {"slope": 0.0},
     "afmsmiler.controller.ContactLoop.scan_line": {
         "x": lambda: np.linspace(0.0, 1.5e-6, 16), "height": lambda: np.zeros(16)},
 }
@@ -408,6 +434,11 @@ INSTANCES = {
                                   fromlist=["line_profile"]).line_profile(
         _image(), (10e-9, 20e-9), (120e-9, 100e-9)),
 }
+
+
+def _vdw(z):
+    """A van der Waals force law (N) of the distance z (m): module (g)'s FM functions take one."""
+    return -6.4e-20 * 10e-9 / (6.0 * np.asarray(z) ** 2)
 
 
 def _obd():

@@ -257,3 +257,22 @@ def test_bad_input_is_named(call, name):
 def test_parameters_are_consistent():
     for p in lateral.PARAMETERS.values():
         assert p.check(p.default) == p.default
+
+
+def test_a_vertical_wall_is_refused_naming_the_topography():
+    """A slope that rounds to 90 degrees (heights of 1e300 m) named the internal ``slope`` before;
+    the user's parameter is the topography."""
+    from afmsmiler.modes import friction_scan
+    from afmsmiler.samples import Sample
+    topo = Sample(np.where(np.arange(16) < 8, 0.0, 1e300) * np.ones((4, 1)), 10e-9, "wall")
+    friction = Sample(np.full((4, 16), 0.2), 10e-9, "friction", unit="")
+    with pytest.raises(ValueError, match="topography must have slopes below 90 degrees"):
+        friction_scan(topo, friction)
+
+
+def test_lateral_mode_line_refuses_a_plan_that_is_not_one():
+    from afmsmiler.modes import LateralForceMode
+    from afmsmiler.samples import Sample
+    mode = LateralForceMode(Sample(np.full((4, 4), 0.2), 10e-9, "friction", unit=""))
+    with pytest.raises(TypeError, match="plan"):
+        mode.line(1.0, 0)

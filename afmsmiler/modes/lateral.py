@@ -325,10 +325,17 @@ def _stick(slide, start, stiffness, travel):
     return np.where(stuck, line, slide)
 
 
-def _passes(heights, mu, pixel_size, normal_force, stiffness, model):
+def _passes(heights, mu, pixel_size, normal_force, stiffness, model, name="heights"):
     """Trace and retrace lateral forces of (rows, pixels) heights and mu, the stuck starts
-    included (each trace starting from the row's own retrace end: a steady loop)."""
-    slope = np.arctan(np.gradient(heights, pixel_size, axis=-1))
+    included (each trace starting from the row's own retrace end: a steady loop). ``name`` is
+    the caller's parameter that holds the heights: a surface with a vertical slope (which no
+    tip can slide along) is refused naming it."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        slope = np.arctan(np.gradient(heights, pixel_size, axis=-1))
+    steepest = float(np.max(np.abs(slope))) if slope.size else 0.0
+    if not steepest < math.pi / 2:
+        raise ValueError(f"{name} must have slopes below 90 degrees along the scan (a tip cannot "
+                         f"slide up a wall), got a slope of {math.degrees(steepest):.6g} degrees")
     slide_t = lateral_force(slope, mu, 1, normal_force=normal_force, model=model)
     slide_r = lateral_force(slope, mu, -1, normal_force=normal_force, model=model)
     slide_t, slide_r = np.atleast_2d(slide_t), np.atleast_2d(slide_r)
@@ -463,7 +470,7 @@ def friction_scan(topography: Sample, friction: Sample, *,
     model : str
         ``"linear"`` or ``"wedge"`` (:func:`lateral_force`).
     seed : int or None
-        Seed of the noise (numpy's default_rng).
+        Seed of the noise (numpy's default_rng); None draws fresh noise on every call.
 
     Returns
     -------
@@ -503,7 +510,8 @@ def friction_scan(topography: Sample, friction: Sample, *,
     check_choice("model", model, MODELS)
     if seed is not None:
         seed = check_integer("seed", seed, 0)
-    trace, retrace = _passes(topography.heights, mu, topography.pixel_size, load, k, model)
+    trace, retrace = _passes(topography.heights, mu, topography.pixel_size, load, k, model,
+                             "topography")
     trace, retrace = trace.reshape(mu.shape), retrace.reshape(mu.shape)
     if noise > 0:
         rng = np.random.default_rng(seed)
@@ -654,6 +662,7 @@ class LateralForceMode(Mode):
         -------
         ModeLine
         """
+        row = self._row(plan, row)
         mu_t = self._mu(plan.x_trace[row], plan.y_trace[row])
         mu_r = self._mu(plan.x_retrace[row], plan.y_retrace[row])
         heights = np.stack((plan.trace[row], plan.retrace[row]))
