@@ -13,9 +13,10 @@ damping), mode 1 driven at W w_1 (the tapping lever's drive) and mode 2 at its r
 
 **The modes from module (a)'s beam** (:func:`modal_stiffness`,
 :meth:`BimodalLever.from_cantilever`): w_n = (b_n L)^2 sqrt(E J / (rho w h)) / L^2, so
-w_2 / w_1 = (b_2 L / b_1 L)^2 = 6.2669 for a rectangular clamped-free beam, and the stiffness of mode n seen at the tip is its modal mass times
-w_n^2, k_n = w_n^2 rho w h int_0^L phi_n(x)^2 dx with the mode shape phi_n normalised to 1 at the
-tip (Melcher, Hu and Raman, Appl. Phys. Lett. 91, 053101 (2007)). The integral is L / 4 for every
+w_2 / w_1 = (b_2 L / b_1 L)^2 = 6.2669 for a rectangular clamped-free beam, and the stiffness of
+mode n seen at the tip is its modal mass times w_n^2, k_n = w_n^2 rho w h int_0^L phi_n(x)^2 dx
+with the mode shape phi_n normalised to 1 at the tip (Melcher, Hu and Raman, Appl. Phys. Lett.
+91, 053101 (2007)). The integral is L / 4 for every
 mode of a uniform beam, so k_2 / k_1 = (w_2 / w_1)^2 = 39.27.
 
 **The free response** is linear: at each drive frequency w_dj the tip moves with the complex
