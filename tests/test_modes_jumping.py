@@ -215,3 +215,25 @@ def test_parameters_table():
         assert p.low <= p.default <= p.high
     with pytest.raises(TypeError):
         jumping.PARAMETERS["z_speed"] = None
+
+
+def test_compare_with_contact_in_one_call():
+    sticky = HARD.replace(adhesion="dmt", work_of_adhesion=0.1)
+    out = jumping.compare_with_contact(SAMPLE, TIP, SETTINGS, system=sticky, setpoint=10e-9,
+                                       trigger_force=F_T, lift_height=250e-9)
+    assert out.crashed is None
+    assert out.jumping_error < 1e-15
+    assert out.contact_error > 0.2 * STEP
+    # the load: k_c R = 1 N/m x 10 nm plus DMT's 2 pi R w
+    f_n = 1.0 * 10e-9 + 2 * math.pi * TIP.radius * 0.1
+    assert out.normal_force == pytest.approx(f_n)
+    steepest = np.max(np.abs(np.gradient(out.true_height, SETTINGS.pixel_size, axis=1)))
+    assert out.contact_lateral_max == pytest.approx(f_n * (0.2 + steepest), rel=1e-12)
+    assert np.all(out.jumping_lateral == 0.0)
+    assert out.contact_time == pytest.approx(SETTINGS.scan_time)
+    assert out.jumping_time / out.contact_time > 100
+    with pytest.raises(ValueError, match="friction_coefficient"):
+        jumping.compare_with_contact(SAMPLE, TIP, SETTINGS, system=HARD,
+                                     friction_coefficient=-0.1)
+    with pytest.raises(TypeError, match="settings"):
+        jumping.compare_with_contact(SAMPLE, TIP, None, system=HARD)

@@ -52,7 +52,8 @@ from ..parameters import Parameter, read_only
 from ..validation import check_instance, check_integer
 
 __all__ = ["PARAMETERS", "TRIGGER_FORCE", "LIFT_HEIGHT", "Z_SPEED", "JumpCurve", "JumpingMode",
-           "jump_curve", "trigger_z_np", "MAX_CURVE_POINTS", "MAX_MATERIALS"]
+           "ModeComparison", "jump_curve", "trigger_z_np", "compare_with_contact",
+           "MAX_CURVE_POINTS", "MAX_MATERIALS"]
 
 #: Most points of one branch of :func:`jump_curve`.
 MAX_CURVE_POINTS = 100_000
@@ -418,3 +419,124 @@ class JumpingMode(Mode):
             out[f"{name} trace"] = values[:n]
             out[f"{name} retrace"] = values[n:][::-1].copy()
         return ModeLine(out, float(lifted[-1]), crash)
+
+
+@dataclass(frozen=True)
+class ModeComparison:
+    """Jumping and contact mode on one sample (:func:`compare_with_contact`), SI units.
+
+    Arrays are (lines, pixels) trace images.
+
+    Parameters
+    ----------
+    true_height : numpy.ndarray
+        The apex surface, the sample dilated by the tip (module (f)): the best image a tip of
+        that shape can give.
+    jumping_height, contact_height : numpy.ndarray
+        The height channels of the two modes in m.
+    jumping_lateral, contact_lateral : numpy.ndarray
+        Lateral force in N: 0 for jumping (it moves in the air), the friction loop's trace for
+        contact mode (friction on the load plus the adhesion, and the slope term).
+    normal_force : float
+        Contact mode's load in N: the setpoint force k_c R plus the pull-off force.
+    jumping_time, contact_time : float
+        Acquisition time of each image in s.
+    crashed : object
+        The jumping scan's :class:`~afmsmiler.imaging.modes.Crash` (lift too small), or None.
+    """
+
+    true_height: np.ndarray = field(repr=False)
+    jumping_height: np.ndarray = field(repr=False)
+    contact_height: np.ndarray = field(repr=False)
+    jumping_lateral: np.ndarray = field(repr=False)
+    contact_lateral: np.ndarray = field(repr=False)
+    normal_force: float
+    jumping_time: float
+    contact_time: float
+    crashed: object = None
+
+    @property
+    def jumping_error(self) -> float:
+        """Largest |height - true height| in m of the jumping image (NaN pixels left out)."""
+        return float(np.nanmax(np.abs(self.jumping_height - self.true_height)))
+
+    @property
+    def contact_error(self) -> float:
+        """Largest |height - true height| in m of the contact-mode image."""
+        return float(np.nanmax(np.abs(self.contact_height - self.true_height)))
+
+    @property
+    def contact_lateral_max(self) -> float:
+        """Largest |lateral force| in N contact mode exerts (at the steepest edge)."""
+        return float(np.max(np.abs(self.contact_lateral)))
+
+
+def compare_with_contact(sample, tip, settings, *, system: ContactSystem, loop=None,
+                         setpoint: float | None = None, friction_coefficient: float = 0.2,
+                         trigger_force: float = TRIGGER_FORCE.default,
+                         lift_height: float = LIFT_HEIGHT.default,
+                         z_speed: float = Z_SPEED.default) -> ModeComparison:
+    """Scan one sample in jumping mode and in contact mode and compare heights, forces, time.
+
+    Parameters
+    ----------
+    sample : afmsmiler.samples.Sample
+        The sample (2-D heights in m).
+    tip : afmsmiler.contact.Tip
+        The tip (the systems' tip: it blurs and touches).
+    settings : afmsmiler.imaging.scanner.ScanSettings
+        The scan (the same for both modes).
+    system : afmsmiler.contact.ContactSystem
+        The contact of jumping mode's curves (its pull-off force adds to contact mode's load).
+    loop : afmsmiler.controller.ContactLoop, optional
+        Contact mode's feedback loop (default: module (c)'s defaults).
+    setpoint : float, optional
+        Contact mode's deflection setpoint R in m (default: module (c)'s).
+    friction_coefficient : float
+        mu of the sample for contact mode's lateral force (module (g)'s lateral model).
+    trigger_force : float
+        Jumping mode's trigger F_t in N.
+    lift_height : float
+        Jumping mode's lift L in m.
+    z_speed : float
+        Jumping mode's approach and retract speed in m/s.
+
+    Returns
+    -------
+    ModeComparison
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :class:`JumpingMode`, :class:`~afmsmiler.imaging.modes.ConstantForce`,
+        :func:`~afmsmiler.imaging.scanner.scan` and
+        :func:`~afmsmiler.modes.lateral.friction_loop`, before any scan.
+    """
+    from ..controller import PARAMETERS as LOOP_PARAMETERS
+    from ..controller import ContactLoop
+    from ..imaging.modes import ConstantForce
+    from ..imaging.scanner import Scan, ScanSettings
+    from .lateral import FRICTION_COEFFICIENT, friction_loop
+
+    check_instance("settings", settings, ScanSettings)
+    loop = ContactLoop() if loop is None else check_instance("loop", loop, ContactLoop)
+    r = LOOP_PARAMETERS["setpoint"].default if setpoint is None else setpoint
+    mu = FRICTION_COEFFICIENT.check(friction_coefficient)
+    jumping = JumpingMode(system, trigger_force=trigger_force, lift_height=lift_height,
+                          z_speed=z_speed)
+    contact_mode = ConstantForce(loop, setpoint=r)
+    normal_force = loop.k_c * contact_mode.setpoint + system.pull_off_force
+    if normal_force <= 0:
+        raise ValueError(f"setpoint must press the tip on the sample (k_c R + pull-off force "
+                         f"> 0), got a load of {normal_force:g} N")
+    scan_j = Scan(sample, tip, jumping, settings)
+    scan_c = Scan(sample, tip, contact_mode, settings)
+    result_j, result_c = scan_j.run(), scan_c.run()
+    truth = scan_j.plan.trace
+    lateral = np.array([friction_loop(row, mu, settings.pixel_size,
+                                      normal_force=normal_force).trace for row in truth])
+    return ModeComparison(truth, result_j.images["height trace"],
+                          result_c.images["height trace"],
+                          result_j.images["lateral force trace"], lateral, normal_force,
+                          jumping.acquisition_time(settings), settings.scan_time,
+                          result_j.crashed)
