@@ -91,6 +91,17 @@ def test_dissipation_is_the_dmt_loop_area(m):
     assert np.all(np.abs(fv.dissipation - area) <= f_ad * dz)
 
 
+def test_jkr_sample_adhesion_and_the_dmt_analysis_bias():
+    """On a JKR sample the pull-off force is (3/2) pi R w (a soft enough contact to reach the
+    force minimum before the jump); the DMT analysis is not exact there: E comes out a few per
+    cent low (the notes say so)."""
+    m = SampleMaterial("jkr", 100e6, 0.3, 0.06)
+    fv = tiny(m, force_noise=0.0, points=2000, adhesion="jkr")
+    assert np.allclose(fv.adhesion, 1.5 * math.pi * R * m.work_of_adhesion, rtol=1e-4)
+    assert np.all(np.abs(fv.modulus / m.youngs_modulus - 1) < 0.1)
+    assert np.all(fv.modulus < m.youngs_modulus)
+
+
 @pytest.mark.slow
 def test_maps_recover_each_material_within_the_noise(blend):
     labels, fv = blend
