@@ -372,8 +372,8 @@ def bimodal_response(distance: float, lever: BimodalLever | None = None, *,
     def run(s0, y):
         """One block from s0: the end state and the block's samples (end excluded)."""
         t_eval = s0 + basis_t
-        sol = solve_ivp(rhs, (s0, t_eval[-1]), y, method="DOP853", t_eval=t_eval, rtol=1e-9,
-                        atol=1e-11)
+        sol = solve_ivp(rhs, (s0, t_eval[-1]), y, method="DOP853", t_eval=t_eval, rtol=1e-8,
+                        atol=1e-10)
         if not sol.success:  # pragma: no cover - DOP853 on a smooth bounded system
             raise RuntimeError(f"time integration failed: {sol.message}")
         return t_eval[-1], sol.y[:, -1], t_eval[:-1], sol.y[:, :-1]
