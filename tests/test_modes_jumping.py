@@ -237,3 +237,11 @@ def test_compare_with_contact_in_one_call():
                                      friction_coefficient=-0.1)
     with pytest.raises(TypeError, match="settings"):
         jumping.compare_with_contact(SAMPLE, TIP, None, system=HARD)
+
+
+def test_a_bad_material_map_is_named():
+    flat = Sample(np.zeros((8, 16)), 10e-9)
+    mode = JumpingMode([HARD, HARD.replace(youngs_modulus=5e6)],
+                       material=lambda x, y: np.full(np.shape(x), 2))
+    with pytest.raises(ValueError, match=r"material\(x, y\) must give integers in \[0, 1\]"):
+        scan(flat, TIP, mode, ScanSettings(100e-9, scan_size_y=20e-9, pixels=10, lines=2))

@@ -52,7 +52,7 @@ from ..parameters import Parameter, read_only
 from ..samples import Sample
 from ..samples.sample import check_shape
 from ..validation import check_choice, check_instance, check_integer, check_range
-from .jumping import Z_SPEED, trigger_z_np
+from .jumping import Z_SPEED, _material_index, trigger_z_np
 
 __all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "force_volume",
            "two_material_sample", "MAX_MAP_PIXELS", "MAX_POINTS", "MAX_MATERIALS",
@@ -513,15 +513,7 @@ class ForceVolumeMode(Mode):
         """
         row = self._row(plan, row)
         x, y = plan.x_trace[row], plan.y_trace[row]
-        if self.material is None:
-            lab = np.zeros(x.shape, dtype=int)
-        else:
-            lab = np.asarray(self.material(x, y))
-            if lab.shape != x.shape or lab.dtype.kind not in "iu" or lab.min() < 0 or \
-                    lab.max() >= len(self.materials):
-                raise ValueError(f"material(x, y) must give integers in "
-                                 f"[0, {len(self.materials) - 1}] shaped like x, got "
-                                 f"{lab.dtype} {lab.shape}")
+        lab = _material_index(self.material, x, y, len(self.materials))
         settings = dict(self.settings)
         if settings.get("seed") is not None:
             settings["seed"] = (settings["seed"] + 7919 * row) % 2 ** 63

@@ -126,6 +126,18 @@ def trigger_z_np(system: ContactSystem, trigger_force: float = TRIGGER_FORCE.def
     return float(brentq(excess, 0.0, hi, xtol=1e-15, rtol=1e-12, maxiter=200))
 
 
+def _material_index(material, x, y, count: int) -> np.ndarray:
+    """``material(x, y)`` checked to give integers in [0, count) shaped like x (0 if None)."""
+    if material is None:
+        return np.zeros(np.shape(x), dtype=int)
+    m = np.asarray(material(x, y))
+    if m.shape != np.shape(x) or m.dtype.kind not in "iu" or m.size and \
+            (m.min() < 0 or m.max() >= count):
+        raise ValueError(f"material(x, y) must give integers in [0, {count - 1}] shaped like "
+                         f"x, got {m.dtype} {m.shape}")
+    return m
+
+
 def _lift_needed(system: ContactSystem, z_t: float) -> float:
     """Smallest lift in m that takes the tip off the surface: Z_t - snap-off Z_np."""
     return z_t - min(system.snap_off_z_np, 0.0)
@@ -324,14 +336,7 @@ class JumpingMode(Mode):
                 f"lift_height={self.lift_height!r}, z_speed={self.z_speed!r})")
 
     def _which(self, x, y):
-        if self.material is None:
-            return np.zeros(np.shape(x), dtype=int)
-        m = np.asarray(self.material(x, y))
-        if m.shape != np.shape(x) or m.dtype.kind not in "iu" or m.size and \
-                (m.min() < 0 or m.max() >= len(self.systems)):
-            raise ValueError(f"material(x, y) must give integers in [0, {len(self.systems) - 1}]"
-                             f" shaped like x, got {m.dtype} {m.shape}")
-        return m
+        return _material_index(self.material, x, y, len(self.systems))
 
     def pixel_time(self, settings) -> float:
         """Time in s per pixel: approach and retract, 2 L / v_z, plus the move dx / v.
