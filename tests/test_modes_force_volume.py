@@ -177,8 +177,15 @@ def test_two_material_sample():
     again, labels2 = two_material_sample((40, 50), 10e-9, island_radius=50e-9, island_count=3,
                                          island_height=4e-9, seed=5)
     assert np.array_equal(labels, labels2)
-    # three discs of 5 pixels radius cover at most 3 pi 5^2 pixels (plus the rim)
-    assert 0 < labels.sum() <= 3 * math.pi * 6 ** 2
+    # the label map is the union of the discs around the centres, painted here by brute force
+    x = np.arange(50) * 10e-9
+    y = np.arange(40) * 10e-9
+    union = np.zeros((40, 50), dtype=bool)
+    for cx, cy in sample.metadata["island_centres"]:
+        union |= (x[None, :] - cx) ** 2 + (y[:, None] - cy) ** 2 <= (50e-9) ** 2
+    assert np.array_equal(labels == 1, union) and union.any()
+    with pytest.raises(ValueError, match="island_count"):
+        two_material_sample((2048, 2048), 1e-9, island_radius=1e-3, island_count=1000)
 
 
 @pytest.mark.parametrize("kwargs, name", [

@@ -57,22 +57,27 @@ from .tapping import PARAMETERS as TAPPING_PARAMETERS
 from .tapping import TappingLever
 
 __all__ = ["PARAMETERS", "FLEXURAL_RATIO", "BimodalLever", "BimodalState", "modal_stiffness",
-           "bimodal_response", "averaged_gradient", "BLOCK_PERIODS", "MAX_PERIODS"]
+           "bimodal_response", "averaged_gradient", "BLOCK_PERIODS", "MAX_PERIODS",
+           "DEFAULT_QUALITY_FACTOR"]
 
 #: w_2 / w_1 of a rectangular clamped-free beam, (b_2 L / b_1 L)^2 (module (a)'s eigenvalues).
 FLEXURAL_RATIO = (eigenvalue(2) / eigenvalue(1)) ** 2
+#: Q_1 of the default :class:`BimodalLever` (a short transient for the demo).
+DEFAULT_QUALITY_FACTOR = 100.0
 #: Periods of mode 1 per block of the transient criterion and of the final lock-in.
 BLOCK_PERIODS = 15
-#: Most periods of mode 1 one :func:`bimodal_response` integrates (about 10 s).
-MAX_PERIODS = 3000
+#: Most periods of mode 1 one :func:`bimodal_response` integrates (some 30 s on one core).
+MAX_PERIODS = 1000
 # samples per period of mode 2 in the lock-in
 _SAMPLES = 16
 _AMPLITUDE_TOL, _PHASE_TOL = 1e-4, 1e-2
 
 #: The second mode's quantities (SI); the first mode and the sample are the tapping lever's
 #: (:data:`afmsmiler.modes.tapping.PARAMETERS`). A second mode of Q_2 = 3 Q_1 driven to 1 nm.
+#: The default first mode has Q_1 = 100 (:data:`DEFAULT_QUALITY_FACTOR`): its transient
+#: settles in some 300 periods, a few seconds of integration.
 PARAMETERS = read_only({p.name: p for p in (
-    Parameter(name="quality_factor_2", unit="", default=1200.0, low=0.0, high=1e5,
+    Parameter(name="quality_factor_2", unit="", default=300.0, low=0.0, high=1e5,
               low_inclusive=False, slider_low=1.0, slider_high=5000.0, log=True,
               label="quality factor Q_2 (mode 2)"),
     Parameter(name="free_amplitude_2", unit="m", display_unit="nm", default=1e-9, low=0.0,
@@ -126,7 +131,8 @@ class BimodalLever:
     Parameters
     ----------
     lever : afmsmiler.modes.TappingLever
-        Mode 1 (k_1, f_1, Q_1, drive ratio W, free amplitude A_01) and the sample's force law.
+        Mode 1 (k_1, f_1, Q_1, drive ratio W, free amplitude A_01) and the sample's force law
+        (default: the tapping lever with Q_1 = :data:`DEFAULT_QUALITY_FACTOR`).
     quality_factor_2 : float
         Q_2 of mode 2.
     free_amplitude_2 : float
@@ -144,7 +150,8 @@ class BimodalLever:
         Naming the value out of range (:data:`PARAMETERS`).
     """
 
-    lever: TappingLever = field(default_factory=TappingLever)
+    lever: TappingLever = field(
+        default_factory=lambda: TappingLever(quality_factor=DEFAULT_QUALITY_FACTOR))
     quality_factor_2: float = PARAMETERS["quality_factor_2"].default
     free_amplitude_2: float = PARAMETERS["free_amplitude_2"].default
     mode_frequency_ratio: float = PARAMETERS["mode_frequency_ratio"].default
@@ -157,7 +164,7 @@ class BimodalLever:
 
     @classmethod
     def from_cantilever(cls, cantilever: Cantilever, *,
-                        quality_factor: float = TAPPING_PARAMETERS["quality_factor"].default,
+                        quality_factor: float = DEFAULT_QUALITY_FACTOR,
                         quality_factor_2: float = PARAMETERS["quality_factor_2"].default,
                         free_amplitude: float = TAPPING_PARAMETERS["free_amplitude"].default,
                         free_amplitude_2: float = PARAMETERS["free_amplitude_2"].default,

@@ -56,6 +56,7 @@ from .jumping import Z_SPEED, _material_index, trigger_z_np
 
 __all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "force_volume",
            "two_material_sample", "MAX_MAP_PIXELS", "MAX_POINTS", "MAX_MATERIALS",
+           "MAX_ISLAND_WORK",
            "ADHESION_MODELS", "BLEND"]
 
 #: Most pixels of one map (64 x 64: one fit per pixel, some 15 s in all).
@@ -64,6 +65,8 @@ MAX_MAP_PIXELS = 64 * 64
 MAX_POINTS = 2000
 #: Most materials of one map.
 MAX_MATERIALS = 16
+#: Most pixels :func:`two_material_sample` paints in all (islands x their bounding boxes).
+MAX_ISLAND_WORK = 1 << 26
 #: The adhesion models the curves may use (module (d)'s).
 ADHESION_MODELS = (None, "dmt", "jkr")
 # the largest upward step of the retract is the jump-off only if it stands out of the noise
@@ -227,7 +230,8 @@ def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
     island_radius : float
         Radius of the islands in m, at least a pixel.
     island_count : int
-        Number of islands, 1 to 1000 (they may overlap).
+        Number of islands, 1 to 1000 (they may overlap), with count x (pixels of an island's
+        bounding box) at most :data:`MAX_ISLAND_WORK`.
     island_height : float
         Height of the islands above the matrix in m (any sign, |h| <= 1 mm).
     seed : int or None
@@ -236,7 +240,8 @@ def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
     Returns
     -------
     (Sample, numpy.ndarray)
-        The heights and the integer label map (0 matrix, 1 islands).
+        The heights (their metadata list the islands' centres (x, y) in m) and the integer
+        label map (0 matrix, 1 islands: the pixels within ``island_radius`` of a centre).
 
     Raises
     ------
@@ -258,18 +263,26 @@ def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
     height = check_range("island_height", island_height, -1e-3, 1e-3, "m")
     if seed is not None:
         seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
-    rng = np.random.default_rng(seed)
     rows, cols = shape
+    reach = int(math.ceil(radius / px)) + 1  # pixels from a centre to its disc's edge
+    box = min(2 * reach + 1, rows) * min(2 * reach + 1, cols)
+    if count * box > MAX_ISLAND_WORK:
+        raise ValueError(f"island_count x the pixels of an island's box must be at most "
+                         f"{MAX_ISLAND_WORK} (a bound the generator honours in seconds), got "
+                         f"{count} x {box}")
+    rng = np.random.default_rng(seed)
     centres = rng.uniform((0.0, 0.0), ((cols - 1) * px, (rows - 1) * px), size=(count, 2))
-    x = np.arange(cols) * px
-    y = np.arange(rows) * px
     labels = np.zeros(shape, dtype=int)
-    for cx, cy in centres:  # bounded: at most 1000 discs on at most MAX_PIXELS pixels
-        inside = (x[None, :] - cx) ** 2 + (y[:, None] - cy) ** 2 <= radius * radius
-        labels[inside] = 1
+    for cx, cy in centres:  # bounded: count x box <= MAX_ISLAND_WORK pixels painted
+        j0, i0 = int(cx / px), int(cy / px)
+        i = np.arange(max(i0 - reach, 0), min(i0 + reach + 2, rows))
+        j = np.arange(max(j0 - reach, 0), min(j0 + reach + 2, cols))
+        inside = (j[None, :] * px - cx) ** 2 + (i[:, None] * px - cy) ** 2 <= radius * radius
+        labels[i[0]:i[-1] + 1, j[0]:j[-1] + 1][inside] = 1
     sample = Sample(np.where(labels == 1, height, 0.0), px, "two-material sample",
                     metadata=dict(generator="two_material_sample", island_radius=radius,
-                                  island_count=count, island_height=height))
+                                  island_count=count, island_height=height,
+                                  island_centres=centres.tolist()))
     return sample, labels
 
 

@@ -367,7 +367,8 @@ class JumpingMode(Mode):
         float
             Compare with contact mode's ``settings.scan_time`` (lines (2 pixels - 1) dx / v).
         """
-        return settings.lines * 2 * settings.pixels * self.pixel_time(settings)
+        pixel = self.pixel_time(settings)  # checks settings first
+        return settings.lines * 2 * settings.pixels * pixel
 
     def line(self, plan: ScanPlan, row: int, state=None) -> ModeLine:
         """One line: height, adhesion and lateral force at each pixel, trace and retrace.

@@ -773,8 +773,9 @@ def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
 #: amplitude following a height change with the lever's time constant 2 Q / w0).
 FEEDBACKS = ("ideal", "pi")
 #: Most time steps of one :func:`amplitude_feedback` call or one :class:`TappingMode` scan with
-#: ``feedback="pi"`` (a Python loop of some 10 us a step: about 10 s).
-MAX_FEEDBACK_STEPS = 1_000_000
+#: ``feedback="pi"`` (a Python loop of some 10 us a step: a few seconds; a 64 x 64 image of the
+#: default lever at two lines a second).
+MAX_FEEDBACK_STEPS = 600_000
 # time steps per amplitude time constant (the lag is integrated exactly over each step; the PI
 # controller's integral explicitly, which needs K_I h well below 1)
 _STEPS_PER_TAU = 4
