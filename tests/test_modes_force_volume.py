@@ -219,6 +219,8 @@ def test_bad_maps_and_materials():
                      labels=np.zeros((65, 65), dtype=int))
     with pytest.raises(TypeError, match="materials"):
         force_volume(flat, [BLEND[0], 1e9], TIP, labels=np.zeros((2, 2), dtype=int))
+    with pytest.raises(TypeError, match="materials"):
+        force_volume(flat, None, TIP, labels=np.zeros((2, 2), dtype=int))
     with pytest.raises(ValueError, match="tip"):
         force_volume(flat, BLEND, Conical(), labels=np.zeros((2, 2), dtype=int))
     with pytest.raises(ValueError, match="work_of_adhesion"):

@@ -98,6 +98,8 @@ def test_bad_input_is_named(kwargs, name):
 def test_bad_mode_input():
     with pytest.raises(TypeError, match="systems"):
         JumpingMode([HARD, "soft"])
+    with pytest.raises(TypeError, match="systems"):
+        JumpingMode(1.0)
     with pytest.raises(ValueError, match="systems"):
         JumpingMode([])
     with pytest.raises(TypeError, match="tip"):

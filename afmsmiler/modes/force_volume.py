@@ -52,7 +52,7 @@ from ..parameters import Parameter, read_only
 from ..samples import Sample
 from ..samples.sample import check_shape
 from ..validation import check_choice, check_instance, check_integer, check_range
-from .jumping import Z_SPEED, _material_index, trigger_z_np
+from .jumping import Z_SPEED, _material_index, _sequence, trigger_z_np
 
 __all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "force_volume",
            "two_material_sample", "MAX_MAP_PIXELS", "MAX_POINTS", "MAX_MATERIALS",
@@ -287,7 +287,7 @@ def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
 
 
 def _check_materials(materials):
-    materials = (materials,) if isinstance(materials, SampleMaterial) else tuple(materials)
+    materials = _sequence("materials", materials, SampleMaterial)
     if not 1 <= len(materials) <= MAX_MATERIALS:
         raise ValueError(f"materials must hold 1 to {MAX_MATERIALS} SampleMaterials, got "
                          f"{len(materials)}")

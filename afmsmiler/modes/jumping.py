@@ -126,6 +126,16 @@ def trigger_z_np(system: ContactSystem, trigger_force: float = TRIGGER_FORCE.def
     return float(brentq(excess, 0.0, hi, xtol=1e-15, rtol=1e-12, maxiter=200))
 
 
+def _sequence(name: str, values, kind) -> tuple:
+    """One ``kind`` or a sequence of them as a tuple (a TypeError naming ``name`` otherwise)."""
+    if isinstance(values, kind):
+        return (values,)
+    if isinstance(values, (str, bytes)) or not hasattr(values, "__iter__"):
+        raise TypeError(f"{name} must be a {kind.__name__} or a sequence of them, got "
+                        f"{type(values).__name__}")
+    return tuple(values)
+
+
 def _material_index(material, x, y, count: int) -> np.ndarray:
     """``material(x, y)`` checked to give integers in [0, count) shaped like x (0 if None)."""
     if material is None:
@@ -311,7 +321,7 @@ class JumpingMode(Mode):
     def __init__(self, systems, *, trigger_force: float = TRIGGER_FORCE.default,
                  lift_height: float = LIFT_HEIGHT.default, z_speed: float = Z_SPEED.default,
                  material=None):
-        systems = (systems,) if isinstance(systems, ContactSystem) else tuple(systems)
+        systems = _sequence("systems", systems, ContactSystem)
         if not 1 <= len(systems) <= MAX_MATERIALS:
             raise ValueError(f"systems must hold 1 to {MAX_MATERIALS} contact systems, got "
                              f"{len(systems)}")
