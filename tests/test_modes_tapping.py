@@ -465,6 +465,10 @@ def test_feedback_bad_input():
     lever = TappingLever()
     with pytest.raises(ValueError, match="feedback"):
         TappingMode(lever, feedback="pid")
+    with pytest.raises(TypeError, match="levers"):
+        TappingMode(1.0)
+    with pytest.raises(TypeError, match="levers"):
+        TappingMode([lever, 2])
     with pytest.raises(ValueError, match="amplitude_ki"):
         TappingMode(lever, feedback="pi", amplitude_ki=1e6)
     with pytest.raises(ValueError, match="amplitude_kp"):

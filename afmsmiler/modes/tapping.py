@@ -87,7 +87,7 @@ from ..contact.quantities import PARAMETERS as CONTACT
 from ..contact.tips import reduced_modulus
 from ..imaging.modes import Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_choice, check_integer, check_range
+from ..validation import check_array, check_choice, check_instance, check_integer, check_range
 from ._forces import FORCE_PARAMETERS, _force
 
 __all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "amplitude_curve",
@@ -1066,10 +1066,14 @@ class TappingMode(Mode):
                  material=None, *, feedback: str = "ideal",
                  amplitude_kp: float = FEEDBACK_PARAMETERS["amplitude_kp"].default,
                  amplitude_ki: float = FEEDBACK_PARAMETERS["amplitude_ki"].default):
+        if not isinstance(levers, TappingLever) and (isinstance(levers, (str, bytes))
+                                                     or not hasattr(levers, "__iter__")):
+            raise TypeError(f"levers must be a TappingLever or a sequence of them, got "
+                            f"{type(levers).__name__}")
         levers = (levers,) if isinstance(levers, TappingLever) else tuple(levers)
         if not 1 <= len(levers) <= 16:
             raise ValueError(f"levers must hold 1 to 16 levers, got {len(levers)}")
-        self.levers = tuple(_check_lever(lever) for lever in levers)
+        self.levers = tuple(check_instance("levers", lever, TappingLever) for lever in levers)
         self.setpoint_ratio = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
         if material is not None and not callable(material):
             raise TypeError(f"material must be a callable material(x, y), got "
