@@ -342,3 +342,144 @@ def test_tapping_mode_checks_its_arguments_before_any_scan():
         TappingMode([TappingLever(), "soft"])
     with pytest.raises(TypeError, match="material"):
         TappingMode(TappingLever(), material=np.zeros((4, 4)))
+
+
+# -- amplitude feedback with a finite bandwidth ------------------------------------------------
+def _free_step(lever, ratio, times):
+    """Open loop (no gains): the surface drops far away at t = 0+, the lever is free after."""
+    t = np.concatenate(([0.0, 1e-15], times))
+    r = np.concatenate(([0.0], np.full(times.size + 1, -1e-6)))
+    return tapping.amplitude_feedback(r, t, lever, setpoint_ratio=ratio, amplitude_kp=0.0,
+                                      amplitude_ki=0.0)
+
+
+@pytest.mark.parametrize("ratio", [1.0, 0.998])
+def test_amplitude_step_response_is_the_slow_flow_closed_form(ratio):
+    """Averaged equations of the free lever: a = A e^(-i phi) relaxes as
+    a(t) = a_inf + (a_0 - a_inf) exp(-(1/tau - i Delta) t), tau = 2 Q / w0,
+    Delta = w0 (1 - W^2) / (2 W): its distance to the new state decays exponentially with tau."""
+    lever = TappingLever(frequency_ratio=ratio)
+    w0 = 2 * math.pi * lever.resonance_frequency
+    tau = 2 * lever.quality_factor / w0
+    assert lever.time_constant == pytest.approx(tau, rel=1e-15)
+    times = np.linspace(0.0, 8 * tau, 81)[1:]
+    line = _free_step(lever, 0.8, times)
+    z_sp, phi_sp, _, _ = setpoint_state(0.8, lever)
+    a_free, phi_free = free_response(lever)
+    a_inf = a_free * np.exp(-1j * phi_free)
+    a_0 = 0.8 * lever.free_amplitude * np.exp(-1j * phi_sp)
+    delta = w0 * (1 - ratio ** 2) / (2 * ratio)
+    expected = a_inf + (a_0 - a_inf) * np.exp(-(1 / tau - 1j * delta) * times)
+    got = line.amplitude[2:] * np.exp(-1j * line.phase[2:])
+    assert np.max(np.abs(got - expected)) < 1e-5 * lever.free_amplitude  # a_0: interpolated
+    a_0 = line.amplitude[0] * np.exp(-1j * line.phase[0])  # the loop's own start, exactly
+    expected = a_inf + (a_0 - a_inf) * np.exp(-(1 / tau - 1j * delta) * times)
+    assert np.max(np.abs(got - expected)) < 1e-9 * lever.free_amplitude
+    assert np.allclose(np.abs(got - a_inf), np.abs(a_0 - a_inf) * np.exp(-times / tau),
+                       rtol=1e-6)
+    # starting in phase with the free state, the amplitude itself is the exponential
+    start = (0.0, 0.0, 1e-6, 0.8 * lever.free_amplitude, phi_free, 0.0)
+    same = tapping.amplitude_feedback(np.full(times.size, -1e-6), times, lever,
+                                      amplitude_kp=0.0, amplitude_ki=0.0, state=start)
+    if ratio == 1.0:
+        assert np.allclose(same.amplitude, lever.free_amplitude * (
+            1 - 0.2 * np.exp(-times / tau)), rtol=1e-12)
+
+
+@pytest.mark.slow
+def test_amplitude_step_response_against_the_time_integration():
+    """From the setpoint state, the sample taken away: scipy's integration of the full motion
+    (lock-in over periods N - 10 to N) against the slow flow averaged over the same window,
+    within 0.1 % of A0 (the averaging neglects terms of order 1/Q = 0.25 %)."""
+    lever = TappingLever()
+    z_sp, phi_sp, _, _ = setpoint_state(0.8, lever)
+    period = 1 / lever.resonance_frequency
+    for n in (20, 140, 300):
+        state = integrate(1e-6, lever, start=(0.8 * lever.free_amplitude, phi_sp),
+                          max_periods=n)
+        window = (n - 10 + np.arange(640) / 64) * period
+        line = _free_step(lever, 0.8, window)
+        a = line.amplitude[2:] * np.exp(-1j * line.phase[2:])
+        assert state.periods == n
+        assert abs(np.mean(a)) == pytest.approx(state.amplitude, abs=1e-3 * 10e-9), n
+
+
+def test_scanning_too_fast_the_tip_parachutes_off_a_down_step():
+    """On a down step the amplitude rises at most to A0, the error saturates at A_sp - A0 and
+    the positioner descends no faster than K_I (A0 - A_sp): the tip parachutes out of contact
+    (z_c > A: it touches nothing) until it lands; scanned slowly it follows the step."""
+    lever = TappingLever()
+    tau = lever.time_constant
+    ki, step = 2000.0, 10e-9
+    n = 400
+    r = np.where(np.arange(n) >= 50, -step, 0.0)
+    fast = tapping.amplitude_feedback(r, np.arange(n) * tau / 10, lever, setpoint_ratio=0.8,
+                                      amplitude_ki=ki)
+    slow = tapping.amplitude_feedback(r, np.arange(n) * tau * 10, lever, setpoint_ratio=0.8,
+                                      amplitude_ki=ki)
+    assert np.max(np.abs(slow.height - r)[60:]) < 0.01 * step
+    assert np.max(np.abs(slow.error)[60:]) < 0.01 * lever.free_amplitude
+    lost = fast.distance > fast.amplitude + lever.intermolecular_distance
+    assert lost[50:].sum() > 40  # more than 40 pixels (4 tau) out of contact
+    # the landing takes at least step / (K_I (A0 - A_sp)) (the fastest descent)
+    landed = 50 + int(np.argmax(np.abs(fast.height[50:] - r[50:]) < 0.05 * step))
+    fastest = step / (ki * (lever.free_amplitude - 0.8 * lever.free_amplitude))
+    assert (landed - 50) * tau / 10 > fastest
+    # while out of contact the error is the saturated A_sp - A, never below A_sp - A0
+    assert np.all(fast.error <= 0.2 * lever.free_amplitude + 1e-18)
+
+
+def test_tapping_mode_with_pi_feedback_through_the_scanner():
+    from afmsmiler.imaging.scanner import ScanSettings, scan
+    from afmsmiler.modes import TappingMode
+    from afmsmiler.samples import Sample
+
+    lever = TappingLever()
+    px, n = 5e-9, 32
+    heights = np.zeros((4, n))
+    heights[:, 10:20] = 5e-9
+    sample = Sample(heights, px)
+    ideal = scan(sample, None, TappingMode(lever, 0.8), ScanSettings(
+        (n - 2) * px, scan_size_y=2 * px, pixels=n - 2, lines=2))
+    # scanned slowly (10 ms a pixel, about 24 tau), the loop follows: the ideal image
+    slow_settings = ScanSettings((n - 2) * px, scan_size_y=2 * px, pixels=n - 2, lines=2,
+                                 scan_speed=px / 10e-3)
+    mode = TappingMode(lever, 0.8, feedback="pi")
+    assert mode.channels[-2:] == ("error trace", "error retrace")
+    assert mode.unit("error trace") == "m"
+    slow = scan(sample, None, mode, slow_settings)
+    # at the edges the surface under the tip ramps by 5 nm in a pixel time: a PI loop follows
+    # a ramp of speed v behind by v / K_I (dA/dz_c is about 1 on the attractive branch)
+    lag = 5e-9 / 10e-3 / mode.amplitude_ki
+    assert np.max(np.abs(slow.images["height trace"] - ideal.images["height trace"])) < 1.5 * lag
+    assert np.max(np.abs(slow.images["error trace"])) < 1.5 * lag
+    # scanned at 100 um/s (50 us a pixel, tau / 8): the edges smear and the error shows them
+    fast = scan(sample, None, mode, slow_settings.replace(scan_speed=1e-4))
+    error = fast.images["error trace"]
+    assert np.max(np.abs(error)) > 0.1 * lever.free_amplitude
+    assert np.max(np.abs(fast.images["height trace"] - ideal.images["height trace"])) > 1e-9
+
+
+def test_feedback_bad_input():
+    from afmsmiler.modes import TappingMode
+    lever = TappingLever()
+    with pytest.raises(ValueError, match="feedback"):
+        TappingMode(lever, feedback="pid")
+    with pytest.raises(TypeError, match="levers"):
+        TappingMode(1.0)
+    with pytest.raises(TypeError, match="levers"):
+        TappingMode([lever, 2])
+    with pytest.raises(ValueError, match="amplitude_ki"):
+        TappingMode(lever, feedback="pi", amplitude_ki=1e6)
+    with pytest.raises(ValueError, match="amplitude_kp"):
+        TappingMode(lever, feedback="pi", amplitude_kp=-1.0)
+    with pytest.raises(ValueError, match="levers"):
+        TappingMode([lever, TappingLever(quality_factor=100.0)], feedback="pi")
+    with pytest.raises(ValueError, match="times"):
+        tapping.amplitude_feedback([0.0, 0.0], [1.0, 0.0])
+    with pytest.raises(ValueError, match="times"):
+        tapping.amplitude_feedback([0.0, 0.0], [0.0, 200.0])  # 200 s: 470 000 tau
+    with pytest.raises(ValueError, match="setpoint_ratio"):
+        tapping.amplitude_feedback([0.0], [0.0], setpoint_ratio=1.0)
+    with pytest.raises(TypeError, match="state"):
+        tapping.amplitude_feedback([0.0], [0.0], state=[1, 2])

@@ -57,11 +57,26 @@ in the convention that the phase lag phi is 90 deg for the free lever at resonan
 positive E_dis is energy lost to the sample. The first-harmonic balance leaves out the static
 deflection <F_ts> / k and the higher harmonics; for a stiff lever of high Q (k = 40 N/m, Q = 400,
 the defaults) both move A by well under 1 % (the tests compare it with the time integration).
+
+**Amplitude feedback with a finite bandwidth** (:func:`amplitude_feedback`, ``TappingMode(...,
+feedback="pi")``). Averaging the equation of motion over a period with z = A cos(w t - phi)
+(variation of parameters; Nayfeh and Mook (1979)) gives the slow flow of the amplitude and phase::
+
+    dA/dt     = [F0 sin(phi) - I_s - (k W / Q) A] / (2 m w)
+    A dphi/dt = [F0 cos(phi) - k (1 - W^2) A + I_c] / (2 m w)
+
+whose fixed points are the balance above. For the free lever it is linear in the complex
+amplitude a = A e^(-i phi): da/dt = -(1 / tau - i Delta)(a - a_ss), with the time constant
+tau = 2 Q / w0 and Delta = w0 (1 - W^2) / (2 W): the amplitude follows a change with tau, the
+bandwidth limit of amplitude-modulation AFM (Sulchek et al., Appl. Phys. Lett. 76, 1473 (2000)).
+The loop keeps that rate near the sample too (the first approximation of the feedback models;
+the force gradient of the contact adds a frequency shift it leaves out), with a_ss(z_c) the
+state of the slow approach, and a PI controller on the amplitude error moves the positioner.
 """
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass, field, fields
 from types import MappingProxyType
 
 import numpy as np
@@ -72,13 +87,14 @@ from ..contact.quantities import PARAMETERS as CONTACT
 from ..contact.tips import reduced_modulus
 from ..imaging.modes import Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_choice, check_integer, check_range
+from ..validation import check_array, check_choice, check_instance, check_integer, check_range
 from ._forces import FORCE_PARAMETERS, _force
 
 __all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "amplitude_curve",
            "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
            "AMPLITUDE_GRID", "MAX_DISTANCES", "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS",
-           "SETPOINT_GRID"]
+           "SETPOINT_GRID", "FEEDBACKS", "FEEDBACK_PARAMETERS", "FeedbackLine",
+           "amplitude_feedback", "MAX_FEEDBACK_STEPS"]
 
 #: The two branches of the amplitude-distance curve.
 BRANCHES = ("attractive", "repulsive")
@@ -201,6 +217,11 @@ class TappingLever:
         """Phase lag of the free lever, atan2(W / Q, 1 - W^2), in rad (pi / 2 at resonance)."""
         w = self.frequency_ratio
         return math.atan2(w / self.quality_factor, 1.0 - w * w)
+
+    @property
+    def time_constant(self) -> float:
+        """Amplitude time constant tau = 2 Q / w0 in s (the slow flow's decay, module notes)."""
+        return 2.0 * self.quality_factor / (2.0 * math.pi * self.resonance_frequency)
 
     @property
     def max_amplitude(self) -> float:
@@ -746,32 +767,292 @@ def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
             not bool(curve.repulsive_branch[i, j]))
 
 
+# -- amplitude feedback with a finite bandwidth -------------------------------------------------
+#: How :class:`TappingMode` holds the amplitude at the setpoint: ``"ideal"`` (infinitely fast:
+#: every pixel at its setpoint state) or ``"pi"`` (a PI controller on the amplitude error, the
+#: amplitude following a height change with the lever's time constant 2 Q / w0).
+FEEDBACKS = ("ideal", "pi")
+#: Most time steps of one :func:`amplitude_feedback` call or one :class:`TappingMode` scan with
+#: ``feedback="pi"`` (a Python loop of some 10 us a step: a few seconds; a 64 x 64 image of the
+#: default lever at two lines a second).
+MAX_FEEDBACK_STEPS = 600_000
+# time steps per amplitude time constant (the lag is integrated exactly over each step; the PI
+# controller's integral explicitly, which needs K_I h well below 1)
+_STEPS_PER_TAU = 4
+
+#: The amplitude loop's gains: the positioner moves by K_P per metre of amplitude error and at
+#: K_I times the error per second. The defaults close the loop at about 2 kHz for the default
+#: lever (tau = 2 Q / w0 = 0.42 ms).
+FEEDBACK_PARAMETERS = read_only({p.name: p for p in (
+    Parameter(name="amplitude_kp", unit="", default=0.3, low=0.0, high=100.0,
+              slider_low=0.0, slider_high=5.0, label="amplitude loop K_P"),
+    Parameter(name="amplitude_ki", unit="1/s", display_unit="1/s", default=2000.0, low=0.0,
+              high=1e7, slider_low=10.0, slider_high=1e5, log=True,
+              label="amplitude loop K_I"),
+)})
+
+
+def _approach_table(lever: TappingLever):
+    """The approach's steady complex amplitude A e^(-i phi) on an increasing grid of z_c.
+
+    The slow approach of :func:`setpoint_state` (:meth:`AmplitudeCurve.sweep`) on
+    :data:`SETPOINT_GRID` distances from 0.01 A0 to 1.5 A0; beyond, the free lever. Returns
+    (z_first, dz, real parts, imaginary parts) as Python lists (the loop's inner step).
+    """
+    a0 = lever.free_amplitude
+    z = a0 * np.linspace(0.01, 1.5, SETPOINT_GRID)
+    amp, phs, _ = amplitude_curve(z, lever).sweep("approach")
+    ok = np.isfinite(amp)
+    if not ok.all():  # no stable root on the sweep there: the nearest distance's state
+        idx = np.flatnonzero(ok)
+        near = idx[np.abs(np.arange(z.size)[:, None] - idx[None, :]).argmin(axis=1)]
+        amp, phs = amp[near], phs[near]
+    free_a, free_phi = free_response(lever)
+    amp = np.append(amp, free_a)
+    phs = np.append(phs, free_phi)
+    return (float(z[0]), float(z[1] - z[0]), (amp * np.cos(phs)).tolist(),
+            (-amp * np.sin(phs)).tolist())
+
+
+def _run_feedback(tables, r, t, m, a_sp, kp, ki, lever, ref, state):
+    """The PI amplitude loop along a path: surface r (m), times t (s), materials m, in order.
+
+    ``state`` = (t, r, Z, A, phi, e) at the point before the path, or None to start settled at
+    the setpoint over the path's first point. Returns Z, A, phi at each point and the state.
+    The complex amplitude a = A e^(-i phi) relaxes towards its steady state at the free lever's
+    slow-flow rate 1 / tau - i Delta, exactly over each step for a steady state held fixed.
+    """
+    n = len(r)
+    out_z, out_a, out_p = np.empty(n), np.empty(n), np.empty(n)
+    tau = lever.time_constant
+    w = lever.frequency_ratio
+    delta = math.pi * lever.resonance_frequency * (1.0 - w * w) / w  # w0 (1 - W^2) / (2 W)
+    if state is None:
+        z0, dz, res, ims = tables[m[0]]
+        zc = ref[m[0]]
+        phi = math.atan2(-_lookup(zc, z0, dz, ims), _lookup(zc, z0, dz, res))
+        state = (t[0], r[0], r[0] + zc, a_sp, phi, 0.0)
+    t_prev, r_prev, big_z, amp, phi, e = state
+    re, im = amp * math.cos(phi), -amp * math.sin(phi)
+    h_max = tau / _STEPS_PER_TAU
+    for i in range(n):  # bounded: the path's points, in at most MAX_FEEDBACK_STEPS steps
+        span = t[i] - t_prev
+        steps = max(1, math.ceil(span / h_max - 1e-9)) if span > 0 else 0
+        z0, dz, res, ims = tables[m[i]]
+        last = len(res) - 1
+        if steps:
+            h = span / steps
+            decay = math.exp(-h / tau)
+            cr, ci = decay * math.cos(delta * h), decay * math.sin(delta * h)
+            slope = (r[i] - r_prev) / steps
+            surface = r_prev
+            for _ in range(steps):
+                surface += slope
+                x = (big_z - surface - z0) / dz  # z_c on the table's grid
+                if x <= 0.0:
+                    sr, si = res[0], ims[0]
+                elif x >= last - 1:  # beyond 1.5 A0: the free lever
+                    sr, si = res[last], ims[last]
+                else:
+                    j = int(x)
+                    f = x - j
+                    sr = res[j] + f * (res[j + 1] - res[j])
+                    si = ims[j] + f * (ims[j + 1] - ims[j])
+                dr, di = re - sr, im - si
+                re, im = sr + cr * dr - ci * di, si + cr * di + ci * dr
+                e_new = a_sp - math.hypot(re, im)
+                big_z += kp * (e_new - e) + ki * h * e_new
+                e = e_new
+        t_prev, r_prev = t[i], r[i]
+        out_z[i], out_a[i], out_p[i] = big_z, math.hypot(re, im), math.atan2(-im, re)
+    return out_z, out_a, out_p, (t_prev, r_prev, big_z, float(out_a[-1]), float(out_p[-1]), e)
+
+
+def _lookup(zc, z0, dz, values):
+    x = min(max((zc - z0) / dz, 0.0), len(values) - 2.0)
+    j = min(int(x), len(values) - 2)
+    return values[j] + (x - j) * (values[j + 1] - values[j])
+
+
+def _steps(t, tau, state_time=None) -> int:
+    """Time steps the loop takes along times ``t`` (after ``state_time``, if given)."""
+    t = np.asarray(t, dtype=float)
+    if state_time is not None:
+        t = np.concatenate(([state_time], t))
+    spans = np.diff(t)
+    return int(np.sum(np.maximum(1, np.ceil(spans / (tau / _STEPS_PER_TAU) - 1e-9))))
+
+
+@dataclass(frozen=True)
+class FeedbackLine:
+    """The amplitude loop along a path (:func:`amplitude_feedback`), SI units.
+
+    Parameters
+    ----------
+    time : numpy.ndarray
+        Times in s of the points.
+    surface : numpy.ndarray
+        Height of the sample under the tip in m.
+    height : numpy.ndarray
+        The height channel in m: the positioner's height Z minus the setpoint distance z_c,sp
+        (the surface itself once the loop has settled).
+    amplitude, phase : numpy.ndarray
+        Amplitude A in m and phase lag in rad.
+    error : numpy.ndarray
+        Amplitude error A - A_sp in m (the error channel).
+    distance : numpy.ndarray
+        Rest tip-sample distance z_c = Z - surface in m.
+    state : tuple
+        (t, surface, Z, A, phi, e) at the last point, to continue from.
+    """
+
+    time: np.ndarray
+    surface: np.ndarray
+    height: np.ndarray
+    amplitude: np.ndarray
+    phase: np.ndarray
+    error: np.ndarray
+    distance: np.ndarray
+    state: tuple = field(repr=False)
+
+
+def amplitude_feedback(heights, times, lever: TappingLever | None = None, *,
+                       setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
+                       amplitude_kp: float = FEEDBACK_PARAMETERS["amplitude_kp"].default,
+                       amplitude_ki: float = FEEDBACK_PARAMETERS["amplitude_ki"].default,
+                       state=None) -> FeedbackLine:
+    """Amplitude-modulation feedback with a finite bandwidth along a path over the sample.
+
+    The amplitude follows its steady state A_ss(z_c) (the slow approach of
+    :func:`setpoint_state`) as a first-order lag with the lever's time constant
+    tau = 2 Q / w0, dA/dt = (A_ss(z_c) - A) / tau (and the phase alike), the decay of the
+    averaged (slow-flow) equations of the driven lever,
+    dA/dt = [F0 sin(phi) - I_s - (k W / Q) A] / (2 m w), whose free solution relaxes as
+    exp(-w0 t / (2 Q)) (Sulchek et al., Appl. Phys. Lett. 76, 1473 (2000); Nayfeh and Mook,
+    *Nonlinear Oscillations* (1979)). A PI controller on the error e = A_sp - A moves the
+    positioner: dZ/dt = K_P de/dt + K_I e (Z up, away from the sample, when the amplitude is
+    below the setpoint), and z_c = Z - r(t) with r the surface under the tip (linear between the
+    points). On a down step the amplitude can rise at most to A0, the error saturates at
+    A_sp - A0, and the tip descends no faster than K_I (A0 - A_sp): it parachutes, out of
+    contact, until it lands (the error image shows it).
+
+    Parameters
+    ----------
+    heights : array_like
+        Surface height r in m under the tip at each point (1-D, at least 1 point).
+    times : array_like
+        Time in s of each point, non-decreasing (a repeated time: no step).
+    lever : TappingLever, optional
+        Lever and sample (default :class:`TappingLever` ()).
+    setpoint_ratio : float
+        Setpoint A_sp / A0, in (0, 1).
+    amplitude_kp : float
+        Proportional gain K_P (m of height per m of amplitude error).
+    amplitude_ki : float
+        Integral gain K_I in 1/s.
+    state : tuple, optional
+        A previous call's :attr:`FeedbackLine.state`; default: start settled at the setpoint
+        over the first point.
+
+    Returns
+    -------
+    FeedbackLine
+
+    Raises
+    ------
+    ValueError
+        Naming the argument out of range (times not non-decreasing, more than
+        :data:`MAX_FEEDBACK_STEPS` time steps of tau / 4, K_I too large for that step), before
+        the loop runs.
+    TypeError
+        If ``lever`` is not a TappingLever.
+    """
+    lever = TappingLever() if lever is None else _check_lever(lever)
+    r = check_array("heights", heights, "m", ndim=1, min_size=1)
+    t = check_array("times", times, "s", ndim=1, size=r.size, low=0.0, nondecreasing=True)
+    ratio = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
+    kp = FEEDBACK_PARAMETERS["amplitude_kp"].check(amplitude_kp)
+    ki = FEEDBACK_PARAMETERS["amplitude_ki"].check(amplitude_ki)
+    tau = lever.time_constant
+    _check_gain(ki, tau)
+    if state is not None:
+        state = _check_state(state, t[0])
+    steps = _steps(t, tau, None if state is None else state[0])
+    if steps > MAX_FEEDBACK_STEPS:
+        raise ValueError(f"times must span at most {MAX_FEEDBACK_STEPS} steps of tau / "
+                         f"{_STEPS_PER_TAU} = {tau / _STEPS_PER_TAU:g} s, got {steps}: a shorter "
+                         f"path or a faster scan (or the ideal feedback)")
+    zc_sp = setpoint_state(ratio, lever)[0]
+    tables = [_approach_table(lever)]
+    m = [0] * r.size
+    out_z, amp, phi, new = _run_feedback(tables, r.tolist(), t.tolist(), m,
+                                         ratio * lever.free_amplitude, kp, ki, lever, [zc_sp],
+                                         state)
+    return FeedbackLine(t, r, out_z - zc_sp, amp, phi, amp - ratio * lever.free_amplitude,
+                        out_z - r, new)
+
+
+def _check_gain(ki, tau):
+    limit = 0.5 * _STEPS_PER_TAU / tau
+    if ki * tau / _STEPS_PER_TAU > 0.5:
+        raise ValueError(f"amplitude_ki must be <= {limit:g} 1/s for the loop's time step "
+                         f"tau / {_STEPS_PER_TAU} (tau = {tau:g} s), got {ki:g} 1/s")
+
+
+def _check_state(state, t0):
+    if not isinstance(state, tuple) or len(state) != 6:
+        raise TypeError(f"state must be a FeedbackLine.state (a 6-tuple), got "
+                        f"{type(state).__name__}")
+    values = tuple(float(check_array("state", v, ndim=0)) for v in state)
+    if values[0] > t0:
+        raise ValueError(f"state must come before the first time {t0:g} s, got "
+                         f"{values[0]:g} s")
+    return values
+
+
 class TappingMode(Mode):
     """Amplitude-modulation imaging through module (f)'s scanner: height and phase channels.
 
-    An ideal (infinitely fast) amplitude feedback holds the amplitude at the setpoint r A0: at
-    every pixel the lever rests at the distance z_c(material) of :func:`setpoint_state` above
-    the apex surface, with the phase lag and the dissipation of that state. The height channels
-    are the apex surface plus z_c(material) - z_c(first material): the topography where the
-    sample is the first material, plus the apparent step a change of material makes (a stiffer
-    or less adhesive material lifts the lever). The phase channels show the materials' contrast,
-    which dissipation in the sample makes (E_dis = (pi k A^2 / Q)[(A0 / A) sin(phi) - W]).
+    With ``feedback="ideal"`` (the default) an infinitely fast amplitude feedback holds the
+    amplitude at the setpoint r A0: at every pixel the lever rests at the distance
+    z_c(material) of :func:`setpoint_state` above the apex surface, with the phase lag and the
+    dissipation of that state. The height channels are the apex surface plus
+    z_c(material) - z_c(first material): the topography where the sample is the first material,
+    plus the apparent step a change of material makes (a stiffer or less adhesive material lifts
+    the lever). The phase channels show the materials' contrast, which dissipation in the
+    sample makes (E_dis = (pi k A^2 / Q)[(A0 / A) sin(phi) - W]).
+
+    With ``feedback="pi"`` the loop of :func:`amplitude_feedback` runs along the scan in time
+    (trace, retrace, the step to the next line, each line continuing from the state the
+    previous one left): the amplitude lags height changes with tau = 2 Q / w0 and a PI
+    controller moves the positioner. Scanning faster than the loop can follow gives the known
+    artefacts: the height lags at edges, the tip parachutes off a down step (the amplitude
+    rises towards A0 and the error saturates), and the error channels (A - A_sp) show the
+    edges. The height channel is the positioner's height minus the first material's setpoint
+    distance; phase and dissipation are those of the lagging amplitude and phase.
 
     Parameters
     ----------
     levers : TappingLever or sequence of TappingLever
         The lever on each material (same lever, a different sample: modulus, viscosity, ...);
-        at most 16.
+        at most 16 (with ``feedback="pi"``, one lever: module (f)'s levers differ only in the
+        sample, and the loop's time constant is the lever's).
     setpoint_ratio : float
         Setpoint r = A_sp / A0, in (0, 1).
     material : callable, optional
         ``material(x, y)`` -> integer array (index into ``levers``) of the material at positions
         x, y in m on the sample (arrays of one shape); default: the first everywhere.
+    feedback : str
+        ``"ideal"`` or ``"pi"`` (:data:`FEEDBACKS`).
+    amplitude_kp, amplitude_ki : float
+        The PI gains (``feedback="pi"`` only; :data:`FEEDBACK_PARAMETERS`).
 
     Raises
     ------
     ValueError
-        On a setpoint outside (0, 1) or no lever, before any scan.
+        On a setpoint outside (0, 1), no lever, an unknown feedback or gains out of range,
+        before any scan; with ``feedback="pi"``, a scan needing more than
+        :data:`MAX_FEEDBACK_STEPS` steps (when the scan starts).
     TypeError
         If a lever is not a :class:`TappingLever` or ``material`` is not callable.
     """
@@ -782,21 +1063,39 @@ class TappingMode(Mode):
                               "dissipation trace": "J"})
 
     def __init__(self, levers, setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
-                 material=None):
+                 material=None, *, feedback: str = "ideal",
+                 amplitude_kp: float = FEEDBACK_PARAMETERS["amplitude_kp"].default,
+                 amplitude_ki: float = FEEDBACK_PARAMETERS["amplitude_ki"].default):
+        if not isinstance(levers, TappingLever) and (isinstance(levers, (str, bytes))
+                                                     or not hasattr(levers, "__iter__")):
+            raise TypeError(f"levers must be a TappingLever or a sequence of them, got "
+                            f"{type(levers).__name__}")
         levers = (levers,) if isinstance(levers, TappingLever) else tuple(levers)
         if not 1 <= len(levers) <= 16:
             raise ValueError(f"levers must hold 1 to 16 levers, got {len(levers)}")
-        self.levers = tuple(_check_lever(lever) for lever in levers)
+        self.levers = tuple(check_instance("levers", lever, TappingLever) for lever in levers)
         self.setpoint_ratio = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
         if material is not None and not callable(material):
             raise TypeError(f"material must be a callable material(x, y), got "
                             f"{type(material).__name__}")
         self.material = material
+        self.feedback = check_choice("feedback", feedback, FEEDBACKS)
+        self.amplitude_kp = FEEDBACK_PARAMETERS["amplitude_kp"].check(amplitude_kp)
+        self.amplitude_ki = FEEDBACK_PARAMETERS["amplitude_ki"].check(amplitude_ki)
+        if self.feedback == "pi":
+            taus = {lever.time_constant for lever in self.levers}
+            if len(taus) != 1:
+                raise ValueError(f"levers must share one quality factor and resonance "
+                                 f"frequency with feedback='pi' (one lever, one time "
+                                 f"constant), got time constants {sorted(taus)}")
+            _check_gain(self.amplitude_ki, self.levers[0].time_constant)
+            self.channels = TappingMode.channels + ("error trace", "error retrace")
         states = [setpoint_state(self.setpoint_ratio, lever) for lever in self.levers]
         #: Per material: rest distance z_c in m, phase lag in rad, E_dis in J.
         self.distance = np.array([s[0] for s in states])
         self.phase = np.array([s[1] for s in states])
         self.dissipation = np.array([s[2] for s in states])
+        self._tables = None
 
     def _which(self, x, y):
         if self.material is None:
@@ -808,6 +1107,42 @@ class TappingMode(Mode):
                              f"shaped like x, got {m.dtype} {m.shape}")
         return m
 
+    def start(self, plan: ScanPlan):
+        """Check the scan's length for the PI loop and tabulate the approach (``"pi"`` only).
+
+        Parameters
+        ----------
+        plan : afmsmiler.imaging.modes.ScanPlan
+            The scan.
+
+        Returns
+        -------
+        None
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan.
+        ValueError
+            With ``feedback="pi"``, if the scan needs more than :data:`MAX_FEEDBACK_STEPS`
+            steps of the loop.
+        """
+        super().start(plan)
+        if self.feedback == "pi":
+            tau = self.levers[0].time_constant
+            lines, n = plan.shape
+            span = plan.t_retrace[-1, 0] - plan.t_trace[0, 0]
+            steps = lines * (2 * n - 1) + int(math.ceil(span / (tau / _STEPS_PER_TAU)))
+            if steps > MAX_FEEDBACK_STEPS:
+                raise ValueError(f"scan_speed: this scan needs about {steps} steps of the "
+                                 f"amplitude loop (tau / {_STEPS_PER_TAU} = "
+                                 f"{tau / _STEPS_PER_TAU:g} s over {span:g} s), more than "
+                                 f"{MAX_FEEDBACK_STEPS}: scan faster, fewer pixels, or use "
+                                 f"feedback='ideal'")
+            if self._tables is None:
+                self._tables = [_approach_table(lever) for lever in self.levers]
+        return None
+
     def line(self, plan: ScanPlan, row: int, state=None) -> ModeLine:
         """One line: height, phase and dissipation at each pixel of trace and retrace.
 
@@ -818,12 +1153,15 @@ class TappingMode(Mode):
         row : int
             Line index.
         state : object
-            Unused (the feedback is ideal: nothing carries over).
+            ``"ideal"``: unused (nothing carries over). ``"pi"``: the loop's state at the end
+            of the previous line (None before the first: settled at the setpoint).
 
         Returns
         -------
         afmsmiler.imaging.modes.ModeLine
         """
+        if self.feedback == "pi":
+            return self._line_pi(plan, self._row(plan, row), state)
         out = {}
         ref = self.distance[0]
         for name, heights, x, y in (("trace", plan.trace, plan.x_trace, plan.y_trace),
@@ -834,3 +1172,31 @@ class TappingMode(Mode):
             if name == "trace":
                 out["dissipation trace"] = self.dissipation[m]
         return ModeLine(out, None)
+
+    def _line_pi(self, plan, row, state):
+        if self._tables is None:
+            self.start(plan)
+        n = plan.shape[1]
+        m_t = self._which(plan.x_trace[row], plan.y_trace[row])
+        m_r = self._which(plan.x_retrace[row], plan.y_retrace[row])
+        # the path in time: the trace, then the retrace from its second pixel (the first is the
+        # trace's last, at the same time)
+        r = np.concatenate((plan.trace[row], plan.retrace[row][::-1][1:]))
+        t = np.concatenate((plan.t_trace[row], plan.t_retrace[row][::-1][1:]))
+        m = np.concatenate((m_t, m_r[::-1][1:]))
+        lever = self.levers[0]
+        a_sp = self.setpoint_ratio * lever.free_amplitude
+        big_z, amp, phi, new = _run_feedback(self._tables, r.tolist(), t.tolist(), m.tolist(),
+                                             a_sp, self.amplitude_kp, self.amplitude_ki,
+                                             lever, self.distance.tolist(), state)
+        height = big_z - self.distance[0]
+        e_dis = np.empty(n)
+        for k in np.unique(m[:n]):  # at most 16 materials
+            sel = m[:n] == k
+            e_dis[sel] = self.levers[k].dissipated_energy(amp[:n][sel], phi[:n][sel])
+        back = slice(n - 1, None)  # the retrace in increasing x: pixel n - 1 is the turn-around
+        out = {"height trace": height[:n], "height retrace": height[back][::-1].copy(),
+               "phase trace": phi[:n], "phase retrace": phi[back][::-1].copy(),
+               "dissipation trace": e_dis,
+               "error trace": amp[:n] - a_sp, "error retrace": (amp[back] - a_sp)[::-1].copy()}
+        return ModeLine(out, new)
