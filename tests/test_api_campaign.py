@@ -73,7 +73,8 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            # module (e): the optical head's laser alignment
            "afmsmiler.instrument.optics", "afmsmiler.instrument.alignment",
            # module (g): the imaging modalities
-           "afmsmiler.modes._forces", "afmsmiler.modes.fm",
+           "afmsmiler.modes._forces", "afmsmiler.modes.tapping", "afmsmiler.modes.fm",
+           "afmsmiler.modes.jumping", "afmsmiler.modes.force_volume", "afmsmiler.modes.bimodal",
            "afmsmiler.modes.lateral"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s per call: the issue's bound
@@ -100,6 +101,9 @@ ACCEPTED = {
     "modes.lateral.LateralForceMode.line:state": (
         ("nan", "str", "bool", "complex", "object", "nan-array"),
         "unused and documented so: each line is a steady friction loop"),
+    "modes.tapping.TappingMode.line:state": (
+        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        "unused by the ideal feedback (the default) and documented so"),
     "modes.lateral.friction_scan:seed": (("None",), "None is the documented fresh noise"),
 }
 # Returned by the models, not built by a user: their constructors are not part of the input API
@@ -114,7 +118,8 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            "Profile", "PngExport",
            # module (g): what the modalities' models return
            "AmplitudeCurve", "SteadyState", "FrequencyShiftCurve", "FrictionLoop",
-           "FrictionImages"}
+           "FrictionImages", "FeedbackLine", "JumpCurve", "ModeComparison", "ForceVolume",
+           "BimodalState"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -334,6 +339,19 @@ OVERRIDES = {
     "afmsmiler.modes.fm.sader_jarvis": {"df": lambda: -10.0 * (0.3e-9 / np.linspace(
         0.3e-9, 10e-9, 64)) ** 2},
     "afmsmiler.modes.lateral.friction_loop": {"heights": lambda: np.zeros(32)},
+    "afmsmiler.modes.tapping.amplitude_feedback": {"heights": lambda: np.zeros(32),
+                                                   "times": lambda: np.linspace(0, 1e-3, 32)},
+    "afmsmiler.modes.jumping.JumpingMode": {"systems": _system},
+    "afmsmiler.modes.tapping.AmplitudeCurve.branch": {"name": "attractive"},
+    "afmsmiler.modes.force_volume.force_volume": {
+        "materials": lambda: __import__("afmsmiler.modes", fromlist=["BLEND"]).BLEND,
+        "labels": lambda: (np.arange(256).reshape(16, 16) % 2)},
+    "afmsmiler.modes.force_volume.ForceVolumeMode": {
+        "materials": lambda: __import__("afmsmiler.modes", fromlist=["BLEND"]).BLEND},
+    "afmsmiler.modes.force_volume.SampleMaterial.system": {"adhesion": "dmt"},
+    "afmsmiler.modes.bimodal.BimodalLever.compliance": {"angular_frequency": 2e6},
+    "afmsmiler.modes.bimodal.bimodal_response": {"distance": 12e-9},
+    "afmsmiler.modes.bimodal.averaged_gradient": {"distance": 12e-9},
     "afmsmiler.modes.lateral.lateral_force": {"slope": 0.0},
     "afmsmiler.controller.ContactLoop.scan_line": {
         "x": lambda: np.linspace(0.0, 1.5e-6, 16), "height": lambda: np.zeros(16)},
@@ -430,6 +448,8 @@ INSTANCES = {
     "Scan": _scan,
     "ConstantForce": _constant_force,
     "ConstantHeight": _constant_height,
+    "AmplitudeCurve": lambda: __import__("afmsmiler.modes", fromlist=[
+        "amplitude_curve"]).amplitude_curve(np.linspace(2e-9, 12e-9, 20)),
     "Profile": lambda: __import__("afmsmiler.imaging.statistics",
                                   fromlist=["line_profile"]).line_profile(
         _image(), (10e-9, 20e-9), (120e-9, 100e-9)),
@@ -808,6 +828,10 @@ def _non_finite(obj, depth=0, seen=None):
         return _non_finite(obj.channels, depth + 1, seen)  # the finished lines must be finite
     if type(obj).__name__ in ("LineRecord", "ModeLine") and obj.crash is not None:
         return None  # a crashed line: NaN on the pixels not reached (documented)
+    if type(obj).__name__ == "AmplitudeCurve":  # NaN pads the roots a distance lacks
+        has = ~np.isnan(obj.amplitude)  # (documented): the roots that exist must be finite
+        return _non_finite([obj.amplitude[has], obj.phase[has], obj.dissipated_energy[has]],
+                           depth + 1, seen)
     if isinstance(obj, (int, np.integer)):
         return None
     if isinstance(obj, (float, np.floating, complex, np.complexfloating)):

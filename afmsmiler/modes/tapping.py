@@ -255,7 +255,7 @@ class TappingLever:
         Parameters
         ----------
         amplitude : float or array_like
-            Amplitude A of the first harmonic in m.
+            Amplitude A of the first harmonic in m, in [0, 1e-6] (the free amplitude's range).
         phase : float or array_like
             Phase lag phi of the tip behind the drive in rad (pi / 2: free, at resonance).
 
@@ -264,7 +264,8 @@ class TappingLever:
         float or ndarray
             Energy in J the sample takes per cycle ((pi k A^2 / Q)[(A0 / A) sin(phi) - W]).
         """
-        a = check_array("amplitude", amplitude, "m", low=0.0)
+        a = check_array("amplitude", amplitude, "m", low=0.0,
+                        high=PARAMETERS["free_amplitude"].high)
         phi = check_array("phase", phase, "rad", low=-2 * math.pi, high=2 * math.pi)
         out = math.pi * a * (self.drive_force * np.sin(phi) - self.spring_constant *
                              self.frequency_ratio * a / self.quality_factor)
@@ -969,7 +970,10 @@ def amplitude_feedback(heights, times, lever: TappingLever | None = None, *,
     """
     lever = TappingLever() if lever is None else _check_lever(lever)
     r = check_array("heights", heights, "m", ndim=1, min_size=1)
-    t = check_array("times", times, "s", ndim=1, size=r.size, low=0.0, nondecreasing=True)
+    t = check_array("times", times, "s", ndim=1, low=0.0, nondecreasing=True)
+    if t.size != r.size:
+        raise ValueError(f"heights and times must have one value per point: heights has "
+                         f"{r.size}, times {t.size}")
     ratio = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
     kp = FEEDBACK_PARAMETERS["amplitude_kp"].check(amplitude_kp)
     ki = FEEDBACK_PARAMETERS["amplitude_ki"].check(amplitude_ki)
@@ -1160,8 +1164,9 @@ class TappingMode(Mode):
         -------
         afmsmiler.imaging.modes.ModeLine
         """
+        row = self._row(plan, row)
         if self.feedback == "pi":
-            return self._line_pi(plan, self._row(plan, row), state)
+            return self._line_pi(plan, row, state)
         out = {}
         ref = self.distance[0]
         for name, heights, x, y in (("trace", plan.trace, plan.x_trace, plan.y_trace),
