@@ -11,7 +11,7 @@ from afmsmiler.exercises import modalities as ex
 from afmsmiler.modes import setpoint_state
 
 
-# -- 1. the attractive branch ---------------------------------------------------------------------
+# -- 1. the attractive branch ------
 def test_the_lowest_attractive_setpoint_separates_the_branches():
     best = ex.lowest_attractive_setpoint()
     lever = ex.tapping_lever()
@@ -40,7 +40,7 @@ def test_setpoint_slips_are_named(answer, words):
     assert best not in str(fb)
 
 
-# -- 2. friction from a loop ------------------------------------------------------------------------
+# -- 2. friction from a loop ------
 def _loop_numbers():
     loop = ex.friction_loop_data()
     inner = slice(1, -1)  # the stuck turn-arounds at the ends
@@ -75,7 +75,7 @@ def test_friction_slips_are_named(slip, words):
     assert "0.25" not in str(fb)
 
 
-# -- 3. E_dis from the phase -------------------------------------------------------------------------
+# -- 3. E_dis from the phase ------
 def _energy(sine=math.sin, in_degrees=False, free_term=True):
     g = ex.dissipation_givens()
     phi = g["phase_deg"] if in_degrees else math.radians(g["phase_deg"])

@@ -51,7 +51,7 @@ _NN = unit_scale("nN", "N")
 _EV = 1.602176634e-19
 
 
-# -- 1. the attractive branch --------------------------------------------------------------------
+# -- 1. the attractive branch ------
 def tapping_lever() -> TappingLever:
     """Exercise 1's lever and sample: the defaults of :class:`TappingLever` at A0 = 12 nm.
 
@@ -143,7 +143,7 @@ def check_attractive_setpoint(ratio,
                           f"setpoint that keeps it there.")
 
 
-# -- 2. friction from a loop -----------------------------------------------------------------------
+# -- 2. friction from a loop ------
 @lru_cache(maxsize=1)
 def friction_loop_data() -> FrictionLoop:
     """Exercise 2's friction loop: one material on a line tilted along the scan, with noise.
@@ -208,7 +208,7 @@ def check_friction_coefficient(mu, rtol: float = DEFAULTS["friction_rtol"]) -> F
     return check_close("friction coefficient", value, expected, rtol, hint=hint)
 
 
-# -- 3. dissipation from the phase --------------------------------------------------------------------
+# -- 3. dissipation from the phase ------
 def dissipation_lever() -> TappingLever:
     """Exercise 3's lever and sample: the defaults of :class:`TappingLever` on a viscous sample.
 
