@@ -71,9 +71,16 @@ def test_tapping_animation_is_sent_once_and_replaces_nothing_else():
     scene.animate_tapping(9e-9, 9.6e-9, free_amplitude=A0, contact_distance=A_CONTACT)
     scene.animate_tapping(9e-9, 9.0e-9, free_amplitude=A0, contact_distance=A_CONTACT)
     assert [c[0] for c in rec.calls].count("set_animation") == 2
-    # only the caption is redrawn per animation: the instrument is drawn once
+    # only the caption and the (still) beams are redrawn per animation: the rest is drawn once
     new = [c[1] for c in rec.calls if c[0] == "set_object"][objects:]
-    assert new and all("/caption/" in p for p in new)
+    assert new and all("/caption/" in p or p.endswith(("/incident", "/reflected"))
+                       for p in new)
+    # the beams meet the lever's top at the middle of its motion
+    line = rec.log["/afmsmiler/modes/incident"]["object"][0]
+    top = np.asarray(line.geometry.position)[:, 1]
+    s = scene.factors["distance"]
+    assert top[2] == pytest.approx(9e-9 * s + DEFAULTS["tip_height"] + DEFAULTS["lever"][2],
+                                   rel=1e-6)
 
 
 def test_fm_lever_drifts_from_the_free_one_by_the_stated_factor():

@@ -196,8 +196,8 @@ class ModesScene:
         self.detector = np.asarray(d["detector"], dtype=float)
         v["laser"].set_object(g.Box([0.45, 0.22, 0.22]), g.MeshLambertMaterial(color=0x333333))
         v["laser"].set_transform(translation(laser))
-        polyline(v["incident"], np.array([laser, top]), color=_BEAM)
-        polyline(v["reflected"], np.array([top, self.detector]), color=_BEAM)
+        self._laser = laser
+        self._aim(top[2])
         normal = top - self.detector
         self.normal = normal / np.linalg.norm(normal)
         self.rotation = quadrant_photodiode(v["detector"], self.detector, self.normal,
@@ -211,6 +211,17 @@ class ModesScene:
             set_camera(self.root, d["camera"])
             show_helpers(self.root, grid=False, axes=False)
         _OWNER[(id(self.root), self.path)] = self
+
+    def _aim(self, height: float) -> None:
+        """Draw the beams to the lever's top at ``height`` (scene units): its mean position in
+        the animation (the beams are drawn still; the spot moves)."""
+        top = np.array([0.0, 0.0, height])
+        polyline(self.vis["incident"], np.array([self._laser, top]), color=_BEAM)
+        polyline(self.vis["reflected"], np.array([top, self.detector]), color=_BEAM)
+
+    def _lever_top(self, apex: float) -> float:
+        """Height of the lever's top face (scene units) over an apex at ``apex``."""
+        return apex + DEFAULTS["tip_height"] + DEFAULTS["lever"][2]
 
     def spot_position(self, vertical: float, lateral: float) -> np.ndarray:
         """The spot's centre (scene units) for offsets in units of the largest drawn offset.
@@ -301,6 +312,7 @@ class ModesScene:
         self._ensure("tapping")
         scale = round_factor(DEFAULTS["motion"] / a0)  # scene units per m
         self.factors = {"distance": scale}
+        self._aim(self._lever_top(zc * scale))
         anim = Animation(default_framerate=fps)
         touches = 0
         for k in range(frames * periods + 1):
@@ -366,6 +378,7 @@ class ModesScene:
         ratio = abs(df) / f0
         boost = round_factor(0.5 / (periods * ratio)) if ratio > 0 else 1.0
         self.factors = {"distance": scale, "frequency": boost}
+        self._aim(self._lever_top((z + a) * scale))
         anim = Animation(default_framerate=fps)
         for k in range(frames * periods + 1):
             theta = 2 * math.pi * k / frames
@@ -438,6 +451,7 @@ class ModesScene:
         twist_factor = round_factor(DEFAULTS["twist"] / max(float(np.abs(phi).max()), 1e-300))
         signal_factor = round_factor(1.0 / max(float(np.abs(s).max()), 1e-300))
         self.factors = {"twist": twist_factor, "signal": signal_factor}
+        self._aim(self._lever_top(0.0))
         pick = np.unique(np.linspace(0, n - 1, frames).round().astype(int))
         anim = Animation(default_framerate=fps)
         k = 0
@@ -498,6 +512,7 @@ class ModesScene:
         span = max(float(np.ptp(xs)), px)
         lateral = 2 * DEFAULTS["scan_half"] / span
         self.factors = {"distance": scale}
+        self._aim(self._lever_top(float(np.median(h)) * scale))
         anim = Animation(default_framerate=fps)
         for k in range(h.size):
             with anim.at_frame(self.vis, k) as frame:
