@@ -1,0 +1,533 @@
+"""Force volume (peak-force style) mapping: a force curve per pixel, maps of the mechanics.
+
+At every pixel the positioner ramps the sample up until the force reaches a peak force F_p and
+back down by a ramp size (the curve of a peak-force tapping or force-volume map; Heu, Berquand,
+Elie-Caille and Nicod, J. Struct. Biol. 178, 1 (2012); Dufrene et al., Nat. Nanotechnol. 12,
+295 (2017)). The curve is module (d)'s: the approach-retract cycle of a
+:class:`~afmsmiler.contact.ContactSystem` (Hertz/Sneddon with the lever in series, DMT or JKR
+adhesion), or on a viscoelastic material (a standard linear solid) Lee-Radok/Ting's cycle of
+:func:`~afmsmiler.contact.viscoelastic_approach_retract` at the positioner speed; Gaussian force
+noise of RMS sigma is added to every sample. Each curve is analysed as the instrument does:
+
+- **adhesion**: the pull-off force, minus the minimum of the retract;
+- **modulus**: the retract's contact part (from the peak down to the jump-off, the largest
+  upward step of the retract) has the adhesion added back, so that it is a Hertz curve with the
+  free part as its baseline (the DMT analysis of peak-force QNM: F - F_adh = (4/3) E* sqrt(R)
+  d^(3/2), Derjaguin, Muller and Toporov, J. Colloid Interface Sci. 53, 314 (1975)); that curve,
+  in tip position x = Z_np - F / k, is fitted with module (d)'s
+  :func:`~afmsmiler.contact.fit_curve` (E, contact point, baseline; the standard error of E
+  from its covariance). Exact for DMT; on a JKR sample the contact part is not Hertz plus a
+  constant and E comes out biased (the fit assumes DMT). The adhesion added back is the noisy
+  minimum, off from the true pull-off force by a few sigma (and by the contact force at the
+  last sample before the jump, at most the Hertz force of one ramp step): an offset between
+  the contact part and the baseline that the fit's standard error does not see, so that the
+  pixel-to-pixel scatter of a modulus map is a few times that standard error (as with the
+  instrument's DMT analysis);
+- **deformation**: the indentation at the peak force, x(F_p) - x_0 (x_0 the fitted contact
+  point);
+- **dissipation**: the area of the loop, the work the positioner does over the cycle,
+  W = int_approach F dZ_np + int_retract F dZ_np (trapezoidal; >= 0: the energy the jumps of an
+  adhesive contact and a viscoelastic sample take).
+
+The curves of one material differ only by their noise, so the model is run once per material
+and the noise, the adhesion, the DMT correction and the loop area are vectorised over all
+pixels; the fit runs once per pixel (about 3 ms each, mostly scipy's least-squares overhead:
+a 32 x 32 map takes some 4 s, 64 x 64 some 15 s; ``benchmarks/bench_force_volume.py``).
+
+:func:`two_material_sample` makes a polymer-blend-like sample: round islands of one material in a
+matrix of another, with the label map.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from ..contact import (ContactSystem, StandardLinearSolid, Tip, fit_curve,
+                       viscoelastic_approach_retract)
+from ..contact.quantities import PARAMETERS as CONTACT
+from ..imaging.modes import Mode, ModeLine, ScanPlan
+from ..parameters import Parameter, read_only
+from ..samples import Sample
+from ..samples.sample import check_shape
+from ..validation import check_choice, check_instance, check_integer, check_range
+from .jumping import Z_SPEED, trigger_z_np
+
+__all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "force_volume",
+           "two_material_sample", "MAX_MAP_PIXELS", "MAX_POINTS", "MAX_MATERIALS",
+           "ADHESION_MODELS", "BLEND"]
+
+#: Most pixels of one map (64 x 64: one fit per pixel, some 15 s in all).
+MAX_MAP_PIXELS = 64 * 64
+#: Most samples per branch of a pixel's curve.
+MAX_POINTS = 2000
+#: Most materials of one map.
+MAX_MATERIALS = 16
+#: The adhesion models the curves may use (module (d)'s).
+ADHESION_MODELS = (None, "dmt", "jkr")
+# the largest upward step of the retract is the jump-off only if it stands out of the noise
+_JUMP_SIGMAS = 8.0
+
+#: The mapping's user-settable quantities (SI): a 10 N/m lever (stiff enough that the force
+#: noise, through F / k, hardly moves the tip position) ramped to 10 nN over 30 nm, 500 samples
+#: per branch, 20 pN of force noise, at 20 um/s.
+PARAMETERS = read_only({p.name: p for p in (
+    CONTACT["spring_constant"].with_(default=10.0),
+    Parameter(name="peak_force", unit="N", display_unit="nN", default=10e-9, low=0.0,
+              high=1e-3, low_inclusive=False, slider_low=0.5e-9, slider_high=100e-9, log=True,
+              label="peak force F_p"),
+    Parameter(name="ramp_size", unit="m", display_unit="nm", default=30e-9, low=0.0, high=1e-5,
+              low_inclusive=False, slider_low=5e-9, slider_high=500e-9, log=True,
+              label="ramp size"),
+    Parameter(name="points", unit="", default=500, low=20, high=MAX_POINTS, slider_low=50,
+              slider_high=1000, log=True, label="samples per branch"),
+    Parameter(name="force_noise", unit="N", display_unit="pN", default=20e-12, low=0.0,
+              high=1e-6, slider_low=0.0, slider_high=500e-12, label="force noise (RMS)"),
+    Z_SPEED,
+)})
+
+
+@dataclass(frozen=True)
+class SampleMaterial:
+    """The mechanics of one material of a mapped sample (SI units).
+
+    Parameters
+    ----------
+    name : str
+        What it is (for legends).
+    youngs_modulus : float
+        Young's modulus E in Pa (ignored when ``viscoelastic`` is given).
+    poisson_ratio : float
+        Poisson's ratio nu, in [0, 0.5).
+    work_of_adhesion : float
+        w in J/m^2, 0 (no adhesion) to 10.
+    viscoelastic : afmsmiler.contact.StandardLinearSolid or None
+        A standard linear solid (E_inf, E_0, tau): the curve is Lee-Radok/Ting's at the ramp's
+        speed (no adhesion then).
+
+    Raises
+    ------
+    ValueError
+        Naming the value out of range, or a viscoelastic material with adhesion.
+    TypeError
+        If ``name`` is not a str or ``viscoelastic`` not a StandardLinearSolid.
+    """
+
+    name: str = "material"
+    youngs_modulus: float = CONTACT["youngs_modulus"].default
+    poisson_ratio: float = CONTACT["poisson_ratio"].default
+    work_of_adhesion: float = 0.0
+    viscoelastic: StandardLinearSolid | None = None
+
+    def __post_init__(self):
+        check_instance("name", self.name, str)
+        s = object.__setattr__
+        s(self, "youngs_modulus", CONTACT["youngs_modulus"].check(self.youngs_modulus))
+        s(self, "poisson_ratio", CONTACT["poisson_ratio"].check(self.poisson_ratio))
+        s(self, "work_of_adhesion", check_range("work_of_adhesion", self.work_of_adhesion, 0.0,
+                                                CONTACT["work_of_adhesion"].high, "J/m^2"))
+        if self.viscoelastic is not None:
+            check_instance("viscoelastic", self.viscoelastic, StandardLinearSolid)
+            if self.work_of_adhesion > 0:
+                raise ValueError(f"work_of_adhesion must be 0 for a viscoelastic material (the "
+                                 f"hereditary model has no adhesion), got "
+                                 f"{self.work_of_adhesion:g} J/m^2")
+
+    def system(self, tip: Tip, spring_constant: float, adhesion: str | None) -> ContactSystem:
+        """Module (d)'s contact system of this material (E_inf for a viscoelastic one).
+
+        Parameters
+        ----------
+        tip : afmsmiler.contact.Tip
+            The tip.
+        spring_constant : float
+            Lever spring constant k in N/m.
+        adhesion : {None, "dmt", "jkr"}
+            Adhesion model (used where ``work_of_adhesion`` > 0).
+
+        Returns
+        -------
+        afmsmiler.contact.ContactSystem
+        """
+        e = (self.viscoelastic.relaxed_modulus if self.viscoelastic is not None
+             else self.youngs_modulus)
+        sticky = adhesion is not None and self.work_of_adhesion > 0
+        return ContactSystem(spring_constant=spring_constant, tip=tip, youngs_modulus=e,
+                             poisson_ratio=self.poisson_ratio,
+                             adhesion=adhesion if sticky else None,
+                             work_of_adhesion=self.work_of_adhesion if sticky else
+                             CONTACT["work_of_adhesion"].default)
+
+
+#: A polymer-blend-like pair: a stiff, weakly adhesive matrix (1 GPa, 20 mJ/m^2) and soft, sticky
+#: islands (100 MPa, 60 mJ/m^2).
+BLEND = (SampleMaterial("matrix", 1e9, 0.3, 0.02), SampleMaterial("islands", 100e6, 0.3, 0.06))
+
+
+@dataclass(frozen=True)
+class ForceVolume:
+    """Maps of a force-volume measurement (:func:`force_volume`), arrays (rows, columns), SI.
+
+    Parameters
+    ----------
+    modulus, modulus_error : numpy.ndarray
+        Fitted Young's modulus E and its standard error in Pa (NaN where the fit failed).
+    adhesion : numpy.ndarray
+        Pull-off force in N (minus the retract's minimum).
+    deformation : numpy.ndarray
+        Indentation at the peak force in m.
+    dissipation : numpy.ndarray
+        Work per cycle in J (area of the loop).
+    labels : numpy.ndarray
+        The material index of each pixel (the truth the maps are compared with).
+    pixel_size : float
+        Pixel size in m.
+    z_np : numpy.ndarray
+        Each material's approach ramp of Z_np in m, (materials, points) (the retract runs it
+        backwards), from the contact with the undeformed surface.
+    approach, retract : numpy.ndarray
+        Each material's noise-free approach and retract forces in N, (materials, points) (the
+        retract in its own order, from the peak down).
+    noise : float
+        RMS force noise in N that was added.
+    """
+
+    modulus: np.ndarray
+    modulus_error: np.ndarray
+    adhesion: np.ndarray
+    deformation: np.ndarray
+    dissipation: np.ndarray
+    labels: np.ndarray
+    pixel_size: float
+    z_np: np.ndarray = field(repr=False)
+    approach: np.ndarray = field(repr=False)
+    retract: np.ndarray = field(repr=False)
+    noise: float = 0.0
+
+    @property
+    def maps(self) -> dict:
+        """Name -> :class:`~afmsmiler.samples.Sample` of each map (with its SI unit)."""
+        units = {"modulus": "Pa", "adhesion": "N", "deformation": "m", "dissipation": "J"}
+        return {name: Sample(getattr(self, name), self.pixel_size, name, channel=name,
+                             unit=unit) for name, unit in units.items()}
+
+
+def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
+                        island_radius: float = 150e-9, island_count: int = 6,
+                        island_height: float = 5e-9, seed: int | None = 0):
+    """A polymer-blend-like sample: round islands of material 1 in a matrix of material 0.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        (rows, columns), each >= 2.
+    pixel_size : float
+        Pixel size in m, > 0.
+    island_radius : float
+        Radius of the islands in m, at least a pixel.
+    island_count : int
+        Number of islands, 1 to 1000 (they may overlap).
+    island_height : float
+        Height of the islands above the matrix in m (any sign, |h| <= 1 mm).
+    seed : int or None
+        Seed of the islands' positions (numpy's default_rng).
+
+    Returns
+    -------
+    (Sample, numpy.ndarray)
+        The heights and the integer label map (0 matrix, 1 islands).
+
+    Raises
+    ------
+    ValueError
+        Naming the argument out of range.
+
+    Examples
+    --------
+    >>> sample, labels = two_material_sample((32, 32), 20e-9, island_count=2, seed=1)
+    >>> sample.heights.shape, sorted(set(labels.ravel().tolist()))
+    ((32, 32), [0, 1])
+    """
+    shape = check_shape(shape)
+    if len(shape) != 2:
+        raise ValueError(f"shape must be (rows, columns), got {shape}")
+    px = check_range("pixel_size", pixel_size, 0.0, 1e-3, "m", low_inclusive=False)
+    radius = check_range("island_radius", island_radius, px, 1e-3, "m")
+    count = check_integer("island_count", island_count, 1, 1000)
+    height = check_range("island_height", island_height, -1e-3, 1e-3, "m")
+    if seed is not None:
+        seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
+    rng = np.random.default_rng(seed)
+    rows, cols = shape
+    centres = rng.uniform((0.0, 0.0), ((cols - 1) * px, (rows - 1) * px), size=(count, 2))
+    x = np.arange(cols) * px
+    y = np.arange(rows) * px
+    labels = np.zeros(shape, dtype=int)
+    for cx, cy in centres:  # bounded: at most 1000 discs on at most MAX_PIXELS pixels
+        inside = (x[None, :] - cx) ** 2 + (y[:, None] - cy) ** 2 <= radius * radius
+        labels[inside] = 1
+    sample = Sample(np.where(labels == 1, height, 0.0), px, "two-material sample",
+                    metadata=dict(generator="two_material_sample", island_radius=radius,
+                                  island_count=count, island_height=height))
+    return sample, labels
+
+
+def _check_materials(materials):
+    materials = (materials,) if isinstance(materials, SampleMaterial) else tuple(materials)
+    if not 1 <= len(materials) <= MAX_MATERIALS:
+        raise ValueError(f"materials must hold 1 to {MAX_MATERIALS} SampleMaterials, got "
+                         f"{len(materials)}")
+    return tuple(check_instance("materials", m, SampleMaterial) for m in materials)
+
+
+def _curves(materials, tip, k, peak_force, ramp_size, points, z_speed, adhesion):
+    """Each material's ramp and noise-free approach and retract forces, (materials, points)."""
+    ramps, app, ret = [], [], []
+    for i, m in enumerate(materials):
+        system = m.system(tip, k, adhesion)
+        z_peak = trigger_z_np(system, peak_force)
+        off = z_peak - min(system.snap_off_z_np, 0.0)
+        if ramp_size <= off:
+            raise ValueError(f"ramp_size must be > {off:g} m so that the tip leaves material "
+                             f"{i} ({m.name!r}) on every retract, got {ramp_size:g} m")
+        z = np.linspace(z_peak - ramp_size, z_peak, points)
+        if m.viscoelastic is not None:
+            cycle = viscoelastic_approach_retract(z, k, tip, m.viscoelastic, m.poisson_ratio,
+                                                  z_speed)
+            retract = np.interp(z[::-1], cycle.retract.z_np[::-1], cycle.retract.force[::-1])
+        else:
+            cycle = system.approach_retract(z)
+            retract = cycle.retract.force
+        ramps.append(z)
+        app.append(cycle.approach.force)
+        ret.append(retract)
+    return np.array(ramps), np.array(app), np.array(ret)
+
+
+def _analyse(z, f_app, f_ret, k, sigma, tip, nu):
+    """Adhesion, modulus (and error), deformation and dissipation of curves (pixels, points).
+
+    ``z`` (pixels, points) is each curve's approach ramp; the retract runs it backwards.
+    """
+    n_pix = f_app.shape[0]
+    z_ret = z[:, ::-1]
+    adhesion = -np.min(f_ret, axis=1)
+    # loop area: the positioner's work over the cycle (the retract's dZ is negative)
+    dissipation = np.trapezoid(f_app, z, axis=1) + np.trapezoid(f_ret, z_ret, axis=1)
+    # the jump-off: the largest upward step of the retract, where it stands out of the noise
+    steps = np.diff(f_ret, axis=1)
+    jump = np.argmax(steps, axis=1)
+    sticky = steps[np.arange(n_pix), jump] > _JUMP_SIGMAS * math.sqrt(2.0) * sigma + 1e-300
+    contact = np.arange(f_ret.shape[1])[None, :] <= jump[:, None]
+    corrected = np.where(sticky[:, None] & contact, f_ret + adhesion[:, None], f_ret)
+    x = z_ret - f_ret / k  # tip position, from the measured deflection
+    x_peak = x[:, 0]
+    modulus = np.full(n_pix, np.nan)
+    error = np.full(n_pix, np.nan)
+    x0 = np.full(n_pix, np.nan)
+    for i in range(n_pix):  # module (d)'s fit, once per curve (bounded by MAX_MAP_PIXELS)
+        try:
+            fit = fit_curve(x[i], corrected[i], tip, nu)
+        except ValueError:  # no contact seen above the noise: no modulus there
+            continue
+        modulus[i], error[i], x0[i] = fit.youngs_modulus, fit.youngs_modulus_error, \
+            fit.contact_point
+    return adhesion, modulus, error, x_peak - x0, dissipation
+
+
+def force_volume(sample: Sample, materials, tip: Tip, *, labels,
+                 spring_constant: float = PARAMETERS["spring_constant"].default,
+                 peak_force: float = PARAMETERS["peak_force"].default,
+                 ramp_size: float = PARAMETERS["ramp_size"].default,
+                 points: int = int(PARAMETERS["points"].default),
+                 force_noise: float = PARAMETERS["force_noise"].default,
+                 z_speed: float = PARAMETERS["z_speed"].default,
+                 adhesion: str | None = "dmt", seed: int | None = None) -> ForceVolume:
+    """A force curve at every pixel of ``sample``, analysed into maps (see the module notes).
+
+    Parameters
+    ----------
+    sample : afmsmiler.samples.Sample
+        The sample (2-D, at most :data:`MAX_MAP_PIXELS` pixels); each pixel's ramp starts from
+        its own surface, so the heights do not change the curves.
+    materials : SampleMaterial or sequence of SampleMaterial
+        The mechanics of each material (1 to :data:`MAX_MATERIALS`).
+    tip : afmsmiler.contact.Tip
+        The tip (DMT or JKR need a parabolic or spherical one).
+    labels : array_like of int
+        Material index of each pixel, shaped like the sample.
+    spring_constant : float
+        Lever spring constant k in N/m.
+    peak_force : float
+        Peak force F_p in N at which every approach turns.
+    ramp_size : float
+        Travel of the positioner per branch in m; it must take the tip off every material.
+    points : int
+        Samples per branch, 20 to :data:`MAX_POINTS`.
+    force_noise : float
+        RMS of the Gaussian force noise in N added to every sample.
+    z_speed : float
+        Positioner speed in m/s (only a viscoelastic material's curve depends on it).
+    adhesion : {None, "dmt", "jkr"}
+        Adhesion model of the materials with a work of adhesion.
+    seed : int or None
+        Seed of the noise.
+
+    Returns
+    -------
+    ForceVolume
+
+    Raises
+    ------
+    TypeError
+        If ``sample``, ``tip`` or a material is of the wrong type.
+    ValueError
+        Naming the argument out of range (a ramp too short to take the tip off, labels of
+        another shape or outside the materials, too many pixels), before any curve is made.
+
+    Examples
+    --------
+    >>> from afmsmiler.contact import Parabolic
+    >>> sample, labels = two_material_sample((8, 8), 20e-9, island_radius=60e-9,
+    ...                                      island_count=1, seed=3)
+    >>> fv = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, seed=0)
+    >>> bool(abs(np.nanmedian(fv.modulus[labels == 0]) / 1e9 - 1) < 0.05)
+    True
+    """
+    check_instance("sample", sample, Sample)
+    materials = _check_materials(materials)
+    check_instance("tip", tip, Tip)
+    h = sample.heights
+    if h.ndim != 2:
+        raise ValueError(f"sample must be a 2-D image, got heights of shape {h.shape}")
+    if h.size > MAX_MAP_PIXELS:
+        raise ValueError(f"sample must have at most {MAX_MAP_PIXELS} pixels (one fit each, a "
+                         f"bound the map honours in seconds), got {h.shape}")
+    lab = np.asarray(labels)
+    if lab.shape != h.shape or lab.dtype.kind not in "iu" or lab.min() < 0 or \
+            lab.max() >= len(materials):
+        raise ValueError(f"labels must be integers in [0, {len(materials) - 1}] shaped like the "
+                         f"sample {h.shape}, got {lab.dtype} {lab.shape}")
+    p = PARAMETERS
+    k = p["spring_constant"].check(spring_constant)
+    f_p = p["peak_force"].check(peak_force)
+    ramp = p["ramp_size"].check(ramp_size)
+    n = check_integer("points", points, int(p["points"].low), int(p["points"].high))
+    sigma = p["force_noise"].check(force_noise)
+    v = p["z_speed"].check(z_speed)
+    check_choice("adhesion", adhesion, ADHESION_MODELS)
+    if adhesion is not None and any(m.work_of_adhesion > 0 for m in materials) \
+            and not tip.adhesive:
+        raise ValueError(f"adhesion {adhesion!r} needs a parabolic or spherical tip, got "
+                         f"{type(tip).__name__}")
+    if seed is not None:
+        seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
+    z, app, ret = _curves(materials, tip, k, f_p, ramp, n, v, adhesion)
+    flat = lab.ravel()
+    rng = np.random.default_rng(seed)
+    f_app = app[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)
+    f_ret = ret[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)
+    nu = np.array([m.poisson_ratio for m in materials])
+    out = [np.empty(flat.size) for _ in range(5)]
+    for m in range(len(materials)):  # one Poisson's ratio per material in the fit
+        sel = flat == m
+        if sel.any():
+            for arr, values in zip(out, _analyse(z[m][None, :].repeat(sel.sum(), 0), f_app[sel],
+                                                 f_ret[sel], k, sigma, tip, float(nu[m]))):
+                arr[sel] = values
+    adh, modulus, error, deformation, dissipation = (a.reshape(h.shape) for a in out)
+    return ForceVolume(modulus, error, adh, deformation, dissipation, lab.copy(),
+                       sample.pixel_size, z, app, ret, sigma)
+
+
+class ForceVolumeMode(Mode):
+    """Force-volume mapping as an imaging mode of module (f)'s scanner.
+
+    Parameters
+    ----------
+    materials : SampleMaterial or sequence of SampleMaterial
+        The mechanics of each material.
+    tip : afmsmiler.contact.Tip
+        The tip (give the scanner the same one).
+    material : callable, optional
+        ``material(x, y)`` -> integer array (index into ``materials``) at positions x, y in m on
+        the sample; default: the first everywhere.
+    **settings
+        Keyword arguments of :func:`force_volume` (``spring_constant``, ``peak_force``,
+        ``ramp_size``, ``points``, ``force_noise``, ``z_speed``, ``adhesion``, ``seed``).
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :func:`force_volume`, checked at construction on a one-pixel map.
+
+    Notes
+    -----
+    Channels (trace only: a force-volume map is taken in one pass): ``"height trace"`` (the
+    apex surface: each curve's contact point is found at the surface), ``"modulus trace"`` (Pa),
+    ``"adhesion trace"`` (N), ``"deformation trace"`` (m), ``"dissipation trace"`` (J). Each
+    line is one :func:`force_volume` of its pixels (the noise seeded from ``seed`` and the
+    line).
+    """
+
+    channels = ("height trace", "modulus trace", "adhesion trace", "deformation trace",
+                "dissipation trace")
+    units = read_only({"modulus trace": "Pa", "adhesion trace": "N", "dissipation trace": "J"})
+
+    def __init__(self, materials, tip: Tip, *, material=None, **settings):
+        self.materials = _check_materials(materials)
+        self.tip = check_instance("tip", tip, Tip)
+        if material is not None and not callable(material):
+            raise TypeError(f"material must be a callable material(x, y), got "
+                            f"{type(material).__name__}")
+        self.material = material
+        unknown = set(settings) - {"spring_constant", "peak_force", "ramp_size", "points",
+                                   "force_noise", "z_speed", "adhesion", "seed"}
+        if unknown:
+            raise TypeError(f"unknown settings {sorted(unknown)}")
+        self.settings = dict(settings)
+        # every argument checked now, on a one-pixel map per material (before any scan)
+        for i in range(len(self.materials)):
+            force_volume(Sample(np.zeros((1, 2)), 1e-9), self.materials, tip,
+                         labels=np.full((1, 2), i), **{**self.settings, "force_noise": 0.0})
+
+    def __repr__(self) -> str:
+        return f"ForceVolumeMode({[m.name for m in self.materials]}, {self.tip!r})"
+
+    def line(self, plan: ScanPlan, row: int, state=None) -> ModeLine:
+        """One line of maps (trace only).
+
+        Parameters
+        ----------
+        plan : afmsmiler.imaging.modes.ScanPlan
+            The scan.
+        row : int
+            Line index.
+        state : object
+            Unused.
+
+        Returns
+        -------
+        afmsmiler.imaging.modes.ModeLine
+        """
+        row = self._row(plan, row)
+        x, y = plan.x_trace[row], plan.y_trace[row]
+        if self.material is None:
+            lab = np.zeros(x.shape, dtype=int)
+        else:
+            lab = np.asarray(self.material(x, y))
+            if lab.shape != x.shape or lab.dtype.kind not in "iu" or lab.min() < 0 or \
+                    lab.max() >= len(self.materials):
+                raise ValueError(f"material(x, y) must give integers in "
+                                 f"[0, {len(self.materials) - 1}] shaped like x, got "
+                                 f"{lab.dtype} {lab.shape}")
+        settings = dict(self.settings)
+        if settings.get("seed") is not None:
+            settings["seed"] = (settings["seed"] + 7919 * row) % 2 ** 63
+        fv = force_volume(Sample(np.zeros((1, x.size)), plan.pixel_size), self.materials,
+                          self.tip, labels=lab[None, :], **settings)
+        return ModeLine({"height trace": plan.trace[row].copy(),
+                         "modulus trace": fv.modulus[0], "adhesion trace": fv.adhesion[0],
+                         "deformation trace": fv.deformation[0],
+                         "dissipation trace": fv.dissipation[0]}, state)

@@ -1,0 +1,420 @@
+"""Jumping mode: a force curve at every pixel, the lateral moves made with the tip lifted.
+
+At each pixel the positioner brings the sample towards the tip until the lever's force reaches
+a maximum, the trigger F_t (the feedback's setpoint); the height of the positioner there is the
+pixel's height. It then retracts the sample by a lift height L, beyond the point where the tip
+jumps off an adhesive surface, and moves to the next pixel with the tip in the air: no friction,
+no lateral force, however tall, steep or sticky the sample (de Pablo, Colchero, Gomez-Herrero
+and Baro, "Jumping mode scanning force microscopy", Appl. Phys. Lett. 73, 3300 (1998);
+Moreno-Herrero et al., Appl. Surf. Sci. 210, 22 (2003)). This is why the source paper's
+macroscopic AFM (AFM SMILER, module (g)) images in this mode.
+
+**The force curve of a pixel** (:func:`jump_curve`) is module (d)'s approach-retract cycle of a
+:class:`~afmsmiler.contact.ContactSystem` (Hertz/Sneddon with DMT or JKR adhesion, the lever in
+series): the approach runs Z_np from Z_t - L up to Z_t, the positioner displacement at which
+the approach force equals F_t, and the retract runs back. The adhesion channel is the retract's
+pull-off force (DMT: 2 pi R w; JKR: (3/2) pi R w; module (d)'s exact values). The lift must
+reach beyond the jump-off, Z_t - L < Z_snap-off (:attr:`ContactSystem.snap_off_z_np`), or the
+tip is still stuck when the move starts (a ValueError says how much lift is needed).
+
+**The image** (:class:`JumpingMode`, a :class:`~afmsmiler.imaging.modes.Mode` of module (f)'s
+scanner). The scanner hands the apex surface r (the sample dilated by the tip, module (f)); the
+tip touches at the positioner height H = r (the undeflected apex at the surface), and the trigger
+comes at H_t = r - Z_t(material). The height channel is H_t + Z_t(first material): the apex
+surface itself where the sample is the first material (the true topography up to the tip's
+dilation), lower where a softer material lets the tip sink further before the trigger. The
+tip is lifted to H_t + L and moved to the next pixel (pass order: trace forwards, retrace
+backwards, then the next line); where the apex surface there rises above the lifted tip, the
+tip runs into the feature's side while moving: a :class:`~afmsmiler.imaging.modes.Crash`
+(force inf: a rigid wall), and the lift must be raised above the tallest step between pixels.
+The lateral force channel is the largest lateral force felt while moving: 0.
+
+**The price: time.** Each pixel costs an approach and a retract at the z speed v_z on top of the
+lateral move: t_pixel = 2 L / v_z + dx / v (the approach over a pixel lower than the previous
+one is longer by the height difference; along a pass these differences add up to the
+difference between its first and last pixel, at most the height range per pass, so
+:meth:`JumpingMode.acquisition_time` is exact on a flat sample and within 2 x range / v_z per
+pass otherwise). Contact mode's scan takes lines x (2 pixels - 1) dx / v
+(:attr:`~afmsmiler.imaging.scanner.ScanSettings.scan_time`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from types import MappingProxyType
+
+import numpy as np
+from scipy.optimize import brentq
+
+from ..contact import ContactSystem
+from ..imaging.modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
+from ..parameters import Parameter, read_only
+from ..validation import check_instance, check_integer
+
+__all__ = ["PARAMETERS", "TRIGGER_FORCE", "LIFT_HEIGHT", "Z_SPEED", "JumpCurve", "JumpingMode",
+           "jump_curve", "trigger_z_np", "MAX_CURVE_POINTS", "MAX_MATERIALS"]
+
+#: Most points of one branch of :func:`jump_curve`.
+MAX_CURVE_POINTS = 100_000
+#: Most materials (contact systems) one :class:`JumpingMode` tells apart.
+MAX_MATERIALS = 16
+# doublings of the bracket on Z_np in the search for the trigger (2^200 covers any range)
+_MAX_DOUBLINGS = 200
+
+#: Trigger force F_t: the largest force at each pixel (the jumping mode's setpoint).
+TRIGGER_FORCE = Parameter(name="trigger_force", unit="N", display_unit="nN", default=2e-9,
+                          low=0.0, high=1e-3, low_inclusive=False, slider_low=0.1e-9,
+                          slider_high=50e-9, log=True, label="trigger force F_t")
+#: Lift height L: how far the sample is retracted from the trigger before the lateral move.
+LIFT_HEIGHT = Parameter(name="lift_height", unit="m", display_unit="nm", default=100e-9,
+                        low=0.0, high=1e-5, low_inclusive=False, slider_low=5e-9,
+                        slider_high=1e-6, log=True, label="lift height L")
+#: Speed v_z of the positioner during the approach and the retract.
+Z_SPEED = Parameter(name="z_speed", unit="m/s", display_unit="um/s", default=20e-6, low=1e-9,
+                    high=1.0, slider_low=1e-6, slider_high=1e-3, log=True,
+                    label="approach/retract speed v_z")
+
+#: The jumping mode's user-settable quantities (SI), by keyword name (read-only).
+PARAMETERS = read_only({p.name: p for p in (TRIGGER_FORCE, LIFT_HEIGHT, Z_SPEED)})
+
+
+def trigger_z_np(system: ContactSystem, trigger_force: float = TRIGGER_FORCE.default) -> float:
+    """Positioner displacement Z_t in m at which the approach force reaches the trigger.
+
+    Parameters
+    ----------
+    system : afmsmiler.contact.ContactSystem
+        Tip, lever and sample (module (d)).
+    trigger_force : float
+        Trigger force F_t in N, > 0.
+
+    Returns
+    -------
+    float
+        Z_t > 0 (from the undeformed surface touching the resting tip), found by Brent's method
+        on module (d)'s approach branch (its force rises with Z_np: the lever's equation
+        k (Z_np - Z_s) = F(Z_s) has one root on the stable branch).
+
+    Raises
+    ------
+    TypeError
+        If ``system`` is not a ContactSystem.
+    ValueError
+        If ``trigger_force`` is out of range, or a sphere would be indented past its radius
+        before the force reaches it.
+    """
+    check_instance("system", system, ContactSystem)
+    f_t = TRIGGER_FORCE.check(trigger_force)
+
+    def excess(z):
+        return float(system.at(z, "approach").force[0]) - f_t
+
+    limit = system.z_np_limit
+    hi = 2.0 * f_t / system.spring_constant + 1e-12
+    for _ in range(_MAX_DOUBLINGS):
+        if hi >= limit:
+            hi = limit * (1.0 - 1e-9)
+            if excess(hi) < 0:
+                raise ValueError(f"trigger_force {f_t:g} N is never reached: the sphere would "
+                                 f"be indented past its radius first (Z_np limit {limit:g} m); "
+                                 f"choose a smaller trigger_force")
+            break
+        if excess(hi) >= 0:
+            break
+        hi *= 2.0
+    return float(brentq(excess, 0.0, hi, xtol=1e-15, rtol=1e-12, maxiter=200))
+
+
+def _lift_needed(system: ContactSystem, z_t: float) -> float:
+    """Smallest lift in m that takes the tip off the surface: Z_t - snap-off Z_np."""
+    return z_t - min(system.snap_off_z_np, 0.0)
+
+
+def _check_lift(lift: float, systems, z_t) -> None:
+    needed = max(_lift_needed(s, z) for s, z in zip(systems, z_t))
+    if lift <= needed:
+        raise ValueError(f"lift_height must be > {needed:g} m to take the tip off the surface "
+                         f"(beyond the trigger's indentation and the adhesive jump-off), got "
+                         f"{lift:g} m")
+
+
+@dataclass(frozen=True)
+class JumpCurve:
+    """The force curve of one jumping-mode pixel (:func:`jump_curve`), SI units.
+
+    Parameters
+    ----------
+    approach_z_np, retract_z_np : numpy.ndarray
+        Positioner displacement Z_np in m along the approach (up to the trigger) and the retract
+        (back down by the lift).
+    approach_force, retract_force : numpy.ndarray
+        Force on the tip in N along each branch (negative: adhesion).
+    approach_time, retract_time : numpy.ndarray
+        Time in s since the start of the approach.
+    trigger_z_np : float
+        Z_t in m, where the approach force reaches the trigger.
+    trigger_force : float
+        F_t in N.
+    pull_off_force : float
+        Magnitude in N of the most adhesive force on the retract (module (d)'s exact value).
+    snap_off_z_np : float
+        Z_np in m at which the tip jumps off the surface on the retract (0 without adhesion).
+    lift_height : float
+        L in m.
+    z_speed : float
+        v_z in m/s.
+    """
+
+    approach_z_np: np.ndarray = field(repr=False)
+    approach_force: np.ndarray = field(repr=False)
+    approach_time: np.ndarray = field(repr=False)
+    retract_z_np: np.ndarray = field(repr=False)
+    retract_force: np.ndarray = field(repr=False)
+    retract_time: np.ndarray = field(repr=False)
+    trigger_z_np: float
+    trigger_force: float
+    pull_off_force: float
+    snap_off_z_np: float
+    lift_height: float
+    z_speed: float
+
+    @property
+    def cycle_time(self) -> float:
+        """Time in s of the approach and the retract, 2 L / v_z."""
+        return 2.0 * self.lift_height / self.z_speed
+
+
+def jump_curve(system: ContactSystem, *, trigger_force: float = TRIGGER_FORCE.default,
+               lift_height: float = LIFT_HEIGHT.default, z_speed: float = Z_SPEED.default,
+               points: int = 400) -> JumpCurve:
+    """The approach to the trigger and the retract by the lift at one pixel.
+
+    Parameters
+    ----------
+    system : afmsmiler.contact.ContactSystem
+        Tip, lever, sample and adhesion (module (d)).
+    trigger_force : float
+        Trigger force F_t in N.
+    lift_height : float
+        Lift L in m; must exceed Z_t minus the snap-off Z_np (the tip must leave the surface).
+    z_speed : float
+        Approach and retract speed v_z in m/s.
+    points : int
+        Samples of each branch, 2 to :data:`MAX_CURVE_POINTS`.
+
+    Returns
+    -------
+    JumpCurve
+
+    Raises
+    ------
+    TypeError
+        If ``system`` is not a ContactSystem.
+    ValueError
+        Naming the argument out of range (a lift that does not take the tip off the surface
+        included), before the curve is computed.
+
+    Examples
+    --------
+    >>> from afmsmiler.contact import ContactSystem, Parabolic
+    >>> system = ContactSystem(spring_constant=0.5, tip=Parabolic(radius=20e-9),
+    ...                        youngs_modulus=1e9, adhesion="dmt", work_of_adhesion=0.05)
+    >>> curve = jump_curve(system, trigger_force=5e-9, lift_height=50e-9)
+    >>> round(curve.pull_off_force / (2 * 3.141592653589793 * 20e-9 * 0.05), 9)  # DMT 2 pi R w
+    1.0
+    >>> round(float(curve.approach_force[-1]) * 1e9, 6)  # the trigger, in nN
+    5.0
+    """
+    check_instance("system", system, ContactSystem)
+    f_t = TRIGGER_FORCE.check(trigger_force)
+    lift = LIFT_HEIGHT.check(lift_height)
+    v = Z_SPEED.check(z_speed)
+    n = check_integer("points", points, 2, MAX_CURVE_POINTS)
+    z_t = trigger_z_np(system, f_t)
+    _check_lift(lift, (system,), (z_t,))
+    ramp = np.linspace(z_t - lift, z_t, n)
+    cycle = system.approach_retract(ramp)
+    t_app = (ramp - ramp[0]) / v
+    t_ret = lift / v + (z_t - cycle.retract.z_np) / v
+    return JumpCurve(ramp, cycle.approach.force, t_app, cycle.retract.z_np, cycle.retract.force,
+                     t_ret, z_t, f_t, float(system.pull_off_force), float(system.snap_off_z_np),
+                     lift, v)
+
+
+class JumpingMode(Mode):
+    """Jumping mode as an imaging mode of module (f)'s scanner (see the module notes).
+
+    Parameters
+    ----------
+    systems : ContactSystem or sequence of ContactSystem
+        Module (d)'s contact system on each material (the same tip and lever, a different
+        sample: modulus, adhesion, ...), 1 to :data:`MAX_MATERIALS`.
+    trigger_force : float
+        Trigger force F_t in N.
+    lift_height : float
+        Lift L in m, beyond every material's jump-off.
+    z_speed : float
+        Approach and retract speed v_z in m/s.
+    material : callable, optional
+        ``material(x, y)`` -> integer array (index into ``systems``) of the material at
+        positions x, y in m on the sample (arrays of one shape); default: the first everywhere.
+
+    Raises
+    ------
+    TypeError
+        If a system is not a ContactSystem, the systems' tips differ or ``material`` is not
+        callable.
+    ValueError
+        Naming the argument out of range (a lift that does not take the tip off included),
+        before any scan.
+
+    Notes
+    -----
+    Channels (trace and retrace, columns in increasing x): ``"height"`` in m (the positioner
+    height at the trigger, see the module notes), ``"adhesion"`` in N (the pull-off force of
+    the retract), ``"lateral force"`` in N (the largest lateral force while moving: 0). The
+    tip the mode touches with is the systems' tip: give the scanner the same one.
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from afmsmiler.contact import ContactSystem, Parabolic
+    >>> from afmsmiler.imaging.scanner import ScanSettings, scan
+    >>> from afmsmiler.samples import grating
+    >>> tip = Parabolic(radius=10e-9)
+    >>> mode = JumpingMode(ContactSystem(spring_constant=1.0, tip=tip, youngs_modulus=1e9),
+    ...                    trigger_force=2e-9, lift_height=150e-9)
+    >>> sample = grating((32, 64), 10e-9, period=320e-9, height=100e-9)
+    >>> result = scan(sample, tip, mode, ScanSettings(300e-9, pixels=30, lines=4))
+    >>> float(np.max(np.abs(result.images["lateral force trace"])))
+    0.0
+    """
+
+    channels = ("height trace", "height retrace", "adhesion trace", "adhesion retrace",
+                "lateral force trace", "lateral force retrace")
+    units = MappingProxyType({"adhesion trace": "N", "adhesion retrace": "N",
+                              "lateral force trace": "N", "lateral force retrace": "N"})
+
+    def __init__(self, systems, *, trigger_force: float = TRIGGER_FORCE.default,
+                 lift_height: float = LIFT_HEIGHT.default, z_speed: float = Z_SPEED.default,
+                 material=None):
+        systems = (systems,) if isinstance(systems, ContactSystem) else tuple(systems)
+        if not 1 <= len(systems) <= MAX_MATERIALS:
+            raise ValueError(f"systems must hold 1 to {MAX_MATERIALS} contact systems, got "
+                             f"{len(systems)}")
+        self.systems = tuple(check_instance("systems", s, ContactSystem) for s in systems)
+        if any(s.tip != self.systems[0].tip for s in self.systems):
+            raise TypeError("systems must share one tip (the tip that both blurs and touches)")
+        self.trigger_force = TRIGGER_FORCE.check(trigger_force)
+        self.lift_height = LIFT_HEIGHT.check(lift_height)
+        self.z_speed = Z_SPEED.check(z_speed)
+        if material is not None and not callable(material):
+            raise TypeError(f"material must be a callable material(x, y), got "
+                            f"{type(material).__name__}")
+        self.material = material
+        self.tip = self.systems[0].tip
+        #: Per material: trigger Z_t in m and pull-off force in N.
+        self.trigger = np.array([trigger_z_np(s, self.trigger_force) for s in self.systems])
+        _check_lift(self.lift_height, self.systems, self.trigger)
+        self.pull_off = np.array([s.pull_off_force for s in self.systems])
+
+    def __repr__(self) -> str:
+        return (f"JumpingMode({len(self.systems)} systems, trigger_force={self.trigger_force!r}, "
+                f"lift_height={self.lift_height!r}, z_speed={self.z_speed!r})")
+
+    def _which(self, x, y):
+        if self.material is None:
+            return np.zeros(np.shape(x), dtype=int)
+        m = np.asarray(self.material(x, y))
+        if m.shape != np.shape(x) or m.dtype.kind not in "iu" or m.size and \
+                (m.min() < 0 or m.max() >= len(self.systems)):
+            raise ValueError(f"material(x, y) must give integers in [0, {len(self.systems) - 1}]"
+                             f" shaped like x, got {m.dtype} {m.shape}")
+        return m
+
+    def pixel_time(self, settings) -> float:
+        """Time in s per pixel: approach and retract, 2 L / v_z, plus the move dx / v.
+
+        Parameters
+        ----------
+        settings : afmsmiler.imaging.scanner.ScanSettings
+            The scan (pixel size and lateral speed).
+
+        Returns
+        -------
+        float
+        """
+        from ..imaging.scanner import ScanSettings
+        check_instance("settings", settings, ScanSettings)
+        return 2.0 * self.lift_height / self.z_speed + settings.pixel_time
+
+    def acquisition_time(self, settings) -> float:
+        """Time in s of a whole image, trace and retrace: lines x 2 pixels x :meth:`pixel_time`.
+
+        Parameters
+        ----------
+        settings : afmsmiler.imaging.scanner.ScanSettings
+            The scan.
+
+        Returns
+        -------
+        float
+            Compare with contact mode's ``settings.scan_time`` (lines (2 pixels - 1) dx / v).
+        """
+        return settings.lines * 2 * settings.pixels * self.pixel_time(settings)
+
+    def line(self, plan: ScanPlan, row: int, state=None) -> ModeLine:
+        """One line: height, adhesion and lateral force at each pixel, trace and retrace.
+
+        Parameters
+        ----------
+        plan : afmsmiler.imaging.modes.ScanPlan
+            The scan.
+        row : int
+            Line index.
+        state : float or None
+            Height in m of the lifted tip after the previous line (None: it starts above
+            everything).
+
+        Returns
+        -------
+        afmsmiler.imaging.modes.ModeLine
+            With a :class:`~afmsmiler.imaging.modes.Crash` where the apex surface at the next
+            pixel rises above the lifted tip (the tip runs into the feature's side).
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` neither None nor a number.
+        ValueError
+            If ``row`` is not a line of the plan.
+        """
+        row = self._row(plan, row)
+        if state is not None and not isinstance(state, (float, np.floating)):
+            raise TypeError(f"state must be None or the lifted tip's height in m, got "
+                            f"{type(state).__name__}")
+        n = plan.shape[1]
+        r = np.concatenate((plan.trace[row], plan.retrace[row][::-1]))  # in pass order
+        m = np.concatenate((self._which(plan.x_trace[row], plan.y_trace[row]),
+                            self._which(plan.x_retrace[row], plan.y_retrace[row])[::-1]))
+        h_t = r - self.trigger[m]            # positioner height at the trigger
+        lifted = h_t + self.lift_height     # and lifted, for the move to the next pixel
+        before = np.concatenate(([math.inf if state is None else state], lifted[:-1]))
+        hit = r > before
+        height = h_t + self.trigger[0]
+        adhesion = self.pull_off[m].astype(float)
+        lateral = np.zeros(2 * n)
+        crash = None
+        if hit.any():
+            k = int(np.argmax(hit))
+            direction = DIRECTIONS[k // n]
+            column = k if k < n else 2 * n - 1 - k
+            crash = Crash(int(row), int(column), math.inf, direction)
+            for values in (height, adhesion, lateral):
+                values[k:] = np.nan
+        out = {}
+        for name, values in (("height", height), ("adhesion", adhesion),
+                             ("lateral force", lateral)):
+            out[f"{name} trace"] = values[:n]
+            out[f"{name} retrace"] = values[n:][::-1].copy()
+        return ModeLine(out, float(lifted[-1]), crash)

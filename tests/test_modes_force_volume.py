@@ -1,0 +1,234 @@
+"""Force-volume mapping: maps of modulus, adhesion, deformation and dissipation.
+
+Independent sources: Hertz's law of a paraboloid with the lever in series, solved here by
+scipy's brentq (F = (4/3) E* sqrt(R) d^(3/2), k (Z - d) = F), shifted by DMT's pull-off force
+2 pi R w (Derjaguin, Muller and Toporov 1975); the loop area of a DMT cycle integrated by
+scipy's quad from that law; the labels the synthetic sample was built with. Tolerances come
+from the noise added (sigma), from the ramp's step dz (the Hertz force over one step, the most a
+sampled minimum can miss the pull-off force by; f_ad dz, the most a trapezoid can add at each
+jump) or from the maps' own pixel scatter, as each test says.
+"""
+import math
+
+import numpy as np
+import pytest
+from scipy.integrate import quad
+from scipy.optimize import brentq
+
+from afmsmiler.contact import Conical, Parabolic, StandardLinearSolid
+from afmsmiler.imaging.scanner import ScanSettings, scan
+from afmsmiler.modes import force_volume as fvm
+from afmsmiler.modes.force_volume import (BLEND, ForceVolumeMode, SampleMaterial, force_volume,
+                                          two_material_sample)
+from afmsmiler.samples import Sample
+
+TIP = Parabolic(radius=10e-9)
+R = TIP.radius
+K = fvm.PARAMETERS["spring_constant"].default
+F_P = fvm.PARAMETERS["peak_force"].default
+SIGMA = fvm.PARAMETERS["force_noise"].default
+
+
+def e_star(m):
+    return m.youngs_modulus / (1 - m.poisson_ratio ** 2)
+
+
+def hertz_force(d, m):
+    return 4 / 3 * e_star(m) * math.sqrt(R) * d ** 1.5
+
+
+def hertz_depth(force, m):
+    return (3 * force / (4 * e_star(m) * math.sqrt(R))) ** (2 / 3)
+
+
+def pull_off(m):
+    return 2 * math.pi * R * m.work_of_adhesion
+
+
+@pytest.fixture(scope="module")
+def blend():
+    sample, labels = two_material_sample((32, 32), 40e-9, island_radius=250e-9,
+                                         island_count=5, seed=2)
+    assert 0.15 < labels.mean() < 0.6  # both materials well represented
+    return labels, force_volume(sample, BLEND, TIP, labels=labels, seed=7)
+
+
+def tiny(material, **kwargs):
+    """A 2 x 2 map of one material."""
+    labels = np.zeros((2, 2), dtype=int)
+    return force_volume(Sample(np.zeros((2, 2)), 10e-9), material, TIP, labels=labels, **kwargs)
+
+
+# -- the maps against the closed forms ------------------------------------------------------
+@pytest.mark.parametrize("m", BLEND, ids=[m.name for m in BLEND])
+def test_noise_free_maps_against_hertz_dmt(m):
+    """Without noise and on a fine ramp, the maps are the model's closed forms: the sampled
+    minimum misses 2 pi R w by at most the Hertz force of one ramp step."""
+    fv = tiny(m, force_noise=0.0, points=2000)
+    dz = fvm.PARAMETERS["ramp_size"].default / 1999
+    assert np.all(np.abs(fv.adhesion - pull_off(m)) <= hertz_force(dz, m))
+    assert np.allclose(fv.modulus, m.youngs_modulus, rtol=2e-3)
+    # the indentation at the peak: DMT's elastic force there is F_p + 2 pi R w
+    assert np.allclose(fv.deformation, hertz_depth(F_P + pull_off(m), m), rtol=2e-3)
+
+
+@pytest.mark.parametrize("m", BLEND, ids=[m.name for m in BLEND])
+def test_dissipation_is_the_dmt_loop_area(m):
+    """The tip snaps on at Z_np = 0 and off at -s, s = f_ad / k: the loop's area is
+    int_-s^0 (f_ad - F_el(Z + s)) dZ, F_el the lever-and-Hertz force (brentq, quad)."""
+    f_ad = pull_off(m)
+    s = f_ad / K
+
+    def f_el(u):  # k (u - d) = (4/3) E* sqrt(R) d^1.5
+        if u <= 0:
+            return 0.0
+        d = brentq(lambda d: K * (u - d) - hertz_force(d, m), 0.0, u, xtol=1e-18)
+        return K * (u - d)
+
+    area = f_ad * s - quad(f_el, 0.0, s, epsabs=0, epsrel=1e-10)[0]
+    fv = tiny(m, force_noise=0.0, points=2000)
+    dz = fvm.PARAMETERS["ramp_size"].default / 1999
+    assert np.all(np.abs(fv.dissipation - area) <= f_ad * dz)
+
+
+@pytest.mark.slow
+def test_maps_recover_each_material_within_the_noise(blend):
+    labels, fv = blend
+    for i, m in enumerate(BLEND):
+        sel = labels == i
+        e = fv.modulus[sel]
+        assert not np.isnan(e).any()
+        scatter = np.std(e)
+        # the median within the pixel scatter (three standard deviations), and that scatter a
+        # few times the fit's own standard error (the adhesion subtracted is noisy: notes)
+        assert abs(np.median(e) - m.youngs_modulus) < 3 * scatter
+        assert scatter < 6 * np.median(fv.modulus_error[sel])
+        assert scatter < 0.01 * m.youngs_modulus
+        # adhesion: the minimum of noisy samples near -f_ad, within a few sigma
+        a = fv.adhesion[sel]
+        assert abs(np.median(a) - pull_off(m)) < 4 * SIGMA
+        assert np.std(a) < 2 * SIGMA
+        d = fv.deformation[sel]
+        assert abs(np.median(d) - hertz_depth(F_P + pull_off(m), m)) < 3 * np.std(d) + 0.01e-9
+
+
+@pytest.mark.slow
+def test_a_threshold_on_the_modulus_map_gives_the_labels(blend):
+    labels, fv = blend
+    threshold = math.sqrt(BLEND[0].youngs_modulus * BLEND[1].youngs_modulus)
+    found = (fv.modulus < threshold).astype(int)  # the islands are the softer material
+    # every pixel is one material in this model (no tip blur at the edges): all agree
+    assert np.mean(found == labels) > 0.99
+    threshold_adhesion = (pull_off(BLEND[0]) + pull_off(BLEND[1])) / 2
+    assert np.mean((fv.adhesion > threshold_adhesion) == (labels == 1)) > 0.99
+
+
+@pytest.mark.slow
+def test_maps_are_samples_with_units(blend):
+    _, fv = blend
+    maps = fv.maps
+    assert {name: s.unit for name, s in maps.items()} == {
+        "modulus": "Pa", "adhesion": "N", "deformation": "m", "dissipation": "J"}
+    assert maps["modulus"].pixel_size == 40e-9
+    assert np.array_equal(maps["adhesion"].heights, fv.adhesion)
+
+
+def test_noise_is_reproducible_by_seed():
+    a = tiny(BLEND[0], seed=3)
+    b = tiny(BLEND[0], seed=3)
+    assert np.array_equal(a.modulus, b.modulus)
+    assert not np.array_equal(a.modulus, tiny(BLEND[0], seed=4).modulus)
+
+
+def test_viscoelastic_limits():
+    """A standard linear solid relaxing much faster than the ramp is the relaxed elastic
+    material (no loop); a slow one takes energy each cycle."""
+    fast = SampleMaterial("fast", poisson_ratio=0.3,
+                          viscoelastic=StandardLinearSolid(100e6, 300e6, 1e-9))
+    slow = SampleMaterial("slow", poisson_ratio=0.3,
+                          viscoelastic=StandardLinearSolid(100e6, 300e6, 1e-3))
+    elastic = SampleMaterial("elastic", 100e6, 0.3)
+    f = tiny(fast, force_noise=0.0)
+    assert np.allclose(f.modulus, 100e6, rtol=2e-3)
+    assert np.all(np.abs(f.dissipation) < 1e-21)
+    s = tiny(slow, force_noise=0.0)
+    e = tiny(elastic, force_noise=0.0)
+    assert np.all(s.dissipation > 1e-18) and np.all(np.abs(e.dissipation) < 1e-21)
+    assert np.all(s.modulus > 100e6)
+
+
+# -- the sample -----------------------------------------------------------------------------
+def test_two_material_sample():
+    sample, labels = two_material_sample((40, 50), 10e-9, island_radius=50e-9, island_count=3,
+                                         island_height=4e-9, seed=5)
+    assert sample.heights.shape == labels.shape == (40, 50)
+    assert np.array_equal(sample.heights, np.where(labels == 1, 4e-9, 0.0))
+    again, labels2 = two_material_sample((40, 50), 10e-9, island_radius=50e-9, island_count=3,
+                                         island_height=4e-9, seed=5)
+    assert np.array_equal(labels, labels2)
+    # three discs of 5 pixels radius cover at most 3 pi 5^2 pixels (plus the rim)
+    assert 0 < labels.sum() <= 3 * math.pi * 6 ** 2
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(shape=(10,)), "shape"), (dict(pixel_size=0.0), "pixel_size"),
+    (dict(island_radius=1e-12), "island_radius"), (dict(island_count=0), "island_count"),
+    (dict(island_height=1.0), "island_height"), (dict(seed=-1), "seed")])
+def test_two_material_sample_bad_input(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        two_material_sample(**kwargs)
+
+
+# -- bad input --------------------------------------------------------------------------------
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(ramp_size=5e-9), "ramp_size"), (dict(points=10), "points"),
+    (dict(force_noise=-1e-12), "force_noise"), (dict(peak_force=0.0), "peak_force"),
+    (dict(spring_constant=0.0), "spring_constant"), (dict(z_speed=0.0), "z_speed"),
+    (dict(adhesion="maugis"), "adhesion"), (dict(seed=1.5), "seed")])
+def test_bad_input_is_named(kwargs, name):
+    with pytest.raises(ValueError, match=name):
+        tiny(BLEND[1], **kwargs)
+
+
+def test_bad_maps_and_materials():
+    flat = Sample(np.zeros((2, 2)), 10e-9)
+    with pytest.raises(ValueError, match="labels"):
+        force_volume(flat, BLEND, TIP, labels=np.zeros((2, 3), dtype=int))
+    with pytest.raises(ValueError, match="labels"):
+        force_volume(flat, BLEND, TIP, labels=np.full((2, 2), 2))
+    with pytest.raises(ValueError, match="sample"):
+        force_volume(Sample(np.zeros((65, 65)), 1e-9), BLEND, TIP,
+                     labels=np.zeros((65, 65), dtype=int))
+    with pytest.raises(TypeError, match="materials"):
+        force_volume(flat, [BLEND[0], 1e9], TIP, labels=np.zeros((2, 2), dtype=int))
+    with pytest.raises(ValueError, match="tip"):
+        force_volume(flat, BLEND, Conical(), labels=np.zeros((2, 2), dtype=int))
+    with pytest.raises(ValueError, match="work_of_adhesion"):
+        SampleMaterial("x", work_of_adhesion=0.1,
+                       viscoelastic=StandardLinearSolid(1e6, 2e6, 1e-3))
+    with pytest.raises(ValueError, match="youngs_modulus"):
+        SampleMaterial("x", youngs_modulus=-1.0)
+
+
+# -- the scanner's mode ---------------------------------------------------------------------------
+def test_force_volume_mode_through_the_scanner():
+    sample = Sample(np.zeros((8, 24)), 10e-9)
+
+    def material(x, y):
+        return (x > 115e-9).astype(int)
+
+    mode = ForceVolumeMode(BLEND, TIP, material=material, seed=1, points=200)
+    result = scan(sample, TIP, mode, ScanSettings(200e-9, scan_size_y=20e-9, pixels=20,
+                                                  lines=2))
+    e = result.images["modulus trace"]
+    x = (np.arange(20) + 0.5) * 10e-9 - 100e-9 + 115e-9
+    expected = np.where(x > 115e-9, BLEND[1].youngs_modulus, BLEND[0].youngs_modulus)
+    assert np.allclose(e, expected[None, :], rtol=0.03)
+    assert np.allclose(result.images["adhesion trace"],
+                       np.where(x > 115e-9, pull_off(BLEND[1]), pull_off(BLEND[0]))[None, :],
+                       rtol=0.1)
+    assert mode.unit("modulus trace") == "Pa"
+    with pytest.raises(TypeError, match="settings"):
+        ForceVolumeMode(BLEND, TIP, speed=1.0)
+    with pytest.raises(ValueError, match="ramp_size"):
+        ForceVolumeMode(BLEND, TIP, ramp_size=1e-9)
