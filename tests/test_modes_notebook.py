@@ -45,12 +45,13 @@ def test_placeholders_ask_for_an_answer():
 
 def test_every_list_of_things_to_try_is_followed_by_tests():
     lists = [m for m in MARKDOWN if "Things to try" in m]
-    assert len(lists) == 3
+    assert len(lists) == 5  # lateral, tapping, FM, jumping, force volume
     ui_tests = (Path(__file__).parent / "test_modes_ui.py").read_text(encoding="utf-8")
     for m in lists:
         assert "tests/test_modes_ui.py" in m
-    # one test per suggestion (2 per list): the suggestions' own tests
+        assert m.count("\n1. ") == 1 and m.count("\n2. ") == 1  # two suggestions each
+    # one test per suggestion: the suggestions' own tests
     suggestions = ui_tests.count("def test_notebook_suggestion_") + \
         ui_tests.count("def test_lateral_noise_stays_within_its_rms") + \
         ui_tests.count("def test_fm_panel_inversion_within_a_few_per_cent")
-    assert suggestions == 6
+    assert suggestions == 2 * len(lists)

@@ -171,3 +171,54 @@ def test_update_keeps_the_artists(tapping):
     n = len(fig.fig.axes[0].lines)
     fig.update(curve, (0.9, *setpoint_state(0.9, curve.lever)))
     assert fig.lines["amplitude", "attractive"] is line and len(fig.fig.axes[0].lines) == n
+
+
+@pytest.fixture(scope="module")
+def jumping_run():
+    from afmsmiler.contact import ContactSystem, Parabolic
+    from afmsmiler.imaging.scanner import ScanSettings, scan
+    from afmsmiler.modes.jumping import JumpingMode, jump_curve
+    from afmsmiler.samples import grating
+    tip = Parabolic(radius=10e-9)
+    system = ContactSystem(spring_constant=1.0, tip=tip, youngs_modulus=1e9, adhesion="dmt",
+                           work_of_adhesion=0.05)
+    curve = jump_curve(system, trigger_force=2e-9, lift_height=150e-9)
+    result = scan(grating((32, 64), 10e-9, period=320e-9, height=100e-9), tip,
+                  JumpingMode(system, trigger_force=2e-9, lift_height=150e-9),
+                  ScanSettings(300e-9, pixels=16, lines=4))
+    return curve, result
+
+
+def test_jumping_figure_draws_the_curve_and_the_image(jumping_run):
+    from afmsmiler.plots.modes import JumpingFigure
+    curve, result = jumping_run
+    fig = JumpingFigure(curve, result)
+    x, y = _xy(fig.lines["approach"])
+    np.testing.assert_allclose(x, curve.approach_z_np * NM)
+    np.testing.assert_allclose(y, curve.approach_force * NN)
+    np.testing.assert_allclose(_xy(fig.lines["retract time"])[0],
+                               curve.retract_time / UNITS["ms"][1])
+    assert fig.lines["trigger"].get_ydata()[0] == pytest.approx(2.0)
+    np.testing.assert_allclose(np.ma.filled(fig.images["height"].get_array(), np.nan),
+                               result.images["height trace"] * NM)
+    row = result.images["height trace"].shape[0] // 2
+    np.testing.assert_allclose(_xy(fig.lines["trace"])[1],
+                               result.images["height trace"][row] * NM)
+    describe(fig.fig)
+
+
+def test_force_volume_figure_draws_the_maps():
+    from afmsmiler.contact import Parabolic
+    from afmsmiler.modes.force_volume import BLEND, force_volume, two_material_sample
+    from afmsmiler.plots.modes import ForceVolumeFigure
+    sample, labels = two_material_sample((6, 6), 20e-9, island_radius=40e-9, island_count=1,
+                                         seed=3)
+    fv = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, seed=0, points=100)
+    fig = ForceVolumeFigure(fv, [m.name for m in BLEND])
+    np.testing.assert_allclose(fig.images["modulus"].get_array(), fv.modulus / UNITS["MPa"][1])
+    np.testing.assert_allclose(fig.images["adhesion"].get_array(), fv.adhesion * NN)
+    np.testing.assert_allclose(fig.images["dissipation"].get_array(), fv.dissipation * ZJ)
+    np.testing.assert_allclose(_xy(fig.lines["approach", 1])[1], fv.approach[1] * NN)
+    describe(fig.fig)
+    with pytest.raises(ValueError, match="names"):
+        ForceVolumeFigure(fv, ["one"])

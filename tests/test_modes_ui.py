@@ -1,20 +1,24 @@
 """Module (g)'s panels without a browser: one model run per slider move (none for a setpoint
 move: the curve is the same), the state the panel shows equals the model run directly
-(setpoint_state, friction_loop, frequency_shift_curve), and the suggestions notebook 07 makes
-happen as it says (the setpoint that picks the branch, the slope that leaks into a trace but not
-into the friction map)."""
+(setpoint_state, friction_loop, frequency_shift_curve, jump_curve) or an independent formula
+(DMT's pull-off 2 pi R w, the blend's moduli), and the suggestions notebook 07 makes happen as it
+says (the setpoint that picks the branch, the slope that leaks into a trace but not into the
+friction map, the lift that clears the bars, the noise that biases the modulus map)."""
 import functools
 import math
 
 import numpy as np
 import pytest
 
-from afmsmiler.modes import fm, lateral, tapping
+from afmsmiler.contact import ContactSystem, Parabolic
+from afmsmiler.modes import fm, force_volume, jumping, lateral, tapping
 from afmsmiler.modes import (TappingLever, friction_loop, friction_sample, setpoint_state,
                              tip_sample_force)
 from afmsmiler.parameters import UNITS
-from afmsmiler.ui.modalities import (FM_DEFAULTS, FM_DISTANCES, LATERAL_DEFAULTS,
-                                     LATERAL_SAMPLE, TAPPING_DEFAULTS, FrequencyShiftPanel,
+from afmsmiler.ui.modalities import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
+                                     FORCE_VOLUME_MAP, JUMPING_DEFAULTS, JUMPING_SCAN,
+                                     LATERAL_DEFAULTS, LATERAL_SAMPLE, TAPPING_DEFAULTS,
+                                     ForceVolumePanel, FrequencyShiftPanel, JumpingPanel,
                                      LateralPanel, TappingPanel, lateral_lever, operating_point)
 from recording import Recorder
 
@@ -216,3 +220,99 @@ def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
 def test_fm_panel_inversion_within_a_few_per_cent(fmp):
     c = fmp.last.curve
     assert np.max(np.abs(c.error)) < 0.05 * np.max(np.abs(c.force))
+
+
+# -- jumping ------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def jump():
+    return JumpingPanel()
+
+
+def test_jumping_panel_one_curve_and_one_scan_per_move(monkeypatch):
+    curves = _count(monkeypatch, jumping, "jump_curve")
+    lines = _count(monkeypatch, jumping.JumpingMode, "line")
+    panel = JumpingPanel()
+    n_lines = len(lines)
+    assert len(curves) == 1 and n_lines == JUMPING_SCAN["lines"]
+    panel.set(trigger_force=5.0)
+    panel.set(work_of_adhesion=100.0)
+    assert len(curves) == 3 and len(lines) == 3 * n_lines and panel.model_runs == 3
+
+
+def test_jumping_panel_curve_is_the_model_curve(jump):
+    v = jump.values()
+    system = ContactSystem(spring_constant=JUMPING_SCAN["spring_constant"],
+                           tip=Parabolic(radius=JUMPING_SCAN["tip_radius"]),
+                           youngs_modulus=v["youngs_modulus"] * UNITS["MPa"][1], adhesion="dmt",
+                           work_of_adhesion=v["work_of_adhesion"] * UNITS["mJ/m^2"][1])
+    ref = jumping.jump_curve(system, trigger_force=v["trigger_force"] * UNITS["nN"][1],
+                             lift_height=v["lift_height"] * UNITS["nm"][1],
+                             z_speed=v["z_speed"] * UNITS["um/s"][1])
+    np.testing.assert_allclose(jump.last.curve.retract_force, ref.retract_force, rtol=1e-12)
+    # DMT pull-off 2 pi R w, independent of the model's code
+    assert jump.last.curve.pull_off_force == pytest.approx(
+        2 * math.pi * JUMPING_SCAN["tip_radius"] * v["work_of_adhesion"] * UNITS["mJ/m^2"][1],
+        rel=1e-9)
+
+
+def test_notebook_suggestion_a_low_lift_crashes_into_the_bars(jump):
+    # notebook 07: at the default lift (150 nm) the grating of 100 nm bars is imaged with no
+    # lateral force; at 30 nm the lifted tip runs into a bar's side on the first line; 50 nm clears
+    # the steps between pixels
+    assert jump.last.result.crashed is None
+    assert np.nanmax(np.abs(jump.last.result.images["lateral force trace"])) == 0.0
+    jump.set(lift_height=30.0)
+    assert jump.last.result.crashed is not None and jump.last.result.crashed.row == 0
+    assert "crashed" in jump.figure.axes["image"].get_title()
+    jump.set(lift_height=50.0)
+    assert jump.last.result.crashed is None
+    jump.set(lift_height=JUMPING_DEFAULTS["lift_height"])
+
+
+def test_notebook_suggestion_jumping_costs_time(jump):
+    # notebook 07: the image takes over ten times longer than in contact mode
+    assert jump.last.acquisition_time > 10 * jump.last.contact_time
+
+
+def test_jumping_panel_animates_touching_where_the_curve_touches():
+    panel = JumpingPanel(vis=Recorder())
+    anim = panel.scene.animation
+    clip = next(c for p, c in anim.clips.items() if p.lower().endswith("/contact"))
+    visible = clip.tracks["visible"].values
+    assert any(visible) and not all(visible)
+
+
+# -- force volume -------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def fvp():
+    return ForceVolumePanel()
+
+
+def test_force_volume_panel_one_map_per_move(monkeypatch):
+    calls = _count(monkeypatch, force_volume, "force_volume")
+    panel = ForceVolumePanel()
+    panel.set(peak_force=20.0)
+    assert len(calls) == 2 and panel.model_runs == 2
+
+
+def test_notebook_suggestion_the_maps_separate_the_materials(fvp):
+    # notebook 07: at the defaults the modulus map gives each material's E within 2 % and the
+    # adhesion map DMT's 2 pi R w within 5 %
+    v, labels = fvp.last, fvp.labels
+    r = FORCE_VOLUME_MAP["tip_radius"]
+    for i, m in enumerate(force_volume.BLEND):
+        assert np.nanmedian(v.modulus[labels == i]) == pytest.approx(m.youngs_modulus, rel=0.02)
+        assert np.nanmedian(v.adhesion[labels == i]) == pytest.approx(
+            2 * math.pi * r * m.work_of_adhesion, rel=0.05)
+
+
+def test_notebook_suggestion_noise_scatters_and_biases_the_modulus(fvp):
+    # notebook 07: 500 pN of force noise scatters the modulus map some twenty times more and
+    # both materials come out too stiff (the noisy minimum added back)
+    quiet = [np.nanstd(fvp.last.modulus[fvp.labels == i]) for i in (0, 1)]
+    fvp.set(force_noise=500.0)
+    for i, m in enumerate(force_volume.BLEND):
+        mask = fvp.labels == i
+        assert np.nanstd(fvp.last.modulus[mask]) > 10 * quiet[i]
+        assert np.nanmedian(fvp.last.modulus[mask]) > 1.1 * m.youngs_modulus
+    fvp.set(force_noise=FORCE_VOLUME_DEFAULTS["force_noise"])

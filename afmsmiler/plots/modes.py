@@ -10,6 +10,10 @@
 - :class:`FrequencyShiftFigure`: the frequency shift df(z) by Giessibl's formula beside its
   small-amplitude limit -f0 / (2 k) dF/dz, and the force recovered by the Sader-Jarvis inversion
   over the force put in.
+- :class:`JumpingFigure`: one pixel's jumping-mode force curve (approach to the trigger, retract
+  by the lift, against Z_np and against time) and the height image with a line's profile.
+- :class:`ForceVolumeFigure`: the modulus, adhesion, deformation and dissipation maps of a
+  force-volume measurement and each material's force curve.
 
 Each figure takes the model's result objects and only converts units (the display units of
 :data:`afmsmiler.parameters.UNITS`); nothing here computes physics. The figures are pyplot-free
@@ -24,6 +28,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..modes.fm import FrequencyShiftCurve
+from ..modes.force_volume import ForceVolume
+from ..modes.jumping import JumpCurve
 from ..modes.lateral import FrictionImages, FrictionLoop
 from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
@@ -31,17 +37,20 @@ from ..validation import check_instance
 from .limits import data_range, hold
 
 __all__ = ["UNITS_SHOWN", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
-           "branch_values", "unstable_roots"]
+           "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
 
 #: The units the figures show each quantity in (keys of :data:`afmsmiler.parameters.UNITS`).
 UNITS_SHOWN = read_only(dict(distance="nm", amplitude="nm", phase="deg", energy="zJ",
-                             force="nN", position="nm", frequency="Hz"))
+                             force="nN", position="nm", frequency="Hz", time="ms",
+                             modulus="MPa", height="nm"))
 
 _NM = unit_scale(UNITS_SHOWN["distance"], "m")
 _DEG = unit_scale(UNITS_SHOWN["phase"], "rad")
 _ZJ = unit_scale(UNITS_SHOWN["energy"], "J")
 _NN = unit_scale(UNITS_SHOWN["force"], "N")
 _KHZ = unit_scale("kHz", "Hz")
+_MS = unit_scale(UNITS_SHOWN["time"], "s")
+_MPA = unit_scale(UNITS_SHOWN["modulus"], "Pa")
 _COLORS = read_only(dict(attractive="C0", repulsive="C3", unstable="0.55", point="C2",
                          trace="C0", retrace="C3", friction="C2", slope="C1", input="k",
                          recovered="C3", giessibl="C0", gradient="C1"))
@@ -412,4 +421,229 @@ class FrequencyShiftFigure:
             f"f0 = {curve.resonance_frequency * _KHZ:.4g} kHz")
         self.axes["force"].set_title(f"Sader-Jarvis inversion: largest error "
                                      f"{100 * worst:.2g} % of the peak force")
+        self._reset = False
+
+
+def _extent(shape, dx, dy, k):
+    """Pixel-edge extent (left, right, bottom, top) of an image, positions times ``k``."""
+    rows, cols = shape
+    return (-0.5 * dx * k, (cols - 0.5) * dx * k, -0.5 * dy * k, (rows - 0.5) * dy * k)
+
+
+def _set_image(im, ax, values, extent, lu):
+    im.set_data(np.ma.masked_invalid(values))
+    im.set_extent(extent)
+    lo, hi = data_range(values)
+    if not math.isfinite(lo):
+        lo, hi = 0.0, 1.0
+    elif hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-30):
+        pad = max(abs(lo) * 1e-3, 1e-3)
+        lo, hi = lo - pad, hi + pad
+    im.set_clim(lo, hi)
+    ax.set(xlim=extent[:2], ylim=extent[2:], xlabel=f"x [{lu}]", ylabel=f"y [{lu}]")
+
+
+class JumpingFigure:
+    """A jumping-mode pixel's force curve, against Z_np and time; the image and a profile.
+
+    Parameters
+    ----------
+    curve : JumpCurve
+        One pixel's curve (:func:`~afmsmiler.modes.jumping.jump_curve`).
+    result : ScanResult
+        The image (:class:`~afmsmiler.modes.jumping.JumpingMode` through module (f)'s scanner):
+        its ``images`` (``"height trace"``, ``"height retrace"`` in m), ``pixel_size``,
+        ``pixel_size_y``, ``lines_done`` and ``crashed``.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 9.5 x 7 in.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"curve"``, ``"time"``, ``"image"``, ``"profile"`` -> Axes.
+    lines : dict
+        ``"approach"``, ``"retract"`` (against Z_np), ``"approach time"``, ``"retract time"``,
+        ``"trigger"``, ``"trace"``, ``"retrace"``, ``"row"`` -> Line2D.
+    images : dict
+        ``"height"`` -> AxesImage.
+    """
+
+    def __init__(self, curve: JumpCurve, result, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=(9.5, 7.0))
+        self.fig.set_layout_engine("constrained")
+        grid = self.fig.add_gridspec(2, 2)
+        ax = self.axes = dict(curve=self.fig.add_subplot(grid[0, 0]),
+                              time=self.fig.add_subplot(grid[0, 1]),
+                              image=self.fig.add_subplot(grid[1, 0]),
+                              profile=self.fig.add_subplot(grid[1, 1]))
+        self.lines = {}
+        for key, where, color in (("approach", "curve", "C0"), ("retract", "curve", "C3"),
+                                  ("approach time", "time", "C0"),
+                                  ("retract time", "time", "C3")):
+            self.lines[key], = ax[where].plot([], [], color=color,
+                                              label=key.replace(" time", ""))
+        self.lines["trigger"] = ax["curve"].axhline(0.0, color="C2", ls="--", lw=1.0,
+                                                    label="trigger")
+        for a in (ax["curve"], ax["time"]):
+            a.axhline(0.0, color="0.6", lw=0.8)
+        ax["curve"].legend(loc="upper left", fontsize="small")
+        f, nm, ms = UNITS_SHOWN["force"], UNITS_SHOWN["distance"], UNITS_SHOWN["time"]
+        ax["curve"].set(xlabel=f"positioner Z_np [{nm}]", ylabel=f"force [{f}]")
+        ax["time"].set(xlabel=f"time [{ms}]", ylabel=f"force [{f}]")
+        self.images = {"height": ax["image"].imshow(np.zeros((2, 2)), origin="lower",
+                                                    cmap="afmhot", interpolation="nearest",
+                                                    extent=(0, 1, 0, 1))}
+        self.colorbar = self.fig.colorbar(self.images["height"], ax=ax["image"], shrink=0.9,
+                                          label=f"height [{UNITS_SHOWN['height']}]")
+        self.lines["row"], = ax["image"].plot([], [], color="C2", lw=1.0)
+        self.lines["trace"], = ax["profile"].plot([], [], color="C0", label="trace")
+        self.lines["retrace"], = ax["profile"].plot([], [], color="C3", ls="--",
+                                                    label="retrace")
+        ax["profile"].legend(loc="upper right", fontsize="small")
+        self._reset = True
+        self.update(curve, result)
+
+    def update(self, curve: JumpCurve, result) -> None:
+        """Show a new curve and image (artists updated in place).
+
+        Parameters
+        ----------
+        curve : JumpCurve
+            One pixel's curve.
+        result : ScanResult
+            The image.
+        """
+        check_instance("curve", curve, JumpCurve)
+        ax = self.axes
+        self.lines["approach"].set_data(curve.approach_z_np * _NM, curve.approach_force * _NN)
+        self.lines["retract"].set_data(curve.retract_z_np * _NM, curve.retract_force * _NN)
+        self.lines["approach time"].set_data(curve.approach_time * _MS,
+                                             curve.approach_force * _NN)
+        self.lines["retract time"].set_data(curve.retract_time * _MS, curve.retract_force * _NN)
+        self.lines["trigger"].set_ydata([curve.trigger_force * _NN] * 2)
+        forces = (curve.approach_force * _NN, curve.retract_force * _NN, 0.0)
+        lo, hi = data_range(*forces)
+        ax["curve"].set_xlim(float(curve.approach_z_np[0] * _NM),
+                             float(curve.approach_z_np[-1] * _NM))
+        ax["time"].set_xlim(0.0, float(curve.retract_time.max() * _MS))
+        for key in ("curve", "time"):
+            hold(ax[key], "y", lo, hi, reset=self._reset, floor=1e-3)
+        ax["curve"].set_title(f"one pixel: trigger {curve.trigger_force * _NN:.3g} nN, "
+                              f"pull-off {curve.pull_off_force * _NN:.3g} nN")
+        ax["time"].set_title(f"approach and retract: {curve.cycle_time * _MS:.3g} ms per pixel")
+        heights = np.asarray(result.images["height trace"], dtype=float)
+        dx = float(result.pixel_size)
+        dy = float(result.pixel_size_y or dx)
+        extent = _extent(heights.shape, dx, dy, _NM)
+        _set_image(self.images["height"], ax["image"], heights * _NM, extent, "nm")
+        crashed = getattr(result, "crashed", None)
+        ax["image"].set_title("height (trace)" + ("" if crashed is None else
+                                                  f": crashed at line {crashed.row}"))
+        done = int(result.lines_done)
+        row = max(min(done, heights.shape[0]) - 1, 0) if crashed is None else crashed.row
+        row = min(row, heights.shape[0] // 2) if crashed is None else row
+        y = row * dy * _NM
+        self.lines["row"].set_data(list(extent[:2]), [y, y])
+        x = np.arange(heights.shape[1]) * dx * _NM
+        trace = heights[row] * _NM
+        retrace = np.asarray(result.images["height retrace"], dtype=float)[row] * _NM
+        self.lines["trace"].set_data(x, trace)
+        self.lines["retrace"].set_data(x, retrace)
+        ax["profile"].set_xlim(extent[0], extent[1])
+        lo, hi = data_range(trace, retrace)
+        if math.isfinite(lo):
+            hold(ax["profile"], "y", lo, hi, reset=self._reset, floor=1e-3)
+        ax["profile"].set(xlabel=f"x [{UNITS_SHOWN['position']}]",
+                          ylabel=f"height [{UNITS_SHOWN['height']}]",
+                          title=f"line {row}: trace and retrace")
+        self._reset = False
+
+
+class ForceVolumeFigure:
+    """The four maps of a force-volume measurement and each material's force curve.
+
+    Parameters
+    ----------
+    volume : ForceVolume
+        The maps (:func:`~afmsmiler.modes.force_volume.force_volume`).
+    names : sequence of str, optional
+        The materials' names, for the curves' legend.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 10 x 6.5 in.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"modulus"``, ``"adhesion"``, ``"deformation"``, ``"dissipation"``, ``"curves"`` ->
+        Axes.
+    images : dict
+        The four maps' AxesImage.
+    lines : dict
+        ``("approach", i)``, ``("retract", i)`` -> Line2D of material i.
+    """
+
+    MAPS = read_only({"modulus": ("Pa", "MPa", "viridis"), "adhesion": ("N", "nN", "magma"),
+                      "deformation": ("m", "nm", "cividis"),
+                      "dissipation": ("J", "zJ", "inferno")})
+
+    def __init__(self, volume: ForceVolume, names=None, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=(10.0, 6.5))
+        self.fig.set_layout_engine("constrained")
+        grid = self.fig.add_gridspec(2, 3)
+        self.axes = {"modulus": self.fig.add_subplot(grid[0, 0]),
+                     "adhesion": self.fig.add_subplot(grid[0, 1]),
+                     "deformation": self.fig.add_subplot(grid[1, 0]),
+                     "dissipation": self.fig.add_subplot(grid[1, 1]),
+                     "curves": self.fig.add_subplot(grid[:, 2])}
+        self.images, self.colorbars = {}, {}
+        for key, (_, shown_unit, cmap) in self.MAPS.items():
+            im = self.axes[key].imshow(np.zeros((2, 2)), origin="lower", cmap=cmap,
+                                       interpolation="nearest", extent=(0, 1, 0, 1))
+            self.images[key] = im
+            self.colorbars[key] = self.fig.colorbar(im, ax=self.axes[key], shrink=0.9,
+                                                    label=f"{key} [{shown_unit}]")
+            self.axes[key].set_title(f"{key} map")
+        n = volume.approach.shape[0]
+        names = [f"material {i}" for i in range(n)] if names is None else list(names)
+        if len(names) != n:
+            raise ValueError(f"names must name the {n} materials, got {len(names)}")
+        self.lines = {}
+        c = self.axes["curves"]
+        for i in range(n):
+            self.lines["approach", i], = c.plot([], [], color=f"C{i}", label=f"{names[i]}")
+            self.lines["retract", i], = c.plot([], [], color=f"C{i}", ls="--")
+        c.axhline(0.0, color="0.6", lw=0.8)
+        c.set(xlabel=f"positioner Z_np [{UNITS_SHOWN['distance']}]",
+              ylabel=f"force [{UNITS_SHOWN['force']}]",
+              title="curves (dashed: retract)")
+        c.legend(loc="upper left", fontsize="small")
+        self._reset = True
+        self.update(volume)
+
+    def update(self, volume: ForceVolume) -> None:
+        """Show new maps and curves (artists updated in place).
+
+        Parameters
+        ----------
+        volume : ForceVolume
+            The maps.
+        """
+        check_instance("volume", volume, ForceVolume)
+        dx = float(volume.pixel_size)
+        extent = _extent(volume.modulus.shape, dx, dx, _NM)
+        for key, (unit, shown_unit, _) in self.MAPS.items():
+            values = np.asarray(getattr(volume, key), dtype=float) * unit_scale(shown_unit,
+                                                                                 unit)
+            _set_image(self.images[key], self.axes[key], values, extent, "nm")
+        n = volume.approach.shape[0]
+        for i in range(n):
+            z = volume.z_np[i] * _NM
+            self.lines["approach", i].set_data(z, volume.approach[i] * _NN)
+            self.lines["retract", i].set_data(z[::-1], volume.retract[i] * _NN)
+        c = self.axes["curves"]
+        c.set_xlim(float(volume.z_np.min() * _NM), float(volume.z_np.max() * _NM))
+        lo, hi = data_range(volume.approach * _NN, volume.retract * _NN, 0.0)
+        hold(c, "y", lo, hi, reset=self._reset, floor=1e-3)
         self._reset = False

@@ -12,6 +12,11 @@
 - :class:`FrequencyShiftPanel` (frequency modulation): amplitude, k, f0 and the force law's
   Hamaker constant, tip radius and modulus. One :func:`~afmsmiler.modes.frequency_shift_curve`
   (Giessibl's df, then the Sader-Jarvis inversion) per move.
+- :class:`JumpingPanel` (jumping mode): trigger force, lift height, z speed, modulus and work of
+  adhesion. One :func:`~afmsmiler.modes.jumping.jump_curve` (a pixel's force curve) and one scan
+  of a tall grating by :class:`~afmsmiler.modes.jumping.JumpingMode` per move.
+- :class:`ForceVolumePanel` (force volume): peak force, force noise, ramp size and the lever's
+  k. One :func:`~afmsmiler.modes.force_volume.force_volume` map of a two-material blend per move.
 
 Every slider is built by :func:`~afmsmiler.ui.controls.control` from a
 :class:`~afmsmiler.parameters.Parameter` of :mod:`afmsmiler.modes`. With ``scene=True`` (or a
@@ -28,20 +33,30 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..cantilever import Cantilever
+from ..contact import PARAMETERS as CONTACT
+from ..contact import ContactSystem, Parabolic
+from ..imaging.scanner import ScanResult, ScanSettings
+from ..imaging.scanner import scan as _scan
+from ..modes import force_volume as _fv
+from ..modes import jumping
 from ..modes import fm, lateral, tapping
 from ..modes._forces import FORCE_PARAMETERS
 from ..modes.fm import FrequencyShiftCurve
 from ..modes.lateral import FrictionImages, FrictionLoop, LateralLever
 from ..modes.tapping import AmplitudeCurve, TappingLever
 from ..parameters import read_only, shown
-from ..plots.modes import FrequencyShiftFigure, LateralFigure, TappingFigure
+from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
+                           LateralFigure, TappingFigure)
+from ..samples import grating
 from .controls import control
 from .panel import Panel, check_control_value
 
 __all__ = ["TappingPanel", "TappingState", "LateralPanel", "LateralState",
            "FrequencyShiftPanel", "FrequencyShiftState", "TAPPING_SLIDERS", "LATERAL_SLIDERS",
            "FM_SLIDERS", "TAPPING_DEFAULTS", "LATERAL_DEFAULTS", "FM_DEFAULTS",
-           "operating_point", "LATERAL_SAMPLE", "FM_DISTANCES", "lateral_lever"]
+           "operating_point", "LATERAL_SAMPLE", "FM_DISTANCES", "lateral_lever",
+           "JumpingPanel", "JumpingState", "JUMPING_SLIDERS", "JUMPING_DEFAULTS", "JUMPING_SCAN",
+           "ForceVolumePanel", "FORCE_VOLUME_SLIDERS", "FORCE_VOLUME_DEFAULTS", "FORCE_VOLUME_MAP"]
 
 
 def _display(sliders, **si) -> dict:
@@ -517,3 +532,226 @@ class FrequencyShiftPanel(_SliderPanel):
             ("largest inversion error", f"{100 * float(np.max(np.abs(curve.error))) / peak:.2g}"
                                         f" % of the peak force")]) + (
             f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+
+
+# -- jumping --------------------------------------------------------------------------------------
+#: The jumping panel's sliders: :data:`afmsmiler.modes.jumping.PARAMETERS` and the sample's
+#: modulus and work of adhesion (:data:`afmsmiler.contact.PARAMETERS`).
+JUMPING_SLIDERS = read_only({**jumping.PARAMETERS,
+                             "youngs_modulus": CONTACT["youngs_modulus"],
+                             "work_of_adhesion": CONTACT["work_of_adhesion"]})
+
+#: Initial values in the units shown: a lift of 150 nm, above the grating's 100 nm bars.
+JUMPING_DEFAULTS = read_only(_display(JUMPING_SLIDERS, lift_height=150e-9, youngs_modulus=1e9,
+                                      work_of_adhesion=0.05))
+
+#: The jumping panel's scan (SI): a grating of 100 nm tall bars (period 320 nm, 64 x 32 pixels
+#: of 10 nm), a 300 nm scan of 32 pixels x 8 lines, a 1 N/m lever with a 10 nm paraboloid tip.
+JUMPING_SCAN = read_only(dict(shape=(32, 64), pixel_size=10e-9, period=320e-9, height=100e-9,
+                              scan_size=300e-9, pixels=32, lines=8, spring_constant=1.0,
+                              tip_radius=10e-9))
+
+
+@dataclass(frozen=True)
+class JumpingState:
+    """What the jumping panel last computed (SI).
+
+    Attributes
+    ----------
+    system : ContactSystem
+        Tip, lever and sample (module (d)).
+    curve : JumpCurve
+        One pixel's force curve.
+    result : ScanResult
+        The image of the grating.
+    acquisition_time, contact_time : float
+        The image's time in s in jumping mode and in contact mode (same scan speed).
+    """
+
+    system: ContactSystem
+    curve: jumping.JumpCurve
+    result: ScanResult
+    acquisition_time: float
+    contact_time: float
+
+
+class JumpingPanel(_SliderPanel):
+    """A jumping-mode pixel's force curve and the image of a grating of tall bars.
+
+    Sliders (units as shown): ``trigger_force`` [nN], ``lift_height`` [nm], ``z_speed`` [um/s],
+    ``youngs_modulus`` [MPa] and ``work_of_adhesion`` [mJ/m^2] of the sample.
+
+    Parameters
+    ----------
+    scene : bool
+        Animate the jumping cycle in the kernel's 3D viewer.
+    vis : meshcat.Visualizer, optional
+        Where to draw instead; implies ``scene``.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : JumpingState
+    figure : JumpingFigure
+    model_runs : int
+        Runs of the models so far: one :func:`~afmsmiler.modes.jumping.jump_curve` and one scan
+        per move (counted as one each).
+    """
+
+    SLIDERS = JUMPING_SLIDERS
+    DEFAULTS = JUMPING_DEFAULTS
+    FIGSIZE = (9.5, 7.0)
+
+    def update(self, **values) -> None:
+        """Compute one pixel's curve and the image with these values, and draw them.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`JUMPING_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider, a value out of range, or a lift that does not take
+            the tip off the surface (the model's message), before any work.
+        """
+        si = self._check(values)
+        d = JUMPING_SCAN
+        tip = Parabolic(radius=d["tip_radius"])
+        system = ContactSystem(spring_constant=d["spring_constant"], tip=tip,
+                               youngs_modulus=si["youngs_modulus"], adhesion="dmt",
+                               work_of_adhesion=si["work_of_adhesion"])
+        settings = {name: si[name] for name in jumping.PARAMETERS}
+        curve = jumping.jump_curve(system, **settings)
+        mode = jumping.JumpingMode(system, **settings)
+        sample = grating(d["shape"], d["pixel_size"], period=d["period"], height=d["height"])
+        scan_settings = ScanSettings(d["scan_size"], pixels=d["pixels"], lines=d["lines"])
+        result = _scan(sample, tip, mode, scan_settings)
+        self.model_runs += 1
+        self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
+                                 scan_settings.scan_time)
+        if self.figure is None:
+            self.figure = JumpingFigure(curve, result, fig=self.fig)
+        else:
+            self.figure.update(curve, result)
+        self.redraw()
+        scene = self._scene("jumping")
+        if scene is not None:
+            heights, xs, touching = self._cycle(curve, result)
+            scene.animate_jumping(heights, xs, pixel_size=result.pixel_size, contact=touching)
+        crash = result.crashed
+        self.readout.value = _table([
+            ("pull-off force", shown(curve.pull_off_force, "nN")),
+            ("time per pixel (approach + retract)", shown(curve.cycle_time, "ms")),
+            ("image in jumping mode", f"{self.last.acquisition_time:.3g} s"),
+            ("image in contact mode", f"{self.last.contact_time:.3g} s"),
+            ("largest lateral force", shown(float(np.nanmax(np.abs(
+                result.images["lateral force trace"]))), "nN")),
+            ("crash", "none" if crash is None else f"line {crash.row}, pixel {crash.column}")]
+        ) + (f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+
+    @staticmethod
+    def _cycle(curve, result, pixels: int = 4, frames: int = 12):
+        """The apex's path over ``pixels`` pixels of the middle line, in m: the curve's approach
+        (touching from Z_np = 0 on) and retract (touching until the snap-off Z_np), the apex
+        |Z_np| above the surface while free, on it while touching; then the move."""
+        row = result.images["height trace"].shape[0] // 2
+        surface = np.nan_to_num(result.images["height trace"][row, :pixels])
+        pick = np.linspace(0, curve.approach_z_np.size - 1, frames).round().astype(int)
+        z_app, z_ret = curve.approach_z_np[pick], curve.retract_z_np[pick]
+        heights, xs, touching = [], [], []
+        for j in range(pixels):
+            for z, touch in ((z_app, z_app >= 0.0),
+                             (z_ret, z_ret >= min(curve.snap_off_z_np, 0.0))):
+                heights += list(surface[j] + np.where(touch, 0.0, -z))
+                touching += list(touch)
+                xs += [j * result.pixel_size] * z.size
+        return np.array(heights), np.array(xs), np.array(touching)
+
+
+# -- force volume ---------------------------------------------------------------------------------
+#: The force-volume panel's sliders: :data:`afmsmiler.modes.force_volume.PARAMETERS`' peak force,
+#: ramp size, force noise and spring constant.
+FORCE_VOLUME_SLIDERS = read_only({name: _fv.PARAMETERS[name] for name in (
+    "peak_force", "ramp_size", "force_noise", "spring_constant")})
+
+#: Initial values in the units shown.
+FORCE_VOLUME_DEFAULTS = read_only(_display(FORCE_VOLUME_SLIDERS))
+
+#: The mapped sample (SI): 12 x 12 pixels of 20 nm, two islands of 70 nm radius of the blend's
+#: soft, sticky material in its stiff matrix (:data:`afmsmiler.modes.force_volume.BLEND`), a
+#: 10 nm paraboloid tip, DMT adhesion, seed 0 of the noise.
+FORCE_VOLUME_MAP = read_only(dict(shape=(12, 12), pixel_size=20e-9, island_radius=70e-9,
+                                  island_count=2, seed=3, tip_radius=10e-9, noise_seed=0))
+
+
+class ForceVolumePanel(_SliderPanel):
+    """Modulus, adhesion, deformation and dissipation maps of a two-material blend.
+
+    Sliders (units as shown): ``peak_force`` [nN], ``ramp_size`` [nm], ``force_noise`` [pN]
+    and ``spring_constant`` [N/m].
+
+    Parameters
+    ----------
+    scene : bool
+        Unused (the maps are 2D); accepted for a uniform interface.
+    vis : meshcat.Visualizer, optional
+        Unused.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : ForceVolume
+        The maps.
+    labels : ndarray
+        The material of each pixel (the truth).
+    figure : ForceVolumeFigure
+    model_runs : int
+        :func:`~afmsmiler.modes.force_volume.force_volume` runs so far (one per move).
+    """
+
+    SLIDERS = FORCE_VOLUME_SLIDERS
+    DEFAULTS = FORCE_VOLUME_DEFAULTS
+    FIGSIZE = (10.0, 6.5)
+
+    def update(self, **values) -> None:
+        """Map the sample once with these values and draw the maps.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`FORCE_VOLUME_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider, a value out of range or a ramp too short to take
+            the tip off (the model's message), before any work.
+        """
+        si = self._check(values)
+        d = FORCE_VOLUME_MAP
+        sample, labels = _fv.two_material_sample(d["shape"], d["pixel_size"],
+                                                 island_radius=d["island_radius"],
+                                                 island_count=d["island_count"], seed=d["seed"])
+        volume = _fv.force_volume(sample, _fv.BLEND, Parabolic(radius=d["tip_radius"]),
+                                  labels=labels, seed=d["noise_seed"], **si)
+        self.model_runs += 1
+        self.labels = labels
+        self.last = volume
+        if self.figure is None:
+            self.figure = ForceVolumeFigure(volume, [m.name for m in _fv.BLEND], fig=self.fig)
+        else:
+            self.figure.update(volume)
+        self.redraw()
+        rows = []
+        for i, m in enumerate(_fv.BLEND):
+            mask = labels == i
+            rows.append((f"{m.name}: E (median of the map)",
+                         shown(float(np.nanmedian(volume.modulus[mask])), "MPa", ".3g") +
+                         f" (true {shown(m.youngs_modulus, 'MPa', '.3g')})"))
+            rows.append((f"{m.name}: adhesion (median)",
+                         shown(float(np.nanmedian(volume.adhesion[mask])), "nN", ".3g")))
+        self.readout.value = _table(rows)
