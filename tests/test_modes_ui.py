@@ -288,6 +288,7 @@ def fvp():
     return ForceVolumePanel()
 
 
+@pytest.mark.slow
 def test_force_volume_panel_one_map_per_move(monkeypatch):
     calls = _count(monkeypatch, force_volume, "force_volume")
     panel = ForceVolumePanel()
@@ -306,6 +307,7 @@ def test_notebook_suggestion_the_maps_separate_the_materials(fvp):
             2 * math.pi * r * m.work_of_adhesion, rel=0.05)
 
 
+@pytest.mark.slow
 def test_notebook_suggestion_noise_scatters_and_biases_the_modulus(fvp):
     # notebook 07: 500 pN of force noise scatters the modulus map some twenty times more and
     # both materials come out too stiff (the noisy minimum added back)
