@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 from meshcat.animation import Animation
 
-from afmsmiler.scenes.modes import DEFAULTS, LIMITS, ModesScene, round_factor
+from afmsmiler.scenes.modes import DEFAULTS, LIMITS, ModesScene, factor_text, round_factor
 from recording import Recorder
 
 A0 = 12e-9
@@ -36,6 +36,12 @@ def test_round_factor_is_the_largest_1_2_5_below_the_target(target, expected):
     assert round_factor(target) == pytest.approx(expected)
 
 
+@pytest.mark.parametrize("factor, text", [(2e7, "x 2e7"), (50.0, "x 50"), (1.0, "x 1"),
+                                          (5e-3, "x 5e-3"), (1e3, "x 1e3")])
+def test_factor_text(factor, text):
+    assert factor_text(factor) == text
+
+
 def test_round_factor_rejects_a_non_positive_target():
     with pytest.raises(ValueError, match="target"):
         round_factor(0.0)
@@ -57,7 +63,7 @@ def test_tapping_frames_follow_the_state_and_touch_only_below_a0(zc, amplitude, 
     _, visible = _track(anim, "contact", "visible")
     assert visible == (z < A_CONTACT).tolist()
     assert any(visible) is touches and scene.touching_frames == sum(visible)
-    assert ("touches" in scene.caption) and f"x{factor:.0e}" in scene.caption
+    assert ("touches" in scene.caption) and factor_text(factor) in scene.caption
     # the spot goes up and down with the deflection, never sideways
     _, spot = _track(anim, "spot", "position")
     spot = np.array(spot)
@@ -98,7 +104,7 @@ def test_fm_lever_drifts_from_the_free_one_by_the_stated_factor():
     np.testing.assert_allclose([p[2] for p in probe],
                                (1e-9 + 5e-9 * (1 + np.cos(theta * (1 + m * df / f0)))) * s)
     np.testing.assert_allclose([p[2] for p in ghost], (1e-9 + 5e-9 * (1 + np.cos(theta))) * s)
-    assert f"df = {df:.3g} Hz" in scene.caption and f"x{m:.0e}" in scene.caption
+    assert f"df = {df:.3g} Hz" in scene.caption and factor_text(m) in scene.caption
 
 
 def test_fm_without_a_shift_moves_with_the_free_lever():
@@ -131,7 +137,7 @@ def test_lateral_twist_and_spot_flip_between_trace_and_retrace():
     lateral = np.array([p[1] for p in spot])
     assert np.all(lateral[:n] > 0) and np.all(lateral[n:] < 0)
     assert any("/materials/" in key for key in rec.log)
-    assert f"x{tw:.0e}" in scene.caption
+    assert factor_text(tw) in scene.caption
 
 
 def test_jumping_cycle_touches_where_the_model_says():

@@ -332,7 +332,9 @@ class LateralFigure:
                 im = self.images[key]
                 im.set_data(values)
                 im.set_extent(extent)
-                lo, hi = data_range(values)
+                # the colour scale leaves out the first and last columns: the stuck
+                # turn-arounds, where the lateral force is not friction or slope
+                lo, hi = data_range(values[..., 1:-1] if values.shape[-1] > 2 else values)
                 if key == "slope":
                     m = max(abs(lo), abs(hi), 1e-3)
                     lo, hi = -m, m

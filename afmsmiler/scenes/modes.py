@@ -40,13 +40,13 @@ from meshcat.animation import Animation
 from ..parameters import read_only, unit_scale
 from ..validation import check_array, check_choice, check_integer, check_positive, check_range
 from .camera import set_camera, show_helpers
-from .legends import TextPlate
+from .legends import text_png
 from .shapes import cone, polyline
 from .transducers import quadrant_photodiode
 from .transforms import translation
 from .viewer import get_viewer
 
-__all__ = ["DEFAULTS", "LIMITS", "KINDS", "ModesScene", "round_factor"]
+__all__ = ["DEFAULTS", "LIMITS", "KINDS", "ModesScene", "round_factor", "factor_text"]
 
 #: The modes a scene draws.
 KINDS = ("tapping", "fm", "lateral", "jumping")
@@ -66,6 +66,8 @@ DEFAULTS = read_only(dict(
     spot_radius=0.06,
     spot_travel=0.8,               # the largest drawn spot offset, x half the detector's side
     camera=(0.8, -5.0, 2.6),
+    caption_width=4.4,             # caption plates: width (scene units) and image size (px)
+    caption_px=(1400, 80),
     frames=24,                     # frames per oscillation period
     periods=3,
     fps=24,
@@ -102,6 +104,25 @@ def round_factor(target: float) -> float:
         if mantissa * 10.0 ** exponent <= target * (1 + 1e-12):
             best = mantissa * 10.0 ** exponent
     return float(f"{best:.1g}")
+
+
+def factor_text(factor: float) -> str:
+    """A magnification as the captions write it: ``"x 2e7"``, ``"x 50"``, ``"x 1"``.
+
+    Parameters
+    ----------
+    factor : float
+        A round factor (:func:`round_factor`), > 0.
+
+    Returns
+    -------
+    str
+    """
+    factor = check_positive("factor", factor)
+    if 1 <= factor < 1000:
+        return f"x {factor:g}"
+    mantissa, exponent = f"{factor:.0e}".split("e")
+    return f"x {mantissa}e{int(exponent)}"
 
 
 def _rotation_x(angle: float) -> np.ndarray:
@@ -249,10 +270,17 @@ class ModesScene:
             self.draw(kind)
 
     def _caption(self, text: str) -> None:
+        """Show ``text`` under the instrument, one plate per ``"; "``-separated part."""
         self.caption = text
-        plate = TextPlate(self.vis["caption"], text, width=4.2)
-        self.vis["caption"].set_transform(translation([-2.1, -1.6, -0.9]))
-        return plate
+        self.vis["caption"].delete()
+        width, px = DEFAULTS["caption_width"], DEFAULTS["caption_px"]
+        height = width * px[1] / px[0]
+        for i, line in enumerate(text.split("; ")):
+            plate = self.vis["caption"][f"line{i}"]
+            texture = g.ImageTexture(image=g.PngImage(text_png(line, size_px=px)))
+            plate.set_object(g.Box([width, width / 200, height]),
+                             g.MeshBasicMaterial(map=texture, color=0xffffff))
+            plate.set_transform(translation([0.0, -1.9, -0.6 - 1.15 * height * i]))
 
     def _send(self, anim: Animation, play: bool, repetitions: int) -> Animation:
         repetitions = check_integer("repetitions", repetitions, 1, 1000)
@@ -329,7 +357,7 @@ class ModesScene:
         nm_per_unit = _NM / scale
         self._caption(f"tapping: z_c {zc * _NM:.3g} nm, A {a * _NM:.3g} nm"
                       f"{' (touches: orange)' if touches else ' (never touches)'}; "
-                      f"heights x{scale:.0e}: 1 unit = {nm_per_unit:.3g} nm, slowed down")
+                      f"heights {factor_text(scale)}: 1 unit = {nm_per_unit:.3g} nm, slowed down")
         return self._send(anim, play, repetitions)
 
     # -- frequency modulation -----------------------------------------------------------------
@@ -389,7 +417,7 @@ class ModesScene:
                     [0.0, 0.6, (z + a * (1 + math.cos(theta))) * scale]))
                 frame["spot"].set_transform(translation(self.spot_position(c, 0.0)))
         self._caption(f"FM: df = {df:.3g} Hz at z = {z * _NM:.3g} nm (grey: free lever); "
-                      f"df x{boost:.0e}, heights x{scale:.0e}")
+                      f"df {factor_text(boost)}, heights {factor_text(scale)}")
         return self._send(anim, play, repetitions)
 
     # -- lateral force ------------------------------------------------------------------------
@@ -463,8 +491,9 @@ class ModesScene:
                     frame["probe"].set_transform(pose)
                     frame["spot"].set_transform(translation(self.spot_position(0.0, lateral)))
                 k += 1
-        self._caption(f"lateral force: trace (to +y), then retrace; twist x{twist_factor:.0e}, "
-                      f"spot offset x{signal_factor:.0e}")
+        self._caption(f"lateral force: trace (to +y), then retrace; "
+                      f"twist {factor_text(twist_factor)}, "
+                      f"spot offset {factor_text(signal_factor)}")
         return self._send(anim, play, repetitions)
 
     # -- jumping ------------------------------------------------------------------------------
@@ -520,5 +549,5 @@ class ModesScene:
                 frame["probe"].set_transform(translation([0.0, y, h[k] * scale]))
                 frame["contact"].set_transform(translation([0.0, y, 0.0]))
                 frame["contact"].set_property("visible", "boolean", bool(touching[k]))
-        self._caption(f"jumping: approach, touch, retract, move; heights x{scale:.0e}")
+        self._caption(f"jumping: approach, touch, retract, move; heights {factor_text(scale)}")
         return self._send(anim, play, repetitions)
