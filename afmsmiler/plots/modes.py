@@ -281,7 +281,8 @@ class LateralFigure:
         ax.legend(loc="upper right", fontsize="small", ncol=2)
         self.images, self.colorbars = {}, {}
         if self.has_maps:
-            for key, cmap, label in (("friction", "viridis", "friction coefficient mu"),
+            mu_label = "friction coefficient mu (dimensionless)"
+            for key, cmap, label in (("friction", "viridis", mu_label),
                                      ("slope", "RdBu_r",
                                       f"slope term [{UNITS_SHOWN['force']}]")):
                 im = self.axes[key].imshow(np.zeros((2, 2)), origin="lower", cmap=cmap,
