@@ -223,3 +223,18 @@ def test_force_volume_figure_draws_the_maps():
     describe(fig.fig)
     with pytest.raises(ValueError, match="names"):
         ForceVolumeFigure(fv, ["one"])
+
+
+def test_tapping_figure_marks_the_jumps_of_a_slow_approach_and_retraction(tapping):
+    _, curve, point = tapping
+    jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
+    assert jumps["retract"]  # this lever jumps on the way out
+    fig = TappingFigure(curve, point, jumps=jumps)
+    for way in ("approach", "retract"):
+        line = fig.lines["phase", f"jump {way}"]
+        assert line.get_visible() is bool(jumps[way])
+        if jumps[way]:
+            assert line.get_xdata()[0] == pytest.approx(jumps[way][0] * NM)
+    fig.update(curve, point)  # no jumps given: none marked
+    assert not fig.lines["amplitude", "jump retract"].get_visible()
+    describe(fig.fig)

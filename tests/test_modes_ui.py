@@ -318,3 +318,13 @@ def test_notebook_suggestion_noise_scatters_and_biases_the_modulus(fvp):
         assert np.nanstd(fvp.last.modulus[mask]) > 10 * quiet[i]
         assert np.nanmedian(fvp.last.modulus[mask]) > 1.1 * m.youngs_modulus
     fvp.set(force_noise=FORCE_VOLUME_DEFAULTS["force_noise"])
+
+
+def test_tapping_panel_marks_where_the_approach_jumps(tap):
+    tap.set(free_amplitude=12.0, setpoint_ratio=0.8)
+    _, _, jumps = tap.last.curve.sweep("approach")
+    line = tap.figure.lines["amplitude", "jump approach"]
+    assert jumps and line.get_visible()
+    assert line.get_xdata()[0] == pytest.approx(jumps[0] * NM)
+    # the held state lies beyond the jump: the approach passed it and landed on the H branch
+    assert tap.last.distance < jumps[0] and tap.last.branch == "repulsive"

@@ -128,6 +128,11 @@ class TappingFigure:
         E_dis in J, whether it is on the attractive branch).
     fig : matplotlib.figure.Figure, optional
         Where to draw (a panel's); default a new Figure 8 x 7.5 in.
+    jumps : dict, optional
+        ``{"approach": [z, ...], "retract": [z, ...]}``: the distances in m at which a slow
+        approach and a slow retraction jump between the branches
+        (:meth:`AmplitudeCurve.sweep <afmsmiler.modes.AmplitudeCurve.sweep>`); the first of
+        each is marked.
 
     Attributes
     ----------
@@ -136,14 +141,16 @@ class TappingFigure:
         ``"amplitude"``, ``"phase"``, ``"energy"`` -> Axes.
     lines : dict
         (quantity, kind) -> Line2D, kind one of ``"attractive"``, ``"repulsive"``,
-        ``"unstable"``, ``"point"``; ``("amplitude", "setpoint")`` is the setpoint's line.
+        ``"unstable"``, ``"point"``; ``("amplitude", "setpoint")`` is the setpoint's line,
+        ``(quantity, "jump approach")`` and ``(quantity, "jump retract")`` mark the jumps.
     spans : dict
         quantity -> the Rectangle marking the coexistence region (hidden when there is none).
     """
 
     QUANTITIES = ("amplitude", "phase", "energy")
 
-    def __init__(self, curve: AmplitudeCurve, setpoint=None, fig: Figure | None = None):
+    def __init__(self, curve: AmplitudeCurve, setpoint=None, fig: Figure | None = None,
+                 jumps=None):
         self.fig = fig if fig is not None else Figure(figsize=(8.0, 7.5))
         self.fig.set_layout_engine("constrained")
         axes = self.fig.subplots(3, 1, sharex=True)
@@ -158,6 +165,8 @@ class TappingFigure:
                                             label=f"{b} branch")
             self.lines[q, "point"], = ax.plot([], [], "o", color=_COLORS["point"], ms=7,
                                               label="feedback holds")
+            self.lines[q, "jump approach"] = ax.axvline(0.0, color="k", ls="--", lw=1.0)
+            self.lines[q, "jump retract"] = ax.axvline(0.0, color="k", ls=":", lw=1.0)
         self.lines["amplitude", "setpoint"] = self.axes["amplitude"].axhline(
             0.0, color=_COLORS["point"], ls="--", lw=1.0)
         nm, deg, zj = UNITS_SHOWN["amplitude"], UNITS_SHOWN["phase"], UNITS_SHOWN["energy"]
@@ -167,9 +176,9 @@ class TappingFigure:
         self.axes["energy"].set_xlabel(f"rest tip-sample distance z_c [{UNITS_SHOWN['distance']}]")
         self.axes["amplitude"].legend(loc="lower right", fontsize="small")
         self._reset = True
-        self.update(curve, setpoint)
+        self.update(curve, setpoint, jumps)
 
-    def update(self, curve: AmplitudeCurve, setpoint=None) -> None:
+    def update(self, curve: AmplitudeCurve, setpoint=None, jumps=None) -> None:
         """Show a new curve and operating point (artists updated in place).
 
         Parameters
@@ -178,6 +187,8 @@ class TappingFigure:
             The curve.
         setpoint : tuple, optional
             ``(setpoint_ratio, z_c, phase, E_dis, attractive)`` as for the constructor.
+        jumps : dict, optional
+            The jumps' distances, as for the constructor.
         """
         check_instance("curve", curve, AmplitudeCurve)
         z = curve.distance * _NM
@@ -201,15 +212,26 @@ class TappingFigure:
                 self.spans[q].set_visible(True)
                 self.spans[q].set_x(span[0] * _NM)
                 self.spans[q].set_width((span[1] - span[0]) * _NM)
-            lo, hi = data_range(data["attractive"][q], data["repulsive"][q], unstable[q])
-            if math.isfinite(lo):
-                hold(ax, "y", lo, hi, reset=self._reset, floor=1e-3)
         ax = self.axes["amplitude"]
         ax.set_xlim(float(z.min()), float(z.max()))
         a0 = curve.lever.free_amplitude
         title = f"A0 = {a0 * _NM:.3g} nm" + ("" if span is None else
                                               f"; both branches from {span[0] * _NM:.3g} to "
                                               f"{span[1] * _NM:.3g} nm (grey)")
+        jumps = {} if jumps is None else jumps
+        said = []
+        for way in ("approach", "retract"):
+            at = list(jumps.get(way, ()))
+            for q in self.QUANTITIES:
+                line = self.lines[q, f"jump {way}"]
+                line.set_visible(bool(at))
+                if at:
+                    line.set_xdata([at[0] * _NM] * 2)
+            if at:
+                said.append(f"{'approach' if way == 'approach' else 'retraction'} jumps at "
+                            f"{at[0] * _NM:.3g} nm ({'dashed' if way == 'approach' else 'dotted'})")
+        if said:
+            title += "\n" + ", ".join(said)
         if setpoint is None:
             for q in self.QUANTITIES:
                 self.lines[q, "point"].set_data([], [])
@@ -225,6 +247,11 @@ class TappingFigure:
             branch = "attractive" if attractive else "repulsive"
             title += (f"\nsetpoint {ratio:.3g} A0: the approach stops at z_c = {zc * _NM:.3g} "
                       f"nm on the {branch} branch")
+        for q, a in self.axes.items():  # the curves and the held state, on a held scale
+            lo, hi = data_range(data["attractive"][q], data["repulsive"][q], unstable[q],
+                                self.lines[q, "point"].get_ydata())
+            if math.isfinite(lo):
+                hold(a, "y", lo, hi, reset=self._reset, floor=1e-3)
         ax.set_title(title)
         self._reset = False
 

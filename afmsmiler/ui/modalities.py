@@ -274,10 +274,11 @@ class TappingPanel(_SliderPanel):
         zc, phase, e_dis, attractive = operating_point(curve, r)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive)
         point = (r, zc, phase, e_dis, attractive)
+        jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
         if self.figure is None:
-            self.figure = TappingFigure(curve, point, fig=self.fig)
+            self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
         else:
-            self.figure.update(curve, point)
+            self.figure.update(curve, point, jumps)
         self.redraw()
         scene = self._scene("tapping")
         if scene is not None:
