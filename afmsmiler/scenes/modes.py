@@ -497,7 +497,7 @@ class ModesScene:
         return self._send(anim, play, repetitions)
 
     # -- jumping ------------------------------------------------------------------------------
-    def animate_jumping(self, heights, surface, *, pixel_size: float, contact=None,
+    def animate_jumping(self, heights, positions, *, pixel_size: float, contact=None,
                         fps: int = DEFAULTS["fps"], repetitions: int = 10,
                         play: bool = True) -> Animation:
         """Animate a jumping-mode cycle: approach, touch, retract, move while lifted.
@@ -507,7 +507,7 @@ class ModesScene:
         heights : array_like
             Apex height in m above the sample's zero at each step of the cycle (as the model
             gives it), at most ``LIMITS["animation_frames"]`` values.
-        surface : array_like
+        positions : array_like
             The lateral position of each step in m (same length).
         pixel_size : float
             A length in m that sets the magnification (the largest height is drawn
@@ -527,7 +527,7 @@ class ModesScene:
         """
         h = check_array("heights", heights, "m", ndim=1, min_size=2,
                         max_size=LIMITS["animation_frames"])
-        xs = check_array("surface", surface, "m", ndim=1, size=h.size)
+        xs = check_array("positions", positions, "m", ndim=1, size=h.size)
         px = check_positive("pixel_size", pixel_size, "m")
         touching = (np.zeros(h.size, bool) if contact is None
                     else np.asarray(contact, dtype=bool))
