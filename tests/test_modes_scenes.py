@@ -200,3 +200,9 @@ def test_real_viewer_takes_the_animation():
     finally:
         close_viewer()
     assert not viewer.viewer_running()
+
+
+def test_lateral_without_friction_or_slope_is_drawn_unmagnified():
+    scene = ModesScene("lateral", vis=Recorder())
+    scene.animate_lateral(np.linspace(0.0, 1e-7, 5), np.zeros((2, 5)), np.zeros((2, 5)))
+    assert scene.factors == {"twist": 1.0, "signal": 1.0}

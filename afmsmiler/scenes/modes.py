@@ -476,8 +476,10 @@ class ModesScene:
                 node.set_object(g.Box([DEFAULTS["sample"][0], width, 0.01]),
                                 g.MeshLambertMaterial(color=_B))
                 node.set_transform(translation([0.0, y[lo] - dy / 2 + width / 2, 0.005]))
-        twist_factor = round_factor(DEFAULTS["twist"] / max(float(np.abs(phi).max()), 1e-300))
-        signal_factor = round_factor(1.0 / max(float(np.abs(s).max()), 1e-300))
+        # no twist at all (no friction, no slope) is drawn as it is: x 1
+        largest_twist, largest_signal = float(np.abs(phi).max()), float(np.abs(s).max())
+        twist_factor = round_factor(DEFAULTS["twist"] / largest_twist) if largest_twist else 1.0
+        signal_factor = round_factor(1.0 / largest_signal) if largest_signal else 1.0
         self.factors = {"twist": twist_factor, "signal": signal_factor}
         self._aim(self._lever_top(0.0))
         pick = np.unique(np.linspace(0, n - 1, frames).round().astype(int))
