@@ -328,3 +328,12 @@ def test_tapping_panel_marks_where_the_approach_jumps(tap):
     assert line.get_xdata()[0] == pytest.approx(jumps[0] * NM)
     # the held state lies beyond the jump: the approach passed it and landed on the H branch
     assert tap.last.distance < jumps[0] and tap.last.branch == "repulsive"
+
+
+def test_a_setpoint_never_reached_shows_the_curves_and_says_so():
+    panel = TappingPanel(quality_factor=1.005)  # a lever so damped the approach stays above
+    assert math.isnan(panel.last.distance)
+    assert "never gets down" in panel.readout.value
+    assert not panel.figure.lines["amplitude", "setpoint"].get_visible()
+    panel.set(quality_factor=400.0)
+    assert panel.last.distance > 0 and "held at z_c" in panel.readout.value

@@ -27,6 +27,7 @@ move).
 from __future__ import annotations
 
 import functools
+import math
 from dataclasses import dataclass
 
 import ipywidgets as widgets
@@ -198,7 +199,8 @@ class TappingState:
         Both branches on A0 x linspace(1.5, 0.01, SETPOINT_GRID).
     setpoint_ratio : float
     distance, phase, dissipated_energy : float
-        The held state: z_c in m, phase lag in rad, E_dis in J.
+        The held state: z_c in m, phase lag in rad, E_dis in J (NaN when the approach never
+        gets down to the setpoint).
     attractive : bool
         Whether the held state is on the attractive branch.
     """
@@ -271,9 +273,15 @@ class TappingPanel(_SliderPanel):
             curve = tapping.amplitude_curve(a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID),
                                             lever)
             self.model_runs += 1
-        zc, phase, e_dis, attractive = operating_point(curve, r)
+        try:
+            zc, phase, e_dis, attractive = operating_point(curve, r)
+        except ValueError:  # the approach never gets down to the setpoint: nothing is held
+            zc = phase = e_dis = math.nan
+            attractive = False
+            point = None
+        else:
+            point = (r, zc, phase, e_dis, attractive)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive)
-        point = (r, zc, phase, e_dis, attractive)
         jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
         if self.figure is None:
             self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
@@ -281,6 +289,11 @@ class TappingPanel(_SliderPanel):
             self.figure.update(curve, point, jumps)
         self.redraw()
         scene = self._scene("tapping")
+        if point is None:
+            self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
+                                  f"to z_c = {shown(float(curve.distance.min()), 'nm', '.3g')}): "
+                                  f"no state is held; raise the setpoint.</div>")
+            return
         if scene is not None:
             scene.animate_tapping(zc, r * lever.free_amplitude,
                                   free_amplitude=lever.free_amplitude,
@@ -748,11 +761,16 @@ class ForceVolumePanel(_SliderPanel):
             self.figure.update(volume)
         self.redraw()
         rows = []
+
+        def median(values, unit):
+            finite = values[np.isfinite(values)]
+            return shown(float(np.median(finite)), unit, ".3g") if finite.size else \
+                "no fit converged"
+
         for i, m in enumerate(_fv.BLEND):
             mask = labels == i
             rows.append((f"{m.name}: E (median of the map)",
-                         shown(float(np.nanmedian(volume.modulus[mask])), "MPa", ".3g") +
+                         median(volume.modulus[mask], "MPa") +
                          f" (true {shown(m.youngs_modulus, 'MPa', '.3g')})"))
-            rows.append((f"{m.name}: adhesion (median)",
-                         shown(float(np.nanmedian(volume.adhesion[mask])), "nN", ".3g")))
+            rows.append((f"{m.name}: adhesion (median)", median(volume.adhesion[mask], "nN")))
         self.readout.value = _table(rows)
