@@ -694,10 +694,11 @@ FORCE_VOLUME_SLIDERS = read_only({name: _fv.PARAMETERS[name] for name in (
 #: Initial values in the units shown.
 FORCE_VOLUME_DEFAULTS = read_only(_display(FORCE_VOLUME_SLIDERS))
 
-#: The mapped sample (SI): 12 x 12 pixels of 20 nm, two islands of 70 nm radius of the blend's
-#: soft, sticky material in its stiff matrix (:data:`afmsmiler.modes.force_volume.BLEND`), a
-#: 10 nm paraboloid tip, DMT adhesion, seed 0 of the noise.
-FORCE_VOLUME_MAP = read_only(dict(shape=(12, 12), pixel_size=20e-9, island_radius=70e-9,
+#: The mapped sample (SI): 10 x 10 pixels of 24 nm (one fit per pixel: some 0.3 to 1 s per move),
+#: two islands of 70 nm radius of the blend's soft, sticky material in its stiff matrix
+#: (:data:`afmsmiler.modes.force_volume.BLEND`), a 10 nm paraboloid tip, DMT adhesion, seed 0 of
+#: the noise.
+FORCE_VOLUME_MAP = read_only(dict(shape=(10, 10), pixel_size=24e-9, island_radius=70e-9,
                                   island_count=2, seed=3, tip_radius=10e-9, noise_seed=0))
 
 
