@@ -765,13 +765,13 @@ class ForceVolumePanel(_SliderPanel):
 
         def median(values, unit):
             finite = values[np.isfinite(values)]
-            return shown(float(np.median(finite)), unit, ".3g") if finite.size else \
+            return shown(float(np.median(finite)), unit, ".4g") if finite.size else \
                 "no fit converged"
 
         for i, m in enumerate(_fv.BLEND):
             mask = labels == i
             rows.append((f"{m.name}: E (median of the map)",
                          median(volume.modulus[mask], "MPa") +
-                         f" (true {shown(m.youngs_modulus, 'MPa', '.3g')})"))
+                         f" (true {shown(m.youngs_modulus, 'MPa', '.4g')})"))
             rows.append((f"{m.name}: adhesion (median)", median(volume.adhesion[mask], "nN")))
         self.readout.value = _table(rows)
