@@ -32,6 +32,8 @@ PANELS = {
     "controller": ("controller", "ControllerPanel", "Module (c): the controller panel's figure"),
     "contact": ("contact", "ContactPanel", "Module (d): the contact panel's figure"),
     "overview": ("overview", "OverviewPanel", "Module (e): the instrument panel's figure"),
+    "tapping": ("modalities", "TappingPanel", "Module (g): the tapping panel's figure"),
+    "fm": ("modalities", "FrequencyShiftPanel", "Module (g): the FM panel's figure"),
 }
 
 #: Page name -> the 3D instrument (a key of :data:`afmsmiler.scenes.instrument.INSTRUMENTS`).

@@ -1,0 +1,679 @@
+"""Figures of module (g): the signal each imaging mode measures, drawn from the models' results.
+
+- :class:`TappingFigure`: amplitude, phase lag and dissipated energy against the rest distance
+  z_c, both branches of :func:`~afmsmiler.modes.amplitude_curve` (the attractive, low one and the
+  repulsive, high one), the unstable roots between them, the region where both coexist, the
+  setpoint and the state the amplitude feedback holds (:func:`~afmsmiler.modes.setpoint_state`).
+- :class:`LateralFigure`: a friction loop (trace and retrace lateral force along one line) with
+  its decomposition into friction, half the difference, and the slope term, half the sum (Ogletree,
+  Carpick and Salmeron 1996); the friction-coefficient and slope-term maps of a scan.
+- :class:`FrequencyShiftFigure`: the frequency shift df(z) by Giessibl's formula beside its
+  small-amplitude limit -f0 / (2 k) dF/dz, and the force recovered by the Sader-Jarvis inversion
+  over the force put in.
+- :class:`JumpingFigure`: one pixel's jumping-mode force curve (approach to the trigger, retract
+  by the lift, against Z_np and against time) and the height image with a line's profile.
+- :class:`ForceVolumeFigure`: the modulus, adhesion, deformation and dissipation maps of a
+  force-volume measurement and each material's force curve.
+
+Each figure takes the model's result objects and only converts units (the display units of
+:data:`afmsmiler.parameters.UNITS`); nothing here computes physics. The figures are pyplot-free
+:class:`~matplotlib.figure.Figure` objects whose artists are updated in place, so that a panel's
+:class:`~afmsmiler.plots.live.LiveFigure` sends them to the browser.
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from ..modes.fm import FrequencyShiftCurve
+from ..modes.force_volume import ForceVolume
+from ..modes.jumping import JumpCurve
+from ..modes.lateral import FrictionImages, FrictionLoop
+from ..modes.tapping import AmplitudeCurve
+from ..parameters import read_only, unit_scale
+from ..validation import check_instance
+from .limits import data_range, hold
+
+__all__ = ["UNITS_SHOWN", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
+           "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
+
+#: The units the figures show each quantity in (keys of :data:`afmsmiler.parameters.UNITS`).
+UNITS_SHOWN = read_only(dict(distance="nm", amplitude="nm", phase="deg", energy="zJ",
+                             force="nN", position="nm", frequency="Hz", time="ms",
+                             modulus="MPa", height="nm"))
+
+_NM = unit_scale(UNITS_SHOWN["distance"], "m")
+_DEG = unit_scale(UNITS_SHOWN["phase"], "rad")
+_ZJ = unit_scale(UNITS_SHOWN["energy"], "J")
+_NN = unit_scale(UNITS_SHOWN["force"], "N")
+_KHZ = unit_scale("kHz", "Hz")
+_MS = unit_scale(UNITS_SHOWN["time"], "s")
+_MPA = unit_scale(UNITS_SHOWN["modulus"], "Pa")
+_COLORS = read_only(dict(attractive="C0", repulsive="C3", unstable="0.55", point="C2",
+                         trace="C0", retrace="C3", friction="C2", slope="C1", input="k",
+                         recovered="C3", giessibl="C0", gradient="C1"))
+
+
+def branch_values(curve: AmplitudeCurve, values: np.ndarray, name: str) -> np.ndarray:
+    """One column of ``values`` (shaped like ``curve.amplitude``) on a branch, NaN where none.
+
+    The column is the one :meth:`AmplitudeCurve.branch` picks (the stable root of the branch,
+    the largest if two), so that e.g. the dissipated energy lines up with the branch's amplitude.
+
+    Parameters
+    ----------
+    curve : AmplitudeCurve
+        The curve.
+    values : ndarray
+        An array of the shape of ``curve.amplitude`` (e.g. ``curve.dissipated_energy``).
+    name : str
+        ``"attractive"`` or ``"repulsive"``.
+
+    Returns
+    -------
+    ndarray
+        Shape (n,), NaN where the branch has no stable root.
+    """
+    check_instance("curve", curve, AmplitudeCurve)
+    values = np.asarray(values, dtype=float)
+    if values.shape != curve.amplitude.shape:
+        raise ValueError(f"values must be shaped like curve.amplitude {curve.amplitude.shape}, "
+                         f"got {values.shape}")
+    if name not in ("attractive", "repulsive"):
+        raise ValueError(f"name must be 'attractive' or 'repulsive', got {name!r}")
+    mask = curve.stable & (~curve.repulsive_branch if name == "attractive"
+                           else curve.repulsive_branch)
+    j = np.argmax(np.where(mask, curve.amplitude, -np.inf), axis=1)
+    rows = np.arange(curve.distance.size)
+    return np.where(mask.any(axis=1), values[rows, j], np.nan)
+
+
+def unstable_roots(curve: AmplitudeCurve) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The unstable roots of a curve as flat arrays: distance, amplitude and phase (SI).
+
+    Parameters
+    ----------
+    curve : AmplitudeCurve
+        The curve.
+
+    Returns
+    -------
+    (ndarray, ndarray, ndarray)
+        z_c in m, A in m and phi in rad of every root that is not stable.
+    """
+    check_instance("curve", curve, AmplitudeCurve)
+    bad = ~curve.stable & np.isfinite(curve.amplitude)
+    rows, cols = np.nonzero(bad)
+    return curve.distance[rows], curve.amplitude[rows, cols], curve.phase[rows, cols]
+
+
+def _coexistence(curve: AmplitudeCurve):
+    """(low, high) in m of the distances where both branches are stable, or None."""
+    z = curve.distance[curve.coexist]
+    return (float(z.min()), float(z.max())) if z.size else None
+
+
+class TappingFigure:
+    """Amplitude, phase lag and E_dis against z_c: both branches, the jump, the setpoint.
+
+    Parameters
+    ----------
+    curve : AmplitudeCurve
+        The first curve to show (:func:`~afmsmiler.modes.amplitude_curve`).
+    setpoint : tuple, optional
+        ``(setpoint_ratio, z_c, phase, E_dis, attractive)``: the ratio A_sp / A0 and the state
+        :func:`~afmsmiler.modes.setpoint_state` returns for it (z_c in m, phase lag in rad,
+        E_dis in J, whether it is on the attractive branch).
+    fig : matplotlib.figure.Figure, optional
+        Where to draw (a panel's); default a new Figure 8 x 7.5 in.
+    jumps : dict, optional
+        ``{"approach": [z, ...], "retract": [z, ...]}``: the distances in m at which a slow
+        approach and a slow retraction jump between the branches
+        (:meth:`AmplitudeCurve.sweep <afmsmiler.modes.AmplitudeCurve.sweep>`); the first of
+        each is marked.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"amplitude"``, ``"phase"``, ``"energy"`` -> Axes.
+    lines : dict
+        (quantity, kind) -> Line2D, kind one of ``"attractive"``, ``"repulsive"``,
+        ``"unstable"``, ``"point"``; ``("amplitude", "setpoint")`` is the setpoint's line,
+        ``(quantity, "jump approach")`` and ``(quantity, "jump retract")`` mark the jumps.
+    spans : dict
+        quantity -> the Rectangle marking the coexistence region (hidden when there is none).
+    """
+
+    QUANTITIES = ("amplitude", "phase", "energy")
+
+    def __init__(self, curve: AmplitudeCurve, setpoint=None, fig: Figure | None = None,
+                 jumps=None):
+        self.fig = fig if fig is not None else Figure(figsize=(8.0, 7.5))
+        self.fig.set_layout_engine("constrained")
+        axes = self.fig.subplots(3, 1, sharex=True)
+        self.axes = dict(zip(self.QUANTITIES, axes))
+        self.lines, self.spans = {}, {}
+        for q, ax in self.axes.items():
+            self.spans[q] = ax.axvspan(0.0, 1.0, color="0.88", zorder=0)
+            self.lines[q, "unstable"], = ax.plot([], [], ".", color=_COLORS["unstable"],
+                                                 ms=3, label="unstable")
+            for b in ("attractive", "repulsive"):
+                self.lines[q, b], = ax.plot([], [], color=_COLORS[b], lw=1.8,
+                                            label=f"{b} branch")
+            self.lines[q, "point"], = ax.plot([], [], "o", color=_COLORS["point"], ms=7,
+                                              label="feedback holds")
+            self.lines[q, "jump approach"] = ax.axvline(0.0, color="k", ls="--", lw=1.0)
+            self.lines[q, "jump retract"] = ax.axvline(0.0, color="k", ls=":", lw=1.0)
+        self.lines["amplitude", "setpoint"] = self.axes["amplitude"].axhline(
+            0.0, color=_COLORS["point"], ls="--", lw=1.0)
+        nm, deg, zj = UNITS_SHOWN["amplitude"], UNITS_SHOWN["phase"], UNITS_SHOWN["energy"]
+        self.axes["amplitude"].set_ylabel(f"amplitude A [{nm}]")
+        self.axes["phase"].set_ylabel(f"phase lag [{deg}]")
+        self.axes["energy"].set_ylabel(f"E_dis per cycle [{zj}]")
+        self.axes["energy"].set_xlabel(f"rest tip-sample distance z_c [{UNITS_SHOWN['distance']}]")
+        self.axes["amplitude"].legend(loc="lower right", fontsize="small")
+        self._reset = True
+        self.update(curve, setpoint, jumps)
+
+    def update(self, curve: AmplitudeCurve, setpoint=None, jumps=None) -> None:
+        """Show a new curve and operating point (artists updated in place).
+
+        Parameters
+        ----------
+        curve : AmplitudeCurve
+            The curve.
+        setpoint : tuple, optional
+            ``(setpoint_ratio, z_c, phase, E_dis, attractive)`` as for the constructor.
+        jumps : dict, optional
+            The jumps' distances, as for the constructor.
+        """
+        check_instance("curve", curve, AmplitudeCurve)
+        z = curve.distance * _NM
+        order = np.argsort(z)
+        data = {}
+        for b in ("attractive", "repulsive"):
+            a, p = curve.branch(b)
+            e = branch_values(curve, curve.dissipated_energy, b)
+            data[b] = dict(amplitude=a * _NM, phase=p * _DEG, energy=e * _ZJ)
+        zu, au, pu = unstable_roots(curve)
+        # the unstable roots carry no dissipation of their own worth showing: amplitude, phase
+        unstable = dict(amplitude=au * _NM, phase=pu * _DEG, energy=np.full(au.shape, np.nan))
+        span = _coexistence(curve)
+        for q, ax in self.axes.items():
+            for b in ("attractive", "repulsive"):
+                self.lines[q, b].set_data(z[order], data[b][q][order])
+            self.lines[q, "unstable"].set_data(zu * _NM, unstable[q])
+            if span is None:
+                self.spans[q].set_visible(False)
+            else:
+                self.spans[q].set_visible(True)
+                self.spans[q].set_x(span[0] * _NM)
+                self.spans[q].set_width((span[1] - span[0]) * _NM)
+        ax = self.axes["amplitude"]
+        ax.set_xlim(float(z.min()), float(z.max()))
+        a0 = curve.lever.free_amplitude
+        title = f"A0 = {a0 * _NM:.3g} nm" + ("" if span is None else
+                                              f"; both branches from {span[0] * _NM:.3g} to "
+                                              f"{span[1] * _NM:.3g} nm (grey)")
+        jumps = {} if jumps is None else jumps
+        said = []
+        for way in ("approach", "retract"):
+            at = list(jumps.get(way, ()))
+            for q in self.QUANTITIES:
+                line = self.lines[q, f"jump {way}"]
+                line.set_visible(bool(at))
+                if at:
+                    line.set_xdata([at[0] * _NM] * 2)
+            if at:
+                said.append(f"{'approach' if way == 'approach' else 'retraction'} jumps at "
+                            f"{at[0] * _NM:.3g} nm ({'dashed' if way == 'approach' else 'dotted'})")
+        if said:
+            title += "\n" + ", ".join(said)
+        if setpoint is None:
+            for q in self.QUANTITIES:
+                self.lines[q, "point"].set_data([], [])
+            self.lines["amplitude", "setpoint"].set_visible(False)
+        else:
+            ratio, zc, phase, e_dis, attractive = setpoint
+            values = dict(amplitude=ratio * a0 * _NM, phase=phase * _DEG, energy=e_dis * _ZJ)
+            for q in self.QUANTITIES:
+                self.lines[q, "point"].set_data([zc * _NM], [values[q]])
+            line = self.lines["amplitude", "setpoint"]
+            line.set_visible(True)
+            line.set_ydata([values["amplitude"]] * 2)
+            branch = "attractive" if attractive else "repulsive"
+            title += (f"\nsetpoint {ratio:.3g} A0: the approach stops at z_c = {zc * _NM:.3g} "
+                      f"nm on the {branch} branch")
+        for q, a in self.axes.items():  # the curves and the held state, on a held scale
+            lo, hi = data_range(data["attractive"][q], data["repulsive"][q], unstable[q],
+                                self.lines[q, "point"].get_ydata())
+            if math.isfinite(lo):
+                hold(a, "y", lo, hi, reset=self._reset, floor=1e-3)
+        ax.set_title(title)
+        self._reset = False
+
+
+class LateralFigure:
+    """A friction loop and its decomposition; the friction-coefficient and slope-term maps.
+
+    Parameters
+    ----------
+    loop : FrictionLoop
+        The loop of one line (:func:`~afmsmiler.modes.friction_loop`, or a row of a scan).
+    images : FrictionImages, optional
+        The scan's images (:func:`~afmsmiler.modes.friction_scan`); without them only the loop
+        is drawn.
+    row : int, optional
+        The row of ``images`` the loop is, marked on the maps.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 9 x 7 in.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"loop"``, and with images ``"friction"`` and ``"slope"`` -> Axes.
+    lines : dict
+        ``"trace"``, ``"retrace"``, ``"friction"``, ``"slope"`` (loop), ``"row"`` -> Line2D.
+    images : dict
+        ``"friction"``, ``"slope"`` -> AxesImage.
+    """
+
+    def __init__(self, loop: FrictionLoop, images: FrictionImages | None = None,
+                 row: int | None = None, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=(9.0, 7.0))
+        self.fig.set_layout_engine("constrained")
+        self.has_maps = images is not None
+        if self.has_maps:
+            grid = self.fig.add_gridspec(2, 2, height_ratios=(1, 1))
+            self.axes = dict(loop=self.fig.add_subplot(grid[0, :]),
+                             friction=self.fig.add_subplot(grid[1, 0]),
+                             slope=self.fig.add_subplot(grid[1, 1]))
+        else:
+            self.axes = dict(loop=self.fig.add_subplot())
+        ax = self.axes["loop"]
+        self.lines = {}
+        self.lines["trace"], = ax.plot([], [], color=_COLORS["trace"], label="trace")
+        self.lines["retrace"], = ax.plot([], [], color=_COLORS["retrace"], label="retrace")
+        self.lines["friction"], = ax.plot([], [], color=_COLORS["friction"], ls="--", lw=2.0,
+                                          label="(trace - retrace) / 2: friction")
+        self.lines["slope"], = ax.plot([], [], color=_COLORS["slope"], ls=":", lw=2.0,
+                                       label="(trace + retrace) / 2: slope")
+        ax.axhline(0.0, color="0.6", lw=0.8)
+        ax.set(xlabel=f"position along the line [{UNITS_SHOWN['position']}]",
+               ylabel=f"lateral force [{UNITS_SHOWN['force']}]")
+        ax.legend(loc="upper right", fontsize="small", ncol=2)
+        self.images, self.colorbars = {}, {}
+        if self.has_maps:
+            mu_label = "friction coefficient mu (dimensionless)"
+            for key, cmap, label in (("friction", "viridis", mu_label),
+                                     ("slope", "RdBu_r",
+                                      f"slope term [{UNITS_SHOWN['force']}]")):
+                im = self.axes[key].imshow(np.zeros((2, 2)), origin="lower", cmap=cmap,
+                                           interpolation="nearest", extent=(0, 1, 0, 1))
+                self.images[key] = im
+                self.colorbars[key] = self.fig.colorbar(im, ax=self.axes[key], shrink=0.9,
+                                                        label=label)
+            self.lines["row"], = self.axes["friction"].plot([], [], color="w", lw=1.0)
+        self._reset = True
+        self.update(loop, images, row)
+
+    def update(self, loop: FrictionLoop, images: FrictionImages | None = None,
+               row: int | None = None) -> None:
+        """Show a new loop (and maps), artists updated in place.
+
+        Parameters
+        ----------
+        loop : FrictionLoop
+            The loop.
+        images : FrictionImages, optional
+            The maps (needed if the figure was made with them).
+        row : int, optional
+            The row of the loop on the maps.
+        """
+        check_instance("loop", loop, FrictionLoop)
+        x = loop.x * _NM
+        for key, values in (("trace", loop.trace), ("retrace", loop.retrace),
+                            ("friction", loop.friction), ("slope", loop.slope_term)):
+            self.lines[key].set_data(x, values * _NN)
+        ax = self.axes["loop"]
+        ax.set_xlim(float(x[0]), float(x[-1]))
+        lo, hi = data_range(loop.trace * _NN, loop.retrace * _NN, 0.0)
+        hold(ax, "y", lo, hi, reset=self._reset, floor=1e-3)
+        sliding = loop.friction_coefficient[1:-1]
+        ax.set_title(f"friction loop at load {loop.normal_force * _NN:.3g} nN: "
+                     f"mean (trace - retrace) / 2 / load = {float(np.mean(sliding)):.3g}")
+        if self.has_maps:
+            if images is None:
+                raise ValueError("images must be given to a figure made with maps")
+            check_instance("images", images, FrictionImages)
+            mu = images.friction_coefficient
+            slope = images.slope_term
+            rows, cols = np.shape(mu.heights)
+            dx = mu.pixel_size * _NM
+            dy = (mu.pixel_size_y or mu.pixel_size) * _NM
+            extent = (-0.5 * dx, (cols - 0.5) * dx, -0.5 * dy, (rows - 0.5) * dy)
+            for key, values in (("friction", mu.heights), ("slope", slope.heights * _NN)):
+                im = self.images[key]
+                im.set_data(values)
+                im.set_extent(extent)
+                # the colour scale leaves out the first and last columns: the stuck
+                # turn-arounds, where the lateral force is not friction or slope
+                lo, hi = data_range(values[..., 1:-1] if values.shape[-1] > 2 else values)
+                if key == "slope":
+                    m = max(abs(lo), abs(hi), 1e-3)
+                    lo, hi = -m, m
+                elif hi - lo < 1e-6:
+                    lo, hi = lo - 0.05, hi + 0.05
+                im.set_clim(lo, hi)
+                self.axes[key].set(xlim=extent[:2], ylim=extent[2:],
+                                   xlabel=f"x [{UNITS_SHOWN['position']}] (fast axis)",
+                                   ylabel=f"y [{UNITS_SHOWN['position']}]")
+            self.axes["friction"].set_title("friction map: (trace - retrace) / 2 / load")
+            self.axes["slope"].set_title("slope map: (trace + retrace) / 2")
+            if row is None:
+                self.lines["row"].set_data([], [])
+            else:
+                y = row * dy
+                self.lines["row"].set_data(list(extent[:2]), [y, y])
+        self._reset = False
+
+
+class FrequencyShiftFigure:
+    """df(z) by Giessibl's formula and its small-amplitude limit; F put in and F recovered.
+
+    Parameters
+    ----------
+    curve : FrequencyShiftCurve
+        The round trip (:func:`~afmsmiler.modes.frequency_shift_curve`).
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 8 x 6.5 in.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"shift"``, ``"force"`` -> Axes.
+    lines : dict
+        ``"giessibl"``, ``"gradient"``, ``"input"``, ``"recovered"`` -> Line2D.
+    """
+
+    def __init__(self, curve: FrequencyShiftCurve, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=(8.0, 6.5))
+        self.fig.set_layout_engine("constrained")
+        a1, a2 = self.fig.subplots(2, 1, sharex=True)
+        self.axes = dict(shift=a1, force=a2)
+        self.lines = {}
+        self.lines["giessibl"], = a1.plot([], [], color=_COLORS["giessibl"], lw=1.8,
+                                          label="df at amplitude A (Giessibl)")
+        self.lines["gradient"], = a1.plot([], [], color=_COLORS["gradient"], ls="--",
+                                          label="-f0 / (2k) dF/dz (A -> 0)")
+        self.lines["input"], = a2.plot([], [], color=_COLORS["input"], lw=1.8,
+                                       label="force put in")
+        self.lines["recovered"], = a2.plot([], [], color=_COLORS["recovered"], ls="--",
+                                           lw=1.8, label="recovered (Sader-Jarvis)")
+        for ax in (a1, a2):
+            ax.axhline(0.0, color="0.6", lw=0.8)
+            ax.legend(loc="lower right", fontsize="small")
+        a1.set_ylabel(f"frequency shift df [{UNITS_SHOWN['frequency']}]")
+        a2.set_ylabel(f"tip-sample force [{UNITS_SHOWN['force']}]")
+        a2.set_xlabel(f"closest distance z [{UNITS_SHOWN['distance']}]")
+        self._reset = True
+        self.update(curve)
+
+    def update(self, curve: FrequencyShiftCurve) -> None:
+        """Show a new round trip (artists updated in place).
+
+        Parameters
+        ----------
+        curve : FrequencyShiftCurve
+            The round trip.
+        """
+        check_instance("curve", curve, FrequencyShiftCurve)
+        z = curve.z * _NM
+        self.lines["giessibl"].set_data(z, curve.frequency_shift)
+        self.lines["gradient"].set_data(z, curve.gradient_shift)
+        self.lines["input"].set_data(z, curve.force * _NN)
+        self.lines["recovered"].set_data(z, curve.recovered_force * _NN)
+        self.axes["shift"].set_xlim(float(z[0]), float(z[-1]))
+        # the small-amplitude shift can be far larger than df at a large A: frame the measured df
+        lo, hi = data_range(curve.frequency_shift, 0.0)
+        hold(self.axes["shift"], "y", lo, hi, reset=self._reset, floor=1e-3)
+        lo, hi = data_range(curve.force * _NN, curve.recovered_force * _NN, 0.0)
+        hold(self.axes["force"], "y", lo, hi, reset=self._reset, floor=1e-3)
+        peak = float(np.max(np.abs(curve.force)))
+        worst = float(np.max(np.abs(curve.error))) / peak if peak > 0 else 0.0
+        self.axes["shift"].set_title(
+            f"A = {curve.amplitude * _NM:.3g} nm, k = {curve.spring_constant:.3g} N/m, "
+            f"f0 = {curve.resonance_frequency * _KHZ:.4g} kHz")
+        self.axes["force"].set_title(f"Sader-Jarvis inversion: largest error "
+                                     f"{100 * worst:.2g} % of the peak force")
+        self._reset = False
+
+
+def _extent(shape, dx, dy, k):
+    """Pixel-edge extent (left, right, bottom, top) of an image, positions times ``k``."""
+    rows, cols = shape
+    return (-0.5 * dx * k, (cols - 0.5) * dx * k, -0.5 * dy * k, (rows - 0.5) * dy * k)
+
+
+def _set_image(im, ax, values, extent, lu):
+    im.set_data(np.ma.masked_invalid(values))
+    im.set_extent(extent)
+    lo, hi = data_range(values)
+    if not math.isfinite(lo):
+        lo, hi = 0.0, 1.0
+    elif hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-30):
+        pad = max(abs(lo) * 1e-3, 1e-3)
+        lo, hi = lo - pad, hi + pad
+    im.set_clim(lo, hi)
+    ax.set(xlim=extent[:2], ylim=extent[2:], xlabel=f"x [{lu}]", ylabel=f"y [{lu}]")
+
+
+class JumpingFigure:
+    """A jumping-mode pixel's force curve, against Z_np and time; the image and a profile.
+
+    Parameters
+    ----------
+    curve : JumpCurve
+        One pixel's curve (:func:`~afmsmiler.modes.jumping.jump_curve`).
+    result : ScanResult
+        The image (:class:`~afmsmiler.modes.jumping.JumpingMode` through module (f)'s scanner):
+        its ``images`` (``"height trace"``, ``"height retrace"`` in m), ``pixel_size``,
+        ``pixel_size_y``, ``lines_done`` and ``crashed``.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 9.5 x 7 in.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"curve"``, ``"time"``, ``"image"``, ``"profile"`` -> Axes.
+    lines : dict
+        ``"approach"``, ``"retract"`` (against Z_np), ``"approach time"``, ``"retract time"``,
+        ``"trigger"``, ``"trace"``, ``"retrace"``, ``"row"`` -> Line2D.
+    images : dict
+        ``"height"`` -> AxesImage.
+    """
+
+    def __init__(self, curve: JumpCurve, result, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=(9.5, 7.0))
+        self.fig.set_layout_engine("constrained")
+        grid = self.fig.add_gridspec(2, 2)
+        ax = self.axes = dict(curve=self.fig.add_subplot(grid[0, 0]),
+                              time=self.fig.add_subplot(grid[0, 1]),
+                              image=self.fig.add_subplot(grid[1, 0]),
+                              profile=self.fig.add_subplot(grid[1, 1]))
+        self.lines = {}
+        for key, where, color in (("approach", "curve", "C0"), ("retract", "curve", "C3"),
+                                  ("approach time", "time", "C0"),
+                                  ("retract time", "time", "C3")):
+            self.lines[key], = ax[where].plot([], [], color=color,
+                                              label=key.replace(" time", ""))
+        self.lines["trigger"] = ax["curve"].axhline(0.0, color="C2", ls="--", lw=1.0,
+                                                    label="trigger")
+        for a in (ax["curve"], ax["time"]):
+            a.axhline(0.0, color="0.6", lw=0.8)
+        ax["curve"].legend(loc="upper left", fontsize="small")
+        f, nm, ms = UNITS_SHOWN["force"], UNITS_SHOWN["distance"], UNITS_SHOWN["time"]
+        ax["curve"].set(xlabel=f"positioner Z_np [{nm}]", ylabel=f"force [{f}]")
+        ax["time"].set(xlabel=f"time [{ms}]", ylabel=f"force [{f}]")
+        self.images = {"height": ax["image"].imshow(np.zeros((2, 2)), origin="lower",
+                                                    cmap="afmhot", interpolation="nearest",
+                                                    extent=(0, 1, 0, 1))}
+        self.colorbar = self.fig.colorbar(self.images["height"], ax=ax["image"], shrink=0.9,
+                                          label=f"height [{UNITS_SHOWN['height']}]")
+        self.lines["row"], = ax["image"].plot([], [], color="C2", lw=1.0)
+        self.lines["trace"], = ax["profile"].plot([], [], color="C0", label="trace")
+        self.lines["retrace"], = ax["profile"].plot([], [], color="C3", ls="--",
+                                                    label="retrace")
+        ax["profile"].legend(loc="upper right", fontsize="small")
+        self._reset = True
+        self.update(curve, result)
+
+    def update(self, curve: JumpCurve, result) -> None:
+        """Show a new curve and image (artists updated in place).
+
+        Parameters
+        ----------
+        curve : JumpCurve
+            One pixel's curve.
+        result : ScanResult
+            The image.
+        """
+        check_instance("curve", curve, JumpCurve)
+        ax = self.axes
+        self.lines["approach"].set_data(curve.approach_z_np * _NM, curve.approach_force * _NN)
+        self.lines["retract"].set_data(curve.retract_z_np * _NM, curve.retract_force * _NN)
+        self.lines["approach time"].set_data(curve.approach_time * _MS,
+                                             curve.approach_force * _NN)
+        self.lines["retract time"].set_data(curve.retract_time * _MS, curve.retract_force * _NN)
+        self.lines["trigger"].set_ydata([curve.trigger_force * _NN] * 2)
+        forces = (curve.approach_force * _NN, curve.retract_force * _NN, 0.0)
+        lo, hi = data_range(*forces)
+        ax["curve"].set_xlim(float(curve.approach_z_np[0] * _NM),
+                             float(curve.approach_z_np[-1] * _NM))
+        ax["time"].set_xlim(0.0, float(curve.retract_time.max() * _MS))
+        for key in ("curve", "time"):
+            hold(ax[key], "y", lo, hi, reset=self._reset, floor=1e-3)
+        ax["curve"].set_title(f"one pixel: trigger {curve.trigger_force * _NN:.3g} nN, "
+                              f"pull-off {curve.pull_off_force * _NN:.3g} nN")
+        ax["time"].set_title(f"approach and retract: {curve.cycle_time * _MS:.3g} ms per pixel")
+        heights = np.asarray(result.images["height trace"], dtype=float)
+        dx = float(result.pixel_size)
+        dy = float(result.pixel_size_y or dx)
+        extent = _extent(heights.shape, dx, dy, _NM)
+        _set_image(self.images["height"], ax["image"], heights * _NM, extent, "nm")
+        crashed = getattr(result, "crashed", None)
+        ax["image"].set_title("height (trace)" + ("" if crashed is None else
+                                                  f": crashed at line {crashed.row}"))
+        done = int(result.lines_done)
+        row = max(min(done, heights.shape[0]) - 1, 0) if crashed is None else crashed.row
+        row = min(row, heights.shape[0] // 2) if crashed is None else row
+        y = row * dy * _NM
+        self.lines["row"].set_data(list(extent[:2]), [y, y])
+        x = np.arange(heights.shape[1]) * dx * _NM
+        trace = heights[row] * _NM
+        retrace = np.asarray(result.images["height retrace"], dtype=float)[row] * _NM
+        self.lines["trace"].set_data(x, trace)
+        self.lines["retrace"].set_data(x, retrace)
+        ax["profile"].set_xlim(extent[0], extent[1])
+        lo, hi = data_range(trace, retrace)
+        if math.isfinite(lo):
+            hold(ax["profile"], "y", lo, hi, reset=self._reset, floor=1e-3)
+        ax["profile"].set(xlabel=f"x [{UNITS_SHOWN['position']}]",
+                          ylabel=f"height [{UNITS_SHOWN['height']}]",
+                          title=f"line {row}: trace and retrace")
+        self._reset = False
+
+
+class ForceVolumeFigure:
+    """The four maps of a force-volume measurement and each material's force curve.
+
+    Parameters
+    ----------
+    volume : ForceVolume
+        The maps (:func:`~afmsmiler.modes.force_volume.force_volume`).
+    names : sequence of str, optional
+        The materials' names, for the curves' legend.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 10 x 6.5 in.
+
+    Attributes
+    ----------
+    fig : matplotlib.figure.Figure
+    axes : dict
+        ``"modulus"``, ``"adhesion"``, ``"deformation"``, ``"dissipation"``, ``"curves"`` ->
+        Axes.
+    images : dict
+        The four maps' AxesImage.
+    lines : dict
+        ``("approach", i)``, ``("retract", i)`` -> Line2D of material i.
+    """
+
+    MAPS = read_only({"modulus": ("Pa", "MPa", "viridis"), "adhesion": ("N", "nN", "magma"),
+                      "deformation": ("m", "nm", "cividis"),
+                      "dissipation": ("J", "zJ", "inferno")})
+
+    def __init__(self, volume: ForceVolume, names=None, fig: Figure | None = None):
+        self.fig = fig if fig is not None else Figure(figsize=(10.0, 6.5))
+        self.fig.set_layout_engine("constrained")
+        grid = self.fig.add_gridspec(2, 3)
+        self.axes = {"modulus": self.fig.add_subplot(grid[0, 0]),
+                     "adhesion": self.fig.add_subplot(grid[0, 1]),
+                     "deformation": self.fig.add_subplot(grid[1, 0]),
+                     "dissipation": self.fig.add_subplot(grid[1, 1]),
+                     "curves": self.fig.add_subplot(grid[:, 2])}
+        self.images, self.colorbars = {}, {}
+        for key, (_, shown_unit, cmap) in self.MAPS.items():
+            im = self.axes[key].imshow(np.zeros((2, 2)), origin="lower", cmap=cmap,
+                                       interpolation="nearest", extent=(0, 1, 0, 1))
+            self.images[key] = im
+            self.colorbars[key] = self.fig.colorbar(im, ax=self.axes[key], shrink=0.9,
+                                                    label=f"{key} [{shown_unit}]")
+            self.axes[key].set_title(f"{key} map")
+        n = volume.approach.shape[0]
+        names = [f"material {i}" for i in range(n)] if names is None else list(names)
+        if len(names) != n:
+            raise ValueError(f"names must name the {n} materials, got {len(names)}")
+        self.lines = {}
+        c = self.axes["curves"]
+        for i in range(n):
+            self.lines["approach", i], = c.plot([], [], color=f"C{i}", label=f"{names[i]}")
+            self.lines["retract", i], = c.plot([], [], color=f"C{i}", ls="--")
+        c.axhline(0.0, color="0.6", lw=0.8)
+        c.set(xlabel=f"positioner Z_np [{UNITS_SHOWN['distance']}]",
+              ylabel=f"force [{UNITS_SHOWN['force']}]",
+              title="curves (dashed: retract)")
+        c.legend(loc="upper left", fontsize="small")
+        self._reset = True
+        self.update(volume)
+
+    def update(self, volume: ForceVolume) -> None:
+        """Show new maps and curves (artists updated in place).
+
+        Parameters
+        ----------
+        volume : ForceVolume
+            The maps.
+        """
+        check_instance("volume", volume, ForceVolume)
+        dx = float(volume.pixel_size)
+        extent = _extent(volume.modulus.shape, dx, dx, _NM)
+        for key, (unit, shown_unit, _) in self.MAPS.items():
+            values = np.asarray(getattr(volume, key), dtype=float) * unit_scale(shown_unit,
+                                                                                 unit)
+            _set_image(self.images[key], self.axes[key], values, extent, "nm")
+        n = volume.approach.shape[0]
+        for i in range(n):
+            z = volume.z_np[i] * _NM
+            self.lines["approach", i].set_data(z, volume.approach[i] * _NN)
+            self.lines["retract", i].set_data(z[::-1], volume.retract[i] * _NN)
+        c = self.axes["curves"]
+        c.set_xlim(float(volume.z_np.min() * _NM), float(volume.z_np.max() * _NM))
+        lo, hi = data_range(volume.approach * _NN, volume.retract * _NN, 0.0)
+        hold(c, "y", lo, hi, reset=self._reset, floor=1e-3)
+        self._reset = False

@@ -1,0 +1,777 @@
+"""The widget panels of module (g): what each imaging mode measures, one model run per move.
+
+- :class:`TappingPanel` (amplitude modulation): free amplitude, setpoint, Q, k, f0, Hamaker
+  constant, modulus and sample viscosity. One :func:`~afmsmiler.modes.amplitude_curve` per move
+  (none when only the setpoint moved: the curve is the same), drawn by
+  :class:`~afmsmiler.plots.modes.TappingFigure` with both branches, and the state the amplitude
+  feedback holds at the setpoint, on the branch the approach picks (read off the same curve as
+  :func:`~afmsmiler.modes.setpoint_state` reads its own).
+- :class:`LateralPanel` (lateral force): the two materials' friction coefficients, the sample's
+  tilt (a slope), the load and the noise. One :func:`~afmsmiler.modes.friction_scan` of
+  :func:`~afmsmiler.modes.friction_sample` per move; the friction loop is the scan's middle line.
+- :class:`FrequencyShiftPanel` (frequency modulation): amplitude, k, f0 and the force law's
+  Hamaker constant, tip radius and modulus. One :func:`~afmsmiler.modes.frequency_shift_curve`
+  (Giessibl's df, then the Sader-Jarvis inversion) per move.
+- :class:`JumpingPanel` (jumping mode): trigger force, lift height, z speed, modulus and work of
+  adhesion. One :func:`~afmsmiler.modes.jumping.jump_curve` (a pixel's force curve) and one scan
+  of a tall grating by :class:`~afmsmiler.modes.jumping.JumpingMode` per move.
+- :class:`ForceVolumePanel` (force volume): peak force, force noise, ramp size and the lever's
+  k. One :func:`~afmsmiler.modes.force_volume.force_volume` map of a two-material blend per move.
+
+Every slider is built by :func:`~afmsmiler.ui.controls.control` from a
+:class:`~afmsmiler.parameters.Parameter` of :mod:`afmsmiler.modes`. With ``scene=True`` (or a
+``vis``) a panel also animates its mode in the 3D view (:class:`~afmsmiler.scenes.modes.
+ModesScene`) from the same results. ``model_runs`` counts the model's runs (tests check one per
+move).
+"""
+from __future__ import annotations
+
+import functools
+import math
+from dataclasses import dataclass
+
+import ipywidgets as widgets
+import numpy as np
+
+from ..cantilever import Cantilever
+from ..contact import PARAMETERS as CONTACT
+from ..contact import ContactSystem, Parabolic
+from ..imaging.scanner import ScanResult, ScanSettings
+from ..imaging.scanner import scan as _scan
+from ..modes import force_volume as _fv
+from ..modes import jumping
+from ..modes import fm, lateral, tapping
+from ..modes._forces import FORCE_PARAMETERS
+from ..modes.fm import FrequencyShiftCurve
+from ..modes.lateral import FrictionImages, FrictionLoop, LateralLever
+from ..modes.tapping import AmplitudeCurve, TappingLever
+from ..parameters import read_only, shown
+from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
+                           LateralFigure, TappingFigure)
+from ..samples import grating
+from .controls import control
+from .panel import Panel, check_control_value
+
+__all__ = ["TappingPanel", "TappingState", "LateralPanel", "LateralState",
+           "FrequencyShiftPanel", "FrequencyShiftState", "TAPPING_SLIDERS", "LATERAL_SLIDERS",
+           "FM_SLIDERS", "TAPPING_DEFAULTS", "LATERAL_DEFAULTS", "FM_DEFAULTS",
+           "operating_point", "LATERAL_SAMPLE", "FM_DISTANCES", "lateral_lever",
+           "JumpingPanel", "JumpingState", "JUMPING_SLIDERS", "JUMPING_DEFAULTS", "JUMPING_SCAN",
+           "ForceVolumePanel", "FORCE_VOLUME_SLIDERS", "FORCE_VOLUME_DEFAULTS", "FORCE_VOLUME_MAP"]
+
+
+def _display(sliders, **si) -> dict:
+    """The sliders' initial values in the units shown (their Parameter's default, or ``si``)."""
+    return {name: float(f"{p.to_display(si.get(name, p.default)):.12g}")
+            for name, p in sliders.items()}
+
+
+def _si(sliders, values) -> dict:
+    """The values shown, checked and in SI."""
+    return {name: p.check(p.to_si(values[name])) for name, p in sliders.items()}
+
+
+class _SliderPanel(Panel):
+    """A panel of sliders only (from :class:`~afmsmiler.parameters.Parameter` objects)."""
+
+    SLIDERS: dict = {}
+    DEFAULTS: dict = {}
+    FIGSIZE = (9.0, 7.0)
+
+    def __init__(self, scene: bool = False, vis=None, **initial):
+        unknown = set(initial) - set(self.DEFAULTS)
+        if unknown:
+            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: "
+                            f"{sorted(self.DEFAULTS)}")
+        values = {**self.DEFAULTS, **initial}
+        controls = {}
+        for name, p in self.SLIDERS.items():
+            controls[name] = control(p, p.to_si(self.DEFAULTS[name]))
+            if name in initial:  # a named error, then the grid through the value
+                check_control_value(name, controls[name], initial[name])
+                controls[name] = control(p, p.to_si(values[name]))
+        self.controls = controls
+        self.readout = widgets.HTML()
+        self.figure = None
+        self.scene = None
+        self.model_runs = 0
+        self._vis = vis
+        self._want_scene = bool(scene) or vis is not None
+        self.fig = self.new_figure(figsize=self.FIGSIZE)
+        super().__init__()
+
+    def _check(self, values: dict) -> dict:
+        if set(values) != set(self.SLIDERS):
+            raise TypeError(f"update needs exactly the sliders {sorted(self.SLIDERS)}, got "
+                            f"{sorted(values)}")
+        return _si(self.SLIDERS, values)
+
+    def _scene(self, kind: str):
+        """The 3D view to draw in, or None (no scene asked for, or the viewer was closed)."""
+        if not self._want_scene or (self._vis is None and not self.scene_open()):
+            return None
+        if self.scene is None:
+            from ..scenes.modes import ModesScene
+            self.scene = ModesScene(kind, vis=self._vis)
+        return self.scene
+
+    def widget(self) -> widgets.Widget:
+        """Sliders with the readout beside them, the figure below.
+
+        Returns
+        -------
+        ipywidgets.VBox
+        """
+        figure = super().widget().children[1]
+        self.readout.layout.margin = "0 0 0 16px"
+        self.readout.layout.width = "420px"
+        top = widgets.HBox([widgets.VBox(list(self.controls.values())), self.readout])
+        return widgets.VBox([top, figure])
+
+
+def _table(rows) -> str:
+    return "<table>" + "".join(f"<tr><td>{k}</td><td style='text-align:right'><b>{v}</b></td>"
+                               f"</tr>" for k, v in rows) + "</table>"
+
+
+# -- tapping -------------------------------------------------------------------------------------
+#: The tapping panel's sliders: name -> Parameter of :data:`afmsmiler.modes.TAPPING_PARAMETERS`.
+TAPPING_SLIDERS = read_only({name: tapping.PARAMETERS[name] for name in (
+    "free_amplitude", "setpoint_ratio", "quality_factor", "spring_constant",
+    "resonance_frequency", "hamaker_constant", "youngs_modulus", "sample_viscosity")})
+
+#: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
+#: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one).
+TAPPING_DEFAULTS = read_only(_display(TAPPING_SLIDERS, free_amplitude=12e-9))
+
+
+def operating_point(curve: AmplitudeCurve, setpoint_ratio: float):
+    """The state amplitude feedback holds at ``setpoint_ratio``, read off ``curve``.
+
+    The same reading as :func:`~afmsmiler.modes.setpoint_state` (which computes its own curve
+    on A0 x linspace(1.5, 0.01, SETPOINT_GRID)): follow the slow approach
+    (:meth:`AmplitudeCurve.sweep`) from far away to the first distance at which the amplitude
+    falls to r A0, interpolated linearly. On a curve of those distances the two agree exactly.
+
+    Parameters
+    ----------
+    curve : AmplitudeCurve
+        Its distances in decreasing order (an approach).
+    setpoint_ratio : float
+        r = A_sp / A0 in (0, 1).
+
+    Returns
+    -------
+    (float, float, float, bool)
+        z_c in m, phase lag in rad, E_dis in J, on the attractive branch.
+
+    Raises
+    ------
+    ValueError
+        If the approach never reaches the setpoint on this curve.
+    """
+    r = tapping.PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
+    lever = curve.lever
+    amp, phs, _ = curve.sweep("approach")
+    target = r * lever.free_amplitude
+    below = np.flatnonzero(np.isfinite(amp) & (amp <= target))
+    if below.size == 0 or below[0] == 0:
+        raise ValueError(f"setpoint_ratio: the approach never reaches A = {r:g} A0 on these "
+                         f"distances; choose a larger setpoint_ratio")
+    i = below[0]
+    z = curve.distance
+    f = (amp[i - 1] - target) / (amp[i - 1] - amp[i])
+    zc = z[i - 1] + f * (z[i] - z[i - 1])
+    phase = phs[i - 1] + f * (phs[i] - phs[i - 1])
+    j = int(np.nanargmin(np.abs(curve.amplitude[i] - amp[i])))
+    return (float(zc), float(phase), float(lever.dissipated_energy(target, phase)),
+            not bool(curve.repulsive_branch[i, j]))
+
+
+@dataclass(frozen=True)
+class TappingState:
+    """What the tapping panel last computed (SI), for tests and exercises.
+
+    Attributes
+    ----------
+    lever : TappingLever
+    curve : AmplitudeCurve
+        Both branches on A0 x linspace(1.5, 0.01, SETPOINT_GRID).
+    setpoint_ratio : float
+    distance, phase, dissipated_energy : float
+        The held state: z_c in m, phase lag in rad, E_dis in J (NaN when the approach never
+        gets down to the setpoint).
+    attractive : bool
+        Whether the held state is on the attractive branch.
+    """
+
+    lever: TappingLever
+    curve: AmplitudeCurve
+    setpoint_ratio: float
+    distance: float
+    phase: float
+    dissipated_energy: float
+    attractive: bool
+
+    @property
+    def branch(self) -> str:
+        """``"attractive"`` or ``"repulsive"``."""
+        return "attractive" if self.attractive else "repulsive"
+
+
+class TappingPanel(_SliderPanel):
+    """Amplitude and phase against distance, both branches; the branch the setpoint picks.
+
+    Sliders (units as shown): ``free_amplitude`` [nm], ``setpoint_ratio`` (A_sp / A0),
+    ``quality_factor``, ``spring_constant`` [N/m], ``resonance_frequency`` [kHz],
+    ``hamaker_constant`` [zJ], ``youngs_modulus`` [GPa] and ``sample_viscosity`` [Pa s].
+
+    Parameters
+    ----------
+    scene : bool
+        Animate the tapping lever in the kernel's 3D viewer.
+    vis : meshcat.Visualizer, optional
+        Where to draw instead (tests pass a recorder); implies ``scene``.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : TappingState
+    figure : TappingFigure
+    scene : ModesScene or None
+    model_runs : int
+        :func:`~afmsmiler.modes.amplitude_curve` runs so far (one per move that changes the
+        lever or sample; none for a setpoint move).
+    """
+
+    SLIDERS = TAPPING_SLIDERS
+    DEFAULTS = TAPPING_DEFAULTS
+    FIGSIZE = (8.5, 7.5)
+
+    def update(self, **values) -> None:
+        """Run the model (unless only the setpoint moved) and draw the curves and the state.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`TAPPING_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider or a value out of range, before any work.
+        """
+        si = self._check(values)
+        r = si.pop("setpoint_ratio")
+        lever = TappingLever(**si)
+        previous = self.last
+        if previous is not None and previous.lever == lever:
+            curve = previous.curve
+        else:
+            a0 = lever.free_amplitude
+            curve = tapping.amplitude_curve(a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID),
+                                            lever)
+            self.model_runs += 1
+        try:
+            zc, phase, e_dis, attractive = operating_point(curve, r)
+        except ValueError:  # the approach never gets down to the setpoint: nothing is held
+            zc = phase = e_dis = math.nan
+            attractive = False
+            point = None
+        else:
+            point = (r, zc, phase, e_dis, attractive)
+        self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive)
+        jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
+        if self.figure is None:
+            self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
+        else:
+            self.figure.update(curve, point, jumps)
+        self.redraw()
+        scene = self._scene("tapping")
+        if point is None:
+            self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
+                                  f"to z_c = {shown(float(curve.distance.min()), 'nm', '.3g')}): "
+                                  f"no state is held; raise the setpoint.</div>")
+            return
+        if scene is not None:
+            scene.animate_tapping(zc, r * lever.free_amplitude,
+                                  free_amplitude=lever.free_amplitude,
+                                  contact_distance=lever.intermolecular_distance)
+        s = self.last
+        self.readout.value = _table([
+            ("held at z_c", shown(zc, "nm")), ("amplitude A", shown(r * lever.free_amplitude,
+                                                                   "nm")),
+            ("phase lag", shown(phase, "deg")), ("E_dis per cycle", shown(e_dis, "zJ")),
+            ("branch", s.branch)]) + (
+            f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+
+
+# -- lateral force --------------------------------------------------------------------------------
+_MU = lateral.FRICTION_COEFFICIENT
+#: The lateral panel's sliders: name -> Parameter of :data:`afmsmiler.modes.LATERAL_PARAMETERS`.
+LATERAL_SLIDERS = read_only({
+    "friction_a": _MU.with_(name="friction_a", default=0.1,
+                            label="friction coefficient mu of material A"),
+    "friction_b": _MU.with_(name="friction_b", default=0.4,
+                            label="friction coefficient mu of material B"),
+    "tilt": lateral.TILT, "normal_force": lateral.NORMAL_FORCE,
+    "lateral_noise": lateral.LATERAL_NOISE})
+
+#: Initial values in the units shown: a tilted sample (3 deg), so that the slope shows.
+LATERAL_DEFAULTS = read_only(_display(LATERAL_SLIDERS, tilt=np.radians(3.0)))
+
+#: The sample the lateral panel scans: (rows, columns), pixel size in m (a disc and a stripe of
+#: material B on material A, :func:`~afmsmiler.modes.friction_sample`).
+LATERAL_SAMPLE = read_only(dict(shape=(32, 64), pixel_size=10e-9))
+
+
+@functools.lru_cache(maxsize=1)
+def lateral_lever() -> LateralLever:
+    """The lever of the lateral panel: silicon, 450 x 50 x 2 um, a 15 um tip (k_t ~ 105 N/m).
+
+    Returns
+    -------
+    LateralLever
+    """
+    return LateralLever(Cantilever.from_material("silicon", length=450e-6, width=50e-6,
+                                                 thickness=2e-6), tip_height=15e-6)
+
+
+@dataclass(frozen=True)
+class LateralState:
+    """What the lateral panel last computed (SI).
+
+    Attributes
+    ----------
+    images : FrictionImages
+        The scan's trace and retrace images.
+    loop : FrictionLoop
+        Its middle line.
+    row : int
+        The row of the loop.
+    friction : ndarray
+        The friction-coefficient map the sample was made with.
+    twist, signal : ndarray
+        Shape (2, n): the lever's twist in rad and the lateral photodiode signal along the loop
+        (trace, retrace).
+    """
+
+    images: FrictionImages
+    loop: FrictionLoop
+    row: int
+    friction: np.ndarray
+    twist: np.ndarray
+    signal: np.ndarray
+
+
+class LateralPanel(_SliderPanel):
+    """A friction loop and the friction and slope maps of a tilted two-material sample.
+
+    Sliders (units as shown): ``friction_a``, ``friction_b`` (mu of the two materials),
+    ``tilt`` [deg] (of the sample along the fast axis: a slope), ``normal_force`` [nN],
+    ``lateral_noise`` [nN].
+
+    Parameters
+    ----------
+    scene : bool
+        Animate the twisting lever in the kernel's 3D viewer.
+    vis : meshcat.Visualizer, optional
+        Where to draw instead; implies ``scene``.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : LateralState
+    figure : LateralFigure
+    model_runs : int
+        :func:`~afmsmiler.modes.friction_scan` runs so far (one per move).
+    """
+
+    SLIDERS = LATERAL_SLIDERS
+    DEFAULTS = LATERAL_DEFAULTS
+    FIGSIZE = (9.0, 7.0)
+
+    def update(self, **values) -> None:
+        """Scan the sample once with these values and draw the loop and the maps.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`LATERAL_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider or a value out of range, before any work.
+        """
+        si = self._check(values)
+        lever = lateral_lever()
+        topo, mu = lateral.friction_sample(
+            LATERAL_SAMPLE["shape"], LATERAL_SAMPLE["pixel_size"],
+            coefficients=(si["friction_a"], si["friction_b"]), tilt=si["tilt"])
+        images = lateral.friction_scan(topo, mu, normal_force=si["normal_force"],
+                                       lateral_stiffness=lever.spring_constant,
+                                       lateral_noise=si["lateral_noise"], seed=0)
+        self.model_runs += 1
+        row = LATERAL_SAMPLE["shape"][0] // 2
+        x = np.arange(LATERAL_SAMPLE["shape"][1]) * topo.pixel_size
+        loop = FrictionLoop(x, images.trace.heights[row], images.retrace.heights[row],
+                            images.normal_force, lever.spring_constant)
+        forces = np.vstack((loop.trace, loop.retrace))
+        twist, signal = lever.twist(forces), lever.signal(forces)
+        self.last = LateralState(images, loop, row, mu.heights, twist, signal)
+        if self.figure is None:
+            self.figure = LateralFigure(loop, images, row, fig=self.fig)
+        else:
+            self.figure.update(loop, images, row)
+        self.redraw()
+        scene = self._scene("lateral")
+        if scene is not None:
+            scene.animate_lateral(x, twist, signal,
+                                  materials=mu.heights[row] == si["friction_b"])
+        sliding = slice(1, -1)
+        self.readout.value = _table([
+            ("mean friction / load (line)",
+             f"{float(np.mean(loop.friction_coefficient[sliding])):.4g}"),
+            ("mean trace / load (line)",
+             f"{float(np.mean(loop.trace[sliding])) / loop.normal_force:.4g}"),
+            ("lateral stiffness k_t", shown(lever.spring_constant, "N/m")),
+            ("largest twist", shown(float(np.abs(twist).max()), "mrad"))]) + (
+            f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+
+
+# -- frequency modulation -------------------------------------------------------------------------
+#: The FM panel's sliders: the lever's (:data:`afmsmiler.modes.FM_PARAMETERS`) and the force
+#: law's (:data:`afmsmiler.modes.FORCE_PARAMETERS`).
+FM_SLIDERS = read_only({
+    **{name: fm.PARAMETERS[name] for name in ("amplitude", "spring_constant",
+                                              "resonance_frequency")},
+    **{name: FORCE_PARAMETERS[name] for name in ("hamaker_constant", "radius",
+                                                 "youngs_modulus")}})
+
+#: Initial values in the units shown.
+FM_DEFAULTS = read_only(_display(FM_SLIDERS))
+
+#: The closest distances of the FM panel's curve, in m (from just above the contact distance
+#: a0 = 0.165 nm, where the inversion is valid, to 12 nm), and the one the 3D view animates.
+FM_DISTANCES = read_only(dict(low=0.2e-9, high=12e-9, points=300, shown=1e-9))
+
+
+@dataclass(frozen=True)
+class FrequencyShiftState:
+    """What the FM panel last computed (SI).
+
+    Attributes
+    ----------
+    curve : FrequencyShiftCurve
+        Force, df and the force recovered.
+    force_law : dict
+        The force law's parameters (SI), as given to
+        :func:`~afmsmiler.modes.tip_sample_force`.
+    """
+
+    curve: FrequencyShiftCurve
+    force_law: dict
+
+
+class FrequencyShiftPanel(_SliderPanel):
+    """The frequency shift of a force law and the force the Sader-Jarvis inversion recovers.
+
+    Sliders (units as shown): ``amplitude`` [nm], ``spring_constant`` [N/m],
+    ``resonance_frequency`` [kHz], and the force law's ``hamaker_constant`` [zJ], ``radius``
+    [nm] and ``youngs_modulus`` [GPa] (van der Waals above a0, DMT contact below).
+
+    Parameters
+    ----------
+    scene : bool
+        Animate the FM lever in the kernel's 3D viewer.
+    vis : meshcat.Visualizer, optional
+        Where to draw instead; implies ``scene``.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : FrequencyShiftState
+    figure : FrequencyShiftFigure
+    model_runs : int
+        :func:`~afmsmiler.modes.frequency_shift_curve` runs so far (one per move).
+    """
+
+    SLIDERS = FM_SLIDERS
+    DEFAULTS = FM_DEFAULTS
+    FIGSIZE = (8.5, 6.5)
+
+    def update(self, **values) -> None:
+        """Run the round trip once with these values and draw it.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`FM_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider or a value out of range, before any work.
+        """
+        si = self._check(values)
+        law = {name: si[name] for name in ("hamaker_constant", "radius", "youngs_modulus")}
+        from ..modes import tip_sample_force
+        force = functools.partial(tip_sample_force, **law)
+        d = FM_DISTANCES
+        z = np.linspace(d["low"], d["high"], d["points"])
+        curve = fm.frequency_shift_curve(force, z, amplitude=si["amplitude"],
+                                         spring_constant=si["spring_constant"],
+                                         resonance_frequency=si["resonance_frequency"])
+        self.model_runs += 1
+        self.last = FrequencyShiftState(curve, law)
+        if self.figure is None:
+            self.figure = FrequencyShiftFigure(curve, fig=self.fig)
+        else:
+            self.figure.update(curve)
+        self.redraw()
+        i = int(np.argmin(np.abs(z - d["shown"])))
+        scene = self._scene("fm")
+        if scene is not None:
+            scene.animate_fm(float(z[i]), curve.amplitude, float(curve.frequency_shift[i]),
+                             resonance_frequency=curve.resonance_frequency)
+        peak = float(np.max(np.abs(curve.force)))
+        self.readout.value = _table([
+            (f"df at z = {shown(float(z[i]), 'nm', '.3g')}",
+             shown(float(curve.frequency_shift[i]), "Hz")),
+            ("small-amplitude df there", shown(float(curve.gradient_shift[i]), "Hz")),
+            ("largest inversion error", f"{100 * float(np.max(np.abs(curve.error))) / peak:.2g}"
+                                        f" % of the peak force")]) + (
+            f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+
+
+# -- jumping --------------------------------------------------------------------------------------
+#: The jumping panel's sliders: :data:`afmsmiler.modes.jumping.PARAMETERS` and the sample's
+#: modulus and work of adhesion (:data:`afmsmiler.contact.PARAMETERS`).
+JUMPING_SLIDERS = read_only({**jumping.PARAMETERS,
+                             "youngs_modulus": CONTACT["youngs_modulus"],
+                             "work_of_adhesion": CONTACT["work_of_adhesion"]})
+
+#: Initial values in the units shown: a lift of 150 nm, above the grating's 100 nm bars.
+JUMPING_DEFAULTS = read_only(_display(JUMPING_SLIDERS, lift_height=150e-9, youngs_modulus=1e9,
+                                      work_of_adhesion=0.05))
+
+#: The jumping panel's scan (SI): a grating of 100 nm tall bars (period 320 nm, 64 x 32 pixels
+#: of 10 nm), a 300 nm scan of 32 pixels x 8 lines, a 1 N/m lever with a 10 nm paraboloid tip.
+JUMPING_SCAN = read_only(dict(shape=(32, 64), pixel_size=10e-9, period=320e-9, height=100e-9,
+                              scan_size=300e-9, pixels=32, lines=8, spring_constant=1.0,
+                              tip_radius=10e-9))
+
+
+@dataclass(frozen=True)
+class JumpingState:
+    """What the jumping panel last computed (SI).
+
+    Attributes
+    ----------
+    system : ContactSystem
+        Tip, lever and sample (module (d)).
+    curve : JumpCurve
+        One pixel's force curve.
+    result : ScanResult
+        The image of the grating.
+    acquisition_time, contact_time : float
+        The image's time in s in jumping mode and in contact mode (same scan speed).
+    """
+
+    system: ContactSystem
+    curve: jumping.JumpCurve
+    result: ScanResult
+    acquisition_time: float
+    contact_time: float
+
+
+class JumpingPanel(_SliderPanel):
+    """A jumping-mode pixel's force curve and the image of a grating of tall bars.
+
+    Sliders (units as shown): ``trigger_force`` [nN], ``lift_height`` [nm], ``z_speed`` [um/s],
+    ``youngs_modulus`` [MPa] and ``work_of_adhesion`` [mJ/m^2] of the sample.
+
+    Parameters
+    ----------
+    scene : bool
+        Animate the jumping cycle in the kernel's 3D viewer.
+    vis : meshcat.Visualizer, optional
+        Where to draw instead; implies ``scene``.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : JumpingState
+    figure : JumpingFigure
+    model_runs : int
+        Runs of the models so far: one :func:`~afmsmiler.modes.jumping.jump_curve` and one scan
+        per move (counted as one each).
+    """
+
+    SLIDERS = JUMPING_SLIDERS
+    DEFAULTS = JUMPING_DEFAULTS
+    FIGSIZE = (9.5, 7.0)
+
+    def update(self, **values) -> None:
+        """Compute one pixel's curve and the image with these values, and draw them.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`JUMPING_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider, a value out of range, or a lift that does not take
+            the tip off the surface (the model's message), before any work.
+        """
+        si = self._check(values)
+        d = JUMPING_SCAN
+        tip = Parabolic(radius=d["tip_radius"])
+        system = ContactSystem(spring_constant=d["spring_constant"], tip=tip,
+                               youngs_modulus=si["youngs_modulus"], adhesion="dmt",
+                               work_of_adhesion=si["work_of_adhesion"])
+        settings = {name: si[name] for name in jumping.PARAMETERS}
+        curve = jumping.jump_curve(system, **settings)
+        mode = jumping.JumpingMode(system, **settings)
+        sample = grating(d["shape"], d["pixel_size"], period=d["period"], height=d["height"])
+        scan_settings = ScanSettings(d["scan_size"], pixels=d["pixels"], lines=d["lines"])
+        result = _scan(sample, tip, mode, scan_settings)
+        self.model_runs += 1
+        self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
+                                 scan_settings.scan_time)
+        if self.figure is None:
+            self.figure = JumpingFigure(curve, result, fig=self.fig)
+        else:
+            self.figure.update(curve, result)
+        self.redraw()
+        scene = self._scene("jumping")
+        if scene is not None:
+            heights, xs, touching = self._cycle(curve, result)
+            scene.animate_jumping(heights, xs, pixel_size=result.pixel_size, contact=touching)
+        crash = result.crashed
+        self.readout.value = _table([
+            ("pull-off force", shown(curve.pull_off_force, "nN")),
+            ("time per pixel (approach + retract)", shown(curve.cycle_time, "ms")),
+            ("image in jumping mode", f"{self.last.acquisition_time:.3g} s"),
+            ("image in contact mode", f"{self.last.contact_time:.3g} s"),
+            ("largest lateral force", shown(float(np.nanmax(np.abs(
+                result.images["lateral force trace"]))), "nN")),
+            ("crash", "none" if crash is None else f"line {crash.row}, pixel {crash.column}")]
+        ) + (f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+
+    @staticmethod
+    def _cycle(curve, result, pixels: int = 4, frames: int = 12):
+        """The apex's path over ``pixels`` pixels of the middle line, in m: the curve's approach
+        (touching from Z_np = 0 on) and retract (touching until the snap-off Z_np), the apex
+        |Z_np| above the surface while free, on it while touching; then the move."""
+        row = result.images["height trace"].shape[0] // 2
+        surface = np.nan_to_num(result.images["height trace"][row, :pixels])
+        pick = np.linspace(0, curve.approach_z_np.size - 1, frames).round().astype(int)
+        z_app, z_ret = curve.approach_z_np[pick], curve.retract_z_np[pick]
+        heights, xs, touching = [], [], []
+        for j in range(pixels):
+            for z, touch in ((z_app, z_app >= 0.0),
+                             (z_ret, z_ret >= min(curve.snap_off_z_np, 0.0))):
+                heights += list(surface[j] + np.where(touch, 0.0, -z))
+                touching += list(touch)
+                xs += [j * result.pixel_size] * z.size
+        return np.array(heights), np.array(xs), np.array(touching)
+
+
+# -- force volume ---------------------------------------------------------------------------------
+#: The force-volume panel's sliders: :data:`afmsmiler.modes.force_volume.PARAMETERS`' peak force,
+#: ramp size, force noise and spring constant.
+FORCE_VOLUME_SLIDERS = read_only({name: _fv.PARAMETERS[name] for name in (
+    "peak_force", "ramp_size", "force_noise", "spring_constant")})
+
+#: Initial values in the units shown.
+FORCE_VOLUME_DEFAULTS = read_only(_display(FORCE_VOLUME_SLIDERS))
+
+#: The mapped sample (SI): 10 x 10 pixels of 24 nm (one fit per pixel: some 0.3 to 1 s per move),
+#: two islands of 70 nm radius of the blend's soft, sticky material in its stiff matrix
+#: (:data:`afmsmiler.modes.force_volume.BLEND`), a 10 nm paraboloid tip, DMT adhesion, seed 0 of
+#: the noise.
+FORCE_VOLUME_MAP = read_only(dict(shape=(10, 10), pixel_size=24e-9, island_radius=70e-9,
+                                  island_count=2, seed=3, tip_radius=10e-9, noise_seed=0))
+
+
+class ForceVolumePanel(_SliderPanel):
+    """Modulus, adhesion, deformation and dissipation maps of a two-material blend.
+
+    Sliders (units as shown): ``peak_force`` [nN], ``ramp_size`` [nm], ``force_noise`` [pN]
+    and ``spring_constant`` [N/m].
+
+    Parameters
+    ----------
+    scene : bool
+        Unused (the maps are 2D); accepted for a uniform interface.
+    vis : meshcat.Visualizer, optional
+        Unused.
+    **initial
+        Initial slider values in the units shown.
+
+    Attributes
+    ----------
+    last : ForceVolume
+        The maps.
+    labels : ndarray
+        The material of each pixel (the truth).
+    figure : ForceVolumeFigure
+    model_runs : int
+        :func:`~afmsmiler.modes.force_volume.force_volume` runs so far (one per move).
+    """
+
+    SLIDERS = FORCE_VOLUME_SLIDERS
+    DEFAULTS = FORCE_VOLUME_DEFAULTS
+    FIGSIZE = (10.0, 6.5)
+
+    def update(self, **values) -> None:
+        """Map the sample once with these values and draw the maps.
+
+        Parameters
+        ----------
+        **values : float
+            Exactly the sliders of :data:`FORCE_VOLUME_SLIDERS`, in the units shown.
+
+        Raises
+        ------
+        TypeError, ValueError
+            For a missing or unknown slider, a value out of range or a ramp too short to take
+            the tip off (the model's message), before any work.
+        """
+        si = self._check(values)
+        d = FORCE_VOLUME_MAP
+        sample, labels = _fv.two_material_sample(d["shape"], d["pixel_size"],
+                                                 island_radius=d["island_radius"],
+                                                 island_count=d["island_count"], seed=d["seed"])
+        volume = _fv.force_volume(sample, _fv.BLEND, Parabolic(radius=d["tip_radius"]),
+                                  labels=labels, seed=d["noise_seed"], **si)
+        self.model_runs += 1
+        self.labels = labels
+        self.last = volume
+        if self.figure is None:
+            self.figure = ForceVolumeFigure(volume, [m.name for m in _fv.BLEND], fig=self.fig)
+        else:
+            self.figure.update(volume)
+        self.redraw()
+        rows = []
+
+        def median(values, unit):
+            finite = values[np.isfinite(values)]
+            return shown(float(np.median(finite)), unit, ".4g") if finite.size else \
+                "no fit converged"
+
+        for i, m in enumerate(_fv.BLEND):
+            mask = labels == i
+            rows.append((f"{m.name}: E (median of the map)",
+                         median(volume.modulus[mask], "MPa") +
+                         f" (true {shown(m.youngs_modulus, 'MPa', '.4g')})"))
+            rows.append((f"{m.name}: adhesion (median)", median(volume.adhesion[mask], "nN")))
+        self.readout.value = _table(rows)

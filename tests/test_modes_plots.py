@@ -1,0 +1,240 @@
+"""Module (g)'s figures draw the models' results in the units shown, nothing recomputed: both
+branches of the amplitude curve and the region where they coexist, the held state; a friction
+loop with half its difference (friction) and half its sum (slope); df and the force recovered.
+Each figure can be drawn live (plots.live.describe) and labels every axis with a unit."""
+import math
+import re
+
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+
+from afmsmiler.modes import (FrictionLoop, TappingLever, amplitude_curve, friction_loop,
+                             friction_sample, friction_scan, frequency_shift_curve,
+                             setpoint_state, tip_sample_force)
+from afmsmiler.modes.tapping import SETPOINT_GRID
+from afmsmiler.parameters import UNITS
+from afmsmiler.plots.live import describe
+from afmsmiler.plots.modes import (FrequencyShiftFigure, LateralFigure, TappingFigure,
+                                   branch_values, unstable_roots)
+
+NM = 1 / UNITS["nm"][1]
+NN = 1 / UNITS["nN"][1]
+ZJ = 1 / UNITS["zJ"][1]
+
+
+@pytest.fixture(scope="module")
+def tapping():
+    lever = TappingLever(free_amplitude=12e-9, sample_viscosity=200.0)
+    curve = amplitude_curve(12e-9 * np.linspace(1.5, 0.01, SETPOINT_GRID), lever)
+    return lever, curve, (0.8, *setpoint_state(0.8, lever))
+
+
+def _xy(line):
+    return np.asarray(line.get_xdata(), float), np.asarray(line.get_ydata(), float)
+
+
+def test_tapping_figure_draws_both_branches_in_nm_deg_and_zj(tapping):
+    lever, curve, point = tapping
+    fig = TappingFigure(curve, point)
+    order = np.argsort(curve.distance)
+    for branch in ("attractive", "repulsive"):
+        a, p = curve.branch(branch)
+        x, y = _xy(fig.lines["amplitude", branch])
+        np.testing.assert_allclose(x, curve.distance[order] * NM)
+        np.testing.assert_allclose(y, a[order] * NM)
+        np.testing.assert_allclose(_xy(fig.lines["phase", branch])[1],
+                                   np.degrees(p[order]))
+    # E_dis on the attractive branch is the lever's energy balance at that amplitude and phase
+    a, p = curve.branch("attractive")
+    e = _xy(fig.lines["energy", "attractive"])[1]
+    ok = np.isfinite(a[order])
+    np.testing.assert_allclose(e[ok], lever.dissipated_energy(a[order][ok], p[order][ok]) * ZJ,
+                               rtol=1e-9, atol=1e-9)
+    describe(fig.fig)  # the live figure can show every artist
+
+
+def test_tapping_figure_marks_the_coexistence_region_and_the_held_state(tapping):
+    _, curve, point = tapping
+    fig = TappingFigure(curve, point)
+    both = curve.distance[curve.coexist]
+    span = fig.spans["amplitude"]
+    assert span.get_visible()
+    assert span.get_x() == pytest.approx(both.min() * NM)
+    assert span.get_x() + span.get_width() == pytest.approx(both.max() * NM)
+    ratio, zc, phase, e_dis, attractive = point
+    x, y = _xy(fig.lines["amplitude", "point"])
+    assert x[0] == pytest.approx(zc * NM) and y[0] == pytest.approx(ratio * 12.0)
+    assert _xy(fig.lines["phase", "point"])[1][0] == pytest.approx(math.degrees(phase))
+    assert fig.lines["amplitude", "setpoint"].get_ydata()[0] == pytest.approx(ratio * 12.0)
+    title = fig.axes["amplitude"].get_title()
+    assert ("attractive" if attractive else "repulsive") + " branch" in title
+    zu, au, _ = unstable_roots(curve)
+    assert zu.size and np.all(~np.isnan(au))
+    np.testing.assert_allclose(np.sort(_xy(fig.lines["amplitude", "unstable"])[1]),
+                               np.sort(au * NM))
+
+
+def test_without_coexistence_the_span_hides():
+    curve = amplitude_curve(np.linspace(20e-9, 30e-9, 20), TappingLever())  # far: free lever
+    fig = TappingFigure(curve)
+    assert not fig.spans["amplitude"].get_visible()
+    assert not fig.lines["amplitude", "setpoint"].get_visible()
+
+
+def test_branch_values_refuses_a_wrong_shape(tapping):
+    _, curve, _ = tapping
+    with pytest.raises(ValueError, match="values"):
+        branch_values(curve, np.zeros(3), "attractive")
+    with pytest.raises(ValueError, match="name"):
+        branch_values(curve, curve.amplitude, "high")
+
+
+@pytest.fixture(scope="module")
+def lateral():
+    topo, mu = friction_sample((16, 40), 10e-9, coefficients=(0.1, 0.4), tilt=math.radians(4))
+    images = friction_scan(topo, mu, normal_force=20e-9, lateral_stiffness=100.0)
+    row = 8
+    loop = friction_loop(topo.heights[row], mu.heights[row], 10e-9, normal_force=20e-9,
+                         lateral_stiffness=100.0)
+    return topo, mu, images, row, loop
+
+
+def test_lateral_figure_splits_the_loop_into_friction_and_slope(lateral):
+    topo, mu, images, row, loop = lateral
+    fig = LateralFigure(loop, images, row)
+    x, trace = _xy(fig.lines["trace"])
+    np.testing.assert_allclose(x, np.arange(40) * 10.0)
+    np.testing.assert_allclose(trace, loop.trace * NN)
+    np.testing.assert_allclose(_xy(fig.lines["retrace"])[1], loop.retrace * NN)
+    f = _xy(fig.lines["friction"])[1]
+    s = _xy(fig.lines["slope"])[1]
+    np.testing.assert_allclose(f, (loop.trace - loop.retrace) / 2 * NN)
+    # on the sliding pixels: friction is mu F_N, the slope term F_N tan(theta) (linear model)
+    np.testing.assert_allclose(f[1:-1], mu.heights[row][1:-1] * 20.0, rtol=1e-9)
+    np.testing.assert_allclose(s[1:-1], 20.0 * math.tan(math.radians(4)), rtol=1e-6)
+    np.testing.assert_allclose(fig.images["friction"].get_array(),
+                               images.friction_coefficient.heights)
+    describe(fig.fig)
+
+
+def test_lateral_figure_loop_only():
+    loop = FrictionLoop(np.arange(5) * 1e-9, np.ones(5) * 1e-9, -np.ones(5) * 1e-9, 10e-9, 1.0)
+    fig = LateralFigure(loop)
+    assert set(fig.axes) == {"loop"}
+    describe(fig.fig)
+
+
+@pytest.fixture(scope="module")
+def fm_curve():
+    return frequency_shift_curve(tip_sample_force, np.linspace(0.2e-9, 12e-9, 200),
+                                 amplitude=1e-9)
+
+
+def test_frequency_shift_figure_draws_the_round_trip(fm_curve):
+    fig = FrequencyShiftFigure(fm_curve)
+    x, df = _xy(fig.lines["giessibl"])
+    np.testing.assert_allclose(x, fm_curve.z * NM)
+    np.testing.assert_allclose(df, fm_curve.frequency_shift)
+    np.testing.assert_allclose(_xy(fig.lines["gradient"])[1], fm_curve.gradient_shift)
+    np.testing.assert_allclose(_xy(fig.lines["input"])[1], fm_curve.force * NN)
+    np.testing.assert_allclose(_xy(fig.lines["recovered"])[1], fm_curve.recovered_force * NN)
+    worst = np.max(np.abs(fm_curve.error)) / np.max(np.abs(fm_curve.force))
+    assert f"{100 * worst:.2g} %" in fig.axes["force"].get_title()
+    describe(fig.fig)
+
+
+def _figures(tapping, lateral, fm_curve):
+    _, curve, point = tapping
+    topo, mu, images, row, loop = lateral
+    return [TappingFigure(curve, point).fig, LateralFigure(loop, images, row).fig,
+            FrequencyShiftFigure(fm_curve).fig]
+
+
+def test_every_axis_is_labelled_with_a_unit(tapping, lateral, fm_curve, jumping_run):
+    from afmsmiler.plots.modes import JumpingFigure
+    for fig in [*_figures(tapping, lateral, fm_curve), JumpingFigure(*jumping_run).fig]:
+        FigureCanvasAgg(fig).draw()
+        for ax in fig.axes:  # colour bars too
+            for axis in (ax.xaxis, ax.yaxis):
+                shows = any(t.get_text().strip() for t in axis.get_ticklabels())
+                label = axis.label.get_text()
+                if shows:
+                    assert re.search(r"\[[^\]]+\]|\(dimensionless\)", label), label
+            if not hasattr(ax, "_colorbar"):
+                assert ax.yaxis.label.get_text(), f"{ax.get_title()!r} has no y label"
+
+
+def test_update_keeps_the_artists(tapping):
+    _, curve, point = tapping
+    fig = TappingFigure(curve, point)
+    line = fig.lines["amplitude", "attractive"]
+    n = len(fig.fig.axes[0].lines)
+    fig.update(curve, (0.9, *setpoint_state(0.9, curve.lever)))
+    assert fig.lines["amplitude", "attractive"] is line and len(fig.fig.axes[0].lines) == n
+
+
+@pytest.fixture(scope="module")
+def jumping_run():
+    from afmsmiler.contact import ContactSystem, Parabolic
+    from afmsmiler.imaging.scanner import ScanSettings, scan
+    from afmsmiler.modes.jumping import JumpingMode, jump_curve
+    from afmsmiler.samples import grating
+    tip = Parabolic(radius=10e-9)
+    system = ContactSystem(spring_constant=1.0, tip=tip, youngs_modulus=1e9, adhesion="dmt",
+                           work_of_adhesion=0.05)
+    curve = jump_curve(system, trigger_force=2e-9, lift_height=150e-9)
+    result = scan(grating((32, 64), 10e-9, period=320e-9, height=100e-9), tip,
+                  JumpingMode(system, trigger_force=2e-9, lift_height=150e-9),
+                  ScanSettings(300e-9, pixels=16, lines=4))
+    return curve, result
+
+
+def test_jumping_figure_draws_the_curve_and_the_image(jumping_run):
+    from afmsmiler.plots.modes import JumpingFigure
+    curve, result = jumping_run
+    fig = JumpingFigure(curve, result)
+    x, y = _xy(fig.lines["approach"])
+    np.testing.assert_allclose(x, curve.approach_z_np * NM)
+    np.testing.assert_allclose(y, curve.approach_force * NN)
+    np.testing.assert_allclose(_xy(fig.lines["retract time"])[0],
+                               curve.retract_time / UNITS["ms"][1])
+    assert fig.lines["trigger"].get_ydata()[0] == pytest.approx(2.0)
+    np.testing.assert_allclose(np.ma.filled(fig.images["height"].get_array(), np.nan),
+                               result.images["height trace"] * NM)
+    row = result.images["height trace"].shape[0] // 2
+    np.testing.assert_allclose(_xy(fig.lines["trace"])[1],
+                               result.images["height trace"][row] * NM)
+    describe(fig.fig)
+
+
+def test_force_volume_figure_draws_the_maps():
+    from afmsmiler.contact import Parabolic
+    from afmsmiler.modes.force_volume import BLEND, force_volume, two_material_sample
+    from afmsmiler.plots.modes import ForceVolumeFigure
+    sample, labels = two_material_sample((6, 6), 20e-9, island_radius=40e-9, island_count=1,
+                                         seed=3)
+    fv = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, seed=0, points=100)
+    fig = ForceVolumeFigure(fv, [m.name for m in BLEND])
+    np.testing.assert_allclose(fig.images["modulus"].get_array(), fv.modulus / UNITS["MPa"][1])
+    np.testing.assert_allclose(fig.images["adhesion"].get_array(), fv.adhesion * NN)
+    np.testing.assert_allclose(fig.images["dissipation"].get_array(), fv.dissipation * ZJ)
+    np.testing.assert_allclose(_xy(fig.lines["approach", 1])[1], fv.approach[1] * NN)
+    describe(fig.fig)
+    with pytest.raises(ValueError, match="names"):
+        ForceVolumeFigure(fv, ["one"])
+
+
+def test_tapping_figure_marks_the_jumps_of_a_slow_approach_and_retraction(tapping):
+    _, curve, point = tapping
+    jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
+    assert jumps["retract"]  # this lever jumps on the way out
+    fig = TappingFigure(curve, point, jumps=jumps)
+    for way in ("approach", "retract"):
+        line = fig.lines["phase", f"jump {way}"]
+        assert line.get_visible() is bool(jumps[way])
+        if jumps[way]:
+            assert line.get_xdata()[0] == pytest.approx(jumps[way][0] * NM)
+    fig.update(curve, point)  # no jumps given: none marked
+    assert not fig.lines["amplitude", "jump retract"].get_visible()
+    describe(fig.fig)

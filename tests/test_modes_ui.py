@@ -1,0 +1,339 @@
+"""Module (g)'s panels without a browser: one model run per slider move (none for a setpoint
+move: the curve is the same), the state the panel shows equals the model run directly
+(setpoint_state, friction_loop, frequency_shift_curve, jump_curve) or an independent formula
+(DMT's pull-off 2 pi R w, the blend's moduli), and the suggestions notebook 07 makes happen as it
+says (the setpoint that picks the branch, the slope that leaks into a trace but not into the
+friction map, the lift that clears the bars, the noise that biases the modulus map)."""
+import functools
+import math
+
+import numpy as np
+import pytest
+
+from afmsmiler.contact import ContactSystem, Parabolic
+from afmsmiler.modes import fm, force_volume, jumping, lateral, tapping
+from afmsmiler.modes import (TappingLever, friction_loop, friction_sample, setpoint_state,
+                             tip_sample_force)
+from afmsmiler.parameters import UNITS
+from afmsmiler.ui.modalities import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
+                                     FORCE_VOLUME_MAP, JUMPING_DEFAULTS, JUMPING_SCAN,
+                                     LATERAL_DEFAULTS, LATERAL_SAMPLE, TAPPING_DEFAULTS,
+                                     ForceVolumePanel, FrequencyShiftPanel, JumpingPanel,
+                                     LateralPanel, TappingPanel, lateral_lever, operating_point)
+from recording import Recorder
+
+NM = 1 / UNITS["nm"][1]
+
+
+def _count(monkeypatch, module, name):
+    calls = []
+    original = getattr(module, name)
+
+    def counting(*args, **kwargs):
+        calls.append(1)
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(module, name, counting)
+    return calls
+
+
+# -- tapping ------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def tap():
+    return TappingPanel()
+
+
+def test_tapping_panel_one_curve_per_move_and_none_for_the_setpoint(monkeypatch):
+    calls = _count(monkeypatch, tapping, "amplitude_curve")
+    panel = TappingPanel()
+    assert len(calls) == 1 and panel.model_runs == 1
+    panel.set(setpoint_ratio=0.9)
+    assert len(calls) == 1  # the same lever: the curve is read again, not computed
+    for name, value in (("quality_factor", 300.0), ("free_amplitude", 15.0),
+                        ("sample_viscosity", 100.0), ("hamaker_constant", 100.0)):
+        panel.set(**{name: value})
+    assert len(calls) == 5 and panel.model_runs == 5
+
+
+def test_tapping_panel_holds_the_state_setpoint_state_finds(tap):
+    for r in (0.8, 0.9, 0.6):
+        tap.set(setpoint_ratio=r)
+        s = tap.last
+        zc, phase, e_dis, attractive = setpoint_state(r, s.lever)
+        assert s.distance == pytest.approx(zc, rel=1e-12)
+        assert s.phase == pytest.approx(phase, rel=1e-12)
+        assert s.dissipated_energy == pytest.approx(e_dis, rel=1e-9, abs=1e-30)
+        assert s.attractive is attractive
+        x, y = tap.figure.lines["amplitude", "point"].get_data()
+        assert x[0] == pytest.approx(zc * NM) and y[0] == pytest.approx(r * 12.0)
+
+
+def test_notebook_suggestion_the_setpoint_picks_the_branch(tap):
+    # notebook 07: at A0 = 12 nm the default setpoint 0.8 ends on the repulsive branch;
+    # 0.9 keeps the tip on the attractive one; with A0 = 8 nm even 0.5 stays attractive
+    tap.set(free_amplitude=12.0, setpoint_ratio=0.8)
+    assert TAPPING_DEFAULTS["free_amplitude"] == 12.0 and TAPPING_DEFAULTS["setpoint_ratio"] == 0.8
+    assert tap.last.branch == "repulsive"
+    assert "repulsive branch" in tap.figure.axes["amplitude"].get_title()
+    tap.set(setpoint_ratio=0.9)
+    assert tap.last.branch == "attractive"
+    tap.set(free_amplitude=8.0, setpoint_ratio=0.5)
+    assert tap.last.branch == "attractive"
+    tap.set(**{k: TAPPING_DEFAULTS[k] for k in ("free_amplitude", "setpoint_ratio")})
+
+
+def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
+    tap.set(sample_viscosity=0.0, setpoint_ratio=0.9)
+    dry = tap.last.dissipated_energy
+    tap.set(sample_viscosity=200.0)
+    wet = tap.last.dissipated_energy
+    assert wet > 100 * abs(dry) and wet > 1e-20  # from a fraction of a zJ to tens of zJ
+    tap.set(sample_viscosity=0.0, setpoint_ratio=0.8)
+
+
+def test_operating_point_refuses_a_setpoint_never_reached():
+    curve = tapping.amplitude_curve(np.linspace(30e-9, 20e-9, 5), TappingLever())
+    with pytest.raises(ValueError, match="setpoint_ratio"):
+        operating_point(curve, 0.5)
+
+
+def test_tapping_panel_refuses_out_of_range_values_by_name(tap):
+    with pytest.raises(ValueError, match="setpoint_ratio"):
+        tap.set(setpoint_ratio=1.2)
+    with pytest.raises(TypeError, match="unknown"):
+        TappingPanel(drive=1.0)
+
+
+def test_tapping_panel_animates_the_held_state():
+    rec = Recorder()
+    panel = TappingPanel(vis=rec)
+    s = panel.last
+    assert panel.scene is not None and "set_animation" in [c[0] for c in rec.calls]
+    clip = next(c for p, c in panel.scene.animation.clips.items() if p.lower().endswith("/probe"))
+    z = np.array([v[2] for v in clip.tracks["position"].values]) / panel.scene.factors["distance"]
+    assert z.max() == pytest.approx(s.distance + s.setpoint_ratio * 12e-9, rel=1e-9)
+    assert panel.scene.touching_frames > 0  # the default state is on the repulsive branch
+    assert panel.scene.caption in panel.readout.value
+
+
+# -- lateral ------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def lat():
+    return LateralPanel()
+
+
+def test_lateral_panel_one_scan_per_move(monkeypatch):
+    calls = _count(monkeypatch, lateral, "friction_scan")
+    panel = LateralPanel()
+    for name, value in (("friction_b", 0.6), ("tilt", 0.0), ("normal_force", 50.0)):
+        panel.set(**{name: value})
+    assert len(calls) == 4 and panel.model_runs == 4
+
+
+def test_lateral_panel_loop_is_the_model_loop_of_the_middle_line(lat):
+    s = lat.last
+    v = lat.values()
+    deg = UNITS["deg"][1]
+    topo, mu = friction_sample(LATERAL_SAMPLE["shape"], LATERAL_SAMPLE["pixel_size"],
+                               coefficients=(v["friction_a"], v["friction_b"]),
+                               tilt=v["tilt"] * deg)
+    loop = friction_loop(topo.heights[s.row], mu.heights[s.row], topo.pixel_size,
+                         normal_force=v["normal_force"] * UNITS["nN"][1],
+                         lateral_stiffness=lateral_lever().spring_constant)
+    np.testing.assert_allclose(s.loop.trace, loop.trace, rtol=1e-12)
+    np.testing.assert_allclose(s.loop.retrace, loop.retrace, rtol=1e-12)
+    np.testing.assert_allclose(s.twist, lateral_lever().twist(np.vstack((loop.trace,
+                                                                         loop.retrace))))
+
+
+def test_notebook_suggestion_tilt_moves_the_trace_not_the_friction_map(lat):
+    # notebook 07: the trace alone mixes slope and friction; half the difference does not
+    maps, traces = [], []
+    for tilt in (0.0, 5.0):
+        lat.set(tilt=tilt)
+        maps.append(lat.last.images.friction_coefficient.heights[:, 1:-1])
+        traces.append(np.mean(lat.last.loop.trace[1:-1]) / lat.last.loop.normal_force)
+    np.testing.assert_allclose(maps[0], maps[1], atol=1e-12)
+    assert traces[1] - traces[0] == pytest.approx(math.tan(math.radians(5.0)), rel=1e-6)
+    # the map recovers the two coefficients where each material lies
+    mu = lat.last.friction[:, 1:-1]
+    np.testing.assert_allclose(maps[1], mu, atol=1e-12)
+    lat.set(tilt=LATERAL_DEFAULTS["tilt"])
+
+
+def test_lateral_noise_stays_within_its_rms(lat):
+    lat.set(lateral_noise=1.0)
+    s = lat.last
+    err = s.images.friction_coefficient.heights[:, 1:-1] - s.friction[:, 1:-1]
+    sigma = 1e-9 / np.sqrt(2) / s.loop.normal_force  # half the difference of two noises
+    assert abs(np.std(err) / sigma - 1) < 0.15
+    lat.set(lateral_noise=0.0)
+
+
+def test_lateral_panel_animates_trace_and_retrace():
+    panel = LateralPanel(vis=Recorder())
+    assert panel.scene.kind == "lateral" and panel.scene.factors["twist"] > 1
+
+
+# -- frequency modulation -----------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def fmp():
+    return FrequencyShiftPanel()
+
+
+def test_fm_panel_one_round_trip_per_move(monkeypatch):
+    calls = _count(monkeypatch, fm, "frequency_shift_curve")
+    panel = FrequencyShiftPanel()
+    panel.set(amplitude=0.1)
+    panel.set(hamaker_constant=200.0)
+    assert len(calls) == 3 and panel.model_runs == 3
+
+
+def test_fm_panel_curve_is_the_model_round_trip(fmp):
+    v = fmp.values()
+    law = dict(hamaker_constant=v["hamaker_constant"] * UNITS["zJ"][1],
+               radius=v["radius"] * UNITS["nm"][1],
+               youngs_modulus=v["youngs_modulus"] * UNITS["GPa"][1])
+    z = np.linspace(FM_DISTANCES["low"], FM_DISTANCES["high"], FM_DISTANCES["points"])
+    ref = fm.frequency_shift_curve(functools.partial(tip_sample_force, **law), z,
+                                   amplitude=v["amplitude"] * UNITS["nm"][1],
+                                   spring_constant=v["spring_constant"],
+                                   resonance_frequency=v["resonance_frequency"] * UNITS["kHz"][1])
+    np.testing.assert_allclose(fmp.last.curve.frequency_shift, ref.frequency_shift, rtol=1e-12)
+    np.testing.assert_allclose(fmp.last.curve.recovered_force, ref.recovered_force, rtol=1e-12)
+    assert FM_DEFAULTS["amplitude"] == pytest.approx(5.0)
+
+
+def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
+    # notebook 07: at A = 11 pm df is within a few per cent of the force-gradient shift
+    # -f0/(2k) dF/dz (from 1 nm on); at the default 5 nm it is some thirty times smaller
+    fmp.set(amplitude=0.011)
+    c = fmp.last.curve
+    far = c.z > 1e-9
+    np.testing.assert_allclose(c.frequency_shift[far], c.gradient_shift[far], rtol=0.05)
+    small = c.frequency_shift[far][0]
+    fmp.set(amplitude=5.0)
+    big = fmp.last.curve.frequency_shift[fmp.last.curve.z > 1e-9][0]
+    assert abs(big) < 0.1 * abs(small)
+
+
+def test_fm_panel_inversion_within_a_few_per_cent(fmp):
+    c = fmp.last.curve
+    assert np.max(np.abs(c.error)) < 0.05 * np.max(np.abs(c.force))
+
+
+# -- jumping ------------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def jump():
+    return JumpingPanel()
+
+
+def test_jumping_panel_one_curve_and_one_scan_per_move(monkeypatch):
+    curves = _count(monkeypatch, jumping, "jump_curve")
+    lines = _count(monkeypatch, jumping.JumpingMode, "line")
+    panel = JumpingPanel()
+    n_lines = len(lines)
+    assert len(curves) == 1 and n_lines == JUMPING_SCAN["lines"]
+    panel.set(trigger_force=5.0)
+    panel.set(work_of_adhesion=100.0)
+    assert len(curves) == 3 and len(lines) == 3 * n_lines and panel.model_runs == 3
+
+
+def test_jumping_panel_curve_is_the_model_curve(jump):
+    v = jump.values()
+    system = ContactSystem(spring_constant=JUMPING_SCAN["spring_constant"],
+                           tip=Parabolic(radius=JUMPING_SCAN["tip_radius"]),
+                           youngs_modulus=v["youngs_modulus"] * UNITS["MPa"][1], adhesion="dmt",
+                           work_of_adhesion=v["work_of_adhesion"] * UNITS["mJ/m^2"][1])
+    ref = jumping.jump_curve(system, trigger_force=v["trigger_force"] * UNITS["nN"][1],
+                             lift_height=v["lift_height"] * UNITS["nm"][1],
+                             z_speed=v["z_speed"] * UNITS["um/s"][1])
+    np.testing.assert_allclose(jump.last.curve.retract_force, ref.retract_force, rtol=1e-12)
+    # DMT pull-off 2 pi R w, independent of the model's code
+    assert jump.last.curve.pull_off_force == pytest.approx(
+        2 * math.pi * JUMPING_SCAN["tip_radius"] * v["work_of_adhesion"] * UNITS["mJ/m^2"][1],
+        rel=1e-9)
+
+
+def test_notebook_suggestion_a_low_lift_crashes_into_the_bars(jump):
+    # notebook 07: at the default lift (150 nm) the grating of 100 nm bars is imaged with no
+    # lateral force; at 30 nm the lifted tip runs into a bar's side on the first line; 50 nm clears
+    # the steps between pixels
+    assert jump.last.result.crashed is None
+    assert np.nanmax(np.abs(jump.last.result.images["lateral force trace"])) == 0.0
+    jump.set(lift_height=30.0)
+    assert jump.last.result.crashed is not None and jump.last.result.crashed.row == 0
+    assert "crashed" in jump.figure.axes["image"].get_title()
+    jump.set(lift_height=50.0)
+    assert jump.last.result.crashed is None
+    jump.set(lift_height=JUMPING_DEFAULTS["lift_height"])
+
+
+def test_notebook_suggestion_jumping_costs_time(jump):
+    # notebook 07: the image takes over ten times longer than in contact mode
+    assert jump.last.acquisition_time > 10 * jump.last.contact_time
+
+
+def test_jumping_panel_animates_touching_where_the_curve_touches():
+    panel = JumpingPanel(vis=Recorder())
+    anim = panel.scene.animation
+    clip = next(c for p, c in anim.clips.items() if p.lower().endswith("/contact"))
+    visible = clip.tracks["visible"].values
+    assert any(visible) and not all(visible)
+
+
+# -- force volume -------------------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def fvp():
+    return ForceVolumePanel()
+
+
+@pytest.mark.slow
+def test_force_volume_panel_one_map_per_move(monkeypatch):
+    calls = _count(monkeypatch, force_volume, "force_volume")
+    panel = ForceVolumePanel()
+    panel.set(peak_force=20.0)
+    assert len(calls) == 2 and panel.model_runs == 2
+
+
+def test_notebook_suggestion_the_maps_separate_the_materials(fvp):
+    # notebook 07: at the defaults the modulus map gives each material's E within 2 % and the
+    # adhesion map DMT's 2 pi R w within 5 %
+    v, labels = fvp.last, fvp.labels
+    r = FORCE_VOLUME_MAP["tip_radius"]
+    for i, m in enumerate(force_volume.BLEND):
+        assert np.nanmedian(v.modulus[labels == i]) == pytest.approx(m.youngs_modulus, rel=0.02)
+        assert np.nanmedian(v.adhesion[labels == i]) == pytest.approx(
+            2 * math.pi * r * m.work_of_adhesion, rel=0.05)
+
+
+@pytest.mark.slow
+def test_notebook_suggestion_noise_scatters_and_biases_the_modulus(fvp):
+    # notebook 07: 500 pN of force noise scatters the modulus map some twenty times more and
+    # both materials come out too stiff (the noisy minimum added back)
+    quiet = [np.nanstd(fvp.last.modulus[fvp.labels == i]) for i in (0, 1)]
+    fvp.set(force_noise=500.0)
+    for i, m in enumerate(force_volume.BLEND):
+        mask = fvp.labels == i
+        assert np.nanstd(fvp.last.modulus[mask]) > 10 * quiet[i]
+        assert np.nanmedian(fvp.last.modulus[mask]) > 1.1 * m.youngs_modulus
+    fvp.set(force_noise=FORCE_VOLUME_DEFAULTS["force_noise"])
+
+
+def test_tapping_panel_marks_where_the_approach_jumps(tap):
+    tap.set(free_amplitude=12.0, setpoint_ratio=0.8)
+    _, _, jumps = tap.last.curve.sweep("approach")
+    line = tap.figure.lines["amplitude", "jump approach"]
+    assert jumps and line.get_visible()
+    assert line.get_xdata()[0] == pytest.approx(jumps[0] * NM)
+    # the held state lies beyond the jump: the approach passed it and landed on the H branch
+    assert tap.last.distance < jumps[0] and tap.last.branch == "repulsive"
+
+
+def test_a_setpoint_never_reached_shows_the_curves_and_says_so():
+    panel = TappingPanel(quality_factor=1.005)  # a lever so damped the approach stays above
+    assert math.isnan(panel.last.distance)
+    assert "never gets down" in panel.readout.value
+    assert not panel.figure.lines["amplitude", "setpoint"].get_visible()
+    panel.set(quality_factor=400.0)
+    assert panel.last.distance > 0 and "held at z_c" in panel.readout.value
