@@ -32,8 +32,13 @@ PANELS = {
     "controller": ("controller", "ControllerPanel", "Module (c): the controller panel's figure"),
     "contact": ("contact", "ContactPanel", "Module (d): the contact panel's figure"),
     "overview": ("overview", "OverviewPanel", "Module (e): the instrument panel's figure"),
+    "imaging": ("imaging", "ImagingPanel", "Module (f): the imaging panel's figure"),
     "tapping": ("modalities", "TappingPanel", "Module (g): the tapping panel's figure"),
     "fm": ("modalities", "FrequencyShiftPanel", "Module (g): the FM panel's figure"),
+    "lateral": ("modalities", "LateralPanel", "Module (g): the lateral-force panel's figure"),
+    "jumping": ("modalities", "JumpingPanel", "Module (g): the jumping-mode panel's figure"),
+    "force_volume": ("modalities", "ForceVolumePanel",
+                     "Module (g): the force-volume panel's figure"),
 }
 
 #: Page name -> the 3D instrument (a key of :data:`afmsmiler.scenes.instrument.INSTRUMENTS`).
