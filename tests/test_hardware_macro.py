@@ -646,3 +646,48 @@ def test_real_board_connect_and_scan(tmp_path):
         image = afm.scan()
         assert image.shape == (4, 8) and not np.isnan(image.heights).any()
         assert load(afm.save(tmp_path / "board.gwy"), "height").shape == (4, 8)
+
+
+def test_start_button_runs_a_preset_scan_the_host_follows():
+    twin = _low(friction=0.0)
+    host, server = open_twin(twin)
+    try:
+        afm = _scan(twin, host, pixels=8, lines=8)
+        threading.Timer(0.05, twin.press_button, args=(0,)).start()
+        assert afm.wait_button(5.0) == 0
+        image = afm.scan(start=False)
+    finally:
+        server.stop()
+    assert image.shape == (32, 32)  # preset 0: 32 x 32 pixels at 0.4 mm
+    assert _matches(image, twin) <= twin.z_step * 1.0001
+
+
+def test_nobody_presses_the_button():
+    twin = _low()
+    host, server = open_twin(twin)
+    try:
+        afm = _scan(twin, host, pixels=8, lines=8)
+        with pytest.raises(TransportTimeout, match="button"):
+            afm.wait_button(0.1)
+    finally:
+        server.stop()
+
+
+def test_emergency_stop_mid_scan():
+    twin = _low()
+    host, server = open_twin(twin)
+    try:
+        afm = _scan(twin, host, pixels=8, lines=8)
+
+        def on_pixel(p):
+            if p.done == 20:
+                twin.press_estop()
+
+        with pytest.raises(DeviceError) as info:
+            afm.scan(on_pixel)
+        status = afm.status()
+    finally:
+        server.stop()
+    assert info.value.code == ErrorCode.ESTOP and "ESTOP" in str(info.value)
+    assert status.state == State.FAULT and status.flags & Flag.ESTOP and not status.homed
+    assert info.value.partial is not None and info.value.partial.shape[1] == 8

@@ -526,6 +526,41 @@ class MacroAFM:
         """Abort the scan (``AB``); :meth:`scan` then returns the finished lines."""
         self._call(Command.ABORT)
 
+    def wait_button(self, timeout: float) -> int:
+        """Wait until someone presses the machine's start button; then :meth:`scan` (start=False).
+
+        Parameters
+        ----------
+        timeout : float
+            The longest to wait (s).
+
+        Returns
+        -------
+        int
+            The preset the button started.
+
+        Raises
+        ------
+        TransportTimeout
+            If nobody pressed it within ``timeout``.
+        """
+        timeout = check_positive("timeout", timeout, "s")
+        seen = len(self.events)
+        deadline = time.monotonic() + timeout
+        with self._io:
+            while True:
+                for event in self.events[seen:]:
+                    if event.event == Event.BUTTON:
+                        return event.arg
+                seen = len(self.events)
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise TransportTimeout(f"nobody pressed the start button within {timeout} s")
+                try:
+                    self._read(min(remaining, 0.1))
+                except TransportTimeout:
+                    continue
+
     # -- scanning ------------------------------------------------------------------------------
     def _partial(self, scan: _Scan, name: str) -> Sample | None:
         complete = scan.have.all(axis=1)
@@ -589,12 +624,18 @@ class MacroAFM:
         elif status.state == State.SCANNING and status.row > 0:
             scan.ended.update(range(max(0, status.row - 1), status.row))
 
-    def scan_iter(self):
+    def scan_iter(self, start: bool = True):
         """Start a scan and yield a :class:`ScanProgress` per pixel as it arrives.
 
         The generator's return value (``StopIteration.value``; :meth:`scan` returns it) is the
         image as a :class:`~afmsmiler.samples.Sample`: heights in m (z micro-steps x ZS), pixel
         size the pitch DX. An aborted scan returns its finished lines (or None).
+
+        Parameters
+        ----------
+        start : bool
+            Send ``SS``; False follows a scan the machine runs already (its start button, see
+            :meth:`wait_button`): the pixels sent before are fetched again with ``GL``.
 
         Returns
         -------
@@ -620,7 +661,8 @@ class MacroAFM:
             self._scan = scan
             self._scan_thread = threading.get_ident()
             try:
-                self._command(Command.START)
+                if start:
+                    self._command(Command.START)
                 last = time.monotonic()
                 done = 0
                 while True:
@@ -665,7 +707,7 @@ class MacroAFM:
                                  metadata={"device": DEVICE, "z_step": info.z_step})
         return self.result
 
-    def scan(self, callback=None) -> Sample | None:
+    def scan(self, callback=None, *, start: bool = True) -> Sample | None:
         """Scan an image, calling ``callback(progress)`` for each pixel as it arrives.
 
         Parameters
@@ -673,6 +715,8 @@ class MacroAFM:
         callback : callable, optional
             Called with a :class:`ScanProgress` per pixel (a live figure redraws
             ``progress.image``); it may call :meth:`pause`, :meth:`resume` or :meth:`abort`.
+        start : bool
+            Send ``SS`` (False: follow a scan the start button began, see :meth:`scan_iter`).
 
         Returns
         -------
@@ -681,7 +725,7 @@ class MacroAFM:
         """
         if callback is not None and not callable(callback):
             raise TypeError(f"callback must be callable or None, got {callback!r}")
-        it = self.scan_iter()
+        it = self.scan_iter(start)
         while True:
             try:
                 progress = next(it)

@@ -201,6 +201,7 @@ class MacroAFMTwin(Twin):
         self._homing_done = None
         self._scan = None
         self._fault_at = {}
+        self._button = None
         self.executed = []  # every command executed (not retries): for tests and teaching
 
     # -- physics -------------------------------------------------------------------------------
@@ -296,6 +297,30 @@ class MacroAFMTwin(Twin):
         if axis not in ("X", "Y", "Z"):
             raise ValueError(f"axis must be 'X', 'Y' or 'Z', got {axis!r}")
         self._fault_at[tuple(at) if at is not None else None] = (Event.LIMIT, axis)
+
+    def press_button(self, preset: int | None = None) -> None:
+        """Press the start button: at its next poll an idle, homed machine runs a preset scan.
+
+        Parameters
+        ----------
+        preset : int, optional
+            Which of :data:`PRESETS` (default the ``PRESET`` parameter); the machine sends
+            ``0 EV BUTTON <preset>`` and streams the scan as after ``SS``.
+        """
+        preset = self.params[Param.PRESET] if preset is None else preset
+        if preset not in PRESETS:
+            raise ValueError(f"preset must be one of {sorted(PRESETS)}, got {preset!r}")
+        self._button = preset
+
+    def _button_scan(self) -> list[Frame]:
+        preset, self._button = self._button, None
+        if self.state != State.IDLE or not self.homed:
+            return []
+        nx, ny, dx, mode = PRESETS[preset]
+        self.params.update({Param.NX: nx, Param.NY: ny, Param.PITCH: dx, Param.MODE: mode,
+                            Param.PRESET: preset})
+        self._start(self.now)
+        return [Frame(0, "EV", (Event.BUTTON.value, preset))]
 
     def press_estop(self) -> None:
         """Press the emergency stop (the scan faults at its next pixel)."""
@@ -409,6 +434,8 @@ class MacroAFMTwin(Twin):
         if self.state == State.HOMING and self._homing_done <= self.now:
             self._home_done()
             out.append(Frame(0, "EV", (Event.HOMED.value,)))
+        if self._button is not None:
+            out += self._button_scan()
         while self.state == State.SCANNING and self._scan.due <= self.now:
             out += self._emit_due()
         return out
@@ -420,7 +447,7 @@ class MacroAFMTwin(Twin):
         -------
         float or None
         """
-        if not self._booted:
+        if not self._booted or self._button is not None:
             return self.now
         if self.state == State.HOMING:
             return self._homing_done
