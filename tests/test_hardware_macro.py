@@ -691,3 +691,19 @@ def test_emergency_stop_mid_scan():
     assert info.value.code == ErrorCode.ESTOP and "ESTOP" in str(info.value)
     assert status.state == State.FAULT and status.flags & Flag.ESTOP and not status.homed
     assert info.value.partial is not None and info.value.partial.shape[1] == 8
+
+
+def test_a_scan_left_unfinished_aborts_the_machine():
+    twin = _low()
+    host, server = open_twin(twin)
+    try:
+        afm = _scan(twin, host, pixels=8, lines=8)
+        it = afm.scan_iter()
+        for _ in range(5):
+            next(it)
+        it.close()  # the notebook's loop broke off (or the kernel was interrupted)
+        assert afm.status().state == State.IDLE
+        assert afm.result is None  # not one line finished
+    finally:
+        server.stop()
+    assert any(f.code == "AB" for f in twin.executed)

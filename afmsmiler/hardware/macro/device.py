@@ -304,8 +304,14 @@ class MacroAFM:
             done = threading.Event()
             box = {}
             self._requests.put((command, args, done, box))
-            if not done.wait((self.retries + 1) * self.timeout + self.stream_timeout + 1.0):
-                raise DeviceNotResponding(f"the scan did not pass on {command.name}")
+            deadline = time.monotonic() + (self.retries + 1) * self.timeout + \
+                self.stream_timeout + 1.0
+            while not done.wait(0.05):
+                if self._scan is None:  # the scan ended before serving us: serve it here
+                    with self._io:
+                        self._serve_requests()
+                elif time.monotonic() > deadline:
+                    raise DeviceNotResponding(f"the scan did not pass on {command.name}")
             if "error" in box:
                 raise box["error"]
             return box["result"]
@@ -665,7 +671,12 @@ class MacroAFM:
                     self._command(Command.START)
                 last = time.monotonic()
                 done = 0
+                budget = 20 * nx * ny + 10_000  # messages: a device streaming on and on is a bug
                 while True:
+                    budget -= 1
+                    if budget < 0:
+                        raise HardwareError(f"{DEVICE} sent far more than the {nx} x {ny} "
+                                            f"pixels of the scan: stopping")
                     self._serve_requests()
                     if scan.fault is not None:
                         raise scan.fault
@@ -695,6 +706,14 @@ class MacroAFM:
             except HardwareError as exc:
                 exc.partial = self._partial(scan, name + " (interrupted)")
                 self.result = exc.partial
+                raise
+            except (KeyboardInterrupt, GeneratorExit):  # the user stopped us: stop the machine
+                self.result = self._partial(scan, name + " (interrupted)")
+                if not (scan.done or scan.aborted):
+                    try:
+                        self._command(Command.ABORT)
+                    except HardwareError:
+                        pass
                 raise
             finally:
                 self._scan = None
