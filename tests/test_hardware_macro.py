@@ -554,16 +554,22 @@ def test_pause_resume_and_abort_from_the_callback():
     assert any(e.event == Event.ABORTED for e in afm.events)
 
 
+@pytest.mark.slow
 def test_pause_from_another_thread_while_scanning():
-    twin = _twin()
-    host, server = open_twin(twin, time_scale=0.002)
+    twin = _low()
+    host, server = open_twin(twin, time_scale=0.01)  # about 25 ms a pixel
     try:
         afm = _scan(twin, host, pixels=8, lines=4)
         result = {}
-        scanner = threading.Thread(target=lambda: result.update(image=afm.scan()))
+        first = threading.Event()
+
+        def run():
+            result["image"] = afm.scan(lambda p: first.set())
+
+        scanner = threading.Thread(target=run)
         scanner.start()
-        time.sleep(0.05)
-        afm.pause()
+        assert first.wait(5.0)
+        afm.pause()  # queued to the scanning thread, which sends it
         assert afm.status().state == State.PAUSED
         afm.resume()
         scanner.join(20)
@@ -571,6 +577,7 @@ def test_pause_from_another_thread_while_scanning():
     finally:
         server.stop()
     assert result["image"].shape == (4, 8)
+    assert [f.code for f in twin.executed].count("PA") == 1
 
 
 # -- the twin's mechanics and pace -------------------------------------------------------------
