@@ -766,3 +766,25 @@ def test_twin_replays_the_specs_session_before_homing():
     if not spec.exists():
         pytest.skip(f"{spec.relative_to(REPO)} not in this checkout (h-firmware writes it)")
     assert replay_first_session(spec.read_text()) == []
+
+
+def test_configuration_reads_back_what_configure_set():
+    twin = _low()
+    host, server = open_twin(twin)
+    try:
+        afm = MacroAFM(host, timeout=0.3)
+        afm.connect()
+        wanted = dict(pixels=16, lines=12, pitch=0.5e-3, setpoint_force=5e-3, mode="jumping",
+                      lift=1e-3, step_rate=3000.0, step_acceleration=30_000.0, preset=2)
+        afm.configure(**wanted)
+        back = afm.configuration()
+    finally:
+        server.stop()
+    assert back.keys() == wanted.keys()
+    for name, value in wanted.items():
+        if name == "setpoint_force":  # rounded to whole counts
+            assert back[name] == pytest.approx(value, abs=1 / afm.calibration.counts_per_newton)
+        elif isinstance(value, str):
+            assert back[name] == value
+        else:
+            assert back[name] == pytest.approx(value)

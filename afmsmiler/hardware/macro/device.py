@@ -454,6 +454,26 @@ class MacroAFM:
             self.set(param, value)
         return wire
 
+    def configuration(self) -> dict:
+        """The device's imaging parameters read back (``GP``), in the SI units of configure().
+
+        Returns
+        -------
+        dict
+            ``pixels``, ``lines``, ``pitch`` (m), ``setpoint_force`` (N, through the
+            calibration), ``mode``, ``lift`` (m), ``step_rate`` (steps/s),
+            ``step_acceleration`` (steps/s^2), ``preset``.
+        """
+        z_step = self._require_info().z_step
+        wire = {param: self.get(param) for param in Param if param != Param.ZSTEP}
+        modes = {v: k for k, v in MODES.items()}
+        return {"pixels": wire[Param.NX], "lines": wire[Param.NY],
+                "pitch": wire[Param.PITCH] * _UM,
+                "setpoint_force": self.calibration.force(wire[Param.SETPOINT]),
+                "mode": modes.get(wire[Param.MODE], wire[Param.MODE]),
+                "lift": wire[Param.LIFT] * z_step, "step_rate": float(wire[Param.SPEED]),
+                "step_acceleration": float(wire[Param.ACCEL]), "preset": wire[Param.PRESET]}
+
     def status(self) -> Status:
         """The device's state, position in the scan and flags (``ST``).
 
