@@ -788,3 +788,4 @@ def test_configuration_reads_back_what_configure_set():
             assert back[name] == value
         else:
             assert back[name] == pytest.approx(value)
+

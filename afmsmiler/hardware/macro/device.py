@@ -693,10 +693,6 @@ class MacroAFM:
                 done = 0
                 budget = 20 * nx * ny + 10_000  # messages: a device streaming on and on is a bug
                 while True:
-                    budget -= 1
-                    if budget < 0:
-                        raise HardwareError(f"{DEVICE} sent far more than the {nx} x {ny} "
-                                            f"pixels of the scan: stopping")
                     self._serve_requests()
                     if scan.fault is not None:
                         raise scan.fault
@@ -723,6 +719,10 @@ class MacroAFM:
                         continue
                     if isinstance(msg, (Pixel, LineEnd, EventMsg, ErrorReply)):
                         last = time.monotonic()
+                    budget -= 1
+                    if budget < 0:
+                        raise HardwareError(f"{DEVICE} sent far more than the {nx} x {ny} "
+                                            f"pixels of the scan: stopping")
             except HardwareError as exc:
                 exc.partial = self._partial(scan, name + " (interrupted)")
                 self.result = exc.partial
