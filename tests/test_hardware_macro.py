@@ -684,9 +684,11 @@ def test_real_board_connect_and_scan(tmp_path):
 
 def test_start_button_runs_a_preset_scan_the_host_follows():
     twin = _low(friction=0.0)
-    host, server = open_twin(twin)
+    # a real machine's pace (a fiftieth): at time_scale 0 the twin would run lines ahead while the
+    # host reads the scan's size after the button's event
+    host, server = open_twin(twin, time_scale=0.02)
     try:
-        afm = _scan(twin, host, pixels=8, lines=8)
+        afm = _scan(twin, host, mode="contact", pixels=8, lines=8)
         threading.Timer(0.05, twin.press_button, args=(0,)).start()
         assert afm.wait_button(5.0) == 0
         image = afm.scan(start=False)
@@ -788,4 +790,3 @@ def test_configuration_reads_back_what_configure_set():
             assert back[name] == value
         else:
             assert back[name] == pytest.approx(value)
-

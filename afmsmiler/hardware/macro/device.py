@@ -15,7 +15,6 @@ which :meth:`MacroAFM.save` writes).
 """
 from __future__ import annotations
 
-import math
 import queue
 import threading
 import time
@@ -27,7 +26,7 @@ from ...parameters import UNITS, Parameter, read_only
 from ...samples import Sample
 from ...validation import check_choice, check_instance, check_integer, check_positive
 from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError,
-                      ProtocolVersionError, TransportClosed, TransportTimeout)
+                      ProtocolVersionError, TransportTimeout)
 from ..framing import PROTOCOL_VERSION
 from .codec import (DEVICE, Command, ErrorCode, ErrorReply, Event, EventMsg, Flag, LineEnd,
                     MacroAFMCodec, Param, Pixel, Reply, State, Status)
