@@ -25,7 +25,7 @@
 #define PIN_Z_MAX 37    // PC0, top of the z travel (home)
 #define PIN_BTN_START 42   // PL7, push button: start preset PR (closed = LOW)
 #define PIN_BTN_SELECT 43  // PL6, push button: next preset
-#define PIN_ESTOP A8    // PK0 = PCINT16; NC mushroom switch to GND: open (HIGH) = emergency stop
+#define PIN_ESTOP 10    // PB4 = PCINT4; NC mushroom switch to GND: open (HIGH) = emergency stop
 #define PIN_LED 13      // PB7, on while scanning, blinks in FAULT
 
 // -- mechanics (Ender 3: GT2 belt on 20-tooth pulleys for x and y, T8 8 mm lead screw for z,

@@ -90,9 +90,9 @@ LineResult Link::finish() {
   if (hi < 0 || lo < 0) return LINE_MALFORMED;
   uint8_t blen = n - 3;
   if (blen > MAX_BODY) return LINE_MALFORMED;
+  if (crc8(line_, blen) != (uint8_t)((hi << 4) | lo)) return LINE_CHECKSUM;
   for (uint8_t i = 0; i < blen; i++)
     if (line_[i] < 0x20 || line_[i] > 0x7E || line_[i] == '*') return LINE_MALFORMED;
-  if (crc8(line_, blen) != (uint8_t)((hi << 4) | lo)) return LINE_CHECKSUM;
   memcpy(body, line_, blen);
   body[blen] = 0;
   memcpy(tok_buf, body, blen + 1);
@@ -111,6 +111,7 @@ LineResult Link::finish() {
   long s;
   const char *t = tokens[0];
   for (const char *q = t; *q; q++) if (*q < '0' || *q > '9') return LINE_MALFORMED;
+  if (t[0] == '0' && t[1]) return LINE_MALFORMED;  // no leading zeros
   if (!parse_long(t, &s) || s > 255) return LINE_MALFORMED;
   seq = (uint8_t)s;
   t = tokens[1];

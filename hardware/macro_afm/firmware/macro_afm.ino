@@ -80,7 +80,7 @@ static uint8_t reg_iter = 0;
 static bool lifted = true;
 
 // the current and the previous line, for GETLINE
-struct Pixel { long z; long g; };
+struct Pixel { long z; long g; };  // z micro-steps, gauge counts above the free reading
 static Pixel lines[2][MAX_NX];
 static long line_row[2] = {-1, -1};
 static uint8_t line_len[2] = {0, 0};
@@ -132,8 +132,8 @@ static void onEstop() {  // drivers off at once, the loop does the rest
   estop_flag = true;
 }
 
-// The E-stop's pin-change interrupt (PCINT16 on PK0 = A8; any change of port K's enabled pins).
-ISR(PCINT2_vect) {
+// The E-stop's pin-change interrupt (PCINT4 on PB4 = pin 10; any change of port B's enabled pins).
+ISR(PCINT0_vect) {
   if (estop_input()) onEstop();
 }
 
@@ -147,6 +147,9 @@ static void fault(int code, const char *event, const char *arg) {
   start_after_home = false;
   pause_requested = false;
 }
+
+// Gauge counts above the free reading, positive when the needle is pushed up.
+static long deflection() { return gauge_sign * (gauge.value - free_level); }
 
 static void sensor_fault() { fault(ERR_SENSOR, nullptr, nullptr); }
 
@@ -169,7 +172,7 @@ static void record_pixel() {
     line_row[s] = row;
     line_len[s] = 0;
   }
-  Pixel p = {axes[2].position, gauge.value};
+  Pixel p = {axes[2].position, deflection()};
   lines[s][col] = p;
   line_len[s] = col + 1;
   last_z = p.z;
@@ -186,7 +189,6 @@ static bool fresh_reading() {  // a reading converted entirely after the last st
   return gauge.count >= need_count && (long)(millis() - settle_until) >= 0;
 }
 
-static long deflection() { return gauge_sign * (gauge.value - free_level); }
 
 static void begin_approach() {
   apply_profile(par.speed);
@@ -475,16 +477,13 @@ static int scan_fits() {  // 0, or the error number that refuses SS
   return 0;
 }
 
-static int flags() {
+static int flags() {  // ST's flags: 1 homed, 2/4/8 a switch of x/y/z closed, 16 E-stop open
   int f = 0;
   if (homed) f |= 1;
-  if (estop_input()) f |= 2;
-  if (switch_on(PIN_X_MIN) || switch_on(PIN_X_MAX) || switch_on(PIN_Y_MIN) ||
-      switch_on(PIN_Y_MAX) || switch_on(PIN_Z_MIN) || switch_on(PIN_Z_MAX))
-    f |= 4;
-  if (gauge.count > 0 && millis() - gauge.last_ms < SENSOR_TIMEOUT_MS) f |= 8;
-  if (counts_per_step > 0) f |= 16;
-  if (pause_requested) f |= 32;
+  if (switch_on(PIN_X_MIN) || switch_on(PIN_X_MAX)) f |= 2;
+  if (switch_on(PIN_Y_MIN) || switch_on(PIN_Y_MAX)) f |= 4;
+  if (switch_on(PIN_Z_MIN) || switch_on(PIN_Z_MAX)) f |= 8;
+  if (estop_input()) f |= 16;
   return f;
 }
 
@@ -658,8 +657,8 @@ void setup() {
   Serial.begin(BAUD_RATE);
   Serial1.begin(9600);
   link.begin();
-  PCMSK2 |= _BV(PCINT16);  // the E-stop pin ...
-  PCICR |= _BV(PCIE2);     // ... interrupts on any change
+  PCMSK0 |= _BV(PCINT4);  // the E-stop pin ...
+  PCICR |= _BV(PCIE0);    // ... interrupts on any change
   send_event(EVT_BOOT);
   if (estop_input()) onEstop();
 }

@@ -70,7 +70,7 @@ static int dir_level[3], step_level[3], enable_level = 1;
 static int sw_state[N_SW], sw_force[N_SW] = {-1, -1, -1, -1, -1, -1};
 static long x_max_steps, y_max_steps, z_top_steps;
 static avr_irq_t *irq_c[8], *irq_estop, *irq_btn[2];
-static uint8_t ext_c = 0xFF, ext_k = 0xFF, ext_l = 0xFF; /* external levels of ports C, K, L */
+static uint8_t ext_c = 0xFF, ext_b = 0xFF, ext_l = 0xFF; /* external levels of ports C, B, L */
 
 /* virtual sample */
 static int map_nx, map_ny;
@@ -148,8 +148,8 @@ static void update_switches(void) {
 }
 
 static void set_estop(int open) {
-  if (open) ext_k |= 1; else ext_k &= ~1;
-  set_external('K', ext_k);
+  if (open) ext_b |= 1 << 4; else ext_b &= ~(1 << 4);
+  set_external('B', ext_b);
   avr_raise_irq(irq_estop, open ? 1 : 0);
 }
 
@@ -439,7 +439,7 @@ int main(int argc, char **argv) {
     irq_c[b] = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('C'), b);
   }
   avr_irq_register_notify(irq_c[6], on_sck, NULL);
-  irq_estop = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('K'), 0);
+  irq_estop = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('B'), 4);
   irq_btn[0] = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('L'), 7);
   irq_btn[1] = avr_io_getirq(avr, AVR_IOCTL_IOPORT_GETIRQ('L'), 6);
   for (int s = 0; s < N_SW; s++) sw_state[s] = -1;

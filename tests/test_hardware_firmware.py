@@ -1,0 +1,583 @@
+"""The macroscopic AFM's firmware (hardware/macro_afm): protocol.h against the codec, PROTOCOL.md's
+golden frames, the avr-gcc build and its flash/RAM use, and the firmware itself run in simavr behind
+the C harness (hardware/macro_afm/sim/harness.c) that stands in for the machine.
+
+The firmware tests skip with the reason when avr-gcc, Debian's Arduino core or simavr is missing
+(``make firmware`` installs them). Each emulated board is a harness process that this file starts
+and kills (every read has a timeout; no process outlives its test).
+"""
+from __future__ import annotations
+
+import os
+import re
+import select
+import shutil
+import subprocess
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from afmsmiler.hardware.errors import ChecksumError, FrameError, TransportTimeout
+from afmsmiler.hardware.framing import Frame, crc8, decode_frame, encode_frame
+
+ROOT = Path(__file__).resolve().parents[1]
+MACRO = ROOT / "hardware" / "macro_afm"
+PROTOCOL_H = MACRO / "firmware" / "protocol.h"
+PROTOCOL_MD = MACRO / "PROTOCOL.md"
+ARDUINO_AVR = Path("/usr/share/arduino/hardware/arduino/avr")
+
+#: ATmega2560: 256 KiB flash less the 8 KiB bootloader, 8 KiB SRAM.
+FLASH_BYTES = 256 * 1024 - 8 * 1024
+RAM_BYTES = 8 * 1024
+#: SRAM that static data may take, leaving the rest to the stack (deepest call chains, Serial).
+RAM_BUDGET = 6 * 1024
+
+#: x/y and z micro-steps of the machine (firmware/config.h, the harness).
+XY_STEP_UM = 12.5
+Z_STEP_UM = 2.5
+#: Micro-steps an axis moves off its home switch after the switch opened (config.h).
+HOME_BACKOFF = 80
+
+
+# -- what the firmware tests need -------------------------------------------------------------
+def toolchain_missing() -> str | None:
+    """Why the firmware cannot be built and emulated here, or None if it can.
+
+    Returns
+    -------
+    str or None
+        The missing piece (avr-gcc, the Arduino core, simavr's headers or library, gcc).
+    """
+    for tool in ("avr-gcc", "avr-g++", "avr-size", "gcc"):
+        if shutil.which(tool) is None:
+            return f"{tool} not found (make firmware installs gcc-avr, avr-libc, simavr)"
+    if not (ARDUINO_AVR / "cores" / "arduino" / "Arduino.h").is_file():
+        return f"Debian's Arduino core is not at {ARDUINO_AVR} (apt-get install arduino-core-avr)"
+    if not Path("/usr/include/simavr/sim_avr.h").is_file():
+        return "simavr's headers are missing (apt-get install libsimavr-dev)"
+    return None
+
+
+def needs_toolchain():
+    reason = toolchain_missing()
+    if reason:
+        pytest.skip(reason)
+
+
+@pytest.fixture(scope="module")
+def build(tmp_path_factory):
+    """Build the firmware and the harness once for this file (hardware/macro_afm/build.sh)."""
+    needs_toolchain()
+    out = tmp_path_factory.mktemp("macro_afm_build")
+    run = subprocess.run(["sh", str(MACRO / "build.sh"), str(out)], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 0, run.stdout + run.stderr
+    return out
+
+
+# -- protocol.h against the codec ---------------------------------------------------------------
+_DEFINE = re.compile(r'#define\s+(PROTOCOL_VERSION|(CMD|ERR|EVT|PAR)_(\w+))\s+("([^"]*)"|(\d+))\s*$')
+
+
+def parse_protocol_h(path: Path = PROTOCOL_H) -> dict:
+    """The #define lines of a protocol.h as {"CMD": {name: value}, ..., "PROTOCOL_VERSION": n}."""
+    table = {"CMD": {}, "ERR": {}, "EVT": {}, "PAR": {}}
+    for line in path.read_text().splitlines():
+        if not line.startswith("#define") or "_H" in line.split()[1][-2:]:
+            continue
+        m = _DEFINE.match(line.strip())
+        assert m, f"protocol.h line not of the contract's forms: {line!r}"
+        value = m.group(5) if m.group(5) is not None else int(m.group(6))
+        if m.group(1) == "PROTOCOL_VERSION":
+            table["PROTOCOL_VERSION"] = value
+        else:
+            table[m.group(2)][m.group(3)] = value
+    return table
+
+
+def test_protocol_h_has_only_the_contract_forms():
+    table = parse_protocol_h()
+    assert table["PROTOCOL_VERSION"] == 1
+    assert set(table["CMD"]) == {"IDENTIFY", "SET", "GET", "HOME", "START", "PAUSE", "RESUME",
+                                 "ABORT", "STATUS", "GAUGE", "GETLINE"}
+    assert all(re.fullmatch(r"[A-Z]{2}", v) for v in table["CMD"].values())
+    assert all(re.fullmatch(r"[A-Z]{2}", v) for v in table["PAR"].values())
+    # the contract's shared error numbers
+    assert table["ERR"] == dict(CHECKSUM=1, UNKNOWN_COMMAND=2, BAD_ARGUMENT=3, BUSY=4,
+                                NOT_HOMED=5, LIMIT=6, ESTOP=7, SENSOR=8, MALFORMED=9, STATE=10)
+
+
+def test_protocol_h_matches_the_codec():
+    codec = pytest.importorskip("afmsmiler.hardware.macro.codec",
+                                reason="h-macro's codec is not merged into this branch yet")
+    table = parse_protocol_h()
+    from afmsmiler.hardware.framing import PROTOCOL_VERSION
+
+    assert table["PROTOCOL_VERSION"] == PROTOCOL_VERSION
+    for prefix, enum in (("CMD", codec.Command), ("ERR", codec.ErrorCode), ("EVT", codec.Event),
+                         ("PAR", codec.Param)):
+        in_codec = {m.name: m.value for m in enum}
+        assert table[prefix] == in_codec, prefix
+
+
+# -- PROTOCOL.md's golden frames ----------------------------------------------------------------
+def golden_blocks(path: Path = PROTOCOL_MD) -> list[list[tuple[str, bytes]]]:
+    """The ```frames blocks of PROTOCOL.md as lists of (mark, wire bytes with \\n)."""
+    blocks, current = [], None
+    for line in path.read_text().splitlines():
+        if line.strip() == "```frames":
+            current = []
+            continue
+        if current is not None and line.strip() == "```":
+            blocks.append(current)
+            current = None
+            continue
+        if current is not None:
+            assert line[:2] in ("> ", "< ", "! "), f"golden frame line without a mark: {line!r}"
+            current.append((line[0], line[2:].encode("ascii") + b"\n"))
+    assert current is None, "unterminated frames block"
+    return blocks
+
+
+def test_golden_frames_have_right_checksums():
+    blocks = golden_blocks()
+    assert len(blocks) == 3
+    frames = [f for block in blocks for f in block]
+    assert len(frames) > 40
+    for mark, wire in frames:
+        if mark == "!":  # invalid on purpose
+            with pytest.raises(FrameError):
+                decode_frame(wire)
+            continue
+        frame = decode_frame(wire)
+        assert encode_frame(frame) == wire  # canonical: what the encoder sends, byte for byte
+        if mark == ">":
+            assert frame.seq != 0, wire  # every host command here expects a reply
+        elif frame.seq == 0:
+            assert frame.code in ("PX", "LN", "EV", "ER"), wire
+    bad_crc = [w for m, w in frames if m == "!" and b"*00" in w]
+    with pytest.raises(ChecksumError):
+        decode_frame(bad_crc[0])
+
+
+def test_golden_replies_echo_their_commands():
+    """Every reply (seq != 0) follows a command with its SEQ, and OK replies echo its CODE."""
+    for block in golden_blocks():
+        pending = {}
+        for mark, wire in block:
+            if mark == "!":
+                continue
+            frame = decode_frame(wire)
+            if mark == ">":
+                pending[frame.seq] = frame.code
+            elif frame.seq:
+                assert frame.seq in pending, wire
+                if frame.code == "OK":
+                    assert frame.args[0] == pending[frame.seq], wire
+
+
+# -- the build ------------------------------------------------------------------------------------
+def avr_size(elf: Path) -> dict:
+    """Section sizes (bytes) from avr-size -A."""
+    out = subprocess.run(["avr-size", "-A", str(elf)], capture_output=True, text=True,
+                         timeout=30, check=True).stdout
+    sizes = {}
+    for line in out.splitlines():
+        parts = line.split()
+        if len(parts) >= 2 and parts[0].startswith(".") and parts[1].isdigit():
+            sizes[parts[0]] = int(parts[1])
+    return sizes
+
+
+@pytest.mark.slow
+def test_firmware_builds_and_fits_the_mega(build):
+    elf = build / "macro_afm.elf"
+    assert elf.is_file() and (build / "macro_afm.hex").is_file() and (build / "harness").is_file()
+    sizes = avr_size(elf)
+    flash = sizes[".text"] + sizes.get(".data", 0)
+    ram = sizes.get(".data", 0) + sizes.get(".bss", 0) + sizes.get(".noinit", 0)
+    assert flash < FLASH_BYTES
+    assert ram <= RAM_BUDGET, f"static RAM {ram} B of {RAM_BYTES} leaves too little stack"
+    # the machine code really is for the ATmega2560
+    head = elf.read_bytes()[:20]
+    assert head[:4] == b"\x7fELF" and int.from_bytes(head[18:20], "little") == 83  # EM_AVR
+
+
+# -- the emulated board -------------------------------------------------------------------------
+def write_map(path: Path, heights_um: np.ndarray, pitch_um: float) -> Path:
+    """Write a height map (um) in the harness' text format (row 0 = first line, x along a row)."""
+    ny, nx = heights_um.shape
+    rows = "\n".join(" ".join(f"{h:.3f}" for h in row) for row in heights_um)
+    path.write_text(f"# virtual sample for tests/test_hardware_firmware.py\nmacro_afm_map 1\n"
+                    f"{nx} {ny} {pitch_um:g}\n{rows}\n")
+    return path
+
+
+class Board:
+    """One harness process: the firmware in simavr behind a pty, and the harness' control lines.
+
+    Parameters
+    ----------
+    build : Path
+        The build directory (macro_afm.elf, harness).
+    *args : str
+        Harness options (--map, --gain, ...).
+    """
+
+    def __init__(self, build: Path, *args: str):
+        from afmsmiler.hardware.transport import SerialTransport
+
+        self.proc = subprocess.Popen([str(build / "harness"), str(build / "macro_afm.elf"),
+                                      *args], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
+                                     stderr=subprocess.PIPE, text=True, bufsize=1)
+        try:
+            line = self._control_line(10.0)
+            assert line.startswith("PTY "), line
+            self.path = line.split()[1]
+            self.port = SerialTransport(self.path)
+        except BaseException:
+            self.close()
+            raise
+        self.seq = 0
+
+    def _control_line(self, timeout: float) -> str:
+        ready, _, _ = select.select([self.proc.stdout], [], [], timeout)
+        if not ready:
+            raise TimeoutError("the harness did not answer")
+        line = self.proc.stdout.readline()
+        if not line:
+            raise RuntimeError(f"the harness exited: {self.proc.stderr.read()}")
+        return line.strip()
+
+    def control(self, command: str, timeout: float = 10.0) -> str:
+        """Send a harness command (POS, ORIGIN, ESTOP 1, BUTTON START, ...) and return its answer."""
+        self.proc.stdin.write(command + "\n")
+        self.proc.stdin.flush()
+        return self._control_line(timeout)
+
+    def position(self) -> tuple[int, int, int]:
+        """The harness' x, y, z in micro-steps (machine coordinates)."""
+        _, x, y, z, _ = self.control("POS").split()
+        return int(x), int(y), int(z)
+
+    def send_raw(self, data: bytes):
+        self.port.write(data)
+
+    def read(self, timeout: float = 10.0) -> Frame:
+        """The next valid frame (lines that are not frames, e.g. a boot fragment, are skipped)."""
+        deadline = time.monotonic() + timeout
+        while True:
+            left = deadline - time.monotonic()
+            if left <= 0:
+                raise TransportTimeout("no frame from the firmware")
+            line = self.port.readline(left)
+            try:
+                return decode_frame(line)
+            except FrameError:
+                continue
+
+    def command(self, *tokens, seq: int | None = None, timeout: float = 10.0):
+        """Send one command frame and return (reply, unsolicited frames seen before it)."""
+        if seq is None:
+            self.seq = self.seq % 255 + 1
+            seq = self.seq
+        self.send_raw(encode_frame(Frame(seq, tokens[0], tuple(tokens[1:]))))
+        seen = []
+        while True:
+            frame = self.read(timeout)
+            if frame.seq == seq:
+                return frame, seen
+            seen.append(frame)
+
+    def until(self, predicate, timeout: float = 60.0) -> list[Frame]:
+        """Frames up to and including the first for which predicate(frame) is true."""
+        frames = []
+        deadline = time.monotonic() + timeout
+        while True:
+            frame = self.read(max(0.01, deadline - time.monotonic()))
+            frames.append(frame)
+            if predicate(frame):
+                return frames
+
+    def close(self):
+        try:
+            if getattr(self, "port", None) is not None:
+                self.port.close()
+        finally:
+            if self.proc.poll() is None:
+                self.proc.kill()
+            self.proc.wait(timeout=10)
+            for stream in (self.proc.stdin, self.proc.stdout, self.proc.stderr):
+                stream.close()
+
+
+def ok(frame: Frame, code: str) -> tuple:
+    assert frame.code == "OK" and frame.args[0] == code, frame
+    return frame.args[1:]
+
+
+@pytest.fixture
+def board_factory(build):
+    """Start emulated boards; every one is killed at the end of the test."""
+    boards = []
+
+    def start(*args: str) -> Board:
+        board = Board(build, *args)
+        boards.append(board)
+        return board
+
+    yield start
+    for board in boards:
+        board.close()
+    assert all(b.proc.poll() is not None for b in boards)
+
+
+#: Harness options of the tests: the switches and the sample close to where the axes start, so
+#: that homing and the approach take little simulated time; a little gauge noise.
+GAIN = 12.0  # counts per um of deflection (about a 0.5 mm ruler, a 350 ohm gauge, an HX711)
+OFFSET = 100000
+BASE = ("--gain", str(GAIN), "--offset", str(OFFSET), "--noise", "2", "--z-top", "3",
+        "--start", "1,1,2.5")
+
+
+@pytest.mark.slow
+def test_identify_and_parameters(board_factory):
+    board = board_factory(*BASE)
+    reply, _ = board.command("ID")
+    assert ok(reply, "ID") == ("MACROAFM", 1, "0.1.0")
+    reply, _ = board.command("GP", "ZS")
+    assert ok(reply, "GP") == ("ZS", 2500)
+    for par, value in (("NX", 16), ("NY", 5), ("DX", 350), ("SE", 1500), ("MO", 1), ("LI", 77),
+                       ("VE", 3000), ("AC", 20000), ("PR", 2)):
+        reply, _ = board.command("SP", par, value)
+        assert ok(reply, "SP") == (par, value)
+        reply, _ = board.command("GP", par)
+        assert ok(reply, "GP") == (par, value)
+    for par, bad in (("NX", 0), ("NX", 129), ("DX", 30), ("MO", 2), ("PR", 4), ("QQ", 1)):
+        reply, _ = board.command("SP", par, bad)
+        assert reply.code == "ER" and reply.args[0] == 3, (par, bad, reply)
+    reply, _ = board.command("SP", "ZS", 1000)
+    assert (reply.code, reply.args) == ("ER", (3, "READONLY"))
+    reply, _ = board.command("GP", "NX")
+    assert ok(reply, "GP") == ("NX", 16)  # refused values changed nothing
+    reply, _ = board.command("ZZ")
+    assert (reply.code, reply.args) == ("ER", (2,))
+    reply, _ = board.command("SS")
+    assert (reply.code, reply.args) == ("ER", (5,))  # not homed
+    reply, _ = board.command("RG")
+    assert ok(reply, "RG") and abs(reply.args[1] - OFFSET) < 20
+
+
+@pytest.mark.slow
+def test_golden_session_replays_against_the_firmware(board_factory):
+    """PROTOCOL.md's first block, byte for byte (the firmware's replies are deterministic)."""
+    board = board_factory(*BASE)
+    board.command("ID", seq=200)  # sync past the boot frame
+    block = golden_blocks()[0]
+    for i, (mark, wire) in enumerate(block):
+        if mark != ">":
+            continue
+        board.send_raw(wire)
+        expected = block[i + 1][1]
+        line = board.port.readline(10.0) + b"\n"
+        assert line == expected
+
+
+@pytest.mark.slow
+def test_bad_lines_and_retries(board_factory, tmp_path):
+    sample = write_map(tmp_path / "sample.txt", bumpy(8, 8), 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    board.command("ID")
+    board.send_raw(b"5 GP NX*00\n")  # wrong checksum
+    frame = board.read()
+    assert (frame.seq, frame.code, frame.args) == (0, "ER", (1,))
+    for junk in (b"5 GP NX\n", b"5  GP*%02X\n" % crc8(b"5  GP"), b"x" * 300 + b"\n",
+                 b"05 GP NX*%02X\n" % crc8(b"05 GP NX"), b"5 GP NX*4c\n"):
+        board.send_raw(junk)
+        frame = board.read()
+        assert frame.seq == 0 and frame.code == "ER" and frame.args[0] in (1, 9), junk
+    # the retried command after a bad line is executed once
+    reply, _ = board.command("GP", "NX", seq=5)
+    assert ok(reply, "GP") == ("NX", 8)
+    # home, then a START that is retried (same SEQ, same body): the same reply, not a second
+    # execution (which would be ER 4 BUSY)
+    reply, _ = board.command("HM", seq=6)
+    ok(reply, "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    reply, _ = board.command("SS", seq=7)
+    ok(reply, "SS")
+    reply, _ = board.command("SS", seq=7)
+    ok(reply, "SS")
+    reply, _ = board.command("SS", seq=8)  # a new command is executed: busy
+    assert (reply.code, reply.args) == ("ER", (4,))
+    # ABORT once: one ABORTED; its retry gets OK AB again and no second event
+    reply, _ = board.command("AB", seq=9)
+    ok(reply, "AB")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "ABORTED", timeout=10)
+    reply, seen = board.command("AB", seq=9)
+    ok(reply, "AB")
+    reply, seen2 = board.command("ST", seq=10)
+    assert ok(reply, "ST")[0] == "IDLE"
+    assert not [f for f in seen + seen2 if f.code == "EV" and f.args[0] == "ABORTED"]
+    reply, _ = board.command("AB", seq=11)
+    assert (reply.code, reply.args) == ("ER", (10,))
+
+
+@pytest.mark.slow
+def test_homing(board_factory):
+    board = board_factory(*BASE)
+    before = board.position()
+    reply, _ = board.command("HM")
+    ok(reply, "HM")
+    reply, _ = board.command("ST")
+    assert ok(reply, "ST")[0] == "HOMING"
+    reply, _ = board.command("SP", "NX", 4)
+    assert (reply.code, reply.args) == ("ER", (4,))  # busy
+    t0 = time.monotonic()
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    x, y, z = board.position()
+    # each axis stopped on its switch (x, y at 0; z at the 3 mm top), moved off until it opened
+    # (one step) and 80 steps more
+    home = HOME_BACKOFF + 1
+    assert (x, y, z) == (home, home, round(3000 / Z_STEP_UM) - home)
+    assert before != (x, y, z)
+    reply, _ = board.command("ST")
+    state, row, col, flags = ok(reply, "ST")
+    assert state == "IDLE" and flags & 1 and not flags & (2 | 4 | 8 | 16)
+    assert time.monotonic() - t0 < 30
+
+
+def bumpy(nx: int, ny: int) -> np.ndarray:
+    """Heights (um) of a virtual sample: a slope, a sine and a 150 um tall block."""
+    i, j = np.meshgrid(np.arange(nx), np.arange(ny))
+    h = 500.0 + 300.0 * np.sin(i / 2.0) + 40.0 * j
+    h[2:5, 3:6] += 150.0
+    return h
+
+
+def scan_raw(board: Board, nx: int, ny: int, timeout: float = 120.0):
+    """Run SS and collect (z image in micro-steps, counts image, line ends, frames)."""
+    reply, _ = board.command("SS")
+    ok(reply, "SS")
+    frames = board.until(lambda f: f.code == "EV" and f.args[0] in ("DONE",) or f.code == "ER",
+                         timeout=timeout)
+    z = np.full((ny, nx), np.nan)
+    counts = np.full((ny, nx), np.nan)
+    for f in frames:
+        if f.code == "PX":
+            row, col, zz, cc = f.args
+            z[row, col], counts[row, col] = zz, cc
+    lines = [f.args for f in frames if f.code == "LN"]
+    return z, counts, lines, frames
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mode", [0, 1], ids=["contact", "jumping"])
+def test_scan_matches_the_virtual_sample(board_factory, tmp_path, mode):
+    nx = ny = 8
+    pitch = 200
+    setpoint = 2000
+    heights = bumpy(nx, ny)
+    sample = write_map(tmp_path / "sample.txt", heights, pitch)
+    board = board_factory(*BASE, "--map", str(sample))
+    ok(board.command("HM")[0], "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    x0, y0, z0 = board.position()
+    assert board.control("ORIGIN").startswith("OK ORIGIN")
+    for par, value in (("NX", nx), ("NY", ny), ("DX", pitch), ("SE", setpoint), ("MO", mode),
+                       ("LI", 40)):
+        ok(board.command("SP", par, value)[0], "SP")
+    t0 = time.monotonic()
+    z, counts, lines, frames = scan_raw(board, nx, ny)
+    elapsed = time.monotonic() - t0
+    assert frames[-1].code == "EV" and frames[-1].args == ("DONE",), frames[-1]
+    assert lines == [(row, nx) for row in range(ny)]
+    assert not np.isnan(z).any()
+    # the height image: z micro-steps x ZS; the needle sits where the ruler is bent by the
+    # setpoint, SE / gain below the surface, and z counts from the home height
+    height_um = z * Z_STEP_UM
+    expected_um = heights - setpoint / GAIN - z0 * Z_STEP_UM
+    error = height_um - expected_um
+    assert np.abs(error).max() <= Z_STEP_UM, error  # within one z micro-step
+    # each pixel's deflection is the setpoint within half a z micro-step's counts (plus noise)
+    assert np.abs(counts - setpoint).max() <= 0.5 * GAIN * Z_STEP_UM + 10
+    # the last pixel was measured (NX - 1) pitches along x and (NY - 1) along y from the origin
+    x, y, _ = board.position()
+    steps = pitch / XY_STEP_UM
+    assert (x - x0, y - y0) == ((nx - 1) * steps, (ny - 1) * steps)
+    assert elapsed < 60
+    print(f"\nsimavr {['contact', 'jumping'][mode]} scan {nx}x{ny}: {elapsed:.1f} s")
+
+
+@pytest.mark.slow
+def test_limit_switch_mid_scan_keeps_the_finished_lines(board_factory, tmp_path):
+    nx, ny, pitch = 6, 8, 200
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), pitch)
+    # y's far switch 1.5 mm from y's home switch: rows 0..2 fit (0.6 + 0.4 mm), row 3 does not
+    board = board_factory(*BASE, "--map", str(sample), "--y-max", "1.6")
+    ok(board.command("HM")[0], "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    board.control("ORIGIN")
+    for par, value in (("NX", nx), ("NY", ny), ("DX", pitch), ("MO", 1), ("LI", 40)):
+        ok(board.command("SP", par, value)[0], "SP")
+    z, counts, lines, frames = scan_raw(board, nx, ny)
+    codes = [(f.code, f.args) for f in frames[-2:]]
+    assert codes == [("EV", ("LIMIT", "Y")), ("ER", (6,))]
+    assert lines == [(0, nx), (1, nx), (2, nx)]
+    assert not np.isnan(z[:3]).any() and np.isnan(z[3:]).all()
+    state, row, col, flags = ok(board.command("ST")[0], "ST")
+    assert state == "FAULT" and row == 3 and flags & 4 and not flags & 1
+    # the finished lines are still there: GETLINE re-sends the last two
+    reply, seen = board.command("GL", 2)
+    assert ok(reply, "GL") == (2, nx)
+    assert [f.args for f in seen] == [(2, c, int(z[2, c]), int(counts[2, c])) for c in range(nx)]
+    assert board.command("GL", 0)[0].args == (3,)  # older lines are gone: ER 3
+    assert board.command("SS")[0].args == (5,)  # not homed after a fault
+
+
+@pytest.mark.slow
+def test_estop_stops_the_scan(board_factory, tmp_path):
+    nx, ny, pitch = 8, 8, 200
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), pitch)
+    board = board_factory(*BASE, "--map", str(sample))
+    ok(board.command("HM")[0], "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    board.control("ORIGIN")
+    ok(board.command("SS")[0], "SS")
+    done = board.until(lambda f: f.code == "LN", timeout=60)  # one line finished
+    assert board.control("ESTOP 1") == "OK ESTOP 1"
+    tail = board.until(lambda f: f.code == "ER", timeout=30)
+    assert [(f.code, f.args) for f in tail[-2:]] == [("EV", ("ESTOP",)), ("ER", (7,))]
+    at_stop = board.position()
+    time.sleep(0.3)
+    assert board.position() == at_stop  # nothing moves any more
+    state, row, col, flags = ok(board.command("ST")[0], "ST")
+    assert state == "FAULT" and flags & 16
+    assert ok(board.command("GL", 0)[0], "GL") == (0, nx)  # the finished line is kept
+    assert board.command("HM")[0].args == (7,)  # E-stop still open
+    assert board.command("SS")[0].args == (7,)
+    board.control("ESTOP 0")
+    ok(board.command("HM")[0], "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    assert done[-1].args == (0, nx)
+
+
+@pytest.mark.slow
+def test_button_starts_the_preset_and_display_shows_it(board_factory, tmp_path):
+    sample = write_map(tmp_path / "sample.txt", bumpy(8, 8), 200)
+    home = (HOME_BACKOFF + 1) * XY_STEP_UM / 1000  # mm: where homing puts x = y = 0
+    board = board_factory(*BASE, "--map", str(sample), "--origin", f"{home},{home}")
+    board.command("ID")
+    board.control("BUTTON SELECT")  # preset 0 -> 1
+    time.sleep(0.2)
+    assert ok(board.command("GP", "PR")[0], "GP") == ("PR", 1)
+    ok(board.command("SP", "PR", 0)[0], "SP")
+    board.control("BUTTON START")  # not homed: homes, then scans preset 0
+    frames = board.until(lambda f: f.code == "PX", timeout=60)
+    words = [f.args for f in frames if f.code == "EV"]
+    assert ("BUTTON", 0) in words and ("HOMED",) in words
+    time.sleep(0.5)
+    assert board.control("DISPLAY").startswith("DISPLAY SCANNING P0 H")
+    ok(board.command("AB")[0], "AB")
