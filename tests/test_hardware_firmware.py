@@ -205,6 +205,68 @@ def test_firmware_builds_and_fits_the_mega(build):
     assert head[:4] == b"\x7fELF" and int.from_bytes(head[18:20], "little") == 83  # EM_AVR
 
 
+# -- BUILD.md's calibration example ---------------------------------------------------------------
+#: BUILD.md's ruler (free length, width, thickness in m), spring steel, the gauge 5 mm from the
+#: clamp with gauge factor 2.0, the HX711 at gain 128, the z micro-step.
+RULER = dict(length=0.26, width=25e-3, thickness=0.5e-3, youngs_modulus=200e9, density=7850.0)
+GAUGE_AT, GAUGE_FACTOR, HX711_GAIN = 5e-3, 2.0, 128
+
+
+def calibration() -> dict:
+    """BUILD.md's worked example, computed with module (a)'s beam model."""
+    from afmsmiler.cantilever import Cantilever
+
+    lever = Cantilever(**RULER)
+    k = lever.spring_constant
+    deflection = 1e-6  # 1 um at the needle
+    strain_per_um = abs(float(lever.strain(GAUGE_AT, RULER["thickness"] / 2, k * deflection)))
+    strain_per_count = 1.0 / (HX711_GAIN * 2 ** 22 * GAUGE_FACTOR)
+    counts_per_um = strain_per_um / strain_per_count
+    return dict(k=k, f1=lever.resonance_frequency(1), strain_per_um=strain_per_um,
+                strain_per_count=strain_per_count, counts_per_um=counts_per_um,
+                counts_per_step=counts_per_um * Z_STEP_UM,
+                force_per_count=k * 1e-6 / counts_per_um,
+                setpoint_um=2000 / counts_per_um, setpoint_force=2000 / counts_per_um * 1e-6 * k,
+                contact_um=300 / counts_per_um,
+                counts_per_newton=counts_per_um * 1e6 / k)
+
+
+def test_calibration_follows_the_closed_forms():
+    """Module (a)'s numbers against the hand formulas of BUILD.md (independent of the code)."""
+    c = calibration()
+    L, w, h, E, rho = (RULER[k] for k in ("length", "width", "thickness", "youngs_modulus",
+                                            "density"))
+    J = w * h ** 3 / 12
+    assert c["k"] == pytest.approx(3 * E * J / L ** 3, rel=1e-12)
+    # strain(a) = 3 h (L - a) / (2 L^3) * deflection
+    assert c["strain_per_um"] == pytest.approx(3 * h * (L - GAUGE_AT) / (2 * L ** 3) * 1e-6,
+                                               rel=1e-12)
+    # first mode: (1.8751)^2 / (2 pi L^2) sqrt(E J / (rho w h)) (Blevins, Table 8-1)
+    assert c["f1"] == pytest.approx(1.87510407 ** 2 / (2 * np.pi * L ** 2)
+                                    * np.sqrt(E * J / (rho * w * h)), rel=1e-8)
+    assert 5.5 < c["f1"] < 6.5  # the paper's "about 6 Hz"
+
+
+def test_build_md_numbers():
+    """Every number of BUILD.md's worked example is the one computed here."""
+    text = (MACRO / "BUILD.md").read_text()
+    c = calibration()
+    expected = [f"| stiffness k | {c['k']:.2f} N/m |",
+                f"| first resonance f1 | {c['f1']:.1f} Hz",
+                f"| strain per um of tip deflection at the gauge | {c['strain_per_um']:.2e} |",
+                f"| strain per count | {c['strain_per_count']:.2e} |",
+                f"| counts per um of tip deflection | {c['counts_per_um']:.1f} |",
+                f"| counts per z micro-step (2.5 um) | {c['counts_per_step']:.1f} |",
+                f"| force per count | {c['force_per_count'] * 1e6:.2f} uN |",
+                f"| default setpoint SE = 2000 counts | {c['setpoint_um']:.0f} um of deflection, "
+                f"{c['setpoint_force'] * 1e3:.2f} mN |",
+                f"| contact threshold 300 counts | {c['contact_um']:.1f} um of deflection |",
+                f"Predicted here: {c['counts_per_um']:.1f} counts/um x",
+                f"= {c['counts_per_newton']:.2e} counts/N"]
+    for line in expected:
+        assert line in text, line
+
+
 # -- the emulated board -------------------------------------------------------------------------
 def write_map(path: Path, heights_um: np.ndarray, pitch_um: float) -> Path:
     """Write a height map (um) in the harness' text format (row 0 = first line, x along a row)."""
@@ -335,8 +397,9 @@ def board_factory(build):
 
 
 #: Harness options of the tests: the switches and the sample close to where the axes start, so
-#: that homing and the approach take little simulated time; a little gauge noise.
-GAIN = 12.0  # counts per um of deflection (about a 0.5 mm ruler, a 350 ohm gauge, an HX711)
+#: that homing and the approach take little simulated time; a little gauge noise; the gauge's
+#: counts per um of deflection of BUILD.md's ruler.
+GAIN = calibration()["counts_per_um"]
 OFFSET = 100000
 BASE = ("--gain", str(GAIN), "--offset", str(OFFSET), "--noise", "2", "--z-top", "3",
         "--start", "1,1,2.5")
