@@ -69,7 +69,10 @@ static uint8_t home_stage[3];  // 0 start, 1 seek, 2 release, 3 back off, 4 done
 static Phase phase = P_FREE, after_move = P_FREE;
 static long row = 0, col = 0;
 static long steps_per_pixel = 16;
-static long free_level = 0, free_sum = 0;
+static long free_level = 0, free_sum = 0;  // the free (tared) reading
+static uint8_t tare_n = 0;                  // readings still to average for a tare (0: none)
+static long tare_sum = 0;
+static unsigned long tare_count = 0;
 static uint8_t free_n = 0;
 static unsigned long need_count = 0;  // gauge readings before this one are stale
 static unsigned long settle_until = 0;
@@ -146,6 +149,21 @@ static void fault(int code, const char *event, const char *arg) {
   homed = false;
   start_after_home = false;
   pause_requested = false;
+}
+
+// Tare: the free reading becomes the average of the next FREE_SAMPLES readings (at boot and at the
+// end of homing, with the needle up; a scan measures its own at pixel (0, 0) before approaching).
+static void start_tare() {
+  tare_n = FREE_SAMPLES;
+  tare_sum = 0;
+  tare_count = gauge.count;
+}
+
+static void tare_step() {
+  if (tare_n == 0 || gauge.count == tare_count) return;
+  tare_count = gauge.count;
+  tare_sum += gauge.value;
+  if (--tare_n == 0) free_level = tare_sum / FREE_SAMPLES;
 }
 
 // Gauge counts above the free reading, positive when the needle is pushed up.
@@ -240,6 +258,7 @@ static void scan_step() {
       need_count = gauge.count + 1;
       if (++free_n < FREE_SAMPLES) return;
       free_level = free_sum / FREE_SAMPLES;
+      tare_n = 0;
       phase = P_DESCEND;
       return;
     case P_DESCEND:
@@ -406,6 +425,7 @@ static void home_step() {
   if (state != S_HOMING || !x || !y) return;
   homed = true;
   state = S_IDLE;
+  start_tare();
   send_event(EVT_HOMED);
   if (start_after_home) {
     start_after_home = false;
@@ -556,7 +576,7 @@ static void execute(uint8_t seq) {
   } else if (!strcmp(code, CMD_GAUGE)) {
     if (nargs) REPLY_ERR(ERR_BAD_ARGUMENT);
     if (gauge.count == 0 || millis() - gauge.last_ms > SENSOR_TIMEOUT_MS) REPLY_ERR(ERR_SENSOR);
-    REPLY_OK().num(gauge.value);
+    REPLY_OK().num(deflection());
   } else if (!strcmp(code, CMD_GETLINE)) {
     if (nargs != 1 || !parse_long(a1, &v)) REPLY_ERR(ERR_BAD_ARGUMENT);
     int8_t s = line_slot(v);
@@ -660,6 +680,7 @@ void setup() {
   PCMSK0 |= _BV(PCINT4);  // the E-stop pin ...
   PCICR |= _BV(PCIE0);    // ... interrupts on any change
   send_event(EVT_BOOT);
+  start_tare();
   if (estop_input()) onEstop();
 }
 
@@ -670,6 +691,7 @@ void loop() {
     fault(ERR_ESTOP, EVT_ESTOP, nullptr);
   }
   gauge.poll();
+  tare_step();
   for (uint8_t i = 0; i < 3; i++) axes[i].run();
   check_limits();
   if (state == S_SCANNING) {
