@@ -644,3 +644,94 @@ def test_button_starts_the_preset_and_display_shows_it(board_factory, tmp_path):
     time.sleep(0.5)
     assert board.control("DISPLAY").startswith("DISPLAY SCANNING P0 H")
     ok(board.command("AB")[0], "AB")
+
+
+# -- h-macro's driver against the emulated firmware ---------------------------------------------
+def macro_afm(board: Board):
+    """h-macro's MacroAFM on the emulated board's pty (the board's own port object)."""
+    device = pytest.importorskip("afmsmiler.hardware.macro.device",
+                                 reason="h-macro's MacroAFM is not merged into this branch yet")
+    # an emulator is slower than the board: generous reply and stream timeouts
+    return device.MacroAFM(board.port, timeout=3.0, retries=3, stream_timeout=20.0,
+                           home_timeout=60.0)
+
+
+def homed_driver(board: Board):
+    afm = macro_afm(board)
+    info = afm.connect()
+    assert (info.device, info.protocol_version, info.firmware_version) == ("MACROAFM", 1, "0.1.0")
+    assert info.z_step == pytest.approx(Z_STEP_UM * 1e-6)
+    afm.home()
+    x0, y0, z0 = board.position()
+    board.control("ORIGIN")
+    return afm, z0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mode", ["contact", "jumping"])
+def test_driver_scans_the_virtual_sample(board_factory, tmp_path, mode):
+    """MacroAFM.scan through the pty: the image is the sample within one z micro-step."""
+    nx = ny = 8
+    pitch = 200e-6
+    heights = bumpy(nx, ny)
+    sample = write_map(tmp_path / "sample.txt", heights, pitch * 1e6)
+    board = board_factory(*BASE, "--map", str(sample))
+    afm, z0 = homed_driver(board)
+    wire = afm.configure(pixels=nx, lines=ny, pitch=pitch, mode=mode, lift=0.1e-3,
+                         setpoint_force=2e-3, step_rate=4000, step_acceleration=40000)
+    setpoint = wire[next(p for p in wire if p.value == "SE")]
+    seen = []
+    t0 = time.monotonic()
+    image = afm.scan(callback=lambda progress: seen.append((progress.row, progress.col,
+                                                            progress.fraction)))
+    elapsed = time.monotonic() - t0
+    assert len(seen) == nx * ny and seen[-1][2] == 1.0
+    assert image.pixel_size == pytest.approx(pitch)
+    assert image.heights.shape == (ny, nx)
+    expected = (heights - setpoint / GAIN - z0 * Z_STEP_UM) * 1e-6
+    assert np.abs(image.heights - expected).max() <= Z_STEP_UM * 1e-6
+    path = afm.save(tmp_path / f"{mode}.gwy")
+    assert path.stat().st_size > 0
+    print(f"\nMacroAFM on simavr, {mode} {nx}x{ny}: {elapsed:.1f} s")
+
+
+@pytest.mark.slow
+def test_driver_keeps_the_finished_lines_of_a_limit_fault(board_factory, tmp_path):
+    from afmsmiler.hardware.errors import DeviceError
+
+    nx, ny, pitch = 6, 8, 200e-6
+    heights = bumpy(nx, ny)
+    sample = write_map(tmp_path / "sample.txt", heights, pitch * 1e6)
+    board = board_factory(*BASE, "--map", str(sample), "--y-max", "1.6")
+    afm, z0 = homed_driver(board)
+    afm.configure(pixels=nx, lines=ny, pitch=pitch, mode="jumping", lift=0.1e-3)
+    with pytest.raises(DeviceError) as info:
+        afm.scan()
+    assert info.value.code == 6 and "Y" in str(info.value)
+    partial = info.value.partial
+    assert partial.heights.shape == (3, nx) and not np.isnan(partial.heights).any()
+    assert afm.save(tmp_path / "partial.gwy").stat().st_size > 0
+    assert afm.status().state.value == "FAULT"
+
+
+@pytest.mark.slow
+def test_driver_reports_the_estop(board_factory, tmp_path):
+    from afmsmiler.hardware.errors import DeviceError
+
+    nx = ny = 8
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    afm, _ = homed_driver(board)
+    afm.configure(pixels=nx, lines=ny, pitch=200e-6, mode="contact")
+
+    def press_after_two_lines(progress):
+        if progress.done == 2 * nx + 1:
+            board.control("ESTOP 1")
+
+    with pytest.raises(DeviceError) as info:
+        afm.scan(callback=press_after_two_lines)
+    assert info.value.code == 7
+    assert info.value.partial.heights.shape[0] == 2
+    board.control("ESTOP 0")
+    afm.home()  # cleared by homing once the E-stop is released
+    assert afm.status().state.value == "IDLE"
