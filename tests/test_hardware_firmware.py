@@ -78,7 +78,8 @@ def build(tmp_path_factory):
 
 
 # -- protocol.h against the codec ---------------------------------------------------------------
-_DEFINE = re.compile(r'#define\s+(PROTOCOL_VERSION|(CMD|ERR|EVT|PAR)_(\w+))\s+("([^"]*)"|(\d+))\s*$')
+_DEFINE = re.compile(
+    r'#define\s+(PROTOCOL_VERSION|(CMD|ERR|EVT|PAR)_(\w+))\s+("([^"]*)"|(\d+))\s*$')
 
 
 def parse_protocol_h(path: Path = PROTOCOL_H) -> dict:
@@ -314,7 +315,7 @@ class Board:
         return line.strip()
 
     def control(self, command: str, timeout: float = 10.0) -> str:
-        """Send a harness command (POS, ORIGIN, ESTOP 1, BUTTON START, ...) and return its answer."""
+        """Send a harness command (POS, ORIGIN, ESTOP 1, BUTTON START, ...); its answer."""
         self.proc.stdin.write(command + "\n")
         self.proc.stdin.flush()
         return self._control_line(timeout)

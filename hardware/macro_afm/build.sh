@@ -43,7 +43,8 @@ SK="$OUT/sketch"
 { echo '#include <Arduino.h>'; echo "#line 1 \"$HERE/firmware/macro_afm.ino\""; \
   cat "$HERE/firmware/macro_afm.ino"; } > "$SK/macro_afm.ino.cpp"
 OBJS="$SK/macro_afm.ino.cpp.o"
-$AVR_CXX $CXXFLAGS -Werror -I"$HERE/firmware" -c "$SK/macro_afm.ino.cpp" -o "$SK/macro_afm.ino.cpp.o"
+$AVR_CXX $CXXFLAGS -Werror -I"$HERE/firmware" -c "$SK/macro_afm.ino.cpp" \
+  -o "$SK/macro_afm.ino.cpp.o"
 for src in "$HERE"/firmware/*.cpp; do
   obj="$SK/$(basename "$src").o"
   $AVR_CXX $CXXFLAGS -Werror -I"$HERE/firmware" -c "$src" -o "$obj"

@@ -50,7 +50,7 @@
 #define MAX_ACCEL 1000000L
 #define N_PRESETS 4
 
-// -- regulation -------------------------------------------------------------------------------------
+// -- regulation -----------------------------------------------------------------------------------
 #define FREE_SAMPLES 8        // gauge readings averaged for the free (out of contact) level
 #define CONTACT_COUNTS 300L   // |reading - free| above which the tip touches (over the noise)
 #define CAL_STEPS 20L         // z micro-steps pressed in at the first contact to learn counts/step

@@ -1,6 +1,6 @@
 // hx711.cpp: HX711 datasheet (Avia Semiconductor, rev. 2.0): DOUT low = a conversion is ready; 24
-// PD_SCK pulses shift it out MSB first (two's complement), a 25th pulse selects channel A, gain 128
-// for the next one. PD_SCK must not stay high for 60 us (power down), hence no interrupts while high.
+// PD_SCK pulses shift it out MSB first (two's complement), a 25th pulse selects channel A, gain
+// 128 for the next one. PD_SCK must not stay high for 60 us (power down): no interrupts while high.
 #include "hx711.h"
 
 void HX711::begin(uint8_t dout, uint8_t sck) {

@@ -356,7 +356,7 @@ static void scan_step() {
   }
 }
 
-// -- homing: z up to Z_MAX first (tip away from the sample), then x and y to their MIN switches ----
+// -- homing: z up to Z_MAX first (tip away from the sample), then x and y to their MIN switches
 static const uint8_t HOME_PIN[3] = {PIN_X_MIN, PIN_Y_MIN, PIN_Z_MAX};
 static const int8_t HOME_DIR[3] = {-1, -1, +1};
 static const long HOME_TRAVEL[3] = {X_TRAVEL_STEPS, Y_TRAVEL_STEPS, Z_TRAVEL_STEPS};
@@ -433,7 +433,7 @@ static void home_step() {
   }
 }
 
-// -- limit switches: any switch met while moving towards it stops everything -------------------------
+// -- limit switches: any switch met while moving towards it stops everything ----------------------
 static void check_limits() {
   static const uint8_t MIN_PIN[3] = {PIN_X_MIN, PIN_Y_MIN, PIN_Z_MIN};
   static const uint8_t MAX_PIN[3] = {PIN_X_MAX, PIN_Y_MAX, PIN_Z_MAX};
@@ -616,7 +616,7 @@ static void serial_step() {
   if (aborted) send_event(EVT_ABORTED);
 }
 
-// -- push buttons (closed = LOW), debounced ---------------------------------------------------------
+// -- push buttons (closed = LOW), debounced -------------------------------------------------------
 static void buttons_step() {
   static uint8_t stable[2] = {HIGH, HIGH}, seen[2] = {HIGH, HIGH};
   static unsigned long since[2] = {0, 0};

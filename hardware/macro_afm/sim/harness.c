@@ -4,13 +4,13 @@
  * What it simulates (pins as in ../firmware/config.h):
  *  - UART0 (the protocol link) as a pseudo-terminal: its path is printed on stdout as "PTY <path>"
  *    so that pyserial (or any terminal) opens it like the board's USB port;
- *  - the three step/dir drivers: STEP rising edges are counted with the DIR level (and ignored while
- *    ENABLE is high), giving the x, y, z positions in micro-steps;
+ *  - the three step/dir drivers: STEP rising edges are counted with the DIR level (and ignored
+ *    while ENABLE is high), giving the x, y, z positions in micro-steps;
  *  - the limit switches at the axis ends (closed = LOW): X_MIN when x <= 0, X_MAX when x >= the
  *    x travel, Y likewise, Z_MAX (top, home) when z >= the z top, Z_MIN (bed) when z <= 0;
  *  - the HX711: DOUT goes low every 1/rate s with a new conversion, which the PD_SCK pulses shift
- *    out MSB first; its value is offset + gain * deflection (+ Gaussian noise), the deflection being
- *    the interference of the needle with the virtual sample (a rigid surface: the ruler bends by it);
+ *    out MSB first; its value is offset + gain * deflection (+ Gaussian noise), the deflection
+ *    being the needle's interference with the virtual sample (rigid: the ruler bends by it);
  *  - the E-stop (NC switch, open = HIGH) and the two push buttons, on request (stdin);
  *  - UART1 (the serial 16x2 status display) kept as the display's two lines.
  * What it does not: motor dynamics (steps are exact, no lost steps, no inertia), the ruler's
@@ -32,7 +32,7 @@
  *   BUTTON START|SELECT  -> press the button for 100 ms (simulated)
  *   FORCE <SWITCH> 1|0|-1 -> force a limit switch (X_MIN ... Z_MAX) closed, open, or back to auto
  *   DISPLAY              -> "DISPLAY <line 1>|<line 2>"
- *   QUIT                 -> exit (so does end of file on stdin: the harness never outlives its parent)
+ *   QUIT                 -> exit (so does end of file on stdin: it never outlives its parent)
  * Build: ../build.sh (gcc -lsimavr -lutil).
  */
 #define _GNU_SOURCE
@@ -123,7 +123,7 @@ static double deflection_um(void) {
   return d > 0 ? d : 0;
 }
 
-/* -- inputs -------------------------------------------------------------------------------------- */
+/* -- inputs ------------------------------------------------------------------------------------ */
 static void set_external(char port, uint8_t value) {
   avr_ioport_external_t e = {.name = port, .mask = 0xFF, .value = value};
   avr_ioctl(avr, AVR_IOCTL_IOPORT_SET_EXTERNAL(port), &e);
@@ -166,7 +166,7 @@ static avr_cycle_count_t release_button(avr_t *a, avr_cycle_count_t when, void *
   return 0;
 }
 
-/* -- steppers -------------------------------------------------------------------------------------- */
+/* -- steppers ---------------------------------------------------------------------------------- */
 static void on_port_a(avr_irq_t *irq, uint32_t value, void *param) {
   (void)param;
   int bit = irq->irq;
@@ -182,7 +182,7 @@ static void on_port_a(avr_irq_t *irq, uint32_t value, void *param) {
   step_level[axis] = v;
 }
 
-/* -- HX711 -------------------------------------------------------------------------------------- */
+/* -- HX711 ------------------------------------------------------------------------------------- */
 static avr_cycle_count_t hx_convert(avr_t *a, avr_cycle_count_t when, void *param) {
   (void)a; (void)param;
   if (hx_bits == 0 || hx_bits >= 25) { /* not in the middle of a read-out */
@@ -209,7 +209,7 @@ static void on_sck(avr_irq_t *irq, uint32_t value, void *param) {
   hx_sck = v;
 }
 
-/* -- UARTs -------------------------------------------------------------------------------------- */
+/* -- UARTs ------------------------------------------------------------------------------------- */
 static void uart_pump(void) {
   while (uart_xon && rx_len) {
     uint8_t b = rx_buf[rx_head];
