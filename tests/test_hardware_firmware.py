@@ -736,3 +736,89 @@ def test_driver_reports_the_estop(board_factory, tmp_path):
     board.control("ESTOP 0")
     afm.home()  # cleared by homing once the E-stop is released
     assert afm.status().state.value == "IDLE"
+
+
+@pytest.mark.slow
+def test_driver_survives_a_noisy_cable(board_factory, tmp_path):
+    """Corrupted, garbage, partial and lost lines both ways: the real firmware's retry handling
+    (same SEQ -> the last reply again, never a second execution) and GL give the whole image."""
+    from afmsmiler.hardware.transport import FaultyTransport
+
+    nx = ny = 6
+    heights = bumpy(nx, ny)
+    sample = write_map(tmp_path / "sample.txt", heights, 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    _, z0 = homed_driver(board)
+    device = pytest.importorskip("afmsmiler.hardware.macro.device")
+    cable = FaultyTransport(board.port, seed=7, corrupt=0.04, garbage=0.04, drop=0.04,
+                            partial=0.04)
+    afm = device.MacroAFM(cable, timeout=2.0, retries=6, stream_timeout=5.0,
+                          home_timeout=60.0)
+    afm.connect()
+    wire = afm.configure(pixels=nx, lines=ny, pitch=200e-6, mode="contact", setpoint_force=2e-3)
+    setpoint = wire[next(p for p in wire if p.value == "SE")]
+    image = afm.scan()
+    expected = (heights - setpoint / GAIN - z0 * Z_STEP_UM) * 1e-6
+    assert np.abs(image.heights - expected).max() <= Z_STEP_UM * 1e-6
+    injected = {k: v for k, v in cable.counts.items() if k != "lines"}
+    assert sum(injected.values()) >= 4, injected
+    assert afm.retried + afm.garbage > 0
+
+
+@pytest.mark.slow
+def test_driver_keeps_the_lines_when_the_board_goes_away(board_factory, tmp_path):
+    """The emulated board dies mid-scan (the USB cable pulled): TransportClosed, lines kept."""
+    from afmsmiler.hardware.errors import TransportClosed
+
+    nx = ny = 6
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    afm, _ = homed_driver(board)
+    afm.configure(pixels=nx, lines=ny, pitch=200e-6, mode="contact")
+
+    def unplug(progress):
+        if progress.done == 2 * nx + 1:
+            board.proc.kill()
+            board.proc.wait(timeout=10)
+
+    t0 = time.monotonic()
+    with pytest.raises(TransportClosed) as info:
+        afm.scan(callback=unplug)
+    assert time.monotonic() - t0 < 60
+    assert info.value.partial.heights.shape == (2, nx)
+    assert afm.save(tmp_path / "unplugged.gwy").stat().st_size > 0
+
+
+@pytest.mark.slow
+def test_driver_gives_up_on_a_frozen_board(board_factory, tmp_path):
+    """The emulator stopped (SIGSTOP): DeviceNotResponding within the driver's bounds, lines
+    kept."""
+    import signal
+
+    from afmsmiler.hardware.errors import DeviceNotResponding
+
+    nx = ny = 6
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    device = pytest.importorskip("afmsmiler.hardware.macro.device")
+    afm = device.MacroAFM(board.port, timeout=0.5, retries=2, stream_timeout=2.0,
+                          home_timeout=60.0)
+    afm.connect()
+    afm.home()
+    board.control("ORIGIN")
+    afm.configure(pixels=nx, lines=ny, pitch=200e-6, mode="contact")
+
+    def freeze(progress):
+        if progress.done == nx + 1:
+            board.proc.send_signal(signal.SIGSTOP)
+
+    t0 = time.monotonic()
+    try:
+        with pytest.raises(DeviceNotResponding) as info:
+            afm.scan(callback=freeze)
+    finally:
+        board.proc.send_signal(signal.SIGCONT)
+    # stream_timeout, then ST with its retries; the lines streamed before the freeze may still
+    # be arriving (the pty holds them), so allow a few stream timeouts
+    assert time.monotonic() - t0 < 30
+    assert info.value.partial is not None and info.value.partial.heights.shape[0] >= 1
