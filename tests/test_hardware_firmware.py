@@ -462,9 +462,16 @@ def test_bad_lines_and_retries(board_factory, tmp_path):
         board.send_raw(junk)
         frame = board.read()
         assert frame.seq == 0 and frame.code == "ER" and frame.args[0] in (1, 9), junk
+    too_long = b"5 GP " + b"N" * 116  # a 121-character body, its checksum right
+    board.send_raw(too_long + b"*%02X\n" % crc8(too_long))
+    frame = board.read()
+    assert (frame.seq, frame.code, frame.args) == (0, "ER", (9,))
     # the retried command after a bad line is executed once
     reply, _ = board.command("GP", "NX", seq=5)
     assert ok(reply, "GP") == ("NX", 8)
+    board.send_raw(b"12 GP NY*%02X\r\n" % crc8(b"12 GP NY"))  # \r\n is accepted
+    frame = board.read()
+    assert (frame.seq, frame.code, frame.args) == (12, "OK", ("GP", "NY", 8))
     # home, then a START that is retried (same SEQ, same body): the same reply, not a second
     # execution (which would be ER 4 BUSY)
     reply, _ = board.command("HM", seq=6)

@@ -247,14 +247,15 @@ static void on_uart1_out(avr_irq_t *irq, uint32_t value, void *param) {
   if (b >= 0x20 && b < 0x7F && disp_col < 16) display[disp_line][disp_col++] = (char)b;
 }
 
-static void flush_tx(void) {
+static void flush_tx(void) { /* what the pty does not take now waits (up to 8 KB) */
   size_t done = 0;
   while (done < tx_len) {
     ssize_t n = write(pty_master, tx_buf + done, tx_len - done);
-    if (n <= 0) break; /* nobody reading: drop, as a board's USB port would */
+    if (n <= 0) break;
     done += (size_t)n;
   }
-  tx_len = 0;
+  memmove(tx_buf, tx_buf + done, tx_len - done);
+  tx_len -= done;
 }
 
 /* -- stdin commands ---------------------------------------------------------------------------- */
