@@ -322,7 +322,7 @@ class Board:
 
     def position(self) -> tuple[int, int, int]:
         """The harness' x, y, z in micro-steps (machine coordinates)."""
-        _, x, y, z, _ = self.control("POS").split()
+        x, y, z = self.control("POS").split()[1:4]
         return int(x), int(y), int(z)
 
     def send_raw(self, data: bytes):
@@ -829,3 +829,31 @@ def test_driver_gives_up_on_a_frozen_board(board_factory, tmp_path):
     # be arriving (the pty holds them), so allow a few stream timeouts
     assert time.monotonic() - t0 < 30
     assert info.value.partial is not None and info.value.partial.heights.shape[0] >= 1
+
+
+@pytest.mark.slow
+def test_jumping_mode_images_a_tall_block_that_contact_mode_misses(board_factory, tmp_path):
+    """The paper's reason for jumping mode: in contact the needle catches on a wall taller than
+    it can climb (the harness' --catch) and the block is missed; jumping lifts over it."""
+    nx = ny = 6
+    pitch = 200e-6
+    heights = np.full((ny, nx), 300.0)
+    heights[1:5, 2:4] += 600.0  # 0.4 mm wide, 0.6 mm tall
+    sample = write_map(tmp_path / "tall.txt", heights, pitch * 1e6)
+    errors = {}
+    for mode, lift in (("contact", 0.1e-3), ("jumping", 1.0e-3)):
+        board = board_factory(*BASE, "--map", str(sample), "--catch", "200", "--z-top", "4")
+        afm, z0 = homed_driver(board)
+        wire = afm.configure(pixels=nx, lines=ny, pitch=pitch, mode=mode, lift=lift,
+                             setpoint_force=2e-3, step_rate=8000, step_acceleration=80000)
+        setpoint = wire[next(p for p in wire if p.value == "SE")]
+        image = afm.scan()
+        expected = (heights - setpoint / GAIN - z0 * Z_STEP_UM) * 1e-6
+        errors[mode] = np.abs(image.heights - expected)
+        board.close()
+    block = heights > 600
+    # contact: the needle stays behind the block's first wall: the block is missed
+    assert errors["contact"][block].max() > 500e-6
+    assert errors["contact"][~block].max() <= Z_STEP_UM * 1e-6
+    # jumping: every pixel within one z micro-step
+    assert errors["jumping"].max() <= Z_STEP_UM * 1e-6

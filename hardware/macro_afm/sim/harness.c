@@ -13,8 +13,12 @@
  *    being the needle's interference with the virtual sample (rigid: the ruler bends by it);
  *  - the E-stop (NC switch, open = HIGH) and the two push buttons, on request (stdin);
  *  - UART1 (the serial 16x2 status display) kept as the display's two lines.
+ *  - optionally (--catch UM), the friction that spoils contact mode on tall samples: a needle on
+ *    the surface that meets a wall taller than UM while the carriage moves sideways stays caught
+ *    behind it (the ruler bends sideways) until it is lifted off the surface.
  * What it does not: motor dynamics (steps are exact, no lost steps, no inertia), the ruler's
- * vibration (6 Hz) and friction, the HX711's settling and power-down, electrical noise on inputs.
+ * vibration (6 Hz), friction on gentle slopes, the HX711's settling and power-down, electrical
+ * noise on inputs.
  *
  * The virtual sample (--map FILE) is a text file:
  *     # comment lines
@@ -26,7 +30,8 @@
  * micro-steps of 2.5 um, the needle's tip at z * 2.5 um above the bed.
  *
  * stdin commands (one per line; each answered by one line on stdout):
- *   POS                  -> "POS <x> <y> <z> <sim_us>" (micro-steps, simulated microseconds)
+ *   POS                  -> "POS <x> <y> <z> <sim_us> <caught>" (micro-steps, simulated us,
+ *                           1 if the needle is caught on a wall)
  *   ORIGIN               -> put the map's pixel (0, 0) at the current x, y ("OK ORIGIN x y")
  *   ESTOP 1|0            -> open (1: emergency stop) or close (0) the E-stop switch
  *   BUTTON START|SELECT  -> press the button for 100 ms (simulated)
@@ -76,7 +81,7 @@ static uint8_t ext_c = 0xFF, ext_b = 0xFF, ext_l = 0xFF; /* external levels of p
 static int map_nx, map_ny;
 static double map_pitch_um = 1, *map_h;
 static double origin_x_um, origin_y_um;
-static double gain = 12.0, offset = 100000.0, noise = 0.0;
+static double gain = 12.0, offset = 100000.0, noise = 0.0, catch_um = 0.0;
 static unsigned rng_state = 12345;
 
 /* HX711 */
@@ -110,17 +115,39 @@ static double gaussian(void) {
   return sqrt(-2.0 * log(uniform())) * cos(2 * M_PI * uniform());
 }
 
-static double surface_um(void) {
+static double surface_at(double x_um, double y_um) {
   if (!map_h) return 0;
-  double x = pos[0] * XY_STEP_UM - origin_x_um, y = pos[1] * XY_STEP_UM - origin_y_um;
-  long i = lround(x / map_pitch_um), j = lround(y / map_pitch_um);
+  long i = lround((x_um - origin_x_um) / map_pitch_um);
+  long j = lround((y_um - origin_y_um) / map_pitch_um);
   if (i < 0 || j < 0 || i >= map_nx || j >= map_ny) return 0;
   return map_h[j * map_nx + i];
 }
 
+/* Where the needle is: with the carriage, unless it caught on a wall (--catch) */
+static int caught;
+static double needle_x_um, needle_y_um;
+
+static double surface_um(void) { return surface_at(needle_x_um, needle_y_um); }
+
 static double deflection_um(void) {
   double d = surface_um() - pos[2] * Z_STEP_UM;
   return d > 0 ? d : 0;
+}
+
+/* After every step: a needle on the surface that meets a wall taller than catch_um while the
+   carriage moves sideways stays behind it (the ruler bends sideways), until it is lifted off. */
+static void move_needle(int lateral) {
+  double cx = pos[0] * XY_STEP_UM, cy = pos[1] * XY_STEP_UM;
+  if (caught) {
+    if (deflection_um() > 0) return;
+    caught = 0;  /* lifted off: the ruler springs back over the carriage */
+  } else if (lateral && catch_um > 0 && deflection_um() > 0 &&
+             surface_at(cx, cy) - surface_um() > catch_um) {
+    caught = 1;
+    return;
+  }
+  needle_x_um = cx;
+  needle_y_um = cy;
 }
 
 /* -- inputs ------------------------------------------------------------------------------------ */
@@ -177,6 +204,7 @@ static void on_port_a(avr_irq_t *irq, uint32_t value, void *param) {
   if (bit & 1) { dir_level[axis] = v; return; }
   if (v && !step_level[axis] && !enable_level) {
     pos[axis] += dir_level[axis] ? 1 : -1;
+    move_needle(axis < 2);
     update_switches();
   }
   step_level[axis] = v;
@@ -264,8 +292,8 @@ static void command(char *line) {
   int n = sscanf(line, "%31s %31s", a, b);
   if (n < 1) return;
   if (!strcmp(a, "POS")) {
-    printf("POS %ld %ld %ld %llu\n", pos[0], pos[1], pos[2],
-           (unsigned long long)avr_cycles_to_usec(avr, avr->cycle));
+    printf("POS %ld %ld %ld %llu %d\n", pos[0], pos[1], pos[2],
+           (unsigned long long)avr_cycles_to_usec(avr, avr->cycle), caught);
   } else if (!strcmp(a, "ORIGIN")) {
     origin_x_um = pos[0] * XY_STEP_UM;
     origin_y_um = pos[1] * XY_STEP_UM;
@@ -373,6 +401,7 @@ static void usage(void) {
   fprintf(stderr,
           "usage: harness FIRMWARE.elf [--map FILE] [--gain COUNTS_PER_UM] [--offset COUNTS]\n"
           "  [--noise COUNTS] [--rate SPS] [--seed N] [--x-max MM] [--y-max MM] [--z-top MM]\n"
+          "  [--catch UM]\n"
           "  [--start X,Y,Z (mm)] [--origin X,Y (mm)] [--realtime FACTOR]\n");
   exit(2);
 }
@@ -391,6 +420,7 @@ int main(int argc, char **argv) {
     else if (!strcmp(o, "--gain")) gain = atof(v);
     else if (!strcmp(o, "--offset")) offset = atof(v);
     else if (!strcmp(o, "--noise")) noise = atof(v);
+    else if (!strcmp(o, "--catch")) catch_um = atof(v);
     else if (!strcmp(o, "--rate")) rate = atof(v);
     else if (!strcmp(o, "--seed")) rng_state = (unsigned)atol(v);
     else if (!strcmp(o, "--x-max")) x_max = atof(v);
@@ -413,6 +443,8 @@ int main(int argc, char **argv) {
   pos[0] = lround(start[0] * 1000 / XY_STEP_UM);
   pos[1] = lround(start[1] * 1000 / XY_STEP_UM);
   pos[2] = lround(start[2] * 1000 / Z_STEP_UM);
+  needle_x_um = pos[0] * XY_STEP_UM;
+  needle_y_um = pos[1] * XY_STEP_UM;
 
   /* simavr's loader talks on stdout: keep stdout for our protocol ("PTY ...", replies) */
   fflush(stdout);
