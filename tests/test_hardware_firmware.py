@@ -857,3 +857,34 @@ def test_jumping_mode_images_a_tall_block_that_contact_mode_misses(board_factory
     assert errors["contact"][~block].max() <= Z_STEP_UM * 1e-6
     # jumping: every pixel within one z micro-step
     assert errors["jumping"].max() <= Z_STEP_UM * 1e-6
+
+
+@pytest.mark.slow
+def test_pause_getline_resume(board_factory, tmp_path):
+    nx = ny = 4
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    ok(board.command("HM")[0], "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    board.control("ORIGIN")
+    for par, value in (("NX", nx), ("NY", ny)):
+        ok(board.command("SP", par, value)[0], "SP")
+    assert board.command("RS")[0].args == (10,)  # not paused
+    ok(board.command("SS")[0], "SS")
+    first = board.until(lambda f: f.code == "LN", timeout=60)
+    reply, seen = board.command("PA")
+    ok(reply, "PA")
+    seen += board.until(lambda f: f.code == "EV" and f.args[0] == "PAUSED", timeout=30)
+    state, row, col, flags = ok(board.command("ST")[0], "ST")
+    assert state == "PAUSED" and flags & 1
+    at_pause = board.position()
+    time.sleep(0.3)
+    assert board.position() == at_pause
+    reply, again = board.command("GL", 0)
+    assert ok(reply, "GL") == (0, nx)
+    assert [f.args for f in again] == [f.args for f in first if f.code == "PX"]
+    assert board.command("SP", "NX", 8)[0].args == (4,)  # busy while paused
+    ok(board.command("RS")[0], "RS")
+    rest = board.until(lambda f: f.code == "EV" and f.args[0] == "DONE", timeout=60)
+    pixels = {f.args[:2] for f in first + seen + rest if f.code == "PX"}
+    assert pixels == {(r, c) for r in range(ny) for c in range(nx)}
