@@ -248,6 +248,17 @@ def test_calibration_follows_the_closed_forms():
     assert 5.5 < c["f1"] < 6.5  # the paper's "about 6 Hz"
 
 
+def test_build_md_example_runs():
+    """BUILD.md's Python example runs and gives this file's numbers."""
+    text = (MACRO / "BUILD.md").read_text()
+    code = text.split("```python\n", 1)[1].split("```", 1)[0]
+    names = {}
+    exec(compile(code, "BUILD.md", "exec"), names)
+    c = calibration()
+    for name in ("k", "f1", "strain_per_um", "counts_per_um", "force_per_count"):
+        assert names[name] == pytest.approx(c[name], rel=1e-12), name
+
+
 def test_build_md_numbers():
     """Every number of BUILD.md's worked example is the one computed here."""
     text = (MACRO / "BUILD.md").read_text()
