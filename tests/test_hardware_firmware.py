@@ -125,7 +125,8 @@ def test_protocol_h_matches_the_codec():
 
 # -- PROTOCOL.md's golden frames ----------------------------------------------------------------
 def golden_blocks(path: Path = PROTOCOL_MD) -> list[list[tuple[str, bytes]]]:
-    """The ```frames blocks of PROTOCOL.md as lists of (mark, wire bytes with \\n)."""
+    """The ```frames blocks of PROTOCOL.md as lists of (direction, wire bytes with \\n):
+    ">" host to device (a line at column 0), "<" device to host (indented by four spaces)."""
     blocks, current = [], None
     for line in path.read_text().splitlines():
         if line.strip() == "```frames":
@@ -136,10 +137,18 @@ def golden_blocks(path: Path = PROTOCOL_MD) -> list[list[tuple[str, bytes]]]:
             current = None
             continue
         if current is not None:
-            assert line[:2] in ("> ", "< ", "! "), f"golden frame line without a mark: {line!r}"
-            current.append((line[0], line[2:].encode("ascii") + b"\n"))
+            assert line == line.rstrip() and line.strip(), f"golden frame line {line!r}"
+            mark = "<" if line.startswith("    ") else ">"
+            assert line.startswith("    " + line.strip()) or mark == ">", line
+            current.append((mark, line.strip().encode("ascii") + b"\n"))
     assert current is None, "unterminated frames block"
     return blocks
+
+
+def unreadable_lines(path: Path = PROTOCOL_MD) -> list[tuple[bytes, bytes]]:
+    """PROTOCOL.md's table of lines that are not frames on purpose: (line sent, answer)."""
+    rows = re.findall(r"^\| ! `([^`]*)` \| `([^`]*)` \|", path.read_text(), re.M)
+    return [(sent.encode() + b"\n", answer.encode() + b"\n") for sent, answer in rows]
 
 
 def test_golden_frames_have_right_checksums():
@@ -148,19 +157,21 @@ def test_golden_frames_have_right_checksums():
     frames = [f for block in blocks for f in block]
     assert len(frames) > 40
     for mark, wire in frames:
-        if mark == "!":  # invalid on purpose
-            with pytest.raises(FrameError):
-                decode_frame(wire)
-            continue
         frame = decode_frame(wire)
         assert encode_frame(frame) == wire  # canonical: what the encoder sends, byte for byte
         if mark == ">":
             assert frame.seq != 0, wire  # every host command here expects a reply
         elif frame.seq == 0:
             assert frame.code in ("PX", "LN", "EV", "ER"), wire
-    bad_crc = [w for m, w in frames if m == "!" and b"*00" in w]
+    bad = unreadable_lines()
+    assert len(bad) == 2
     with pytest.raises(ChecksumError):
-        decode_frame(bad_crc[0])
+        decode_frame(bad[0][0])
+    for sent, answer in bad:
+        with pytest.raises(FrameError):
+            decode_frame(sent)
+        reply = decode_frame(answer)
+        assert (reply.seq, reply.code) == (0, "ER") and reply.args[0] in (1, 9)
 
 
 def test_golden_replies_echo_their_commands():
@@ -168,8 +179,6 @@ def test_golden_replies_echo_their_commands():
     for block in golden_blocks():
         pending = {}
         for mark, wire in block:
-            if mark == "!":
-                continue
             frame = decode_frame(wire)
             if mark == ">":
                 pending[frame.seq] = frame.code
