@@ -908,3 +908,28 @@ def test_pause_getline_resume(board_factory, tmp_path):
     rest = board.until(lambda f: f.code == "EV" and f.args[0] == "DONE", timeout=60)
     pixels = {f.args[:2] for f in first + seen + rest if f.code == "PX"}
     assert pixels == {(r, c) for r in range(ny) for c in range(nx)}
+
+
+@pytest.mark.slow
+def test_gauge_disconnected_mid_scan(board_factory, tmp_path):
+    """The HX711 stops answering: ER 8 (SENSOR) after 500 ms, FAULT, the finished line kept."""
+    nx = ny = 4
+    sample = write_map(tmp_path / "sample.txt", bumpy(nx, ny), 200)
+    board = board_factory(*BASE, "--map", str(sample))
+    ok(board.command("HM")[0], "HM")
+    board.until(lambda f: f.code == "EV" and f.args[0] == "HOMED", timeout=60)
+    board.control("ORIGIN")
+    for par, value in (("NX", nx), ("NY", ny)):
+        ok(board.command("SP", par, value)[0], "SP")
+    ok(board.command("SS")[0], "SS")
+    board.until(lambda f: f.code == "LN", timeout=60)
+    assert board.control("GAUGE 0") == "OK GAUGE 0"
+    tail = board.until(lambda f: f.code == "ER", timeout=30)
+    assert (tail[-1].seq, tail[-1].args) == (0, (8,))
+    assert ok(board.command("ST")[0], "ST")[0] == "FAULT"
+    time.sleep(0.5)  # more than 500 ms of simulated time without a reading
+    assert board.command("RG")[0].args == (8,)
+    assert ok(board.command("GL", 0)[0], "GL") == (0, nx)
+    board.control("GAUGE 1")
+    time.sleep(0.2)
+    assert ok(board.command("RG")[0], "RG")

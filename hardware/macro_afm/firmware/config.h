@@ -57,5 +57,6 @@
 #define MAX_REG_ITER 8        // regulation iterations per pixel before it is recorded anyway
 #define SETTLE_MS 0           // wait after each move before the gauge is trusted (see BUILD.md)
 #define SENSOR_TIMEOUT_MS 500 // no HX711 reading for this long: ERR_SENSOR
+#define APPROACH_SENSOR_MS 150  // ... or this long while descending blind (HX711 at 10/s: 100 ms)
 
 #endif

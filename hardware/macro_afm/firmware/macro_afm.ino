@@ -269,7 +269,10 @@ static void scan_step() {
         fault(ERR_LIMIT, EVT_LIMIT, "Z");
         return;
       }
-      if (gauge.count < need_count) return;
+      if (gauge.count < need_count) {
+        if (millis() - gauge.last_ms > APPROACH_SENSOR_MS) sensor_fault();  // never descend blind
+        return;
+      }
       need_count = gauge.count + 1;
       long d = gauge.value - free_level;
       if (d > CONTACT_COUNTS || d < -CONTACT_COUNTS) {

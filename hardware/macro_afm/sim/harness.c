@@ -36,6 +36,7 @@
  *   ESTOP 1|0            -> open (1: emergency stop) or close (0) the E-stop switch
  *   BUTTON START|SELECT  -> press the button for 100 ms (simulated)
  *   FORCE <SWITCH> 1|0|-1 -> force a limit switch (X_MIN ... Z_MAX) closed, open, or back to auto
+ *   GAUGE 0|1            -> disconnect (0) or reconnect (1) the HX711 (DOUT stays high)
  *   DISPLAY              -> "DISPLAY <line 1>|<line 2>"
  *   QUIT                 -> exit (so does end of file on stdin: it never outlives its parent)
  * Build: ../build.sh (gcc -lsimavr -lutil).
@@ -86,7 +87,7 @@ static unsigned rng_state = 12345;
 
 /* HX711 */
 static avr_cycle_count_t hx_period;
-static int hx_ready, hx_bits, hx_sck;
+static int hx_ready, hx_bits, hx_sck, hx_dead;
 static uint32_t hx_word;
 
 /* UART0 <-> pty */
@@ -213,6 +214,11 @@ static void on_port_a(avr_irq_t *irq, uint32_t value, void *param) {
 /* -- HX711 ------------------------------------------------------------------------------------- */
 static avr_cycle_count_t hx_convert(avr_t *a, avr_cycle_count_t when, void *param) {
   (void)a; (void)param;
+  if (hx_dead) { /* unplugged: DOUT floats high (the module's pull-up), no conversions */
+    drive_c(7, 1);
+    hx_ready = 0;
+    return when + hx_period;
+  }
   if (hx_bits == 0 || hx_bits >= 25) { /* not in the middle of a read-out */
     double v = offset + gain * deflection_um() + (noise > 0 ? noise * gaussian() : 0);
     long c = lround(v);
@@ -315,6 +321,9 @@ static void command(char *line) {
     sw_force[s] = atoi(c) < 0 ? -1 : atoi(c) != 0;
     update_switches();
     printf("OK FORCE %s %d\n", b, sw_force[s]);
+  } else if (!strcmp(a, "GAUGE") && n == 2) {
+    hx_dead = atoi(b) == 0;
+    printf("OK GAUGE %d\n", !hx_dead);
   } else if (!strcmp(a, "DISPLAY")) {
     printf("DISPLAY %s|%s\n", display[0], display[1]);
   } else if (!strcmp(a, "QUIT")) {
