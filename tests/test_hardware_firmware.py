@@ -396,6 +396,17 @@ class Board:
                 stream.close()
 
 
+def eventually(condition, timeout: float = 20.0, every: float = 0.05) -> bool:
+    """Poll ``condition()`` until it is true (the emulator's pace depends on the machine's load);
+    False after ``timeout`` s."""
+    deadline = time.monotonic() + timeout
+    while time.monotonic() < deadline:
+        if condition():
+            return True
+        time.sleep(every)
+    return False
+
+
 def ok(frame: Frame, code: str) -> tuple:
     assert frame.code == "OK" and frame.args[0] == code, frame
     return frame.args[1:]
@@ -661,16 +672,14 @@ def test_button_starts_the_preset_and_display_shows_it(board_factory, tmp_path):
     home = (HOME_BACKOFF + 1) * XY_STEP_UM / 1000  # mm: where homing puts x = y = 0
     board = board_factory(*BASE, "--map", str(sample), "--origin", f"{home},{home}")
     board.command("ID")
-    board.control("BUTTON SELECT")  # preset 0 -> 1
-    time.sleep(0.2)
-    assert ok(board.command("GP", "PR")[0], "GP") == ("PR", 1)
+    board.control("BUTTON SELECT")  # preset 0 -> 1 (pressed for 100 ms, debounced 30 ms)
+    assert eventually(lambda: ok(board.command("GP", "PR")[0], "GP") == ("PR", 1))
     ok(board.command("SP", "PR", 0)[0], "SP")
     board.control("BUTTON START")  # not homed: homes, then scans preset 0
     frames = board.until(lambda f: f.code == "PX", timeout=60)
     words = [f.args for f in frames if f.code == "EV"]
     assert ("BUTTON", 0) in words and ("HOMED",) in words
-    time.sleep(0.5)
-    assert board.control("DISPLAY").startswith("DISPLAY SCANNING P0 H")
+    assert eventually(lambda: board.control("DISPLAY").startswith("DISPLAY SCANNING P0 H"))
     ok(board.command("AB")[0], "AB")
 
 
@@ -927,9 +936,8 @@ def test_gauge_disconnected_mid_scan(board_factory, tmp_path):
     tail = board.until(lambda f: f.code == "ER", timeout=30)
     assert (tail[-1].seq, tail[-1].args) == (0, (8,))
     assert ok(board.command("ST")[0], "ST")[0] == "FAULT"
-    time.sleep(0.5)  # more than 500 ms of simulated time without a reading
-    assert board.command("RG")[0].args == (8,)
+    # after 500 ms of simulated time without a reading
+    assert eventually(lambda: board.command("RG")[0].args == (8,))
     assert ok(board.command("GL", 0)[0], "GL") == (0, nx)
     board.control("GAUGE 1")
-    time.sleep(0.2)
-    assert ok(board.command("RG")[0], "RG")
+    assert eventually(lambda: board.command("RG")[0].code == "OK")
