@@ -114,14 +114,15 @@ def _defines(path):
 
 
 def golden_frames(text: str) -> list:
-    """(mark, line) of every line of the spec's ``frames`` blocks: ``>`` host to device, ``<``
-    device to host, ``!`` not a valid frame on purpose."""
+    """(mark, line) of every line of the spec's ``frames`` blocks: ``>`` host to device (a line
+    at column 0), ``<`` device to host (indented by four spaces), and ``!`` a line that is not a
+    valid frame on purpose (the spec's table of such lines: ``| ! `line` | `answer` |``)."""
     out = []
     for block in re.findall(r"^```frames\n(.*?)^```", text, re.M | re.S):
         for line in block.splitlines():
             if line.strip():
-                mark, _, frame = line.partition(" ")
-                out.append((mark, frame))
+                out.append(("<" if line.startswith("    ") else ">", line.strip()))
+    out += [("!", line) for line in re.findall(r"^\| ! `([^`]*)` \|", text, re.M)]
     return out
 
 
@@ -140,7 +141,8 @@ def check_golden(frames) -> int:
 
 
 def test_golden_frames_parser_on_a_sample_block():
-    text = "x\n```frames\n> 1 ID*C1\n< 1 OK ID MACROAFM 1 0.1.0*22\n! 1 ID*C2\n```\n"
+    text = ("x\n```frames\n1 ID*C1\n    1 OK ID MACROAFM 1 0.1.0*22\n```\n\n"
+            "| line | answer |\n|---|---|\n| ! `1 ID*C2` | `0 ER 1*xx` |\n")
     frames = golden_frames(text)
     assert [m for m, _ in frames] == [">", "<", "!"]
     assert check_golden(frames) == 3
