@@ -1,4 +1,4 @@
-"""The digital lock-in and the AD630 against closed forms: ENBW, settling, harmonic pickup, recovery.
+"""The lock-in and the AD630 against closed forms: ENBW, settling, harmonic pickup, recovery.
 
 Sources: the ENBW of N RC stages is the integral of |H|^2 (computed here by scipy.integrate.quad,
 independently of the Gamma-function closed form) and the SR830 manual's table (1/(4 tau),

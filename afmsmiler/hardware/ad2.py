@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..validation import (check_choice, check_finite, check_integer, check_positive, check_range)
+from ..validation import check_finite, check_integer, check_positive, check_range
 from .errors import HardwareError
 
 __all__ = ["AD2Unavailable", "AD2Config", "PatternTiming", "Acquisition", "pattern_timing",

@@ -1,4 +1,4 @@
-"""The educational AFM's signal chain: heater drive at omega, lever motion at 2 omega, bridge, noise.
+"""The educational AFM's chain: heater drive at omega, lever motion at 2 omega, bridge, noise.
 
 The low-cost educational AFM (Xia et al., Mechatronics 76, 102550 (2021)) uses an active probe: a
 heater on the lever bends it through an aluminium/silicon bimorph (electrothermal actuation) and a

@@ -21,10 +21,11 @@ AND at every odd harmonic h with weight 4 / (pi h). Scaled by pi / 2 (instead of
 reference's 2) it reads the fundamental's A as the sine reference does, and a component at the
 odd harmonic h of the reference with the weight 1 / h (1/3, 1/5, ...): the harmonic pickup.
 Even harmonics are not picked up. The quadrature square sq(x + pi/2) carries
-sin(h x + h pi/2) = (-1)^((h-1)/2) cos(h x), so a leak's phase reads as its own for h = 1, 5, 9
-... and mirrored (-theta_h) for h = 3, 7, .... Each sample of the square reference is its mean over the
-sample interval (a box average), so an edge between two samples is not moved to the nearer one;
-this multiplies harmonic h by sinc(h f_ref / f_s) = 1 - (pi h f_ref / f_s)^2 / 6 + ...
+sin(h x + h pi/2) = (-1)^((h-1)/2) cos(h x), so a leak's phase reads as its own for h = 1, 5,
+9 ... and mirrored (-theta_h) for h = 3, 7, .... Each sample of the square reference is its
+mean over the sample interval (a box average), so an edge between two samples is not moved to
+the nearer one; this multiplies harmonic h by sinc(h f_ref / f_s) = 1 - (pi h f_ref / f_s)^2 / 6
++ ...
 
 The low-pass and its noise bandwidth
 ------------------------------------
