@@ -99,7 +99,7 @@ def test_noisy_chain_lock_in_recovers_the_closed_form_within_1_percent_and_1_deg
 
 def test_noise_records_have_their_densities_variance():
     probe = ActiveProbe()
-    run = simulate(probe, amplifier_noise=1e-6, amplifier_gain=1.0, record_duration=5e-3, seed=3)
+    run = simulate(probe, amplifier_noise=1e-12, amplifier_gain=1.0, record_duration=5e-3, seed=3)
     # the electrical noise is white (the amplifier's dominates): variance e_n^2 f_s / 2
     electrical = run.output - run.bridge
     assert np.var(electrical) == pytest.approx(1e-12 * run.sample_rate / 2, rel=0.03)

@@ -614,6 +614,8 @@ class SimulatedDwfLibrary:
         Simulate the noise sources.
     seed : int
         Seed of the noise (and of an untriggered pattern's phase).
+    devices : list
+        The devices opened so far (each records its ``calls``; tests read them).
     """
 
     probe: object = None

@@ -65,9 +65,10 @@ DC_VOLTAGE = Electrothermal.INPUTS["actuation"].with_(default=0.0)
 HALF_RESONANCE_RATIO = Parameter(name="half_resonance_ratio", unit="", default=1.0, low=0.1,
                                  high=2.0, slider_low=0.98, slider_high=1.02,
                                  label="drive frequency / (f1 / 2)")
-AMPLIFIER_NOISE = Parameter(name="amplifier_noise", unit="V/Hz^0.5", display_unit="nV/rtHz",
-                            default=10e-9, low=0.0, high=1e-3, slider_low=1e-9,
-                            slider_high=100e-6, log=True, label="amplifier input noise e_n")
+AMPLIFIER_NOISE = Parameter(name="amplifier_noise", unit="V^2/Hz", display_unit="nV^2/Hz",
+                            default=100e-18, low=0.0, high=1e-6, slider_low=1e-18,
+                            slider_high=1e-8, log=True,
+                            label="amplifier noise e_n^2 (100 nV^2/Hz = (10 nV)^2/Hz)")
 AMPLIFIER_GAIN = Parameter(name="amplifier_gain", unit="", default=100.0, low=1.0, high=1e4,
                            log=True, label="amplifier gain G")
 INTERFERENCE = Parameter(name="interference", unit="V", display_unit="uV", default=0.0, low=0.0,
@@ -236,9 +237,9 @@ class ChainRun:
 
 
 def _electrical_density(sensor, amplifier_noise, f):
-    """Johnson + Hooge (at ``f``) + amplifier noise density at the amplifier input, V^2/Hz."""
+    """Johnson + Hooge (at ``f``) + amplifier (``amplifier_noise``, V^2/Hz) density, V^2/Hz."""
     return (4 * BOLTZMANN * sensor.temperature * sensor.resistance
-            + amplifier_noise * amplifier_noise
+            + amplifier_noise
             + sensor.bias_voltage ** 2 * sensor.hooge / (4 * sensor.carrier_number) / f)
 
 
@@ -271,7 +272,8 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     half_resonance_ratio : float
         Drive frequency over f1 / 2.
     amplifier_noise : float
-        Amplifier input noise density e_n in V/sqrt(Hz).
+        Amplifier input noise density e_n^2 in V^2/Hz (one-sided; e_n = 10 nV/sqrt(Hz) is
+        1e-16 V^2/Hz).
     amplifier_gain : float
         Amplifier gain G.
     interference : float
@@ -297,7 +299,7 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     probe = ActiveProbe() if probe is None else check_instance("probe", probe, ActiveProbe)
     dc_voltage = DC_VOLTAGE.check(dc_voltage)
     ratio = HALF_RESONANCE_RATIO.check(half_resonance_ratio)
-    e_n = AMPLIFIER_NOISE.check(amplifier_noise)
+    e_n2 = AMPLIFIER_NOISE.check(amplifier_noise)
     gain = AMPLIFIER_GAIN.check(amplifier_gain)
     interference = INTERFERENCE.check(interference)
     spp = check_integer("samples_per_period", samples_per_period, int(SAMPLES_PER_PERIOD.low),
@@ -322,7 +324,7 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     deflection = np.fft.irfft(np.fft.rfft(power) * probe.deflection_per_power(freqs), n)
 
     rng = np.random.default_rng(seed)
-    electrical = _electrical_density(s, e_n, np.maximum(freqs, freqs[1]))
+    electrical = _electrical_density(s, e_n2, np.maximum(freqs, freqs[1]))
     if noise:
         brownian = _noise(rng, brownian_density(probe, freqs), n, fs)
         v_noise = _noise(rng, electrical, n, fs)
@@ -337,7 +339,7 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     volts_per_metre = s.sensitivity(at=float((p_dc * h_0).real))
     z2 = complex(p_2 * h_2)
     density = (float(brownian_density(probe, 2 * f)) * volts_per_metre ** 2
-               + float(_electrical_density(s, e_n, 2 * f)))
+               + float(_electrical_density(s, e_n2, 2 * f)))
     return ChainRun(probe=probe, drive_frequency=f, sample_rate=fs, time=t,
                     heater_voltage=voltage, power=power, deflection=deflection,
                     brownian=brownian, bridge=bridge, output=output,

@@ -27,7 +27,11 @@ DEVICE = "EDUAFM"
 
 
 class Command(str, enum.Enum):
-    """Host commands (``SEQ CODE [ARG ...]``)."""
+    """Host commands (``SEQ CODE [ARG ...]``).
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
 
     IDENTIFY = "ID"
     SET = "SP"
@@ -39,7 +43,11 @@ class Command(str, enum.Enum):
 
 
 class Param(str, enum.Enum):
-    """Parameters of ``SP``/``GP`` (integers)."""
+    """Parameters of ``SP``/``GP`` (integers).
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
 
     NX = "NX"          # pixels per line
     NY = "NY"          # lines
@@ -53,7 +61,11 @@ READ_ONLY = frozenset({Param.ZSTEP})
 
 
 class Event(str, enum.Enum):
-    """Words of ``0 EV <WORD>``."""
+    """Words of ``0 EV <WORD>``.
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
 
     BOOT = "BOOT"
     DONE = "DONE"
@@ -62,7 +74,11 @@ class Event(str, enum.Enum):
 
 
 class ErrorCode(enum.IntEnum):
-    """Error numbers, shared by every device of module (h)."""
+    """Error numbers, shared by every device of module (h).
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
 
     CHECKSUM = 1
     UNKNOWN_COMMAND = 2
@@ -77,7 +93,11 @@ class ErrorCode(enum.IntEnum):
 
 
 class State(str, enum.Enum):
-    """States of ``OK ST <state> <row> <col>``."""
+    """States of ``OK ST <state> <row> <col>``.
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
 
     IDLE = "IDLE"
     SCANNING = "SCANNING"
