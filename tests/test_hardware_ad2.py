@@ -34,16 +34,21 @@ def session():
 def test_pattern_timing_from_scratch():
     t = pattern_timing(100e6, 81.5e3, 0.0)
     assert t.divider == 1
-    assert t.half_period == 614                          # 100e6 / 81.5e3 / 2 = 613.5 -> even
-    assert t.frequency == pytest.approx(100e6 / 1228)
+    assert t.period == 1227                              # 100e6 / 81.5e3 = 1226.99
+    assert (t.low_count, t.high_count) == (613, 614)
+    assert t.frequency == pytest.approx(100e6 / 1227)
     assert (t.start_high, t.start_count) == (True, 614)  # rising edge at the trigger
     q = pattern_timing(100e6, 81.5e3, math.pi / 2)
-    assert (q.start_high, q.start_count) == (True, 307)  # high for the first quarter: cos
+    assert (q.start_high, q.start_count) == (True, 614 - 307)  # high for the first quarter: cos
+    assert q.phase == pytest.approx(math.pi / 2, abs=2 * math.pi / 1227 / 2)
     late = pattern_timing(100e6, 81.5e3, math.pi)
-    assert (late.start_high, late.start_count) == (False, 614)
+    assert (late.start_high, late.start_count) == (False, 1227 - 614)
     slow = pattern_timing(100e6, 10.0, 0.0, max_count=32768)
     assert slow.divider == math.ceil(100e6 / (2 * 10.0 * 32768))
     assert slow.frequency == pytest.approx(10.0, rel=1e-4)
+    # one count of the period: the frequency grid at 81 kHz steps by 1 / 1227 = 0.08 %
+    step = pattern_timing(100e6, 100e6 / 1226).frequency / t.frequency - 1
+    assert step == pytest.approx(1 / 1226, rel=1e-9)
     with pytest.raises(ValueError, match="frequency must be at most"):
         pattern_timing(100e6, 40e6)
 
@@ -62,11 +67,12 @@ def test_configure_makes_the_calls_the_paper_scheme_needs(session):
     assert dev.last("analogOut", "nodePhaseSet") == (0, CARRIER, 0.0)
     # DIO 0 in phase, DIO 1 a quarter period later, both 50 % squares on the same divider
     calls = [(n, a) for i, n, a in dev.calls if i == "digitalOut"]
-    for pin, start in ((0, ref_i.half_period), (1, ref_i.half_period // 2)):
+    quarter = round(ref_i.period / 4)
+    for pin, start in ((0, ref_i.high_count), (1, ref_i.high_count - quarter)):
         assert ("enableSet", (pin, True)) in calls
         assert ("typeSet", (pin, pydwf.DwfDigitalOutType.Pulse)) in calls
         assert ("dividerSet", (pin, ref_i.divider)) in calls
-        assert ("counterSet", (pin, ref_i.half_period, ref_i.half_period)) in calls
+        assert ("counterSet", (pin, ref_i.low_count, ref_i.high_count)) in calls
         assert ("counterInitSet", (pin, True, start)) in calls
     # the pattern and the scope start with WaveGen 1
     assert dev.last("digitalOut", "triggerSourceSet") == (WAVE_START,)
