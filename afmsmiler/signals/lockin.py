@@ -130,7 +130,7 @@ def settling_time(time_constant: float = TIME_CONSTANT.default,
     Returns
     -------
     float
-        tau x the root of Q(N, x) = residual (about 9.2 tau for N = 1, 15 tau for N = 4 at
+        tau x the root of Q(N, x) = residual (about 9.2 tau for N = 1, 16 tau for N = 4 at
         1e-4).
     """
     tau = check_positive("time_constant", time_constant, "s")
