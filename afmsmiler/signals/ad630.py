@@ -157,12 +157,14 @@ def demodulate(signal, *, sample_rate: float, frequency: float,
     fs = check_positive("sample_rate", sample_rate, "Hz")
     f_ref = check_integer("harmonic", harmonic, int(HARMONIC.low), int(HARMONIC.high)) \
         * check_positive("frequency", frequency, "Hz")
-    tau = check_positive("time_constant", time_constant, "s")
+    tau = TIME_CONSTANT.check(time_constant)
     settle = settling_time(tau, order)
     duration, period = s.size / fs, 1.0 / f_ref
     if settle + period > duration:
-        raise ValueError(f"time_constant {tau:g} s with order {order} needs a record of at least "
-                         f"{settle + period:.3g} s, got {duration:.3g} s")
+        raise ValueError(f"signal of {s.size} samples at sample_rate {fs:g} Hz lasts "
+                         f"{duration:.3g} s; it must last at least {settle + period:.3g} s: the "
+                         f"settling time of time_constant {tau:g} s with order {order}, plus one "
+                         f"period of the reference at harmonic x frequency = {f_ref:g} Hz")
     ref_i, ref_q = reference_waveforms(s.size, sample_rate=fs, frequency=f_ref, shape="square",
                                        phase=phase)
     sw_x, sw_y = switch(s, ref_i, gain=gain), switch(s, ref_q, gain=gain)

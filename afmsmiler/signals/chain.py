@@ -358,6 +358,6 @@ def brownian_density(probe: ActiveProbe, f) -> np.ndarray:
     f : array_like
         Frequencies in Hz.
     """
-    s = probe.sensor
+    s = check_instance("probe", probe, ActiveProbe).sensor
     return thermal_noise_density(s.lever, f, quality_factor=s.quality_factor,
                                  temperature=s.temperature)

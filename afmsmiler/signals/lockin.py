@@ -109,7 +109,7 @@ def enbw(time_constant: float = TIME_CONSTANT.default,
     ValueError
         If ``time_constant`` is not positive or ``order`` not an integer in range.
     """
-    tau = check_positive("time_constant", time_constant, "s")
+    tau = TIME_CONSTANT.check(time_constant)
     n = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
     return math.exp(math.lgamma(n - 0.5) - math.lgamma(n)) / (4 * math.sqrt(math.pi) * tau)
 
@@ -133,7 +133,7 @@ def settling_time(time_constant: float = TIME_CONSTANT.default,
         tau x the root of Q(N, x) = residual (about 9.2 tau for N = 1, 16 tau for N = 4 at
         1e-4).
     """
-    tau = check_positive("time_constant", time_constant, "s")
+    tau = TIME_CONSTANT.check(time_constant)
     n = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
     residual = check_range("residual", residual, 0.0, 1.0, low_inclusive=False,
                            high_inclusive=False)
@@ -162,7 +162,7 @@ def lowpass(x, *, sample_rate: float, time_constant: float = TIME_CONSTANT.defau
     """
     x = check_array("x", x, ndim=1)
     fs = check_positive("sample_rate", sample_rate, "Hz")
-    tau = check_positive("time_constant", time_constant, "s")
+    tau = TIME_CONSTANT.check(time_constant)
     n = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
     a = -math.expm1(-1.0 / (fs * tau))
     y = x
@@ -373,7 +373,7 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
     fs = check_positive("sample_rate", sample_rate, "Hz")
     f = check_positive("frequency", frequency, "Hz")
     n = check_integer("harmonic", harmonic, int(HARMONIC.low), int(HARMONIC.high))
-    tau = check_positive("time_constant", time_constant, "s")
+    tau = TIME_CONSTANT.check(time_constant)
     order = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
     shape = check_choice("shape", shape, REFERENCES)
     filter = check_choice("filter", filter, FILTERS)
@@ -388,9 +388,11 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
     if filter == "rc":
         settle = settling_time(tau, order)
         if settle + period > duration:
-            raise ValueError(f"time_constant {tau:g} s with order {order} needs a record of "
-                             f"at least {settle + period:.3g} s (settling time + one reference "
-                             f"period), got {duration:.3g} s")
+            raise ValueError(f"signal of {s.size} samples at sample_rate {fs:g} Hz lasts "
+                             f"{duration:.3g} s; it must last at least {settle + period:.3g} s: "
+                             f"the settling time of time_constant {tau:g} s with order {order}, "
+                             f"plus one period of the reference at harmonic x frequency = "
+                             f"{f_ref:g} Hz")
         x_trace = lowpass(mixed_i, sample_rate=fs, time_constant=tau, order=order)
         y_trace = lowpass(mixed_q, sample_rate=fs, time_constant=tau, order=order)
         whole = math.floor((duration - settle) / period) * period
@@ -399,8 +401,9 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
     else:
         whole = math.floor(duration / period) * period
         if whole <= 0:
-            raise ValueError(f"filter 'average' needs at least one reference period "
-                             f"({period:.3g} s), got {duration:.3g} s")
+            raise ValueError(f"signal of {s.size} samples at sample_rate {fs:g} Hz lasts "
+                             f"{duration:.3g} s; filter 'average' needs one period of the "
+                             f"reference at harmonic x frequency = {f_ref:g} Hz, {period:.3g} s")
         count = np.arange(1, s.size + 1)
         x_trace, y_trace = np.cumsum(mixed_i) / count, np.cumsum(mixed_q) / count
         settle, start = 0.0, 0
