@@ -18,6 +18,7 @@ from __future__ import annotations
 import enum
 
 from ..framing import Frame
+from ..macro.codec import ErrorCode   # the error numbers every device of module (h) shares
 
 __all__ = ["DEVICE", "Command", "Param", "Event", "ErrorCode", "State", "READ_ONLY",
            "command", "pixel", "line_end", "event", "stream_error"]
@@ -71,25 +72,6 @@ class Event(str, enum.Enum):
     DONE = "DONE"
     ABORTED = "ABORTED"
     FAULT = "FAULT"
-
-
-class ErrorCode(enum.IntEnum):
-    """Error numbers, shared by every device of module (h).
-
-    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
-    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
-    """
-
-    CHECKSUM = 1
-    UNKNOWN_COMMAND = 2
-    BAD_ARGUMENT = 3
-    BUSY = 4
-    NOT_HOMED = 5
-    LIMIT = 6
-    ESTOP = 7
-    SENSOR = 8
-    MALFORMED = 9
-    STATE = 10
 
 
 class State(str, enum.Enum):
