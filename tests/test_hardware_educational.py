@@ -228,3 +228,21 @@ def test_over_a_pty_with_pyserial_like_a_real_port():
     finally:
         port.close()
         server.stop()
+
+
+@pytest.mark.hardware
+def test_a_real_instrument_scans_when_one_is_plugged_in():
+    """The same scan against the instrument: AFMSMILER_HARDWARE=1 and AFMSMILER_EDUAFM_PORT."""
+    import os
+    port = os.environ.get("AFMSMILER_EDUAFM_PORT")
+    if not os.environ.get("AFMSMILER_HARDWARE") or not port:
+        pytest.skip("no educational AFM: set AFMSMILER_HARDWARE=1 and AFMSMILER_EDUAFM_PORT")
+    link = SerialTransport(port)
+    try:
+        afm = EducationalAFM(link, timeout=2.0)
+        assert afm.connect().device == "EDUAFM"
+        afm.configure(pixels=8, lines=4, pitch=PITCH)
+        image = afm.scan()
+        assert image.shape == (4, 8) and np.all(np.isfinite(image.heights))
+    finally:
+        link.close()
