@@ -85,3 +85,9 @@ def test_out_of_range_values_are_named(panel):
         panel.set(ac_voltage=50.0)
     with pytest.raises(ValueError, match="shape"):
         panel.set(shape="triangle")
+
+
+def test_a_time_constant_too_long_to_simulate_is_named():
+    from afmsmiler.signals.demo import lock_in_demo
+    with pytest.raises(ValueError, match="time_constant 1 s with order 4 needs a record"):
+        lock_in_demo(time_constant=1.0)

@@ -17,7 +17,7 @@ from ..parameters import read_only
 from ..validation import check_choice, check_integer
 from .chain import (AC_VOLTAGE, AMPLIFIER_GAIN, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO,
                     INTERFERENCE, ActiveProbe, ChainRun, simulate)
-from .lockin import (FILTER_ORDER, REFERENCES, TIME_CONSTANT, LockInResult, Spectrum,
+from .lockin import (FILTER_ORDER, LIMITS, REFERENCES, TIME_CONSTANT, LockInResult, Spectrum,
                      amplitude_spectrum, harmonic_pickup, lock_in, settling_time)
 
 __all__ = ["LockInDemo", "lock_in_demo", "DEFAULTS"]
@@ -108,6 +108,11 @@ def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
     probe = ActiveProbe.build(ac_voltage=AC_VOLTAGE.check(ac_voltage))
     f = HALF_RESONANCE_RATIO.check(half_resonance_ratio) * probe.resonance_frequency / 2
     record = settling_time(tau, order) + DEFAULTS["extra_periods"] / (2 * f)
+    if math.ceil(record * f) * DEFAULTS["samples_per_period"] > LIMITS["samples"]:
+        longest = LIMITS["samples"] / (DEFAULTS["samples_per_period"] * f)
+        raise ValueError(f"time_constant {tau:g} s with order {order} needs a record of "
+                         f"{record:.3g} s; at most {longest:.3g} s ({LIMITS['samples']} samples) "
+                         f"can be simulated: choose a shorter time constant")
     run = simulate(probe, half_resonance_ratio=half_resonance_ratio,
                    amplifier_noise=amplifier_noise, amplifier_gain=amplifier_gain,
                    interference=interference, samples_per_period=DEFAULTS["samples_per_period"],
