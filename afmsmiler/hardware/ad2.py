@@ -13,7 +13,9 @@ references; that they are the in-phase and quadrature squares at 2 w is our read
 Keeping them in phase: the pattern generator and the scope are triggered by WaveGen 1's start
 (``DwfTriggerSource.AnalogOut1``), so all three start together; the squares' frequency is what the
 pattern clock can make (100 MHz / (divider x counts per period)), and the sine is set to
-exactly that over ``harmonic``, so they never drift apart.
+exactly that over ``harmonic``, so they never drift apart. A fixed delay between the instruments'
+starts (a few clock counts) or in the AD630 boards shifts every reading's phase by the same angle:
+calibrate it once with ``reference_phases`` (both shifted together).
 
 The code takes a ``DwfLibrary``-like object (dependency injection): pydwf's own, or
 :class:`SimulatedDwfLibrary`, which records every call and answers the scope with the AD630
