@@ -95,6 +95,7 @@ UNITS = MappingProxyType({
     "Hz/m": ("Hz/m", 1.0), "GHz/nm": ("Hz/m", 1e9 / 1e-9),
     # electrical, magnetic, optical
     "V": ("V", 1.0), "mV": ("V", 1e-3), "uV": ("V", 1e-6),
+    "V^2/Hz": ("V^2/Hz", 1.0), "nV^2/Hz": ("V^2/Hz", 1e-18),
     "C": ("C", 1.0), "fC": ("C", 1e-15),
     "A": ("A", 1.0), "mA": ("A", 1e-3), "uA": ("A", 1e-6),
     "W": ("W", 1.0), "mW": ("W", 1e-3), "uW": ("W", 1e-6),

@@ -1,0 +1,152 @@
+"""The educational AFM's protocol (device ``EDUAFM``, protocol version 1): codes and frames.
+
+Pure (no I/O). The frame format is module (h)'s (:mod:`afmsmiler.hardware.framing`); this module
+names the educational AFM's commands, parameters, events and errors (the same error numbers as
+every device of module (h)), and builds and parses its frames. ``PROTOCOL.md`` beside it is the
+specification, with golden frames that the tests decode.
+
+The instrument scans its sample with the active probe's 2-omega amplitude regulated (see
+:mod:`afmsmiler.signals`) and streams each pixel's height as it is measured::
+
+    0 PX <row> <col> <z-counts>        height = z-counts x ZS pm
+    0 LN <row> <n-pixels>              the end of a line
+    0 EV <WORD> [ARG]                  BOOT, DONE, ABORTED, FAULT
+    0 ER <n>                           after EV FAULT: the scan stopped (state FAULT until SS)
+"""
+from __future__ import annotations
+
+import enum
+
+from ..framing import Frame
+from ..macro.codec import ErrorCode   # the error numbers every device of module (h) shares
+
+__all__ = ["DEVICE", "Command", "Param", "Event", "ErrorCode", "State", "READ_ONLY",
+           "command", "pixel", "line_end", "event", "stream_error"]
+
+#: The device's name in its ``ID`` reply.
+DEVICE = "EDUAFM"
+
+
+class Command(str, enum.Enum):
+    """Host commands (``SEQ CODE [ARG ...]``).
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
+
+    IDENTIFY = "ID"
+    SET = "SP"
+    GET = "GP"
+    START = "SS"
+    ABORT = "AB"
+    STATUS = "ST"
+    GETLINE = "GL"
+
+
+class Param(str, enum.Enum):
+    """Parameters of ``SP``/``GP`` (integers).
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
+
+    NX = "NX"          # pixels per line
+    NY = "NY"          # lines
+    PITCH = "DX"       # pixel spacing in nm
+    ZSTEP = "ZS"       # height per count in pm (read-only)
+    SETPOINT = "SE"    # 2-omega amplitude setpoint in percent of the free amplitude
+
+
+#: Parameters the host may only read.
+READ_ONLY = frozenset({Param.ZSTEP})
+
+
+class Event(str, enum.Enum):
+    """Words of ``0 EV <WORD>``.
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
+
+    BOOT = "BOOT"
+    DONE = "DONE"
+    ABORTED = "ABORTED"
+    FAULT = "FAULT"
+
+
+class State(str, enum.Enum):
+    """States of ``OK ST <state> <row> <col>``.
+
+    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
+    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
+    """
+
+    IDLE = "IDLE"
+    SCANNING = "SCANNING"
+    FAULT = "FAULT"
+
+
+def command(seq: int, code: Command, *args) -> Frame:
+    """A host command frame.
+
+    Parameters
+    ----------
+    seq : int
+        1..255.
+    code : Command
+        The command.
+    *args : int or str
+        Its arguments (a :class:`Param` is sent as its code).
+    """
+    return Frame(seq, Command(code).value,
+                 tuple(a.value if isinstance(a, enum.Enum) else a for a in args))
+
+
+def pixel(row: int, col: int, counts: int) -> Frame:
+    """The stream frame of one pixel, ``0 PX row col counts``.
+
+    Parameters
+    ----------
+    row, col : int
+        The pixel (row 0 scanned first, col along the fast axis).
+    counts : int
+        Its height in counts of ZS pm.
+    """
+    return Frame(0, "PX", (int(row), int(col), int(counts)))
+
+
+def line_end(row: int, n: int) -> Frame:
+    """The end of line ``row`` of ``n`` pixels, ``0 LN row n``.
+
+    Parameters
+    ----------
+    row : int
+        The line.
+    n : int
+        Its pixels.
+    """
+    return Frame(0, "LN", (int(row), int(n)))
+
+
+def event(word: Event, *args) -> Frame:
+    """An event frame ``0 EV WORD [ARG]``.
+
+    Parameters
+    ----------
+    word : Event
+        The event.
+    *args : int or str
+        Its argument.
+    """
+    return Frame(0, "EV", (Event(word).value, *args))
+
+
+def stream_error(code: ErrorCode) -> Frame:
+    """The unsolicited error ``0 ER n`` that ends a faulted scan.
+
+    Parameters
+    ----------
+    code : ErrorCode
+        The error.
+    """
+    return Frame(0, "ER", (int(code),))

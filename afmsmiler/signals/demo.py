@@ -1,0 +1,127 @@
+"""One run of the lock-in demonstration: the chain simulated, demodulated and its spectrum taken.
+
+:func:`lock_in_demo` is what the lock-in panel (:mod:`afmsmiler.ui.lockin`) computes once per user
+action: the educational AFM's chain (:func:`afmsmiler.signals.chain.simulate`) for a record long
+enough for the chosen filter to settle, its demodulation at 2 omega with the chosen reference
+(:func:`afmsmiler.signals.lockin.lock_in`), the output's spectrum, the closed-form truth and what
+the reference's harmonics pick up (:func:`afmsmiler.signals.lockin.harmonic_pickup`).
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..parameters import read_only
+from ..validation import check_choice, check_integer
+from .chain import (AC_VOLTAGE, AMPLIFIER_GAIN, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO,
+                    INTERFERENCE, ActiveProbe, ChainRun, simulate)
+from .lockin import (FILTER_ORDER, LIMITS, REFERENCES, TIME_CONSTANT, LockInResult, Spectrum,
+                     amplitude_spectrum, harmonic_pickup, lock_in, settling_time)
+
+__all__ = ["LockInDemo", "lock_in_demo", "DEFAULTS"]
+
+#: Defaults of the demonstration, in one place: the spectrum up to ``max_harmonic`` x f,
+#: ``extra_periods`` reference periods read after the filter settles, ``harmonics`` the
+#: reference harmonics whose pickup is listed.
+DEFAULTS = read_only(dict(max_harmonic=8, extra_periods=200, harmonics=7,
+                          samples_per_period=128))
+
+
+@dataclass(frozen=True)
+class LockInDemo:
+    """A demonstration run (SI units).
+
+    Parameters
+    ----------
+    run : ChainRun
+        The simulated chain.
+    reading : LockInResult
+        The lock-in's reading at 2 omega.
+    spectrum : Spectrum
+        The output's amplitude spectrum up to ``DEFAULTS["max_harmonic"]`` x f.
+    pickup : ndarray
+        The reference's weight on its harmonics 1..``DEFAULTS["harmonics"]`` (1, 0, 1/3, ... for
+        a square; 1, 0, 0, ... for a sine).
+    """
+
+    run: ChainRun
+    reading: LockInResult
+    spectrum: Spectrum
+    pickup: np.ndarray
+
+    @property
+    def truth(self) -> complex:
+        """The closed-form 2-omega phasor of the output, V."""
+        return self.run.second
+
+    @property
+    def amplitude_error(self) -> float:
+        """Recovered over true amplitude, minus 1."""
+        return self.reading.amplitude / abs(self.truth) - 1.0
+
+    @property
+    def phase_error(self) -> float:
+        """Recovered minus true phase in rad, wrapped to (-pi, pi]."""
+        d = self.reading.phase - float(np.angle(self.truth))
+        return math.atan2(math.sin(d), math.cos(d))
+
+
+def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
+                 half_resonance_ratio: float = HALF_RESONANCE_RATIO.default,
+                 amplifier_noise: float = AMPLIFIER_NOISE.default,
+                 time_constant: float = TIME_CONSTANT.default,
+                 order: int = int(FILTER_ORDER.default), shape: str = "sine",
+                 interference: float = INTERFERENCE.default,
+                 amplifier_gain: float = AMPLIFIER_GAIN.default, seed: int = 0) -> LockInDemo:
+    """Simulate the chain, demodulate at 2 omega, take the spectrum (one model run).
+
+    Parameters
+    ----------
+    ac_voltage : float
+        Heater drive amplitude V_ac in V.
+    half_resonance_ratio : float
+        Drive frequency over f1 / 2.
+    amplifier_noise : float
+        Amplifier input noise density e_n^2 in V^2/Hz.
+    time_constant : float
+        Lock-in time constant in s.
+    order : int
+        Lock-in filter order (RC stages).
+    shape : {"sine", "square"}
+        Reference shape.
+    interference : float
+        Tone at 3 x 2 omega at the amplifier input, V peak.
+    amplifier_gain : float
+        Amplifier gain.
+    seed : int
+        Noise seed.
+
+    Returns
+    -------
+    LockInDemo
+    """
+    shape = check_choice("shape", shape, REFERENCES)
+    order = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
+    tau = TIME_CONSTANT.check(time_constant)
+    probe = ActiveProbe.build(ac_voltage=AC_VOLTAGE.check(ac_voltage))
+    f = HALF_RESONANCE_RATIO.check(half_resonance_ratio) * probe.resonance_frequency / 2
+    record = settling_time(tau, order) + DEFAULTS["extra_periods"] / (2 * f)
+    if math.ceil(record * f) * DEFAULTS["samples_per_period"] > LIMITS["samples"]:
+        longest = LIMITS["samples"] / (DEFAULTS["samples_per_period"] * f)
+        raise ValueError(f"time_constant {tau:g} s with order {order} needs a record of "
+                         f"{record:.3g} s; at most {longest:.3g} s ({LIMITS['samples']} samples) "
+                         f"can be simulated: choose a shorter time constant")
+    run = simulate(probe, half_resonance_ratio=half_resonance_ratio,
+                   amplifier_noise=amplifier_noise, amplifier_gain=amplifier_gain,
+                   interference=interference, samples_per_period=DEFAULTS["samples_per_period"],
+                   record_duration=record, seed=seed)
+    reading = lock_in(run.output, sample_rate=run.sample_rate, frequency=run.drive_frequency,
+                      harmonic=2, time_constant=tau, order=order, shape=shape)
+    full = amplitude_spectrum(run.output, sample_rate=run.sample_rate)
+    keep = full.frequency <= DEFAULTS["max_harmonic"] * run.drive_frequency
+    pickup = np.array([harmonic_pickup(h, shape) for h in range(1, DEFAULTS["harmonics"] + 1)])
+    return LockInDemo(run=run, reading=reading,
+                      spectrum=Spectrum(full.frequency[keep], full.amplitude[keep]),
+                      pickup=pickup)
