@@ -26,7 +26,7 @@ from afmsmiler.samples import particles
 from afmsmiler.scenes.imaging import ImagingScene
 from recording import Recorder
 
-HERE = Path(codec.__file__).parent
+HERE = Path(__file__).resolve().parents[1] / "hardware" / "educational_afm"  # the spec
 SAMPLE = particles(shape=(64, 64), pixel_size=20e-9, count=6, radius=80e-9, seed=3)
 NX, NY, PITCH = 12, 8, 60e-9
 

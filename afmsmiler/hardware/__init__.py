@@ -7,7 +7,10 @@ port itself):
 - :mod:`.framing`: the frame format every device speaks (``BODY*CC``, CRC-8/SMBUS), pure;
 - :mod:`.transport`: a serial port (pyserial), a pty, an in-memory pair, a fault injector;
 - :mod:`.twin`: a device's protocol simulated in Python and served on a transport;
-- device packages (:mod:`.macro`: the macroscopic AFM) with a codec, a device class and a twin.
+- device packages (:mod:`.macro`: the macroscopic AFM; :mod:`.educational`: the low-cost
+  educational AFM's pixel stream) with a codec, a device class and a twin;
+- :mod:`.ad2`: the Analog Discovery 2 through pydwf (WaveForms runtime needed; a simulated
+  library stands in for tests).
 """
 from .errors import (ChecksumError, DeviceError, DeviceNotResponding, FrameError, HardwareError,
                      ProtocolVersionError, TransportClosed, TransportTimeout)
@@ -15,10 +18,15 @@ from .framing import MAX_BODY, PROTOCOL_VERSION, Frame, crc8, decode_frame, enco
 from .transport import FaultyTransport, MemoryTransport, PtyLink, SerialTransport, Transport
 from .twin import Twin, TwinServer, open_twin
 from .macro import GaugeCalibration, MacroAFM, MacroAFMCodec, MacroAFMTwin, printed_sample
+from .educational import EducationalAFM, EducationalAFMTwin, live_view
+from .ad2 import (AD2Config, AD2Unavailable, AnalogDiscovery2, SimulatedDwfLibrary, open_library,
+                  pattern_timing)
 
 __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
            "DeviceNotResponding", "ProtocolVersionError", "DeviceError",
            "PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
            "Transport", "MemoryTransport", "SerialTransport", "PtyLink", "FaultyTransport",
            "Twin", "TwinServer", "open_twin",
-           "MacroAFM", "MacroAFMTwin", "MacroAFMCodec", "GaugeCalibration", "printed_sample"]
+           "MacroAFM", "MacroAFMTwin", "MacroAFMCodec", "GaugeCalibration", "printed_sample",
+           "EducationalAFM", "EducationalAFMTwin", "live_view", "AD2Config", "AD2Unavailable",
+           "AnalogDiscovery2", "SimulatedDwfLibrary", "open_library", "pattern_timing"]

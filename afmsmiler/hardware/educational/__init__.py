@@ -1,7 +1,7 @@
 """The low-cost educational AFM (module (h), part 2): its pixel stream, a driver and a twin.
 
-- :mod:`.codec`: the EDUAFM protocol's codes and frames (pure); ``PROTOCOL.md`` and
-  ``protocol.h`` beside it are the specification;
+- :mod:`.codec`: the EDUAFM protocol's codes and frames (pure); ``hardware/educational_afm/``
+  (PROTOCOL.md, protocol.h) at the repository's root is the specification;
 - :mod:`.twin`: :class:`EducationalAFMTwin`, module (f)'s scanner imaging a sample, streaming
   ``0 PX row col z``;
 - :mod:`.device`: :class:`EducationalAFM`, which collects the stream into a

@@ -2,8 +2,9 @@
 
 Pure (no I/O). The frame format is module (h)'s (:mod:`afmsmiler.hardware.framing`); this module
 names the educational AFM's commands, parameters, events and errors (the same error numbers as
-every device of module (h)), and builds and parses its frames. ``PROTOCOL.md`` beside it is the
-specification, with golden frames that the tests decode.
+every device of module (h)), and builds and parses its frames.
+``hardware/educational_afm/PROTOCOL.md`` (at the repository's root) is the specification, with
+golden frames that the tests decode.
 
 The instrument scans its sample with the active probe's 2-omega amplitude regulated (see
 :mod:`afmsmiler.signals`) and streams each pixel's height as it is measured::
