@@ -75,7 +75,10 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            # module (g): the imaging modalities
            "afmsmiler.modes._forces", "afmsmiler.modes.tapping", "afmsmiler.modes.fm",
            "afmsmiler.modes.jumping", "afmsmiler.modes.force_volume", "afmsmiler.modes.bimodal",
-           "afmsmiler.modes.lateral"]
+           "afmsmiler.modes.lateral",
+           # module (h): the educational AFM's signal chain and lock-in
+           "afmsmiler.signals.lockin", "afmsmiler.signals.ad630", "afmsmiler.signals.chain",
+           "afmsmiler.signals.demo"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s per call: the issue's bound
 MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machine, shared)
@@ -119,7 +122,7 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            # module (g): what the modalities' models return
            "AmplitudeCurve", "SteadyState", "FrequencyShiftCurve", "FrictionLoop",
            "FrictionImages", "FeedbackLine", "JumpCurve", "ModeComparison", "ForceVolume",
-           "BimodalState"}
+           "BimodalState", "LockInResult", "Spectrum", "AD630Result", "ChainRun", "LockInDemo"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -352,6 +355,25 @@ OVERRIDES = {
     "afmsmiler.modes.bimodal.BimodalLever.compliance": {"angular_frequency": 2e6},
     "afmsmiler.modes.bimodal.bimodal_response": {"distance": 12e-9},
     "afmsmiler.modes.bimodal.averaged_gradient": {"distance": 12e-9},
+    # module (h): a 2 kHz tone sampled at 1 MHz for 40 ms
+    "afmsmiler.signals.lockin.lock_in": {"signal": lambda: _tone(), "sample_rate": 1e6,
+                                         "frequency": 1e3, "time_constant": 1e-3},
+    "afmsmiler.signals.ad630.demodulate": {"signal": lambda: _tone(), "sample_rate": 1e6,
+                                           "frequency": 1e3, "time_constant": 1e-3},
+    "afmsmiler.signals.lockin.harmonic_pickup": {"harmonic": 3},
+    "afmsmiler.signals.lockin.amplitude_spectrum": {"signal": lambda: _tone(),
+                                                    "sample_rate": 1e6},
+    "afmsmiler.signals.lockin.lowpass": {"x": lambda: _tone(), "sample_rate": 1e6},
+    "afmsmiler.signals.lockin.reference_waveforms": {"n_samples": 1000, "sample_rate": 1e6,
+                                                     "frequency": 2e3},
+    "afmsmiler.signals.lockin.square_wave": {"cycles": lambda: np.linspace(0, 3, 100)},
+    "afmsmiler.signals.ad630.switch": {"signal": lambda: _tone()[:1000],
+                                       "reference": lambda: np.sign(np.sin(np.arange(1000.0)))},
+    "afmsmiler.signals.ad630.amplitude_from_levels": {"level_x": 0.1, "level_y": 0.1},
+    "afmsmiler.signals.chain.power_harmonics": {"ac_voltage": 0.5, "resistance": 1e3},
+    "afmsmiler.signals.chain.brownian_density": {
+        "probe": lambda: __import__("afmsmiler.signals.chain", fromlist=["ActiveProbe"])
+        .ActiveProbe(), "f": lambda: np.logspace(3, 5, 10)},
     "afmsmiler.modes.lateral.lateral_force": {"slope": 0.0},
     "afmsmiler.controller.ContactLoop.scan_line": {
         "x": lambda: np.linspace(0.0, 1.5e-6, 16), "height": lambda: np.zeros(16)},
@@ -450,6 +472,8 @@ INSTANCES = {
     "ConstantHeight": _constant_height,
     "AmplitudeCurve": lambda: __import__("afmsmiler.modes", fromlist=[
         "amplitude_curve"]).amplitude_curve(np.linspace(2e-9, 12e-9, 20)),
+    "LockInResult": lambda: __import__("afmsmiler.signals.lockin", fromlist=["lock_in"]).lock_in(
+        _tone(), sample_rate=1e6, frequency=1e3, time_constant=1e-3),
     "Profile": lambda: __import__("afmsmiler.imaging.statistics",
                                   fromlist=["line_profile"]).line_profile(
         _image(), (10e-9, 20e-9), (120e-9, 100e-9)),
@@ -459,6 +483,11 @@ INSTANCES = {
 def _vdw(z):
     """A van der Waals force law (N) of the distance z (m): module (g)'s FM functions take one."""
     return -6.4e-20 * 10e-9 / (6.0 * np.asarray(z) ** 2)
+
+
+def _tone():
+    """40 ms of a 2 kHz tone of 0.1 V sampled at 1 MHz: module (h)'s lock-in input."""
+    return 0.1 * np.sin(2 * np.pi * 2e3 * np.arange(40_000) / 1e6)
 
 
 def _obd():

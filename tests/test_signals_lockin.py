@@ -193,3 +193,16 @@ def test_errors_name_the_parameter_and_range():
         lock_in(np.zeros(lockin.LIMITS["samples"] + 1), sample_rate=1e6, frequency=1e3)
     with pytest.raises(ValueError, match="reference must have"):
         ad630.switch(np.zeros(3), np.zeros(4))
+
+
+def test_a_box_averaged_square_stays_within_plus_minus_one():
+    """The campaign's valid call demodulate(2 kHz at 1 MHz) failed: the mean of two ramps
+    rounded to 1 + 2e-16 and the AD630's switch refused its own reference."""
+    from afmsmiler.signals.ad630 import demodulate
+    from afmsmiler.signals.lockin import square_wave
+    u = np.arange(40_000) * 2e3 / 1e6
+    sq = square_wave(u, step=2e-3)
+    assert np.all(np.abs(sq) <= 1.0)
+    tone = 0.1 * np.sin(2 * np.pi * 2e3 * np.arange(40_000) / 1e6)
+    out = demodulate(tone, sample_rate=1e6, frequency=1e3, time_constant=1e-3)
+    assert np.isfinite(out.x)

@@ -194,7 +194,8 @@ def square_wave(cycles, step: float = 0.0) -> np.ndarray:
 
     def ramp(v):   # the integral of the square: a triangle wave, 0 at v = 0, 1/2 at v = 1/2
         return 0.5 - np.abs(np.mod(v, 1.0) - 0.5)
-    return (ramp(u + step / 2) - ramp(u - step / 2)) / step
+    # the difference of two ramps can round a hair beyond +-1: the mean of a +-1 square cannot
+    return np.clip((ramp(u + step / 2) - ramp(u - step / 2)) / step, -1.0, 1.0)
 
 
 def reference_waveforms(n_samples: int, *, sample_rate: float, frequency: float,
