@@ -202,3 +202,15 @@ def test_a_hole_in_the_surface_is_reported():
                                                           np.flatnonzero(up)[0])])
     with pytest.raises(ValueError, match="under no"):
         pr.mesh_to_sample(holed, 1 * MM)
+
+
+def test_the_seashell_is_the_papers_80_um_object():
+    shell = pr.seashell()
+    assert shell.shape == (128, 128) and shell.width == pytest.approx(80 * UM)
+    assert shell.heights.min() == 0.0 and 4 * UM < np.ptp(shell.heights) < 10 * UM
+    x, y, _ = pr.print_size(shell, lateral_scale=400)
+    assert x == pytest.approx(32 * MM) and y == pytest.approx(32 * MM)
+    with pytest.raises(ValueError, match="shape"):
+        pr.seashell(shape=64)
+    with pytest.raises(ValueError, match="ribs"):
+        pr.seashell(ribs=0)

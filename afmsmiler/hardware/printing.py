@@ -41,7 +41,7 @@ from ..validation import check_instance, check_writable_path
 
 __all__ = ["PARAMETERS", "STL_UNIT", "MAX_TRIANGLES", "MAX_PRINT_SIZE", "MAX_RASTER_WORK",
            "sample_to_mesh", "save_stl", "mesh_to_sample", "print_size", "triangle_count",
-           "fitting_scale"]
+           "fitting_scale", "seashell"]
 
 #: The unit of an STL file's coordinates: millimetres, as every slicer assumes.
 STL_UNIT = "mm"
@@ -424,3 +424,57 @@ def mesh_to_sample(mesh_or_path, pitch: float = _P["pitch"].default, *,
     heights = zbuf.reshape(ny, nx) - lo[2]
     return Sample(heights, pitch, "printed sample" if name is None else name,
                   metadata={"source": "mesh", "origin": (float(lo[0]), float(lo[1]))})
+
+
+def seashell(shape=(128, 128), pixel_size: float = 80e-6 / 127, *, height: float = 8e-6,
+             rib_height: float = 1.5e-6, ribs: int = 18, growth_period: float = 6e-6) -> Sample:
+    """A synthetic scallop-shell surface, the stand-in for the source paper's seashell image.
+
+    A dome (a paraboloid cap over the image) carrying radial ribs that fan out from a hinge at
+    the middle of the first row, crossed by faint concentric growth lines: the relief a scallop
+    shows under an AFM's 80 um scan. Printed 400x (the paper's scale) it is 32 mm wide and a few
+    mm high, a relief the macroscopic AFM's 2.5 um z micro-step resolves.
+
+    Parameters
+    ----------
+    shape : tuple of int
+        (rows, columns), each 2 to 1024.
+    pixel_size : float
+        Pixel size in m (default: 80 um first to last pixel over 128 pixels).
+    height : float
+        Height of the dome at its top in m.
+    rib_height : float
+        Peak-to-valley height of the ribs in m.
+    ribs : int
+        Number of ribs over the half circle, 1 to 200.
+    growth_period : float
+        Spacing of the concentric growth lines in m (their height is a tenth of the ribs').
+
+    Returns
+    -------
+    Sample
+        Heights in m, the lowest pixel at 0.
+    """
+    from ..samples.sample import check_shape
+    from ..validation import check_integer, check_positive
+
+    checked = check_shape(shape)
+    if len(checked) != 2 or max(checked) > 1024:
+        raise ValueError(f"shape must be (rows, columns), each 2 to 1024, got {shape!r}")
+    rows, cols = checked
+    dx = check_positive("pixel_size", pixel_size, "m")
+    h0 = check_positive("height", height, "m")
+    hr = check_positive("rib_height", rib_height, "m")
+    n = check_integer("ribs", ribs, 1, 200)
+    period = check_positive("growth_period", growth_period, "m")
+    y, x = np.mgrid[0:rows, 0:cols] * dx
+    xc, radius = x[0, -1] / 2, max(x[0, -1], y[-1, 0])
+    r = np.hypot(x - xc, y)
+    theta = np.arctan2(y, x - xc)
+    fade = np.clip(r / (0.15 * radius), 0.0, 1.0)  # the ribs start off the hinge
+    dome = h0 * (1 - ((x - xc) / radius) ** 2 - ((y - 0.6 * radius) / radius) ** 2)
+    rib = 0.5 * hr * np.cos(2 * n * theta) * fade
+    growth = 0.05 * hr * np.cos(2 * math.pi * r / period) * fade
+    h = dome + rib + growth
+    return Sample(h - h.min(), dx, "seashell (synthetic)",
+                  metadata=dict(height=h0, rib_height=hr, ribs=n, growth_period=period))
