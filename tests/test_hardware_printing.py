@@ -214,3 +214,19 @@ def test_the_seashell_is_the_papers_80_um_object():
         pr.seashell(shape=64)
     with pytest.raises(ValueError, match="ribs"):
         pr.seashell(ribs=0)
+
+
+def test_compare_scan_removes_the_offset_and_measures_the_shape_error():
+    ref = Sample(np.arange(30.0).reshape(5, 6) * 1e-5, 0.2 * MM)
+    rng = np.random.default_rng(0)
+    noise = rng.normal(size=(4, 6)) * 1e-6
+    scan = Sample(ref.heights[:4] + 7e-3 + noise, 0.2 * MM)  # 4 lines done, homed 7 mm up
+    c = pr.compare_scan(ref, scan)
+    expected = noise - noise.mean()
+    np.testing.assert_allclose(c.difference.heights, expected, atol=1e-15)
+    assert c.rms == pytest.approx(np.sqrt(np.mean(expected ** 2)))
+    assert c.max_abs == pytest.approx(np.abs(expected).max())
+    with pytest.raises(ValueError, match="pixel_size"):
+        pr.compare_scan(ref, Sample(scan.heights, 0.3 * MM))
+    with pytest.raises(ValueError, match="fit"):
+        pr.compare_scan(scan, ref)

@@ -30,6 +30,7 @@ from __future__ import annotations
 
 import math
 import os
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -41,7 +42,7 @@ from ..validation import check_instance, check_writable_path
 
 __all__ = ["PARAMETERS", "STL_UNIT", "MAX_TRIANGLES", "MAX_PRINT_SIZE", "MAX_RASTER_WORK",
            "sample_to_mesh", "save_stl", "mesh_to_sample", "print_size", "triangle_count",
-           "fitting_scale", "seashell"]
+           "fitting_scale", "seashell", "PrintComparison", "compare_scan"]
 
 #: The unit of an STL file's coordinates: millimetres, as every slicer assumes.
 STL_UNIT = "mm"
@@ -478,3 +479,74 @@ def seashell(shape=(128, 128), pixel_size: float = 80e-6 / 127, *, height: float
     h = dome + rib + growth
     return Sample(h - h.min(), dx, "seashell (synthetic)",
                   metadata=dict(height=h0, rib_height=hr, ribs=n, growth_period=period))
+
+
+@dataclass(frozen=True)
+class PrintComparison:
+    """A scan of a printed object against the printed surface (SI units, m).
+
+    Attributes
+    ----------
+    reference : Sample
+        The printed surface on the scan's grid (rows, columns of the scan), offset removed.
+    image : Sample
+        The scan, offset removed (both have zero mean).
+    difference : Sample
+        ``image - reference`` in m.
+    rms : float
+        RMS of the difference in m.
+    max_abs : float
+        Largest absolute difference in m.
+    """
+
+    reference: Sample
+    image: Sample
+    difference: Sample
+    rms: float
+    max_abs: float
+
+
+def compare_scan(reference: Sample, image: Sample) -> PrintComparison:
+    """Compare a scan of a printed object with the printed surface on the same grid.
+
+    The scan starts at the reference's first pixel (its origin) and runs on the same pitch; its
+    rows and columns are a corner of the reference's (a partial scan compares its finished
+    lines). Both lose their mean height (the machine's z zero is its home position, not the bed),
+    so the difference shows the shape error alone.
+
+    Parameters
+    ----------
+    reference : Sample
+        The printed surface (e.g. :func:`mesh_to_sample` of the print at the scan's pitch), 2-D,
+        heights in m.
+    image : Sample
+        The scan (2-D, heights in m), on the same pixel sizes (to 1e-9 relative), at most as
+        many rows and columns as ``reference``.
+
+    Returns
+    -------
+    PrintComparison
+
+    Raises
+    ------
+    ValueError
+        If the pixel sizes differ, or the scan is larger than the reference.
+    """
+    reference, image = _check_image(reference), _check_image(image)
+    for what in ("pixel_size", "pixel_size_y"):
+        a, b = getattr(reference, what), getattr(image, what)
+        if abs(a - b) > 1e-9 * max(a, b):
+            raise ValueError(f"image must have the reference's {what} {a:g} m, got {b:g} m")
+    rows, cols = image.shape
+    if rows > reference.shape[0] or cols > reference.shape[1]:
+        raise ValueError(f"image must fit in the reference's {reference.shape} pixels, got "
+                         f"{image.shape}")
+    ref = reference.heights[:rows, :cols]
+    ref = ref - ref.mean()
+    img = image.heights - image.heights.mean()
+    diff = img - ref
+    grid = dict(pixel_size=image.pixel_size, pixel_size_y=image.pixel_size_y)
+    return PrintComparison(Sample(ref, name="printed surface", **grid),
+                           Sample(img, name=image.name or "scan", **grid),
+                           Sample(diff, name="scan - printed surface", **grid),
+                           float(np.sqrt(np.mean(diff ** 2))), float(np.abs(diff).max()))
