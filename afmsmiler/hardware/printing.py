@@ -41,7 +41,7 @@ from ..samples.sample import MAX_PIXELS
 from ..validation import check_instance, check_writable_path
 
 __all__ = ["PARAMETERS", "STL_UNIT", "MAX_TRIANGLES", "MAX_PRINT_SIZE", "MAX_RASTER_WORK",
-           "sample_to_mesh", "save_stl", "mesh_to_sample", "print_size", "triangle_count",
+           "sample_to_mesh", "save_stl", "write_stl", "mesh_to_sample", "print_size", "triangle_count",
            "fitting_scale", "seashell", "PrintComparison", "compare_scan"]
 
 #: The unit of an STL file's coordinates: millimetres, as every slicer assumes.
@@ -294,13 +294,41 @@ def save_stl(sample: Sample, path, *, lateral_scale: float = _P["lateral_scale"]
         If ``path`` is not a writable file or does not end in ``.stl``, or as
         :func:`sample_to_mesh`, before anything is written.
     """
+    path = _stl_path(path)
+    mesh = sample_to_mesh(sample, lateral_scale=lateral_scale, vertical_scale=vertical_scale,
+                          base_thickness=base_thickness)
+    return write_stl(mesh, path)
+
+
+def _stl_path(path) -> str:
     path = check_writable_path("path", path, "an STL file")
     if not path.lower().endswith(".stl"):
         raise ValueError(f"path must end in .stl, got {path!r}")
-    mesh = sample_to_mesh(sample, lateral_scale=lateral_scale, vertical_scale=vertical_scale,
-                          base_thickness=base_thickness)
-    mesh.apply_scale(1.0 / UNITS[STL_UNIT][1])
-    data = mesh.export(file_type="stl")  # binary STL: 80-byte header, count, 50 B/triangle
+    return path
+
+
+def write_stl(mesh, path) -> Path:
+    """Write a mesh in m (as :func:`sample_to_mesh` returns) as a binary STL in mm.
+
+    Parameters
+    ----------
+    mesh : trimesh.Trimesh
+        The mesh, coordinates in m (left unchanged).
+    path : str or os.PathLike
+        The file to write, ending in ``.stl``, in an existing folder.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    import trimesh
+
+    check_instance("mesh", mesh, trimesh.Trimesh)
+    path = _stl_path(path)
+    scaled = mesh.copy()
+    scaled.apply_scale(1.0 / UNITS[STL_UNIT][1])
+    data = scaled.export(file_type="stl")  # binary STL: 80-byte header, count, 50 B/triangle
     tmp = f"{path}.part"
     with open(tmp, "wb") as fh:
         fh.write(data)
