@@ -24,7 +24,7 @@ from .imaging import _clim
 from .limits import data_range, hold
 
 __all__ = ["FIGSIZE", "LENGTH_UNIT", "HEIGHT_UNIT", "MacroView", "macro_view",
-           "ComparisonView", "comparison_view", "MacroFigure"]
+           "ComparisonView", "comparison_view", "MacroFigure", "scans_figure"]
 
 #: Figure size in inches (JupyterLab's output area is about 1000 px wide).
 FIGSIZE = (10.0, 7.5)
@@ -238,8 +238,8 @@ class MacroFigure:
         self._image("height", v.height, v.extent)
         self._image("gauge", v.gauge, v.extent)
         lines = v.height.shape[0]
-        done = f"{v.pixels_done} of {v.pixels} pixels"
-        self.axes["height"].set_title(f"height: {done}" + (f" ({v.status})" if v.status else ""))
+        self.axes["height"].set_title(f"height, {v.pixels_done}/{v.pixels} px"
+                                      + (f" ({v.status})" if v.status else ""))
         self.axes["gauge"].set_title("strain gauge")
         if v.row is None:
             self.lines["row"].set_data([], [])
@@ -266,3 +266,46 @@ class MacroFigure:
             self.axes["difference"].set_title(f"difference: RMS {c.rms:.3g} {HEIGHT_UNIT}{step}")
         else:
             self.axes["difference"].set_title("difference: scan a print to compare")
+
+
+def scans_figure(*images, titles=None, fig: Figure | None = None) -> Figure:
+    """Macroscopic scans side by side (positions in mm, heights in um), each with a colour bar.
+
+    A static figure for the notebook (contact vs jumping mode, a print vs its scan).
+
+    Parameters
+    ----------
+    *images : Sample
+        One to four 2-D height samples in m.
+    titles : sequence of str, optional
+        One per image; default the samples' names.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 10 in wide.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    if not 1 <= len(images) <= 4:
+        raise ValueError(f"images must be 1 to 4 samples, got {len(images)}")
+    titles = [getattr(im, "name", "") for im in images] if titles is None else list(titles)
+    if len(titles) != len(images):
+        raise ValueError(f"titles must give one title per image ({len(images)}), got "
+                         f"{len(titles)}")
+    fig = fig if fig is not None else Figure(figsize=(10.0, 10.0 / max(len(images), 2) + 0.6))
+    fig.set_layout_engine("constrained")
+    axes = fig.subplots(1, len(images), squeeze=False)[0]
+    k, kz = unit_scale(LENGTH_UNIT, "m"), unit_scale(HEIGHT_UNIT, "m")
+    for ax, image, title in zip(axes, images, titles):
+        values = np.asarray(image.heights, dtype=float)
+        if values.ndim != 2:
+            raise ValueError(f"images must be 2-D, got an array of shape {values.shape}")
+        rows, cols = values.shape
+        dx, dy = image.pixel_size * k, image.pixel_size_y * k
+        im = ax.imshow(np.ma.masked_invalid(values * kz), origin="lower", cmap="afmhot",
+                       interpolation="nearest",
+                       extent=(-0.5 * dx, (cols - 0.5) * dx, -0.5 * dy, (rows - 0.5) * dy))
+        im.set_clim(*_clim(values * kz))
+        fig.colorbar(im, ax=ax, shrink=0.8, label=f"height [{HEIGHT_UNIT}]")
+        ax.set(title=title, xlabel=f"x [{LENGTH_UNIT}]", ylabel=f"y [{LENGTH_UNIT}]")
+    return fig
