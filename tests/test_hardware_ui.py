@@ -1,0 +1,244 @@
+"""The macroscopic AFM's panel without a browser: the twin scans, the image grows from the
+streamed pixels, pause/resume/abort/save act as the notebook says, a fault keeps the finished
+lines, contact mode fails on the tall pillars where jumping mode does not, and a print exported
+from the panel is scanned back within the z micro-step.
+
+References: the twin's own dilated surface (module (f)'s dilation of the print by the needle,
+what the needle can follow), the z micro-step's rounding error (RMS step / sqrt(12) for a uniform
+error), the .gwy file read back by module (f)'s reader, trimesh's watertightness check.
+"""
+import asyncio
+import math
+import time
+
+import numpy as np
+import pytest
+import trimesh
+
+from afmsmiler.hardware import PtyLink, TwinServer, printing
+from afmsmiler.hardware.macro import MacroAFMTwin
+from afmsmiler.samples import load
+from afmsmiler.ui import hardware as ui
+from afmsmiler.ui.hardware import DEFAULTS, TWIN, MacroAFMPanel
+
+Z_STEP = 2.5e-6
+QUANTISATION = Z_STEP / math.sqrt(12)  # RMS of a uniform rounding to the z micro-step
+
+
+@pytest.fixture
+def panel():
+    p = MacroAFMPanel(pixels=16, pitch=1.0)
+    yield p
+    p.close()
+
+
+@pytest.fixture
+def meshes(monkeypatch):
+    """Count the meshes built (the panel's only costly model besides the scan)."""
+    calls = {"n": 0}
+    original = printing.sample_to_mesh
+
+    def counting(*args, **kwargs):
+        calls["n"] += 1
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(printing, "sample_to_mesh", counting)
+    return calls
+
+
+def test_the_twin_is_the_default_and_serial_ports_are_offered(monkeypatch):
+    class Port:
+        device, description = "/dev/ttyACM0", "Arduino Mega 2560"
+
+    monkeypatch.setattr("serial.tools.list_ports.comports", lambda: [Port()])
+    p = MacroAFMPanel()
+    options = p.controls["port"].options
+    assert options[0][1] == TWIN and p.values()["port"] == TWIN
+    assert ("/dev/ttyACM0 (Arduino Mega 2560)", "/dev/ttyACM0") in options
+    with pytest.raises(ValueError, match="port"):
+        p.set(port="/dev/ttyUSB9")
+    with pytest.raises(ValueError, match="pixels"):
+        p.set(pixels=7)
+    with pytest.raises(TypeError, match="unknown control"):
+        MacroAFMPanel(speed=3)
+
+
+def test_a_slider_move_builds_nothing_an_export_one_mesh(panel, meshes, tmp_path):
+    panel.set(lateral_scale=1000.0)
+    panel.set(vertical_scale=2000.0, base_thickness=3.0)
+    assert meshes["n"] == 0 and panel.mesh_runs == 0 and panel.device is None
+    x, y, z = panel.last.print_size
+    shell = printing.seashell()
+    assert x == pytest.approx(shell.width * 1000) and z == pytest.approx(
+        3e-3 + 2000 * np.ptp(shell.heights))
+    path = panel.export_stl(tmp_path / "shell.stl")
+    assert meshes["n"] == 1 and panel.mesh_runs == 1
+    mesh = trimesh.load(path)
+    assert mesh.is_watertight
+    np.testing.assert_allclose(mesh.extents, np.array([x, y, z]) * 1e3, rtol=1e-6)  # mm
+    assert "your print (shell.stl)" in panel.controls["sample"].options
+    assert panel.values()["sample"] == DEFAULTS["sample"]  # the choice is kept
+
+
+def test_each_step_adds_the_streamed_pixels_up_to_a_line(panel):
+    panel.connect()
+    panel.start(run=False)
+    assert panel.running and panel.last.pixels_done == 0 and panel.progress.max == 256
+    assert panel.step()
+    first = panel.last.pixels_done
+    assert 0 < first <= 16  # at most one line per step
+    while panel.step():
+        pass
+    r = panel.last
+    assert r.state == "done" and r.pixels_done == 256 and r.lines_done == 16
+    assert panel.progress.value == 256
+    # the image is the driver's: heights in m from z micro-steps times ZS
+    np.testing.assert_array_equal(r.height, panel.device.result.heights)
+    assert r.finished().pixel_size == pytest.approx(1e-3)
+
+
+def test_the_seashell_is_scanned_within_the_z_micro_step(panel):
+    panel.start()
+    c = panel.last.comparison
+    assert c is not None and c.image.shape == (16, 16)
+    # the twin's gauge noise adds a little to the rounding's 0.72 um
+    assert c.rms < 1.5 * QUANTISATION and c.max_abs < 2 * Z_STEP
+
+
+def test_contact_mode_fails_on_the_tall_pillars_and_jumping_mode_does_not(panel):
+    """The notebook's claim: on 2 mm pillars, contact mode's image is dragged (friction), jumping
+    mode's is the surface the needle can follow, to the z micro-step."""
+    panel.set(sample="pillars (2 mm tall grating)", pixels=32, pitch=0.4, lift=2.5)
+    panel.set(mode="contact")
+    panel.start()
+    contact = panel.last.comparison
+    panel.set(mode="jumping")
+    panel.start()
+    jumping = panel.last.comparison
+    assert jumping.rms < 1.5 * QUANTISATION
+    assert contact.rms > 100 * jumping.rms and contact.max_abs > 0.5e-3  # half the 2 mm walls
+
+
+def test_pause_stops_the_stream_and_resume_goes_on_without_loss():
+    # the twin at a thousandth of the machine's pace: Pause reaches it mid-scan (at pace 0 it
+    # has streamed the whole scan before the first pixel is read)
+    panel = MacroAFMPanel(pixels=16, pitch=1.0, time_scale=0.001)
+    panel.start(run=False)
+    for _ in range(3):
+        panel.step()
+    panel.pause()
+    done = panel.last.pixels_done
+    assert panel.paused and panel.buttons["pause"].description == "Resume"
+    for _ in range(3):
+        assert panel.step()  # paused: running, nothing read
+    assert panel.last.pixels_done == done and panel.last.state == "paused"
+    panel.resume()
+    while panel.step():
+        pass
+    assert panel.last.state == "done" and panel.last.pixels_done == 256, panel.last.error
+    assert panel.last.comparison.rms < 1.5 * QUANTISATION
+    panel.close()
+
+
+def test_pause_after_the_machine_finished_is_harmless(panel):
+    panel.start(run=False)
+    panel.step()
+    twin = panel._session.server.twin
+    for _ in range(500):  # at pace 0 the twin streams the whole scan at once
+        if twin.state.value == "IDLE":
+            break
+        time.sleep(0.01)
+    panel.pause()  # the machine is done: the pause is refused (STATE) and ignored
+    assert not panel.paused and "already finished" in panel.status.value
+    while panel.step():
+        pass
+    assert panel.last.state == "done"
+
+
+def test_abort_keeps_the_finished_lines_and_save_writes_them(panel, tmp_path):
+    panel.start(run=False)
+    for _ in range(6):
+        panel.step()
+    panel.abort()
+    r = panel.last
+    assert not panel.running and r.state == "aborted" and not panel.step()
+    assert 2 <= r.lines_done < 16
+    path = panel.save_gwy(tmp_path / "half.gwy")
+    back = load(path, "height")  # save_gwy names the channel "height" (module (f))
+    assert back.shape == (r.lines_done, 16) and back.pixel_size == pytest.approx(1e-3)
+    np.testing.assert_allclose(back.heights, r.height[:r.lines_done], rtol=1e-12)
+    # the link still works: another scan runs to the end
+    panel.start()
+    assert panel.last.state == "done"
+
+
+def test_a_limit_switch_ends_the_scan_in_the_panel_and_keeps_the_lines(panel):
+    panel.connect()
+    panel._session.server.twin.trigger_limit("X", at=(5, 3))
+    panel.start()  # runs to the fault: no exception escapes, the panel shows it
+    r = panel.last
+    assert r.state == "fault" and not panel.running
+    assert "DeviceError" in panel.error and "DeviceError" in r.error
+    assert r.lines_done == 5 and np.isfinite(r.height[:5]).all()
+    assert "fault" in panel.figure.axes["height"].get_title()
+    assert panel.last.finished().shape == (5, 16)
+
+
+def test_a_print_exported_from_the_panel_is_scanned_back(panel, tmp_path):
+    panel.set(source="real image (Bruker, 2 um)", lateral_scale=10000.0,
+              vertical_scale=2e4, base_thickness=2.0)
+    panel.export_stl(tmp_path / "real.stl")
+    panel.set(sample="your print (real.stl)", mode="jumping", pitch=1.0, lift=0.5)
+    panel.start()
+    c = panel.last.comparison
+    assert c.image.shape == (16, 16) and c.rms < 1.5 * QUANTISATION
+
+
+def test_a_real_port_is_opened_with_pyserial(monkeypatch):
+    """A pty served by the twin stands for the Arduino's USB port: the panel opens it by name."""
+    link = PtyLink()
+    server = TwinServer(MacroAFMTwin(), link.device_end, time_scale=0.0).start()
+    try:
+        monkeypatch.setattr(ui, "serial_ports", lambda: [(link.path, link.path)])
+        p = MacroAFMPanel(port=link.path, pixels=8, pitch=1.0)
+        assert "MACROAFM" in p.connect() and "twin" not in p._session.identity
+        p.start()
+        assert p.last.state == "done" and p.last.comparison is None  # no print known
+        p.close()
+    finally:
+        server.stop()
+        link.close()
+
+
+def test_in_a_notebook_the_scan_runs_as_a_task_and_abort_keeps_its_lines(monkeypatch, panel):
+    monkeypatch.setattr(ui, "running_as_notebook", lambda: True)
+    panel.connect()
+
+    async def session():
+        panel.start()
+        assert panel.running and panel.last.pixels_done == 0
+        for _ in range(40):
+            await asyncio.sleep(0.01)
+            if panel.last.lines_done >= 3:
+                break
+        panel.abort()
+        await asyncio.sleep(0)
+
+    asyncio.run(session())
+    assert panel.last.state == "aborted" and panel.last.lines_done >= 2
+
+
+def test_layout_holds_every_control_and_button_once(panel):
+    import ipywidgets as widgets
+    w = panel.widget()
+    seen = []
+
+    def walk(x):
+        seen.append(x)
+        for child in getattr(x, "children", ()):
+            walk(child)
+
+    walk(w)
+    for c in [*panel.controls.values(), *panel.buttons.values()]:
+        assert sum(x is c for x in seen) == 1
+    assert isinstance(w, widgets.VBox)
