@@ -12,17 +12,19 @@ import pytest
 
 from afmsmiler.exercises import hardware as ex
 from afmsmiler.hardware import printing
+from afmsmiler.hardware.macro.mechanics import RULER, STEEL
 
 D = ex.DEFAULTS
 
 
 def _k():
-    return D["steel_modulus"] * D["ruler_width"] * D["ruler_thickness"] ** 3 / (
-        4 * D["ruler_length"] ** 3)
+    return STEEL["youngs_modulus"] * RULER["width"] * RULER["thickness"] ** 3 / (
+        4 * RULER["length"] ** 3)
 
 
 def test_the_ruler_is_the_papers_6_hz_steel_rule():
-    E, rho, t, L = D["steel_modulus"], D["steel_density"], D["ruler_thickness"], D["ruler_length"]
+    E, rho = STEEL["youngs_modulus"], STEEL["density"]
+    t, L = RULER["thickness"], RULER["length"]
     f1 = 1.8751040687 ** 2 / (2 * math.pi * L ** 2) * math.sqrt(E * t ** 2 / (12 * rho))
     assert ex.ruler().resonance_frequency(1) == pytest.approx(f1, rel=1e-6)
     assert 5.0 < f1 < 7.0  # "about 6 Hz" (source paper)
@@ -46,7 +48,7 @@ def test_force_from_the_gauge():
     (lambda: -_force(), "sign"),
     (lambda: _force() * D["contact_counts"] / (D["contact_counts"] - D["free_counts"]),
      "free"),                                               # the free reading kept
-    (lambda: _force() * 2500.0, "swapped"),                 # (w / t)^2
+    (lambda: _force() * (RULER["width"] / RULER["thickness"]) ** 2, "swapped"),
     (lambda: _force() * 4.0, "w t^3 / 12"),
     (lambda: _force() * 1.5, "off by"),
 ])

@@ -23,6 +23,7 @@ import numpy as np
 
 from ..cantilever import Cantilever
 from ..hardware import printing
+from ..hardware.macro import mechanics
 from ..parameters import read_only
 from ..samples import Sample
 from . import Feedback, check_close, diagnose_slip, read_number
@@ -31,37 +32,32 @@ __all__ = ["DEFAULTS", "ruler", "gauge_deflection", "ruler_force", "check_ruler_
            "printed_shell", "jumping_lift", "check_jumping_lift", "print_scale",
            "check_print_scale"]
 
-#: The exercises' givens, in one place (SI units; counts are the HX711's raw readings).
+#: The exercises' givens, in one place (SI units; counts are the HX711's raw readings). The
+#: ruler is the macroscopic AFM's (:data:`afmsmiler.hardware.macro.mechanics.RULER`); the gauge's
+#: numbers are what its calibration predicts (584 counts per 50 um, 1.31e6 counts per N).
 DEFAULTS = read_only(dict(
-    # the ruler: a steel rule clamped 260 mm from its tip, 25 mm wide, 0.5 mm thick (E = 200
-    # GPa, rho = 7850 kg/m^3): its first resonance is about 6 Hz, as in the source paper
-    ruler_length=0.26, ruler_width=25e-3, ruler_thickness=0.5e-3, steel_modulus=200e9,
-    steel_density=7850.0,
     # 1. the gauge: free reading, the reading in contact, and the calibration (pressing the tip
-    # down by 20 z micro-steps of 2.5 um changed the reading by 1500 counts)
-    free_counts=8410, contact_counts=9610, calibration_counts=1500, calibration_steps=20,
+    # down by 20 z micro-steps of 2.5 um changed the reading by 584 counts)
+    free_counts=8410, contact_counts=14981, calibration_counts=584, calibration_steps=20,
     z_step=2.5e-6, force_rtol=0.01,
     # 2. jumping mode over the seashell printed 400x and scanned at 0.2 mm: the setpoint (counts
-    # above the free reading) and the pull-off force of the tip from the print
-    setpoint_counts=300, pull_off_force=0.5e-3, lateral_scale=400.0, pitch=0.2e-3,
+    # above the free reading, 10 mN) and the pull-off force of the needle from the print
+    setpoint_counts=13143, pull_off_force=0.5e-3, lateral_scale=400.0, pitch=0.2e-3,
     # 3. the print bed (Creality Ender 3, as in the paper) and the margin kept on each side
     bed=(0.22, 0.22), margin=10e-3, scale_rtol=0.01,
 ))
 
 
-@lru_cache(maxsize=1)
 def ruler() -> Cantilever:
     """The macroscopic AFM's ruler as module (a)'s beam (a clamped steel rule).
 
     Returns
     -------
     Cantilever
-        Its ``spring_constant`` (about 8.9 N/m) and ``resonance_frequency(1)`` (about 6 Hz).
+        :func:`afmsmiler.hardware.macro.mechanics.ruler`: its ``spring_constant`` (about
+        8.9 N/m) and ``resonance_frequency(1)`` (about 6 Hz).
     """
-    d = DEFAULTS
-    return Cantilever(length=d["ruler_length"], width=d["ruler_width"],
-                      thickness=d["ruler_thickness"], youngs_modulus=d["steel_modulus"],
-                      density=d["steel_density"])
+    return mechanics.ruler()
 
 
 def _counts_per_metre() -> float:
@@ -125,7 +121,7 @@ def check_ruler_force(force) -> Feedback:
          "You used the whole reading: subtract the free (out of contact) reading first."),
         (k * (d["contact_counts"] - d["free_counts"]) / d["calibration_counts"],
          "The calibration gives counts per 20 micro-steps of 2.5 um, not per metre."),
-        (expected * (d["ruler_width"] / d["ruler_thickness"]) ** 2,
+        (expected * (mechanics.RULER["width"] / mechanics.RULER["thickness"]) ** 2,
          "Width and thickness are swapped in J: the ruler bends about its thin direction, "
          "J = w t^3 / 12 with t the 0.5 mm thickness."),
         (expected * 4.0, "J = w t^3 / 12 (a rectangle about its centre), not w t^3 / 3."),
