@@ -244,3 +244,29 @@ def test_layout_holds_every_control_and_button_once(panel):
     for c in [*panel.controls.values(), *panel.buttons.values()]:
         assert sum(x is c for x in seen) == 1
     assert isinstance(w, widgets.VBox)
+
+
+def test_wait_runs_the_scan_to_the_end_in_a_live_notebook_too(monkeypatch, panel):
+    monkeypatch.setattr(ui, "running_as_notebook", lambda: True)
+    panel.start(wait=True)  # a cell that uses the image next
+    assert panel.last.state == "done" and panel.last.lines_done == 16
+
+
+def test_a_slider_move_sends_nothing_to_the_machine_and_start_one_scan(monkeypatch, panel):
+    from afmsmiler.hardware.macro import MacroAFM
+    sent = []
+    original = MacroAFM._command
+
+    def counting(self, command, *args):
+        sent.append(command.value)
+        return original(self, command, *args)
+
+    monkeypatch.setattr(MacroAFM, "_command", counting)
+    panel.connect()
+    sent.clear()
+    panel.set(setpoint_force=20.0, lift=1.0, mode="jumping")
+    panel.set(lateral_scale=800.0)
+    assert sent == []  # the values wait for Start
+    panel.start()
+    assert sent.count("SS") == 1 and sent.count("SP") == 6  # NX NY DX SE MO LI, once each
+    assert panel.device.events[-1].event.value == "DONE"
