@@ -117,7 +117,17 @@ def test_contact_mode_fails_on_the_tall_pillars_and_jumping_mode_does_not(panel)
     panel.start()
     jumping = panel.last.comparison
     assert jumping.rms < 1.5 * QUANTISATION
-    assert contact.rms > 100 * jumping.rms and contact.max_abs > 0.5e-3  # half the 2 mm walls
+    assert contact.rms > 50e-6 and contact.max_abs > 0.5e-3  # ~0.1 mm; at 2 mm tall walls
+    # all of contact mode's error is at the walls: where it exceeds a few steps, the surface
+    # changes by more than 0.1 mm within a pixel along the fast axis
+    ref = contact.reference.heights
+    wall = np.zeros_like(ref, dtype=bool)
+    step = np.abs(np.diff(ref, axis=1)) > 0.1e-3
+    wall[:, 1:] |= step
+    wall[:, :-1] |= step
+    wrong = np.abs(contact.difference.heights - np.median(contact.difference.heights)) \
+        > 5 * Z_STEP
+    assert wrong.any() and wall[wrong].all()
 
 
 def test_pause_stops_the_stream_and_resume_goes_on_without_loss(panel):

@@ -238,7 +238,7 @@ class MacroFigure:
         self._image("height", v.height, v.extent)
         self._image("gauge", v.gauge, v.extent)
         lines = v.height.shape[0]
-        self.axes["height"].set_title(f"height, {v.pixels_done}/{v.pixels} px"
+        self.axes["height"].set_title(f"{v.pixels_done}/{v.pixels} px"
                                       + (f" ({v.status})" if v.status else ""))
         self.axes["gauge"].set_title("strain gauge")
         if v.row is None:
@@ -259,13 +259,13 @@ class MacroFigure:
         for key, values in (("reference", c.reference), ("image", c.image)):
             self._image(key, values, c.extent)
         self._image("difference", c.difference, c.extent, symmetric=True)
-        self.axes["reference"].set_title("printed surface")
+        self.axes["reference"].set_title("print (as the needle follows it)")
         self.axes["image"].set_title("its scan")
         if math.isfinite(c.rms):
-            step = f" (z step {c.z_step:.3g} {HEIGHT_UNIT})" if math.isfinite(c.z_step) else ""
-            self.axes["difference"].set_title(f"difference: RMS {c.rms:.3g} {HEIGHT_UNIT}{step}")
+            step = f" (step {c.z_step:.3g})" if math.isfinite(c.z_step) else ""
+            self.axes["difference"].set_title(f"RMS {c.rms:.3g} {HEIGHT_UNIT}{step}")
         else:
-            self.axes["difference"].set_title("difference: scan a print to compare")
+            self.axes["difference"].set_title("scan - print: scan a print")
 
 
 def scans_figure(*images, titles=None, fig: Figure | None = None) -> Figure:
