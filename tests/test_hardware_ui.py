@@ -280,3 +280,19 @@ def test_a_slider_move_sends_nothing_to_the_machine_and_start_one_scan(monkeypat
     panel.start()
     assert sent.count("SS") == 1 and sent.count("SP") == 6  # NX NY DX SE MO LI, once each
     assert panel.device.events[-1].event.value == "DONE"
+
+
+@pytest.mark.slow
+def test_the_notebooks_seashell_print_is_scanned_back_within_the_z_step(tmp_path):
+    """Notebook 08's cells: the seashell exported at the default scales, scanned in jumping mode
+    at 32 pixels of 1 mm: the rounding to the z micro-step is all that is left."""
+    p = MacroAFMPanel()
+    try:
+        p.export_stl(tmp_path / "seashell_print.stl")
+        p.set(sample="your print (seashell_print.stl)", mode="jumping", pixels=32, pitch=1.0,
+              lift=0.5)
+        p.start(wait=True)
+        c = p.last.comparison
+        assert c.image.shape == (32, 32) and c.rms < 1.5 * QUANTISATION
+    finally:
+        p.close()

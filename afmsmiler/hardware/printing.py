@@ -41,8 +41,8 @@ from ..samples.sample import MAX_PIXELS
 from ..validation import check_instance, check_writable_path
 
 __all__ = ["PARAMETERS", "STL_UNIT", "MAX_TRIANGLES", "MAX_PRINT_SIZE", "MAX_RASTER_WORK",
-           "sample_to_mesh", "save_stl", "write_stl", "mesh_to_sample", "print_size", "triangle_count",
-           "fitting_scale", "seashell", "PrintComparison", "compare_scan"]
+           "sample_to_mesh", "save_stl", "write_stl", "mesh_to_sample", "print_size",
+           "triangle_count", "fitting_scale", "seashell", "PrintComparison", "compare_scan"]
 
 #: The unit of an STL file's coordinates: millimetres, as every slicer assumes.
 STL_UNIT = "mm"

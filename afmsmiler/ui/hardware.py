@@ -43,9 +43,9 @@ from ..validation import check_choice, check_finite
 from .controls import WIDTH, control
 from .panel import Panel, running_as_notebook
 
-__all__ = ["MacroAFMPanel", "MacroResult", "DEFAULTS", "LIVE_TIME_SCALE", "TWIN", "MODES", "PIXELS", "SOURCES",
-           "PITCHES", "SCAN_PARAMETERS",
-           "TWIN_SAMPLES", "serial_ports", "twin_sample", "source_image", "PRINT_SLIDERS"]
+__all__ = ["MacroAFMPanel", "MacroResult", "DEFAULTS", "LIVE_TIME_SCALE", "TWIN", "MODES",
+           "PIXELS", "SOURCES", "PITCHES", "SCAN_PARAMETERS", "TWIN_SAMPLES", "TWIN_PITCH",
+           "serial_ports", "twin_sample", "source_image", "PRINT_SLIDERS"]
 
 #: The twin's pace in a live notebook: 500 times the machine's (a 32 x 32 contact scan of the
 #: seashell takes 3 s instead of 23 minutes, a jumping scan of the tall pillars 30 s).
@@ -316,6 +316,7 @@ class MacroAFMPanel(Panel):
         self.fig = self.new_figure(figsize=(10.0, 7.5))
         self.figure = None
         self.device = None
+        self._session = None
         self.running = self.paused = False
         self._task = None
         self._link = None          # (transport, server or None, port, sample name)
