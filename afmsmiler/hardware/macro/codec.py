@@ -26,6 +26,7 @@ Pixel(row=2, col=5, z=-120, counts=3301)
 from __future__ import annotations
 
 import enum
+import inspect
 from dataclasses import dataclass
 
 from ..errors import FrameError
@@ -41,8 +42,22 @@ DEVICE = "MACROAFM"
 BAUDRATE = 115200
 
 
+def _by_value(cls):
+    """Give an enum the signature of its lookup, ``Kind(value)`` (what users call)."""
+    cls.__signature__ = inspect.Signature(
+        [inspect.Parameter("value", inspect.Parameter.POSITIONAL_OR_KEYWORD)])
+    return cls
+
+
+@_by_value
 class Command(str, enum.Enum):
-    """Host commands (``CMD_<NAME> "XX"`` in protocol.h)."""
+    """Host commands (``CMD_<NAME> "XX"`` in protocol.h).
+
+    Parameters
+    ----------
+    value : str
+        The two letters on the wire (``Command("SP")`` is ``Command.SET``).
+    """
 
     IDENTIFY = "ID"
     SET = "SP"
@@ -57,8 +72,15 @@ class Command(str, enum.Enum):
     GETLINE = "GL"
 
 
+@_by_value
 class ErrorCode(enum.IntEnum):
-    """Error numbers shared by every device (``ERR_<NAME> <n>``)."""
+    """Error numbers shared by every device (``ERR_<NAME> <n>``).
+
+    Parameters
+    ----------
+    value : int
+        The error number on the wire.
+    """
 
     CHECKSUM = 1
     UNKNOWN_COMMAND = 2
@@ -72,8 +94,15 @@ class ErrorCode(enum.IntEnum):
     STATE = 10
 
 
+@_by_value
 class Event(str, enum.Enum):
-    """Event words of ``0 EV <WORD> [ARG]`` (``EVT_<NAME> "<WORD>"``)."""
+    """Event words of ``0 EV <WORD> [ARG]`` (``EVT_<NAME> "<WORD>"``).
+
+    Parameters
+    ----------
+    value : str
+        The word on the wire.
+    """
 
     BOOT = "BOOT"
     HOMED = "HOMED"
@@ -85,8 +114,15 @@ class Event(str, enum.Enum):
     BUTTON = "BUTTON"
 
 
+@_by_value
 class Param(str, enum.Enum):
-    """Integer parameters of ``SP``/``GP`` (``PAR_<NAME> "XX"``)."""
+    """Integer parameters of ``SP``/``GP`` (``PAR_<NAME> "XX"``).
+
+    Parameters
+    ----------
+    value : str
+        The two letters on the wire (``Param("DX")`` is ``Param.PITCH``).
+    """
 
     NX = "NX"          #: pixels per line
     NY = "NY"          #: lines
@@ -104,8 +140,15 @@ class Param(str, enum.Enum):
 READ_ONLY = frozenset({Param.ZSTEP})
 
 
+@_by_value
 class State(str, enum.Enum):
-    """The device's states in the ``ST`` reply."""
+    """The device's states in the ``ST`` reply.
+
+    Parameters
+    ----------
+    value : str
+        The state's word on the wire.
+    """
 
     IDLE = "IDLE"
     HOMING = "HOMING"
@@ -114,8 +157,15 @@ class State(str, enum.Enum):
     FAULT = "FAULT"
 
 
+@_by_value
 class Flag(enum.IntFlag):
-    """Bits of the ``ST`` reply's flags integer."""
+    """Bits of the ``ST`` reply's flags integer.
+
+    Parameters
+    ----------
+    value : int
+        The flags integer on the wire.
+    """
 
     HOMED = 1
     LIMIT_X = 2

@@ -499,7 +499,14 @@ class MacroAFM:
                                               f"{self.home_timeout:g} s")
                 try:
                     msg = self._read(min(remaining, self.timeout))
-                except TransportTimeout:
+                except TransportTimeout:  # quiet: the HOMED event may have been lost, ask
+                    status = self.status()
+                    if status.state == State.IDLE and status.homed:
+                        return
+                    if status.state != State.HOMING:
+                        raise DeviceError(int(ErrorCode.LIMIT if status.state == State.FAULT
+                                              else ErrorCode.STATE), status.state.value, DEVICE,
+                                          Command.HOME.value) from None
                     continue
                 if isinstance(msg, ErrorReply) and msg.seq == 0 and msg.code not in (
                         ErrorCode.CHECKSUM, ErrorCode.MALFORMED):

@@ -514,10 +514,10 @@ class MacroAFMTwin(Twin):
     def _cmd_start(self, frame):
         if frame.args:
             return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
-        if self.state != State.IDLE:
-            return [self.error(frame, ErrorCode.BUSY)]
         if not self.homed:
             return [self.error(frame, ErrorCode.NOT_HOMED)]
+        if self.state != State.IDLE:
+            return [self.error(frame, ErrorCode.BUSY)]
         self._start(self.now)
         return [self.ok(frame)]
 
