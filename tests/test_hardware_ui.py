@@ -9,6 +9,7 @@ error), the .gwy file read back by module (f)'s reader, trimesh's watertightness
 """
 import asyncio
 import math
+import os
 import time
 
 import numpy as np
@@ -294,5 +295,21 @@ def test_the_notebooks_seashell_print_is_scanned_back_within_the_z_step(tmp_path
         p.start(wait=True)
         c = p.last.comparison
         assert c.image.shape == (32, 32) and c.rms < 1.5 * QUANTISATION
+    finally:
+        p.close()
+
+
+@pytest.mark.hardware
+@pytest.mark.skipif(os.environ.get("AFMSMILER_HARDWARE") != "1",
+                    reason="no board: set AFMSMILER_HARDWARE=1 and AFMSMILER_PORT=/dev/ttyACM0")
+def test_the_panel_scans_with_a_real_board(monkeypatch, tmp_path):
+    port = os.environ.get("AFMSMILER_PORT", "/dev/ttyACM0")
+    monkeypatch.setattr(ui, "serial_ports", lambda: [(port, port)])
+    p = MacroAFMPanel(port=port, pixels=8, pitch=0.5, mode="jumping")
+    try:
+        assert "MACROAFM protocol 1" in p.connect()
+        p.start(wait=True)
+        assert p.last.state == "done" and p.last.lines_done == 8
+        assert load(p.save_gwy(tmp_path / "board.gwy"), "height").shape == (8, 8)
     finally:
         p.close()
