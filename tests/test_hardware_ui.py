@@ -313,3 +313,31 @@ def test_the_panel_scans_with_a_real_board(monkeypatch, tmp_path):
         assert load(p.save_gwy(tmp_path / "board.gwy"), "height").shape == (8, 8)
     finally:
         p.close()
+
+
+@pytest.mark.parametrize("fault, expected", [
+    (dict(unplug_after_lines=150), "TransportClosed"),     # the cable pulled mid-scan
+    pytest.param(dict(silent_after_lines=150), "DeviceNotResponding",  # the board hangs
+                 marks=pytest.mark.slow),
+])
+def test_a_lost_link_ends_the_scan_in_the_panel_and_keeps_the_lines(monkeypatch, fault,
+                                                                   expected, tmp_path):
+    import afmsmiler.hardware as hw
+    original = hw.open_twin
+
+    def faulty(twin, **kwargs):
+        host, server = original(twin, **kwargs)
+        return hw.FaultyTransport(host, **fault), server
+
+    monkeypatch.setattr(hw, "open_twin", faulty)
+    p = MacroAFMPanel(pixels=16, pitch=1.0)
+    try:
+        p.connect()
+        p.device.timeout, p.device.stream_timeout = 0.2, 0.5  # no long waits in a test
+        p.start()
+        r = p.last
+        assert r.state == "fault" and expected in p.error and not p.running
+        assert 2 <= r.lines_done < 16 and np.isfinite(r.height[:r.lines_done]).all()
+        assert load(p.save_gwy(tmp_path / "kept.gwy"), "height").shape == (r.lines_done, 16)
+    finally:
+        p.close()
