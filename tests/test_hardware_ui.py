@@ -341,3 +341,17 @@ def test_a_lost_link_ends_the_scan_in_the_panel_and_keeps_the_lines(monkeypatch,
         assert load(p.save_gwy(tmp_path / "kept.gwy"), "height").shape == (r.lines_done, 16)
     finally:
         p.close()
+
+
+def test_a_print_exported_again_under_its_name_replaces_the_old_one(panel, tmp_path):
+    panel.export_stl(tmp_path / "p.stl")
+    panel.set(sample="your print (p.stl)", pixels=8, pitch=1.0)
+    panel.start()
+    first = panel.last.height.copy()
+    panel.set(vertical_scale=800.0)  # twice the relief
+    panel.export_stl(tmp_path / "p.stl")
+    panel.start()
+    second = panel.last.height
+    relief = [np.ptp(h) for h in (first, second)]
+    assert relief[1] == pytest.approx(2 * relief[0], rel=0.05)
+    assert panel.last.comparison.rms < 1.5 * QUANTISATION

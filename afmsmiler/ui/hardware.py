@@ -461,6 +461,10 @@ class MacroAFMPanel(Panel):
         written = printing.write_stl(mesh, path)
         name = f"your print ({written.name})"
         self._prints[name] = mesh
+        # a print written again under the same name replaces the old one everywhere
+        self._maps = {k: v for k, v in self._maps.items() if k[0] != name}
+        if self._link is not None and self._link[1] == name:
+            self._link = None  # the next Start connects a twin of the new print
         options = list(TWIN_SAMPLES) + list(self._prints)
         hold, self._hold = self._hold, True
         try:  # new options keep the chosen sample
