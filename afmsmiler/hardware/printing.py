@@ -326,8 +326,8 @@ def write_stl(mesh, path) -> Path:
 
     check_instance("mesh", mesh, trimesh.Trimesh)
     path = _stl_path(path)
-    scaled = mesh.copy()
-    scaled.apply_scale(1.0 / UNITS[STL_UNIT][1])
+    scaled = trimesh.Trimesh(vertices=mesh.vertices / UNITS[STL_UNIT][1], faces=mesh.faces,
+                             process=False, validate=False)  # a copy in mm, no processing
     data = scaled.export(file_type="stl")  # binary STL: 80-byte header, count, 50 B/triangle
     tmp = f"{path}.part"
     with open(tmp, "wb") as fh:
