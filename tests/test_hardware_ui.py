@@ -375,3 +375,24 @@ def test_commands_during_a_paced_scan_lose_no_pixels():
         assert p.last.state == "done", p.last.error
     finally:
         p.close()
+
+
+def test_the_figure_shows_the_streamed_pixels_in_um_over_mm(panel):
+    from afmsmiler.parameters import UNITS
+    um = 1 / UNITS["um"][1]
+    panel.start(run=False)
+    for _ in range(3):
+        panel.step()
+    shown_image = np.ma.filled(panel.figure.images["height"].get_array(), np.nan)
+    h = panel.last.height
+    np.testing.assert_allclose(shown_image, h * um, rtol=1e-12)  # NaN where no pixel came
+    assert np.isnan(shown_image).sum() == h.size - panel.last.pixels_done
+    assert panel.figure.images["height"].get_extent() == pytest.approx(
+        [-0.5, 15.5, -0.5, 15.5])  # 16 pixels of 1 mm, pixel edges in mm
+    assert f"{panel.last.pixels_done}/256" in panel.figure.axes["height"].get_title()
+    while panel.step():
+        pass
+    c = panel.last.comparison
+    diff = np.ma.filled(panel.figure.images["difference"].get_array(), np.nan)
+    np.testing.assert_allclose(diff, c.difference.heights * um, rtol=1e-12)
+    assert f"{c.rms * um:.3g}" in panel.figure.axes["difference"].get_title()
