@@ -230,3 +230,20 @@ def test_compare_scan_removes_the_offset_and_measures_the_shape_error():
         pr.compare_scan(ref, Sample(scan.heights, 0.3 * MM))
     with pytest.raises(ValueError, match="fit"):
         pr.compare_scan(scan, ref)
+
+
+def test_bad_values_found_by_the_api_campaign_are_named():
+    """The lead's bad-input campaign, run on this module, found these (each failed before)."""
+    extreme = Sample(np.array([[-1e308, 1e308], [0.0, 1.0]]), 1e-6)
+    for call in (lambda: pr.print_size(extreme), lambda: pr.sample_to_mesh(extreme)):
+        with pytest.raises(ValueError, match="sample"):
+            call()
+    for shape in (float("nan"), "ab", (2,), (1, 5), (3.5, 4)):
+        with pytest.raises((TypeError, ValueError), match="shape"):
+            pr.triangle_count(shape)
+    for margin in (None, "1", float("nan"), -1.0, 0.2):
+        with pytest.raises((TypeError, ValueError), match="margin"):
+            pr.fitting_scale(pr.seashell(), (0.22, 0.22), margin=margin)
+    big = Sample(np.zeros((3, 3)), 1e-6)
+    with pytest.raises(ValueError, match="sample"):  # the scale's message names the sample
+        pr.sample_to_mesh(big, lateral_scale=1e9)

@@ -38,7 +38,7 @@ import numpy as np
 from ..parameters import UNITS, Parameter, read_only
 from ..samples import Sample
 from ..samples.sample import MAX_PIXELS
-from ..validation import check_instance, check_writable_path
+from ..validation import check_instance, check_range, check_shape, check_writable_path
 
 __all__ = ["PARAMETERS", "STL_UNIT", "MAX_TRIANGLES", "MAX_PRINT_SIZE", "MAX_RASTER_WORK",
            "sample_to_mesh", "save_stl", "write_stl", "mesh_to_sample", "print_size",
@@ -85,6 +85,11 @@ def _check_image(sample) -> Sample:
     if sample.unit != "m":
         raise ValueError(f"sample must hold heights in m to print, got a {sample.channel!r} "
                          f"channel in {sample.unit!r}")
+    with np.errstate(over="ignore", invalid="ignore"):
+        relief = float(np.ptp(sample.heights))
+    if not math.isfinite(relief):
+        raise ValueError("sample must have a finite relief (max - min of its heights), got "
+                         f"heights from {sample.heights.min():g} to {sample.heights.max():g} m")
     return sample
 
 
@@ -102,8 +107,13 @@ def triangle_count(shape) -> int:
     Returns
     -------
     int
+
+    Raises
+    ------
+    ValueError
+        If ``shape`` is not two integers >= 2.
     """
-    rows, cols = (int(n) for n in shape)
+    rows, cols = check_shape("shape", shape, 2, limit=1 << 60, low=2)
     return 2 * (rows - 1) * (cols - 1) + 6 * (rows - 1) + 6 * (cols - 1)
 
 
@@ -162,9 +172,7 @@ def fitting_scale(sample: Sample, bed: tuple = (0.22, 0.22), *, margin: float = 
         raise ValueError(f"bed must be a pair (x, y) in m, got {bed!r}") from None
     if not (math.isfinite(bx) and math.isfinite(by) and bx > 0 and by > 0):
         raise ValueError(f"bed must be a pair of positive sizes in m, got {bed!r}")
-    if not (math.isfinite(margin) and 0 <= 2 * margin < min(bx, by)):
-        raise ValueError(f"margin must be in [0, {min(bx, by) / 2:g}) m (half the bed), got "
-                         f"{margin!r}")
+    margin = check_range("margin", margin, 0.0, min(bx, by) / 2, "m", high_inclusive=False)
     return min((bx - 2 * margin) / sample.width, (by - 2 * margin) / sample.height_extent)
 
 
@@ -225,10 +233,12 @@ def sample_to_mesh(sample: Sample, *, lateral_scale: float = _P["lateral_scale"]
                          f"pixels ({n_tri} triangles): resample it first")
     size = print_size(sample, lateral_scale=ls, vertical_scale=vs, base_thickness=base)
     for axis, s, name in zip("xyz", size, ("lateral_scale", "lateral_scale", "vertical_scale")):
-        if s > MAX_PRINT_SIZE:
+        if not s <= MAX_PRINT_SIZE:  # NaN and inf too (heights near the float limit)
             value = vs if name == "vertical_scale" else ls
-            raise ValueError(f"{name} = {value:g} makes the print {s:g} m along {axis}, more than "
-                             f"{MAX_PRINT_SIZE:g} m: check the scale (print / image size)")
+            raise ValueError(f"{name} = {value:g} makes the print of sample (extent "
+                             f"{sample.width:g} x {sample.height_extent:g} m, relief "
+                             f"{float(np.ptp(sample.heights)):g} m) {s:g} m along {axis}, more "
+                             f"than {MAX_PRINT_SIZE:g} m: check the scale (print / image size)")
 
     h = sample.heights
     x = np.arange(cols) * (sample.pixel_size * ls)
@@ -484,10 +494,10 @@ def seashell(shape=(128, 128), pixel_size: float = 80e-6 / 127, *, height: float
     Sample
         Heights in m, the lowest pixel at 0.
     """
-    from ..samples.sample import check_shape
+    from ..samples.sample import check_shape as check_sample_shape
     from ..validation import check_integer, check_positive
 
-    checked = check_shape(shape)
+    checked = check_sample_shape(shape)
     if len(checked) != 2 or max(checked) > 1024:
         raise ValueError(f"shape must be (rows, columns), each 2 to 1024, got {shape!r}")
     rows, cols = checked
