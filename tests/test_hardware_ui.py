@@ -396,3 +396,13 @@ def test_the_figure_shows_the_streamed_pixels_in_um_over_mm(panel):
     diff = np.ma.filled(panel.figure.images["difference"].get_array(), np.nan)
     np.testing.assert_allclose(diff, c.difference.heights * um, rtol=1e-12)
     assert f"{c.rms * um:.3g}" in panel.figure.axes["difference"].get_title()
+
+
+def test_a_port_that_cannot_be_opened_is_reported_in_the_panel(monkeypatch):
+    monkeypatch.setattr(ui, "serial_ports", lambda: [("gone", "/dev/ttyACM9")])
+    p = MacroAFMPanel(port="/dev/ttyACM9")
+    p.buttons["connect"].click()  # ipywidgets' dispatcher logs what the action raises again
+    assert "TransportClosed" in p.error and "/dev/ttyACM9" in p.error and p.device is None and p.last.state == "idle"
+    p.set(port=TWIN)  # the twin still works
+    assert "twin" in p.connect()
+    p.close()
