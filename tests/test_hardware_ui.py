@@ -406,3 +406,32 @@ def test_a_port_that_cannot_be_opened_is_reported_in_the_panel(monkeypatch):
     p.set(port=TWIN)  # the twin still works
     assert "twin" in p.connect()
     p.close()
+
+
+def test_buttons_pressed_in_another_thread_act_between_steps(panel):
+    """ipykernel 7 runs a click handler in another thread than the loop reading the scan. The
+    driver queued a command from there to the reading thread, which a paused scan never ran:
+    Resume and Abort hung for the driver's timeout (35 s). The panel now queues the action
+    itself and the next step runs it."""
+    import threading
+
+    def press(name):
+        t = threading.Thread(target=panel.buttons[name].click)
+        t.start()
+        t.join(5.0)
+        assert not t.is_alive(), f"{name} hung in the click handler"
+
+    panel.set(mode="jumping")
+    panel.start(run=False)
+    for _ in range(3):
+        panel.step()
+    press("pause")
+    assert panel.step() and panel.paused
+    done = panel.last.pixels_done
+    press("pause")  # now labelled Resume
+    assert panel.step() and not panel.paused and panel.last.pixels_done > done
+    press("pause")
+    panel.step()
+    press("abort")
+    assert not panel.step() and panel.last.state == "aborted"
+    assert panel.error is None

@@ -27,6 +27,7 @@ import asyncio
 import math
 import os
 import time
+from collections import deque
 from dataclasses import dataclass
 
 import ipywidgets as widgets
@@ -301,9 +302,9 @@ class MacroAFMPanel(Panel):
         b = self.buttons
         b["connect"].on_click(lambda _b: self._action(self.connect))
         b["start"].on_click(lambda _b: self._action(self.start))
-        b["pause"].on_click(lambda _b: self._action(self.pause if not self.paused
-                                                    else self.resume))
-        b["abort"].on_click(lambda _b: self._action(self.abort))
+        b["pause"].on_click(lambda _b: self._request(self.pause if not self.paused
+                                                     else self.resume))
+        b["abort"].on_click(lambda _b: self._request(self.abort))
         b["save"].on_click(lambda _b: self._action(lambda: self.save_gwy(self.paths["gwy"]
                                                                          .value)))
         b["export"].on_click(lambda _b: self._action(lambda: self.export_stl(
@@ -333,6 +334,7 @@ class MacroAFMPanel(Panel):
         self._prints = {}          # your prints: name -> mesh (m)
         self._maps = {}            # (what, name, pitch) -> height map of a print (m)
         self.mesh_runs = 0         # meshes built (Export STL, a twin's new sample)
+        self._actions = deque()    # buttons pressed during a scan, for the reading thread
         self._set_buttons()
         super().__init__()
 
@@ -345,6 +347,23 @@ class MacroAFMPanel(Panel):
         b["pause"].icon = "play" if self.paused else "pause"
         b["abort"].disabled = not self.running
         b["save"].disabled = self._lines_done() < 2
+
+    def _request(self, action) -> None:
+        """A button's action on a running scan: done by the loop that reads the scan.
+
+        ipykernel 7 runs a widget's click handler in another thread than the cell or the
+        asyncio task that reads the scan; the driver then queues the command to the reading
+        thread, which a paused scan does not run, so a Resume or Abort waited for its timeout.
+        The action is queued here instead and :meth:`step` (on the reading thread) runs it.
+        """
+        if self.running:
+            self._actions.append(action)
+        else:
+            self._action(action)
+
+    def _run_actions(self) -> None:
+        while self._actions:
+            self._action(self._actions.popleft())
 
     def _action(self, action) -> None:
         """A button's action; a failure is shown under the panel (raised again under test)."""
@@ -618,6 +637,7 @@ class MacroAFMPanel(Panel):
             True while the scan runs (paused included), False once it has ended (finished,
             aborted or faulted).
         """
+        self._run_actions()  # Pause, Resume, Abort pressed since the last step
         if not self.running:
             return False
         if self.paused:
