@@ -610,3 +610,13 @@ def test_truncated_real_files_are_named_before_their_data_is_read(tmp_path, capf
 
 def test_from_file_is_load():
     assert samples.from_file is samples.load
+
+
+def test_a_saved_sample_loads_back_with_the_default_channel(tmp_path):
+    """load(save_gwy(sample)) raised: save_gwy names a Sample's heights "height", and the default
+    channel "Height" did not find it."""
+    s = samples.Sample(1e-9 * np.arange(12.0).reshape(3, 4), 2e-9, "height")
+    path = samples.save_gwy(s, tmp_path / "s.gwy")
+    back = samples.load(path)
+    np.testing.assert_allclose(back.heights, s.heights, rtol=1e-12)
+    assert back.pixel_size == pytest.approx(2e-9, rel=1e-12)

@@ -517,8 +517,8 @@ def _pick(p: Path, channel: str, names: list) -> str:
     if channel in names:
         return channel
     if channel == "Height":
-        for name in _HEIGHT_CHANNELS.get(p.suffix.lower(), ()) + ("Topography",):
-            if name in names:
+        for name in _HEIGHT_CHANNELS.get(p.suffix.lower(), ()) + ("Topography", "height"):
+            if name in names:  # "height": the channel save_gwy writes for a Sample's heights
                 return name
         if len(names) == 1 and p.suffix.lower() in (".top", ".stp"):
             return names[0]
