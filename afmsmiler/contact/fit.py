@@ -453,30 +453,41 @@ def _solve_rows(x, f, tip, scale_nu, k):
     p[:, 0] = 1.0
 
     def evaluate(rows, q):
-        """Residuals (in units of f_scale) and Jacobian of the scaled parameters q, on rows."""
+        """Residuals (in units of f_scale) and the Jacobian's columns of E and x_0 in the
+        scaled parameters q, on rows (the baseline's column is 1)."""
         e = e_guess[rows] * q[:, 0]
         x0 = x0_guess[rows] + depth[rows] * q[:, 1]
         b = f0[rows] + f_scale[rows] * q[:, 2]
         model, d_e, d_x0 = _model(tip, k, x[rows], e / scale_nu, x0, b)
         fs = f_scale[rows][:, None]
         res = (model - f[rows]) / fs
-        jac = np.empty(res.shape + (3,))
-        jac[..., 0] = d_e * (e_guess[rows][:, None] / scale_nu / fs)
-        jac[..., 1] = d_x0 * (depth[rows][:, None] / fs)
-        jac[..., 2] = 1.0
-        return res, jac
+        d_e *= e_guess[rows][:, None] / scale_nu / fs
+        d_x0 *= depth[rows][:, None] / fs
+        return res, d_e, d_x0
+
+    def normal_equations(res, j_e, j_x0):
+        """J^T J (n, 3, 3) and J^T r (n, 3) from the residuals and the Jacobian's columns."""
+        a = np.empty((res.shape[0], 3, 3))
+        cols = (j_e, j_x0)
+        for i in range(2):
+            for j in range(i, 2):
+                a[:, i, j] = a[:, j, i] = np.einsum("ij,ij->i", cols[i], cols[j])
+            a[:, i, 2] = a[:, 2, i] = cols[i].sum(axis=1)
+        a[:, 2, 2] = res.shape[1]
+        g = np.stack([np.einsum("ij,ij->i", j_e, res), np.einsum("ij,ij->i", j_x0, res),
+                      res.sum(axis=1)], axis=1)
+        return a, g
 
     active = np.flatnonzero([not reason for reason in failure])
-    res, jac = evaluate(active, p[active])
+    res, j_e, j_x0 = evaluate(active, p[active])
     cost = np.einsum("ij,ij->i", res, res)
     damping = np.full(active.size, 1e-3)
-    final_res = np.zeros((n, m))
-    final_jac = np.zeros((n, m, 3))
-    for _ in range(_MAX_ITERATIONS):  # bounded; each curve leaves once converged
+    final_cost = np.zeros(n)
+    final_a = np.zeros((n, 3, 3))
+    for iteration in range(_MAX_ITERATIONS):  # bounded; each curve leaves once converged
         if active.size == 0:
             break
-        a = np.einsum("ijk,ijl->ikl", jac, jac)
-        g = np.einsum("ijk,ij->ik", jac, res)
+        a, g = normal_equations(res, j_e, j_x0)
         diag = np.diagonal(a, axis1=1, axis2=2)
         damped = a + damping[:, None, None] * (diag[:, :, None] * np.eye(3))
         try:
@@ -486,36 +497,37 @@ def _solve_rows(x, f, tip, scale_nu, k):
         step = np.nan_to_num(step)
         q = np.clip(p[active] + step, lower[active], upper[active])
         moved = q - p[active]
-        new_res, new_jac = evaluate(active, q)
+        new_res, new_j_e, new_j_x0 = evaluate(active, q)
         new_cost = np.einsum("ij,ij->i", new_res, new_res)
         better = new_cost < cost
         p[active] = np.where(better[:, None], q, p[active])
-        res = np.where(better[:, None], new_res, res)
-        jac = np.where(better[:, None, None], new_jac, jac)
+        if better.any():
+            res[better], j_e[better], j_x0[better] = (new_res[better], new_j_e[better],
+                                                      new_j_x0[better])
         cost = np.where(better, new_cost, cost)
         damping = np.where(better, np.maximum(damping / 10.0, 1e-15), damping * 10.0)
         size = np.sqrt(np.sum(moved * moved, axis=1))
         done = (size <= _XTOL * (np.sqrt(np.sum(p[active] ** 2, axis=1)) + _XTOL)) | \
             (damping > _MAX_DAMPING)
+        if iteration == _MAX_ITERATIONS - 1:  # out of iterations: report where they stopped
+            done[:] = True
         if done.any():
-            final_res[active[done]] = res[done]
-            final_jac[active[done]] = jac[done]
+            final_cost[active[done]] = cost[done]
+            final_a[active[done]] = normal_equations(res[done], j_e[done], j_x0[done])[0]
             keep = ~done
-            active, res, jac, cost, damping = (active[keep], res[keep], jac[keep], cost[keep],
-                                               damping[keep])
-    if active.size:  # out of iterations: report where they stopped
-        final_res[active] = res
-        final_jac[active] = jac
+            active, res, j_e, j_x0, cost, damping = (active[keep], res[keep], j_e[keep],
+                                                     j_x0[keep], cost[keep], damping[keep])
 
     e = e_guess * p[:, 0]
     x0 = x0_guess + depth * p[:, 1]
     b = f0 + f_scale * p[:, 2]
     dof = max(m - 3, 1)
-    s2 = np.einsum("ij,ij->i", final_res, final_res) / dof  # in units of f_scale^2
-    cov = np.linalg.pinv(np.einsum("ijk,ijl->ikl", final_jac, final_jac)) * s2[:, None, None]
+    s2 = final_cost / dof  # in units of f_scale^2
+    cov = np.linalg.pinv(final_a) * s2[:, None, None]
     err = np.sqrt(np.clip(np.diagonal(cov, axis1=1, axis2=2), 0.0, np.inf)) * \
         np.stack([e_guess, depth, f_scale], axis=1)
-    fitted = final_res * f_scale[:, None] + f
+    e_star = np.where(np.isfinite(e), e, 1.0) / scale_nu
+    fitted = _model(tip, k, x, e_star, np.where(np.isfinite(x0), x0, 0.0), b)[0]
     for i in range(n):
         if not failure[i] and not (x[i, 0] < x0[i] < x[i, -1]):
             failure[i] = (f"the fitted contact point {x0[i]:g} m lies outside the data "
