@@ -374,9 +374,8 @@ def _model(tip, k, x, e_star, x0, baseline):
     Without k: F = F_0 + E* psi(x - x_0); with k, the cantilever solution F(Z_np - x_0), whose
     derivatives follow from k (Z - Z_s) = E* psi(Z_s) (notes of :func:`fit_curve`).
     """
-    z = x - x0[:, None]
-    contact = z > 0
-    zc = np.where(contact, z, 0.0)
+    # out of contact z_s = 0, where every tip's psi and r are exactly 0
+    zc = np.maximum(x - x0[:, None], 0.0)
     es = e_star[:, None]
     if k is None:
         z_s = np.minimum(zc, 0.999 * tip.depth_limit)
@@ -385,8 +384,8 @@ def _model(tip, k, x, e_star, x0, baseline):
             radius = tip.radius
             zc = np.minimum(zc, 0.999 * (radius + es * (tip.max_z_np(k, 1.0) - radius)))
         z_s = tip._solve(zc, k, es)
-    psi = np.where(contact, tip._force_unit(z_s), 0.0)
-    stiff = np.where(contact, 2.0 * es * tip._radius(z_s), 0.0)
+    psi = tip._force_unit(z_s)
+    stiff = 2.0 * es * tip._radius(z_s)
     force = baseline[:, None] + es * psi
     if k is None:
         return force, psi, -stiff
@@ -452,17 +451,15 @@ def _solve_rows(x, f, tip, scale_nu, k):
     p = np.zeros((n, 3))
     p[:, 0] = 1.0
 
-    def evaluate(rows, q):
+    def evaluate(q):
         """Residuals (in units of f_scale) and the Jacobian's columns of E and x_0 in the
-        scaled parameters q, on rows (the baseline's column is 1)."""
-        e = e_guess[rows] * q[:, 0]
-        x0 = x0_guess[rows] + depth[rows] * q[:, 1]
-        b = f0[rows] + f_scale[rows] * q[:, 2]
-        model, d_e, d_x0 = _model(tip, k, x[rows], e / scale_nu, x0, b)
-        fs = f_scale[rows][:, None]
-        res = (model - f[rows]) / fs
-        d_e *= e_guess[rows][:, None] / scale_nu / fs
-        d_x0 *= depth[rows][:, None] / fs
+        scaled parameters q of the active curves (the baseline's column is 1)."""
+        model, d_e, d_x0 = _model(tip, k, xa, ea * q[:, 0] / scale_nu, x0a + da * q[:, 1],
+                                  f0a + fsa * q[:, 2])
+        fs = fsa[:, None]
+        res = (model - fa) / fs
+        d_e *= (ea / scale_nu)[:, None] / fs
+        d_x0 *= da[:, None] / fs
         return res, d_e, d_x0
 
     def normal_equations(res, j_e, j_x0):
@@ -478,12 +475,16 @@ def _solve_rows(x, f, tip, scale_nu, k):
                       res.sum(axis=1)], axis=1)
         return a, g
 
+    # the active curves' data, taken out once and shrunk as curves converge
     active = np.flatnonzero([not reason for reason in failure])
-    res, j_e, j_x0 = evaluate(active, p[active])
+    xa, fa, ea, x0a, da, f0a, fsa, lo, hi, pa = (
+        v[active] for v in (x, f, e_guess, x0_guess, depth, f0, f_scale, lower, upper, p))
+    res, j_e, j_x0 = evaluate(pa)
     cost = np.einsum("ij,ij->i", res, res)
     damping = np.full(active.size, 1e-3)
     final_cost = np.zeros(n)
     final_a = np.zeros((n, 3, 3))
+    final_res = np.zeros((n, m))
     for iteration in range(_MAX_ITERATIONS):  # bounded; each curve leaves once converged
         if active.size == 0:
             break
@@ -495,28 +496,35 @@ def _solve_rows(x, f, tip, scale_nu, k):
         except np.linalg.LinAlgError:  # a singular curve: fall back to the pseudo-inverse
             step = -(np.linalg.pinv(damped) @ g[:, :, None])[:, :, 0]
         step = np.nan_to_num(step)
-        q = np.clip(p[active] + step, lower[active], upper[active])
-        moved = q - p[active]
-        new_res, new_j_e, new_j_x0 = evaluate(active, q)
+        q = np.clip(pa + step, lo, hi)
+        moved = q - pa
+        new_res, new_j_e, new_j_x0 = evaluate(q)
         new_cost = np.einsum("ij,ij->i", new_res, new_res)
         better = new_cost < cost
-        p[active] = np.where(better[:, None], q, p[active])
-        if better.any():
+        pa = np.where(better[:, None], q, pa)
+        if better.all():
+            res, j_e, j_x0 = new_res, new_j_e, new_j_x0
+        elif better.any():
             res[better], j_e[better], j_x0[better] = (new_res[better], new_j_e[better],
                                                       new_j_x0[better])
         cost = np.where(better, new_cost, cost)
         damping = np.where(better, np.maximum(damping / 10.0, 1e-15), damping * 10.0)
         size = np.sqrt(np.sum(moved * moved, axis=1))
-        done = (size <= _XTOL * (np.sqrt(np.sum(p[active] ** 2, axis=1)) + _XTOL)) | \
+        done = (size <= _XTOL * (np.sqrt(np.sum(pa ** 2, axis=1)) + _XTOL)) | \
             (damping > _MAX_DAMPING)
         if iteration == _MAX_ITERATIONS - 1:  # out of iterations: report where they stopped
             done[:] = True
         if done.any():
-            final_cost[active[done]] = cost[done]
-            final_a[active[done]] = normal_equations(res[done], j_e[done], j_x0[done])[0]
+            rows = active[done]
+            p[rows] = pa[done]
+            final_cost[rows] = cost[done]
+            final_res[rows] = res[done]
+            final_a[rows] = normal_equations(res[done], j_e[done], j_x0[done])[0]
             keep = ~done
-            active, res, j_e, j_x0, cost, damping = (active[keep], res[keep], j_e[keep],
-                                                     j_x0[keep], cost[keep], damping[keep])
+            active, xa, fa, ea, x0a, da, f0a, fsa, lo, hi, pa = (
+                v[keep] for v in (active, xa, fa, ea, x0a, da, f0a, fsa, lo, hi, pa))
+            res, j_e, j_x0, cost, damping = (
+                v[keep] for v in (res, j_e, j_x0, cost, damping))
 
     e = e_guess * p[:, 0]
     x0 = x0_guess + depth * p[:, 1]
@@ -526,8 +534,7 @@ def _solve_rows(x, f, tip, scale_nu, k):
     cov = np.linalg.pinv(final_a) * s2[:, None, None]
     err = np.sqrt(np.clip(np.diagonal(cov, axis1=1, axis2=2), 0.0, np.inf)) * \
         np.stack([e_guess, depth, f_scale], axis=1)
-    e_star = np.where(np.isfinite(e), e, 1.0) / scale_nu
-    fitted = _model(tip, k, x, e_star, np.where(np.isfinite(x0), x0, 0.0), b)[0]
+    fitted = final_res * f_scale[:, None] + f
     for i in range(n):
         if not failure[i] and not (x[i, 0] < x0[i] < x[i, -1]):
             failure[i] = (f"the fitted contact point {x0[i]:g} m lies outside the data "
