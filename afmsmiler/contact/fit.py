@@ -7,10 +7,19 @@ input already is the tip position), then fit::
     F(x) = F_0 + E / (1 - nu^2) psi(max(x - x_0, 0))
 
 with psi the tip's force law at unit reduced modulus, for E, the contact point x_0 and the
-baseline F_0, by :func:`scipy.optimize.least_squares` with the analytic Jacobian
-(dF/dx_0 = -2 E* r(x - x_0)). The uncertainties are the square roots of the diagonal of
-s^2 (J^T J)^-1, with s^2 the residual variance: the usual linearised covariance (as
-:func:`scipy.optimize.curve_fit` reports it).
+baseline F_0, by least squares with the analytic Jacobian (dF/dx_0 = -2 E* r(x - x_0)):
+Levenberg-Marquardt steps on the 3 x 3 normal equations, bounded to E > 0 and a contact point
+at most one indentation depth before the data (Levenberg, Q. Appl. Math. 2, 164 (1944);
+Marquardt, J. SIAM 11, 431 (1963); Nocedal and Wright, *Numerical Optimization*, 2nd ed.,
+Sec. 10.3). The uncertainties are the square roots of the diagonal of s^2 (J^T J)^-1, with s^2
+the residual variance: the usual linearised covariance (as :func:`scipy.optimize.curve_fit`
+reports it).
+
+:func:`fit_curves` fits many curves at once (a force-volume map: thousands of curves), the
+solver's steps vectorised over the curves with NumPy, each curve converging on its own;
+:func:`fit_curve` is its one-curve case, so that both share one model (``_model``), one
+contact detection and one solver. They agree with scipy's ``least_squares`` and ``curve_fit``
+on the same problem (``tests/test_contact_fit_batch.py``).
 
 Curves come from :func:`synthetic_curve` (the exact model with Gaussian noise) or from a file of
 any format the kept library ``afmformats`` reads (JPK, Asylum/Igor, AFM workshop, NT-MDT, its own
