@@ -16,7 +16,7 @@ from scipy.integrate import quad
 from scipy.optimize import brentq
 
 from afmsmiler.contact import Conical, Parabolic, StandardLinearSolid
-from afmsmiler.imaging.scanner import ScanSettings, scan
+from afmsmiler.imaging.scanner import Scan, ScanSettings, scan
 from afmsmiler.modes import force_volume as fvm
 from afmsmiler.modes.force_volume import (BLEND, ForceVolumeMode, SampleMaterial, force_volume,
                                           two_material_sample)
@@ -275,3 +275,22 @@ def test_one_batched_fit_per_material(monkeypatch):
     assert sorted(calls) == [(3, 200), (3, 200)]
     for i, m in enumerate(BLEND):
         assert np.allclose(fv.modulus[labels == i], m.youngs_modulus, rtol=0.03)
+
+
+def test_material_system_and_mode_line_name_bad_arguments():
+    """The bad-input campaign found these accepted silently: an unknown adhesion model in
+    SampleMaterial.system (a ContactSystem without adhesion came back) and any state in
+    ForceVolumeMode.line (start returns None and nothing carries over)."""
+    for bad in ("maugis", math.nan, True, object()):
+        with pytest.raises(ValueError, match="^adhesion must be one of"):
+            BLEND[0].system(TIP, K, bad)
+    assert BLEND[0].system(TIP, K, "dmt").adhesion == "dmt"
+    mode = ForceVolumeMode(BLEND, TIP, points=50)
+    sample = Sample(np.zeros((2, 4)), 10e-9)
+    settings = ScanSettings(40e-9, scan_size_y=20e-9, pixels=4, lines=2)
+    assert np.isfinite(scan(sample, TIP, mode, settings).images["modulus trace"]).all()
+    plan = Scan(sample, TIP, mode, settings).plan
+    for bad in (math.nan, "state", {}, np.array([math.nan])):
+        with pytest.raises(TypeError, match="^state must be None"):
+            mode.line(plan, 0, bad)
+    assert mode.line(plan, 0, None).state is None

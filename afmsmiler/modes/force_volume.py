@@ -154,7 +154,13 @@ class SampleMaterial:
         Returns
         -------
         afmsmiler.contact.ContactSystem
+
+        Raises
+        ------
+        ValueError
+            If ``adhesion`` is not one of :data:`ADHESION_MODELS` (or k is out of range).
         """
+        check_choice("adhesion", adhesion, ADHESION_MODELS)
         e = (self.viscoelastic.relaxed_modulus if self.viscoelastic is not None
              else self.youngs_modulus)
         sticky = adhesion is not None and self.work_of_adhesion > 0
@@ -512,14 +518,25 @@ class ForceVolumeMode(Mode):
             The scan.
         row : int
             Line index.
-        state : object
-            Unused.
+        state : None
+            What :meth:`start` returned and each line passes on: None (a force-volume line
+            carries nothing over from the previous one).
 
         Returns
         -------
         afmsmiler.imaging.modes.ModeLine
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` is not None.
+        ValueError
+            If ``row`` is not a line of the plan.
         """
         row = self._row(plan, row)
+        if state is not None:
+            raise TypeError(f"state must be None (what ForceVolumeMode.start returns: nothing "
+                            f"carries over between lines), got {type(state).__name__}")
         x, y = plan.x_trace[row], plan.y_trace[row]
         lab = _material_index(self.material, x, y, len(self.materials))
         settings = dict(self.settings)
