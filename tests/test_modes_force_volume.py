@@ -294,3 +294,15 @@ def test_material_system_and_mode_line_name_bad_arguments():
         with pytest.raises(TypeError, match="^state must be None"):
             mode.line(plan, 0, bad)
     assert mode.line(plan, 0, None).state is None
+
+
+def test_blocks_of_curves_give_the_same_maps(monkeypatch):
+    """The curves are analysed and fitted in blocks of bounded memory: blocks of 2 curves give
+    the maps of one block per material."""
+    sample, labels = two_material_sample((4, 5), 40e-9, island_radius=60e-9, island_count=2,
+                                         seed=4)
+    whole = force_volume(sample, BLEND, TIP, labels=labels, seed=5, points=100)
+    monkeypatch.setattr(fvm, "_ANALYSIS_POINTS", 200)
+    blocks = force_volume(sample, BLEND, TIP, labels=labels, seed=5, points=100)
+    for name in ("modulus", "modulus_error", "adhesion", "deformation", "dissipation"):
+        np.testing.assert_allclose(getattr(blocks, name), getattr(whole, name), rtol=1e-9)

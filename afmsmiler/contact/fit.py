@@ -559,20 +559,23 @@ def _solve_rows(x, f, tip, scale_nu, k):
 
 
 def _fit_sorted(x, f, tip, nu, k):
-    """Sort each row by x, fit in chunks of bounded memory, and return the results in the
-    input's order: (values dict, model (n, m), failure list)."""
+    """Fit curves (n, m) in chunks of bounded memory, each row sorted by x; return the results
+    in the input's order: (values dict, model (n, m), failure list)."""
     n, m = x.shape
-    order = np.argsort(x, axis=1, kind="stable")
-    x = np.take_along_axis(x, order, axis=1)
-    f = np.take_along_axis(f, order, axis=1)
     per_chunk = max(1, _CHUNK_POINTS // m)
-    parts = [_solve_rows(x[i:i + per_chunk], f[i:i + per_chunk], tip, 1.0 - nu * nu, k)
-             for i in range(0, n, per_chunk)]  # bounded: n / per_chunk chunks
-    values = {name: np.concatenate([part[0][name] for part in parts]) for name in parts[0][0]}
+    values, failure = {}, []
     fitted = np.empty_like(f)
-    np.put_along_axis(fitted, order, np.concatenate([part[1] for part in parts]), axis=1)
-    failure = [reason for part in parts for reason in part[2]]
-    return values, fitted, failure
+    for i in range(0, n, per_chunk):  # bounded: n / per_chunk chunks
+        rows = slice(i, i + per_chunk)
+        order = np.argsort(x[rows], axis=1, kind="stable")
+        part, model, reasons = _solve_rows(np.take_along_axis(x[rows], order, axis=1),
+                                           np.take_along_axis(f[rows], order, axis=1),
+                                           tip, 1.0 - nu * nu, k)
+        np.put_along_axis(fitted[rows], order, model, axis=1)
+        for name, value in part.items():
+            values.setdefault(name, []).append(value)
+        failure.extend(reasons)
+    return {name: np.concatenate(parts) for name, parts in values.items()}, fitted, failure
 
 
 def fit_curves(position, force, tip, poisson_ratio, *, spring_constant=None,

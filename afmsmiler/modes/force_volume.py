@@ -32,8 +32,9 @@ noise of RMS sigma is added to every sample. Each curve is analysed as the instr
 
 The curves of one material differ only by their noise, so the model is run once per material
 and the noise, the adhesion, the DMT correction and the loop area are vectorised over all
-pixels; so is the fit: all the curves of a material in one call of module (d)'s batched fit
-(a 64 x 64 map of 500-point curves takes about a second; ``benchmarks/bench_force_volume.py``).
+pixels; so is the fit: module (d)'s batched fit takes the curves of a material in blocks of
+up to 2^20 points (a 64 x 64 map of 500-point curves takes about a second, of 2000-point curves
+about four; ``benchmarks/bench_force_volume.py``).
 
 :func:`two_material_sample` makes a polymer-blend-like sample: round islands of one material in a
 matrix of another, with the label map.
@@ -71,6 +72,9 @@ MAX_MATERIALS = 16
 MAX_ISLAND_WORK = 1 << 26
 #: The adhesion models the curves may use (module (d)'s).
 ADHESION_MODELS = (None, "dmt", "jkr")
+# curves are analysed (and fitted, in one batched call) in blocks of at most this many points,
+# which bounds the analysis' working memory (some 10 arrays of 8 MB) whatever the map's size
+_ANALYSIS_POINTS = 1 << 20
 # the largest upward step of the retract is the jump-off only if it stands out of the noise
 _JUMP_SIGMAS = 8.0
 
@@ -444,12 +448,15 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
     f_ret = ret[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)
     nu = np.array([m.poisson_ratio for m in materials])
     out = [np.empty(flat.size) for _ in range(5)]
+    rows = max(1, _ANALYSIS_POINTS // n)
     for m in range(len(materials)):  # one Poisson's ratio per material in the fit
-        sel = flat == m
-        if sel.any():
-            for arr, values in zip(out, _analyse(z[m][None, :].repeat(sel.sum(), 0), f_app[sel],
-                                                 f_ret[sel], k, sigma, tip, float(nu[m]))):
-                arr[sel] = values
+        pixels = np.flatnonzero(flat == m)
+        for start in range(0, pixels.size, rows):  # bounded: MAX_MAP_PIXELS / rows blocks
+            block = pixels[start:start + rows]
+            for arr, values in zip(out, _analyse(np.broadcast_to(z[m], (block.size, n)),
+                                                 f_app[block], f_ret[block], k, sigma, tip,
+                                                 float(nu[m]))):
+                arr[block] = values
     adh, modulus, error, deformation, dissipation = (a.reshape(h.shape) for a in out)
     return ForceVolume(modulus, error, adh, deformation, dissipation, lab.copy(),
                        sample.pixel_size, z, app, ret, sigma)
