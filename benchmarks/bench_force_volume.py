@@ -5,8 +5,8 @@ curve, and module (d)'s one-curve ``fit_curve`` once per curve (what the map did
 Ours: :func:`afmsmiler.modes.force_volume.force_volume` on a 64 x 64 two-material map (the
 default ramp of 500 samples per branch, 20 pN noise): module (d)'s curves once per material, the
 noise, adhesion, DMT correction and loop areas vectorised, and module (d)'s batched fit
-``fit_curves`` once per material (Levenberg-Marquardt on every curve's 3 x 3 normal equations at
-once). Its time per curve is the map's time over its pixels.
+``fit_curves`` once per material and block of 2^20 points (Levenberg-Marquardt on every curve's
+3 x 3 normal equations at once). Its time per curve is the map's time over its pixels.
 
 The fit alone, per curve: ``fit_curves`` on 4096 noisy DMT-corrected retracts of the matrix
 (the map's curves of one material), against ``curve_fit`` (its default Levenberg-Marquardt on

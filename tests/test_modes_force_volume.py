@@ -255,8 +255,9 @@ def test_force_volume_mode_through_the_scanner():
 
 
 def test_one_batched_fit_per_material(monkeypatch):
-    """The map's curves are fitted in one call of module (d)'s batched fit per material (the
-    per-pixel fit_curve loop took some 19 s for 64 x 64), with the per-curve results."""
+    """The map's curves are fitted in one call of module (d)'s batched fit per material (and
+    block of 2^20 points; the per-pixel fit_curve loop took some 19 s for 64 x 64), with the
+    per-curve results."""
     from afmsmiler.contact import fit as fit_module
     calls = []
 
