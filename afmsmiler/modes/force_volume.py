@@ -15,7 +15,8 @@ noise of RMS sigma is added to every sample. Each curve is analysed as the instr
   free part as its baseline (the DMT analysis of peak-force QNM: F - F_adh = (4/3) E* sqrt(R)
   d^(3/2), Derjaguin, Muller and Toporov, J. Colloid Interface Sci. 53, 314 (1975)); that curve,
   in tip position x = Z_np - F / k, is fitted with module (d)'s
-  :func:`~afmsmiler.contact.fit_curve` (E, contact point, baseline; the standard error of E
+  :func:`~afmsmiler.contact.fit.fit_curves` (the batched form of
+  :func:`~afmsmiler.contact.fit_curve`: E, contact point, baseline; the standard error of E
   from its covariance). Exact for DMT; on a JKR sample the contact part is not Hertz plus a
   constant and E comes out biased (the fit assumes DMT). The adhesion added back is the noisy
   minimum, off from the true pull-off force by a few sigma (and by the contact force at the
@@ -31,8 +32,9 @@ noise of RMS sigma is added to every sample. Each curve is analysed as the instr
 
 The curves of one material differ only by their noise, so the model is run once per material
 and the noise, the adhesion, the DMT correction and the loop area are vectorised over all
-pixels; the fit runs once per pixel (about 3 ms each, mostly scipy's least-squares overhead:
-a 32 x 32 map takes some 4 s, 64 x 64 some 15 s; ``benchmarks/bench_force_volume.py``).
+pixels; so is the fit: module (d)'s batched fit takes the curves of a material in blocks of
+up to 2^20 points (a 64 x 64 map of 500-point curves takes about a second, of 2000-point curves
+about four; ``benchmarks/bench_force_volume.py``).
 
 :func:`two_material_sample` makes a polymer-blend-like sample: round islands of one material in a
 matrix of another, with the label map.
@@ -44,8 +46,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact import (ContactSystem, StandardLinearSolid, Tip, fit_curve,
-                       viscoelastic_approach_retract)
+from ..contact import ContactSystem, StandardLinearSolid, Tip, viscoelastic_approach_retract
+from ..contact.fit import fit_curves
 from ..contact.quantities import PARAMETERS as CONTACT
 from ..imaging.modes import Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
@@ -59,7 +61,8 @@ __all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "fo
            "MAX_ISLAND_WORK",
            "ADHESION_MODELS", "BLEND"]
 
-#: Most pixels of one map (64 x 64: one fit per pixel, some 15 s in all).
+#: Most pixels of one map (64 x 64: with 2000-point curves, 8.2e6 points to fit, within the
+#: batched fit's ``MAX_BATCH_POINTS``; about a second with 500-point curves).
 MAX_MAP_PIXELS = 64 * 64
 #: Most samples per branch of a pixel's curve.
 MAX_POINTS = 2000
@@ -69,6 +72,9 @@ MAX_MATERIALS = 16
 MAX_ISLAND_WORK = 1 << 26
 #: The adhesion models the curves may use (module (d)'s).
 ADHESION_MODELS = (None, "dmt", "jkr")
+# curves are analysed (and fitted, in one batched call) in blocks of at most this many points,
+# which bounds the analysis' working memory (some 10 arrays of 8 MB) whatever the map's size
+_ANALYSIS_POINTS = 1 << 20
 # the largest upward step of the retract is the jump-off only if it stands out of the noise
 _JUMP_SIGMAS = 8.0
 
@@ -152,7 +158,13 @@ class SampleMaterial:
         Returns
         -------
         afmsmiler.contact.ContactSystem
+
+        Raises
+        ------
+        ValueError
+            If ``adhesion`` is not one of :data:`ADHESION_MODELS` (or k is out of range).
         """
+        check_choice("adhesion", adhesion, ADHESION_MODELS)
         e = (self.viscoelastic.relaxed_modulus if self.viscoelastic is not None
              else self.youngs_modulus)
         sticky = adhesion is not None and self.work_of_adhesion > 0
@@ -336,17 +348,10 @@ def _analyse(z, f_app, f_ret, k, sigma, tip, nu):
     corrected = np.where(sticky[:, None] & contact, f_ret + adhesion[:, None], f_ret)
     x = z_ret - f_ret / k  # tip position, from the measured deflection
     x_peak = x[:, 0]
-    modulus = np.full(n_pix, np.nan)
-    error = np.full(n_pix, np.nan)
-    x0 = np.full(n_pix, np.nan)
-    for i in range(n_pix):  # module (d)'s fit, once per curve (bounded by MAX_MAP_PIXELS)
-        try:
-            fit = fit_curve(x[i], corrected[i], tip, nu)
-        except ValueError:  # no contact seen above the noise: no modulus there
-            continue
-        modulus[i], error[i], x0[i] = fit.youngs_modulus, fit.youngs_modulus_error, \
-            fit.contact_point
-    return adhesion, modulus, error, x_peak - x0, dissipation
+    # module (d)'s fit of all these curves at once (NaN where no contact shows above the noise)
+    fits = fit_curves(x, corrected, tip, nu)
+    return (adhesion, fits.youngs_modulus, fits.youngs_modulus_error,
+            x_peak - fits.contact_point, dissipation)
 
 
 def force_volume(sample: Sample, materials, tip: Tip, *, labels,
@@ -443,12 +448,15 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
     f_ret = ret[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)
     nu = np.array([m.poisson_ratio for m in materials])
     out = [np.empty(flat.size) for _ in range(5)]
+    rows = max(1, _ANALYSIS_POINTS // n)
     for m in range(len(materials)):  # one Poisson's ratio per material in the fit
-        sel = flat == m
-        if sel.any():
-            for arr, values in zip(out, _analyse(z[m][None, :].repeat(sel.sum(), 0), f_app[sel],
-                                                 f_ret[sel], k, sigma, tip, float(nu[m]))):
-                arr[sel] = values
+        pixels = np.flatnonzero(flat == m)
+        for start in range(0, pixels.size, rows):  # bounded: MAX_MAP_PIXELS / rows blocks
+            block = pixels[start:start + rows]
+            for arr, values in zip(out, _analyse(np.broadcast_to(z[m], (block.size, n)),
+                                                 f_app[block], f_ret[block], k, sigma, tip,
+                                                 float(nu[m]))):
+                arr[block] = values
     adh, modulus, error, deformation, dissipation = (a.reshape(h.shape) for a in out)
     return ForceVolume(modulus, error, adh, deformation, dissipation, lab.copy(),
                        sample.pixel_size, z, app, ret, sigma)
@@ -517,14 +525,25 @@ class ForceVolumeMode(Mode):
             The scan.
         row : int
             Line index.
-        state : object
-            Unused.
+        state : None
+            What :meth:`start` returned and each line passes on: None (a force-volume line
+            carries nothing over from the previous one).
 
         Returns
         -------
         afmsmiler.imaging.modes.ModeLine
+
+        Raises
+        ------
+        TypeError
+            If ``plan`` is not a ScanPlan or ``state`` is not None.
+        ValueError
+            If ``row`` is not a line of the plan.
         """
         row = self._row(plan, row)
+        if state is not None:
+            raise TypeError(f"state must be None (what ForceVolumeMode.start returns: nothing "
+                            f"carries over between lines), got {type(state).__name__}")
         x, y = plan.x_trace[row], plan.y_trace[row]
         lab = _material_index(self.material, x, y, len(self.materials))
         settings = dict(self.settings)
