@@ -107,6 +107,11 @@ ACCEPTED = {
     "modes.tapping.TappingMode.line:state": (
         ("nan", "str", "bool", "complex", "object", "nan-array"),
         "unused by the ideal feedback (the default) and documented so"),
+    "modes.force_volume.force_volume:adhesion": (("None",), "None is the documented "
+                                                 "adhesion-free contact"),
+    "modes.force_volume.force_volume:seed": (("None",), "None is the documented fresh noise"),
+    "modes.force_volume.two_material_sample:seed": (("None",), "None is the documented fresh "
+                                                    "layout"),
     "modes.lateral.friction_scan:seed": (("None",), "None is the documented fresh noise"),
 }
 # Returned by the models, not built by a user: their constructors are not part of the input API
@@ -114,7 +119,7 @@ ACCEPTED = {
 RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
            "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
-           "Operation", "Bending",
+           "Operation", "Bending", "FitResults",
            # module (f): the scanner's and the corrections' results, and what a mode returns
            # (the scanner checks a ModeLine's channels when it receives one)
            "ScanResult", "LineRecord", "ScanPlan", "ModeLine", "Crash", "Plane", "Histogram",
@@ -288,6 +293,8 @@ OVERRIDES = {
     "afmsmiler.cantilever.Cantilever": {"youngs_modulus": 169e9},
     "afmsmiler.contact.fit_curve": {"position": lambda: _synthetic().tip_position,
                                     "force": lambda: _synthetic().force},
+    "afmsmiler.contact.fit_curves": {"position": lambda: np.stack([_synthetic().tip_position] * 3),
+                                     "force": lambda: np.stack([_synthetic().force] * 3)},
     "afmsmiler.contact.hereditary_force": {"material": lambda: _sls()},
     "afmsmiler.contact.viscoelastic_approach_retract": {"material": lambda: _sls()},
     "afmsmiler.contact.ForceCurve": {"z_np": lambda: _synthetic().z_np,

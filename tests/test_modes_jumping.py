@@ -247,3 +247,11 @@ def test_a_bad_material_map_is_named():
                        material=lambda x, y: np.full(np.shape(x), 2))
     with pytest.raises(ValueError, match=r"material\(x, y\) must give integers in \[0, 1\]"):
         scan(flat, TIP, mode, ScanSettings(100e-9, scan_size_y=20e-9, pixels=10, lines=2))
+
+
+def test_line_refuses_a_state_that_is_not_a_height():
+    """The campaign found JumpingMode.line(state=nan) accepted silently."""
+    mode = JumpingMode(HARD, trigger_force=F_T)
+    plan = Scan(SAMPLE, None, mode, SETTINGS).plan
+    with pytest.raises(ValueError, match="state"):
+        mode.line(plan, 0, float("nan"))

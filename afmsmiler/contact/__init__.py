@@ -12,7 +12,8 @@
 
 All public functions take and return SI units.
 """
-from .fit import FitResult, ForceCurve, fit_curve, load_curve, synthetic_curve
+from .fit import (MAX_BATCH_POINTS, FitResult, FitResults, ForceCurve, fit_curve, fit_curves,
+                  load_curve, synthetic_curve)
 from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesion_extrema,
                      approach_retract, indent,
                      jkr_curve, jkr_instability, residual, z_np_limit)
@@ -30,4 +31,5 @@ __all__ = ["ContactSystem", "PARAMETERS", "BRANCHES", "PYRAMID_FORMS", "TIPS", "
            "residual", "ADHESION_MODELS", "jkr_curve", "jkr_instability", "z_np_limit",
            "StandardLinearSolid", "ViscoelasticCycle", "hereditary_force",
            "viscoelastic_approach_retract", "ForceCurve", "FitResult", "synthetic_curve",
-           "load_curve", "fit_curve", "surface_displacement", "contact_surface"]
+           "load_curve", "fit_curve", "surface_displacement", "contact_surface", "fit_curves",
+           "FitResults", "MAX_BATCH_POINTS"]

@@ -404,12 +404,15 @@ class JumpingMode(Mode):
         TypeError
             If ``plan`` is not a ScanPlan or ``state`` neither None nor a number.
         ValueError
-            If ``row`` is not a line of the plan.
+            If ``row`` is not a line of the plan or ``state`` is not finite.
         """
         row = self._row(plan, row)
         if state is not None and not isinstance(state, (float, np.floating)):
             raise TypeError(f"state must be None or the lifted tip's height in m, got "
                             f"{type(state).__name__}")
+        if state is not None and not math.isfinite(state):
+            raise ValueError(f"state must be None or the lifted tip's height in m (finite), "
+                             f"got {state!r}")
         n = plan.shape[1]
         r = np.concatenate((plan.trace[row], plan.retrace[row][::-1]))  # in pass order
         m = np.concatenate((self._which(plan.x_trace[row], plan.y_trace[row]),
