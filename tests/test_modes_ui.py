@@ -87,7 +87,12 @@ def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
     dry = tap.last.dissipated_energy
     tap.set(sample_viscosity=200.0)
     wet = tap.last.dissipated_energy
-    assert wet > 100 * abs(dry) and wet > 1e-20  # from a fraction of a zJ to tens of zJ
+    lever = tap.last.curve.lever
+    scale = math.pi * lever.spring_constant * lever.free_amplitude ** 2 / lever.quality_factor
+    # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
+    # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
+    assert abs(dry) < 1e-9 * scale
+    assert wet > 1e-20  # from zero to tens of zJ
     tap.set(sample_viscosity=0.0, setpoint_ratio=0.8)
 
 
@@ -206,7 +211,8 @@ def test_fm_panel_curve_is_the_model_round_trip(fmp):
 
 def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
     # notebook 07: at A = 11 pm df is within a few per cent of the force-gradient shift
-    # -f0/(2k) dF/dz (from 1 nm on); at the default 5 nm it is some thirty times smaller
+    # -f0/(2k) dF/dz (from 1 nm on); at the default 5 nm it is some thirty times smaller 1 nm
+    # from the sample
     fmp.set(amplitude=0.011)
     c = fmp.last.curve
     far = c.z > 1e-9
@@ -214,7 +220,7 @@ def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
     small = c.frequency_shift[far][0]
     fmp.set(amplitude=5.0)
     big = fmp.last.curve.frequency_shift[fmp.last.curve.z > 1e-9][0]
-    assert abs(big) < 0.1 * abs(small)
+    assert 20 < abs(small) / abs(big) < 50  # "some thirty times"
 
 
 def test_fm_panel_inversion_within_a_few_per_cent(fmp):

@@ -26,7 +26,7 @@ from .tapping import FEEDBACK_PARAMETERS, FEEDBACKS
 from .tapping import PARAMETERS as TAPPING_PARAMETERS
 from .tapping import (AmplitudeCurve, FeedbackLine, SteadyState, TappingLever, TappingMode,
                       amplitude_curve, amplitude_feedback, free_response, integrate,
-                      setpoint_state)
+                      operating_point, setpoint_state)
 from .jumping import PARAMETERS as JUMPING_PARAMETERS
 from .jumping import (JumpCurve, JumpingMode, ModeComparison, compare_with_contact, jump_curve,
                       trigger_z_np)
@@ -40,7 +40,8 @@ from .bimodal import (FLEXURAL_RATIO, BimodalLever, BimodalState, averaged_gradi
 
 __all__ = ["FORCE_PARAMETERS", "tip_sample_force", "work_of_adhesion", "TAPPING_PARAMETERS",
            "AmplitudeCurve", "SteadyState", "TappingLever", "amplitude_curve", "free_response",
-           "integrate", "setpoint_state", "TappingMode", "FM_PARAMETERS", "frequency_shift",
+           "integrate", "setpoint_state", "operating_point", "TappingMode", "FM_PARAMETERS",
+           "frequency_shift",
            "sader_jarvis", "force_gradient_shift", "frequency_shift_curve",
            "FrequencyShiftCurve", "LATERAL_PARAMETERS", "LateralLever", "LateralForceMode",
            "lateral_force", "friction_loop", "friction_scan", "friction_sample", "shear_modulus",

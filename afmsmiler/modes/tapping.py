@@ -750,22 +750,63 @@ def setpoint_state(setpoint_ratio: float = PARAMETERS["setpoint_ratio"].default,
     """
     r = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
     lever = TappingLever() if lever is None else _check_lever(lever)
-    a0 = lever.free_amplitude
-    z = a0 * np.linspace(1.5, 0.01, SETPOINT_GRID)
-    curve = amplitude_curve(z, lever)
+    z = lever.free_amplitude * np.linspace(1.5, 0.01, SETPOINT_GRID)
+    return operating_point(amplitude_curve(z, lever), r)
+
+
+def operating_point(curve: AmplitudeCurve,
+                    setpoint_ratio: float) -> tuple[float, float, float, bool]:
+    """The state amplitude feedback holds at ``setpoint_ratio``, read off ``curve``.
+
+    Follow the slow approach (:meth:`AmplitudeCurve.sweep`) from the curve's farthest distance
+    to the first distance at which the amplitude falls to r A0, and interpolate the distance,
+    the phase and E_dis linearly between the two grid points around it. E_dis is interpolated
+    itself, not recomputed from the interpolated phase: it is very sensitive to the phase
+    (pi F0 A cos(phi) per radian), and a phase interpolated to 1e-5 rad would invent some 0.1 zJ
+    on a sample that dissipates nothing, where every root's own E_dis is 0 to round-off.
+    :func:`setpoint_state` is this on A0 x linspace(1.5, 0.01, :data:`SETPOINT_GRID`).
+
+    Parameters
+    ----------
+    curve : AmplitudeCurve
+        An amplitude curve (:func:`amplitude_curve`) of the lever.
+    setpoint_ratio : float
+        r = A_sp / A0 in (0, 1).
+
+    Returns
+    -------
+    (float, float, float, bool)
+        Rest distance z_c in m, phase lag in rad, E_dis in J per cycle there, and whether the
+        state is on the attractive (low) branch.
+
+    Raises
+    ------
+    ValueError
+        If ``setpoint_ratio`` is outside (0, 1), or if the approach never reaches it on the
+        curve's distances.
+    TypeError
+        If ``curve`` is not an :class:`AmplitudeCurve`.
+    """
+    check_instance("curve", curve, AmplitudeCurve)
+    r = PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
+    lever = curve.lever
     amp, phs, _ = curve.sweep("approach")
-    target = r * a0
+    order = np.argsort(curve.distance)[::-1]  # the sweep's order: the farthest distance first
+    z, amp, phs = curve.distance[order], amp[order], phs[order]
+    target = r * lever.free_amplitude
     below = np.flatnonzero(np.isfinite(amp) & (amp <= target))
     if below.size == 0 or below[0] == 0:
-        raise ValueError(f"setpoint_ratio: the approach never reaches A = {r:g} A0 above "
-                         f"z_c = {z[-1]:g} m; choose a larger setpoint_ratio")
+        raise ValueError(f"setpoint_ratio: the approach never reaches A = {r:g} A0 between "
+                         f"z_c = {z[0]:g} and {z[-1]:g} m; choose a larger setpoint_ratio")
     i = below[0]
     f = (amp[i - 1] - target) / (amp[i - 1] - amp[i])
     zc = z[i - 1] + f * (z[i] - z[i - 1])
     phase = phs[i - 1] + f * (phs[i] - phs[i - 1])
-    j = int(np.nanargmin(np.abs(curve.amplitude[i] - amp[i])))
-    return (float(zc), float(phase), float(lever.dissipated_energy(target, phase)),
-            not bool(curve.repulsive_branch[i, j]))
+    e = lever.dissipated_energy(amp[i - 1:i + 1], phs[i - 1:i + 1])
+    e_dis = e[0] + f * (e[1] - e[0])
+    row = order[i]
+    j = int(np.nanargmin(np.abs(curve.amplitude[row] - amp[i])))
+    return float(zc), float(phase), float(e_dis), not bool(curve.repulsive_branch[row, j])
 
 
 # -- amplitude feedback with a finite bandwidth -------------------------------------------------

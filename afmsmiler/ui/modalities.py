@@ -44,7 +44,7 @@ from ..modes import fm, lateral, tapping
 from ..modes._forces import FORCE_PARAMETERS
 from ..modes.fm import FrequencyShiftCurve
 from ..modes.lateral import FrictionImages, FrictionLoop, LateralLever
-from ..modes.tapping import AmplitudeCurve, TappingLever
+from ..modes.tapping import AmplitudeCurve, TappingLever, operating_point
 from ..parameters import read_only, shown
 from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
                            LateralFigure, TappingFigure)
@@ -143,49 +143,6 @@ TAPPING_SLIDERS = read_only({name: tapping.PARAMETERS[name] for name in (
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
 #: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one).
 TAPPING_DEFAULTS = read_only(_display(TAPPING_SLIDERS, free_amplitude=12e-9))
-
-
-def operating_point(curve: AmplitudeCurve, setpoint_ratio: float):
-    """The state amplitude feedback holds at ``setpoint_ratio``, read off ``curve``.
-
-    The same reading as :func:`~afmsmiler.modes.setpoint_state` (which computes its own curve
-    on A0 x linspace(1.5, 0.01, SETPOINT_GRID)): follow the slow approach
-    (:meth:`AmplitudeCurve.sweep`) from far away to the first distance at which the amplitude
-    falls to r A0, interpolated linearly. On a curve of those distances the two agree exactly.
-
-    Parameters
-    ----------
-    curve : AmplitudeCurve
-        Its distances in decreasing order (an approach).
-    setpoint_ratio : float
-        r = A_sp / A0 in (0, 1).
-
-    Returns
-    -------
-    (float, float, float, bool)
-        z_c in m, phase lag in rad, E_dis in J, on the attractive branch.
-
-    Raises
-    ------
-    ValueError
-        If the approach never reaches the setpoint on this curve.
-    """
-    r = tapping.PARAMETERS["setpoint_ratio"].check(setpoint_ratio)
-    lever = curve.lever
-    amp, phs, _ = curve.sweep("approach")
-    target = r * lever.free_amplitude
-    below = np.flatnonzero(np.isfinite(amp) & (amp <= target))
-    if below.size == 0 or below[0] == 0:
-        raise ValueError(f"setpoint_ratio: the approach never reaches A = {r:g} A0 on these "
-                         f"distances; choose a larger setpoint_ratio")
-    i = below[0]
-    z = curve.distance
-    f = (amp[i - 1] - target) / (amp[i - 1] - amp[i])
-    zc = z[i - 1] + f * (z[i] - z[i - 1])
-    phase = phs[i - 1] + f * (phs[i] - phs[i - 1])
-    j = int(np.nanargmin(np.abs(curve.amplitude[i] - amp[i])))
-    return (float(zc), float(phase), float(lever.dissipated_energy(target, phase)),
-            not bool(curve.repulsive_branch[i, j]))
 
 
 @dataclass(frozen=True)
