@@ -1,0 +1,22 @@
+"""Module (h): hardware interaction, drivers that take a transport (no UI imports).
+
+Layers, bottom to top (scikit-rf's ``skrf.vi`` without its coupling: a device class never opens a
+port itself):
+
+- :mod:`.errors`: one exception family (:class:`HardwareError`);
+- :mod:`.framing`: the frame format every device speaks (``BODY*CC``, CRC-8/SMBUS), pure;
+- :mod:`.transport`: a serial port (pyserial), a pty, an in-memory pair, a fault injector;
+- :mod:`.twin`: a device's protocol simulated in Python and served on a transport;
+- device packages (:mod:`.macro`: the macroscopic AFM) with a codec, a device class and a twin.
+"""
+from .errors import (ChecksumError, DeviceError, DeviceNotResponding, FrameError, HardwareError,
+                     ProtocolVersionError, TransportClosed, TransportTimeout)
+from .framing import MAX_BODY, PROTOCOL_VERSION, Frame, crc8, decode_frame, encode_frame
+from .transport import FaultyTransport, MemoryTransport, PtyLink, SerialTransport, Transport
+from .twin import Twin, TwinServer, open_twin
+
+__all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
+           "DeviceNotResponding", "ProtocolVersionError", "DeviceError",
+           "PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
+           "Transport", "MemoryTransport", "SerialTransport", "PtyLink", "FaultyTransport",
+           "Twin", "TwinServer", "open_twin"]

@@ -1,0 +1,115 @@
+"""The exceptions of module (h): one family, so that a notebook can catch ``HardwareError``.
+
+Each error says what went wrong in words a student can act on (which port, which command, which
+versions). Errors raised while a scan runs carry the finished part of the image as ``.partial``
+(a :class:`~afmsmiler.samples.Sample` of the finished rows, or ``None``).
+"""
+from __future__ import annotations
+
+__all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
+           "DeviceNotResponding", "ProtocolVersionError", "DeviceError"]
+
+
+class HardwareError(Exception):
+    """Base of every error of module (h).
+
+    Attributes
+    ----------
+    partial : Sample or None
+        The finished rows of a scan this error interrupted (``None`` outside a scan).
+    """
+
+    partial = None
+
+
+class FrameError(HardwareError, ValueError):
+    """A line that is not a valid frame (too long, no checksum, bad tokens).
+
+    Parameters
+    ----------
+    message : str
+        What is wrong with the line.
+    line : bytes
+        The offending line as received (kept as ``.line``).
+    """
+
+    def __init__(self, message: str, line: bytes = b""):
+        super().__init__(message)
+        self.line = bytes(line)
+
+
+class ChecksumError(FrameError):
+    """A well-formed line whose CRC-8 does not match its body (a corrupted byte).
+
+    Parameters
+    ----------
+    message : str
+        Which checksum was expected and found.
+    line : bytes
+        The offending line as received (kept as ``.line``).
+    """
+
+
+class TransportTimeout(HardwareError, TimeoutError):
+    """No complete line arrived (or could be written) within the timeout."""
+
+
+class TransportClosed(HardwareError, ConnectionError):
+    """The port was unplugged or closed, or the far end has gone."""
+
+
+class DeviceNotResponding(HardwareError, TimeoutError):
+    """A command got no valid reply after all its retries."""
+
+
+class ProtocolVersionError(HardwareError):
+    """The device speaks another protocol version than this driver.
+
+    Parameters
+    ----------
+    device_version : int or str
+        The protocol version the device reported.
+    host_version : int
+        The version this driver speaks (:data:`afmsmiler.hardware.framing.PROTOCOL_VERSION`).
+    device : str
+        The device's name (e.g. ``"MACROAFM"``).
+    """
+
+    def __init__(self, device_version, host_version: int, device: str = "device"):
+        super().__init__(
+            f"{device} speaks protocol version {device_version}, this driver speaks version "
+            f"{host_version}: flash firmware of protocol {host_version} or use a matching driver")
+        self.device_version = device_version
+        self.host_version = host_version
+        self.device = device
+
+
+class DeviceError(HardwareError):
+    """The device answered a command with an error frame (``SEQ ER ERRNO [WORD]``).
+
+    Parameters
+    ----------
+    code : int
+        The error number (an ``ErrorCode`` of the device's codec).
+    word : str
+        The error's optional word (e.g. the axis of a limit switch), ``""`` if none.
+    device : str
+        The device's name.
+    command : str
+        The two-letter code of the command that failed, ``""`` for a scan fault.
+    """
+
+    def __init__(self, code: int, word: str = "", device: str = "device", command: str = ""):
+        self.code = int(code)
+        self.word = str(word)
+        self.device = device
+        self.command = command
+        name = _ERROR_NAMES.get(self.code, "UNKNOWN")
+        what = f"{device} refused {command}" if command else f"{device} reported a fault"
+        extra = f" ({self.word})" if self.word else ""
+        super().__init__(f"{what}: error {self.code} {name}{extra}")
+
+
+#: The shared error numbers of every device (contract; each codec has them as an enum).
+_ERROR_NAMES = {1: "CHECKSUM", 2: "UNKNOWN_COMMAND", 3: "BAD_ARGUMENT", 4: "BUSY", 5: "NOT_HOMED",
+                6: "LIMIT", 7: "ESTOP", 8: "SENSOR", 9: "MALFORMED", 10: "STATE"}

@@ -1,0 +1,201 @@
+"""The frame format shared by every device of module (h), protocol version 1 (pure, no I/O).
+
+A frame is one line ``BODY*CC\\n``: BODY is printable ASCII without ``*`` (at most
+:data:`MAX_BODY` characters), tokens ``SEQ CODE [ARG ...]`` separated by one space; CC is the
+CRC-8 of BODY's bytes as two uppercase hex digits. The CRC is CRC-8/SMBUS of the reveng catalogue
+(polynomial 0x07, init 0x00, not reflected, xorout 0x00; check value 0xF4 for ``"123456789"``).
+
+Examples
+--------
+>>> encode_frame(Frame(1, "ID"))
+b'1 ID*C1\\n'
+>>> decode_frame(b"1 OK ID MACROAFM 1 0.1.0*22\\r\\n")
+Frame(seq=1, code='OK', args=('ID', 'MACROAFM', 1, '0.1.0'))
+"""
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+from numbers import Integral
+
+from .errors import ChecksumError, FrameError
+
+__all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame"]
+
+#: The protocol version this driver speaks (every device's ``ID`` reply must report it).
+PROTOCOL_VERSION = 1
+#: The most characters of a frame's body.
+MAX_BODY = 120
+#: The smallest and largest integer argument (int32).
+INT_MIN, INT_MAX = -(2 ** 31), 2 ** 31 - 1
+
+_INT = re.compile(r"-?[0-9]+")
+_WORD = re.compile(r"[A-Za-z0-9_.:-]+")
+_CODE = re.compile(r"[A-Z]{2}")
+_SEQ = re.compile(r"0|[1-9][0-9]{0,2}")
+_HEX = re.compile(rb"[0-9A-F]{2}")
+
+
+def _table() -> tuple[int, ...]:
+    table = []
+    for byte in range(256):
+        crc = byte
+        for _ in range(8):
+            crc = ((crc << 1) ^ 0x07) & 0xFF if crc & 0x80 else (crc << 1) & 0xFF
+        table.append(crc)
+    return tuple(table)
+
+
+_CRC_TABLE = _table()
+
+
+def crc8(data: bytes) -> int:
+    """CRC-8/SMBUS of ``data`` (polynomial 0x07, init 0, not reflected, no final xor).
+
+    Parameters
+    ----------
+    data : bytes
+        The bytes to check (a frame's body).
+
+    Returns
+    -------
+    int
+        The checksum, 0..255.
+
+    Examples
+    --------
+    >>> hex(crc8(b"123456789"))
+    '0xf4'
+    """
+    crc = 0
+    for byte in bytes(data):
+        crc = _CRC_TABLE[crc ^ byte]
+    return crc
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One frame: a sequence number, a two-letter code and its arguments.
+
+    Parameters
+    ----------
+    seq : int
+        0..255; 0 for frames that get no reply (stream frames, events).
+    code : str
+        Two uppercase letters (a command, ``OK``, ``ER`` or a stream code such as ``PX``).
+    args : tuple of int or str
+        Integer arguments (int32) and words (``[A-Za-z0-9_.:-]+``).
+    """
+
+    seq: int
+    code: str
+    args: tuple = ()
+
+    def __post_init__(self):
+        object.__setattr__(self, "args", tuple(self.args))
+
+
+def _arg_text(index: int, arg) -> str:
+    if isinstance(arg, Integral) and not isinstance(arg, bool):
+        value = int(arg)
+        if not INT_MIN <= value <= INT_MAX:
+            raise ValueError(f"args[{index}] must fit int32 ({INT_MIN}..{INT_MAX}), got {value}")
+        return str(value)
+    if isinstance(arg, str):
+        if not _WORD.fullmatch(arg):
+            raise ValueError(f"args[{index}] must be a word of [A-Za-z0-9_.:-], got {arg!r}")
+        if _INT.fullmatch(arg):
+            raise ValueError(f"args[{index}] {arg!r} is a number written as a word: pass an int")
+        return arg
+    raise ValueError(f"args[{index}] must be an int or a word (str), got {arg!r}")
+
+
+def encode_frame(frame: Frame) -> bytes:
+    """The bytes of ``frame`` on the wire, ``BODY*CC\\n``.
+
+    Parameters
+    ----------
+    frame : Frame
+        The frame to send.
+
+    Returns
+    -------
+    bytes
+        The line, with its checksum and one ``\\n`` (never ``\\r``).
+
+    Raises
+    ------
+    ValueError
+        Naming the field (seq, code, args[i] or the body's length) that breaks the format.
+    """
+    if not isinstance(frame, Frame):
+        raise TypeError(f"frame must be a Frame, got {type(frame).__name__}")
+    seq = frame.seq
+    if isinstance(seq, bool) or not isinstance(seq, Integral) or not 0 <= int(seq) <= 255:
+        raise ValueError(f"seq must be an integer in 0..255, got {seq!r}")
+    if not isinstance(frame.code, str) or not _CODE.fullmatch(frame.code):
+        raise ValueError(f"code must be two uppercase letters, got {frame.code!r}")
+    tokens = [str(int(seq)), frame.code] + [_arg_text(i, a) for i, a in enumerate(frame.args)]
+    body = " ".join(tokens).encode("ascii")
+    if len(body) > MAX_BODY:
+        raise ValueError(f"the frame's body must be at most {MAX_BODY} characters, "
+                         f"got {len(body)}")
+    return body + b"*%02X\n" % crc8(body)
+
+
+def decode_frame(line: bytes) -> Frame:
+    """The frame in one received line.
+
+    Parameters
+    ----------
+    line : bytes
+        One line, with or without its trailing ``\\n`` (a ``\\r`` before it is accepted).
+
+    Returns
+    -------
+    Frame
+        With integer arguments as ``int`` and words as ``str``.
+
+    Raises
+    ------
+    ChecksumError
+        If the line has the form ``BODY*CC`` but CC is not the CRC-8 of BODY (a corrupted byte).
+    FrameError
+        If the line is not a frame at all (too long, no ``*CC``, non-printable bytes, bad tokens).
+    """
+    raw = bytes(line)
+    text = raw[:-1] if raw.endswith(b"\n") else raw
+    text = text[:-1] if text.endswith(b"\r") else text
+    star = text.rfind(b"*")
+    if star < 0 or len(text) - star != 3:
+        raise FrameError(f"not a frame (no '*CC' checksum at the end): {raw[:40]!r}", raw)
+    body, check = text[:star], text[star + 1:]
+    if len(body) > MAX_BODY:
+        raise FrameError(f"frame body longer than {MAX_BODY} characters ({len(body)})", raw)
+    if not _HEX.fullmatch(check):
+        raise FrameError(f"checksum must be two uppercase hex digits, got {check!r}", raw)
+    if int(check, 16) != crc8(body):
+        raise ChecksumError(f"checksum {check.decode()} does not match the body "
+                            f"(CRC-8 {crc8(body):02X}): {raw[:40]!r}", raw)
+    if any(b < 0x20 or b > 0x7E or b == 0x2A for b in body):
+        raise FrameError(f"frame body has bytes outside printable ASCII: {raw[:40]!r}", raw)
+    tokens = body.decode("ascii").split(" ")
+    if len(tokens) < 2:
+        raise FrameError(f"a frame needs SEQ and CODE: {raw[:40]!r}", raw)
+    seq, code, *args = tokens
+    if not _SEQ.fullmatch(seq) or int(seq) > 255:
+        raise FrameError(f"SEQ must be a decimal in 0..255, got {seq!r}", raw)
+    if not _CODE.fullmatch(code):
+        raise FrameError(f"CODE must be two uppercase letters, got {code!r}", raw)
+    values = []
+    for arg in args:
+        if _INT.fullmatch(arg):
+            value = int(arg)
+            if not INT_MIN <= value <= INT_MAX:
+                raise FrameError(f"integer argument {arg} does not fit int32", raw)
+            values.append(value)
+        elif _WORD.fullmatch(arg):
+            values.append(arg)
+        else:
+            raise FrameError(f"argument {arg!r} is neither an integer nor a word", raw)
+    return Frame(int(seq), code, tuple(values))
