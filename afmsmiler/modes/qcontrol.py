@@ -53,7 +53,7 @@ MAX_POINTS = 1_000_000
 #: (k = 40 N/m, f0 = 300 kHz, Q = 400 in air) and the controller's gain and phase.
 PARAMETERS = read_only({p.name: p for p in (
     TAPPING["spring_constant"],
-    TAPPING["resonance_frequency"],
+    TAPPING["resonance_frequency"].with_(low=0.1),  # down to a lever felt by hand (~10 Hz)
     TAPPING["quality_factor"].with_(low=0.01, low_inclusive=True, slider_low=1.0,
                                     slider_high=1000.0),
     Parameter(name="gain", unit="", default=0.0, low=-10.0, high=10.0, slider_low=-0.05,
