@@ -27,23 +27,46 @@ Sources (anything with ``force(time, position) -> N``; optional ``start()``/``st
 from __future__ import annotations
 
 import math
+import sys
 import threading
 import time
 from dataclasses import dataclass
 
 import numpy as np
 
+from ...parameters import Parameter, read_only
 from ...validation import check_instance, check_positive, check_range
 
-__all__ = ["ForceBridge", "BridgeStats", "FunctionSource", "IndentationSource", "TappingSource",
-           "GaugeSource", "CantileverSource", "BUSY_WAIT", "STATS_WINDOW", "MAX_RATE"]
+__all__ = ["PARAMETERS", "ForceBridge", "BridgeStats", "FunctionSource", "IndentationSource",
+           "TappingSource", "GaugeSource", "CantileverSource", "BUSY_WAIT", "STATS_WINDOW",
+           "MAX_RATE", "SWITCH_INTERVAL"]
 
 #: The last part of each wait spent busy-waiting on the clock (s): sleep() overshoots by ~0.1 ms.
 BUSY_WAIT = 2e-4
+#: Python's thread switch interval (s) while a bridge runs: the default 5 ms lets a busy thread
+#: (a twin served in the same process, a plot) hold the interpreter lock for 5 ms after the
+#: bridge's sleep ended, so each late wake-up would cost up to five ticks.
+SWITCH_INTERVAL = 2e-4
 #: Ticks the jitter statistics keep (the last 10 s at 1 kHz).
 STATS_WINDOW = 10_000
 #: Highest rate the bridge accepts (Hz).
 MAX_RATE = 10_000.0
+
+#: The bridge's user-settable quantities: its rate and the scales from a source to the device.
+PARAMETERS = read_only({p.name: p for p in (
+    Parameter(name="rate", unit="Hz", default=1000.0, low=0.0, high=MAX_RATE,
+              low_inclusive=False, slider_low=100.0, slider_high=2000.0,
+              label="bridge rate"),
+    Parameter(name="force_scale", unit="", default=1.0, low=-1e15, high=1e15,
+              slider_low=1e4, slider_high=1e10, log=True,
+              label="force scale (device N per source N)"),
+    Parameter(name="time_scale", unit="", default=1.0, low=0.0, high=1e9,
+              low_inclusive=False, slider_low=1e-7, slider_high=1.0, log=True,
+              label="time scale (source s per real s)"),
+    Parameter(name="position_scale", unit="", default=1.0, low=-1e9, high=1e9,
+              slider_low=1e-9, slider_high=1.0, log=True,
+              label="position scale (source m per handle m)"),
+)})
 
 
 @dataclass(frozen=True)
@@ -128,8 +151,10 @@ class ForceBridge:
     10
     """
 
-    def __init__(self, source, device, *, rate: float = 1000.0, force_scale: float = 1.0,
-                 time_scale: float = 1.0, position_scale: float = 1.0, max_force=None,
+    def __init__(self, source, device, *, rate: float = PARAMETERS["rate"].default,
+                 force_scale: float = PARAMETERS["force_scale"].default,
+                 time_scale: float = PARAMETERS["time_scale"].default,
+                 position_scale: float = PARAMETERS["position_scale"].default, max_force=None,
                  clock=time.perf_counter, sleep=time.sleep):
         if hasattr(source, "force") and callable(source.force):
             self._force = source.force
@@ -143,11 +168,10 @@ class ForceBridge:
                 raise TypeError(f"device must have {method}(), got {type(device).__name__}")
         self.source = source
         self.device = device
-        self.rate = check_range("rate", rate, 0.0, MAX_RATE, "Hz", low_inclusive=False)
-        self.force_scale = check_range("force_scale", force_scale, -1e15, 1e15, "N/N")
-        self.time_scale = check_range("time_scale", time_scale, 0.0, 1e9, "s/s",
-                                      low_inclusive=False)
-        self.position_scale = check_range("position_scale", position_scale, -1e9, 1e9, "m/m")
+        self.rate = PARAMETERS["rate"].check(rate)
+        self.force_scale = PARAMETERS["force_scale"].check(force_scale)
+        self.time_scale = PARAMETERS["time_scale"].check(time_scale)
+        self.position_scale = PARAMETERS["position_scale"].check(position_scale)
         if max_force is None:
             max_force = getattr(device, "max_force", math.inf)
         self.max_force = check_positive("max_force", max_force, "N") if \
@@ -218,6 +242,8 @@ class ForceBridge:
         starter = getattr(self.source, "start", None)
         if callable(starter):
             starter()
+        switch = sys.getswitchinterval()
+        sys.setswitchinterval(min(switch, SWITCH_INTERVAL))
         try:
             t0 = self.clock()
             n = 0
@@ -238,6 +264,7 @@ class ForceBridge:
                     self._missed += skip
                     n += skip
         finally:
+            sys.setswitchinterval(switch)
             stopper = getattr(self.source, "stop", None)
             if callable(stopper):
                 stopper()

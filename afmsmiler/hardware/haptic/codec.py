@@ -15,6 +15,7 @@ integer in the unit :data:`PARAMETERS` names; this module converts to and from S
 from __future__ import annotations
 
 import enum
+import inspect
 import math
 from dataclasses import dataclass
 from types import MappingProxyType
@@ -106,6 +107,14 @@ class Flag(enum.IntFlag):
     LIMIT = 4
     ESTOP = 8
 
+
+# an enum is called with one code (``Command("ID")``): say so to introspection (numpydoc checks)
+for _enum in (Command, ErrorCode, Event, Param, Flag):
+    _enum.__signature__ = inspect.Signature(
+        [inspect.Parameter("value", inspect.Parameter.POSITIONAL_ONLY)])
+    _enum.__doc__ += "\n\n    ``{0}(value)`` looks a member up by its wire value.\n".format(
+        _enum.__name__)
+del _enum
 
 #: The device's states, as ``ST`` reports them.
 STATES = ("IDLE", "ACTIVE", "FAULT")
