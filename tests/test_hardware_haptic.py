@@ -13,7 +13,6 @@ import time
 
 import numpy as np
 import pytest
-from scipy.optimize import curve_fit
 
 from afmsmiler.contact import ContactSystem, Parabolic
 from afmsmiler.hardware import (DeviceError, DeviceNotResponding, FaultyTransport, Frame,
@@ -26,7 +25,7 @@ from afmsmiler.hardware.haptic.bridge import (CantileverSource, ForceBridge, Fun
 from afmsmiler.hardware.haptic.codec import (PARAMETERS, force_frame, param_to_wire,
                                              parse_position)
 from afmsmiler.hardware.haptic.twin import TICK
-from afmsmiler.modes.qcontrol import QControl
+from afmsmiler.modes.qcontrol import QControl, fit_ring_down
 
 ROOT = pathlib.Path(__file__).resolve().parents[1] / "hardware" / "haptic"
 
@@ -198,16 +197,7 @@ def _ring_down(twin, hold=0.5, total=1.5, force=1.0):
     x = np.array([s.position for s in samples])
     t = np.array([s.device_time for s in samples])
     keep = t > hold + 2 * TICK
-    t, x = t[keep] - t[keep][0], x[keep]
-
-    def model(tt, a, s, w, p, c):
-        return a * np.exp(-s * tt) * np.cos(w * tt + p) + c
-
-    popt, _ = curve_fit(model, t, x, p0=[x[0], 30.0, 2 * math.pi * 30.0, 0.0, 0.0],
-                        maxfev=20_000)
-    _, s, w, _, _ = popt
-    wn = math.hypot(s, w)
-    return wn / (2 * abs(s)), wn / (2 * math.pi)
+    return fit_ring_down(t[keep], x[keep])  # checked on the closed form in test_modes_qcontrol
 
 
 @pytest.mark.parametrize("gain,phase", [(-600, 90_000), (-300, 90_000), (300, 90_000),
@@ -539,6 +529,23 @@ def test_cantilever_and_function_sources():
     src = CantileverSource(lever)
     assert src.force(0.0, 1e-9) == pytest.approx(-lever.spring_constant * 1e-9)
     assert FunctionSource(lambda t, x: t + x).force(1.0, 2.0) == 3.0
+
+
+@pytest.mark.slow
+def test_device_ring_down_through_the_server_matches_the_pure_twin():
+    """HapticDevice.ring_down in real time through TwinServer gives the pure twin's Q and f."""
+    twin = HapticTwin()
+    host, server = open_twin(twin, time_scale=1.0)
+    with HapticDevice(host, timeout=0.5) as dev:
+        dev.connect()
+        dev.configure(spring=500.0)
+        dev.enable()
+        dev.start_stream(1e-3)
+        q, f = fit_ring_down(*dev.ring_down(1.0, hold=0.4, duration=0.6))
+    server.stop()
+    q_ref, f_ref = _ring_down(_configured(0, 90_000, 10_000))
+    # the host's frames arrive with the thread's timing, the release is not on a tick: 5 %
+    assert q == pytest.approx(q_ref, rel=0.05) and f == pytest.approx(f_ref, rel=0.02)
 
 
 @pytest.mark.slow

@@ -21,7 +21,8 @@ import sympy as sp
 from scipy.integrate import solve_ivp
 
 from afmsmiler.modes.qcontrol import (PARAMETERS, QControl, closed_loop_response,
-                                      quality_factor_from_ringdown, ring_down, stable_gains)
+                                      fit_ring_down, quality_factor_from_ringdown, ring_down,
+                                      stable_gains)
 
 CASES = [dict(quality_factor=400.0, gain=0.0075, phase=math.pi / 2),
          dict(quality_factor=3.0, gain=-0.25, phase=math.pi / 2),
@@ -180,6 +181,20 @@ def test_ringdown_estimator_on_the_closed_form():
         t = np.linspace(0.0, min(3 * q, 300) / 1e3, 60_001)
         rd = ring_down(t, qc)
         assert quality_factor_from_ringdown(rd.time, rd.deflection) == pytest.approx(q, rel=1e-4)
+
+
+@pytest.mark.parametrize("q", [0.8, 2.4, 24.0])
+def test_fit_ring_down_recovers_q_and_f_of_the_closed_form(q):
+    qc = QControl(quality_factor=q, resonance_frequency=31.0)
+    t = np.arange(0, 1.0, 1e-3)
+    rd = ring_down(t, qc, amplitude=1e-3)
+    rng = np.random.default_rng(0)
+    noisy = rd.deflection + 2e-3 + rng.uniform(-3.8e-6, 3.8e-6, t.size)  # an encoder count
+    q_fit, f_fit = fit_ring_down(t, noisy)
+    assert q_fit == pytest.approx(q, rel=0.01)
+    assert f_fit == pytest.approx(31.0, rel=0.002)
+    with pytest.raises(ValueError, match="decay"):
+        fit_ring_down(t, np.cos(2 * np.pi * 31 * t) * np.exp(t))
 
 
 def test_overdamped_and_critical_ring_down_are_finite_and_start_at_amplitude():

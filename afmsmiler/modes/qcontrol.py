@@ -44,7 +44,8 @@ from ..validation import check_array, check_integer, check_range
 from .tapping import PARAMETERS as TAPPING
 
 __all__ = ["PARAMETERS", "QControl", "ClosedLoopResponse", "RingDown", "stable_gains",
-           "closed_loop_response", "ring_down", "quality_factor_from_ringdown", "MAX_POINTS"]
+           "closed_loop_response", "ring_down", "quality_factor_from_ringdown", "fit_ring_down",
+           "MAX_POINTS"]
 
 #: Most frequencies or times one call computes (a second of numpy work is far more).
 MAX_POINTS = 1_000_000
@@ -373,3 +374,55 @@ def quality_factor_from_ringdown(time, deflection, *, skip: int = 1) -> float:
         return math.inf
     zeta = delta / math.sqrt(4.0 * math.pi ** 2 + delta * delta)
     return 0.5 / zeta
+
+
+def fit_ring_down(time, deflection) -> tuple[float, float]:
+    """Q and natural frequency of a measured free decay, by a least-squares damped cosine.
+
+    Fits z(t) = A e^{-sigma t} cos(w_d t + p) + c (scipy's ``curve_fit``, started from the
+    strongest FFT line and Q = 5), then w_n = sqrt(sigma^2 + w_d^2), Q = w_n / (2 sigma): valid
+    for any underdamped decay (Q > 1/2), also with few periods, where counting maxima
+    (:func:`quality_factor_from_ringdown`) fails.
+
+    Parameters
+    ----------
+    time : array_like
+        Times in s from the release, evenly spaced, at least 8 samples.
+    deflection : array_like
+        The decay in m (any offset), same length.
+
+    Returns
+    -------
+    (float, float)
+        Q and the natural frequency f_n = w_n / (2 pi) in Hz.
+
+    Raises
+    ------
+    ValueError
+        On bad arrays, or if the fit does not converge (no decaying oscillation).
+    """
+    from scipy.optimize import curve_fit
+    t = check_array("time", time, "s")
+    z = check_array("deflection", deflection, "m")
+    if t.ndim != 1 or t.shape != z.shape or t.size < 8:
+        raise ValueError(f"time and deflection must be 1-D arrays of the same length >= 8, got "
+                         f"shapes {t.shape} and {z.shape}")
+    t = t - t[0]
+    dt = float(np.mean(np.diff(t)))
+    spectrum = np.abs(np.fft.rfft(z - z.mean()))
+    k = int(np.argmax(spectrum[1:])) + 1
+    w = 2.0 * math.pi * k / (t.size * dt)
+
+    def model(tt, a, sigma, wd, p, c):
+        return a * np.exp(-sigma * tt) * np.cos(wd * tt + p) + c
+
+    try:
+        popt, _ = curve_fit(model, t, z, p0=[z[0] - z[-1], w / 10.0, w, 0.0, z[-1]],
+                            maxfev=20_000)
+    except RuntimeError as exc:
+        raise ValueError(f"no decaying oscillation found in the data ({exc})") from None
+    _, sigma, wd, _, _ = popt
+    wn = math.hypot(sigma, wd)
+    if sigma <= 0:
+        raise ValueError("the oscillation does not decay (sigma <= 0): unstable or driven")
+    return wn / (2.0 * abs(sigma)), wn / (2.0 * math.pi)

@@ -89,6 +89,7 @@ class HapticDevice:
         self._sample = None
         self._samples = 0
         self._closed_error = None
+        self._recording = None  # a list while ring_down records every PO sample
         self._stop = threading.Event()
         self._reader = None
         self.read_only = {}
@@ -129,6 +130,8 @@ class HapticDevice:
                 with self._sample_cond:
                     self._sample = sample
                     self._samples += 1
+                    if self._recording is not None:
+                        self._recording.append(sample)
                     self._sample_cond.notify_all()
             elif frame.code == Command.EVENT.value and frame.args:
                 self.events.append(str(frame.args[0]))
@@ -386,6 +389,60 @@ class HapticDevice:
                     raise DeviceNotResponding(f"{DEVICE} sent no position for {wait:g} s")
                 self._sample_cond.wait(left)
             return self._sample
+
+    def ring_down(self, force: float = 1.0, *, hold: float = 0.5, duration: float = 1.0):
+        """Hold the handle with a force, release it, and record its free motion.
+
+        A :class:`~afmsmiler.hardware.haptic.bridge.ForceBridge` streams ``force`` for ``hold`` s
+        and then zero for ``duration`` s at 1 kHz (so the watchdog stays fed); every ``PO``
+        sample is recorded. The device must be enabled and streaming positions.
+
+        Parameters
+        ----------
+        force : float
+            Holding force in N (within the device's maximum force).
+        hold : float
+            Seconds of holding, in [0.05, 10] (long enough for the handle to settle).
+        duration : float
+            Seconds recorded after the release, in [0.05, 10].
+
+        Returns
+        -------
+        (ndarray, ndarray)
+            Times in s from 5 ms after the release (device clock; the margin keeps frames still
+            in flight out) and positions in m.
+
+        Raises
+        ------
+        DeviceNotResponding
+            If no position sample came after the release.
+        """
+        import numpy as np
+
+        from ...validation import check_range
+        from .bridge import ForceBridge
+        hold = check_range("hold", hold, 0.05, 10.0, "s")
+        duration = check_range("duration", duration, 0.05, 10.0, "s")
+        force = check_range("force", force, -100.0, 100.0, "N")
+        self._recording = []
+        release = None
+
+        def law(t, _x):
+            return force if t < hold else 0.0
+
+        try:
+            bridge = ForceBridge(law, self, max_force=max(abs(force), 1e-9))
+            bridge.run(duration=hold + duration)
+        finally:
+            samples, self._recording = self._recording, None
+        if samples:  # the release by the device's clock, plus 5 ms for the frames in flight
+            release = samples[0].device_time + hold + 5e-3
+        after = [s for s in samples if release is not None and s.device_time >= release]
+        if len(after) < 8:
+            raise DeviceNotResponding(f"{DEVICE} sent {len(after)} positions after the release "
+                                      "(is it enabled and streaming?)")
+        t = np.array([s.device_time for s in after])
+        return t - t[0], np.array([s.position for s in after])
 
     def close(self) -> None:
         """Stop the reader and close the transport (idempotent)."""
