@@ -118,6 +118,26 @@ def test_bridge_force_law_is_the_source_scaled_and_clipped():
     assert panel.figure.lines["max"].get_data()[1][0] == 1.0
 
 
+def test_notebook_suggestion_cantilever_at_1e9_saturates():
+    """Notebook 08: "Choose cantilever and raise the force scale to 10^9: the force law is clipped
+    at 2 N, and a run counts the saturated ticks"."""
+    class Held:  # a device whose handle a finger holds 2 mm in
+        max_force = 2.0
+        sent = []
+
+        def send_force(self, f):
+            self.sent.append(f)
+
+        def latest(self):
+            return type("S", (), {"position": 2e-3})()
+
+    panel = BridgePanel(Held())
+    panel.set(source="cantilever", force_scale=1e9)
+    assert np.max(np.abs(panel.last.force)) == 2.0
+    stats = panel.run(0.05)
+    assert stats.saturated == stats.ticks > 0 and "100.0 %" in panel.status.value
+
+
 def test_bridge_source_is_built_once_per_choice(monkeypatch):
     built = []
     real = ui.SOURCES["cantilever"]

@@ -407,6 +407,8 @@ def fit_ring_down(time, deflection) -> tuple[float, float]:
     if t.ndim != 1 or t.shape != z.shape or t.size < 8:
         raise ValueError(f"time and deflection must be 1-D arrays of the same length >= 8, got "
                          f"shapes {t.shape} and {z.shape}")
+    if not np.ptp(z) > 0:
+        raise ValueError("the deflection does not move: no oscillation to fit")
     t = t - t[0]
     dt = float(np.mean(np.diff(t)))
     spectrum = np.abs(np.fft.rfft(z - z.mean()))

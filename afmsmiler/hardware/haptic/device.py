@@ -414,6 +414,9 @@ class HapticDevice:
 
         Raises
         ------
+        HardwareError
+            If the device is not ACTIVE (enable it: its watchdog disables it whenever the force
+            frames stop, e.g. at the end of a bridge's run).
         DeviceNotResponding
             If no position sample came after the release.
         """
@@ -424,6 +427,10 @@ class HapticDevice:
         hold = check_range("hold", hold, 0.05, 10.0, "s")
         duration = check_range("duration", duration, 0.05, 10.0, "s")
         force = check_range("force", force, -100.0, 100.0, "N")
+        state = self.status().state
+        if state != "ACTIVE":
+            raise HardwareError(f"{DEVICE} is {state}, not ACTIVE: call enable() first (its "
+                                "watchdog disables it whenever the force frames stop)")
         self._recording = []
         release = None
 
