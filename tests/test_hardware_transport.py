@@ -424,3 +424,27 @@ def test_server_validates():
         TwinServer(object(), MemoryTransport.pair()[1])
     with pytest.raises(ValueError, match="time_scale"):
         TwinServer(Counter(), MemoryTransport.pair()[1], time_scale=-1)
+
+
+def test_memory_capacity_makes_a_fast_writer_wait_for_its_reader():
+    a, b = MemoryTransport.pair(capacity=64)
+    a.write(b"x" * 63 + b"\n")
+    got = []
+    threading.Timer(0.1, lambda: got.append(b.readline(1.0))).start()
+    t0 = time.monotonic()
+    a.write(b"y\n")  # waits until the reader has taken the first line
+    assert time.monotonic() - t0 > 0.05
+    time.sleep(0.05)
+    assert got == [b"x" * 63]
+    assert b.readline(0.1) == b"y"
+    with pytest.raises(ValueError, match="capacity"):
+        MemoryTransport.pair(capacity=0)
+
+
+def test_server_stops_promptly_when_the_host_never_reads():
+    host, server = open_twin(Counter())
+    host.write(encode_frame(Frame(1, "TK", (500,))))  # 500 ticks, far more than the link holds
+    time.sleep(0.2)
+    t0 = time.monotonic()
+    server.stop()
+    assert time.monotonic() - t0 < 0.5

@@ -78,10 +78,11 @@ def _take_line(buf: bytearray) -> bytes | None:
 class _Channel:
     """One direction of a memory pair: a byte buffer behind a condition variable."""
 
-    def __init__(self):
+    def __init__(self, capacity: int | None = None):
         self.cond = threading.Condition()
         self.buf = bytearray()
         self.closed = False
+        self.capacity = capacity
 
 
 class MemoryTransport:
@@ -100,15 +101,26 @@ class MemoryTransport:
         self._out = outbound
 
     @classmethod
-    def pair(cls) -> tuple["MemoryTransport", "MemoryTransport"]:
+    def pair(cls, capacity: int | None = None) -> tuple["MemoryTransport", "MemoryTransport"]:
         """Two connected ends: what one writes, the other reads.
+
+        Parameters
+        ----------
+        capacity : int, optional
+            Bytes each direction holds unread before a write waits for the reader (as a serial
+            port's buffers make a fast device wait for its host); None: unbounded. A write that
+            waits longer than WRITE_TIMEOUT raises TransportTimeout.
 
         Returns
         -------
         tuple of MemoryTransport
             ``(host_end, device_end)``; closing either closes the link for both.
         """
-        a_to_b, b_to_a = _Channel(), _Channel()
+        if capacity is not None:
+            capacity = int(capacity)
+            if capacity < 1:
+                raise ValueError(f"capacity must be None or >= 1 byte, got {capacity}")
+        a_to_b, b_to_a = _Channel(capacity), _Channel(capacity)
         return cls(b_to_a, a_to_b), cls(a_to_b, b_to_a)
 
     def write(self, data: bytes) -> None:
@@ -124,11 +136,20 @@ class MemoryTransport:
         TransportClosed
             If either end has been closed.
         """
-        with self._out.cond:
-            if self._out.closed or self._in.closed:
-                raise TransportClosed("the memory link is closed")
-            self._out.buf += bytes(data)
-            self._out.cond.notify_all()
+        out = self._out
+        deadline = time.monotonic() + WRITE_TIMEOUT
+        with out.cond:
+            while True:
+                if out.closed or self._in.closed:
+                    raise TransportClosed("the memory link is closed")
+                if out.capacity is None or len(out.buf) < out.capacity:
+                    break
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise TransportTimeout(f"the reader took no bytes for {WRITE_TIMEOUT} s")
+                out.cond.wait(min(remaining, 0.05))
+            out.buf += bytes(data)
+            out.cond.notify_all()
 
     def readline(self, timeout: float) -> bytes:
         """The next line from the other end.
@@ -155,6 +176,7 @@ class MemoryTransport:
             while True:
                 line = _take_line(self._in.buf)
                 if line is not None:
+                    self._in.cond.notify_all()  # a writer may wait for room
                     return line
                 if self._in.closed:
                     raise TransportClosed("the memory link is closed")

@@ -223,11 +223,11 @@ class TwinServer:
             The longest to wait for the thread (s).
         """
         self._stop.set()
+        self.transport.close()  # wakes a thread waiting to write to a host that does not read
         if self._thread is not None:
             self._thread.join(timeout)
             if self._thread.is_alive():
                 raise RuntimeError(f"TwinServer thread did not stop within {timeout} s")
-        self.transport.close()
         for resource in self._resources:
             resource.close()
         if self.exception is not None:
@@ -244,7 +244,14 @@ class TwinServer:
 
     def _send(self, frames) -> None:
         for frame in frames:
-            self.transport.write(encode_frame(frame))
+            data = encode_frame(frame)
+            while True:  # a host that does not read makes the device wait, as a full buffer
+                try:
+                    self.transport.write(data)
+                    break
+                except TransportTimeout:
+                    if self._stop.is_set():
+                        return
 
     def _run(self) -> None:
         twin, scale = self.twin, self.time_scale
@@ -280,10 +287,15 @@ class TwinServer:
                 if scale > 0:
                     twin.poll((time.monotonic() - origin) / scale)  # the clock at arrival
                 self._send(twin.handle(frame))
-        except (TransportClosed, TransportTimeout):
-            pass  # the host went away (or stopped reading): the device just stops serving
+        except TransportClosed:
+            pass  # the host went away: the device just stops serving
         except BaseException as exc:  # a bug in the twin: surfaced by stop()
             self.exception = exc
+
+
+#: Bytes the in-memory link holds unread per direction (a board's serial buffers): a twin at
+#: time_scale 0 runs at most this far ahead of its host, as a real device at its own pace would.
+LINK_CAPACITY = 256
 
 
 def open_twin(twin: Twin, *, pty: bool = False, time_scale: float = 0.0):
@@ -318,6 +330,6 @@ def open_twin(twin: Twin, *, pty: bool = False, time_scale: float = 0.0):
         server = TwinServer(twin, link.device_end, time_scale=time_scale)
         server._resources.append(link)
         return link.path, server.start()
-    host, device = MemoryTransport.pair()
+    host, device = MemoryTransport.pair(capacity=LINK_CAPACITY)
     server = TwinServer(twin, device, time_scale=time_scale)
     return host, server.start()

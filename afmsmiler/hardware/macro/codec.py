@@ -1,0 +1,402 @@
+"""The macroscopic AFM's protocol (device ``MACROAFM``, protocol version 1): bytes <-> messages.
+
+Pure: no I/O. The enums :class:`Command`, :class:`ErrorCode`, :class:`Event` and :class:`Param`
+have the names and values of the firmware's ``protocol.h`` (``CMD_<NAME>``, ``ERR_<NAME>``,
+``EVT_<NAME>``, ``PAR_<NAME>``); a test parses that file and compares, so they cannot drift.
+Frames follow :mod:`afmsmiler.hardware.framing`; quantities on the wire are integers in the units
+the contract names (um for the pitch, nm per z micro-step, gauge counts, micro-steps, steps/s).
+
+Messages a device sends:
+
+- :class:`Reply` -- ``SEQ OK CODE [RESULT ...]``
+- :class:`ErrorReply` -- ``SEQ ER ERRNO [WORD]`` (``SEQ`` 0: a line the device could not read,
+  or a fault during a scan)
+- :class:`Pixel` -- ``0 PX <row> <col> <z-microsteps> <gauge-counts>``
+- :class:`LineEnd` -- ``0 LN <row> <n-pixels>``
+- :class:`EventMsg` -- ``0 EV <WORD> [ARG]``
+- :class:`Status` -- parsed from the reply to ``ST``.
+
+Examples
+--------
+>>> MacroAFMCodec.command(3, Command.SET, Param.PITCH, 200)
+b'3 SP DX 200*E3\\n'
+>>> MacroAFMCodec.parse(b"0 PX 2 5 -120 3301*E1")
+Pixel(row=2, col=5, z=-120, counts=3301)
+"""
+from __future__ import annotations
+
+import enum
+import inspect
+from dataclasses import dataclass
+
+from ..errors import FrameError
+from ..framing import Frame, decode_frame, encode_frame
+
+__all__ = ["DEVICE", "BAUDRATE", "Command", "ErrorCode", "Event", "Param", "State", "Flag",
+           "Pixel", "LineEnd", "EventMsg", "Reply", "ErrorReply", "Status", "MacroAFMCodec",
+           "READ_ONLY"]
+
+#: The device's name in its ``ID`` reply.
+DEVICE = "MACROAFM"
+#: The serial port's speed (8N1).
+BAUDRATE = 115200
+
+
+def _by_value(cls):
+    """Give an enum the signature of its lookup, ``Kind(value)`` (what users call)."""
+    cls.__signature__ = inspect.Signature(
+        [inspect.Parameter("value", inspect.Parameter.POSITIONAL_OR_KEYWORD)])
+    return cls
+
+
+@_by_value
+class Command(str, enum.Enum):
+    """Host commands (``CMD_<NAME> "XX"`` in protocol.h).
+
+    Parameters
+    ----------
+    value : str
+        The two letters on the wire (``Command("SP")`` is ``Command.SET``).
+    """
+
+    IDENTIFY = "ID"
+    SET = "SP"
+    GET = "GP"
+    HOME = "HM"
+    START = "SS"
+    PAUSE = "PA"
+    RESUME = "RS"
+    ABORT = "AB"
+    STATUS = "ST"
+    GAUGE = "RG"
+    GETLINE = "GL"
+
+
+@_by_value
+class ErrorCode(enum.IntEnum):
+    """Error numbers shared by every device (``ERR_<NAME> <n>``).
+
+    Parameters
+    ----------
+    value : int
+        The error number on the wire.
+    """
+
+    CHECKSUM = 1
+    UNKNOWN_COMMAND = 2
+    BAD_ARGUMENT = 3
+    BUSY = 4
+    NOT_HOMED = 5
+    LIMIT = 6
+    ESTOP = 7
+    SENSOR = 8
+    MALFORMED = 9
+    STATE = 10
+
+
+@_by_value
+class Event(str, enum.Enum):
+    """Event words of ``0 EV <WORD> [ARG]`` (``EVT_<NAME> "<WORD>"``).
+
+    Parameters
+    ----------
+    value : str
+        The word on the wire.
+    """
+
+    BOOT = "BOOT"
+    HOMED = "HOMED"
+    DONE = "DONE"
+    PAUSED = "PAUSED"
+    ABORTED = "ABORTED"
+    LIMIT = "LIMIT"
+    ESTOP = "ESTOP"
+    BUTTON = "BUTTON"
+
+
+@_by_value
+class Param(str, enum.Enum):
+    """Integer parameters of ``SP``/``GP`` (``PAR_<NAME> "XX"``).
+
+    Parameters
+    ----------
+    value : str
+        The two letters on the wire (``Param("DX")`` is ``Param.PITCH``).
+    """
+
+    NX = "NX"          #: pixels per line
+    NY = "NY"          #: lines
+    PITCH = "DX"       #: pixel spacing in um
+    ZSTEP = "ZS"       #: nm per z micro-step (read-only: set by the mechanics)
+    SETPOINT = "SE"    #: deflection setpoint in gauge counts above the free reading
+    MODE = "MO"        #: 0 contact, 1 jumping
+    LIFT = "LI"        #: jumping lift in z micro-steps
+    SPEED = "VE"       #: max step rate in steps/s
+    ACCEL = "AC"       #: acceleration in steps/s^2
+    PRESET = "PR"      #: the pre-programmed scan a push button starts
+
+
+#: Parameters the host may read but not set.
+READ_ONLY = frozenset({Param.ZSTEP})
+
+
+@_by_value
+class State(str, enum.Enum):
+    """The device's states in the ``ST`` reply.
+
+    Parameters
+    ----------
+    value : str
+        The state's word on the wire.
+    """
+
+    IDLE = "IDLE"
+    HOMING = "HOMING"
+    SCANNING = "SCANNING"
+    PAUSED = "PAUSED"
+    FAULT = "FAULT"
+
+
+@_by_value
+class Flag(enum.IntFlag):
+    """Bits of the ``ST`` reply's flags integer.
+
+    Parameters
+    ----------
+    value : int
+        The flags integer on the wire.
+    """
+
+    HOMED = 1
+    LIMIT_X = 2
+    LIMIT_Y = 4
+    LIMIT_Z = 8
+    ESTOP = 16
+
+
+@dataclass(frozen=True)
+class Pixel:
+    """One pixel of a scan, as streamed (``0 PX``).
+
+    Parameters
+    ----------
+    row : int
+        Line index (0: the first line scanned).
+    col : int
+        Pixel index along the fast axis.
+    z : int
+        Height in z micro-steps (times ZS nm: the height).
+    counts : int
+        Gauge reading in counts above the free reading (the deflection there).
+    """
+
+    row: int
+    col: int
+    z: int
+    counts: int
+
+
+@dataclass(frozen=True)
+class LineEnd:
+    """The end of a line (``0 LN``).
+
+    Parameters
+    ----------
+    row : int
+        The line that ended.
+    pixels : int
+        How many pixels it has.
+    """
+
+    row: int
+    pixels: int
+
+
+@dataclass(frozen=True)
+class EventMsg:
+    """An event (``0 EV <WORD> [ARG]``).
+
+    Parameters
+    ----------
+    event : Event or str
+        The event (a str if this driver does not know the word).
+    arg : int or str or None
+        Its argument (an axis for LIMIT, a preset for BUTTON).
+    """
+
+    event: object
+    arg: object = None
+
+
+@dataclass(frozen=True)
+class Reply:
+    """A command's success (``SEQ OK CODE [RESULT ...]``).
+
+    Parameters
+    ----------
+    seq : int
+        The command's sequence number.
+    command : Command or str
+        The command echoed.
+    results : tuple
+        What the command returned.
+    """
+
+    seq: int
+    command: object
+    results: tuple = ()
+
+
+@dataclass(frozen=True)
+class ErrorReply:
+    """A command's failure, or with SEQ 0 an unreadable line or a scan fault.
+
+    Parameters
+    ----------
+    seq : int
+        The command's sequence number (0: not a reply to a command).
+    code : int
+        The error number (an :class:`ErrorCode` when known).
+    word : str
+        The optional word ("" if none).
+    """
+
+    seq: int
+    code: int
+    word: str = ""
+
+
+@dataclass(frozen=True)
+class Status:
+    """The device's state (the reply to ``ST``).
+
+    Parameters
+    ----------
+    state : State or str
+        IDLE, HOMING, SCANNING, PAUSED or FAULT.
+    row : int
+        The line being scanned (or last scanned).
+    col : int
+        The pixel being scanned.
+    flags : Flag
+        Homed, limit switches, emergency stop (bits of :class:`Flag`).
+    """
+
+    state: object
+    row: int
+    col: int
+    flags: Flag
+
+    @property
+    def homed(self) -> bool:
+        """Whether the axes are homed."""
+        return bool(self.flags & Flag.HOMED)
+
+
+def _enum(kind, value):
+    try:
+        return kind(value)
+    except ValueError:
+        return value
+
+
+def _ints(frame: Frame, n: int, what: str) -> tuple:
+    if len(frame.args) != n or not all(isinstance(a, int) for a in frame.args):
+        raise FrameError(f"{what} needs {n} integers, got {frame.args!r}", encode_frame(frame))
+    return frame.args
+
+
+class MacroAFMCodec:
+    """Bytes <-> messages for the macroscopic AFM (class methods only; no state, no I/O)."""
+
+    @staticmethod
+    def command(seq: int, command: Command, *args) -> bytes:
+        """The bytes of a host command.
+
+        Parameters
+        ----------
+        seq : int
+            Sequence number, 1..255 (0 for a frame that gets no reply).
+        command : Command
+            The command.
+        *args : int or str or Param
+            Its arguments (a :class:`Param` is sent as its two letters).
+
+        Returns
+        -------
+        bytes
+        """
+        command = Command(command)
+        wire = tuple(a.value if isinstance(a, enum.Enum) else a for a in args)
+        return encode_frame(Frame(seq, command.value, wire))
+
+    @staticmethod
+    def message(frame: Frame):
+        """The message a device frame carries.
+
+        Parameters
+        ----------
+        frame : Frame
+            A decoded frame from the device.
+
+        Returns
+        -------
+        Reply, ErrorReply, Pixel, LineEnd or EventMsg
+
+        Raises
+        ------
+        FrameError
+            If the frame is valid but not a message of this protocol.
+        """
+        code, args = frame.code, frame.args
+        if code == "OK" and frame.seq != 0 and args and isinstance(args[0], str):
+            return Reply(frame.seq, _enum(Command, args[0]), tuple(args[1:]))
+        if code == "ER" and args and isinstance(args[0], int) and len(args) <= 2:
+            word = str(args[1]) if len(args) == 2 else ""
+            return ErrorReply(frame.seq, _enum(ErrorCode, args[0]), word)
+        if frame.seq == 0 and code == "PX":
+            return Pixel(*_ints(frame, 4, "PX"))
+        if frame.seq == 0 and code == "LN":
+            return LineEnd(*_ints(frame, 2, "LN"))
+        if frame.seq == 0 and code == "EV" and 1 <= len(args) <= 2 and isinstance(args[0], str):
+            return EventMsg(_enum(Event, args[0]), args[1] if len(args) == 2 else None)
+        raise FrameError(f"not a MACROAFM message: {frame!r}", encode_frame(frame))
+
+    @classmethod
+    def parse(cls, line: bytes):
+        """The message in one received line (decode, then :meth:`message`).
+
+        Parameters
+        ----------
+        line : bytes
+            One line from the device.
+
+        Returns
+        -------
+        Reply, ErrorReply, Pixel, LineEnd or EventMsg
+
+        Raises
+        ------
+        FrameError
+            (or its ChecksumError) if the line is not a valid message.
+        """
+        return cls.message(decode_frame(line))
+
+    @staticmethod
+    def status(reply: Reply) -> Status:
+        """The :class:`Status` in the reply to ``ST``.
+
+        Parameters
+        ----------
+        reply : Reply
+            ``OK ST <state-word> <row> <col> <flags-int>``.
+
+        Returns
+        -------
+        Status
+        """
+        r = reply.results
+        if (reply.command != Command.STATUS or len(r) != 4 or not isinstance(r[0], str)
+                or not all(isinstance(v, int) for v in r[1:])):
+            raise FrameError(f"not a status reply: {reply!r}")
+        return Status(_enum(State, r[0]), r[1], r[2], Flag(r[3] & 0x1F))
