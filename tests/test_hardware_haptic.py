@@ -17,7 +17,7 @@ import pytest
 from afmsmiler.contact import ContactSystem, Parabolic
 from afmsmiler.hardware import (DeviceError, DeviceNotResponding, FaultyTransport, Frame,
                                 MemoryTransport, ProtocolVersionError, TransportClosed,
-                                TwinServer, decode_frame, encode_frame, open_twin)
+                                TwinServer, crc8, decode_frame, encode_frame, open_twin)
 from afmsmiler.hardware.haptic import (Command, ErrorCode, Event, Finger, HapticDevice,
                                        HapticTwin, Param)
 from afmsmiler.hardware.haptic.bridge import (CantileverSource, ForceBridge, FunctionSource,
@@ -582,3 +582,162 @@ def test_firmware_builds_with_avr_gcc(tmp_path):
                  if line.startswith(".") and len(line.split()) >= 2)
     assert int(sizes[".text"]) < 32 * 1024 - 512  # fits the Uno's flash beside its bootloader
     assert int(sizes[".data"]) + int(sizes[".bss"]) < 2048 - 512  # RAM left for the stack
+
+
+# -- the real firmware in simavr ------------------------------------------------------------------
+@pytest.fixture(scope="module")
+def firmware_build(tmp_path_factory):
+    import shutil
+    import subprocess
+    core = pathlib.Path("/usr/share/arduino/hardware/arduino/avr/cores/arduino")
+    if not (shutil.which("avr-g++") and core.is_dir() and
+            pathlib.Path("/usr/include/simavr/sim_avr.h").exists()):
+        pytest.skip("avr-gcc, arduino-core-avr or libsimavr-dev not installed "
+                    "(make test installs them)")
+    out = tmp_path_factory.mktemp("haptic_build")
+    run = subprocess.run(["sh", str(ROOT / "build.sh"), str(out)], capture_output=True,
+                         text=True, timeout=300)
+    assert run.returncode == 0, run.stderr[-2000:]
+    return out
+
+
+def _until(condition, timeout=5.0):
+    """Poll ``condition`` until true or ``timeout`` s; its last value."""
+    end = time.monotonic() + timeout
+    while not condition() and time.monotonic() < end:
+        time.sleep(0.01)
+    return condition()
+
+
+class Simulated:
+    """The firmware in simavr behind the harness: its pty opened by pyserial, its pins on stdin."""
+
+    def __init__(self, build):
+        import subprocess
+        from afmsmiler.hardware import SerialTransport
+        self.proc = subprocess.Popen([str(build / "harness"), str(build / "haptic.elf"),
+                                      "--realtime", "1"], stdin=subprocess.PIPE,
+                                     stdout=subprocess.PIPE, stderr=subprocess.DEVNULL,
+                                     text=True)
+        word, path = self.proc.stdout.readline().split()
+        assert word == "PTY"
+        self.transport = SerialTransport(path, baudrate=1_000_000)
+
+    def pins(self, line):
+        self.proc.stdin.write(line + "\n")
+        self.proc.stdin.flush()
+        return self.proc.stdout.readline().split()
+
+    def lines(self, seconds):
+        """Every frame the firmware sends within ``seconds``."""
+        from afmsmiler.hardware import FrameError, TransportTimeout
+        out, end = [], time.monotonic() + seconds
+        while time.monotonic() < end:
+            try:
+                out.append(decode_frame(self.transport.readline(0.05)))
+            except TransportTimeout:
+                pass
+            except FrameError:  # BOOT's first bytes, sent before the pty had a reader
+                pass
+        return out
+
+    def close(self):
+        self.transport.close()
+        self.proc.stdin.close()
+        self.proc.wait(5)
+
+
+@pytest.fixture
+def simulated(firmware_build):
+    sim = Simulated(firmware_build)
+    yield sim
+    sim.close()
+
+
+@pytest.mark.slow
+def test_firmware_in_simavr_answers_the_golden_session(simulated):
+    """PROTOCOL.md's golden host lines, sent byte for byte to the real firmware, get the golden
+    replies (ST's position and flags, and the unsolicited PO, EV and ER frames, aside)."""
+    link = simulated.transport
+    simulated.lines(0.1)
+    # the golden session waits for each reply: give the watchdog a second, not 50 ms
+    link.write(encode_frame(Frame(200, "SP", ("WD", 1000))))
+    assert Frame(200, "OK", ("SP", "WD", 1000)) in simulated.lines(0.3)
+    golden = [(d, decode_frame(r), r) for d, r in _golden()]
+    replies = {f.seq: f for d, f, _ in golden if d == "<" and f.seq != 0}
+    for direction, frame, raw in golden:
+        if direction != ">":
+            continue
+        link.write(raw)
+        if frame.seq == 0:
+            continue
+        got = [f for f in simulated.lines(0.05) if f.code not in ("PO",)]
+        while not any(f.seq == frame.seq for f in got):
+            got += [f for f in simulated.lines(0.05) if f.code not in ("PO",)]
+        reply = [f for f in got if f.seq == frame.seq][-1]
+        if frame.code == "ST":
+            assert reply.args[:2] == ("ST", "ACTIVE")
+        else:
+            assert reply == replies[frame.seq], raw
+        if frame.code == "ES":
+            assert Frame(0, "EV", ("ESTOP",)) in got
+
+
+@pytest.mark.slow
+def test_firmware_in_simavr_rejects_damaged_lines_and_repeats_retries(simulated):
+    link = simulated.transport
+    simulated.lines(0.05)
+    link.write(b"1 ID*00\n")
+    assert simulated.lines(0.3) == [Frame(0, "ER", (1,))]
+    for body in (b"1 id", b"1  ID", b"256 ID", b"1 ID x!"):  # a valid checksum, bad tokens
+        link.write(body + b"*%02X\n" % crc8(body))
+        assert simulated.lines(0.3) == [Frame(0, "ER", (9,))], body
+    link.write(b"x" * 300 + b"\n")
+    assert simulated.lines(0.3) == [Frame(0, "ER", (9,))]
+    link.write(encode_frame(Frame(5, "ES")))
+    first = simulated.lines(0.3)
+    link.write(encode_frame(Frame(5, "ES")))  # a retry: the reply again, no second E-stop
+    again = simulated.lines(0.3)
+    assert first == [Frame(0, "EV", ("ESTOP",)), Frame(5, "OK", ("ES",))]
+    assert again == [Frame(5, "OK", ("ES",))]
+
+
+@pytest.mark.slow
+def test_firmware_in_simavr_with_the_driver(simulated):
+    """The driver against the real firmware: encoder counts, motor set value, watchdog, E-stop,
+    and commands through a fault-injecting link."""
+    with HapticDevice(FaultyTransport(simulated.transport, seed=5, corrupt=0.1),
+                      timeout=0.3, retries=8) as dev:
+        assert dev.connect() == ("HAPTIC", 1, "0.1.0")
+        assert dev.read_only == {PARAMETERS[p].name: pytest.approx(spec.default * spec.scale)
+                                 for p, spec in PARAMETERS.items() if spec.read_only}
+        for i in range(5):
+            assert dev.set("spring", 100.0 * (i + 1)) == pytest.approx(100.0 * (i + 1))
+        assert simulated.pins("COUNT 100") == ["OK", "COUNT", "100"]
+        time.sleep(0.05)
+        assert dev.status().position == pytest.approx(100 * 7.67e-6)  # 100 counts, none lost
+        dev.configure(spring=0.0, force_scale=1.0, watchdog=1.0)  # a busy machine: no false trip
+        dev.enable()
+        dev.start_stream(1e-3)
+        for _ in range(40):
+            dev.send_force(0.5)
+            time.sleep(0.002)
+        ocr, icr, enable, _ = (int(x) for x in simulated.pins("MOTOR")[1:])
+        # 0.5 N / 1.76 N/A = 0.284 A of 1.5 A: duty 10 % + (0.284 / 1.5 + 1) / 2 x 80 %
+        assert enable == 1 and icr == 3999
+        assert ocr == round(400 + (0.5 / 1.76 / 1.5 + 1) / 2 * 3200)
+        assert dev.samples_received > 10
+        dev.set("watchdog", 0.05)
+        # no FO frames: the watchdog (simavr may run slower than real time on a busy machine)
+        assert _until(lambda: "WATCHDOG" in dev.events) and dev.status().state == "IDLE"
+        assert int(simulated.pins("MOTOR")[3]) == 0  # the amplifier disabled
+        dev.set("watchdog", 1.0)
+        dev.enable()
+        simulated.pins("ESTOP 1")
+        assert _until(lambda: "ESTOP" in dev.events)
+        assert dev.status().state == "FAULT"
+        with pytest.raises(DeviceError, match="ESTOP"):
+            dev.enable()
+        simulated.pins("ESTOP 0")
+        dev.disable()
+        assert dev.status().state == "IDLE"

@@ -3,7 +3,8 @@
 # Arduino core (arduino-core-avr). Usage:
 #   hardware/haptic/build.sh [BUILD_DIR]       (default: build/haptic at the repo root)
 # Outputs BUILD_DIR/haptic.elf, .hex and BUILD_DIR/size.txt. Environment: ARDUINO_AVR (core root),
-# AVR_CC/AVR_CXX. Flash: avrdude -p m328p -c arduino -P /dev/ttyACM0 -U flash:w:haptic.hex
+# AVR_CC/AVR_CXX, CC; SKIP_HARNESS=1 builds only the firmware (the simavr harness needs
+# libsimavr-dev). Flash: avrdude -p m328p -c arduino -P /dev/ttyACM0 -U flash:w:haptic.hex
 set -eu
 HERE=$(cd "$(dirname "$0")" && pwd)
 ROOT=$(cd "$HERE/../.." && pwd)
@@ -44,3 +45,9 @@ $AVR_CC -Os -g -flto -fuse-linker-plugin -Wl,--gc-sections -mmcu=atmega328p \
 avr-objcopy -O ihex -R .eeprom "$OUT/haptic.elf" "$OUT/haptic.hex"
 avr-size -A "$OUT/haptic.elf" > "$OUT/size.txt"
 echo "firmware: $OUT/haptic.elf"
+
+if [ "${SKIP_HARNESS:-0}" != 1 ]; then
+  ${CC:-gcc} -O2 -Wall -Wextra -std=gnu11 -I/usr/include/simavr -o "$OUT/harness" \
+    "$HERE/sim/harness.c" -lsimavr -lutil -lm
+  echo "harness: $OUT/harness"
+fi

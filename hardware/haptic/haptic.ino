@@ -96,12 +96,21 @@ uint16_t stream_ms = 0;            // 0: no PO stream
 unsigned long next_stream_tick = 0;
 
 // -- the encoder (both channels on interrupts: x4 decoding) -----------------------------------
-const int8_t QUADRATURE[16] = {0, -1, 1, 0, 1, 0, 0, -1, -1, 0, 0, 1, 0, 1, -1, 0};
+// Index (old state << 2) | new state, state = A + 2 B; +-2 marks a jump over one state (two
+// edges before the interrupt ran): counted twice in the direction of the last single step.
+const int8_t QUADRATURE[16] = {0, -1, 1, 2, 1, 0, 2, -1, -1, 2, 0, 1, 2, 1, -1, 0};
+volatile int8_t enc_dir = 1;
 
 void encoder_isr() {
-  uint8_t s = (uint8_t)(((enc_state << 2) | ((PIND >> 2) & 3)) & 15);  // pins 2, 3 = PD2, PD3
-  enc_count += QUADRATURE[s];
-  enc_state = s;
+  uint8_t now = (PIND >> 2) & 3;  // pins 2, 3 = PD2 (A), PD3 (B)
+  int8_t step = QUADRATURE[(enc_state << 2) | now];
+  if (step == 2) {
+    enc_count += 2 * enc_dir;
+  } else if (step) {
+    enc_count += step;
+    enc_dir = step;
+  }
+  enc_state = now;
 }
 
 long read_count() {
@@ -130,7 +139,8 @@ uint8_t crc8(const char *s, uint8_t n) {
   uint8_t crc = 0;
   for (uint8_t i = 0; i < n; i++) {
     crc ^= (uint8_t)s[i];
-    for (uint8_t b = 0; b < 8; b++) crc = (crc & 0x80) ? (uint8_t)((crc << 1) ^ 0x07) : (uint8_t)(crc << 1);
+    for (uint8_t b = 0; b < 8; b++)
+      crc = (crc & 0x80) ? (uint8_t)((crc << 1) ^ 0x07) : (uint8_t)(crc << 1);
   }
   return crc;
 }
@@ -197,7 +207,7 @@ void fault(const char *event, uint8_t flag, uint8_t code) {
   send_event(event);
 }
 
-// -- one control tick (1 ms) -----------------------------------------------------------------------
+// -- one control tick (1 ms) ---------------------------------------------------------------------
 void tick() {
   long count = read_count() - zero_offset;
   float res = params[P_RESOLUTION] * 1e-9f;
@@ -206,7 +216,7 @@ void tick() {
   vf += alpha * ((x - x_prev) / TICK_S - vf);
   prev_count = count;
   float force = 0.0f;
-  if (state == ACTIVE && digitalRead(PIN_ESTOP) == HIGH) {
+  if (state != FAULT && digitalRead(PIN_ESTOP) == HIGH) {  // pressed (or its wire broken)
     fault(EVT_ESTOP, FLAG_ESTOP, ERR_ESTOP);
   }
   if (state == ACTIVE) {
