@@ -538,7 +538,7 @@ def test_device_ring_down_through_the_server_matches_the_pure_twin():
     host, server = open_twin(twin, time_scale=1.0)
     with HapticDevice(host, timeout=0.5) as dev:
         dev.connect()
-        dev.configure(spring=500.0)
+        dev.configure(spring=500.0, watchdog=0.2)  # 200 ticks' grace on a busy test machine
         dev.enable()
         dev.start_stream(1e-3)
         q, f = fit_ring_down(*dev.ring_down(1.0, hold=0.4, duration=0.6))
@@ -555,13 +555,13 @@ def test_bridge_drives_the_twin_over_memory():
     host, server = open_twin(twin, time_scale=1.0)
     with HapticDevice(host, timeout=0.5) as dev:
         dev.connect()
-        dev.configure(spring=500.0)
+        dev.configure(spring=500.0, watchdog=0.2)  # 200 ticks' grace on a busy test machine
         dev.enable()
         dev.start_stream(1e-3)
         bridge = ForceBridge(lambda t, x: 0.5, dev, rate=1000.0).start()
         time.sleep(0.5)
         stats = bridge.stop()
-        assert dev.status().state == "ACTIVE"  # no watchdog trip while the bridge ran
+        assert "WATCHDOG" not in dev.events  # the bridge fed the watchdog all along
         assert stats.ticks > 250 and dev.samples_received > 20
         assert twin.position == pytest.approx(0.5 / 800.0, rel=0.2)
     server.stop()
@@ -728,14 +728,17 @@ def test_firmware_in_simavr_with_the_driver(simulated):
         assert ocr == round(400 + (0.5 / 1.76 / 1.5 + 1) / 2 * 3200)
         assert dev.samples_received > 10
         dev.set("watchdog", 0.05)
-        # no FO frames: the watchdog (simavr may run slower than real time on a busy machine)
-        assert _until(lambda: "WATCHDOG" in dev.events) and dev.status().state == "IDLE"
+        # no FO frames: the watchdog (simavr may run slower than real time on a busy machine;
+        # the status is asked, not the event awaited: an event is not retried, and this link
+        # corrupts one line in ten)
+        seen = []
+        assert _until(lambda: seen.append(dev.status()) or seen[-1].state == "IDLE")
+        assert any(st.flags & 2 for st in seen)  # ST clears the flags: look at every reply
         assert int(simulated.pins("MOTOR")[3]) == 0  # the amplifier disabled
         dev.set("watchdog", 1.0)
         dev.enable()
         simulated.pins("ESTOP 1")
-        assert _until(lambda: "ESTOP" in dev.events)
-        assert dev.status().state == "FAULT"
+        assert _until(lambda: dev.status().state == "FAULT")
         with pytest.raises(DeviceError, match="ESTOP"):
             dev.enable()
         simulated.pins("ESTOP 0")

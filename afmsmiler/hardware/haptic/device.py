@@ -427,6 +427,7 @@ class HapticDevice:
         hold = check_range("hold", hold, 0.05, 10.0, "s")
         duration = check_range("duration", duration, 0.05, 10.0, "s")
         force = check_range("force", force, -100.0, 100.0, "N")
+        self.send_force(force)  # feeds the watchdog before the status round trip
         state = self.status().state
         if state != "ACTIVE":
             raise HardwareError(f"{DEVICE} is {state}, not ACTIVE: call enable() first (its "
