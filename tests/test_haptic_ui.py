@@ -187,3 +187,19 @@ def test_tapping_force_law_is_periodic_in_felt_time():
     assert period == pytest.approx(0.5)  # 2 taps a second
     half = len(t) // 2
     np.testing.assert_allclose(f[:half], f[half:2 * half], atol=1e-3 * np.ptp(f))
+
+
+def test_figures_say_their_units_and_do_not_overlap():
+    """test_figures_labelled's four checks on these panels' figures (the lead may list them
+    there too)."""
+    import test_figures_labelled as labelled
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    q = QControlPanel()
+    q.set(gain=0.01)
+    figs = [q.fig, BridgePanel().fig, BridgePanel(source="cantilever").fig]
+    for fig in figs:
+        FigureCanvasAgg(fig).draw()
+    labelled.test_every_axis_with_ticks_has_a_label_with_a_unit(figs)
+    labelled.test_no_title_or_label_overlaps_another_axes_texts(figs)
+    labelled.test_tick_labels_are_readable_numbers(figs)
+    labelled.test_no_axes_is_left_empty(figs)

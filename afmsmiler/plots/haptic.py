@@ -34,16 +34,16 @@ class QControlFigure:
         self.lines["controlled"], = ax.plot([], [], color="#1f77b4", lw=1.8,
                                             label="with Q control")
         ax.set_yscale("log")
-        ax.set_xlabel("drive frequency f / f0")
-        ax.set_ylabel("amplitude / static deflection")
+        ax.set_xlabel("drive frequency f / f0 (dimensionless)")
+        ax.set_ylabel("amplitude / static deflection (dimensionless)")
         ax.set_title("resonance")
         ax.legend(loc="upper right")
         ax = self.ax_ring
         self.lines["ring_free"], = ax.plot([], [], color="0.6", lw=1.0, ls="--",
                                            label="without Q control")
         self.lines["ring"], = ax.plot([], [], color="#1f77b4", lw=1.4, label="with Q control")
-        ax.set_xlabel("time t / T0")
-        ax.set_ylabel("deflection / initial deflection")
+        ax.set_xlabel("time t / T0 (dimensionless)")
+        ax.set_ylabel("deflection / initial deflection (dimensionless)")
         ax.set_title("ring-down")
         ax.legend(loc="upper right")
         fig.tight_layout()
