@@ -269,6 +269,24 @@ def test_device_rejects_bad_values_before_sending(twin_device):
         param_to_wire(Param.MAX_FORCE, math.nan)
 
 
+def test_ring_down_says_when_the_watchdog_fired(twin_device, monkeypatch):
+    from afmsmiler.hardware import HardwareError
+    from afmsmiler.hardware.haptic import bridge
+    twin, dev, _ = twin_device
+    dev.connect()
+    dev.configure(spring=500.0)
+    dev.enable()
+    dev.start_stream(1e-3)
+
+    def stalled(self, ticks=None, *, duration=None):
+        time.sleep(0.3)  # the host pauses: no force frames for 300 ms
+        return self.stats()
+
+    monkeypatch.setattr(bridge.ForceBridge, "run", stalled)
+    with pytest.raises(HardwareError, match="watchdog fired"):
+        dev.ring_down(1.0, hold=0.1, duration=0.1)
+
+
 def test_wrong_protocol_version():
     twin = HapticTwin()
     twin.protocol_version = 2

@@ -416,7 +416,7 @@ class HapticDevice:
         ------
         HardwareError
             If the device is not ACTIVE (enable it: its watchdog disables it whenever the force
-            frames stop, e.g. at the end of a bridge's run).
+            frames stop, e.g. at the end of a bridge's run), or its watchdog fired meanwhile.
         DeviceNotResponding
             If no position sample came after the release.
         """
@@ -434,6 +434,7 @@ class HapticDevice:
                                 "watchdog disables it whenever the force frames stop)")
         self._recording = []
         release = None
+        trips = list(self.events).count("WATCHDOG")
 
         def law(t, _x):
             return force if t < hold else 0.0
@@ -443,6 +444,10 @@ class HapticDevice:
             bridge.run(duration=hold + duration)
         finally:
             samples, self._recording = self._recording, None
+        if list(self.events).count("WATCHDOG") > trips:
+            raise HardwareError(f"{DEVICE}'s watchdog fired during the ring-down: this host "
+                                "paused longer than the watchdog time between force frames; "
+                                "set a longer one (configure(watchdog=0.2)) and repeat")
         if samples:  # the release by the device's clock, plus 5 ms for the frames in flight
             release = samples[0].device_time + hold + 5e-3
         after = [s for s in samples if release is not None and s.device_time >= release]
