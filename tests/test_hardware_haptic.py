@@ -200,16 +200,17 @@ def _ring_down(twin, hold=0.5, total=1.5, force=1.0):
     return fit_ring_down(t[keep], x[keep])  # checked on the closed form in test_modes_qcontrol
 
 
-@pytest.mark.parametrize("gain,phase", [(-600, 90_000), (-300, 90_000), (300, 90_000),
-                                        (-300, 45_000), (-300, 0)])
+@pytest.mark.parametrize("gain,phase", [(-600, 90_000), (-400, 90_000), (-300, 90_000),
+                                        (300, 90_000), (-300, 45_000), (-300, 0)])
 def test_twin_q_control_reproduces_the_closed_form(gain, phase):
     """The twin (1 kHz loop, encoder counts, amplifier lag, finger) against Q_eff and f_eff.
 
     The open-loop Q0 and f0 are measured on the twin itself (g = 0): the digitally rendered
     spring's half-tick delay adds negative damping, which the closed form does not know. Then,
     with QF = f0 and the model's gain g KS / (m (2 pi f0)^2), Q_eff is reproduced within 8 %
-    and f_eff within 2 % (the firmware's compensation is exact only at QF; the residual is the
-    sampled loop's lag away from it, which grows as the resonance widens).
+    and f_eff within 2 % (the firmware's compensation is exact only at QF; a decaying oscillation
+    meets the loop's group delay tau_g ~ 2 ms, which undamps it by about |g| KS tau_g / (2 m w0)
+    more, some 5 %). g = -0.4 is notebook 08's "about two and a half times larger" Q.
     """
     q0, f0 = _ring_down(_configured(0, 90_000, 10_000))
     twin = _configured(gain, phase, round(f0 * 1e3))
@@ -218,6 +219,8 @@ def test_twin_q_control_reproduces_the_closed_form(gain, phase):
     qc = QControl(spring_constant=k_total, resonance_frequency=f0, quality_factor=q0,
                   gain=gain * 1e-3 * 500.0 / k_total, phase=math.radians(phase / 1e3))
     assert q == pytest.approx(qc.effective_quality_factor, rel=0.08)
+    if gain == -400:
+        assert 2.3 < q / q0 < 2.9
     assert f == pytest.approx(qc.effective_resonance_frequency, rel=0.02)
 
 
