@@ -14,9 +14,11 @@ from .errors import (ChecksumError, DeviceError, DeviceNotResponding, FrameError
 from .framing import MAX_BODY, PROTOCOL_VERSION, Frame, crc8, decode_frame, encode_frame
 from .transport import FaultyTransport, MemoryTransport, PtyLink, SerialTransport, Transport
 from .twin import Twin, TwinServer, open_twin
+from .macro import GaugeCalibration, MacroAFM, MacroAFMCodec, MacroAFMTwin, printed_sample
 
 __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
            "DeviceNotResponding", "ProtocolVersionError", "DeviceError",
            "PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
            "Transport", "MemoryTransport", "SerialTransport", "PtyLink", "FaultyTransport",
-           "Twin", "TwinServer", "open_twin"]
+           "Twin", "TwinServer", "open_twin",
+           "MacroAFM", "MacroAFMTwin", "MacroAFMCodec", "GaugeCalibration", "printed_sample"]

@@ -15,7 +15,6 @@ which :meth:`MacroAFM.save` writes).
 """
 from __future__ import annotations
 
-import math
 import queue
 import threading
 import time
@@ -27,7 +26,7 @@ from ...parameters import UNITS, Parameter, read_only
 from ...samples import Sample
 from ...validation import check_choice, check_instance, check_integer, check_positive
 from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError,
-                      ProtocolVersionError, TransportClosed, TransportTimeout)
+                      ProtocolVersionError, TransportTimeout)
 from ..framing import PROTOCOL_VERSION
 from .codec import (DEVICE, Command, ErrorCode, ErrorReply, Event, EventMsg, Flag, LineEnd,
                     MacroAFMCodec, Param, Pixel, Reply, State, Status)
@@ -304,8 +303,14 @@ class MacroAFM:
             done = threading.Event()
             box = {}
             self._requests.put((command, args, done, box))
-            if not done.wait((self.retries + 1) * self.timeout + self.stream_timeout + 1.0):
-                raise DeviceNotResponding(f"the scan did not pass on {command.name}")
+            deadline = time.monotonic() + (self.retries + 1) * self.timeout + \
+                self.stream_timeout + 1.0
+            while not done.wait(0.05):
+                if self._scan is None:  # the scan ended before serving us: serve it here
+                    with self._io:
+                        self._serve_requests()
+                elif time.monotonic() > deadline:
+                    raise DeviceNotResponding(f"the scan did not pass on {command.name}")
             if "error" in box:
                 raise box["error"]
             return box["result"]
@@ -448,6 +453,26 @@ class MacroAFM:
             self.set(param, value)
         return wire
 
+    def configuration(self) -> dict:
+        """The device's imaging parameters read back (``GP``), in the SI units of configure().
+
+        Returns
+        -------
+        dict
+            ``pixels``, ``lines``, ``pitch`` (m), ``setpoint_force`` (N, through the
+            calibration), ``mode``, ``lift`` (m), ``step_rate`` (steps/s),
+            ``step_acceleration`` (steps/s^2), ``preset``.
+        """
+        z_step = self._require_info().z_step
+        wire = {param: self.get(param) for param in Param if param != Param.ZSTEP}
+        modes = {v: k for k, v in MODES.items()}
+        return {"pixels": wire[Param.NX], "lines": wire[Param.NY],
+                "pitch": wire[Param.PITCH] * _UM,
+                "setpoint_force": self.calibration.force(wire[Param.SETPOINT]),
+                "mode": modes.get(wire[Param.MODE], wire[Param.MODE]),
+                "lift": wire[Param.LIFT] * z_step, "step_rate": float(wire[Param.SPEED]),
+                "step_acceleration": float(wire[Param.ACCEL]), "preset": wire[Param.PRESET]}
+
     def status(self) -> Status:
         """The device's state, position in the scan and flags (``ST``).
 
@@ -526,6 +551,41 @@ class MacroAFM:
         """Abort the scan (``AB``); :meth:`scan` then returns the finished lines."""
         self._call(Command.ABORT)
 
+    def wait_button(self, timeout: float) -> int:
+        """Wait until someone presses the machine's start button; then :meth:`scan` (start=False).
+
+        Parameters
+        ----------
+        timeout : float
+            The longest to wait (s).
+
+        Returns
+        -------
+        int
+            The preset the button started.
+
+        Raises
+        ------
+        TransportTimeout
+            If nobody pressed it within ``timeout``.
+        """
+        timeout = check_positive("timeout", timeout, "s")
+        seen = len(self.events)
+        deadline = time.monotonic() + timeout
+        with self._io:
+            while True:
+                for event in self.events[seen:]:
+                    if event.event == Event.BUTTON:
+                        return event.arg
+                seen = len(self.events)
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    raise TransportTimeout(f"nobody pressed the start button within {timeout} s")
+                try:
+                    self._read(min(remaining, 0.1))
+                except TransportTimeout:
+                    continue
+
     # -- scanning ------------------------------------------------------------------------------
     def _partial(self, scan: _Scan, name: str) -> Sample | None:
         complete = scan.have.all(axis=1)
@@ -589,12 +649,18 @@ class MacroAFM:
         elif status.state == State.SCANNING and status.row > 0:
             scan.ended.update(range(max(0, status.row - 1), status.row))
 
-    def scan_iter(self):
+    def scan_iter(self, start: bool = True):
         """Start a scan and yield a :class:`ScanProgress` per pixel as it arrives.
 
         The generator's return value (``StopIteration.value``; :meth:`scan` returns it) is the
         image as a :class:`~afmsmiler.samples.Sample`: heights in m (z micro-steps x ZS), pixel
         size the pitch DX. An aborted scan returns its finished lines (or None).
+
+        Parameters
+        ----------
+        start : bool
+            Send ``SS``; False follows a scan the machine runs already (its start button, see
+            :meth:`wait_button`): the pixels sent before are fetched again with ``GL``.
 
         Returns
         -------
@@ -620,9 +686,11 @@ class MacroAFM:
             self._scan = scan
             self._scan_thread = threading.get_ident()
             try:
-                self._command(Command.START)
+                if start:
+                    self._command(Command.START)
                 last = time.monotonic()
                 done = 0
+                budget = 20 * nx * ny + 10_000  # messages: a device streaming on and on is a bug
                 while True:
                     self._serve_requests()
                     if scan.fault is not None:
@@ -650,9 +718,21 @@ class MacroAFM:
                         continue
                     if isinstance(msg, (Pixel, LineEnd, EventMsg, ErrorReply)):
                         last = time.monotonic()
+                    budget -= 1
+                    if budget < 0:
+                        raise HardwareError(f"{DEVICE} sent far more than the {nx} x {ny} "
+                                            f"pixels of the scan: stopping")
             except HardwareError as exc:
                 exc.partial = self._partial(scan, name + " (interrupted)")
                 self.result = exc.partial
+                raise
+            except (KeyboardInterrupt, GeneratorExit):  # the user stopped us: stop the machine
+                self.result = self._partial(scan, name + " (interrupted)")
+                if not (scan.done or scan.aborted):
+                    try:
+                        self._command(Command.ABORT)
+                    except HardwareError:
+                        pass
                 raise
             finally:
                 self._scan = None
@@ -665,7 +745,7 @@ class MacroAFM:
                                  metadata={"device": DEVICE, "z_step": info.z_step})
         return self.result
 
-    def scan(self, callback=None) -> Sample | None:
+    def scan(self, callback=None, *, start: bool = True) -> Sample | None:
         """Scan an image, calling ``callback(progress)`` for each pixel as it arrives.
 
         Parameters
@@ -673,6 +753,8 @@ class MacroAFM:
         callback : callable, optional
             Called with a :class:`ScanProgress` per pixel (a live figure redraws
             ``progress.image``); it may call :meth:`pause`, :meth:`resume` or :meth:`abort`.
+        start : bool
+            Send ``SS`` (False: follow a scan the start button began, see :meth:`scan_iter`).
 
         Returns
         -------
@@ -681,7 +763,7 @@ class MacroAFM:
         """
         if callback is not None and not callable(callback):
             raise TypeError(f"callback must be callable or None, got {callback!r}")
-        it = self.scan_iter()
+        it = self.scan_iter(start)
         while True:
             try:
                 progress = next(it)

@@ -13,6 +13,7 @@ pty like a board). Underneath:
   reads ``counts = k d * counts_per_newton`` plus the gauge's white noise (seeded);
 - z moves in micro-steps of ``ZS`` nm (0.0025 mm, the paper's); the needle's free height is
   ``z * ZS`` above the bed and it touches where the surface is higher;
+- every line starts lifted by ``LIFT`` micro-steps at x = 0 (both modes);
 - contact mode: the needle stays on the surface while the stage steps to the next pixel; z steps
   (one gauge reading each) until the reading first reaches ``SETPOINT`` counts coming down.
   Friction: climbing a wall steeper than the friction angle (slope > 1 / friction) the needle
@@ -45,17 +46,21 @@ from .mechanics import GaugeCalibration
 __all__ = ["MacroAFMTwin", "printed_sample", "FIRMWARE_VERSION", "PARAM_LIMITS", "DEFAULTS"]
 
 FIRMWARE_VERSION = "0.1.0"
-#: Valid range of each parameter on the wire (the firmware's, inclusive).
-PARAM_LIMITS = {Param.NX: (2, 1024), Param.NY: (1, 1024), Param.PITCH: (1, 100_000),
-                Param.ZSTEP: (1, 1_000_000), Param.SETPOINT: (1, 8_000_000),
-                Param.MODE: (0, 1), Param.LIFT: (1, 100_000), Param.SPEED: (1, 20_000),
-                Param.ACCEL: (1, 1_000_000), Param.PRESET: (0, 9)}
-#: The parameters at power-up (the paper's example: 128 x 128 pixels, 0.2 mm, 0.0025 mm steps).
-DEFAULTS = {Param.NX: 128, Param.NY: 128, Param.PITCH: 200, Param.ZSTEP: 2500,
-            Param.SETPOINT: 13000, Param.MODE: 0, Param.LIFT: 200, Param.SPEED: 2000,
-            Param.ACCEL: 20_000, Param.PRESET: 0}
-#: The pre-programmed scans of the push buttons: (NX, NY, DX um, MODE).
-PRESETS = {0: (32, 32, 400, 0), 1: (64, 64, 200, 0), 2: (128, 128, 200, 0), 3: (64, 64, 200, 1)}
+#: Valid range of each parameter on the wire, inclusive (the firmware's, PROTOCOL.md); DX must
+#: also be a multiple of :data:`PITCH_MULTIPLE` um (two x/y micro-steps).
+PARAM_LIMITS = {Param.NX: (1, 128), Param.NY: (1, 1024), Param.PITCH: (25, 10_000),
+                Param.ZSTEP: (1, 1_000_000), Param.SETPOINT: (301, 4_000_000),
+                Param.MODE: (0, 1), Param.LIFT: (1, 40_000), Param.SPEED: (10, 8000),
+                Param.ACCEL: (10, 1_000_000), Param.PRESET: (0, 3)}
+PITCH_MULTIPLE = 25
+#: The parameters at power-up (the firmware's).
+DEFAULTS = {Param.NX: 8, Param.NY: 8, Param.PITCH: 200, Param.ZSTEP: 2500,
+            Param.SETPOINT: 2000, Param.MODE: 0, Param.LIFT: 400, Param.SPEED: 4000,
+            Param.ACCEL: 40_000, Param.PRESET: 0}
+#: The pre-programmed scans of the start button: (NX, NY, DX um, MODE, LIFT); 0 runs the current
+#: parameters; 2 and 3 are the paper's 128 x 128 at 0.2 mm.
+PRESETS = {0: None, 1: (16, 16, 500, 0, 400), 2: (128, 128, 200, 0, 400),
+           3: (128, 128, 200, 1, 400)}
 #: Stepper resolution of x and y (m): an Ender 3's 80 steps/mm.
 XY_STEP = 12.5e-6
 #: HX711 output rate (samples/s, RATE pin high).
@@ -201,6 +206,7 @@ class MacroAFMTwin(Twin):
         self._homing_done = None
         self._scan = None
         self._fault_at = {}
+        self._button = None
         self.executed = []  # every command executed (not retries): for tests and teaching
 
     # -- physics -------------------------------------------------------------------------------
@@ -297,6 +303,37 @@ class MacroAFMTwin(Twin):
             raise ValueError(f"axis must be 'X', 'Y' or 'Z', got {axis!r}")
         self._fault_at[tuple(at) if at is not None else None] = (Event.LIMIT, axis)
 
+    def press_button(self, preset: int | None = None) -> None:
+        """Press the start button: at its next poll an idle machine runs a preset scan.
+
+        Parameters
+        ----------
+        preset : int, optional
+            Which of :data:`PRESETS` (default the ``PRESET`` parameter); the machine sends
+            ``0 EV BUTTON <preset>`` and streams the scan as after ``SS`` (homing first if it
+            is not homed, as the firmware does).
+        """
+        preset = self.params[Param.PRESET] if preset is None else preset
+        if preset not in PRESETS:
+            raise ValueError(f"preset must be one of {sorted(PRESETS)}, got {preset!r}")
+        self._button = preset
+
+    def _button_scan(self) -> list[Frame]:
+        preset, self._button = self._button, None
+        if self.state not in (State.IDLE, State.FAULT):
+            return []
+        if PRESETS[preset] is not None:
+            nx, ny, dx, mode, lift = PRESETS[preset]
+            self.params.update({Param.NX: nx, Param.NY: ny, Param.PITCH: dx, Param.MODE: mode,
+                                Param.LIFT: lift})
+        self.params[Param.PRESET] = preset
+        if not self.homed:  # the firmware homes first (taken here at once)
+            self._home_done()
+        if not self._fits():
+            return []
+        self._start(self.now)
+        return [Frame(0, "EV", (Event.BUTTON.value, preset))]
+
     def press_estop(self) -> None:
         """Press the emergency stop (the scan faults at its next pixel)."""
         self._fault_at[None] = (Event.ESTOP, None)
@@ -333,7 +370,7 @@ class MacroAFMTwin(Twin):
             return
         jumping = p[Param.MODE] == 1
         z_time = 0.0
-        if jumping:
+        if jumping or s.col == 0:  # jumping mode lifts at every pixel, both before a new line
             lift = p[Param.LIFT]
             self.z = min(self.z + lift, self.z_top)
             z_time += _move_time(lift, rate, accel)
@@ -409,6 +446,8 @@ class MacroAFMTwin(Twin):
         if self.state == State.HOMING and self._homing_done <= self.now:
             self._home_done()
             out.append(Frame(0, "EV", (Event.HOMED.value,)))
+        if self._button is not None:
+            out += self._button_scan()
         while self.state == State.SCANNING and self._scan.due <= self.now:
             out += self._emit_due()
         return out
@@ -420,7 +459,7 @@ class MacroAFMTwin(Twin):
         -------
         float or None
         """
-        if not self._booted:
+        if not self._booted or self._button is not None:
             return self.now
         if self.state == State.HOMING:
             return self._homing_done
@@ -435,6 +474,13 @@ class MacroAFMTwin(Twin):
         self.estop = False
         self.x = self.y = 0.0
         self.z = self.z_top
+
+    def _fits(self) -> bool:
+        """Whether the scan's grid lies within the x and y travel."""
+        p = self.params
+        span = p[Param.PITCH] * 1e-6
+        return ((p[Param.NX] - 1) * span <= self.travel[0]
+                and (p[Param.NY] - 1) * span <= self.travel[1])
 
     def _start(self, now: float):
         p = self.params
@@ -468,7 +514,7 @@ class MacroAFMTwin(Twin):
         try:
             command = Command(frame.code)
         except ValueError:
-            return [self.error(frame, ErrorCode.UNKNOWN_COMMAND, frame.code)]
+            return [self.error(frame, ErrorCode.UNKNOWN_COMMAND)]
         handler = getattr(self, "_cmd_" + command.name.lower())
         return handler(frame)
 
@@ -486,12 +532,13 @@ class MacroAFMTwin(Twin):
         if param is None or len(frame.args) != 2 or not isinstance(frame.args[1], int):
             return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
         if param == Param.ZSTEP:
-            return [self.error(frame, ErrorCode.BAD_ARGUMENT, param.value)]
+            return [self.error(frame, ErrorCode.BAD_ARGUMENT, "READONLY")]
         if self.state in (State.SCANNING, State.PAUSED, State.HOMING):
             return [self.error(frame, ErrorCode.BUSY)]
         low, high = PARAM_LIMITS[param]
-        if not low <= frame.args[1] <= high:
-            return [self.error(frame, ErrorCode.BAD_ARGUMENT, param.value)]
+        value = frame.args[1]
+        if not low <= value <= high or (param == Param.PITCH and value % PITCH_MULTIPLE):
+            return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
         self.params[param] = frame.args[1]
         return [self.ok(frame, param.value, frame.args[1])]
 
@@ -518,6 +565,8 @@ class MacroAFMTwin(Twin):
             return [self.error(frame, ErrorCode.NOT_HOMED)]
         if self.state != State.IDLE:
             return [self.error(frame, ErrorCode.BUSY)]
+        if not self._fits():
+            return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
         self._start(self.now)
         return [self.ok(frame)]
 
@@ -562,7 +611,7 @@ class MacroAFMTwin(Twin):
         row = frame.args[0]
         lines = self._scan.lines if self._scan is not None else {}
         if row not in lines:
-            return [self.error(frame, ErrorCode.BAD_ARGUMENT, "ROW")]
+            return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
         pixels = lines[row]
         out = [Frame(0, "PX", (row, col, z, counts)) for col, z, counts in pixels]
         return out + [self.ok(frame, row, len(pixels))]
