@@ -21,7 +21,7 @@ import time
 from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError,
                       ProtocolVersionError, TransportClosed, TransportTimeout)
 from ..framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
-from .codec import (DEVICE, PARAMETERS, Command, ErrorCode, Param, PositionSample, Status,
+from .codec import (DEVICE, PARAMETERS, Command, ErrorCode, Flag, Param, PositionSample, Status,
                     force_frame, param_from_wire, param_to_wire, parse_position, parse_status)
 
 __all__ = ["HapticDevice"]
@@ -444,7 +444,9 @@ class HapticDevice:
             bridge.run(duration=hold + duration)
         finally:
             samples, self._recording = self._recording, None
-        if list(self.events).count("WATCHDOG") > trips:
+        after_run = self.status()  # its reply comes after every frame the run made the device send
+        if list(self.events).count("WATCHDOG") > trips or after_run.flags & Flag.WATCHDOG or \
+                after_run.state != "ACTIVE":
             raise HardwareError(f"{DEVICE}'s watchdog fired during the ring-down: this host "
                                 "paused longer than the watchdog time between force frames; "
                                 "set a longer one (configure(watchdog=0.2)) and repeat")
