@@ -769,3 +769,47 @@ def test_firmware_in_simavr_with_the_driver(simulated):
         simulated.pins("ESTOP 0")
         dev.disable()
         assert dev.status().state == "IDLE"
+
+
+def test_twin_server_sends_the_frames_a_poll_at_a_host_line_returns():
+    """TwinServer polls the twin at each host line's arrival: the stream frames that poll returns
+    must be sent too. They were dropped, which starved the haptic twin's PO stream whenever the
+    host streamed FO frames (most polls then happen at an arrival)."""
+    from afmsmiler.hardware import Twin, TransportTimeout
+
+    class Ticking(Twin):
+        DEVICE = "TICKING"
+
+        def __init__(self):
+            super().__init__()
+            self.returned = 0
+
+        def poll(self, now):
+            super().poll(now)
+            self.returned += 1
+            return [Frame(0, "EV", ("TICK",))]
+
+        def next_due(self):
+            return self.now + 0.001
+
+    twin = Ticking()
+    host, device_end = MemoryTransport.pair()
+    server = TwinServer(twin, device_end, time_scale=1.0).start()
+    received = 0
+    for _ in range(50):
+        host.write(encode_frame(Frame(0, "FO", (1,))))
+        time.sleep(0.002)
+        while True:
+            try:
+                received += decode_frame(host.readline(0.0)).args == ("TICK",)
+            except TransportTimeout:
+                break
+    server._stop.set()
+    server._thread.join(2.0)
+    while True:
+        try:
+            received += decode_frame(host.readline(0.0)).args == ("TICK",)
+        except TransportTimeout:
+            break
+    server.stop()
+    assert received == twin.returned

@@ -285,7 +285,8 @@ class TwinServer:
                     self._send([Frame(0, "ER", (ERR_MALFORMED,))])
                     continue
                 if scale > 0:
-                    twin.poll((time.monotonic() - origin) / scale)  # the clock at arrival
+                    # the clock at arrival; what the twin streamed by then goes out first
+                    self._send(twin.poll((time.monotonic() - origin) / scale))
                 self._send(twin.handle(frame))
         except TransportClosed:
             pass  # the host went away: the device just stops serving
