@@ -8,7 +8,9 @@ port itself):
 - :mod:`.transport`: a serial port (pyserial), a pty, an in-memory pair, a fault injector;
 - :mod:`.twin`: a device's protocol simulated in Python and served on a transport;
 - device packages (:mod:`.macro`: the macroscopic AFM; :mod:`.educational`: the low-cost
-  educational AFM's pixel stream) with a codec, a device class and a twin;
+  educational AFM's pixel stream; :mod:`.haptic`: the haptic device and its force bridge)
+  with a codec, a device class and a twin;
+- :mod:`.printing`: an AFM image as a watertight, printable STL and back;
 - :mod:`.ad2`: the Analog Discovery 2 through pydwf (WaveForms runtime needed; a simulated
   library stands in for tests).
 """
@@ -19,6 +21,8 @@ from .transport import FaultyTransport, MemoryTransport, PtyLink, SerialTranspor
 from .twin import Twin, TwinServer, open_twin
 from .macro import GaugeCalibration, MacroAFM, MacroAFMCodec, MacroAFMTwin, printed_sample
 from .educational import EducationalAFM, EducationalAFMTwin, live_view
+from .haptic import HapticDevice, HapticTwin
+from .haptic.bridge import ForceBridge
 from .ad2 import (AD2Config, AD2Unavailable, AnalogDiscovery2, SimulatedDwfLibrary, open_library,
                   pattern_timing)
 
@@ -28,5 +32,6 @@ __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "
            "Transport", "MemoryTransport", "SerialTransport", "PtyLink", "FaultyTransport",
            "Twin", "TwinServer", "open_twin",
            "MacroAFM", "MacroAFMTwin", "MacroAFMCodec", "GaugeCalibration", "printed_sample",
-           "EducationalAFM", "EducationalAFMTwin", "live_view", "AD2Config", "AD2Unavailable",
+           "EducationalAFM", "EducationalAFMTwin", "live_view", "HapticDevice", "HapticTwin",
+           "ForceBridge", "AD2Config", "AD2Unavailable",
            "AnalogDiscovery2", "SimulatedDwfLibrary", "open_library", "pattern_timing"]

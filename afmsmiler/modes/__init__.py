@@ -13,7 +13,9 @@
 - :mod:`afmsmiler.modes.force_volume`: force-volume mapping, a force curve per pixel analysed
   with module (d)'s fit into modulus, adhesion, deformation and dissipation maps;
 - :mod:`afmsmiler.modes.bimodal`: the first two flexural modes driven at once, the second
-  mode's phase as the compositional channel.
+  mode's phase as the compositional channel;
+- :mod:`afmsmiler.modes.qcontrol`: active quality-factor control, phase-shifted deflection
+  feedback that sets the lever's effective Q and resonance.
 """
 from ._forces import FORCE_PARAMETERS, tip_sample_force, work_of_adhesion
 from .fm import PARAMETERS as FM_PARAMETERS
@@ -34,6 +36,9 @@ from .force_volume import PARAMETERS as FORCE_VOLUME_PARAMETERS
 # (the function force_volume stays in its module: the package's name force_volume is the module)
 from .force_volume import (BLEND, ForceVolume, ForceVolumeMode, SampleMaterial,
                            two_material_sample)
+from .qcontrol import PARAMETERS as QCONTROL_PARAMETERS
+from .qcontrol import (ClosedLoopResponse, QControl, RingDown, closed_loop_response, fit_ring_down,
+                       quality_factor_from_ringdown, ring_down, stable_gains)
 from .bimodal import PARAMETERS as BIMODAL_PARAMETERS
 from .bimodal import (FLEXURAL_RATIO, BimodalLever, BimodalState, averaged_gradient,
                       bimodal_response, modal_stiffness)
@@ -51,4 +56,6 @@ __all__ = ["FORCE_PARAMETERS", "tip_sample_force", "work_of_adhesion", "TAPPING_
            "FORCE_VOLUME_PARAMETERS", "BLEND", "ForceVolume", "ForceVolumeMode", "SampleMaterial",
            "two_material_sample", "BIMODAL_PARAMETERS", "FLEXURAL_RATIO",
            "BimodalLever", "BimodalState", "averaged_gradient", "bimodal_response",
-           "modal_stiffness"]
+           "modal_stiffness", "QCONTROL_PARAMETERS", "QControl", "ClosedLoopResponse", "RingDown",
+           "closed_loop_response", "ring_down", "stable_gains", "quality_factor_from_ringdown",
+           "fit_ring_down"]
