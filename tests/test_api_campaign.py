@@ -75,10 +75,12 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            # module (g): the imaging modalities
            "afmsmiler.modes._forces", "afmsmiler.modes.tapping", "afmsmiler.modes.fm",
            "afmsmiler.modes.jumping", "afmsmiler.modes.force_volume", "afmsmiler.modes.bimodal",
-           "afmsmiler.modes.lateral",
+           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol",
            # module (h): the educational AFM's signal chain and lock-in
            "afmsmiler.signals.lockin", "afmsmiler.signals.ad630", "afmsmiler.signals.chain",
-           "afmsmiler.signals.demo"]
+           "afmsmiler.signals.demo",
+           # module (h): an AFM image as a printable STL
+           "afmsmiler.hardware.printing"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s per call: the issue's bound
 MEMORY_MARGIN = 4 * 2**30  # bytes of address space a call may add (23 GB machine, shared)
@@ -91,7 +93,7 @@ FREE_TEXT = {"name", "source", "label", "description", "channel"}
 MESSAGE_NAMES = {"cantilever.check_modes:name"}
 #: Methods that take a new name for the object they return (any text will do; a non-str is
 #: refused): a label, as a constructor's ``name`` is.
-NEW_NAMES = {"samples.Sample.with_heights:name"}
+NEW_NAMES = {"samples.Sample.with_heights:name", "hardware.printing.mesh_to_sample:name"}
 #: "callable:parameter" -> (bad-value labels that are in fact valid there, why): documented values
 #: that the table of bad values cannot know about.
 ACCEPTED = {
@@ -127,7 +129,8 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            # module (g): what the modalities' models return
            "AmplitudeCurve", "SteadyState", "FrequencyShiftCurve", "FrictionLoop",
            "FrictionImages", "FeedbackLine", "JumpCurve", "ModeComparison", "ForceVolume",
-           "BimodalState", "LockInResult", "Spectrum", "AD630Result", "ChainRun", "LockInDemo"}
+           "BimodalState", "LockInResult", "Spectrum", "AD630Result", "ChainRun", "LockInDemo",
+           "PrintComparison", "ClosedLoopResponse", "RingDown"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -141,7 +144,9 @@ NAN_PASSES = {"afmsmiler.parameters.Parameter.to_si", "afmsmiler.parameters.Para
 # Callables whose documented answer for valid input may be infinite ("no limit").
 INFINITE_OK = {"afmsmiler.contact.z_np_limit": "inf means no limit (documented)",
                "afmsmiler.imaging.dilation.estimate_tip_radius":
-                   "inf: an image without a strict local maximum bounds no radius (documented)"}
+                   "inf: an image without a strict local maximum bounds no radius (documented)",
+               "afmsmiler.modes.qcontrol.stable_gains":
+                   "-inf or inf: no stability limit on that side (documented)"}
 
 
 # -- valid values by parameter name ------------------------------------------------------------
@@ -368,6 +373,23 @@ OVERRIDES = {
     "afmsmiler.signals.ad630.demodulate": {"signal": lambda: _tone(), "sample_rate": 1e6,
                                            "frequency": 1e3, "time_constant": 1e-3},
     "afmsmiler.signals.lockin.harmonic_pickup": {"harmonic": 3},
+    "afmsmiler.hardware.printing.save_stl": {
+        "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.stl"},
+    "afmsmiler.hardware.printing.write_stl": {
+        "mesh": lambda: _print_mesh(),
+        "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.stl"},
+    "afmsmiler.hardware.printing.mesh_to_sample": {"mesh_or_path": lambda: _print_mesh(),
+                                                   "pitch": 5e-6},
+    "afmsmiler.modes.qcontrol.QControl.feedback_force": {"velocity": 1e-3},
+    "afmsmiler.hardware.printing.triangle_count": {"shape": (16, 16)},
+    "afmsmiler.hardware.printing.compare_scan": {"reference": _image, "image": _image},
+    "afmsmiler.modes.qcontrol.closed_loop_response": {"frequency": lambda: np.linspace(
+        290e3, 310e3, 50)},
+    "afmsmiler.modes.qcontrol.ring_down": {"time": lambda: np.linspace(0.0, 1e-3, 200)},
+    "afmsmiler.modes.qcontrol.quality_factor_from_ringdown": {
+        "time": lambda: _ring()[0], "deflection": lambda: _ring()[1]},
+    "afmsmiler.modes.qcontrol.fit_ring_down": {
+        "time": lambda: _ring()[0], "deflection": lambda: _ring()[1]},
     "afmsmiler.signals.lockin.amplitude_spectrum": {"signal": lambda: _tone(),
                                                     "sample_rate": 1e6},
     "afmsmiler.signals.lockin.lowpass": {"x": lambda: _tone(), "sample_rate": 1e6},
@@ -490,6 +512,19 @@ INSTANCES = {
 def _vdw(z):
     """A van der Waals force law (N) of the distance z (m): module (g)'s FM functions take one."""
     return -6.4e-20 * 10e-9 / (6.0 * np.asarray(z) ** 2)
+
+
+def _print_mesh():
+    """A printable mesh of :func:`_image` (16 x 16 pixels, 400x): module (h)'s STL export."""
+    from afmsmiler.hardware.printing import sample_to_mesh
+    return sample_to_mesh(_image())
+
+
+def _ring():
+    """A ring-down of a 1 kHz resonance with Q = 20 sampled at 100 kHz for 20 ms (t in s, m)."""
+    t = np.arange(2000) / 1e5
+    w = 2 * np.pi * 1e3
+    return t, 1e-9 * np.exp(-w * t / 40) * np.cos(w * np.sqrt(1 - 1 / 1600) * t)
 
 
 def _tone():

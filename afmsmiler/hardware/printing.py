@@ -77,18 +77,18 @@ PARAMETERS = read_only({p.name: p for p in (
 _P = PARAMETERS
 
 
-def _check_image(sample) -> Sample:
-    check_instance("sample", sample, Sample)
+def _check_image(sample, name: str = "sample") -> Sample:
+    check_instance(name, sample, Sample)
     if sample.heights.ndim != 2:
-        raise ValueError(f"sample must be a 2-D image (rows, columns) to print, got shape "
+        raise ValueError(f"{name} must be a 2-D image (rows, columns) to print, got shape "
                          f"{sample.heights.shape}")
     if sample.unit != "m":
-        raise ValueError(f"sample must hold heights in m to print, got a {sample.channel!r} "
+        raise ValueError(f"{name} must hold heights in m to print, got a {sample.channel!r} "
                          f"channel in {sample.unit!r}")
     with np.errstate(over="ignore", invalid="ignore"):
         relief = float(np.ptp(sample.heights))
     if not math.isfinite(relief):
-        raise ValueError("sample must have a finite relief (max - min of its heights), got "
+        raise ValueError(f"{name} must have a finite relief (max - min of its heights), got "
                          f"heights from {sample.heights.min():g} to {sample.heights.max():g} m")
     return sample
 
@@ -570,7 +570,11 @@ def compare_scan(reference: Sample, image: Sample) -> PrintComparison:
     ValueError
         If the pixel sizes differ, or the scan is larger than the reference.
     """
-    reference, image = _check_image(reference), _check_image(image)
+    reference, image = _check_image(reference, "reference"), _check_image(image, "image")
+    for name, s in (("reference", reference), ("image", image)):  # a printable object's size
+        if np.max(np.abs(s.heights)) > MAX_PRINT_SIZE:
+            raise ValueError(f"{name} must have heights within +-{MAX_PRINT_SIZE:g} m (a printed "
+                             f"object), got up to {np.max(np.abs(s.heights)):g} m")
     for what in ("pixel_size", "pixel_size_y"):
         a, b = getattr(reference, what), getattr(image, what)
         if abs(a - b) > 1e-9 * max(a, b):

@@ -265,8 +265,8 @@ def closed_loop_response(frequency, qc: QControl | None = None) -> ClosedLoopRes
         On negative or too many frequencies.
     """
     qc = _check(qc)
-    f = np.atleast_1d(check_array("frequency", frequency, "Hz", low=0.0))
-    check_integer("number of frequencies", f.size, 1, MAX_POINTS)
+    f = np.atleast_1d(check_array("frequency", frequency, "Hz", low=0.0, min_size=1,
+                                  max_size=MAX_POINTS))
     w = f / qc.resonance_frequency
     h = 1.0 / (qc.stiffness_ratio - w * w + 1j * w * qc.damping_ratio)
     return ClosedLoopResponse(qc, f, np.abs(h), -np.angle(h))
@@ -313,8 +313,7 @@ def ring_down(time, qc: QControl | None = None, *, amplitude: float = 1e-9) -> R
         On negative or too many times or a bad amplitude.
     """
     qc = _check(qc)
-    t = np.atleast_1d(check_array("time", time, "s", low=0.0))
-    check_integer("number of times", t.size, 1, MAX_POINTS)
+    t = np.atleast_1d(check_array("time", time, "s", low=0.0, min_size=1, max_size=MAX_POINTS))
     a = check_range("amplitude", amplitude, 0.0, 1.0, "m", low_inclusive=False)
     w0 = 2.0 * math.pi * qc.resonance_frequency
     b, c = w0 * qc.damping_ratio, w0 * w0 * qc.stiffness_ratio
