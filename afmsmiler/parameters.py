@@ -192,6 +192,13 @@ def _convert(value, factor: float, to_si: bool, name: str = "value"):
         short = float(f"{out:.15g}")
         if short != out and _convert(short, factor, to_si=True) == value:
             return short
+    with np.errstate(invalid="ignore"):
+        overflow = np.isinf(out) & np.isfinite(value)
+    if np.any(overflow):
+        raise ValueError(f"{name} must be within the float range in "
+                         f"{'SI units' if to_si else 'display units'}: "
+                         f"{np.asarray(value)[overflow].flat[0] if np.ndim(value) else value!r} "
+                         f"overflows")
     return out
 
 

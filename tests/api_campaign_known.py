@@ -8,8 +8,4 @@ over random numbers for that callable (its first failing example).
 """
 
 KNOWN = {
-    # the reference time integration at a rest distance of 1e-300 m (in hard contact for half of
-    # every cycle) is bounded by max_periods, not by seconds: about 40 s on a loaded machine
-    "modes.tapping.integrate:distance": ("still running after 10 s", True),
-    "modes.tapping.integrate:*": ("distance 2.2e-313 m: still running after 10 s", True),
 }

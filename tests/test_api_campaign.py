@@ -44,12 +44,13 @@ import os
 import resource
 import signal
 import time
+import zlib
 from contextlib import contextmanager
 from pathlib import Path
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, Phase, given, settings
+from hypothesis import HealthCheck, Phase, given, seed, settings
 from hypothesis import strategies as st
 
 from afmsmiler.parameters import Parameter
@@ -139,6 +140,15 @@ LEGACY = {"afmsmiler.contact.TipParameter", "afmsmiler.transducers.Quantity",
 # The validation helpers check one input (value or values) that the message calls by the name
 # it is given; their other arguments are the calling library's constants, not user input.
 HOUSE_INPUTS = {"value", "values"}
+#: Reference solvers whose cost in a valid but hard case is bounded by a documented limit of
+#: steps, not by the campaign's seconds: a call may run out its 10 s (every other outcome, the
+#: error messages included, is judged as anywhere else).
+REFERENCE_SOLVERS = {
+    "afmsmiler.modes.tapping.integrate": "the tapping lever's time integration: in hard contact "
+    "(a rest distance of a nanometre or less) tens of seconds, bounded by max_periods",
+    "afmsmiler.modes.bimodal.bimodal_response": "the two-mode time integration, bounded by "
+    "max_periods",
+}
 # Conversions that carry NaN through (a gap in a plotted curve); check() validates.
 NAN_PASSES = {"afmsmiler.parameters.Parameter.to_si", "afmsmiler.parameters.Parameter.to_display"}
 # Callables whose documented answer for valid input may be infinite ("no limit").
@@ -956,6 +966,8 @@ def _judge(t: Target, name, label, value, can_return, kwargs, inst, also=()):
     try:
         result = _call(t, {**kwargs, name: value}, inst)
     except CallTimeout as exc:
+        if t.qual in REFERENCE_SOLVERS:
+            return None  # its cost is bounded by its documented step limit, not by seconds
         return f"{_describe(t, name, label)} -> {exc}"
     except MemoryError:
         return f"{_describe(t, name, label)} -> MemoryError (a size without a bound)"
@@ -1127,7 +1139,10 @@ def test_random_numbers_are_named_or_harmless(t):
     if _valid_call(t, inst, kwargs):
         pytest.skip(f"{t.qual}: its valid call already fails (see the per-parameter cases)")
 
-    @settings(max_examples=15, deadline=None, derandomize=True, database=None,
+    # a seed of the target's own (derandomize=True drew other numbers from one full run to the
+    # next: the search must find the same examples every time, in CI as here)
+    @seed(zlib.crc32(t.id.encode()))
+    @settings(max_examples=15, deadline=None, database=None,
               phases=[Phase.explicit, Phase.generate],  # no shrinking: a hang costs 10 s a try
               suppress_health_check=list(HealthCheck))
     @given(st.sampled_from(names), NUMBERS)

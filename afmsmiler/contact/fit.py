@@ -372,7 +372,7 @@ def _check_fit_options(tip, poisson_ratio, spring_constant, pyramid_form):
     nu = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5, high_inclusive=False)
     k = None
     if spring_constant is not None:
-        k = check_positive("spring_constant", spring_constant, "N/m")
+        k = PARAMETERS["spring_constant"].check(spring_constant)  # [1e-6, 1e6] N/m, as a curve's
     return tip, nu, k
 
 
@@ -658,9 +658,10 @@ def fit_curve(position, force, tip, poisson_ratio, *, spring_constant=None,
     poisson_ratio : float
         nu of the sample, in [0, 0.5), held fixed.
     spring_constant : float, optional
-        k in N/m. With it, the model is the full cantilever solution F(Z_np - x_0) of
-        :func:`~afmsmiler.contact.indent` (so the noise of F does not leak into the abscissa, as
-        it would through x = Z_np - F / k); without it, the tip-shape law F(x - x_0) itself.
+        k in N/m, in [1e-6, 1e6]. With it, the model is the full cantilever solution
+        F(Z_np - x_0) of :func:`~afmsmiler.contact.indent` (so the noise of F does not leak into
+        the abscissa, as it would through x = Z_np - F / k); without it, the tip-shape law
+        F(x - x_0) itself.
     pyramid_form : {"bilodeau", "rico"}
         For a :class:`~afmsmiler.contact.Pyramidal` tip, the prefactor fitted (it replaces the
         tip's own ``form``): Bilodeau's 0.7453 by default, as vendor software (JPK) reports, so

@@ -290,7 +290,7 @@ class ScanSettings:
         Parameters
         ----------
         t : float or numpy.ndarray
-            Time in s, finite and >= 0.
+            Time in s, in [0, 1e12] (30 000 years: any scan's duration).
 
         Returns
         -------
@@ -300,9 +300,9 @@ class ScanSettings:
         Raises
         ------
         ValueError
-            If a time is not a finite number >= 0 s.
+            If a time is not a number in [0, 1e12] s.
         """
-        t = check_array("t", t, "s", low=0.0).reshape(np.shape(t))
+        t = check_array("t", t, "s", low=0.0, high=1e12).reshape(np.shape(t))
         creep = self.creep * np.log10(1.0 + t / self.creep_time)
         return tuple(v * t + o * creep for v, o in zip(self.drift, self.offset))
 

@@ -238,7 +238,7 @@ def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
     shape : tuple of int
         (rows, columns), each >= 2.
     pixel_size : float
-        Pixel size in m, > 0.
+        Pixel size in m, 1 pm to 1 mm.
     island_radius : float
         Radius of the islands in m, at least a pixel.
     island_count : int
@@ -269,7 +269,7 @@ def two_material_sample(shape=(64, 64), pixel_size: float = 20e-9, *,
     shape = check_shape(shape)
     if len(shape) != 2:
         raise ValueError(f"shape must be (rows, columns), got {shape}")
-    px = check_range("pixel_size", pixel_size, 0.0, 1e-3, "m", low_inclusive=False)
+    px = check_range("pixel_size", pixel_size, 1e-12, 1e-3, "m")
     radius = check_range("island_radius", island_radius, px, 1e-3, "m")
     count = check_integer("island_count", island_count, 1, 1000)
     height = check_range("island_height", island_height, -1e-3, 1e-3, "m")

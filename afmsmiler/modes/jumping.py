@@ -157,8 +157,8 @@ def _check_lift(lift: float, systems, z_t) -> None:
     needed = max(_lift_needed(s, z) for s, z in zip(systems, z_t))
     if lift <= needed:
         raise ValueError(f"lift_height must be > {needed:g} m to take the tip off the surface "
-                         f"(beyond the trigger's indentation and the adhesive jump-off), got "
-                         f"{lift:g} m")
+                         f"(beyond the indentation at the trigger_force and the adhesive "
+                         f"jump-off), got {lift:g} m")
 
 
 @dataclass(frozen=True)

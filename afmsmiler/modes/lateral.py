@@ -122,6 +122,10 @@ def shear_modulus(material: str | Material) -> float:
     return m.youngs_modulus / (2 * (1 + m.poisson_ratio))
 
 
+#: The largest lateral force in N a lever's twist is computed for: 1 mN, a million times an AFM
+#: tip's nN friction (a larger value is a unit slip, and its twist would overflow).
+MAX_LATERAL_FORCE = 1e-3
+
 @dataclass(frozen=True)
 class LateralLever:
     """A rectangular lever with a tip, twisted by the lateral force at the apex.
@@ -183,14 +187,15 @@ class LateralLever:
         Parameters
         ----------
         lateral_force : float or array_like
-            Lateral force F_L in N at the apex.
+            Lateral force F_L in N at the apex, within +-:data:`MAX_LATERAL_FORCE` (1 mN).
 
         Returns
         -------
         float or ndarray
             phi in rad.
         """
-        f = check_array("lateral_force", lateral_force, "N")
+        f = check_array("lateral_force", lateral_force, "N", low=-MAX_LATERAL_FORCE,
+                        high=MAX_LATERAL_FORCE)
         phi = f * self.tip_height / self.torsional_stiffness
         return phi if f.ndim else float(phi)
 

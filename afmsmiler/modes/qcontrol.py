@@ -347,12 +347,13 @@ def quality_factor_from_ringdown(time, deflection, *, skip: int = 1) -> float:
     Returns
     -------
     float
-        Q; nan if fewer than 3 maxima are found.
+        Q.
 
     Raises
     ------
     ValueError
-        On arrays of different shapes or fewer than 3 samples.
+        On arrays of different shapes or fewer than 3 samples, or fewer than 3 maxima left
+        after ``skip``.
     """
     t = check_array("time", time, "s")
     z = check_array("deflection", deflection, "m")
@@ -361,9 +362,10 @@ def quality_factor_from_ringdown(time, deflection, *, skip: int = 1) -> float:
                          f"shapes {t.shape} and {z.shape}")
     skip = check_integer("skip", skip, 0, 1000)
     i = np.flatnonzero((z[1:-1] > z[:-2]) & (z[1:-1] >= z[2:]) & (z[1:-1] > 0.0)) + 1
+    if i.size - skip < 3:
+        raise ValueError(f"skip must leave at least 3 maxima of the deflection, got skip = "
+                         f"{skip} of the {i.size} maxima found")
     i = i[skip:]
-    if i.size < 3:
-        return math.nan
     y0, y1, y2 = z[i - 1], z[i], z[i + 1]
     den = y0 - 2.0 * y1 + y2
     shift = np.where(den != 0.0, 0.5 * (y0 - y2) / np.where(den != 0.0, den, 1.0), 0.0)

@@ -614,7 +614,11 @@ def integrate(distance: float, lever: TappingLever | None = None, *, start=None,
         the free motion (A0, free phase). The tip must start outside the sample:
         z_c + A > a0.
     max_periods : int
-        Most drive periods to integrate, BLOCK_PERIODS + LOCKIN_PERIODS to :data:`MAX_PERIODS`.
+        Most drive periods to integrate, BLOCK_PERIODS + LOCKIN_PERIODS to :data:`MAX_PERIODS`:
+        the bound of its cost. Far from the sample a run takes well under a second; in hard
+        contact (z_c of a nanometre or less) the stiff contact force makes each period costly,
+        and a run can take tens of seconds: it is the reference, :func:`amplitude_curve` is the
+        fast solver.
 
     Returns
     -------

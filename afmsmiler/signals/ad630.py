@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_finite, check_integer, check_positive
+from ..validation import check_array, check_finite, check_integer, check_positive, check_range
 from .lockin import (FILTER_ORDER, HARMONIC, LIMITS, TIME_CONSTANT, lowpass, reference_waveforms,
                      settling_time)
 
@@ -100,6 +100,10 @@ class AD630Result:
         return math.atan2(self.y, self.x)
 
 
+#: The largest AD630 output level in V this module reads: 100 V (its supplies are +-15 V).
+MAX_LEVEL = 100.0
+
+
 def amplitude_from_levels(level_x: float, level_y: float, *,
                           gain: float = AD630_GAIN.default) -> float:
     """Peak amplitude A in V from the two settled AD630 levels: (pi / (2 G)) hypot(V_x, V_y).
@@ -107,12 +111,13 @@ def amplitude_from_levels(level_x: float, level_y: float, *,
     Parameters
     ----------
     level_x, level_y : float
-        V_x and V_y in V.
+        V_x and V_y in V, within +-:data:`MAX_LEVEL` (an AD630's output swings within its
+        +-15 V supplies).
     gain : float
         The AD630's G.
     """
-    vx = check_finite("level_x", level_x, "V")
-    vy = check_finite("level_y", level_y, "V")
+    vx = check_range("level_x", level_x, -MAX_LEVEL, MAX_LEVEL, "V")
+    vy = check_range("level_y", level_y, -MAX_LEVEL, MAX_LEVEL, "V")
     return math.pi / (2 * AD630_GAIN.check(gain)) * math.hypot(vx, vy)
 
 

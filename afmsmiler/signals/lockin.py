@@ -328,7 +328,7 @@ class LockInResult:
         """
         s = check_range("density", density, 0.0, math.inf)
         factor = 1.0 if self.shape == "sine" else math.pi / (2 * math.sqrt(2))
-        return math.sqrt(2 * s * self.enbw) * factor
+        return math.sqrt(2 * self.enbw) * math.sqrt(s) * factor  # no overflow of 2 S
 
 
 def lock_in(signal, *, sample_rate: float, frequency: float,

@@ -374,11 +374,15 @@ class Transducer:
             check_choice(f"{cls.__name__}.size", cls.size, SIZES)
 
     def _validate(self, values: dict) -> None:
-        """Checks involving several parameters (:attr:`BOUNDED_BY`); raise ValueError naming one."""
+        """Checks involving several parameters (:attr:`BOUNDED_BY`); raise ValueError naming both
+        (either may be the one the user just set)."""
         table = self.parameter_table()
         for name, (other, factor) in self.BOUNDED_BY.items():
-            check_range(name, values[name], 0.0, factor * values[other], table[name].unit,
-                        low_inclusive=False)
+            high = factor * values[other]
+            if not 0.0 < values[name] <= high:
+                unit = table[name].unit
+                raise ValueError(f"{name} must be in (0, {high:g}] {unit} ({factor:g} x {other} "
+                                 f"= {values[other]:g} {unit}), got {values[name]:g} {unit}")
 
     def upper_bound(self, name: str) -> float:
         """The largest valid value (SI) of parameter ``name`` given the other parameters."""

@@ -285,9 +285,11 @@ class Interferometer(Transducer):
         Parameters
         ----------
         d : float or array_like
-            Displacement of the lever in m (it changes the round-trip path by 2 d).
+            Displacement of the lever in m (it changes the round-trip path by 2 d), within
+            +-1 m (a larger one leaves no digit of the fringe's phase).
         """
-        phase = 4 * math.pi * check_array("d", d, "m") / self.wavelength + self.phase
+        phase = 4 * math.pi * check_array("d", d, "m", low=-1.0, high=1.0) / self.wavelength
+        phase = phase + self.phase
         return self.power * (1 + self.visibility * np.cos(phase))
 
     def _stages(self, z, mode):
