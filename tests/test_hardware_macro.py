@@ -26,6 +26,7 @@ from afmsmiler.hardware import FrameError as errors_FrameError
 from afmsmiler.hardware import (DeviceError, DeviceNotResponding, FaultyTransport, HardwareError,
                                 ProtocolVersionError, SerialTransport, TransportClosed,
                                 TransportTimeout, open_twin)
+from afmsmiler.hardware.errors import ChecksumError
 from afmsmiler.hardware.framing import Frame, decode_frame, encode_frame
 from afmsmiler.hardware.macro import (Command, ErrorCode, ErrorReply, Event, EventMsg, Flag,
                                       GaugeCalibration, LineEnd, MacroAFM, MacroAFMCodec,
@@ -106,6 +107,24 @@ def test_status_reply():
     status = MacroAFMCodec.status(reply)
     assert status == Status(State.PAUSED, 12, 5, Flag.HOMED | Flag.LIMIT_X)
     assert status.homed
+    every = MacroAFMCodec.status(MacroAFMCodec.parse(wire("4 OK ST FAULT 0 0 31")))
+    assert every.flags == Flag.HOMED | Flag.LIMIT_X | Flag.LIMIT_Y | Flag.LIMIT_Z | Flag.ESTOP
+
+
+@pytest.mark.parametrize("flags, unknown", [(32, "32"), (16 + 64, "64"), (1 << 30, str(1 << 30)),
+                                            (-1, "-1")])
+def test_status_refuses_flag_bits_it_does_not_know(flags, unknown):
+    """A bit that protocol version 1 does not name is a FrameError (not a ChecksumError), never
+    silently dropped: it may be a switch or an E-stop the driver would not see."""
+    reply = MacroAFMCodec.parse(wire(f"4 OK ST IDLE 0 0 {flags}"))
+    with pytest.raises(errors_FrameError, match=f"flags {flags} .*\\({unknown};") as info:
+        MacroAFMCodec.status(reply)
+    assert not isinstance(info.value, ChecksumError)
+    # the driver's status() raises it too (no retry: the line itself was sound)
+    link = Scripted([("1 ST", [f"1 OK ST IDLE 0 0 {flags}"])])
+    with pytest.raises(errors_FrameError, match="does not know"):
+        MacroAFM(link, timeout=0.05, retries=2).status()
+    assert link.sent == [wire("1 ST")]
 
 
 def _defines(path):
