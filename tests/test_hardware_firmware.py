@@ -164,14 +164,33 @@ def test_golden_frames_have_right_checksums():
         elif frame.seq == 0:
             assert frame.code in ("PX", "LN", "EV", "ER"), wire
     bad = unreadable_lines()
-    assert len(bad) == 2
-    with pytest.raises(ChecksumError):
-        decode_frame(bad[0][0])
-    for sent, answer in bad:
-        with pytest.raises(FrameError):
-            decode_frame(sent)
-        reply = decode_frame(answer)
-        assert (reply.seq, reply.code) == (0, "ER") and reply.args[0] in (1, 9)
+    codes = [answer_code(sent, answer) for sent, answer in bad]
+    assert 1 in codes and 9 in codes  # both of the decoders' paths
+    # an integer outside int32 is malformed, not a word (the firmware once took it as a word)
+    assert any(re.search(rb" -?\d{10,}\*", sent) for sent, _ in bad)
+
+
+def answer_code(sent: bytes, answer: bytes) -> int:
+    """The table's answer code (1 or 9) for a line sent, checked against decode_frame: ``0 ER 1``
+    exactly when it raises a ChecksumError, ``0 ER 9`` when a FrameError that is not one."""
+    reply = decode_frame(answer)
+    assert encode_frame(reply) == answer, answer
+    assert (reply.seq, reply.code) == (0, "ER") and reply.args in ((1,), (9,)), answer
+    with pytest.raises(FrameError) as info:
+        decode_frame(sent)
+    assert isinstance(info.value, ChecksumError) == (reply.args[0] == 1), (sent, answer)
+    return reply.args[0]
+
+
+@pytest.mark.parametrize("sent, answer", [
+    (b"18  ST*1D\n", b"0 ER 9*E7\n"),  # PROTOCOL.md's old row: a checksum error (ER 1)
+    (b"17 GP NX*00\n", b"0 ER 9*E7\n"),  # a checksum error listed as malformed
+    (b"18  ST*D6\n", b"0 ER 1*DF\n"),  # malformed listed as a checksum error
+    (b"17 GP NX*4C\n", b"0 ER 1*DF\n"),  # a valid frame
+])
+def test_answer_code_catches_a_wrong_row(sent, answer):
+    with pytest.raises((AssertionError, pytest.fail.Exception)):
+        answer_code(sent, answer)
 
 
 def test_golden_replies_echo_their_commands():
@@ -481,6 +500,24 @@ def test_golden_session_replays_against_the_firmware(board_factory):
 
 
 @pytest.mark.slow
+def test_unreadable_lines_of_the_spec_against_the_firmware(board_factory):
+    """Every row of PROTOCOL.md's table of unreadable lines: exactly the table's answer, byte for
+    byte; int32's ends are still integers (answered ER 3: out of NX's range, not malformed)."""
+    board = board_factory(*BASE)
+    board.command("ID", seq=200)  # sync past the boot frame
+    rows = unreadable_lines()
+    assert len(rows) >= 2
+    for sent, answer in rows:
+        board.send_raw(sent)
+        assert board.port.readline(10.0) + b"\n" == answer, sent
+    for value in (2147483647, -2147483648):
+        reply, _ = board.command("SP", "NX", value)
+        assert (reply.code, reply.args) == ("ER", (3,)), value
+    reply, _ = board.command("GP", "NX")
+    assert ok(reply, "GP") == ("NX", 8)
+
+
+@pytest.mark.slow
 def test_bad_lines_and_retries(board_factory, tmp_path):
     sample = write_map(tmp_path / "sample.txt", bumpy(8, 8), 200)
     board = board_factory(*BASE, "--map", str(sample))
@@ -489,10 +526,14 @@ def test_bad_lines_and_retries(board_factory, tmp_path):
     frame = board.read()
     assert (frame.seq, frame.code, frame.args) == (0, "ER", (1,))
     for junk in (b"5 GP NX\n", b"5  GP*%02X\n" % crc8(b"5  GP"), b"x" * 300 + b"\n",
-                 b"05 GP NX*%02X\n" % crc8(b"05 GP NX"), b"5 GP NX*4c\n"):
+                 b"05 GP NX*%02X\n" % crc8(b"05 GP NX"), b"5 GP NX*4c\n",
+                 b"5 SP NX 99999999999*%02X\n" % crc8(b"5 SP NX 99999999999")):
+        with pytest.raises(FrameError) as info:  # malformed, not a checksum error, for both
+            decode_frame(junk)
+        assert not isinstance(info.value, ChecksumError), junk
         board.send_raw(junk)
         frame = board.read()
-        assert frame.seq == 0 and frame.code == "ER" and frame.args[0] in (1, 9), junk
+        assert (frame.seq, frame.code, frame.args) == (0, "ER", (9,)), junk
     too_long = b"5 GP " + b"N" * 116  # a 121-character body, its checksum right
     board.send_raw(too_long + b"*%02X\n" % crc8(too_long))
     frame = board.read()

@@ -26,6 +26,7 @@ from afmsmiler.hardware import FrameError as errors_FrameError
 from afmsmiler.hardware import (DeviceError, DeviceNotResponding, FaultyTransport, HardwareError,
                                 ProtocolVersionError, SerialTransport, TransportClosed,
                                 TransportTimeout, open_twin)
+from afmsmiler.hardware.errors import ChecksumError
 from afmsmiler.hardware.framing import Frame, decode_frame, encode_frame
 from afmsmiler.hardware.macro import (Command, ErrorCode, ErrorReply, Event, EventMsg, Flag,
                                       GaugeCalibration, LineEnd, MacroAFM, MacroAFMCodec,
@@ -106,6 +107,24 @@ def test_status_reply():
     status = MacroAFMCodec.status(reply)
     assert status == Status(State.PAUSED, 12, 5, Flag.HOMED | Flag.LIMIT_X)
     assert status.homed
+    every = MacroAFMCodec.status(MacroAFMCodec.parse(wire("4 OK ST FAULT 0 0 31")))
+    assert every.flags == Flag.HOMED | Flag.LIMIT_X | Flag.LIMIT_Y | Flag.LIMIT_Z | Flag.ESTOP
+
+
+@pytest.mark.parametrize("flags, unknown", [(32, "32"), (16 + 64, "64"), (1 << 30, str(1 << 30)),
+                                            (-1, "-1")])
+def test_status_refuses_flag_bits_it_does_not_know(flags, unknown):
+    """A bit that protocol version 1 does not name is a FrameError (not a ChecksumError), never
+    silently dropped: it may be a switch or an E-stop the driver would not see."""
+    reply = MacroAFMCodec.parse(wire(f"4 OK ST IDLE 0 0 {flags}"))
+    with pytest.raises(errors_FrameError, match=f"flags {flags} .*\\({unknown};") as info:
+        MacroAFMCodec.status(reply)
+    assert not isinstance(info.value, ChecksumError)
+    # the driver's status() raises it too (no retry: the line itself was sound)
+    link = Scripted([("1 ST", [f"1 OK ST IDLE 0 0 {flags}"])])
+    with pytest.raises(errors_FrameError, match="does not know"):
+        MacroAFM(link, timeout=0.05, retries=2).status()
+    assert link.sent == [wire("1 ST")]
 
 
 def _defines(path):
@@ -114,25 +133,44 @@ def _defines(path):
 
 
 def golden_frames(text: str) -> list:
-    """(mark, line) of every line of the spec's ``frames`` blocks: ``>`` host to device (a line
-    at column 0), ``<`` device to host (indented by four spaces), and ``!`` a line that is not a
-    valid frame on purpose (the spec's table of such lines: ``| ! `line` | `answer` |``)."""
+    """(mark, line, answer) of every line of the spec's ``frames`` blocks: ``>`` host to device (a
+    line at column 0), ``<`` device to host (indented by four spaces), with answer None; and
+    ``!`` a line that is not a valid frame on purpose, with the device's answer (the spec's table
+    of such lines: ``| ! `line` | `answer` |``)."""
     out = []
     for block in re.findall(r"^```frames\n(.*?)^```", text, re.M | re.S):
         for line in block.splitlines():
             if line.strip():
-                out.append(("<" if line.startswith("    ") else ">", line.strip()))
-    out += [("!", line) for line in re.findall(r"^\| ! `([^`]*)` \|", text, re.M)]
+                out.append(("<" if line.startswith("    ") else ">", line.strip(), None))
+    out += [("!", line, answer)
+            for line, answer in re.findall(r"^\| ! `([^`]*)` \| `([^`]*)` \|", text, re.M)]
     return out
 
 
+def check_unreadable(line: str, answer: str) -> int:
+    """Check one row of the table of unreadable lines; its answer code (1 or 9).
+
+    The answer is the frame ``0 ER 1`` or ``0 ER 9`` exactly; ``decode_frame`` rejects the line
+    with a ChecksumError for ``0 ER 1`` and with a FrameError that is not a ChecksumError for
+    ``0 ER 9`` (the device and the twin's server answer by that distinction)."""
+    reply = decode_frame(answer.encode())
+    assert encode_frame(reply) == answer.encode() + b"\n", answer
+    assert (reply.seq, reply.code) == (0, "ER") and reply.args in ((1,), (9,)), answer
+    code = reply.args[0]
+    with pytest.raises(errors_FrameError) as info:
+        decode_frame(line.encode())
+    assert isinstance(info.value, ChecksumError) == (code == 1), \
+        f"{line!r} is answered {answer!r} but decode_frame raises {info.value!r}"
+    return code
+
+
 def check_golden(frames) -> int:
-    for mark, text in frames:
+    for mark, text, answer in frames:
         assert mark in "<>!", f"unknown mark {mark!r}"
         if mark == "!":
-            with pytest.raises(errors_FrameError):
-                decode_frame(text.encode())
+            check_unreadable(text, answer)
             continue
+        assert answer is None
         frame = decode_frame(text.encode())
         assert encode_frame(frame) == text.encode() + b"\n"
         if mark == "<":
@@ -140,12 +178,51 @@ def check_golden(frames) -> int:
     return len(frames)
 
 
+def replay_unreadable(rows) -> list:
+    """Send each (line, answer) to a MacroAFMTwin served by TwinServer on a MemoryTransport pair;
+    the (line, expected, got) that differ (the server answers malformed lines, as the firmware)."""
+    from afmsmiler.hardware.transport import MemoryTransport
+    from afmsmiler.hardware.twin import TwinServer
+
+    host, device_end = MemoryTransport.pair()
+    server = TwinServer(MacroAFMTwin(sample=printed_sample(pixels=8)), device_end,
+                        time_scale=0.0).start()
+    try:
+        host.write(wire("200 ID"))  # past the boot event: the reply to ID comes last
+        while not host.readline(2.0).startswith(b"200 OK ID "):
+            pass
+        differ = []
+        for line, answer in rows:
+            host.write(line.encode() + b"\n")
+            got = host.readline(2.0).decode()
+            if got != answer:
+                differ.append((line, answer, got))
+        return differ
+    finally:
+        server.stop()
+        host.close()
+
+
 def test_golden_frames_parser_on_a_sample_block():
     text = ("x\n```frames\n1 ID*C1\n    1 OK ID MACROAFM 1 0.1.0*22\n```\n\n"
-            "| line | answer |\n|---|---|\n| ! `1 ID*C2` | `0 ER 1*xx` |\n")
+            "| line | answer |\n|---|---|\n| ! `1 ID*C2` | `0 ER 1*DF` |\n"
+            "| ! `1  ID*84` | `0 ER 9*E7` |\n")
     frames = golden_frames(text)
-    assert [m for m, _ in frames] == [">", "<", "!"]
-    assert check_golden(frames) == 3
+    assert [m for m, _, _ in frames] == [">", "<", "!", "!"]
+    assert frames[2:] == [("!", "1 ID*C2", "0 ER 1*DF"), ("!", "1  ID*84", "0 ER 9*E7")]
+    assert check_golden(frames) == 4
+
+
+@pytest.mark.parametrize("line, answer", [
+    ("18  ST*1D", "0 ER 9*E7"),  # the spec's old row: its checksum is wrong, so ER 1, not ER 9
+    ("17 GP NX*4C", "0 ER 1*DF"),  # a valid frame listed as unreadable
+    ("17 GP NX*00", "0 ER 9*E7"),  # a checksum error listed as malformed
+    ("17 GP NX*00", "0 ER 1*00"),  # the answer's own checksum wrong
+    ("17 GP NX*00", "0 ER 3*D1"),  # neither 1 nor 9
+])
+def test_check_golden_catches_a_wrong_unreadable_row(line, answer):
+    with pytest.raises((AssertionError, pytest.fail.Exception, errors_FrameError)):
+        check_golden([("!", line, answer)])
 
 
 def test_golden_frames_of_the_protocol_spec():
@@ -154,6 +231,21 @@ def test_golden_frames_of_the_protocol_spec():
         pytest.skip(f"{spec.relative_to(REPO)} not in this checkout (h-firmware writes it)")
     frames = golden_frames(spec.read_text())
     assert check_golden(frames) > 10, "PROTOCOL.md lists (almost) no golden frames"
+    codes = [check_unreadable(line, answer) for mark, line, answer in frames if mark == "!"]
+    assert 1 in codes and 9 in codes  # both decoder paths are exercised
+    # an integer outside int32 is malformed, not a word
+    assert any(re.search(r" -?\d{10,}\*", line) for mark, line, _ in frames if mark == "!")
+
+
+def test_twin_server_answers_the_specs_unreadable_lines():
+    """Every row of PROTOCOL.md's table, sent to the twin's server: exactly the table's answer."""
+    spec = REPO / "hardware" / "macro_afm" / "PROTOCOL.md"
+    if not spec.exists():
+        pytest.skip(f"{spec.relative_to(REPO)} not in this checkout (h-firmware writes it)")
+    rows = [(line, answer) for mark, line, answer in golden_frames(spec.read_text())
+            if mark == "!"]
+    assert len(rows) >= 2
+    assert replay_unreadable(rows) == []
 
 
 # -- the driver against a scripted transport (scikit-rf style) -----------------------------------
@@ -755,7 +847,7 @@ def replay_first_session(text: str) -> list:
     block = golden_frames(text.split("```frames", 2)[0] + "```frames"
                           + text.split("```frames", 2)[1])
     got, expected = [], []
-    for mark, line in block:
+    for mark, line, _ in block:
         if mark == ">":
             got += [encode_frame(f).rstrip(b"\n").decode()
                     for f in twin.handle(decode_frame(line.encode()))]

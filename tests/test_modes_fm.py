@@ -229,6 +229,20 @@ def test_frequency_shift_checks_the_force():
                            amplitude=1e-9)
 
 
+@pytest.mark.parametrize("law", [
+    lambda z: vdw(z) + 1e-12j,  # a complex array: float() would drop the imaginary part
+    lambda z: vdw(z).astype(object) * (1 + 1j),  # Python complex numbers in an object array
+    lambda z: vdw(z).astype(str),  # text that float() would parse
+])
+@pytest.mark.filterwarnings("error")  # no ComplexWarning: an error before any conversion
+def test_frequency_shift_refuses_a_force_that_is_not_real(law):
+    z = np.linspace(1e-9, 3e-9, 3)
+    with pytest.raises(TypeError, match="force"):
+        fm.frequency_shift(law, z, amplitude=1e-9)
+    with pytest.raises(TypeError, match="force"):
+        fm.frequency_shift_curve(law, z, amplitude=1e-9)
+
+
 @pytest.mark.parametrize("z, df, name", [
     ([1e-9, 2e-9], [0.0, 0.0], "z"),  # too short
     ([1e-9, 3e-9, 2e-9], [0.0, 0.0, 0.0], "z"),  # not increasing

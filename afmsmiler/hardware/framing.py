@@ -161,7 +161,9 @@ def decode_frame(line: bytes) -> Frame:
     ChecksumError
         If the line has the form ``BODY*CC`` but CC is not the CRC-8 of BODY (a corrupted byte).
     FrameError
-        If the line is not a frame at all (too long, no ``*CC``, non-printable bytes, bad tokens).
+        If the line is not a frame at all (too long, no ``*CC``, non-printable bytes, bad tokens;
+        a token of the integer's form ``-?[0-9]+`` outside int32 is a bad token, never a word,
+        as in the firmware: devices answer such a line ``0 ER 9``).
     """
     raw = bytes(line)
     text = raw[:-1] if raw.endswith(b"\n") else raw

@@ -93,7 +93,16 @@ def _check_force(force):
 
 
 def _call_force(force, z):
-    values = np.asarray(force(z), dtype=float)
+    raw = np.asarray(force(z))
+    if np.iscomplexobj(raw):
+        # float(complex) would warn (ComplexWarning) and drop the imaginary part
+        raise TypeError(f"force must return real values in N, got {raw.dtype} (complex)")
+    if raw.dtype.kind not in "biufO":
+        raise TypeError(f"force must return real numbers in N, got an array of {raw.dtype}")
+    try:
+        values = raw.astype(float)
+    except (TypeError, ValueError) as exc:  # objects such as Python complex numbers or None
+        raise TypeError(f"force must return real numbers in N: {exc}") from None
     if values.shape != z.shape:
         raise ValueError(f"force must return an array of the shape of its argument {z.shape}, "
                          f"got shape {values.shape}")
@@ -144,7 +153,7 @@ def frequency_shift(force, z, *, spring_constant: float = SPRING_CONSTANT.defaul
     Raises
     ------
     TypeError
-        If ``force`` is not callable.
+        If ``force`` is not callable, or returns values that are not real numbers (complex).
     ValueError
         Naming the argument out of range (before the force is called), or if the force returns
         a wrong shape or non-finite values.
@@ -347,7 +356,7 @@ def frequency_shift_curve(force, z, *, spring_constant: float = SPRING_CONSTANT.
     Raises
     ------
     TypeError
-        If ``force`` is not callable.
+        If ``force`` is not callable, or returns values that are not real numbers (complex).
     ValueError
         Naming the argument out of range, before the force is called.
 

@@ -394,9 +394,23 @@ class MacroAFMCodec:
         Returns
         -------
         Status
+
+        Raises
+        ------
+        FrameError
+            If the reply is not a status reply, or if its flags integer is negative or has a bit
+            that :class:`Flag` does not name: the device then speaks something else than protocol
+            version 1 (a new flag is met by every host, so it needs a new protocol version), and
+            dropping the bit would hide, e.g., a switch or an E-stop from the driver.
         """
         r = reply.results
         if (reply.command != Command.STATUS or len(r) != 4 or not isinstance(r[0], str)
                 or not all(isinstance(v, int) for v in r[1:])):
             raise FrameError(f"not a status reply: {reply!r}")
-        return Status(_enum(State, r[0]), r[1], r[2], Flag(r[3] & 0x1F))
+        known = sum(f.value for f in Flag)
+        if r[3] < 0 or r[3] & ~known:
+            unknown = r[3] & ~known if r[3] >= 0 else r[3]
+            raise FrameError(f"status flags {r[3]} have bits this driver does not know "
+                             f"({unknown}; protocol version 1 knows {known} = "
+                             f"{' | '.join(f'{f.value} {f.name}' for f in Flag)})")
+        return Status(_enum(State, r[0]), r[1], r[2], Flag(r[3]))

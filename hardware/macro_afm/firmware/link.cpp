@@ -77,6 +77,15 @@ bool parse_long(const char *s, long *out) {
   return true;
 }
 
+// -?[0-9]+: a token that reads as an integer (whether or not it fits int32)
+static bool looks_like_int(const char *s) {
+  if (*s == '-') s++;
+  if (!*s) return false;
+  for (; *s; s++)
+    if (*s < '0' || *s > '9') return false;
+  return true;
+}
+
 static bool is_word_char(char c) {
   return (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
          c == '_' || c == '.' || c == ':' || c == '-';
@@ -120,6 +129,8 @@ LineResult Link::finish() {
   for (uint8_t i = 2; i < ntok; i++) {
     long v;
     if (parse_long(tokens[i], &v)) continue;
+    // an integer outside int32 is malformed, not a word (as the host's decode_frame says)
+    if (looks_like_int(tokens[i])) return LINE_MALFORMED;
     for (const char *q = tokens[i]; *q; q++) if (!is_word_char(*q)) return LINE_MALFORMED;
   }
   return LINE_OK;
