@@ -235,3 +235,14 @@ def test_a_real_scan_is_drawn_line_by_line_with_the_tip_where_the_scanner_says()
     np.testing.assert_allclose(m[:2, 3] * sc.unit, [sc.sample_origin[0] + x,
                                                     sc.sample_origin[1] + y], rtol=1e-6)
     assert rec.log["/img/tip"]["n_objects"] == 1
+
+
+def test_the_legend_reads_a_printed_sample_in_mm_and_an_afm_image_in_nm():
+    """A module (h) print (mm relief) had its legend in nm: 'x10^6 nm'."""
+    from afmsmiler.scenes.imaging import height_unit
+    assert (height_unit(3e-9), height_unit(2e-6), height_unit(2e-3)) == ("nm", "um", "mm")
+    y, x = np.mgrid[0:16, 0:16]
+    printed = Sample(2e-3 * (x > 7), 0.2e-3, "print")
+    scene = ImagingScene(printed, vis=Recorder())
+    assert scene.scale.unit == "mm"
+    assert scene.scale.vmax - scene.scale.vmin == pytest.approx(2.0)  # 2 mm of relief, in mm

@@ -5,9 +5,9 @@ Scale: one scene unit is :attr:`ImagingScene.unit` metres, a fixed fraction of t
 width (the sample is :data:`DEFAULTS` ``["side"]`` units wide), true to scale along x and y;
 heights are multiplied by :attr:`ImagingScene.exaggeration` (a round number, stated in the
 scene's caption), so that nanometre relief on a micrometre image can be seen. Each field is a
-:func:`~afmsmiler.scenes.meshes.height_map_mesh` coloured by height (``"afmhot"``, in nm),
-standing on its own lowest point, decimated (every s-th row and column) to at most
-``max_vertices`` vertices for a big image. The sample lies on the left (x < 0), the image on the
+:func:`~afmsmiler.scenes.meshes.height_map_mesh` coloured by height (``"afmhot"``, in nm, um or
+mm by the sample's relief: :func:`height_unit`), standing on its own lowest point, decimated
+(every s-th row and column) to at most ``max_vertices`` vertices for a big image. The sample lies on the left (x < 0), the image on the
 right, the colour legend of the sample below both.
 
 The tip is module (d)'s tip (:func:`~afmsmiler.scenes.contact.tip_mesh` of its outline), drawn
@@ -25,7 +25,7 @@ import meshcat.geometry as g
 import numpy as np
 
 from ..contact import Tip
-from ..parameters import read_only
+from ..parameters import UNITS, read_only
 from ..samples import Sample
 from ..validation import check_finite, check_instance, check_integer, check_positive
 from .camera import readable_width, set_camera, show_helpers
@@ -36,7 +36,7 @@ from .meshes import MAX_VERTICES, height_map_mesh
 from .transforms import translation
 from .viewer import get_viewer
 
-__all__ = ["DEFAULTS", "ImagingScene", "decimation", "auto_exaggeration"]
+__all__ = ["DEFAULTS", "ImagingScene", "decimation", "auto_exaggeration", "height_unit"]
 
 #: Defaults of the scene, in one place.
 DEFAULTS = read_only(dict(
@@ -108,11 +108,17 @@ def auto_exaggeration(width: float, relief: float, fraction: float = DEFAULTS["r
     return float(f"{best:.1g}")
 
 
-def _scale_of(values_nm: np.ndarray, cmap: str) -> ColorScale:
-    """A colour scale from the lowest value to a round range above it (nm)."""
-    low = float(values_nm.min())
-    span = nice_ceil(float(values_nm.max()) - low, 1e-3)
-    return ColorScale(low, low + span, cmap=cmap, label="height", unit="nm")
+def height_unit(relief: float) -> str:
+    """The legend's unit for a height field of ``relief`` m: nm below 1 um, um below 1 mm, else
+    mm (a printed sample of module (h) read in nm would show millions)."""
+    return "nm" if relief < UNITS["um"][1] else "um" if relief < UNITS["mm"][1] else "mm"
+
+
+def _scale_of(values: np.ndarray, cmap: str, unit: str = "nm") -> ColorScale:
+    """A colour scale from the lowest value to a round range above it (values in ``unit``)."""
+    low = float(values.min())
+    span = nice_ceil(float(values.max()) - low, 1e-3)
+    return ColorScale(low, low + span, cmap=cmap, label="height", unit=unit)
 
 
 class ImagingScene:
@@ -180,7 +186,10 @@ class ImagingScene:
         self._image_key = None
         self._image_drawn = False
         self.sample_floor = float(sample.heights.min())
-        self.scale = _scale_of(sample.heights * 1e9, DEFAULTS["cmap"])
+        self.height_unit = height_unit(float(np.ptp(sample.heights)))
+        self._per_unit = UNITS[self.height_unit][1]  # m per legend unit
+        self.scale = _scale_of(sample.heights / self._per_unit, DEFAULTS["cmap"],
+                               self.height_unit)
         self.image_scale = None
         self._draw_field(self.vis["sample"], sample.heights, sample, self.stride,
                          self.sample_origin, self.sample_floor, self.scale)
@@ -219,7 +228,7 @@ class ImagingScene:
         h = heights[::stride, ::stride]
         mesh = height_map_mesh(h - floor, grid.pixel_size * stride, unit=self.unit,
                                pixel_size_y=grid.pixel_size_y * stride, origin=origin,
-                               exaggeration=self.exaggeration, values=h * 1e9)
+                               exaggeration=self.exaggeration, values=h / self._per_unit)
         node.set_object(mesh.geometry(scale), g.MeshLambertMaterial(vertexColors=True, side=2))
         return mesh
 
@@ -275,7 +284,7 @@ class ImagingScene:
                 self._image_drawn = False
             return True
         floor = float(done.min())
-        self.image_scale = _scale_of(done * 1e9, DEFAULTS["cmap"])
+        self.image_scale = _scale_of(done / self._per_unit, DEFAULTS["cmap"], self.height_unit)
         # the full image centred in its slot (a scan range smaller than the sample, smaller)
         w = (cols - 1) * image.pixel_size
         d = (lines - 1) * image.pixel_size_y
@@ -284,7 +293,7 @@ class ImagingScene:
         h = done
         mesh = height_map_mesh(h - floor, image.pixel_size * s, unit=self.unit,
                                pixel_size_y=image.pixel_size_y * s, origin=origin,
-                               exaggeration=self.exaggeration, values=h * 1e9)
+                               exaggeration=self.exaggeration, values=h / self._per_unit)
         self.vis["image"].set_object(mesh.geometry(self.image_scale),
                                      g.MeshLambertMaterial(vertexColors=True, side=2))
         self.image_mesh = mesh
