@@ -173,3 +173,17 @@ def test_a_scope_that_never_finishes_times_out():
     with pytest.raises(HardwareError, match="did not complete"):
         ad2.acquire()
     assert time.monotonic() - t0 < 1.0
+
+
+def test_library_or_simulation_falls_back_with_the_reason():
+    """Notebook 08's choice of a real AD2 or its simulation, one call (it was a try/except in the
+    notebook)."""
+    from afmsmiler.hardware.ad2 import SimulatedDwfLibrary, library_or_simulation
+
+    def missing():
+        import pydwf
+        raise pydwf.PyDwfError("no libdwf here")
+    dwf, why = library_or_simulation(missing)
+    assert isinstance(dwf, SimulatedDwfLibrary) and "no libdwf here" in why
+    real = object()
+    assert library_or_simulation(lambda: real) == (real, None)

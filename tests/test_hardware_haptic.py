@@ -813,3 +813,16 @@ def test_twin_server_sends_the_frames_a_poll_at_a_host_line_returns():
             break
     server.stop()
     assert received == twin.returned
+
+
+def test_open_haptic_gives_the_twin_or_refuses_a_port_that_is_not_a_name():
+    from afmsmiler.hardware.haptic import HapticDevice, open_haptic
+    device, server = open_haptic(None, time_scale=1.0)
+    try:
+        assert isinstance(device, HapticDevice) and server is not None
+        device.connect()
+    finally:
+        device.close()
+        server.stop()
+    with pytest.raises(TypeError, match="port"):
+        open_haptic(3)

@@ -35,7 +35,7 @@ from ..validation import check_finite, check_integer, check_positive, check_rang
 from .errors import HardwareError
 
 __all__ = ["AD2Unavailable", "AD2Config", "PatternTiming", "Acquisition", "pattern_timing",
-           "open_library", "AnalogDiscovery2", "SimulatedDwfLibrary"]
+           "open_library", "library_or_simulation", "AnalogDiscovery2", "SimulatedDwfLibrary"]
 
 
 class AD2Unavailable(HardwareError):
@@ -85,6 +85,26 @@ def open_library(factory=None):
     except pydwf.PyDwfError as exc:
         raise AD2Unavailable(f"Digilent's WaveForms runtime (libdwf) could not be loaded ({exc}); "
                              f"install WaveForms from digilent.com to use a real AD2") from exc
+
+
+def library_or_simulation(factory=None) -> tuple[object, str | None]:
+    """The real AD2's library if Digilent's runtime loads, else the simulated one, and why.
+
+    Parameters
+    ----------
+    factory : callable, optional
+        Builds the real library (default: ``pydwf.DwfLibrary``), as in :func:`open_library`.
+
+    Returns
+    -------
+    (object, str or None)
+        The library (pydwf's, or a :class:`SimulatedDwfLibrary`) and None for the real one, or
+        the reason the real one could not be opened.
+    """
+    try:
+        return open_library(factory), None
+    except AD2Unavailable as exc:
+        return SimulatedDwfLibrary(), exc.reason
 
 
 @dataclass(frozen=True)

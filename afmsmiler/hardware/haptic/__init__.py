@@ -6,8 +6,8 @@
 - :mod:`.bridge`: :class:`ForceBridge`, forces from a source streamed at a steady rate.
 """
 from .codec import DEVICE, Command, ErrorCode, Event, Flag, Param, PositionSample, Status
-from .device import HapticDevice
+from .device import HapticDevice, open_haptic
 from .twin import Finger, HapticTwin, Mechanics
 
-__all__ = ["DEVICE", "Command", "ErrorCode", "Event", "Flag", "Param", "PositionSample",
+__all__ = ["DEVICE", "Command", "ErrorCode", "Event", "Flag", "Param", "PositionSample", "open_haptic",
            "Status", "HapticDevice", "HapticTwin", "Finger", "Mechanics"]

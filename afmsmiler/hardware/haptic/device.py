@@ -24,7 +24,7 @@ from ..framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
 from .codec import (DEVICE, PARAMETERS, Command, ErrorCode, Flag, Param, PositionSample, Status,
                     force_frame, param_from_wire, param_to_wire, parse_position, parse_status)
 
-__all__ = ["HapticDevice"]
+__all__ = ["HapticDevice", "open_haptic"]
 
 _RETRY = object()  # the reader's signal: the device asked for the pending command again
 _NAMES = {spec.name: p for p, spec in PARAMETERS.items()}
@@ -471,3 +471,35 @@ class HapticDevice:
 
     def __exit__(self, *exc):
         self.close()
+
+
+def open_haptic(port: str | None = None, *, time_scale: float = 1.0):
+    """The haptic device on a serial ``port``, or its twin served in this process.
+
+    Parameters
+    ----------
+    port : str or None
+        A serial port (e.g. ``"/dev/ttyACM0"``) at the device's 1 Mbaud; None: the twin.
+    time_scale : float
+        The twin's pace (1: real time), as :func:`~afmsmiler.hardware.twin.open_twin`.
+
+    Returns
+    -------
+    (HapticDevice, TwinServer or None)
+        The device, not yet connected, and the twin's server (None for a real port: stop it when
+        done).
+
+    Raises
+    ------
+    TypeError
+        If ``port`` is neither None nor a str.
+    """
+    from ..transport import SerialTransport
+    from ..twin import open_twin
+    from .twin import HapticTwin
+    if port is None:
+        link, server = open_twin(HapticTwin(), time_scale=time_scale)
+        return HapticDevice(link), server
+    if not isinstance(port, str):
+        raise TypeError(f"port must be a serial port's name (str) or None, got {port!r}")
+    return HapticDevice(SerialTransport(port, baudrate=1_000_000)), None
