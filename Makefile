@@ -46,20 +46,19 @@ lab: $(STAMP)
 	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
-## Everything: every test (slow and viewer ones too), the docstrings' examples, every notebook
-## under nbval, then the check that no 3D server outlived them.
+## Everything: every test (slow and browser ones too), the docstrings' examples, every notebook
+## under nbval.
 test: $(STAMP) browser firmware
 	$(PY) -m pytest tests
-	$(PY) -m pytest -p no:cacheprovider -p tests.doctest_no_viewer --doctest-modules afmsmiler
+	$(PY) -m pytest -p no:cacheprovider --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
-	$(PY) -m pytest -p no:cacheprovider tests/after_notebooks/check_servers.py
 
 ## The fast suite while you work: every test except those marked `slow` (a second or more each:
-## reference solutions, many fits, code generation, the deep bad-input campaign) and `viewer`
-## (they start a real meshcat server) and `browser` (headless Chromium against JupyterLab and voila).
+## reference solutions, many fits, code generation, the deep bad-input campaign) and `browser`
+## (headless Chromium against JupyterLab and voila).
 ## No doctests, notebooks or server check: `make test` runs those.
 unit: $(STAMP)
-	$(PY) -m pytest -m "not slow and not viewer and not browser" tests
+	$(PY) -m pytest -m "not slow and not browser" tests
 
 notebooks: $(STAMP)
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env notebooks

@@ -31,7 +31,6 @@ from afmsmiler.plots.live import describe  # noqa: E402
 
 from afmsmiler.cantilever import PARAMETERS, Cantilever  # noqa: E402
 from afmsmiler.plots.cantilever import CantileverFigure, cantilever_curves  # noqa: E402
-from afmsmiler.scenes import close_viewer, get_viewer  # noqa: E402
 from afmsmiler.scenes.cantilever import CantileverScene  # noqa: E402
 from afmsmiler.ui.cantilever import CantileverPanel  # noqa: E402
 
@@ -39,67 +38,64 @@ TARGET = 30e-3
 
 
 def main():
-    try:
-        with contextlib.redirect_stdout(io.StringIO()):  # its first redraw prints outside Jupyter
-            panel = CantileverPanel(scene=True)
-        panel.redraw = lambda: None  # pixels are drawn by the front end, after the callback
-        values = panel.values()
-        state = {"i": 0}
+    with contextlib.redirect_stdout(io.StringIO()):  # its first redraw prints outside Jupyter
+        panel = CantileverPanel(scene=True)
+    panel.redraw = lambda: None  # pixels are drawn by the front end, after the callback
+    values = panel.values()
+    state = {"i": 0}
 
-        def next_values():  # a slider being dragged: the force changes every call
-            state["i"] += 1
-            return {**values, "force": 50.0 + (state["i"] % 100)}
+    def next_values():  # a slider being dragged: the force changes every call
+        state["i"] += 1
+        return {**values, "force": 50.0 + (state["i"] % 100)}
 
-        def si(v):
-            return {k: PARAMETERS[k].to_si(x) for k, x in v.items() if k in PARAMETERS}
+    def si(v):
+        return {k: PARAMETERS[k].to_si(x) for k, x in v.items() if k in PARAMETERS}
 
-        def bending(v):
-            s = si(v)
-            lever = Cantilever(s["length"], s["width"], s["thickness"], s["youngs_modulus"],
-                               s["density"])
-            return lever.bending(s["force"], section=s["section"], n_length=121, n_thickness=9,
-                                 n_section=41, modes=3)
+    def bending(v):
+        s = si(v)
+        lever = Cantilever(s["length"], s["width"], s["thickness"], s["youngs_modulus"],
+                           s["density"])
+        return lever.bending(s["force"], section=s["section"], n_length=121, n_thickness=9,
+                             n_section=41, modes=3)
 
-        def model():
-            b = bending(next_values())
-            return b, cantilever_curves(b)
+    def model():
+        b = bending(next_values())
+        return b, cantilever_curves(b)
 
-        result, curves = model()
-        t_model = best_time(model)
-        t_plots = best_time(lambda: panel.figure.update(curves))
-        t_scene = best_time(lambda: panel.scene.update(bending(next_values())))
-        t_panel = best_time(lambda: panel.update(**next_values()))
+    result, curves = model()
+    t_model = best_time(model)
+    t_plots = best_time(lambda: panel.figure.update(curves))
+    t_scene = best_time(lambda: panel.scene.update(bending(next_values())))
+    t_panel = best_time(lambda: panel.update(**next_values()))
 
-        def crossing():  # worst case: every update crosses a round color limit (1 <-> 2 MPa)
-            state["i"] += 1
-            panel.update(**{**values, "force": 70.0 if state["i"] % 2 else 80.0})
+    def crossing():  # worst case: every update crosses a round color limit (1 <-> 2 MPa)
+        state["i"] += 1
+        panel.update(**{**values, "force": 70.0 if state["i"] % 2 else 80.0})
 
-        t_cross = best_time(crossing)
-        t_describe = best_time(lambda: describe(panel.fig))
-        canvas = FigureCanvasAgg(panel.fig)
-        t_draw = best_time(canvas.draw, repeat=3)
+    t_cross = best_time(crossing)
+    t_describe = best_time(lambda: describe(panel.fig))
+    canvas = FigureCanvasAgg(panel.fig)
+    t_draw = best_time(canvas.draw, repeat=3)
 
-        def naive():
-            b = bending(next_values())
-            CantileverFigure(cantilever_curves(b))
-            get_viewer()["bench_naive"].delete()
-            CantileverScene(b, path="bench_naive", camera=False)
+    def naive():
+        b = bending(next_values())
+        CantileverFigure(cantilever_curves(b))
+        panel.scene.root["bench_naive"].delete()
+        CantileverScene(b, vis=panel.scene.root, path="bench_naive", camera=False)
 
-        t_naive = best_time(naive, repeat=3)
-        print("one slider update of CantileverPanel (meshcat server running; the figure is sent as data,"
-              " not rasterised; the browser's drawing is in bench_browser.py)")
-        report([
-            ("model: Cantilever.bending once (121 x 9 + 41 pts, 3 modes)", t_model, None, None),
-            ("plots: CantileverFigure.update (line data in place)", t_plots, None, None),
-            ("scene: CantileverScene.update (121 x 9 mesh, tip, arrow)", t_scene, None, None),
-            ("whole CantileverPanel.update (model + plots + scene)", t_panel, TARGET, t_naive),
-            ("  same, each update re-rendering the legend texture", t_cross, TARGET, t_naive),
-            ("(info) of which: the figure described for the browser", t_describe, None, None),
-            ("(info) what a move cost before: Agg rasterising the figure", t_draw, None, None),
-        ])
-        print(f"peer = naive update rebuilding figure and scene objects: {t_naive * 1e3:.1f} ms")
-    finally:
-        close_viewer()
+    t_naive = best_time(naive, repeat=3)
+    print("one slider update of CantileverPanel (3D view over the comm; the figure is sent as data,"
+          " not rasterised; the browser's drawing is in bench_browser.py)")
+    report([
+        ("model: Cantilever.bending once (121 x 9 + 41 pts, 3 modes)", t_model, None, None),
+        ("plots: CantileverFigure.update (line data in place)", t_plots, None, None),
+        ("scene: CantileverScene.update (121 x 9 mesh, tip, arrow)", t_scene, None, None),
+        ("whole CantileverPanel.update (model + plots + scene)", t_panel, TARGET, t_naive),
+        ("  same, each update re-rendering the legend texture", t_cross, TARGET, t_naive),
+        ("(info) of which: the figure described for the browser", t_describe, None, None),
+        ("(info) what a move cost before: Agg rasterising the figure", t_draw, None, None),
+    ])
+    print(f"peer = naive update rebuilding figure and scene objects: {t_naive * 1e3:.1f} ms")
 
 
 if __name__ == "__main__":

@@ -8,7 +8,6 @@ import pytest
 
 from afmsmiler.cantilever import PARAMETERS, Cantilever
 from afmsmiler.materials import MATERIALS
-from afmsmiler.scenes import close_viewer, viewer
 from afmsmiler.ui.cantilever import SLIDERS, CantileverPanel
 from afmsmiler.scenes.cantilever import DEFAULTS
 
@@ -111,32 +110,28 @@ def test_unknown_controls_are_rejected(panel):
         CantileverPanel(scene=False, stiffness=1.0)
 
 
-@pytest.mark.viewer
 @pytest.mark.slow
 def test_panel_with_scene_updates_the_3d_view_in_place():
-    try:
-        p = CantileverPanel(scene=True, material="silicon_nitride")
-        assert p.last.lever.youngs_modulus == pytest.approx(
-            MATERIALS["silicon_nitride"].youngs_modulus, rel=1e-15)
-        pid = viewer._proc.pid
-        p.set(force=-300.0, exaggeration=1000.0, length=200.0)
-        lever = p.last.lever
-        sc = p.scene
-        assert sc.exaggeration == pytest.approx(1000.0) and sc.lever is lever
-        nl, nt = sc.n_length, sc.n_thickness
-        centre = sc.mesh.vertices[:nl * nt].reshape(nl, nt, 3)[:, nt // 2]
-        np.testing.assert_allclose(centre[:, 2],
-                                   1000 * lever.deflection(centre[:, 0] * 1e-4, -3e-7) / 1e-4, rtol=1e-5,
-                                   atol=1e-9)
-        assert viewer._proc.pid == pid  # the same server throughout
-        assert "MPa" in p.readout.value and "x1,000" in p.readout.value
-        p.set(length=1000.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
-        assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
-        assert f"at most {DEFAULTS['max_drawn_tip']:g} L" in p.readout.value
-        w = p.widget()
-        assert p.readout in w.children[0].children  # beside the controls, above the figure
-    finally:
-        close_viewer()
+    p = CantileverPanel(scene=True, material="silicon_nitride")
+    assert p.last.lever.youngs_modulus == pytest.approx(
+        MATERIALS["silicon_nitride"].youngs_modulus, rel=1e-15)
+    view = p.scene_view()
+    p.set(force=-300.0, exaggeration=1000.0, length=200.0)
+    lever = p.last.lever
+    sc = p.scene
+    assert sc.exaggeration == pytest.approx(1000.0) and sc.lever is lever
+    nl, nt = sc.n_length, sc.n_thickness
+    centre = sc.mesh.vertices[:nl * nt].reshape(nl, nt, 3)[:, nt // 2]
+    np.testing.assert_allclose(centre[:, 2],
+                               1000 * lever.deflection(centre[:, 0] * 1e-4, -3e-7) / 1e-4, rtol=1e-5,
+                               atol=1e-9)
+    assert p.scene_view() is view  # the same view throughout
+    assert "MPa" in p.readout.value and "x1,000" in p.readout.value
+    p.set(length=1000.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
+    assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
+    assert f"at most {DEFAULTS['max_drawn_tip']:g} L" in p.readout.value
+    w = p.widget()
+    assert p.readout in w.children[0].children  # beside the controls, above the figure
 
 
 def test_mode_shapes_figure_and_strain_axis():
@@ -164,29 +159,18 @@ def test_section_strain_axis_is_stress_over_e(panel):
     np.testing.assert_allclose(c.section_strain_micro, c.section_stress_mpa * 1e6 / 169e9 * 1e6, rtol=1e-12)
 
 
-@pytest.mark.viewer
 @pytest.mark.slow
-def test_sliders_keep_working_after_close_viewer():
-    # "Run All" ends with close_viewer(); in JupyterLab the next slider move raised ZMQError in
-    # the ipywidgets callback, so plots moved (auto-redraw) but the readouts froze silently.
-    try:
-        p = CantileverPanel(scene=True)
-        close_viewer()
-        p.controls["force"].value = 200.0  # as a user would move it
-        lever = p.last.lever
-        assert p.last.tip_deflection == pytest.approx(200e-9 / lever.spring_constant, rel=1e-12)
-        assert f"{200e-9 / lever.spring_constant * 1e9:.4g} nm" in p.readout.value
-        assert p.scene is None and "3D view closed" in p.readout.value
-        assert not viewer.viewer_running()  # a slider never starts a server nobody closes
-        p.set(force=-100.0)
-        assert not viewer.viewer_running() and p.error is None
-        # the student opens a viewer again: the lever is drawn there at once
-        vis = viewer.get_viewer()
-        p.set(force=50.0)
-        assert p.scene is not None and p.scene.root is vis and p.scene.force == pytest.approx(50e-9)
-        assert "3D view closed" not in p.readout.value and "MPa" in p.readout.value
-    finally:
-        close_viewer()
+def test_the_3d_view_follows_every_slider_and_nothing_closes_it():
+    # before: "Run All" ended with close_viewer(), and the 3D view froze while the plots moved
+    p = CantileverPanel(scene=True)
+    view, scene = p.scene_view(), p.scene
+    sent = view.commands_sent
+    p.controls["force"].value = 200.0  # as a user would move it
+    lever = p.last.lever
+    assert p.last.tip_deflection == pytest.approx(200e-9 / lever.spring_constant, rel=1e-12)
+    assert f"{200e-9 / lever.spring_constant * 1e9:.4g} nm" in p.readout.value
+    assert p.scene is scene and scene.force == pytest.approx(200e-9) and p.error is None
+    assert view.commands_sent > sent and p.scene_view() is view
 
 
 @pytest.mark.slow
@@ -260,34 +244,30 @@ def _count_model(monkeypatch):
     return counts
 
 
-@pytest.mark.parametrize("scene", [False, pytest.param(True, marks=[pytest.mark.viewer,
-                                                                    pytest.mark.slow])])
+@pytest.mark.parametrize("scene", [False, pytest.param(True, marks=[pytest.mark.slow])])
 def test_one_slider_move_runs_the_model_once(monkeypatch, scene):
     # Before: the figure sampled the lever (cantilever_curves) and the scene sampled it again
     # (stress_field), and the readout asked for f1..f3 on its own: 2 samplings per move. Now the
     # panel runs Cantilever.bending once and the figures and scene only draw its result.
-    try:
-        p = CantileverPanel(scene=scene)
-        p.show_modes()  # the mode-shape figure follows too, from the same result
-        lever = p.last.lever
-        counts = _count_model(monkeypatch)
-        lever.bending(1e-7, section=0.3, n_length=121, n_thickness=9, n_section=41, modes=3)
-        one_run = dict(counts)
-        assert one_run["bending"] == 1
-        for move in (dict(force=250.0), dict(length=900.0), dict(section=0.5),
-                     dict(exaggeration=1000.0), dict(material="gold")):
-            counts.clear()
-            name, value = next(iter(move.items()))
-            p.controls[name].value = value  # as a user would
-            assert counts == one_run, (move, counts)
+    p = CantileverPanel(scene=scene)
+    p.show_modes()  # the mode-shape figure follows too, from the same result
+    lever = p.last.lever
+    counts = _count_model(monkeypatch)
+    lever.bending(1e-7, section=0.3, n_length=121, n_thickness=9, n_section=41, modes=3)
+    one_run = dict(counts)
+    assert one_run["bending"] == 1
+    for move in (dict(force=250.0), dict(length=900.0), dict(section=0.5),
+                 dict(exaggeration=1000.0), dict(material="gold")):
         counts.clear()
-        p.set(force=-100.0, thickness=3.0, width=40.0)  # several values, one update
-        assert counts == one_run
-        counts.clear()
-        p.controls["force"].value = p.controls["force"].value + 0.1 * p.controls["force"].step
-        assert counts == {}  # the browser's echo of a snapped value runs nothing
-    finally:
-        close_viewer()
+        name, value = next(iter(move.items()))
+        p.controls[name].value = value  # as a user would
+        assert counts == one_run, (move, counts)
+    counts.clear()
+    p.set(force=-100.0, thickness=3.0, width=40.0)  # several values, one update
+    assert counts == one_run
+    counts.clear()
+    p.controls["force"].value = p.controls["force"].value + 0.1 * p.controls["force"].step
+    assert counts == {}  # the browser's echo of a snapped value runs nothing
 
 
 def test_material_drop_down_is_one_model_run(monkeypatch):

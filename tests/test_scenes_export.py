@@ -3,7 +3,7 @@ import os
 
 import pytest
 
-from afmsmiler.scenes import save_static_html, static_html, viewer_running
+from afmsmiler.scenes import SceneView, save_static_html, static_html
 from recording import Recorder
 
 
@@ -15,18 +15,16 @@ from recording import Recorder
     (None, "path must be a str or os.PathLike"),
 ])
 def test_a_bad_path_is_a_value_error_naming_path(tmp_path, monkeypatch, path, match):
-    # before: IsADirectoryError, FileNotFoundError, TypeError (from open), after starting a server
+    # before: IsADirectoryError, FileNotFoundError, TypeError (from open)
     monkeypatch.chdir(tmp_path)
-    running = viewer_running()
     with pytest.raises(ValueError, match=match):
-        save_static_html(path)
-    assert viewer_running() == running  # rejected before a server was started
+        save_static_html(path, SceneView().vis)
     assert os.listdir(tmp_path) == []
 
 
 def test_a_folder_given_as_path_object_and_a_wrong_viewer(tmp_path):
     with pytest.raises(ValueError, match="path must name a file, got the folder"):
-        save_static_html(tmp_path)
+        save_static_html(tmp_path, SceneView().vis)
     with pytest.raises(TypeError, match="vis must be"):  # before: AttributeError
         save_static_html(tmp_path / "scene.html", vis=Recorder())
     with pytest.raises(TypeError, match="vis must be"):

@@ -1,120 +1,216 @@
-"""The meshcat layer: one server per kernel, loopback only, and none survives its kernel."""
-import os
-import signal
-import subprocess
-import sys
-import time
+"""The 3D views: meshcat's commands over the kernel's own connection, one scene per view.
+
+A :class:`SceneView` replaces the meshcat server of earlier versions (a second port, blank from
+any other machine, closed by a notebook's last cell): these tests check that a view keeps exactly
+the scene a live meshcat viewer would show (the bookkeeping of meshcat's own server, which is the
+reference here), sends it as comm messages, replays it to a late view, exports it for the book,
+and that nothing listens on a port or runs in another process.
+"""
+import base64
+import json
+import re
 
 import meshcat.geometry as g
+import meshcat.transformations as tf
 import numpy as np
 import psutil
 import pytest
+import umsgpack
+from meshcat.servers.tree import SceneTree, find_node, walk
 
-from afmsmiler.scenes import close_viewer, get_viewer, viewer
+from afmsmiler.scenes import SceneView, save_static_html, static_html, view_of
 from afmsmiler.scenes.camera import set_camera
 from afmsmiler.scenes.colors import ColorScale
+from afmsmiler.scenes.imaging import ImagingScene
 from afmsmiler.scenes.legends import ColorLegend
 from afmsmiler.scenes.meshes import beam_mesh
 from afmsmiler.scenes.shapes import Arrow
-
-pytestmark = pytest.mark.viewer  # every test here starts a real meshcat server
-
-CHILD = """
-import os, sys
-from afmsmiler.scenes import viewer
-vis = viewer.get_viewer()
-print(viewer._proc.pid, flush=True)
-sys.stdin.read()
-"""
+from afmsmiler.scenes.view import MAX_ENTRIES, SceneState, library
+from afmsmiler import samples
+from recording import Recorder
 
 
-def _listening_addresses(pid):
-    return {c.laddr.ip for c in psutil.Process(pid).net_connections(kind="tcp")
-            if c.status == psutil.CONN_LISTEN}
+class Sent:
+    """Records what a view sends to the browser (content, buffers), as the comm would carry it."""
+
+    def __init__(self, view):
+        self.messages = []
+        view.send = lambda content, buffers=None: self.messages.append((content, buffers or []))
+
+    def commands(self):
+        return [(c, b) for content, bufs in self.messages for c, b in zip(content["commands"], bufs)]
 
 
-def test_one_server_reused_loopback_only_and_closed():
-    vis = viewer.get_viewer()
-    pid = viewer._proc.pid
-    try:
-        assert viewer.get_viewer() is vis  # reused, not a second server
-        assert vis.url().startswith("http://127.0.0.1:")
-        assert _listening_addresses(pid) == {"127.0.0.1"}
-        assert psutil.Process(pid).environ()[viewer.OWNER_ENV] == str(os.getpid())
-        html = viewer.static_html()
-        assert "<html" in html.lower() and len(html) > 1000
-    finally:
-        viewer.close_viewer()
-    assert not viewer.viewer_running()
-    assert not psutil.pid_exists(pid) or psutil.Process(pid).status() == psutil.STATUS_ZOMBIE
-    viewer.close_viewer()  # idempotent
+def _server_tree(commands):
+    """meshcat's own server bookkeeping (``zmqserver.handle_zmq``) for packed ``commands``."""
+    tree = SceneTree()
+    for data in commands:
+        cmd = umsgpack.unpackb(data)
+        path = [p for p in cmd.get("path", "").split("/") if p]
+        kind = cmd["type"]
+        if kind == "set_transform":
+            find_node(tree, path).transform = data
+        elif kind == "set_object":
+            find_node(tree, path).object = data
+            find_node(tree, path).properties = []
+        elif kind == "set_property":
+            find_node(tree, path).properties.append(data)
+        elif kind == "delete":
+            parent = find_node(tree, path[:-1])
+            if path[-1] in parent:
+                del parent[path[-1]]
+    return tree
 
 
-@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="PR_SET_PDEATHSIG is Linux-only")
-def test_server_dies_with_a_hard_killed_kernel():
-    kernel = subprocess.Popen([sys.executable, "-c", CHILD], stdin=subprocess.PIPE,
-                              stdout=subprocess.PIPE, text=True)
-    server_pid = int(kernel.stdout.readline())
-    assert psutil.pid_exists(server_pid)
-    kernel.send_signal(signal.SIGKILL)  # what nbval does to a kernel
-    kernel.wait()
-    deadline = time.time() + 10
-    while time.time() < deadline:
-        if (not psutil.pid_exists(server_pid)
-                or psutil.Process(server_pid).status() == psutil.STATUS_ZOMBIE):
-            break
-        time.sleep(0.05)
-    else:
-        os.kill(server_pid, signal.SIGKILL)
-        pytest.fail("the meshcat server outlived its kernel")
+def _final_state(commands):
+    """What a viewer shows after ``commands``: object, transform, last value of each property."""
+    out = {}
+    for data in commands:
+        cmd = umsgpack.unpackb(data)
+        path, kind = cmd.get("path", ""), cmd["type"]
+        if kind == "delete":
+            out = {k: v for k, v in out.items() if k[0] != path and not k[0].startswith(path + "/")}
+        else:
+            if kind == "set_object":
+                out = {k: v for k, v in out.items() if not (k[0] == path and k[1] == "set_property")}
+            out[(path, kind, cmd.get("property", ""))] = data
+    return out
 
 
-def test_leak_check_detects_an_orphaned_server():
-    """The after-notebooks check must be able to fail: an orphan with a dead owner is reported."""
-    import importlib.util
-    from pathlib import Path
-    spec = importlib.util.spec_from_file_location(
-        "check_servers", Path(__file__).parent / "after_notebooks" / "check_servers.py")
-    check = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(check)
-    dead = subprocess.Popen([sys.executable, "-c", "pass"])
-    dead.wait()
-    env = dict(os.environ, **{viewer.OWNER_ENV: str(dead.pid)})
-    orphan = subprocess.Popen([sys.executable, "-m", "afmsmiler.scenes._server"], env=env,
-                              stdout=subprocess.PIPE, stderr=subprocess.DEVNULL)
-    try:
-        orphan.stdout.readline()  # zmq_url=...: the server is up
-        assert (orphan.pid, str(dead.pid)) in check.orphaned_servers()
-    finally:
-        orphan.kill()
-        orphan.wait()
-    assert (orphan.pid, str(dead.pid)) not in check.orphaned_servers()
+def _a_session(vis):
+    vis["a"].set_object(g.Box([1, 1, 1]))
+    vis["a"].set_transform(tf.translation_matrix([1, 0, 0]))
+    for opacity in np.linspace(0.1, 1.0, 50):  # a slider moved 50 times
+        vis["a"].set_property("opacity", float(opacity))
+    vis["a/b"].set_object(g.Sphere(0.2))
+    vis["c"].set_object(g.Sphere(0.3))
+    vis["c"].delete()
+    vis["a"].set_object(g.Box([2, 1, 1]))  # a new object drops the old one's properties
+    vis["a"].set_property("visible", True)
+    vis["d"].set_transform(tf.translation_matrix([0, 1, 0]))
 
 
-def test_save_static_html(tmp_path):
-    try:
-        path = viewer.save_static_html(tmp_path / "scene.html")
-        assert open(path, encoding="utf-8").read().lower().count("<html") >= 1
-    finally:
-        viewer.close_viewer()
+def test_a_view_replays_what_a_live_viewer_shows_and_what_meshcats_server_keeps():
+    view = SceneView()
+    sent = Sent(view)
+    _a_session(view.vis)
+    live = [b for _, b in sent.commands()]  # everything a viewer open all along received
+    replay = view.state.commands()
+    assert _final_state(replay) == _final_state(live)
+    # meshcat's server keeps the same objects and transforms (it keeps every property value,
+    # 50 opacities here; a view keeps the last one per name)
+    server = [n for n in walk(_server_tree(live))]
+    server_objects = {n.object for n in server if n.object is not None}
+    server_transforms = {n.transform for n in server if n.transform is not None}
+    assert {d for (k, _, _), d in zip(view.state.keys(), replay) if k == "set_object"} == server_objects
+    assert {d for (k, _, _), d in zip(view.state.keys(), replay) if k == "set_transform"} == \
+        server_transforms
+    assert len(replay) < 10 < len(live)
 
 
-def test_scene_pieces_in_a_real_viewer_update_in_place():
-    try:
-        vis = get_viewer()["test_pieces"]
-        x = np.linspace(0.0, 2.0, 21)
-        mesh = beam_mesh(x, 0.1 * x ** 2, 0.3, 0.04, np.linspace(x, -x, 5).T)
-        scale = ColorScale.symmetric(2.0, unit="MPa")
-        vis["beam"].set_object(mesh.geometry(scale), g.MeshLambertMaterial(vertexColors=True))
-        arrow = Arrow(vis["force"])
-        arrow.set([0, 0, 0], [0, 0, 0.3])
-        legend = ColorLegend(vis["legend"], scale)
-        assert legend.set(scale) is False  # same scale: no new texture
-        assert legend.set(ColorScale.symmetric(5.0, unit="MPa")) is True
-        before = len(get_viewer().static_html())
-        set_camera(get_viewer(), [1.0, -3.0, 1.0])
-        arrow.set([0, 0, 0], [0, 0, 0.5])  # moved in place: one transform per part, no new object
-        assert len(get_viewer().static_html()) - before < 2000
-    finally:
-        close_viewer()
+def test_the_same_object_is_not_sent_twice_and_hold_sends_one_message():
+    view = SceneView()
+    sent = Sent(view)
+    box = g.Mesh(g.Box([1, 1, 1]), g.MeshLambertMaterial())  # one object: the same uuids
+    view.vis["a"].set_object(box)
+    view.vis["a"].set_object(box)  # meshcat's cache: the same bytes again, nothing sent
+    assert len(sent.messages) == 1 and view.commands_sent == 1
+    with view.hold():
+        for x in range(5):
+            view.vis["a"].set_transform(tf.translation_matrix([x, 0, 0]))
+        with view.hold():  # nested: still one message at the outer end
+            view.vis["b"].set_object(g.Sphere(0.1))
+        assert len(sent.messages) == 1
+    assert len(sent.messages) == 2 and len(sent.messages[1][1]) == 6
+    seqs = [c["seq"] for c, _ in sent.commands()]
+    assert seqs == sorted(seqs) and len(set(seqs)) == len(seqs)  # the browser orders by seq
 
+
+def test_a_replay_answers_the_browser_with_the_whole_scene():
+    view = SceneView()
+    _a_session(view.vis)
+    sent = Sent(view)
+    view._handle_message(view, {"type": "replay"}, [])
+    (content, buffers), = sent.messages
+    assert content["type"] == "replay" and content["seq"] == view._seq
+    assert buffers == view.state.commands()
+    assert [(c["kind"], c["path"], c["prop"]) for c in content["commands"]] == view.state.keys()
+
+
+def test_each_scene_draws_into_its_own_view():
+    one = ImagingScene(samples.particles((32, 32), 5e-9, count=2, radius=20e-9, seed=1))
+    two = ImagingScene(samples.grating((32, 32), 5e-9, period=40e-9, height=10e-9))
+    assert one.view is not two.view and one.view is not None
+    assert view_of(one.root) is one.view
+    assert one.view.state.commands() != two.view.state.commands()
+    assert view_of(Recorder()) is None and ImagingScene(
+        samples.grating((16, 16), 5e-9, period=40e-9, height=10e-9), vis=Recorder()).view is None
+    assert one.view._library is two.view._library is library()  # meshcat's bundle sent once
+
+
+def test_no_process_and_no_port_only_comm_messages():
+    me = psutil.Process()
+    children = set(me.children(recursive=True))
+    listening = {c.laddr for c in me.net_connections(kind="inet") if c.status == psutil.CONN_LISTEN}
+    scene = ImagingScene(samples.particles((32, 32), 5e-9, count=2, radius=20e-9, seed=1))
+    scene.show_image(scene.sample)
+    assert set(me.children(recursive=True)) == children
+    assert {c.laddr for c in me.net_connections(kind="inet")
+            if c.status == psutil.CONN_LISTEN} == listening
+
+
+def test_static_html_holds_the_bundle_and_every_command(tmp_path):
+    view = SceneView()
+    _a_session(view.vis)
+    view.legend = "<b>height</b> [nm]"
+    view.set_labels({"tip": [0.0, 0.0, 1.0]})
+    html = static_html(view.vis["a"])  # any path of the view exports the whole view
+    assert "MeshCat" in html and html.lstrip().lower().startswith("<!doctype html>")
+    embedded = json.loads(re.search(r"drawStatic\(document.getElementById\('scene'\), (\[.*?\]), ",
+                                    html).group(1))
+    assert [base64.b64decode(c) for c in embedded] == view.state.commands()
+    assert "height" in html and '"tip"' in html
+    path = save_static_html(tmp_path / "scene.html", view.vis)
+    assert open(path, encoding="utf-8").read() == html
+
+
+def test_labels_and_height_are_checked():
+    with pytest.raises(ValueError, match=r"^height must be"):
+        SceneView(height=10)
+    with pytest.raises(ValueError, match="height must be an integer"):
+        SceneView(height="tall")
+    view = SceneView()
+    with pytest.raises(ValueError, match="label 'tip' needs a finite point"):
+        view.set_labels({"tip": [0.0, np.nan, 1.0]})
+    with pytest.raises(TypeError, match="a label's text must be a str"):
+        view.set_labels([(3, [0, 0, 0])])
+    view.set_labels([("lever", (1, 2, 3))])
+    assert view.labels == [{"text": "lever", "at": [1.0, 2.0, 3.0]}]
+    with pytest.raises(NotImplementedError, match="screenshot"):
+        view.vis.get_image()
+
+
+def test_a_scene_that_grows_without_bound_fails_loudly():
+    state = SceneState()
+    for i in range(MAX_ENTRIES):
+        state.apply("set_transform", f"/p{i}", "", b"x")
+    with pytest.raises(RuntimeError, match="at most"):
+        state.apply("set_transform", "/one-more", "", b"x")
+
+
+def test_scene_pieces_update_in_place():
+    view = SceneView()
+    vis = view.vis["test_pieces"]
+    x = np.linspace(0.0, 2.0, 21)
+    mesh = beam_mesh(x, 0.1 * x ** 2, 0.3, 0.04, np.linspace(x, -x, 5).T)
+    scale = ColorScale.symmetric(2.0, unit="MPa")
+    vis["beam"].set_object(mesh.geometry(scale), g.MeshLambertMaterial(vertexColors=True))
+    arrow = Arrow(vis["force"])
+    arrow.set([0, 0, 0], [0, 0, 0.3])
+    legend = ColorLegend(vis["legend"], scale)
+    assert legend.set(scale) is False  # same scale: no new texture
+    assert legend.set(ColorScale.symmetric(5.0, unit="MPa")) is True
+    before = sum(map(len, view.state.commands()))
+    set_camera(view.vis, [1.0, -3.0, 1.0])
+    arrow.set([0, 0, 0], [0, 0, 0.5])  # moved in place: one transform per part, no new object
+    assert sum(map(len, view.state.commands())) - before < 2000

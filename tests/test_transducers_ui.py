@@ -223,25 +223,16 @@ def test_controls_and_readout_share_a_row_above_the_figure():
     assert fig_w <= 1000 and fig_h <= 400
 
 
-@pytest.mark.viewer
-def test_after_close_viewer_the_readout_says_how_to_get_the_3d_view_back():
-    # "Run All" ends notebook 02 with close_viewer(): the sliders go on updating plots and
-    # readout without starting a server, and the readout tells the student what to do.
-    from afmsmiler.scenes import close_viewer, viewer
-    try:
-        panel = TransducerPanel(scene=True)
-        assert panel.scene is not None and "3D view closed" not in panel.readout.value
-        close_viewer()
-        panel.controls["input"].value = 100.0  # as a user would move it
-        assert panel.error is None and panel.scene is None and not viewer.viewer_running()
-        assert panel.last.value == pytest.approx(100e-9)
-        assert "3D view closed" in panel.readout.value and "jupyter_cell()" in panel.readout.value
-        vis = viewer.get_viewer()  # the student re-runs the view cell, then moves a slider
-        panel.set(input=-50.0)
-        assert panel.scene is not None and panel.scene.root is vis
-        assert "3D view closed" not in panel.readout.value
-    finally:
-        close_viewer()
+def test_the_panel_shows_its_own_3d_view_and_keeps_it():
+    # the 3D view is the panel's widget: "Run All" cannot close it, a slider move updates it
+    panel = TransducerPanel(scene=True)
+    view = panel.scene_view()
+    assert view is not None and view is panel.scene.view
+    sent = view.commands_sent
+    panel.controls["input"].value = 100.0  # as a user would move it
+    assert panel.error is None and panel.scene_view() is view and view.commands_sent > sent
+    assert panel.last.value == pytest.approx(100e-9)
+    assert TransducerPanel(scene=True).scene_view() is not view  # each panel its own scene
 
 
 # --- one user action = one model run ------------------------------------------------------------

@@ -123,24 +123,22 @@ def test_a_slider_move_sends_one_frame_and_never_rasterises(monkeypatch):
     assert x[0] == pytest.approx(1.5) and y[0] == pytest.approx(2.25)
 
 
-@pytest.mark.viewer  # starts a real meshcat server (about 4 s)
-def test_scene_open_drops_a_scene_whose_viewer_was_closed():
+def test_show_puts_the_3d_view_below_the_panel(monkeypatch):
     from types import SimpleNamespace
 
-    from afmsmiler.scenes import close_viewer, viewer
+    from afmsmiler.scenes import SceneView
+    shown = []
+    monkeypatch.setattr("afmsmiler.ui.panel.display", lambda *a, **k: shown.append(a[0]))
+    monkeypatch.setattr("afmsmiler.ui.panel.show_static", lambda fig: None)
     p = Square()
-    try:
-        p.scene = None
-        assert p.scene_open()  # before the first draw: drawing will start the viewer
-        p.scene = SimpleNamespace(root=viewer.get_viewer())
-        assert p.scene_open() and p.scene is not None
-        close_viewer()  # the notebook's last cell, e.g. after "Run All"
-        assert not p.scene_open() and p.scene is None
-        assert not p.scene_open() and not viewer.viewer_running()  # and it starts no server
-        viewer.get_viewer()  # the student opens a viewer again: build the scene there
-        assert p.scene_open() and p.scene is None
-    finally:
-        close_viewer()
+    assert p.scene_view() is None
+    p.show()
+    assert not any(isinstance(c, SceneView) for c in shown[0].children)
+    view = SceneView()
+    p.scene = SimpleNamespace(view=view)
+    assert p.scene_view() is view
+    p.show()
+    assert shown[-1].children[-1] is view
 
 
 def test_a_column_of_controls_shares_one_label_width():

@@ -1,7 +1,10 @@
-"""3D scenes on meshcat: one server per kernel (:mod:`.viewer`), scene builders per module.
+"""3D scenes: scene builders per module, each drawn in its own view over the kernel's connection.
 
-Scene builders take model results and draw them; they never compute physics themselves.
+Scene builders take model results and draw them with meshcat's API; they never compute physics
+themselves. Each draws into a :class:`~afmsmiler.scenes.view.SceneView` (a widget carrying
+meshcat's commands as comm messages, so it works wherever the kernel's widgets do) unless a
+``vis=`` is given.
 """
-from .viewer import close_viewer, get_viewer, save_static_html, static_html, viewer_running
+from .view import SceneView, save_static_html, static_html, view_of
 
-__all__ = ["get_viewer", "close_viewer", "viewer_running", "static_html", "save_static_html"]
+__all__ = ["SceneView", "static_html", "save_static_html", "view_of"]

@@ -9,7 +9,7 @@ that the camera, which looks at the origin, sees the lever centred.
 
 Everything is drawn once by :class:`CantileverScene` and then updated in place
 (:meth:`CantileverScene.update` replaces the beam mesh and moves the tip and arrow with
-``set_transform``), always in the kernel's single viewer (:func:`~afmsmiler.scenes.get_viewer`).
+``set_transform``), in its own 3D view (:class:`~afmsmiler.scenes.SceneView`).
 The scene draws the model's result, a :class:`~afmsmiler.cantilever.Bending` (deflection, slope
 and stress on a grid), and computes no physics itself: a panel runs the model once per slider move
 and hands the same result to its figures and to this scene.
@@ -32,7 +32,7 @@ from .legends import ColorLegend, TextPlate
 from .meshes import beam_mesh
 from .shapes import Arrow, cone
 from .transforms import translation
-from .viewer import get_viewer, static_html as _static_html
+from .viewer import SceneDisplay, scene_root, static_html as _static_html
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "LIMITS", "CantileverScene", "mode_animation"]
 
@@ -71,7 +71,7 @@ _BEAM_MATERIAL_ARGS = dict(vertexColors=True)
 _MODE_COLORS = (0x1f77b4, 0xff7f0e, 0x2ca02c)
 
 
-class CantileverScene:
+class CantileverScene(SceneDisplay):
     """A cantilever in meshcat: stress-colored deformed beam, tip, force arrow and legend.
 
     Parameters
@@ -82,7 +82,7 @@ class CantileverScene:
     exaggeration : float
         Factor applied to the drawn deflection (1 to 10^6; default x100).
     vis : meshcat.Visualizer, optional
-        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+        The root visualizer; by default a new 3D view's (:class:`~afmsmiler.scenes.SceneView`).
     path : str
         Path of this scene in the viewer.
     force_per_unit : float
@@ -117,7 +117,7 @@ class CantileverScene:
                  stress_limit: float | None = None, camera: bool = True):
         check_instance("bending", bending, Bending)
         check_instance("path", path, str)
-        self.root = vis if vis is not None else get_viewer()
+        self.root = scene_root(vis)
         self.path = path
         self.vis = self.root[path]
         exaggeration = EXAGGERATION.check(exaggeration)

@@ -32,7 +32,7 @@ from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend
 from .meshes import height_map_mesh
 from .transforms import translation
-from .viewer import get_viewer
+from .viewer import SceneDisplay, scene_root
 
 __all__ = ["DEFAULTS", "ContactScene", "surface_mesh", "tip_mesh", "cut_mesh"]
 
@@ -195,7 +195,7 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     return vertices.astype(np.float32), np.vstack(faces).astype(np.uint32)
 
 
-class ContactScene:
+class ContactScene(SceneDisplay):
     """A tip pressing into a deforming sample, in meshcat, to scale.
 
     Parameters
@@ -205,7 +205,7 @@ class ContactScene:
     current : IndentationCurve
         The state to draw first (its first point).
     vis : meshcat.Visualizer, optional
-        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+        The root visualizer; by default a new 3D view's (:class:`~afmsmiler.scenes.SceneView`).
     path : str
         Path of this scene in the viewer.
     unit : float
@@ -229,7 +229,7 @@ class ContactScene:
         check_instance("tip", tip, Tip)
         self.unit = check_positive("unit", unit, "m")
         self.extent = check_positive("extent", extent, "m")
-        self.root = vis if vis is not None else get_viewer()
+        self.root = scene_root(vis)
         self.vis = self.root[path]
         self.vis.delete()
         self._tip = None

@@ -34,7 +34,7 @@ from .contact import tip_mesh
 from .legends import ColorLegend, TextPlate
 from .meshes import MAX_VERTICES, height_map_mesh
 from .transforms import translation
-from .viewer import get_viewer
+from .viewer import SceneDisplay, scene_root
 
 __all__ = ["DEFAULTS", "ImagingScene", "decimation", "auto_exaggeration", "height_unit"]
 
@@ -121,7 +121,7 @@ def _scale_of(values: np.ndarray, cmap: str, unit: str = "nm") -> ColorScale:
     return ColorScale(low, low + span, cmap=cmap, label="height", unit=unit)
 
 
-class ImagingScene:
+class ImagingScene(SceneDisplay):
     """The sample and the image as height fields in meshcat, and the tip over the sample.
 
     Parameters
@@ -131,7 +131,7 @@ class ImagingScene:
     tip : Tip, optional
         Module (d)'s tip, drawn at :meth:`move_tip`'s positions (none if None).
     vis : meshcat.Visualizer, optional
-        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+        The root visualizer; by default a new 3D view's (:class:`~afmsmiler.scenes.SceneView`).
     path : str
         Path of this scene in the viewer.
     exaggeration : float, optional
@@ -173,7 +173,7 @@ class ImagingScene:
         self.exaggeration = (auto_exaggeration(self.width, relief) if exaggeration is None
                              else check_positive("exaggeration", exaggeration))
         self.sample = sample
-        self.root = vis if vis is not None else get_viewer()
+        self.root = scene_root(vis)
         self.vis = self.root[path]
         self.vis.delete()
         gap = DEFAULTS["gap"] * self.width

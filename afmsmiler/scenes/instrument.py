@@ -129,7 +129,7 @@ from .camera import set_camera, show_helpers
 from .shapes import Segment, Tube, _show, sphere
 from .transducers import quadrant_photodiode
 from .transforms import reflect, rotation_between, translation
-from .viewer import get_viewer, save_static_html as _save_static_html, static_html as _static_html
+from .viewer import SceneDisplay, save_static_html as _save_static_html, scene_root, static_html as _static_html
 
 __all__ = ["SCENE_UNIT", "PARAMETERS", "LIMITS", "DEFAULTS", "Shape", "Part", "Instrument",
            "INSTRUMENTS", "InstrumentScene", "hollow_cylinder_mesh", "prism_mesh"]
@@ -756,7 +756,7 @@ def _draw_shape(canvas: _Canvas, shape: Shape) -> None:
             np.asarray(shape.points, float) * _MM / SCENE_UNIT)
 
 
-class InstrumentScene:
+class InstrumentScene(SceneDisplay):
     """One of the two instruments in meshcat: named parts, housing, exploded view, knobs, beam.
 
     See the module docstring for the instruments and their assumed dimensions.
@@ -766,7 +766,7 @@ class InstrumentScene:
     kind : {"obd", "educational"}
         Which instrument (:data:`INSTRUMENTS`).
     vis : meshcat.Visualizer, optional
-        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+        The root visualizer; by default a new 3D view's (:class:`~afmsmiler.scenes.SceneView`).
     path : str, optional
         Path of this scene in the viewer; default ``"afmsmiler/instrument/<kind>"``.
     camera : bool
@@ -818,7 +818,7 @@ class InstrumentScene:
         opacity = PARAMETERS["housing_opacity"].check(housing_opacity)
         self.instrument = INSTRUMENTS[kind]
         self._parts = {p.name: p for p in self.instrument.parts}
-        self.root = vis if vis is not None else get_viewer()
+        self.root = scene_root(vis)
         self.path = path if path is not None else f"afmsmiler/instrument/{kind}"
         self.vis = self.root[self.path]
         self.vis.delete()

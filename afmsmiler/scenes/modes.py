@@ -44,7 +44,7 @@ from .legends import text_png
 from .shapes import cone, polyline
 from .transducers import quadrant_photodiode
 from .transforms import translation
-from .viewer import get_viewer
+from .viewer import SceneDisplay, scene_root
 
 __all__ = ["DEFAULTS", "LIMITS", "KINDS", "ModesScene", "round_factor", "factor_text"]
 
@@ -132,7 +132,7 @@ def _rotation_x(angle: float) -> np.ndarray:
     return r
 
 
-class ModesScene:
+class ModesScene(SceneDisplay):
     """The schematic instrument of module (g) and the animations of its modes.
 
     Parameters
@@ -141,7 +141,7 @@ class ModesScene:
         The mode drawn first, one of :data:`KINDS` (``"lateral"`` adds a second material and
         turns the scan across the lever).
     vis : meshcat.Visualizer, optional
-        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+        The root visualizer; by default a new 3D view's (:class:`~afmsmiler.scenes.SceneView`).
     path : str
         Path of the scene in the viewer (shared by the modes: the last one drawn owns it).
     camera : bool
@@ -163,7 +163,7 @@ class ModesScene:
     def __init__(self, kind: str = "tapping", *, vis: meshcat.Visualizer | None = None,
                  path: str = "afmsmiler/modes", camera: bool = True):
         self.kind = check_choice("kind", kind, KINDS)
-        self.root = vis if vis is not None else get_viewer()
+        self.root = scene_root(vis)
         self.path = path
         self.vis = self.root[path]
         self.caption = ""

@@ -36,7 +36,7 @@ class Arrow:
     Parameters
     ----------
     vis : meshcat.Visualizer
-        Where to draw (the arrow's own path, e.g. ``get_viewer()["mod/force"]``).
+        Where to draw (the arrow's own path, e.g. ``SceneView().vis["mod/force"]``).
     color : int
         0xRRGGBB.
     radius : float

@@ -24,8 +24,8 @@ piezoelectric               the film and its electrode on the lever
 
 Every principle also has a signal meter beside the chip: a green bar whose height is the output
 as a fraction of its largest value over the input range (full scale: the translucent frame).
-:class:`TransducerScene` draws into the kernel's single viewer
-(:func:`~afmsmiler.scenes.get_viewer`) and updates in place: a new input moves the parts with
+:class:`TransducerScene` draws into its own 3D view
+(:class:`~afmsmiler.scenes.SceneView`) and updates in place: a new input moves the parts with
 ``set_transform`` and re-sends only the bent geometry; a new principle replaces the
 principle's group of objects under its own path. It draws a model run
 (:meth:`~afmsmiler.transducers.base.Transducer.operate`, an
@@ -55,7 +55,7 @@ from .legends import TextPlate
 from .meshes import beam_mesh
 from .shapes import Arrow, cone, Segment, sphere, Tube
 from .transforms import reflect, rotation_between, translation
-from .viewer import get_viewer
+from .viewer import SceneDisplay, scene_root
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "TransducerScene", "LeverPose", "lever_pose", "OpticalLever",
            "quadrant_photodiode"]
@@ -301,7 +301,7 @@ class OpticalLever:
         return hit
 
 
-class TransducerScene:
+class TransducerScene(SceneDisplay):
     """A transducer's scale model in meshcat, updated in place (see the module docstring).
 
     Parameters
@@ -309,7 +309,7 @@ class TransducerScene:
     operation : Operation
         The first model run to draw (:meth:`~afmsmiler.transducers.base.Transducer.operate`).
     vis : meshcat.Visualizer, optional
-        The root visualizer; by default the kernel's :func:`~afmsmiler.scenes.get_viewer`.
+        The root visualizer; by default a new 3D view's (:class:`~afmsmiler.scenes.SceneView`).
     path : str
         Path of this scene in the viewer.
     camera : bool
@@ -328,7 +328,7 @@ class TransducerScene:
     def __init__(self, operation: Operation, *, vis: meshcat.Visualizer | None = None,
                  path: str = "afmsmiler/transducers", camera: bool = True):
         check_instance("operation", operation, Operation)
-        self.root = vis if vis is not None else get_viewer()
+        self.root = scene_root(vis)
         self.path = path
         self.vis = self.root[path]
         self.vis.delete()

@@ -98,8 +98,8 @@ class CantileverPanel(Panel):
     Parameters
     ----------
     scene : bool
-        Draw the 3D view in the kernel's meshcat viewer (show it with
-        ``get_viewer().jupyter_cell()``; close it with ``close_viewer()``).
+        Draw the 3D view in its own widget, shown below the panel by
+        :meth:`show` (over the kernel's connection; nothing to close).
     **initial
         Initial control values (keys of :data:`DEFAULTS`), in the units shown.
 
@@ -224,7 +224,7 @@ class CantileverPanel(Panel):
         if self.modes_figure is not None:
             self.modes_figure.update(curves)
         self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
-        if self._want_scene and self.scene_open():  # not after close_viewer()
+        if self._want_scene:
             if self.scene is None:
                 from ..scenes.cantilever import CantileverScene
                 self.scene = CantileverScene(bending, exaggeration=si["exaggeration"],
@@ -291,10 +291,6 @@ class CantileverPanel(Panel):
             shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
             legend = (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
                       "1 unit = 100 um</div>" + legend_html(self.scene.scale))
-        elif self._want_scene and self._viewer_closed:
-            legend = ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
-                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it "
-                      "again</div>")
         return f"<table>{table}</table>{legend}"
 
     def widget(self) -> widgets.Widget:

@@ -122,8 +122,8 @@ class ContactPanel(Panel):
     Parameters
     ----------
     scene : bool
-        Draw the 3D view in the kernel's meshcat viewer (show it with
-        ``get_viewer().jupyter_cell()``; close it with ``close_viewer()``).
+        Draw the 3D view in its own widget, shown below the panel by
+        :meth:`show` (over the kernel's connection; nothing to close).
     **initial
         Initial control values (keys of :data:`DEFAULTS` or :data:`TIP_CONTROLS`), as shown.
 
@@ -301,7 +301,7 @@ class ContactPanel(Panel):
         else:
             self.figure.update(curves)
         self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
-        if self._want_scene and self.scene_open():  # not after close_viewer()
+        if self._want_scene:
             if self.scene is None:
                 from ..scenes.contact import ContactScene
                 self.scene = ContactScene(shape, current)

@@ -592,7 +592,7 @@ class ImagingPanel(Panel):
     def _draw_scene(self) -> None:
         """The 3D view: the sample (rebuilt for another sample or tip), the finished lines of
         the main channel in m, the tip where the last line ended (no physics here)."""
-        if not self._want_scene or (self._vis is None and not self.scene_open()):
+        if not self._want_scene:
             return
         config = self._config
         key = (id(config.sample), config.tip)

@@ -107,8 +107,8 @@ class _SliderPanel(Panel):
         return _si(self.SLIDERS, values)
 
     def _scene(self, kind: str):
-        """The 3D view to draw in, or None (no scene asked for, or the viewer was closed)."""
-        if not self._want_scene or (self._vis is None and not self.scene_open()):
+        """The 3D view to draw in, or None (no scene asked for)."""
+        if not self._want_scene:
             return None
         if self.scene is None:
             from ..scenes.modes import ModesScene

@@ -94,8 +94,8 @@ class OverviewPanel(Panel):
     instrument : str
         The instrument shown first.
     scene : bool
-        Draw the 3D instrument in the kernel's meshcat viewer (show it with
-        ``get_viewer().jupyter_cell()``; close it with ``close_viewer()``).
+        Draw the 3D instrument in its own widget, shown below the panel by
+        :meth:`show` (over the kernel's connection; nothing to close).
     vis : meshcat.Visualizer, optional
         Draw the 3D instrument into this visualizer instead (a recorder in tests); implies a
         scene.
@@ -256,7 +256,7 @@ class OverviewPanel(Panel):
                                   instrument=instrument, part=part, description=description)
         self.figure.update(self.head, signals, mounted)
         self.redraw()
-        if self._want_scene and (self._vis is not None or self.scene_open()):
+        if self._want_scene:
             self._update_scene(instrument, part, opacity, fraction, knobs, gap, signals,
                                mounted)
         self.display_html.value = self._display_html()

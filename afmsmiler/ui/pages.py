@@ -103,8 +103,8 @@ def write_panel_pages(directory) -> list[Path]:
 def instrument_page(kind: str) -> str:
     """The 3D instrument ``kind`` as one self-contained page (meshcat's static HTML).
 
-    The scene is drawn in the kernel's viewer (:func:`~afmsmiler.scenes.get_viewer`, started if
-    needed), exported with its camera and the housing at its default opacity, and deleted again.
+    The scene is drawn in a view of its own (:class:`~afmsmiler.scenes.SceneView`, no browser
+    needed), exported with its camera and the housing at its default opacity.
 
     Parameters
     ----------
@@ -122,17 +122,11 @@ def instrument_page(kind: str) -> str:
     """
     from ..scenes.instrument import INSTRUMENTS, InstrumentScene
     check_choice("kind", kind, INSTRUMENTS)
-    scene = InstrumentScene(kind)
-    try:
-        return scene.static_html()
-    finally:
-        scene.vis.delete()
+    return InstrumentScene(kind).static_html()
 
 
 def write_instrument_pages(directory) -> list[Path]:
     """Write ``instrument_<kind>.html`` for both instruments into ``directory``.
-
-    A meshcat server this call had to start is closed before it returns.
 
     Parameters
     ----------
@@ -144,20 +138,13 @@ def write_instrument_pages(directory) -> list[Path]:
     list of pathlib.Path
         The pages written.
     """
-    from ..scenes import close_viewer
-    from ..scenes.viewer import viewer_running
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
-    started = not viewer_running()
     written = []
-    try:
-        for name, kind in INSTRUMENT_PAGES.items():
-            path = out / f"{name}.html"
-            path.write_text(instrument_page(kind), encoding="utf-8")
-            written.append(path)
-    finally:
-        if started:
-            close_viewer()
+    for name, kind in INSTRUMENT_PAGES.items():
+        path = out / f"{name}.html"
+        path.write_text(instrument_page(kind), encoding="utf-8")
+        written.append(path)
     return written
 
 

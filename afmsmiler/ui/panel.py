@@ -285,33 +285,18 @@ class Panel:
         raise NotImplementedError
 
     # -- the 3D view ----------------------------------------------------------------------
-    _viewer_closed = False  # the viewer that self.scene drew into was closed
+    #: The panel's scene builder (an object of :mod:`afmsmiler.scenes`), or None without one.
+    scene = None
 
-    def scene_open(self) -> bool:
-        """Whether :meth:`update` may draw its 3D view (``self.scene``) now.
+    def scene_view(self):
+        """The widget of the panel's 3D view, or None when the panel draws no scene.
 
-        True before the scene exists (drawing it starts the kernel's viewer) and while the
-        viewer it draws into runs. A notebook's last cell calls ``close_viewer()``, so after
-        "Run All" every slider move would send to a closed socket (ZMQError) and the panel
-        would stop updating; instead this drops the stale scene and returns False, and the
-        panel goes on updating its plots and readouts without starting a server. Once the
-        student opens a viewer again (``get_viewer()``), it returns True with ``self.scene``
-        None, so the scene is built anew there. Use it as
-        ``if self._want_scene and self.scene_open():`` before creating or updating the scene.
-
-        Returns
-        -------
-        bool
-            Draw the scene (create it when ``self.scene`` is None) or skip it.
+        A scene draws into its own :class:`~afmsmiler.scenes.SceneView`, which carries meshcat's
+        commands over the kernel's own connection: it lives as long as the panel and its kernel,
+        and nothing needs closing.
         """
-        from ..scenes import viewer
-        scene = getattr(self, "scene", None)
-        if scene is None:
-            return not self._viewer_closed or viewer.viewer_running()
-        if viewer.viewer_running() and getattr(scene, "root", None) is viewer.get_viewer():
-            return True
-        self.scene, self._viewer_closed = None, True
-        return viewer.viewer_running()
+        scene = self.scene
+        return None if scene is None else getattr(scene, "view", None)
 
     # -- display --------------------------------------------------------------------------
     @staticmethod
@@ -352,9 +337,14 @@ class Panel:
 
         The panel is laid out with :func:`arrange` (controls keep their width; the figure moves
         below them when the notebook is too narrow for both), with a line under it where a
-        failed update is reported; then :func:`show_static` adds the figure's static copy.
+        failed update is reported and, below, the panel's 3D view (:meth:`scene_view`); then
+        :func:`show_static` adds the figure's static copy.
         """
-        box = self._shown = widgets.VBox([arrange(self.widget()), self._error_box])
+        children = [arrange(self.widget()), self._error_box]
+        view = self.scene_view()
+        if view is not None:
+            children.append(view)
+        box = self._shown = widgets.VBox(children)
         display(box)
         if self.fig is not None and self.fig.axes:
             show_static(self.fig)

@@ -125,8 +125,8 @@ class TransducerPanel(Panel):
     principle : str
         The principle shown first.
     scene : bool
-        Draw the 3D view in the kernel's meshcat viewer (show it with
-        ``get_viewer().jupyter_cell()``; close it with ``close_viewer()``).
+        Draw the 3D view in its own widget, shown below the panel by
+        :meth:`show` (over the kernel's connection; nothing to close).
 
     Attributes
     ----------
@@ -137,8 +137,7 @@ class TransducerPanel(Panel):
     scene : TransducerScene or None
         The 3D view.
     readout : ipywidgets.HTML
-        Table I's row of the principle, k, f1, the sensitivity and the resolution (and, after
-        ``close_viewer()``, how to get the 3D view back).
+        Table I's row of the principle, k, f1, the sensitivity and the resolution.
     """
 
     def __init__(self, principle: str = DEFAULTS["principle"], scene: bool = True):
@@ -325,7 +324,7 @@ class TransducerPanel(Panel):
         else:
             self.figure.update(curves)
         self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
-        if self._want_scene and self.scene_open():  # not after close_viewer()
+        if self._want_scene:
             if self.scene is None:
                 from ..scenes.transducers import TransducerScene
                 self.scene = TransducerScene(op)
@@ -354,10 +353,6 @@ class TransducerPanel(Panel):
                         for k, v in rows)
         notes = "".join(f"<div style='color:#b00'>{n}</div>"
                         for n in s.operation.validity)
-        if self._want_scene and self.scene is None and self._viewer_closed:
-            notes += ("<div style='margin-top:6px'>3D view closed (<code>close_viewer()</code>); "
-                      "run <code>get_viewer().jupyter_cell()</code> and move a slider to see it "
-                      "again</div>")
         return f"<div><i>{m.summary}</i></div><table>{table}</table>{notes}"
 
     def widget(self) -> widgets.Widget:

@@ -1,0 +1,82 @@
+// The browser side of afmsmiler's 3D views (afmsmiler/scenes/view.py), shared by the widget and
+// the static page: meshcat's own three.js viewer (MeshCat.Viewer, from the meshcat package's
+// main.min.js) drawn in an element of the page, sized by that element, with screen-space text
+// over it (a legend in a corner, labels pinned to points of the scene).
+//
+// The scene arrives as meshcat's own msgpack commands; this file holds no physics and builds no
+// geometry: every object comes from the kernel's scene builders.
+
+function afmBytes(b) {
+  if (b instanceof Uint8Array) return b;
+  if (b instanceof ArrayBuffer) return new Uint8Array(b);
+  return new Uint8Array(b.buffer, b.byteOffset, b.byteLength); // a DataView
+}
+
+// A meshcat viewer in `host` (an element with a size), with its overlays; returns its handle.
+function afmCreateViewer(MeshCat, host) {
+  host.classList.add("afm-scene");
+  const pane = document.createElement("div");
+  pane.className = "afm-scene-pane";
+  host.appendChild(pane);
+  const viewer = new MeshCat.Viewer(pane);
+  // meshcat sizes its canvas by the window (its own page is the whole window); here the host
+  // element decides, whatever asks (meshcat's window listener, our observer)
+  const setSize = viewer.set_3d_pane_size.bind(viewer);
+  viewer.set_3d_pane_size = (w, h) => setSize(w === undefined ? Math.max(1, host.clientWidth) : w,
+                                               h === undefined ? Math.max(1, host.clientHeight) : h);
+  const legend = document.createElement("div");
+  legend.className = "afm-scene-legend";
+  host.appendChild(legend);
+  const labels = document.createElement("div");
+  labels.className = "afm-scene-labels";
+  host.appendChild(labels);
+  let pins = [];
+  const v = new MeshCat.THREE.Vector3();
+  const placeLabels = () => {
+    const cam = viewer.camera, w = host.clientWidth, h = host.clientHeight;
+    if (!cam) return;
+    viewer.scene.updateMatrixWorld();
+    for (const pin of pins) {
+      // a point of the scene (z up) through meshcat's scene root (three.js is y up) to the screen
+      v.set(pin.at[0], pin.at[1], pin.at[2]).applyMatrix4(viewer.scene.matrixWorld).project(cam);
+      const visible = v.z < 1 && Math.abs(v.x) <= 1.2 && Math.abs(v.y) <= 1.2;
+      pin.el.style.display = visible ? "" : "none";
+      pin.el.style.left = `${((v.x + 1) / 2) * w}px`;
+      pin.el.style.top = `${((1 - v.y) / 2) * h}px`;
+    }
+  };
+  const render = viewer.render.bind(viewer);
+  viewer.render = () => { render(); placeLabels(); };
+  const observer = typeof ResizeObserver === "function"
+    ? new ResizeObserver(() => viewer.set_3d_pane_size()) : null;
+  if (observer) observer.observe(host);
+  viewer.set_3d_pane_size();
+  let running = true;
+  return {
+    viewer,
+    apply(bytes) { if (running) viewer.handle_command_bytearray(afmBytes(bytes)); },
+    setLegend(html) {
+      legend.innerHTML = html || "";
+      legend.style.display = html ? "" : "none";
+    },
+    setLabels(list) {
+      labels.textContent = "";
+      pins = (list || []).map((item) => {
+        const el = document.createElement("div");
+        el.className = "afm-scene-label";
+        el.textContent = item.text;
+        labels.appendChild(el);
+        return { el, at: item.at };
+      });
+      viewer.set_dirty();
+    },
+    dispose() {
+      running = false;
+      if (observer) observer.disconnect();
+      viewer.animate = () => {}; // ends meshcat's requestAnimationFrame loop at its next frame
+      try { if (viewer.gui) viewer.gui.destroy(); } catch (e) { /* already gone */ }
+      try { viewer.renderer.dispose(); viewer.renderer.forceContextLoss(); } catch (e) { /* */ }
+      host.textContent = "";
+    },
+  };
+}
