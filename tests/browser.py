@@ -102,13 +102,19 @@ def _tool(name: str) -> str:
     return str(path) if path.exists() else (shutil.which(name) or name)
 
 
-def kernel_env(checkout: Path = ROOT) -> dict:
-    """The environment of a student's kernel: the checkout importable, no test flags."""
+def kernel_env(checkout: Path = ROOT, *, short: bool = False) -> dict:
+    """The environment of a student's kernel: the checkout importable, no test flags.
+
+    With ``short``, ``AFMSMILER_TESTING=1`` shortens the notebooks' animations and simulations
+    (for tests that run every cell several times and check what the cells show, not how long).
+    """
     env = dict(os.environ)
     env["PYTHONPATH"] = str(checkout) + (os.pathsep + env["PYTHONPATH"]
                                          if env.get("PYTHONPATH") else "")
     for name in ("MPLBACKEND", "AFMSMILER_TESTING", "CI", "NBVAL", "PYTEST_CURRENT_TEST"):
         env.pop(name, None)
+    if short:
+        env["AFMSMILER_TESTING"] = "1"
     return env
 
 
@@ -162,10 +168,12 @@ class Server:
         ``/voila/render/<name>``).
     startup_timeout : float
         Seconds to wait for the server to answer.
+    short : bool
+        Kernels with shortened animations (:func:`kernel_env`).
     """
 
     def __init__(self, kind: str, root: Path, *, notebook: str | None = None,
-                 startup_timeout: float = 90.0):
+                 startup_timeout: float = 90.0, short: bool = False):
         if kind not in ("lab", "voila"):
             raise ValueError(f"kind must be 'lab' or 'voila', got {kind!r}")
         self.kind, self.root, self.notebook = kind, Path(root), notebook
@@ -173,6 +181,7 @@ class Server:
         self.proc = None
         self.log = self.root / f"{kind}-{self.port}.log"
         self.startup_timeout = startup_timeout
+        self.short = short
 
     @property
     def base(self) -> str:
@@ -215,7 +224,7 @@ class Server:
                    f"--port={self.port}", "--show_tracebacks=True", f"--token={TOKEN}",
                    str(target)]
         with open(self.log, "wb") as log:
-            self.proc = subprocess.Popen(cmd, env=kernel_env(), cwd=nbdir, stdout=log,
+            self.proc = subprocess.Popen(cmd, env=kernel_env(short=self.short), cwd=nbdir, stdout=log,
                                          stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
                                          start_new_session=True)
         deadline = time.monotonic() + self.startup_timeout
@@ -522,6 +531,63 @@ def run_all(page, *, timeout: float = 300.0) -> float:
                                .some(p => p.textContent.includes('*')); }""",
         timeout=left * 1000, polling=250)
     return time.monotonic() - t0
+
+
+def wait_idle(page, *, timeout: float = 300.0) -> None:
+    """Wait until the open notebook's kernel is idle and no cell is queued (bounded)."""
+    page.wait_for_function(
+        """() => { const w = window.jupyterapp.shell.currentWidget;
+                   const k = w.sessionContext.session.kernel;
+                   if (!k || k.status !== 'idle') return false;
+                   return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
+                               .some(p => p.textContent.includes('*')); }""",
+        timeout=timeout * 1000, polling=250)
+
+
+def code_cells(page) -> list[int]:
+    """Indices of the open notebook's code cells."""
+    return page.evaluate(
+        """() => { const cells = window.jupyterapp.shell.currentWidget.content.model.cells, out = [];
+                   for (let i = 0; i < cells.length; i++)
+                     if (cells.get(i).type === 'code') out.push(i);
+                   return out; }""")
+
+
+def run_cell(page, index: int, *, timeout: float = 300.0) -> None:
+    """Run cell ``index`` of the open notebook as a student would (select it, Ctrl-Enter)."""
+    page.evaluate(
+        """(i) => { const nb = window.jupyterapp.shell.currentWidget.content;
+                    nb.activeCellIndex = i; nb.deselectAll();
+                    return window.jupyterapp.commands.execute('notebook:run-cell'); }""", index)
+    wait_idle(page, timeout=timeout)
+
+
+#: The element of a 3D view (afmsmiler.scenes.view.SceneView): it holds meshcat's WebGL canvas
+#: and carries ``data-commands`` (the scene's commands) and ``data-applied`` (commands drawn).
+SCENE_VIEW = ".afm-scene"
+
+
+def scene_views(page) -> list[dict]:
+    """Every 3D view shown on the page: its commands, commands applied, canvases and size."""
+    return page.evaluate(
+        """(sel) => Array.from(document.querySelectorAll(sel))
+                     .filter(e => e.dataset.commands !== undefined)
+                     .map(e => ({commands: Number(e.dataset.commands),
+                                 applied: Number(e.dataset.applied || 0),
+                                 canvases: e.querySelectorAll('canvas').length,
+                                 width: e.clientWidth, height: e.clientHeight}))""", SCENE_VIEW)
+
+
+def scene_pixels(page, index: int):
+    """The pixels of the ``index``-th 3D view on the page, as an RGB PIL image (a screenshot:
+    WebGL keeps no drawing buffer to read back)."""
+    import io
+
+    from PIL import Image
+    loc = page.locator(SCENE_VIEW).nth(index)
+    loc.scroll_into_view_if_needed()
+    page.wait_for_timeout(300)  # meshcat paints on its next animation frame
+    return Image.open(io.BytesIO(loc.screenshot())).convert("RGB")
 
 
 def lab_errors(page) -> list[str]:

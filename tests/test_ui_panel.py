@@ -135,7 +135,7 @@ def test_show_puts_the_3d_view_below_the_panel(monkeypatch):
     p.show()
     assert not any(isinstance(c, SceneView) for c in shown[0].children)
     view = SceneView()
-    p.scene = SimpleNamespace(view=view)
+    p.scene = SimpleNamespace(root=view.vis)
     assert p.scene_view() is view
     p.show()
     assert shown[-1].children[-1] is view

@@ -227,7 +227,8 @@ class CantileverPanel(Panel):
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.cantilever import CantileverScene
-                self.scene = CantileverScene(bending, exaggeration=si["exaggeration"],
+                self.scene = CantileverScene(bending, vis=self.scene_root(),
+                                             exaggeration=si["exaggeration"],
                                              force_per_unit=FORCE.slider_high / 1.5)
             else:
                 self.scene.update(bending, exaggeration=si["exaggeration"])

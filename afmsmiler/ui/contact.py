@@ -304,7 +304,7 @@ class ContactPanel(Panel):
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.contact import ContactScene
-                self.scene = ContactScene(shape, current)
+                self.scene = ContactScene(shape, current, vis=self.scene_root())
             else:
                 self.scene.update(shape, current)
         self.last = ContactState(system, cycle, current, curves)

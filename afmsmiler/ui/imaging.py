@@ -598,7 +598,7 @@ class ImagingPanel(Panel):
         key = (id(config.sample), config.tip)
         if self.scene is None or key != self._scene_key:
             from ..scenes.imaging import ImagingScene
-            self.scene = ImagingScene(config.sample, tip=config.tip, vis=self._vis)
+            self.scene = ImagingScene(config.sample, tip=config.tip, vis=self.scene_root())
             self._scene_key = key
         channel = self.last.channels.get("height trace")  # constant force's image
         drawn = self.scene.image_lines or 0

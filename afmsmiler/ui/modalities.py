@@ -112,7 +112,7 @@ class _SliderPanel(Panel):
             return None
         if self.scene is None:
             from ..scenes.modes import ModesScene
-            self.scene = ModesScene(kind, vis=self._vis)
+            self.scene = ModesScene(kind, vis=self.scene_root())
         return self.scene
 
     def widget(self) -> widgets.Widget:

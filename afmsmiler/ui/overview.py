@@ -269,7 +269,7 @@ class OverviewPanel(Panel):
         if self.scene is None or self.scene.instrument.key != instrument:
             if self.scene is not None:
                 self.scene.vis.delete()
-            self.scene = InstrumentScene(instrument, vis=self._vis, housing_opacity=opacity)
+            self.scene = InstrumentScene(instrument, vis=self.scene_root(), housing_opacity=opacity)
             self._scene_applied = {}
         scene, done = self.scene, self._scene_applied
 

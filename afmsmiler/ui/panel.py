@@ -10,6 +10,7 @@ Tests construct a panel, call :meth:`Panel.set` and check the figure data agains
 """
 from __future__ import annotations
 
+import contextlib
 import html
 import math
 import os
@@ -170,7 +171,9 @@ class Panel:
         the decimal the student reads, and the model runs with the decimal.
         """
         values = {k: _decimal(v) for k, v in values.items()}
-        self.update(**values)
+        view = self._view  # its commands leave as one message: one repaint of the 3D view
+        with (view.hold() if view is not None else contextlib.nullcontext()):
+            self.update(**values)
         self._applied = dict(values)
 
     def set(self, **values) -> None:
@@ -287,16 +290,34 @@ class Panel:
     # -- the 3D view ----------------------------------------------------------------------
     #: The panel's scene builder (an object of :mod:`afmsmiler.scenes`), or None without one.
     scene = None
+    #: A visualizer given to the panel to draw in instead of its own view (tests: a recorder).
+    _vis = None
+    _view = None
+
+    def scene_root(self):
+        """Where the panel's scenes draw: the ``vis`` it was given, or its own 3D view's root.
+
+        The panel makes one :class:`~afmsmiler.scenes.SceneView` on first use and every scene it
+        builds later (another instrument, sample or principle) draws into that same view, so the
+        view the notebook shows is always the one the panel updates.
+        """
+        if self._vis is not None:
+            return self._vis
+        if self._view is None:
+            from ..scenes.view import SceneView
+            self._view = SceneView()
+        return self._view.vis
 
     def scene_view(self):
         """The widget of the panel's 3D view, or None when the panel draws no scene.
 
-        A scene draws into its own :class:`~afmsmiler.scenes.SceneView`, which carries meshcat's
-        commands over the kernel's own connection: it lives as long as the panel and its kernel,
-        and nothing needs closing.
+        The view carries meshcat's commands over the kernel's own connection: it lives as long
+        as the panel and its kernel, and nothing needs closing.
         """
-        scene = self.scene
-        return None if scene is None else getattr(scene, "view", None)
+        if self.scene is None:
+            return None
+        from ..scenes.view import view_of
+        return view_of(self.scene.root)
 
     # -- display --------------------------------------------------------------------------
     @staticmethod

@@ -327,7 +327,7 @@ class TransducerPanel(Panel):
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.transducers import TransducerScene
-                self.scene = TransducerScene(op)
+                self.scene = TransducerScene(op, vis=self.scene_root())
             else:
                 self.scene.update(op)
         self.last = TransducerState(

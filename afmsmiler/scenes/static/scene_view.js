@@ -87,6 +87,7 @@ function render({ model, el }) {
       if (!view) return;
       view.apply(bytes);
       host.dataset.commands = String(s.entries.size);
+      host.dataset.applied = String(Number(host.dataset.applied || 0) + 1);
     },
     reset() {
       if (!view) return;
@@ -105,6 +106,7 @@ function render({ model, el }) {
     for (const e of s.entries.values()) view.apply(e.bytes);
     overlays();
     host.dataset.commands = String(s.entries.size);
+    host.dataset.applied = String(Number(host.dataset.applied || 0) + s.entries.size);
     host.afmView = view; // for the browser tests
   };
   afmMeshCat().then((lib) => {

@@ -1,0 +1,149 @@
+"""Notebooks 05-08 in a real browser: the 3D views survive Run All and every re-run.
+
+Headless Debian Chromium driven by Playwright (``tests/browser.py``) against JupyterLab serving
+copies of the course notebooks. For each notebook, as a student would: Run All; every 3D view
+draws its own scene (their pixels differ from each other's, and each is more than meshcat's empty
+grid); a panel's slider moves its figure *and* its 3D view; every code cell is run again in order
+and then in reverse order with no error shown; the kernel has started no process and listens on
+no port but its own connection's. In voila (a second server, served on 127.0.0.1) the 3D views
+draw too: no second port exists that a remote browser could not reach.
+
+The kernels run with ``AFMSMILER_TESTING=1`` (short animations): these tests check what the
+cells show and that they can be re-run, never how long anything takes. Marked ``slow`` and
+``browser``; skipped, saying why, when Chromium or Playwright is missing.
+"""
+import itertools
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import browser as B
+
+pytestmark = [pytest.mark.slow, pytest.mark.browser]
+
+SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person to see
+
+#: notebook -> (3D views after Run All, [(slider description, key, whether the figure changes
+#: too) of each panel with a 3D view]). Module (f)'s figure holds the scan's images: a new tip
+#: is drawn in the 3D view at once and imaged by the next scan.
+NOTEBOOKS = {
+    "05_system_overview.ipynb": (1, [("laser knob along", "ArrowRight", True)]),
+    "06_virtual_imaging.ipynb": (1, [("tip radius R", "ArrowRight", False)]),
+    "07_imaging_modalities.ipynb": (4, [("sample tilt", "ArrowRight", True),
+                                        ("setpoint A_sp / A0", "ArrowRight", True),
+                                        ("oscillation amplitude A", "ArrowLeft", True),
+                                        ("lift height", "ArrowLeft", True)]),
+    "08_hardware_interaction.ipynb": (2, []),
+}
+
+#: The kernel's child processes and the ports it listens on (its own connection's, at first).
+PORTS = """
+import psutil
+me = psutil.Process()
+print(len(me.children(recursive=True)),
+      sorted(c.laddr.port for c in me.net_connections('inet') if c.status == psutil.CONN_LISTEN))
+"""
+
+
+@pytest.fixture(scope="module")
+def chromium():
+    reason = B.unavailable()
+    if reason:
+        pytest.skip(reason)
+    with B.browser() as b:
+        yield b
+
+
+@pytest.fixture(scope="module")
+def root():
+    path = B.notebook_root("afm-notebooks-")
+    yield path
+    shutil.rmtree(path, ignore_errors=True)
+
+
+@pytest.fixture(scope="module")
+def lab(chromium, root):
+    server = B.Server("lab", root, short=True).start()
+    page = B.new_page(chromium)
+    try:
+        yield server, page
+    finally:
+        page.close()
+        server.stop()
+
+
+def _distinct(images) -> None:
+    """Each view's pixels differ from every other's, and each shows more than a few colours."""
+    arrays = [np.asarray(im.resize((480, 240)), dtype=float) for im in images]
+    for i, a in enumerate(arrays):
+        colours = len(set(map(tuple, a.reshape(-1, 3).astype(int).tolist())))
+        assert colours > 50, f"3D view {i} is nearly uniform ({colours} colours)"
+    for (i, a), (j, b) in itertools.combinations(enumerate(arrays), 2):
+        # the same instrument may frame two modes: at least 1 % of the pixels must differ clearly
+        differ = np.mean(np.max(np.abs(a - b), axis=2) > 32)
+        assert differ > 0.01, f"3D views {i} and {j} show the same pixels ({differ:.2%} differ)"
+
+
+@pytest.mark.parametrize("notebook", list(NOTEBOOKS))
+def test_views_survive_run_all_and_every_rerun(lab, notebook):
+    server, page = lab
+    n_views, sliders = NOTEBOOKS[notebook]
+    B.open_lab(page, server, notebook, timeout=120)
+    fresh = B.kernel_eval(page, PORTS).strip()
+    B.run_all(page, timeout=600)
+    assert B.lab_errors(page) == []
+    views = B.scene_views(page)
+    assert len(views) == n_views, views
+    assert all(v["commands"] > 0 and v["canvases"] >= 1 and v["width"] > 0 for v in views), views
+    SHOTS.mkdir(exist_ok=True)
+    shots = [B.scene_pixels(page, i) for i in range(n_views)]
+    for i, im in enumerate(shots):
+        im.save(SHOTS / f"{notebook[:2]}_view{i}.png")
+    _distinct(shots)
+
+    # each panel's slider moves its figure and its own 3D view
+    for description, key, figure in sliders:
+        slider = B.find_slider(page, description)
+        B.focus_panel(page, slider, B.LIVE_FIGURE)
+        before = B.scene_views(page)
+        if figure:
+            times = B.press(page, slider, key, 1, selector=B.LIVE_FIGURE, timeout=15.0)
+            assert times[0] is not None, f"{description}: the figure did not change"
+        else:
+            slider.press(key)
+        B.wait_idle(page)
+        page.wait_for_timeout(500)
+        after = B.scene_views(page)
+        moved = [a["applied"] > b["applied"] for a, b in zip(after, before)]
+        assert sum(moved) == 1, f"{description}: views updated {moved}"
+
+    # every cell again, in order and then in reverse order: no error, the views still there
+    cells = B.code_cells(page)
+    for index in cells + cells[::-1]:
+        B.run_cell(page, index, timeout=300)
+        assert B.lab_errors(page) == [], f"cell {index} of {notebook}"
+    views = B.scene_views(page)
+    assert len(views) == n_views and all(v["commands"] > 0 for v in views), views
+    _distinct([B.scene_pixels(page, i) for i in range(n_views)])
+    assert B.kernel_eval(page, PORTS).strip() == fresh, "the notebook started a process or a port"
+
+
+def test_views_draw_in_voila(chromium, root):
+    """voila on 127.0.0.1: the 3D view of notebook 05 draws over voila's own kernel connection."""
+    with B.Server("voila", root, short=True) as server:
+        page = B.new_page(chromium)
+        try:
+            B.open_voila(page, server, "05_system_overview.ipynb", "laser knob along")
+            page.wait_for_function(
+                "(sel) => Array.from(document.querySelectorAll(sel))"
+                ".some(e => Number(e.dataset.commands) > 0)", arg=B.SCENE_VIEW, timeout=120_000)
+            assert B.voila_errors(page) == []
+            image = B.scene_pixels(page, 0)
+            SHOTS.mkdir(exist_ok=True)
+            image.save(SHOTS / "05_voila.png")
+            colours = len(set(image.resize((240, 120)).getdata()))
+            assert colours > 50, f"the 3D view in voila is nearly uniform ({colours} colours)"
+        finally:
+            page.close()
