@@ -64,7 +64,7 @@ class QControlFigure:
             self.lines[name].set_data(r.frequency / f0, r.amplitude)   # NaN: no steady state
         self.ax_response.set_title(
             "resonance" if controlled.steady else
-            "resonance: none with Q control (unstable: the lever self-oscillates)",
+            "unstable: no steady resonance with Q control",
             color="black" if controlled.steady else "#b00020")
         a0 = ring.deflection[0]
         for name, r in (("ring_free", ring_free), ("ring", ring)):
