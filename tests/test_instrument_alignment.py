@@ -10,7 +10,12 @@
   the photodiode's offset.
 * The vertical signal's sensitivity is module (b)'s optical lever's, sqrt(8/pi) / w * 3 D / L,
   whose end slope 3 z / (2 L) sympy derives here from the beam equation.
-* An optimiser drives the knobs from misaligned starts (sum near zero) to alignment.
+* An optimiser drives the knobs from misaligned starts (sum near zero) to alignment: from every
+  corner of the allowed mount (offsets along and across, the chip's tilt) with the knobs at the
+  far ends of their travel, and (slow) from 32 starts of a scrambled Sobol sequence over the whole
+  allowed mount and knob ranges; the reflection's reach is checked by the geometry
+  v = -X + D tan(2 tilt_error). Where the photodiode cannot reach it, the procedure stops with the
+  spot on the lever and names the distance.
 * Errors: a knob beyond its travel or an unknown knob names it, its value and the travel.
 """
 import math
