@@ -909,6 +909,8 @@ def _non_finite(obj, depth=0, seen=None):
         return _non_finite(obj.channels, depth + 1, seen)  # the finished lines must be finite
     if type(obj).__name__ in ("LineRecord", "ModeLine") and obj.crash is not None:
         return None  # a crashed line: NaN on the pixels not reached (documented)
+    if type(obj).__name__ == "ClosedLoopResponse" and not obj.steady:
+        return None  # an unstable Q-control loop has no steady state: NaN (documented)
     if type(obj).__name__ == "AmplitudeCurve":  # NaN pads the roots a distance lacks
         has = ~np.isnan(obj.amplitude)  # (documented): the roots that exist must be finite
         return _non_finite([obj.amplitude[has], obj.phase[has], obj.dissipated_energy[has]],

@@ -61,14 +61,27 @@ def test_one_model_run_per_slider_move(runs):
     assert runs["ring"] - base["ring"] == 3 * 2
 
 
-def test_unstable_gain_is_said_and_still_drawn():
+def test_unstable_gain_is_said_and_drawn_as_unstable():
+    """g = -0.005 < -1/Q: no steady resonance is drawn (the notebook: 'the panel says the loop
+    is unstable'), the title says why, and the ring-down grows at the rate of the closed
+    loop's pole, -(w0 / 2)(1/Q + g) > 0 at phi = 90 deg (by hand)."""
     panel = QControlPanel(quality_factor=400.0)
     panel.set(gain=-0.005)
     assert "unstable" in panel.readout.value
     assert not panel.last.qc.stable
     low, _ = panel.last.stable_gains
     assert low == pytest.approx(-1 / 400.0)
-    assert np.all(np.isfinite(panel.figure.lines["ring"].get_data()[1]))
+    assert not np.any(np.isfinite(panel.figure.lines["controlled"].get_data()[1]))
+    assert "unstable" in panel.figure.ax_response.get_title()
+    assert np.all(np.isfinite(panel.figure.lines["free"].get_data()[1]))
+    t, z = (np.asarray(a) for a in panel.figure.lines["ring"].get_data())
+    assert np.all(np.isfinite(z))
+    sigma = -0.5 * 2 * math.pi * (1 / 400.0 - 0.005)          # per period, t in periods
+    peaks = [abs(z[(t >= n) & (t < n + 1)]).max() for n in (0, int(t[-1]) - 1)]
+    assert peaks[1] / peaks[0] == pytest.approx(math.exp(sigma * (int(t[-1]) - 1)), rel=0.02)
+    panel.set(gain=0.0075)                                   # stable again: a curve, no warning
+    assert np.all(np.isfinite(panel.figure.lines["controlled"].get_data()[1]))
+    assert panel.figure.ax_response.get_title() == "resonance"
 
 
 def test_sliders_come_from_the_parameters():

@@ -5,7 +5,9 @@ resonance from the Euler-Bernoulli closed forms k = E w t^3 / (4 L^3) and
 f1 = 1.87510^2 / (2 pi L^2) sqrt(E t^2 / (12 rho)) (Blevins, Table 8-1), the paper's 6 Hz; the
 lift summed from its three parts; the bed's scale from the footprint.
 """
+import json
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -79,6 +81,30 @@ def test_jumping_lift():
     # the printed shell: 0.2 mm pixels over 32 mm
     assert ex.printed_shell().shape == (161, 161)
     assert ex.printed_shell().pixel_size == pytest.approx(0.2e-3)
+
+
+def test_jumping_lift_solved_as_the_notebook_teaches():
+    """Notebook 08's exercise 2 from the givens it names: the setpoint is setpoint_counts above
+    the free reading, converted with exercise 1's calibration (584 counts per 20 micro-steps);
+    the pull-off force over k = E w t^3 / (4 L^3); the largest rise along a line. A student who
+    first takes the free reading off the setpoint as well (exercise 1's step) is told which
+    reading the given is, without the answer."""
+    per_step = D["calibration_counts"] / D["calibration_steps"]          # counts per micro-step
+    rise = np.diff(ex.printed_shell().heights, axis=1).max() / D["z_step"]
+    adhesion = D["pull_off_force"] / _k() / D["z_step"]
+    wrong = math.ceil((D["setpoint_counts"] - D["free_counts"]) / per_step + adhesion + rise)
+    fb = ex.check_jumping_lift(wrong)
+    assert not fb and "already counted above the free reading" in fb.message
+    assert "too short" not in fb.message and str(ex.jumping_lift()) not in fb.message
+    assert not ex.check_jumping_lift(wrong + 1)           # rounded up once more: the same slip
+    right = math.ceil(D["setpoint_counts"] / per_step + adhesion + rise)
+    assert ex.check_jumping_lift(right), ex.check_jumping_lift(right).message
+    # the text's given is what the notebook's markdown names
+    nb = json.loads((Path(__file__).parents[1] / "notebooks"
+                     / "08_hardware_interaction.ipynb").read_text())
+    cell, = ("".join(c["source"]) for c in nb["cells"] if "**2. The jumping lift.**"
+             in "".join(c["source"]))
+    assert "setpoint_counts" in cell and "above the free reading" in cell
 
 
 def test_print_scale():

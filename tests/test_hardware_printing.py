@@ -224,6 +224,11 @@ def test_compare_scan_removes_the_offset_and_measures_the_shape_error():
     c = pr.compare_scan(ref, scan)
     expected = noise - noise.mean()
     np.testing.assert_allclose(c.difference.heights, expected, atol=1e-15)
+    # one zero for both: the print's lowest point in the scanned corner; the 7 mm home offset gone
+    np.testing.assert_allclose(c.reference.heights, ref.heights[:4] - ref.heights[:4].min(),
+                               atol=1e-15)
+    np.testing.assert_allclose(c.image.heights, ref.heights[:4] - ref.heights[:4].min()
+                               + expected, atol=1e-15)
     assert c.rms == pytest.approx(np.sqrt(np.mean(expected ** 2)))
     assert c.max_abs == pytest.approx(np.abs(expected).max())
     with pytest.raises(ValueError, match="pixel_size"):

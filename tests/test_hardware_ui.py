@@ -380,7 +380,9 @@ def test_the_figure_shows_the_streamed_pixels_in_um_over_mm(panel):
         panel.step()
     shown_image = np.ma.filled(panel.figure.images["height"].get_array(), np.nan)
     h = panel.last.height
-    np.testing.assert_allclose(shown_image, h * um, rtol=1e-12)  # NaN where no pixel came
+    # the relief above the lowest pixel so far (the machine's z zero is its home), NaN where no
+    # pixel came
+    np.testing.assert_allclose(shown_image, (h - np.nanmin(h)) * um, rtol=1e-12, atol=1e-9)
     assert np.isnan(shown_image).sum() == h.size - panel.last.pixels_done
     assert panel.figure.images["height"].get_extent() == pytest.approx(
         [-0.5, 15.5, -0.5, 15.5])  # 16 pixels of 1 mm, pixel edges in mm
@@ -391,6 +393,63 @@ def test_the_figure_shows_the_streamed_pixels_in_um_over_mm(panel):
     diff = np.ma.filled(panel.figure.images["difference"].get_array(), np.nan)
     np.testing.assert_allclose(diff, c.difference.heights * um, rtol=1e-12)
     assert f"{c.rms * um:.3g}" in panel.figure.axes["difference"].get_title()
+
+
+def test_the_print_reads_the_same_heights_in_both_rows(panel):
+    """The issue: the same print read 6,000-8,250 um in the top row (the machine's z, from its
+    home) and -1,000...500 um in the bottom one (mean removed). Both now show the relief above
+    the lowest point: the scan's range is the print's, to a few z micro-steps."""
+    from afmsmiler.parameters import UNITS
+    um = 1 / UNITS["um"][1]
+    panel.set(sample="pillars (2 mm tall grating)", mode="jumping", pixels=16, pitch=1.0,
+              lift=2.5)
+    panel.start()
+    h = panel.last.finished().heights
+    assert h.min() > 3e-3                      # raw: millimetres above the bed, from home
+    top = np.ma.filled(panel.figure.images["height"].get_array(), np.nan)
+    ref = np.ma.filled(panel.figure.images["reference"].get_array(), np.nan)
+    scan = np.ma.filled(panel.figure.images["image"].get_array(), np.nan)
+    c = panel.last.comparison
+    np.testing.assert_allclose(ref, (c.reference.heights - c.reference.heights.min()) * um,
+                               atol=1e-9)
+    for shown in (top, scan):
+        assert np.nanmin(shown) == pytest.approx(0.0, abs=3 * Z_STEP * um)
+        assert np.nanmax(shown) == pytest.approx(np.nanmax(ref), abs=3 * Z_STEP * um)
+    assert np.nanmax(ref) > 500                 # the print's relief, in um: hundreds, not 0
+
+
+def test_modes_figure_shows_where_two_scans_differ():
+    """Two scans of one print, one dragged at a wall: the figure's error maps are the scans
+    minus the print in um on one shared symmetric scale, and the profile is the line with the
+    dragged pixel."""
+    from afmsmiler.plots.hardware import modes_figure
+    from afmsmiler.samples import Sample
+    mm = 1e-3
+    ref = np.zeros((6, 8))
+    ref[:, 4:] = 2 * mm                                   # a 2 mm wall along the fast axis
+    good = Sample(ref + 7 * mm, 0.4 * mm)                 # the machine's z: 7 mm from home
+    dragged = ref.copy()
+    dragged[3, 4] = 0.0                                   # the foot of the wall, one pixel late
+    bad = Sample(dragged + 7 * mm, 0.4 * mm)
+    reference = Sample(ref, 0.4 * mm)
+    comparisons = [printing.compare_scan(reference, s) for s in (bad, good)]
+    fig = modes_figure(*comparisons, labels=["contact", "jumping"])
+    axes = [ax for ax in fig.axes if ax.get_images() or ax.get_lines()]   # not colour bars
+    images = [im for ax in axes for im in ax.get_images()]
+    scans, errors = images[0::2], images[1::2]
+    for im, c in zip(errors, comparisons):
+        np.testing.assert_allclose(np.ma.filled(im.get_array(), np.nan),
+                                   c.difference.heights * 1e6, atol=1e-6)
+        assert im.get_clim() == errors[0].get_clim() and im.get_clim()[0] == -im.get_clim()[1]
+    assert errors[0].get_clim()[1] == pytest.approx(np.abs(comparisons[0].difference.heights
+                                                           ).max() * 1e6)
+    for im in scans:                                      # relief: 0 to 2000 um, not 7 mm
+        assert np.nanmax(np.ma.filled(im.get_array(), np.nan)) == pytest.approx(2000, abs=400)
+    profile = [ax for ax in axes if ax.get_lines()][-1]
+    assert "line 3" in profile.get_title()
+    assert "RMS" in axes[1].get_title() and "contact" in axes[1].get_title()
+    with pytest.raises(ValueError, match="labels"):
+        modes_figure(*comparisons, labels=["contact"])
 
 
 def test_a_port_that_cannot_be_opened_is_reported_in_the_panel(monkeypatch):

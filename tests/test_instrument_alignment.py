@@ -10,7 +10,12 @@
   the photodiode's offset.
 * The vertical signal's sensitivity is module (b)'s optical lever's, sqrt(8/pi) / w * 3 D / L,
   whose end slope 3 z / (2 L) sympy derives here from the beam equation.
-* An optimiser drives the knobs from misaligned starts (sum near zero) to alignment.
+* An optimiser drives the knobs from misaligned starts (sum near zero) to alignment: from every
+  corner of the allowed mount (offsets along and across, the chip's tilt) with the knobs at the
+  far ends of their travel, and (slow) from 32 starts of a scrambled Sobol sequence over the whole
+  allowed mount and knob ranges; the reflection's reach is checked by the geometry
+  v = -X + D tan(2 tilt_error). Where the photodiode cannot reach it, the procedure stops with the
+  spot on the lever and names the distance.
 * Errors: a knob beyond its travel or an unknown knob names it, its value and the travel.
 """
 import math
@@ -283,13 +288,8 @@ STARTS = [
 ]
 
 
-@pytest.mark.parametrize("start", STARTS, ids=["as-mounted", "offset-chip", "knobs-astray"])
-def test_align_drives_the_knobs_from_a_misaligned_start(start):
-    head = OpticalHead(**start["params"])
-    s0 = head.set(**start["knobs"])
-    assert s0.sum < 1e-3 * head.best_sum          # off the lever: nothing to follow
-    assert not head.aligned()
-    run = align(head)
+def _assert_aligned_at_the_optimum(head, run):
+    """The verdict, and the optimum checked independently (dblquad overlaps, the geometry)."""
     s = head.signals()
     assert run.alignment.ok, run.alignment.reason
     assert bool(head.aligned()) and head.aligned().reason == "aligned"
@@ -307,6 +307,95 @@ def test_align_drives_the_knobs_from_a_misaligned_start(start):
     assert run.evaluations < 10_000
     for knob, value in head.knobs.items():
         assert KNOBS[knob].low <= value <= KNOBS[knob].high
+
+
+@pytest.mark.parametrize("start", STARTS, ids=["as-mounted", "offset-chip", "knobs-astray"])
+def test_align_drives_the_knobs_from_a_misaligned_start(start):
+    head = OpticalHead(**start["params"])
+    s0 = head.set(**start["knobs"])
+    assert s0.sum < 1e-3 * head.best_sum          # off the lever: nothing to follow
+    assert not head.aligned()
+    _assert_aligned_at_the_optimum(head, align(head))
+
+
+_MOUNT = ("mount_offset_x", "mount_offset_y", "tilt_error")
+
+
+def _corner_starts():
+    """Each corner of the allowed mount (offsets along and across, the chip's tilt), the knobs
+    turned the other way to their travel's ends: the farthest starts there are."""
+    starts = []
+    for signs in np.ndindex(2, 2, 2):
+        params = {n: (HEAD[n].high if b else HEAD[n].low) for n, b in zip(_MOUNT, signs)}
+        knobs = {n: (KNOBS[n].low if params[m] > 0 else KNOBS[n].high) for n, m in (
+            ("laser_x", "mount_offset_x"), ("laser_y", "mount_offset_y"),
+            ("detector_vertical", "tilt_error"), ("detector_lateral", "mount_offset_y"))}
+        starts.append((params, knobs))
+    return starts
+
+
+def _spread_starts(count, seed):
+    """``count`` starts spread over the whole allowed mount and knob ranges (a scrambled Sobol
+    sequence: every region of the seven-dimensional box gets its share)."""
+    from scipy.stats import qmc
+    names = (*_MOUNT, *KNOBS)
+    table = {**HEAD, **KNOBS}
+    lows, highs = [table[n].low for n in names], [table[n].high for n in names]
+    points = qmc.scale(qmc.Sobol(len(names), seed=seed).random(count), lows, highs)
+    return [({n: float(v) for n, v in zip(_MOUNT, row[:3])},
+             {n: float(v) for n, v in zip(KNOBS, row[3:])}) for row in points]
+
+
+def _reflection_reachable(params, optical_path=HEAD["optical_path"].default):
+    """Independent geometry: the reflection of the lever's end region falls D tan(2 tilt_error)
+    from the axis, shifted back by the spot's offset X ~ mount_offset_x (a translated incident
+    beam moves the reflected one by X the other way); the photodiode knobs reach it."""
+    v = -params["mount_offset_x"] + optical_path * math.tan(2 * params["tilt_error"])
+    reach = HEAD["detector_screw_pitch"].default * KNOBS["detector_vertical"].high / TURN
+    return abs(v) < reach
+
+
+@pytest.mark.parametrize("params, knobs", _corner_starts(),
+                         ids=[f"corner{i}" for i in range(8)])
+def test_align_from_every_corner_of_the_allowed_mount(params, knobs):
+    """Off the axis sideways at the mount's limit (the mirror's tilts couple: walking along
+    moves the spot across) and tilted at the limit (the reflection far off the photodiode)."""
+    assert _reflection_reachable(params)
+    head = OpticalHead(**params)
+    head.set(**knobs)
+    _assert_aligned_at_the_optimum(head, align(head))
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("params, knobs", _spread_starts(32, seed=5),
+                         ids=[f"start{i}" for i in range(32)])
+def test_align_from_starts_spread_over_the_allowed_ranges(params, knobs):
+    head = OpticalHead(**params)
+    head.set(**knobs)
+    _assert_aligned_at_the_optimum(head, align(head))
+
+
+def test_align_says_when_the_photodiode_cannot_reach_the_reflection():
+    """A long optical path and a tilted chip throw the reflection beyond the photodiode's reach:
+    the procedure stops with the spot on the lever and says so, naming the reach."""
+    tilt, path = math.radians(5), 0.1
+    head = OpticalHead(optical_path=path, tilt_error=tilt)
+    mount = dict(mount_offset_x=head.mount_offset_x, tilt_error=tilt)
+    assert _reflection_reachable(mount) and not _reflection_reachable(mount, path)
+    run = align(head)
+    s = head.signals()
+    assert run.steps[-1][0] == "photodiode: cannot centre it on the reflection"
+    assert s.lever_fraction > 0.25 * head.best_overlap      # the laser stays on the lever
+    assert not run.alignment
+    reason = run.alignment.reason
+    assert "put the spot on the lever" not in reason
+    assert "beyond the 8 mm that detector_vertical's travel reaches" in reason
+    assert "tilt_error 5 deg" in reason
+    # the distance it names is the geometry's: D tan(2 tilt) less the spot's offset X
+    x_spot = head.mount_offset_x - (head.lever.length - s.spot_on_lever[0]) * math.cos(
+        head.holder_tilt)
+    expected = path * math.tan(2 * tilt) - x_spot
+    assert f"{expected * 1e3:.3g} mm from the photodiode's centre" in reason
 
 
 def test_aligned_says_what_is_wrong(head):
@@ -368,8 +457,8 @@ def test_knob_beyond_its_travel_names_it_its_value_and_the_travel(head):
     assert "laser_x" in msg and "travel" in msg and "[-5, 5] turn" in msg and "6 turn" in msg
     assert "angle" in msg and "2 turn" in msg    # the campaign: turn() names its argument
     assert head.knobs["laser_x"] == pytest.approx(4 * TURN)   # left where it was
-    with pytest.raises(ValueError, match=r"detector_vertical.*\[-6, 6\] turn.*-7 turn"):
-        head.set(detector_vertical=-7 * TURN)
+    with pytest.raises(ValueError, match=r"detector_vertical.*\[-16, 16\] turn.*-17 turn"):
+        head.set(detector_vertical=-17 * TURN)
     with pytest.raises(ValueError, match="laser_y"):
         head.set(laser_x=0.0, laser_y=float("nan"))
     assert head.knobs["laser_x"] == pytest.approx(4 * TURN)   # nothing moved

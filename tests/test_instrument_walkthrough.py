@@ -79,6 +79,98 @@ def test_laser_step_fails_off_the_lever_and_says_which_way(aligned_knobs):
     assert not any(ch.isdigit() for ch in result.hint)
 
 
+def _spot_at(head, mx, my):
+    """Turn the laser knobs so the spot's centre is at (mx, my) on the lever (Newton steps on
+    the spot position the model reports, no optimiser)."""
+    k = np.array([head.knobs["laser_x"], head.knobs["laser_y"]])
+    for _ in range(20):
+        miss = np.array(head.set(laser_x=k[0], laser_y=k[1]).spot_on_lever) - [mx, my]
+        jac = np.column_stack([
+            (np.array(head.set(laser_x=k[0] + d[0], laser_y=k[1] + d[1]).spot_on_lever)
+             - [mx, my] - miss) / 1e-3 for d in np.eye(2) * 1e-3])
+        k = k - np.linalg.solve(jac, miss)
+    s = head.set(laser_x=k[0], laser_y=k[1])
+    assert np.allclose(s.spot_on_lever, (mx, my), atol=1e-9)
+    return s
+
+
+def test_spot_hanging_over_the_end_is_sent_back_with_laser_x(aligned_knobs):
+    """The spot's centre just past the free end (within the end tolerance, centred across, the
+    photodiode under it): little light comes back because part of the spot misses the lever.
+    laser_y is at its best, so the hint turns laser_x back and says nothing of laser_y."""
+    length = DEFAULT_LEVER.length
+    for beyond in (0.0, 15e-6, 30e-6):
+        head = aligned_head(aligned_knobs)
+        s = _spot_at(head, length + beyond, 0.0)
+        assert s.lever_fraction < 0.6 * head.best_overlap      # half off, or more
+        result = STEP["laser"].check(SetupState(head, signals=s))
+        assert not result, beyond
+        assert "laser_x counter-clockwise (-)" in result.hint and "laser_y" not in result.hint
+        # laser_y cannot bring the sum back (a few per cent at most either way, for
+        # a tenth of a turn), laser_x turned back does
+        y0 = head.knobs["laser_y"]
+        sums = [head.set(laser_y=y0 + dy * TURN).sum for dy in np.linspace(-0.1, 0.1, 41)]
+        assert max(sums) < 1.05 * s.sum < TOLERANCES["min_sum_fraction"].default * head.best_sum
+        head.set(laser_y=y0)
+        assert head.turn("laser_x", -0.1 * TURN).sum > 0.9 * head.best_sum
+
+
+def _follow(head, step_key, knobs, first_turn, limit=300):
+    """A student who only follows the hints of ``step_key``: turn each knob the hint names the
+    way it names, halving that knob's turn when the hint reverses; the photodiode's hints
+    (step 3) are followed the same way when the laser step asks for them."""
+    turn = dict(first_turn)
+    last = {}
+    for _ in range(limit):
+        result = STEP[step_key].check(SetupState(head))
+        if result:
+            return result
+        hint = result.hint
+        if "centre it (step 3)" in hint:
+            hint += " " + STEP["photodiode"].check(SetupState(head)).hint
+        for knob in knobs:
+            if f"{knob} clockwise" in hint:
+                sign = 1
+            elif f"{knob} counter-clockwise" in hint:
+                sign = -1
+            else:
+                continue
+            if last.get(knob, sign) != sign:
+                turn[knob] /= 2
+            last[knob] = sign
+            meta = KNOBS[knob]
+            head.set(**{knob: min(max(head.knobs[knob] + sign * turn[knob], meta.low),
+                                  meta.high)})
+    return STEP[step_key].check(SetupState(head))
+
+
+@pytest.mark.parametrize("where", ["as-mounted", "over-the-end", "far-beyond", "half-way",
+                                   "off-the-side"])
+def test_following_the_laser_hints_aligns(aligned_knobs, where):
+    """From the spot on the chip's body, hanging over the end, far beyond it, half-way along
+    and off the side, following only the laser step's hints ends with the step passed."""
+    length = DEFAULT_LEVER.length
+    head = aligned_head(aligned_knobs)
+    if where == "as-mounted":
+        head.set(laser_x=0.0, laser_y=0.0)
+    elif where == "over-the-end":
+        _spot_at(head, length + 20e-6, 0.0)
+    elif where == "far-beyond":
+        _spot_at(head, length + 150e-6, 0.0)
+    elif where == "half-way":
+        _spot_at(head, length / 2, 0.0)
+    else:
+        _spot_at(head, length - 20e-6, 45e-6)
+    knobs = ("laser_x", "laser_y", "detector_vertical", "detector_lateral")
+    result = _follow(head, "laser", knobs, {"laser_x": 0.1 * TURN, "laser_y": 0.02 * TURN,
+                                            "detector_vertical": 0.5 * TURN,
+                                            "detector_lateral": 0.5 * TURN})
+    assert result, (where, str(result))
+    s = head.signals()
+    assert abs(length - s.spot_on_lever[0]) <= TOLERANCES["end_distance"].default
+    assert s.sum >= TOLERANCES["min_sum_fraction"].default * head.best_sum
+
+
 def test_knob_directions_the_hints_give_are_the_models(aligned_knobs):
     head = aligned_head(aligned_knobs)
     s0 = head.signals()
@@ -167,6 +259,22 @@ def test_walkthrough_navigation_and_record(aligned_knobs):
         w.next()
     assert w.step.key == "approach" and w.done
     assert Walkthrough("photodiode").index == 2 == step_index(2)
+
+
+def test_resume_goes_to_the_first_step_not_done(aligned_knobs):
+    """Knobs set behind the guide's back (align() on the panel, a re-run notebook): the guide
+    records the steps done and goes on from the first that is not."""
+    w = Walkthrough()
+    step = w.resume(SetupState(aligned_head(aligned_knobs)))        # setpoint still 0
+    assert step.key == "setpoint" == w.step.key
+    assert [bool(w.results.get(k)) for k in ("mount", "laser", "photodiode", "setpoint")] == [
+        True, True, True, False]
+    assert w.resume(SetupState(OpticalHead())).key == "laser"        # just mounted
+    assert w.resume(SetupState(OpticalHead(), mounted=False)).key == "mount"
+    done = SetupState(aligned_head(aligned_knobs), deflection=20e-9, approach_gap=0.0)
+    assert w.resume(done).key == "approach" and w.done
+    with pytest.raises(TypeError, match="state"):
+        w.resume("aligned")
 
 
 def test_errors_name_the_problem():

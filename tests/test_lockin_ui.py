@@ -80,6 +80,27 @@ def test_square_reference_reads_a_third_of_the_interference(panel):
     panel.set(interference=0.0)
 
 
+def test_the_whole_error_shows_what_the_amplitude_error_hides(panel):
+    """Notebook 08's lock-in cell: the square reference's third of the tone moves the reading by
+    G I / 3 (the Fourier coefficient 1/3, typed here), mostly in phase for this tone, so the
+    amplitude error alone reads a per cent or two while the reading is off by a quarter of the
+    signal; the whole error |Z - Z_true| / |Z_true| says so."""
+    interference = 100e-6
+    gain = AMPLIFIER_GAIN.default
+    panel.set(shape="square", interference=interference * 1e6, time_constant=1.0, order=4)
+    d = panel.last
+    third = gain * interference / 3
+    assert abs(d.deviation) == pytest.approx(third, rel=0.02)
+    assert d.relative_error == pytest.approx(third / abs(d.truth), rel=0.02)
+    assert d.relative_error > 10 * abs(d.amplitude_error)       # what the amplitude hides
+    assert abs(math.degrees(d.phase_error)) > 10                   # it went into the phase
+    z = d.reading.amplitude * np.exp(1j * d.reading.phase)          # the polar reading
+    assert abs(z - d.truth) == pytest.approx(abs(d.deviation), rel=1e-9)
+    panel.set(shape="sine")
+    assert panel.last.relative_error < 0.01
+    panel.set(interference=0.0)
+
+
 def test_out_of_range_values_are_named(panel):
     with pytest.raises(ValueError, match="ac_voltage"):
         panel.set(ac_voltage=50.0)

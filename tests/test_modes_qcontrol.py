@@ -217,6 +217,39 @@ def test_stability_limit():
     assert QControl(quality_factor=400.0, gain=-0.0025).effective_quality_factor == math.inf
 
 
+@pytest.mark.parametrize("case", [*CASES, dict(quality_factor=400.0, gain=-0.005),
+                                  dict(quality_factor=10.0, gain=1.5, phase=0.0)])
+def test_stability_is_decided_by_the_poles_of_python_control(case):
+    """The module's poles are python-control's (the plant in positive feedback with the
+    controller), and the loop is stable exactly when they lie in the left half plane."""
+    qc = QControl(**case)
+    theirs = np.sort_complex(control.poles(_control_loop(qc)))
+    np.testing.assert_allclose(np.sort_complex(np.array(qc.poles)), theirs,
+                               rtol=1e-9, atol=1e-9 * 2 * math.pi * qc.resonance_frequency)
+    assert qc.stable == bool(np.all(theirs.real < 0))
+
+
+def test_an_unstable_loop_has_no_steady_resonance():
+    """Beyond g = -1/Q (phi = 90 deg) or with k_eff < 0 the closed form's |H| would still be a
+    smooth curve, but the lever never reaches it: the response says there is no steady state."""
+    f = 300e3 * np.linspace(0.9, 1.1, 11)
+    for qc in (QControl(quality_factor=400.0, gain=-0.005),
+               QControl(quality_factor=10.0, gain=1.5, phase=0.0)):
+        assert max(np.real(control.poles(_control_loop(qc)))) > 0        # python-control
+        r = closed_loop_response(f, qc)
+        assert not r.steady and np.all(np.isnan(r.amplitude)) and np.all(np.isnan(r.phase))
+        # its free motion grows instead, at the rate of python-control's rightmost pole
+        sigma = max(np.real(control.poles(_control_loop(qc))))
+        t = np.linspace(0.0, math.log(100.0) / sigma, 20001)     # e^(sigma t) reaches 100
+        grows = abs(ring_down(t, qc).deflection)
+        period = 1.0 / qc.resonance_frequency
+        late = grows[t >= t[-1] - period].max()                   # the last period's peak
+        half = grows[(t >= t[-1] / 2 - period) & (t <= t[-1] / 2)].max()
+        assert late / half == pytest.approx(10.0, rel=0.1)         # e^(sigma t / 2)
+    stable = closed_loop_response(f, QControl(quality_factor=400.0, gain=-0.002))
+    assert stable.steady and np.all(np.isfinite(stable.amplitude))
+
+
 def test_validation_names_the_parameter():
     with pytest.raises(ValueError, match="gain"):
         QControl(gain=11.0)

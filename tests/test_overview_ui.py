@@ -3,6 +3,7 @@ runs the head's model once; the display, the figure and the 3D scene (a recorder
 independent OpticalHead computes; the guided setup runs on the panel as the notebook tells the
 student to; unknown parts and knobs beyond their travel are named."""
 import math
+import re
 
 import numpy as np
 import pytest
@@ -311,6 +312,47 @@ def test_align_sets_the_knobs_where_the_manuals_procedure_ends(panel):
     for name, angle in reference.knobs.items():
         assert panel.values()[name] == pytest.approx(angle / TURN, abs=1e-9)
     assert panel.last.signals.sum == pytest.approx(reference.sum, rel=1e-9)
+
+
+def test_after_align_the_guide_goes_on_from_the_first_step_not_done(panel):
+    """Run All: the panel's align() set the knobs, so the guide shows the setpoint step (the
+    first not done) and says that mount, laser and photodiode are done, not step 1."""
+    assert panel.walkthrough.step.key == "mount"
+    panel.align()
+    assert panel.walkthrough.step.key == "setpoint"
+    assert "4. Set the deflection setpoint" in panel.step_html.value
+    assert panel.last.part == "probe_chip"            # the step's part is picked
+    text = panel.result_html.value
+    for title in ("1. Mount the probe", "2. Put the laser", "3. Centre the spot"):
+        assert title in text
+    assert "Not yet" in text and "deflection setpoint" in text
+    panel.set(deflection=20.0)
+    assert panel.check_step()
+
+
+def test_the_probe_description_gives_the_lever_the_optics_use():
+    """The part picker's description of the OBD probe names the lever the head models (module
+    (a)'s default 450 x 50 x 2 um, or the one passed), not another drawing's."""
+    from afmsmiler.cantilever import Cantilever
+    for lever, size in ((None, "450 x 50 x 2 um"),
+                        (Cantilever.from_material("silicon", length=125e-6, width=30e-6,
+                                                  thickness=4e-6), "125 x 30 x 4 um")):
+        panel = OverviewPanel() if lever is None else OverviewPanel(lever=lever)
+        panel.set(part="probe_chip")
+        assert f"lever {size}" in panel.last.description
+        assert len(re.findall(r"lever \d", panel.last.description)) == 1
+        assert "3.4 x 1.6 mm chip" in panel.last.description
+
+
+def test_knob_sliders_say_which_way_is_clockwise(panel):
+    """Exercise 2 asks clockwise or counter-clockwise: each knob's slider says + is clockwise,
+    and + is clockwise in the model (OpticalHead.turn: positive clockwise seen from its end;
+    the exercise's checker takes clockwise as +)."""
+    from afmsmiler.exercises.overview import DIRECTIONS
+    for name in KNOBS:
+        assert "+ clockwise" in panel.controls[name].description
+        assert "[turn]" in panel.controls[name].description
+    assert DIRECTIONS["clockwise"] == 1 and "positive clockwise" in OpticalHead.turn.__doc__
 
 
 def test_a_bad_deflection_moves_no_knob():

@@ -40,8 +40,9 @@ DEFAULTS = read_only(dict(
     # down by 20 z micro-steps of 2.5 um changed the reading by 584 counts)
     free_counts=8410, contact_counts=14981, calibration_counts=584, calibration_steps=20,
     z_step=2.5e-6, force_rtol=0.01,
-    # 2. jumping mode over the seashell printed 400x and scanned at 0.2 mm: the setpoint (counts
-    # above the free reading, 10 mN) and the pull-off force of the needle from the print
+    # 2. jumping mode over the seashell printed 400x and scanned at 0.2 mm: the setpoint, counted
+    # above the free reading (the gauge reads free_counts + setpoint_counts there; 10 mN), and
+    # the pull-off force of the needle from the print
     setpoint_counts=13143, pull_off_force=0.5e-3, lateral_scale=400.0, pitch=0.2e-3,
     # 3. the print bed (Creality Ender 3, as in the paper) and the margin kept on each side
     bed=(0.22, 0.22), margin=10e-3, scale_rtol=0.01,
@@ -175,6 +176,11 @@ def jumping_lift() -> int:
 def check_jumping_lift(steps) -> Feedback:
     """Check exercise 2: the smallest jumping-mode lift, in z micro-steps.
 
+    The setpoint is given as ``setpoint_counts`` counts above the free reading; a lift that
+    takes the free reading off it once more (exercise 1's step, not needed here) is recognised
+    and named, as are a lift that leaves out one of its three parts, one in metres and one
+    longer than needed.
+
     Parameters
     ----------
     steps : int
@@ -184,8 +190,9 @@ def check_jumping_lift(steps) -> Feedback:
     -------
     Feedback
     """
-    hint = ("After a pixel the tip is pressed in by the setpoint; retracting it must first undo "
-            "that deflection, then stretch the ruler until it pulls with the pull-off force "
+    hint = ("After a pixel the tip is pressed in by the setpoint (setpoint_counts above the "
+            "free reading, converted with exercise 1's calibration); retracting it must first "
+            "undo that deflection, then stretch the ruler until it pulls with the pull-off force "
             "(F = k d), then clear the highest rise to the next pixel along the line "
             "(np.diff of printed_shell().heights along axis 1). Give micro-steps of 2.5 um.")
     value, feedback = read_number("the lift (in z micro-steps)", steps, hint)
@@ -197,6 +204,15 @@ def check_jumping_lift(steps) -> Feedback:
                               f"the tip and clears every pixel (smallest: {expected}).")
     z = DEFAULTS["z_step"]
     setpoint, adhesion, rise = _lift_parts()
+    # the other reading of the setpoint: the free reading taken off it as in exercise 1, but
+    # setpoint_counts already counts from the free reading
+    free = DEFAULTS["free_counts"] / _counts_per_metre()
+    twice = math.ceil((setpoint - free + adhesion + rise) / z - 1e-9)
+    if twice <= value <= twice + 1:
+        return Feedback(False, f"lift = {value:g} micro-steps takes the free reading off the "
+                               "setpoint, but setpoint_counts is already counted above the free "
+                               "reading (the gauge reads free_counts + setpoint_counts at the "
+                               "setpoint): convert setpoint_counts as it is.")
     missing = ((setpoint, "the setpoint's deflection (the tip is pressed in first)"),
                (adhesion, "the adhesion: the ruler must pull with the pull-off force"),
                (rise, "the rise to the next pixel"))

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 from functools import lru_cache
 
-from ..instrument import OpticalHead, align
+from ..instrument import KNOBS, OpticalHead, align
 from ..instrument.optics import interval_fraction
 from ..parameters import read_only
 from ..validation import check_choice, check_range
@@ -54,14 +54,16 @@ def givens() -> dict:
     dict
         ``sum`` (V), ``optical_path`` D (m), ``lever_length`` L (m), ``detector_spot_radius``
         w(D) (m, 1/e^2), ``spring_constant`` k (N/m), ``spot_from_end`` (m, the aligned spot's
-        centre from the lever's free end), ``knobs`` (rad).
+        centre from the lever's free end), ``knob_turns`` (each knob's setting in turns, as the
+        panel's sliders show them; one turn is 2 pi rad).
     """
     head = _aligned_head()
     s = head.signals()
     return dict(sum=s.sum, optical_path=head.optical_path, lever_length=head.lever.length,
                 detector_spot_radius=head.detector_spot_radius,
                 spring_constant=head.lever.spring_constant,
-                spot_from_end=head.lever.length - s.spot_on_lever[0], knobs=dict(s.knobs))
+                spot_from_end=head.lever.length - s.spot_on_lever[0],
+                knob_turns={k: KNOBS[k].to_display(v) for k, v in s.knobs.items()})
 
 
 def check_deflection_sensitivity(answer, rtol: float = 0.03) -> Feedback:

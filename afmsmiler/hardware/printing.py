@@ -526,9 +526,11 @@ class PrintComparison:
     Attributes
     ----------
     reference : Sample
-        The printed surface on the scan's grid (rows, columns of the scan), offset removed.
+        The printed surface on the scan's grid (rows, columns of the scan), its relief above
+        its lowest point there.
     image : Sample
-        The scan, offset removed (both have zero mean).
+        The scan on the same zero (shifted by its mean difference from the reference: both have
+        the same mean).
     difference : Sample
         ``image - reference`` in m.
     rms : float
@@ -549,8 +551,11 @@ def compare_scan(reference: Sample, image: Sample) -> PrintComparison:
 
     The scan starts at the reference's first pixel (its origin) and runs on the same pitch; its
     rows and columns are a corner of the reference's (a partial scan compares its finished
-    lines). Both lose their mean height (the machine's z zero is its home position, not the bed),
-    so the difference shows the shape error alone.
+    lines). Both are put on one zero, the printed surface's lowest point in that corner: the
+    reference as its relief above that point, the scan shifted by the one offset that the
+    machine's z zero (its home position, not the bed) leaves unknown, fitted as the difference
+    of the means. So the difference shows the shape error alone, and the print and its scan
+    read the same heights.
 
     Parameters
     ----------
@@ -584,8 +589,8 @@ def compare_scan(reference: Sample, image: Sample) -> PrintComparison:
         raise ValueError(f"image must fit in the reference's {reference.shape} pixels, got "
                          f"{image.shape}")
     ref = reference.heights[:rows, :cols]
-    ref = ref - ref.mean()
-    img = image.heights - image.heights.mean()
+    ref = ref - ref.min()
+    img = image.heights - (image.heights.mean() - ref.mean())
     diff = img - ref
     grid = dict(pixel_size=image.pixel_size, pixel_size_y=image.pixel_size_y)
     return PrintComparison(Sample(ref, name="printed surface", **grid),

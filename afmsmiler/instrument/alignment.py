@@ -145,16 +145,23 @@ HEAD = read_only({p.name: p for p in (
               label="probe chip width"),
 )})
 
-#: The four knobs: rotation in rad (SI), shown in turns; the range is the knob's travel.
+#: The four knobs: rotation in rad (SI), shown in turns, positive clockwise seen from the knob's
+#: end; the range is the knob's travel. The laser knobs reach +-2 mm along the lever and +-1.4 mm
+#: across it in the focal plane, the mount offsets of :data:`HEAD`. The photodiode knobs' travel,
+#: +-16 turns of 0.5 mm (+-8 mm), reaches the reflection of every lever mounted within
+#: :data:`HEAD`'s ranges on the default head: it falls at most 2 mm (the mount offset along the
+#: lever) + D tan(2 x 5 deg) = 7.3 mm from the photodiode's centre (D = 30 mm).
 KNOBS = read_only({p.name: p for p in (
     Parameter(name="laser_x", unit="rad", display_unit="turn", default=0.0, low=-5 * _TURN,
-              high=5 * _TURN, label="laser knob along the lever"),
+              high=5 * _TURN, label="laser knob along the lever (+ clockwise)"),
     Parameter(name="laser_y", unit="rad", display_unit="turn", default=0.0, low=-5 * _TURN,
-              high=5 * _TURN, label="laser knob across the lever"),
+              high=5 * _TURN, label="laser knob across the lever (+ clockwise)"),
     Parameter(name="detector_vertical", unit="rad", display_unit="turn", default=0.0,
-              low=-6 * _TURN, high=6 * _TURN, label="photodiode knob, vertical"),
+              low=-16 * _TURN, high=16 * _TURN,
+              label="photodiode knob, vertical (+ clockwise)"),
     Parameter(name="detector_lateral", unit="rad", display_unit="turn", default=0.0,
-              low=-6 * _TURN, high=6 * _TURN, label="photodiode knob, lateral"),
+              low=-16 * _TURN, high=16 * _TURN,
+              label="photodiode knob, lateral (+ clockwise)"),
 )})
 
 #: What :meth:`OpticalHead.aligned` checks, with its default tolerances.
@@ -550,6 +557,31 @@ class OpticalHead:
         return float(self.transimpedance_gain * self.responsivity * self.laser_power
                      * self.reflectance * overlap * capture)
 
+    def _reflection_on_detector(self, signals: Signals) -> tuple:
+        """Where the lever's reflection falls (vertical, lateral) in m from the photodiode's
+        centre with both photodiode knobs at 0 (the spot on the detector plus the detector's
+        own shift)."""
+        pitch = self.detector_screw_pitch
+        v, lat = signals.spot_on_detector
+        return (v + pitch * signals.knobs["detector_vertical"] / _TURN,
+                lat + pitch * signals.knobs["detector_lateral"] / _TURN)
+
+    def _photodiode_advice(self, signals: Signals) -> str:
+        """What to do when the lever reflects but the photodiode misses the reflection."""
+        pitch = self.detector_screw_pitch
+        for value, knob in zip(self._reflection_on_detector(signals),
+                               ("detector_vertical", "detector_lateral")):
+            reach = pitch * KNOBS[knob].high / _TURN
+            if abs(value) > reach:
+                return (f"the reflection falls {shown(abs(value), 'mm', '.3g')} from the "
+                        f"photodiode's centre, beyond the {shown(reach, 'mm', '.3g')} that "
+                        f"{knob}'s travel reaches: the chip sits tilted or off its place in the "
+                        f"holder (tilt_error {math.degrees(self.tilt_error):.3g} deg, "
+                        f"mount_offset_x {shown(self.mount_offset_x, 'mm', '.3g')}); seat it "
+                        f"again")
+        return ("the photodiode misses the reflection: centre it under the reflection "
+                "(detector_vertical, detector_lateral)")
+
     def aligned(self, min_sum_fraction: float = TOLERANCES["min_sum_fraction"].default,
                 max_difference: float = TOLERANCES["max_difference"].default,
                 end_distance: float = TOLERANCES["end_distance"].default) -> Alignment:
@@ -581,17 +613,23 @@ class OpticalHead:
         reasons = []
         best = self.best_sum
         if s.sum < min_sum_fraction * best:
-            reasons.append(f"the sum is {s.sum:.3g} V, below {min_sum_fraction:.0%} of its best "
-                           f"{best:.3g} V: put the spot on the lever (laser_x, laser_y)"
-                           + (" and the photodiode under the reflection" if s.lever_fraction
-                              > min_sum_fraction * 0.9 else ""))
+            low = f"the sum is {s.sum:.3g} V, below {min_sum_fraction:.0%} of its best {best:.3g} V"
+            if s.lever_fraction < min_sum_fraction * self.best_overlap:
+                reasons.append(f"{low}: put the spot on the lever (laser_x, laser_y)")
+            else:
+                reasons.append(f"{low}, though the lever reflects "
+                               f"{s.lever_fraction / self.best_overlap:.0%} of the most it can: "
+                               + self._photodiode_advice(s))
         gap = self.lever.length - s.spot_on_lever[0]
         if abs(gap) > end_distance:
             where = "short of" if gap > 0 else "beyond"
             reasons.append(f"the spot is {shown(abs(gap), 'um', '.3g')} {where} the lever's free "
                            f"end (at most {shown(end_distance, 'um', '.3g')}): turn laser_x")
+        dark = s.sum < min_sum_fraction * best   # then the differences are the dark's noise
         for name, knob in (("vertical", "detector_vertical"), ("lateral", "detector_lateral")):
             value = getattr(s, f"{name}_normalised")
+            if dark:
+                break
             if abs(value) > max_difference:
                 reasons.append(f"{name} / sum is {value:.3g} (at most {max_difference:g} either "
                                f"way): centre the photodiode with {knob}")
@@ -624,17 +662,24 @@ def align(head: OpticalHead, *, end_margin: float = 0.02) -> AlignmentRun:
        (from a misaligned start the sum is near zero, so there is no gradient to follow; the
        student watches the spot on the lever, or the reflection on a card held in its path,
        since the photodiode may not catch it yet).
-    2. *Photodiode*: zero vertical / sum and lateral / sum with the photodiode knobs
-       (``scipy.optimize.brentq`` after a coarse scan of the travel: each is monotonic in its
-       knob where light arrives), so the detector catches the whole spot.
+    2. *Photodiode*: find the reflection with the photodiode (a coarse raster of both knobs over
+       their travel, a step of half the photodiode's side) and zero vertical / sum and
+       lateral / sum with its knobs (``scipy.optimize.brentq``, each difference monotonic in
+       its knob where light arrives; twice, since each knob changes the light the other sees).
+       If the photodiode cannot be centred on the reflection (it falls beyond the knobs' reach:
+       the chip sits tilted in its holder) the procedure stops here, its last step named so,
+       and the verdict says what to do: the SUM the next steps follow would be the photodiode's
+       edge, not the lever's.
     3. *Across*: maximise the sum over laser_y (``scipy.optimize.minimize_scalar``, bounded).
-    4. *Along*: step laser_x towards the free end until the sum falls below half the largest
-       seen (the spot's centre has passed the end), then back to where the sum is
-       (1 - ``end_margin``) of that largest (``brentq``): about one spot radius inside the end,
-       in the end region where the signal per nm of deflection is largest.
-    5. *Across* again (turning laser_x also moves the spot across a little: the mirror's two
-       tilts couple in the exact reflection), and the *photodiode* again (the spot moved on the
-       detector as it moved on the lever).
+    4. *Along*: step laser_x towards the free end. Turning laser_x also moves the spot across
+       a little (the mirror's two tilts couple in the exact reflection, more the further
+       laser_y is turned), so when the sum falls below half the largest seen, centre across
+       again first: only a fall that re-centring does not undo is the free end. Then walk back
+       while the sum still rises (the search may have landed past the plateau) and go to where
+       the sum is (1 - ``end_margin``) of the largest (``brentq``): about one spot radius inside
+       the end, in the end region where the signal per nm of deflection is largest.
+    5. *Across* again and the *photodiode* again (the spot moved on the detector as it moved on
+       the lever).
 
     Parameters
     ----------
@@ -673,64 +718,114 @@ def align(head: OpticalHead, *, end_margin: float = 0.02) -> AlignmentRun:
     i, j = hits[np.argmin(distance)]
     steps.append(("search", head.set(laser_x=float(xs[i]), laser_y=float(ys[j]))))
     # 2. photodiode under the reflection
-    steps.append(("photodiode", _centre_detector(head, count)))
+    s = _centre_detector(head, count)
+    if not _detector_centred(head, s):
+        steps.append(("photodiode: cannot centre it on the reflection", s))
+        return AlignmentRun(tuple(steps), count[0], head.aligned())
+    steps.append(("photodiode", s))
     # 3. across the lever
     dy = ys[1] - ys[0]
 
-    def across():
+    def across(span=2 * dy):
         y = head.knobs["laser_y"]
-        lo, hi = max(y - 2 * dy, ys[0]), min(y + 2 * dy, ys[-1])
+        lo, hi = max(y - span, ys[0]), min(y + span, ys[-1])
         best = minimize_scalar(lambda u: -total(laser_y=u), bounds=(lo, hi), method="bounded",
                                options={"xatol": 1e-4 * dy, "maxiter": 100})
         return head.set(laser_y=float(best.x))
     steps.append(("across", across()))
     # 4. along, to the free end
     step = head.waist / 2 / gain_x
+    low, high = KNOBS["laser_x"].low, KNOBS["laser_x"].high
     x, largest = head.knobs["laser_x"], total()
-    high = KNOBS["laser_x"].high
     previous = x
     for _ in range(int((high - x) / step) + 2):   # bounded by the knob's travel
         previous, x = x, min(x + step, high)
         s = total(laser_x=x)
+        if s < 0.5 * largest:                     # the side or the end? centre across first
+            head.set(laser_x=x)
+            s = across(dy / 2).sum
+            if s < 0.5 * largest:
+                head.set(laser_x=previous)
+                break
         largest = max(largest, s)
-        if s < 0.5 * largest or x >= high:
+        if x >= high:
             break
-    target = (1 - end_margin) * largest
-    # back from the end: the last setting whose sum is still above the target
+    # back while the sum still rises (centred across at each step: the coupling again): the
+    # plateau, then the last setting above the target
     back = previous
-    for _ in range(int((x - KNOBS["laser_x"].low) / step) + 2):
-        if total(laser_x=back) >= target or back <= KNOBS["laser_x"].low:
+    head.set(laser_x=back)
+    here = across(dy / 4).sum
+    while back > low:
+        candidate = max(back - step, low)
+        y = head.knobs["laser_y"]
+        head.set(laser_x=candidate)
+        there = across(dy / 4).sum
+        if there <= here * (1 + 1e-3):
+            head.set(laser_x=back, laser_y=y)
             break
-        back = max(back - step, KNOBS["laser_x"].low)
-    if total(laser_x=back) >= target > total(laser_x=x):
+        back, here = candidate, there
+    largest = max(largest, here)
+    target = (1 - end_margin) * largest
+    if here >= target > total(laser_x=x):
         x = brentq(lambda u: total(laser_x=u) - target, back, x, xtol=1e-6 * step)
     else:
         x = back
     steps.append(("along", head.set(laser_x=float(x))))
     # the mirror's two tilts couple a little (exact reflection): centre across once more
-    steps.append(("across", across()))
+    steps.append(("across", across(dy / 2)))
     # 5. photodiode again (the spot moved on the detector as it moved on the lever)
     steps.append(("photodiode", _centre_detector(head, count)))
     return AlignmentRun(tuple(steps), count[0], head.aligned())
 
 
+def _detector_centred(head: OpticalHead, s: Signals) -> bool:
+    """Whether both differences are zeroed and the photodiode catches the lever's reflection."""
+    capture = interval_fraction(0.0, head.detector_spot_radius, -head.detector_size / 2,
+                                head.detector_size / 2) ** 2
+    caught = (head.transimpedance_gain * head.responsivity * head.laser_power * head.reflectance
+              * s.lever_fraction * capture)
+    small = TOLERANCES["max_difference"].default / 10
+    return (abs(s.vertical_normalised) < small and abs(s.lateral_normalised) < small
+            and s.sum >= 0.9 * caught)
+
+
 def _centre_detector(head: OpticalHead, count) -> Signals:
-    """Zero each normalised difference with its photodiode knob (brentq), within the travel."""
-    for knob, name in (("detector_vertical", "vertical_normalised"),
-                       ("detector_lateral", "lateral_normalised")):
-        meta = KNOBS[knob]
+    """Find the reflection with the photodiode, then zero each difference with its knob."""
+    kv, kl = KNOBS["detector_vertical"], KNOBS["detector_lateral"]
+    # a raster of both knobs, a step of half the photodiode's side: one setting catches the
+    # reflection wherever it falls within reach
+    spacing = head.detector_size / 2 / head.detector_screw_pitch * _TURN
+    gv = np.linspace(kv.low, kv.high, int((kv.high - kv.low) / spacing) + 2)
+    gl = np.linspace(kl.low, kl.high, int((kl.high - kl.low) / spacing) + 2)
+    k = head.knobs
+    quads = head._evaluate(k["laser_x"], k["laser_y"], gv[:, None], gl[None, :], 0.0)[0]
+    sums = head._volts(quads)[0]
+    count[0] += sums.size
+    if sums.max() > 0:
+        i, j = np.unravel_index(np.argmax(sums), sums.shape)
+        head.set(detector_vertical=float(gv[i]), detector_lateral=float(gl[j]))
+    for _ in range(2):
+        for knob, name in (("detector_vertical", "vertical_normalised"),
+                           ("detector_lateral", "lateral_normalised")):
+            meta = KNOBS[knob]
 
-        def difference(value, knob=knob, name=name):
-            count[0] += 1
-            old = head.knobs[knob]
-            s = head.set(**{knob: value})
-            head.set(**{knob: old})
-            return getattr(s, name)
+            def difference(value, knob=knob, name=name):
+                count[0] += 1
+                old = head.knobs[knob]
+                s = head.set(**{knob: value})
+                head.set(**{knob: old})
+                return getattr(s, name)
 
-        grid = np.linspace(meta.low, meta.high, 49)   # coarse first: the far ends see no light
-        values = [difference(g) for g in grid]
-        for g0, g1, v0, v1 in zip(grid[:-1], grid[1:], values[:-1], values[1:]):
-            if v0 > 0 > v1 or v0 < 0 < v1:
+            # outwards from where the knob is, in steps a quarter of the photodiode's side:
+            # the nearest zero of the difference (the far ends of the travel see no light)
+            centre = head.knobs[knob]
+            grid = np.unique(np.clip(np.concatenate([
+                centre + np.arange(-8, 9) * spacing / 2, [meta.low, meta.high]]),
+                meta.low, meta.high))
+            values = [difference(g) for g in grid]
+            brackets = [(g0, g1) for g0, g1, v0, v1 in zip(grid[:-1], grid[1:], values[:-1],
+                                                         values[1:]) if v0 * v1 < 0]
+            if brackets:
+                g0, g1 = min(brackets, key=lambda b: abs(b[0] + b[1] - 2 * centre))
                 head.set(**{knob: brentq(difference, g0, g1, xtol=1e-9)})
-                break
     return head.signals()

@@ -171,8 +171,10 @@ def _check_laser(state: SetupState,
         return StepCheck(True, "the spot is on the lever's free end and the sum is near its "
                                "largest.")
     # which way: where the model says the spot is (the student sees it in the camera's view)
+    lever_lit = s.lever_fraction >= min_sum_fraction * head.best_overlap
     hints = []
-    if abs(y) > lever.width / 2 or not enough and abs(y) > lever.width / 4:
+    across = abs(y) > lever.width / 2 or not lever_lit and abs(y) > lever.width / 4
+    if across:
         hints.append(_turn("laser_y", y < 0) + " to bring the spot onto the lever's middle line")
     if x < 0:
         hints.append(_turn("laser_x", True) + ": the spot is on the chip's body, go along the "
@@ -180,16 +182,17 @@ def _check_laser(state: SetupState,
     elif gap > end_distance:
         hints.append(_turn("laser_x", True) + ": the spot is on the lever but short of its "
                                               "free end")
-    elif gap < -end_distance:
-        hints.append(_turn("laser_x", False) + ": the spot is beyond the free end (the sum "
-                                               "drops once it runs off)")
-    if not hints:
-        hints.append("the spot is at the end but little light comes back: move it across "
-                     "with laser_y until the sum is largest")
-    if not enough and s.lever_fraction >= 0.9 * min_sum_fraction * head.best_overlap:
+    elif gap < -end_distance or not lever_lit and not across:
+        # past the end, or at the end (centred across) with part of the spot hanging over it
+        hints.append(_turn("laser_x", False) + ": the spot hangs over the free end and part "
+                                               "of it misses the lever (the sum dropped); come "
+                                               "back until the sum recovers")
+    if not enough and lever_lit:
         hints.append("the lever reflects, but the photodiode misses part of the reflection: "
                      "centre it (step 3) and look at the sum again")
-    what = ("the sum is well below its best (the spot is not on the lever)" if not enough
+    what = ("the sum is well below its best (not all of the spot is on the lever)"
+            if not lever_lit else
+            "the sum is well below its best although the spot is on the lever" if not enough
             else "the sum is fine, but the spot is not at the lever's free end, where it bends "
                  "most")
     return StepCheck(False, what + ".", "; ".join(hints) + ".")
@@ -392,6 +395,33 @@ class Walkthrough:
         result = self.step.check(state)
         self.results[self.step.key] = result
         return result
+
+    def resume(self, state: SetupState) -> Step:
+        """Check the steps in order on ``state`` and go to the first not yet done.
+
+        What a setup changed behind the guide's back (the knobs set by
+        :func:`~afmsmiler.instrument.align`, a re-run notebook) shows up here: the steps it
+        completed are recorded as done and the guide goes on from the first that is not (the
+        last step when every one is done).
+
+        Parameters
+        ----------
+        state : SetupState
+            The head, its signals, the setpoint and the gap.
+
+        Returns
+        -------
+        Step
+            The step the guide is now at.
+        """
+        check_instance("state", state, SetupState)
+        for index, step in enumerate(STEPS):
+            self.index = index
+            result = step.check(state)
+            self.results[step.key] = result
+            if not result:
+                break
+        return self.step
 
     @property
     def done(self) -> bool:

@@ -120,9 +120,20 @@ class QControl:
         return 1.0 / self.quality_factor + self.gain * math.sin(self.phase)
 
     @property
+    def poles(self) -> tuple:
+        """The closed loop's two poles in rad/s (complex): the roots of
+        s^2 + w0 (1/Q + g sin(phi)) s + w0^2 (1 - g cos(phi)), the Laplace transform of the
+        equation of motion above over m."""
+        w0 = 2.0 * math.pi * self.resonance_frequency
+        b, c = w0 * self.damping_ratio, w0 * w0 * self.stiffness_ratio
+        disc = cmath.sqrt(b * b - 4.0 * c)
+        return (0.5 * (-b + disc), 0.5 * (-b - disc))
+
+    @property
     def stable(self) -> bool:
-        """Whether the closed loop is stable: k_eff > 0 and 1/Q + g sin(phi) > 0."""
-        return self.stiffness_ratio > 0.0 and self.damping_ratio > 0.0
+        """Whether the closed loop is stable: both :attr:`poles` in the open left half plane
+        (for this second-order loop, k_eff > 0 and 1/Q + g sin(phi) > 0)."""
+        return all(p.real < 0.0 for p in self.poles)
 
     @property
     def effective_stiffness(self) -> float:
@@ -234,15 +245,22 @@ class ClosedLoopResponse:
     frequency : ndarray
         Drive frequencies in Hz.
     amplitude : ndarray
-        |Z / F| k: the amplitude per static deflection F / k (1 at low frequency without control).
+        |Z / F| k: the amplitude per static deflection F / k (1 at low frequency without
+        control); NaN when the loop is unstable (no steady state).
     phase : ndarray
-        Phase lag of the deflection behind the drive in rad, in [0, pi] for a stable loop.
+        Phase lag of the deflection behind the drive in rad, in [0, pi]; NaN when unstable.
+    steady : bool
+        Whether a steady state exists: the closed loop is stable (:attr:`QControl.stable`, its
+        poles in the left half plane). An unstable lever does not settle into a resonance curve
+        at all: any disturbance grows at its own frequency until something not modelled here
+        (the sample, the drive's limits) stops it.
     """
 
     qc: QControl
     frequency: np.ndarray
     amplitude: np.ndarray
     phase: np.ndarray
+    steady: bool = True
 
 
 def closed_loop_response(frequency, qc: QControl | None = None) -> ClosedLoopResponse:
@@ -258,6 +276,9 @@ def closed_loop_response(frequency, qc: QControl | None = None) -> ClosedLoopRes
     Returns
     -------
     ClosedLoopResponse
+        The steady state of a stable loop; for an unstable one (:attr:`QControl.stable`
+        false) ``steady`` is False and the amplitude and phase are NaN: the closed form's
+        |H(i w)| is then no response the lever ever reaches.
 
     Raises
     ------
@@ -267,6 +288,9 @@ def closed_loop_response(frequency, qc: QControl | None = None) -> ClosedLoopRes
     qc = _check(qc)
     f = np.atleast_1d(check_array("frequency", frequency, "Hz", low=0.0, min_size=1,
                                   max_size=MAX_POINTS))
+    if not qc.stable:
+        nan = np.full(f.shape, np.nan)
+        return ClosedLoopResponse(qc, f, nan, nan.copy(), steady=False)
     w = f / qc.resonance_frequency
     h = 1.0 / (qc.stiffness_ratio - w * w + 1j * w * qc.damping_ratio)
     return ClosedLoopResponse(qc, f, np.abs(h), -np.angle(h))

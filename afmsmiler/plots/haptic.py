@@ -54,13 +54,18 @@ class QControlFigure:
         Parameters
         ----------
         free, controlled : afmsmiler.modes.qcontrol.ClosedLoopResponse
-            Without and with the controller.
+            Without and with the controller; a controlled loop without a steady state
+            (``steady`` false: unstable) draws no resonance curve and says so in the title.
         ring_free, ring : afmsmiler.modes.qcontrol.RingDown
             Without and with the controller, from the same initial deflection.
         """
         f0 = controlled.qc.resonance_frequency
         for name, r in (("free", free), ("controlled", controlled)):
-            self.lines[name].set_data(r.frequency / f0, r.amplitude)
+            self.lines[name].set_data(r.frequency / f0, r.amplitude)   # NaN: no steady state
+        self.ax_response.set_title(
+            "resonance" if controlled.steady else
+            "unstable: no steady resonance with Q control",
+            color="black" if controlled.steady else "#b00020")
         a0 = ring.deflection[0]
         for name, r in (("ring_free", ring_free), ("ring", ring)):
             self.lines[name].set_data(r.time * f0, r.deflection / a0)

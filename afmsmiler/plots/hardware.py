@@ -1,5 +1,9 @@
 """Figures of module (h), part 1: the macroscopic AFM's image forming, and a print compared.
 
+Heights are shown as *relief*, in um above the lowest point: the machine's z zero is its home
+position, millimetres above the bed, so its raw heights of a 2 mm print read 6 to 8 mm; the
+scan's relief above its lowest pixel and the print's above its lowest point read the same.
+
 The macroscopic AFM images mm-sized printed objects with um-sized z micro-steps, so its figure
 shows positions in mm and heights in um (module (f)'s :mod:`~afmsmiler.plots.imaging` shows nm
 and um); every factor comes from :data:`afmsmiler.parameters.UNITS`. Nothing here computes
@@ -24,7 +28,7 @@ from .imaging import _clim
 from .limits import data_range, hold
 
 __all__ = ["FIGSIZE", "LENGTH_UNIT", "HEIGHT_UNIT", "MacroView", "macro_view",
-           "ComparisonView", "comparison_view", "MacroFigure", "scans_figure"]
+           "ComparisonView", "comparison_view", "MacroFigure", "scans_figure", "modes_figure"]
 
 #: Figure size in inches (JupyterLab's output area is about 1000 px wide).
 FIGSIZE = (10.0, 7.5)
@@ -39,7 +43,9 @@ class MacroView:
     Attributes
     ----------
     height : numpy.ndarray
-        Heights in um, shape (lines, pixels), pixels not streamed yet NaN.
+        Heights in um above the lowest pixel streamed so far (the machine's z zero is its home,
+        not the bed: so the scan reads as the print's relief, as the bottom row's print and
+        scan do), shape (lines, pixels), pixels not streamed yet NaN.
     gauge : numpy.ndarray
         Strain-gauge counts at each pixel, same shape.
     extent : tuple of float
@@ -47,7 +53,7 @@ class MacroView:
     x : numpy.ndarray
         Pixel positions along the fast axis in mm.
     profile : numpy.ndarray
-        Heights in um of the line being scanned (or the last finished one).
+        Heights in um of the line being scanned (or the last finished one), on the same zero.
     row : int or None
         That line's index (None before the first pixel).
     pixels_done : int
@@ -100,6 +106,8 @@ def macro_view(height, gauge, pitch: float, pixels_done: int, status: str = "") 
     d = float(pitch) * k
     extent = (-0.5 * d, (cols - 0.5) * d, -0.5 * d, (rows - 0.5) * d)
     row = None if done == 0 else min((done - 1) // cols, rows - 1)
+    if np.isfinite(h).any():
+        h = h - np.nanmin(h)                 # heights above the lowest pixel streamed so far
     profile = h[row] * kz if row is not None else np.full(cols, np.nan)
     return MacroView(h * kz, g, extent, np.arange(cols) * d, profile, row, done, rows * cols,
                      status)
@@ -181,10 +189,10 @@ class MacroFigure:
         ``"profile"`` -> Line2D; ``"row"`` -> the marker of the current line on the image.
     """
 
-    _IMAGES = (("height", "afmhot", f"height [{HEIGHT_UNIT}]"),
+    _IMAGES = (("height", "afmhot", f"relief [{HEIGHT_UNIT}]"),
                ("gauge", "viridis", "gauge [counts]"),
-               ("reference", "afmhot", f"printed surface [{HEIGHT_UNIT}]"),
-               ("image", "afmhot", f"scan [{HEIGHT_UNIT}]"),
+               ("reference", "afmhot", f"print's relief [{HEIGHT_UNIT}]"),
+               ("image", "afmhot", f"scan's relief [{HEIGHT_UNIT}]"),
                ("difference", "RdBu_r", f"scan - print [{HEIGHT_UNIT}]"))
 
     def __init__(self, view: MacroView, comparison: ComparisonView | None = None,
@@ -211,7 +219,7 @@ class MacroFigure:
         self.lines["profile"], = self.axes["profile"].plot([], [], color="C0")
         self.lines["row"], = self.axes["height"].plot([], [], color="C2", lw=1.0)
         self.axes["profile"].set(xlabel=f"x [{LENGTH_UNIT}]",
-                                 ylabel=f"height [{HEIGHT_UNIT}]")
+                                 ylabel=f"relief [{HEIGHT_UNIT}]")
         self.update(view, comparison if comparison is not None else comparison_view())
 
     def _image(self, key: str, values, extent, symmetric: bool = False) -> None:
@@ -308,4 +316,83 @@ def scans_figure(*images, titles=None, fig: Figure | None = None) -> Figure:
         im.set_clim(*_clim(values * kz))
         fig.colorbar(im, ax=ax, shrink=0.8, label=f"height [{HEIGHT_UNIT}]")
         ax.set(title=title, xlabel=f"x [{LENGTH_UNIT}]", ylabel=f"y [{LENGTH_UNIT}]")
+    return fig
+
+
+def modes_figure(*comparisons, labels, fig: Figure | None = None) -> Figure:
+    """Scans of one print in several modes, each against the print: where and how they differ.
+
+    Two scans of tall walls look alike at a colour scale of millimetres; their errors do not.
+    Top row: each scan (on the print's zero, as :func:`~afmsmiler.hardware.printing.compare_scan`
+    puts it); middle row: each scan minus the print, on one symmetric colour scale shared by
+    all, titled with its RMS; bottom: the profile along the fast axis through the line where the
+    largest error of all is, the print and each scan. Nothing is computed but the choice of that
+    line.
+
+    Parameters
+    ----------
+    *comparisons : PrintComparison
+        One to three comparisons of scans with the same print, on the same grid.
+    labels : sequence of str
+        What each scan is (e.g. its mode), one per comparison.
+    fig : matplotlib.figure.Figure, optional
+        Where to draw; default a new Figure 10 in wide.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+
+    Raises
+    ------
+    ValueError
+        For no or more than three comparisons, a label count that differs, or grids that differ.
+    """
+    if not 1 <= len(comparisons) <= 3:
+        raise ValueError(f"comparisons must be 1 to 3, got {len(comparisons)}")
+    labels = [str(label) for label in labels]
+    if len(labels) != len(comparisons):
+        raise ValueError(f"labels must give one label per comparison ({len(comparisons)}), got "
+                         f"{len(labels)}")
+    shape = comparisons[0].image.shape
+    for c in comparisons[1:]:
+        if c.image.shape != shape:
+            raise ValueError(f"comparisons must be on one grid, got {shape} and "
+                             f"{c.image.shape}")
+    k, kz = unit_scale(LENGTH_UNIT, "m"), unit_scale(HEIGHT_UNIT, "m")
+    first = comparisons[0].image
+    rows, cols = shape
+    dx, dy = first.pixel_size * k, first.pixel_size_y * k
+    extent = (-0.5 * dx, (cols - 0.5) * dx, -0.5 * dy, (rows - 0.5) * dy)
+    n = len(comparisons)
+    fig = fig if fig is not None else Figure(figsize=(10.0, 9.5))
+    fig.set_layout_engine("constrained")
+    grid = fig.add_gridspec(3, n, height_ratios=(1.0, 1.0, 0.8))
+    heights = [c.image.heights * kz for c in comparisons]
+    errors = [c.difference.heights * kz for c in comparisons]
+    lo, hi = _clim(np.concatenate([h.ravel() for h in heights]))
+    top = max(float(np.nanmax(np.abs(e))) for e in errors) or 1.0
+    for i, (c, label) in enumerate(zip(comparisons, labels)):
+        ax = fig.add_subplot(grid[0, i])
+        im = ax.imshow(np.ma.masked_invalid(heights[i]), origin="lower", cmap="afmhot",
+                       interpolation="nearest", extent=extent, vmin=lo, vmax=hi)
+        fig.colorbar(im, ax=ax, shrink=0.8, label=f"relief [{HEIGHT_UNIT}]")
+        ax.set(title=f"{label}: the scan", xlabel=f"x [{LENGTH_UNIT}]",
+               ylabel=f"y [{LENGTH_UNIT}]")
+        ax = fig.add_subplot(grid[1, i])
+        im = ax.imshow(np.ma.masked_invalid(errors[i]), origin="lower", cmap="RdBu_r",
+                       interpolation="nearest", extent=extent, vmin=-top, vmax=top)
+        fig.colorbar(im, ax=ax, shrink=0.8, label=f"scan - print [{HEIGHT_UNIT}]")
+        ax.set(title=f"{label}: scan - print, RMS {c.rms * kz:.3g} {HEIGHT_UNIT}",
+               xlabel=f"x [{LENGTH_UNIT}]", ylabel=f"y [{LENGTH_UNIT}]")
+    worst = max(range(n), key=lambda i: np.nanmax(np.abs(errors[i])))
+    line = int(np.unravel_index(np.nanargmax(np.abs(errors[worst])), shape)[0])
+    ax = fig.add_subplot(grid[2, :])
+    x = np.arange(cols) * dx
+    ax.plot(x, comparisons[0].reference.heights[line] * kz, color="black", lw=2.5, alpha=0.4,
+            label="print (as the needle follows it)", drawstyle="steps-mid")
+    for i, label in enumerate(labels):
+        ax.plot(x, heights[i][line], lw=1.2, label=label, drawstyle="steps-mid")
+    ax.set(title=f"line {line}, along the fast axis (the largest error)",
+           xlabel=f"x [{LENGTH_UNIT}]", ylabel=f"relief [{HEIGHT_UNIT}]")
+    ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0), fontsize="small")
     return fig

@@ -57,8 +57,24 @@ class LockInDemo:
         return self.run.second
 
     @property
+    def deviation(self) -> complex:
+        """The recovered phasor minus the true one, V (X - X_true + j (Y - Y_true)).
+
+        What an interference adds to the reading: a square reference's third harmonic picks up
+        a tone at three times the reference with weight 1/3, whatever its phase, so it shows in
+        the amplitude, the phase or both; the amplitude error alone can hide it.
+        """
+        return complex(self.reading.x, self.reading.y) - self.truth
+
+    @property
+    def relative_error(self) -> float:
+        """|recovered - true phasor| / |true phasor|: the whole error, amplitude and phase."""
+        return abs(self.deviation) / abs(self.truth)
+
+    @property
     def amplitude_error(self) -> float:
-        """Recovered over true amplitude, minus 1."""
+        """Recovered over true amplitude, minus 1 (blind to an error in phase: see
+        :attr:`relative_error`)."""
         return self.reading.amplitude / abs(self.truth) - 1.0
 
     @property

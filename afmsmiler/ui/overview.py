@@ -26,7 +26,8 @@ import ipywidgets as widgets
 import numpy as np
 
 from ..instrument import DEFAULT_LEVER, KNOBS, AlignmentRun, OpticalHead, Signals, align
-from ..instrument.walkthrough import SETUP, STEP_TOLERANCES, SetupState, StepCheck, Walkthrough
+from ..instrument.walkthrough import (SETUP, STEP_TOLERANCES, STEPS, SetupState, StepCheck,
+                                      Walkthrough)
 from ..parameters import read_only, shown
 from ..scenes.instrument import INSTRUMENTS
 from ..scenes.instrument import PARAMETERS as SCENE
@@ -250,8 +251,8 @@ class OverviewPanel(Panel):
         setup = SetupState(self.head, signals=signals, deflection=setpoint, approach_gap=gap,
                            mounted=mounted)
         p = parts.get(part)
-        description = (f"{p.label}: {p.description} ({p.dimensions})" if p is not None
-                       else INSTRUMENTS[instrument].title)
+        description = (f"{p.label}: {p.description} ({self._dimensions(instrument, p)})"
+                       if p is not None else INSTRUMENTS[instrument].title)
         self.last = OverviewState(head=self.head, signals=signals, setup=setup, deflection=z,
                                   instrument=instrument, part=part, description=description)
         self.figure.update(self.head, signals, mounted)
@@ -261,6 +262,19 @@ class OverviewPanel(Panel):
                                mounted)
         self.display_html.value = self._display_html()
         self.part_html.value = f"<div style='max-width:560px'>{html.escape(description)}</div>"
+
+    def _dimensions(self, instrument: str, part) -> str:
+        """The part's dimensions; the OBD probe's lever is the one the head's optics use (its
+        length decides where the free end is and every signal), whatever the drawing's."""
+        if instrument != "obd" or part.name != "probe_chip":
+            return part.dimensions
+        lever = self.head.lever
+        size = " x ".join(f"{v * 1e6:.3g}" for v in (lever.length, lever.width,
+                                                      lever.thickness))
+        chip = f"{self.head.chip_length * 1e3:.3g} x {self.head.chip_width * 1e3:.3g} mm chip"
+        rest = [piece.strip() for piece in part.dimensions.split(",")   # the tip's, say
+                if not piece.strip().startswith("lever") and "chip" not in piece]
+        return ", ".join([chip, f"lever {size} um (the lever the optics model)", *rest])
 
     def _update_scene(self, instrument, part, opacity, fraction, knobs, gap, signals,
                       mounted) -> None:
@@ -359,7 +373,10 @@ class OverviewPanel(Panel):
         """Align a freshly mounted head as the manual does and set the knobs to the result.
 
         Runs :func:`afmsmiler.instrument.align` from the just-mounted state (not from the knobs
-        shown), then sets the four knob sliders to where it ended (one update).
+        shown), then sets the four knob sliders to where it ended (one update), and the guided
+        setup goes on from the first step not yet done
+        (:meth:`~afmsmiler.instrument.walkthrough.Walkthrough.resume`), saying which steps the
+        alignment completed.
 
         Returns
         -------
@@ -369,6 +386,15 @@ class OverviewPanel(Panel):
         run = align(OpticalHead(self.head.lever))
         self.set(**{name: KNOBS[name].to_display(angle)
                     for name, angle in run.alignment.signals.knobs.items()})
+        walkthrough = self.walkthrough
+        walkthrough.resume(self.last.setup)
+        self._go_to_step()
+        done = [s.title for s in STEPS if walkthrough.results.get(s.key)]
+        result = walkthrough.results[walkthrough.step.key]
+        self.result_html.value = (
+            f"<div>Done: {html.escape(', '.join(done) or 'no step')}.</div>"
+            f"<div style='color:{'#1a7f37' if result else '#b00020'}'>"
+            f"{html.escape(str(result))}</div>")
         return run
 
     def check_step(self) -> StepCheck:
