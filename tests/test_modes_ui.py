@@ -68,32 +68,85 @@ def test_tapping_panel_holds_the_state_setpoint_state_finds(tap):
         assert x[0] == pytest.approx(zc * NM) and y[0] == pytest.approx(r * 12.0)
 
 
-def test_notebook_suggestion_the_setpoint_picks_the_branch(tap):
-    # notebook 07: at A0 = 12 nm the default setpoint 0.8 ends on the repulsive branch;
-    # 0.9 keeps the tip on the attractive one; with A0 = 8 nm even 0.5 stays attractive
-    tap.set(free_amplitude=12.0, setpoint_ratio=0.8)
+def _coexistence_runs(curve):
+    z = np.sort(curve.distance)
+    both = curve.coexist[np.argsort(curve.distance)].astype(int)
+    edges = np.flatnonzero(np.diff(np.r_[0, both, 0]))
+    return [(z[i], z[j - 1]) for i, j in zip(edges[::2], edges[1::2])]
+
+
+def test_notebook_tapping_text_says_what_the_model_shows():
+    # notebook 07's tapping section, at the panel's defaults: the attractive branch's phase lag
+    # lies above 90 deg, the repulsive branch's tip is in the sample all along, the grey comes in
+    # two stretches with no attractive branch between about 3 and 9.5 nm, and the tip touches
+    # where A lies above z_c - a0 (the dash-dotted line), the attractive branch's too near its end
+    panel = TappingPanel()
+    curve = panel.last.curve
+    a, phase = curve.branch("attractive")
+    r, _ = curve.branch("repulsive")
+    assert np.all(np.degrees(phase[np.isfinite(a)]) > 90.0)
+    lever = curve.lever
+    assert np.all(lever.indentation(curve.distance[np.isfinite(r)], r[np.isfinite(r)]) > 1e-9)
+    (lo1, hi1), (lo2, hi2) = _coexistence_runs(curve)
+    assert 2.5e-9 < hi1 < 3.5e-9 and 9e-9 < lo2 < 10e-9
+    between = (curve.distance > 3.5e-9) & (curve.distance < 9e-9)
+    assert np.all(np.isnan(a[between]))
+    touching = np.isfinite(a) & (lever.indentation(curve.distance, np.nan_to_num(a)) > 0)
+    assert touching.any()
+    panel.set(setpoint_ratio=0.82)  # the book: the lowest attractive setpoint, 0.41 nm deep
+    assert panel.last.branch == "attractive" and f"{panel.last.indentation * NM:.2g}" == "0.41"
+    z, amp = panel.figure.lines["amplitude", "contact"].get_data()
+    np.testing.assert_allclose(np.asarray(amp) / NM, np.asarray(z) / NM
+                               - lever.intermolecular_distance, rtol=1e-12, atol=1e-21)
+
+
+def test_notebook_suggestion_the_setpoint_picks_the_branch():
+    # notebook 07, from the defaults: setpoint 0.8 ends on the repulsive branch, 1.7 nm into the
+    # sample; 0.9 keeps the tip on the attractive one, dipping about 0.1 nm in; at 0.99 it stays
+    # clear; with A0 = 8 nm even 0.5 stays attractive, tapping gently
     assert TAPPING_DEFAULTS["free_amplitude"] == 12.0 and TAPPING_DEFAULTS["setpoint_ratio"] == 0.8
-    assert tap.last.branch == "repulsive"
-    assert "repulsive branch" in tap.figure.axes["amplitude"].get_title()
+    tap = TappingPanel(vis=Recorder())
+    s = tap.last
+    assert s.branch == "repulsive" and s.touches
+    assert f"{s.indentation * NM:.2g}" == "1.7"
+    title = tap.figure.axes["amplitude"].get_title()
+    assert "repulsive branch, tip 1.7 nm into the sample" in title
+    assert "yes, 1.7 nm deep" in tap.readout.value
     tap.set(setpoint_ratio=0.9)
-    assert tap.last.branch == "attractive"
+    s = tap.last
+    assert s.branch == "attractive" and s.touches and 0.05e-9 < s.indentation < 0.2e-9
+    assert "attractive branch, tip 0.13 nm into the sample" in \
+        tap.figure.axes["amplitude"].get_title()
+    assert tap.scene.touching_frames > 0  # the 3D view's tip turns orange: it touches
+    tap.set(setpoint_ratio=0.99)
+    s = tap.last
+    assert s.branch == "attractive" and not s.touches
+    assert "clear of it" in tap.figure.axes["amplitude"].get_title()
+    assert "no, " in tap.readout.value and tap.scene.touching_frames == 0
     tap.set(free_amplitude=8.0, setpoint_ratio=0.5)
-    assert tap.last.branch == "attractive"
-    tap.set(**{k: TAPPING_DEFAULTS[k] for k in ("free_amplitude", "setpoint_ratio")})
+    s = tap.last
+    assert s.branch == "attractive" and s.indentation < 0.1e-9  # gently: 1.7 nm repulsive
 
 
-def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
-    tap.set(sample_viscosity=0.0, setpoint_ratio=0.9)
-    dry = tap.last.dissipated_energy
-    tap.set(sample_viscosity=200.0)
-    wet = tap.last.dissipated_energy
+def test_notebook_suggestion_viscosity_lights_up_the_dissipation():
+    # notebook 07, from the defaults: at setpoint 0.9, 200 Pa s makes E_dis grow from zero to some
+    # 70 zJ and the phase lag move by about 0.2 deg; at 0.99 (clear of the sample) it takes nothing
+    tap = TappingPanel()
+    tap.set(setpoint_ratio=0.9)
+    dry, dry_phase = tap.last.dissipated_energy, tap.last.phase
     lever = tap.last.curve.lever
     scale = math.pi * lever.spring_constant * lever.free_amplitude ** 2 / lever.quality_factor
     # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
     # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
     assert abs(dry) < 1e-9 * scale
-    assert wet > 1e-20  # from zero to tens of zJ
-    tap.set(sample_viscosity=0.0, setpoint_ratio=0.8)
+    tap.set(sample_viscosity=200.0)
+    s = tap.last
+    assert s.branch == "attractive" and s.touches
+    assert 50e-21 < s.dissipated_energy < 90e-21  # "some 70 zJ"
+    assert 0.1 < abs(math.degrees(s.phase - dry_phase)) < 0.4  # "about 0.2 deg"
+    tap.set(setpoint_ratio=0.99)
+    s = tap.last
+    assert not s.touches and abs(s.dissipated_energy) < 1e-9 * scale
 
 
 def test_operating_point_refuses_a_setpoint_never_reached():
