@@ -6,6 +6,7 @@ says (the setpoint that picks the branch, the slope that leaks into a trace but 
 friction map, the lift that clears the bars, the noise that biases the modulus map)."""
 import functools
 import math
+import re
 
 import numpy as np
 import pytest
@@ -213,6 +214,10 @@ def test_notebook_suggestion_tilt_moves_the_trace_not_the_friction_map(lat):
         traces.append(np.mean(lat.last.loop.trace[1:-1]) / lat.last.loop.normal_force)
     np.testing.assert_allclose(maps[0], maps[1], atol=1e-12)
     assert traces[1] - traces[0] == pytest.approx(math.tan(math.radians(5.0)), rel=1e-6)
+    # the readout the notebook points at shows the same mean trace over the load
+    shown = float(re.search(r"mean trace / load \(line\)</td><td[^>]*><b>([-0-9.e]+)<",
+                            lat.readout.value).group(1))
+    assert shown == pytest.approx(traces[1], rel=1e-3)
     # the map recovers the two coefficients where each material lies
     mu = lat.last.friction[:, 1:-1]
     np.testing.assert_allclose(maps[1], mu, atol=1e-12)
@@ -266,7 +271,9 @@ def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
     # notebook 07: at A = 11 pm df is within a few per cent of the force-gradient shift
     # -f0/(2k) dF/dz (from 1 nm on); at the default 5 nm it is some thirty times smaller 1 nm
     # from the sample
-    fmp.set(amplitude=0.011)
+    p = fmp.controls["amplitude"]
+    assert f"{10 ** p.min * 1e3:.2g}" == "11"  # the slider's smallest value: 11 pm
+    fmp.set(amplitude=10 ** p.min)
     c = fmp.last.curve
     far = c.z > 1e-9
     np.testing.assert_allclose(c.frequency_shift[far], c.gradient_shift[far], rtol=0.05)
@@ -325,12 +332,26 @@ def test_notebook_suggestion_a_low_lift_crashes_into_the_bars(jump):
     assert "crashed" in jump.figure.axes["image"].get_title()
     jump.set(lift_height=50.0)
     assert jump.last.result.crashed is None
+    assert re.search(r"largest lateral force</td><td[^>]*><b>0 nN<", jump.readout.value)
     jump.set(lift_height=JUMPING_DEFAULTS["lift_height"])
 
 
-def test_notebook_suggestion_jumping_costs_time(jump):
-    # notebook 07: the image takes over ten times longer than in contact mode
-    assert jump.last.acquisition_time > 10 * jump.last.contact_time
+def test_notebook_suggestion_jumping_costs_time():
+    # notebook 07, the readout's two times: at the default lift (150 nm) the jumping image takes
+    # some seventeen times as long as in contact mode, at 50 nm still some six times
+    jump = JumpingPanel()
+
+    def times():
+        found = [float(re.search(rf"image in {m} mode</td><td[^>]*><b>([0-9.e]+) s<",
+                                 jump.readout.value).group(1)) for m in ("jumping", "contact")]
+        assert found == pytest.approx([jump.last.acquisition_time, jump.last.contact_time],
+                                      rel=2e-3)  # shown to 3 or 4 digits
+        return found[0] / found[1]
+
+    assert JUMPING_DEFAULTS["lift_height"] == 150.0
+    assert 15 < times() < 20
+    jump.set(lift_height=50.0)
+    assert 5 < times() < 7
 
 
 def test_jumping_panel_animates_touching_where_the_curve_touches():
