@@ -284,8 +284,13 @@ def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
 
 
 def test_fm_panel_inversion_within_a_few_per_cent(fmp):
-    c = fmp.last.curve
-    assert np.max(np.abs(c.error)) < 0.05 * np.max(np.abs(c.force))
+    # notebook 07: "whatever the amplitude": across the slider's whole range
+    p = fmp.controls["amplitude"]
+    for exponent in np.linspace(p.min, p.max, 7):
+        fmp.set(amplitude=10 ** exponent)
+        c = fmp.last.curve
+        assert np.max(np.abs(c.error)) < 0.05 * np.max(np.abs(c.force))
+    fmp.set(amplitude=FM_DEFAULTS["amplitude"])
 
 
 # -- jumping ------------------------------------------------------------------------------------
