@@ -474,6 +474,60 @@ def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
         km.shutdown_kernel(now=True)
 
 
+@pytest.mark.slow
+def test_a_real_kernel_waits_at_the_pause_for_as_long_as_the_student_needs():
+    # notebook 06, item 1, in a Jupyter kernel as the notebook has it: the scan pauses after line
+    # 20 and scans nothing more while the student takes their time; the speed raised then applies
+    # from line 20 on when Resume goes on
+    import os
+    import time
+    from pathlib import Path
+
+    from jupyter_client.manager import start_new_kernel
+
+    root = str(Path(ui.__file__).parents[2])
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("AFMSMILER_TESTING", "CI", "NBVAL", "PYTEST_CURRENT_TEST")}
+    env["PYTHONPATH"] = os.pathsep.join([root, env.get("PYTHONPATH", "")])
+    km, kc = start_new_kernel(kernel_name="python3", env=env, cwd=root)
+
+    def run(code):
+        msg_id = kc.execute(code)
+        out = []
+        while True:
+            m = kc.get_iopub_msg(timeout=60)
+            if m["parent_header"].get("msg_id") != msg_id:
+                continue
+            if m["msg_type"] == "stream":
+                out.append(m["content"]["text"])
+            elif m["msg_type"] == "error":
+                raise AssertionError("\n".join(m["content"]["traceback"]))
+            elif m["msg_type"] == "status" and m["content"]["execution_state"] == "idle":
+                return "".join(out).split()
+
+    def wait(condition, seconds=30.0):
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            if run(f"print({condition})") == ["True"]:
+                return True
+            time.sleep(0.1)
+        return False
+
+    try:
+        run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel()\n"
+            "p.pause_at.value = 20\np.start()")
+        assert wait("p.paused")
+        assert run("print(p.last.lines_done, p.running)") == ["20", "True"]
+        time.sleep(2.0)  # the student takes their time: nothing more is scanned
+        assert run("print(p.last.lines_done, p.paused)") == ["20", "True"]
+        run("p.set(scan_speed=1000.0)\np.resume()")
+        assert wait("not p.running")
+        assert run("print(p.last.lines_done, *p.last.changes, p.error)") == ["64", "20", "None"]
+    finally:
+        kc.stop_channels()
+        km.shutdown_kernel(now=True)
+
+
 def test_the_3d_view_shows_the_finished_lines_and_the_tip_where_the_last_line_ended():
     import sys
     from pathlib import Path
