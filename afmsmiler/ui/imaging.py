@@ -417,7 +417,10 @@ class ImagingPanel(Panel):
             if on_change == "restart" or previous is None or config.key != previous.key:
                 self._begin(config)
                 if self.paused:  # a new scan from the first line: it runs, paused no more
-                    self._unpause()
+                    self.paused = False
+                    self._buttons()
+                    if running_as_notebook() and self._task is None:
+                        self._task = asyncio.ensure_future(self._run_async())
             else:
                 self._pending = config  # the next step scans with it (after Resume if paused)
         elif self.figure is None or previous is None or config.key != previous.key:
@@ -512,16 +515,11 @@ class ImagingPanel(Panel):
         """
         if not self.running or not self.paused:
             return
-        self._unpause()
+        self.paused = False
+        self._buttons()
         self._show()
         if run and self._task is None:
             self._run_steps()
-
-    def _unpause(self) -> None:
-        self.paused = False
-        self._buttons()
-        if running_as_notebook() and self._task is None:
-            self._task = asyncio.ensure_future(self._run_async())
 
     #: s between two pictures of a running scan in a live notebook. Every line drawn sent a
     #: 256 x 256 image pair (0.5 MB) 18 times a second, and a cell run during the scan waited
