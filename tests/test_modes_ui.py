@@ -386,10 +386,18 @@ def test_notebook_suggestion_the_maps_separate_the_materials(fvp):
     # adhesion map DMT's 2 pi R w within 5 %
     v, labels = fvp.last, fvp.labels
     r = FORCE_VOLUME_MAP["tip_radius"]
+    text = re.sub("<[^>]+>", " ", fvp.readout.value)  # what the student reads
+    moduli = [float(x) * 1e6 for x in re.findall(r"E \(median of the map\)\s+([0-9.]+) MPa",
+                                                 text)]
+    adhesions = [float(x) * 1e-9 for x in re.findall(r"adhesion \(median\)\s+([0-9.]+) nN",
+                                                     text)]
+    assert len(moduli) == len(adhesions) == len(force_volume.BLEND)
     for i, m in enumerate(force_volume.BLEND):
         assert np.nanmedian(v.modulus[labels == i]) == pytest.approx(m.youngs_modulus, rel=0.02)
         assert np.nanmedian(v.adhesion[labels == i]) == pytest.approx(
             2 * math.pi * r * m.work_of_adhesion, rel=0.05)
+        assert moduli[i] == pytest.approx(m.youngs_modulus, rel=0.02)
+        assert adhesions[i] == pytest.approx(2 * math.pi * r * m.work_of_adhesion, rel=0.05)
 
 
 @pytest.mark.slow
