@@ -37,8 +37,7 @@ from ..validation import check_instance
 from .limits import data_range, hold
 
 __all__ = ["UNITS_SHOWN", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
-           "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots",
-           "COEXISTENCE_SPANS"]
+           "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
 
 #: The units the figures show each quantity in (keys of :data:`afmsmiler.parameters.UNITS`).
 UNITS_SHOWN = read_only(dict(distance="nm", amplitude="nm", phase="deg", energy="zJ",
