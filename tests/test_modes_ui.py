@@ -129,25 +129,18 @@ def test_notebook_suggestion_the_setpoint_picks_the_branch():
     assert s.branch == "attractive" and s.indentation < 0.1e-9  # gently: 1.7 nm repulsive
 
 
-def test_notebook_suggestion_viscosity_lights_up_the_dissipation():
-    # notebook 07, from the defaults: at setpoint 0.9, 200 Pa s makes E_dis grow from zero to some
-    # 70 zJ and the phase lag move by about 0.2 deg; at 0.99 (clear of the sample) it takes nothing
-    tap = TappingPanel()
-    tap.set(setpoint_ratio=0.9)
-    dry, dry_phase = tap.last.dissipated_energy, tap.last.phase
+def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
+    tap.set(sample_viscosity=0.0, setpoint_ratio=0.9)
+    dry = tap.last.dissipated_energy
+    tap.set(sample_viscosity=200.0)
+    wet = tap.last.dissipated_energy
     lever = tap.last.curve.lever
     scale = math.pi * lever.spring_constant * lever.free_amplitude ** 2 / lever.quality_factor
     # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
     # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
     assert abs(dry) < 1e-9 * scale
-    tap.set(sample_viscosity=200.0)
-    s = tap.last
-    assert s.branch == "attractive" and s.touches
-    assert 50e-21 < s.dissipated_energy < 90e-21  # "some 70 zJ"
-    assert 0.1 < abs(math.degrees(s.phase - dry_phase)) < 0.4  # "about 0.2 deg"
-    tap.set(setpoint_ratio=0.99)
-    s = tap.last
-    assert not s.touches and abs(s.dissipated_energy) < 1e-9 * scale
+    assert wet > 1e-20  # from zero to tens of zJ
+    tap.set(sample_viscosity=0.0, setpoint_ratio=0.8)
 
 
 def test_operating_point_refuses_a_setpoint_never_reached():
@@ -430,3 +423,24 @@ def test_a_setpoint_never_reached_shows_the_curves_and_says_so():
     assert not panel.figure.lines["amplitude", "setpoint"].get_visible()
     panel.set(quality_factor=400.0)
     assert panel.last.distance > 0 and "held at z_c" in panel.readout.value
+
+
+def test_notebook_viscosity_dissipates_only_while_the_tip_touches():
+    # notebook 07, from the defaults: at setpoint 0.9, 200 Pa s makes E_dis grow from zero to some
+    # 70 zJ and the phase lag move by about 0.2 deg; at 0.99 (clear of the sample) it takes nothing
+    tap = TappingPanel()
+    tap.set(setpoint_ratio=0.9)
+    dry, dry_phase = tap.last.dissipated_energy, tap.last.phase
+    lever = tap.last.curve.lever
+    scale = math.pi * lever.spring_constant * lever.free_amplitude ** 2 / lever.quality_factor
+    # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
+    # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
+    assert abs(dry) < 1e-9 * scale
+    tap.set(sample_viscosity=200.0)
+    s = tap.last
+    assert s.branch == "attractive" and s.touches
+    assert 50e-21 < s.dissipated_energy < 90e-21  # "some 70 zJ"
+    assert 0.1 < abs(math.degrees(s.phase - dry_phase)) < 0.4  # "about 0.2 deg"
+    tap.set(setpoint_ratio=0.99)
+    s = tap.last
+    assert not s.touches and abs(s.dissipated_energy) < 1e-9 * scale
