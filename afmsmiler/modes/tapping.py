@@ -38,9 +38,9 @@ it ends and jumps there (:meth:`AmplitudeCurve.sweep`). The names say the sign o
 over a cycle, not whether the tip touches: the tip touches where its closest distance z_c - A
 falls below a0 (:meth:`TappingLever.indentation`), on the whole repulsive branch and, at the
 defaults, on the attractive branch too near its end (at A0 = 12 nm and z_c between about 9.5 and
-11.7 nm it dips up to 0.4 nm into the sample while the attraction still wins). Since I_s >= 0 (damping only takes energy),
-every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I is evaluated in closed form
-without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
+11.7 nm it dips up to 0.4 nm into the sample while the attraction still wins). Since I_s >= 0
+(damping only takes energy), every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I
+is evaluated in closed form without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
 the two parts of the period with contact (the contact part in the variable s, theta = theta_c +
 (pi - theta_c) s^2, which makes the square-root edge smooth). All roots at every z_c are found at
 once: g on a grid of :data:`AMPLITUDE_GRID` even steps up to A_max (and 11 geometric steps
