@@ -359,6 +359,8 @@ OVERRIDES = {
         "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.png"},
     # module (g)
     "afmsmiler.modes.tapping.integrate": {"distance": 12e-9},
+    "afmsmiler.modes.tapping.TappingLever.indentation": {"distance": lambda: np.linspace(
+        2e-9, 12e-9, 20)},
     "afmsmiler.modes.fm.frequency_shift": {"force": lambda: _vdw},
     "afmsmiler.modes.fm.frequency_shift_curve": {"force": lambda: _vdw},
     "afmsmiler.modes.fm.sader_jarvis": {"df": lambda: -10.0 * (0.3e-9 / np.linspace(

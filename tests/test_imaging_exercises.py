@@ -34,6 +34,33 @@ def test_fastest_scan_wrong_then_slip_then_right():
         assert f"{best * 1e6:.3g}" not in str(fb) and f"{best:.3g}" not in str(fb)
 
 
+def test_exercise_1_solved_by_the_search_the_notebook_teaches():
+    # notebook 06: six particles 20 nm high; "double the speed until the bound is passed, then
+    # halve the step", starting from the panel's 10 um/s; the first speed past the bound is
+    # wrong, the search's answer passes
+    from scipy import ndimage
+    heights = ex.speed_sample().heights
+    assert heights.max() == pytest.approx(20e-9, rel=0.01)
+    assert ndimage.label(heights > 10e-9)[1] == 6
+    bound = 1e-9  # "below 1 nm"
+    assert ex.DEFAULTS["max_rms_error"] == bound
+    speed = 10e-6
+    assert ex.scan_error(speed) < bound
+    for _ in range(30):  # double until the bound is passed
+        if ex.scan_error(2 * speed) >= bound:
+            break
+        speed *= 2
+    too_fast = ex.check_fast_scan(2 * speed)
+    assert not too_fast and "Too fast" in str(too_fast)
+    step = speed
+    for _ in range(6):  # then halve the step, keeping what stays within the bound
+        step /= 2
+        if ex.scan_error(speed + step) < bound:
+            speed += step
+    fb = ex.check_fast_scan(speed)
+    assert fb, str(fb)
+
+
 # -- 2. the particle and the tip radius ------------------------------------------------------------
 def _brute_force_width(r, big_r):
     """2 X0: the largest apex distance from the sphere's axis at which a paraboloid of radius R,
@@ -49,7 +76,9 @@ def _brute_force_width(r, big_r):
 
 def test_apparent_width_wrong_then_slip_then_right():
     image = ex.particle_image()
-    row = image.heights[image.heights.shape[0] // 2]
+    top = np.unravel_index(np.argmax(image.heights), image.heights.shape)[0]
+    row = image.heights[top]  # "the line through its top"
+    assert abs(top - image.heights.shape[0] // 2) <= 1  # centred (two rows share the top)
     measured = (row > 0).sum() * image.pixel_size  # what the notebook suggests
     truth = _brute_force_width(ex.DEFAULTS["particle_radius"], ex._TIP_RADIUS)
     assert measured == pytest.approx(truth, abs=2 * image.pixel_size)

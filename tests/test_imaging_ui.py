@@ -104,6 +104,72 @@ def test_stop_half_way_keeps_the_finished_lines(panel):
     assert "settings changed" not in panel.figure.axes["image"].get_title()
 
 
+def test_pause_after_a_line_waits_with_its_lines_and_resume_goes_on(panel, runs):
+    # a scan paused after line 5 scans nothing more however long it waits; a slider moved then
+    # applies from line 6, when Resume goes on; the image equals the scans run directly
+    panel.pause_at.value = 5
+    panel.start()  # (off a notebook: to the end or to the pause, at once)
+    assert panel.running and panel.paused and panel.last.paused and runs["line"] == 5
+    assert panel.last.lines_done == 5 and "paused after line 5" in panel.status.value
+    assert panel.pause_button.description == "Resume" and not panel.stop_button.disabled
+    assert not panel.step() and runs["line"] == 5  # paused: nothing is scanned
+    before = panel.last.channels["height trace"].heights[:5].copy()
+    panel.set(scan_speed=1000.0)
+    assert runs["line"] == 5 and panel.last.lines_done == 5
+    panel.resume()
+    r = panel.last
+    assert not panel.running and not r.paused and r.lines_done == PIXELS and r.changes == (5,)
+    np.testing.assert_array_equal(r.channels["height trace"].heights[:5], before)
+    fast = _direct(panel).images["height trace"]
+    np.testing.assert_allclose(r.channels["height trace"].heights[5:], fast[5:], rtol=1e-12)
+    assert panel.pause_button.disabled and panel.pause_button.description == "Pause"
+
+
+def test_the_pause_button_pauses_after_the_line_under_way_and_resumes(panel, runs):
+    panel.start(run=False)
+    for _ in range(3):
+        panel.step()
+    panel.pause_button.click()
+    assert panel.paused and not panel.step() and runs["line"] == 3
+    assert not panel.start_button.disabled  # Start may begin anew from a pause
+    panel.pause_button.click()  # Resume: off a notebook it runs to the end at once
+    assert not panel.running and panel.last.lines_done == PIXELS and runs["line"] == PIXELS
+    # a restart while paused starts the scan from the first line, running
+    panel.pause_at.value = 2
+    panel.start()
+    assert panel.paused and panel.last.lines_done == 2
+    panel.set(kp=1.0, on_change="restart")
+    assert panel.running and not panel.paused and panel.last.lines_done == 0
+    # Stop while paused keeps the lines
+    assert panel.step() and not panel.step() and panel.paused  # after its line 2 too
+    panel.stop()
+    assert not panel.running and not panel.paused and panel.last.stopped
+
+
+def test_in_a_notebook_a_scan_paused_after_a_line_waits_and_resumes(monkeypatch):
+    monkeypatch.setattr(ui, "running_as_notebook", lambda: True)
+    monkeypatch.setattr(ImagingPanel, "MAX_LINE_WAIT", 0.0)
+    p = ImagingPanel(pixels=PIXELS)
+    p.pause_at.value = 4
+
+    async def session():
+        p.start()
+        for _ in range(50):
+            await asyncio.sleep(0)
+        paused = (p.paused, p.last.lines_done, p._task)
+        p.set(scan_speed=1000.0)
+        p.resume()
+        for _ in range(100):
+            await asyncio.sleep(0)
+            if not p.running:
+                break
+        return paused
+
+    paused = asyncio.run(session())
+    assert paused == (True, 4, None)
+    assert not p.running and p.last.lines_done == PIXELS and p.last.changes == (4,)
+
+
 def test_a_slider_moved_during_a_scan_applies_from_the_next_line(panel, runs):
     panel.set(scan_speed=1000.0)  # fast: the gains show in the image
     panel.start(run=False)
@@ -265,45 +331,85 @@ def _rms(a):
     return float(np.sqrt(np.nanmean(np.asarray(a) ** 2)))
 
 
+def _lag(image, reference):
+    """Pixels by which ``image`` lies behind ``reference`` along +x (best whole shift)."""
+    shifts = range(-8, 9)
+    misfit = [np.nanmean((np.roll(reference, k, axis=1) - image)[:, 8:-8] ** 2) for k in shifts]
+    return shifts[int(np.argmin(misfit))]
+
+
 def test_notebook_faster_mid_scan_the_error_grows_from_the_next_line():
-    # "Start, and after a few lines raise the speed to 1000 um/s: from the next line on the
-    # error image lights up (several times the RMS) and trace and retrace part"
+    # notebook 06, item 1, from the defaults: "set pause after line to 20 and Start; when it
+    # pauses raise the scan speed to 1000 um/s and Resume: from the next line on the error image
+    # lights up (its RMS grows more than four-fold) and trace and retrace part, each late in its
+    # own direction"
+    p = ImagingPanel()
+    assert DEFAULTS["sample"] == "particles" and DEFAULTS["mode"] == "constant force"
+    assert DEFAULTS["scan_speed"] == 10.0
+    p.pause_at.value = 20
+    p.start()
+    assert p.paused and p.last.lines_done == 20
+    p.set(scan_speed=1000.0)
+    p.resume()
+    r = p.last
+    assert r.lines_done == r.lines == 64 and r.changes == (20,)
+    e = r.channels["error trace"].heights
+    assert _rms(e[20:]) > 4 * _rms(e[:20])
+    trace = r.channels["height trace"].heights
+    retrace = r.channels["height retrace"].heights
+    slow = _direct(p, scan_speed=10.0).images["height trace"]  # the scan at 10 um/s throughout
+    assert _lag(trace[:20], slow[:20]) == 0 and _lag(retrace[:20], slow[:20]) == 0
+    assert _lag(trace[20:], slow[20:]) > 0  # the trace runs along +x: late towards +x
+    assert _lag(retrace[20:], slow[20:]) < 0  # the retrace along -x: late towards -x
+
+
+def test_notebook_stop_half_way_keeps_the_finished_lines():
+    # notebook 06, item 2, from the defaults: Stop half-way; the finished lines stay, the rest
+    # is empty
     p = ImagingPanel()
     p.start(run=False)
-    for _ in range(20):
+    for _ in range(32):
         p.step()
-    p.set(scan_speed=1000.0)
-    while p.step():
-        pass
-    e = p.last.channels["error trace"].heights
-    assert _rms(e[20:]) > 4 * _rms(e[:20])
-    gap = np.abs(p.last.channels["height trace"].heights
-                 - p.last.channels["height retrace"].heights)
-    assert gap[20:].max() > 2 * gap[:20].max()
+    p.stop()
+    h = p.last.channels["height trace"].heights
+    ref = _direct(p).images["height trace"]
+    np.testing.assert_allclose(h[:32], ref[:32], rtol=1e-9, atol=1e-18)  # round-off
+    assert np.isnan(h[32:]).all() and p.last.stopped
 
 
-@pytest.mark.slow
 def test_notebook_a_blunt_tip_widens_the_particles():
-    # "a 100 nm tip instead of 5 nm: the particles cover several times the area"
-    cover = {}
-    for radius in (5.0, 100.0):
-        p = ImagingPanel(radius=radius)
+    # notebook 06, item 3, from the defaults: "a tip radius of 100 nm instead of the default
+    # 20 nm: the particles cover some two and a half times the area they did (above 5 nm), at
+    # the same height (30 nm), and neighbours merge"
+    from scipy import ndimage
+    p = ImagingPanel()
+    assert DEFAULTS["radius"] == 20.0
+    cover, top, islands = {}, {}, {}
+    for radius in (20.0, 100.0):
+        p.set(radius=radius)
         p.start()
-        cover[radius] = float((p.last.channels["height trace"].heights > 5e-9).mean())
-    assert cover[100.0] > 3 * cover[5.0]
+        h = p.last.channels["height trace"].heights
+        cover[radius], top[radius] = float((h > 5e-9).mean()), float(h.max())
+        islands[radius] = ndimage.label(h > 5e-9)[1]
+    assert 2.0 < cover[100.0] / cover[20.0] < 3.0
+    assert islands[100.0] < islands[20.0]  # separate particles run together
+    assert top[100.0] == pytest.approx(top[20.0], rel=0.02)
+    assert top[20.0] == pytest.approx(2 * ui.SAMPLES["particles"][1]["radius"], rel=0.02)
 
 
 def test_notebook_a_lower_damage_force_mid_scan_crashes_a_later_line():
-    # "in constant height, lower the damage force to 2 nN half-way: the tip breaks on a
-    # particle of a later line; the scan stops there and the lines before stay"
-    p = ImagingPanel(mode="constant height")
-    p.start(run=False)
-    for _ in range(20):
-        p.step()
+    # notebook 06, item 4, from the defaults (the 20 nm tip): "switch to constant height, set
+    # pause after line to 20 and Start; when it pauses lower the damage force to 2 nN and
+    # Resume: the tip breaks on a particle of a later line, the scan stops there, and the lines
+    # before it are kept"
+    p = ImagingPanel()
+    p.set(mode="constant height")
+    p.pause_at.value = 20
+    p.start()
+    assert p.paused and p.last.lines_done == 20 and p.last.crashed is None
     before = p.last.channels["deflection trace"].heights[:20].copy()
     p.set(damage_force=2.0)
-    while p.step():
-        pass
+    p.resume()
     r = p.last
     assert r.crashed is not None and 20 <= r.crashed.row == r.lines_done < r.lines
     np.testing.assert_array_equal(r.channels["deflection trace"].heights[:20], before)
@@ -363,6 +469,60 @@ def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
         assert done[0] == "False" and done[2] == "True" and int(done[1]) < 256
         time.sleep(0.3)  # the cancelled task scans nothing more
         assert run("print(p.last.lines_done, p.error)") == [done[1], "None"]
+    finally:
+        kc.stop_channels()
+        km.shutdown_kernel(now=True)
+
+
+@pytest.mark.slow
+def test_a_real_kernel_waits_at_the_pause_for_as_long_as_the_student_needs():
+    # notebook 06, item 1, in a Jupyter kernel as the notebook has it: the scan pauses after line
+    # 20 and scans nothing more while the student takes their time; the speed raised then applies
+    # from line 20 on when Resume goes on
+    import os
+    import time
+    from pathlib import Path
+
+    from jupyter_client.manager import start_new_kernel
+
+    root = str(Path(ui.__file__).parents[2])
+    env = {k: v for k, v in os.environ.items()
+           if k not in ("AFMSMILER_TESTING", "CI", "NBVAL", "PYTEST_CURRENT_TEST")}
+    env["PYTHONPATH"] = os.pathsep.join([root, env.get("PYTHONPATH", "")])
+    km, kc = start_new_kernel(kernel_name="python3", env=env, cwd=root)
+
+    def run(code):
+        msg_id = kc.execute(code)
+        out = []
+        while True:
+            m = kc.get_iopub_msg(timeout=60)
+            if m["parent_header"].get("msg_id") != msg_id:
+                continue
+            if m["msg_type"] == "stream":
+                out.append(m["content"]["text"])
+            elif m["msg_type"] == "error":
+                raise AssertionError("\n".join(m["content"]["traceback"]))
+            elif m["msg_type"] == "status" and m["content"]["execution_state"] == "idle":
+                return "".join(out).split()
+
+    def wait(condition, seconds=30.0):
+        end = time.monotonic() + seconds
+        while time.monotonic() < end:
+            if run(f"print({condition})") == ["True"]:
+                return True
+            time.sleep(0.1)
+        return False
+
+    try:
+        run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel()\n"
+            "p.pause_at.value = 20\np.start()")
+        assert wait("p.paused")
+        assert run("print(p.last.lines_done, p.running)") == ["20", "True"]
+        time.sleep(2.0)  # the student takes their time: nothing more is scanned
+        assert run("print(p.last.lines_done, p.paused)") == ["20", "True"]
+        run("p.set(scan_speed=1000.0)\np.resume()")
+        assert wait("not p.running")
+        assert run("print(p.last.lines_done, *p.last.changes, p.error)") == ["64", "20", "None"]
     finally:
         kc.stop_channels()
         km.shutdown_kernel(now=True)

@@ -20,6 +20,27 @@ def test_the_lowest_attractive_setpoint_separates_the_branches():
     assert setpoint_state(best - 2e-3, lever)[3] is False
 
 
+def test_exercise_1_solved_on_the_tapping_panel_as_the_notebook_teaches():
+    # notebook 07: the first guess 0.8 fails (repulsive); then, on the tapping panel at its
+    # defaults (A0 = 12 nm), raise the setpoint in steps of 0.01 and read the branch in the
+    # readout: the first attractive one is the answer within 0.05
+    from afmsmiler.ui.modalities import TappingPanel
+    first = ex.check_attractive_setpoint(0.8)
+    assert not first and "repulsive" in str(first)
+    panel = TappingPanel()
+    assert panel.values()["free_amplitude"] == 12.0
+    answer = None
+    for step in range(1, 20):
+        r = round(0.8 + 0.01 * step, 2)
+        panel.set(setpoint_ratio=r)
+        if "<b>attractive</b>" in panel.readout.value:
+            answer = r
+            break
+    assert answer is not None
+    fb = ex.check_attractive_setpoint(answer)
+    assert fb, str(fb)
+
+
 def test_setpoint_right_answer_passes_and_says_why():
     best = ex.lowest_attractive_setpoint()
     for r in (best + 0.005, best + 0.04):

@@ -57,11 +57,27 @@ def test_tapping_figure_draws_both_branches_in_nm_deg_and_zj(tapping):
 def test_tapping_figure_marks_the_coexistence_region_and_the_held_state(tapping):
     _, curve, point = tapping
     fig = TappingFigure(curve, point)
-    both = curve.distance[curve.coexist]
-    span = fig.spans["amplitude"]
-    assert span.get_visible()
-    assert span.get_x() == pytest.approx(both.min() * NM)
-    assert span.get_x() + span.get_width() == pytest.approx(both.max() * NM)
+    # each run of neighbouring distances where both branches are stable is shaded on its own:
+    # at A0 = 12 nm the attractive branch is absent between about 3 and 9.5 nm
+    z = np.sort(curve.distance)
+    both = curve.coexist[np.argsort(curve.distance)]
+    runs = [(z[i], z[j - 1]) for i, j in
+            zip(*[iter(np.flatnonzero(np.diff(np.r_[0, both.astype(int), 0])))] * 2)]
+    assert len(runs) == 2
+    shown = [s for s in fig.spans["amplitude"] if s.get_visible()]
+    assert len(shown) == 2
+    for span, (lo, hi) in zip(shown, runs):
+        assert span.get_x() == pytest.approx(lo * NM)
+        assert span.get_x() + span.get_width() == pytest.approx(hi * NM)
+    title = fig.axes["amplitude"].get_title()
+    assert " and ".join(f"from {lo * NM:.3g} to {hi * NM:.3g}" for lo, hi in runs) in title
+    # no grey between the runs: over most of it the attractive branch is missing
+    gap = (z > runs[0][1]) & (z < runs[1][0])
+    missing = np.isnan(curve.branch("attractive")[0][np.argsort(curve.distance)][gap])
+    assert missing.mean() > 0.5
+    # the contact line: a state's tip dips below a0 where its amplitude lies above it
+    x, y = _xy(fig.lines["amplitude", "contact"])
+    np.testing.assert_allclose(y, x - 0.165, rtol=1e-12, atol=1e-12)
     ratio, zc, phase, e_dis, attractive = point
     x, y = _xy(fig.lines["amplitude", "point"])
     assert x[0] == pytest.approx(zc * NM) and y[0] == pytest.approx(ratio * 12.0)
@@ -78,7 +94,7 @@ def test_tapping_figure_marks_the_coexistence_region_and_the_held_state(tapping)
 def test_without_coexistence_the_span_hides():
     curve = amplitude_curve(np.linspace(20e-9, 30e-9, 20), TappingLever())  # far: free lever
     fig = TappingFigure(curve)
-    assert not fig.spans["amplitude"].get_visible()
+    assert not any(s.get_visible() for s in fig.spans["amplitude"])
     assert not fig.lines["amplitude", "setpoint"].get_visible()
 
 

@@ -255,6 +255,56 @@ def test_setpoint_state_lies_on_the_approach_curve():
 
 
 # -- parameters and bad input ----------------------------------------------------------------------
+# -- where the tip touches the sample ---------------------------------------------------------------
+def test_indentation_is_a0_less_the_closest_distance_of_the_first_harmonic():
+    lever = TappingLever()
+    z, a = np.array([12e-9, 10e-9, 9e-9]), np.array([11.8e-9, 10e-9, 10e-9])
+    # closest distance z_c - A: 0.2 nm (clear of a0 = 0.165 nm), 0 and -1 nm (in the sample)
+    np.testing.assert_allclose(lever.indentation(z, a), [-0.035e-9, 0.165e-9, 1.165e-9],
+                               rtol=1e-9)
+    with pytest.raises(ValueError, match="distance and amplitude"):
+        lever.indentation(z, a[:2])
+
+
+def test_a_viscous_sample_takes_energy_exactly_from_the_states_that_touch():
+    # the sample's damping acts only in contact (d < a0): on a viscous sample every state whose
+    # motion stays clear dissipates nothing and every state that dips in dissipates, both
+    # branches alike (E_dis from the phase, Cleveland's energy balance)
+    lever = TappingLever(free_amplitude=12e-9, sample_viscosity=200.0)
+    curve = amplitude_curve(12e-9 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID), lever)
+    stable = curve.stable & np.isfinite(curve.amplitude)
+    depth, e_dis = curve.indentation[stable], curve.dissipated_energy[stable]
+    scale = math.pi * lever.spring_constant * 12e-9 ** 2 / lever.quality_factor
+    clear, deep = depth < -0.01e-9, depth > 0.01e-9
+    assert clear.any() and deep.any()
+    assert np.all(np.abs(e_dis[clear]) < 1e-9 * scale)
+    assert np.all(e_dis[deep] > 1e-6 * scale)
+    # and the attractive branch holds states of both kinds at the defaults
+    att = stable & ~curve.repulsive_branch
+    assert (curve.indentation[att] > 0.1e-9).any() and (curve.indentation[att] < -0.1e-9).any()
+
+
+@pytest.mark.slow
+def test_the_time_integration_touches_where_indentation_says():
+    # independent of the first-harmonic balance: integrate the lever on a viscous sample at two
+    # attractive states the feedback holds (setpoints 0.9 and 0.99 of A0 = 12 nm); the sample's
+    # damping does work only while the tip is in contact
+    lever = TappingLever(free_amplitude=12e-9, sample_viscosity=200.0)
+    for ratio, touches in ((0.9, True), (0.99, False)):
+        zc, _, e_dis, attractive = setpoint_state(ratio, lever)
+        assert attractive
+        depth = lever.indentation(zc, ratio * 12e-9)
+        assert (depth > 0) is touches and abs(depth) > 0.05e-9  # clear of the edge
+        s = integrate(zc, lever, start=(ratio * 12e-9, math.pi / 2))
+        closest = zc + float(s.deflection.min())
+        assert (closest < lever.intermolecular_distance) is touches
+        if touches:  # tens of zJ, as the phase says
+            assert s.damping_work > 10e-21
+            assert s.damping_work == pytest.approx(e_dis, rel=0.1)
+        else:
+            assert s.damping_work == 0.0
+
+
 def test_parameter_tables_are_parameters_with_their_defaults_in_range():
     for table in (FORCE_PARAMETERS, TAPPING_PARAMETERS):
         for name, p in table.items():

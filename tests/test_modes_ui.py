@@ -6,6 +6,7 @@ says (the setpoint that picks the branch, the slope that leaks into a trace but 
 friction map, the lift that clears the bars, the noise that biases the modulus map)."""
 import functools
 import math
+import re
 
 import numpy as np
 import pytest
@@ -68,18 +69,64 @@ def test_tapping_panel_holds_the_state_setpoint_state_finds(tap):
         assert x[0] == pytest.approx(zc * NM) and y[0] == pytest.approx(r * 12.0)
 
 
-def test_notebook_suggestion_the_setpoint_picks_the_branch(tap):
-    # notebook 07: at A0 = 12 nm the default setpoint 0.8 ends on the repulsive branch;
-    # 0.9 keeps the tip on the attractive one; with A0 = 8 nm even 0.5 stays attractive
-    tap.set(free_amplitude=12.0, setpoint_ratio=0.8)
+def _coexistence_runs(curve):
+    z = np.sort(curve.distance)
+    both = curve.coexist[np.argsort(curve.distance)].astype(int)
+    edges = np.flatnonzero(np.diff(np.r_[0, both, 0]))
+    return [(z[i], z[j - 1]) for i, j in zip(edges[::2], edges[1::2])]
+
+
+def test_notebook_tapping_text_says_what_the_model_shows():
+    # notebook 07's tapping section, at the panel's defaults: the attractive branch's phase lag
+    # lies above 90 deg, the repulsive branch's tip is in the sample all along, the grey comes in
+    # two stretches with no attractive branch between about 3 and 9.5 nm, and the tip touches
+    # where A lies above z_c - a0 (the dash-dotted line), the attractive branch's too near its end
+    panel = TappingPanel()
+    curve = panel.last.curve
+    a, phase = curve.branch("attractive")
+    r, _ = curve.branch("repulsive")
+    assert np.all(np.degrees(phase[np.isfinite(a)]) > 90.0)
+    lever = curve.lever
+    assert np.all(lever.indentation(curve.distance[np.isfinite(r)], r[np.isfinite(r)]) > 1e-9)
+    (lo1, hi1), (lo2, hi2) = _coexistence_runs(curve)
+    assert 2.5e-9 < hi1 < 3.5e-9 and 9e-9 < lo2 < 10e-9
+    between = (curve.distance > 3.5e-9) & (curve.distance < 9e-9)
+    assert np.all(np.isnan(a[between]))
+    touching = np.isfinite(a) & (lever.indentation(curve.distance, np.nan_to_num(a)) > 0)
+    assert touching.any()
+    panel.set(setpoint_ratio=0.82)  # the book: the lowest attractive setpoint, 0.41 nm deep
+    assert panel.last.branch == "attractive" and f"{panel.last.indentation * NM:.2g}" == "0.41"
+    z, amp = panel.figure.lines["amplitude", "contact"].get_data()
+    np.testing.assert_allclose(np.asarray(amp) / NM, np.asarray(z) / NM
+                               - lever.intermolecular_distance, rtol=1e-12, atol=1e-21)
+
+
+def test_notebook_suggestion_the_setpoint_picks_the_branch():
+    # notebook 07, from the defaults: setpoint 0.8 ends on the repulsive branch, 1.7 nm into the
+    # sample; 0.9 keeps the tip on the attractive one, dipping about 0.1 nm in; at 0.99 it stays
+    # clear; with A0 = 8 nm even 0.5 stays attractive, tapping gently
     assert TAPPING_DEFAULTS["free_amplitude"] == 12.0 and TAPPING_DEFAULTS["setpoint_ratio"] == 0.8
-    assert tap.last.branch == "repulsive"
-    assert "repulsive branch" in tap.figure.axes["amplitude"].get_title()
+    tap = TappingPanel(vis=Recorder())
+    s = tap.last
+    assert s.branch == "repulsive" and s.touches
+    assert f"{s.indentation * NM:.2g}" == "1.7"
+    title = tap.figure.axes["amplitude"].get_title()
+    assert "repulsive branch, tip 1.7 nm into the sample" in title
+    assert "yes, 1.7 nm deep" in tap.readout.value
     tap.set(setpoint_ratio=0.9)
-    assert tap.last.branch == "attractive"
+    s = tap.last
+    assert s.branch == "attractive" and s.touches and 0.05e-9 < s.indentation < 0.2e-9
+    assert "attractive branch, tip 0.13 nm into the sample" in \
+        tap.figure.axes["amplitude"].get_title()
+    assert tap.scene.touching_frames > 0  # the 3D view's tip turns orange: it touches
+    tap.set(setpoint_ratio=0.99)
+    s = tap.last
+    assert s.branch == "attractive" and not s.touches
+    assert "clear of it" in tap.figure.axes["amplitude"].get_title()
+    assert "no, " in tap.readout.value and tap.scene.touching_frames == 0
     tap.set(free_amplitude=8.0, setpoint_ratio=0.5)
-    assert tap.last.branch == "attractive"
-    tap.set(**{k: TAPPING_DEFAULTS[k] for k in ("free_amplitude", "setpoint_ratio")})
+    s = tap.last
+    assert s.branch == "attractive" and s.indentation < 0.1e-9  # gently: 1.7 nm repulsive
 
 
 def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
@@ -160,6 +207,10 @@ def test_notebook_suggestion_tilt_moves_the_trace_not_the_friction_map(lat):
         traces.append(np.mean(lat.last.loop.trace[1:-1]) / lat.last.loop.normal_force)
     np.testing.assert_allclose(maps[0], maps[1], atol=1e-12)
     assert traces[1] - traces[0] == pytest.approx(math.tan(math.radians(5.0)), rel=1e-6)
+    # the readout the notebook points at shows the same mean trace over the load
+    shown = float(re.search(r"mean trace / load \(line\)</td><td[^>]*><b>([-0-9.e]+)<",
+                            lat.readout.value).group(1))
+    assert shown == pytest.approx(traces[1], rel=1e-3)
     # the map recovers the two coefficients where each material lies
     mu = lat.last.friction[:, 1:-1]
     np.testing.assert_allclose(maps[1], mu, atol=1e-12)
@@ -213,7 +264,9 @@ def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
     # notebook 07: at A = 11 pm df is within a few per cent of the force-gradient shift
     # -f0/(2k) dF/dz (from 1 nm on); at the default 5 nm it is some thirty times smaller 1 nm
     # from the sample
-    fmp.set(amplitude=0.011)
+    p = fmp.controls["amplitude"]
+    assert f"{10 ** p.min * 1e3:.2g}" == "11"  # the slider's smallest value: 11 pm
+    fmp.set(amplitude=10 ** p.min)
     c = fmp.last.curve
     far = c.z > 1e-9
     np.testing.assert_allclose(c.frequency_shift[far], c.gradient_shift[far], rtol=0.05)
@@ -224,8 +277,13 @@ def test_notebook_suggestion_small_amplitude_meets_the_gradient(fmp):
 
 
 def test_fm_panel_inversion_within_a_few_per_cent(fmp):
-    c = fmp.last.curve
-    assert np.max(np.abs(c.error)) < 0.05 * np.max(np.abs(c.force))
+    # notebook 07: "whatever the amplitude": across the slider's whole range
+    p = fmp.controls["amplitude"]
+    for exponent in np.linspace(p.min, p.max, 7):
+        fmp.set(amplitude=10 ** exponent)
+        c = fmp.last.curve
+        assert np.max(np.abs(c.error)) < 0.05 * np.max(np.abs(c.force))
+    fmp.set(amplitude=FM_DEFAULTS["amplitude"])
 
 
 # -- jumping ------------------------------------------------------------------------------------
@@ -272,12 +330,26 @@ def test_notebook_suggestion_a_low_lift_crashes_into_the_bars(jump):
     assert "crashed" in jump.figure.axes["image"].get_title()
     jump.set(lift_height=50.0)
     assert jump.last.result.crashed is None
+    assert re.search(r"largest lateral force</td><td[^>]*><b>0 nN<", jump.readout.value)
     jump.set(lift_height=JUMPING_DEFAULTS["lift_height"])
 
 
-def test_notebook_suggestion_jumping_costs_time(jump):
-    # notebook 07: the image takes over ten times longer than in contact mode
-    assert jump.last.acquisition_time > 10 * jump.last.contact_time
+def test_notebook_suggestion_jumping_costs_time():
+    # notebook 07, the readout's two times: at the default lift (150 nm) the jumping image takes
+    # some seventeen times as long as in contact mode, at 50 nm still some six times
+    jump = JumpingPanel()
+
+    def times():
+        found = [float(re.search(rf"image in {m} mode</td><td[^>]*><b>([0-9.e]+) s<",
+                                 jump.readout.value).group(1)) for m in ("jumping", "contact")]
+        assert found == pytest.approx([jump.last.acquisition_time, jump.last.contact_time],
+                                      rel=2e-3)  # shown to 3 or 4 digits
+        return found[0] / found[1]
+
+    assert JUMPING_DEFAULTS["lift_height"] == 150.0
+    assert 15 < times() < 20
+    jump.set(lift_height=50.0)
+    assert 5 < times() < 7
 
 
 def test_jumping_panel_animates_touching_where_the_curve_touches():
@@ -307,10 +379,18 @@ def test_notebook_suggestion_the_maps_separate_the_materials(fvp):
     # adhesion map DMT's 2 pi R w within 5 %
     v, labels = fvp.last, fvp.labels
     r = FORCE_VOLUME_MAP["tip_radius"]
+    text = re.sub("<[^>]+>", " ", fvp.readout.value)  # what the student reads
+    moduli = [float(x) * 1e6 for x in re.findall(r"E \(median of the map\)\s+([0-9.]+) MPa",
+                                                 text)]
+    adhesions = [float(x) * 1e-9 for x in re.findall(r"adhesion \(median\)\s+([0-9.]+) nN",
+                                                     text)]
+    assert len(moduli) == len(adhesions) == len(force_volume.BLEND)
     for i, m in enumerate(force_volume.BLEND):
         assert np.nanmedian(v.modulus[labels == i]) == pytest.approx(m.youngs_modulus, rel=0.02)
         assert np.nanmedian(v.adhesion[labels == i]) == pytest.approx(
             2 * math.pi * r * m.work_of_adhesion, rel=0.05)
+        assert moduli[i] == pytest.approx(m.youngs_modulus, rel=0.02)
+        assert adhesions[i] == pytest.approx(2 * math.pi * r * m.work_of_adhesion, rel=0.05)
 
 
 @pytest.mark.slow
@@ -343,3 +423,24 @@ def test_a_setpoint_never_reached_shows_the_curves_and_says_so():
     assert not panel.figure.lines["amplitude", "setpoint"].get_visible()
     panel.set(quality_factor=400.0)
     assert panel.last.distance > 0 and "held at z_c" in panel.readout.value
+
+
+def test_notebook_viscosity_dissipates_only_while_the_tip_touches():
+    # notebook 07, from the defaults: at setpoint 0.9, 200 Pa s makes E_dis grow from zero to some
+    # 70 zJ and the phase lag move by about 0.2 deg; at 0.99 (clear of the sample) it takes nothing
+    tap = TappingPanel()
+    tap.set(setpoint_ratio=0.9)
+    dry, dry_phase = tap.last.dissipated_energy, tap.last.phase
+    lever = tap.last.curve.lever
+    scale = math.pi * lever.spring_constant * lever.free_amplitude ** 2 / lever.quality_factor
+    # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
+    # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
+    assert abs(dry) < 1e-9 * scale
+    tap.set(sample_viscosity=200.0)
+    s = tap.last
+    assert s.branch == "attractive" and s.touches
+    assert 50e-21 < s.dissipated_energy < 90e-21  # "some 70 zJ"
+    assert 0.1 < abs(math.degrees(s.phase - dry_phase)) < 0.4  # "about 0.2 deg"
+    tap.set(setpoint_ratio=0.99)
+    s = tap.last
+    assert not s.touches and abs(s.dissipated_energy) < 1e-9 * scale

@@ -139,8 +139,12 @@ def check_attractive_setpoint(ratio,
         return Feedback(False, f"At {r:g} A0 the tip stays on the attractive branch ({where}), "
                                f"but you can go lower and still stay there (and follow the "
                                f"surface more closely).")
+    depth = lever.indentation(zc, r * lever.free_amplitude)
+    touch = (f"its tip still dips {depth * _NM:.2g} nm into the sample once per cycle, but the "
+             f"net force over a cycle stays attractive" if depth > 0 else
+             f"its tip stays {-depth * _NM:.2g} nm clear of the sample")
     return Feedback(True, f"At {r:g} A0 {where} on the attractive branch, close to the lowest "
-                          f"setpoint that keeps it there.")
+                          f"setpoint that keeps it there: {touch}.")
 
 
 # -- 2. friction from a loop ------

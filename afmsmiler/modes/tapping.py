@@ -34,9 +34,13 @@ so the amplitude solves g(A) = |(k (1 - W^2) A - I_c, (k W / Q) A + I_s)| - F0 =
 a net attraction (phi above the free phase), I_c < 0 a net repulsion. Where two stable roots
 coexist, the lower is the attractive (L) branch and the higher the repulsive (H) one (whose net
 force turns attractive at its far end); a slow approach or retraction follows its branch until
-it ends and jumps there (:meth:`AmplitudeCurve.sweep`). Since I_s >= 0 (damping only takes energy),
-every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I is evaluated in closed form
-without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
+it ends and jumps there (:meth:`AmplitudeCurve.sweep`). The names say the sign of the net force
+over a cycle, not whether the tip touches: the tip touches where its closest distance z_c - A
+falls below a0 (:meth:`TappingLever.indentation`), on the whole repulsive branch and, at the
+defaults, on the attractive branch too near its end (at A0 = 12 nm and z_c between about 9.5 and
+11.7 nm it dips up to 0.4 nm into the sample while the attraction still wins). Since I_s >= 0
+(damping only takes energy), every root lies in (0, F0 Q / (k W)] (= A0 at resonance). Each I
+is evaluated in closed form without contact (I_c = (H R / 3) A / (z_c^2 - A^2)^(3/2)) and by Gauss-Legendre quadrature over
 the two parts of the period with contact (the contact part in the variable s, theta = theta_c +
 (pi - theta_c) s^2, which makes the square-root edge smooth). All roots at every z_c are found at
 once: g on a grid of :data:`AMPLITUDE_GRID` even steps up to A_max (and 11 geometric steps
@@ -249,6 +253,54 @@ class TappingLever:
                      self.intermolecular_distance, self.sample_viscosity)
         return out if out.ndim else float(out)
 
+    def indentation(self, distance, amplitude):
+        """Deepest indentation a0 - (z_c - A) in m of the motion z_c + A cos(theta).
+
+        The tip touches the sample where the tip-sample distance d = z_c + z falls below a0
+        (the force law's contact, :mod:`afmsmiler.modes._forces`); the first harmonic's closest
+        distance is z_c - A, so the tip touches once per cycle exactly when this is > 0, and it
+        is then how far it presses into the sample. A negative value is the gap (a0 less the
+        closest distance) by which it stays clear. The static deflection and the higher
+        harmonics the first-harmonic balance leaves out shift the closest distance by far less
+        than a0 for the stiff lever of the defaults (the tests compare it with the time
+        integration, where the sample's damping takes energy only in contact).
+
+        Parameters
+        ----------
+        distance : float or array_like
+            Rest tip-sample distance z_c in m, in (0, 1e-5].
+        amplitude : float or array_like
+            Amplitude A of the first harmonic in m, in [0, 1e-6].
+
+        Returns
+        -------
+        float or ndarray
+            a0 - (z_c - A) in m (> 0: the tip touches the sample, this deep).
+
+        Raises
+        ------
+        ValueError
+            Naming ``distance`` or ``amplitude`` out of range, or both when their shapes do not
+            broadcast together.
+
+        Examples
+        --------
+        >>> lever = TappingLever()
+        >>> round(lever.indentation(8e-9, 9e-9) * 1e9, 3)  # z_c - A = -1 nm: 1.165 nm deep
+        1.165
+        """
+        zp, ap = PARAMETERS["distance"], PARAMETERS["free_amplitude"]
+        z = check_array("distance", distance, "m", low=zp.low, high=zp.high,
+                        low_inclusive=False)
+        a = check_array("amplitude", amplitude, "m", low=0.0, high=ap.high)
+        try:
+            np.broadcast_shapes(z.shape, a.shape)
+        except ValueError:
+            raise ValueError(f"distance and amplitude must broadcast together, got shapes "
+                             f"{z.shape} and {a.shape}") from None
+        out = self.intermolecular_distance - (z - a)
+        return out if out.ndim else float(out)
+
     def dissipated_energy(self, amplitude, phase):
         """E_dis = pi F0 A sin(phi) - pi k W A^2 / Q in J from amplitude and phase lag.
 
@@ -412,6 +464,15 @@ class AmplitudeCurve:
         has = mask.any(axis=1)
         return (np.where(has, self.amplitude[rows, j], np.nan),
                 np.where(has, self.phase[rows, j], np.nan))
+
+    @property
+    def indentation(self) -> np.ndarray:
+        """Deepest indentation a0 - (z_c - A) in m of each root, shaped like ``amplitude``.
+
+        Positive where that state's tip touches the sample once per cycle
+        (:meth:`TappingLever.indentation`), NaN where there is no root.
+        """
+        return self.lever.intermolecular_distance - (self.distance[:, None] - self.amplitude)
 
     @property
     def coexist(self) -> np.ndarray:

@@ -109,10 +109,17 @@ def unstable_roots(curve: AmplitudeCurve) -> tuple[np.ndarray, np.ndarray, np.nd
     return curve.distance[rows], curve.amplitude[rows, cols], curve.phase[rows, cols]
 
 
-def _coexistence(curve: AmplitudeCurve):
-    """(low, high) in m of the distances where both branches are stable, or None."""
-    z = curve.distance[curve.coexist]
-    return (float(z.min()), float(z.max())) if z.size else None
+#: Most separate coexistence regions a tapping figure shades (any further ones join the last).
+COEXISTENCE_SPANS = 3
+
+
+def _coexistence(curve: AmplitudeCurve) -> list:
+    """[(low, high), ...] in m: each run of neighbouring distances where both branches are
+    stable, in increasing distance (the attractive branch may vanish between two runs)."""
+    order = np.argsort(curve.distance)
+    z, both = curve.distance[order], curve.coexist[order]
+    edges = np.flatnonzero(np.diff(np.concatenate(([0], both.astype(int), [0]))))
+    return [(float(z[i]), float(z[j - 1])) for i, j in zip(edges[::2], edges[1::2])]
 
 
 class TappingFigure:
@@ -142,9 +149,12 @@ class TappingFigure:
     lines : dict
         (quantity, kind) -> Line2D, kind one of ``"attractive"``, ``"repulsive"``,
         ``"unstable"``, ``"point"``; ``("amplitude", "setpoint")`` is the setpoint's line,
+        ``("amplitude", "contact")`` the line A = z_c - a0 above which a state's tip dips below
+        a0 into the sample (:meth:`~afmsmiler.modes.TappingLever.indentation`), and
         ``(quantity, "jump approach")`` and ``(quantity, "jump retract")`` mark the jumps.
     spans : dict
-        quantity -> the Rectangle marking the coexistence region (hidden when there is none).
+        quantity -> list of :data:`COEXISTENCE_SPANS` Rectangles marking the coexistence
+        regions, one per run of distances where both branches are stable (hidden when unused).
     """
 
     QUANTITIES = ("amplitude", "phase", "energy")
@@ -157,7 +167,8 @@ class TappingFigure:
         self.axes = dict(zip(self.QUANTITIES, axes))
         self.lines, self.spans = {}, {}
         for q, ax in self.axes.items():
-            self.spans[q] = ax.axvspan(0.0, 1.0, color="0.88", zorder=0)
+            self.spans[q] = [ax.axvspan(0.0, 1.0, color="0.88", zorder=0)
+                             for _ in range(COEXISTENCE_SPANS)]
             self.lines[q, "unstable"], = ax.plot([], [], ".", color=_COLORS["unstable"],
                                                  ms=3, label="unstable")
             for b in ("attractive", "repulsive"):
@@ -165,6 +176,9 @@ class TappingFigure:
                                             label=f"{b} branch")
             self.lines[q, "point"], = ax.plot([], [], "o", color=_COLORS["point"], ms=7,
                                               label="feedback holds")
+            if q == "amplitude":  # the tip dips below a0 where A > z_c - a0
+                self.lines[q, "contact"], = ax.plot([], [], color="k", ls="-.", lw=0.8,
+                                                    label="touches above: A = z_c - a0")
             self.lines[q, "jump approach"] = ax.axvline(0.0, color="k", ls="--", lw=1.0)
             self.lines[q, "jump retract"] = ax.axvline(0.0, color="k", ls=":", lw=1.0)
         self.lines["amplitude", "setpoint"] = self.axes["amplitude"].axhline(
@@ -206,18 +220,21 @@ class TappingFigure:
             for b in ("attractive", "repulsive"):
                 self.lines[q, b].set_data(z[order], data[b][q][order])
             self.lines[q, "unstable"].set_data(zu * _NM, unstable[q])
-            if span is None:
-                self.spans[q].set_visible(False)
-            else:
-                self.spans[q].set_visible(True)
-                self.spans[q].set_x(span[0] * _NM)
-                self.spans[q].set_width((span[1] - span[0]) * _NM)
+            shaded = span[:COEXISTENCE_SPANS - 1] + ([(span[COEXISTENCE_SPANS - 1][0],
+                                                       span[-1][1])]
+                                                     if len(span) >= COEXISTENCE_SPANS else [])
+            for rect, run in zip(self.spans[q], shaded + [None] * COEXISTENCE_SPANS):
+                rect.set_visible(run is not None)
+                if run is not None:
+                    rect.set_x(run[0] * _NM)
+                    rect.set_width((run[1] - run[0]) * _NM)
+        contact = curve.distance[order] - curve.lever.intermolecular_distance
+        self.lines["amplitude", "contact"].set_data(z[order], contact * _NM)
         ax = self.axes["amplitude"]
         ax.set_xlim(float(z.min()), float(z.max()))
         a0 = curve.lever.free_amplitude
-        title = f"A0 = {a0 * _NM:.3g} nm" + ("" if span is None else
-                                              f"; both branches from {span[0] * _NM:.3g} to "
-                                              f"{span[1] * _NM:.3g} nm (grey)")
+        title = f"A0 = {a0 * _NM:.3g} nm" + ("" if not span else "; both branches " + " and ".join(
+            f"from {lo * _NM:.3g} to {hi * _NM:.3g}" for lo, hi in span) + " nm (grey)")
         jumps = {} if jumps is None else jumps
         said = []
         for way in ("approach", "retract"):
@@ -245,8 +262,11 @@ class TappingFigure:
             line.set_visible(True)
             line.set_ydata([values["amplitude"]] * 2)
             branch = "attractive" if attractive else "repulsive"
-            title += (f"\nsetpoint {ratio:.3g} A0: the approach stops at z_c = {zc * _NM:.3g} "
-                      f"nm on the {branch} branch")
+            depth = curve.lever.indentation(zc, ratio * a0)  # the model's own contact test
+            touch = (f"tip {depth * _NM:.2g} nm into the sample" if depth > 0 else
+                     f"tip {-depth * _NM:.2g} nm clear of it")
+            title += (f"\nsetpoint {ratio:.3g} A0: held at z_c = {zc * _NM:.3g} nm, {branch} "
+                      f"branch, {touch}")
         for q, a in self.axes.items():  # the curves and the held state, on a held scale
             lo, hi = data_range(data["attractive"][q], data["repulsive"][q], unstable[q],
                                 self.lines[q, "point"].get_ydata())

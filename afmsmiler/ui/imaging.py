@@ -5,7 +5,10 @@ ships), the imaging mode, the tip, the scan settings and the mode's own settings
 built by :func:`~afmsmiler.ui.controls.control` from a :class:`~afmsmiler.parameters.Parameter`
 of the model layer (:data:`afmsmiler.imaging.scanner.PARAMETERS`, the controller's and the contact
 model's), and the choice of what a slider moved during a scan does: apply from the next line on,
-or restart the scan. Start and Stop buttons and a progress bar sit beside them.
+or restart the scan. Start, Pause/Resume and Stop buttons, a "pause after line" box and a progress
+bar sit beside them: a scan paused (by the button, or by itself after the line the box names) waits
+with its finished lines kept, for as long as the student needs to move a slider, and Resume goes on
+from the next line.
 
 The scan runs one line per step: :meth:`ImagingPanel.step` asks the
 :class:`~afmsmiler.imaging.scanner.Scan` for its next line (one model run), copies the finished
@@ -15,7 +18,8 @@ the steps in an asyncio task on the kernel's event loop, one line per line time 
 the widgets' messages: a slider moved or Stop pressed during the scan takes effect before the next
 line; it draws at most one picture per :attr:`ImagingPanel.FRAME_INTERVAL` (the lines finished
 meanwhile appear in the next one). Tests (and nbval) drive the steps synchronously:
-``start(run=False)``, then ``step()`` / ``stop()``. Lines already finished are never lost.
+``start(run=False)``, then ``step()`` / ``pause()`` / ``resume(run=False)`` / ``stop()``. Lines
+already finished are never lost.
 """
 from __future__ import annotations
 
@@ -172,6 +176,8 @@ class ImagingResult:
         None, or what the scan reported when the tip crashed (the line is then the last one).
     changes : tuple of int
         The rows from which a slider moved during the scan applied (``apply on next line``).
+    paused : bool
+        The scan is paused after ``lines_done`` lines (Resume goes on with the next one).
     """
 
     channels: dict
@@ -180,6 +186,7 @@ class ImagingResult:
     stopped: bool = False
     crashed: object = None
     changes: tuple = ()
+    paused: bool = False
 
 
 @dataclass
@@ -211,7 +218,8 @@ class ImagingPanel(Panel):
     tilt along x), ``noise`` [nm], the mode's sliders (constant force: ``kp``, ``ki`` [1/us],
     ``setpoint`` [nm] on the mechanics of module (c)'s preset (a); constant height: ``z_np``
     [nm], ``damage_force`` [nN]), and ``on_change`` (``"apply on next line"`` or ``"restart"``).
-    Buttons: Start, Stop; a progress bar.
+    Buttons: Start, Pause (Resume while paused), Stop; a "pause after line" box (0: never), a
+    progress bar.
 
     Parameters
     ----------
@@ -235,7 +243,11 @@ class ImagingPanel(Panel):
     progress : ipywidgets.IntProgress
         Lines done out of the lines of the scan.
     running : bool
-        A scan is under way (started, neither finished nor stopped).
+        A scan is under way (started, neither finished nor stopped; also while paused).
+    paused : bool
+        The running scan waits after its last finished line until :meth:`resume`.
+    pause_at : ipywidgets.BoundedIntText
+        Pause by itself once this many lines are finished (0: never); read when each line ends.
     """
 
     def __init__(self, scene: bool = False, vis=None, **initial):
@@ -276,8 +288,13 @@ class ImagingPanel(Panel):
                                            button_style="success")
         self.stop_button = widgets.Button(description="Stop", icon="stop", button_style="danger",
                                           disabled=True)
+        self.pause_button = widgets.Button(description="Pause", icon="pause", disabled=True)
+        self.pause_at = widgets.BoundedIntText(value=0, min=0, max=max(PIXELS), step=1,
+                                               description="pause after line (0: never)",
+                                               style={"description_width": "initial"})
         self.start_button.on_click(lambda _b: self.start())
         self.stop_button.on_click(lambda _b: self.stop())
+        self.pause_button.on_click(lambda _b: self.resume() if self.paused else self.pause())
         self.status = widgets.HTML()
         self.figure = None
         self.scene = None
@@ -287,6 +304,7 @@ class ImagingPanel(Panel):
         self._tip_at = None  # where the last line ended: (x, y, z) in m on the sample
         self.fig = self.new_figure(figsize=(10.0, 7.0))
         self.running = False
+        self.paused = False
         self._task = None
         self._job = None
         self._pending = None
@@ -398,8 +416,13 @@ class ImagingPanel(Panel):
         if self.running:
             if on_change == "restart" or previous is None or config.key != previous.key:
                 self._begin(config)
+                if self.paused:  # a new scan from the first line: it runs, paused no more
+                    self.paused = False
+                    self._buttons()
+                    if running_as_notebook() and self._task is None:
+                        self._task = asyncio.ensure_future(self._run_async())
             else:
-                self._pending = config  # the next step scans with it
+                self._pending = config  # the next step scans with it (after Resume if paused)
         elif self.figure is None or previous is None or config.key != previous.key:
             self._clear(config)
         self._show()
@@ -448,16 +471,55 @@ class ImagingPanel(Panel):
         self._config = self._configure(values)
         self._physics = {k: v for k, v in values.items() if k != "on_change"}
         self._begin(self._config)
-        self.running = True
-        self.start_button.disabled, self.stop_button.disabled = True, False
+        self.running, self.paused = True, False
+        self._buttons()
         self._show()
-        if not run:
-            return
+        if run:
+            self._run_steps()
+
+    def _run_steps(self) -> None:
+        """Run the steps: as a task in a live notebook, else to the end (or the pause) at once."""
         if running_as_notebook():
             self._task = asyncio.ensure_future(self._run_async())
         else:
             while self.step():
                 pass
+
+    def _buttons(self) -> None:
+        """Start is free unless a scan runs unpaused; Stop and Pause/Resume while one runs."""
+        self.start_button.disabled = self.running and not self.paused
+        self.stop_button.disabled = not self.running
+        self.pause_button.disabled = not self.running
+        self.pause_button.description = "Resume" if self.paused else "Pause"
+        self.pause_button.icon = "play" if self.paused else "pause"
+
+    def pause(self) -> None:
+        """Pause the running scan after the line under way: its lines stay, nothing more is
+        scanned until :meth:`resume` (sliders moved meanwhile apply as ``on_change`` says)."""
+        if not self.running or self.paused:
+            return
+        task, self._task = self._task, None
+        if task is not None and not task.done():
+            task.cancel()
+        self.paused = True
+        self._buttons()
+        self._show()
+
+    def resume(self, run: bool = True) -> None:
+        """Go on with the paused scan from the next line.
+
+        Parameters
+        ----------
+        run : bool
+            Run it as :meth:`start` does; with ``run=False`` call :meth:`step` for each line.
+        """
+        if not self.running or not self.paused:
+            return
+        self.paused = False
+        self._buttons()
+        self._show()
+        if run and self._task is None:
+            self._run_steps()
 
     #: s between two pictures of a running scan in a live notebook. Every line drawn sent a
     #: 256 x 256 image pair (0.5 MB) 18 times a second, and a cell run during the scan waited
@@ -465,8 +527,9 @@ class ImagingPanel(Panel):
     FRAME_INTERVAL = 0.1
     #: s: the longest a live scan waits per line. A live scan takes the instrument's own line
     #: time (trace and retrace at the scan speed, :attr:`ScanSettings.line_time`), so that a
-    #: student can move a slider "after some 20 lines" and a faster scan visibly runs faster;
-    #: a slower scan than this waits this long (and is computed, not waited, beyond).
+    #: faster scan visibly runs faster; a slower scan than this waits this long (and is
+    #: computed, not waited, beyond). To change something at a chosen line a student pauses
+    #: there (:attr:`pause_at`, :meth:`pause`): 64 lines take only a few seconds.
     MAX_LINE_WAIT = 0.25
 
     async def _run_async(self) -> None:
@@ -484,8 +547,8 @@ class ImagingPanel(Panel):
                 # the kernel handles the widgets' messages (a slider, Stop) while it waits
                 await asyncio.sleep(max(0.0, due_line - time.monotonic()))
         except Exception as exc:  # shown under the panel: a task's exception is otherwise lost
-            self.running, self._task = False, None
-            self.start_button.disabled, self.stop_button.disabled = False, True
+            self.running, self.paused, self._task = False, False, None
+            self._buttons()
             self._report_error(exc)
 
     def step(self, show: bool = True) -> bool:
@@ -500,10 +563,11 @@ class ImagingPanel(Panel):
         Returns
         -------
         bool
-            True while lines remain (the scan is running), False once it has ended (finished,
-            stopped or crashed).
+            True while lines remain and the scan goes on, False once it has ended (finished,
+            stopped or crashed) or is paused (after the line :attr:`pause_at` names, or by
+            :meth:`pause`; a paused scan scans nothing until :meth:`resume`).
         """
-        if not self.running:
+        if not self.running or self.paused:
             return False
         if self._pending is not None:
             self._continue(self._pending)
@@ -528,6 +592,12 @@ class ImagingPanel(Panel):
             self._crashed = record.crash
         if self._done >= self.progress.max or record.crash is not None:
             return self._finish()
+        if self._done == self.pause_at.value:  # the line the student asked to stop after
+            self._task = None  # (the task that runs this step ends when it returns)
+            self.paused = True
+            self._buttons()
+            self._show()
+            return False
         if show:
             self._show()
         else:
@@ -535,9 +605,9 @@ class ImagingPanel(Panel):
         return True
 
     def _finish(self) -> bool:
-        self.running = False
+        self.running = self.paused = False
         self._task = None
-        self.start_button.disabled, self.stop_button.disabled = False, True
+        self._buttons()
         self._show()
         return False
 
@@ -554,9 +624,9 @@ class ImagingPanel(Panel):
             task.cancel()
         if not self.running:
             return
-        self.running = False
+        self.running = self.paused = False
         self._stopped = True
-        self.start_button.disabled, self.stop_button.disabled = False, True
+        self._buttons()
         if redraw:
             self._show()
 
@@ -566,7 +636,7 @@ class ImagingPanel(Panel):
         channels = {name: ChannelImage(a.copy(), dx, dy, self._units.get(name, "m"), name)
                     for name, a in self._image.items()}
         return ImagingResult(channels, self._done, self.progress.max, self._stopped,
-                             self._crashed, tuple(self._changes))
+                             self._crashed, tuple(self._changes), self.paused)
 
     def _show(self) -> None:
         """The image so far into the figure (one redraw), the progress bar and the status."""
@@ -584,7 +654,9 @@ class ImagingPanel(Panel):
         self._draw_scene()
         self.progress.value = self._done
         self.progress.description = f"{self._done}/{self.progress.max} lines"
-        state = ("scanning" if self.running else "crashed" if self._crashed is not None
+        state = (f"paused after line {self._done}: move a slider if you like, then Resume"
+                 if self.paused else
+                 "scanning" if self.running else "crashed" if self._crashed is not None
                  else "stopped" if self._stopped else
                  "done" if self._done and self._done == self.progress.max else "ready")
         self.status.value = f"<b>{state}</b>"
@@ -625,8 +697,9 @@ class ImagingPanel(Panel):
                                                          *[n for s in MODE_SLIDERS.values()
                                                            for n in s])])
         run = widgets.VBox([self.controls["on_change"],
-                            widgets.HBox([self.start_button, self.stop_button]),
-                            self.progress, self.status])
+                            widgets.HBox([self.start_button, self.pause_button,
+                                          self.stop_button]),
+                            self.pause_at, self.progress, self.status])
         return widgets.VBox([widgets.HBox([left, right, run]), figure])
 
 

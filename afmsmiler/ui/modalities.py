@@ -159,7 +159,12 @@ class TappingState:
         The held state: z_c in m, phase lag in rad, E_dis in J (NaN when the approach never
         gets down to the setpoint).
     attractive : bool
-        Whether the held state is on the attractive branch.
+        Whether the held state is on the attractive branch (the net force over a cycle is
+        attractive; its tip may still touch the sample, see ``indentation``).
+    indentation : float
+        How deep the held state's tip dips into the sample in m, a0 - (z_c - A)
+        (:meth:`~afmsmiler.modes.TappingLever.indentation`): > 0 when it touches, < 0 the gap
+        by which it stays clear, NaN when nothing is held.
     """
 
     lever: TappingLever
@@ -169,11 +174,17 @@ class TappingState:
     phase: float
     dissipated_energy: float
     attractive: bool
+    indentation: float = math.nan
 
     @property
     def branch(self) -> str:
         """``"attractive"`` or ``"repulsive"``."""
         return "attractive" if self.attractive else "repulsive"
+
+    @property
+    def touches(self) -> bool:
+        """Whether the held state's tip touches the sample once per cycle (indentation > 0)."""
+        return bool(self.indentation > 0)
 
 
 class TappingPanel(_SliderPanel):
@@ -238,7 +249,8 @@ class TappingPanel(_SliderPanel):
             point = None
         else:
             point = (r, zc, phase, e_dis, attractive)
-        self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive)
+        depth = math.nan if point is None else lever.indentation(zc, r * lever.free_amplitude)
+        self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
         jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
         if self.figure is None:
             self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
@@ -260,7 +272,9 @@ class TappingPanel(_SliderPanel):
             ("held at z_c", shown(zc, "nm")), ("amplitude A", shown(r * lever.free_amplitude,
                                                                    "nm")),
             ("phase lag", shown(phase, "deg")), ("E_dis per cycle", shown(e_dis, "zJ")),
-            ("branch", s.branch)]) + (
+            ("branch (net force)", s.branch),
+            ("tip touches the sample", f"yes, {shown(depth, 'nm', '.2g')} deep" if s.touches
+             else f"no, {shown(-depth, 'nm', '.2g')} clear")]) + (
             f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
 
 
