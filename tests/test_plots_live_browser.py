@@ -182,3 +182,28 @@ def test_every_principle_of_the_transducer_panel_draws(page):
             except (ValueError, TypeError):
                 continue  # a principle without a length, or with another range
             _show(page, panel.fig)
+
+
+def _ticks(page, axes, which):
+    """The ``which``-th uPlot axis of the ``axes``-th plot: its tick values and their labels."""
+    return page.evaluate("""([i, k]) => { const a = document.querySelector('.afm-live')
+        .afmFigure.axes[i].u.axes[k]; return [a._splits, a._values]; }""", [axes, which])
+
+
+def test_ticks_at_half_steps_read_as_many_digits_as_their_spacing_needs(page):
+    # the renderer rounded 7.5 to "8" and 2.5 to "3" (the friction loop, E_dis, FM's shift)
+    fig = Figure(figsize=(9, 2))  # a short plot: uPlot steps the y axes by 2.5 units
+    left, mid, right = fig.subplots(1, 3)
+    for ax, (lo, hi) in ((left, (0, 10)), (mid, (-10, 0)), (right, (0, 1e-3))):
+        ax.plot([0, 1], [lo, hi])
+        ax.set(xlim=(0, 1), ylim=(lo, hi))
+    _show(page, fig)
+    for i, (step, expected) in enumerate([(2.5, ["0", "2.5", "5", "7.5", "10"]),
+                                          (2.5, ["-10", "-7.5", "-5", "-2.5", "0"]),
+                                          (2.5e-4, ["0", "2.5e-4", "5e-4", "7.5e-4", "1e-3"])]):
+        splits, labels = _ticks(page, i, 1)
+        assert np.allclose(np.diff(splits), step), f"uPlot chose other ticks: {splits}"
+        assert len(splits) == len(expected), splits
+        # every label shown (the renderer thins crowded ones) is its tick written to the step
+        shown = [(t, e) for t, e in zip(labels, expected) if t]
+        assert len(shown) >= 3 and all(t == e for t, e in shown), labels

@@ -123,29 +123,46 @@ function legendHtml(box, entries) {
 // -- one axes: a uPlot with its title above and its legend below ---------------------------------
 
 // Tick labels. uPlot's own kept 3 decimals and the browser's locale ("-0" at F = 0, "0,5",
-// "-4,000"); these are plain decimals with as many digits as the tick step needs, and exponents
-// for the very small and large.
+// "-4,000"); these are plain decimals with as many digits as the tick step needs (a step of 2.5
+// reads 2.5, 5, 7.5, never 3 and 8), and exponents for the very small and large.
 function fmtTick(v, step) {
   return fmtTicks([v], step)[0];
 }
 
-// one format for all the labels of an axis: decimals with the digits of the step, or, for steps
-// below 1e-3 and values from 1e5, exponents with the mantissa digits of the step
+// The power of ten of the last digit a step needs: 2 -> 0, 2.5 -> -1, 0.25 -> -2, 2.5e-4 -> -5,
+// 500 -> 2. The step's mantissa is read to 6 significant digits (uPlot's steps are 1, 2, 2.5, 5
+// times a power of ten, with float noise such as 0.30000000000000004).
+function lastDigit(step) {
+  const top = Math.floor(Math.log10(step) + 1e-9);
+  let e = top;
+  while (e > top - 6) {
+    const m = step / Math.pow(10, e);
+    if (Math.abs(m - Math.round(m)) <= 1e-6 * m) break;
+    e -= 1;
+  }
+  return e;
+}
+
+// one format for all the labels of an axis: decimals down to the step's last digit, or, for steps
+// below 1e-3 and values from 1e5, exponents with the mantissa digits down to that digit (each
+// without trailing zeros)
 function fmtTicks(values, step) {
   const finite = values.filter((v) => v != null && Number.isFinite(v));
   const big = Math.max(0, ...finite.map(Math.abs));
   if (!(step > 0)) step = finite.length > 1 ? Math.abs(finite[1] - finite[0]) : big || 1;
   const exponent = step < 1e-3 || big >= 1e5;
+  const last = lastDigit(step);
   return values.map((v) => {
     if (v == null || !Number.isFinite(v)) return "";
     if (Math.abs(v) < 1e-9 * step) return "0";
     if (exponent) {
-      const digits = Math.max(0, Math.min(6, Math.floor(Math.log10(Math.abs(v))) - Math.floor(Math.log10(step) + 1e-9)));
+      const digits = Math.max(0, Math.min(6, Math.floor(Math.log10(Math.abs(v)) + 1e-9) - last));
       return v.toExponential(digits).replace(/\.?0+e/, "e").replace("e+", "e");
     }
-    const decimals = Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9)));
-    const text = v.toFixed(decimals);
-    return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;
+    // to the step's last digit, without trailing zeros (2.5, 5, 7.5 as matplotlib's 2.5, 5.0)
+    const text = v.toFixed(Math.max(0, Math.min(12, -last))).replace(/(\.\d*?)0+$/, "$1")
+      .replace(/\.$/, "");
+    return /^-0$/.test(text) ? "0" : text;
   });
 }
 
