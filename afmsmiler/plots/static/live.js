@@ -14,6 +14,7 @@
 // This file holds no physics: every number comes from the kernel.
 
 const PX = 100 / 72;
+const BAR = 16, CB_GAP = 2, CB_BELOW = 8; // colour bar: its width, its gap from the plot, room under it
 const MAX_PENDING = 30; // frames waiting to be painted, one per animation frame (0.5 s at 60 Hz) // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
 
 function el(tag, cls, parent) {
@@ -166,6 +167,15 @@ function fmtTicks(values, step) {
   });
 }
 
+// room for an axis' tick labels (uPlot's axis size): the widest label, its tick and a gap
+function labelRoom(u, values, ai) {
+  if (!values) return 30;
+  measure.font = font(11);
+  const widest = Math.max(0, ...values.map((v) => (v ? measure.measureText(v).width : 0)));
+  const a = u.axes[ai];
+  return Math.ceil(widest + a.ticks.size + a.gap + 8);
+}
+
 function isDecade(v) {
   const e = Math.log10(Math.abs(v));
   return Number.isFinite(e) && Math.abs(e - Math.round(e)) < 1e-9;
@@ -288,13 +298,19 @@ class Axes {
     this.tickDefaults = this.u.axes.map((a) => [a.splits, a.values]);
     if (s.colorbar) {
       this.cbBox = el("div", "afm-live-colorbar", this.row);
+      // the bar beside the plot box, as tall as it, BAR px wide (matplotlib's colour bar: a
+      // twentieth of its height), its tick labels as wide as they are and its label beside them;
+      // it was 80 px of chart with 78 px of fixed axis room, so a 2 px hairline
+      this.cbWidth = BAR + 60;
       this.cb = new uPlot({
-        mode: 2, width: 70, height: 100,
+        mode: 2, width: this.cbWidth, height: 100,
+        padding: [() => self.u.bbox.top / devicePixelRatio, null, CB_BELOW, CB_GAP],
         series: [{}, { stroke: "transparent", width: 0, points: { show: false },
           facets: [{ scale: "x", auto: false }, { scale: "c", auto: false }], paths: linePath("x", "c") }],
         scales: { x: { time: false, auto: false, range: exactRange },
           c: { time: false, auto: false, range: exactRange } },
-        axes: [{ scale: "x", show: false }, Object.assign(axisOpts("c", 1, { label: s.colorbar.label }, true))],
+        axes: [{ scale: "x", show: false }, Object.assign(axisOpts("c", 1, { label: s.colorbar.label }, true),
+          { size: labelRoom, values: (u, sp, ai, space, incr) => thin(u, "c", sp, fmtTicks(sp, incr)) })],
         legend: { show: false }, cursor: { show: false }, select: { show: false },
         hooks: { drawClear: [(u) => self.drawColorbar(u)] },
       }, [null, [[], []]], this.cbBox);
@@ -304,12 +320,27 @@ class Axes {
   }
 
   size(width, height) {
+    this.cellSize = [width, height];
     const titleH = this.title.offsetHeight, legendH = this.legend.offsetHeight;
-    const cbW = this.cb ? 80 : 0;
+    const cbW = this.cb ? this.cbWidth : 0;
     const w = Math.max(60, width - cbW), h = Math.max(60, height - titleH - legendH - 4);
     this.full = [w, h];
     this.u.setSize({ width: w, height: h });
-    if (this.cb) this.cb.setSize({ width: cbW, height: h });
+    this.fitColorbar();
+  }
+
+  // the colour bar's chart: its bar BAR px wide beside the plot box and as tall; true if its
+  // width changed (the plot then gets the rest of the cell again)
+  fitColorbar() {
+    if (!this.cb) return false;
+    const r = devicePixelRatio, u = this.u, cb = this.cb;
+    const height = Math.round((u.bbox.top + u.bbox.height) / r + CB_BELOW);
+    const around = cb.width - cb.bbox.width / r; // its padding, tick labels and label
+    const width = Math.round(BAR + around);
+    const changed = Math.abs(width - this.cbWidth) > 1;
+    if (changed) this.cbWidth = width;
+    if (changed || height !== cb.height) cb.setSize({ width: this.cbWidth, height });
+    return changed;
   }
 
   update(frame, buf) {
@@ -377,6 +408,12 @@ class Axes {
         this.cb.setScale("c", { min: c.vmin, max: c.vmax });
         this.cb.redraw(false, true);
       });
+      // new tick labels may need more or less room: the bar keeps its width
+      // (once: labels that changed again with the new size keep the bar a pixel off)
+      if (!this.refitting && this.fitColorbar() && this.cellSize) {
+        this.refitting = true;
+        try { this.size(...this.cellSize); this.update(frame, buf); } finally { this.refitting = false; }
+      }
     }
   }
 
@@ -393,7 +430,7 @@ class Axes {
     const size = { width: Math.round(pw + extraW), height: Math.round(ph + extraH) };
     if (size.width !== u.width || size.height !== u.height) {
       u.setSize(size);
-      if (this.cb) this.cb.setSize({ width: this.cb.width, height: size.height });
+      this.fitColorbar();
     }
   }
 
