@@ -54,6 +54,25 @@ def test_tapping_figure_draws_both_branches_in_nm_deg_and_zj(tapping):
     describe(fig.fig)  # the live figure can show every artist
 
 
+def test_no_dissipation_reads_zero_on_a_scale_where_dissipation_would_show(tapping):
+    # the E_dis axis showed round-off (-8.7e-12 zJ, flipping sign) as a flat line on +-5e-4 zJ
+    lever = TappingLever(free_amplitude=12e-9)  # no viscosity: a conservative force
+    curve = amplitude_curve(12e-9 * np.linspace(1.5, 0.01, SETPOINT_GRID), lever)
+    fig = TappingFigure(curve, (0.8, *setpoint_state(0.8, lever)))
+    for branch in ("attractive", "repulsive", "point"):
+        y = _xy(fig.lines["energy", branch])[1]
+        assert np.all(y[np.isfinite(y)] == 0.0), branch
+    lo, hi = fig.axes["energy"].get_ylim()
+    # at least k_B T at 295 K (CODATA k_B = 1.380649e-23 J/K): 4.07 zJ, the lever's thermal
+    # energy, around the zero
+    assert hi - lo >= 1.380649e-23 * 295.0 * ZJ and lo < 0.0 < hi
+    assert "E_dis = 0" in fig.axes["energy"].get_title()
+    _, wet, point = tapping  # a viscous sample: its dissipation is drawn, nothing said
+    fig.update(wet, point)
+    assert fig.axes["energy"].get_title() == ""
+    assert np.nanmax(_xy(fig.lines["energy", "repulsive"])[1]) > 0
+
+
 def test_tapping_figure_marks_the_coexistence_region_and_the_held_state(tapping):
     _, curve, point = tapping
     fig = TappingFigure(curve, point)

@@ -92,6 +92,11 @@ def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
     # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
     # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
     assert abs(dry) < 1e-9 * scale
+    # and it reads zero: the readout said "-8.744e-12 zJ", flipping sign from move to move
+    tap.set(sample_viscosity=0.0)
+    assert tap.last.dissipated_energy == 0.0
+    assert "<td>E_dis per cycle</td><td style='text-align:right'><b>0 zJ</b>" in \
+        tap.readout.value
     assert wet > 1e-20  # from zero to tens of zJ
     tap.set(sample_viscosity=0.0, setpoint_ratio=0.8)
 

@@ -27,6 +27,7 @@ import math
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..brownian import BOLTZMANN, TEMPERATURE
 from ..modes.fm import FrequencyShiftCurve
 from ..modes.force_volume import ForceVolume
 from ..modes.jumping import JumpCurve
@@ -36,7 +37,7 @@ from ..parameters import read_only, unit_scale
 from ..validation import check_instance
 from .limits import data_range, hold
 
-__all__ = ["UNITS_SHOWN", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
+__all__ = ["UNITS_SHOWN", "ENERGY_FLOOR", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
            "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
 
 #: The units the figures show each quantity in (keys of :data:`afmsmiler.parameters.UNITS`).
@@ -51,6 +52,12 @@ _NN = unit_scale(UNITS_SHOWN["force"], "N")
 _KHZ = unit_scale("kHz", "Hz")
 _MS = unit_scale(UNITS_SHOWN["time"], "s")
 _MPA = unit_scale(UNITS_SHOWN["modulus"], "Pa")
+#: The smallest span of the E_dis axis in zJ: k_B T at room temperature (4.1 zJ), the lever's
+#: thermal energy. The model returns 0 where E_dis is zero within its accuracy
+#: (:attr:`~afmsmiler.modes.AmplitudeCurve.dissipated_energy_error`); the axis then shows that
+#: zero on a scale where a dissipation worth measuring would show, not a flat line magnified
+#: to +-5e-4 zJ.
+ENERGY_FLOOR = BOLTZMANN * TEMPERATURE.default * _ZJ
 _COLORS = read_only(dict(attractive="C0", repulsive="C3", unstable="0.55", point="C2",
                          trace="C0", retrace="C3", friction="C2", slope="C1", input="k",
                          recovered="C3", giessibl="C0", gradient="C1"))
@@ -251,7 +258,14 @@ class TappingFigure:
             lo, hi = data_range(data["attractive"][q], data["repulsive"][q], unstable[q],
                                 self.lines[q, "point"].get_ydata())
             if math.isfinite(lo):
-                hold(a, "y", lo, hi, reset=self._reset, floor=1e-3)
+                hold(a, "y", lo, hi, reset=self._reset,
+                     floor=ENERGY_FLOOR if q == "energy" else 1e-3)
+        # E_dis is 0 where the model finds it zero within its accuracy: say it when all are
+        energies = np.r_[data["attractive"]["energy"], data["repulsive"]["energy"]]
+        energies = energies[np.isfinite(energies)]
+        none = energies.size > 0 and not np.any(energies)
+        self.axes["energy"].set_title("E_dis = 0 on both branches (within the model's accuracy): "
+                                      "the sample takes no energy" if none else "")
         ax.set_title(title)
         self._reset = False
 
