@@ -160,7 +160,15 @@ def test_frequency_shift_figure_draws_the_round_trip(fm_curve):
     np.testing.assert_allclose(_xy(fig.lines["recovered"])[1], fm_curve.recovered_force * NN)
     worst = np.max(np.abs(fm_curve.error)) / np.max(np.abs(fm_curve.force))
     assert f"{100 * worst:.2g} %" in fig.axes["force"].get_title()
-    describe(fig.fig)
+    # distances on a log axis (shared): the first nanometre, where df and F change, takes
+    # half the width (it took a twelfth of a linear axis to 12 nm)
+    for ax in fig.axes.values():
+        assert ax.get_xscale() == "log"
+    lo, hi = fig.axes["force"].get_xlim()
+    assert (lo, hi) == pytest.approx((0.2, 12.0))
+    assert np.log10(1.0 / lo) / np.log10(hi / lo) > 0.35
+    d = describe(fig.fig)
+    assert d.layout["axes"][1]["x"]["scale"] == "log"
 
 
 def _figures(tapping, lateral, fm_curve):

@@ -240,3 +240,16 @@ def test_a_colour_bar_is_a_bar_beside_the_plot_with_its_labels_next_to_it(page):
     for value, rgba in zip((1, 3), bar["colours"]):
         np.testing.assert_allclose(rgba[:3], np.round(np.array(cmap(value / 4)[:3]) * 255),
                                    atol=3, err_msg=f"the bar at {value}")
+
+
+def test_a_log_axis_of_a_decade_or_two_reads_its_2_and_5_ticks(page):
+    # the FM panel's 0.2 to 12 nm read "1" and "10" only: nothing below 1 nm was labelled
+    fig = Figure(figsize=(8, 3))
+    ax = fig.add_subplot()
+    ax.semilogx([0.2, 12], [0, 1])
+    ax.set(xlim=(0.2, 12), ylim=(0, 1))
+    _show(page, fig)
+    splits, labels = _ticks(page, 0, 0)
+    shown = {t: s for s, t in zip(splits, labels) if t}
+    assert ["0.2", "0.5", "1", "2", "5", "10"] == list(shown), labels
+    assert all(float(t) == pytest.approx(s) for t, s in shown.items())

@@ -434,7 +434,10 @@ class FrequencyShiftFigure:
             ax.legend(loc="lower right", fontsize="small")
         a1.set_ylabel(f"frequency shift df [{UNITS_SHOWN['frequency']}]")
         a2.set_ylabel(f"tip-sample force [{UNITS_SHOWN['force']}]")
-        a2.set_xlabel(f"closest distance z [{UNITS_SHOWN['distance']}]")
+        # distances on a log axis: the force and df change over the first nanometre, which a
+        # linear axis to 12 nm squeezed into its first twelfth
+        a2.set_xscale("log")
+        a2.set_xlabel(f"closest distance z [{UNITS_SHOWN['distance']}] (log scale)")
         self._reset = True
         self.update(curve)
 

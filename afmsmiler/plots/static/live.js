@@ -197,17 +197,26 @@ function logSplits(min, max) {
   return out;
 }
 
+// the mantissa of v (1..9) on a log axis' ticks
+function mantissa(v) {
+  return Math.round(v / Math.pow(10, Math.floor(Math.log10(v) + 1e-9)));
+}
+
 function logLabels(u, key, splits) {
   const decades = splits.filter(isDecade);
   const horizontal = u.scales[key].ori === 0;
   const length = horizontal ? u.bbox.width / devicePixelRatio : u.bbox.height / devicePixelRatio;
   const room = horizontal ? 42 : 16;
   const k = Math.max(1, Math.ceil(decades.length * room / Math.max(length, 1)));
-  return splits.map((v) => {
-    if (!isDecade(v)) return "";
+  // an axis of two decades or less (0.2 to 12 nm) also reads 2 and 5 times each decade, as
+  // matplotlib's: with its decades alone it read "1" and "10" and nothing below 1
+  const sc = u.scales[key], span = Math.log10(sc.max / sc.min);
+  const between = span <= 2 ? [2, 5] : [];
+  return thin(u, key, splits, splits.map((v) => {
+    if (!isDecade(v)) return between.includes(mantissa(v)) ? fmtTick(v) : "";
     const e = Math.round(Math.log10(v));
     return e % k === 0 ? fmtTick(v) : "";
-  });
+  }));
 }
 
 // drop the labels that would overlap the one shown before them
