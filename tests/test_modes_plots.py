@@ -137,6 +137,19 @@ def test_lateral_figure_splits_the_loop_into_friction_and_slope(lateral):
     describe(fig.fig)
 
 
+def test_the_slope_map_shows_a_uniform_tilt_inside_its_colour_scale(lateral):
+    # 20 nN tan(3 deg) = 1.05 nN sat at the end of a +-1.05 nN bar: the map was saturated
+    topo, mu, images, row, loop = lateral
+    fig = LateralFigure(loop, images, row)
+    lo, hi = fig.images["slope"].get_clim()
+    slope = 20.0 * math.tan(math.radians(4))  # F_N tan(theta) in nN, 1.40 nN
+    assert lo == -hi  # the diverging map's white at zero
+    assert slope == pytest.approx(hi * 2 / 3, rel=1e-6)  # two thirds of the way to the end
+    fig.update(loop, images, row)
+    assert fig.images["slope"].get_clim() == (lo, hi)  # held while it stays inside
+    assert fig.colorbars["slope"].norm.vmax == hi
+
+
 def test_lateral_figure_loop_only():
     loop = FrictionLoop(np.arange(5) * 1e-9, np.ones(5) * 1e-9, -np.ones(5) * 1e-9, 10e-9, 1.0)
     fig = LateralFigure(loop)

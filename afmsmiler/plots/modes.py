@@ -35,7 +35,7 @@ from ..modes.lateral import FrictionImages, FrictionLoop
 from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance
-from .limits import data_range, hold
+from .limits import data_range, hold, sticky_limits
 
 __all__ = ["UNITS_SHOWN", "ENERGY_FLOOR", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
            "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
@@ -296,6 +296,10 @@ class LateralFigure:
         ``"friction"``, ``"slope"`` -> AxesImage.
     """
 
+    #: Margin of the slope map's colour scale, a fraction of its span on each side: the largest
+    #: slope term falls at 1 / (1 + 2 * 0.25) = 2/3 of the half-span.
+    SLOPE_MARGIN = 0.25
+
     def __init__(self, loop: FrictionLoop, images: FrictionImages | None = None,
                  row: int | None = None, fig: Figure | None = None):
         self.fig = fig if fig is not None else Figure(figsize=(9.0, 7.0))
@@ -322,7 +326,7 @@ class LateralFigure:
         ax.legend(loc="upper right", fontsize="small", ncol=2)
         self.images, self.colorbars = {}, {}
         if self.has_maps:
-            mu_label = "friction coefficient mu (dimensionless)"
+            mu_label = "mu (dimensionless)"  # the title says what mu is; the bar is short
             for key, cmap, label in (("friction", "viridis", mu_label),
                                      ("slope", "RdBu_r",
                                       f"slope term [{UNITS_SHOWN['force']}]")):
@@ -378,7 +382,13 @@ class LateralFigure:
                 # turn-arounds, where the lateral force is not friction or slope
                 lo, hi = data_range(values[..., 1:-1] if values.shape[-1] > 2 else values)
                 if key == "slope":
+                    # symmetric about zero (the diverging map's white), the largest slope term
+                    # a third of the half-span inside the end (a uniform tilt's 1.05 nN sat at
+                    # the end of +-1.05: saturated), held while it stays inside
                     m = max(abs(lo), abs(hi), 1e-3)
+                    shown = None if self._reset else im.get_clim()
+                    lo, hi = sticky_limits(shown, -m, m, margin=self.SLOPE_MARGIN)
+                    m = max(abs(lo), abs(hi))
                     lo, hi = -m, m
                 elif hi - lo < 1e-6:
                     lo, hi = lo - 0.05, hi + 0.05

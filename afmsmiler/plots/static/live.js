@@ -411,7 +411,10 @@ class Axes {
     });
     if (this.cb && frame.colorbar) {
       const c = frame.colorbar;
-      this.cb.axes[1].label = c.label || "";
+      // its label on one line, shrunk to the bar's length ("friction coefficient mu
+      // (dimensionless)" ran off both ends)
+      this.cb.axes[1].label = fitLabel(this.cb.axes[1], c.label || "",
+        this.cb.bbox.height / devicePixelRatio);
       this.cb.batch(() => {
         this.cb.setScale("x", { min: 0, max: 1 });
         this.cb.setScale("c", { min: c.vmin, max: c.vmax });
