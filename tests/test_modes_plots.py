@@ -260,6 +260,26 @@ def test_force_volume_figure_draws_the_maps():
     np.testing.assert_allclose(fig.images["adhesion"].get_array(), fv.adhesion * NN)
     np.testing.assert_allclose(fig.images["dissipation"].get_array(), fv.dissipation * ZJ)
     np.testing.assert_allclose(_xy(fig.lines["approach", 1])[1], fv.approach[1] * NN)
+    # one pixel as measured beside the noise-free curve (they stayed smooth while the maps
+    # scattered), and negative dissipation said to be the noise's, with the model's scatter
+    for i in (0, 1):
+        np.testing.assert_allclose(_xy(fig.lines["measured approach", i])[1],
+                                   fv.measured_approach[i] * NN)
+        np.testing.assert_allclose(_xy(fig.lines["measured retract", i])[1],
+                                   fv.measured_retract[i] * NN)
+    quiet = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, points=100,
+                         force_noise=0.0)
+    fig.update(quiet)  # without noise no loop area is below 0: nothing to say
+    assert np.min(quiet.dissipation) >= 0 and fig.axes["dissipation"].get_title() == \
+        "dissipation map"
+    noisy = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, seed=0,
+                         points=100, force_noise=500e-12)
+    assert np.min(noisy.dissipation) < 0
+    fig.update(noisy)
+    title = fig.axes["dissipation"].get_title()
+    assert "< 0: noise" in title and f"{np.max(noisy.dissipation_noise) * ZJ:.3g} zJ" in title
+    lo, hi = fig.axes["curves"].get_ylim()
+    assert lo <= np.min(noisy.measured_retract) * NN and hi >= np.max(noisy.measured_approach) * NN
     describe(fig.fig)
     with pytest.raises(ValueError, match="names"):
         ForceVolumeFigure(fv, ["one"])

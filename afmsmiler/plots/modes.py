@@ -638,7 +638,8 @@ class ForceVolumeFigure:
     images : dict
         The four maps' AxesImage.
     lines : dict
-        ``("approach", i)``, ``("retract", i)`` -> Line2D of material i.
+        ``("approach", i)``, ``("retract", i)`` -> Line2D of material i's noise-free curves;
+        ``("measured approach", i)``, ``("measured retract", i)`` -> one pixel's as measured.
     """
 
     MAPS = read_only({"modulus": ("Pa", "MPa", "viridis"), "adhesion": ("N", "nN", "magma"),
@@ -668,13 +669,19 @@ class ForceVolumeFigure:
             raise ValueError(f"names must name the {n} materials, got {len(names)}")
         self.lines = {}
         c = self.axes["curves"]
+        # one pixel's curves as measured, noise and all (pale, under): the noise-free model
+        # curves alone stayed smooth at 500 pN of noise while the maps scattered
+        for i in range(n):
+            for way in ("approach", "retract"):
+                self.lines[f"measured {way}", i], = c.plot([], [], color=f"C{i}", lw=0.8,
+                                                           alpha=0.35)
         for i in range(n):
             self.lines["approach", i], = c.plot([], [], color=f"C{i}", label=f"{names[i]}")
             self.lines["retract", i], = c.plot([], [], color=f"C{i}", ls="--")
         c.axhline(0.0, color="0.6", lw=0.8)
         c.set(xlabel=f"positioner Z_np [{UNITS_SHOWN['distance']}]",
               ylabel=f"force [{UNITS_SHOWN['force']}]",
-              title="curves (dashed: retract)")
+              title="curves (dashed: retract;\npale: one pixel as measured)")
         c.legend(loc="upper left", fontsize="small")
         self._reset = True
         self.update(volume)
@@ -695,12 +702,26 @@ class ForceVolumeFigure:
                                                                                  unit)
             _set_image(self.images[key], self.axes[key], values, extent, "nm")
         n = volume.approach.shape[0]
+        measured = volume.measured_approach, volume.measured_retract
         for i in range(n):
             z = volume.z_np[i] * _NM
             self.lines["approach", i].set_data(z, volume.approach[i] * _NN)
             self.lines["retract", i].set_data(z[::-1], volume.retract[i] * _NN)
+            if measured[0] is not None:
+                self.lines["measured approach", i].set_data(z, measured[0][i] * _NN)
+                self.lines["measured retract", i].set_data(z[::-1], measured[1][i] * _NN)
+        # the loop area of noisy curves scatters about its value, below zero where it is small:
+        # say so, with the scatter the model gives the noise alone
+        title = "dissipation map"
+        noise = volume.dissipation_noise
+        if noise is not None and np.nanmin(volume.dissipation) < 0:
+            title += (f"\n< 0: noise (it alone scatters the loop area by "
+                      f"{float(np.max(noise)) * _ZJ:.3g} zJ RMS)")
+        self.axes["dissipation"].set_title(title)
         c = self.axes["curves"]
         c.set_xlim(float(volume.z_np.min() * _NM), float(volume.z_np.max() * _NM))
-        lo, hi = data_range(volume.approach * _NN, volume.retract * _NN, 0.0)
+        lo, hi = data_range(volume.approach * _NN, volume.retract * _NN, 0.0,
+                            *(() if measured[0] is None else (measured[0] * _NN,
+                                                              measured[1] * _NN)))
         hold(c, "y", lo, hi, reset=self._reset, floor=1e-3)
         self._reset = False
