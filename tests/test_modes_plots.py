@@ -245,6 +245,8 @@ def test_jumping_figure_draws_the_curve_and_the_image(jumping_run):
     row = result.images["height trace"].shape[0] // 2
     np.testing.assert_allclose(_xy(fig.lines["trace"])[1],
                                result.images["height trace"][row] * NM)
+    # the profile's line is counted from 1, as module (f)'s figure counts them
+    assert fig.axes["profile"].get_title() == f"line {row + 1}: trace and retrace"
     describe(fig.fig)
 
 

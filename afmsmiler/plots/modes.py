@@ -595,8 +595,9 @@ class JumpingFigure:
         extent = _extent(heights.shape, dx, dy, _NM)
         _set_image(self.images["height"], ax["image"], heights * _NM, extent, "nm")
         crashed = getattr(result, "crashed", None)
+        # lines counted from 1, as module (f)'s figure counts them
         ax["image"].set_title("height (trace)" + ("" if crashed is None else
-                                                  f": crashed at line {crashed.row}"))
+                                                  f": crashed on line {crashed.row + 1}"))
         done = int(result.lines_done)
         row = max(min(done, heights.shape[0]) - 1, 0) if crashed is None else crashed.row
         row = min(row, heights.shape[0] // 2) if crashed is None else row
@@ -613,7 +614,7 @@ class JumpingFigure:
             hold(ax["profile"], "y", lo, hi, reset=self._reset, floor=1e-3)
         ax["profile"].set(xlabel=f"x [{UNITS_SHOWN['position']}]",
                           ylabel=f"height [{UNITS_SHOWN['height']}]",
-                          title=f"line {row}: trace and retrace")
+                          title=f"line {row + 1}: trace and retrace")
         self._reset = False
 
 
