@@ -274,7 +274,10 @@ def test_notebook_suggestion_a_low_lift_crashes_into_the_bars(jump):
     assert np.nanmax(np.abs(jump.last.result.images["lateral force trace"])) == 0.0
     jump.set(lift_height=30.0)
     assert jump.last.result.crashed is not None and jump.last.result.crashed.row == 0
-    assert "crashed" in jump.figure.axes["image"].get_title()
+    c = jump.last.result.crashed
+    # the first line is line 1 in the title and the readout, as module (f) counts lines
+    assert jump.figure.axes["image"].get_title() == "height (trace): crashed on line 1"
+    assert f"<b>line 1, pixel {c.column + 1}</b>" in jump.readout.value
     jump.set(lift_height=50.0)
     assert jump.last.result.crashed is None
     jump.set(lift_height=JUMPING_DEFAULTS["lift_height"])
