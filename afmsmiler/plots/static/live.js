@@ -346,8 +346,13 @@ class Axes {
     const height = Math.round((u.bbox.top + u.bbox.height) / r + CB_BELOW);
     const around = cb.width - cb.bbox.width / r; // its padding, tick labels and label
     const width = Math.round(BAR + around);
-    const changed = Math.abs(width - this.cbWidth) > 1;
+    const changed = Math.abs(width - this.cbWidth) > 1, top = u.bbox.top;
     if (changed) this.cbWidth = width;
+    if (top !== this.cbTop && !changed && height === cb.height) {
+      // the plot box moved down as much as it shrank: uPlot lays out again only on a new size
+      cb.setSize({ width: this.cbWidth, height: height + 1 });
+    }
+    this.cbTop = top;
     if (changed || height !== cb.height) cb.setSize({ width: this.cbWidth, height });
     return changed;
   }
