@@ -387,6 +387,9 @@ def test_the_figure_shows_the_streamed_pixels_in_um_over_mm(panel):
     assert panel.figure.images["height"].get_extent() == pytest.approx(
         [-0.5, 15.5, -0.5, 15.5])  # 16 pixels of 1 mm, pixel edges in mm
     assert f"{panel.last.pixels_done}/256" in panel.figure.axes["height"].get_title()
+    # the line of the last pixel streamed, counted from 1 (the profile said "line 0")
+    line = (panel.last.pixels_done - 1) // 16
+    assert panel.figure.axes["profile"].get_title() == f"line {line + 1} of 16"
     while panel.step():
         pass
     c = panel.last.comparison

@@ -9,8 +9,9 @@ import numpy as np
 import pytest
 
 from afmsmiler.parameters import UNITS
-from afmsmiler.plots.imaging import (ImagingFigure, error_channel, length_unit, main_channel,
-                                     scan_view)
+from afmsmiler.imaging.modes import Crash
+from afmsmiler.plots.imaging import (ImagingFigure, crash_note, error_channel, length_unit,
+                                     main_channel, scan_view, side_channel)
 from afmsmiler.plots.live import describe
 from afmsmiler.samples import Sample
 
@@ -57,8 +58,27 @@ def test_channels_chosen_for_constant_force_and_constant_height():
     assert error_channel(cf, "height trace") == "error trace"
     ch = _result(1, channels=("deflection",)).channels
     assert main_channel(ch) == "deflection trace" and error_channel(ch, "deflection trace") is None
-    v = scan_view(_result(3, channels=("deflection",)))
+    # constant height has no error channel: the deflection's retrace stands beside its trace,
+    # on the trace's colour map and scale (an empty "no error channel" axes stood there)
+    assert side_channel(cf, "height trace") == "error trace"
+    assert side_channel(ch, "deflection trace") == "deflection retrace"
+    r = _result(3, channels=("deflection",))
+    v = scan_view(r)
+    assert v.error_is_retrace and v.error_label == "deflection retrace [nm]"
+    np.testing.assert_allclose(v.error[:3], r.channels["deflection retrace"].heights[:3] * NM)
+    f = ImagingFigure(v)
+    assert f.images["error"].get_cmap().name == f.images["image"].get_cmap().name
+    assert f.images["error"].get_clim() == f.images["image"].get_clim()
+    assert f.axes["error"].get_title() == "deflection retrace"
+    assert describe(f.fig).frame["axes"][1]["colorbar"]["cmap"] == "afmhot"
+    f.update(scan_view(_result(3)))  # back to constant force: the error's diverging map
+    assert f.images["error"].get_cmap().name == "RdBu_r"
+    lo, hi = f.images["error"].get_clim()
+    assert lo == -hi
+    only = {"deflection trace": r.channels["deflection trace"]}
+    v = scan_view(SimpleNamespace(channels=only, lines_done=3))
     assert np.isnan(v.error).all() and v.error_label == "no error channel"
+    assert not v.error_is_retrace
     with pytest.raises(ValueError, match="main must be one of"):
         scan_view(_result(1), main="phase trace")
     with pytest.raises(ValueError, match="channels must hold"):
@@ -89,6 +109,8 @@ def test_the_figure_is_described_for_the_browser_line_after_line():
         finite = expected[np.isfinite(expected)]
         assert (cb["vmin"], cb["vmax"]) == pytest.approx((finite.min(), finite.max()), rel=1e-6)
         assert d.frame["axes"][0]["title"]["text"] == f"height trace: line {done} of 12"
+        # the profile of that line carries the same number (it said "line 11" under "12 of 12")
+        assert f.axes["profile"].get_title() == f"line {done}: trace and retrace"
         x, y = f.lines["trace"].get_data()
         np.testing.assert_allclose(y, expected[done - 1])
         lo, hi = f.axes["profile"].get_ylim()
@@ -105,6 +127,14 @@ def test_a_stopped_or_crashed_scan_says_so():
     r.crashed = "row 3, 120 nN"
     v = scan_view(r)
     assert v.status == "crashed: row 3, 120 nN"
+    # a Crash in words, lines and pixels counted from 1 (the title showed its Python repr)
+    r.crashed = Crash(row=4, column=16, force=-1.2e-7, direction="retrace")
+    title = ImagingFigure(scan_view(r)).axes["image"].get_title()
+    assert title == ("height trace: line 4 of 12; tip crashed: -120 nN on line 5 (retrace), "
+                     "pixel 17")
+    assert "Crash(" not in title
+    assert crash_note(Crash(0, 2, float("inf"))) == ("tip crashed: tip buried (force without "
+                                                     "bound) on line 1 (trace), pixel 3")
 
 
 def test_images_side_by_side_in_nm_with_their_own_colour_scales():

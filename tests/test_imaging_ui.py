@@ -256,16 +256,37 @@ def test_sliders_come_from_the_models_parameters_and_no_position_is_refused():
         for name, parameter in sliders.items():
             assert p.controls[name].parameter is parameter
     assert p.controls["radius"].parameter is ui.TIP_CONTROLS["radius"]
-    # the largest scan at the steepest angle fits on every sample: the scanner accepts it
-    c = p.controls["scan_size"]
-    top = c.base ** c.max
-    assert SCAN["scan_size"].to_si(top) <= ui.max_scan_size() * (1 + 1e-9)
-    a = p.controls["angle"]
+    # the scan size's slider ends where the scan leaves the chosen sample at the chosen angle:
+    # the scanner accepts the end, and a scan 1 % larger is refused by the panel and the scanner
+    c, a = p.controls["scan_size"], p.controls["angle"]
     for name in ui.SAMPLES:
-        for angle in (a.min, a.max, 45.0):
-            Scan(ui.sample(name), None, modes.ConstantForce(PRESETS[ui.PLANT].loop),
-                 ScanSettings(SCAN["scan_size"].to_si(top), pixels=8,
-                              angle=math.radians(angle)))
+        s = ui.sample(name)
+        rows, cols = s.heights.shape
+        width = min((cols - 1) * s.pixel_size, (rows - 1) * s.pixel_size_y)  # centre to centre
+        for angle in (a.min, -30.0, 0.0, 45.0, a.max):
+            p.set(sample=name, angle=angle)
+            top = SCAN["scan_size"].to_si(c.base ** c.max)
+            # a square of side S turned by the angle spans S (|cos| + |sin|) along x and y
+            fits = width / (abs(math.cos(math.radians(angle))) + abs(math.sin(math.radians(angle))))
+            assert top == pytest.approx(min(fits, SCAN["scan_size"].slider_high), rel=1e-9)
+            mode = modes.ConstantForce(PRESETS[ui.PLANT].loop)
+            Scan(s, None, mode, ScanSettings(top, pixels=64, angle=math.radians(angle)))
+            with pytest.raises(ValueError, match="reaches beyond the sample"):
+                Scan(s, None, mode, ScanSettings(1.01 * top * 64 / 63, pixels=64,
+                                                 angle=math.radians(angle)))
+    # the 2 um real image is scanned whole at angle 0 (every scan was capped at 0.36 um)
+    p.set(sample="real image (Bruker, 2 um)", angle=0.0, scan_size=1.99)
+    assert p.values()["scan_size"] == 1.99
+    # back on a 0.51 um sample the slider's end comes back and the value with it
+    p.set(sample="particles")
+    assert c.value == pytest.approx(0.51, rel=1e-9) and p.values()["scan_size"] == c.value
+    assert p._config.settings.scan_size == pytest.approx(0.51e-6, rel=1e-9)
+    with pytest.raises(ValueError, match="scan_size"):
+        p.set(sample="grating", scan_size=1.0)
+    assert p.controls["sample"].value == "particles"  # a refused set changes nothing
+    with pytest.raises(ValueError, match=r"scan_size must be <= 0\.51 um on the sample "
+                                         r"'particles' at angle 0 deg"):
+        p.update(**{**p.values(), "scan_size": 1.0})
 
 
 def test_bad_values_are_named():

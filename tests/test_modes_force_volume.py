@@ -91,6 +91,36 @@ def test_dissipation_is_the_dmt_loop_area(m):
     assert np.all(np.abs(fv.dissipation - area) <= f_ad * dz)
 
 
+def test_the_noise_alone_scatters_the_loop_area_of_an_elastic_sample_about_zero():
+    """An elastic sample without adhesion loses nothing over a cycle (W = 0), but noise of RMS
+    sigma on the n samples of each branch, through the trapezoid's weights (dz / 2 at the ends,
+    dz inside), gives the area a Gaussian scatter of RMS sigma dz sqrt(2 (n - 1.5)): the map
+    shows negative values, and the model says how large that scatter is. Tolerances: the
+    sample RMS and mean of N pixels, 4 / sqrt(2 N) and 4 / sqrt(N) of it."""
+    elastic = SampleMaterial("elastic", 1e9, 0.3, 0.0)
+    labels = np.zeros((24, 24), dtype=int)
+    sigma, n = 500e-12, 500
+    fv = force_volume(Sample(np.zeros(labels.shape), 10e-9), (elastic,), TIP, labels=labels,
+                      force_noise=sigma, points=n, seed=3)
+    dz = float(np.diff(fv.z_np[0])[0])
+    assert np.allclose(np.diff(fv.z_np[0]), dz)  # an even ramp
+    rms = sigma * abs(dz) * math.sqrt(2 * (n - 1.5))
+    assert fv.dissipation_noise == pytest.approx([rms], rel=1e-9)
+    w, count = fv.dissipation.ravel(), labels.size
+    assert np.std(w) == pytest.approx(rms, rel=4 / math.sqrt(2 * count))
+    assert abs(np.mean(w)) < 4 * rms / math.sqrt(count)
+    assert (w < 0).mean() > 0.3  # of either sign
+    # one pixel's measured curves: the noise-free ones plus noise of RMS sigma
+    for measured, clean in ((fv.measured_approach, fv.approach),
+                            (fv.measured_retract, fv.retract)):
+        noise = measured[0] - clean[0]
+        assert np.std(noise) == pytest.approx(sigma, rel=4 / math.sqrt(2 * n))
+    quiet = force_volume(Sample(np.zeros((2, 2)), 10e-9), (elastic,), TIP,
+                         labels=np.zeros((2, 2), dtype=int), force_noise=0.0, points=n)
+    assert np.array_equal(quiet.measured_approach, quiet.approach)
+    assert np.all(quiet.dissipation_noise == 0.0)
+
+
 def test_jkr_sample_adhesion_and_the_dmt_analysis_bias():
     """On a JKR sample the pull-off force is (3/2) pi R w (a soft enough contact to reach the
     force minimum before the jump); the DMT analysis is not exact there: E comes out a few per

@@ -54,6 +54,25 @@ def test_tapping_figure_draws_both_branches_in_nm_deg_and_zj(tapping):
     describe(fig.fig)  # the live figure can show every artist
 
 
+def test_no_dissipation_reads_zero_on_a_scale_where_dissipation_would_show(tapping):
+    # the E_dis axis showed round-off (-8.7e-12 zJ, flipping sign) as a flat line on +-5e-4 zJ
+    lever = TappingLever(free_amplitude=12e-9)  # no viscosity: a conservative force
+    curve = amplitude_curve(12e-9 * np.linspace(1.5, 0.01, SETPOINT_GRID), lever)
+    fig = TappingFigure(curve, (0.8, *setpoint_state(0.8, lever)))
+    for branch in ("attractive", "repulsive", "point"):
+        y = _xy(fig.lines["energy", branch])[1]
+        assert np.all(y[np.isfinite(y)] == 0.0), branch
+    lo, hi = fig.axes["energy"].get_ylim()
+    # at least k_B T at 295 K (CODATA k_B = 1.380649e-23 J/K): 4.07 zJ, the lever's thermal
+    # energy, around the zero
+    assert hi - lo >= 1.380649e-23 * 295.0 * ZJ and lo < 0.0 < hi
+    assert "E_dis = 0" in fig.axes["energy"].get_title()
+    _, wet, point = tapping  # a viscous sample: its dissipation is drawn, nothing said
+    fig.update(wet, point)
+    assert fig.axes["energy"].get_title() == ""
+    assert np.nanmax(_xy(fig.lines["energy", "repulsive"])[1]) > 0
+
+
 def test_tapping_figure_marks_the_coexistence_region_and_the_held_state(tapping):
     _, curve, point = tapping
     fig = TappingFigure(curve, point)
@@ -134,6 +153,19 @@ def test_lateral_figure_splits_the_loop_into_friction_and_slope(lateral):
     describe(fig.fig)
 
 
+def test_the_slope_map_shows_a_uniform_tilt_inside_its_colour_scale(lateral):
+    # 20 nN tan(3 deg) = 1.05 nN sat at the end of a +-1.05 nN bar: the map was saturated
+    topo, mu, images, row, loop = lateral
+    fig = LateralFigure(loop, images, row)
+    lo, hi = fig.images["slope"].get_clim()
+    slope = 20.0 * math.tan(math.radians(4))  # F_N tan(theta) in nN, 1.40 nN
+    assert lo == -hi  # the diverging map's white at zero
+    assert slope == pytest.approx(hi * 2 / 3, rel=1e-6)  # two thirds of the way to the end
+    fig.update(loop, images, row)
+    assert fig.images["slope"].get_clim() == (lo, hi)  # held while it stays inside
+    assert fig.colorbars["slope"].norm.vmax == hi
+
+
 def test_lateral_figure_loop_only():
     loop = FrictionLoop(np.arange(5) * 1e-9, np.ones(5) * 1e-9, -np.ones(5) * 1e-9, 10e-9, 1.0)
     fig = LateralFigure(loop)
@@ -157,7 +189,15 @@ def test_frequency_shift_figure_draws_the_round_trip(fm_curve):
     np.testing.assert_allclose(_xy(fig.lines["recovered"])[1], fm_curve.recovered_force * NN)
     worst = np.max(np.abs(fm_curve.error)) / np.max(np.abs(fm_curve.force))
     assert f"{100 * worst:.2g} %" in fig.axes["force"].get_title()
-    describe(fig.fig)
+    # distances on a log axis (shared): the first nanometre, where df and F change, takes
+    # half the width (it took a twelfth of a linear axis to 12 nm)
+    for ax in fig.axes.values():
+        assert ax.get_xscale() == "log"
+    lo, hi = fig.axes["force"].get_xlim()
+    assert (lo, hi) == pytest.approx((0.2, 12.0))
+    assert np.log10(1.0 / lo) / np.log10(hi / lo) > 0.35
+    d = describe(fig.fig)
+    assert d.layout["axes"][1]["x"]["scale"] == "log"
 
 
 def _figures(tapping, lateral, fm_curve):
@@ -221,6 +261,8 @@ def test_jumping_figure_draws_the_curve_and_the_image(jumping_run):
     row = result.images["height trace"].shape[0] // 2
     np.testing.assert_allclose(_xy(fig.lines["trace"])[1],
                                result.images["height trace"][row] * NM)
+    # the profile's line is counted from 1, as module (f)'s figure counts them
+    assert fig.axes["profile"].get_title() == f"line {row + 1}: trace and retrace"
     describe(fig.fig)
 
 
@@ -236,6 +278,26 @@ def test_force_volume_figure_draws_the_maps():
     np.testing.assert_allclose(fig.images["adhesion"].get_array(), fv.adhesion * NN)
     np.testing.assert_allclose(fig.images["dissipation"].get_array(), fv.dissipation * ZJ)
     np.testing.assert_allclose(_xy(fig.lines["approach", 1])[1], fv.approach[1] * NN)
+    # one pixel as measured beside the noise-free curve (they stayed smooth while the maps
+    # scattered), and negative dissipation said to be the noise's, with the model's scatter
+    for i in (0, 1):
+        np.testing.assert_allclose(_xy(fig.lines["measured approach", i])[1],
+                                   fv.measured_approach[i] * NN)
+        np.testing.assert_allclose(_xy(fig.lines["measured retract", i])[1],
+                                   fv.measured_retract[i] * NN)
+    quiet = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, points=100,
+                         force_noise=0.0)
+    fig.update(quiet)  # without noise no loop area is below 0: nothing to say
+    assert np.min(quiet.dissipation) >= 0 and fig.axes["dissipation"].get_title() == \
+        "dissipation map"
+    noisy = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, seed=0,
+                         points=100, force_noise=500e-12)
+    assert np.min(noisy.dissipation) < 0
+    fig.update(noisy)
+    title = fig.axes["dissipation"].get_title()
+    assert "< 0: noise" in title and f"{np.max(noisy.dissipation_noise) * ZJ:.3g} zJ" in title
+    lo, hi = fig.axes["curves"].get_ylim()
+    assert lo <= np.min(noisy.measured_retract) * NN and hi >= np.max(noisy.measured_approach) * NN
     describe(fig.fig)
     with pytest.raises(ValueError, match="names"):
         ForceVolumeFigure(fv, ["one"])

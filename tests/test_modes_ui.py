@@ -139,6 +139,11 @@ def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
     # a conservative sample dissipates nothing: 0 to round-off of pi k A^2 / Q (the setpoint's
     # phase interpolated between grid points and E_dis recomputed from it gave 0.1 zJ)
     assert abs(dry) < 1e-9 * scale
+    # and it reads zero: the readout said "-8.744e-12 zJ", flipping sign from move to move
+    tap.set(sample_viscosity=0.0)
+    assert tap.last.dissipated_energy == 0.0
+    assert "<td>E_dis per cycle</td><td style='text-align:right'><b>0 zJ</b>" in \
+        tap.readout.value
     assert wet > 1e-20  # from zero to tens of zJ
     tap.set(sample_viscosity=0.0, setpoint_ratio=0.8)
 
@@ -327,7 +332,10 @@ def test_notebook_suggestion_a_low_lift_crashes_into_the_bars(jump):
     assert np.nanmax(np.abs(jump.last.result.images["lateral force trace"])) == 0.0
     jump.set(lift_height=30.0)
     assert jump.last.result.crashed is not None and jump.last.result.crashed.row == 0
-    assert "crashed" in jump.figure.axes["image"].get_title()
+    c = jump.last.result.crashed
+    # the first line is line 1 in the title and the readout, as module (f) counts lines
+    assert jump.figure.axes["image"].get_title() == "height (trace): crashed on line 1"
+    assert f"<b>line 1, pixel {c.column + 1}</b>" in jump.readout.value
     jump.set(lift_height=50.0)
     assert jump.last.result.crashed is None
     assert re.search(r"largest lateral force</td><td[^>]*><b>0 nN<", jump.readout.value)

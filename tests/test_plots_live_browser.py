@@ -182,3 +182,74 @@ def test_every_principle_of_the_transducer_panel_draws(page):
             except (ValueError, TypeError):
                 continue  # a principle without a length, or with another range
             _show(page, panel.fig)
+
+
+def _ticks(page, axes, which):
+    """The ``which``-th uPlot axis of the ``axes``-th plot: its tick values and their labels."""
+    return page.evaluate("""([i, k]) => { const a = document.querySelector('.afm-live')
+        .afmFigure.axes[i].u.axes[k]; return [a._splits, a._values]; }""", [axes, which])
+
+
+def test_ticks_at_half_steps_read_as_many_digits_as_their_spacing_needs(page):
+    # the renderer rounded 7.5 to "8" and 2.5 to "3" (the friction loop, E_dis, FM's shift)
+    fig = Figure(figsize=(9, 2))  # a short plot: uPlot steps the y axes by 2.5 units
+    left, mid, right = fig.subplots(1, 3)
+    for ax, (lo, hi) in ((left, (0, 10)), (mid, (-10, 0)), (right, (0, 1e-3))):
+        ax.plot([0, 1], [lo, hi])
+        ax.set(xlim=(0, 1), ylim=(lo, hi))
+    _show(page, fig)
+    for i, (step, expected) in enumerate([(2.5, ["0", "2.5", "5", "7.5", "10"]),
+                                          (2.5, ["-10", "-7.5", "-5", "-2.5", "0"]),
+                                          (2.5e-4, ["0", "2.5e-4", "5e-4", "7.5e-4", "1e-3"])]):
+        splits, labels = _ticks(page, i, 1)
+        assert np.allclose(np.diff(splits), step), f"uPlot chose other ticks: {splits}"
+        assert len(splits) == len(expected), splits
+        # every label shown (the renderer thins crowded ones) is its tick written to the step
+        shown = [(t, e) for t, e in zip(labels, expected) if t]
+        assert len(shown) >= 3 and all(t == e for t, e in shown), labels
+
+
+def test_a_colour_bar_is_a_bar_beside_the_plot_with_its_labels_next_to_it(page):
+    # it was a 2 px hairline, its label 100 px away (the 06 height bar was nearly invisible)
+    fig = Figure(figsize=(6, 4))
+    ax = fig.add_subplot()
+    im = ax.imshow(np.arange(4.0).reshape(2, 2), origin="lower", extent=(0, 2, 0, 2),
+                   cmap="viridis", vmin=0, vmax=4)
+    fig.colorbar(im, ax=ax, label="height [nm]")
+    _show(page, fig)
+    bar = page.evaluate("""(() => {
+        const a = document.querySelector('.afm-live').afmFigure.axes[0], cb = a.cb;
+        const r = devicePixelRatio, ax = cb.axes[1];
+        const x = Math.round(cb.bbox.left + cb.bbox.width / 2);
+        const top = (u) => u.root.getBoundingClientRect().top + u.bbox.top / r;
+        return {width: cb.bbox.width / r, height: cb.bbox.height / r, plot: a.u.bbox.height / r,
+                top: top(cb), plotTop: top(a.u), room: ax._size, label: ax.label,
+                splits: ax._splits, labels: ax._values,
+                colours: [1, 3].map((v) => Array.from(cb.ctx.getImageData(
+                    x, Math.round(cb.valToPos(v, 'c', true)), 1, 1).data))};
+    })()""")
+    assert 12 <= bar["width"] <= 24, bar  # a bar, as matplotlib's (a twentieth of its height)
+    assert bar["height"] == pytest.approx(bar["plot"], abs=2), bar  # as tall as the plot box
+    assert bar["top"] == pytest.approx(bar["plotTop"], abs=2), bar  # and level with it
+    assert bar["label"] == "height [nm]"
+    # its label right after its tick labels (0 ... 4 need some 20 px), not 100 px away
+    assert bar["room"] <= 40, bar
+    shown = [(s, t) for s, t in zip(bar["splits"], bar["labels"]) if t]
+    assert len(shown) >= 3 and all(float(t) == pytest.approx(s) for s, t in shown), shown
+    cmap = matplotlib.colormaps["viridis"]
+    for value, rgba in zip((1, 3), bar["colours"]):
+        np.testing.assert_allclose(rgba[:3], np.round(np.array(cmap(value / 4)[:3]) * 255),
+                                   atol=3, err_msg=f"the bar at {value}")
+
+
+def test_a_log_axis_of_a_decade_or_two_reads_its_2_and_5_ticks(page):
+    # the FM panel's 0.2 to 12 nm read "1" and "10" only: nothing below 1 nm was labelled
+    fig = Figure(figsize=(8, 3))
+    ax = fig.add_subplot()
+    ax.semilogx([0.2, 12], [0, 1])
+    ax.set(xlim=(0.2, 12), ylim=(0, 1))
+    _show(page, fig)
+    splits, labels = _ticks(page, 0, 0)
+    shown = {t: s for s, t in zip(splits, labels) if t}
+    assert ["0.2", "0.5", "1", "2", "5", "10"] == list(shown), labels
+    assert all(float(t) == pytest.approx(s) for t, s in shown.items())

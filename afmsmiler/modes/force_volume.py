@@ -28,7 +28,11 @@ noise of RMS sigma is added to every sample. Each curve is analysed as the instr
   point);
 - **dissipation**: the area of the loop, the work the positioner does over the cycle,
   W = int_approach F dZ_np + int_retract F dZ_np (trapezoidal; >= 0: the energy the jumps of an
-  adhesive contact and a viscoelastic sample take).
+  adhesive contact and a viscoelastic sample take). The noise enters it linearly: with the
+  trapezoid's weights w_i (half a step at the ends, a step inside) on both branches, independent
+  noise of RMS sigma gives the area a Gaussian scatter of RMS sigma sqrt(2 sum w_i^2)
+  (``ForceVolume.dissipation_noise``), so that a map of an elastic sample (W = 0) shows values
+  of either sign.
 
 The curves of one material differ only by their noise, so the model is run once per material
 and the noise, the adhesion, the DMT correction and the loop area are vectorised over all
@@ -206,6 +210,12 @@ class ForceVolume:
         retract in its own order, from the peak down).
     noise : float
         RMS force noise in N that was added.
+    measured_approach, measured_retract : numpy.ndarray
+        One pixel's curves per material as measured, noise included, in N, (materials, points)
+        (the first pixel of each material in raster order; NaN for a material not on the map).
+    dissipation_noise : numpy.ndarray
+        Per material, the RMS in J of the scatter the noise alone gives the loop area,
+        sigma sqrt(2 sum w_i^2) (module notes).
     """
 
     modulus: np.ndarray
@@ -219,6 +229,9 @@ class ForceVolume:
     approach: np.ndarray = field(repr=False)
     retract: np.ndarray = field(repr=False)
     noise: float = 0.0
+    measured_approach: np.ndarray | None = field(default=None, repr=False)
+    measured_retract: np.ndarray | None = field(default=None, repr=False)
+    dissipation_noise: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def maps(self) -> dict:
@@ -458,8 +471,22 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
                                                  float(nu[m]))):
                 arr[block] = values
     adh, modulus, error, deformation, dissipation = (a.reshape(h.shape) for a in out)
+    # one pixel's measured curves per material, and the loop area's scatter from the noise
+    measured_app = np.full(app.shape, np.nan)
+    measured_ret = np.full(ret.shape, np.nan)
+    for m in range(len(materials)):
+        pixels = np.flatnonzero(flat == m)
+        if pixels.size:
+            measured_app[m] = f_app[pixels[0]]
+            measured_ret[m] = f_ret[pixels[0]]
+    weights = np.abs(np.diff(z, axis=1))  # the trapezoid's weights: half a step at the ends
+    w = np.zeros_like(z)
+    w[:, :-1] += 0.5 * weights
+    w[:, 1:] += 0.5 * weights
+    noise_w = sigma * np.sqrt(2.0 * np.sum(w * w, axis=1))
     return ForceVolume(modulus, error, adh, deformation, dissipation, lab.copy(),
-                       sample.pixel_size, z, app, ret, sigma)
+                       sample.pixel_size, z, app, ret, sigma, measured_app, measured_ret,
+                       noise_w)
 
 
 class ForceVolumeMode(Mode):

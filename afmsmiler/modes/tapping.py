@@ -58,7 +58,16 @@ pi F0 A sin(phi) minus the lever's damping pi k W A^2 / Q; Cleveland et al., App
     E_dis = pi F0 A sin(phi) - pi k W A^2 / Q = (pi k A^2 / Q) [(A0 / A) sin(phi) - W]   (W = 1)
 
 in the convention that the phase lag phi is 90 deg for the free lever at resonance and that
-positive E_dis is energy lost to the sample. The first-harmonic balance leaves out the static
+positive E_dis is energy lost to the sample. At a root the balance makes it pi A I_s, the
+difference of two nearly equal terms: where the sample takes nothing (out of contact, or no
+viscosity) the formula leaves round-off, some 1e-11 zJ of either sign. Its accuracy is bounded
+per root (``AmplitudeCurve.dissipated_energy_error``): the root's residual g(A) leaves
+pi A S |g| / F0 (sin(phi) = S / (F0 + g)), and the rounding at most
+:data:`DISSIPATION_ROUNDINGS` units of round-off eps of each term: of phi (a rounding of phi
+moves F0 sin(phi) by F0 |cos(phi)| eps (|phi| + 1), which near phi = pi, where sin(phi) is
+small, outweighs the term itself), of F0 sin(phi) and of k W A / Q. An E_dis within that bound
+is zero within the model's accuracy and is returned as 0 (:func:`operating_point` interpolates
+these values). The first-harmonic balance leaves out the static
 deflection <F_ts> / k and the higher harmonics; for a stiff lever of high Q (k = 40 N/m, Q = 400,
 the defaults) both move A by well under 1 % (the tests compare it with the time integration).
 
@@ -98,7 +107,7 @@ __all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "ampli
            "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
            "AMPLITUDE_GRID", "MAX_DISTANCES", "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS",
            "SETPOINT_GRID", "FEEDBACKS", "FEEDBACK_PARAMETERS", "FeedbackLine",
-           "amplitude_feedback", "MAX_FEEDBACK_STEPS"]
+           "amplitude_feedback", "MAX_FEEDBACK_STEPS", "DISSIPATION_ROUNDINGS"]
 
 #: The two branches of the amplitude-distance curve.
 BRANCHES = ("attractive", "repulsive")
@@ -111,6 +120,12 @@ MAX_PERIODS = 20_000
 #: Drive periods per block of the transient criterion, and periods of the final lock-in.
 BLOCK_PERIODS = 10
 LOCKIN_PERIODS = 10
+#: Rounded operations in E_dis = pi A (F0 sin(phi) - k W A / Q) from the balance's (P, S): P
+#: and S (1 each, as they enter atan2), atan2 (2 ulp), sin (1), F0 sin (1), k W A / Q (3, one
+#: counted with the difference); pi A outside scales both terms alike. Each contributes at most
+#: one unit of round-off (eps) of the quantity it rounds.
+DISSIPATION_ROUNDINGS = 8
+
 #: Samples per period of the lock-in.
 _SAMPLES = 64
 # Gauss-Legendre nodes on the free and the contact part of a half period
@@ -429,7 +444,11 @@ class AmplitudeCurve:
         root with a net repulsion. (At the far end of the H branch its net force turns
         attractive while it is still the higher root.)
     dissipated_energy : ndarray, shape (n, r)
-        E_dis in J per cycle from the phase.
+        E_dis in J per cycle from the phase; 0 where it is zero within
+        ``dissipated_energy_error``.
+    dissipated_energy_error : ndarray, shape (n, r)
+        The bound in J of E_dis's error at each root: the root's residual and the formula's
+        round-off (module notes); NaN where there is no root.
     """
 
     lever: TappingLever
@@ -440,6 +459,7 @@ class AmplitudeCurve:
     attractive: np.ndarray
     repulsive_branch: np.ndarray
     dissipated_energy: np.ndarray
+    dissipated_energy_error: np.ndarray
 
     def branch(self, name: str) -> tuple[np.ndarray, np.ndarray]:
         """Amplitude and phase of the stable root on one branch at each distance (NaN if none).
@@ -584,7 +604,7 @@ def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCu
         root = new
         if done:
             break
-    _, p, s = _balance(lever, z, root)
+    residual, p, s = _balance(lever, z, root)
     i_c = lever.spring_constant * (1.0 - lever.frequency_ratio ** 2) * root - p
     rising = g[rows, cols] < 0
     counts = np.bincount(rows, minlength=n)
@@ -606,11 +626,19 @@ def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCu
         top = np.argmax(np.where(stable, np.nan_to_num(amplitude, nan=-1.0), -1.0), axis=1)
         high[two] = False
         high[np.flatnonzero(two), top[two]] = True
-    e_dis = np.full(shape, np.nan)
-    e_dis[rows, slot] = math.pi * root * (lever.drive_force * np.sin(phase[rows, slot]) -
-                                          lever.spring_constant * lever.frequency_ratio * root /
-                                          lever.quality_factor)
-    return AmplitudeCurve(lever, zc, amplitude, phase, stable, attractive, high, e_dis)
+    e_dis, e_err = np.full(shape, np.nan), np.full(shape, np.nan)
+    phi = phase[rows, slot]
+    drive = lever.drive_force * np.sin(phi)
+    damping = lever.spring_constant * lever.frequency_ratio * root / lever.quality_factor
+    e = math.pi * root * (drive - damping)
+    # its accuracy (module notes): the root's residual, and the rounding of phi and the terms
+    rounding = (lever.drive_force * np.abs(np.cos(phi)) * (np.abs(phi) + 1.0) + np.abs(drive) +
+                np.abs(damping))
+    err = math.pi * root * (np.abs(s) * np.abs(residual) / lever.drive_force +
+                            DISSIPATION_ROUNDINGS * np.finfo(float).eps * rounding)
+    e_dis[rows, slot] = np.where(np.abs(e) <= err, 0.0, e)
+    e_err[rows, slot] = err
+    return AmplitudeCurve(lever, zc, amplitude, phase, stable, attractive, high, e_dis, e_err)
 
 
 @dataclass(frozen=True)
@@ -825,10 +853,11 @@ def operating_point(curve: AmplitudeCurve,
 
     Follow the slow approach (:meth:`AmplitudeCurve.sweep`) from the curve's farthest distance
     to the first distance at which the amplitude falls to r A0, and interpolate the distance,
-    the phase and E_dis linearly between the two grid points around it. E_dis is interpolated
-    itself, not recomputed from the interpolated phase: it is very sensitive to the phase
-    (pi F0 A cos(phi) per radian), and a phase interpolated to 1e-5 rad would invent some 0.1 zJ
-    on a sample that dissipates nothing, where every root's own E_dis is 0 to round-off.
+    the phase and E_dis linearly between the two grid points around it. E_dis is the curve's
+    own at the two roots (0 where zero within its accuracy), interpolated, not recomputed from
+    the interpolated phase: it is very sensitive to the phase (pi F0 A cos(phi) per radian), and
+    a phase interpolated to 1e-5 rad would invent some 0.1 zJ on a sample that dissipates
+    nothing.
     :func:`setpoint_state` is this on A0 x linspace(1.5, 0.01, :data:`SETPOINT_GRID`).
 
     Parameters
@@ -867,10 +896,11 @@ def operating_point(curve: AmplitudeCurve,
     f = (amp[i - 1] - target) / (amp[i - 1] - amp[i])
     zc = z[i - 1] + f * (z[i] - z[i - 1])
     phase = phs[i - 1] + f * (phs[i] - phs[i - 1])
-    e = lever.dissipated_energy(amp[i - 1:i + 1], phs[i - 1:i + 1])
+    roots = [(order[k], int(np.nanargmin(np.abs(curve.amplitude[order[k]] - amp[k]))))
+             for k in (i - 1, i)]  # the curve's roots the sweep took there
+    e = [float(curve.dissipated_energy[r, j]) for r, j in roots]
     e_dis = e[0] + f * (e[1] - e[0])
-    row = order[i]
-    j = int(np.nanargmin(np.abs(curve.amplitude[row] - amp[i])))
+    row, j = roots[1]
     return float(zc), float(phase), float(e_dis), not bool(curve.repulsive_branch[row, j])
 
 

@@ -257,7 +257,8 @@ class MacroFigure:
         self.lines["profile"].set_data(v.x, v.profile)
         p = self.axes["profile"]
         p.set_xlim(v.extent[0], v.extent[1])
-        p.set_title("line" if v.row is None else f"line {v.row}")
+        # lines counted from 1, as the panels of module (f) count them
+        p.set_title("line" if v.row is None else f"line {v.row + 1} of {lines}")
         lo, hi = data_range(v.profile)
         if math.isfinite(lo):
             hold(p, "y", lo, hi, floor=1e-3)

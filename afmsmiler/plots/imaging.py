@@ -25,7 +25,8 @@ from ..validation import check_choice, check_integer
 from .limits import data_range, hold
 
 __all__ = ["FIGSIZE", "DISPLAY_UNITS", "ScanView", "scan_view", "ImagingFigure",
-           "main_channel", "error_channel", "length_unit", "images_figure"]
+           "main_channel", "error_channel", "side_channel", "crash_note", "length_unit",
+           "images_figure"]
 
 #: Figure size in inches (10 in: JupyterLab's output area is about 1000 px wide).
 FIGSIZE = (10.0, 7.0)
@@ -81,6 +82,64 @@ def error_channel(channels, main: str) -> str | None:
     return next((n for n in _ERROR if n in channels and n != main), None)
 
 
+def side_channel(channels, main: str) -> str | None:
+    """The channel shown beside the image: the error signal, else the main channel's retrace.
+
+    A constant-height scan has no error channel (its deflection, the main image, is the error
+    signal); beside it the retrace shows what trace and retrace disagree on, where an empty
+    "no error channel" axes stood.
+
+    Parameters
+    ----------
+    channels : mapping
+        Channel name -> Sample.
+    main : str
+        The main channel (never returned).
+
+    Returns
+    -------
+    str or None
+        None if there is neither.
+    """
+    err = error_channel(channels, main)
+    if err is not None:
+        return err
+    twin = main.replace("trace", "retrace") if main.endswith(" trace") else None
+    return twin if twin in channels else None
+
+
+def crash_note(crash) -> str:
+    """A crash said in words and the units shown, lines and pixels counted from 1.
+
+    Parameters
+    ----------
+    crash : Crash or object
+        A :class:`~afmsmiler.imaging.modes.Crash` (``row``, ``column``, ``force`` in N,
+        ``direction``); anything else is shown as its text.
+
+    Returns
+    -------
+    str
+        E.g. ``"tip crashed: 120 nN on line 4 (trace), pixel 17"``.
+
+    Examples
+    --------
+    >>> from afmsmiler.imaging.modes import Crash
+    >>> crash_note(Crash(3, 16, 1.2e-7, "retrace"))
+    'tip crashed: 120 nN on line 4 (retrace), pixel 17'
+    >>> crash_note(Crash(0, 0, float("inf")))
+    'tip crashed: tip buried (force without bound) on line 1 (trace), pixel 1'
+    """
+    if not all(hasattr(crash, a) for a in ("row", "column", "force")):
+        return f"crashed: {crash}"
+    force = float(crash.force)
+    shown, factor = _value_unit("N")
+    how = (f"{force * factor:.3g} {shown}" if math.isfinite(force)
+           else "tip buried (force without bound)")
+    return (f"tip crashed: {how} on line {int(crash.row) + 1} "
+            f"({getattr(crash, 'direction', 'trace')}), pixel {int(crash.column) + 1}")
+
+
 def length_unit(extent: float) -> str:
     """The unit positions are shown in: ``"um"`` from 1 um of scan on, ``"nm"`` below.
 
@@ -115,9 +174,12 @@ class ScanView:
     image_label : str
         Its name and unit, e.g. ``"height trace [nm]"``.
     error : numpy.ndarray
-        The error channel, same shape (all NaN if the scan has none).
+        The channel shown beside the image (:func:`side_channel`: the error channel, else the
+        main channel's retrace), same shape (all NaN if the scan has neither).
     error_label : str
         Its name and unit, or ``"no error channel"``.
+    error_is_retrace : bool
+        ``error`` is the main channel's retrace (shown on the main image's colour scale).
     extent : tuple of float
         (left, right, bottom, top) of the image in ``length_unit`` (pixel edges).
     length_unit : str
@@ -130,13 +192,13 @@ class ScanView:
     value_unit : str
         The unit of ``image``, ``trace`` and ``retrace``.
     row : int or None
-        Index of the last finished line (None before the first).
+        Index of the last finished line (None before the first); titles count lines from 1.
     lines_done : int
         Lines finished.
     lines : int
         Lines of the whole scan.
     status : str
-        ``""``, ``"stopped"`` or the crash message.
+        ``""``, ``"stopped"`` or the crash message (:func:`crash_note`).
     """
 
     image: np.ndarray
@@ -153,6 +215,7 @@ class ScanView:
     lines_done: int
     lines: int
     status: str = ""
+    error_is_retrace: bool = False
 
 
 def _shown_rows(sample, lines_done: int, factor: float) -> np.ndarray:
@@ -234,7 +297,7 @@ def scan_view(result, *, main: str | None = None, status: str | None = None) -> 
         retrace = _shown_rows(channels[twin], done, factor)[row]
     else:
         retrace = np.full(cols, np.nan)
-    err_name = error_channel(channels, main)
+    err_name = side_channel(channels, main)
     if err_name is None:
         error, error_label = np.full((rows, cols), np.nan), "no error channel"
     else:
@@ -243,10 +306,11 @@ def scan_view(result, *, main: str | None = None, status: str | None = None) -> 
         error_label = f"{err_name} [{e_unit}]"
     if status is None:
         crashed = getattr(result, "crashed", None)
-        status = (f"crashed: {crashed}" if crashed is not None else
+        status = (crash_note(crashed) if crashed is not None else
                   "stopped" if getattr(result, "stopped", False) else "")
     return ScanView(values, f"{main} [{unit}]", error, error_label, extent, lu, x, trace,
-                    retrace, unit, row, done, rows, status)
+                    retrace, unit, row, done, rows, status,
+                    err_name is not None and err_name == twin)
 
 
 def _clim(values) -> tuple[float, float]:
@@ -287,6 +351,9 @@ class ImagingFigure:
         ``"image"``, ``"error"`` -> Colorbar.
     """
 
+    #: Colour map of the error channel (diverging: zero error in its middle).
+    ERROR_CMAP = "RdBu_r"
+
     def __init__(self, view: ScanView, fig: Figure | None = None, cmap: str = "afmhot"):
         self.fig = fig if fig is not None else Figure(figsize=FIGSIZE)
         self.fig.set_layout_engine("constrained")
@@ -295,7 +362,8 @@ class ImagingFigure:
                               error=self.fig.add_subplot(grid[0, 1]),
                               profile=self.fig.add_subplot(grid[1, :]))
         self.images, self.colorbars = {}, {}
-        for key, cm in (("image", cmap), ("error", "RdBu_r")):
+        self.cmap = cmap
+        for key, cm in (("image", cmap), ("error", self.ERROR_CMAP)):
             self.images[key] = ax[key].imshow(np.full((2, 2), np.nan), origin="lower",
                                               cmap=cm, interpolation="nearest",
                                               extent=(0, 1, 0, 1), vmin=0, vmax=1)
@@ -325,21 +393,28 @@ class ImagingFigure:
         v = view
         ax = self.axes
         lu = "um" if v.length_unit == "um" else "nm"
+        # a retrace beside its trace shares its colour map and scale, so that the eye compares
+        shared = _clim(np.r_[v.image.ravel(), v.error.ravel()]) if v.error_is_retrace else None
         for key, values, label in (("image", v.image, v.image_label),
                                    ("error", v.error, v.error_label)):
             im = self.images[key]
             im.set_data(np.ma.masked_invalid(values))
             im.set_extent(v.extent)
-            lo, hi = _clim(values)
-            if key == "error":  # a diverging map: zero error in its middle
-                lo, hi = -max(abs(lo), abs(hi)), max(abs(lo), abs(hi))
+            lo, hi = _clim(values) if shared is None else shared
+            if key == "error":
+                cmap = self.cmap if v.error_is_retrace else self.ERROR_CMAP
+                if im.get_cmap().name != cmap:
+                    im.set_cmap(cmap)
+                    self.colorbars[key].update_normal(im)
+                if not v.error_is_retrace:  # a diverging map: zero error in its middle
+                    lo, hi = -max(abs(lo), abs(hi)), max(abs(lo), abs(hi))
             im.set_clim(lo, hi)
             self.colorbars[key].set_label(label)
             ax[key].set(xlim=v.extent[:2], ylim=v.extent[2:], xlabel=f"x [{lu}] (fast axis)",
                         ylabel=f"y [{lu}]")
         name = v.image_label.rsplit(" [", 1)[0]
-        progress = f"line {v.lines_done} of {v.lines}"
-        ax["image"].set_title(f"{name}: {progress}" + (f" ({v.status})" if v.status else ""))
+        progress = f"line {v.lines_done} of {v.lines}"  # lines counted from 1, as in the profile
+        ax["image"].set_title(f"{name}: {progress}" + (f"; {v.status}" if v.status else ""))
         ax["error"].set_title(v.error_label.rsplit(" [", 1)[0])
         if v.row is None:
             self.lines["row"].set_data([], [])
@@ -352,7 +427,7 @@ class ImagingFigure:
         p.set_xlim(v.extent[0], v.extent[1])
         quantity = name.removesuffix(" trace")  # trace and retrace share the axis
         p.set(xlabel=f"x [{lu}]", ylabel=f"{quantity} [{v.value_unit}]",
-              title="last line" if v.row is None else f"line {v.row}: trace and retrace")
+              title="last line" if v.row is None else f"line {v.row + 1}: trace and retrace")
         # a new quantity on the axis (another channel) is fitted afresh
         reset = getattr(self, "_held", None) != v.image_label
         lo, hi = data_range(v.trace, v.retrace)

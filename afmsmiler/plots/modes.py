@@ -27,6 +27,7 @@ import math
 import numpy as np
 from matplotlib.figure import Figure
 
+from ..brownian import BOLTZMANN, TEMPERATURE
 from ..modes.fm import FrequencyShiftCurve
 from ..modes.force_volume import ForceVolume
 from ..modes.jumping import JumpCurve
@@ -34,9 +35,9 @@ from ..modes.lateral import FrictionImages, FrictionLoop
 from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance
-from .limits import data_range, hold
+from .limits import data_range, hold, sticky_limits
 
-__all__ = ["UNITS_SHOWN", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
+__all__ = ["UNITS_SHOWN", "ENERGY_FLOOR", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
            "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
 
 #: The units the figures show each quantity in (keys of :data:`afmsmiler.parameters.UNITS`).
@@ -51,6 +52,12 @@ _NN = unit_scale(UNITS_SHOWN["force"], "N")
 _KHZ = unit_scale("kHz", "Hz")
 _MS = unit_scale(UNITS_SHOWN["time"], "s")
 _MPA = unit_scale(UNITS_SHOWN["modulus"], "Pa")
+#: The smallest span of the E_dis axis in zJ: k_B T at room temperature (4.1 zJ), the lever's
+#: thermal energy. The model returns 0 where E_dis is zero within its accuracy
+#: (:attr:`~afmsmiler.modes.AmplitudeCurve.dissipated_energy_error`); the axis then shows that
+#: zero on a scale where a dissipation worth measuring would show, not a flat line magnified
+#: to +-5e-4 zJ.
+ENERGY_FLOOR = BOLTZMANN * TEMPERATURE.default * _ZJ
 _COLORS = read_only(dict(attractive="C0", repulsive="C3", unstable="0.55", point="C2",
                          trace="C0", retrace="C3", friction="C2", slope="C1", input="k",
                          recovered="C3", giessibl="C0", gradient="C1"))
@@ -271,7 +278,14 @@ class TappingFigure:
             lo, hi = data_range(data["attractive"][q], data["repulsive"][q], unstable[q],
                                 self.lines[q, "point"].get_ydata())
             if math.isfinite(lo):
-                hold(a, "y", lo, hi, reset=self._reset, floor=1e-3)
+                hold(a, "y", lo, hi, reset=self._reset,
+                     floor=ENERGY_FLOOR if q == "energy" else 1e-3)
+        # E_dis is 0 where the model finds it zero within its accuracy: say it when all are
+        energies = np.r_[data["attractive"]["energy"], data["repulsive"]["energy"]]
+        energies = energies[np.isfinite(energies)]
+        none = energies.size > 0 and not np.any(energies)
+        self.axes["energy"].set_title("E_dis = 0 on both branches (within the model's accuracy): "
+                                      "the sample takes no energy" if none else "")
         ax.set_title(title)
         self._reset = False
 
@@ -302,6 +316,10 @@ class LateralFigure:
         ``"friction"``, ``"slope"`` -> AxesImage.
     """
 
+    #: Margin of the slope map's colour scale, a fraction of its span on each side: the largest
+    #: slope term falls at 1 / (1 + 2 * 0.25) = 2/3 of the half-span.
+    SLOPE_MARGIN = 0.25
+
     def __init__(self, loop: FrictionLoop, images: FrictionImages | None = None,
                  row: int | None = None, fig: Figure | None = None):
         self.fig = fig if fig is not None else Figure(figsize=(9.0, 7.0))
@@ -328,7 +346,7 @@ class LateralFigure:
         ax.legend(loc="upper right", fontsize="small", ncol=2)
         self.images, self.colorbars = {}, {}
         if self.has_maps:
-            mu_label = "friction coefficient mu (dimensionless)"
+            mu_label = "mu (dimensionless)"  # the title says what mu is; the bar is short
             for key, cmap, label in (("friction", "viridis", mu_label),
                                      ("slope", "RdBu_r",
                                       f"slope term [{UNITS_SHOWN['force']}]")):
@@ -384,7 +402,13 @@ class LateralFigure:
                 # turn-arounds, where the lateral force is not friction or slope
                 lo, hi = data_range(values[..., 1:-1] if values.shape[-1] > 2 else values)
                 if key == "slope":
+                    # symmetric about zero (the diverging map's white), the largest slope term
+                    # a third of the half-span inside the end (a uniform tilt's 1.05 nN sat at
+                    # the end of +-1.05: saturated), held while it stays inside
                     m = max(abs(lo), abs(hi), 1e-3)
+                    shown = None if self._reset else im.get_clim()
+                    lo, hi = sticky_limits(shown, -m, m, margin=self.SLOPE_MARGIN)
+                    m = max(abs(lo), abs(hi))
                     lo, hi = -m, m
                 elif hi - lo < 1e-6:
                     lo, hi = lo - 0.05, hi + 0.05
@@ -440,7 +464,10 @@ class FrequencyShiftFigure:
             ax.legend(loc="lower right", fontsize="small")
         a1.set_ylabel(f"frequency shift df [{UNITS_SHOWN['frequency']}]")
         a2.set_ylabel(f"tip-sample force [{UNITS_SHOWN['force']}]")
-        a2.set_xlabel(f"closest distance z [{UNITS_SHOWN['distance']}]")
+        # distances on a log axis: the force and df change over the first nanometre, which a
+        # linear axis to 12 nm squeezed into its first twelfth
+        a2.set_xscale("log")
+        a2.set_xlabel(f"closest distance z [{UNITS_SHOWN['distance']}] (log scale)")
         self._reset = True
         self.update(curve)
 
@@ -588,8 +615,9 @@ class JumpingFigure:
         extent = _extent(heights.shape, dx, dy, _NM)
         _set_image(self.images["height"], ax["image"], heights * _NM, extent, "nm")
         crashed = getattr(result, "crashed", None)
+        # lines counted from 1, as module (f)'s figure counts them
         ax["image"].set_title("height (trace)" + ("" if crashed is None else
-                                                  f": crashed at line {crashed.row}"))
+                                                  f": crashed on line {crashed.row + 1}"))
         done = int(result.lines_done)
         row = max(min(done, heights.shape[0]) - 1, 0) if crashed is None else crashed.row
         row = min(row, heights.shape[0] // 2) if crashed is None else row
@@ -606,7 +634,7 @@ class JumpingFigure:
             hold(ax["profile"], "y", lo, hi, reset=self._reset, floor=1e-3)
         ax["profile"].set(xlabel=f"x [{UNITS_SHOWN['position']}]",
                           ylabel=f"height [{UNITS_SHOWN['height']}]",
-                          title=f"line {row}: trace and retrace")
+                          title=f"line {row + 1}: trace and retrace")
         self._reset = False
 
 
@@ -631,7 +659,8 @@ class ForceVolumeFigure:
     images : dict
         The four maps' AxesImage.
     lines : dict
-        ``("approach", i)``, ``("retract", i)`` -> Line2D of material i.
+        ``("approach", i)``, ``("retract", i)`` -> Line2D of material i's noise-free curves;
+        ``("measured approach", i)``, ``("measured retract", i)`` -> one pixel's as measured.
     """
 
     MAPS = read_only({"modulus": ("Pa", "MPa", "viridis"), "adhesion": ("N", "nN", "magma"),
@@ -661,13 +690,19 @@ class ForceVolumeFigure:
             raise ValueError(f"names must name the {n} materials, got {len(names)}")
         self.lines = {}
         c = self.axes["curves"]
+        # one pixel's curves as measured, noise and all (pale, under): the noise-free model
+        # curves alone stayed smooth at 500 pN of noise while the maps scattered
+        for i in range(n):
+            for way in ("approach", "retract"):
+                self.lines[f"measured {way}", i], = c.plot([], [], color=f"C{i}", lw=0.8,
+                                                           alpha=0.35)
         for i in range(n):
             self.lines["approach", i], = c.plot([], [], color=f"C{i}", label=f"{names[i]}")
             self.lines["retract", i], = c.plot([], [], color=f"C{i}", ls="--")
         c.axhline(0.0, color="0.6", lw=0.8)
         c.set(xlabel=f"positioner Z_np [{UNITS_SHOWN['distance']}]",
               ylabel=f"force [{UNITS_SHOWN['force']}]",
-              title="curves (dashed: retract)")
+              title="curves (dashed: retract;\npale: one pixel as measured)")
         c.legend(loc="upper left", fontsize="small")
         self._reset = True
         self.update(volume)
@@ -688,12 +723,26 @@ class ForceVolumeFigure:
                                                                                  unit)
             _set_image(self.images[key], self.axes[key], values, extent, "nm")
         n = volume.approach.shape[0]
+        measured = volume.measured_approach, volume.measured_retract
         for i in range(n):
             z = volume.z_np[i] * _NM
             self.lines["approach", i].set_data(z, volume.approach[i] * _NN)
             self.lines["retract", i].set_data(z[::-1], volume.retract[i] * _NN)
+            if measured[0] is not None:
+                self.lines["measured approach", i].set_data(z, measured[0][i] * _NN)
+                self.lines["measured retract", i].set_data(z[::-1], measured[1][i] * _NN)
+        # the loop area of noisy curves scatters about its value, below zero where it is small:
+        # say so, with the scatter the model gives the noise alone
+        title = "dissipation map"
+        noise = volume.dissipation_noise
+        if noise is not None and np.nanmin(volume.dissipation) < 0:
+            title += (f"\n< 0: noise (it alone scatters the loop area by "
+                      f"{float(np.max(noise)) * _ZJ:.3g} zJ RMS)")
+        self.axes["dissipation"].set_title(title)
         c = self.axes["curves"]
         c.set_xlim(float(volume.z_np.min() * _NM), float(volume.z_np.max() * _NM))
-        lo, hi = data_range(volume.approach * _NN, volume.retract * _NN, 0.0)
+        lo, hi = data_range(volume.approach * _NN, volume.retract * _NN, 0.0,
+                            *(() if measured[0] is None else (measured[0] * _NN,
+                                                              measured[1] * _NN)))
         hold(c, "y", lo, hi, reset=self._reset, floor=1e-3)
         self._reset = False

@@ -24,9 +24,9 @@ already finished are never lost.
 from __future__ import annotations
 
 import asyncio
+import math
 import time
 from dataclasses import dataclass, field
-from functools import lru_cache
 
 import ipywidgets as widgets
 import numpy as np
@@ -43,7 +43,7 @@ from ..plots.imaging import ImagingFigure, scan_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
 from .controls import WIDTH, control
-from .panel import Panel, running_as_notebook
+from .panel import Panel, check_control_value, running_as_notebook
 
 __all__ = ["ImagingPanel", "ImagingResult", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE",
            "SCAN_SLIDERS", "ChannelImage", "sample", "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
@@ -105,19 +105,34 @@ def _extent(s: Sample) -> float:
     return min((cols - 1) * s.pixel_size, (rows - 1) * s.pixel_size_y)
 
 
-@lru_cache(maxsize=1)
-def max_scan_size() -> float:
-    """The largest scan range in m that fits on every sample of :data:`SAMPLES` at any angle.
+def max_scan_size(name: str, angle: float = 0.0) -> float:
+    """The largest scan range in m that fits on sample ``name`` at scan ``angle``.
 
-    A square scan of side S rotated by any angle stays within a square of side S sqrt(2), so
-    S <= W / sqrt(2) for the smallest sample side W (first to last pixel) keeps every scan
-    angle and every sample valid: no slider position makes the scanner refuse the scan.
+    A square scan of side S rotated by ``angle`` spans S (|cos angle| + |sin angle|) along x and
+    y, so S <= W / (|cos| + |sin|) for the sample's shorter side W (first to last pixel) keeps
+    the scan on the sample: the whole 2 um real image at angle 0, 1.41 um of it at 45 deg (one
+    range for every sample and angle capped every scan at 0.36 um). The scan-size slider ends
+    there, so no slider position makes the scanner refuse the scan.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SAMPLES`.
+    angle : float
+        Scan angle in rad.
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        For an unknown sample or an angle that is not finite.
     """
-    return min(_extent(sample(name)) for name in SAMPLES) / np.sqrt(2.0)
+    width = _extent(sample(name))
+    angle = check_finite("angle", angle, "rad")
+    return width / (abs(math.cos(angle)) + abs(math.sin(angle)))
 
 
 def _slider_defaults() -> dict:
@@ -273,8 +288,8 @@ class ImagingPanel(Panel):
                                        description="pixels per line", layout=layout)
         for name in SCAN_SLIDERS:
             p = _scanner.PARAMETERS[name]
-            c[name] = control(p, p.to_si(v[name]),
-                              high=max_scan_size() if name == "scan_size" else None)
+            c[name] = control(p, p.to_si(v[name]), high=max_scan_size(
+                v["sample"], math.radians(v["angle"])) if name == "scan_size" else None)
         for sliders in MODE_SLIDERS.values():
             for name, p in sliders.items():
                 c[name] = control(p, p.to_si(v[name]))
@@ -320,6 +335,11 @@ class ImagingPanel(Panel):
         self.controls["tip"].observe(lambda ch: self._show_controls(), names="value")
         self.controls["mode"].observe(lambda ch: self._show_controls(), names="value")
         self._show_controls(v["tip"], v["mode"])
+        # before the panel's own observers: a sample or angle moves the scan size's end first
+        # (clamping its value), then the model runs once with both
+        for name in ("sample", "angle"):
+            self.controls[name].observe(lambda ch: self._fit_scan_size(), names="value")
+        self._fit_scan_size()
         super().__init__()
 
     # -- controls ---------------------------------------------------------------------------
@@ -331,6 +351,47 @@ class ImagingPanel(Panel):
         hidden = set(TIP_CONTROLS) | {n for s in MODE_SLIDERS.values() for n in s}
         for name in hidden:
             self.controls[name].layout.display = None if name in shown else "none"
+
+    def _fit_scan_size(self, sample_name: str | None = None, angle: float | None = None) -> None:
+        """End the scan-size slider at :func:`max_scan_size` of the sample and angle (default:
+        the controls'), in its display unit; a value beyond is clamped there by the slider."""
+        c = self.controls["scan_size"]
+        p = c.parameter
+        sample_name = self.controls["sample"].value if sample_name is None else sample_name
+        angle = self.controls["angle"].value if angle is None else angle
+        hi = min(p.to_display(max_scan_size(sample_name, math.radians(angle))),
+                 p.to_display(p.slider_high))
+        e = math.log10(hi)
+        while 10.0 ** e > hi:  # 10 ** log10(x) can pass x by an ulp: the scan would not fit
+            e = math.nextafter(e, -math.inf)
+        if e != c.max:
+            c.max = e
+
+    def set(self, **values) -> None:
+        """Set control values as a user would (one update at the end).
+
+        As :meth:`Panel.set`; a ``scan_size`` set with a ``sample`` or ``angle`` is checked
+        against the range on that sample at that angle (the slider's end moves with them).
+        """
+        moves = {k: values[k] for k in ("sample", "angle") if k in values}
+        if "scan_size" not in values or not moves:
+            super().set(**values)
+            return
+        for name, v in moves.items():
+            check_control_value(name, self.controls[name], v)
+        before = {name: self.controls[name].value for name in moves}
+        hold, self._hold = self._hold, True
+        try:
+            for name, v in moves.items():
+                self.controls[name].value = v
+            check_control_value("scan_size", self.controls["scan_size"], values["scan_size"])
+        except Exception:
+            for name, v in before.items():
+                self.controls[name].value = v
+            raise
+        finally:
+            self._hold = hold
+        super().set(**values)
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> _Config:
@@ -354,6 +415,13 @@ class ImagingPanel(Panel):
         else:
             model = _modes.ConstantHeight(ContactSystem(tip=tip), z_np=knobs["z_np"],
                                           damage_force=knobs["damage_force"])
+        top = max_scan_size(values["sample"], scan["angle"])
+        if scan["scan_size"] > top * (1 + 1e-12):
+            p = _scanner.PARAMETERS["scan_size"]
+            raise ValueError(f"scan_size must be <= {p.to_display(top):.4g} {p.display_unit} on "
+                             f"the sample {values['sample']!r} at angle {values['angle']:g} deg "
+                             f"(it would leave the sample), got {values['scan_size']:g} "
+                             f"{p.display_unit}")
         settings = _scanner.ScanSettings(scan.pop("scan_size"), pixels=pixels, lines=pixels,
                                          **scan)
         s = sample(values["sample"])

@@ -634,7 +634,8 @@ class JumpingPanel(_SliderPanel):
             ("image in contact mode", f"{self.last.contact_time:.3g} s"),
             ("largest lateral force", shown(float(np.nanmax(np.abs(
                 result.images["lateral force trace"]))), "nN")),
-            ("crash", "none" if crash is None else f"line {crash.row}, pixel {crash.column}")]
+            ("crash", "none" if crash is None  # counted from 1, as the figures count lines
+             else f"line {crash.row + 1}, pixel {crash.column + 1}")]
         ) + (f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
 
     @staticmethod

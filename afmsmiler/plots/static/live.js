@@ -14,6 +14,7 @@
 // This file holds no physics: every number comes from the kernel.
 
 const PX = 100 / 72;
+const BAR = 16, CB_GAP = 2, CB_BELOW = 8; // colour bar: its width, its gap from the plot, room under it
 const MAX_PENDING = 30; // frames waiting to be painted, one per animation frame (0.5 s at 60 Hz) // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
 
 function el(tag, cls, parent) {
@@ -123,30 +124,56 @@ function legendHtml(box, entries) {
 // -- one axes: a uPlot with its title above and its legend below ---------------------------------
 
 // Tick labels. uPlot's own kept 3 decimals and the browser's locale ("-0" at F = 0, "0,5",
-// "-4,000"); these are plain decimals with as many digits as the tick step needs, and exponents
-// for the very small and large.
+// "-4,000"); these are plain decimals with as many digits as the tick step needs (a step of 2.5
+// reads 2.5, 5, 7.5, never 3 and 8), and exponents for the very small and large.
 function fmtTick(v, step) {
   return fmtTicks([v], step)[0];
 }
 
-// one format for all the labels of an axis: decimals with the digits of the step, or, for steps
-// below 1e-3 and values from 1e5, exponents with the mantissa digits of the step
+// The power of ten of the last digit a step needs: 2 -> 0, 2.5 -> -1, 0.25 -> -2, 2.5e-4 -> -5,
+// 500 -> 2. The step's mantissa is read to 6 significant digits (uPlot's steps are 1, 2, 2.5, 5
+// times a power of ten, with float noise such as 0.30000000000000004).
+function lastDigit(step) {
+  const top = Math.floor(Math.log10(step) + 1e-9);
+  let e = top;
+  while (e > top - 6) {
+    const m = step / Math.pow(10, e);
+    if (Math.abs(m - Math.round(m)) <= 1e-6 * m) break;
+    e -= 1;
+  }
+  return e;
+}
+
+// one format for all the labels of an axis: decimals down to the step's last digit, or, for steps
+// below 1e-3 and values from 1e5, exponents with the mantissa digits down to that digit (each
+// without trailing zeros)
 function fmtTicks(values, step) {
   const finite = values.filter((v) => v != null && Number.isFinite(v));
   const big = Math.max(0, ...finite.map(Math.abs));
   if (!(step > 0)) step = finite.length > 1 ? Math.abs(finite[1] - finite[0]) : big || 1;
   const exponent = step < 1e-3 || big >= 1e5;
+  const last = lastDigit(step);
   return values.map((v) => {
     if (v == null || !Number.isFinite(v)) return "";
     if (Math.abs(v) < 1e-9 * step) return "0";
     if (exponent) {
-      const digits = Math.max(0, Math.min(6, Math.floor(Math.log10(Math.abs(v))) - Math.floor(Math.log10(step) + 1e-9)));
+      const digits = Math.max(0, Math.min(6, Math.floor(Math.log10(Math.abs(v)) + 1e-9) - last));
       return v.toExponential(digits).replace(/\.?0+e/, "e").replace("e+", "e");
     }
-    const decimals = Math.max(0, Math.min(12, -Math.floor(Math.log10(step) + 1e-9)));
-    const text = v.toFixed(decimals);
-    return /^-0(\.0*)?$/.test(text) ? text.slice(1) : text;
+    // to the step's last digit, without trailing zeros (2.5, 5, 7.5 as matplotlib's 2.5, 5.0)
+    const text = v.toFixed(Math.max(0, Math.min(12, -last))).replace(/(\.\d*?)0+$/, "$1")
+      .replace(/\.$/, "");
+    return /^-0$/.test(text) ? "0" : text;
   });
+}
+
+// room for an axis' tick labels (uPlot's axis size): the widest label, its tick and a gap
+function labelRoom(u, values, ai) {
+  if (!values) return 30;
+  measure.font = font(11);
+  const widest = Math.max(0, ...values.map((v) => (v ? measure.measureText(v).width : 0)));
+  const a = u.axes[ai];
+  return Math.ceil(widest + a.ticks.size + a.gap + 8);
 }
 
 function isDecade(v) {
@@ -170,17 +197,26 @@ function logSplits(min, max) {
   return out;
 }
 
+// the mantissa of v (1..9) on a log axis' ticks
+function mantissa(v) {
+  return Math.round(v / Math.pow(10, Math.floor(Math.log10(v) + 1e-9)));
+}
+
 function logLabels(u, key, splits) {
   const decades = splits.filter(isDecade);
   const horizontal = u.scales[key].ori === 0;
   const length = horizontal ? u.bbox.width / devicePixelRatio : u.bbox.height / devicePixelRatio;
   const room = horizontal ? 42 : 16;
   const k = Math.max(1, Math.ceil(decades.length * room / Math.max(length, 1)));
-  return splits.map((v) => {
-    if (!isDecade(v)) return "";
+  // an axis of two decades or less (0.2 to 12 nm) also reads 2 and 5 times each decade, as
+  // matplotlib's: with its decades alone it read "1" and "10" and nothing below 1
+  const sc = u.scales[key], span = Math.log10(sc.max / sc.min);
+  const between = span <= 2 ? [2, 5] : [];
+  return thin(u, key, splits, splits.map((v) => {
+    if (!isDecade(v)) return between.includes(mantissa(v)) ? fmtTick(v) : "";
     const e = Math.round(Math.log10(v));
     return e % k === 0 ? fmtTick(v) : "";
-  });
+  }));
 }
 
 // drop the labels that would overlap the one shown before them
@@ -271,13 +307,19 @@ class Axes {
     this.tickDefaults = this.u.axes.map((a) => [a.splits, a.values]);
     if (s.colorbar) {
       this.cbBox = el("div", "afm-live-colorbar", this.row);
+      // the bar beside the plot box, as tall as it, BAR px wide (matplotlib's colour bar: a
+      // twentieth of its height), its tick labels as wide as they are and its label beside them;
+      // it was 80 px of chart with 78 px of fixed axis room, so a 2 px hairline
+      this.cbWidth = BAR + 60;
       this.cb = new uPlot({
-        mode: 2, width: 70, height: 100,
+        mode: 2, width: this.cbWidth, height: 100,
+        padding: [() => self.u.bbox.top / devicePixelRatio, null, CB_BELOW, CB_GAP],
         series: [{}, { stroke: "transparent", width: 0, points: { show: false },
           facets: [{ scale: "x", auto: false }, { scale: "c", auto: false }], paths: linePath("x", "c") }],
         scales: { x: { time: false, auto: false, range: exactRange },
           c: { time: false, auto: false, range: exactRange } },
-        axes: [{ scale: "x", show: false }, Object.assign(axisOpts("c", 1, { label: s.colorbar.label }, true))],
+        axes: [{ scale: "x", show: false }, Object.assign(axisOpts("c", 1, { label: s.colorbar.label }, true),
+          { size: labelRoom, values: (u, sp, ai, space, incr) => thin(u, "c", sp, fmtTicks(sp, incr)) })],
         legend: { show: false }, cursor: { show: false }, select: { show: false },
         hooks: { drawClear: [(u) => self.drawColorbar(u)] },
       }, [null, [[], []]], this.cbBox);
@@ -287,12 +329,32 @@ class Axes {
   }
 
   size(width, height) {
+    this.cellSize = [width, height];
     const titleH = this.title.offsetHeight, legendH = this.legend.offsetHeight;
-    const cbW = this.cb ? 80 : 0;
+    const cbW = this.cb ? this.cbWidth : 0;
     const w = Math.max(60, width - cbW), h = Math.max(60, height - titleH - legendH - 4);
     this.full = [w, h];
     this.u.setSize({ width: w, height: h });
-    if (this.cb) this.cb.setSize({ width: cbW, height: h });
+    this.fitColorbar();
+  }
+
+  // the colour bar's chart: its bar BAR px wide beside the plot box and as tall; true if its
+  // width changed (the plot then gets the rest of the cell again)
+  fitColorbar() {
+    if (!this.cb) return false;
+    const r = devicePixelRatio, u = this.u, cb = this.cb;
+    const height = Math.round((u.bbox.top + u.bbox.height) / r + CB_BELOW);
+    const around = cb.width - cb.bbox.width / r; // its padding, tick labels and label
+    const width = Math.round(BAR + around);
+    const changed = Math.abs(width - this.cbWidth) > 1, top = u.bbox.top;
+    if (changed) this.cbWidth = width;
+    if (top !== this.cbTop && !changed && height === cb.height) {
+      // the plot box moved down as much as it shrank: uPlot lays out again only on a new size
+      cb.setSize({ width: this.cbWidth, height: height + 1 });
+    }
+    this.cbTop = top;
+    if (changed || height !== cb.height) cb.setSize({ width: this.cbWidth, height });
+    return changed;
   }
 
   update(frame, buf) {
@@ -354,12 +416,21 @@ class Axes {
     });
     if (this.cb && frame.colorbar) {
       const c = frame.colorbar;
-      this.cb.axes[1].label = c.label || "";
+      // its label on one line, shrunk to the bar's length ("friction coefficient mu
+      // (dimensionless)" ran off both ends)
+      this.cb.axes[1].label = fitLabel(this.cb.axes[1], c.label || "",
+        this.cb.bbox.height / devicePixelRatio);
       this.cb.batch(() => {
         this.cb.setScale("x", { min: 0, max: 1 });
         this.cb.setScale("c", { min: c.vmin, max: c.vmax });
         this.cb.redraw(false, true);
       });
+      // new tick labels may need more or less room: the bar keeps its width
+      // (once: labels that changed again with the new size keep the bar a pixel off)
+      if (!this.refitting && this.fitColorbar() && this.cellSize) {
+        this.refitting = true;
+        try { this.size(...this.cellSize); this.update(frame, buf); } finally { this.refitting = false; }
+      }
     }
   }
 
@@ -376,7 +447,7 @@ class Axes {
     const size = { width: Math.round(pw + extraW), height: Math.round(ph + extraH) };
     if (size.width !== u.width || size.height !== u.height) {
       u.setSize(size);
-      if (this.cb) this.cb.setSize({ width: this.cb.width, height: size.height });
+      this.fitColorbar();
     }
   }
 
