@@ -4,7 +4,9 @@ Each ``bench_*.py`` measures one issue's speed targets as ratios against the nam
 run on this machine, and prints a short table. Nothing here is asserted by the tests: tests check
 correctness, benchmarks report speed. ``bench_browser`` measures end to end in headless Chromium
 (key press -> pixels, against the slider -> label floor of the same run; a few minutes; it prints
-why when there is no browser). Name scripts to run only those: ``run_all.py browser contact``.
+why when there is no browser); ``bench_scene_view`` times a key press to the 3D view repainted
+against the old transport (a meshcat server per kernel in an iframe, from a temporary git worktree
+of commit 9f60579). Name scripts to run only those: ``run_all.py browser contact``.
 """
 import runpy
 import sys

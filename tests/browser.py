@@ -170,10 +170,13 @@ class Server:
         Seconds to wait for the server to answer.
     short : bool
         Kernels with shortened animations (:func:`kernel_env`).
+    checkout : pathlib.Path
+        The checkout the kernels import (:func:`kernel_env`); this one by default, another
+        (a git worktree of an older commit) for a benchmark's peer.
     """
 
     def __init__(self, kind: str, root: Path, *, notebook: str | None = None,
-                 startup_timeout: float = 90.0, short: bool = False):
+                 startup_timeout: float = 90.0, short: bool = False, checkout: Path = ROOT):
         if kind not in ("lab", "voila"):
             raise ValueError(f"kind must be 'lab' or 'voila', got {kind!r}")
         self.kind, self.root, self.notebook = kind, Path(root), notebook
@@ -182,6 +185,7 @@ class Server:
         self.log = self.root / f"{kind}-{self.port}.log"
         self.startup_timeout = startup_timeout
         self.short = short
+        self.checkout = Path(checkout)
 
     @property
     def base(self) -> str:
@@ -224,9 +228,9 @@ class Server:
                    f"--port={self.port}", "--show_tracebacks=True", f"--token={TOKEN}",
                    str(target)]
         with open(self.log, "wb") as log:
-            self.proc = subprocess.Popen(cmd, env=kernel_env(short=self.short), cwd=nbdir, stdout=log,
-                                         stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                         start_new_session=True)
+            self.proc = subprocess.Popen(cmd, env=kernel_env(self.checkout, short=self.short),
+                                         cwd=nbdir, stdout=log, stderr=subprocess.STDOUT,
+                                         stdin=subprocess.DEVNULL, start_new_session=True)
         deadline = time.monotonic() + self.startup_timeout
         probe = f"{self.base}/api/status?token={TOKEN}" if self.kind == "lab" else self.base
         while time.monotonic() < deadline:

@@ -74,7 +74,14 @@ def test_proportions_are_the_stated_ones():
     obd = {p.name: p for p in INSTRUMENTS["obd"].parts}
     chip = {s.name: s for s in obd["probe_chip"].shapes}
     assert chip["chip"].size == (3.4, 1.6, 0.3)          # a standard silicon probe chip
-    assert chip["lever"].size == (0.125, 0.03, 0.004)     # 125 x 30 x 4 um
+    # the lever the optics reflect off (module (e)'s OpticalHead): 450 x 50 x 2 um, in mm
+    from afmsmiler.instrument import OpticalHead
+    lever = OpticalHead().lever
+    assert chip["lever"].size == pytest.approx(
+        (lever.length * 1e3, lever.width * 1e3, lever.thickness * 1e3), rel=1e-12)
+    # the lever ends at the tip (x = 0, with the chip's 5 um overhang) and starts at the chip
+    lo = chip["lever"].at[0] - chip["lever"].size[0] / 2
+    assert chip["chip"].at[0] + chip["chip"].size[0] / 2 == pytest.approx(lo, abs=1e-9)
     assert obd["piezo_tube"].shapes[0].size == (12.7, 10.7, 60)
     assert obd["sample_puck"].shapes[0].size == (15, 0.8)
     # the probe's tip apex is the origin, touching the top of the sample
@@ -690,3 +697,18 @@ def test_static_html_of_each_instrument_shows_it_in_chromium(tmp_path):
             if not drawn[max(row - 4, 0):row + 5, max(col - 4, 0):col + 5].any():
                 missing.append(name)
         assert not missing, f"{kind}: nothing drawn where these parts are: {missing}"
+
+
+@pytest.mark.parametrize("kind", KINDS)
+def test_the_see_through_housing_writes_no_depth(kind):
+    # a translucent housing that writes depth hides its own back faces in stripes (z-fighting)
+    # and the parts inside it; every other part keeps its depth
+    sc, rec = scene(kind)
+    housing = {p.name for p in INSTRUMENTS[kind].parts if p.housing}
+    assert housing
+    for path, node in rec.log.items():
+        if "object" not in node or node["object"][1] is None:
+            continue
+        part = next((n for n in housing if f"/{n}/" in path + "/"), None)
+        depth_write = node["object"][1].properties.get("depthWrite", True)
+        assert depth_write is (part is None), path

@@ -25,7 +25,7 @@ from afmsmiler.scenes.imaging import ImagingScene
 from afmsmiler.scenes.legends import ColorLegend
 from afmsmiler.scenes.meshes import beam_mesh
 from afmsmiler.scenes.shapes import Arrow
-from afmsmiler.scenes.view import MAX_ENTRIES, SceneState, library
+from afmsmiler.scenes.view import MAX_ENTRIES, SceneState, fit_camera, library
 from afmsmiler import samples
 from recording import Recorder
 
@@ -214,3 +214,69 @@ def test_scene_pieces_update_in_place():
     set_camera(view.vis, [1.0, -3.0, 1.0])
     arrow.set([0, 0, 0], [0, 0, 0.5])  # moved in place: one transform per part, no new object
     assert sum(map(len, view.state.commands())) - before < 2000
+
+
+def test_fit_camera_is_a_command_of_the_scene_and_checks_its_input():
+    view = SceneView()
+    fit_camera(view.vis["a"], margin=1.2)
+    fit_camera(view.vis["b"], points=[[0, 0, 0], [1, 2, 3]])
+    fits = [umsgpack.unpackb(d) for (k, _, _), d in zip(view.state.keys(), view.state.commands())
+            if k == "afm_fit"]
+    assert fits == [{"type": "afm_fit", "path": "/meshcat/b", "margin": 1.0,
+                     "points": [[0.0, 0.0, 0.0], [1.0, 2.0, 3.0]]}]  # one camera: the last fit
+    rec = Recorder()
+    fit_camera(rec["a"])  # a recorder has no camera to fit: nothing happens
+    assert rec.calls == []
+    with pytest.raises(ValueError, match="^margin must be in"):
+        fit_camera(view.vis, margin=0.0)
+    with pytest.raises(ValueError, match="points must have shape"):
+        fit_camera(view.vis, points=[[0, 0]])
+
+
+def test_legends_are_screen_space_text_in_a_view_and_plates_elsewhere():
+    sample = samples.particles((32, 32), 5e-9, count=2, radius=20e-9, seed=1)
+    scene = ImagingScene(sample)
+    legend = scene.view.legend
+    assert scene.caption in legend and scene.scale.unit in legend  # the colour bar's unit
+    assert not any("legend/plate" in p or "caption/plate" in p for _, p, _ in scene.view.state.keys())
+    rec = Recorder()
+    ImagingScene(sample, vis=rec)
+    assert any(k.endswith("legend/plate") for k in rec.log)  # meshcat alone draws no text
+    scene.vis.delete()  # the scene gone, its legend goes with it
+    assert scene.view.legend == ""
+
+
+@pytest.mark.browser
+def test_fit_camera_frames_the_objects_in_chromium(tmp_path):
+    """A box far from the origin, framed by the view's camera: its corners, projected by
+    three.js's own camera, fill the view's height and stay inside it."""
+    import os
+    if not os.access("/usr/bin/chromium", os.X_OK):
+        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    view = SceneView()
+    view.vis["far/box"].set_object(g.Box([2.0, 1.0, 0.5]))
+    view.vis["far/box"].set_transform(tf.translation_matrix([5.0, -3.0, 2.0]))
+    fit_camera(view.vis["far"], margin=1.0)
+    page = tmp_path / "fit.html"
+    page.write_text(view.static_html(), encoding="utf-8")
+    corners = [[5 + sx, -3 + sy, 2 + sz] for sx in (-1, 1) for sy in (-0.5, 0.5)
+               for sz in (-0.25, 0.25)]
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+                              args=["--no-sandbox", "--disable-gpu"])
+        try:
+            pg = b.new_page(viewport={"width": 900, "height": 450})
+            pg.goto(page.as_uri())
+            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
+            ndc = pg.evaluate("""(pts) => { const v = document.getElementById('scene').afmView.viewer;
+                v.render();
+                return pts.map(p => new (v.camera.position.constructor)(p[0], p[1], p[2])
+                  .applyMatrix4(v.scene.matrixWorld).project(v.camera)).map(q => [q.x, q.y]); }""",
+                              corners)
+        finally:
+            b.close()
+    ndc = np.array(ndc)
+    assert np.all(np.abs(ndc) <= 1.0), ndc  # all of the box in view
+    # the bounding sphere (radius 1.15) fills the height: the box spans a good part of it
+    assert np.ptp(ndc[:, 1]) > 0.6 or np.ptp(ndc[:, 0]) > 0.6, ndc

@@ -34,6 +34,7 @@ from .contact import tip_mesh
 from .legends import ColorLegend, TextPlate
 from .meshes import MAX_VERTICES, height_map_mesh
 from .transforms import translation
+from .view import fit_camera
 from .viewer import SceneDisplay, scene_root
 
 __all__ = ["DEFAULTS", "ImagingScene", "decimation", "auto_exaggeration", "height_unit"]
@@ -213,6 +214,11 @@ class ImagingScene(SceneDisplay):
         if camera:
             set_camera(self.root, self.camera_position)
             show_helpers(self.root, grid=False, axes=False)
+            # both fields (the image fills its slot later) fill the view
+            top = float(np.ptp(sample.heights)) * self.exaggeration / self.unit
+            x, y = -self.sample_origin[0] / self.unit, self.depth / 2 / self.unit
+            fit_camera(self.vis, margin=0.9, points=[[sx, sy, z] for sx in (-x, x)
+                                                     for sy in (-y, y) for z in (0.0, top)])
         self.tip = tip
         self.tip_position = None
         if tip is not None:

@@ -17,7 +17,7 @@ Two procedural scale models (meshcat primitives and meshes generated here; no ve
 The origin is the probe's tip (touching the sample), z up, the lever along +x (its free end at
 the tip): the camera of meshcat orbits the origin, so both instruments are framed around the
 tip. Everything is drawn to scale at **1 scene unit = 1 cm** (:data:`SCENE_UNIT`); the public
-methods take SI (metres, radians). The lever itself (125 um) is drawn to scale too, so it is a
+methods take SI (metres, radians). The lever itself (450 um, the optics model's) is drawn to scale too, so it is a
 speck at the instrument's scale: :meth:`InstrumentScene.focus` zooms in on the chip. The laser
 beam is drawn 0.7 mm thick everywhere (schematic: the focused spot on the lever is a few tens of
 micrometres).
@@ -49,7 +49,7 @@ coarse_screw_rear         4 mm dia x 24 mm, 14 mm dia thumb wheel
 approach_motor            20 mm dia x 30 mm
 head_plate                100 x 100 x 4 mm with a 36 x 36 mm window
 cantilever_holder         24 x 14 x 3 mm block, 6 x 4 x 0.5 mm clip
-probe_chip                3.4 x 1.6 x 0.3 mm chip, lever 125 x 30 x 4 um, tip 15 um
+probe_chip                3.4 x 1.6 x 0.3 mm chip, lever 450 x 50 x 2 um, tip 15 um
 laser_diode               5.6 mm TO can in a 9 mm dia x 14 mm tube
 focusing_lens             8 mm dia biconvex lens, f = 22 mm
 steering_mirror           10 x 10 x 1.5 mm mirror on a 12 x 12 x 3 mm mount
@@ -126,6 +126,7 @@ from ..parameters import Parameter, read_only, unit_scale
 from ..validation import (check_array, check_choice, check_integer, check_positive,
                           check_range)
 from .camera import set_camera, show_helpers
+from .view import fit_camera
 from .shapes import Segment, Tube, _show, sphere
 from .transducers import quadrant_photodiode
 from .transforms import reflect, rotation_between, translation
@@ -425,7 +426,7 @@ def _knob(name, group, label, description, position, axis, explode):
 def _obd() -> Instrument:
     tilt = math.radians(12.0)                        # the lever's tilt in the holder
     z_lever = (math.sin(tilt), 0.0, math.cos(tilt))  # the probe frame's z axis
-    lever_top = np.array([-0.005, 0.0, 0.019])       # lever end, top face, in the probe frame
+    lever_top = np.array([-0.005, 0.0, 0.017])       # lever end, top face, in the probe frame
     lever_end = rotation_between([0, 0, 1], z_lever) @ lever_top
     to_laser = _unit([-12.0, 0.0, 48.0])            # from the lever end towards the laser
     laser, lens = 38.0 * to_laser, 22.0 * to_laser
@@ -505,9 +506,9 @@ def _obd() -> Instrument:
         Part("probe_chip", "probe", "probe chip",
              "The silicon chip with the cantilever and its tip: the laser is reflected off the "
              "back of the lever's free end.",
-             "3.4 x 1.6 x 0.3 mm chip, lever 125 x 30 x 4 um, tip 15 um", (0, 0, 0),
-             (Shape("chip", "box", (3.4, 1.6, 0.3), _SILICON, (-1.82, 0, 0.165)),
-              Shape("lever", "box", (0.125, 0.03, 0.004), _SILICON, (-0.0575, 0, 0.017)),
+             "3.4 x 1.6 x 0.3 mm chip, lever 450 x 50 x 2 um, tip 15 um", (0, 0, 0),
+             (Shape("chip", "box", (3.4, 1.6, 0.3), _SILICON, (-2.145, 0, 0.165)),
+              Shape("lever", "box", (0.45, 0.05, 0.002), _SILICON, (-0.22, 0, 0.016)),
               Shape("tip", "cone", (0.008, 0.015), _SILICON, (0, 0, 0.0075), (0, 0, -1))),
              (-20, 0, 15), axis=z_lever),
         Part("laser_diode", "head", "laser diode",
@@ -560,7 +561,7 @@ def _obd() -> Instrument:
                       parts, (145.0, -195.0, 90.0), (265.0, -415.0, 200.0), (0.0, 0.0, -45.0),
                       read_only(anchors),
                       ("laser", "lens", "lever_end", "mirror", "photodiode"),
-                      ("lever_end", "photodiode"), ("probe_chip", (-0.12, 0.0, 0.019), 0.125),
+                      ("lever_end", "photodiode"), ("probe_chip", (-0.445, 0.0, 0.017), 0.45),
                       tuple(p.name for p in parts if p.group in ("head", "probe", "knobs")))
 
 
@@ -706,7 +707,11 @@ class _Canvas:
         self.vis.set_property(key, value)
 
 
-def _material(color, opacity=1.0):
+def _material(color, opacity=1.0, see_through=False):
+    if see_through:  # a housing the student looks through: it writes no depth, so its own
+        # overlapping faces cannot hide each other in stripes (z-fighting) or hide the parts inside
+        return g.MeshLambertMaterial(color=color, opacity=opacity, transparent=True,
+                                     depthWrite=False)
     return g.MeshLambertMaterial(color=color, opacity=opacity, transparent=opacity < 1)
 
 
@@ -715,12 +720,12 @@ def _rgba(color: int, opacity: float) -> list:
             float(opacity)]
 
 
-def _draw_shape(canvas: _Canvas, shape: Shape) -> None:
+def _draw_shape(canvas: _Canvas, shape: Shape, see_through: bool = False) -> None:
     """Draw ``shape`` at ``canvas[shape.name]`` (scene units from the shape's mm)."""
     s = np.asarray(shape.size, float) * _MM / SCENE_UNIT
     at = np.asarray(shape.at, float) * _MM / SCENE_UNIT
     node = canvas[shape.name]
-    mat = _material(shape.color, shape.opacity)
+    mat = _material(shape.color, shape.opacity, see_through)
     along_y = np.eye(4)
     along_y[:3, :3] = rotation_between([0.0, 1.0, 0.0], shape.axis)
     along_z = np.eye(4)
@@ -835,7 +840,7 @@ class InstrumentScene(SceneDisplay):
             canvas = _Canvas(self.vis[part.group][part.name], self._colors.setdefault(
                 part.name, {}))
             for shape in part.shapes:
-                _draw_shape(canvas, shape)
+                _draw_shape(canvas, shape, see_through=part.housing)
             self._place(part)
         self.set_housing_opacity(opacity)
         if self.instrument.beam:
@@ -1440,9 +1445,32 @@ class InstrumentScene(SceneDisplay):
         if name is None:
             self._shift(np.asarray(self.instrument.centre_mm, float) * _MM / SCENE_UNIT)
             set_camera(self.root, list(view / SCENE_UNIT))
+            fit_camera(self.vis, margin=1.0)
+            self._label_groups()
             return
         self._shift(self.transform(name)[:3, 3])
         set_camera(self.root, list(_unit(DEFAULTS["focus_direction"]) * distance / SCENE_UNIT))
+        part = self.part(name)
+        # in a 3D view the part fills the view from that direction (a 450 um lever on its 3 mm
+        # chip was a few pixels wide at a fixed distance), and its pieces are labelled
+        fit_camera(self.vis[part.group][part.name], margin=1.15)
+        self._label({f"{part.label}: {s.name}" if len(part.shapes) > 1 else part.label:
+                     (self.offset @ self.transform(name) @ np.append(
+                         np.asarray(s.at, float) * _MM / SCENE_UNIT, 1.0))[:3]
+                     for s in part.shapes if s.kind != "wire"})
+
+    def _label(self, labels: dict) -> None:
+        view = self.view
+        if view is not None:
+            view.set_labels({k: [float(x) for x in v] for k, v in labels.items()})
+
+    def _label_groups(self) -> None:
+        """Label each group of parts (head, scanner, probe, ...) at the middle of its parts."""
+        groups = {}
+        for p in self.instrument.parts:
+            if p.group != "housing":
+                groups.setdefault(p.group, []).append((self.offset @ self.transform(p.name))[:3, 3])
+        self._label({g: np.mean(points, axis=0) for g, points in groups.items()})
 
     def _shift(self, centre) -> None:
         """Shift the instrument so that ``centre`` (scene units) is at the camera's target."""

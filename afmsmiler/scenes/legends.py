@@ -1,11 +1,15 @@
-"""Legends and text in the 3D scene, and the same legend for a widget.
+"""Legends and text of a 3D scene.
 
-meshcat draws no text, so a legend is a PNG texture (rendered by Pillow in about a millisecond)
-on a thin plate: :class:`ColorLegend` (a colorbar with its tick labels and unit) and
-:class:`TextPlate` (one line of text); :func:`legend_html` gives the colorbar as an HTML snippet.
+In a :class:`~afmsmiler.scenes.SceneView` a legend is screen-space HTML in the view's corner
+(:func:`legend_html` for a colorbar; a line of text for a caption), so it never tilts, clips or
+hides the scene. Drawn into another visualizer (a test's recorder, meshcat's own server), meshcat
+draws no text, so a legend is a PNG texture (rendered by Pillow in about a millisecond) on a thin
+plate: :class:`ColorLegend` (a colorbar with its tick labels and unit) and :class:`TextPlate`
+(one line of text).
 """
 from __future__ import annotations
 
+import html
 import io
 import math
 from functools import lru_cache
@@ -20,6 +24,13 @@ from .transforms import translation
 
 __all__ = ["colorbar_png", "text_png", "legend_html", "tick_labels", "legend_title",
            "ColorLegend", "TextPlate"]
+
+
+def _view(vis):
+    """The 3D view ``vis`` draws into (its legend is screen-space HTML), or None (a recorder:
+    the legend is drawn in the scene as a textured plate)."""
+    from .view import view_of
+    return view_of(vis)
 
 
 @lru_cache(maxsize=8)
@@ -191,6 +202,10 @@ class TextPlate:
         self.vis = vis
         self.width = check_positive("width", width)
         self.text = str(text)
+        view = _view(vis)
+        if view is not None:  # screen-space text in the view's legend: never tilted or clipped
+            view.set_legend_part(vis.path.lower(), f"<div>{html.escape(self.text)}</div>")
+            return
         h = self.width / 6
         material = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(text_png(self.text))),
                                        color=0xffffff)
@@ -259,6 +274,11 @@ class ColorLegend:
         """Show ``scale``; return True if the texture had to be redrawn."""
         if scale == self.scale:
             return False
+        view = _view(self.vis)
+        if view is not None:  # screen-space text in the view's legend: never tilted or clipped
+            view.set_legend_part(self.vis.path.lower(), legend_html(scale))
+            self.scale = scale
+            return True
         png = colorbar_png(scale)
         h = self.width / 4
         material = g.MeshBasicMaterial(map=g.ImageTexture(image=g.PngImage(png)), color=0xffffff)

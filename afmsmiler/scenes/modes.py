@@ -30,6 +30,7 @@ draws its mode there (:meth:`ModesScene.draw`). Scenes take ``vis=`` (a
 """
 from __future__ import annotations
 
+import html
 import math
 
 import meshcat
@@ -44,6 +45,7 @@ from .legends import text_png
 from .shapes import cone, polyline
 from .transducers import quadrant_photodiode
 from .transforms import translation
+from .view import fit_camera, view_of
 from .viewer import SceneDisplay, scene_root
 
 __all__ = ["DEFAULTS", "LIMITS", "KINDS", "ModesScene", "round_factor", "factor_text"]
@@ -231,6 +233,7 @@ class ModesScene(SceneDisplay):
         if self._camera:
             set_camera(self.root, d["camera"])
             show_helpers(self.root, grid=False, axes=False)
+            fit_camera(self.vis, margin=0.95)  # the instrument fills the view (captions: legend)
         _OWNER[(id(self.root), self.path)] = self
 
     def _aim(self, height: float) -> None:
@@ -273,6 +276,11 @@ class ModesScene(SceneDisplay):
         """Show ``text`` under the instrument, one plate per ``"; "``-separated part."""
         self.caption = text
         self.vis["caption"].delete()
+        view = view_of(self.root)
+        if view is not None:  # screen-space text in the view's corner: never tilted or clipped
+            view.set_legend_part(self.vis["caption"].path.lower(), "".join(
+                f"<div>{html.escape(line)}</div>" for line in text.split("; ")))
+            return
         width, px = DEFAULTS["caption_width"], DEFAULTS["caption_px"]
         height = width * px[1] / px[0]
         for i, line in enumerate(text.split("; ")):

@@ -49,8 +49,8 @@ import umsgpack
 
 from ..validation import check_instance, check_integer, check_writable_path
 
-__all__ = ["SceneView", "SceneState", "library", "view_of", "static_html", "save_static_html",
-           "HEIGHT_RANGE"]
+__all__ = ["SceneView", "SceneState", "library", "view_of", "fit_camera", "static_html",
+           "save_static_html", "HEIGHT_RANGE"]
 
 STATIC = Path(__file__).with_name("static")
 #: The height of a view in CSS pixels: at least a readable view, at most a screen.
@@ -161,6 +161,53 @@ class SceneState:
         return len(self._entries)
 
 
+class _Fit:
+    """A command of afmsmiler's own that views handle beside meshcat's: fit the camera to a path.
+
+    Packed like meshcat's commands, so it is replayed and exported in the scene's order.
+    """
+
+    def __init__(self, path, margin: float, points):
+        self.path, self.margin, self.points = path, margin, points
+
+    def lower(self) -> dict:
+        out = {"type": "afm_fit", "path": self.path.lower(), "margin": self.margin}
+        if self.points is not None:
+            out["points"] = [[float(v) for v in p] for p in self.points]
+        return out
+
+
+def fit_camera(vis, margin: float = 1.0, points=None) -> None:
+    """Turn the camera of the view ``vis`` draws into to frame the objects under ``vis``.
+
+    The view keeps the camera's direction and moves its target to the centre of the objects'
+    bounding sphere and its distance so that the sphere fills the view's height (``margin`` > 1
+    leaves room around it). A scene builder calls it once when it draws (a later call moves the
+    camera again, so not on every update: the student's own orbit would be lost). Nothing
+    happens for a visualizer that is not a :class:`SceneView`'s (a test's recorder).
+
+    Parameters
+    ----------
+    vis : meshcat.Visualizer
+        The path whose objects to frame (e.g. ``scene.vis["sample"]``).
+    margin : float
+        The sphere's diameter as a fraction of the view's height, inverted: 1 fits it exactly,
+        in [0.3, 5].
+    points : array_like, shape (N, 3), optional
+        Frame these points (the scene's world frame, scene units) instead of the objects under
+        ``vis``: a region objects will fill later (a scan's image beside its sample).
+    """
+    from ..validation import check_array, check_range
+    margin = check_range("margin", margin, 0.3, 5.0)
+    if points is not None:
+        points = check_array("points", points, ndim=2)
+        if points.shape[1] != 3 or not 1 <= len(points) <= 64:
+            raise ValueError(f"points must have shape (N, 3) with 1 <= N <= 64, got {points.shape}")
+    window = getattr(vis, "window", None)
+    if isinstance(window, _Window):
+        window.send(_Fit(vis.path, margin, points))
+
+
 class _Window:
     """The window of :attr:`SceneView.vis`: meshcat's ``ViewerWindow`` API over the widget."""
 
@@ -169,8 +216,9 @@ class _Window:
 
     def send(self, command) -> None:
         data = command.lower()
-        self.view._command(data["type"], data.get("path", ""), str(data.get("property", "")),
-                           umsgpack.packb(data))
+        kind = data["type"]
+        path = "" if kind == "afm_fit" else data.get("path", "")  # one camera: the last fit
+        self.view._command(kind, path, str(data.get("property", "")), umsgpack.packb(data))
 
     def get_scene(self) -> str:
         return self.view.static_html()
@@ -220,6 +268,7 @@ class SceneView(anywidget.AnyWidget):
         self._pending: list[tuple[dict, bytes]] | None = None
         self._lock = threading.RLock()
         self.vis = meshcat.Visualizer(window=_Window(self))
+        self._legends: dict[str, str] = {}
         self.on_msg(self._handle_message)
 
     # -- commands ---------------------------------------------------------------------------
@@ -227,6 +276,13 @@ class SceneView(anywidget.AnyWidget):
         with self._lock:
             if not self.state.apply(kind, path, prop, data):
                 return
+            if kind == "delete":  # a deleted scene takes its legends along
+                below = path.rstrip("/") + "/"
+                gone = [k for k in self._legends if k == path or k.startswith(below)]
+                for key in gone:
+                    del self._legends[key]
+                if gone:
+                    self._join_legends()
             self._seq += 1
             meta = {"kind": kind, "path": path, "prop": prop, "seq": self._seq}
             if self._pending is not None:
@@ -295,6 +351,23 @@ class SceneView(anywidget.AnyWidget):
                 raise ValueError(f"label {text!r} needs a finite point (x, y, z), got {point!r}")
             out.append({"text": text, "at": [float(v) for v in p]})
         self._labels = out
+
+    def set_legend_part(self, key: str, html: str | None) -> None:
+        """Show ``html`` in the view's legend under ``key`` (a scene path), or remove it (None).
+
+        The legend (:attr:`legend`) is the parts in the order they were first set, one below the
+        other, in the view's corner: screen-space text that never tilts, clips or hides the scene.
+        A part whose path is deleted from the scene goes with it.
+        """
+        if html is None:
+            self._legends.pop(key, None)
+        else:
+            self._legends[key] = str(html)
+        self._join_legends()
+
+    def _join_legends(self) -> None:
+        self.legend = "".join(f"<div class='afm-legend-part'>{h}</div>"
+                              for h in self._legends.values())
 
     @property
     def labels(self) -> list[dict]:

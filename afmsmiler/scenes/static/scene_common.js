@@ -45,10 +45,56 @@ function afmCreateViewer(MeshCat, host) {
       pin.el.style.top = `${((1 - v.y) / 2) * h}px`;
     }
   };
+  // afmsmiler's own command beside meshcat's: frame the objects under a path (SceneView's
+  // fit_camera), keeping the camera's direction
+  const fitTo = (path, margin, points) => {
+    const THREE = MeshCat.THREE, cam = viewer.camera, controls = viewer.controls;
+    viewer.scene.updateMatrixWorld(true);
+    let box;
+    if (points) { // the scene's world (z up) through meshcat's root to three.js's world
+      box = new THREE.Box3().setFromPoints(points.map((p) =>
+        new THREE.Vector3(p[0], p[1], p[2]).applyMatrix4(viewer.scene.matrixWorld)));
+    } else {
+      const node = viewer.scene_tree.find(path.split("/").filter((x) => x.length > 0));
+      box = new THREE.Box3().setFromObject(node.object);
+    }
+    if (box.isEmpty() || !cam || !controls) return;
+    const sphere = box.getBoundingSphere(new THREE.Sphere());
+    const centre = cam.parent ? cam.parent.worldToLocal(sphere.center.clone()) : sphere.center;
+    const dir = cam.position.clone().sub(controls.target);
+    if (dir.lengthSq() === 0) dir.set(1, 1, 1);
+    dir.normalize();
+    const vfov = (cam.fov * Math.PI) / 180;
+    const fov = Math.min(vfov, 2 * Math.atan(Math.tan(vfov / 2) * Math.max(cam.aspect, 1e-3)));
+    const dist = (margin * sphere.radius) / Math.sin(fov / 2);
+    controls.target.copy(centre);
+    cam.position.copy(centre).addScaledVector(dir, dist);
+    cam.near = Math.max(1e-5, dist / 1000);
+    cam.far = Math.max(100, dist * 100);
+    cam.updateProjectionMatrix();
+    controls.update();
+  };
+  // the last fit is made again when the view changes size (it is often made before the page
+  // has laid the view out), until the student turns the camera
+  let lastFit = null, turned = false;
+  if (viewer.controls) viewer.controls.addEventListener("start", () => { turned = true; });
+  const refit = () => {
+    if (!lastFit || turned) return;
+    fitTo(lastFit.path, lastFit.margin || 1, lastFit.points);
+    viewer.set_dirty();
+  };
+  const handle = viewer.handle_command.bind(viewer);
+  viewer.handle_command = (cmd) => {
+    if (cmd && cmd.type === "afm_fit") {
+      lastFit = cmd;
+      turned = false;
+      refit();
+    } else handle(cmd);
+  };
   const render = viewer.render.bind(viewer);
   viewer.render = () => { render(); placeLabels(); };
   const observer = typeof ResizeObserver === "function"
-    ? new ResizeObserver(() => viewer.set_3d_pane_size()) : null;
+    ? new ResizeObserver(() => { viewer.set_3d_pane_size(); refit(); }) : null;
   if (observer) observer.observe(host);
   viewer.set_3d_pane_size();
   let running = true;

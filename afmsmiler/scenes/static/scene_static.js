@@ -8,5 +8,6 @@ function drawStatic(host, commands, legend, labels) {
   }
   view.setLegend(legend);
   view.setLabels(labels);
+  host.afmView = view; // for the browser tests
   return view;
 }
