@@ -1,9 +1,11 @@
-# The two commands of the course: `make lab` and `make test` (plus `make bench`).
-# Both create .venv when it is missing and install afmsmiler (editable) with its extras.
+# The two commands of the course: `make lab` (a student's install: the course and JupyterLab) and
+# `make test` (a developer's: every extra). Both create .venv when it is missing and install
+# afmsmiler (editable); the full install satisfies `make lab` too.
 PYTHON ?= python3
 VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.afmsmiler-installed
+STUDENT_STAMP := $(VENV)/.afmsmiler-student-installed
 export MPLBACKEND ?= Agg
 
 .PHONY: install lab test unit notebooks bench book clean browser firmware
@@ -37,12 +39,20 @@ $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
 	$(PY) -m pip install --quiet -e '.[test,lab,files,bench,hardware]'
-	touch $(STAMP)
+	touch $(STAMP) $(STUDENT_STAMP)
+
+## A student's install: the course, JupyterLab and the file readers (no test, bench or hardware
+## extras); a full install already has them.
+$(STUDENT_STAMP): pyproject.toml
+	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+	$(PY) -m pip install --quiet --upgrade pip
+	$(PY) -m pip install --quiet -e '.[lab,files]'
+	touch $(STUDENT_STAMP)
 
 install: $(STAMP)
 
 ## Open the course notebooks in JupyterLab, served on 127.0.0.1 only.
-lab: $(STAMP)
+lab: $(STUDENT_STAMP)
 	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
