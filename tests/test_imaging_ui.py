@@ -437,13 +437,10 @@ def test_notebook_a_lower_damage_force_mid_scan_crashes_a_later_line():
     assert "crashed" in p.status.value
 
 
-@pytest.mark.slow
-def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
-    # a Jupyter kernel as the notebook has it: Start returns at once, the scan proceeds line by
-    # line on the kernel's loop, and requests (here: cells; in JupyterLab also the widgets'
-    # messages) are answered between two lines; Stop ends it with the lines finished kept
+@pytest.fixture
+def kernel():
+    """A Jupyter kernel as a notebook has it (no test flags); yields run(code) -> printed words."""
     import os
-    import time
     from pathlib import Path
 
     from jupyter_client.manager import start_new_kernel
@@ -469,62 +466,52 @@ def test_a_real_kernel_answers_between_lines_and_stop_keeps_them():
                 return "".join(out).split()
 
     try:
-        run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel(pixels=256)")
-        assert run("p.start(); print(p.running, p.last.lines_done)") == ["True", "0"]
-        seen = []
-        for _ in range(50):
-            running, done = run("print(p.running, p.last.lines_done)")
-            seen.append(int(done))
-            if seen[-1] > 0:
-                break
-            time.sleep(0.05)
-        assert running == "True" and 0 < seen[-1] < 256
-        # a slider moved now (a widget's message is handled like this cell) applies from the
-        # next line on
-        moved = run("print(p.running)\nif p.running: p.set(scan_speed=1000.0)")
-        time.sleep(0.05)
-        changes = run("print(*p.last.changes)")
-        if moved == ["True"]:  # (still scanning when the cell ran)
-            assert changes and int(changes[0]) >= seen[-1]
-        done = run("p.stop(); print(p.running, p.last.lines_done, p.last.stopped)")
-        assert done[0] == "False" and done[2] == "True" and int(done[1]) < 256
-        time.sleep(0.3)  # the cancelled task scans nothing more
-        assert run("print(p.last.lines_done, p.error)") == [done[1], "None"]
+        yield run
     finally:
         kc.stop_channels()
         km.shutdown_kernel(now=True)
 
 
 @pytest.mark.slow
-def test_a_real_kernel_waits_at_the_pause_for_as_long_as_the_student_needs():
+def test_a_real_kernel_answers_between_lines_and_stop_keeps_them(kernel):
+    # a Jupyter kernel as the notebook has it: Start returns at once, the scan proceeds line by
+    # line on the kernel's loop, and requests (here: cells; in JupyterLab also the widgets'
+    # messages) are answered between two lines; Stop ends it with the lines finished kept
+    import time
+
+    run = kernel
+
+    run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel(pixels=256)")
+    assert run("p.start(); print(p.running, p.last.lines_done)") == ["True", "0"]
+    seen = []
+    for _ in range(50):
+        running, done = run("print(p.running, p.last.lines_done)")
+        seen.append(int(done))
+        if seen[-1] > 0:
+            break
+        time.sleep(0.05)
+    assert running == "True" and 0 < seen[-1] < 256
+    # a slider moved now (a widget's message is handled like this cell) applies from the
+    # next line on
+    moved = run("print(p.running)\nif p.running: p.set(scan_speed=1000.0)")
+    time.sleep(0.05)
+    changes = run("print(*p.last.changes)")
+    if moved == ["True"]:  # (still scanning when the cell ran)
+        assert changes and int(changes[0]) >= seen[-1]
+    done = run("p.stop(); print(p.running, p.last.lines_done, p.last.stopped)")
+    assert done[0] == "False" and done[2] == "True" and int(done[1]) < 256
+    time.sleep(0.3)  # the cancelled task scans nothing more
+    assert run("print(p.last.lines_done, p.error)") == [done[1], "None"]
+
+
+@pytest.mark.slow
+def test_a_real_kernel_waits_at_the_pause_for_as_long_as_the_student_needs(kernel):
     # notebook 06, item 1, in a Jupyter kernel as the notebook has it: the scan pauses after line
     # 20 and scans nothing more while the student takes their time; the speed raised then applies
     # from line 20 on when Resume goes on
-    import os
     import time
-    from pathlib import Path
 
-    from jupyter_client.manager import start_new_kernel
-
-    root = str(Path(ui.__file__).parents[2])
-    env = {k: v for k, v in os.environ.items()
-           if k not in ("AFMSMILER_TESTING", "CI", "NBVAL", "PYTEST_CURRENT_TEST")}
-    env["PYTHONPATH"] = os.pathsep.join([root, env.get("PYTHONPATH", "")])
-    km, kc = start_new_kernel(kernel_name="python3", env=env, cwd=root)
-
-    def run(code):
-        msg_id = kc.execute(code)
-        out = []
-        while True:
-            m = kc.get_iopub_msg(timeout=60)
-            if m["parent_header"].get("msg_id") != msg_id:
-                continue
-            if m["msg_type"] == "stream":
-                out.append(m["content"]["text"])
-            elif m["msg_type"] == "error":
-                raise AssertionError("\n".join(m["content"]["traceback"]))
-            elif m["msg_type"] == "status" and m["content"]["execution_state"] == "idle":
-                return "".join(out).split()
+    run = kernel
 
     def wait(condition, seconds=30.0):
         end = time.monotonic() + seconds
@@ -534,19 +521,15 @@ def test_a_real_kernel_waits_at_the_pause_for_as_long_as_the_student_needs():
             time.sleep(0.1)
         return False
 
-    try:
-        run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel()\n"
-            "p.pause_at.value = 20\np.start()")
-        assert wait("p.paused")
-        assert run("print(p.last.lines_done, p.running)") == ["20", "True"]
-        time.sleep(2.0)  # the student takes their time: nothing more is scanned
-        assert run("print(p.last.lines_done, p.paused)") == ["20", "True"]
-        run("p.set(scan_speed=1000.0)\np.resume()")
-        assert wait("not p.running")
-        assert run("print(p.last.lines_done, *p.last.changes, p.error)") == ["64", "20", "None"]
-    finally:
-        kc.stop_channels()
-        km.shutdown_kernel(now=True)
+    run("from afmsmiler.ui.imaging import ImagingPanel\np = ImagingPanel()\n"
+        "p.pause_at.value = 20\np.start()")
+    assert wait("p.paused")
+    assert run("print(p.last.lines_done, p.running)") == ["20", "True"]
+    time.sleep(2.0)  # the student takes their time: nothing more is scanned
+    assert run("print(p.last.lines_done, p.paused)") == ["20", "True"]
+    run("p.set(scan_speed=1000.0)\np.resume()")
+    assert wait("not p.running")
+    assert run("print(p.last.lines_done, *p.last.changes, p.error)") == ["64", "20", "None"]
 
 
 def test_the_3d_view_shows_the_finished_lines_and_the_tip_where_the_last_line_ended():

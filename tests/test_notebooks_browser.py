@@ -13,7 +13,6 @@ cells show and that they can be re-run, never how long anything takes. Marked ``
 ``browser``; skipped, saying why, when Chromium or Playwright is missing.
 """
 import itertools
-import shutil
 from pathlib import Path
 
 import numpy as np
@@ -45,22 +44,6 @@ me = psutil.Process()
 print(len(me.children(recursive=True)),
       sorted(c.laddr.port for c in me.net_connections('inet') if c.status == psutil.CONN_LISTEN))
 """
-
-
-@pytest.fixture(scope="module")
-def chromium():
-    reason = B.unavailable()
-    if reason:
-        pytest.skip(reason)
-    with B.browser() as b:
-        yield b
-
-
-@pytest.fixture(scope="module")
-def root():
-    path = B.notebook_root("afm-notebooks-")
-    yield path
-    shutil.rmtree(path, ignore_errors=True)
 
 
 @pytest.fixture(scope="module")

@@ -13,7 +13,6 @@ Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why,
 or Playwright is missing. One JupyterLab and one voila server and one browser per module.
 """
 import math
-import shutil
 import sys
 from pathlib import Path
 
@@ -30,22 +29,6 @@ DRAG = 15  # key presses of a drag
 CONTROL = {"cantilever": "force", "transducers": "input", "controller": "ki", "contact": "z_np"}
 SELECTOR = B.figure_selector()
 LIVE = SELECTOR == B.LIVE_FIGURE
-
-
-@pytest.fixture(scope="module")
-def chromium():
-    reason = B.unavailable()
-    if reason:
-        pytest.skip(reason)
-    with B.browser() as b:
-        yield b
-
-
-@pytest.fixture(scope="module")
-def root(tmp_path_factory):
-    path = B.notebook_root()
-    yield path
-    shutil.rmtree(path, ignore_errors=True)
 
 
 def _served(kind, chromium, root):
