@@ -31,10 +31,17 @@ timestamp) so that the notebook page and an iframe of another origin read one cl
 Both include: the kernel's update of the panel (model run, figure frame built and sent, scene
 commands built), the transport (comm message over the kernel's websocket; or ZMQ request/reply
 per command to the meshcat server, then its websocket to the iframe), meshcat's decoding and
-scene update, and the frame that renders it (three.js's ``render`` runs in that frame, so its
-time delays the frame's timestamp only when an earlier frame ran long). They leave out the GPU
-work and compositing after that frame's callbacks (headless, software GL) and the live figure's
-own drawing, which runs in the same page but is not waited for.
+scene update, up to the start of the frame that renders it. They leave out that render itself
+(three.js's ``render`` runs inside the frame; a long render shows only as later frames starting
+late), the GPU work and compositing after it (headless, software GL), and the live figure's own
+drawing, which runs in the same page but is not waited for.
+
+Beside the times: the commands per press, the animation frames they were drawn over (one when
+they arrive together; the old transport sends one websocket message per command, and meshcat
+renders the scene once per frame in which one arrived), and the panel's update alone, timed in its
+kernel (``panel._run`` with its current values, median of 5; for before it includes the ZMQ
+round trip to the meshcat server of each command), and how long one meshcat render takes in
+that page (``viewer.render`` timed while presses are timed).
 
 For scale, the floor (``press_text``): an ipywidgets IntSlider whose observer sets a Label, key
 press -> the label's text changed, in each server. ``BENCH_SCENE_PRESSES`` (default 20),
@@ -75,7 +82,8 @@ VIEW_TIMEOUT = 60.0  # s for a 3D view to be up after Run All
 _PROBE_JS = r"""
 () => {
   if (window.__afmScene) return true;
-  const S = window.__afmScene = {events: [], armed: false, keydown: null, hooked: false};
+  const S = window.__afmScene = {events: [], armed: false, keydown: null, hooked: false,
+                                 renders: []};
   const clock = () => performance.timeOrigin + performance.now();
   window.addEventListener('keydown', () => {
     if (S.armed && S.keydown === null) S.keydown = clock();
@@ -86,6 +94,17 @@ _PROBE_JS = r"""
     S.events.push(e);
     requestAnimationFrame(ts => { e.painted = Math.max(performance.timeOrigin + ts, e.t); });
   };
+  // how long meshcat's renders take (its animate() calls this.render() in a frame)
+  S.timeRenders = (v) => {
+    if (!v || v.__afmTimed) return;
+    const r = v.render.bind(v);
+    v.render = () => {
+      const t = performance.now();
+      r();
+      if (S.armed) S.renders.push(performance.now() - t);
+    };
+    v.__afmTimed = true;
+  };
   // before: meshcat's own page (its websocket calls this.handle_command_bytearray)
   S.hookViewer = () => {
     const v = window.viewer;
@@ -95,17 +114,21 @@ _PROBE_JS = r"""
       v.handle_command_bytearray = (b) => { const r = f(b); S.note(); return r; };
       S.hooked = true;
     }
+    S.timeRenders(v);
     return true;
   };
   // after: a SceneView's element, which counts the commands drawn in data-applied
   S.observe = (el) => {
     if (S.observer) S.observer.disconnect();
     S.el = el;
+    if (el.afmView) S.timeRenders(el.afmView.viewer);
     S.observer = new MutationObserver(() => S.note());
     S.observer.observe(el, {attributes: true, attributeFilter: ['data-applied']});
   };
   S.applied = () => (S.el ? Number(S.el.dataset.applied || 0) : null);
-  S.arm = () => { S.events = []; S.keydown = null; S.armed = true; S.base = S.applied(); };
+  S.arm = () => {
+    S.events = []; S.renders = []; S.keydown = null; S.armed = true; S.base = S.applied();
+  };
   // resolves when no command came for quietMs after the first (or timeoutMs passed)
   S.wait = (quietMs, timeoutMs) => new Promise(resolve => {
     const start = clock();
@@ -114,7 +137,7 @@ _PROBE_JS = r"""
       const done = last && last.painted !== null && now - last.t > quietMs;
       if (done || now - start > timeoutMs) {
         S.armed = false;
-        resolve({events: ev.map(e => [e.t, e.painted]), timedOut: !done,
+        resolve({events: ev.map(e => [e.t, e.painted]), timedOut: !done, renders: S.renders,
                  applied: S.base === null ? null : S.applied() - S.base});
       } else setTimeout(check, 25);
     };
@@ -192,15 +215,16 @@ def _view_after(page, slider):
                     const el = p && p.querySelector('.afm-scene');
                     if (!el) return false;
                     el.scrollIntoView({block: 'center'});
-                    window.__afmScene.observe(el);
-                    for (const s of document.querySelectorAll('.afm-scene'))
-                      if (s.afmView) s.afmView.viewer.animator.pause();
+                    window.__afmScene.el = el;
                     return true; }""")
     if not ok:
         raise LookupError("no 3D view (.afm-scene) in the panel of the slider")
     page.wait_for_function(
         "() => window.__afmScene.el.afmView && Number(window.__afmScene.el.dataset.applied) > 0",
         timeout=VIEW_TIMEOUT * 1000, polling=250)
+    page.evaluate("""() => { window.__afmScene.observe(window.__afmScene.el);
+                             for (const s of document.querySelectorAll('.afm-scene'))
+                               if (s.afmView) s.afmView.viewer.animator.pause(); }""")
     return page
 
 
@@ -221,8 +245,9 @@ def _view_before(page):
 
 
 def _press(page, doc, key):
-    """One press: (keydown -> last command's frame, keydown -> first command's frame,
-    commands) in s, or Nones when nothing was drawn within PRESS_TIMEOUT."""
+    """One press: (keydown -> last command's frame, keydown -> first command's frame, in s;
+    commands; animation frames they were drawn over; meshcat's render times in ms), Nones when
+    nothing was drawn within PRESS_TIMEOUT."""
     page.evaluate("() => window.__afmScene.arm()")
     if doc is not page:
         doc.evaluate("() => window.__afmScene.arm()")
@@ -232,9 +257,11 @@ def _press(page, doc, key):
     keydown = page.evaluate("() => window.__afmScene.keydown")
     ev = r["events"]
     if r["timedOut"] or not ev or keydown is None:
-        return None, None, len(ev)
+        return None, None, len(ev), None, []
     n = r["applied"] if r["applied"] is not None else len(ev)
-    return (ev[-1][1] - keydown) / 1000.0, (ev[0][1] - keydown) / 1000.0, n
+    frames = len({painted for _, painted in ev})
+    return ((ev[-1][1] - keydown) / 1000.0, (ev[0][1] - keydown) / 1000.0, n, frames,
+            r["renders"])
 
 
 def _kernel_update(page, variable, n=5):
@@ -286,18 +313,23 @@ def _interleaved(presses):
 
 
 def _panel_stats(results):
-    results = [r if r is not None else (None, None, 0) for r in results]
+    results = [r if r is not None else (None, None, 0, None, []) for r in results]
     s = _stats([r[0] for r in results])
     s["first"] = _stats([r[1] for r in results])["median"]
     s["commands"] = statistics.median([r[2] for r in results]) if results else 0
+    frames = [r[3] for r in results if r[3] is not None]
+    s["frames"] = statistics.median(frames) if frames else None
+    renders = [t / 1000.0 for r in results for t in r[4]]
+    s["render"] = statistics.median(renders) if renders else None
     return s
 
 
 def _row(name, version, s):
     print(f"{name:<11s}{version:<8s}{_ms(s.get('median'))} {_ms(s.get('min'))} "
           f"{_ms(s.get('max'))}  {_ms(s.get('first'))}   "
-          f"{format(s['commands'], '6g') if 'commands' in s else '     -'}   "
-          f"{s['failed']:3d}/{s['n']:<3d}  {_ms(s.get('kernel'))}"
+          f"{format(s['commands'], '6g') if 'commands' in s else '     -'} "
+          f"{format(s['frames'], '6g') if s.get('frames') is not None else '     -'}   "
+          f"{s['failed']:3d}/{s['n']:<3d}  {_ms(s.get('kernel'))}  {_ms(s.get('render'))}"
           + (f"  errors in the notebook: {s['errors'][:2]}" if s.get("errors") else ""),
           flush=True)
 
@@ -357,15 +389,17 @@ def main():
           "meshcat's viewer (it renders in that frame). Includes the kernel's update (model run, "
           "live figure frame built and sent, scene commands built), the transport (after: one "
           "comm message; before: ZMQ request/reply per command to the meshcat server, then its "
-          "websocket) and meshcat's decoding and scene update. Leaves out GPU work and "
-          "compositing after that frame, and the live figure's own drawing")
+          "websocket) and meshcat's decoding and scene update, up to the frame that renders it. "
+          "Leaves out that render, GPU work and compositing, and the live figure's own drawing")
     print(f"{'panel':<11s}{'version':<8s}{'median':>7s} {'min':>7s} {'max':>7s}  "
-          f"{'1st cmd':>7s}   {'cmds':>6s}   failed   {'kernel':>7s}")
+          f"{'1st cmd':>7s}   {'cmds':>6s} {'frames':>6s}   failed   {'kernel':>7s}  "
+          f"{'render':>7s}")
     print("(ms; 1st cmd: median to the frame after the press's first command; cmds: commands "
-          "per press; kernel: the panel's update alone, run in its kernel with the same values, "
-          "median of 5: the model, the figure's frame and the scene's commands built and handed "
-          "to the transport, which for before includes a ZMQ round trip to the meshcat server "
-          "per command)")
+          "per press; frames: animation frames they were drawn over; kernel: the panel's update "
+          "alone, run in its kernel with the same values, median of 5: the model, the figure's "
+          "frame and the scene's commands built and handed to the transport, which for before "
+          "includes a ZMQ round trip to the meshcat server per command; render: median duration "
+          "of one meshcat render (three.js, software GL) while a press was timed)")
     results = {}
     load = os.getloadavg()[0] if hasattr(os, "getloadavg") else None
     with B.browser() as b, contextlib.ExitStack() as stack:

@@ -98,6 +98,35 @@ function afmCreateViewer(MeshCat, host) {
   if (observer) observer.observe(host);
   viewer.set_3d_pane_size();
   let running = true;
+  // meshcat renders on every animation frame while an animation plays. Without a GPU (software
+  // WebGL) a rendered frame of a view delays the page's next frame by 100-200 ms, so a playing
+  // animation took every frame from the page: a panel's figure painted none of a 15-step drag
+  // and each key press waited about a second. Here a view renders only while on screen, and
+  // after a render waits 1.5 times what that render added to its frame (nothing with a GPU:
+  // every frame is rendered), so a view takes at most about 40 % of the page's frames.
+  const FRAME_MS = 1000 / 60;
+  let visible = true, last = -Infinity, cost = 0, measuring = false;
+  const seen = typeof IntersectionObserver === "function"
+    ? new IntersectionObserver((entries) => {
+      visible = entries[entries.length - 1].isIntersecting;
+      if (visible) viewer.set_dirty();
+    }) : null;
+  if (seen) seen.observe(host);
+  viewer.animate = () => {
+    if (!running) return;
+    requestAnimationFrame(() => viewer.animate());
+    const now = performance.now();
+    if (measuring) { // the frame after a render: what the render added to it
+      const extra = Math.max(0, now - last - FRAME_MS);
+      cost = 0.6 * cost + 0.4 * extra;
+      measuring = false;
+    }
+    viewer.animator.update();
+    if (!visible || !viewer.needs_render || now - last < 2.5 * cost) return;
+    viewer.render();
+    last = performance.now();
+    measuring = true;
+  };
   return {
     viewer,
     apply(bytes) { if (running) viewer.handle_command_bytearray(afmBytes(bytes)); },
@@ -117,9 +146,9 @@ function afmCreateViewer(MeshCat, host) {
       viewer.set_dirty();
     },
     dispose() {
-      running = false;
+      running = false; // ends the requestAnimationFrame loop at its next frame
       if (observer) observer.disconnect();
-      viewer.animate = () => {}; // ends meshcat's requestAnimationFrame loop at its next frame
+      if (seen) seen.disconnect();
       try { if (viewer.gui) viewer.gui.destroy(); } catch (e) { /* already gone */ }
       try { viewer.renderer.dispose(); viewer.renderer.forceContextLoss(); } catch (e) { /* */ }
       host.textContent = "";
