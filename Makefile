@@ -57,9 +57,11 @@ lab: $(STUDENT_STAMP)
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
 ## Everything: every test (slow and browser ones too), the docstrings' examples, every notebook
-## under nbval.
+## under nbval. The tests that need no browser run on both cores (pytest-xdist); the browser
+## tests, which time key presses to pixels, run alone after them.
 test: $(STAMP) browser firmware
-	$(PY) -m pytest tests
+	$(PY) -m pytest -n 2 -m "not browser" tests
+	$(PY) -m pytest -m browser tests
 	$(PY) -m pytest -p no:cacheprovider --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
 

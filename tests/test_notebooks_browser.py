@@ -126,7 +126,7 @@ def test_views_draw_in_voila(chromium, root):
             image = B.scene_pixels(page, 0)
             SHOTS.mkdir(exist_ok=True)
             image.save(SHOTS / "05_voila.png")
-            colours = len(set(image.resize((240, 120)).getdata()))
+            colours = len(np.unique(np.asarray(image.resize((240, 120))).reshape(-1, 3), axis=0))
             assert colours > 50, f"the 3D view in voila is nearly uniform ({colours} colours)"
         finally:
             page.close()
