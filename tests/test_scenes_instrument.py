@@ -712,3 +712,20 @@ def test_the_see_through_housing_writes_no_depth(kind):
         part = next((n for n in housing if f"/{n}/" in path + "/"), None)
         depth_write = node["object"][1].properties.get("depthWrite", True)
         assert depth_write is (part is None), path
+
+
+def test_at_the_lever_the_schematic_beam_is_hidden_and_the_view_says_why():
+    # the beam is drawn 0.7 mm thick: at the lever (50 um wide) it covered the lever entirely
+    from afmsmiler.scenes import SceneView
+    view = SceneView()
+    sc = InstrumentScene("obd", vis=view.vis)
+    beam = sc.vis["beam"].path.lower()
+    sc.focus("probe_chip")
+    assert not sc._beam_visible and "laser beam not drawn here" in view.legend
+    assert "0.7 mm" in view.legend  # the drawn thickness, from DEFAULTS
+    sc.show_beam(*sc.nominal_beam())  # a new beam while there stays hidden
+    assert not sc._beam_visible
+    sc.focus()  # back to the whole instrument: the beam again, the note gone
+    assert sc._beam_visible and "laser beam" not in view.legend
+    hidden = [c for c in view.state.keys() if c[1] == beam and c[2] == "visible"]
+    assert hidden  # the browser was told

@@ -836,6 +836,7 @@ class InstrumentScene(SceneDisplay):
         self._colors = {}        # part name -> {node path under the part: (colour, opacity)}
         self._legs, self._spots = [], []
         self._beam_visible = True
+        self._beam_hidden_near = False  # the camera is at the lever: the drawn beam would cover it
         for part in self.instrument.parts:
             canvas = _Canvas(self.vis[part.group][part.name], self._colors.setdefault(
                 part.name, {}))
@@ -1414,6 +1415,7 @@ class InstrumentScene(SceneDisplay):
         return pts
 
     def _show_beam_group(self, visible: bool) -> None:
+        visible = visible and not self._beam_hidden_near
         if self.instrument.beam and visible != self._beam_visible:
             self.vis["beam"].set_property("visible", bool(visible))
             self._beam_visible = bool(visible)
@@ -1442,6 +1444,7 @@ class InstrumentScene(SceneDisplay):
         if distance > 1.0:
             raise ValueError(f"distance must be <= 1 m, got {distance}")
         view = np.asarray(self.instrument.camera_mm, float) * _MM
+        self._hide_beam_near(name is not None and name == self.instrument.lever[0])
         if name is None:
             self._shift(np.asarray(self.instrument.centre_mm, float) * _MM / SCENE_UNIT)
             set_camera(self.root, list(view / SCENE_UNIT))
@@ -1458,6 +1461,20 @@ class InstrumentScene(SceneDisplay):
                      (self.offset @ self.transform(name) @ np.append(
                          np.asarray(s.at, float) * _MM / SCENE_UNIT, 1.0))[:3]
                      for s in part.shapes if s.kind != "wire"})
+
+    def _hide_beam_near(self, hide: bool) -> None:
+        """Hide the drawn laser beam while the camera is at the lever's part, and say why."""
+        if not self.instrument.beam or hide == self._beam_hidden_near:
+            return
+        self._beam_hidden_near = hide
+        self._show_beam_group(self.fraction == 0.0)
+        view = self.view
+        if view is not None:
+            radius = DEFAULTS["beam_radius"] * 1e3
+            view.set_legend_part(self.vis["beam"].path.lower(), None if not hide else (
+                f"laser beam not drawn here: drawn {2 * radius:g} mm thick (schematic), it would "
+                f"cover "
+                f"the 50 um wide lever of the {self.part(self.instrument.lever[0]).label}"))
 
     def _label(self, labels: dict) -> None:
         view = self.view
