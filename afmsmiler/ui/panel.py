@@ -237,6 +237,9 @@ def check_control_value(name: str, control, value):
     elif isinstance(control, (widgets.Dropdown, widgets.ToggleButtons, widgets.RadioButtons)):
         options = [o[1] if isinstance(o, tuple) else o for o in control.options]
         check_choice(name, value, options)
+    elif isinstance(control, (widgets.Checkbox, widgets.ToggleButton)) \
+            and not isinstance(value, bool):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
     return value
 
 
