@@ -124,7 +124,8 @@ class LockInFigure:
         hold(ax["outputs"], "y", lo, hi, reset=True)
         ax["outputs"].set_title(
             f"R = {shown(r.amplitude, u)} (true {shown(abs(truth), u)}, "
-            f"{100 * demo.amplitude_error:+.2f} %)\nphase {math.degrees(r.phase):.2f} deg "
+            + (f"{100 * demo.amplitude_error:+.2f} %)" if math.isfinite(demo.amplitude_error)
+               else "no drive)") + f"\nphase {math.degrees(r.phase):.2f} deg "
             f"(error {math.degrees(demo.phase_error):+.2f} deg), ENBW {r.enbw:.3g} Hz",
             fontsize="medium")
         f, a = peaks(demo.spectrum.frequency / run.drive_frequency, demo.spectrum.amplitude)

@@ -17,10 +17,10 @@ import ipywidgets as widgets
 from ..parameters import read_only
 from ..plots.lockin import LockInFigure
 from ..signals.chain import AC_VOLTAGE, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO, INTERFERENCE
-from ..signals.demo import LockInDemo, lock_in_demo
+from ..signals.demo import LockInDemo, lock_in_demo, max_ac_voltage
 from ..signals.lockin import FILTER_ORDER, REFERENCES, TIME_CONSTANT
 from ..validation import check_choice, check_integer
-from .panel import Panel, initial_values
+from .panel import Panel, initial_values, slider
 
 __all__ = ["LockInPanel", "DEFAULTS", "SLIDERS"]
 
@@ -62,6 +62,10 @@ class LockInPanel(Panel):
         self.seed = check_integer("seed", seed, 0, 2**32 - 1)
         values = initial_values(initial, self.DEFAULTS)
         self.controls = self.declared_controls(initial)
+        # the drive stops where module (b)'s bridge would leave its range (at resonance)
+        top = max_ac_voltage()
+        self.controls["ac_voltage"] = slider("ac_voltage", AC_VOLTAGE, values["ac_voltage"],
+                                             high=top)
         check_choice("order", values["order"], DEFAULTS["orders"])
         check_choice("shape", values["shape"], list(REFERENCES))
         self.controls["order"] = widgets.Dropdown(options=list(DEFAULTS["orders"]),

@@ -407,11 +407,7 @@ class Panel:
             For a value outside a slider's range or not among a drop-down's options, naming the
             control, the value and what is valid (a slider would silently clamp it).
         """
-        unknown = set(values) - set(self.controls)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(self.controls)}")
-        for name, v in values.items():
-            check_control_value(name, self.controls[name], v)
+        self.check_values(values)
         hold, self._hold = self._hold, True
         try:
             for name, v in values.items():
@@ -422,6 +418,22 @@ class Panel:
             self._run({**self.values(), **values})
 
     _hold = False
+
+    def check_values(self, values: Mapping) -> None:
+        """Refuse control values (units shown) that no control could hold, naming them.
+
+        Raises
+        ------
+        TypeError
+            For a name that is not a control, listing the valid ones.
+        ValueError
+            For a value outside a slider's range or not among a drop-down's options.
+        """
+        unknown = set(values) - set(self.controls)
+        if unknown:
+            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(self.controls)}")
+        for name, v in values.items():
+            check_control_value(name, self.controls[name], v)
 
     def sweep(self, name: str, values) -> None:
         """Move control ``name`` through ``values`` (one update each, an animation), then back.

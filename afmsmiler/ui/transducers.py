@@ -28,7 +28,7 @@ from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalC
                                 Transducer)
 from ..validation import check_choice
 from .controls import control
-from .panel import Panel, check_control_value, to_si
+from .panel import Panel, to_si
 
 __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "to_si"]
 
@@ -204,12 +204,7 @@ class TransducerPanel(Panel):
             if "mode" in values and values["mode"] != self._mode.value:
                 self._switch_mode(values["mode"])
             rest = {k: v for k, v in values.items() if k not in ("principle", "mode")}
-            unknown = set(rest) - set(self.controls)
-            if unknown:
-                raise TypeError(f"unknown control(s) {sorted(unknown)}; "
-                                f"valid: {sorted(self.controls)}")
-            for name, v in rest.items():
-                check_control_value(name, self.controls[name], v)
+            self.check_values(rest)
             for name, v in rest.items():
                 self.controls[name].value = v
         except Exception:

@@ -1,0 +1,142 @@
+"""The one list of the course's widget panels.
+
+Every panel a notebook shows is one :class:`PanelEntry` of :data:`PANELS`: its module's letter
+(the paper's (a)-(h)), the notebook that shows it and the name it has there, the class, a title,
+and the control a test or a benchmark moves. The book's static pages
+(:mod:`afmsmiler.ui.pages`), the label and browser tests, the benchmarks and the README's table
+iterate this list, and a test fails when a :class:`~afmsmiler.ui.panel.Panel` of
+:mod:`afmsmiler.ui` is missing from it, so a new panel cannot be forgotten (python-control's
+``kwargs_test.py`` works the same way for keyword arguments).
+"""
+from __future__ import annotations
+
+import importlib
+from dataclasses import dataclass
+
+from ..validation import check_choice
+
+__all__ = ["PanelEntry", "PANELS", "MODULES", "panel_entry", "panels"]
+
+#: The course's modules: letter -> (notebook, title).
+MODULES = {
+    "a": ("01_cantilever_mechanics.ipynb", "cantilever mechanics"),
+    "b": ("02_probe_transducers.ipynb", "probe transducers"),
+    "c": ("03_controller_tuning.ipynb", "controller tuning for contact-mode imaging"),
+    "d": ("04_contact_mechanics.ipynb", "contact mechanics"),
+    "e": ("05_system_overview.ipynb", "system overview"),
+    "f": ("06_virtual_imaging.ipynb", "virtual imaging"),
+    "g": ("07_imaging_modalities.ipynb", "imaging modalities"),
+    "h": ("08_hardware_interaction.ipynb", "hardware interaction"),
+}
+
+
+@dataclass(frozen=True)
+class PanelEntry:
+    """One panel of the course.
+
+    Attributes
+    ----------
+    key : str
+        The panel's short name (its page is ``<key>.html``).
+    module : str
+        The module's letter, a key of :data:`MODULES`.
+    variable : str
+        The panel's name in the module's notebook.
+    ui : str
+        The submodule of :mod:`afmsmiler.ui` that defines it.
+    cls : str
+        The class name.
+    title : str
+        What the panel shows, in a few words.
+    slider : str
+        The control a test or a benchmark moves (a slider of the panel at its defaults).
+    scene : bool
+        Whether the notebook shows the panel with its 3D view.
+    """
+
+    key: str
+    module: str
+    variable: str
+    ui: str
+    cls: str
+    title: str
+    slider: str
+    scene: bool = False
+
+    @property
+    def notebook(self) -> str:
+        """The notebook's file name (in ``notebooks/``)."""
+        return MODULES[self.module][0]
+
+    def load(self) -> type:
+        """The panel's class (imported on demand: the UI stack only where a panel is asked for)."""
+        return getattr(importlib.import_module(f"afmsmiler.ui.{self.ui}"), self.cls)
+
+    def make(self, **kwargs):
+        """A panel at its defaults, without a 3D view unless ``scene=True`` is given.
+
+        Parameters
+        ----------
+        **kwargs
+            Passed to the constructor.
+
+        Returns
+        -------
+        Panel
+        """
+        return self.load()(**kwargs)
+
+
+#: Every panel, in the order of the course.
+PANELS = (
+    PanelEntry("cantilever", "a", "panel", "cantilever", "CantileverPanel",
+               "the cantilever panel", "force", scene=True),
+    PanelEntry("transducers", "b", "panel", "transducers", "TransducerPanel",
+               "the transducer panel", "input", scene=True),
+    PanelEntry("controller", "c", "panel", "controller", "ControllerPanel",
+               "the controller panel", "ki"),
+    PanelEntry("contact", "d", "panel", "contact", "ContactPanel",
+               "the contact panel", "z_np", scene=True),
+    PanelEntry("overview", "e", "panel", "overview", "OverviewPanel",
+               "the instrument panel", "laser_x", scene=True),
+    PanelEntry("imaging", "f", "panel", "imaging", "ImagingPanel",
+               "the imaging panel", "radius", scene=True),
+    PanelEntry("lateral", "g", "lateral", "modalities", "LateralPanel",
+               "the lateral-force panel", "tilt", scene=True),
+    PanelEntry("tapping", "g", "tapping", "modalities", "TappingPanel",
+               "the tapping panel", "setpoint_ratio", scene=True),
+    PanelEntry("fm", "g", "fm", "modalities", "FrequencyShiftPanel",
+               "the FM panel", "amplitude", scene=True),
+    PanelEntry("jumping", "g", "jumping", "modalities", "JumpingPanel",
+               "the jumping-mode panel", "lift_height", scene=True),
+    PanelEntry("force_volume", "g", "volume", "modalities", "ForceVolumePanel",
+               "the force-volume panel", "peak_force"),
+    PanelEntry("macro_afm", "h", "panel", "hardware", "MacroAFMPanel",
+               "the macroscopic AFM's panel", "setpoint_force"),
+    PanelEntry("bridge", "h", "bridge", "haptic", "BridgePanel",
+               "the haptic force bridge", "force_scale"),
+    PanelEntry("q_control", "h", "q_panel", "haptic", "QControlPanel",
+               "the Q-control panel", "gain"),
+    PanelEntry("lockin", "h", "lockin_panel", "lockin", "LockInPanel",
+               "the lock-in panel", "ac_voltage"),
+)
+
+
+def panel_entry(key: str) -> PanelEntry:
+    """The entry of panel ``key``.
+
+    Raises
+    ------
+    ValueError
+        For an unknown key, listing the panels.
+    """
+    check_choice("key", key, [e.key for e in PANELS])
+    return next(e for e in PANELS if e.key == key)
+
+
+def panels(module: str | None = None) -> tuple:
+    """The panels of one module (a letter of :data:`MODULES`), or all of them."""
+    if module is None:
+        return PANELS
+    check_choice("module", module, list(MODULES))
+    return tuple(e for e in PANELS if e.module == module)
