@@ -87,10 +87,12 @@ class LockInFigure:
         outputs.set(xlabel="time [ms]", ylabel=f"lock-in output [{u}]")
         outputs.legend(loc="lower right", fontsize="small")
         ln["spectrum"], = spectrum.semilogy([], [], color="C2", lw=0.8)
-        spectrum.set(xlabel="frequency / drive frequency f", ylabel=f"amplitude [{u}]",
+        spectrum.set(xlabel="frequency / drive frequency f (dimensionless)",
+                     ylabel=f"amplitude [{u}]",
                      title="output spectrum (2f: the signal)")
         ln["pickup"], = pickup.plot([], [], "o-", color="C3")
-        pickup.set(xlabel="harmonic h of the reference (at 2 h f)", ylabel="weight",
+        pickup.set(xlabel="harmonic h of the reference (at 2 h f) (dimensionless)",
+                   ylabel="weight (dimensionless)",
                    ylim=(-0.05, 1.1), xlim=(0.5, 7.5))
         self.fig.set_layout_engine("constrained")
         self.update(demo)
