@@ -289,7 +289,15 @@ class Panel:
         self._applied = {}  # the values the model last ran with, by control name
         for control in self.controls.values():
             control.observe(self._on_change, names="value")
+        self._tag_controls()
         self._run(self.values())
+
+    def _tag_controls(self) -> None:
+        """Give each control the CSS class ``afm-control-<name>`` (pages and tests find it)."""
+        for name, control in self.controls.items():
+            tag = f"afm-control-{name}"
+            if tag not in control._dom_classes:
+                control.add_class(tag)
 
     def declared_controls(self, initial: Mapping) -> dict:
         """The sliders of :attr:`SLIDERS` at :attr:`DEFAULTS` with ``initial`` over them.
@@ -579,6 +587,7 @@ class Panel:
         # the sliders whose every step the browser forwards; a panel that rebuilt its controls
         # (another transducer principle) links the new ones (no message when they are the same)
         self.live.link(self.controls, self._from_browser)
+        self._tag_controls()
 
     def widget(self) -> widgets.Widget:
         """The panel as one widget: controls on the left, the figure on the right."""
@@ -599,6 +608,7 @@ class Panel:
         if view is not None:
             children.append(view)
         box = self._shown = widgets.VBox(children)
+        box.add_class(f"afm-panel-{type(self).__name__}")  # see registry.PanelEntry.selector
         display(box)
         if self.fig is not None and self.fig.axes:
             show_static(self.fig)

@@ -52,6 +52,9 @@ class PanelEntry:
         The control a test or a benchmark moves (a slider of the panel at its defaults).
     scene : bool
         Whether the notebook shows the panel with its 3D view.
+    figure : bool
+        Whether a move of :attr:`slider` redraws the figure at once (module (f)'s and the
+        macroscopic AFM's sliders apply to the next scan).
     """
 
     key: str
@@ -62,6 +65,17 @@ class PanelEntry:
     title: str
     slider: str
     scene: bool = False
+    figure: bool = True
+
+    @property
+    def selector(self) -> str:
+        """The CSS selector of the panel's box on a page (:meth:`Panel.show` tags it)."""
+        return f".afm-panel-{self.cls}"
+
+    @property
+    def slider_selector(self) -> str:
+        """The CSS selector of :attr:`slider`'s widget on a page (every control is tagged)."""
+        return f"{self.selector} .afm-control-{self.slider}"
 
     @property
     def notebook(self) -> str:
@@ -100,7 +114,7 @@ PANELS = (
     PanelEntry("overview", "e", "panel", "overview", "OverviewPanel",
                "the instrument panel", "laser_x", scene=True),
     PanelEntry("imaging", "f", "panel", "imaging", "ImagingPanel",
-               "the imaging panel", "radius", scene=True),
+               "the imaging panel", "radius", scene=True, figure=False),
     PanelEntry("lateral", "g", "lateral", "modalities", "LateralPanel",
                "the lateral-force panel", "tilt", scene=True),
     PanelEntry("tapping", "g", "tapping", "modalities", "TappingPanel",
@@ -112,7 +126,7 @@ PANELS = (
     PanelEntry("force_volume", "g", "volume", "modalities", "ForceVolumePanel",
                "the force-volume panel", "peak_force"),
     PanelEntry("macro_afm", "h", "panel", "hardware", "MacroAFMPanel",
-               "the macroscopic AFM's panel", "setpoint_force"),
+               "the macroscopic AFM's panel", "setpoint_force", figure=False),
     PanelEntry("bridge", "h", "bridge", "haptic", "BridgePanel",
                "the haptic force bridge", "force_scale"),
     PanelEntry("q_control", "h", "q_panel", "haptic", "QControlPanel",
