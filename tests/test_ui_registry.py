@@ -109,3 +109,9 @@ def test_lookups_name_the_valid_keys():
         panel_entry("afm")
     with pytest.raises(ValueError, match="module must be one of"):
         panels("z")
+
+
+def test_the_readme_table_is_the_registry():
+    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text(encoding="utf-8")
+    from afmsmiler.ui.registry import markdown_table
+    assert markdown_table() in readme, "README's panel table differs: python -m afmsmiler.ui.registry"

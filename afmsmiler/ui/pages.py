@@ -55,7 +55,7 @@ def panel_page(name: str) -> str:
     if name not in PANELS:
         raise ValueError(f"name must be one of {sorted(PANELS)}, got {name!r}")
     e = PANELS[name]
-    title = html.escape(f"Module ({e.module}): {e.title}'s figure")
+    title = html.escape(f"Module ({e.module}): {e.title}")
     body = static_html(_panel(name).fig)
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title></head>"
             f"<body style='margin:0'>{body}</body></html>\n")

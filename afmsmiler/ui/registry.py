@@ -15,7 +15,7 @@ from dataclasses import dataclass
 
 from ..validation import check_choice
 
-__all__ = ["PanelEntry", "PANELS", "MODULES", "panel_entry", "panels"]
+__all__ = ["PanelEntry", "PANELS", "MODULES", "panel_entry", "panels", "markdown_table"]
 
 #: The course's modules: letter -> (notebook, title).
 MODULES = {
@@ -104,35 +104,35 @@ class PanelEntry:
 #: Every panel, in the order of the course.
 PANELS = (
     PanelEntry("cantilever", "a", "panel", "cantilever", "CantileverPanel",
-               "the cantilever panel", "force", scene=True),
+               "a lever's deflection, stress, stiffness and modes", "force", scene=True),
     PanelEntry("transducers", "b", "panel", "transducers", "TransducerPanel",
-               "the transducer panel", "input", scene=True),
+               "a sensing or actuation principle's chain and noise", "input", scene=True),
     PanelEntry("controller", "c", "panel", "controller", "ControllerPanel",
-               "the controller panel", "ki"),
+               "contact-mode feedback scanning a line", "ki"),
     PanelEntry("contact", "d", "panel", "contact", "ContactPanel",
-               "the contact panel", "z_np", scene=True),
+               "a tip indenting a sample, with adhesion", "z_np", scene=True),
     PanelEntry("overview", "e", "panel", "overview", "OverviewPanel",
-               "the instrument panel", "laser_x", scene=True),
+               "an instrument's parts and its laser alignment", "laser_x", scene=True),
     PanelEntry("imaging", "f", "panel", "imaging", "ImagingPanel",
-               "the imaging panel", "radius", scene=True, figure=False),
+               "a scan line by line, its images and artefacts", "radius", scene=True, figure=False),
     PanelEntry("lateral", "g", "lateral", "modalities", "LateralPanel",
-               "the lateral-force panel", "tilt", scene=True),
+               "friction loops and maps", "tilt", scene=True),
     PanelEntry("tapping", "g", "tapping", "modalities", "TappingPanel",
-               "the tapping panel", "setpoint_ratio", scene=True),
+               "tapping: amplitude and phase against distance", "setpoint_ratio", scene=True),
     PanelEntry("fm", "g", "fm", "modalities", "FrequencyShiftPanel",
-               "the FM panel", "amplitude", scene=True),
+               "FM: frequency shift and the force it gives", "amplitude", scene=True),
     PanelEntry("jumping", "g", "jumping", "modalities", "JumpingPanel",
-               "the jumping-mode panel", "lift_height", scene=True),
+               "jumping mode: a pixel's cycle and the image", "lift_height", scene=True),
     PanelEntry("force_volume", "g", "volume", "modalities", "ForceVolumePanel",
-               "the force-volume panel", "peak_force"),
+               "force-volume maps of a two-material sample", "peak_force"),
     PanelEntry("macro_afm", "h", "panel", "hardware", "MacroAFMPanel",
-               "the macroscopic AFM's panel", "setpoint_force", figure=False),
+               "the macroscopic AFM: scans and prints", "setpoint_force", figure=False),
     PanelEntry("bridge", "h", "bridge", "haptic", "BridgePanel",
-               "the haptic force bridge", "force_scale"),
+               "a force law felt through the haptic device", "force_scale"),
     PanelEntry("q_control", "h", "q_panel", "haptic", "QControlPanel",
-               "the Q-control panel", "gain"),
+               "Q control: resonance and ring-down", "gain"),
     PanelEntry("lockin", "h", "lockin_panel", "lockin", "LockInPanel",
-               "the lock-in panel", "ac_voltage"),
+               "the lock-in amplifier's reading against the truth", "ac_voltage"),
 )
 
 
@@ -154,3 +154,23 @@ def panels(module: str | None = None) -> tuple:
         return PANELS
     check_choice("module", module, list(MODULES))
     return tuple(e for e in PANELS if e.module == module)
+
+
+def markdown_table() -> str:
+    """The README's table of panels, one row per entry of :data:`PANELS` (a test compares them).
+
+    Returns
+    -------
+    str
+        A Markdown table, ending with a newline.
+    """
+    rows = ["| module | notebook | panel (its name there) | what it shows | 3D view |",
+            "|---|---|---|---|---|"]
+    for e in PANELS:
+        rows.append(f"| {e.module} | `{e.notebook[:-6]}` | `{e.cls}` (`{e.variable}`) | "
+                    f"{e.title} | {'yes' if e.scene else '-'} |")
+    return "\n".join(rows) + "\n"
+
+
+if __name__ == "__main__":
+    print(markdown_table(), end="")
