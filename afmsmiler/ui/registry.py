@@ -124,7 +124,7 @@ PANELS = (
     PanelEntry("jumping", "g", "jumping", "modalities", "JumpingPanel",
                "jumping mode: a pixel's cycle and the image", "lift_height", scene=True),
     PanelEntry("force_volume", "g", "volume", "modalities", "ForceVolumePanel",
-               "force-volume maps of a two-material sample", "peak_force"),
+               "force-volume maps of a two-material sample", "force_noise"),
     PanelEntry("macro_afm", "h", "panel", "hardware", "MacroAFMPanel",
                "the macroscopic AFM: scans and prints", "setpoint_force", figure=False),
     PanelEntry("bridge", "h", "bridge", "haptic", "BridgePanel",
