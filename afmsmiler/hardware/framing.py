@@ -20,7 +20,8 @@ from numbers import Integral
 
 from .errors import ChecksumError, FrameError
 
-__all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame"]
+__all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
+           "as_bytes"]
 
 #: The protocol version this driver speaks (every device's ``ID`` reply must report it).
 PROTOCOL_VERSION = 1
@@ -48,6 +49,37 @@ def _table() -> tuple[int, ...]:
 
 _CRC_TABLE = _table()
 
+_BYTES = (bytes, bytearray, memoryview)
+
+
+def as_bytes(name: str, data) -> bytes:
+    """``data`` as bytes, refusing what is not bytes (an int would be taken as a byte count).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    data : bytes, bytearray or memoryview
+        The bytes.
+
+    Returns
+    -------
+    bytes
+
+    Raises
+    ------
+    TypeError
+        Naming the parameter, for anything else (``bytes(10**10)`` would allocate 10 GB).
+
+    Examples
+    --------
+    >>> as_bytes("data", bytearray(b"1 ID"))
+    b'1 ID'
+    """
+    if not isinstance(data, _BYTES):
+        raise TypeError(f"{name} must be bytes, got {type(data).__name__}")
+    return bytes(data)
+
 
 def crc8(data: bytes) -> int:
     """CRC-8/SMBUS of ``data`` (polynomial 0x07, init 0, not reflected, no final xor).
@@ -62,13 +94,18 @@ def crc8(data: bytes) -> int:
     int
         The checksum, 0..255.
 
+    Raises
+    ------
+    TypeError
+        If ``data`` is not bytes.
+
     Examples
     --------
     >>> hex(crc8(b"123456789"))
     '0xf4'
     """
     crc = 0
-    for byte in bytes(data):
+    for byte in as_bytes("data", data):
         crc = _CRC_TABLE[crc ^ byte]
     return crc
 
@@ -158,6 +195,8 @@ def decode_frame(line: bytes) -> Frame:
 
     Raises
     ------
+    TypeError
+        If ``line`` is not bytes.
     ChecksumError
         If the line has the form ``BODY*CC`` but CC is not the CRC-8 of BODY (a corrupted byte).
     FrameError
@@ -165,7 +204,7 @@ def decode_frame(line: bytes) -> Frame:
         a token of the integer's form ``-?[0-9]+`` outside int32 is a bad token, never a word,
         as in the firmware: devices answer such a line ``0 ER 9``).
     """
-    raw = bytes(line)
+    raw = as_bytes("line", line)
     text = raw[:-1] if raw.endswith(b"\n") else raw
     text = text[:-1] if text.endswith(b"\r") else text
     star = text.rfind(b"*")

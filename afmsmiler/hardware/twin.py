@@ -17,16 +17,11 @@ from __future__ import annotations
 import threading
 import time
 
-from .errors import ChecksumError, FrameError, TransportClosed, TransportTimeout
+from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
 from .framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
 from .transport import MemoryTransport, PtyLink
 
-__all__ = ["Twin", "TwinServer", "open_twin", "ERR_CHECKSUM", "ERR_UNKNOWN_COMMAND",
-           "ERR_MALFORMED"]
-
-ERR_CHECKSUM = 1
-ERR_UNKNOWN_COMMAND = 2
-ERR_MALFORMED = 9
+__all__ = ["Twin", "TwinServer", "open_twin"]
 
 
 class Twin:
@@ -68,6 +63,38 @@ class Twin:
         Frame
         """
         return Frame(frame.seq, "OK", (frame.code, *results))
+
+    @staticmethod
+    def stream_error(code: int) -> Frame:
+        """The unsolicited error ``0 ER ERRNO`` (a line the device could not read, a fault).
+
+        Parameters
+        ----------
+        code : int
+            The error number (an :class:`~afmsmiler.hardware.errors.ErrorCode`).
+
+        Returns
+        -------
+        Frame
+        """
+        return Frame(0, "ER", (int(ErrorCode(code)),))
+
+    @staticmethod
+    def event(word, *args) -> Frame:
+        """The event frame ``0 EV WORD [ARG]``.
+
+        Parameters
+        ----------
+        word : str or enum
+            The event's word (an ``Event`` member of the device's codec).
+        *args : int or str
+            Its argument.
+
+        Returns
+        -------
+        Frame
+        """
+        return Frame(0, "EV", (getattr(word, "value", word), *args))
 
     @staticmethod
     def error(frame: Frame, code: int, word: str | None = None) -> Frame:
@@ -131,7 +158,7 @@ class Twin:
         """
         if frame.seq == 0:
             return []
-        return [self.error(frame, ERR_UNKNOWN_COMMAND, frame.code)]
+        return [self.error(frame, ErrorCode.UNKNOWN_COMMAND, frame.code)]
 
     def poll(self, now: float) -> list[Frame]:
         """The stream frames due by time ``now`` (pixels, events); advances the twin's clock.
@@ -279,10 +306,10 @@ class TwinServer:
                 try:
                     frame = decode_frame(line)
                 except ChecksumError:
-                    self._send([Frame(0, "ER", (ERR_CHECKSUM,))])
+                    self._send([self.twin.stream_error(ErrorCode.CHECKSUM)])
                     continue
                 except FrameError:
-                    self._send([Frame(0, "ER", (ERR_MALFORMED,))])
+                    self._send([self.twin.stream_error(ErrorCode.MALFORMED)])
                     continue
                 if scale > 0:
                     # the clock at arrival: what fell due before the command goes out first
