@@ -122,7 +122,8 @@ class FramedDevice:
                     return frame.args[1:]
                 self.garbage += 1                        # our SEQ, not a reply: wait on
         raise DeviceNotResponding(
-            f"{self.DEVICE} did not answer {code} after {self.retries + 1} tries of "
+            f"{self.DEVICE} did not answer {code} after {self.retries + 1} tries ({self.retries} "
+            f"retries) of "
             f"{self.timeout:g} s: is it powered, on this port, running firmware of protocol "
             f"{PROTOCOL_VERSION}?")
 
