@@ -1,4 +1,4 @@
-"""One table per device protocol: each spec (PROTOCOL.md, protocol.h, the firmware's limits) against it.
+"""One table per device protocol: each spec (PROTOCOL.md, protocol.h, firmware limits) against it.
 
 The codecs' :class:`~afmsmiler.hardware.protocol.ParamTable` describes each device's parameters
 once. These tests parse every other place that states them -- the parameter table of each

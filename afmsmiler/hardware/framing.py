@@ -21,7 +21,7 @@ from numbers import Integral
 from .errors import ChecksumError, FrameError
 
 __all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
-           "as_bytes"]
+           "as_bytes", "reply_frame", "error_frame", "event_frame"]
 
 #: The protocol version this driver speaks (every device's ``ID`` reply must report it).
 PROTOCOL_VERSION = 1
@@ -130,6 +130,66 @@ class Frame:
 
     def __post_init__(self):
         object.__setattr__(self, "args", tuple(self.args))
+
+
+def _wire(value):
+    """An enum member as its value on the wire (``Param.PITCH`` -> ``"DX"``)."""
+    return getattr(value, "value", value)
+
+
+def reply_frame(seq: int, code, *results) -> Frame:
+    """A device's success reply ``SEQ OK CODE [RESULT ...]`` (every device's shape).
+
+    Parameters
+    ----------
+    seq : int
+        The command's sequence number.
+    code : str or enum
+        The command echoed.
+    *results : int or str or enum
+        What the command returned.
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(seq, "OK", (_wire(code), *(_wire(r) for r in results)))
+
+
+def error_frame(seq: int, code: int, word: str | None = None) -> Frame:
+    """A device's error ``SEQ ER ERRNO [WORD]`` (SEQ 0: an unreadable line or a fault).
+
+    Parameters
+    ----------
+    seq : int
+        The command's sequence number, 0 for an unsolicited error.
+    code : int
+        The error number (an :class:`~afmsmiler.hardware.errors.ErrorCode`).
+    word : str, optional
+        A word saying more (an axis, a parameter); None or "" for none.
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(seq, "ER", (int(code),) if not word else (int(code), _wire(word)))
+
+
+def event_frame(word, *args) -> Frame:
+    """A device's event ``0 EV WORD [ARG]``.
+
+    Parameters
+    ----------
+    word : str or enum
+        The event's word (an ``Event`` member of the device's codec).
+    *args : int or str
+        Its argument.
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(0, "EV", (_wire(word), *(_wire(a) for a in args)))
 
 
 def _arg_text(index: int, arg) -> str:

@@ -6,8 +6,8 @@ firmware's ``protocol.h``), its two-letter code, its wire unit (a key of :data:`
 table of wire-unit factors), its range and default on the wire, and whether the host may set it. A
 :class:`ParamTable` gathers a device's parameters; its codec builds the ``Param`` enum from it, its
 twin takes ranges and defaults from it, its driver converts SI values and checks every reply
-against it. ``tests/test_hardware_protocol.py`` parses each device's ``PROTOCOL.md`` parameter table,
-``protocol.h`` and firmware limits and fails when they disagree with the table.
+against it. ``tests/test_hardware_protocol.py`` parses each device's ``PROTOCOL.md`` parameter
+table, ``protocol.h`` and firmware limits and fails when they disagree with the table.
 
 Examples
 --------
@@ -57,7 +57,8 @@ def _u(name: str) -> float:
     return UNITS[name][1]
 
 
-#: The one table of wire units: key -> :class:`WireUnit` (factors from :data:`afmsmiler.parameters.UNITS`).
+#: The one table of wire units: key -> :class:`WireUnit` (factors from
+#: :data:`afmsmiler.parameters.UNITS`).
 WIRE_UNITS = MappingProxyType({
     "count": WireUnit("", 1.0, ("", "pixels", "lines", "counts")),
     "step": WireUnit("", 1.0, ("z micro-steps",)),

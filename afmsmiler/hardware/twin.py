@@ -18,7 +18,8 @@ import threading
 import time
 
 from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
-from .framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
+from .framing import (PROTOCOL_VERSION, Frame, decode_frame, encode_frame, error_frame,
+                      reply_frame)
 from .transport import MemoryTransport, PtyLink
 
 __all__ = ["Twin", "TwinServer", "open_twin"]
@@ -62,39 +63,7 @@ class Twin:
         -------
         Frame
         """
-        return Frame(frame.seq, "OK", (frame.code, *results))
-
-    @staticmethod
-    def stream_error(code: int) -> Frame:
-        """The unsolicited error ``0 ER ERRNO`` (a line the device could not read, a fault).
-
-        Parameters
-        ----------
-        code : int
-            The error number (an :class:`~afmsmiler.hardware.errors.ErrorCode`).
-
-        Returns
-        -------
-        Frame
-        """
-        return Frame(0, "ER", (int(ErrorCode(code)),))
-
-    @staticmethod
-    def event(word, *args) -> Frame:
-        """The event frame ``0 EV WORD [ARG]``.
-
-        Parameters
-        ----------
-        word : str or enum
-            The event's word (an ``Event`` member of the device's codec).
-        *args : int or str
-            Its argument.
-
-        Returns
-        -------
-        Frame
-        """
-        return Frame(0, "EV", (getattr(word, "value", word), *args))
+        return reply_frame(frame.seq, frame.code, *results)
 
     @staticmethod
     def error(frame: Frame, code: int, word: str | None = None) -> Frame:
@@ -113,7 +82,7 @@ class Twin:
         -------
         Frame
         """
-        return Frame(frame.seq, "ER", (int(code),) if word is None else (int(code), word))
+        return error_frame(frame.seq, code, word)
 
     # -- the protocol ------------------------------------------------------------------------
     def handle(self, frame: Frame) -> list[Frame]:
@@ -306,10 +275,10 @@ class TwinServer:
                 try:
                     frame = decode_frame(line)
                 except ChecksumError:
-                    self._send([self.twin.stream_error(ErrorCode.CHECKSUM)])
+                    self._send([error_frame(0, ErrorCode.CHECKSUM)])
                     continue
                 except FrameError:
-                    self._send([self.twin.stream_error(ErrorCode.MALFORMED)])
+                    self._send([error_frame(0, ErrorCode.MALFORMED)])
                     continue
                 if scale > 0:
                     # the clock at arrival: what fell due before the command goes out first

@@ -20,7 +20,7 @@ from __future__ import annotations
 import enum
 
 from ..errors import ErrorCode   # the error numbers every device of module (h) shares
-from ..framing import Frame
+from ..framing import Frame, error_frame, event_frame
 from ..protocol import ParamTable, WireParam
 
 __all__ = ["DEVICE", "TABLE", "Command", "Param", "Event", "ErrorCode", "State", "READ_ONLY",
@@ -141,7 +141,7 @@ def event(word: Event, *args) -> Frame:
     *args : int or str
         Its argument.
     """
-    return Frame(0, "EV", (Event(word).value, *args))
+    return event_frame(Event(word), *args)
 
 
 def stream_error(code: ErrorCode) -> Frame:
@@ -152,4 +152,4 @@ def stream_error(code: ErrorCode) -> Frame:
     code : ErrorCode
         The error.
     """
-    return Frame(0, "ER", (int(code),))
+    return error_frame(0, ErrorCode(code))

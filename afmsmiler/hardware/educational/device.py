@@ -22,7 +22,7 @@ from ...validation import check_integer, check_positive
 from ..errors import (RESEND_CODES, DeviceError, DeviceNotResponding, HardwareError, ReplyError,
                       TransportClosed, TransportTimeout)
 from ..framed import FramedDevice
-from ..framing import Frame
+from ..framing import Frame, reply_frame
 from .codec import DEVICE, TABLE, Command, ErrorCode, Event, Param, State, command
 
 __all__ = ["EducationalAFM", "DeviceInfo", "live_view"]
@@ -153,7 +153,7 @@ class EducationalAFM(FramedDevice):
         """
         frame = command(1, code, *args)
         results = self._exchange(frame.code, *frame.args)
-        return Frame(self._seq, "OK", (frame.code, *results))
+        return reply_frame(self._seq, frame.code, *results)
 
     # -- commands --------------------------------------------------------------------------
     def connect(self) -> DeviceInfo:

@@ -80,7 +80,8 @@ class EducationalAFMTwin(Twin):
                                 noise=self.noise, seed=self.seed)
         result = scan(self.sample, None, ConstantForce(ContactLoop()), settings)
         heights = result.images["height trace"]
-        return np.rint((heights - np.min(heights)) / TABLE[Param.ZSTEP].to_si(self.z_step)).astype(np.int64)
+        count = TABLE[Param.ZSTEP].to_si(self.z_step)
+        return np.rint((heights - np.min(heights)) / count).astype(np.int64)
 
     def _total(self) -> int:
         return self.params[Param.NX] * self.params[Param.NY]

@@ -29,7 +29,8 @@ from ..protocol import WIRE_UNITS, ParamTable, WireParam
 
 __all__ = ["DEVICE", "BAUDRATE", "FIRMWARE_VERSION", "Command", "ErrorCode", "Event", "Param",
            "TABLE", "PARAMETERS", "STATES", "Flag", "Status", "PositionSample",
-           "force_frame", "force_from_wire", "parse_position", "parse_status", "position_frame", "status_results",
+           "force_frame", "force_from_wire", "parse_position", "parse_status", "position_frame",
+           "status_results",
            "param_to_wire", "param_from_wire", "TIME_WRAP"]
 
 #: The name the device reports to ``ID``.

@@ -22,7 +22,7 @@ from ...validation import check_positive
 from ..errors import (RESEND_CODES, DeviceNotResponding, FrameError, HardwareError, ReplyError,
                       TransportClosed, TransportTimeout)
 from ..framed import FramedDevice
-from ..framing import Frame, decode_frame, encode_frame
+from ..framing import Frame, decode_frame, encode_frame, reply_frame
 from .codec import (DEVICE, PARAMETERS, TABLE, Command, Flag, Param, PositionSample, Status,
                     force_frame, param_to_wire, parse_position, parse_status)
 
@@ -303,7 +303,7 @@ class HapticDevice(FramedDevice):
         Status
         """
         args = self.command(Command.STATUS)
-        return parse_status(Frame(1, "OK", ("ST", *args)))
+        return parse_status(reply_frame(1, Command.STATUS, *args))
 
     def start_stream(self, period: float = 1e-3) -> None:
         """Have the device stream ``PO`` frames every ``period`` s (1 ms to 1 s, whole ms).

@@ -43,7 +43,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import expm
 
-from ..framing import Frame
+from ..framing import Frame, event_frame
 from ..twin import Twin
 from ..errors import ErrorCode
 from .codec import (DEVICE, FIRMWARE_VERSION, PARAMETERS, Command, Event, Flag, Param,
@@ -157,7 +157,7 @@ class HapticTwin(Twin):
         self._xf = 0.0
         self._vf = 0.0
         self._fault_code = ErrorCode.STATE
-        self._events = [self.event(Event.BOOT)]
+        self._events = [event_frame(Event.BOOT)]
         self._discretise()
         self._compensate()
 
@@ -234,7 +234,7 @@ class HapticTwin(Twin):
         self._fault_code = ErrorCode.ESTOP if flag == Flag.ESTOP else ErrorCode.LIMIT
         self._command = 0.0
         self._stream_force = 0.0
-        self._events.append(self.event(event))
+        self._events.append(event_frame(event))
 
     def _si(self, param) -> float:
         """The SI value of a parameter's current wire value (the table's unit)."""
@@ -256,7 +256,7 @@ class HapticTwin(Twin):
                 self.state = "IDLE"
                 self.flags |= Flag.WATCHDOG
                 self._stream_force = 0.0
-                self._events.append(self.event(Event.WATCHDOG))
+                self._events.append(event_frame(Event.WATCHDOG))
             elif abs(x) > self._si(Param.TRAVEL):
                 self._fault(Event.LIMIT, Flag.LIMIT)
             else:

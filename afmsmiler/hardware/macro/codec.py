@@ -34,7 +34,7 @@ import inspect
 from dataclasses import dataclass
 
 from ..errors import ErrorCode, FrameError, ReplyError
-from ..framing import Frame, decode_frame, encode_frame
+from ..framing import Frame, decode_frame, encode_frame, error_frame, event_frame, reply_frame
 from ..protocol import ParamTable, WireParam
 
 __all__ = ["DEVICE", "BAUDRATE", "Command", "ErrorCode", "Event", "Param", "State", "Flag",
@@ -366,23 +366,16 @@ class MacroAFMCodec:
         TypeError
             If ``message`` is not a message of this protocol.
         """
-        def wire(value):
-            return value.value if isinstance(value, enum.Enum) else value
-
         if isinstance(message, Pixel):
             return Frame(0, "PX", (message.row, message.col, message.z, message.counts))
         if isinstance(message, LineEnd):
             return Frame(0, "LN", (message.row, message.pixels))
         if isinstance(message, EventMsg):
-            args = (wire(message.event),) if message.arg is None else \
-                (wire(message.event), wire(message.arg))
-            return Frame(0, "EV", args)
+            return event_frame(message.event, *(() if message.arg is None else (message.arg,)))
         if isinstance(message, Reply):
-            return Frame(message.seq, "OK", (wire(message.command),
-                                             *(wire(r) for r in message.results)))
+            return reply_frame(message.seq, message.command, *message.results)
         if isinstance(message, ErrorReply):
-            return Frame(message.seq, "ER", (int(message.code),) if not message.word
-                         else (int(message.code), message.word))
+            return error_frame(message.seq, message.code, message.word)
         raise TypeError(f"message must be a MACROAFM message, got {type(message).__name__}")
 
     @classmethod
