@@ -157,6 +157,13 @@ def test_haptic_wait_position_refuses_a_timeout_that_never_ends(device, timeout)
     assert isinstance(error, ValueError) and "timeout" in str(error), error
 
 
+@pytest.mark.parametrize("period", [math.nan, math.inf, "1e-3", 0.0, 2.0])
+def test_haptic_stream_period_is_refused_by_name(device, period):
+    with HapticDevice(device().host, timeout=0.2) as dev:
+        with pytest.raises(ValueError, match="period"):
+            dev.start_stream(period)
+
+
 # -- replies are checked against the table ------------------------------------------------------
 class Scripted:
     """Answers each host command (body without SEQ) with the scripted reply bodies."""

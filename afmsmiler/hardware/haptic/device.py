@@ -23,6 +23,7 @@ from ..errors import (RESEND_CODES, DeviceNotResponding, FrameError, HardwareErr
                       TransportClosed, TransportTimeout)
 from ..framed import FramedDevice
 from ..framing import Frame, decode_frame, encode_frame, reply_frame
+from ..protocol import WIRE_UNITS
 from .codec import (DEVICE, PARAMETERS, TABLE, Command, Flag, Param, PositionSample, Status,
                     force_frame, param_to_wire, parse_position, parse_status)
 
@@ -312,8 +313,13 @@ class HapticDevice(FramedDevice):
         ----------
         period : float
             Stream period in s.
+
+        Raises
+        ------
+        ValueError
+            If ``period`` is not a finite number of 1 ms to 1 s (NaN included).
         """
-        ms = round(period * 1e3)
+        ms = round(check_positive("period", period, "s") / WIRE_UNITS["ms"].scale)
         if not 1 <= ms <= 1000:
             raise ValueError(f"period must be in [0.001, 1] s, got {period!r}")
         self.command(Command.STREAM, ms)
