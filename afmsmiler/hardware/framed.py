@@ -26,7 +26,8 @@ class FramedDevice:
     """A device that speaks module (h)'s frames on a transport (subclassed per device).
 
     Subclasses set :attr:`DEVICE` and :attr:`TABLE`; they may override :meth:`_receive` (where
-    replies come from) and :meth:`_stream` (what to do with a SEQ 0 frame met while waiting).
+    replies come from), :meth:`_send` (how a command is written) and :meth:`_stream` (what to do
+    with a SEQ 0 frame met while waiting).
 
     Parameters
     ----------
@@ -82,6 +83,10 @@ class FramedDevice:
             self.garbage += 1
             return None
 
+    def _send(self, data: bytes) -> None:
+        """Write one encoded command (a subclass that writes from several threads locks here)."""
+        self.transport.write(data)
+
     def _stream(self, frame: Frame) -> None:
         """A SEQ 0 frame met while waiting for a reply (pixels, events, faults)."""
 
@@ -96,7 +101,7 @@ class FramedDevice:
         for attempt in range(self.retries + 1):
             if attempt:
                 self.retried += 1
-            self.transport.write(data)
+            self._send(data)
             deadline = time.monotonic() + self.timeout   # one deadline per attempt
             while True:
                 left = deadline - time.monotonic()

@@ -141,9 +141,8 @@ class HapticDevice(FramedDevice):
             raise TransportClosed(str(self._closed_error))
 
     # -- commands -----------------------------------------------------------------------------
-    def _write(self, frame: Frame):
-        data = encode_frame(frame)
-        with self._write_lock:
+    def _send(self, data: bytes) -> None:
+        with self._write_lock:   # the force bridge writes FO frames from its own thread
             self.transport.write(data)
 
     def _receive(self, timeout: float) -> Frame:
@@ -337,7 +336,7 @@ class HapticDevice(FramedDevice):
             Force on the handle in N (the device scales it by FS and clips it at MF).
         """
         self._check_open()
-        self._write(force_frame(force))
+        self._send(encode_frame(force_frame(force)))
 
     def latest(self) -> PositionSample | None:
         """The latest position sample (None before the first); raises if the port is gone.
