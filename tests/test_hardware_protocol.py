@@ -152,7 +152,9 @@ def md_mismatches(table: ParamTable, rows: dict) -> list:
 
 
 def header_mismatches(table: ParamTable, header: dict) -> list:
-    """Where a protocol.h disagrees with the table (PAR_), the shared ErrorCode and the version."""
+    """Where a protocol.h disagrees with the table (PAR_), the shared ErrorCode and the version.
+
+    (Its CMD_ and EVT_ lines are compared with the codecs' enums in each device's own tests.)"""
     out = []
     if header.get("PROTOCOL_VERSION") != PROTOCOL_VERSION:
         out.append(f"PROTOCOL_VERSION {header.get('PROTOCOL_VERSION')} != {PROTOCOL_VERSION}")
@@ -209,6 +211,17 @@ def test_macro_firmware_limits_match_the_table():
     firmware = _macro_firmware()
     assert firmware["NX"] == dict(low=1, high=128, multiple=1, default=8)  # the parser works
     assert firmware_mismatches(macro.TABLE, firmware) == []
+
+
+def test_macro_twin_presets_are_the_firmwares():
+    """The START button's presets (PRESET 1..3 of the table) as the firmware defines them."""
+    from afmsmiler.hardware.macro.twin import PRESETS
+    ino = (MACRO / "firmware" / "macro_afm.ino").read_text()
+    rows = re.search(r"PRESETS\[N_PRESETS\] = \{(.*?)\};", ino, re.S).group(1)
+    firmware = [tuple(int(v) for v in row.split(","))
+                for row in re.findall(r"\{([-\d, ]+)\}", rows)]
+    assert len(firmware) == macro.TABLE[macro.Param.PRESET].high + 1 == len(PRESETS)
+    assert [PRESETS[i] for i in range(1, len(firmware))] == firmware[1:]
 
 
 def test_haptic_firmware_limits_match_the_table():
