@@ -391,7 +391,7 @@ class EducationalAFM(FramedDevice):
                     finish_rows(max(pending) + 1)
                     pending.clear()
                 elif frame.code == "PX" and len(frame.args) == 3 and \
-                        isinstance(frame.args[0], int) and frame.args[0] > state["finished"]:
+                        isinstance(frame.args[0], int) and state["finished"] < frame.args[0] < ny:
                     finish_rows(frame.args[0])      # a line end was lost on the way
             finish_rows(ny)
         except (HardwareError, TransportClosed) as exc:
