@@ -228,12 +228,14 @@ def test_a_huge_image_size_is_refused_before_anything_is_allocated():
     ({"GP NX": ["OK GP NX"]}, lambda afm: afm.get("NX")),
     ({"GP NX": ["OK GP NX word"]}, lambda afm: afm.get("NX")),
     ({"GP NX": ["OK GP QQ 8"]}, lambda afm: afm.get("NX")),
+    ({"GP NX": ["OK GP NY 8"]}, lambda afm: afm.get("NX")),
     ({"SP NX 8": ["OK SP NX"]}, lambda afm: afm.set("NX", 8)),
     ({"SP NX 8": ["OK SP NX 9999"]}, lambda afm: afm.set("NX", 8)),
     ({"ST": ["OK ST"]}, lambda afm: afm._status()),
     ({"ST": ["OK ST SCANNING 1"]}, lambda afm: afm._status()),
     ({"ST": ["OK ST DANCING 1 2"]}, lambda afm: afm._status()),
-], ids=["ID empty", "ID short", "GP empty", "GP no value", "GP word", "GP other parameter",
+], ids=["ID empty", "ID short", "GP empty", "GP no value", "GP word", "GP unknown parameter",
+        "GP other parameter",
         "SP no value", "SP out of range", "ST empty", "ST short", "ST unknown state"])
 def test_educational_short_or_odd_replies_are_named_errors(answers, call):
     afm = EducationalAFM(Scripted(answers), timeout=0.05, retries=0)
@@ -258,6 +260,7 @@ def test_macro_short_or_odd_replies_are_named_errors(answers, call):
 @pytest.mark.parametrize("answers, call, match", [
     ({"ID": ["OK ID HAPTIC 1"]}, lambda dev: dev.connect(), "ID reply"),
     ({"GP MF": ["OK GP MF"]}, lambda dev: dev.get("max_force"), "GP reply"),
+    ({"GP MF": ["OK GP KS 5"]}, lambda dev: dev.get("max_force"), "answered GP MF about KS"),
     ({"GP MF": ["OK GP MF -5"]}, lambda dev: dev.get("max_force"),
      r"MAX_FORCE \(largest force asked of the motor\) = -5, outside its valid range"),
     ({"ST": ["OK ST IDLE -1 0 0"]}, lambda dev: dev.status(), "flags -1"),

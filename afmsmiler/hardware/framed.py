@@ -139,8 +139,7 @@ class FramedDevice:
         version, HardwareError for another device.
         """
         results = self._exchange("ID")
-        if len(results) != 3 or not isinstance(results[0], str) or \
-                not isinstance(results[1], int):
+        if len(results) != 3 or not isinstance(results[0], str):
             raise ReplyError(f"an ID reply must be <device> <protocol> <firmware>, got "
                              f"{tuple(results)!r}")
         name, version, firmware = results
@@ -150,11 +149,18 @@ class FramedDevice:
             raise HardwareError(f"expected a {self.DEVICE} on this port, found {name!r}")
         return str(name), int(version), str(firmware)
 
+    def _checked(self, results: tuple, command: str, code: str) -> int:
+        """The value of an ``OK SP|GP <PAR> <int>`` reply about ``code``, checked."""
+        value = self.TABLE.check_reply(results, command)
+        if results[0] != code:
+            raise ReplyError(f"{self.DEVICE} answered {command} {code} about {results[0]}")
+        return value
+
     def _get_wire(self, code: str) -> int:
         """``GP code``: the device's integer, checked against :attr:`TABLE`."""
-        return self.TABLE.check_reply(self._exchange("GP", code), "GP")
+        return self._checked(self._exchange("GP", code), "GP", code)
 
     def _set_wire(self, code: str, value: int) -> int:
         """``SP code value`` (checked against :attr:`TABLE` first): the value the device took."""
         self.TABLE[code].check(value)
-        return self.TABLE.check_reply(self._exchange("SP", code, int(value)), "SP")
+        return self._checked(self._exchange("SP", code, int(value)), "SP", code)

@@ -239,8 +239,8 @@ class HapticDevice(FramedDevice):
         p = _NAMES.get(param) or Param(param)
         spec = PARAMETERS[p]
         wire = spec.check(param_to_wire(p, value))
-        got = TABLE.check_reply(self.command(Command.SET, p.value, wire), Command.SET.value)
-        return spec.to_si(got)
+        return spec.to_si(self._checked(self.command(Command.SET, p.value, wire),
+                                        Command.SET.value, p.value))
 
     def get(self, param) -> float:
         """A parameter's value in SI units.
@@ -255,8 +255,8 @@ class HapticDevice(FramedDevice):
         float
         """
         p = _NAMES.get(param) or Param(param)
-        results = self.command(Command.GET, p.value)
-        return PARAMETERS[p].to_si(TABLE.check_reply(results, Command.GET.value))
+        return PARAMETERS[p].to_si(self._checked(self.command(Command.GET, p.value),
+                                                 Command.GET.value, p.value))
 
     def configure(self, **values) -> None:
         """Set several parameters by SI name (``spring=500.0, qgain=-0.5``...).

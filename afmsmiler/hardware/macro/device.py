@@ -345,11 +345,8 @@ class MacroAFM(FramedDevice):
             (e.g. ``ZS 0`` or ``NX 2147483647``), naming the parameter, value and range.
         """
         param = Param(param)
-        results = self._call(Command.GET, param.value)
-        value = TABLE.check_reply(results, Command.GET.value)
-        if results[0] != param.value:
-            raise ReplyError(f"{DEVICE} answered GP {param.value} with {results[0]}")
-        return value
+        return self._checked(self._call(Command.GET, param.value), Command.GET.value,
+                             param.value)
 
     def set(self, param: Param, value: int) -> None:
         """Set one parameter on the wire (``SP``), as an integer in the device's unit.
