@@ -272,6 +272,15 @@ def test_haptic_short_or_odd_replies_are_named_errors(answers, call, match):
             call(dev)
 
 
+@pytest.mark.parametrize("version", ["2", "v1"])
+def test_another_protocol_version_is_named_even_as_a_word(version):
+    from afmsmiler.hardware import ProtocolVersionError
+    afm = EducationalAFM(Scripted({"ID": [f"OK ID EDUAFM {version} 0.1.0"]}), timeout=0.05,
+                         retries=0)
+    with pytest.raises(ProtocolVersionError, match=f"EDUAFM speaks protocol version {version}"):
+        afm.connect()
+
+
 def test_haptic_status_flags_are_refused_not_masked():
     """Flags -1 used to read as every fault (masked to 15); unknown bits are refused, as the
     macro AFM's codec does."""
