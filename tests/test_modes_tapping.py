@@ -344,7 +344,7 @@ def test_parameter_tables_are_parameters_with_their_defaults_in_range():
 def no_integration(monkeypatch):
     def boom(*args, **kwargs):
         raise AssertionError("integration started before the input was checked")
-    monkeypatch.setattr(tapping, "solve_ivp", boom)
+    monkeypatch.setattr(tapping.integration, "solve_ivp", boom)
 
 
 @pytest.mark.parametrize("call, name", [
