@@ -76,7 +76,7 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            # module (g): the imaging modalities
            "afmsmiler.modes._forces", "afmsmiler.modes.tapping", "afmsmiler.modes.fm",
            "afmsmiler.modes.jumping", "afmsmiler.modes.force_volume", "afmsmiler.modes.bimodal",
-           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol",
+           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol", "afmsmiler.modes.oscillator",
            # module (h): the educational AFM's signal chain and lock-in
            "afmsmiler.signals.lockin", "afmsmiler.signals.ad630", "afmsmiler.signals.chain",
            "afmsmiler.signals.demo",

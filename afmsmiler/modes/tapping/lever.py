@@ -21,24 +21,21 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
-from ...brownian import QUALITY_FACTOR
-from ...contact.quantities import PARAMETERS as CONTACT
 from ...contact.tips import reduced_modulus
-from ...parameters import Parameter, read_only
+from ...parameters import (QUALITY_FACTOR, RESONANCE_FREQUENCY, SPRING_CONSTANT, Parameter,
+                           read_only)
 from ...validation import check_array
 from .._forces import FORCE_PARAMETERS, _force
+from ..oscillator import Oscillator
 
 __all__ = ["PARAMETERS", "TappingLever", "free_response"]
 
 #: The user-settable quantities of the tapping model (SI), with :data:`FORCE_PARAMETERS`: a
 #: tapping lever (k = 40 N/m, f0 = 300 kHz, Q = 400 in air) at A0 = 10 nm, driven at resonance.
 PARAMETERS = read_only({**{p.name: p for p in (
-    CONTACT["spring_constant"].with_(default=40.0, slider_low=0.5, slider_high=100.0),
-    Parameter(name="resonance_frequency", unit="Hz", display_unit="kHz", default=300e3,
-              low=100.0, high=1e8, slider_low=10e3, slider_high=2e6, log=True,
-              label="resonance frequency f0"),
-    QUALITY_FACTOR.with_(default=400.0, low=0.0, low_inclusive=False, slider_low=1.0,
-                         slider_high=2000.0),
+    SPRING_CONSTANT.with_(default=40.0, slider_low=0.5, slider_high=100.0),
+    RESONANCE_FREQUENCY,
+    QUALITY_FACTOR.with_(default=400.0, slider_low=1.0, slider_high=2000.0),
     Parameter(name="frequency_ratio", unit="", default=1.0, low=0.5, high=1.5,
               slider_low=0.98, slider_high=1.02, label="drive frequency / f0"),
     Parameter(name="free_amplitude", unit="m", display_unit="nm", default=10e-9, low=0.0,
@@ -128,9 +125,15 @@ class TappingLever:
         return math.atan2(w / self.quality_factor, 1.0 - w * w)
 
     @property
+    def oscillator(self) -> Oscillator:
+        """The lever's point-mass oscillator (k, f0, Q) (:class:`~afmsmiler.modes.oscillator.
+        Oscillator`)."""
+        return Oscillator(self.spring_constant, self.resonance_frequency, self.quality_factor)
+
+    @property
     def time_constant(self) -> float:
         """Amplitude time constant tau = 2 Q / w0 in s (the slow flow's decay, module notes)."""
-        return 2.0 * self.quality_factor / (2.0 * math.pi * self.resonance_frequency)
+        return self.oscillator.time_constant
 
     @property
     def max_amplitude(self) -> float:
