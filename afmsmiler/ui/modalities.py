@@ -251,7 +251,7 @@ class TappingPanel(_SliderPanel):
             point = (r, zc, phase, e_dis, attractive)
         depth = math.nan if point is None else lever.indentation(zc, r * lever.free_amplitude)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
-        jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
+        jumps = curve.jumps  # the same run of the approach as operating_point's
         if self.figure is None:
             self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
         else:

@@ -60,11 +60,13 @@ from ...validation import check_array, check_choice, check_instance
 from .lever import PARAMETERS, TappingLever, _check_lever
 
 __all__ = ["BRANCHES", "AMPLITUDE_GRID", "MAX_DISTANCES", "DISSIPATION_ROUNDINGS",
-           "SETPOINT_GRID", "AmplitudeCurve", "amplitude_curve", "setpoint_state",
+           "SETPOINT_GRID", "SWEEPS", "AmplitudeCurve", "amplitude_curve", "setpoint_state",
            "operating_point"]
 
 #: The two branches of the amplitude-distance curve.
 BRANCHES = ("attractive", "repulsive")
+#: The two slow sweeps of the rest distance (:meth:`AmplitudeCurve.sweep`).
+SWEEPS = ("approach", "retract")
 #: Amplitudes on which g(A) is sampled for its sign changes, per distance.
 AMPLITUDE_GRID = 160
 #: Most distances one :func:`amplitude_curve` call solves (10 000 take about a second).
@@ -196,15 +198,42 @@ class AmplitudeCurve:
             A in m and phi in rad, shape (n,); where a branch has two stable roots (rare), the
             one of largest amplitude.
         """
+        return self.on_branch(self.amplitude, name), self.on_branch(self.phase, name)
+
+    def on_branch(self, values, name: str) -> np.ndarray:
+        """One root's entry of ``values`` per distance: the stable root :meth:`branch` picks.
+
+        So that a quantity of each root (``dissipated_energy``, ``indentation``, ...) lines up
+        with the branch's amplitude and phase.
+
+        Parameters
+        ----------
+        values : array_like
+            An array shaped like ``amplitude`` (n, r).
+        name : str
+            ``"attractive"`` (low) or ``"repulsive"`` (high).
+
+        Returns
+        -------
+        ndarray
+            Shape (n,), NaN where the branch has no stable root; where it has two (rare), the
+            one of largest amplitude.
+
+        Raises
+        ------
+        ValueError
+            If ``values`` is not shaped like ``amplitude`` or ``name`` is not a branch.
+        """
         check_choice("name", name, BRANCHES)
+        values = np.asarray(values, dtype=float)
+        if values.shape != self.amplitude.shape:
+            raise ValueError(f"values must be shaped like the curve's amplitude "
+                             f"{self.amplitude.shape}, got {values.shape}")
         mask = self.stable & (~self.repulsive_branch if name == "attractive"
                               else self.repulsive_branch)
-        amp = np.where(mask, self.amplitude, -np.inf)
-        j = np.argmax(amp, axis=1)
+        j = np.argmax(np.where(mask, self.amplitude, -np.inf), axis=1)
         rows = np.arange(self.distance.size)
-        has = mask.any(axis=1)
-        return (np.where(has, self.amplitude[rows, j], np.nan),
-                np.where(has, self.phase[rows, j], np.nan))
+        return np.where(mask.any(axis=1), values[rows, j], np.nan)
 
     @property
     def indentation(self) -> np.ndarray:
@@ -239,9 +268,34 @@ class AmplitudeCurve:
         -------
         (ndarray, ndarray, list of float)
             Amplitude in m and phase lag in rad at each distance (in this curve's order), and
-            the distances in m at which the tip jumped between branches.
+            the distances in m at which the tip jumped between branches. Each direction is
+            followed once per curve (the arrays are read-only; :attr:`jumps` reads the same
+            run).
         """
-        check_choice("direction", direction, ("approach", "retract"))
+        check_choice("direction", direction, SWEEPS)
+        cache = self.__dict__.setdefault("_sweeps", {})  # the frozen curve's own memo
+        if direction not in cache:
+            amp, phs, jumps = self._sweep(direction)
+            amp.setflags(write=False)
+            phs.setflags(write=False)
+            cache[direction] = (amp, phs, tuple(jumps))
+        amp, phs, jumps = cache[direction]
+        return amp, phs, list(jumps)
+
+    @property
+    def jumps(self) -> dict:
+        """Where a slow approach and a slow retraction jump between the branches.
+
+        Returns
+        -------
+        dict
+            ``{"approach": [z_c, ...], "retract": [z_c, ...]}`` in m, the third output of
+            :meth:`sweep` in each direction (from the same run: a caller that follows the
+            approach and marks both jumps follows each direction once).
+        """
+        return {way: self.sweep(way)[2] for way in SWEEPS}
+
+    def _sweep(self, direction):
         order = np.argsort(self.distance)
         order = order[::-1] if direction == "approach" else order
         n = self.distance.size
