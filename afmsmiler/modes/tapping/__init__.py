@@ -1,14 +1,7 @@
 """Amplitude-modulation (tapping) AFM: a driven cantilever tapping a sample, two solvers.
 
-The cantilever is a point mass m = k / w0^2 on a spring k with quality factor Q (module (a)'s
-first flexural mode), its rest position a distance z_c above the sample, driven at the angular
-frequency w = 2 pi f by the force F0 cos(w t) that gives the free amplitude A0::
-
-    m z'' + (m w0 / Q) z' + k z = F0 cos(w t) + F_ts(z_c + z, z'),
-    F0 = k A0 sqrt((1 - W^2)^2 + (W / Q)^2),     W = w / w0
-
-with the tip-sample force F_ts of :mod:`afmsmiler.modes._forces` (van der Waals, DMT contact,
-optional sample damping; Garcia and Perez, Surf. Sci. Rep. 47, 197 (2002)).
+A driven point-mass lever tapping a sample through van der Waals and DMT forces; its equation of
+motion is stated in :mod:`~afmsmiler.modes.tapping.lever`, each solver's method in its module.
 
 One module per concern; every name is importable from here as before:
 
