@@ -53,8 +53,8 @@ from ..parameters import Parameter, read_only
 from ..validation import check_array, check_instance, check_integer, check_range
 
 __all__ = ["PARAMETERS", "TRIGGER_FORCE", "LIFT_HEIGHT", "Z_SPEED", "JumpCurve", "JumpingMode",
-           "ModeComparison", "ApexPath", "apex_path", "jump_curve", "trigger_z_np", "compare_with_contact",
-           "MAX_CURVE_POINTS", "MAX_MATERIALS"]
+           "ModeComparison", "ApexPath", "apex_path", "jump_curve", "trigger_z_np",
+           "compare_with_contact", "MAX_CURVE_POINTS", "MAX_MATERIALS"]
 
 #: Most points of one branch of :func:`jump_curve`.
 MAX_CURVE_POINTS = 100_000

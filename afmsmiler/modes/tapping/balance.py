@@ -1,8 +1,8 @@
 """The fast steady states of the tapping lever: first-harmonic balance, both branches.
 
-**Fast steady state: first-harmonic balance** (:func:`amplitude_curve`). With z = A cos(theta),
-theta = w t - phi, projecting the equation on cos(theta) and sin(theta) over one period (the
-virial and energy-balance equations of San Paulo and Garcia, Phys. Rev. B 64, 193411 (2001);
+The fast solver (:func:`amplitude_curve`). With z = A cos(theta), theta = w t - phi, projecting
+the equation of motion (:mod:`~afmsmiler.modes.tapping.lever`) on cos(theta) and sin(theta) over
+one period (the virial and energy-balance equations of San Paulo and Garcia, Phys. Rev. B 64, 193411 (2001);
 Lee and Jhe, Phys. Rev. Lett. 97, 036104 (2006) in the same form)::
 
     F0 cos(phi) = k (1 - W^2) A - I_c(z_c, A),     I_c = (1/pi) int_0^2pi F_ts cos(theta) d theta

@@ -1,8 +1,9 @@
 """Amplitude feedback with a finite bandwidth: the PI loop of tapping-mode imaging.
 
-(:func:`amplitude_feedback`, ``TappingMode(...,
-feedback="pi")``). Averaging the equation of motion over a period with z = A cos(w t - phi)
-(variation of parameters; Nayfeh and Mook (1979)) gives the slow flow of the amplitude and phase::
+The loop of :func:`amplitude_feedback` and ``TappingMode(..., feedback="pi")``. Averaging the
+equation of motion (:mod:`~afmsmiler.modes.tapping.lever`) over a period with
+z = A cos(w t - phi) (variation of parameters; Nayfeh and Mook (1979)) gives the slow flow of the
+amplitude and phase::
 
     dA/dt     = [F0 sin(phi) - I_s - (k W / Q) A] / (2 m w)
     A dphi/dt = [F0 cos(phi) - k (1 - W^2) A + I_c] / (2 m w)
