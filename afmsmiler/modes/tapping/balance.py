@@ -2,8 +2,8 @@
 
 The fast solver (:func:`amplitude_curve`). With z = A cos(theta), theta = w t - phi, projecting
 the equation of motion (:mod:`~afmsmiler.modes.tapping.lever`) on cos(theta) and sin(theta) over
-one period (the virial and energy-balance equations of San Paulo and Garcia, Phys. Rev. B 64, 193411 (2001);
-Lee and Jhe, Phys. Rev. Lett. 97, 036104 (2006) in the same form)::
+one period (the virial and energy-balance equations of San Paulo and Garcia, Phys. Rev. B 64,
+193411 (2001); Lee and Jhe, Phys. Rev. Lett. 97, 036104 (2006) in the same form)::
 
     F0 cos(phi) = k (1 - W^2) A - I_c(z_c, A),     I_c = (1/pi) int_0^2pi F_ts cos(theta) d theta
     F0 sin(phi) = (k W / Q) A + I_s(z_c, A),       I_s = (1/pi) int_0^2pi F_ts sin(theta) d theta

@@ -2,8 +2,9 @@
 
 The reference solver (:func:`integrate`). scipy's ``solve_ivp`` (DOP853, relative tolerance
 1e-9, absolute 1e-11 A0) integrates the equation of motion (:mod:`~afmsmiler.modes.tapping.lever`)
-in the dimensionless time w0 t from a chosen start (the top of a harmonic motion of given amplitude and phase, so that the tip starts
-out of contact on the branch the start lies on) in blocks of :data:`BLOCK_PERIODS` drive periods.
+in the dimensionless time w0 t from a chosen start (the top of a harmonic motion of given
+amplitude and phase, so that the tip starts out of contact on the branch the start lies on) in
+blocks of :data:`BLOCK_PERIODS` drive periods.
 The amplitude A and phase lag phi of the first harmonic, z ~ A cos(w t - phi), are taken by
 lock-in over the last whole period of each block (64 samples a period, an exact quadrature for a
 periodic signal's first harmonic up to the 63rd harmonic). A transient decays as exp(-pi W n / Q),
