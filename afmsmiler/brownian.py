@@ -50,36 +50,25 @@ import numpy as np
 import scipy.constants
 
 from .cantilever import MAX_MODE, Cantilever, eigenvalue
-from .parameters import QUALITY_FACTOR, Parameter, read_only
+from .parameters import UNDERDAMPED_QUALITY_FACTOR as QUALITY_FACTOR
+from .parameters import Parameter, read_only
 from .validation import (check_array, check_instance, check_integer, check_positive,
                          check_range)
 
-__all__ = ["QUALITY_FACTOR", "TEMPERATURE", "PARAMETERS", "UNDERDAMPED", "BOLTZMANN", "mode_share",
+__all__ = ["QUALITY_FACTOR", "TEMPERATURE", "PARAMETERS", "BOLTZMANN", "mode_share",
            "deflection_variance", "mechanical_response", "thermal_noise_density",
            "thermal_deflection_noise"]
 
 #: Boltzmann constant k_B in J/K (scipy's CODATA value).
 BOLTZMANN = scipy.constants.k
 
-#: The lever's temperature (its quality factor, every mode's, is
-#: :data:`afmsmiler.parameters.QUALITY_FACTOR`, imported here).
+#: The lever's temperature (its quality factor is the vocabulary's underdamped one,
+#: :data:`afmsmiler.parameters.UNDERDAMPED_QUALITY_FACTOR`, imported here as QUALITY_FACTOR: the
+#: closed form of the thermal spectrum needs Q >= 1/2).
 TEMPERATURE = Parameter(name="temperature", unit="K", default=295.0, low=1.0, high=600.0,
                         label="temperature T")
 #: Name -> Parameter of the Brownian motion's own parameters.
 PARAMETERS = read_only({p.name: p for p in (QUALITY_FACTOR, TEMPERATURE)})
-#: The smallest Q of the thermal spectrum's closed-form band integral: an underdamped mode
-#: (b = sqrt(4 - 1/Q^2) must be real); critical damping, Q = 1/2, is the slider's low end.
-UNDERDAMPED = 0.5
-
-
-def _check_underdamped(quality_factor) -> float:
-    """Q checked as the quantity (:data:`QUALITY_FACTOR`), then against this model's limit."""
-    q = QUALITY_FACTOR.check(quality_factor)
-    if q < UNDERDAMPED:
-        raise ValueError(f"quality_factor must be in [{UNDERDAMPED:g}, {QUALITY_FACTOR.high:g}] "
-                         f"for the thermal spectrum's closed form (an underdamped mode), got "
-                         f"{q!r}")
-    return q
 
 
 def mode_share(mode: int = 1) -> float:
@@ -205,7 +194,7 @@ def thermal_noise_density(lever: Cantilever, f, *, quality_factor: float = QUALI
         S_n at each frequency, m^2/Hz.
     """
     lever = _check_lever(lever)
-    quality_factor = _check_underdamped(quality_factor)
+    quality_factor = QUALITY_FACTOR.check(quality_factor)
     temperature = TEMPERATURE.check(temperature)
     s0, fn = _white_floor(lever, quality_factor, temperature, mode)
     response = mechanical_response(f, resonance_frequency=fn, quality_factor=quality_factor)
@@ -251,7 +240,7 @@ def thermal_deflection_noise(lever: Cantilever, *, quality_factor: float = QUALI
         If a number is not finite and in its range.
     """
     lever = _check_lever(lever)
-    quality_factor = _check_underdamped(quality_factor)
+    quality_factor = QUALITY_FACTOR.check(quality_factor)
     temperature = TEMPERATURE.check(temperature)
     bandwidth = check_positive("bandwidth", bandwidth, "Hz")
     s0, fn = _white_floor(lever, quality_factor, temperature, mode)

@@ -39,7 +39,7 @@ import numpy as np
 from .validation import check_range
 
 __all__ = ["UNITS", "Parameter", "unit_scale", "read_only", "shown", "PARAMETERS",
-           "SPRING_CONSTANT", "RESONANCE_FREQUENCY", "QUALITY_FACTOR"]
+           "SPRING_CONSTANT", "RESONANCE_FREQUENCY", "QUALITY_FACTOR", "UNDERDAMPED_QUALITY_FACTOR"]
 
 
 def read_only(mapping) -> MappingProxyType:
@@ -418,12 +418,14 @@ RESONANCE_FREQUENCY = Parameter(name="resonance_frequency", unit="Hz", display_u
                                 default=300e3, low=0.1, high=1e9, slider_low=10e3,
                                 slider_high=2e6, log=True, label="resonance frequency f0")
 #: Quality factor Q, any damping up to a lever in vacuum (Q < 1/2 is overdamped: a Q-controlled
-#: lever rings down without oscillating); the slider starts at critical damping. A model that
-#: only holds for an underdamped mode says so itself (the Brownian closed form,
-#: :data:`afmsmiler.brownian.UNDERDAMPED`).
+#: lever rings down without oscillating); the slider starts at critical damping.
 QUALITY_FACTOR = Parameter(name="quality_factor", unit="", default=150.0, low=0.0, high=1e5,
                            low_inclusive=False, slider_low=0.5, slider_high=1e5, log=True,
                            label="quality factor Q")
+#: The same quantity for the models that hold only for an underdamped mode, Q >= 1/2 (the closed
+#: form of the thermal spectrum, b = sqrt(4 - 1/Q^2), and the transducers built on it): the one
+#: named narrowing of :data:`QUALITY_FACTOR`, written here and nowhere else.
+UNDERDAMPED_QUALITY_FACTOR = QUALITY_FACTOR.with_(low=0.5, low_inclusive=True)
 #: The shared lever quantities by name (read-only).
 PARAMETERS = read_only({p.name: p for p in (SPRING_CONSTANT, RESONANCE_FREQUENCY,
                                              QUALITY_FACTOR)})

@@ -88,7 +88,7 @@ def test_one_range_in_every_mode(name, value):
                     qcontrol.PARAMETERS[name]]
     others = {"spring_constant": (CONTACT, fm.PARAMETERS),
               "resonance_frequency": (fm.PARAMETERS,),
-              "quality_factor": (brownian.PARAMETERS,)}[name]
+              "quality_factor": ()}[name]
     descriptions += [table[name] for table in others]
     for p in descriptions:
         assert p.check(value) == value
@@ -99,14 +99,16 @@ def test_one_range_in_every_mode(name, value):
     assert getattr(QControl(**args), name) == value
 
 
-def test_the_brownian_closed_form_states_its_own_limit():
+def test_the_brownian_closed_form_takes_the_one_named_narrowing():
     # Q is any damping; the thermal spectrum's band integral needs an underdamped mode
-    # (b = sqrt(4 - 1/Q^2) real) and says so, naming the quantity
+    # (b = sqrt(4 - 1/Q^2) real): it takes the vocabulary's named narrowing, as the transducers
     from afmsmiler.cantilever import Cantilever
+    from afmsmiler.transducers.base import LEVER_PARAMETERS
     lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
-    assert brownian.PARAMETERS["quality_factor"] is parameters.QUALITY_FACTOR
-    with pytest.raises(ValueError, match=r"^quality_factor must be in \[0.5, 100000\] for the"):
+    assert brownian.PARAMETERS["quality_factor"] is parameters.UNDERDAMPED_QUALITY_FACTOR
+    assert parameters.UNDERDAMPED_QUALITY_FACTOR in LEVER_PARAMETERS
+    with pytest.raises(ValueError, match=r"^quality_factor must be in \[0.5, 100000"):
         brownian.thermal_deflection_noise(lever, quality_factor=0.3, bandwidth=1e3,
                                          low_frequency=0.0)
-    assert brownian.thermal_deflection_noise(lever, quality_factor=brownian.UNDERDAMPED,
-                                            bandwidth=1e3, low_frequency=0.0) > 0
+    assert brownian.thermal_deflection_noise(lever, quality_factor=0.5, bandwidth=1e3,
+                                            low_frequency=0.0) > 0
