@@ -225,7 +225,14 @@ class AmplitudeCurve:
             If ``values`` is not shaped like ``amplitude`` or ``name`` is not a branch.
         """
         check_choice("name", name, BRANCHES)
-        values = np.asarray(values, dtype=float)
+        try:  # NaN where a curve has no root, so not check_array (finite values only)
+            values = np.asarray(values)
+            if values.dtype.kind not in "biuf":
+                raise TypeError
+            values = values.astype(float)
+        except (TypeError, ValueError):
+            raise TypeError(f"values must be an array of real numbers, got "
+                            f"{type(values).__name__}") from None
         if values.shape != self.amplitude.shape:
             raise ValueError(f"values must be shaped like the curve's amplitude "
                              f"{self.amplitude.shape}, got {values.shape}")
