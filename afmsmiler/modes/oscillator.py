@@ -21,7 +21,7 @@ from dataclasses import dataclass
 from ..parameters import PARAMETERS
 from ..validation import check_range
 
-__all__ = ["Oscillator"]
+__all__ = ["Oscillator", "PointMassLever"]
 
 
 @dataclass(frozen=True)
@@ -92,3 +92,13 @@ class Oscillator:
                         low_inclusive=False)
         r = w / self.angular_frequency
         return 1.0 / (self.spring_constant * complex(1.0 - r * r, r / self.quality_factor))
+
+
+class PointMassLever:
+    """What a lever with ``spring_constant``, ``resonance_frequency`` and ``quality_factor``
+    fields shares: its :class:`Oscillator` (a base of the levers' dataclasses, no fields)."""
+
+    @property
+    def oscillator(self) -> Oscillator:
+        """The lever's point-mass oscillator (k, f0, Q)."""
+        return Oscillator(self.spring_constant, self.resonance_frequency, self.quality_factor)

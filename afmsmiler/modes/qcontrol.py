@@ -41,7 +41,7 @@ import numpy as np
 
 from ..parameters import Parameter, read_only
 from ..validation import check_array, check_integer, check_range
-from .oscillator import Oscillator
+from .oscillator import PointMassLever
 from .tapping import PARAMETERS as TAPPING
 
 __all__ = ["PARAMETERS", "QControl", "ClosedLoopResponse", "RingDown", "stable_gains",
@@ -65,7 +65,7 @@ PARAMETERS = read_only({p.name: p for p in (
 
 
 @dataclass(frozen=True)
-class QControl:
+class QControl(PointMassLever):
     """A lever with a Q controller: every quantity of the closed loop, validated (SI units).
 
     Parameters
@@ -103,12 +103,6 @@ class QControl:
     def __post_init__(self):
         for f in fields(self):
             object.__setattr__(self, f.name, PARAMETERS[f.name].check(getattr(self, f.name)))
-
-    @property
-    def oscillator(self) -> Oscillator:
-        """The lever without control, a point-mass oscillator (k, f0, Q)
-        (:class:`~afmsmiler.modes.oscillator.Oscillator`)."""
-        return Oscillator(self.spring_constant, self.resonance_frequency, self.quality_factor)
 
     @property
     def mass(self) -> float:

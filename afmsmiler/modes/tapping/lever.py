@@ -26,7 +26,7 @@ from ...parameters import (QUALITY_FACTOR, RESONANCE_FREQUENCY, SPRING_CONSTANT,
                            read_only)
 from ...validation import check_array
 from .._forces import FORCE_PARAMETERS, _force
-from ..oscillator import Oscillator
+from ..oscillator import PointMassLever
 
 __all__ = ["PARAMETERS", "TappingLever", "free_response"]
 
@@ -51,7 +51,7 @@ PARAMETERS = read_only({**{p.name: p for p in (
 
 
 @dataclass(frozen=True)
-class TappingLever:
+class TappingLever(PointMassLever):
     """A driven lever and a sample: every quantity of the tapping model, validated (SI units).
 
     Parameters
@@ -123,12 +123,6 @@ class TappingLever:
         """Phase lag of the free lever, atan2(W / Q, 1 - W^2), in rad (pi / 2 at resonance)."""
         w = self.frequency_ratio
         return math.atan2(w / self.quality_factor, 1.0 - w * w)
-
-    @property
-    def oscillator(self) -> Oscillator:
-        """The lever's point-mass oscillator (k, f0, Q) (:class:`~afmsmiler.modes.oscillator.
-        Oscillator`)."""
-        return Oscillator(self.spring_constant, self.resonance_frequency, self.quality_factor)
 
     @property
     def time_constant(self) -> float:
