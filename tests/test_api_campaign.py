@@ -76,7 +76,7 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            # module (g): the imaging modalities
            "afmsmiler.modes._forces", "afmsmiler.modes.tapping", "afmsmiler.modes.fm",
            "afmsmiler.modes.jumping", "afmsmiler.modes.force_volume", "afmsmiler.modes.bimodal",
-           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol",
+           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol", "afmsmiler.modes.oscillator",
            # module (h): the educational AFM's signal chain and lock-in
            "afmsmiler.signals.lockin", "afmsmiler.signals.ad630", "afmsmiler.signals.chain",
            "afmsmiler.signals.demo",
@@ -122,7 +122,7 @@ ACCEPTED = {
 RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
            "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
-           "Operation", "Bending", "FitResults",
+           "Operation", "Bending", "FitResults", "ApexPath",
            # module (f): the scanner's and the corrections' results, and what a mode returns
            # (the scanner checks a ModeLine's channels when it receives one)
            "ScanResult", "LineRecord", "ScanPlan", "ModeLine", "Crash", "Plane", "Histogram",
@@ -269,6 +269,7 @@ VALID = {
     "kind": float, "limit": 100, "ndim": 2, "span": 1.0, "steps": 10,
     "name": "q_x", "unit": "m", "si_value": 1e-4, "display_value": 100.0,
     "u": lambda: np.linspace(0.0, 1.0, 11), "resonance_frequency": 13e3, "section": 0.5,
+    "quality_factor": 150.0, "angular_frequency": 8e4,
     "modes": 3,
     # module (e): the optical head (afmsmiler.instrument)
     "focal_length": 0.02, "distance": 0.01, "centre": 0.0, "waist": 17e-6,
@@ -369,7 +370,12 @@ OVERRIDES = {
     "afmsmiler.modes.tapping.amplitude_feedback": {"heights": lambda: np.zeros(32),
                                                    "times": lambda: np.linspace(0, 1e-3, 32)},
     "afmsmiler.modes.jumping.JumpingMode": {"systems": _system},
+    "afmsmiler.modes.jumping.apex_path": {
+        "curve": lambda: __import__("afmsmiler.modes.jumping", fromlist=["jump_curve"])
+        .jump_curve(_system()), "surface": lambda: np.zeros(4)},
     "afmsmiler.modes.tapping.AmplitudeCurve.branch": {"name": "attractive"},
+    "afmsmiler.modes.tapping.AmplitudeCurve.on_branch": {
+        "name": "attractive", "values": Ctx(lambda curve: curve.dissipated_energy)},
     "afmsmiler.modes.force_volume.force_volume": {
         "materials": lambda: __import__("afmsmiler.modes", fromlist=["BLEND"]).BLEND,
         "labels": lambda: (np.arange(256).reshape(16, 16) % 2)},

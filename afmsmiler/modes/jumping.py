@@ -42,6 +42,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass, field
 from types import MappingProxyType
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import brentq
@@ -49,11 +50,11 @@ from scipy.optimize import brentq
 from ..contact import ContactSystem
 from ..imaging.modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
-from ..validation import check_instance, check_integer
+from ..validation import check_array, check_instance, check_integer, check_range
 
 __all__ = ["PARAMETERS", "TRIGGER_FORCE", "LIFT_HEIGHT", "Z_SPEED", "JumpCurve", "JumpingMode",
-           "ModeComparison", "jump_curve", "trigger_z_np", "compare_with_contact",
-           "MAX_CURVE_POINTS", "MAX_MATERIALS"]
+           "ModeComparison", "ApexPath", "apex_path", "jump_curve", "trigger_z_np",
+           "compare_with_contact", "MAX_CURVE_POINTS", "MAX_MATERIALS"]
 
 #: Most points of one branch of :func:`jump_curve`.
 MAX_CURVE_POINTS = 100_000
@@ -205,6 +206,71 @@ class JumpCurve:
     def cycle_time(self) -> float:
         """Time in s of the approach and the retract, 2 L / v_z."""
         return 2.0 * self.lift_height / self.z_speed
+
+
+class ApexPath(NamedTuple):
+    """Where the apex is along jumping cycles over a run of pixels (:func:`apex_path`), SI.
+
+    Parameters
+    ----------
+    height : numpy.ndarray
+        Apex height in m at each frame (the surface while touching, |Z_np| above it while free).
+    x : numpy.ndarray
+        Position in m along the line (the pixel's).
+    touching : numpy.ndarray of bool
+        Whether the tip touches the surface.
+    """
+
+    height: np.ndarray
+    x: np.ndarray
+    touching: np.ndarray
+
+
+def apex_path(curve: JumpCurve, surface, pixel_size: float, *, frames: int = 12) -> ApexPath:
+    """The apex's path through one jumping cycle per pixel, pixel after pixel.
+
+    Each pixel: the curve's approach (touching from Z_np = 0 on), then its retract (touching
+    until the snap-off Z_np, or Z_np = 0 without adhesion), ``frames`` points of each, evenly
+    spread over the curve's points; the apex sits on the surface while touching and |Z_np| above
+    it while free; then the lateral move to the next pixel, the tip lifted.
+
+    Parameters
+    ----------
+    curve : JumpCurve
+        One pixel's curve (:func:`jump_curve`).
+    surface : array_like
+        Surface height in m under each pixel (1-D, finite, at least one pixel).
+    pixel_size : float
+        Pixel pitch in m, > 0.
+    frames : int
+        Points of the approach and of the retract per pixel, 2 to the curve's points.
+
+    Returns
+    -------
+    ApexPath
+        2 ``frames`` points per pixel.
+
+    Raises
+    ------
+    TypeError
+        If ``curve`` is not a JumpCurve.
+    ValueError
+        On a surface that is not 1-D and finite, a pixel size <= 0 or ``frames`` out of range.
+    """
+    check_instance("curve", curve, JumpCurve)
+    surface = check_array("surface", surface, "m", ndim=1, min_size=1)
+    pitch = check_range("pixel_size", pixel_size, 0.0, math.inf, "m", low_inclusive=False)
+    n = check_integer("frames", frames, 2, curve.approach_z_np.size)
+    pick = np.linspace(0, curve.approach_z_np.size - 1, n).round().astype(int)
+    z_app, z_ret = curve.approach_z_np[pick], curve.retract_z_np[pick]
+    heights, xs, touching = [], [], []
+    for j in range(surface.size):
+        for z, touch in ((z_app, z_app >= 0.0),
+                         (z_ret, z_ret >= min(curve.snap_off_z_np, 0.0))):
+            heights += list(surface[j] + np.where(touch, 0.0, -z))
+            touching += list(touch)
+            xs += [j * pitch] * z.size
+    return ApexPath(np.array(heights), np.array(xs), np.array(touching))
 
 
 def jump_curve(system: ContactSystem, *, trigger_force: float = TRIGGER_FORCE.default,

@@ -222,7 +222,7 @@ class TappingPanel(_SliderPanel):
             point = (r, zc, phase, e_dis, attractive)
         depth = math.nan if point is None else lever.indentation(zc, r * lever.free_amplitude)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
-        jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
+        jumps = curve.jumps  # the same run of the approach as operating_point's
         if self.figure is None:
             self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
         else:
@@ -608,21 +608,11 @@ class JumpingPanel(_SliderPanel):
 
     @staticmethod
     def _cycle(curve, result, pixels: int = 4, frames: int = 12):
-        """The apex's path over ``pixels`` pixels of the middle line, in m: the curve's approach
-        (touching from Z_np = 0 on) and retract (touching until the snap-off Z_np), the apex
-        |Z_np| above the surface while free, on it while touching; then the move."""
+        """The apex's path (:func:`~afmsmiler.modes.jumping.apex_path`) over ``pixels`` pixels
+        of the middle line."""
         row = result.images["height trace"].shape[0] // 2
         surface = np.nan_to_num(result.images["height trace"][row, :pixels])
-        pick = np.linspace(0, curve.approach_z_np.size - 1, frames).round().astype(int)
-        z_app, z_ret = curve.approach_z_np[pick], curve.retract_z_np[pick]
-        heights, xs, touching = [], [], []
-        for j in range(pixels):
-            for z, touch in ((z_app, z_app >= 0.0),
-                             (z_ret, z_ret >= min(curve.snap_off_z_np, 0.0))):
-                heights += list(surface[j] + np.where(touch, 0.0, -z))
-                touching += list(touch)
-                xs += [j * result.pixel_size] * z.size
-        return np.array(heights), np.array(xs), np.array(touching)
+        return jumping.apex_path(curve, surface, result.pixel_size, frames=frames)
 
 
 # -- force volume ---------------------------------------------------------------------------------
