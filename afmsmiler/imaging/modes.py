@@ -200,6 +200,8 @@ class Mode(ABC):
 
     #: Names of the channels the mode produces, in the order a panel shows them.
     channels: ClassVar[tuple[str, ...]] = ()
+    #: The channel that is the mode's image (what a panel shows first); default the first one.
+    main_channel: ClassVar[str | None] = None
     #: SI unit of each channel that is not in m.
     units: ClassVar[Mapping[str, str]] = MappingProxyType({})
     #: The tip of the mode's own physics (None: the mode does not model one).
@@ -312,6 +314,7 @@ class ConstantForce(Mode):
     """
 
     channels = ("height trace", "height retrace", "error trace", "error retrace")
+    main_channel = "height trace"
 
     def __init__(self, loop: ContactLoop, *, setpoint: float = LOOP_PARAMETERS["setpoint"].default):
         self.loop = check_instance("loop", loop, ContactLoop)
@@ -462,6 +465,7 @@ class ConstantHeight(Mode):
     """
 
     channels = ("deflection trace", "deflection retrace")
+    main_channel = "deflection trace"
 
     def __init__(self, system: ContactSystem, z_np: float = CONTACT_PARAMETERS["z_np"].default,
                  damage_force: float = PARAMETERS["damage_force"].default):
