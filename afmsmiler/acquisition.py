@@ -13,7 +13,8 @@ transport (:class:`~afmsmiler.hardware.macro.session.MacroSession`,
   device's session waits at most ``wait`` seconds, so whoever drives it (a test, a notebook's
   event loop) stays responsive between steps;
 - takes new settings from the next line on (:meth:`~Acquisition.apply`), where the scanner or
-  the device can; where it cannot it refuses them with :class:`SettingsRefused` and scans on;
+  the device can; where it cannot it refuses them with :class:`SettingsRefused` and scans on
+  (and a device that cannot pause says so with :class:`NotSupported`);
 - holds the image once: its channels, NaN where no pixel was measured yet. Whoever shows it
   reads :meth:`~Acquisition.snapshot`, an immutable :class:`Snapshot` (read-only copies, the
   same object until something changes), never the arrays being filled;
@@ -36,7 +37,7 @@ import numpy as np
 from .samples import Sample
 from .validation import check_integer
 
-__all__ = ["Acquisition", "Snapshot", "Channel", "SettingsRefused", "STATES"]
+__all__ = ["Acquisition", "Snapshot", "Channel", "SettingsRefused", "NotSupported", "STATES"]
 
 #: The states of an acquisition, in the order a scan passes them.
 STATES = ("idle", "scanning", "paused", "done", "aborted", "fault")
@@ -47,6 +48,11 @@ _RUNNING = ("scanning", "paused")
 
 class SettingsRefused(RuntimeError):
     """New settings an acquisition cannot take during a scan (the scan goes on without them)."""
+
+
+class NotSupported(RuntimeError):
+    """An action the scanner or device cannot do (the educational AFM cannot pause); the scan
+    goes on as it was."""
 
 
 @dataclass(frozen=True)
@@ -285,7 +291,8 @@ class Acquisition(ABC):
         the end. An exception raised here ends the scan as a fault (the lines stay)."""
 
     def _pause(self) -> bool:
-        """Pause the scanner or device; False if it had already finished."""
+        """Pause the scanner or device; False if it had already finished (raise
+        :class:`NotSupported` if it cannot pause)."""
         return True
 
     def _resume(self) -> None:

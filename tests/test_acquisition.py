@@ -10,9 +10,11 @@ cable pulled after a number of lines).
 import numpy as np
 import pytest
 
-from afmsmiler.acquisition import STATES, Acquisition, SettingsRefused, Snapshot
+from afmsmiler.acquisition import STATES, Acquisition, NotSupported, SettingsRefused, Snapshot
 from afmsmiler.controller import ContactLoop
 from afmsmiler.hardware import FaultyTransport, open_twin
+from afmsmiler.hardware.educational import EducationalAFMTwin
+from afmsmiler.hardware.educational.session import EducationalSession
 from afmsmiler.hardware.macro import MacroAFMTwin
 from afmsmiler.hardware.macro.session import MacroSession
 from afmsmiler.imaging.acquisition import ScanAcquisition
@@ -23,6 +25,14 @@ from afmsmiler.samples import particles
 
 LINES = 8
 SCAN = dict(mode="contact", pixels=LINES, pitch=1e-3, setpoint_force=10e-3, lift=0.5e-3)
+EDU_SAMPLE = particles(shape=(64, 64), pixel_size=20e-9, count=6, radius=80e-9, seed=3)
+EDU_SCAN = dict(pixels=LINES, pitch=60e-9)
+
+
+def _educational(wrap=None, **options):
+    """The educational AFM's twin at its own pace (1 ms per pixel: 8 ms per line)."""
+    host, server = open_twin(EducationalAFMTwin(EDU_SAMPLE), time_scale=1.0)
+    return EducationalSession.open(wrap(host) if wrap else host, server, **options)
 
 
 def _simulated(**settings):
@@ -43,18 +53,22 @@ def macro():
     session.close()
 
 
-@pytest.fixture(params=["simulated", "macro"])
+@pytest.fixture(params=["simulated", "macro", "educational"])
 def acquisition(request):
-    """Each implementation, started (the macroscopic AFM at 8 x 8 pixels of 1 mm)."""
+    """Each implementation, started (the macroscopic AFM at 8 x 8 pixels of 1 mm, the
+    educational AFM at 8 x 8 pixels of 60 nm)."""
     if request.param == "simulated":
         acq = _simulated()
         acq.start()
         yield acq
+        return
+    if request.param == "macro":
+        session, settings = MacroSession.open(*open_twin(MacroAFMTwin())), SCAN
     else:
-        session = MacroSession.open(*open_twin(MacroAFMTwin()))
-        session.start(**SCAN)
-        yield session
-        session.close()
+        session, settings = _educational(), EDU_SCAN
+    session.start(**settings)
+    yield session
+    session.close()
 
 
 def _lines(acq, n):
@@ -95,6 +109,11 @@ def test_snapshots_are_immutable_and_nan_where_nothing_was_measured(acquisition)
 
 def test_pause_scans_nothing_until_resume_and_loses_nothing(acquisition):
     _lines(acquisition, 2)
+    if isinstance(acquisition, EducationalSession):  # its protocol has no pause: it says so
+        with pytest.raises(NotSupported, match="cannot pause"):
+            acquisition.pause()
+        assert acquisition.state == "scanning" and acquisition.step(0.25)
+        return
     assert acquisition.pause() and acquisition.paused and acquisition.state == "paused"
     # a device's pixels under way still arrive after a pause: read them, then nothing comes
     acquisition.resume()
@@ -255,3 +274,31 @@ def test_one_ui_piece_drives_either_implementation():
         if isinstance(acq, MacroSession):
             acq.close()
     assert shown
+
+
+def test_the_educational_session_refuses_settings_and_keeps_lines_on_a_pulled_cable():
+    session = _educational()
+    try:
+        session.start(**EDU_SCAN)
+        _lines(session, 1)
+        with pytest.raises(SettingsRefused, match="between scans"):
+            session.apply(pitch=80e-9)
+        while session.step(0.25):
+            pass
+        snap = session.snapshot()
+        assert snap.state == "done" and np.isfinite(snap.images["height"]).all()
+        assert snap.units["height"] == "m" and snap.pixel_size == pytest.approx(60e-9)
+    finally:
+        session.close()
+    session = _educational(lambda host: FaultyTransport(host, unplug_after_lines=60),
+                           timeout=0.2)
+    try:
+        session.start(**EDU_SCAN)
+        while session.step(0.25):
+            pass
+        snap = session.snapshot()
+        assert snap.state == "fault" and "TransportClosed" in snap.error
+        assert 2 <= snap.lines_done < LINES
+        assert np.isfinite(snap.images["height"][:snap.lines_done]).all()
+    finally:
+        session.close()
