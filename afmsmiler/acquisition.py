@@ -246,6 +246,19 @@ class Acquisition(ABC):
     pause, resume, abort and apply settings on their scanner or device. Everything else is here,
     once.
 
+    Parameters
+    ----------
+    units : Mapping
+        Channel name -> SI unit (the channels, in the order shown).
+    shape : tuple of int
+        (lines, pixels) of the image before the first start.
+    pixel_size, pixel_size_y : float
+        Pixel and line spacing in m (``pixel_size_y`` default ``pixel_size``).
+    main : str
+        The channel that is the image; default the first.
+    name : str
+        What is scanned.
+
     Attributes
     ----------
     pause_after : int
