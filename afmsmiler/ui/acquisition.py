@@ -29,7 +29,7 @@ from typing import Callable
 
 import ipywidgets as widgets
 
-__all__ = ["AcquisitionControls"]
+__all__ = ["AcquisitionControls", "Acquiring"]
 
 
 class AcquisitionControls:
@@ -269,3 +269,20 @@ class AcquisitionControls:
         b["pause"].disabled = not running
         b["pause"].description = "Resume" if paused else "Pause"
         b["pause"].icon = "play" if paused else "pause"
+
+
+class Acquiring:
+    """What a panel whose scans an :class:`AcquisitionControls` drives (``self.control``) says
+    of its state."""
+
+    control: AcquisitionControls
+
+    @property
+    def running(self) -> bool:
+        """A scan is under way (started, neither finished, stopped nor faulted; paused counts)."""
+        return self.control.running
+
+    @property
+    def paused(self) -> bool:
+        """The running scan waits for Resume."""
+        return self.control.paused

@@ -44,7 +44,7 @@ from ..parameters import read_only, shown
 from ..plots.hardware import MacroFigure, comparison_view, macro_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
-from .acquisition import AcquisitionControls
+from .acquisition import Acquiring, AcquisitionControls
 from .controls import WIDTH, control
 from .panel import Panel, running_as_notebook
 
@@ -223,7 +223,7 @@ DEFAULTS = read_only(dict(port=TWIN, sample=next(iter(TWIN_SAMPLES)), mode="cont
                           pitch=0.2, source=SOURCES[0], **_defaults()))
 
 
-class MacroAFMPanel(Panel):
+class MacroAFMPanel(Acquiring, Panel):
     """Scan with the macroscopic AFM or its twin, watch the image form, print an image.
 
     Controls (units as shown): ``port`` (``"twin"`` or a serial port), ``sample`` (the printed
@@ -332,16 +332,6 @@ class MacroAFMPanel(Panel):
         super().__init__()
 
     # -- state -----------------------------------------------------------------------------
-    @property
-    def running(self) -> bool:
-        """A scan is under way (started, neither finished, aborted nor faulted; paused counts)."""
-        return self.control.running
-
-    @property
-    def paused(self) -> bool:
-        """The running scan waits for Resume."""
-        return self.control.paused
-
     @property
     def last(self) -> "MacroResult":
         """The image so far (the session's snapshot), the state, the print's size, the

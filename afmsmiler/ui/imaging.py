@@ -43,7 +43,7 @@ from ..parameters import read_only
 from ..plots.imaging import ImagingFigure, crash_note, scan_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
-from .acquisition import AcquisitionControls
+from .acquisition import Acquiring, AcquisitionControls
 from .controls import WIDTH, control
 from .panel import Panel, check_control_value, running_as_notebook
 
@@ -186,7 +186,7 @@ class _Config:
     key: tuple = field(default=())
 
 
-class ImagingPanel(Panel):
+class ImagingPanel(Acquiring, Panel):
     """Scan a sample in a chosen mode and watch the image grow, line by line.
 
     Controls (units as shown): ``sample``, ``mode`` (constant force, constant height), ``tip``
@@ -463,16 +463,6 @@ class ImagingPanel(Panel):
     @last.setter
     def last(self, value) -> None:  # Panel.__init__ starts it at None
         self._blank = value
-
-    @property
-    def running(self) -> bool:
-        """A scan is under way (started, neither finished nor stopped; also while paused)."""
-        return self.control.running
-
-    @property
-    def paused(self) -> bool:
-        """The running scan waits after its last finished line until :meth:`resume`."""
-        return self.control.paused
 
     def _clear(self, config: _Config) -> None:
         """No scan: the grid ``config`` describes, every channel all NaN."""

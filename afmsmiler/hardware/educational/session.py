@@ -20,9 +20,11 @@ from __future__ import annotations
 import threading
 import time
 
-from ...acquisition import Acquisition, NotSupported, SettingsRefused
+from ...acquisition import NotSupported, SettingsRefused
 from ..errors import HardwareError
+from ..session import DeviceSession
 from .device import EducationalAFM
+from .twin import EducationalAFMTwin
 
 __all__ = ["EducationalSession"]
 
@@ -31,7 +33,7 @@ class _Aborted(Exception):
     """Raised in the driver's pixel callback to end its scan (the reader then sends AB)."""
 
 
-class EducationalSession(Acquisition):
+class EducationalSession(DeviceSession):
     """A connected educational AFM (or its twin), scanning as an acquisition.
 
     Parameters
@@ -41,76 +43,23 @@ class EducationalSession(Acquisition):
     server : TwinServer, optional
         The twin's server when the far end is the twin (stopped by :meth:`close`).
 
-    Attributes
-    ----------
-    device : EducationalAFM
-    server : TwinServer or None
     """
 
     #: s: the longest :meth:`abort` and :meth:`close` wait for the reader thread, beyond the
     #: driver's own timeout and retries.
     JOIN_MARGIN = 1.0
 
+    driver = EducationalAFM
+    twin_class = EducationalAFMTwin
+
     def __init__(self, device: EducationalAFM, server=None):
-        if not isinstance(device, EducationalAFM) or device.info is None:
-            raise TypeError(f"device must be a connected EducationalAFM, got {device!r}")
-        self.device, self.server = device, server
-        super().__init__({"height": "m"}, (2, 2), 1.0, main="height",
+        super().__init__(device, server, {"height": "m"}, (2, 2), 1.0, main="height",
                          name="educational AFM scan")
         self._thread = None
         self._stop = threading.Event()
         self._arrived = threading.Condition()
         self._received = 0
         self._outcome = None   # ("done",), ("aborted",) or ("fault", exc) once the reader ends
-
-    @classmethod
-    def open(cls, transport, server=None, **options) -> "EducationalSession":
-        """Connect an :class:`EducationalAFM` on ``transport`` (closed again on failure).
-
-        Parameters
-        ----------
-        transport : Transport
-            The link.
-        server : TwinServer, optional
-            The twin's server serving the far end (stopped if the connection fails).
-        **options
-            ``timeout``, ``retries`` of :class:`EducationalAFM`.
-
-        Returns
-        -------
-        EducationalSession
-        """
-        device = EducationalAFM(transport, **options)
-        try:
-            device.connect()
-        except Exception:
-            device.close()
-            if server is not None:
-                server.stop()
-            raise
-        return cls(device, server)
-
-    @classmethod
-    def twin(cls, sample, *, time_scale: float = 0.0, **options) -> "EducationalSession":
-        """Connect to the twin imaging ``sample`` (a Sample in m) on an in-memory link.
-
-        Parameters
-        ----------
-        sample : afmsmiler.samples.Sample
-            What the twin images.
-        time_scale : float
-            The twin's pace (0: at once).
-        **options
-            ``timeout``, ``retries`` of :class:`EducationalAFM`.
-
-        Returns
-        -------
-        EducationalSession
-        """
-        from ... import hardware
-        from .twin import EducationalAFMTwin
-        host, server = hardware.open_twin(EducationalAFMTwin(sample), time_scale=time_scale)
-        return cls.open(host, server, **options)
 
     # -- the reader thread ---------------------------------------------------------------------
     def _on_pixel(self, row: int, col: int, height: float) -> None:
@@ -189,13 +138,3 @@ class EducationalSession(Acquisition):
     def _abort(self) -> None:
         self._stop.set()
         self._join()
-
-    def close(self) -> None:
-        """Abort a running scan and close the link (and the twin's server)."""
-        if self.running:
-            self.abort()
-        try:
-            self.device.close()
-        finally:
-            if self.server is not None:
-                self.server.stop()

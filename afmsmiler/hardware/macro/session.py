@@ -22,11 +22,13 @@ from __future__ import annotations
 
 import time
 
-from ...acquisition import Acquisition, SettingsRefused
+from ...acquisition import SettingsRefused
 from ...parameters import shown
 from ..errors import DeviceError
 from .codec import ErrorCode
+from ..session import DeviceSession
 from .device import MacroAFM
+from .twin import MacroAFMTwin
 
 __all__ = ["MacroSession", "CHANNELS"]
 
@@ -35,7 +37,7 @@ __all__ = ["MacroSession", "CHANNELS"]
 CHANNELS = {"height": "m", "gauge": ""}
 
 
-class MacroSession(Acquisition):
+class MacroSession(DeviceSession):
     """A connected macroscopic AFM (or its twin), scanning as an acquisition.
 
     Parameters
@@ -47,70 +49,24 @@ class MacroSession(Acquisition):
 
     Attributes
     ----------
-    device : MacroAFM
-    server : TwinServer or None
     identity : str
         Device, protocol and firmware versions, z micro-step (and "(twin)").
     z_step : float
         The z micro-step in m.
     """
 
+    driver = MacroAFM
+    twin_class = MacroAFMTwin
+
     def __init__(self, device: MacroAFM, server=None):
-        if not isinstance(device, MacroAFM) or device.info is None:
-            raise TypeError(f"device must be a connected MacroAFM, got {device!r}")
-        self.device, self.server = device, server
+        super().__init__(device, server, CHANNELS, (2, 2), 1.0, main="height",
+                         name="macroscopic AFM scan")
         info = device.info
         self.z_step = info.z_step
         self.identity = (f"{info.device} protocol {info.protocol_version}, firmware "
                          f"{info.firmware_version}, z step {shown(info.z_step, 'um', '.3g')}"
                          + (" (twin)" if server is not None else ""))
-        super().__init__(CHANNELS, (2, 2), 1.0, main="height", name="macroscopic AFM scan")
         self._iter = None
-
-    @classmethod
-    def open(cls, transport, server=None) -> "MacroSession":
-        """Connect a :class:`MacroAFM` on ``transport`` (closed again if it cannot connect).
-
-        Parameters
-        ----------
-        transport : Transport
-            The link (``SerialTransport(port, baudrate=BAUDRATE)``, a twin's host end).
-        server : TwinServer, optional
-            The twin's server serving the far end (stopped if the connection fails).
-
-        Returns
-        -------
-        MacroSession
-        """
-        device = MacroAFM(transport)
-        try:
-            device.connect()
-        except Exception:
-            device.close()
-            if server is not None:
-                server.stop()
-            raise
-        return cls(device, server)
-
-    @classmethod
-    def twin(cls, height_map, *, time_scale: float = 0.0) -> "MacroSession":
-        """Connect to the twin scanning ``height_map`` (a Sample in m) on an in-memory link.
-
-        Parameters
-        ----------
-        height_map : afmsmiler.samples.Sample
-            The printed object's surface the twin's needle touches.
-        time_scale : float
-            The twin's pace (see :class:`~afmsmiler.hardware.twin.TwinServer`; 0: at once).
-
-        Returns
-        -------
-        MacroSession
-        """
-        from ... import hardware
-        from .twin import MacroAFMTwin
-        host, server = hardware.open_twin(MacroAFMTwin(height_map), time_scale=time_scale)
-        return cls.open(host, server)
 
     @classmethod
     def port(cls, port: str) -> "MacroSession":
@@ -195,17 +151,5 @@ class MacroSession(Acquisition):
         if it is not None:
             it.close()
 
-    def close(self) -> None:
-        """Abort a running scan and close the link (and the twin's server)."""
-        if self.running:
-            try:
-                self.abort()
-            except Exception:  # the link may be gone already
-                pass
+    def _release(self) -> None:
         self._close_stream()
-        try:
-            self.device.close()
-        finally:
-            if self.server is not None:
-                self.server.stop()
-
