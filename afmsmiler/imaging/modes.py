@@ -2,7 +2,7 @@
 
 The scanner (:mod:`afmsmiler.imaging.scanner`) decides where the tip is and when: it dilates
 the sample by the tip, samples the apex surface along every line (trace and retrace, with the
-scan angle, offset, drift and creep of its :class:`~afmsmiler.imaging.scanner.ScanSettings`) and
+scan angle, offset, drift and creep of its :class:`~afmsmiler.imaging.settings.ScanSettings`) and
 hands the result to a mode as a :class:`ScanPlan`. A :class:`Mode` turns the plan's lines into
 channels, one line at a time. Two modes live here:
 
@@ -86,7 +86,7 @@ class ScanPlan:
         feel (the scan's bounding box widened by the tip's reach), from ``apex_origin`` on.
     tip : afmsmiler.contact.Tip or None
         The tip (None: an ideal, infinitely sharp one).
-    settings : afmsmiler.imaging.scanner.ScanSettings
+    settings : afmsmiler.imaging.settings.ScanSettings
         The settings of the scan.
     apex_origin : tuple of float
         (x, y) in m of ``apex``'s first pixel on the sample.
