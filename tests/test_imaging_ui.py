@@ -608,3 +608,33 @@ def test_a_line_not_shown_appears_in_the_next_picture(panel, runs):
     image = np.ma.getmaskarray(panel.figure.images["image"].get_array())
     assert not image[:4].any() and image[4:].all()  # the four lines, and only those
 
+
+
+def test_start_configures_only_what_changed_since_the_last_update(monkeypatch):
+    """Start ran the configuration a second time after update had run it: now once."""
+    calls = {"n": 0}
+    original = ImagingPanel._configure
+
+    def counting(self, values):
+        calls["n"] += 1
+        return original(self, values)
+
+    monkeypatch.setattr(ImagingPanel, "_configure", counting)
+    p = ImagingPanel(pixels=PIXELS)
+    p.set(kp=1.0)
+    before = calls["n"]
+    p.start(run=False)
+    assert calls["n"] == before  # the values update configured are the scan's
+    p.set(mode="constant height")
+    p.start(run=False)
+    assert calls["n"] == before + 1
+
+
+def test_the_image_is_the_modes_main_channel():
+    """The panel named its channel by isinstance; the mode says which channel is its image."""
+    p = ImagingPanel(pixels=PIXELS, mode="constant height")
+    assert p.last.main == modes.ConstantHeight.main_channel == "deflection trace"
+    p.start(run=False)
+    p.step()
+    assert p.last.main == "deflection trace" and "deflection trace" in \
+        p.figure.axes["image"].get_title()

@@ -123,9 +123,11 @@ class AcquisitionControls:
                 raise
 
     def request(self, action: Callable) -> None:
-        """A button's action: run now, or, pressed in another thread than the loop's while a
-        scan runs, queued for the next :meth:`step` (see the module's notes)."""
-        if self.running and threading.get_ident() != self._owner:
+        """A button's action: run now, or, while a scan runs, queued for the next :meth:`step`
+        when a live loop runs it or the button was pressed in another thread than the one the
+        panel was made in (see the module's notes)."""
+        live = self._task is not None and not self._task.done()
+        if self.running and (live or threading.get_ident() != self._owner):
             self._actions.append(action)
             self.poke()
         else:
@@ -199,7 +201,6 @@ class AcquisitionControls:
             ``wait``, a step waits up to ``max_line_wait``).
         """
         if self._live() and not wait:
-            self._owner = threading.get_ident()
             if self._task is None or self._task.done():
                 self._task = asyncio.ensure_future(
                     self._run_async(frame_interval, max_line_wait, read_wait))
