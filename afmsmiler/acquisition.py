@@ -262,7 +262,8 @@ class Acquisition(ABC):
     Attributes
     ----------
     pause_after : int
-        Pause by itself once this many lines are finished (0: never); read as each line ends.
+        Pause by itself once this many lines are finished (0: never); read as each line ends
+        (a device that cannot pause scans on).
     """
 
     def __init__(self, units: Mapping, shape: tuple, pixel_size: float,
@@ -439,7 +440,10 @@ class Acquisition(ABC):
         after = self.lines_done
         if (self._state == "scanning" and self.pause_after
                 and before < self.pause_after <= after):
-            self.pause()
+            try:
+                self.pause()
+            except NotSupported:  # a device that cannot pause scans on
+                pass
         return self.running
 
     def snapshot(self) -> Snapshot:

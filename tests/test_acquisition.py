@@ -302,3 +302,15 @@ def test_the_educational_session_refuses_settings_and_keeps_lines_on_a_pulled_ca
         assert np.isfinite(snap.images["height"][:snap.lines_done]).all()
     finally:
         session.close()
+
+
+def test_pause_after_a_line_is_ignored_by_a_device_that_cannot_pause():
+    session = _educational()
+    try:
+        session.pause_after = 2
+        session.start(**EDU_SCAN)
+        while session.step(0.25):
+            pass
+        assert session.state == "done" and session.snapshot().lines_done == LINES
+    finally:
+        session.close()
