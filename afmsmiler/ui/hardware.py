@@ -45,8 +45,8 @@ from ..plots.hardware import MacroFigure, comparison_view, macro_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
 from .acquisition import Acquiring, AcquisitionControls
-from .controls import WIDTH, control
-from .panel import Panel, running_as_notebook
+from .controls import WIDTH
+from .panel import Panel, initial_values, running_as_notebook, slider
 
 __all__ = ["MacroAFMPanel", "MacroResult", "DEFAULTS", "LIVE_TIME_SCALE", "TWIN", "MODES",
            "PIXELS", "SOURCES", "PITCHES", "SCAN_PARAMETERS", "TWIN_SAMPLES", "TWIN_PITCH",
@@ -261,15 +261,12 @@ class MacroAFMPanel(Acquiring, Panel):
     MAX_LINE_WAIT = 0.25
 
     def __init__(self, time_scale: float | None = None, **initial):
-        unknown = set(initial) - set(DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
+        v = initial_values(initial, DEFAULTS)
         if time_scale is None:
             time_scale = 0.0 if not running_as_notebook() else LIVE_TIME_SCALE
         self.time_scale = check_finite("time_scale", time_scale)
         if not 0 <= self.time_scale <= 10:
             raise ValueError(f"time_scale must be in [0, 10], got {time_scale!r}")
-        v = {**DEFAULTS, **initial}
         layout = widgets.Layout(width=WIDTH)
         ports = [("twin (simulated machine)", TWIN)] + serial_ports()
         check_choice("port", v["port"], [p[1] for p in ports])
@@ -289,12 +286,11 @@ class MacroAFMPanel(Acquiring, Panel):
              "pitch": widgets.Dropdown(options=list(PITCHES), value=v["pitch"],
                                        description="pitch [mm]", layout=layout)}
         for name, p in SCAN_PARAMETERS.items():
-            c[name] = control(p, p.to_si(v[name]))
+            c[name] = slider(name, p, v[name])
         c["source"] = widgets.Dropdown(options=list(SOURCES), value=v["source"],
                                        description="image to print", layout=layout)
         for name in PRINT_SLIDERS:
-            p = printing.PARAMETERS[name]
-            c[name] = control(p, p.to_si(v[name]))
+            c[name] = slider(name, printing.PARAMETERS[name], v[name])
         self.controls = c
         self.control = AcquisitionControls(
             start=self.start, pause=self.pause, resume=self.resume, stop=self.abort,
@@ -337,13 +333,19 @@ class MacroAFMPanel(Acquiring, Panel):
         """The image so far (the session's snapshot), the state, the print's size, the
         comparison."""
         snap = self._snapshot()
+        key = (snap, self._session, self._config, self._comparison)
+        cached = getattr(self, "_last", None)
+        if cached is not None and all(a is b for a, b in zip(cached[0], key)):
+            return cached[1]  # nothing changed: the same result
         try:
             size = self._print_size(snap) if self._config is not None else ()
         except ValueError:
             size = ()
-        return MacroResult(snap.images["height"], snap.images["gauge"], snap.pixel_size,
-                           snap.pixels_done, snap.lines_done, self._state(snap), snap.error,
-                           self._comparison, size)
+        result = MacroResult(snap.images["height"], snap.images["gauge"], snap.pixel_size,
+                             snap.pixels_done, snap.lines_done, self._state(snap), snap.error,
+                             self._comparison, size)
+        self._last = (key, result)
+        return result
 
     @last.setter
     def last(self, value) -> None:  # Panel.__init__ starts it at None: the session holds it
@@ -358,7 +360,10 @@ class MacroAFMPanel(Acquiring, Panel):
             return self._kept
         n = self._config["scan"]["pixels"] if self._config is not None else 2
         pitch = self._config["scan"]["pitch"] if self._config is not None else 1.0
-        return Snapshot.blank(CHANNELS, (n, n), pitch, main="height")
+        blank = getattr(self, "_blank", None)
+        if blank is None or blank.lines != n or blank.pixel_size != pitch:
+            self._blank = blank = Snapshot.blank(CHANNELS, (n, n), pitch, main="height")
+        return blank
 
     def _state(self, snap: Snapshot) -> str:
         """The snapshot's state; "connected" (or "idle") while the link has not scanned."""
@@ -368,7 +373,7 @@ class MacroAFMPanel(Acquiring, Panel):
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> dict:
-        """Check the values (units shown) and turn them into the scan's and the print's (SI)."""
+        """Check the values (sliders in SI) and turn them into the scan's and the print's (SI)."""
         ports = [o[1] for o in self.controls["port"].options]
         check_choice("port", values["port"], ports)
         samples = [o if isinstance(o, str) else o[1] for o in self.controls["sample"].options]
@@ -378,8 +383,8 @@ class MacroAFMPanel(Acquiring, Panel):
         check_choice("pitch", values["pitch"], list(PITCHES))
         check_choice("source", values["source"], list(SOURCES))
 
-        def si(name, p):
-            return p.check(p.to_si(check_finite(name, values[name], p.display_unit)))
+        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
+            return values[name]
 
         scan = dict(mode=values["mode"], pixels=int(values["pixels"]),
                     pitch=DEVICE_PARAMETERS["pitch"].to_si(values["pitch"]),
