@@ -79,6 +79,24 @@ def _lines(acq, n):
     assert acq.snapshot().lines_done >= n
 
 
+def _to_end(acq):
+    """Step to the scan's end; its last snapshot."""
+    while acq.step(0.25):
+        pass
+    return acq.snapshot()
+
+
+def _refused_then_done(session, settings, match, **new):
+    """Start, finish a line, have ``new`` refused by name, scan on to the end."""
+    session.start(**settings)
+    _lines(session, 1)
+    with pytest.raises(SettingsRefused, match=match):
+        session.apply(**new)
+    snap = _to_end(session)
+    assert snap.state == "done" and np.isfinite(snap.images[snap.main]).all()
+    return snap
+
+
 def test_both_are_acquisitions_with_the_same_states(acquisition):
     assert isinstance(acquisition, Acquisition)
     snap = acquisition.snapshot()
@@ -186,14 +204,8 @@ def test_the_simulated_scan_is_the_scanners_and_holds_its_image_once():
 
 
 def test_the_machine_refuses_new_settings_during_a_scan_and_scans_on(macro):
-    macro.start(**SCAN)
-    _lines(macro, 1)
-    with pytest.raises(SettingsRefused, match="BUSY"):
-        macro.apply(setpoint_force=20e-3)
-    while macro.step(0.25):
-        pass
-    snap = macro.snapshot()
-    assert snap.state == "done" and snap.pixels_done == LINES * LINES
+    snap = _refused_then_done(macro, SCAN, "BUSY", setpoint_force=20e-3)
+    assert snap.pixels_done == LINES * LINES
     np.testing.assert_array_equal(snap.images["height"], macro.device.result.heights)
     assert np.isfinite(snap.images["gauge"]).all() and snap.units["gauge"] == ""
 
@@ -279,14 +291,7 @@ def test_one_ui_piece_drives_either_implementation():
 def test_the_educational_session_refuses_settings_and_keeps_lines_on_a_pulled_cable():
     session = _educational()
     try:
-        session.start(**EDU_SCAN)
-        _lines(session, 1)
-        with pytest.raises(SettingsRefused, match="between scans"):
-            session.apply(pitch=80e-9)
-        while session.step(0.25):
-            pass
-        snap = session.snapshot()
-        assert snap.state == "done" and np.isfinite(snap.images["height"]).all()
+        snap = _refused_then_done(session, EDU_SCAN, "between scans", pitch=80e-9)
         assert snap.units["height"] == "m" and snap.pixel_size == pytest.approx(60e-9)
     finally:
         session.close()
@@ -294,9 +299,7 @@ def test_the_educational_session_refuses_settings_and_keeps_lines_on_a_pulled_ca
                            timeout=0.2)
     try:
         session.start(**EDU_SCAN)
-        while session.step(0.25):
-            pass
-        snap = session.snapshot()
+        snap = _to_end(session)
         assert snap.state == "fault" and "TransportClosed" in snap.error
         assert 2 <= snap.lines_done < LINES
         assert np.isfinite(snap.images["height"][:snap.lines_done]).all()
