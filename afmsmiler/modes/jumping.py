@@ -35,7 +35,7 @@ one is longer by the height difference; along a pass these differences add up to
 difference between its first and last pixel, at most the height range per pass, so
 :meth:`JumpingMode.acquisition_time` is exact on a flat sample and within 2 x range / v_z per
 pass otherwise). Contact mode's scan takes lines x (2 pixels - 1) dx / v
-(:attr:`~afmsmiler.imaging.scanner.ScanSettings.scan_time`).
+(:attr:`~afmsmiler.imaging.settings.ScanSettings.scan_time`).
 """
 from __future__ import annotations
 
@@ -419,7 +419,7 @@ class JumpingMode(Mode):
 
         Parameters
         ----------
-        settings : afmsmiler.imaging.scanner.ScanSettings
+        settings : afmsmiler.imaging.settings.ScanSettings
             The scan (pixel size and lateral speed).
 
         Returns
@@ -435,7 +435,7 @@ class JumpingMode(Mode):
 
         Parameters
         ----------
-        settings : afmsmiler.imaging.scanner.ScanSettings
+        settings : afmsmiler.imaging.settings.ScanSettings
             The scan.
 
         Returns
@@ -569,7 +569,7 @@ def compare_with_contact(sample, tip, settings, *, system: ContactSystem, loop=N
         The sample (2-D heights in m).
     tip : afmsmiler.contact.Tip
         The tip (the systems' tip: it blurs and touches).
-    settings : afmsmiler.imaging.scanner.ScanSettings
+    settings : afmsmiler.imaging.settings.ScanSettings
         The scan (the same for both modes).
     system : afmsmiler.contact.ContactSystem
         The contact of jumping mode's curves (its pull-off force adds to contact mode's load).

@@ -1,7 +1,7 @@
 """Figures of module (f): an AFM image forming line by line, as the virtual scan runs.
 
 :func:`scan_view` reads a scan's result (a :class:`~afmsmiler.imaging.scanner.ScanResult`, or
-the imaging panel's :class:`~afmsmiler.ui.imaging.ImagingResult`: full images per channel and
+an acquisition's :class:`~afmsmiler.acquisition.Snapshot`: full images per channel and
 ``lines_done``) into a :class:`ScanView` in the units shown: the main image (the height channel of a
 constant-force scan, the deflection of a constant-height one) with the rows not scanned yet set
 to NaN (drawn transparent), the error channel, and the trace and retrace of the last finished line.
