@@ -55,7 +55,7 @@ __all__ = ["ImagingPanel", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE", "SCAN_SL
 SAMPLES = read_only({
     "particles": ("particles", read_only(dict(shape=(256, 256), pixel_size=2e-9, count=12,
                                               radius=15e-9, rms=0.3e-9, seed=1))),
-    "grating": ("grating", read_only(dict(pixels=(256, 256), pixel_size=2e-9, period=100e-9,
+    "grating": ("grating", read_only(dict(shape=(256, 256), pixel_size=2e-9, period=100e-9,
                                           height=20e-9, duty=0.5))),
     "terraces": ("terraces", read_only(dict(shape=(256, 256), pixel_size=2e-9,
                                             step_height=1e-9, terrace_width=60e-9,
