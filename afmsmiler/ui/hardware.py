@@ -373,28 +373,17 @@ class MacroAFMPanel(Acquiring, Panel):
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> dict:
-        """Check the values (sliders in SI) and turn them into the scan's and the print's (SI)."""
-        ports = [o[1] for o in self.controls["port"].options]
-        check_choice("port", values["port"], ports)
-        samples = [o if isinstance(o, str) else o[1] for o in self.controls["sample"].options]
-        check_choice("sample", values["sample"], samples)
-        check_choice("mode", values["mode"], list(MODES))
-        check_choice("pixels", values["pixels"], list(PIXELS))
-        check_choice("pitch", values["pitch"], list(PITCHES))
-        check_choice("source", values["source"], list(SOURCES))
-
-        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
-            return values[name]
-
+        """Turn the values (checked, sliders in SI: the panel contract) into the scan's and the
+        print's (SI; the pitch drop-down shows mm)."""
         scan = dict(mode=values["mode"], pixels=int(values["pixels"]),
                     pitch=DEVICE_PARAMETERS["pitch"].to_si(values["pitch"]),
-                    **{name: si(name, p) for name, p in SCAN_PARAMETERS.items()})
-        prints = {name: si(name, printing.PARAMETERS[name]) for name in PRINT_SLIDERS}
+                    **{name: values[name] for name in SCAN_PARAMETERS})
+        prints = {name: values[name] for name in PRINT_SLIDERS}
         return dict(port=values["port"], sample=values["sample"], scan=scan,
                     source=values["source"], print=prints)
 
     def update(self, port, sample, mode, pixels, pitch, source, **sliders) -> None:
-        """Check the controls' values (units shown) and keep them for the next action.
+        """Keep the controls' values (sliders in SI) for the next action.
 
         Nothing is scanned or printed here: Connect, Start and Export STL act on the values
         kept. The print's size is recomputed (a product of three numbers, no mesh).
@@ -415,18 +404,15 @@ class MacroAFMPanel(Acquiring, Panel):
         source : str
             The image Export STL prints, one of :data:`SOURCES`.
         **sliders : float
-            ``setpoint_force`` [mN], ``lift`` [mm], ``lateral_scale``, ``vertical_scale`` [x] and
-            ``base_thickness`` [mm].
+            ``setpoint_force`` [N], ``lift`` [m], ``lateral_scale``, ``vertical_scale`` and
+            ``base_thickness`` [m], in SI.
 
         Raises
         ------
         TypeError, ValueError
-            For an unknown or missing control or a value out of range, before any work.
+            For an unknown or missing control or a value out of range, before any work (the
+            panel contract).
         """
-        expected = set(DEFAULTS) - {"port", "sample", "mode", "pixels", "pitch", "source"}
-        if set(sliders) != expected:
-            raise TypeError(f"update needs exactly the sliders {sorted(expected)}, got "
-                            f"{sorted(sliders)}")
         values = dict(sliders, port=port, sample=sample, mode=mode, pixels=pixels, pitch=pitch,
                       source=source)
         self._config = self._configure(values)

@@ -345,20 +345,13 @@ class ImagingPanel(Acquiring, Panel):
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> _Config:
-        """Check the values (sliders in SI) and turn them into a sample, tip, mode and settings."""
-        check_choice("sample", values["sample"], list(SAMPLES))
-        mode = check_choice("mode", values["mode"], list(MODES))
-        key = check_choice("tip", values["tip"], list(TIPS))
-        pixels = check_choice("pixels", values["pixels"], list(PIXELS))
-        check_choice("on_change", values["on_change"], list(ON_CHANGE))
-
-        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
-            return values[name]
-
-        tip = make_tip(key, **{p.name: si(p.name, p) for p in TIPS[key].parameters})
-        scan = {name: si(name, _settings.PARAMETERS[name]) for name in SCAN_SLIDERS}
+        """Turn the values (checked, sliders in SI: the panel contract) into a sample, tip, mode
+        and settings."""
+        mode, key, pixels = values["mode"], values["tip"], values["pixels"]
+        tip = make_tip(key, **{p.name: values[p.name] for p in TIPS[key].parameters})
+        scan = {name: values[name] for name in SCAN_SLIDERS}
         scan["tilt"] = (scan.pop("tilt_x"), 0.0)
-        knobs = {name: si(name, p) for name, p in MODE_SLIDERS[mode].items()}
+        knobs = {name: values[name] for name in MODE_SLIDERS[mode]}
         if mode == "constant force":
             loop = PRESETS[PLANT].loop.replace(kp=knobs["kp"], ki=knobs["ki"])
             model = _modes.ConstantForce(loop, setpoint=knobs["setpoint"])
