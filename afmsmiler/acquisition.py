@@ -120,7 +120,7 @@ class Snapshot:
         One of :data:`STATES`.
     fault : object
         What ended the scan in ``state == "fault"``: the exception a device raised, or the
-        simulated tip's :class:`~afmsmiler.imaging.modes.Crash`; None otherwise.
+        simulated tip's :class:`~afmsmiler.imaging.scan_modes.Crash`; None otherwise.
     changes : tuple of int
         The rows from which new settings applied (:meth:`Acquisition.apply`).
     main : str

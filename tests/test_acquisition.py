@@ -18,7 +18,7 @@ from afmsmiler.hardware.educational.session import EducationalSession
 from afmsmiler.hardware.macro import MacroAFMTwin
 from afmsmiler.hardware.macro.session import MacroSession
 from afmsmiler.imaging.acquisition import ScanAcquisition
-from afmsmiler.imaging.modes import ConstantForce
+from afmsmiler.imaging.scan_modes import ConstantForce
 from afmsmiler.imaging.scanner import Scan
 from afmsmiler.imaging.settings import ScanSettings
 from afmsmiler.samples import particles

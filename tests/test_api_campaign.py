@@ -68,9 +68,9 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            "afmsmiler.brownian", "afmsmiler.parameters", "afmsmiler.validation",
            # module (f): each public module of the imaging package (not the package, whose
            # re-exports would give the classes twice), and the PNG export
-           "afmsmiler.imaging.dilation", "afmsmiler.imaging.scanner", "afmsmiler.imaging.modes",
+           "afmsmiler.imaging.dilation", "afmsmiler.imaging.scanner", "afmsmiler.imaging.scan_modes",
            "afmsmiler.imaging.corrections", "afmsmiler.imaging.statistics",
-           "afmsmiler.plots.images",
+           "afmsmiler.plots.export",
            # module (e): the optical head's laser alignment
            "afmsmiler.instrument.optics", "afmsmiler.instrument.alignment",
            # module (g): the imaging modalities
@@ -100,10 +100,10 @@ NEW_NAMES = {"samples.Sample.with_heights:name", "hardware.printing.mesh_to_samp
 ACCEPTED = {
     "imaging.scanner.Scan:tip": (("None",), "None is the documented ideal, infinitely sharp tip"),
     "imaging.scanner.scan:tip": (("None",), "None is the documented ideal, infinitely sharp tip"),
-    "imaging.modes.ConstantHeight.line:state": (("bool",), "the documented state: whether the "
+    "imaging.scan_modes.ConstantHeight.line:state": (("bool",), "the documented state: whether the "
                                                 "tip was in contact at the end of the line"),
     # any text is a file name; "1e-6" would also write a PNG into the working directory
-    "plots.images.save_png:path": (("str",), "any text is a file name"),
+    "plots.export.save_png:path": (("str",), "any text is a file name"),
     "modes.lateral.LateralForceMode.line:state": (
         ("nan", "str", "bool", "complex", "object", "nan-array"),
         "unused and documented so: each line is a steady friction loop"),
@@ -209,12 +209,12 @@ def _system():
 
 
 def _constant_force():
-    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scan_modes import ConstantForce
     return ConstantForce(_loop())
 
 
 def _constant_height():
-    from afmsmiler.imaging.modes import ConstantHeight
+    from afmsmiler.imaging.scan_modes import ConstantHeight
     return ConstantHeight(_system(), z_np=1e-9)
 
 
@@ -356,7 +356,7 @@ OVERRIDES = {
     # "mode" is a lever's mode number elsewhere
     "afmsmiler.imaging.scanner.Scan": {"mode": _constant_force},
     "afmsmiler.imaging.scanner.scan": {"mode": _constant_force},
-    "afmsmiler.plots.images.save_png": {
+    "afmsmiler.plots.export.save_png": {
         "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.png"},
     # module (g)
     "afmsmiler.modes.tapping.integrate": {"distance": 12e-9},

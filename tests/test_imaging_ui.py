@@ -9,7 +9,7 @@ import pytest
 
 from afmsmiler.contact import ContactSystem, make_tip
 from afmsmiler.controller import PRESETS
-from afmsmiler.imaging import modes
+from afmsmiler.imaging import scan_modes as modes
 from afmsmiler.imaging.scanner import PARAMETERS as SCAN, Scan, ScanSettings
 from afmsmiler.parameters import UNITS
 from afmsmiler.ui import imaging as ui

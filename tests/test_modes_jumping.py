@@ -15,7 +15,7 @@ import pytest
 from afmsmiler.contact import ContactSystem, Parabolic, Spherical
 from afmsmiler.controller import ContactLoop
 from afmsmiler.imaging.dilation import dilate
-from afmsmiler.imaging.modes import ConstantForce
+from afmsmiler.imaging.scan_modes import ConstantForce
 from afmsmiler.imaging.scanner import Scan, ScanSettings, scan
 from afmsmiler.modes import jumping
 from afmsmiler.modes.jumping import JumpingMode, apex_path, jump_curve, trigger_z_np

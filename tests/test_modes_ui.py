@@ -16,7 +16,7 @@ from afmsmiler.modes import fm, force_volume, jumping, lateral, tapping
 from afmsmiler.modes import (TappingLever, friction_loop, friction_sample, setpoint_state,
                              tip_sample_force)
 from afmsmiler.parameters import UNITS
-from afmsmiler.ui.modalities import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
+from afmsmiler.ui.modes import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
                                      FORCE_VOLUME_MAP, JUMPING_DEFAULTS, JUMPING_SCAN,
                                      LATERAL_DEFAULTS, LATERAL_SAMPLE, TAPPING_DEFAULTS,
                                      ForceVolumePanel, FrequencyShiftPanel, JumpingPanel,

@@ -14,8 +14,8 @@ from .corrections import (Plane, fit_plane, flatten_lines, level_plane, mark_sca
                           remove_scars)
 from .dilation import (certainty_map, dilate, erode, estimate_tip_radius, sphere_apparent_width,
                        tip_radius_from_width, tip_surface)
-from .modes import ConstantForce, ConstantHeight, Crash, Mode, ModeLine, ScanPlan
-from .modes import PARAMETERS as MODE_PARAMETERS
+from .scan_modes import ConstantForce, ConstantHeight, Crash, Mode, ModeLine, ScanPlan
+from .scan_modes import PARAMETERS as MODE_PARAMETERS
 from .scanner import LineRecord, Scan, ScanResult, scan
 from .settings import PARAMETERS as SCAN_PARAMETERS
 from .settings import ScanSettings

@@ -5,7 +5,7 @@
 a new tip, mode or settings from the next line on (:meth:`~afmsmiler.acquisition.Acquisition.apply`):
 a new :class:`Scan` that writes its lines, from the next one on, into the image the acquisition
 holds (the lines before stay as they were scanned). A tip that crashes ends the scan as a fault
-(:attr:`~afmsmiler.acquisition.Snapshot.fault` is the :class:`~afmsmiler.imaging.modes.Crash`);
+(:attr:`~afmsmiler.acquisition.Snapshot.fault` is the :class:`~afmsmiler.imaging.scan_modes.Crash`);
 its crashed line holds the pixels reached.
 """
 from __future__ import annotations
@@ -14,7 +14,7 @@ from ..acquisition import Acquisition, SettingsRefused
 from ..contact import Tip
 from ..samples import Sample
 from ..validation import check_instance
-from .modes import Mode
+from .scan_modes import Mode
 from .scanner import Scan
 from .settings import ScanSettings
 
@@ -30,8 +30,8 @@ class ScanAcquisition(Acquisition):
         The sample (2-D heights in m).
     tip : afmsmiler.contact.Tip or None
         The tip (None: ideal).
-    mode : afmsmiler.imaging.modes.Mode
-        The imaging mode; its :attr:`~afmsmiler.imaging.modes.Mode.main_channel` is the image.
+    mode : afmsmiler.imaging.scan_modes.Mode
+        The imaging mode; its :attr:`~afmsmiler.imaging.scan_modes.Mode.main_channel` is the image.
     settings : afmsmiler.imaging.settings.ScanSettings
         The scan's settings.
 
@@ -49,7 +49,7 @@ class ScanAcquisition(Acquisition):
     --------
     >>> import numpy as np
     >>> from afmsmiler.controller import ContactLoop
-    >>> from afmsmiler.imaging.modes import ConstantForce
+    >>> from afmsmiler.imaging.scan_modes import ConstantForce
     >>> acq = ScanAcquisition(Sample(np.zeros((32, 32)), 10e-9), None,
     ...                       ConstantForce(ContactLoop()), ScanSettings(300e-9, pixels=8))
     >>> acq.start(); acq.step(), acq.snapshot().lines_done

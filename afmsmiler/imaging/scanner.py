@@ -1,7 +1,7 @@
 """The virtual scanner: where the tip goes on the sample, when, and what it records there.
 
 A :class:`Scan` joins a sample (:class:`~afmsmiler.samples.Sample`), a tip (module (d)'s
-:class:`~afmsmiler.contact.Tip`), an imaging mode (:class:`~afmsmiler.imaging.modes.Mode`) and
+:class:`~afmsmiler.contact.Tip`), an imaging mode (:class:`~afmsmiler.imaging.scan_modes.Mode`) and
 the :class:`ScanSettings` (scan range, pixels, lines, speed, angle, offset, noise, drift, creep,
 tilt). It
 
@@ -39,7 +39,7 @@ import numpy as np
 from ..contact import Parabolic, Tip
 from ..samples import Sample
 from ..validation import check_choice, check_instance, check_integer
-from .modes import DIRECTIONS, Crash, Mode, ScanPlan
+from .scan_modes import DIRECTIONS, Crash, Mode, ScanPlan
 from .settings import MAX_SCAN_PIXELS, PARAMETERS, ScanSettings
 
 __all__ = ["ScanSettings", "Scan", "ScanResult", "LineRecord", "scan", "PARAMETERS",
@@ -207,7 +207,7 @@ class Scan:
         The sample, 2-D (at least 2 x 2 pixels), heights in m.
     tip : afmsmiler.contact.Tip or None
         The tip whose shape blurs the image (dilation); None: an ideal, infinitely sharp tip.
-    mode : afmsmiler.imaging.modes.Mode
+    mode : afmsmiler.imaging.scan_modes.Mode
         The imaging mode.
     settings : ScanSettings
         Scan range, pixels, speed, angle, offset, noise, drift, creep, tilt.
@@ -240,7 +240,7 @@ class Scan:
     >>> import numpy as np
     >>> from afmsmiler.samples import Sample
     >>> from afmsmiler.controller import ContactLoop
-    >>> from afmsmiler.imaging.modes import ConstantForce
+    >>> from afmsmiler.imaging.scan_modes import ConstantForce
     >>> sample = Sample(np.zeros((32, 32)), 10e-9)
     >>> result = Scan(sample, None, ConstantForce(ContactLoop()),
     ...               ScanSettings(300e-9, pixels=16)).run()
@@ -420,7 +420,7 @@ class Scan:
 
     @property
     def plan(self) -> ScanPlan:
-        """The :class:`~afmsmiler.imaging.modes.ScanPlan` the mode scans (computed once)."""
+        """The :class:`~afmsmiler.imaging.scan_modes.ScanPlan` the mode scans (computed once)."""
         if self._plan is None:
             apex = self._apex_surface
             sample, s = self.sample, self.settings
@@ -492,7 +492,7 @@ class Scan:
             Begin at this row instead of the first (only before any line was scanned): the rows
             before it are left unscanned (NaN), as when a panel applies new settings from the
             next line on. The mode still starts once (:meth:`Mode.start`) and is then asked
-            for the rows from ``start`` on; :class:`~afmsmiler.imaging.modes.ConstantForce`
+            for the rows from ``start`` on; :class:`~afmsmiler.imaging.scan_modes.ConstantForce`
             solves the whole image with the new settings, so its row ``start`` is the loop's
             state as if the new settings had scanned all the earlier lines.
 
@@ -587,7 +587,7 @@ def scan(sample: Sample, tip: Tip | None, mode: Mode, settings: ScanSettings) ->
         The sample (2-D, heights in m).
     tip : afmsmiler.contact.Tip or None
         The tip (None: ideal).
-    mode : afmsmiler.imaging.modes.Mode
+    mode : afmsmiler.imaging.scan_modes.Mode
         The imaging mode.
     settings : ScanSettings
         The scan settings.

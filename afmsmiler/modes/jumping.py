@@ -17,7 +17,7 @@ pull-off force (DMT: 2 pi R w; JKR: (3/2) pi R w; module (d)'s exact values). Th
 reach beyond the jump-off, Z_t - L < Z_snap-off (:attr:`ContactSystem.snap_off_z_np`), or the
 tip is still stuck when the move starts (a ValueError says how much lift is needed).
 
-**The image** (:class:`JumpingMode`, a :class:`~afmsmiler.imaging.modes.Mode` of module (f)'s
+**The image** (:class:`JumpingMode`, a :class:`~afmsmiler.imaging.scan_modes.Mode` of module (f)'s
 scanner). The scanner hands the apex surface r (the sample dilated by the tip, module (f)); the
 tip touches at the positioner height H = r (the undeflected apex at the surface), and the trigger
 comes at H_t = r - Z_t(material). The height channel is H_t + Z_t(first material): the apex
@@ -25,7 +25,7 @@ surface itself where the sample is the first material (the true topography up to
 dilation), lower where a softer material lets the tip sink further before the trigger. The
 tip is lifted to H_t + L and moved to the next pixel (pass order: trace forwards, retrace
 backwards, then the next line); where the apex surface there rises above the lifted tip, the
-tip runs into the feature's side while moving: a :class:`~afmsmiler.imaging.modes.Crash`
+tip runs into the feature's side while moving: a :class:`~afmsmiler.imaging.scan_modes.Crash`
 (force inf: a rigid wall), and the lift must be raised above the tallest step between pixels.
 The lateral force channel is the largest lateral force felt while moving: 0.
 
@@ -48,7 +48,7 @@ import numpy as np
 from scipy.optimize import brentq
 
 from ..contact import ContactSystem
-from ..imaging.modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
+from ..imaging.scan_modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
 from ..validation import check_array, check_instance, check_integer, check_range
 
@@ -451,7 +451,7 @@ class JumpingMode(Mode):
 
         Parameters
         ----------
-        plan : afmsmiler.imaging.modes.ScanPlan
+        plan : afmsmiler.imaging.scan_modes.ScanPlan
             The scan.
         row : int
             Line index.
@@ -461,8 +461,8 @@ class JumpingMode(Mode):
 
         Returns
         -------
-        afmsmiler.imaging.modes.ModeLine
-            With a :class:`~afmsmiler.imaging.modes.Crash` where the apex surface at the next
+        afmsmiler.imaging.scan_modes.ModeLine
+            With a :class:`~afmsmiler.imaging.scan_modes.Crash` where the apex surface at the next
             pixel rises above the lifted tip (the tip runs into the feature's side).
 
         Raises
@@ -527,7 +527,7 @@ class ModeComparison:
     jumping_time, contact_time : float
         Acquisition time of each image in s.
     crashed : object
-        The jumping scan's :class:`~afmsmiler.imaging.modes.Crash` (lift too small), or None.
+        The jumping scan's :class:`~afmsmiler.imaging.scan_modes.Crash` (lift too small), or None.
     """
 
     true_height: np.ndarray = field(repr=False)
@@ -593,13 +593,13 @@ def compare_with_contact(sample, tip, settings, *, system: ContactSystem, loop=N
     Raises
     ------
     TypeError, ValueError
-        As :class:`JumpingMode`, :class:`~afmsmiler.imaging.modes.ConstantForce`,
+        As :class:`JumpingMode`, :class:`~afmsmiler.imaging.scan_modes.ConstantForce`,
         :func:`~afmsmiler.imaging.scanner.scan` and
         :func:`~afmsmiler.modes.lateral.friction_loop`, before any scan.
     """
     from ..controller import PARAMETERS as LOOP_PARAMETERS
     from ..controller import ContactLoop
-    from ..imaging.modes import ConstantForce
+    from ..imaging.scan_modes import ConstantForce
     from ..imaging.scanner import Scan, ScanSettings
     from .lateral import FRICTION_COEFFICIENT, friction_loop
 

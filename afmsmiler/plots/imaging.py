@@ -114,7 +114,7 @@ def crash_note(crash) -> str:
     Parameters
     ----------
     crash : Crash or object
-        A :class:`~afmsmiler.imaging.modes.Crash` (``row``, ``column``, ``force`` in N,
+        A :class:`~afmsmiler.imaging.scan_modes.Crash` (``row``, ``column``, ``force`` in N,
         ``direction``); anything else is shown as its text.
 
     Returns
@@ -124,7 +124,7 @@ def crash_note(crash) -> str:
 
     Examples
     --------
-    >>> from afmsmiler.imaging.modes import Crash
+    >>> from afmsmiler.imaging.scan_modes import Crash
     >>> crash_note(Crash(3, 16, 1.2e-7, "retrace"))
     'tip crashed: 120 nN on line 4 (retrace), pixel 17'
     >>> crash_note(Crash(0, 0, float("inf")))

@@ -35,10 +35,10 @@ from ..contact import PARAMETERS as CONTACT
 from ..contact import TIPS, ContactSystem, Tip, make_tip
 from ..controller import PARAMETERS as LOOP, PRESETS
 from ..acquisition import SettingsRefused, Snapshot
-from ..imaging import modes as _modes
+from ..imaging import scan_modes as _modes
 from ..imaging import settings as _settings
 from ..imaging.acquisition import ScanAcquisition
-from ..imaging.modes import PARAMETERS as MODE_PARAMETERS
+from ..imaging.scan_modes import PARAMETERS as MODE_PARAMETERS
 from ..parameters import read_only
 from ..plots.imaging import ImagingFigure, crash_note, scan_view
 from ..samples import Sample
@@ -68,7 +68,7 @@ SAMPLES = read_only({
     "real image (Bruker, 2 um)": ("real_image", read_only({})),
 })
 
-#: Imaging modes: name -> class of :mod:`afmsmiler.imaging.modes`.
+#: Imaging modes: name -> class of :mod:`afmsmiler.imaging.scan_modes`.
 MODES = ("constant force", "constant height")
 
 #: What a slider moved during a scan does.
@@ -410,7 +410,7 @@ class ImagingPanel(Acquiring, Panel):
         "Apply on next line" builds a new :class:`~afmsmiler.imaging.scanner.Scan` with the new
         values and takes its lines from the next one on (the lines before are not scanned
         again). In constant force the loop of the new scan has run with the new values from the
-        first line (:class:`~afmsmiler.imaging.modes.ConstantForce` solves the whole image as
+        first line (:class:`~afmsmiler.imaging.scan_modes.ConstantForce` solves the whole image as
         one polygon in time), so the line after the change shows the settled loop, not the
         transient a real instrument shows right after its gains change.
         """

@@ -11,7 +11,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ...imaging.modes import Mode, ModeLine, ScanPlan
+from ...imaging.scan_modes import Mode, ModeLine, ScanPlan
 from ...validation import check_choice, check_instance
 from .balance import setpoint_state
 from .feedback import (_STEPS_PER_TAU, FEEDBACK_PARAMETERS, FEEDBACKS, MAX_FEEDBACK_STEPS,
@@ -123,7 +123,7 @@ class TappingMode(Mode):
 
         Parameters
         ----------
-        plan : afmsmiler.imaging.modes.ScanPlan
+        plan : afmsmiler.imaging.scan_modes.ScanPlan
             The scan.
 
         Returns
@@ -159,7 +159,7 @@ class TappingMode(Mode):
 
         Parameters
         ----------
-        plan : afmsmiler.imaging.modes.ScanPlan
+        plan : afmsmiler.imaging.scan_modes.ScanPlan
             The scan.
         row : int
             Line index.
@@ -169,7 +169,7 @@ class TappingMode(Mode):
 
         Returns
         -------
-        afmsmiler.imaging.modes.ModeLine
+        afmsmiler.imaging.scan_modes.ModeLine
         """
         row = self._row(plan, row)
         if self.feedback == "pi":
