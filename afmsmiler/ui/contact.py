@@ -269,11 +269,7 @@ class ContactPanel(Panel):
         extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
                      30e-9)
         curves = contact_curves(cycle, current, shape, extent)
-        if self.figure is None:
-            self.figure = ContactFigure(curves, fig=self.fig)
-        else:
-            self.figure.update(curves)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self.draw(ContactFigure, curves)  # the figure's frame leaves first: its pixels wait for nothing else
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.contact import ContactScene

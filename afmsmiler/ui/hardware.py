@@ -657,11 +657,7 @@ class MacroAFMPanel(Acquiring, Panel):
                           "" if result.state in ("scanning", "idle", "connected") else state)
         z_step = self._session.z_step if self._session is not None else math.nan
         comparison = comparison_view(self._comparison, z_step)
-        if self.figure is None:
-            self.figure = MacroFigure(view, comparison, fig=self.fig)
-        else:
-            self.figure.update(view, comparison)
-        self.redraw()
+        self.draw(MacroFigure, view, comparison)
         self.control.refresh(snap)
         self.buttons["save"].disabled = snap.lines_done < 2
         size = result.print_size

@@ -583,11 +583,7 @@ class ImagingPanel(Acquiring, Panel):
         status = ("settings changed: Start scans with them" if changed
                   else crash_note(fault) if crash else None)
         view = scan_view(snap, main=snap.main, status=status)
-        if self.figure is None:
-            self.figure = ImagingFigure(view, fig=self.fig)
-        else:
-            self.figure.update(view)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self.draw(ImagingFigure, view)  # the figure's frame leaves first: its pixels wait for nothing else
         self._draw_scene(snap)
         self.control.refresh(snap)
         done = snap.lines_done

@@ -223,11 +223,7 @@ class TappingPanel(_SliderPanel):
         depth = math.nan if point is None else lever.indentation(zc, r * lever.free_amplitude)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
         jumps = curve.jumps  # the same run of the approach as operating_point's
-        if self.figure is None:
-            self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
-        else:
-            self.figure.update(curve, point, jumps)
-        self.redraw()
+        self.draw(TappingFigure, curve, point, jumps=jumps)
         scene = self._scene("tapping")
         if point is None:
             self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
@@ -363,11 +359,7 @@ class LateralPanel(_SliderPanel):
         forces = np.vstack((loop.trace, loop.retrace))
         twist, signal = lever.twist(forces), lever.signal(forces)
         self.last = LateralState(images, loop, row, mu.heights, twist, signal)
-        if self.figure is None:
-            self.figure = LateralFigure(loop, images, row, fig=self.fig)
-        else:
-            self.figure.update(loop, images, row)
-        self.redraw()
+        self.draw(LateralFigure, loop, images, row)
         scene = self._scene("lateral")
         if scene is not None:
             scene.animate_lateral(x, twist, signal,
@@ -468,11 +460,7 @@ class FrequencyShiftPanel(_SliderPanel):
                                          spring_constant=si["spring_constant"],
                                          resonance_frequency=si["resonance_frequency"])
         self.last = FrequencyShiftState(curve, law)
-        if self.figure is None:
-            self.figure = FrequencyShiftFigure(curve, fig=self.fig)
-        else:
-            self.figure.update(curve)
-        self.redraw()
+        self.draw(FrequencyShiftFigure, curve)
         i = int(np.argmin(np.abs(z - d["shown"])))
         scene = self._scene("fm")
         if scene is not None:
@@ -585,11 +573,7 @@ class JumpingPanel(_SliderPanel):
         result = self.run_model(_scan, sample, tip, mode, scan_settings)
         self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
                                  scan_settings.scan_time)
-        if self.figure is None:
-            self.figure = JumpingFigure(curve, result, fig=self.fig)
-        else:
-            self.figure.update(curve, result)
-        self.redraw()
+        self.draw(JumpingFigure, curve, result)
         scene = self._scene("jumping")
         if scene is not None:
             heights, xs, touching = self._cycle(curve, result)
@@ -685,11 +669,7 @@ class ForceVolumePanel(_SliderPanel):
                                   labels=labels, seed=d["noise_seed"], **si)
         self.labels = labels
         self.last = volume
-        if self.figure is None:
-            self.figure = ForceVolumeFigure(volume, [m.name for m in _fv.BLEND], fig=self.fig)
-        else:
-            self.figure.update(volume)
-        self.redraw()
+        self.draw(ForceVolumeFigure, volume, made_with={"names": [m.name for m in _fv.BLEND]})
         rows = []
 
         def median(values, unit):
