@@ -620,3 +620,105 @@ def test_a_saved_sample_loads_back_with_the_default_channel(tmp_path):
     back = samples.load(path)
     np.testing.assert_allclose(back.heights, s.heights, rtol=1e-12)
     assert back.pixel_size == pytest.approx(2e-9, rel=1e-12)
+
+
+# --- damaged files: a named error about the file, never an error from inside a reader ----------
+def _gwy_with(tmp_path, name, change):
+    """A .gwy written by gwyfile whose data field ``change`` damages (in the container)."""
+    from gwyfile.objects import GwyContainer, GwyDataField, GwySIUnit
+    field = GwyDataField(np.ones((4, 4)), xreal=4e-9, yreal=4e-9,
+                         si_unit_xy=GwySIUnit(unitstr="m"), si_unit_z=GwySIUnit(unitstr="m"))
+    container = GwyContainer()
+    container["/0/data"] = field
+    container["/0/data/title"] = "Height"
+    change(container, field)
+    path = tmp_path / name
+    container.tofile(str(path))
+    return path
+
+
+@pytest.mark.parametrize("change, what", [
+    (lambda c, f: c.__setitem__("/0/data", "not a field"),
+     "channel 'Height' must be a GwyDataField, the file holds a str"),
+    (lambda c, f: f.__setitem__("data", "abc"), "channel 'Height' must hold an array of floats"),
+    (lambda c, f: f.__setitem__("data", np.ones(7)), r"channel 'Height' holds 7 values, its "
+                                                     r"xres x yres say 4 x 4 \(truncated\?\)"),
+    (lambda c, f: f.__setitem__("xres", -4), "channel 'Height' must have xres and yres of 1 to"),
+    (lambda c, f: f.__setitem__("yres", 2**31 - 1), "channel .Height. must have xres and yres"),
+    (lambda c, f: f.__setitem__("xreal", -1.0), "channel .Height. must have positive finite xreal"),
+    (lambda c, f: f.__delitem__("yreal"), "channel .Height. must have positive finite xreal"),
+    (lambda c, f: f.__setitem__("si_unit_z", "m"), "channel .Height. must have a GwySIUnit as si_unit_z"),
+])
+def test_a_damaged_gwy_data_field_is_named(tmp_path, change, what):
+    """gwyfile returns a damaged file's components as they are: a string where the data field
+    should be raised AttributeError from inside gwyfile's ``data`` property."""
+    path = _gwy_with(tmp_path, "damaged.gwy", change)
+    with pytest.raises(ValueError, match=f"damaged.gwy: {what}"):
+        samples.load(path)
+
+
+def test_a_gwy_channel_title_that_is_not_text_is_named(tmp_path):
+    path = _gwy_with(tmp_path, "title.gwy", lambda c, f: c.__setitem__("/0/data/title", 7))
+    for read in (samples.channels, samples.load):
+        with pytest.raises(ValueError, match="title.gwy: a channel's title must be text, got 7"):
+            read(path)
+
+
+@pytest.mark.parametrize("old, new, what", [
+    (b"\\Data offset: 40960", b"\\Data offset: -40960",  # pySPM's seek raised OSError
+     r"an image's Data offset must be at or after the header's end \(byte \d+\), got -40960"),
+    (b"\\Data offset: 40960", b"\\Data offset: 100",  # inside the header: text read as counts
+     r"an image's Data offset must be at or after the header's end"),
+    (b"\\Data length: 524288", b"\\Data length: 100000000000",  # pySPM's bpp: KeyError
+     r"an image's Data length must be its 512 x 512 pixels of 2 bytes \(524288\), "
+     r"got 100000000000"),
+    (b"\\*File list end", b"\\*File list endless",  # pySPM would read lines past the end
+     r"the NanoScope header has no '\\\*File list end' line"),
+    (b"\\@2:Image Data: S [Height]", b"\\@2:Image Data: S  Height ",  # pySPM's regex: None
+     r"channel 'Height' is not readable by pySPM \(AttributeError"),
+])
+def test_a_damaged_nanoscope_header_is_named(tmp_path, old, new, what):
+    raw = SPM.read_bytes()
+    assert raw.count(old) >= 1
+    path = tmp_path / "damaged.spm"
+    path.write_bytes(raw.replace(old, new, 1))
+    with pytest.raises(ValueError, match=f"damaged.spm: {what}"):
+        samples.load(path)
+
+
+def _npy_with_shape(tmp_path, shape: bytes):
+    """A float64 .npy of 4 x 4 values whose header claims ``shape`` (header length kept)."""
+    np.save(tmp_path / "ok.npy", np.zeros((4, 4)))
+    raw = (tmp_path / "ok.npy").read_bytes()
+    header_end = raw.index(b"\n") + 1
+    head = raw[:header_end].replace(b"(4, 4)", shape).rstrip(b" \n")
+    head = head + b" " * (header_end - 1 - len(head)) + b"\n"
+    path = tmp_path / "damaged.npy"
+    path.write_bytes(head + raw[header_end:])
+    return path
+
+
+@pytest.mark.parametrize("shape, what", [
+    (b"(-4, 4)", r"the header's shape \(-4, 4\) has a negative length"),
+    (b"(99999999999999999999999, 4)", "a height map must be 1-D or 2-D with 2 to 4194304 "
+                                      "values"),  # numpy's memmap: OverflowError
+    (b"(0, 4)", r"a height map must be .* the header says shape \(0, 4\)"),
+    (b"(8, 4)", r"the header's \(8, 4\) float64 values need \d+ bytes, the file has"),
+])
+def test_a_damaged_npy_header_is_named(tmp_path, shape, what):
+    path = _npy_with_shape(tmp_path, shape)
+    with pytest.raises(ValueError, match=f"damaged.npy: {what}"):
+        samples.load(path, pixel_size=1e-9)
+
+
+@pytest.mark.parametrize("values, what", [
+    (np.ones((4, 4)) + 1j, r"holds complex values \(complex128\); a height map is real"),
+    (np.ones((4, 4), bool), "must hold real numbers, it holds bool"),
+    (np.array([["a", "b"]]), "must hold real numbers, it holds <U1"),
+    (np.zeros(3, dtype=[("a", "f8"), ("b", "f8")]), "must hold real numbers"),
+])
+def test_an_npy_of_other_than_real_numbers_is_named(tmp_path, values, what):
+    """A complex .npy loaded with its imaginary part dropped (a ComplexWarning only)."""
+    np.save(tmp_path / "other.npy", values)
+    with pytest.raises(ValueError, match=f"other.npy: the array {what}"):
+        samples.load(tmp_path / "other.npy", pixel_size=1e-9)

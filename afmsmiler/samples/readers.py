@@ -14,6 +14,7 @@ never an attempt to allocate what a corrupt header claims.
 """
 from __future__ import annotations
 
+import math
 import os
 import re
 import struct
@@ -171,38 +172,60 @@ def _wsxm_length(p, header: dict, key: str) -> float:
 
 
 def _spm_header(p: Path) -> list[dict]:
-    """The images a NanoScope header lists (offset, length, shape), checked against the file."""
+    """The images a NanoScope header lists (offset, length, shape), checked against the file.
+
+    The header is read line by line as pySPM reads it (a line ends at ``\\n``; backslashes are
+    dropped; ``*Ciao image list`` starts an image, ``*Scanner list`` a scanner; a key's later
+    line wins), so that what is checked here is what pySPM then seeks and reads.
+    """
     file_size = p.stat().st_size
     head = _head(p, min(file_size, MAX_HEADER_BYTES))
     if not head.startswith(b"\\*File list") and not head.startswith(b"\\*Force file list"):
         raise ValueError(f"{p} is not a Bruker NanoScope file (no '\\*File list' at its start)")
-    end = head.find(b"\\*File list end")
-    if end < 0:
-        raise ValueError(f"{p}: the NanoScope header has no '\\*File list end' within its first "
-                         f"{len(head)} bytes (truncated or corrupt)")
-    images = []
-    for part in head[:end].split(b"\\*Ciao image list")[1:]:
-        fields = {}
-        for line in part.decode("latin-1").splitlines():
-            key, sep, value = line.lstrip("\\").partition(": ")
-            if sep:
-                fields.setdefault(key.strip(), value.strip())
-        try:
-            offset, length = int(fields["Data offset"]), int(fields["Data length"])
+    lines, header_end = [], 0
+    for raw in head.split(b"\n")[:-1]:  # the last piece may be a line cut by the read
+        header_end += len(raw) + 1
+        if raw.rstrip().replace(b"\\", b"") == b"*File list end":
+            break
+        lines.append(raw.rstrip(b"\r").replace(b"\\", b""))
+    else:
+        header_end = None
+    if header_end is None:  # pySPM would read past the end of the file for ever
+        raise ValueError(f"{p}: the NanoScope header has no '\\*File list end' line within its "
+                         f"first {len(head)} bytes (truncated or corrupt)")
+    images, mode = [], None
+    for line in lines:
+        if line.rstrip() in (b"*Ciao image list", b"*Scanner list"):
+            mode = line.rstrip()
+            if mode == b"*Ciao image list":
+                images.append({})
+            continue
+        key, sep, value = line.decode("latin-1").partition(": ")
+        if sep and mode == b"*Ciao image list":
+            images[-1][key] = value.strip()
+    for fields in images:
+        try:  # pySPM takes each number up to a further ": "
+            offset, length, cols, rows = (int(fields[key].split(": ")[0]) for key in (
+                "Data offset", "Data length", "Samps/line", "Number of lines"))
             bpp = int(fields.get("Bytes/pixel", "2"))
-            cols, rows = int(fields["Samps/line"]), int(fields["Number of lines"])
         except (KeyError, ValueError):
             raise ValueError(f"{p}: an image of the NanoScope header lacks its Data offset, "
                              f"Data length, Samps/line or Number of lines") from None
         if not (2 <= rows and 2 <= cols and rows * cols <= MAX_PIXELS and bpp in (2, 4)):
             raise ValueError(f"{p}: an image must have 2 to {MAX_PIXELS} pixels of 2 or 4 bytes, "
                              f"the header says {rows} x {cols} of {bpp} bytes")
-        if rows * cols * bpp > length or offset + rows * cols * bpp > file_size:
+        if offset < header_end:
+            raise ValueError(f"{p}: an image's Data offset must be at or after the header's "
+                             f"end (byte {header_end}), got {offset}")
+        if length // (rows * cols) != bpp:  # pySPM takes the bytes per pixel from the length
+            raise ValueError(f"{p}: an image's Data length must be its {rows} x {cols} pixels of "
+                             f"{bpp} bytes ({rows * cols * bpp}), got {length}")
+        if offset + rows * cols * bpp > file_size:
             raise ValueError(f"{p}: the header's {rows} x {cols} image at byte {offset} needs "
                              f"{offset + rows * cols * bpp} bytes, the file has {file_size} "
                              f"(truncated?)")
         match = re.search(r'"([^"]*)"', fields.get("@2:Image Data", ""))
-        images.append(dict(fields, _name=match.group(1) if match else "?"))
+        fields["_name"] = match.group(1) if match else "?"
     if not images:
         raise ValueError(f"{p}: the NanoScope header lists no image")
     return images
@@ -324,7 +347,11 @@ def _spm_scan(p: Path):
         warnings.simplefilter("ignore", DeprecationWarning)
         import pySPM
     images = _spm_header(p)
-    scan = pySPM.Bruker(str(p))
+    try:
+        scan = pySPM.Bruker(str(p))
+    except Exception as exc:  # noqa: BLE001 - whatever pySPM raises on a header it misreads
+        raise ValueError(f"{p}: not a readable NanoScope file ({type(exc).__name__}: {exc})"
+                         ) from None
     for layer in scan.layers:  # NanoScope 5 headers spell two keys that pySPM needs otherwise
         for old, new in ((b"Scan size", b"Scan Size"), (b"Line direction", b"Line Direction")):
             if old in layer:
@@ -337,12 +364,19 @@ def _read_spm(p: Path, channel: str):
     scan, images = _spm_scan(p)
     from AFMReader.spm import spm_pixel_to_nm_scaling
     names = [im["_name"] for im in images]
-    channel = _pick(p, channel, names)
-    image = scan.get_channel(channel)
-    # as AFMReader's load_spm: NanoScope stores the lines bottom up
-    values = np.flipud(np.asarray(image.pixels, dtype=float))
-    px_nm = spm_pixel_to_nm_scaling(p.stem, image)
-    size = image.size["real"]
+    try:
+        channel = _pick(p, channel, names)
+        try:  # the header's sizes are checked; its scales and names are pySPM's to parse
+            image = scan.get_channel(channel)
+            # as AFMReader's load_spm: NanoScope stores the lines bottom up
+            values = np.flipud(np.asarray(image.pixels, dtype=float))
+            px_nm = spm_pixel_to_nm_scaling(p.stem, image)
+            size = image.size["real"]
+        except Exception as exc:  # noqa: BLE001 - KeyError, AttributeError of a damaged header
+            raise ValueError(f"{p}: channel {channel!r} is not readable by pySPM "
+                             f"({type(exc).__name__}: {exc})") from None
+    finally:
+        scan.file.close()  # pySPM leaves the file open
     unit, scale = _FILE_UNITS.get(image.zscale, (None, None))
     if unit is None:
         raise ValueError(f"{p}: channel {channel!r} has values in {image.zscale!r}, not one of "
@@ -351,11 +385,15 @@ def _read_spm(p: Path, channel: str):
     # in SI from the header's scan size (AFMReader's nm scaling, rounded through nm, otherwise)
     dx = size["x"] * length / values.shape[1] if length else px_nm * 1e-9
     dy = size["y"] * length / values.shape[0] if length else px_nm * 1e-9
+    if not (0 < dx < 1 and 0 < dy < 1):
+        raise ValueError(f"{p}: channel {channel!r} must have a positive scan size of under "
+                         f"a metre, the header gives pixels of {dx!r} x {dy!r} m")
     meta = {k: v for k, v in images[names.index(channel)].items() if not k.startswith("_")}
     return values * scale, dx, dy, channel, unit, meta
 
 
-def _read_gwy(p: Path, channel: str):
+def _gwy_fields(p: Path):
+    """The container gwyfile reads and its data fields by title, titles checked."""
     import gwyfile
     from gwyfile.util import get_datafields
     _gwy_check(p)
@@ -365,19 +403,56 @@ def _read_gwy(p: Path, channel: str):
     except Exception as exc:  # gwyfile raises struct.error, ValueError, ... on a corrupt file
         raise ValueError(f"{p}: not a readable Gwyddion file ({type(exc).__name__}: {exc})"
                          ) from None
+    titles = [title for title in fields if not isinstance(title, str)]
+    if titles:
+        raise ValueError(f"{p}: a channel's title must be text, got {titles[0]!r:.60}")
+    return container, fields
+
+
+def _gwy_field(p: Path, channel: str, field) -> tuple[np.ndarray, float, float, str, str]:
+    """A data field's values (rows x columns), pixel sizes and units, each component checked
+    against what a GwyDataField holds before it is used: gwyfile returns a damaged file's
+    components as they are (a string where the field should be, data shorter than its size)."""
+    from gwyfile.objects import GwyDataField, GwySIUnit
+    if not isinstance(field, GwyDataField):
+        raise ValueError(f"{p}: channel {channel!r} must be a GwyDataField, the file holds a "
+                         f"{type(field).__name__} ({field!r:.60})")
+    xres, yres, data = field.get("xres"), field.get("yres"), field.get("data")
+    if not all(isinstance(n, int) and not isinstance(n, bool) and n >= 1 for n in (xres, yres)) \
+            or xres * yres > MAX_PIXELS:
+        raise ValueError(f"{p}: channel {channel!r} must have xres and yres of 1 to "
+                         f"{MAX_PIXELS} pixels in all, got {xres!r:.60} x {yres!r:.60}")
+    if not isinstance(data, np.ndarray) or data.dtype.kind != "f":
+        raise ValueError(f"{p}: channel {channel!r} must hold an array of floats, got "
+                         f"{type(data).__name__} {data!r:.60}")
+    if data.size != xres * yres:
+        raise ValueError(f"{p}: channel {channel!r} holds {data.size} values, its xres x yres "
+                         f"say {xres} x {yres} (truncated?)")
+    reals = [field.get(key) for key in ("xreal", "yreal")]
+    if not all(isinstance(v, float) and 0 < v < float("inf") for v in reals):
+        raise ValueError(f"{p}: channel {channel!r} must have positive finite xreal and yreal "
+                         f"(its size in m), got {reals[0]!r:.60} and {reals[1]!r:.60}")
+    units = []
+    for key, default in (("si_unit_xy", "m"), ("si_unit_z", "")):
+        unit = field.get(key)
+        if unit is not None and not (isinstance(unit, GwySIUnit)
+                                     and isinstance(unit.get("unitstr"), str)):
+            raise ValueError(f"{p}: channel {channel!r} must have a GwySIUnit as {key}, got "
+                             f"{type(unit).__name__} {unit!r:.60}")
+        units.append(unit["unitstr"] if unit is not None else default)
+    values = np.array(data, dtype=float).reshape(yres, xres)
+    return values, reals[0] / xres, reals[1] / yres, units[0], units[1]
+
+
+def _read_gwy(p: Path, channel: str):
+    container, fields = _gwy_fields(p)
     channel = _pick(p, channel, list(fields))
     field = fields[channel]
+    values, dx, dy, xy, z = _gwy_field(p, channel, field)
     # the instrument's metadata that Gwyddion keeps beside the channel ("/0/meta")
     index = next((key[:-len("/data")] for key, value in container.items()
                   if value is field and key.endswith("/data")), None)
     kept = container.get(f"{index}/meta") if index is not None else None
-    try:
-        values = np.array(field.data, dtype=float)
-    except ValueError:
-        raise ValueError(f"{p}: channel {channel!r} holds fewer values than xres x yres "
-                         f"(truncated?)") from None
-    xy = field.si_unit_xy.unitstr if field.si_unit_xy else "m"
-    z = field.si_unit_z.unitstr if field.si_unit_z else ""
     if xy != "m" or z not in _FILE_UNITS:
         raise ValueError(f"{p}: channel {channel!r} must have lateral unit 'm' and values in "
                          f"one of {sorted(_FILE_UNITS)}, got {xy!r} and {z!r}")
@@ -385,8 +460,7 @@ def _read_gwy(p: Path, channel: str):
     meta = {str(k): v for k, v in kept.items()} if hasattr(kept, "items") else {}
     meta.update({"xres": field["xres"], "yres": field["yres"], "xreal": field.xreal,
                  "yreal": field.yreal, "si_unit_xy": xy, "si_unit_z": z})
-    return (values * scale, field.xreal / values.shape[1], field.yreal / values.shape[0],
-            channel, unit, meta)
+    return values * scale, dx, dy, channel, unit, meta
 
 
 def _jpk_channels(p: Path) -> dict:
@@ -530,6 +604,36 @@ _READERS = {".spm": _read_spm, ".gwy": _read_gwy, ".top": _read_wsxm, ".stp": _r
             ".ibw": _read_ibw, ".jpk": _read_jpk, ".asd": _read_asd}
 
 
+def _npy_check(p: Path) -> None:
+    """The array a ``.npy`` header announces (numpy's own header reader) must be a 1-D or 2-D
+    map of real numbers that fits the limits and the file, before numpy reads its data."""
+    from numpy.lib import format as npy
+    try:
+        with open(p, "rb") as f:
+            version = npy.read_magic(f)
+            read = {(1, 0): npy.read_array_header_1_0, (2, 0): npy.read_array_header_2_0}
+            if version not in read:  # 3.0 is written only for non-ASCII field names
+                raise ValueError(f"format version {version} is not 1.0 or 2.0")
+            shape, _, dtype = read[version](f)
+            start = f.tell()
+    except ValueError as exc:
+        raise ValueError(f"{p}: not a readable NumPy array ({exc})") from None
+    if any(n < 0 for n in shape):
+        raise ValueError(f"{p}: the header's shape {shape} has a negative length (corrupt)")
+    if len(shape) not in (1, 2) or not 2 <= math.prod(shape) <= MAX_PIXELS:
+        raise ValueError(f"{p}: a height map must be 1-D or 2-D with 2 to {MAX_PIXELS} values, "
+                         f"the header says shape {shape}")
+    if dtype.kind == "c":
+        raise ValueError(f"{p}: the array holds complex values ({dtype}); a height map is real "
+                         f"(its imaginary part would be lost)")
+    if dtype.kind not in "iuf":
+        raise ValueError(f"{p}: the array must hold real numbers, it holds {dtype}")
+    need = start + math.prod(shape) * dtype.itemsize
+    if need > p.stat().st_size:
+        raise ValueError(f"{p}: the header's {shape} {dtype} values need {need} bytes, the file "
+                         f"has {p.stat().st_size} (truncated?)")
+
+
 def _read_array(p: Path, pixel_size, unit: str) -> Sample:
     if pixel_size is None:
         raise ValueError(f"pixel_size must be given (in m) for a {p.suffix} height map, which "
@@ -540,14 +644,11 @@ def _read_array(p: Path, pixel_size, unit: str) -> Sample:
                          f"got {unit!r}")
     si, factor = UNITS[unit]
     if p.suffix.lower() == ".npy":
+        _npy_check(p)
         try:
-            arr = np.load(p, mmap_mode="r", allow_pickle=False)
+            values = np.array(np.load(p, mmap_mode="r", allow_pickle=False), dtype=float)
         except ValueError as exc:
             raise ValueError(f"{p}: not a readable NumPy array ({exc})") from None
-        if arr.size > MAX_PIXELS:
-            raise ValueError(f"{p}: the array must have at most {MAX_PIXELS} values, got shape "
-                             f"{arr.shape}")
-        values = np.array(arr, dtype=float)
     else:
         if p.stat().st_size > 64 * MAX_PIXELS:
             raise ValueError(f"{p}: a text height map must be under {64 * MAX_PIXELS} bytes")
@@ -604,8 +705,9 @@ def load(path, channel: str = "Height", *, pixel_size: float | None = None,
     ValueError
         Naming the file and what is wrong: not a path, missing, empty, unreadable, of an
         unsupported type, not of the format its suffix says, a header that announces more data
-        than the file holds or than :data:`~afmsmiler.samples.sample.MAX_PIXELS` pixels, NaN
-        or infinite values, a channel the file does not have (the error lists those it has), a
+        than the file holds or than :data:`~afmsmiler.samples.sample.MAX_PIXELS` pixels, a
+        negative size or offset, a component of the wrong kind (a ``.gwy`` data field that is
+        not one, a complex or non-numeric ``.npy``), NaN or infinite values, a channel the file does not have (the error lists those it has), a
         channel in another unit than ``unit``, or a missing ``pixel_size`` of a plain map.
 
     Notes
@@ -682,14 +784,7 @@ def channels(path) -> list[str]:
     if suffix in (".top", ".stp"):
         return [_wsxm_header(p).get("Acquisition channel", "Topography")]
     if suffix == ".gwy":
-        import gwyfile
-        from gwyfile.util import get_datafields
-        _gwy_check(p)
-        try:
-            return list(get_datafields(gwyfile.load(str(p))))
-        except Exception as exc:
-            raise ValueError(f"{p}: not a readable Gwyddion file ({type(exc).__name__}: "
-                             f"{exc})") from None
+        return list(_gwy_fields(p)[1])
     if suffix == ".ibw":
         return _ibw_channels(_ibw_wave(p))
     if suffix == ".jpk":
