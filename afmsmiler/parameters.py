@@ -36,7 +36,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from .validation import check_range
+from .validation import check_range, check_real
 
 __all__ = ["UNITS", "Parameter", "unit_scale", "read_only", "shown", "PARAMETERS",
            "SPRING_CONSTANT", "RESONANCE_FREQUENCY", "QUALITY_FACTOR", "UNDERDAMPED_QUALITY_FACTOR"]
@@ -175,7 +175,7 @@ def _convert(value, factor: float, to_si: bool, name: str = "value"):
         if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer,
                                                                          np.floating)):
             raise TypeError(f"{name} must be a real number, got {value!r}")
-        value = float(value)
+        value = check_real(name, value)  # 10**400: a ValueError naming it, not OverflowError
     if inverse is None:
         out = value * factor if to_si else value / factor
     elif not np.ndim(value) and math.isfinite(value):
@@ -230,10 +230,19 @@ def shown(si_value, display_unit: str, spec: str = ".4g") -> str:
     if isinstance(si_value, (bool, np.bool_)) or not isinstance(si_value, (int, float, np.integer,
                                                                           np.floating)):
         raise TypeError(f"si_value must be a real number, got {si_value!r}")
-    if not math.isfinite(si_value):
+    value = check_real("si_value", si_value)
+    if not math.isfinite(value):
         raise ValueError(f"si_value must be a finite number, got {si_value!r}")
-    value = float(si_value) * unit_scale(display_unit)
-    return f"{value:{spec}} {display_unit}".rstrip()
+    value *= unit_scale(display_unit)
+    if not isinstance(spec, str):
+        raise TypeError(f"spec must be a format specification (a str such as '.4g'), got "
+                        f"{spec!r:.60}")
+    try:
+        text = f"{value:{spec}}"
+    except ValueError as exc:
+        raise ValueError(f"spec must be a format specification of a float (such as '.4g'), got "
+                         f"{spec!r:.60} ({exc})") from None
+    return f"{text} {display_unit}".rstrip()
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -300,7 +309,7 @@ class Parameter:
             bound = getattr(self, field)
             if isinstance(bound, bool) or not isinstance(bound, (int, float, np.integer,
                                                                  np.floating)) \
-                    or math.isnan(bound):
+                    or math.isnan(check_real(f"{where}: {field}", bound)):
                 raise ValueError(f"{where}: {field} must be a real number (inf for none), "
                                  f"got {bound!r}")
         for field in ("low_inclusive", "high_inclusive", "log"):
@@ -324,10 +333,10 @@ class Parameter:
         for field, bound in (("slider_low", lo), ("slider_high", hi)):
             if isinstance(bound, bool) or not isinstance(bound, (int, float, np.integer,
                                                                  np.floating)) \
-                    or math.isnan(bound):
+                    or math.isnan(check_real(f"{where}: {field}", bound)):
                 raise ValueError(f"{where}: {field} must be a real number, got {bound!r}")
-        object.__setattr__(self, "slider_low", float(lo))
-        object.__setattr__(self, "slider_high", float(hi))
+        object.__setattr__(self, "slider_low", check_real(f"{where}: slider_low", lo))
+        object.__setattr__(self, "slider_high", check_real(f"{where}: slider_high", hi))
         if not self.slider_low < self.slider_high:
             raise ValueError(f"{where}: slider_low must be below slider_high, got "
                              f"slider_low={lo}, slider_high={hi}")

@@ -19,6 +19,7 @@ import numpy as np
 
 __all__ = [
     "check_finite",
+    "check_real",
     "check_positive",
     "check_nonnegative",
     "check_range",
@@ -55,18 +56,52 @@ def _in(unit: str) -> str:
     return f" (in {unit})" if unit else ""
 
 
-def _as_float(name: str, value) -> float:
+def _as_float(name: str, value, valid: str = "a finite number") -> float:
     # np.number would let np.complex128 through, and float() would drop its imaginary part
     if isinstance(value, (bool, np.bool_)) or not isinstance(value, (Real, np.integer,
                                                                     np.floating)):
         if isinstance(value, np.ndarray) and value.ndim == 0:
-            return _as_float(name, value.item())
+            return _as_float(name, value.item(), valid)
         raise ValueError(f"{name} must be a real number, got {_short(value)}")
     try:
         return float(value)
-    except OverflowError:  # an int beyond float range (10**400)
-        raise ValueError(f"{name} must be a finite number, got an integer of "
-                         f"{len(str(abs(value)))} digits") from None
+    except OverflowError:  # an int beyond float range (10**400): float() raises OverflowError
+        raise ValueError(f"{name} must be {valid}, got an integer of {_digits(value)} digits "
+                         f"(beyond the float range)") from None
+
+
+def _digits(value) -> int:
+    """The number of decimal digits of an int (without writing out a huge one)."""
+    value = abs(int(value))
+    return len(str(value)) if value < 10 ** 4000 else int(value.bit_length() * math.log10(2)) + 1
+
+
+def check_real(name: str, value) -> float:
+    """Return ``value`` as float; raise ``ValueError`` unless it is a real number in float range.
+
+    NaN and infinities pass (the caller decides what they mean: a gap in a plotted curve, an
+    open end of an interval); a bool, a complex, a string or an integer beyond the float range
+    (``10**400``, on which ``float()`` raises ``OverflowError``) is refused, naming ``name``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, as the caller spells it.
+    value : float
+        The value to check.
+
+    Returns
+    -------
+    float
+
+    Examples
+    --------
+    >>> check_real("low", 10**400)
+    Traceback (most recent call last):
+    ...
+    ValueError: low must be a real number in float range, got an integer of 401 digits (beyond the float range)
+    """
+    return _as_float(name, value, "a real number in float range")
 
 
 def check_finite(name: str, value, unit: str = "") -> float:
@@ -99,7 +134,7 @@ def check_positive(name: str, value, unit: str = "") -> float:
     unit : str
         Its SI unit, for the message.
     """
-    x = _as_float(name, value)
+    x = _as_float(name, value, f"> 0{_unit(unit)} and finite")
     if not (math.isfinite(x) and x > 0):
         raise ValueError(f"{name} must be > 0{_unit(unit)} and finite, got {_fmt(x)}")
     return x
@@ -117,7 +152,7 @@ def check_nonnegative(name: str, value, unit: str = "") -> float:
     unit : str
         Its SI unit, for the message.
     """
-    x = _as_float(name, value)
+    x = _as_float(name, value, f">= 0{_unit(unit)} and finite")
     if not (math.isfinite(x) and x >= 0):
         raise ValueError(f"{name} must be >= 0{_unit(unit)} and finite, got {_fmt(x)}")
     return x
@@ -150,7 +185,8 @@ def check_range(name: str, value, low, high, unit: str = "", *,
     low_inclusive, high_inclusive : bool
         Whether the bounds belong to the range.
     """
-    x = _as_float(name, value)
+    x = _as_float(name, value, f"in {_interval(low, high, low_inclusive, high_inclusive)}"
+                               f"{_unit(unit)}")
     if not (math.isfinite(x) and _inside(x, low, high, low_inclusive, high_inclusive)):
         raise ValueError(
             f"{name} must be in "

@@ -10,9 +10,9 @@ the defaults, and a small table of valid values by parameter name (``lever`` -> 
 signatures are read at collection time, so the campaign follows the modules as their signatures
 change. Then each parameter in turn gets bad values (NaN, +-inf, a string, None, a bool, a
 complex, a list, a foreign object, a wrong shape, zero, negative, huge and tiny numbers, a huge
-integer), the others staying valid; a Sample parameter also gets extreme samples (a line, 2 x 2,
-flat, heights near 1e308, pixels of 1e-300 m, a deflection channel ...) and an imaging
-function's tip the ends of module (d)'s tip ranges. A generator is consumed under the guard.
+integer, 10**400 beyond the float range), the others staying valid; a Sample parameter also gets
+extreme samples (a line, 2 x 2, flat, heights near 1e308, pixels of 1e-300 m, a deflection
+channel ...) and an imaging function's tip the ends of module (d)'s tip ranges. A generator is consumed under the guard.
 
 A call passes when it either
 
@@ -150,7 +150,8 @@ REFERENCE_SOLVERS = {
     "max_periods",
 }
 # Conversions that carry NaN through (a gap in a plotted curve); check() validates.
-NAN_PASSES = {"afmsmiler.parameters.Parameter.to_si", "afmsmiler.parameters.Parameter.to_display"}
+NAN_PASSES = {"afmsmiler.parameters.Parameter.to_si", "afmsmiler.parameters.Parameter.to_display",
+              "afmsmiler.validation.check_real"}  # documented: NaN and inf are the caller's
 # Callables whose documented answer for valid input may be infinite ("no limit").
 INFINITE_OK = {"afmsmiler.contact.z_np_limit": "inf means no limit (documented)",
                "afmsmiler.imaging.dilation.estimate_tip_radius":
@@ -337,6 +338,7 @@ OVERRIDES = {
     "afmsmiler.validation.check_positive": {"value": 1.0},
     "afmsmiler.validation.check_nonnegative": {"value": 1.0},
     "afmsmiler.validation.check_finite": {"value": 1.0},
+    "afmsmiler.validation.check_real": {"value": 1.0},
     "afmsmiler.parameters.Parameter": {"name": "length", "unit": "m", "display_unit": "um",
                                        "default": 1e-4, "low": 0.0, "high": 1e-3},
     "afmsmiler.parameters.unit_scale": {"display_unit": "nm", "unit": "m"},
@@ -579,6 +581,7 @@ BAD = {
     "complex": (1 + 1j, False), "list": ([1.0, 2.0], True), "object": (Foreign(), False),
     "zero": (0.0, True), "negative": (-1.0, True), "huge": (1e300, True),
     "-huge": (-1e300, True), "tiny": (1e-300, True), "bigint": (10**9, True),
+    "hugeint": (10**400, True),  # beyond the float range: float() raises OverflowError
     "2d": (np.ones((3, 3)), True), "empty": (np.array([]), True),
     "nan-array": (np.array([0.0, math.nan]), False),
 }

@@ -6,7 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 from afmsmiler.validation import (check_array, check_choice, check_integer, check_nonnegative,
-                                  check_positive, check_range)
+                                  check_positive, check_range, check_real)
 
 
 def test_messages_name_parameter_value_and_range():
@@ -73,9 +73,43 @@ def test_scalars_reject_what_is_not_a_real_number(bad):
 
 
 def test_an_integer_beyond_float_range_is_named():
-    # float(10**400) raised OverflowError
-    with pytest.raises(ValueError, match=r"^x must be a finite number, got an integer of 401"):
-        check_range("x", 10**400, 0, 1)
+    # float(10**400) raised OverflowError; the message gives the valid range
+    with pytest.raises(ValueError, match=r"^x must be in \[0, 1\] m, got an integer of 401 "
+                                         r"digits \(beyond the float range\)"):
+        check_range("x", 10**400, 0, 1, "m")
+    with pytest.raises(ValueError, match=r"^k must be > 0 N/m and finite, got an integer of 401"):
+        check_positive("k", -10**400, "N/m")
+    with pytest.raises(ValueError, match=r"^d must be >= 0 and finite, got an integer of 4301 "):
+        check_nonnegative("d", 10**4300)  # beyond str()'s 4300 digits too
+    # NaN and inf are the caller's to judge; a number beyond floats is not a number it can use
+    assert math.isinf(check_real("high", math.inf)) and math.isnan(check_real("x", math.nan))
+    with pytest.raises(ValueError, match=r"^low must be a real number in float range, got an "
+                                         r"integer of 401 digits"):
+        check_real("low", 10**400)
+    with pytest.raises(ValueError, match=r"^low must be a real number, got 'a'"):
+        check_real("low", "a")
+
+
+def test_parameters_and_optics_name_an_integer_beyond_float_range():
+    """Parameter's bounds, its unit conversions, shown() and the optics' interval ends called
+    float() or math.isinf() on 10**400 and raised OverflowError."""
+    from afmsmiler.instrument.optics import interval_fraction
+    from afmsmiler.parameters import Parameter, shown
+    p = Parameter(name="length", unit="m", display_unit="um", default=1e-4, low=0.0, high=1e-3)
+    for call, name in ((lambda: Parameter(name="length", unit="m", default=1e-4, low=0.0,
+                                          high=10**400), "high"),
+                       (lambda: Parameter(name="length", unit="m", default=1e-4, low=0.0,
+                                          high=1e-3, slider_low=-10**400), "slider_low"),
+                       (lambda: p.to_si(10**400), "display_value"),
+                       (lambda: p.to_display(10**400), "si_value"),
+                       (lambda: shown(10**400, "nm"), "si_value"),
+                       (lambda: interval_fraction(0.0, 1e-5, -10**400, 1e-5), "low")):
+        with pytest.raises(ValueError, match=f"{name} must be a real number in float range"):
+            call()
+    with pytest.raises(ValueError, match=r"spec must be a format specification of a float"):
+        shown(1e-9, "nm", "9" * 30)  # "Too many decimal digits in format string"
+    with pytest.raises(TypeError, match=r"spec must be a format specification \(a str"):
+        shown(1e-9, "nm", 4)
 
 
 def test_choice_of_an_unhashable_value_is_named():

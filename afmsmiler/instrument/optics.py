@@ -29,7 +29,7 @@ import math
 import numpy as np
 from scipy.special import ndtr
 
-from ..validation import check_array, check_range
+from ..validation import check_array, check_range, check_real
 
 #: Largest length in m the functions accept (a bench is metres long; beyond, nothing is optics
 #: of an AFM and the squares of lengths would leave double precision).
@@ -50,7 +50,7 @@ def _length(name, value, low=MIN_LENGTH, high=MAX_LENGTH):
 def _end(name, value):
     """An interval's end in m: a real number in [-MAX_LENGTH, MAX_LENGTH] or -inf/inf."""
     if isinstance(value, (int, float, np.integer, np.floating)) and not isinstance(
-            value, (bool, np.bool_)) and math.isinf(value):
+            value, (bool, np.bool_)) and math.isinf(check_real(name, value)):
         return float(value)
     return check_range(name, value, -MAX_LENGTH, MAX_LENGTH, "m")
 
