@@ -11,7 +11,8 @@ from scipy.optimize import brentq
 
 from ..controller import PARAMETERS, PRESETS, ContactLoop
 from ..controller.defaults import SETPOINT, line_profile
-from ..validation import check_choice, check_nonnegative, check_positive, check_range
+from ..validation import (check_choice, check_instance, check_nonnegative, check_positive,
+                          check_range)
 from ..parameters import read_only
 from . import Feedback, check_close
 
@@ -44,6 +45,7 @@ def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profi
     float
         RMS error in m (inf if the signals overflow).
     """
+    check_instance("loop", loop, ContactLoop)
     line = line_profile(profile)
     scan = loop.scan_line(line.x, line.heights, speed=speed, setpoint=SETPOINT)
     shift = loop.steady_state(SETPOINT, 0.0).z_np

@@ -302,6 +302,7 @@ def substrate_tilt(image: Sample) -> tuple[float, float]:
     tuple of float
         (slope_x, slope_y), dimensionless (the tangents of the tilt angles).
     """
+    check_instance("image", image, Sample)
     flat = _levelling_scan((0.0, 0.0)).heights
     particles = flat > np.median(flat) + 1e-9
     plane = fit_plane(image, particles)

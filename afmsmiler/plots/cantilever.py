@@ -139,7 +139,9 @@ class CantileverFigure:
     """
 
     def __init__(self, curves: CantileverCurves, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["figsize"])
+        check_instance("curves", curves, CantileverCurves)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=DEFAULTS["figsize"]))
         axes = self.fig.subplots(2, 2)
         self.axes = dict(z=axes[0, 0], theta=axes[0, 1], stress_top=axes[1, 0], section=axes[1, 1])
         ax = self.axes
@@ -238,7 +240,8 @@ class ModeShapesFigure:
         if len(self.modes) != n:
             raise ValueError(f"modes must number the {n} modes of curves, got {len(self.modes)}")
         if ax is None:
-            self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["modes_figsize"])
+            self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                        else Figure(figsize=DEFAULTS["modes_figsize"]))
             ax = self.fig.add_subplot()
             self.fig.set_layout_engine("constrained")
         else:

@@ -16,7 +16,7 @@ from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, Indentation
                        contact_surface)
 from ..contact.viscoelastic import ViscoelasticCycle
 from ..parameters import read_only, unit_scale
-from ..validation import check_positive, check_range
+from ..validation import check_instance, check_positive, check_range
 from .limits import data_range, hold
 
 __all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
@@ -54,7 +54,8 @@ def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=Non
     Figure
     """
     tips = [cls() for cls in TIPS.values()] if tips is None else list(tips)
-    fig = fig or Figure(figsize=(2.6 * len(tips), 3.2))
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=(2.6 * len(tips), 3.2)))
     axes = fig.subplots(1, len(tips), sharex=True, sharey=True, squeeze=False)[0]
     s = UNITS["length"]
     for ax, tip in zip(axes, tips):
@@ -164,7 +165,9 @@ class ContactFigure:
     """
 
     def __init__(self, curves: ContactCurves, fig=None):
-        self.fig = fig or Figure(figsize=DEFAULTS["figsize"])
+        check_instance("curves", curves, ContactCurves)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=DEFAULTS["figsize"]))
         self.ax_curve, self.ax_contact = self.fig.subplots(
             1, 2, gridspec_kw=dict(width_ratios=[1.3, 1]))
         ax = self.ax_curve
@@ -235,7 +238,7 @@ def cycles_figure(cycles, fig=None) -> Figure:
     -------
     Figure
     """
-    fig = fig or Figure(figsize=(6.5, 4.2))
+    fig = check_instance("fig", fig, Figure) if fig is not None else Figure(figsize=(6.5, 4.2))
     ax = fig.subplots()
     s, f = UNITS["length"], UNITS["force"]
     for i, (label, cyc) in enumerate(cycles.items()):
@@ -295,7 +298,7 @@ def fit_figure(curve, result, *, report_poisson_ratio=None, zoom=DEFAULTS["fit_z
         report_poisson_ratio = check_range("report_poisson_ratio", report_poisson_ratio, 0.0, 0.5)
     if zoom is not None:
         zoom = check_positive("zoom", zoom, "m")
-    fig = fig or Figure(figsize=(6.5, 5.0))
+    fig = check_instance("fig", fig, Figure) if fig is not None else Figure(figsize=(6.5, 5.0))
     ax, axr = fig.subplots(2, 1, sharex=True, gridspec_kw=dict(height_ratios=[3, 1]))
     s, f = UNITS["length"], UNITS["force"]
     order = np.argsort(result.x)
@@ -374,6 +377,7 @@ def fit_window(result, width):
         of ``width``; if the contact region alone is wider, it and width/2 of baseline. Clipped
         to the data.
     """
+    check_instance("result", result, FitResult)
     width = check_positive("width", width, "m")
     x, cp = result.x, result.contact_point
     side = 1.0 if x[np.argmax(result.model_force)] >= cp else -1.0

@@ -16,7 +16,9 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
+from ..controller import ContactLoop, ScanImage, ScanLine
 from ..parameters import read_only, unit_scale
+from ..validation import check_instance
 from .limits import hold
 
 __all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
@@ -81,6 +83,8 @@ def scan_curves(result, loop) -> ScanCurves:
     -------
     ScanCurves
     """
+    check_instance("result", result, ScanLine)
+    check_instance("loop", loop, ContactLoop)
     z, x = UNITS["z"], UNITS["x"]
     tr, rt = result.trace, result.retrace
     stab = loop.is_stable()
@@ -150,7 +154,9 @@ class ScanFigure:
     """
 
     def __init__(self, curves: ScanCurves, fig: Figure | None = None, title: str = ""):
-        self.fig = fig if fig is not None else Figure(figsize=FIGSIZE["scan"])
+        check_instance("curves", curves, ScanCurves)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=FIGSIZE["scan"]))
         self.fig.set_layout_engine("constrained")  # before the legend placed "outside"
         grid = self.fig.add_gridspec(2, 3)
         ax = self.axes = dict(znp=self.fig.add_subplot(grid[0, :2]),
@@ -287,7 +293,8 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
     from ..controller import PRESETS
     presets = PRESETS if presets is None else presets
     width, row = FIGSIZE["fig4"]
-    fig = fig if fig is not None else Figure(figsize=(width, row * len(presets)))
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=(width, row * len(presets))))
     fig.set_layout_engine("constrained")  # before the legend placed "outside"
     axes = fig.subplots(len(presets), 2, squeeze=False)
     for row, preset in enumerate(presets.values()):
@@ -341,7 +348,8 @@ def block_diagram(fig: Figure | None = None) -> Figure:
     -------
     matplotlib.figure.Figure
     """
-    fig = fig if fig is not None else Figure(figsize=FIGSIZE["block"])
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=FIGSIZE["block"]))
     ax = fig.add_subplot()
     for xy, sign in (((1.2, 1.0), "$-$"), ((7.0, 1.0), "+")):
         ax.add_patch(Circle(xy, 0.2, fc="white", ec="black"))
@@ -389,7 +397,8 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     x = np.asarray(x, dtype=float)[:n_show]
     h = np.asarray(height, dtype=float)[:n_show] * UNITS["z"]
     t = (x - x[0]) / speed * 1e6  # us
-    fig = fig if fig is not None else Figure(figsize=FIGSIZE["polygon"])
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=FIGSIZE["polygon"]))
     a1, a2 = fig.subplots(1, 2)
     a1.plot(t, h, "o-", color="C0")
     a1.set(xlabel="t [us]", ylabel="T [nm]", title="topography under the tip: a polygon")
@@ -428,6 +437,7 @@ def image_figure(image, heights=None, signal: str = "height", fig: Figure | None
     """
     if signal not in ("height", "topography"):
         raise ValueError(f"signal must be one of ['height', 'topography'], got {signal!r}")
+    check_instance("image", image, ScanImage)
     if signal == "height":
         panels = [("trace: -Z_np", image.height_trace), ("retrace: -Z_np", image.height_retrace)]
     else:
@@ -435,7 +445,8 @@ def image_figure(image, heights=None, signal: str = "height", fig: Figure | None
     if heights is not None:
         panels.insert(0, ("true topography", np.asarray(heights)))
     per_image, height = FIGSIZE["image"]
-    fig = fig if fig is not None else Figure(figsize=(per_image * len(panels), height))
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=(per_image * len(panels), height)))
     axes = fig.subplots(1, len(panels), squeeze=False)[0]
     rows, cols = image.trace.shape
     extent = (0, cols * image.pixel_size * UNITS["x"], 0, rows * image.pixel_size * UNITS["x"])

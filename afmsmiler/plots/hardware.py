@@ -23,7 +23,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..parameters import unit_scale
-from ..validation import check_integer
+from ..validation import check_instance, check_integer
 from .imaging import _clim
 from .limits import data_range, hold
 
@@ -197,7 +197,11 @@ class MacroFigure:
 
     def __init__(self, view: MacroView, comparison: ComparisonView | None = None,
                  fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=FIGSIZE)
+        check_instance("view", view, MacroView)
+        if comparison is not None:
+            check_instance("comparison", comparison, ComparisonView)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=FIGSIZE))
         self.fig.set_layout_engine("constrained")
         grid = self.fig.add_gridspec(2, 3)
         self.axes = {"height": self.fig.add_subplot(grid[0, 0]),
@@ -301,7 +305,8 @@ def scans_figure(*images, titles=None, fig: Figure | None = None) -> Figure:
     if len(titles) != len(images):
         raise ValueError(f"titles must give one title per image ({len(images)}), got "
                          f"{len(titles)}")
-    fig = fig if fig is not None else Figure(figsize=(10.0, 10.0 / max(len(images), 2) + 0.6))
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=(10.0, 10.0 / max(len(images), 2) + 0.6)))
     fig.set_layout_engine("constrained")
     axes = fig.subplots(1, len(images), squeeze=False)[0]
     k, kz = unit_scale(LENGTH_UNIT, "m"), unit_scale(HEIGHT_UNIT, "m")
@@ -365,7 +370,7 @@ def modes_figure(*comparisons, labels, fig: Figure | None = None) -> Figure:
     dx, dy = first.pixel_size * k, first.pixel_size_y * k
     extent = (-0.5 * dx, (cols - 0.5) * dx, -0.5 * dy, (rows - 0.5) * dy)
     n = len(comparisons)
-    fig = fig if fig is not None else Figure(figsize=(10.0, 9.5))
+    fig = check_instance("fig", fig, Figure) if fig is not None else Figure(figsize=(10.0, 9.5))
     fig.set_layout_engine("constrained")
     grid = fig.add_gridspec(3, n, height_ratios=(1.0, 1.0, 0.8))
     heights = [c.image.heights * kz for c in comparisons]

@@ -21,7 +21,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..parameters import UNITS, read_only, unit_scale
-from ..validation import check_choice, check_integer
+from ..validation import check_choice, check_instance, check_integer
 from .limits import data_range, hold
 
 __all__ = ["FIGSIZE", "DISPLAY_UNITS", "ScanView", "scan_view", "ImagingFigure",
@@ -242,6 +242,9 @@ def _full_images(result) -> dict:
     scanned), else ``channels`` (already the full image, e.g. the imaging panel's)."""
     images = getattr(result, "images", None)
     if images is None:
+        if not isinstance(getattr(result, "channels", None), dict):
+            raise TypeError(f"result must be a ScanResult (or hold its channels), got "
+                            f"{type(result).__name__} {result!r:.60}")
         return dict(result.channels)
     units = getattr(result, "units", {})
     return {name: _Channel(np.asarray(a, dtype=float), float(result.pixel_size),
@@ -355,7 +358,9 @@ class ImagingFigure:
     ERROR_CMAP = "RdBu_r"
 
     def __init__(self, view: ScanView, fig: Figure | None = None, cmap: str = "afmhot"):
-        self.fig = fig if fig is not None else Figure(figsize=FIGSIZE)
+        check_instance("view", view, ScanView)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=FIGSIZE))
         self.fig.set_layout_engine("constrained")
         grid = self.fig.add_gridspec(2, 2, height_ratios=(3, 2))
         ax = self.axes = dict(image=self.fig.add_subplot(grid[0, 0]),
@@ -470,7 +475,8 @@ def images_figure(*images, titles=None, cmap: str = "afmhot", fig: Figure | None
     if len(titles) != len(images):
         raise ValueError(f"titles must give one title per image ({len(images)}), got "
                          f"{len(titles)}")
-    fig = fig if fig is not None else Figure(figsize=(10.0, 10.0 / max(len(images), 2) + 0.6))
+    fig = (check_instance("fig", fig, Figure) if fig is not None
+           else Figure(figsize=(10.0, 10.0 / max(len(images), 2) + 0.6)))
     fig.set_layout_engine("constrained")
     axes = fig.subplots(1, len(images), squeeze=False)[0]
     for ax, image, title in zip(axes, images, titles):

@@ -9,9 +9,11 @@ from __future__ import annotations
 import math
 
 import numpy as np
+from matplotlib.figure import Figure
 
 from ..instrument import OpticalHead, Signals
 from ..parameters import unit_scale
+from ..validation import check_instance
 
 __all__ = ["InstrumentFigure", "SPOT_POINTS"]
 
@@ -43,7 +45,8 @@ class InstrumentFigure:
     """
 
     def __init__(self, head: OpticalHead, fig):
-        self.fig = fig
+        check_instance("head", head, OpticalHead)
+        self.fig = check_instance("fig", fig, Figure)
         um, mm = unit_scale("um"), unit_scale("mm")
         self._um, self._mm = um, mm
         self.ax_lever, self.ax_detector = fig.subplots(1, 2)

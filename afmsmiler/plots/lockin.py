@@ -74,7 +74,8 @@ class LockInFigure:
     """
 
     def __init__(self, demo: LockInDemo, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["figsize"])
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=DEFAULTS["figsize"]))
         outputs, spectrum, pickup = self.fig.subplots(1, 3)
         self.axes = dict(outputs=outputs, spectrum=spectrum, pickup=pickup)
         u = DEFAULTS["unit"]

@@ -32,6 +32,7 @@ from ..modes.fm import FrequencyShiftCurve
 from ..modes.force_volume import ForceVolume
 from ..modes.jumping import JumpCurve
 from ..modes.lateral import FrictionImages, FrictionLoop
+from ..imaging.scanner import ScanResult
 from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance
@@ -160,7 +161,8 @@ class TappingFigure:
 
     def __init__(self, curve: AmplitudeCurve, setpoint=None, fig: Figure | None = None,
                  jumps=None):
-        self.fig = fig if fig is not None else Figure(figsize=(8.0, 7.5))
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=(8.0, 7.5)))
         self.fig.set_layout_engine("constrained")
         axes = self.fig.subplots(3, 1, sharex=True)
         self.axes = dict(zip(self.QUANTITIES, axes))
@@ -314,7 +316,8 @@ class LateralFigure:
 
     def __init__(self, loop: FrictionLoop, images: FrictionImages | None = None,
                  row: int | None = None, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=(9.0, 7.0))
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=(9.0, 7.0)))
         self.fig.set_layout_engine("constrained")
         self.has_maps = images is not None
         if self.has_maps:
@@ -438,7 +441,8 @@ class FrequencyShiftFigure:
     """
 
     def __init__(self, curve: FrequencyShiftCurve, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=(8.0, 6.5))
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=(8.0, 6.5)))
         self.fig.set_layout_engine("constrained")
         a1, a2 = self.fig.subplots(2, 1, sharex=True)
         self.axes = dict(shift=a1, force=a2)
@@ -539,7 +543,9 @@ class JumpingFigure:
     """
 
     def __init__(self, curve: JumpCurve, result, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=(9.5, 7.0))
+        check_instance("result", result, ScanResult)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=(9.5, 7.0)))
         self.fig.set_layout_engine("constrained")
         grid = self.fig.add_gridspec(2, 2)
         ax = self.axes = dict(curve=self.fig.add_subplot(grid[0, 0]),
@@ -660,7 +666,9 @@ class ForceVolumeFigure:
                       "dissipation": ("J", "zJ", "inferno")})
 
     def __init__(self, volume: ForceVolume, names=None, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=(10.0, 6.5))
+        check_instance("volume", volume, ForceVolume)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=(10.0, 6.5)))
         self.fig.set_layout_engine("constrained")
         grid = self.fig.add_gridspec(2, 3)
         self.axes = {"modulus": self.fig.add_subplot(grid[0, 0]),

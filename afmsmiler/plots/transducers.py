@@ -50,6 +50,7 @@ def frequency_grid(model: Transducer, n_frequencies: int = DEFAULTS["n_frequenci
     ndarray
         Increasing frequencies in Hz.
     """
+    check_instance("model", model, Transducer)
     n_frequencies = check_integer("n_frequencies", n_frequencies, 2, 100_000)
     f1 = model.resonance_frequency
     top = DEFAULTS["f_high_ratio"] * f1
@@ -206,7 +207,9 @@ class TransducerFigure:
     """
 
     def __init__(self, curves: ChainCurves, fig: Figure | None = None):
-        self.fig = fig if fig is not None else Figure(figsize=DEFAULTS["figsize"])
+        check_instance("curves", curves, ChainCurves)
+        self.fig = (check_instance("fig", fig, Figure) if fig is not None
+                    else Figure(figsize=DEFAULTS["figsize"]))
         lever, output, response = self.fig.subplots(1, 3)
         self.axes = dict(lever=lever, lever_right=lever.twinx(), output=output, response=response,
                          phase=response.twinx())

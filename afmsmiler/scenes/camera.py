@@ -8,7 +8,7 @@ import meshcat
 import numpy as np
 
 from ..validation import check_array, check_positive, check_range
-from .transforms import check_point
+from .transforms import check_point, check_visualizer
 
 __all__ = ["set_camera", "CAMERA_FOV", "camera_ndc", "show_helpers", "READABLE_TEXT",
            "readable_width"]
@@ -19,6 +19,7 @@ def set_camera(vis: meshcat.Visualizer, position) -> None:
 
     The camera keeps looking at the world origin, so scene builders centre their objects there.
     """
+    check_visualizer("vis", vis)
     x, y, z = check_point("position", position)
     # the camera node is rotated by +pi/2 about x (three.js is y-up): world (x, y, z) -> (x, z, -y)
     vis["/Cameras/default/rotated/<object>"].set_property("position", [x, z, -y])
@@ -89,6 +90,7 @@ def show_helpers(vis: meshcat.Visualizer, grid: bool = True, axes: bool = True) 
     grid, axes : bool
         Whether to show the grid and the axes.
     """
+    check_visualizer("vis", vis)
     vis["/Grid"].set_property("visible", bool(grid))
     vis["/Axes"].set_property("visible", bool(axes))
 

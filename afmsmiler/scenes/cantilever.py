@@ -31,7 +31,7 @@ from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend, TextPlate
 from .meshes import beam_mesh
 from .shapes import Arrow, cone
-from .transforms import translation
+from .transforms import check_visualizer, translation
 from .viewer import SceneDisplay, scene_root, static_html as _static_html
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "LIMITS", "CantileverScene", "mode_animation"]
@@ -421,6 +421,7 @@ def mode_animation(bending: Bending, vis: meshcat.Visualizer, modes=(1, 2, 3), *
     -------
     meshcat.animation.Animation
     """
+    check_visualizer("vis", vis)
     check_instance("bending", bending, Bending)
     frames = check_integer("frames", frames, 2, 10_000)
     segments = check_integer("segments", segments, 2, 1_000)

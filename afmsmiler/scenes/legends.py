@@ -18,9 +18,9 @@ import meshcat
 import meshcat.geometry as g
 import numpy as np
 
-from ..validation import check_array, check_integer, check_positive
+from ..validation import check_array, check_instance, check_integer, check_positive
 from .colors import ColorScale
-from .transforms import translation
+from .transforms import check_visualizer, translation
 
 __all__ = ["colorbar_png", "text_png", "legend_html", "tick_labels", "legend_title",
            "ColorLegend", "TextPlate"]
@@ -105,6 +105,7 @@ def legend_title(scale: ColorScale, exponent: int = 0) -> str:
     exponent : int
         The power of ten shared by the tick labels (0: none).
     """
+    check_instance("scale", scale, ColorScale)
     if exponent == 0:
         return scale.title
     unit = f" {scale.unit}" if scale.unit else ""
@@ -127,6 +128,7 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     n_ticks : int
         Evenly spaced tick labels from ``vmin`` to ``vmax`` (2 to 21).
     """
+    check_instance("scale", scale, ColorScale)
     from PIL import Image, ImageDraw
 
     n_ticks = check_integer("n_ticks", n_ticks, 2, 21)
@@ -199,6 +201,7 @@ class TextPlate:
     TEXT_FRACTION = _TEXT_FONT / 6
 
     def __init__(self, vis: meshcat.Visualizer, text: str, width: float = 1.0):
+        check_visualizer("vis", vis)
         self.vis = vis
         self.width = check_positive("width", width)
         self.text = str(text)
@@ -224,6 +227,7 @@ def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str
 
     ``n_stops`` colors (2 to 64) make the gradient; the bar is ``width_px`` pixels wide.
     """
+    check_instance("scale", scale, ColorScale)
     n_stops = check_integer("n_stops", n_stops, 2, 64)
     stops = scale.rgb(np.linspace(scale.vmin, scale.vmax, n_stops))
     css = ", ".join(f"rgb({int(255 * r)},{int(255 * gg)},{int(255 * b)})" for r, gg, b in stops)
@@ -259,6 +263,7 @@ class ColorLegend:
     TEXT_FRACTION = _COLORBAR_FONT / 4
 
     def __init__(self, vis: meshcat.Visualizer, scale: ColorScale, width: float = 1.6):
+        check_visualizer("vis", vis)
         self.vis = vis
         self.width = check_positive("width", width)
         self.scale = None
@@ -272,6 +277,7 @@ class ColorLegend:
 
     def set(self, scale: ColorScale) -> bool:
         """Show ``scale``; return True if the texture had to be redrawn."""
+        check_instance("scale", scale, ColorScale)
         if scale == self.scale:
             return False
         view = _view(self.vis)

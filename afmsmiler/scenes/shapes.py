@@ -12,7 +12,7 @@ import meshcat.geometry as g
 import numpy as np
 
 from ..validation import check_array, check_integer, check_positive, check_range
-from .transforms import check_point, rotation_between, translation
+from .transforms import check_point, check_visualizer, rotation_between, translation
 
 __all__ = ["Arrow", "Segment", "Tube", "cone", "sphere", "polyline"]
 
@@ -47,6 +47,7 @@ class Arrow:
 
     def __init__(self, vis: meshcat.Visualizer, color: int = 0x202020, radius: float = 0.01,
                  head_length: float = 0.06):
+        check_visualizer("vis", vis)
         self.vis = vis
         self.radius = check_positive("radius", radius)
         self.head_length = check_positive("head_length", head_length)
@@ -105,6 +106,7 @@ class Segment:
 
     def __init__(self, vis: meshcat.Visualizer, color: int = 0xff2020, radius: float = 0.005,
                  opacity: float = 1.0):
+        check_visualizer("vis", vis)
         self.vis = vis
         self.radius = check_positive("radius", radius)
         opacity = check_range("opacity", opacity, 0.0, 1.0, low_inclusive=False)
@@ -153,6 +155,7 @@ class Tube:
 
     def __init__(self, vis: meshcat.Visualizer, color: int = 0xb87333, radius: float = 0.01,
                  sides: int = 6):
+        check_visualizer("vis", vis)
         self.vis = vis
         self.color = color
         self.radius = check_positive("radius", radius)
@@ -215,6 +218,7 @@ def cone(vis: meshcat.Visualizer, height: float, radius: float, color: int = 0x8
     color : int
         0xRRGGBB.
     """
+    check_visualizer("vis", vis)
     height = check_positive("height", height)
     radius = check_positive("radius", radius)
     # meshcat's cone points along +y with its centre at the origin: turn it apex-down and lift it
@@ -229,6 +233,7 @@ def sphere(vis: meshcat.Visualizer, radius: float, color: int = 0x808080,
            opacity: float = 1.0) -> None:
     """A sphere of ``radius`` scene units centred at the origin of ``vis``, of ``color``
     (0xRRGGBB) and ``opacity`` in (0, 1]."""
+    check_visualizer("vis", vis)
     radius = check_positive("radius", radius)
     vis.set_object(g.Sphere(radius), _material(color, opacity))
 
@@ -238,6 +243,7 @@ def polyline(vis: meshcat.Visualizer, points, color: int = 0x202020) -> None:
 
     WebGL draws lines one pixel wide whatever their width; use :class:`Segment` for a thick one.
     """
+    check_visualizer("vis", vis)
     pts = check_array("points", points, ndim=2)
     if pts.shape[1] != 3 or pts.shape[0] < 2:
         raise ValueError(f"points must have shape (N >= 2, 3), got {pts.shape}")

@@ -54,7 +54,7 @@ from .colors import ColorScale
 from .legends import TextPlate
 from .meshes import beam_mesh
 from .shapes import Arrow, cone, Segment, sphere, Tube
-from .transforms import reflect, rotation_between, translation
+from .transforms import check_visualizer, reflect, rotation_between, translation
 from .viewer import SceneDisplay, scene_root
 
 __all__ = ["SCENE_UNIT", "DEFAULTS", "TransducerScene", "LeverPose", "lever_pose", "OpticalLever",
@@ -167,6 +167,7 @@ def quadrant_photodiode(vis: meshcat.Visualizer, centre, normal, size: float = 0
     ndarray
         The 4 x 4 rotation taking +z to ``normal``.
     """
+    check_visualizer("vis", vis)
     centre = check_array("centre", centre, size=3)
     n = check_array("normal", normal, size=3)
     if not np.linalg.norm(n) > 0:
@@ -220,6 +221,7 @@ class OpticalLever:
     def __init__(self, vis: meshcat.Visualizer, *, source, target,
                  detector_distance: float = DEFAULTS["detector_distance"],
                  beam_radius: float = DEFAULTS["beam_radius"]):
+        check_visualizer("vis", vis)
         self.vis = vis
         self.source = check_array("source", source, size=3)
         target = check_array("target", target, size=3)

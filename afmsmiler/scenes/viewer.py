@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import meshcat
 
+from .transforms import check_visualizer
 from .view import SceneView, save_static_html, static_html, view_of
 
 __all__ = ["scene_root", "SceneDisplay", "static_html", "save_static_html", "view_of"]
@@ -17,7 +18,7 @@ __all__ = ["scene_root", "SceneDisplay", "static_html", "save_static_html", "vie
 
 def scene_root(vis: meshcat.Visualizer | None = None, height: int = 400) -> meshcat.Visualizer:
     """``vis``, or the root visualizer of a new :class:`SceneView` of ``height`` px."""
-    return SceneView(height=height).vis if vis is None else vis
+    return SceneView(height=height).vis if vis is None else check_visualizer("vis", vis)
 
 
 class SceneDisplay:
