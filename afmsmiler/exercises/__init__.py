@@ -105,7 +105,7 @@ def check_close(quantity: str, answer, expected: float, rtol: float, unit: str =
     """
     try:
         value = float(answer)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: 10**400
         return Feedback(False, f"{quantity} must be a number, got {answer!r}.")
     if not math.isfinite(value):
         return Feedback(False, f"{quantity} must be finite, got {value!r}.")
@@ -147,7 +147,7 @@ def read_number(name: str, answer, hint: str):
         return None, Feedback(False, f"enter {name}. {hint}")
     try:
         value = float(answer)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int such as 10**400
         return None, Feedback(False, f"{name} must be a number, got {answer!r}. {hint}")
     if not math.isfinite(value):
         return None, Feedback(False, f"{name} must be finite, got {value!r}. {hint}")

@@ -32,7 +32,7 @@ def _number(quantity: str, unit: str, answer, hint: str):
         return Feedback(False, f"{quantity} must be a number, got {answer!r}. {hint}")
     try:
         value = float(answer)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int such as 10**400
         return Feedback(False, f"{quantity} must be a number, got {answer!r}. {hint}")
     if not math.isfinite(value):
         return Feedback(False, f"{quantity} must be finite, got {value!r}. {hint}")

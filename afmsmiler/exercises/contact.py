@@ -143,7 +143,7 @@ def check_contact_point(answer, exercise: FitExercise, tolerance: float = 2e-9) 
     hint = HINTS["contact_point"]
     try:
         value = float(answer)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int such as 10**400
         return Feedback(False, f"enter the contact point in m. {hint}")
     if not math.isfinite(value):
         return Feedback(False, f"the contact point must be finite, got {value!r}. {hint}")

@@ -30,7 +30,7 @@ from ..imaging.scan_modes import ConstantForce
 from ..imaging.scanner import PARAMETERS as SCAN, ScanSettings, scan
 from ..parameters import read_only
 from ..samples import Sample
-from ..validation import check_instance
+from ..validation import check_instance, check_positive
 from . import Feedback, check_close, diagnose_slip
 
 __all__ = ["DEFAULTS", "speed_sample", "scan_error", "fastest_speed", "check_fast_scan",
@@ -147,13 +147,15 @@ def check_fast_scan(speed, max_rms_error: float = DEFAULTS["max_rms_error"],
         Passed when the error at ``speed`` (simulated) is at most the bound and ``speed`` is at
         least (1 - rtol) times the fastest speed.
     """
+    max_rms_error = check_positive("max_rms_error", max_rms_error, "m")
+    rtol = check_positive("rtol", rtol)
     hint = ("Scan faster until the error signal's RMS passes the bound, then back off a little; "
             "the speed in m/s (1 um/s = 1e-6 m/s).")
     if speed is None:
         return Feedback(False, f"enter a scan speed in m/s. {hint}")
     try:
         v = float(speed)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int such as 10**400
         return Feedback(False, f"speed must be a number in m/s, got {speed!r}.")
     best = fastest_speed(max_rms_error)
     p = SCAN["scan_speed"]
@@ -250,7 +252,7 @@ def check_tip_radius(radius, rtol: float = DEFAULTS["radius_rtol"]) -> Feedback:
     true = _TIP_RADIUS
     try:
         value = float(radius)
-    except (TypeError, ValueError):
+    except (TypeError, ValueError, OverflowError):  # OverflowError: an int such as 10**400
         return Feedback(False, f"radius must be a number in m, got {radius!r}.")
     width = sphere_apparent_width(d["particle_radius"], Parabolic(radius=true))
     spheres = _two_spheres(width, d["particle_radius"])
@@ -323,6 +325,7 @@ def check_levelled(image, max_residual: float = DEFAULTS["max_residual_tilt"]) -
     -------
     Feedback
     """
+    max_residual = check_positive("max_residual", max_residual)
     hint = ("Fit a plane and subtract it (level_plane); the particles must not take part in the "
             "fit, or they tilt the plane: mask them (mask_features) and level again.")
     if image is None:

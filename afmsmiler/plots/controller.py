@@ -18,7 +18,7 @@ from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
 from ..controller import ContactLoop, ScanImage, ScanLine
 from ..parameters import read_only, unit_scale
-from ..validation import check_instance
+from ..validation import check_array, check_instance, check_positive
 from .limits import hold
 
 __all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
@@ -394,8 +394,9 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     -------
     matplotlib.figure.Figure
     """
-    x = np.asarray(x, dtype=float)[:n_show]
-    h = np.asarray(height, dtype=float)[:n_show] * UNITS["z"]
+    x = check_array("x", x, "m", ndim=1, min_size=1)[:n_show]
+    h = check_array("height", height, "m", ndim=1)[:n_show] * UNITS["z"]
+    speed = check_positive("speed", speed, "m/s")
     t = (x - x[0]) / speed * 1e6  # us
     fig = (check_instance("fig", fig, Figure) if fig is not None
            else Figure(figsize=FIGSIZE["polygon"]))
@@ -443,7 +444,7 @@ def image_figure(image, heights=None, signal: str = "height", fig: Figure | None
     else:
         panels = [("trace: Z_c - Z_np", image.trace), ("retrace: Z_c - Z_np", image.retrace)]
     if heights is not None:
-        panels.insert(0, ("true topography", np.asarray(heights)))
+        panels.insert(0, ("true topography", check_array("heights", heights, "m", ndim=2)))
     per_image, height = FIGSIZE["image"]
     fig = (check_instance("fig", fig, Figure) if fig is not None
            else Figure(figsize=(per_image * len(panels), height)))

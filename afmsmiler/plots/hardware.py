@@ -23,7 +23,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from ..parameters import unit_scale
-from ..validation import check_instance, check_integer
+from ..hardware.printing import PrintComparison
+from ..validation import check_instance, check_integer, check_real
 from .imaging import _clim
 from .limits import data_range, hold
 
@@ -151,7 +152,10 @@ def comparison_view(comparison=None, z_step: float = math.nan) -> ComparisonView
     -------
     ComparisonView
     """
+    z_step = check_real("z_step", z_step)  # NaN: not known yet
     kz = unit_scale(HEIGHT_UNIT, "m")
+    if comparison is not None:
+        check_instance("comparison", comparison, PrintComparison)
     if comparison is None:
         empty = np.full((2, 2), np.nan)
         return ComparisonView(empty, empty, empty, (0.0, 1.0, 0.0, 1.0), math.nan,
