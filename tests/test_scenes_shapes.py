@@ -62,3 +62,18 @@ def test_tube_is_one_object_per_update():
     assert rec.log["/wire"]["n_objects"] == 3 and len(rec.calls) == 3
     with pytest.raises(ValueError, match="points must have shape"):
         tube.set([[0, 0, 0]])
+
+
+def test_a_wrong_visualizer_is_named_before_drawing():
+    """A string or a number given as ``vis`` raised "string indices must be integers" or
+    AttributeError: 'float' object has no attribute 'set_object' from inside the shape."""
+    from afmsmiler.scenes.transforms import check_visualizer
+    vis = Recorder()
+    assert check_visualizer("vis", vis) is vis and check_visualizer("vis", vis["a"]) is not None
+    for bad in ("/scene", 3.0, None, object()):
+        with pytest.raises(TypeError, match=r"^vis must be a meshcat.Visualizer \(or draw like "
+                                            r"one\), got "):
+            cone(bad, 1.0, 0.5)
+        with pytest.raises(TypeError, match="^vis must be a meshcat.Visualizer"):
+            Segment(bad)
+    assert vis.calls == []  # nothing drawn
