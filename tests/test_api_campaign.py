@@ -37,7 +37,7 @@ The upper floors (issue 21, section 6) are tried the same way:
   visualizer) gets a foreign object, a string, a number and None, and must name itself in a
   TypeError or ValueError; each other parameter gets the table of bad values (``slow``); an
   exercise's checker may answer with a Feedback that did not pass;
-* every panel of the pages' registry: ``set()`` with what a control cannot hold, the
+* every panel of the registry (``afmsmiler.ui.registry``): ``set()`` with what a control cannot hold, the
   constructor with an initial value ``set()`` refuses, ``update()`` with such values (``slow``),
   each named; the cases that wait for the panel contract (issue 21, section 1) are non-strict
   xfails (:data:`PANEL_CONTRACT`);
@@ -1429,10 +1429,9 @@ def test_a_wrong_object_is_named(t, name, kind):
 
 # -- the upper floors: panels ---------------------------------------------------------------------
 def _panel_registry():
-    """Every panel of the pages' registry (afmsmiler.ui.pages.PANELS): page name -> class."""
-    from afmsmiler.ui.pages import PANELS
-    return {name: getattr(importlib.import_module(f"afmsmiler.ui.{module}"), cls)
-            for name, (module, cls, _) in PANELS.items()}
+    """Every panel of the course (afmsmiler.ui.registry.PANELS): its key -> its class."""
+    from afmsmiler.ui.registry import PANELS
+    return {entry.key: entry.load() for entry in PANELS}
 
 
 def _new_panel(cls, **initial):
@@ -1486,15 +1485,12 @@ def _panel_judge(what, name, call):
     return f"{what} -> accepted"
 
 
-#: Panel cases that fail today and pass once the panel contract of issue 21 section 1 lands
-#: (values checked once, in the base, at construction and in update too): "kind:page name".
-#: Today a checkbox's set() raises traitlets' TraitError; two constructors clamp an initial value
-#: past a slider's end; every update() takes values past the ends and names a string or an
-#: object as "display_value" (or the input quantity) instead of the control.
-PANEL_CONTRACT = {"set:overview", "constructor:controller", "constructor:imaging",
-                  *(f"update:{page}" for page in (
-                      "cantilever", "contact", "controller", "fm", "force_volume", "imaging",
-                      "jumping", "lateral", "tapping", "transducers"))}
+#: Panel cases that fail today and pass once the panel contract of issue 21 section 1 is kept by
+#: every panel (values checked once, in the base, at construction and in update too):
+#: "kind:panel key". The imaging panel's constructor lets a string angle reach float() (an
+#: unnamed TypeError); the transducer panel's update() names its input quantity
+#: ("deflection") where the control is "input".
+PANEL_CONTRACT = {"constructor:imaging", "update:transducers"}
 
 
 def _panel_cases(kind, slow):
@@ -1550,16 +1546,22 @@ def test_a_panel_constructor_names_what_set_refuses(page):
 
 @pytest.mark.parametrize("page", _panel_cases("update", slow=True))
 def test_a_panel_update_names_what_a_control_cannot_hold(page):
-    """The callback ``update(**values)`` checks the values it gets (a test or an exercise calls
-    it directly), naming the control, instead of taking anything."""
+    """The callback ``update(**values)`` (sliders in SI) checks the values it gets (a test or
+    an exercise calls it directly), naming the control, instead of taking anything."""
     panel = _new_panel(_panel_registry()[page])
-    values = panel.values()
+    values = panel.to_si(panel.values())  # what update takes: sliders in SI
     failures = []
     for name, control in panel.controls.items():
-        if name not in values or _out_of_range(control) is None:
+        p = getattr(control, "parameter", None)
+        if p is None:
             continue
         for label in ("past-the-end", "nan", "str", "object", "hugeint"):
-            value = _out_of_range(control) if label == "past-the-end" else BAD[label][0]
+            if label == "past-the-end":  # past the parameter's valid range (SI)
+                if not (math.isfinite(p.high) or math.isfinite(p.low)):
+                    continue
+                value = 2 * p.high + 1 if math.isfinite(p.high) else 2 * p.low - 1
+            else:
+                value = BAD[label][0]
             problem = _panel_judge(f"{page}.update({name}={label})", name,
                                    lambda: panel.update(**{**values, name: value}))
             if problem:
