@@ -478,14 +478,6 @@ KNOWN = {
         "plots.modes.TappingFigure(setpoint=nan-array) -> ValueError not naming setpoint: 'not"
         " enough values to unpack (expected 5, got 2)'"
     ), False),
-    'plots.modes.branch_values:name': ((
-        "plots.modes.branch_values(name=2d) -> ValueError not naming name: 'The truth value of"
-        " an array with more than one element is ambiguous. Use a.any() or a.all(...'\n"
-        "plots.modes.branch_values(name=empty) -> ValueError not naming name: 'The truth value"
-        " of an empty array is ambiguous. Use `array.size > 0` to check that an arra...'\n"
-        "plots.modes.branch_values(name=nan-array) -> ValueError not naming name: 'The truth v"
-        "alue of an array with more than one element is ambiguous. Use a.any() or a.all(...'"
-    ), False),
     'scenes.camera.show_helpers:axes': ((
         'scenes.camera.show_helpers(axes=nan) -> accepted silently\n'
         'scenes.camera.show_helpers(axes=None) -> accepted silently\n'

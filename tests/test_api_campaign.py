@@ -1586,7 +1586,9 @@ DAMAGES = {"cut-10": (lambda b, r: b[:len(b) // 10], True),
            "cut-90": (lambda b, r: b[:len(b) * 9 // 10], False),
            **{f"header-bytes-{i}": (lambda b, r: _flip(b, r, 8, 4096), i == 0) for i in range(4)},
            **{f"any-bytes-{i}": (lambda b, r: _flip(b, r, 64, len(b)), False) for i in range(2)},
-           "header-digits": (lambda b, r: _digits(b, r), True)}
+           "header-digits": (lambda b, r: _digits(b, r), True),
+           **{f"header-number-{i}": (lambda b, r: _digits(b, r, one=True), i < 2)
+              for i in range(8)}}
 
 
 def _flip(raw, rng, count, within):
@@ -1597,13 +1599,21 @@ def _flip(raw, rng, count, within):
     return bytes(out)
 
 
-def _digits(raw, rng):
-    """``raw`` with every decimal number of its first 64 kB made 10**11, negative or 0: a text
-    header's sizes, offsets and scales gone wrong."""
+_SIZE_WORDS = re.compile(rb"(?i)offset|length|size|lines|samps|rows|columns|shape|res\b|pixels")
+
+
+def _digits(raw, rng, one=False):
+    """``raw`` with every decimal number of its first 64 kB (or one of them, at random) made
+    10**11, negative or 0: a text header's sizes, offsets and scales gone wrong."""
     head, tail = raw[:65536], raw[65536:]
-    choices = (b"-1", b"0", b"99999999999", b"-99999999999")
-    head = re.sub(rb"(?<=[ :=])\d{2,9}(?=[ \r\n])",
-                  lambda m: choices[int(rng.integers(0, len(choices)))], head)
+    choices = (b"-1", b"0", b"99999999999", b"-99999999999", b"-40960")
+    numbers = list(re.finditer(rb"(?<=[ :=(,])\d{1,9}(?=[ \r\n,)])", head))
+    if one:  # a size, an offset, a length or a shape: the numbers a reader allocates and seeks by
+        sizes = [m for m in numbers if _SIZE_WORDS.search(
+            head[head.rfind(b"\n", 0, m.start()) + 1:m.start()])]
+        numbers = [sizes[int(rng.integers(0, len(sizes)))]] if sizes else []
+    for m in reversed(numbers):
+        head = head[:m.start()] + choices[int(rng.integers(0, len(choices)))] + head[m.end():]
     return head + tail
 
 
