@@ -1189,7 +1189,7 @@ def test_random_numbers_are_named_or_harmless(t):
 UPPER_MODULES = ["afmsmiler.plots.cantilever", "afmsmiler.plots.contact",
                  "afmsmiler.plots.controller", "afmsmiler.plots.hardware",
                  "afmsmiler.plots.imaging", "afmsmiler.plots.lockin", "afmsmiler.plots.modes",
-                 "afmsmiler.plots.overview", "afmsmiler.plots.transducers",
+                 "afmsmiler.plots.instrument", "afmsmiler.plots.transducers",
                  "afmsmiler.scenes.cantilever", "afmsmiler.scenes.contact",
                  "afmsmiler.scenes.imaging", "afmsmiler.scenes.legends",
                  "afmsmiler.scenes.modes", "afmsmiler.scenes.shapes",
@@ -1255,7 +1255,7 @@ OBJECTS = {
                         np.zeros((4, 4)), 1e-3, 16),
     "LockInDemo": _upper("afmsmiler.signals.demo", "lock_in_demo"),
     "AmplitudeCurve": lambda: INSTANCES["AmplitudeCurve"](),
-    "FrictionLoop": _upper("afmsmiler.exercises.modalities", "friction_loop_data"),
+    "FrictionLoop": _upper("afmsmiler.exercises.modes", "friction_loop_data"),
     "FrequencyShiftCurve": lambda: importlib.import_module(
         "afmsmiler.modes.fm").frequency_shift_curve(_vdw, np.linspace(0.3e-9, 10e-9, 64)),
     "JumpCurve": _upper("afmsmiler.modes.jumping", "jump_curve", _system),
