@@ -1485,20 +1485,10 @@ def _panel_judge(what, name, call):
     return f"{what} -> accepted"
 
 
-#: Panel cases that fail today and pass once the panel contract of issue 21 section 1 is kept by
-#: every panel (values checked once, in the base, at construction and in update too):
-#: "kind:panel key". The imaging panel's constructor lets a string angle reach float() (an
-#: unnamed TypeError); the transducer panel's update() names its input quantity
-#: ("deflection") where the control is "input".
-PANEL_CONTRACT = {"constructor:imaging", "update:transducers"}
-
-
 def _panel_cases(kind, slow):
     cases = []
     for page in sorted(_panel_registry()):
         marks = [pytest.mark.slow] if slow else []
-        if f"{kind}:{page}" in PANEL_CONTRACT:
-            marks.append(pytest.mark.xfail(reason="panel contract, issue 21 §1", strict=False))
         cases.append(pytest.param(page, id=page, marks=marks))
     return cases
 

@@ -153,7 +153,7 @@ def test_figure_and_control_helpers():
     fig = TransducerFigure(curves)
     assert len(fig.lines["output"].get_xdata()) == 11
     assert curves.sensitivity == pytest.approx(model.sensitivity() * 1e-9)
-    with pytest.raises(ValueError, match="^deflection must be in"):
+    with pytest.raises(ValueError, match="^input must be in"):
         model.operate(1.0)
     with pytest.raises(ValueError, match="^n_points must be an integer"):
         model.operate(0.0, n_points=1)
@@ -300,7 +300,7 @@ def test_out_of_range_values_are_rejected_not_clamped(panel):
     si = panel.to_si(panel.values())  # update takes every control, in SI (the panel contract)
     with pytest.raises(ValueError, match=r"^power must be in \[1e-06, 0.02\] W"):
         panel.update(**{**si, "power": 1e300})
-    with pytest.raises(ValueError, match="^deflection must be in"):
+    with pytest.raises(ValueError, match="^input must be in"):
         panel.update(**{**si, "input": 1e9})
     with pytest.raises(ValueError, match="^length must be"):
         panel.update(**{**si, "length": math.nan})

@@ -45,7 +45,8 @@ from ..samples import Sample
 from ..validation import check_choice, check_finite
 from .acquisition import Acquiring, AcquisitionControls
 from .controls import WIDTH
-from .panel import Panel, check_control_value, initial_values, running_as_notebook, slider
+from .panel import (Panel, check_control_value, initial_values, running_as_notebook, slider,
+                    to_si)
 
 __all__ = ["ImagingPanel", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE", "SCAN_SLIDERS", "sample",
            "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
@@ -249,10 +250,11 @@ class ImagingPanel(Acquiring, Panel):
             c[name] = slider(name, p, v[name])
         c["pixels"] = widgets.Dropdown(options=list(PIXELS), value=v["pixels"],
                                        description="pixels per line", layout=layout)
+        angle = to_si(_settings.PARAMETERS["angle"], v["angle"])  # named before it is used
         for name in SCAN_SLIDERS:
             p = _settings.PARAMETERS[name]
-            c[name] = slider(name, p, v[name], high=max_scan_size(
-                v["sample"], math.radians(v["angle"])) if name == "scan_size" else None)
+            c[name] = slider(name, p, v[name], high=max_scan_size(v["sample"], angle)
+                             if name == "scan_size" else None)
         for sliders in MODE_SLIDERS.values():
             for name, p in sliders.items():
                 c[name] = slider(name, p, v[name])

@@ -384,8 +384,8 @@ class Panel:
         for name, value in values.items():
             control = self.controls[name]
             p = getattr(control, "parameter", None)
-            if p is not None:
-                out[name] = to_si(p, value)
+            if p is not None:  # errors name the control (a transducer's input is a deflection)
+                out[name] = to_si(p if p.name == name else p.with_(name=name), value)
             else:
                 out[name] = check_control_value(name, control, value)
         return out
@@ -397,7 +397,8 @@ class Panel:
             control = self.controls[name]
             p = getattr(control, "parameter", None)
             if p is not None:
-                p.check(check_finite(name, value, p.unit))
+                (p if p.name == name else p.with_(name=name)).check(
+                    check_finite(name, value, p.unit))
             else:
                 check_control_value(name, control, value)
 
