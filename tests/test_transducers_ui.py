@@ -153,7 +153,7 @@ def test_figure_and_control_helpers():
     fig = TransducerFigure(curves)
     assert len(fig.lines["output"].get_xdata()) == 11
     assert curves.sensitivity == pytest.approx(model.sensitivity() * 1e-9)
-    with pytest.raises(ValueError, match="^input must be in"):
+    with pytest.raises(ValueError, match="^deflection must be in"):
         model.operate(1.0)
     with pytest.raises(ValueError, match="^n_points must be an integer"):
         model.operate(0.0, n_points=1)
