@@ -8,7 +8,6 @@ axes, the block diagram) need no label. Titles and axis labels of different axes
 and no axis may be left empty.
 """
 import re
-from pathlib import Path
 
 import matplotlib
 import numpy as np
