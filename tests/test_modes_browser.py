@@ -9,9 +9,10 @@ import shutil
 
 import pytest
 
-import browser as B
+from tests import browser as B
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser]
+pytestmark = [pytest.mark.slow, pytest.mark.browser,
+              pytest.mark.xdist_group("modes_browser")]  # its servers on one worker
 
 NOTEBOOK = "07_imaging_modalities.ipynb"
 SELECTOR = B.figure_selector()
@@ -25,18 +26,18 @@ SLIDERS = {"tapping": ("setpoint A_sp / A0", "setpoint_ratio", "ArrowRight"),
 
 
 @pytest.fixture(scope="module")
-def lab():
-    reason = B.unavailable()
-    if reason:
-        pytest.skip(reason)
+def lab(chromium):
     root = B.notebook_root("afm-modalities-")
     try:
-        with B.browser() as chromium, B.Server("lab", root) as server:
+        with B.Server("lab", root) as server:
             page = B.new_page(chromium)
-            B.open_lab(page, server, NOTEBOOK, timeout=120)
-            B.run_all(page, timeout=400)
-            yield server, page
-            B.close_lab_notebook(page, server)
+            try:
+                B.open_lab(page, server, NOTEBOOK, timeout=120)
+                B.run_all(page, timeout=400)
+                yield server, page
+                B.close_lab_notebook(page, server)
+            finally:
+                page.close()
     finally:
         shutil.rmtree(root, ignore_errors=True)
 

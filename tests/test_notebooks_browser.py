@@ -18,9 +18,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import browser as B
+from tests import browser as B
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser]
+pytestmark = [pytest.mark.slow, pytest.mark.browser,
+              pytest.mark.xdist_group("notebooks_browser")]  # its servers on one worker
 
 SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person to see
 

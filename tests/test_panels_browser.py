@@ -13,16 +13,13 @@ Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why,
 or Playwright is missing. One JupyterLab and one voila server and one browser per module.
 """
 import math
-import sys
-from pathlib import Path
 
 import pytest
 
-sys.path.insert(0, str(Path(__file__).parent))
+from tests import browser as B
 
-import browser as B  # noqa: E402
-
-pytestmark = [pytest.mark.slow, pytest.mark.browser]
+pytestmark = [pytest.mark.slow, pytest.mark.browser,
+              pytest.mark.xdist_group("panels_browser")]  # its servers on one worker
 
 PRESSES = 3  # key presses timed per panel
 DRAG = 15  # key presses of a drag
