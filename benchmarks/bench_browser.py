@@ -16,7 +16,9 @@ observer sets a Label's value, key press -> the label's text changed (the next a
 after a MutationObserver saw it): browser -> kernel -> browser, which no figure drawn from the
 kernel can beat. Target (issue 9): each panel's median within 1.5x the floor, every drag step
 drawn. ``BENCH_BROWSER_PRESSES`` (default 20) and ``BENCH_BROWSER_WHERE`` (default
-``lab,voila``) and ``BENCH_BROWSER_PANELS`` (default all four) change the run. Prints a
+``lab,voila``) and ``BENCH_BROWSER_PANELS`` (default every panel of the registry,
+``afmsmiler.ui.registry.PANELS``; a panel with no slider that redraws at once is moved but not
+timed) change the run. Prints a
 reason and exits 0 when the browser cannot run.
 """
 import os
@@ -35,7 +37,6 @@ WHERE = [w for w in os.environ.get("BENCH_BROWSER_WHERE", "lab,voila").split(","
 PANELS = [p for p in os.environ.get("BENCH_BROWSER_PANELS", ",".join(B.PANELS)).split(",") if p]
 DRAG = 15
 TARGET_RATIO = 1.5
-CONTROL = {"cantilever": "force", "transducers": "input", "controller": "ki", "contact": "z_np"}
 
 
 def _ms(t):
@@ -55,7 +56,8 @@ def _floor(where, server, page):
 
 
 def _panel(where, server, page, name, selector):
-    notebook, _, description = B.PANELS[name]
+    e = B.PANELS[name]
+    notebook, description = e.notebook, e.slider_selector
     t0 = time.monotonic()
     if where == "lab":
         B.open_lab(page, server, notebook)
@@ -63,7 +65,8 @@ def _panel(where, server, page, name, selector):
     else:
         B.open_voila(page, server, notebook, description)
     ready = time.monotonic() - t0
-    slider = B.find_slider(page, description)
+    slider = B.find_control(page, e)
+    selector = f"{e.selector} {selector}"
     B.focus_panel(page, slider, selector)
     key, _ = B.keys(slider)
     B.press(page, slider, key, 1, selector=selector)  # warm-up
@@ -76,7 +79,7 @@ def _panel(where, server, page, name, selector):
     stats.update(ready=ready, drag=drag, shown=B.slider_value(slider))
     if where == "lab":
         stats["kernel"] = B.kernel_eval(
-            page, f"print(repr(panel.values()[{CONTROL[name]!r}]))").strip()
+            page, f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
     return stats
 
 
@@ -132,6 +135,10 @@ def main():
                 except Exception as exc:
                     print(f"{where:<6s}floor        failed: {type(exc).__name__}: {exc}")
                 for name in PANELS:
+                    if not B.PANELS[name].figure:
+                        print(f"{where:<6s}{name:<13s}not timed: its slider applies to the next "
+                              f"scan, the figure does not move")
+                        continue
                     try:
                         s = _panel(where, server, page, name, selector)
                         results[where, name] = (s, floor)

@@ -40,6 +40,8 @@ import urllib.request
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from afmsmiler.ui.registry import PANELS as REGISTRY
+
 ROOT = Path(__file__).resolve().parents[1]
 NOTEBOOKS = ROOT / "notebooks"
 CHROMIUM = os.environ.get("AFMSMILER_CHROMIUM", "/usr/bin/chromium")  # Debian's, never a download
@@ -57,13 +59,9 @@ LIVE_FIGURE = ".afm-live"
 #: The element of an ipympl figure (the panels' figures before the live component).
 IPYMPL_FIGURE = ".jupyter-matplotlib-figure"
 
-#: Each live panel: notebook, the panel class, and (part of) its slider's description.
-PANELS = {
-    "cantilever": ("01_cantilever_mechanics.ipynb", "CantileverPanel", "end force F"),
-    "transducers": ("02_probe_transducers.ipynb", "TransducerPanel", "tip deflection"),
-    "controller": ("03_controller_tuning.ipynb", "ControllerPanel", "K_I"),
-    "contact": ("04_contact_mechanics.ipynb", "ContactPanel", "Z_np"),
-}
+#: Every panel of the course, by key: the one registry (afmsmiler.ui.registry), which says the
+#: notebook, the panel's name there and the slider to move.
+PANELS = {e.key: e for e in REGISTRY}
 
 
 def figure_selector() -> str:
@@ -631,9 +629,12 @@ def kernel_eval(page, code: str, *, timeout: float = 30.0) -> str:
 
 def open_voila(page, server: Server, notebook: str | None, slider: str, *,
                timeout: float = 240.0) -> None:
-    """Open a notebook in voila and wait until the slider described ``slider`` is shown."""
+    """Open a notebook in voila and wait until ``slider`` is shown (a CSS selector of the
+    slider's widget when it starts with ".", else part of its description)."""
     page.goto(server.url(notebook), timeout=timeout * 1000, wait_until="domcontentloaded")
-    find_slider(page, slider).wait_for(state="visible", timeout=timeout * 1000)
+    handle = (page.locator(f"{slider} .noUi-handle").first if slider.startswith(".")
+              else find_slider(page, slider))
+    handle.wait_for(state="visible", timeout=timeout * 1000)
 
 
 def voila_errors(page) -> list[str]:
@@ -645,6 +646,11 @@ def voila_errors(page) -> list[str]:
                      if (/Traceback|The panel could not update/.test(e.textContent))
                        out.push(e.textContent.slice(0, 300));
                    return Array.from(new Set(out)); }""")
+
+
+def find_control(page, entry):
+    """The handle of registry ``entry``'s slider, inside its own panel: a Locator."""
+    return page.locator(f"{entry.slider_selector} .noUi-handle").first
 
 
 def find_slider(page, description: str):

@@ -391,7 +391,8 @@ def test_exercise_1_can_be_checked_with_the_sliders():
 
 def test_update_names_a_bad_value_before_any_work():
     p = CantileverPanel(scene=False)
-    good = p.values()
+    good = p.to_si(p.values())  # update takes SI (the panel contract)
+    assert good["length"] == pytest.approx(450e-6)
     last = p.last
     for name, bad in (("force", "lots"), ("length", None), ("thickness", math.inf),
                       ("force", 1e300), ("material", "cheese")):

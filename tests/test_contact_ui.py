@@ -320,24 +320,25 @@ def test_panel_follows_the_retract_branch_through_the_hysteresis():
 def test_update_uses_the_values_it_is_given():
     panel = ContactPanel()
     assert panel.last.current.z_np[0] == pytest.approx(60e-9, rel=1e-12)
-    panel.update(**{**panel.values(), "z_np": 5.0})  # before: ignored, kept the slider's 60 nm
+    si = panel.to_si(panel.values())  # update takes SI (the panel contract)
+    panel.update(**{**si, "z_np": 5e-9})  # before: ignored, kept the slider's 60 nm
     assert panel.last.current.z_np[0] == pytest.approx(5e-9, rel=1e-12)
     ref = indent([5e-9], 0.1, Parabolic(20e-9), 1e6, 0.3)
     assert panel.last.current.force[0] == pytest.approx(ref.force[0], rel=1e-12)
-    panel.update(**{**panel.values(), "spring_constant": 2.0, "youngs_modulus": 3.0})
+    panel.update(**{**si, "spring_constant": 2.0, "youngs_modulus": 3e6})
     assert (panel.last.spring_constant, panel.last.youngs_modulus) == (2.0, 3e6)
 
 
 def test_an_unknown_tip_is_a_value_error_naming_the_choices():
     panel = ContactPanel()
     with pytest.raises(ValueError, match=r"tip must be one of .*'parabolic'.*got 'cube'"):
-        panel.update(**{**panel.values(), "tip": "cube"})
+        panel.update(**{**panel.to_si(panel.values()), "tip": "cube"})
     with pytest.raises(ValueError, match=r"tip must be one of"):
         panel.set(tip="cube")
     with pytest.raises(ValueError, match=r"tip must be one of"):
         ContactPanel(tip="cube")
     with pytest.raises(ValueError, match=r"adhesion must be one of"):
-        panel.update(**{**panel.values(), "adhesion": "Maugis"})
+        panel.update(**{**panel.to_si(panel.values()), "adhesion": "Maugis"})
 
 
 def _browser_echo(w):

@@ -289,7 +289,7 @@ def test_one_slider_move_runs_the_model_once(monkeypatch, name, value):
 
 def test_update_uses_exactly_the_values_given():
     p = ControllerPanel()
-    v = {**p.values(), "kp": 7.0, "speed": 123.0, "setpoint": 4.0}
+    v = {**p.to_si(p.values()), "kp": 7.0, "speed": 123e-6, "setpoint": 4e-9}  # update takes SI
     p.update(**v)
     assert p.last.loop.kp == 7.0 and p.controls["kp"].value != 7.0
     assert p.last.scan.speed == pytest.approx(123e-6, rel=1e-12)
@@ -527,7 +527,7 @@ def test_update_names_a_bad_value_before_any_work():
     # "lots" and None raised float()'s own errors, an unknown profile named "name", and a
     # negative feature height was drawn although the height parameter rejects it
     p = ControllerPanel()
-    good, last = p.values(), p.last
+    good, last = p.to_si(p.values()), p.last  # update takes SI (the panel contract)
     for name, bad in (("kp", "lots"), ("kp", None), ("ki", math.nan), ("speed", 1e300),
                       ("profile", "cube"), ("preset", "e_magic"), ("height", -5.0)):
         with pytest.raises((TypeError, ValueError), match=f"^{name} must"):

@@ -1,6 +1,7 @@
 """Every figure a student sees says what its axes are and in which unit, and its texts are legible.
 
-Loops over the figures of the four widget panels (the transducer panel once per principle) and the
+Loops over the figures of every widget panel of the registry (the transducer panel once per
+principle) and the
 stand-alone figure builders the notebooks call, draws each one (Agg), and checks every visible
 axis that shows tick labels: it must have a label with a unit in square brackets, e.g.
 ``"x [um]"``, or say that the quantity is ``"(dimensionless)"``. Axes without tick labels (shared
@@ -16,6 +17,7 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
 from afmsmiler import data
+from afmsmiler.ui.registry import PANELS
 
 matplotlib.use("Agg")
 
@@ -84,15 +86,14 @@ def _principles():
 
 
 FIGURES = {
-    "cantilever panel": lambda: [_cantilever_panel()],
+    # every panel of the registry at its defaults, so a new panel is checked too
+    **{f"{e.key} panel": (lambda e=e: [e.make().fig]) for e in PANELS},
     "cantilever panel, pulled down, section mid-way":
         lambda: [_cantilever_panel(force=-300.0, section=0.5)],
     "cantilever panel, no force": lambda: [_cantilever_panel(force=0.0)],
     "mode shapes": lambda: [_mode_shapes()],
-    **{f"transducer panel: {k}": (lambda k=k: [_transducer_panel(k)]) for k in _principles()},
-    "contact panel": lambda: [_contact_panel()],
+    **{f"transducer panel: {k}": (lambda k=k: [_transducer_panel(k)]) for k in _principles()[1:]},
     "contact figures": _contact_figures,
-    "controller panel": lambda: [_controller_panel()],
     "controller figures": _controller_figures,
 }
 
@@ -116,6 +117,7 @@ def _texts(ax):
 # Building a figure takes about a second for these; `make unit` checks each panel once in its
 # default state (one transducer principle, the first) and the rest run under `make test`.
 SLOW = {f"transducer panel: {k}" for k in _principles()[1:]} | {
+    f"{e.key} panel" for e in PANELS if e.module in "efgh"} | {
     "controller figures", "contact figures", "cantilever panel, no force",
     "cantilever panel, pulled down, section mid-way"}
 

@@ -184,8 +184,12 @@ def test_a_probe_fault_stops_the_scan_with_the_finished_lines(session):
 def test_device_errors_are_named(session):
     afm = session()
     afm.connect()
+    with pytest.raises(ValueError, match="ZSTEP .* is read-only"):
+        afm.set(Param.ZSTEP, 5)                       # the table refuses it, nothing sent
+    with pytest.raises(ValueError, match=r"NX \(pixels per line\) must be an integer 2..512"):
+        afm.set(Param.NX, 513)
     with pytest.raises(DeviceError) as info:
-        afm.set(Param.ZSTEP, 5)                       # read-only
+        afm.request(Command.SET, Param.ZSTEP, 5)      # the device refuses it too
     assert info.value.code == ErrorCode.BAD_ARGUMENT and info.value.word == "ZS"
     with pytest.raises(DeviceError) as info:
         afm.request(Command.ABORT)                    # nothing to abort

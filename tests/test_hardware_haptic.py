@@ -730,7 +730,7 @@ def test_firmware_in_simavr_with_the_driver(simulated):
     with HapticDevice(FaultyTransport(simulated.transport, seed=5, corrupt=0.1),
                       timeout=0.3, retries=8) as dev:
         assert dev.connect() == ("HAPTIC", 1, "0.1.0")
-        assert dev.read_only == {PARAMETERS[p].name: pytest.approx(spec.default * spec.scale)
+        assert dev.read_only == {PARAMETERS[p].si_name: pytest.approx(spec.default * spec.scale)
                                  for p, spec in PARAMETERS.items() if spec.read_only}
         for i in range(5):
             assert dev.set("spring", 100.0 * (i + 1)) == pytest.approx(100.0 * (i + 1))

@@ -355,7 +355,10 @@ def test_seq_wraps_255_to_1():
 
 
 @pytest.mark.parametrize("values, name", [
-    ({"pixels": 1}, "pixels"), ({"pixels": 2.5}, "pixels"), ({"lines": 2000}, "lines"),
+    ({"pixels": 0}, "pixels"), ({"pixels": 2.5}, "pixels"), ({"lines": 2000}, "lines"),
+    # the firmware's limits (config.h): 128 pixels per line, a 25 um pitch, presets 0..3
+    ({"pixels": 129}, "pixels"), ({"pixels": 1024}, "pixels"), ({"pitch": 1e-6}, "pitch"),
+    ({"preset": 4}, "preset"), ({"preset": 9}, "preset"), ({"step_rate": 20_000}, "step_rate"),
     ({"pitch": -1e-3}, "pitch"), ({"pitch": float("nan")}, "pitch"),
     ({"setpoint_force": 10.0}, "setpoint_force"), ({"mode": "tapping"}, "mode"),
     ({"step_rate": 0}, "step_rate"), ({"pixels": 64, "pitch": 1.0}, "pitch"),

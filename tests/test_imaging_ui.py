@@ -286,7 +286,7 @@ def test_sliders_come_from_the_models_parameters_and_no_position_is_refused():
     assert p.controls["sample"].value == "particles"  # a refused set changes nothing
     with pytest.raises(ValueError, match=r"scan_size must be <= 0\.51 um on the sample "
                                          r"'particles' at angle 0 deg"):
-        p.update(**{**p.values(), "scan_size": 1.0})
+        p.update(**{**p.to_si(p.values()), "scan_size": 1e-6})  # update takes SI
 
 
 def test_bad_values_are_named():

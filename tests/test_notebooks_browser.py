@@ -25,18 +25,12 @@ pytestmark = [pytest.mark.slow, pytest.mark.browser,
 
 SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person to see
 
-#: notebook -> (3D views after Run All, [(slider description, key, whether the figure changes
-#: too) of each panel with a 3D view]). Module (f)'s figure holds the scan's images: a new tip
-#: is drawn in the 3D view at once and imaged by the next scan.
-NOTEBOOKS = {
-    "05_system_overview.ipynb": (1, [("laser knob along", "ArrowRight", True)]),
-    "06_virtual_imaging.ipynb": (1, [("tip radius R", "ArrowRight", False)]),
-    "07_imaging_modalities.ipynb": (4, [("sample tilt", "ArrowRight", True),
-                                        ("setpoint A_sp / A0", "ArrowRight", True),
-                                        ("oscillation amplitude A", "ArrowLeft", True),
-                                        ("lift height", "ArrowLeft", True)]),
-    "08_hardware_interaction.ipynb": (2, []),
-}
+#: notebook -> 3D views after Run All. Every panel the registry lists in a notebook is moved by
+#: its slider (registry.PanelEntry.slider): its figure changes unless its slider applies to the
+#: next scan, and exactly its own 3D view updates (none for a panel without one).
+NOTEBOOKS = {"05_system_overview.ipynb": 1, "06_virtual_imaging.ipynb": 1,
+             "07_imaging_modalities.ipynb": 4, "08_hardware_interaction.ipynb": 2}
+
 
 #: The kernel's child processes and the ports it listens on (its own connection's, at first).
 PORTS = """
@@ -73,7 +67,8 @@ def _distinct(images) -> None:
 @pytest.mark.parametrize("notebook", list(NOTEBOOKS))
 def test_views_survive_run_all_and_every_rerun(lab, notebook):
     server, page = lab
-    n_views, sliders = NOTEBOOKS[notebook]
+    n_views = NOTEBOOKS[notebook]
+    entries = [e for e in B.PANELS.values() if e.notebook == notebook]
     B.open_lab(page, server, notebook, timeout=120)
     fresh = B.kernel_eval(page, PORTS).strip()
     B.run_all(page, timeout=600)
@@ -87,21 +82,27 @@ def test_views_survive_run_all_and_every_rerun(lab, notebook):
         im.save(SHOTS / f"{notebook[:2]}_view{i}.png")
     _distinct(shots)
 
-    # each panel's slider moves its figure and its own 3D view
-    for description, key, figure in sliders:
-        slider = B.find_slider(page, description)
-        B.focus_panel(page, slider, B.LIVE_FIGURE)
+    # each panel's slider moves its figure and its own 3D view, and the kernel holds its value
+    for e in entries:
+        slider = B.find_control(page, e)
+        B.focus_panel(page, slider, f"{e.selector} {B.LIVE_FIGURE}")
+        key, _ = B.keys(slider)
         before = B.scene_views(page)
-        if figure:
-            times = B.press(page, slider, key, 1, selector=B.LIVE_FIGURE, timeout=15.0)
-            assert times[0] is not None, f"{description}: the figure did not change"
+        if e.figure:
+            times = B.press(page, slider, key, 1, selector=f"{e.selector} {B.LIVE_FIGURE}",
+                            timeout=15.0)
+            assert times[0] is not None, f"{e.key}: the figure did not change"
         else:
             slider.press(key)
         B.wait_idle(page)
         page.wait_for_timeout(500)
         after = B.scene_views(page)
         moved = [a["applied"] > b["applied"] for a, b in zip(after, before)]
-        assert sum(moved) == 1, f"{description}: views updated {moved}"
+        assert sum(moved) == int(e.scene), f"{e.key}: views updated {moved}"
+        held = float(B.kernel_eval(page, f"print({e.variable}.values()[{e.slider!r}])"))
+        assert held == pytest.approx(float(B.slider_value(slider).replace("\u2212", "-")),
+                                     rel=1e-3, abs=1e-3), f"{e.key}: the kernel holds {held}"
+        assert B.lab_errors(page) == [], f"{e.key}: an error after its slider moved"
 
     # every cell again, in order and then in reverse order: no error, the views still there
     cells = B.code_cells(page)

@@ -1,4 +1,4 @@
-"""The four live panels in a real browser: a slider key press changes the figure's pixels.
+"""The panels of modules (a)-(d) in a real browser: a slider key press changes the figure's pixels.
 
 Headless Debian Chromium driven by Playwright (``tests/browser.py``), against JupyterLab and
 voila serving copies of the course notebooks, run as a student would (Run All; no test flags).
@@ -9,6 +9,8 @@ holds the value the slider shows. With the live component (``div.afm-live``): ev
 against the keys and ends where the kernel is, and each panel's figure has pixels in a static
 HTML export (nbconvert) opened from a file.
 
+The panels come from the registry (``afmsmiler.ui.registry``): here those of modules (a)-(d), one
+per notebook; ``test_notebooks_browser.py`` moves every panel of modules (e)-(h) in its notebook.
 Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why, when Chromium
 or Playwright is missing. One JupyterLab and one voila server and one browser per module.
 """
@@ -23,7 +25,8 @@ pytestmark = [pytest.mark.slow, pytest.mark.browser,
 
 PRESSES = 3  # key presses timed per panel
 DRAG = 15  # key presses of a drag
-CONTROL = {"cantilever": "force", "transducers": "input", "controller": "ki", "contact": "z_np"}
+#: The registry's panels of modules (a)-(d).
+NAMES = [key for key, e in B.PANELS.items() if e.module in "abcd"]
 SELECTOR = B.figure_selector()
 LIVE = SELECTOR == B.LIVE_FIGURE
 
@@ -55,8 +58,9 @@ def _shown(text: str) -> float:
 
 def _check_presses(page, name):
     """Press the panel's slider: every press changes the figure's pixels; return the slider."""
-    notebook, _, description = B.PANELS[name]
-    slider = B.find_slider(page, description)
+    e = B.PANELS[name]
+    notebook, description = e.notebook, e.slider
+    slider = B.find_control(page, e)
     B.focus_panel(page, slider, SELECTOR)
     state = B.figure_state(page, SELECTOR)
     assert state["figures"] >= 1 and state["canvases"] >= 1, (name, state)
@@ -104,23 +108,24 @@ def _check_drag(page, slider, key, name, *, kernel=None):
     raise AssertionError(message)
 
 
-@pytest.mark.parametrize("name", list(B.PANELS))
+@pytest.mark.parametrize("name", NAMES)
 def test_lab_panel_follows_its_slider(lab, name):
     server, page = lab
-    notebook, cls, description = B.PANELS[name]
+    e = B.PANELS[name]
+    notebook, cls = e.notebook, e.cls
     B.open_lab(page, server, notebook)
     B.run_all(page)
     assert B.lab_errors(page) == [], f"{notebook} shows errors after Run All"
     # displaying the panel ran no model: as many frames as the same notebook sends with no page
     # (the browser echoed slider values back and each panel redrew twice on display)
     page.wait_for_timeout(1000)  # any echo of the sliders reaches the kernel by then
-    shown = int(B.kernel_eval(page, "print(panel.live.frames_sent)").strip())
+    shown = int(B.kernel_eval(page, f"print({e.variable}.live.frames_sent)").strip())
     assert shown == B.headless_frames(notebook), f"{notebook}: the page made the panel update"
     slider, key = _check_presses(page, name)
     B.settle(page, SELECTOR, quiet=0.5, timeout=5)
 
     def kernel():
-        return B.kernel_eval(page, f"print(repr(panel.values()[{CONTROL[name]!r}]))").strip()
+        return B.kernel_eval(page, f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
 
     value, shown = kernel(), _shown(B.slider_value(slider))
     assert math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9), \
@@ -130,11 +135,11 @@ def test_lab_panel_follows_its_slider(lab, name):
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
 
 
-@pytest.mark.parametrize("name", list(B.PANELS))
+@pytest.mark.parametrize("name", NAMES)
 def test_voila_panel_follows_its_slider(voila, name):
     server, page = voila
-    notebook, _, description = B.PANELS[name]
-    B.open_voila(page, server, notebook, description)
+    notebook = B.PANELS[name].notebook
+    B.open_voila(page, server, notebook, B.PANELS[name].slider_selector)
     assert B.voila_errors(page) == [], f"{notebook} shows errors in voila"
     try:
         slider, key = _check_presses(page, name)
@@ -159,9 +164,9 @@ def test_lab_floor_label_follows_its_slider(lab):
 
 @pytest.mark.skipif(not LIVE, reason="the panels' figures are ipympl canvases (blank in a "
                                      "static export) until afmsmiler/plots/live.py lands")
-@pytest.mark.parametrize("name", list(B.PANELS))
+@pytest.mark.parametrize("name", NAMES)
 def test_static_export_shows_the_panel_figures(chromium, tmp_path, name):
-    notebook = B.NOTEBOOKS / B.PANELS[name][0]
+    notebook = B.NOTEBOOKS / B.PANELS[name].notebook
     html = B.export_html(notebook, tmp_path)
     page = B.new_page(chromium)
     try:

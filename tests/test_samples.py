@@ -119,7 +119,7 @@ def test_the_largest_particle_image_is_made_within_seconds(hang_guard):
 
 
 @pytest.mark.parametrize("call, match", [
-    (lambda: samples.step(1), "pixels must be an integer in"),
+    (lambda: samples.step(1), "shape must be an integer in"),
     (lambda: samples.step(10, -1e-9), "pixel_size must be > 0 m"),
     (lambda: samples.step(10, 1e-9, np.nan), "height must be a finite"),
     (lambda: samples.grating(10, 1e-9, period=0.0), r"period must be in \[2e-09, inf\] m"),

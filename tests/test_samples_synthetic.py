@@ -137,7 +137,7 @@ def test_grating_as_an_image_keeps_pitch_and_duty():
     assert np.count_nonzero(sq.heights) == 4 * 50 * 50  # 4 pillars of 50 x 50 pixels
     with pytest.raises(ValueError, match="pattern 'squares' needs an image"):
         samples.grating(64, 1e-9, 10e-9, pattern="squares")
-    with pytest.raises(ValueError, match="pixels must be an int or a pair"):
+    with pytest.raises(ValueError, match="shape must be an int or a pair"):
         samples.grating((2, 2, 2))
 
 

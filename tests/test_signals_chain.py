@@ -121,3 +121,24 @@ def test_probe_and_arguments_are_checked():
         simulate(half_resonance_ratio=5.0)
     with pytest.raises(TypeError, match="unknown"):
         ActiveProbe.build(bias_voltage=3.0)
+
+
+def test_the_largest_drive_keeps_the_deflection_inside_the_bridge_range():
+    # The lock-in panel's drive slider reached 5 V, where at resonance the lever deflects 2.3 um
+    # and module (b)'s bridge (range +-2 um) refused every move. max_ac_voltage bounds the peak by
+    # V^2/(2R) (|H(0)| + |H(2f)|); simulated without noise at every drive ratio of the slider, the
+    # peak deflection stays inside the range and uses most of it at resonance.
+    from afmsmiler.signals.chain import HALF_RESONANCE_RATIO, ActiveProbe, simulate
+    from afmsmiler.signals.demo import max_ac_voltage
+    volts = max_ac_voltage(margin=1.0)
+    probe = ActiveProbe.build(ac_voltage=volts)
+    reach = probe.sensor.input_quantity("sensing").high
+    peaks = []
+    for ratio in np.linspace(HALF_RESONANCE_RATIO.slider_low, HALF_RESONANCE_RATIO.slider_high, 5):
+        run = simulate(probe, half_resonance_ratio=float(ratio), noise=False,
+                       record_duration=0.05)
+        peaks.append(float(np.max(np.abs(run.deflection))))
+    assert max(peaks) <= reach and max(peaks) > 0.5 * reach
+    assert max_ac_voltage() == pytest.approx(math.sqrt(0.8) * volts, rel=1e-12)
+    with pytest.raises(ValueError, match="margin must be in"):
+        max_ac_voltage(margin=0.0)

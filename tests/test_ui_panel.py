@@ -197,7 +197,9 @@ class Lever(Panel):
         super().__init__()
 
     def update(self, length, quality_factor, shape):
-        self.calls.append((length, quality_factor, shape))
+        # update takes SI (the panel contract); recorded as the slider shows it (um)
+        shown = self.controls["length"].parameter.to_display(length)
+        self.calls.append((float(f"{shown:.12g}"), quality_factor, shape))
 
 
 def test_the_browser_echo_of_a_snapped_value_changes_nothing():

@@ -5,6 +5,10 @@ port itself):
 
 - :mod:`.errors`: one exception family (:class:`HardwareError`);
 - :mod:`.framing`: the frame format every device speaks (``BODY*CC``, CRC-8/SMBUS), pure;
+- :mod:`.protocol`: one declarative parameter table per device (wire code, unit from the one
+  unit table, range, default, read-only), pure;
+- :mod:`.framed`: :class:`FramedDevice`, the host side every device shares (sequence numbers,
+  one deadline per request, retries, identify, replies checked against the table);
 - :mod:`.transport`: a serial port (pyserial), a pty, an in-memory pair, a fault injector;
 - :mod:`.twin`: a device's protocol simulated in Python and served on a transport;
 - device packages (:mod:`.macro`: the macroscopic AFM; :mod:`.educational`: the low-cost
@@ -14,9 +18,12 @@ port itself):
 - :mod:`.ad2`: the Analog Discovery 2 through pydwf (WaveForms runtime needed; a simulated
   library stands in for tests).
 """
-from .errors import (ChecksumError, DeviceError, DeviceNotResponding, FrameError, HardwareError,
-                     ProtocolVersionError, TransportClosed, TransportTimeout)
+from .errors import (ChecksumError, DeviceError, DeviceNotResponding, ErrorCode, FrameError,
+                     HardwareError, ProtocolVersionError, ReplyError, TransportClosed,
+                     TransportTimeout)
 from .framing import MAX_BODY, PROTOCOL_VERSION, Frame, crc8, decode_frame, encode_frame
+from .protocol import WIRE_UNITS, ParamTable, WireParam
+from .framed import FramedDevice
 from .transport import FaultyTransport, MemoryTransport, PtyLink, SerialTransport, Transport
 from .twin import Twin, TwinServer, open_twin
 from .macro import GaugeCalibration, MacroAFM, MacroAFMCodec, MacroAFMTwin, printed_sample
@@ -27,7 +34,8 @@ from .ad2 import (AD2Config, AD2Unavailable, AnalogDiscovery2, SimulatedDwfLibra
                   pattern_timing)
 
 __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
-           "DeviceNotResponding", "ProtocolVersionError", "DeviceError",
+           "DeviceNotResponding", "ProtocolVersionError", "DeviceError", "ReplyError", "ErrorCode",
+           "ParamTable", "WireParam", "WIRE_UNITS", "FramedDevice",
            "PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
            "Transport", "MemoryTransport", "SerialTransport", "PtyLink", "FaultyTransport",
            "Twin", "TwinServer", "open_twin",

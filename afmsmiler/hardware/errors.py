@@ -6,8 +6,43 @@ versions). Errors raised while a scan runs carry the finished part of the image 
 """
 from __future__ import annotations
 
+import enum
+import inspect
+
 __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
-           "DeviceNotResponding", "ProtocolVersionError", "DeviceError"]
+           "DeviceNotResponding", "ProtocolVersionError", "DeviceError", "ReplyError",
+           "ErrorCode", "RESEND_CODES"]
+
+
+class ErrorCode(enum.IntEnum):
+    """The error numbers of ``SEQ ER ERRNO [WORD]``, shared by every device of module (h).
+
+    Each device's ``protocol.h`` has them as ``ERR_<NAME> <n>`` (a test compares).
+
+    Parameters
+    ----------
+    value : int
+        The error number on the wire (``ErrorCode(3)`` is ``ErrorCode.BAD_ARGUMENT``).
+    """
+
+    CHECKSUM = 1
+    UNKNOWN_COMMAND = 2
+    BAD_ARGUMENT = 3
+    BUSY = 4
+    NOT_HOMED = 5
+    LIMIT = 6
+    ESTOP = 7
+    SENSOR = 8
+    MALFORMED = 9
+    STATE = 10
+
+
+ErrorCode.__signature__ = inspect.Signature(
+    [inspect.Parameter("value", inspect.Parameter.POSITIONAL_OR_KEYWORD)])
+
+#: The errors with which a device says it could not read the host's line (``0 ER 1``, ``0 ER 9``):
+#: the host sends its pending command again with the same SEQ.
+RESEND_CODES = frozenset({ErrorCode.CHECKSUM, ErrorCode.MALFORMED})
 
 
 class HardwareError(Exception):
@@ -104,12 +139,22 @@ class DeviceError(HardwareError):
         self.word = str(word)
         self.device = device
         self.command = command
-        name = _ERROR_NAMES.get(self.code, "UNKNOWN")
+        name = ErrorCode(self.code).name if self.code in ErrorCode._value2member_map_ \
+            else "UNKNOWN"
         what = f"{device} refused {command}" if command else f"{device} reported a fault"
         extra = f" ({self.word})" if self.word else ""
         super().__init__(f"{what}: error {self.code} {name}{extra}")
 
 
-#: The shared error numbers of every device (contract; each codec has them as an enum).
-_ERROR_NAMES = {1: "CHECKSUM", 2: "UNKNOWN_COMMAND", 3: "BAD_ARGUMENT", 4: "BUSY", 5: "NOT_HOMED",
-                6: "LIMIT", 7: "ESTOP", 8: "SENSOR", 9: "MALFORMED", 10: "STATE"}
+
+class ReplyError(FrameError):
+    """A well-formed reply the host refuses: a value outside the device's parameter table, a
+    reply with too few results, a status with bits the protocol does not name.
+
+    Parameters
+    ----------
+    message : str
+        What is wrong, naming the parameter, the value and the valid range.
+    line : bytes
+        The offending line (kept as ``.line``), ``b""`` if not at hand.
+    """

@@ -20,7 +20,8 @@ from numbers import Integral
 
 from .errors import ChecksumError, FrameError
 
-__all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame"]
+__all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
+           "as_bytes", "reply_frame", "error_frame", "event_frame"]
 
 #: The protocol version this driver speaks (every device's ``ID`` reply must report it).
 PROTOCOL_VERSION = 1
@@ -48,6 +49,37 @@ def _table() -> tuple[int, ...]:
 
 _CRC_TABLE = _table()
 
+_BYTES = (bytes, bytearray, memoryview)
+
+
+def as_bytes(name: str, data) -> bytes:
+    """``data`` as bytes, refusing what is not bytes (an int would be taken as a byte count).
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    data : bytes, bytearray or memoryview
+        The bytes.
+
+    Returns
+    -------
+    bytes
+
+    Raises
+    ------
+    TypeError
+        Naming the parameter, for anything else (``bytes(10**10)`` would allocate 10 GB).
+
+    Examples
+    --------
+    >>> as_bytes("data", bytearray(b"1 ID"))
+    b'1 ID'
+    """
+    if not isinstance(data, _BYTES):
+        raise TypeError(f"{name} must be bytes, got {type(data).__name__}")
+    return bytes(data)
+
 
 def crc8(data: bytes) -> int:
     """CRC-8/SMBUS of ``data`` (polynomial 0x07, init 0, not reflected, no final xor).
@@ -62,13 +94,18 @@ def crc8(data: bytes) -> int:
     int
         The checksum, 0..255.
 
+    Raises
+    ------
+    TypeError
+        If ``data`` is not bytes.
+
     Examples
     --------
     >>> hex(crc8(b"123456789"))
     '0xf4'
     """
     crc = 0
-    for byte in bytes(data):
+    for byte in as_bytes("data", data):
         crc = _CRC_TABLE[crc ^ byte]
     return crc
 
@@ -93,6 +130,66 @@ class Frame:
 
     def __post_init__(self):
         object.__setattr__(self, "args", tuple(self.args))
+
+
+def _wire(value):
+    """An enum member as its value on the wire (``Param.PITCH`` -> ``"DX"``)."""
+    return getattr(value, "value", value)
+
+
+def reply_frame(seq: int, code, *results) -> Frame:
+    """A device's success reply ``SEQ OK CODE [RESULT ...]`` (every device's shape).
+
+    Parameters
+    ----------
+    seq : int
+        The command's sequence number.
+    code : str or enum
+        The command echoed.
+    *results : int or str or enum
+        What the command returned.
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(seq, "OK", (_wire(code), *(_wire(r) for r in results)))
+
+
+def error_frame(seq: int, code: int, word: str | None = None) -> Frame:
+    """A device's error ``SEQ ER ERRNO [WORD]`` (SEQ 0: an unreadable line or a fault).
+
+    Parameters
+    ----------
+    seq : int
+        The command's sequence number, 0 for an unsolicited error.
+    code : int
+        The error number (an :class:`~afmsmiler.hardware.errors.ErrorCode`).
+    word : str, optional
+        A word saying more (an axis, a parameter); None or "" for none.
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(seq, "ER", (int(code),) if not word else (int(code), _wire(word)))
+
+
+def event_frame(word, *args) -> Frame:
+    """A device's event ``0 EV WORD [ARG]``.
+
+    Parameters
+    ----------
+    word : str or enum
+        The event's word (an ``Event`` member of the device's codec).
+    *args : int or str
+        Its argument.
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(0, "EV", (_wire(word), *(_wire(a) for a in args)))
 
 
 def _arg_text(index: int, arg) -> str:
@@ -158,6 +255,8 @@ def decode_frame(line: bytes) -> Frame:
 
     Raises
     ------
+    TypeError
+        If ``line`` is not bytes.
     ChecksumError
         If the line has the form ``BODY*CC`` but CC is not the CRC-8 of BODY (a corrupted byte).
     FrameError
@@ -165,7 +264,7 @@ def decode_frame(line: bytes) -> Frame:
         a token of the integer's form ``-?[0-9]+`` outside int32 is a bad token, never a word,
         as in the firmware: devices answer such a line ``0 ER 9``).
     """
-    raw = bytes(line)
+    raw = as_bytes("line", line)
     text = raw[:-1] if raw.endswith(b"\n") else raw
     text = text[:-1] if text.endswith(b"\r") else text
     star = text.rfind(b"*")

@@ -27,6 +27,7 @@ import tty
 from typing import Protocol, runtime_checkable
 
 from .errors import TransportClosed, TransportTimeout
+from .framing import as_bytes
 
 __all__ = ["MAX_LINE", "Transport", "MemoryTransport", "SerialTransport", "PtyLink",
            "FaultyTransport"]
@@ -133,9 +134,12 @@ class MemoryTransport:
 
         Raises
         ------
+        TypeError
+            If ``data`` is not bytes.
         TransportClosed
             If either end has been closed.
         """
+        data = as_bytes("data", data)
         out = self._out
         deadline = time.monotonic() + WRITE_TIMEOUT
         with out.cond:
@@ -148,7 +152,7 @@ class MemoryTransport:
                 if remaining <= 0:
                     raise TransportTimeout(f"the reader took no bytes for {WRITE_TIMEOUT} s")
                 out.cond.wait(min(remaining, 0.05))
-            out.buf += bytes(data)
+            out.buf += data
             out.cond.notify_all()
 
     def readline(self, timeout: float) -> bytes:
@@ -249,7 +253,7 @@ class SerialTransport:
         """
         serial = self._serial_mod
         try:
-            self._port.write(bytes(data))
+            self._port.write(as_bytes("data", data))
         except serial.SerialTimeoutException as exc:
             raise TransportTimeout(f"serial port {self.port}: write timed out") from exc
         except (serial.SerialException, OSError, TypeError, AttributeError) as exc:
@@ -329,7 +333,7 @@ class _FdTransport:
         data : bytes
             The bytes to send.
         """
-        view = memoryview(bytes(data))
+        view = memoryview(as_bytes("data", data))
         deadline = time.monotonic() + WRITE_TIMEOUT
         while view:
             if self._closed:
@@ -531,7 +535,7 @@ class FaultyTransport:
         self._check_plugged()
         if self._silent():
             return
-        data = bytes(data)
+        data = as_bytes("data", data)
         if self.writes and data.endswith(b"\n"):
             rng = self._write_rng
             if rng.random() < self.drop:

@@ -17,16 +17,12 @@ from __future__ import annotations
 import threading
 import time
 
-from .errors import ChecksumError, FrameError, TransportClosed, TransportTimeout
-from .framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
+from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
+from .framing import (PROTOCOL_VERSION, Frame, decode_frame, encode_frame, error_frame,
+                      reply_frame)
 from .transport import MemoryTransport, PtyLink
 
-__all__ = ["Twin", "TwinServer", "open_twin", "ERR_CHECKSUM", "ERR_UNKNOWN_COMMAND",
-           "ERR_MALFORMED"]
-
-ERR_CHECKSUM = 1
-ERR_UNKNOWN_COMMAND = 2
-ERR_MALFORMED = 9
+__all__ = ["Twin", "TwinServer", "open_twin"]
 
 
 class Twin:
@@ -67,7 +63,7 @@ class Twin:
         -------
         Frame
         """
-        return Frame(frame.seq, "OK", (frame.code, *results))
+        return reply_frame(frame.seq, frame.code, *results)
 
     @staticmethod
     def error(frame: Frame, code: int, word: str | None = None) -> Frame:
@@ -86,7 +82,7 @@ class Twin:
         -------
         Frame
         """
-        return Frame(frame.seq, "ER", (int(code),) if word is None else (int(code), word))
+        return error_frame(frame.seq, code, word)
 
     # -- the protocol ------------------------------------------------------------------------
     def handle(self, frame: Frame) -> list[Frame]:
@@ -131,7 +127,7 @@ class Twin:
         """
         if frame.seq == 0:
             return []
-        return [self.error(frame, ERR_UNKNOWN_COMMAND, frame.code)]
+        return [self.error(frame, ErrorCode.UNKNOWN_COMMAND, frame.code)]
 
     def poll(self, now: float) -> list[Frame]:
         """The stream frames due by time ``now`` (pixels, events); advances the twin's clock.
@@ -279,10 +275,10 @@ class TwinServer:
                 try:
                     frame = decode_frame(line)
                 except ChecksumError:
-                    self._send([Frame(0, "ER", (ERR_CHECKSUM,))])
+                    self._send([error_frame(0, ErrorCode.CHECKSUM)])
                     continue
                 except FrameError:
-                    self._send([Frame(0, "ER", (ERR_MALFORMED,))])
+                    self._send([error_frame(0, ErrorCode.MALFORMED)])
                     continue
                 if scale > 0:
                     # the clock at arrival: what fell due before the command goes out first

@@ -410,6 +410,8 @@ class ImagingFigure:
                     lo, hi = -max(abs(lo), abs(hi)), max(abs(lo), abs(hi))
             im.set_clim(lo, hi)
             self.colorbars[key].set_label(label)
+            # no channel (yet): an empty bar shows no scale
+            self.colorbars[key].ax.yaxis.set_visible(label.endswith("]"))
             ax[key].set(xlim=v.extent[:2], ylim=v.extent[2:], xlabel=f"x [{lu}] (fast axis)",
                         ylabel=f"y [{lu}]")
         name = v.image_label.rsplit(" [", 1)[0]

@@ -87,10 +87,12 @@ class LockInFigure:
         outputs.set(xlabel="time [ms]", ylabel=f"lock-in output [{u}]")
         outputs.legend(loc="lower right", fontsize="small")
         ln["spectrum"], = spectrum.semilogy([], [], color="C2", lw=0.8)
-        spectrum.set(xlabel="frequency / drive frequency f", ylabel=f"amplitude [{u}]",
+        spectrum.set(xlabel="frequency / drive frequency f (dimensionless)",
+                     ylabel=f"amplitude [{u}]",
                      title="output spectrum (2f: the signal)")
         ln["pickup"], = pickup.plot([], [], "o-", color="C3")
-        pickup.set(xlabel="harmonic h of the reference (at 2 h f)", ylabel="weight",
+        pickup.set(xlabel="harmonic h of the reference (at 2 h f) (dimensionless)",
+                   ylabel="weight (dimensionless)",
                    ylim=(-0.05, 1.1), xlim=(0.5, 7.5))
         self.fig.set_layout_engine("constrained")
         self.update(demo)
@@ -124,7 +126,8 @@ class LockInFigure:
         hold(ax["outputs"], "y", lo, hi, reset=True)
         ax["outputs"].set_title(
             f"R = {shown(r.amplitude, u)} (true {shown(abs(truth), u)}, "
-            f"{100 * demo.amplitude_error:+.2f} %)\nphase {math.degrees(r.phase):.2f} deg "
+            + (f"{100 * demo.amplitude_error:+.2f} %)" if math.isfinite(demo.amplitude_error)
+               else "no drive)") + f"\nphase {math.degrees(r.phase):.2f} deg "
             f"(error {math.degrees(demo.phase_error):+.2f} deg), ENBW {r.enbw:.3g} Hz",
             fontsize="medium")
         f, a = peaks(demo.spectrum.frequency / run.drive_frequency, demo.spectrum.amplitude)

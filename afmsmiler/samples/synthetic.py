@@ -25,18 +25,18 @@ MAX_PARTICLE_WORK = 1 << 26
 MAX_FIBRE_POINTS = 1 << 21
 
 
-def _n(pixels):
-    return check_integer("pixels", pixels, 2, MAX_LINE_PIXELS)
+def _n(shape):
+    return check_integer("shape", shape, 2, MAX_LINE_PIXELS)
 
 
-def step(pixels: int = 512, pixel_size: float = 4e-9, height: float = 50e-9,
+def step(shape: int = 512, pixel_size: float = 4e-9, height: float = 50e-9,
          position: float = 0.5) -> Sample:
     """A line with one step up of ``height`` at ``position`` (fraction of the line).
 
     Parameters
     ----------
-    pixels : int
-        Number of pixels (>= 2).
+    shape : int
+        Pixels of the line (>= 2): a line's shape, named like every generator's.
     pixel_size : float
         Pixel size in m.
     height : float
@@ -48,7 +48,7 @@ def step(pixels: int = 512, pixel_size: float = 4e-9, height: float = 50e-9,
     -------
     Sample
     """
-    n = _n(pixels)
+    n = _n(shape)
     pixel_size = check_positive("pixel_size", pixel_size, "m")
     height = check_finite("height", height, "m")
     position = check_range("position", position, 0, 1, low_inclusive=False, high_inclusive=False)
@@ -56,18 +56,18 @@ def step(pixels: int = 512, pixel_size: float = 4e-9, height: float = 50e-9,
     return Sample(np.where(x >= position, height, 0.0), pixel_size, "step")
 
 
-def grating(pixels=512, pixel_size: float = 4e-9, period: float = 500e-9,
+def grating(shape=512, pixel_size: float = 4e-9, period: float = 500e-9,
             height: float = 50e-9, duty: float = 0.5, pattern: str = "lines") -> Sample:
     """A rectangular calibration grating: raised lines (or squares) of ``height``.
 
-    As a line (``pixels`` an int) or an image (``pixels`` = (rows, columns)): ``"lines"`` are
+    As a line (``shape`` an int) or an image (``shape`` = (rows, columns)): ``"lines"`` are
     stripes along y, ``duty * period`` wide, repeating along x every ``period`` (the pitch), like
     a TGZ step grating; ``"squares"`` are square pillars ``duty * period`` wide on a square
     lattice of pitch ``period``, like a TGQ/TGX grating.
 
     Parameters
     ----------
-    pixels : int or tuple of int
+    shape : int or tuple of int
         Pixels of a line (>= 2) or (rows, columns) of an image.
     pixel_size : float
         Pixel size in m (square pixels).
@@ -85,14 +85,14 @@ def grating(pixels=512, pixel_size: float = 4e-9, period: float = 500e-9,
     -------
     Sample
     """
-    if isinstance(pixels, (int, np.integer)):
-        shape = (_n(pixels),)
+    given = shape
+    if isinstance(shape, (int, np.integer)):
+        shape = (_n(shape),)
     else:
         try:
-            shape = check_shape(pixels)
+            shape = check_shape(shape)
         except ValueError as exc:
-            raise ValueError(f"pixels must be an int or a pair (rows, columns): "
-                             f"{str(exc).replace('shape', 'pixels')}") from None
+            raise ValueError(f"shape must be an int or a pair (rows, columns): {exc}") from None
     pixel_size = check_positive("pixel_size", pixel_size, "m")
     # a period under two pixels would alias into a different, longer one (Nyquist); the message
     # names pixel_size too, since either may be the one the caller got wrong
@@ -105,8 +105,8 @@ def grating(pixels=512, pixel_size: float = 4e-9, period: float = 500e-9,
     duty = check_range("duty", duty, 0, 1, low_inclusive=False, high_inclusive=False)
     check_choice("pattern", pattern, ("lines", "squares"))
     if pattern == "squares" and len(shape) != 2:
-        raise ValueError(f"pattern 'squares' needs an image: pixels must be (rows, columns), "
-                         f"got {pixels!r}")
+        raise ValueError(f"pattern 'squares' needs an image: shape must be (rows, columns), "
+                         f"got {given!r}")
     raised = np.mod(np.arange(shape[-1]) * pixel_size / period, 1.0) < duty
     if len(shape) == 2:
         rows = np.mod(np.arange(shape[0]) * pixel_size / period, 1.0) < duty

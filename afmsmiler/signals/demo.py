@@ -14,13 +14,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..parameters import read_only
-from ..validation import check_choice, check_integer
+from ..validation import check_choice, check_integer, check_range
 from .chain import (AC_VOLTAGE, AMPLIFIER_GAIN, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO,
                     INTERFERENCE, ActiveProbe, ChainRun, simulate)
 from .lockin import (FILTER_ORDER, LIMITS, REFERENCES, TIME_CONSTANT, LockInResult, Spectrum,
                      amplitude_spectrum, harmonic_pickup, lock_in, settling_time)
 
-__all__ = ["LockInDemo", "lock_in_demo", "DEFAULTS"]
+__all__ = ["LockInDemo", "lock_in_demo", "max_ac_voltage", "DEFAULTS"]
 
 #: Defaults of the demonstration, in one place: the spectrum up to ``max_harmonic`` x f,
 #: ``extra_periods`` reference periods read after the filter settles, ``harmonics`` the
@@ -68,20 +68,54 @@ class LockInDemo:
 
     @property
     def relative_error(self) -> float:
-        """|recovered - true phasor| / |true phasor|: the whole error, amplitude and phase."""
-        return abs(self.deviation) / abs(self.truth)
+        """|recovered - true phasor| / |true phasor|: the whole error, amplitude and phase
+        (NaN without a drive: there is no true phasor to compare with)."""
+        return abs(self.deviation) / abs(self.truth) if self.truth != 0 else math.nan
 
     @property
     def amplitude_error(self) -> float:
         """Recovered over true amplitude, minus 1 (blind to an error in phase: see
-        :attr:`relative_error`)."""
-        return self.reading.amplitude / abs(self.truth) - 1.0
+        :attr:`relative_error`); NaN without a drive."""
+        return self.reading.amplitude / abs(self.truth) - 1.0 if self.truth != 0 else math.nan
 
     @property
     def phase_error(self) -> float:
         """Recovered minus true phase in rad, wrapped to (-pi, pi]."""
         d = self.reading.phase - float(np.angle(self.truth))
         return math.atan2(math.sin(d), math.cos(d))
+
+
+def max_ac_voltage(*, margin: float = 0.8, **lever) -> float:
+    """The largest drive V_ac whose deflection stays inside the sensor's range at any drive ratio.
+
+    With no DC offset the heater power is ``V_ac^2 / (2 R) (1 - cos 2wt)``: a steady part and a
+    2w part, so the driven deflection never exceeds ``V_ac^2 / (2 R) (|H(0)| + |H(2f)|)`` with
+    ``H`` the deflection per watt (:meth:`ActiveProbe.deflection_per_power`). Its worst case over
+    the drive ratios of :data:`HALF_RESONANCE_RATIO`'s slider (``2f`` through ``f1``, where
+    ``|H|`` peaks) is held to ``margin`` of the sensor's deflection range, leaving room for the
+    lever's Brownian motion; a drive above it is refused by module (b)'s bridge.
+
+    Parameters
+    ----------
+    margin : float
+        Share of the deflection range the drive may use, in (0, 1].
+    **lever
+        The shared lever parameters of :meth:`ActiveProbe.build`.
+
+    Returns
+    -------
+    float
+        V_ac in V, at most :data:`AC_VOLTAGE`'s upper bound.
+    """
+    margin = check_range("margin", margin, 0.0, 1.0, low_inclusive=False)
+    probe = ActiveProbe.build(**lever)
+    f1 = probe.resonance_frequency
+    ratios = np.linspace(HALF_RESONANCE_RATIO.slider_low, HALF_RESONANCE_RATIO.slider_high, 801)
+    h = np.abs(probe.deflection_per_power(np.append(ratios * f1, f1)))
+    h0 = abs(probe.deflection_per_power(np.array([0.0]))[0])
+    reach = probe.sensor.input_quantity("sensing").high
+    volts = math.sqrt(margin * reach * 2 * probe.actuator.resistance / (h0 + float(h.max())))
+    return min(volts, AC_VOLTAGE.high)
 
 
 def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,

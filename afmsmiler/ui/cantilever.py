@@ -23,9 +23,8 @@ from ..parameters import read_only, unit_scale
 from ..plots.cantilever import DEFAULTS as PLOTS
 from ..plots.cantilever import (CantileverCurves, CantileverFigure, ModeShapesFigure,
                                 cantilever_curves)
-from ..validation import check_choice, check_finite, check_range
-from .controls import control
-from .panel import Panel, show_static
+from ..validation import check_choice
+from .panel import Panel, initial_values, show_static, slider
 
 __all__ = ["CantileverPanel", "CantileverState", "DEFAULTS", "SLIDERS"]
 
@@ -100,6 +99,8 @@ class CantileverPanel(Panel):
     scene : bool
         Draw the 3D view in its own widget, shown below the panel by
         :meth:`show` (over the kernel's connection; nothing to close).
+    vis : meshcat.Visualizer, optional
+        Where to draw instead (tests pass a recorder); implies ``scene``.
     **initial
         Initial control values (keys of :data:`DEFAULTS`), in the units shown.
 
@@ -118,11 +119,8 @@ class CantileverPanel(Panel):
         k [N/m], f1..f3 [kHz], tip deflection [nm], max stress [MPa] and the color legend.
     """
 
-    def __init__(self, scene: bool = True, **initial):
-        unknown = set(initial) - set(DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
-        v = {**DEFAULTS, **initial}
+    def __init__(self, scene: bool = False, vis=None, **initial):
+        v = initial_values(initial, DEFAULTS)
         check_choice("material", v["material"], list(MATERIALS))
         if "material" in initial:  # a material sets E and rho unless they are given too
             m = MATERIALS[v["material"]]
@@ -130,12 +128,7 @@ class CantileverPanel(Panel):
                 v["youngs_modulus"] = PARAMETERS["youngs_modulus"].to_display(m.youngs_modulus)
             if "density" not in initial:
                 v["density"] = PARAMETERS["density"].to_display(m.density)
-        sliders = {}
-        for name in SLIDERS:
-            p = PARAMETERS[name]
-            value = check_range(name, v[name], p.to_display(p.slider_low),
-                                p.to_display(p.slider_high), p.display_unit)  # on the slider
-            sliders[name] = control(p, p.to_si(value))
+        sliders = {name: slider(name, PARAMETERS[name], v[name]) for name in SLIDERS}
         self.controls = dict(
             force=sliders["force"], length=sliders["length"], width=sliders["width"],
             thickness=sliders["thickness"],
@@ -150,11 +143,10 @@ class CantileverPanel(Panel):
         self.modes_fig = None
         self.modes_live = None  # the mode shapes drawn in the browser
         self.scene = None
-        self._want_scene = bool(scene)
         self.fig = self.new_figure(figsize=_FIGSIZE)
         # registered before Panel's own observer, so one material change gives one update
         self.controls["material"].observe(self._on_material, names="value")
-        super().__init__()
+        super().__init__(scene=scene, vis=vis)
 
     def set(self, **values) -> None:
         """Set control values as a user would, in one update (see :meth:`Panel.set`).
@@ -190,14 +182,14 @@ class CantileverPanel(Panel):
         Parameters
         ----------
         force : float
-            End force F in nN.
+            End force F in N.
         length, width, thickness : float
-            L, w, h in um.
+            L, w, h in m.
         material : str
             A key of :data:`afmsmiler.materials.MATERIALS`; it acts through E and rho (a choice
             in the drop-down moves their sliders).
         youngs_modulus : float
-            E in GPa.
+            E in Pa.
         density : float
             rho in kg/m^3.
         section : float
@@ -205,17 +197,10 @@ class CantileverPanel(Panel):
         exaggeration : float
             Of the deflection drawn in the 3D view.
         """
-        check_choice("material", material, list(MATERIALS))
-        given = dict(force=force, length=length, width=width, thickness=thickness,
-                     youngs_modulus=youngs_modulus, density=density, section=section,
-                     exaggeration=exaggeration)
-        si = {name: PARAMETERS[name].check(PARAMETERS[name].to_si(
-            check_finite(name, value, PARAMETERS[name].display_unit)))
-            for name, value in given.items()}  # named errors before any work
-        lever = Cantilever(si["length"], si["width"], si["thickness"], si["youngs_modulus"],
-                           si["density"])
-        bending = lever.bending(si["force"], section=si["section"], n_length=PLOTS["n_points"],
-                                n_thickness=_N_THICKNESS, n_section=_N_SECTION, modes=_N_MODES)
+        lever = Cantilever(length, width, thickness, youngs_modulus, density)
+        bending = self.run_model(lever.bending, force, section=section,
+                                 n_length=PLOTS["n_points"], n_thickness=_N_THICKNESS,
+                                 n_section=_N_SECTION, modes=_N_MODES)
         curves = cantilever_curves(bending)
         if self.figure is None:
             self.figure = CantileverFigure(curves, fig=self.fig)
@@ -228,10 +213,10 @@ class CantileverPanel(Panel):
             if self.scene is None:
                 from ..scenes.cantilever import CantileverScene
                 self.scene = CantileverScene(bending, vis=self.scene_root(),
-                                             exaggeration=si["exaggeration"],
+                                             exaggeration=exaggeration,
                                              force_per_unit=FORCE.slider_high / 1.5)
             else:
-                self.scene.update(bending, exaggeration=si["exaggeration"])
+                self.scene.update(bending, exaggeration=exaggeration)
         self.last = CantileverState(
             lever=lever, force=bending.force, bending=bending, curves=curves,
             spring_constant=bending.spring_constant, frequencies=bending.frequencies,

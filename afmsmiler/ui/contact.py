@@ -6,7 +6,7 @@ Every slider is built by :func:`afmsmiler.ui.controls.control` from a
 (labels, display units, ranges and defaults on the slider grid, so the browser's echo never
 changes a value nobody chose). Only the current shape's sliders are shown.
 
-:meth:`ContactPanel.update` converts the values it is given to SI, builds one
+:meth:`ContactPanel.update` takes the values in SI (the panel contract), builds one
 :class:`~afmsmiler.contact.ContactSystem`, runs its approach-retract cycle over the Z_np ramp once
 and its state at the current Z_np once, and hands both to the figure
 (:class:`~afmsmiler.plots.contact.ContactFigure`) and the 3D scene
@@ -29,8 +29,7 @@ from ..contact import (PARAMETERS, TIPS, ApproachRetract, ContactSystem, Indenta
 from ..parameters import read_only, shown
 from ..plots.contact import ContactCurves, ContactFigure, contact_curves
 from ..validation import check_choice
-from .controls import control
-from .panel import Panel, check_control_value
+from .panel import Panel, _decimal, initial_values, slider
 
 __all__ = ["ContactPanel", "ContactState", "DEFAULTS", "TIP_CONTROLS", "SLIDERS"]
 
@@ -124,6 +123,8 @@ class ContactPanel(Panel):
     scene : bool
         Draw the 3D view in its own widget, shown below the panel by
         :meth:`show` (over the kernel's connection; nothing to close).
+    vis : meshcat.Visualizer, optional
+        Where to draw instead (tests pass a recorder); implies ``scene``.
     **initial
         Initial control values (keys of :data:`DEFAULTS` or :data:`TIP_CONTROLS`), as shown.
 
@@ -146,40 +147,31 @@ class ContactPanel(Panel):
         Current force, indentation, contact radius, pull-off force.
     """
 
-    def __init__(self, scene: bool = False, **initial):
-        valid = set(DEFAULTS) | set(TIP_CONTROLS)
-        unknown = set(initial) - valid
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(valid)}")
+    def __init__(self, scene: bool = False, vis=None, **initial):
+        tip_defaults = {name: p.to_display(p.default) for name, p in TIP_CONTROLS.items()}
+        v = initial_values(initial, {**DEFAULTS, **tip_defaults})
+        check_choice("tip", v["tip"], tuple(TIPS))
+        check_choice("branch", v["branch"], ("approach", "retract"))
+        check_choice("adhesion", v["adhesion"], tuple(_ADHESION))
         options = [(cls.title, key) for key, cls in TIPS.items()]
-        controls = dict(
-            tip=widgets.Dropdown(options=options, value=DEFAULTS["tip"], description="tip"))
+        controls = dict(tip=widgets.Dropdown(options=options, value=v["tip"], description="tip"))
         for name, p in TIP_CONTROLS.items():
-            controls[name] = control(p)
+            controls[name] = slider(name, p, v[name])
         for name, p in SLIDERS.items():
             if name == "work_of_adhesion":
                 controls["branch"] = widgets.ToggleButtons(
-                    options=["approach", "retract"], value=DEFAULTS["branch"],
-                    description="branch")
+                    options=["approach", "retract"], value=v["branch"], description="branch")
                 controls["adhesion"] = widgets.Dropdown(options=list(_ADHESION),
-                                                        value=DEFAULTS["adhesion"],
+                                                        value=v["adhesion"],
                                                         description="adhesion")
-            controls[name] = control(p)
-        for name, value in initial.items():  # named errors, then the grid through the value
-            check_control_value(name, controls[name], value)
-            p = TIP_CONTROLS.get(name) or SLIDERS.get(name)
-            if p is not None:
-                controls[name] = control(p, p.to_si(value))
-            else:
-                controls[name].value = value
+            controls[name] = slider(name, p, v[name])
         self.controls = controls
         self.readout = widgets.HTML()
         self.figure = None
         self.scene = None
         self._note = ""
-        self._want_scene = bool(scene)
         self.fig = self.new_figure(figsize=(10.5, 4.6))
-        super().__init__()
+        super().__init__(scene=scene, vis=vis)
 
     # -- helpers --------------------------------------------------------------------------------
     def _show_tip_controls(self, key: str) -> None:
@@ -239,50 +231,40 @@ class ContactPanel(Panel):
         spring_constant : float
             k in N/m.
         youngs_modulus : float
-            E in MPa.
+            E in Pa.
         poisson_ratio : float
             nu.
         z_np : float
-            The current positioner displacement in nm (clipped, with a note, to the range the
+            The current positioner displacement in m (clipped, with a note, to the range the
             model allows for this tip: a sphere's limit, the snap-off below).
         branch : {"approach", "retract"}
             Which branch the current point follows.
         adhesion : {"none", "DMT", "JKR"}
             Adhesion model (ignored for a cone or a pyramid).
         work_of_adhesion : float
-            w in mJ/m^2.
+            w in J/m^2.
         **tip_parameters
-            The tip sliders' values as shown (nm, deg); those of other shapes are ignored.
+            Every tip slider's value in SI (m, rad); those of other shapes are ignored.
 
         Raises
         ------
-        ValueError
-            For an unknown tip, branch or adhesion model, naming the choices, or a value the
-            model rejects.
-        TypeError
-            For an unknown tip parameter.
+        TypeError, ValueError
+            For a missing or unknown control, an unknown tip, branch or adhesion model (naming
+            the choices) or a value the model rejects, before any work (the panel contract).
         """
-        check_choice("tip", tip, tuple(TIPS))
-        check_choice("branch", branch, ("approach", "retract"))
-        check_choice("adhesion", adhesion, tuple(_ADHESION))
-        unknown = set(tip_parameters) - set(TIP_CONTROLS)
-        if unknown:
-            raise TypeError(f"unknown tip parameter(s) {sorted(unknown)}; "
-                            f"valid: {sorted(TIP_CONTROLS)}")
         self._show_tip_controls(tip)
-        shape = make_tip(tip, **{p.name: p.to_si(tip_parameters[p.name])
-                                 for p in TIPS[tip].parameters})
-        si = {name: SLIDERS[name].to_si(v) for name, v in
-              dict(spring_constant=spring_constant, youngs_modulus=youngs_modulus,
-                   poisson_ratio=poisson_ratio, work_of_adhesion=work_of_adhesion).items()}
+        shape = make_tip(tip, **{p.name: tip_parameters[p.name] for p in TIPS[tip].parameters})
         model = _ADHESION[adhesion] if shape.adhesive else None
-        system = ContactSystem(tip=shape, adhesion=model, **si)
+        system = ContactSystem(tip=shape, adhesion=model, spring_constant=spring_constant,
+                               youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio,
+                               work_of_adhesion=work_of_adhesion)
         self._note = ""
         if model and _SPHERE_MARGIN * system.z_np_limit < _MIN_RANGE:
             self._note = "adhesion would pull this sphere in past its radius: shown without it"
             system = system.replace(adhesion=None)
         lo, hi = self._z_np_range(system)  # as shown, nm
-        shown = float(z_np)
+        p_z = SLIDERS["z_np"]
+        shown = _decimal(p_z.to_display(z_np))
         clipped = not lo <= shown <= hi
         if clipped:
             inside = min(max(shown, lo), hi)
@@ -290,9 +272,9 @@ class ContactPanel(Panel):
                            f"shown at {inside:g} nm.")
             shown = inside
         self._set_z_np_range(lo, hi, shown, clipped)
-        to_si = SLIDERS["z_np"].to_si
-        cycle = system.approach_retract(np.linspace(to_si(lo), to_si(hi), _RAMP_POINTS))
-        current = system.at(to_si(shown), branch)
+        cycle = self.run_model(system.approach_retract,
+                               np.linspace(p_z.to_si(lo), p_z.to_si(hi), _RAMP_POINTS))
+        current = system.at(p_z.to_si(shown) if clipped else z_np, branch)
         extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
                      30e-9)
         curves = contact_curves(cycle, current, shape, extent)

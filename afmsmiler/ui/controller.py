@@ -24,9 +24,9 @@ from ..controller.loop import LOOP_PARAMETERS
 from ..parameters import read_only
 from ..plots.controller import ScanCurves, ScanFigure, scan_curves
 from ..samples import PROFILES, profile
-from ..validation import check_choice, check_finite
-from .controls import WIDTH, control
-from .panel import Panel
+from ..validation import check_choice
+from .controls import WIDTH
+from .panel import Panel, initial_values, slider
 
 __all__ = ["ControllerPanel", "ControllerState", "DEFAULTS", "SLIDERS", "preset_values",
            "format_poles"]
@@ -143,20 +143,15 @@ class ControllerPanel(Panel):
     """
 
     def __init__(self, **initial):
-        unknown = set(initial) - set(DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
-        v = dict(DEFAULTS)
+        v = initial_values(initial, DEFAULTS)
         if "preset" in initial:
-            v.update(preset_values(initial["preset"]))
-        v.update(initial)
+            v = {**v, **preset_values(initial["preset"]), **initial}
         check_choice("profile", v["profile"], list(PROFILES))
         controls = {"preset": widgets.Dropdown(
             options=[(p.description, name) for name, p in PRESETS.items()], value=v["preset"],
             description="preset", layout=widgets.Layout(width=WIDTH))}
         for name in SLIDERS:
-            p = PARAMETERS[name]
-            controls[name] = control(p, p.to_si(v[name]))
+            controls[name] = slider(name, PARAMETERS[name], v[name])
         controls["profile"] = widgets.Dropdown(options=list(PROFILES), value=v["profile"],
                                                description="profile")
         self.controls = controls
@@ -195,30 +190,30 @@ class ControllerPanel(Panel):
 
     def update(self, preset, m_c, m_s, b_c, b_s, k_c, k_s, kp, ki, kd, speed, setpoint, height,
                profile) -> None:
-        """Scan the line with exactly these values (units shown), update plots and indicator.
+        """Scan the line with exactly these values (sliders in SI), update plots and indicator.
 
         Parameters
         ----------
         preset : str
             The preset chosen (it acts through the other values, see :meth:`set`).
         m_c, m_s : float
-            Masses in ng.
+            Masses in kg.
         b_c, b_s : float
-            Damping in ng/us.
+            Damping in kg/s.
         k_c, k_s : float
             Stiffnesses in N/m.
         kp : float
             K_P (dimensionless).
         ki : float
-            K_I in 1/us.
+            K_I in 1/s.
         kd : float
-            K_D in us.
+            K_D in s.
         speed : float
-            Scan speed in um/s.
+            Scan speed in m/s.
         setpoint : float
-            Deflection setpoint R in nm.
+            Deflection setpoint R in m.
         height : float
-            Feature height of the profile in nm.
+            Feature height of the profile in m.
         profile : str
             One of :data:`afmsmiler.samples.PROFILES`.
 
@@ -226,18 +221,13 @@ class ControllerPanel(Panel):
         ------
         TypeError, ValueError
             Naming a value that is not a number, not finite or outside its parameter's valid
-            range, or an unknown preset or profile, before any work.
+            range, or an unknown preset or profile, before any work (the panel contract).
         """
-        check_choice("preset", preset, list(PRESETS))
-        check_choice("profile", profile, list(PROFILES))
-        shown = dict(m_c=m_c, m_s=m_s, b_c=b_c, b_s=b_s, k_c=k_c, k_s=k_s, kp=kp, ki=ki, kd=kd,
-                     speed=speed, setpoint=setpoint, height=height)
-        si = {k: PARAMETERS[k].check(PARAMETERS[k].to_si(
-            check_finite(k, v, PARAMETERS[k].display_unit))) for k, v in shown.items()}
+        si = dict(m_c=m_c, m_s=m_s, b_c=b_c, b_s=b_s, k_c=k_c, k_s=k_s, kp=kp, ki=ki, kd=kd)
         loop = ContactLoop(**{k: si[k] for k in LOOP_PARAMETERS})
-        sample = _profile(profile, si["height"])
-        scan = loop.scan_line(sample.x, sample.heights, speed=si["speed"],
-                              setpoint=si["setpoint"])
+        sample = _profile(profile, height)
+        scan = self.run_model(loop.scan_line, sample.x, sample.heights, speed=speed,
+                              setpoint=setpoint)
         curves = scan_curves(scan, loop)
         if self.figure is None:
             self.figure = ScanFigure(curves, fig=self.fig)

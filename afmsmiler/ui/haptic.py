@@ -36,8 +36,7 @@ from ..modes.qcontrol import (ClosedLoopResponse, QControl, RingDown, closed_loo
 from ..parameters import read_only, shown
 from ..plots.haptic import ForceLawFigure, QControlFigure
 from ..validation import check_choice, check_range
-from .controls import control
-from .panel import Panel
+from .panel import Panel, initial_values, slider
 
 __all__ = ["QControlPanel", "QControlState", "BridgePanel", "BridgeState", "SOURCES", "status_html",
            "Q_DEFAULTS", "BRIDGE_DEFAULTS"]
@@ -105,15 +104,12 @@ class QControlPanel(Panel):
 
     def __init__(self, device=None, *, resonance_frequency: float = _Q["resonance_frequency"]
                  .default, **initial):
-        unknown = set(initial) - set(Q_DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(Q_DEFAULTS)}")
+        v = initial_values(initial, Q_DEFAULTS)
         if device is not None and not callable(getattr(device, "configure", None)):
             raise TypeError(f"device must be a HapticDevice, got {type(device).__name__}")
         self.device = device
         self.resonance_frequency = _Q["resonance_frequency"].check(resonance_frequency)
-        v = {**Q_DEFAULTS, **initial}
-        self.controls = {n: control(_Q[n], _Q[n].to_si(v[n])) for n in Q_DEFAULTS}
+        self.controls = {n: slider(n, _Q[n], v[n]) for n in Q_DEFAULTS}
         self.readout = widgets.HTML()
         self.fig = self.new_figure(figsize=(10.0, 4.2))
         self.figure = QControlFigure(self.fig)
@@ -129,11 +125,10 @@ class QControlPanel(Panel):
         gain : float
             Controller gain g.
         phase : float
-            Phase lag phi in deg.
+            Phase lag phi in rad.
         """
         qc = QControl(resonance_frequency=self.resonance_frequency,
-                      quality_factor=_Q["quality_factor"].to_si(quality_factor),
-                      gain=_Q["gain"].to_si(gain), phase=_Q["phase"].to_si(phase))
+                      quality_factor=quality_factor, gain=gain, phase=phase)
         free_qc = qc.replace(gain=0.0)
         q_eff = qc.effective_quality_factor
         q_low = min(qc.quality_factor, q_eff if math.isfinite(q_eff) and q_eff > 0 else
@@ -269,10 +264,7 @@ class BridgePanel(Panel):
 
     def __init__(self, device=None, *, gauge=None, gauge_calibration: float = 1e-3,
                  max_force=None, **initial):
-        unknown = set(initial) - set(BRIDGE_DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: "
-                            f"{sorted(BRIDGE_DEFAULTS)}")
+        v = initial_values(initial, BRIDGE_DEFAULTS)
         self.device = device
         self.sources = dict(SOURCES)
         if gauge is not None:
@@ -282,14 +274,13 @@ class BridgePanel(Panel):
             max_force = float(getattr(device, "max_force", 2.0)) if device is not None else 2.0
         self.max_force = check_range("max_force", max_force, 0.0, 100.0, "N",
                                      low_inclusive=False)
-        v = {**BRIDGE_DEFAULTS, **initial}
         check_choice("source", v["source"], list(self.sources))
         self._built = {}
         self.bridge = None
         self.controls = {
             "source": widgets.Dropdown(options=list(self.sources), value=v["source"],
                                        description="source"),
-            "force_scale": control(_B["force_scale"], v["force_scale"]),
+            "force_scale": slider("force_scale", _B["force_scale"], v["force_scale"]),
         }
         self.status = widgets.HTML("<i>bridge not run yet</i>")
         self.fig = self.new_figure(figsize=(6.5, 4.0))
@@ -312,8 +303,7 @@ class BridgePanel(Panel):
         force_scale : float
             Device N per source N.
         """
-        check_choice("source", source, list(self.sources))
-        scale = _B["force_scale"].to_si(force_scale)
+        scale = force_scale
         src = self._source(source)
         _, pscale, tscale, kind = self.sources[source]
         if kind == "time":

@@ -41,8 +41,8 @@ from ..parameters import read_only, shown
 from ..plots.hardware import MacroFigure, comparison_view, macro_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
-from .controls import WIDTH, control
-from .panel import Panel, running_as_notebook
+from .controls import WIDTH
+from .panel import Panel, initial_values, running_as_notebook, slider
 
 __all__ = ["MacroAFMPanel", "MacroResult", "DEFAULTS", "LIVE_TIME_SCALE", "TWIN", "MODES",
            "PIXELS", "SOURCES", "PITCHES", "SCAN_PARAMETERS", "TWIN_SAMPLES", "TWIN_PITCH",
@@ -256,15 +256,12 @@ class MacroAFMPanel(Panel):
     MAX_LINE_WAIT = 0.25
 
     def __init__(self, time_scale: float | None = None, **initial):
-        unknown = set(initial) - set(DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
+        v = initial_values(initial, DEFAULTS)
         if time_scale is None:
             time_scale = 0.0 if not running_as_notebook() else LIVE_TIME_SCALE
         self.time_scale = check_finite("time_scale", time_scale)
         if not 0 <= self.time_scale <= 10:
             raise ValueError(f"time_scale must be in [0, 10], got {time_scale!r}")
-        v = {**DEFAULTS, **initial}
         layout = widgets.Layout(width=WIDTH)
         ports = [("twin (simulated machine)", TWIN)] + serial_ports()
         check_choice("port", v["port"], [p[1] for p in ports])
@@ -284,12 +281,11 @@ class MacroAFMPanel(Panel):
              "pitch": widgets.Dropdown(options=list(PITCHES), value=v["pitch"],
                                        description="pitch [mm]", layout=layout)}
         for name, p in SCAN_PARAMETERS.items():
-            c[name] = control(p, p.to_si(v[name]))
+            c[name] = slider(name, p, v[name])
         c["source"] = widgets.Dropdown(options=list(SOURCES), value=v["source"],
                                        description="image to print", layout=layout)
         for name in PRINT_SLIDERS:
-            p = printing.PARAMETERS[name]
-            c[name] = control(p, p.to_si(v[name]))
+            c[name] = slider(name, printing.PARAMETERS[name], v[name])
         self.controls = c
         self.buttons = {name: widgets.Button(description=label, icon=icon, button_style=style)
                         for name, label, icon, style in (
@@ -380,7 +376,7 @@ class MacroAFMPanel(Panel):
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> dict:
-        """Check the values (units shown) and turn them into the scan's and the print's (SI)."""
+        """Check the values (sliders in SI) and turn them into the scan's and the print's (SI)."""
         ports = [o[1] for o in self.controls["port"].options]
         check_choice("port", values["port"], ports)
         samples = [o if isinstance(o, str) else o[1] for o in self.controls["sample"].options]
@@ -390,8 +386,8 @@ class MacroAFMPanel(Panel):
         check_choice("pitch", values["pitch"], list(PITCHES))
         check_choice("source", values["source"], list(SOURCES))
 
-        def si(name, p):
-            return p.check(p.to_si(check_finite(name, values[name], p.display_unit)))
+        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
+            return values[name]
 
         scan = dict(mode=values["mode"], pixels=int(values["pixels"]),
                     pitch=DEVICE_PARAMETERS["pitch"].to_si(values["pitch"]),

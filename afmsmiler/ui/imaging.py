@@ -42,8 +42,8 @@ from ..parameters import read_only
 from ..plots.imaging import ImagingFigure, scan_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
-from .controls import WIDTH, control
-from .panel import Panel, check_control_value, running_as_notebook
+from .controls import WIDTH
+from .panel import Panel, check_control_value, initial_values, running_as_notebook, slider
 
 __all__ = ["ImagingPanel", "ImagingResult", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE",
            "SCAN_SLIDERS", "ChannelImage", "sample", "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
@@ -266,10 +266,7 @@ class ImagingPanel(Panel):
     """
 
     def __init__(self, scene: bool = False, vis=None, **initial):
-        unknown = set(initial) - set(DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(DEFAULTS)}")
-        v = {**DEFAULTS, **initial}
+        v = initial_values(initial, DEFAULTS)
         check_choice("sample", v["sample"], list(SAMPLES))
         check_choice("mode", v["mode"], list(MODES))
         check_choice("tip", v["tip"], list(TIPS))
@@ -283,16 +280,16 @@ class ImagingPanel(Panel):
              "tip": widgets.Dropdown(options=[(cls.title, key) for key, cls in TIPS.items()],
                                      value=v["tip"], description="tip", layout=layout)}
         for name, p in TIP_CONTROLS.items():
-            c[name] = control(p, p.to_si(v[name]))
+            c[name] = slider(name, p, v[name])
         c["pixels"] = widgets.Dropdown(options=list(PIXELS), value=v["pixels"],
                                        description="pixels per line", layout=layout)
         for name in SCAN_SLIDERS:
             p = _scanner.PARAMETERS[name]
-            c[name] = control(p, p.to_si(v[name]), high=max_scan_size(
+            c[name] = slider(name, p, v[name], high=max_scan_size(
                 v["sample"], math.radians(v["angle"])) if name == "scan_size" else None)
         for sliders in MODE_SLIDERS.values():
             for name, p in sliders.items():
-                c[name] = control(p, p.to_si(v[name]))
+                c[name] = slider(name, p, v[name])
         c["on_change"] = widgets.ToggleButtons(options=list(ON_CHANGE), value=v["on_change"],
                                                description="slider during a scan",
                                                style={"description_width": "initial"})
@@ -313,8 +310,6 @@ class ImagingPanel(Panel):
         self.status = widgets.HTML()
         self.figure = None
         self.scene = None
-        self._vis = vis
-        self._want_scene = bool(scene) or vis is not None
         self._scene_key = None
         self._tip_at = None  # where the last line ended: (x, y, z) in m on the sample
         self.fig = self.new_figure(figsize=(10.0, 7.0))
@@ -340,7 +335,7 @@ class ImagingPanel(Panel):
         for name in ("sample", "angle"):
             self.controls[name].observe(lambda ch: self._fit_scan_size(), names="value")
         self._fit_scan_size()
-        super().__init__()
+        super().__init__(scene=scene, vis=vis)
 
     # -- controls ---------------------------------------------------------------------------
     def _show_controls(self, tip: str | None = None, mode: str | None = None) -> None:
@@ -395,15 +390,15 @@ class ImagingPanel(Panel):
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> _Config:
-        """Check the values (units shown) and turn them into a sample, tip, mode and settings."""
+        """Check the values (sliders in SI) and turn them into a sample, tip, mode and settings."""
         check_choice("sample", values["sample"], list(SAMPLES))
         mode = check_choice("mode", values["mode"], list(MODES))
         key = check_choice("tip", values["tip"], list(TIPS))
         pixels = check_choice("pixels", values["pixels"], list(PIXELS))
         check_choice("on_change", values["on_change"], list(ON_CHANGE))
 
-        def si(name, p):
-            return p.check(p.to_si(check_finite(name, values[name], p.display_unit)))
+        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
+            return values[name]
 
         tip = make_tip(key, **{p.name: si(p.name, p) for p in TIPS[key].parameters})
         scan = {name: si(name, _scanner.PARAMETERS[name]) for name in SCAN_SLIDERS}
@@ -418,10 +413,12 @@ class ImagingPanel(Panel):
         top = max_scan_size(values["sample"], scan["angle"])
         if scan["scan_size"] > top * (1 + 1e-12):
             p = _scanner.PARAMETERS["scan_size"]
+            angle = _scanner.PARAMETERS["angle"]
             raise ValueError(f"scan_size must be <= {p.to_display(top):.4g} {p.display_unit} on "
-                             f"the sample {values['sample']!r} at angle {values['angle']:g} deg "
-                             f"(it would leave the sample), got {values['scan_size']:g} "
-                             f"{p.display_unit}")
+                             f"the sample {values['sample']!r} at angle "
+                             f"{angle.to_display(values['angle']):g} {angle.display_unit} "
+                             f"(it would leave the sample), got "
+                             f"{p.to_display(values['scan_size']):g} {p.display_unit}")
         settings = _scanner.ScanSettings(scan.pop("scan_size"), pixels=pixels, lines=pixels,
                                          **scan)
         s = sample(values["sample"])
@@ -535,7 +532,7 @@ class ImagingPanel(Panel):
             once. With ``run=False`` the scan only starts: call :meth:`step` for each line.
         """
         self.stop(redraw=False)
-        values = self.values()
+        values = self.to_si(self.values())
         self._config = self._configure(values)
         self._physics = {k: v for k, v in values.items() if k != "on_change"}
         self._begin(self._config)

@@ -17,11 +17,10 @@ import ipywidgets as widgets
 from ..parameters import read_only
 from ..plots.lockin import LockInFigure
 from ..signals.chain import AC_VOLTAGE, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO, INTERFERENCE
-from ..signals.demo import LockInDemo, lock_in_demo
+from ..signals.demo import LockInDemo, lock_in_demo, max_ac_voltage
 from ..signals.lockin import FILTER_ORDER, REFERENCES, TIME_CONSTANT
-from .controls import control
-from .panel import Panel
-from .transducers import to_si
+from ..validation import check_choice, check_integer
+from .panel import Panel, initial_values, slider
 
 __all__ = ["LockInPanel", "DEFAULTS", "SLIDERS"]
 
@@ -32,6 +31,7 @@ SLIDERS = read_only({"ac_voltage": AC_VOLTAGE, "half_resonance_ratio": HALF_RESO
 #: Choices of the drop-downs and their defaults.
 DEFAULTS = read_only(dict(orders=(1, 2, 3, 4, 6, 8), order=int(FILTER_ORDER.default),
                           shape="sine", seed=0))
+_SEED = DEFAULTS["seed"]
 
 
 class LockInPanel(Panel):
@@ -43,8 +43,10 @@ class LockInPanel(Panel):
     Parameters
     ----------
     seed : int
-        Seed of the chain's noise (the same for every update, so a slider move changes only what
-        it moves).
+        Seed of the chain's noise, 0 to 2**32 - 1 (the same for every update, so a slider move
+        changes only what it moves).
+    **initial
+        Initial control values in the units shown (keys of :attr:`DEFAULTS`).
 
     Attributes
     ----------
@@ -52,14 +54,25 @@ class LockInPanel(Panel):
         The last model run.
     """
 
-    def __init__(self, *, seed: int = DEFAULTS["seed"]):
-        self.seed = int(seed)
-        self.controls = {name: control(p) for name, p in SLIDERS.items()}
+    SLIDERS = SLIDERS
+    DEFAULTS = read_only({**{name: p.to_display(p.default) for name, p in SLIDERS.items()},
+                          "order": DEFAULTS["order"], "shape": DEFAULTS["shape"]})
+
+    def __init__(self, *, seed: int = _SEED, **initial):
+        self.seed = check_integer("seed", seed, 0, 2**32 - 1)
+        values = initial_values(initial, self.DEFAULTS)
+        self.controls = self.declared_controls(initial)
+        # the drive stops where module (b)'s bridge would leave its range (at resonance)
+        top = max_ac_voltage()
+        self.controls["ac_voltage"] = slider("ac_voltage", AC_VOLTAGE, values["ac_voltage"],
+                                             high=top)
+        check_choice("order", values["order"], DEFAULTS["orders"])
+        check_choice("shape", values["shape"], list(REFERENCES))
         self.controls["order"] = widgets.Dropdown(options=list(DEFAULTS["orders"]),
-                                                  value=DEFAULTS["order"],
+                                                  value=values["order"],
                                                   description="filter order")
         self.controls["shape"] = widgets.ToggleButtons(options=list(REFERENCES),
-                                                       value=DEFAULTS["shape"],
+                                                       value=values["shape"],
                                                        description="reference")
         self.figure = None
         self.fig = None
@@ -67,12 +80,12 @@ class LockInPanel(Panel):
 
     def update(self, *, ac_voltage, half_resonance_ratio, amplifier_noise, interference,
                time_constant, order, shape) -> None:
-        """Run the demonstration once with these control values (display units) and draw it."""
-        si = {name: to_si(SLIDERS[name], value) for name, value in dict(
-            ac_voltage=ac_voltage, half_resonance_ratio=half_resonance_ratio,
-            amplifier_noise=amplifier_noise, interference=interference,
-            time_constant=time_constant).items()}
-        demo = lock_in_demo(**si, order=int(order), shape=shape, seed=self.seed)
+        """Run the demonstration once with these control values (sliders in SI) and draw it."""
+        demo = self.run_model(lock_in_demo, ac_voltage=ac_voltage,
+                              half_resonance_ratio=half_resonance_ratio,
+                              amplifier_noise=amplifier_noise, interference=interference,
+                              time_constant=time_constant, order=int(order), shape=shape,
+                              seed=self.seed)
         self.last = demo
         if self.figure is None:
             self.figure = LockInFigure(demo, fig=self.new_figure(figsize=(11.0, 3.8)))

@@ -49,8 +49,7 @@ from ..parameters import read_only, shown
 from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
                            LateralFigure, TappingFigure)
 from ..samples import grating
-from .controls import control
-from .panel import Panel, check_control_value
+from .panel import Panel
 
 __all__ = ["TappingPanel", "TappingState", "LateralPanel", "LateralState",
            "FrequencyShiftPanel", "FrequencyShiftState", "TAPPING_SLIDERS", "LATERAL_SLIDERS",
@@ -66,45 +65,18 @@ def _display(sliders, **si) -> dict:
             for name, p in sliders.items()}
 
 
-def _si(sliders, values) -> dict:
-    """The values shown, checked and in SI."""
-    return {name: p.check(p.to_si(values[name])) for name, p in sliders.items()}
-
-
 class _SliderPanel(Panel):
-    """A panel of sliders only (from :class:`~afmsmiler.parameters.Parameter` objects)."""
+    """A panel of sliders only (declared as :attr:`Panel.SLIDERS`), a readout beside them."""
 
-    SLIDERS: dict = {}
-    DEFAULTS: dict = {}
     FIGSIZE = (9.0, 7.0)
 
     def __init__(self, scene: bool = False, vis=None, **initial):
-        unknown = set(initial) - set(self.DEFAULTS)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: "
-                            f"{sorted(self.DEFAULTS)}")
-        values = {**self.DEFAULTS, **initial}
-        controls = {}
-        for name, p in self.SLIDERS.items():
-            controls[name] = control(p, p.to_si(self.DEFAULTS[name]))
-            if name in initial:  # a named error, then the grid through the value
-                check_control_value(name, controls[name], initial[name])
-                controls[name] = control(p, p.to_si(values[name]))
-        self.controls = controls
+        self.controls = self.declared_controls(initial)
         self.readout = widgets.HTML()
         self.figure = None
         self.scene = None
-        self.model_runs = 0
-        self._vis = vis
-        self._want_scene = bool(scene) or vis is not None
         self.fig = self.new_figure(figsize=self.FIGSIZE)
-        super().__init__()
-
-    def _check(self, values: dict) -> dict:
-        if set(values) != set(self.SLIDERS):
-            raise TypeError(f"update needs exactly the sliders {sorted(self.SLIDERS)}, got "
-                            f"{sorted(values)}")
-        return _si(self.SLIDERS, values)
+        super().__init__(scene=scene, vis=vis)
 
     def _scene(self, kind: str):
         """The 3D view to draw in, or None (no scene asked for)."""
@@ -223,14 +195,14 @@ class TappingPanel(_SliderPanel):
         Parameters
         ----------
         **values : float
-            Exactly the sliders of :data:`TAPPING_SLIDERS`, in the units shown.
+            Exactly the sliders of :data:`TAPPING_SLIDERS`, in SI.
 
         Raises
         ------
         TypeError, ValueError
             For a missing or unknown slider or a value out of range, before any work.
         """
-        si = self._check(values)
+        si = dict(values)
         r = si.pop("setpoint_ratio")
         lever = TappingLever(**si)
         previous = self.last
@@ -238,9 +210,8 @@ class TappingPanel(_SliderPanel):
             curve = previous.curve
         else:
             a0 = lever.free_amplitude
-            curve = tapping.amplitude_curve(a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID),
-                                            lever)
-            self.model_runs += 1
+            curve = self.run_model(tapping.amplitude_curve,
+                                   a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID), lever)
         try:
             zc, phase, e_dis, attractive = operating_point(curve, r)
         except ValueError:  # the approach never gets down to the setpoint: nothing is held
@@ -370,22 +341,21 @@ class LateralPanel(_SliderPanel):
         Parameters
         ----------
         **values : float
-            Exactly the sliders of :data:`LATERAL_SLIDERS`, in the units shown.
+            Exactly the sliders of :data:`LATERAL_SLIDERS`, in SI.
 
         Raises
         ------
         TypeError, ValueError
             For a missing or unknown slider or a value out of range, before any work.
         """
-        si = self._check(values)
+        si = dict(values)
         lever = lateral_lever()
         topo, mu = lateral.friction_sample(
             LATERAL_SAMPLE["shape"], LATERAL_SAMPLE["pixel_size"],
             coefficients=(si["friction_a"], si["friction_b"]), tilt=si["tilt"])
-        images = lateral.friction_scan(topo, mu, normal_force=si["normal_force"],
+        images = self.run_model(lateral.friction_scan, topo, mu, normal_force=si["normal_force"],
                                        lateral_stiffness=lever.spring_constant,
                                        lateral_noise=si["lateral_noise"], seed=0)
-        self.model_runs += 1
         row = LATERAL_SAMPLE["shape"][0] // 2
         x = np.arange(LATERAL_SAMPLE["shape"][1]) * topo.pixel_size
         loop = FrictionLoop(x, images.trace.heights[row], images.retrace.heights[row],
@@ -481,23 +451,22 @@ class FrequencyShiftPanel(_SliderPanel):
         Parameters
         ----------
         **values : float
-            Exactly the sliders of :data:`FM_SLIDERS`, in the units shown.
+            Exactly the sliders of :data:`FM_SLIDERS`, in SI.
 
         Raises
         ------
         TypeError, ValueError
             For a missing or unknown slider or a value out of range, before any work.
         """
-        si = self._check(values)
+        si = dict(values)
         law = {name: si[name] for name in ("hamaker_constant", "radius", "youngs_modulus")}
         from ..modes import tip_sample_force
         force = functools.partial(tip_sample_force, **law)
         d = FM_DISTANCES
         z = np.linspace(d["low"], d["high"], d["points"])
-        curve = fm.frequency_shift_curve(force, z, amplitude=si["amplitude"],
+        curve = self.run_model(fm.frequency_shift_curve, force, z, amplitude=si["amplitude"],
                                          spring_constant=si["spring_constant"],
                                          resonance_frequency=si["resonance_frequency"])
-        self.model_runs += 1
         self.last = FrequencyShiftState(curve, law)
         if self.figure is None:
             self.figure = FrequencyShiftFigure(curve, fig=self.fig)
@@ -594,7 +563,7 @@ class JumpingPanel(_SliderPanel):
         Parameters
         ----------
         **values : float
-            Exactly the sliders of :data:`JUMPING_SLIDERS`, in the units shown.
+            Exactly the sliders of :data:`JUMPING_SLIDERS`, in SI.
 
         Raises
         ------
@@ -602,7 +571,7 @@ class JumpingPanel(_SliderPanel):
             For a missing or unknown slider, a value out of range, or a lift that does not take
             the tip off the surface (the model's message), before any work.
         """
-        si = self._check(values)
+        si = dict(values)
         d = JUMPING_SCAN
         tip = Parabolic(radius=d["tip_radius"])
         system = ContactSystem(spring_constant=d["spring_constant"], tip=tip,
@@ -613,8 +582,7 @@ class JumpingPanel(_SliderPanel):
         mode = jumping.JumpingMode(system, **settings)
         sample = grating(d["shape"], d["pixel_size"], period=d["period"], height=d["height"])
         scan_settings = ScanSettings(d["scan_size"], pixels=d["pixels"], lines=d["lines"])
-        result = _scan(sample, tip, mode, scan_settings)
-        self.model_runs += 1
+        result = self.run_model(_scan, sample, tip, mode, scan_settings)
         self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
                                  scan_settings.scan_time)
         if self.figure is None:
@@ -710,7 +678,7 @@ class ForceVolumePanel(_SliderPanel):
         Parameters
         ----------
         **values : float
-            Exactly the sliders of :data:`FORCE_VOLUME_SLIDERS`, in the units shown.
+            Exactly the sliders of :data:`FORCE_VOLUME_SLIDERS`, in SI.
 
         Raises
         ------
@@ -718,14 +686,13 @@ class ForceVolumePanel(_SliderPanel):
             For a missing or unknown slider, a value out of range or a ramp too short to take
             the tip off (the model's message), before any work.
         """
-        si = self._check(values)
+        si = dict(values)
         d = FORCE_VOLUME_MAP
         sample, labels = _fv.two_material_sample(d["shape"], d["pixel_size"],
                                                  island_radius=d["island_radius"],
                                                  island_count=d["island_count"], seed=d["seed"])
-        volume = _fv.force_volume(sample, _fv.BLEND, Parabolic(radius=d["tip_radius"]),
+        volume = self.run_model(_fv.force_volume, sample, _fv.BLEND, Parabolic(radius=d["tip_radius"]),
                                   labels=labels, seed=d["noise_seed"], **si)
-        self.model_runs += 1
         self.labels = labels
         self.last = volume
         if self.figure is None:

@@ -35,7 +35,6 @@ from ..validation import check_choice
 from ..plots.overview import OverviewFigure
 from .controls import control
 from .panel import Panel
-from .transducers import to_si
 
 __all__ = ["OverviewPanel", "OverviewState", "DEFAULTS"]
 
@@ -127,8 +126,6 @@ class OverviewPanel(Panel):
         check_choice("instrument", instrument, INSTRUMENTS)
         self.head = OpticalHead(lever)
         self.walkthrough = Walkthrough()
-        self._vis = vis
-        self._want_scene = bool(scene) or vis is not None
         self.scene = None
         self._scene_applied = {}
         self.display_html, self.part_html = widgets.HTML(), widgets.HTML()
@@ -140,7 +137,9 @@ class OverviewPanel(Panel):
                                      description="part")
         c["housing_opacity"] = control(SCENE["housing_opacity"])
         c["explode_fraction"] = control(SCENE["explode_fraction"])
-        c["mounted"] = widgets.Checkbox(value=bool(mounted), description="probe mounted")
+        if not isinstance(mounted, bool):
+            raise TypeError(f"mounted must be True or False, got {mounted!r}")
+        c["mounted"] = widgets.Checkbox(value=mounted, description="probe mounted")
         for name in _KNOB_NAMES:
             c[name] = control(KNOBS[name])
             c[name].step = DEFAULTS["knob_step"]   # a fine screw; the grid still through 0
@@ -154,7 +153,7 @@ class OverviewPanel(Panel):
         self.buttons["Check"].on_click(lambda _b: self.check_step())
         self.fig = self.new_figure(figsize=DEFAULTS["figsize"])
         self.figure = OverviewFigure(self.head, self.fig)
-        super().__init__()
+        super().__init__(scene=scene, vis=vis)
         self._show_step()
 
     @staticmethod
@@ -226,28 +225,24 @@ class OverviewPanel(Panel):
         laser_x, laser_y, detector_vertical, detector_lateral : float
             Knob rotations in turn, within their travel.
         deflection : float
-            The deflection setpoint in nm.
+            The deflection setpoint in m.
         approach_gap : float
-            The tip-sample gap in um.
+            The tip-sample gap in m.
 
         Raises
         ------
-        ValueError
-            For a value outside its valid range or an unknown instrument or part.
+        TypeError, ValueError
+            For a missing or unknown control, a value outside its valid range or an unknown
+            instrument or part, before any work (the panel contract).
         """
-        instrument = check_choice("instrument", instrument, INSTRUMENTS)
         parts = {p.name: p for p in INSTRUMENTS[instrument].parts}
-        part = check_choice("part", part, [_WHOLE, *parts])
-        opacity = to_si(SCENE["housing_opacity"], housing_opacity)
-        fraction = to_si(SCENE["explode_fraction"], explode_fraction)
-        knobs = {n: to_si(KNOBS[n], v) for n, v in zip(_KNOB_NAMES, (
-            laser_x, laser_y, detector_vertical, detector_lateral))}
-        setpoint = to_si(SETUP["deflection"], deflection)
-        gap = to_si(SETUP["approach_gap"], approach_gap)
-        mounted = bool(mounted)
+        opacity, fraction = housing_opacity, explode_fraction
+        knobs = dict(laser_x=laser_x, laser_y=laser_y, detector_vertical=detector_vertical,
+                     detector_lateral=detector_lateral)
+        setpoint, gap = deflection, approach_gap
         in_contact = gap <= STEP_TOLERANCES["approach_range"].default
         z = setpoint if in_contact and mounted else 0.0
-        signals = self.head.set(deflection=z, **knobs)  # the one model run
+        signals = self.run_model(self.head.set, deflection=z, **knobs)  # the one model run
         setup = SetupState(self.head, signals=signals, deflection=setpoint, approach_gap=gap,
                            mounted=mounted)
         p = parts.get(part)

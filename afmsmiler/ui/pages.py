@@ -14,42 +14,25 @@ from __future__ import annotations
 
 import argparse
 import html
-import importlib
-import inspect
 import sys
 from pathlib import Path
 
 from ..plots.live import static_html
 from ..validation import check_choice
+from .registry import PANELS as REGISTRY
 
 __all__ = ["PANELS", "INSTRUMENT_PAGES", "panel_page", "write_panel_pages", "instrument_page",
            "write_instrument_pages"]
 
-#: Page name -> (module of afmsmiler.ui, panel class, title).
-PANELS = {
-    "cantilever": ("cantilever", "CantileverPanel", "Module (a): the cantilever panel's figure"),
-    "transducers": ("transducers", "TransducerPanel", "Module (b): the transducer panel's figure"),
-    "controller": ("controller", "ControllerPanel", "Module (c): the controller panel's figure"),
-    "contact": ("contact", "ContactPanel", "Module (d): the contact panel's figure"),
-    "overview": ("overview", "OverviewPanel", "Module (e): the instrument panel's figure"),
-    "imaging": ("imaging", "ImagingPanel", "Module (f): the imaging panel's figure"),
-    "tapping": ("modalities", "TappingPanel", "Module (g): the tapping panel's figure"),
-    "fm": ("modalities", "FrequencyShiftPanel", "Module (g): the FM panel's figure"),
-    "lateral": ("modalities", "LateralPanel", "Module (g): the lateral-force panel's figure"),
-    "jumping": ("modalities", "JumpingPanel", "Module (g): the jumping-mode panel's figure"),
-    "force_volume": ("modalities", "ForceVolumePanel",
-                     "Module (g): the force-volume panel's figure"),
-}
+#: Page name -> the panel's entry in :data:`afmsmiler.ui.registry.PANELS` (every panel).
+PANELS = {e.key: e for e in REGISTRY}
 
 #: Page name -> the 3D instrument (a key of :data:`afmsmiler.scenes.instrument.INSTRUMENTS`).
 INSTRUMENT_PAGES = {"instrument_obd": "obd", "instrument_educational": "educational"}
 
 
 def _panel(name: str):
-    module, cls, _ = PANELS[name]
-    panel_cls = getattr(importlib.import_module(f"afmsmiler.ui.{module}"), cls)
-    has_scene = "scene" in inspect.signature(panel_cls).parameters
-    return panel_cls(scene=False) if has_scene else panel_cls()  # no 3D server for a page
+    return PANELS[name].make()  # at its defaults, without a 3D view
 
 
 def panel_page(name: str) -> str:
@@ -71,7 +54,8 @@ def panel_page(name: str) -> str:
     """
     if name not in PANELS:
         raise ValueError(f"name must be one of {sorted(PANELS)}, got {name!r}")
-    title = html.escape(PANELS[name][2])
+    e = PANELS[name]
+    title = html.escape(f"Module ({e.module}): {e.title}")
     body = static_html(_panel(name).fig)
     return (f"<!DOCTYPE html><html><head><meta charset='utf-8'><title>{title}</title></head>"
             f"<body style='margin:0'>{body}</body></html>\n")

@@ -1,29 +1,46 @@
-"""The base of every widget panel.
+"""The base of every widget panel, and the one panel contract.
 
-A panel owns a dict of controls (ipywidgets; every slider made by the one factory,
-:func:`afmsmiler.ui.controls.control`), a matplotlib figure and optionally a meshcat
-scene. Its :meth:`Panel.update` callback receives the control values (in the units the sliders
-show), converts them to SI, calls the models and updates the artists and the scene in place.
+A panel owns a dict of controls (ipywidgets; every slider made from a
+:class:`~afmsmiler.parameters.Parameter` by the one factory, :func:`afmsmiler.ui.controls.control`),
+a matplotlib figure and optionally a 3D view. The contract, kept here once for every panel:
+
+* **Initial values** (keyword arguments of the constructor, in the units the controls show) pass
+  :func:`initial_values` (an unknown name is refused, listing the valid ones) and :func:`slider`
+  (a value off the slider is refused, never clamped), exactly as :meth:`Panel.set` refuses them.
+* **Values reach** :meth:`Panel.update` **in SI, once.** A student's move (or :meth:`Panel.set`)
+  gives display values; :meth:`Panel.to_si` converts each slider's value with :func:`to_si`
+  (snapped to the slider's ends and the default, checked against the parameter's valid range),
+  checks the drop-downs' choices, and refuses a missing or unknown name, all before any work.
+  ``update`` itself is checked the same way when a test or a student calls it directly (SI values):
+  it only runs the model (through :meth:`Panel.run_model`, which counts :attr:`Panel.model_runs`)
+  and draws.
+* ``scene=`` (draw a 3D view, default False) and ``vis=`` (draw into this meshcat visualizer
+  instead; implies a scene) are handled by :meth:`Panel.__init__` for every panel.
+
 The figure is never rasterised in the kernel: :meth:`Panel.redraw` sends its artists' data to the
-browser, which draws them (:class:`~afmsmiler.plots.live.LiveFigure`, uPlot).
-Tests construct a panel, call :meth:`Panel.set` and check the figure data against the model.
+browser, which draws them (:class:`~afmsmiler.plots.live.LiveFigure`, uPlot). Every panel is listed
+once in :mod:`afmsmiler.ui.registry`, which the pages, the tests, the benchmarks and the README
+iterate. Tests construct a panel, call :meth:`Panel.set` and check the figure data against the model.
 """
 from __future__ import annotations
 
 import contextlib
+import functools
 import html
 import math
 import os
 import traceback
+from collections.abc import Mapping
 
 import ipywidgets as widgets
 from IPython.display import display
 from matplotlib.figure import Figure
 
-from ..validation import check_choice, check_finite
+from ..parameters import Parameter
+from ..validation import check_choice, check_finite, check_range
 
-__all__ = ["Panel", "arrange", "check_control_value", "running_as_notebook", "setup_notebook",
-           "show_static"]
+__all__ = ["Panel", "arrange", "check_control_value", "initial_values", "running_as_notebook",
+           "setup_notebook", "show_static", "slider", "to_si"]
 
 
 def running_as_notebook() -> bool:
@@ -56,6 +73,102 @@ def setup_notebook() -> None:
         return
     if shell is not None and type(shell).__name__ == "ZMQInteractiveShell":
         shell.run_line_magic("matplotlib", "inline")
+
+
+def to_si(p: Parameter, display_value: float) -> float:
+    """A control's value (display unit) in SI, checked against ``p``'s valid range.
+
+    The conversion is :meth:`Parameter.to_si` (120 um -> 0.00012 m, the decimal shifted).
+    A slider's end converted to SI can land one rounding error outside the range
+    (20 mW -> 0.020000000000000004 W); such a value, within 1e-12 of a slider end, is that end.
+    Anything else outside the valid range raises (nothing is clamped).
+
+    Parameters
+    ----------
+    p : Parameter
+        The quantity's description.
+    display_value : float
+        The value in ``p.display_unit``.
+
+    Returns
+    -------
+    float
+        The value in SI units.
+
+    Raises
+    ------
+    ValueError
+        Naming the parameter and its valid range, if the value is outside it or not finite.
+    """
+    x = p.to_si(check_finite(p.name, display_value, p.display_unit))
+    # the default shown on a slider (1.31e-6 m * 1e9 = 1309.9999999999998 nm) comes back as
+    # the default, not as 1.3099999999999997e-6 m
+    if math.isclose(x, p.default, rel_tol=1e-14):
+        x = p.default
+    for end in (p.slider_low, p.slider_high):
+        if math.isfinite(end) and abs(x - end) <= 1e-12 * abs(end):
+            x = end
+    return p.check(x)
+
+
+def initial_values(initial: Mapping, defaults: Mapping) -> dict:
+    """A panel's initial control values: ``defaults`` with ``initial`` over them.
+
+    Parameters
+    ----------
+    initial : mapping
+        The constructor's keyword arguments (units shown).
+    defaults : mapping
+        Every control's default (units shown); its keys are the valid names.
+
+    Returns
+    -------
+    dict
+
+    Raises
+    ------
+    TypeError
+        For a name that is not a control, listing the valid ones.
+    """
+    unknown = set(initial) - set(defaults)
+    if unknown:
+        raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(defaults)}")
+    return {**defaults, **initial}
+
+
+def slider(name: str, p: Parameter, display_value: float, *, high: float | None = None):
+    """The slider of control ``name`` for ``p``, its grid through ``display_value``.
+
+    The value must lie on the slider (its ends in the units shown): a constructor refuses what
+    :meth:`Panel.set` refuses, where the factory alone would clamp it silently.
+
+    Parameters
+    ----------
+    name : str
+        The control's name in the panel (named in errors).
+    p : Parameter
+        The quantity.
+    display_value : float
+        The initial value in ``p.display_unit``.
+    high : float, optional
+        A tighter upper end in SI (see :func:`~afmsmiler.ui.controls.control`).
+
+    Returns
+    -------
+    ipywidgets.FloatSlider or ipywidgets.FloatLogSlider
+
+    Raises
+    ------
+    ValueError
+        If the value is not finite or lies off the slider, naming ``name`` and the slider's range.
+    """
+    from .controls import control
+    upper = p.slider_high if high is None else min(p.slider_high, high)
+    low, top = sorted((p.to_display(p.slider_low), p.to_display(upper)))
+    tol = 1e-12 * max(abs(low), abs(top))
+    value = check_finite(name, display_value, p.display_unit)
+    check_range(name, value, low - tol, top + tol, p.display_unit)
+    return control(p, to_si(p, value), high=high)
 
 
 _MISSING = object()
@@ -124,29 +237,143 @@ def check_control_value(name: str, control, value):
     elif isinstance(control, (widgets.Dropdown, widgets.ToggleButtons, widgets.RadioButtons)):
         options = [o[1] if isinstance(o, tuple) else o for o in control.options]
         check_choice(name, value, options)
+    elif isinstance(control, (widgets.Checkbox, widgets.ToggleButton)) \
+            and not isinstance(value, bool):
+        raise TypeError(f"{name} must be True or False, got {value!r}")
     return value
 
 
 class Panel:
-    """Base class of a widget panel.
+    """Base class of a widget panel: the panel contract (see the module's docstring).
 
-    Subclasses set ``self.controls`` (name -> widget) and ``self.fig`` in ``__init__`` before
-    calling ``super().__init__()``, and implement :meth:`update`.
+    A subclass either declares its sliders (:attr:`SLIDERS`, :attr:`DEFAULTS`) and calls
+    :meth:`declared_controls`, or builds ``self.controls`` itself (sliders from :func:`slider`);
+    it sets ``self.fig`` and calls ``super().__init__(scene=..., vis=...)``, and implements
+    :meth:`update`, which takes every control's value by name, sliders in SI.
     """
 
     controls: dict
     fig: Figure | None = None
     #: The figure drawn in the browser (made at the first :meth:`redraw`).
     live = None
+    #: The panel's sliders declared as parameters: control name -> Parameter.
+    SLIDERS: Mapping = {}
+    #: Every declared control's initial value, in the units shown.
+    DEFAULTS: Mapping = {}
 
-    def __init__(self):
+    def __init_subclass__(cls, **kwargs):
+        super().__init_subclass__(**kwargs)
+        if "update" in cls.__dict__:  # every update is entered through the contract's check
+            raw = cls.__dict__["update"]
+
+            @functools.wraps(raw)
+            def update(self, *args, **values):
+                if args:
+                    raise TypeError(f"{cls.__name__}.update takes the control values by name, "
+                                    f"got {len(args)} positional argument(s)")
+                self._check_si(values)
+                raw(self, **values)
+
+            update._raw = raw
+            cls.update = update
+
+    def __init__(self, *, scene: bool = False, vis=None):
+        if not isinstance(scene, bool):
+            raise TypeError(f"scene must be True or False, got {scene!r}")
+        self.model_runs = 0  # see run_model
+        self._vis = vis
+        self._want_scene = scene or vis is not None
         self.last = None  # the last model result, for tests and exercises
         self.error = None  # the message of the last failed update from a control, else None
         self._error_box = widgets.HTML()
         self._applied = {}  # the values the model last ran with, by control name
         for control in self.controls.values():
             control.observe(self._on_change, names="value")
+        self._tag_controls()
         self._run(self.values())
+
+    def _tag_controls(self) -> None:
+        """Give each control the CSS class ``afm-control-<name>`` (pages and tests find it)."""
+        for name, control in self.controls.items():
+            tag = f"afm-control-{name}"
+            if tag not in control._dom_classes:
+                control.add_class(tag)
+
+    def declared_controls(self, initial: Mapping) -> dict:
+        """The sliders of :attr:`SLIDERS` at :attr:`DEFAULTS` with ``initial`` over them.
+
+        Parameters
+        ----------
+        initial : mapping
+            The constructor's keyword arguments (units shown), checked by
+            :func:`initial_values` and :func:`slider`.
+
+        Returns
+        -------
+        dict
+            Control name -> slider, in the order of :attr:`SLIDERS`.
+        """
+        values = initial_values(initial, self.DEFAULTS)
+        return {name: slider(name, p, values[name]) for name, p in self.SLIDERS.items()}
+
+    def run_model(self, model, *args, **kwargs):
+        """Call ``model(*args, **kwargs)``, counting the run in :attr:`model_runs`.
+
+        A panel runs its model through this once per user action that changes what the model
+        computes (tests check the count), and never for a move that only changes the view.
+        """
+        self.model_runs += 1
+        return model(*args, **kwargs)
+
+    # -- the contract's conversion ---------------------------------------------------------
+    def _check_names(self, values: Mapping) -> None:
+        if set(values) != set(self.controls):
+            missing, unknown = set(self.controls) - set(values), set(values) - set(self.controls)
+            raise TypeError(f"update needs exactly the controls {sorted(self.controls)}; "
+                            + (f"missing {sorted(missing)}" if missing else "")
+                            + ("; " if missing and unknown else "")
+                            + (f"unknown {sorted(unknown)}" if unknown else ""))
+
+    def to_si(self, values: Mapping) -> dict:
+        """Every control's value (units shown) as :meth:`update` takes it: sliders in SI.
+
+        Parameters
+        ----------
+        values : mapping
+            Exactly the panel's controls, by name.
+
+        Returns
+        -------
+        dict
+
+        Raises
+        ------
+        TypeError
+            For a missing or unknown control.
+        ValueError
+            For a value no control could hold, naming the control and what is valid.
+        """
+        self._check_names(values)
+        out = {}
+        for name, value in values.items():
+            control = self.controls[name]
+            p = getattr(control, "parameter", None)
+            if p is not None:
+                out[name] = to_si(p, value)
+            else:
+                out[name] = check_control_value(name, control, value)
+        return out
+
+    def _check_si(self, values: Mapping) -> None:
+        """Refuse, before any work, what :meth:`update` must not take (values in SI)."""
+        self._check_names(values)
+        for name, value in values.items():
+            control = self.controls[name]
+            p = getattr(control, "parameter", None)
+            if p is not None:
+                p.check(check_finite(name, value, p.unit))
+            else:
+                check_control_value(name, control, value)
 
     # -- values ---------------------------------------------------------------------------
     def values(self) -> dict:
@@ -171,9 +398,10 @@ class Panel:
         the decimal the student reads, and the model runs with the decimal.
         """
         values = {k: _decimal(v) for k, v in values.items()}
+        si = self.to_si(values)
         view = self._view  # its commands leave as one message: one repaint of the 3D view
         with (view.hold() if view is not None else contextlib.nullcontext()):
-            self.update(**values)
+            self.update(**si)
         self._applied = dict(values)
 
     def set(self, **values) -> None:
@@ -187,11 +415,7 @@ class Panel:
             For a value outside a slider's range or not among a drop-down's options, naming the
             control, the value and what is valid (a slider would silently clamp it).
         """
-        unknown = set(values) - set(self.controls)
-        if unknown:
-            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(self.controls)}")
-        for name, v in values.items():
-            check_control_value(name, self.controls[name], v)
+        self.check_values(values)
         hold, self._hold = self._hold, True
         try:
             for name, v in values.items():
@@ -202,6 +426,22 @@ class Panel:
             self._run({**self.values(), **values})
 
     _hold = False
+
+    def check_values(self, values: Mapping) -> None:
+        """Refuse control values (units shown) that no control could hold, naming them.
+
+        Raises
+        ------
+        TypeError
+            For a name that is not a control, listing the valid ones.
+        ValueError
+            For a value outside a slider's range or not among a drop-down's options.
+        """
+        unknown = set(values) - set(self.controls)
+        if unknown:
+            raise TypeError(f"unknown control(s) {sorted(unknown)}; valid: {sorted(self.controls)}")
+        for name, v in values.items():
+            check_control_value(name, self.controls[name], v)
 
     def sweep(self, name: str, values) -> None:
         """Move control ``name`` through ``values`` (one update each, an animation), then back.
@@ -285,6 +525,7 @@ class Panel:
 
     # -- the callback ---------------------------------------------------------------------
     def update(self, **values) -> None:  # pragma: no cover - abstract
+        """Run the model once for these control values (sliders in SI) and draw the result."""
         raise NotImplementedError
 
     # -- the 3D view ----------------------------------------------------------------------
@@ -346,6 +587,7 @@ class Panel:
         # the sliders whose every step the browser forwards; a panel that rebuilt its controls
         # (another transducer principle) links the new ones (no message when they are the same)
         self.live.link(self.controls, self._from_browser)
+        self._tag_controls()
 
     def widget(self) -> widgets.Widget:
         """The panel as one widget: controls on the left, the figure on the right."""
@@ -366,6 +608,7 @@ class Panel:
         if view is not None:
             children.append(view)
         box = self._shown = widgets.VBox(children)
+        box.add_class(f"afm-panel-{type(self).__name__}")  # see registry.PanelEntry.selector
         display(box)
         if self.fig is not None and self.fig.axes:
             show_static(self.fig)

@@ -21,14 +21,14 @@ from dataclasses import dataclass
 
 import ipywidgets as widgets
 
-from ..parameters import Parameter, read_only, shown
+from ..parameters import read_only, shown
 from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves, frequency_grid
 from ..transducers import PRINCIPLES
 from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalChain,
                                 Transducer)
-from ..validation import check_choice, check_finite
+from ..validation import check_choice
 from .controls import control
-from .panel import Panel, check_control_value
+from .panel import Panel, to_si
 
 __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "to_si"]
 
@@ -39,42 +39,6 @@ DEFAULTS = read_only(dict(principle="optical_beam_deflection", bandwidth=1e3,
 _FIXED = ("principle", "mode", "input")
 #: The sliders of the lever every model shares; :meth:`TransducerPanel.widget` gives them a column.
 _LEVER = tuple(p.name for p in LEVER_PARAMETERS)
-
-
-def to_si(p: Parameter, display_value: float) -> float:
-    """A control's value (display unit) in SI, checked against ``p``'s valid range.
-
-    The conversion is :meth:`Parameter.to_si` (120 um -> 0.00012 m, the decimal shifted).
-    A slider's end converted to SI can land one rounding error outside the range
-    (20 mW -> 0.020000000000000004 W); such a value, within 1e-12 of a slider end, is that end.
-    Anything else outside the valid range raises (nothing is clamped).
-
-    Parameters
-    ----------
-    p : Parameter
-        The quantity's description.
-    display_value : float
-        The value in ``p.display_unit``.
-
-    Returns
-    -------
-    float
-        The value in SI units.
-
-    Raises
-    ------
-    ValueError
-        Naming the parameter and its valid range, if the value is outside it or not finite.
-    """
-    x = p.to_si(check_finite(p.name, display_value, p.display_unit))
-    # the default shown on a slider (1.31e-6 m * 1e9 = 1309.9999999999998 nm) comes back as
-    # the default, not as 1.3099999999999997e-6 m
-    if math.isclose(x, p.default, rel_tol=1e-14):
-        x = p.default
-    for end in (p.slider_low, p.slider_high):
-        if math.isfinite(end) and abs(x - end) <= 1e-12 * abs(end):
-            x = end
-    return p.check(x)
 
 
 @dataclass(frozen=True)
@@ -127,6 +91,8 @@ class TransducerPanel(Panel):
     scene : bool
         Draw the 3D view in its own widget, shown below the panel by
         :meth:`show` (over the kernel's connection; nothing to close).
+    vis : meshcat.Visualizer, optional
+        Where to draw instead (tests pass a recorder); implies ``scene``.
 
     Attributes
     ----------
@@ -140,7 +106,7 @@ class TransducerPanel(Panel):
         Table I's row of the principle, k, f1, the sensitivity and the resolution.
     """
 
-    def __init__(self, principle: str = DEFAULTS["principle"], scene: bool = True):
+    def __init__(self, principle: str = DEFAULTS["principle"], scene: bool = False, vis=None):
         check_choice("principle", principle, PRINCIPLES)
         self._selector = widgets.Dropdown(
             options=[(cls.name, key) for key, cls in PRINCIPLES.items()], value=principle,
@@ -152,13 +118,12 @@ class TransducerPanel(Panel):
         self._chain, self._lever = widgets.VBox(), widgets.VBox()
         self.figure = None
         self.scene = None
-        self._want_scene = bool(scene)
         self._ready = False
         self.fig = self.new_figure(figsize=DEFAULTS["figsize"])
         self._build(principle)
         self._selector.observe(self._on_principle, names="value")
         self._mode.observe(self._on_mode, names="value")
-        super().__init__()
+        super().__init__(scene=scene, vis=vis)
         self._ready = True
 
     # -- building the controls from the metadata --------------------------------------------------
@@ -239,12 +204,7 @@ class TransducerPanel(Panel):
             if "mode" in values and values["mode"] != self._mode.value:
                 self._switch_mode(values["mode"])
             rest = {k: v for k, v in values.items() if k not in ("principle", "mode")}
-            unknown = set(rest) - set(self.controls)
-            if unknown:
-                raise TypeError(f"unknown control(s) {sorted(unknown)}; "
-                                f"valid: {sorted(self.controls)}")
-            for name, v in rest.items():
-                check_control_value(name, self.controls[name], v)
+            self.check_values(rest)
             for name, v in rest.items():
                 self.controls[name].value = v
         except Exception:
@@ -295,28 +255,21 @@ class TransducerPanel(Panel):
         mode : str
             One of the principle's modes.
         input : float
-            The chain's input in its display unit (nm of deflection, V, mA, mW, ...).
+            The chain's input in SI (m of deflection, V, A, W, ...).
         **params : float
-            Model parameters by name, in their display units; the others take their defaults.
+            Every model parameter of the principle by name, in SI.
 
         Raises
         ------
-        ValueError
-            For an unknown principle or mode (naming the choices), or a value outside its valid
-            range (naming the parameter and the range; nothing is clamped).
-        TypeError
-            For a parameter the model does not have.
+        TypeError, ValueError
+            For a missing or unknown control, an unknown principle or mode (naming the choices),
+            or a value outside its valid range (naming the parameter and the range; nothing is
+            clamped), before any work (the panel contract).
         """
-        cls = PRINCIPLES[check_choice("principle", principle, PRINCIPLES)]
-        mode = check_choice("mode", mode, cls.MODES)
-        table = cls.parameter_table()
-        unknown = set(params) - set(table)
-        if unknown:
-            raise TypeError(f"{cls.__name__} got unknown parameter(s) {sorted(unknown)}; "
-                            f"valid: {sorted(table)}")
-        model = cls(**{n: to_si(table[n], v) for n, v in params.items()})
-        value = to_si(model.input_quantity(mode), input)
-        op = model.operate(value, mode, frequencies=frequency_grid(model),
+        cls = PRINCIPLES[principle]
+        model = cls(**params)
+        value = input
+        op = self.run_model(model.operate, value, mode, frequencies=frequency_grid(model),
                            bandwidth=DEFAULTS["bandwidth"])
         curves = chain_curves(op)
         if self.figure is None:

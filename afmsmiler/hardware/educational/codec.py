@@ -1,8 +1,9 @@
 """The educational AFM's protocol (device ``EDUAFM``, protocol version 1): codes and frames.
 
 Pure (no I/O). The frame format is module (h)'s (:mod:`afmsmiler.hardware.framing`); this module
-names the educational AFM's commands, parameters, events and errors (the same error numbers as
-every device of module (h)), and builds and parses its frames.
+names the educational AFM's commands, events and parameters (:data:`TABLE`, each described once:
+code, wire unit, range, default) with module (h)'s shared error numbers, and builds its frames
+(the twin sends what these functions build, never a frame typed from string literals).
 ``hardware/educational_afm/PROTOCOL.md`` (at the repository's root) is the specification, with
 golden frames that the tests decode.
 
@@ -18,10 +19,11 @@ from __future__ import annotations
 
 import enum
 
-from ..framing import Frame
-from ..macro.codec import ErrorCode   # the error numbers every device of module (h) shares
+from ..errors import ErrorCode   # the error numbers every device of module (h) shares
+from ..framing import Frame, error_frame, event_frame
+from ..protocol import ParamTable, WireParam
 
-__all__ = ["DEVICE", "Command", "Param", "Event", "ErrorCode", "State", "READ_ONLY",
+__all__ = ["DEVICE", "TABLE", "Command", "Param", "Event", "ErrorCode", "State", "READ_ONLY",
            "command", "pixel", "line_end", "event", "stream_error"]
 
 #: The device's name in its ``ID`` reply.
@@ -44,22 +46,22 @@ class Command(str, enum.Enum):
     GETLINE = "GL"
 
 
-class Param(str, enum.Enum):
-    """Parameters of ``SP``/``GP`` (integers).
+#: The device's parameters, described once (wire code, unit, range, default; PROTOCOL.md's table).
+TABLE = ParamTable(DEVICE, (
+    WireParam("NX", "NX", "count", 2, 512, 32, si_name="pixels", meaning="pixels per line"),
+    WireParam("NY", "NY", "count", 1, 512, 32, si_name="lines", meaning="lines"),
+    WireParam("PITCH", "DX", "nm", 1, 100_000, 20, si_name="pitch", meaning="pixel spacing"),
+    WireParam("ZSTEP", "ZS", "pm", 1, 1_000_000, 100, read_only=True, si_name="z_step",
+              meaning="height per count"),
+    WireParam("SETPOINT", "SE", "percent", 1, 99, 80, si_name="setpoint",
+              meaning="2-omega amplitude setpoint"),
+))
 
-    Look a member up by its value (``value``); ``names``, ``module``, ``qualname``, ``type``,
-    ``start`` and ``boundary`` are the arguments of Python's functional Enum API.
-    """
-
-    NX = "NX"          # pixels per line
-    NY = "NY"          # lines
-    PITCH = "DX"       # pixel spacing in nm
-    ZSTEP = "ZS"       # height per count in pm (read-only)
-    SETPOINT = "SE"    # 2-omega amplitude setpoint in percent of the free amplitude
-
+#: Parameters of ``SP``/``GP`` (integers), built from :data:`TABLE`.
+Param = TABLE.enum(__name__)
 
 #: Parameters the host may only read.
-READ_ONLY = frozenset({Param.ZSTEP})
+READ_ONLY = frozenset(Param(p.code) for p in TABLE if p.read_only)
 
 
 class Event(str, enum.Enum):
@@ -139,7 +141,7 @@ def event(word: Event, *args) -> Frame:
     *args : int or str
         Its argument.
     """
-    return Frame(0, "EV", (Event(word).value, *args))
+    return event_frame(Event(word), *args)
 
 
 def stream_error(code: ErrorCode) -> Frame:
@@ -150,4 +152,4 @@ def stream_error(code: ErrorCode) -> Frame:
     code : ErrorCode
         The error.
     """
-    return Frame(0, "ER", (int(code),))
+    return error_frame(0, ErrorCode(code))

@@ -11,6 +11,7 @@ finished lines attached as ``.partial`` (a :class:`~afmsmiler.samples.Sample`).
 """
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass
 from typing import Callable
 
@@ -18,10 +19,11 @@ import numpy as np
 
 from ...samples import Sample
 from ...validation import check_integer, check_positive
-from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError,
-                      ProtocolVersionError, TransportClosed, TransportTimeout)
-from ..framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
-from .codec import DEVICE, Command, ErrorCode, Event, Param, State, command
+from ..errors import (RESEND_CODES, DeviceError, DeviceNotResponding, HardwareError, ReplyError,
+                      TransportClosed, TransportTimeout)
+from ..framed import FramedDevice
+from ..framing import Frame, reply_frame
+from .codec import DEVICE, TABLE, Command, ErrorCode, Event, Param, State, command
 
 __all__ = ["EducationalAFM", "DeviceInfo", "live_view"]
 
@@ -66,7 +68,7 @@ def live_view(scene) -> Callable:
     return on_line
 
 
-class EducationalAFM:
+class EducationalAFM(FramedDevice):
     """The educational AFM on a transport.
 
     Parameters
@@ -74,9 +76,16 @@ class EducationalAFM:
     transport : Transport
         The link (write, readline(timeout), close).
     timeout : float
-        Longest wait for one line in s.
+        Longest wait for a command's reply in s, per attempt (one deadline, whatever the device
+        sends meanwhile); also the longest a scan waits for progress before it asks the status.
     retries : int
         Retries of a command before :class:`DeviceNotResponding`.
+
+    Attributes
+    ----------
+    stats : dict
+        ``retries`` (commands sent again), ``bad_lines`` (lines that were not frames) and
+        ``refetched_lines`` (lines asked again with ``GL``).
 
     Examples
     --------
@@ -93,39 +102,33 @@ class EducationalAFM:
     >>> server.stop(); host.close()
     """
 
+    DEVICE = DEVICE
+    TABLE = TABLE
+
     def __init__(self, transport, *, timeout: float = 1.0, retries: int = 3):
-        for method in ("write", "readline", "close"):
-            if not callable(getattr(transport, method, None)):
-                raise TypeError(f"transport must have {method}(), got {type(transport).__name__}")
-        self.transport = transport
-        self.timeout = check_positive("timeout", timeout, "s")
-        self.retries = check_integer("retries", retries, 0, 100)
+        super().__init__(transport, timeout=timeout, retries=retries)
         self.info = None
-        self._seq = 0
-        self.stats = {"retries": 0, "bad_lines": 0, "refetched_lines": 0}
+        self._refetched = 0
         self._on_stream = None
         self._params = {}
 
+    @property
+    def stats(self) -> dict:
+        """Counts of the link's troubles: retries, bad lines, refetched lines."""
+        return {"retries": self.retried, "bad_lines": self.garbage,
+                "refetched_lines": self._refetched}
+
     # -- the link --------------------------------------------------------------------------
-    def _next_seq(self) -> int:
-        self._seq = self._seq % 255 + 1
-        return self._seq
-
-    def _read(self) -> Frame | None:
-        """One frame, or None for a damaged line (TransportTimeout/Closed propagate)."""
-        line = self.transport.readline(self.timeout)
-        try:
-            return decode_frame(line)
-        except FrameError:
-            self.stats["bad_lines"] += 1
-            return None
-
     def _stream(self, frame: Frame) -> None:
         if self._on_stream is not None:
             self._on_stream(frame)
 
     def request(self, code: Command, *args) -> Frame:
         """Send a command and return its OK reply, retrying where the protocol makes it safe.
+
+        The reply is awaited until one deadline per attempt (``timeout`` after the send),
+        whatever the device sends meanwhile: a request lasts at most
+        ``(retries + 1) * timeout``.
 
         Parameters
         ----------
@@ -148,34 +151,9 @@ class EducationalAFM:
         TransportClosed
             If the link is gone.
         """
-        frame = command(self._next_seq(), code, *args)
-        data = encode_frame(frame)
-        for attempt in range(self.retries + 1):
-            if attempt:
-                self.stats["retries"] += 1
-            self.transport.write(data)
-            while True:
-                try:
-                    reply = self._read()
-                except TransportTimeout:
-                    break                             # retry the same SEQ
-                if reply is None:
-                    continue                          # a damaged line: maybe our reply; wait
-                if reply.seq == 0:
-                    if reply.code == "ER" and reply.args and reply.args[0] in (
-                            ErrorCode.CHECKSUM, ErrorCode.MALFORMED):
-                        break                         # our command arrived damaged: resend
-                    self._stream(reply)
-                    continue
-                if reply.seq != frame.seq:
-                    continue                          # a late reply to an earlier try
-                if reply.code == "ER":
-                    number = int(reply.args[0]) if reply.args else 0
-                    word = str(reply.args[1]) if len(reply.args) > 1 else ""
-                    raise DeviceError(number, word, device=DEVICE, command=frame.code)
-                return reply
-        raise DeviceNotResponding(f"{DEVICE} did not answer {frame.code} after "
-                                  f"{self.retries + 1} tries of {self.timeout:g} s")
+        frame = command(1, code, *args)
+        results = self._exchange(frame.code, *frame.args)
+        return reply_frame(self._seq, frame.code, *results)
 
     # -- commands --------------------------------------------------------------------------
     def connect(self) -> DeviceInfo:
@@ -191,19 +169,16 @@ class EducationalAFM:
             If the device speaks another protocol version.
         HardwareError
             If it is not an EDUAFM.
+        ReplyError
+            If its replies are not of the protocol's shape, or ZS is outside the table's range.
         """
-        reply = self.request(Command.IDENTIFY)
-        _, name, version, firmware = (list(reply.args) + ["", "", ""])[:4]
-        if name != DEVICE:
-            raise HardwareError(f"the device is a {name!r}, not an {DEVICE}")
-        if version != PROTOCOL_VERSION:
-            raise ProtocolVersionError(version, PROTOCOL_VERSION, device=DEVICE)
-        z_step = self.get(Param.ZSTEP) * 1e-12
-        self.info = DeviceInfo(DEVICE, int(version), str(firmware), z_step)
+        _, version, firmware = self._identify()
+        z_step = TABLE[Param.ZSTEP].to_si(self.get(Param.ZSTEP))
+        self.info = DeviceInfo(DEVICE, version, firmware, z_step)
         return self.info
 
     def set(self, par: Param, value: int) -> int:
-        """Set a parameter (an integer in the unit PROTOCOL.md names).
+        """Set a parameter (an integer in the unit of :data:`~.codec.TABLE`).
 
         Parameters
         ----------
@@ -211,8 +186,19 @@ class EducationalAFM:
             The parameter.
         value : int
             Its value.
+
+        Returns
+        -------
+        int
+            The value the device took (checked against the table).
+
+        Raises
+        ------
+        ValueError
+            If the value is outside the table's range or the parameter is read-only (nothing
+            sent).
         """
-        return int(self.request(Command.SET, Param(par), int(value)).args[2])
+        return self._set_wire(Param(par).value, value)
 
     def get(self, par: Param) -> int:
         """Read a parameter.
@@ -221,12 +207,20 @@ class EducationalAFM:
         ----------
         par : Param
             The parameter.
-        """
-        return int(self.request(Command.GET, Param(par)).args[2])
 
-    def configure(self, *, pixels: int = 32, lines: int | None = None,
-                  pitch: float = 20e-9) -> None:
+        Returns
+        -------
+        int
+            Checked against the table (:class:`ReplyError` if the device reports a value
+            outside it).
+        """
+        return self._get_wire(Param(par).value)
+
+    def configure(self, *, pixels: int = TABLE[Param.NX].default, lines: int | None = None,
+                  pitch: float = TABLE[Param.PITCH].to_si(TABLE[Param.PITCH].default)) -> None:
         """Set the scan: pixels per line, lines and pixel spacing (m, sent in whole nm).
+
+        The ranges are those of :data:`~.codec.TABLE` (the protocol's).
 
         Parameters
         ----------
@@ -236,12 +230,16 @@ class EducationalAFM:
             Lines, 1..512; default ``pixels``.
         pitch : float
             Pixel spacing in m (1 nm to 100 um).
+
+        Raises
+        ------
+        ValueError
+            Naming the parameter, its value and the valid range (nothing sent).
         """
-        pixels = check_integer("pixels", pixels, 2, 512)
-        lines = pixels if lines is None else check_integer("lines", lines, 1, 512)
-        nm = int(round(check_positive("pitch", pitch, "m") * 1e9))
-        if not 1 <= nm <= 100_000:
-            raise ValueError(f"pitch must be 1 nm to 100 um, got {pitch:g} m")
+        nx, ny, dx = TABLE[Param.NX], TABLE[Param.NY], TABLE[Param.PITCH]
+        pixels = check_integer("pixels", pixels, nx.low, nx.high)
+        lines = pixels if lines is None else check_integer("lines", lines, ny.low, ny.high)
+        nm = dx.to_wire(check_positive("pitch", pitch, "m"))
         self._params = {Param.NX: self.set(Param.NX, pixels), Param.NY: self.set(Param.NY, lines),
                         Param.PITCH: self.set(Param.PITCH, nm)}
 
@@ -249,9 +247,22 @@ class EducationalAFM:
         """Stop a running scan."""
         self.request(Command.ABORT)
 
+    def _status(self) -> tuple:
+        """``ST``: (state, row, col), checked."""
+        results = self.request(Command.STATUS).args[1:]
+        if len(results) != 3 or results[0] not in {s.value for s in State} or \
+                not all(isinstance(v, int) for v in results[1:]):
+            raise ReplyError(f"{DEVICE}'s ST reply must be <IDLE|SCANNING|FAULT> <row> <col>, "
+                             f"got {tuple(results)!r}")
+        return tuple(results)
+
     def scan(self, *, on_pixel: Callable | None = None,
              on_line: Callable | None = None) -> Sample:
         """Start a scan and collect its pixels into a Sample (heights in m).
+
+        The scan waits at most ``timeout`` for progress (a new pixel, a line's end, an event),
+        whatever else the device sends; then it asks the device's status, and a device that made
+        no progress between two such checks (or over ``retries + 1`` of them) has stopped.
 
         Parameters
         ----------
@@ -271,18 +282,20 @@ class EducationalAFM:
         DeviceError
             If the scan faults (``.partial``: the finished lines).
         DeviceNotResponding
-            If the device goes silent (``.partial``).
+            If the device goes silent or makes no progress (``.partial``).
         TransportClosed
             If the link goes away (``.partial``).
+        ReplyError
+            If the device reports a scan size outside the protocol's table.
         """
         if self.info is None:
             self.connect()
         if not self._params:
             self._params = {p: self.get(p) for p in (Param.NX, Param.NY, Param.PITCH)}
         nx, ny = self._params[Param.NX], self._params[Param.NY]
-        pitch = self._params[Param.PITCH] * 1e-9
+        pitch = TABLE[Param.PITCH].to_si(self._params[Param.PITCH])
         counts = np.full((ny, nx), np.nan)
-        state = {"done": False, "finished": 0, "fault": None, "aborted": False}
+        state = {"done": False, "finished": 0, "fault": None, "aborted": False, "new": False}
 
         def image(rows: int) -> Sample | None:
             if rows < 1:
@@ -300,7 +313,7 @@ class EducationalAFM:
                 for _ in range(self.retries + 1):     # GL is idempotent: ask again if its
                     if not np.isnan(counts[row]).any():  # own pixels were damaged on the way
                         break
-                    self.stats["refetched_lines"] += 1
+                    self._refetched += 1
                     self.request(Command.GETLINE, row)
                 if np.isnan(counts[row]).any():
                     raise DeviceNotResponding(f"line {row} is still incomplete after "
@@ -310,12 +323,17 @@ class EducationalAFM:
                     on_line(image(state["finished"]), ny)
 
         def stream(frame: Frame) -> None:
-            if frame.code == "PX" and len(frame.args) == 3:
-                row, col, z = frame.args
-                if 0 <= row < ny and 0 <= col < nx:
+            args = frame.args
+            if frame.code == "PX":
+                if len(args) == 3 and all(isinstance(a, int) for a in args) and \
+                        0 <= args[0] < ny and 0 <= args[1] < nx:
+                    row, col, z = args
+                    state["new"] |= bool(np.isnan(counts[row, col]))
                     counts[row, col] = z
                     if on_pixel is not None:
                         on_pixel(row, col, z * self.info.z_step)
+                else:
+                    self.garbage += 1
             elif frame.code == "EV" and frame.args:
                 if frame.args[0] == Event.DONE:
                     state["done"] = True
@@ -323,44 +341,57 @@ class EducationalAFM:
                     state["aborted"] = True
                 elif frame.args[0] == Event.FAULT:
                     state["fault"] = ErrorCode.SENSOR
-            elif frame.code == "ER" and frame.args and frame.args[0] not in (
-                    ErrorCode.CHECKSUM, ErrorCode.MALFORMED):   # a late answer to a bad line
-                state["fault"] = int(frame.args[0])
+            elif frame.code == "ER" and frame.args and frame.args[0] not in RESEND_CODES:
+                state["fault"] = frame.args[0] if isinstance(frame.args[0], int) \
+                    else ErrorCode.SENSOR
         self._on_stream = stream
         pending = []                       # line ends seen, handled outside the stream callback
         last_status = None
+        quiet = 0                          # status checks since the last new pixel
         try:
             self.request(Command.START)
+            deadline = time.monotonic() + self.timeout       # of the next progress
             while not state["done"]:
                 if state["fault"] is not None:
                     raise DeviceError(state["fault"], "", device=DEVICE, command="")
                 if state["aborted"]:
                     raise HardwareError(f"the {DEVICE} scan was aborted")
+                left = deadline - time.monotonic()
                 try:
-                    frame = self._read()
+                    if left <= 0:
+                        raise TransportTimeout(f"{DEVICE} made no progress for "
+                                               f"{self.timeout:g} s")
+                    frame = self._receive(left)
                 except TransportTimeout:
                     # quiet: the end event may have been lost, or the device stopped; ask it
-                    status = self.request(Command.STATUS).args[1:]
+                    status = self._status()
+                    quiet += 1
                     if status[0] == State.IDLE.value:
                         break                         # finished: DONE was lost on the way
                     if status[0] == State.FAULT.value:
                         state["fault"] = ErrorCode.SENSOR
-                    elif status == last_status:
+                    elif status == last_status or quiet > self.retries + 1:
                         raise DeviceNotResponding(f"{DEVICE} made no progress for "
-                                                  f"{2 * self.timeout:g} s (at row "
+                                                  f"{quiet * self.timeout:g} s (at row "
                                                   f"{status[1]}, col {status[2]})") from None
                     last_status = status
+                    deadline = time.monotonic() + self.timeout
                     continue
                 if frame is None:
                     continue
-                if frame.code == "LN" and len(frame.args) == 2:
-                    pending.append(int(frame.args[0]))
+                if frame.code == "LN" and len(frame.args) == 2 and \
+                        all(isinstance(a, int) for a in frame.args):
+                    pending.append(min(max(frame.args[0], -1), ny))
                 else:
                     stream(frame)
+                if state["new"]:                      # progress: the deadline moves on
+                    state["new"], quiet = False, 0
+                    deadline = time.monotonic() + self.timeout
                 if pending:
                     finish_rows(max(pending) + 1)
                     pending.clear()
-                elif frame.code == "PX" and frame.args[0] > state["finished"]:
+                elif frame.code == "PX" and len(frame.args) == 3 and \
+                        isinstance(frame.args[0], int) and state["finished"] < frame.args[0] < ny:
                     finish_rows(frame.args[0])      # a line end was lost on the way
             finish_rows(ny)
         except (HardwareError, TransportClosed) as exc:

@@ -17,14 +17,10 @@ from ...samples import Sample
 from ...validation import check_instance, check_integer, check_positive
 from ..framing import Frame
 from ..twin import Twin
-from .codec import (DEVICE, READ_ONLY, Command, ErrorCode, Event, Param, State, event, line_end,
-                    pixel, stream_error)
+from .codec import (DEVICE, READ_ONLY, TABLE, Command, ErrorCode, Event, Param, State, event,
+                    line_end, pixel, stream_error)
 
-__all__ = ["EducationalAFMTwin", "LIMITS"]
-
-#: Valid ranges of the parameters (PROTOCOL.md).
-LIMITS = {Param.NX: (2, 512), Param.NY: (1, 512), Param.PITCH: (1, 100_000),
-          Param.SETPOINT: (1, 99)}
+__all__ = ["EducationalAFMTwin"]
 
 
 class EducationalAFMTwin(Twin):
@@ -57,17 +53,19 @@ class EducationalAFMTwin(Twin):
     DEVICE = DEVICE
     FIRMWARE_VERSION = "0.1.0"
 
-    def __init__(self, sample: Sample, *, pixel_time: float = 1e-3, z_step: int = 100,
+    def __init__(self, sample: Sample, *, pixel_time: float = 1e-3,
+                 z_step: int = TABLE[Param.ZSTEP].default,
                  noise: float = 0.0, seed: int = 0, fault_at: int | None = None):
         super().__init__()
         self.sample = check_instance("sample", sample, Sample)
         self.pixel_time = check_positive("pixel_time", pixel_time, "s")
-        self.z_step = check_integer("z_step", z_step, 1, 10 ** 6)
+        zs = TABLE[Param.ZSTEP]
+        self.z_step = check_integer("z_step", z_step, zs.low, zs.high)
         self.noise = float(noise)
         self.seed = check_integer("seed", seed, 0)
         self.fault_at = fault_at
-        self.params = {Param.NX: 32, Param.NY: 32, Param.PITCH: 20, Param.ZSTEP: self.z_step,
-                       Param.SETPOINT: 80}
+        self.params = {Param(code): value for code, value in TABLE.defaults().items()}
+        self.params[Param.ZSTEP] = self.z_step
         self.state = State.IDLE
         self.image = None
         self._next = 0          # the next pixel to stream (row x NX + col)
@@ -77,12 +75,13 @@ class EducationalAFMTwin(Twin):
     # -- the scan ---------------------------------------------------------------------------
     def _image(self) -> np.ndarray:
         nx, ny = self.params[Param.NX], self.params[Param.NY]
-        pitch = self.params[Param.PITCH] * 1e-9
+        pitch = TABLE[Param.PITCH].to_si(self.params[Param.PITCH])
         settings = ScanSettings(nx * pitch, scan_size_y=ny * pitch, pixels=nx, lines=ny,
                                 noise=self.noise, seed=self.seed)
         result = scan(self.sample, None, ConstantForce(ContactLoop()), settings)
         heights = result.images["height trace"]
-        return np.rint((heights - np.min(heights)) / (self.z_step * 1e-12)).astype(np.int64)
+        count = TABLE[Param.ZSTEP].to_si(self.z_step)
+        return np.rint((heights - np.min(heights)) / count).astype(np.int64)
 
     def _total(self) -> int:
         return self.params[Param.NX] * self.params[Param.NY]
@@ -150,8 +149,7 @@ class EducationalAFMTwin(Twin):
                 return [self.error(frame, ErrorCode.BAD_ARGUMENT, str(args[0]))]
             if self.state is State.SCANNING:
                 return [self.error(frame, ErrorCode.BUSY)]
-            low, high = LIMITS.get(par, (1, 0))
-            if par in READ_ONLY or not low <= args[1] <= high:
+            if par in READ_ONLY or not TABLE[par].valid(args[1]):
                 return [self.error(frame, ErrorCode.BAD_ARGUMENT, par.value)]
             self.params[par] = args[1]
             return [self.ok(frame, par.value, args[1])]

@@ -9,5 +9,5 @@ from .codec import DEVICE, Command, ErrorCode, Event, Flag, Param, PositionSampl
 from .device import HapticDevice, open_haptic
 from .twin import Finger, HapticTwin, Mechanics
 
-__all__ = ["DEVICE", "Command", "ErrorCode", "Event", "Flag", "Param", "PositionSample", "open_haptic",
-           "Status", "HapticDevice", "HapticTwin", "Finger", "Mechanics"]
+__all__ = ["DEVICE", "Command", "ErrorCode", "Event", "Flag", "Param", "PositionSample",
+           "open_haptic", "Status", "HapticDevice", "HapticTwin", "Finger", "Mechanics"]

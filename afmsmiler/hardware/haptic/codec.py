@@ -2,9 +2,12 @@
 
 Device ``HAPTIC``, protocol version 1, 1 000 000 baud (a 16 MHz AVR makes it exactly: UBRR = 1
 with U2X), frames of the module (h) contract (:mod:`afmsmiler.hardware.framing`). The names and
-values of :class:`Command`, :class:`ErrorCode`, :class:`Event` and :class:`Param` are those of
-``hardware/haptic/protocol.h`` (a test parses it). No floats on the wire: each quantity is an
-integer in the unit :data:`PARAMETERS` names; this module converts to and from SI.
+values of :class:`Command`, :class:`Event`, :class:`Param` (built from :data:`TABLE`, the
+parameters described once) and module (h)'s shared :class:`~afmsmiler.hardware.errors.ErrorCode`
+are those of ``hardware/haptic/protocol.h`` (a test parses it). No floats on the wire: each
+quantity is an integer in the unit :data:`TABLE` names (from the one unit table
+:data:`~afmsmiler.hardware.protocol.WIRE_UNITS`); this module converts to and from SI, both ways
+(the twin sends what :func:`position_frame` and :func:`status_results` build).
 
 - host -> device stream (SEQ 0, no reply): ``0 FO <force uN>``, the force setpoint;
 - device -> host stream (SEQ 0): ``0 PO <position um> <velocity um/s> <time us>``, the handle's
@@ -20,12 +23,15 @@ import math
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from ..errors import ErrorCode, ReplyError
 from ..framing import Frame
+from ..protocol import WIRE_UNITS, ParamTable, WireParam
 
 __all__ = ["DEVICE", "BAUDRATE", "FIRMWARE_VERSION", "Command", "ErrorCode", "Event", "Param",
-           "ParamSpec", "PARAMETERS", "STATES", "Flag", "Status", "PositionSample",
-           "force_frame", "parse_position", "parse_status", "param_to_wire", "param_from_wire",
-           "TIME_WRAP"]
+           "TABLE", "PARAMETERS", "STATES", "Flag", "Status", "PositionSample",
+           "force_frame", "force_from_wire", "parse_position", "parse_status", "position_frame",
+           "status_results",
+           "param_to_wire", "param_from_wire", "TIME_WRAP"]
 
 #: The name the device reports to ``ID``.
 DEVICE = "HAPTIC"
@@ -56,21 +62,6 @@ class Command(str, enum.Enum):
     ERROR = "ER"
 
 
-class ErrorCode(enum.IntEnum):
-    """Error numbers shared by every device of module (h) (``ERR_<NAME>``)."""
-
-    CHECKSUM = 1
-    UNKNOWN_COMMAND = 2
-    BAD_ARGUMENT = 3
-    BUSY = 4
-    NOT_HOMED = 5
-    LIMIT = 6
-    ESTOP = 7
-    SENSOR = 8
-    MALFORMED = 9
-    STATE = 10
-
-
 class Event(str, enum.Enum):
     """Event words of ``0 EV <WORD>`` (``EVT_<NAME>``)."""
 
@@ -80,24 +71,41 @@ class Event(str, enum.Enum):
     LIMIT = "LIMIT"
 
 
-class Param(str, enum.Enum):
-    """Parameter codes of ``SP``/``GP`` (``PAR_<NAME>``)."""
+#: The device's parameters, described once (wire code, unit, range, default; the firmware's
+#: LIMITS table in haptic.ino and PROTOCOL.md's table have the same, a test compares).
+TABLE = ParamTable(DEVICE, (
+    WireParam("MAX_FORCE", "MF", "uN", 0, 5_000_000, 2_000_000, si_name="max_force",
+              meaning="largest force asked of the motor"),
+    WireParam("FORCE_SCALE", "FS", "permille", -1_000_000, 1_000_000, 1000,
+              si_name="force_scale", meaning="scale of the FO stream"),
+    WireParam("SPRING", "KS", "mN/m", 0, 2_000_000, 0, si_name="spring",
+              meaning="virtual spring about x = 0"),
+    WireParam("WALL_STIFFNESS", "KW", "mN/m", 0, 5_000_000, 0, si_name="wall_stiffness",
+              meaning="virtual wall"),
+    WireParam("WALL_POSITION", "XW", "um", -50_000, 50_000, 10_000, si_name="wall_position",
+              meaning="the wall's face"),
+    WireParam("QGAIN", "QG", "permille", -10_000, 10_000, 0, si_name="qgain",
+              meaning="Q-control gain"),
+    WireParam("QPHASE", "QP", "mdeg", -180_000, 180_000, 90_000, si_name="qphase",
+              meaning="Q-control phase lag"),
+    WireParam("QFREQ", "QF", "mHz", 100, 1_000_000, 10_000, si_name="qfreq",
+              meaning="reference frequency of the phase shifter"),
+    WireParam("WATCHDOG", "WD", "ms", 5, 1000, 50, si_name="watchdog",
+              meaning="force zeroed after this long without FO"),
+    WireParam("VFILTER", "VF", "Hz", 10, 500, 200, si_name="vfilter",
+              meaning="velocity low-pass cut-off"),
+    WireParam("TRAVEL", "XL", "um", 1000, 60_000, 40_000, si_name="travel",
+              meaning="soft travel limit"),
+    WireParam("RESOLUTION", "RE", "nm/count", 1, 100_000, 7670, read_only=True,
+              si_name="resolution", meaning="encoder resolution at the handle"),
+    WireParam("FORCE_CONSTANT", "KT", "uN/mA", 1, 1_000_000, 1760, read_only=True,
+              si_name="force_constant", meaning="handle force per motor current"),
+    WireParam("CURRENT_LIMIT", "IL", "mA", 1, 100_000, 1500, read_only=True,
+              si_name="current_limit", meaning="the amplifier's current limit"),
+))
 
-    MAX_FORCE = "MF"
-    FORCE_SCALE = "FS"
-    SPRING = "KS"
-    WALL_STIFFNESS = "KW"
-    WALL_POSITION = "XW"
-    QGAIN = "QG"
-    QPHASE = "QP"
-    QFREQ = "QF"
-    WATCHDOG = "WD"
-    VFILTER = "VF"
-    TRAVEL = "XL"
-    RESOLUTION = "RE"
-    FORCE_CONSTANT = "KT"
-    CURRENT_LIMIT = "IL"
-
+#: Parameter codes of ``SP``/``GP`` (``PAR_<NAME>``), built from :data:`TABLE`.
+Param = TABLE.enum(__name__)
 
 class Flag(enum.IntFlag):
     """Status flags (config.h ``FLAG_<NAME>``), set since the previous ``ST``."""
@@ -109,7 +117,7 @@ class Flag(enum.IntFlag):
 
 
 # an enum is called with one code (``Command("ID")``): say so to introspection (numpydoc checks)
-for _enum in (Command, ErrorCode, Event, Param, Flag):
+for _enum in (Command, Event, Flag):
     _enum.__signature__ = inspect.Signature(
         [inspect.Parameter("value", inspect.Parameter.POSITIONAL_ONLY)])
     _enum.__doc__ += "\n\n    ``{0}(value)`` looks a member up by its wire value.\n".format(
@@ -120,55 +128,10 @@ del _enum
 STATES = ("IDLE", "ACTIVE", "FAULT")
 
 
-@dataclass(frozen=True)
-class ParamSpec:
-    """One device parameter: its wire unit, SI scale, range and default.
-
-    Parameters
-    ----------
-    name : str
-        The quantity's name in SI (``"max_force"``).
-    si_unit : str
-        Its SI unit (``"N"``, ``"N/m"``, ``"m"``, ``"rad"``, ``"Hz"``, ``"s"``, ``""``, ``"A"``).
-    scale : float
-        SI value of one wire unit (1e-6 for uN).
-    low, high : int
-        Valid range on the wire (inclusive).
-    default : int
-        The firmware's value after reset, on the wire.
-    read_only : bool
-        Set by the mechanics (``SP`` answers ``ER 3``).
-    """
-
-    name: str
-    si_unit: str
-    scale: float
-    low: int
-    high: int
-    default: int
-    read_only: bool = False
-
-
-_MDEG = math.pi / 180e3  # one millidegree in rad
-#: Param -> ParamSpec: wire units, ranges and the firmware's defaults (haptic.ino has the same).
-PARAMETERS = MappingProxyType({
-    Param.MAX_FORCE: ParamSpec("max_force", "N", 1e-6, 0, 5_000_000, 2_000_000),
-    Param.FORCE_SCALE: ParamSpec("force_scale", "", 1e-3, -1_000_000, 1_000_000, 1000),
-    Param.SPRING: ParamSpec("spring", "N/m", 1e-3, 0, 2_000_000, 0),
-    Param.WALL_STIFFNESS: ParamSpec("wall_stiffness", "N/m", 1e-3, 0, 5_000_000, 0),
-    Param.WALL_POSITION: ParamSpec("wall_position", "m", 1e-6, -50_000, 50_000, 10_000),
-    Param.QGAIN: ParamSpec("qgain", "", 1e-3, -10_000, 10_000, 0),
-    Param.QPHASE: ParamSpec("qphase", "rad", _MDEG, -180_000, 180_000, 90_000),
-    Param.QFREQ: ParamSpec("qfreq", "Hz", 1e-3, 100, 1_000_000, 10_000),
-    Param.WATCHDOG: ParamSpec("watchdog", "s", 1e-3, 5, 1000, 50),
-    Param.VFILTER: ParamSpec("vfilter", "Hz", 1.0, 10, 500, 200),
-    Param.TRAVEL: ParamSpec("travel", "m", 1e-6, 1000, 60_000, 40_000),
-    Param.RESOLUTION: ParamSpec("resolution", "m", 1e-9, 1, 100_000, 7670, read_only=True),
-    Param.FORCE_CONSTANT: ParamSpec("force_constant", "N/A", 1e-3, 1, 1_000_000, 1760,
-                                    read_only=True),
-    Param.CURRENT_LIMIT: ParamSpec("current_limit", "A", 1e-3, 1, 100_000, 1500,
-                                   read_only=True),
-})
+#: Param -> its :class:`~afmsmiler.hardware.protocol.WireParam` (the rows of :data:`TABLE`).
+PARAMETERS = MappingProxyType({Param(p.code): p for p in TABLE})
+#: The wire units of the stream frames' quantities (``PO``, ``FO``, ``ST``).
+_POSITION, _VELOCITY, _TIME, _FORCE = (WIRE_UNITS[u].scale for u in ("um", "um/s", "us", "uN"))
 
 _INT32 = 2 ** 31 - 1
 
@@ -192,17 +155,7 @@ def param_to_wire(param, value: float) -> int:
     ValueError
         Naming the parameter, the value and the valid range (in SI) when it is outside it.
     """
-    p = Param(param)
-    spec = PARAMETERS[p]
-    if isinstance(value, bool) or not isinstance(value, (int, float)) or not math.isfinite(value):
-        raise ValueError(f"{spec.name} must be a finite number ({spec.si_unit or 'ratio'}), "
-                         f"got {value!r}")
-    wire = round(value / spec.scale)
-    if not spec.low <= wire <= spec.high:
-        unit = f" {spec.si_unit}" if spec.si_unit else ""
-        raise ValueError(f"{spec.name} must be in [{spec.low * spec.scale:g}, "
-                         f"{spec.high * spec.scale:g}]{unit}, got {value!r}")
-    return int(wire)
+    return PARAMETERS[Param(param)].to_wire(value)
 
 
 def param_from_wire(param, wire: int) -> float:
@@ -219,7 +172,7 @@ def param_from_wire(param, wire: int) -> float:
     -------
     float
     """
-    return PARAMETERS[Param(param)].scale * int(wire)
+    return PARAMETERS[Param(param)].to_si(wire)
 
 
 def force_frame(force: float) -> Frame:
@@ -234,8 +187,23 @@ def force_frame(force: float) -> Frame:
     -------
     Frame
     """
-    micro = round(force * 1e6) if math.isfinite(force) else 0
+    micro = round(force / _FORCE) if math.isfinite(force) else 0
     return Frame(0, Command.FORCE.value, (max(-_INT32, min(_INT32, micro)),))
+
+
+def force_from_wire(micro: int) -> float:
+    """The force in N of a ``0 FO <uN>`` frame's integer (the inverse of :func:`force_frame`).
+
+    Parameters
+    ----------
+    micro : int
+        The integer on the wire.
+
+    Returns
+    -------
+    float
+    """
+    return int(micro) * _FORCE
 
 
 @dataclass(frozen=True)
@@ -271,14 +239,14 @@ def parse_position(frame: Frame) -> PositionSample:
 
     Raises
     ------
-    ValueError
+    ReplyError
         If the frame is not a well-formed ``PO`` frame.
     """
     a = frame.args
     if frame.code != Command.POSITION.value or len(a) != 3 or \
             not all(isinstance(x, int) for x in a):
-        raise ValueError(f"not a PO frame with 3 integers: {frame!r}")
-    return PositionSample(a[0] * 1e-6, a[1] * 1e-6, a[2] * 1e-6)
+        raise ReplyError(f"not a PO frame with 3 integers: {frame!r}")
+    return PositionSample(a[0] * _POSITION, a[1] * _VELOCITY, a[2] * _TIME)
 
 
 @dataclass(frozen=True)
@@ -322,11 +290,61 @@ def parse_status(frame: Frame) -> Status:
 
     Raises
     ------
-    ValueError
-        If the frame is not such a reply.
+    ReplyError
+        If the frame is not such a reply, or its flags integer is negative or has a bit that
+        :class:`Flag` does not name (as the macro AFM's codec: dropping it would hide a fault).
     """
     a = frame.args
     if frame.code != "OK" or len(a) != 5 or a[0] != "ST" or a[1] not in STATES or \
             not all(isinstance(x, int) for x in a[2:]):
-        raise ValueError(f"not an OK ST reply: {frame!r}")
-    return Status(a[1], Flag(a[2] & 15), a[3] * 1e-6, a[4] * 1e-6)
+        raise ReplyError(f"not an OK ST reply: {frame!r}")
+    known = sum(f.value for f in Flag)
+    if a[2] < 0 or a[2] & ~known:
+        raise ReplyError(f"status flags {a[2]} have bits this driver does not know (protocol "
+                         f"version 1 knows {known} = "
+                         f"{' | '.join(f'{f.value} {f.name}' for f in Flag)})")
+    return Status(a[1], Flag(a[2]), a[3] * _POSITION, a[4] * _FORCE)
+
+
+def position_frame(position: float, velocity: float, device_time: float) -> Frame:
+    """The stream frame ``0 PO <um> <um/s> <us>`` the device sends (the inverse of
+    :func:`parse_position`).
+
+    Parameters
+    ----------
+    position : float
+        Handle position in m.
+    velocity : float
+        Handle velocity in m/s.
+    device_time : float
+        The device's clock in s (wrapped at :data:`TIME_WRAP` microseconds).
+
+    Returns
+    -------
+    Frame
+    """
+    return Frame(0, Command.POSITION.value, (round(position / _POSITION),
+                                             round(velocity / _VELOCITY),
+                                             round(device_time / _TIME) % TIME_WRAP))
+
+
+def status_results(state: str, flags: int, position: float, force: float) -> tuple:
+    """The results of the device's reply to ``ST`` (the inverse of :func:`parse_status`).
+
+    Parameters
+    ----------
+    state : str
+        One of :data:`STATES`.
+    flags : int
+        :class:`Flag` bits.
+    position : float
+        Handle position in m.
+    force : float
+        The force last asked of the motor in N.
+
+    Returns
+    -------
+    tuple
+        ``(state, flags, um, uN)``.
+    """
+    return (state, int(flags), round(position / _POSITION), round(force / _FORCE))

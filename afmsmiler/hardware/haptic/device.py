@@ -18,19 +18,21 @@ import queue
 import threading
 import time
 
-from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError,
-                      ProtocolVersionError, TransportClosed, TransportTimeout)
-from ..framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
-from .codec import (DEVICE, PARAMETERS, Command, ErrorCode, Flag, Param, PositionSample, Status,
-                    force_frame, param_from_wire, param_to_wire, parse_position, parse_status)
+from ...validation import check_positive
+from ..errors import (RESEND_CODES, DeviceNotResponding, FrameError, HardwareError, ReplyError,
+                      TransportClosed, TransportTimeout)
+from ..framed import FramedDevice
+from ..framing import Frame, decode_frame, encode_frame, reply_frame
+from ..protocol import WIRE_UNITS
+from .codec import (DEVICE, PARAMETERS, TABLE, Command, Flag, Param, PositionSample, Status,
+                    force_frame, param_to_wire, parse_position, parse_status)
 
 __all__ = ["HapticDevice", "open_haptic"]
 
-_RETRY = object()  # the reader's signal: the device asked for the pending command again
-_NAMES = {spec.name: p for p, spec in PARAMETERS.items()}
+_NAMES = {spec.si_name: p for p, spec in PARAMETERS.items()}
 
 
-class HapticDevice:
+class HapticDevice(FramedDevice):
     """The one-axis haptic device of ``hardware/haptic`` over any transport.
 
     Parameters
@@ -65,23 +67,16 @@ class HapticDevice:
     >>> server.stop()
     """
 
+    DEVICE = DEVICE
+    TABLE = TABLE
+
     def __init__(self, transport, *, timeout: float = 1.0, retries: int = 3):
-        if not all(hasattr(transport, m) for m in ("write", "readline", "close")):
-            raise TypeError(f"transport must have write, readline and close, got "
-                            f"{type(transport).__name__}")
-        if isinstance(timeout, bool) or not isinstance(timeout, (int, float)) or \
-                not 0 < timeout <= 60:
+        super().__init__(transport, timeout=timeout, retries=retries, max_retries=10)
+        if self.timeout > 60:
             raise ValueError(f"timeout must be in (0, 60] s, got {timeout!r}")
-        if isinstance(retries, bool) or not isinstance(retries, int) or not 0 <= retries <= 10:
-            raise ValueError(f"retries must be an integer in [0, 10], got {retries!r}")
-        self.transport = transport
-        self.timeout = float(timeout)
-        self.retries = retries
         self.identity = None
         self.events = collections.deque(maxlen=100)
         self.faults = collections.deque(maxlen=100)
-        self.garbage = 0
-        self._seq = 0
         self._replies = queue.Queue()
         self._write_lock = threading.Lock()
         self._command_lock = threading.Lock()
@@ -124,7 +119,7 @@ class HapticDevice:
             elif frame.code == Command.POSITION.value:
                 try:
                     sample = parse_position(frame)
-                except ValueError:
+                except ReplyError:
                     self.garbage += 1
                     continue
                 with self._sample_cond:
@@ -136,8 +131,8 @@ class HapticDevice:
             elif frame.code == Command.EVENT.value and frame.args:
                 self.events.append(str(frame.args[0]))
             elif frame.code == Command.ERROR.value and frame.args:
-                if frame.args[0] in (ErrorCode.CHECKSUM, ErrorCode.MALFORMED):
-                    self._replies.put(_RETRY)
+                if frame.args[0] in RESEND_CODES:
+                    self._replies.put(frame)      # the pending command goes out again
                 else:
                     self.faults.append(frame.args[0])
 
@@ -146,13 +141,25 @@ class HapticDevice:
             raise TransportClosed(str(self._closed_error))
 
     # -- commands -----------------------------------------------------------------------------
-    def _write(self, frame: Frame):
-        data = encode_frame(frame)
-        with self._write_lock:
+    def _send(self, data: bytes) -> None:
+        with self._write_lock:   # the force bridge writes FO frames from its own thread
             self.transport.write(data)
+
+    def _receive(self, timeout: float) -> Frame:
+        """The next reply the reader thread took (or its ``0 ER 1``/``0 ER 9``), within timeout."""
+        try:
+            frame = self._replies.get(timeout=max(0.0, timeout))
+        except queue.Empty:
+            raise TransportTimeout(f"no reply within {timeout:g} s") from None
+        if frame is None:
+            self._check_open()
+        return frame
 
     def command(self, code, *args) -> tuple:
         """Send one command and return its reply's results (retried with the same SEQ).
+
+        The reply is awaited until one deadline per attempt, whatever the device sends: a
+        command lasts at most ``(retries + 1) * timeout``.
 
         Parameters
         ----------
@@ -179,36 +186,12 @@ class HapticDevice:
         self._start_reader()
         with self._command_lock:
             self._check_open()
-            self._seq = self._seq % 255 + 1
-            frame = Frame(self._seq, code, args)
             while True:  # drop stale replies of earlier commands
                 try:
                     self._replies.get_nowait()
                 except queue.Empty:
                     break
-            for _ in range(self.retries + 1):
-                self._write(frame)
-                deadline = time.monotonic() + self.timeout
-                while True:
-                    left = deadline - time.monotonic()
-                    try:
-                        reply = self._replies.get(timeout=max(0.0, left))
-                    except queue.Empty:
-                        break  # timed out: retry
-                    if reply is None:
-                        self._check_open()
-                    if reply is _RETRY:
-                        break
-                    if reply.seq != frame.seq:
-                        continue
-                    if reply.code == "OK" and reply.args[:1] == (code,):
-                        return reply.args[1:]
-                    if reply.code == "ER" and reply.args:
-                        word = reply.args[1] if len(reply.args) > 1 else ""
-                        raise DeviceError(reply.args[0], str(word), DEVICE, code)
-                    break  # a malformed reply: ask again
-            raise DeviceNotResponding(f"{DEVICE} did not answer {code} after "
-                                      f"{self.retries + 1} attempts of {self.timeout:g} s")
+            return self._exchange(code, *args)
 
     def connect(self) -> tuple:
         """Identify the device (protocol version check) and read its read-only parameters.
@@ -225,13 +208,10 @@ class HapticDevice:
         HardwareError
             If the device is not a HAPTIC.
         """
-        name, version, firmware = self.command(Command.IDENTIFY)
-        if version != PROTOCOL_VERSION:
-            raise ProtocolVersionError(version, PROTOCOL_VERSION, str(name))
-        if name != DEVICE:
-            raise HardwareError(f"expected a {DEVICE} device, got {name!r}")
-        self.identity = (name, version, firmware)
-        self.read_only = {PARAMETERS[p].name: self.get(p)
+        self._start_reader()
+        with self._command_lock:
+            self.identity = self._identify()
+        self.read_only = {spec.si_name: self.get(p)
                           for p, spec in PARAMETERS.items() if spec.read_only}
         return self.identity
 
@@ -248,11 +228,19 @@ class HapticDevice:
         Returns
         -------
         float
+
+        Raises
+        ------
+        ValueError
+            If the value is outside the table's range or the parameter read-only (nothing sent).
+        ReplyError
+            If the device's reply is outside the table's range.
         """
         p = _NAMES.get(param) or Param(param)
-        wire = param_to_wire(p, value)
-        _, got = self.command(Command.SET, p.value, wire)
-        return param_from_wire(p, got)
+        spec = PARAMETERS[p]
+        wire = spec.check(param_to_wire(p, value))
+        return spec.to_si(self._checked(self.command(Command.SET, p.value, wire),
+                                        Command.SET.value, p.value))
 
     def get(self, param) -> float:
         """A parameter's value in SI units.
@@ -267,8 +255,8 @@ class HapticDevice:
         float
         """
         p = _NAMES.get(param) or Param(param)
-        _, got = self.command(Command.GET, p.value)
-        return param_from_wire(p, got)
+        return PARAMETERS[p].to_si(self._checked(self.command(Command.GET, p.value),
+                                                 Command.GET.value, p.value))
 
     def configure(self, **values) -> None:
         """Set several parameters by SI name (``spring=500.0, qgain=-0.5``...).
@@ -315,7 +303,7 @@ class HapticDevice:
         Status
         """
         args = self.command(Command.STATUS)
-        return parse_status(Frame(1, "OK", ("ST", *args)))
+        return parse_status(reply_frame(1, Command.STATUS, *args))
 
     def start_stream(self, period: float = 1e-3) -> None:
         """Have the device stream ``PO`` frames every ``period`` s (1 ms to 1 s, whole ms).
@@ -324,8 +312,13 @@ class HapticDevice:
         ----------
         period : float
             Stream period in s.
+
+        Raises
+        ------
+        ValueError
+            If ``period`` is not a finite number of 1 ms to 1 s (NaN included).
         """
-        ms = round(period * 1e3)
+        ms = round(check_positive("period", period, "s") / WIRE_UNITS["ms"].scale)
         if not 1 <= ms <= 1000:
             raise ValueError(f"period must be in [0.001, 1] s, got {period!r}")
         self.command(Command.STREAM, ms)
@@ -343,7 +336,7 @@ class HapticDevice:
             Force on the handle in N (the device scales it by FS and clips it at MF).
         """
         self._check_open()
-        self._write(force_frame(force))
+        self._send(encode_frame(force_frame(force)))
 
     def latest(self) -> PositionSample | None:
         """The latest position sample (None before the first); raises if the port is gone.
@@ -374,11 +367,13 @@ class HapticDevice:
 
         Raises
         ------
+        ValueError
+            If ``timeout`` is not finite and > 0 (NaN would wait forever).
         DeviceNotResponding
             If none arrives in time (a silent device: its watchdog has zeroed the force).
         """
         self._start_reader()
-        wait = self.timeout if timeout is None else float(timeout)
+        wait = self.timeout if timeout is None else check_positive("timeout", timeout, "s")
         with self._sample_cond:
             start = self._samples
             deadline = time.monotonic() + wait

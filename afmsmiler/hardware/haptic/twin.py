@@ -43,10 +43,11 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.linalg import expm
 
-from ..framing import Frame
+from ..framing import Frame, event_frame
 from ..twin import Twin
-from .codec import (DEVICE, FIRMWARE_VERSION, PARAMETERS, TIME_WRAP, Command, ErrorCode,
-                    Event, Flag, Param)
+from ..errors import ErrorCode
+from .codec import (DEVICE, FIRMWARE_VERSION, PARAMETERS, Command, Event, Flag, Param,
+                    force_from_wire, position_frame, status_results)
 
 __all__ = ["HapticTwin", "Finger", "Mechanics", "TICK", "MAX_TICKS_PER_POLL"]
 
@@ -98,9 +99,11 @@ class Mechanics:
 
     handle_mass: float = 0.015
     handle_damping: float = 0.05
-    resolution: float = PARAMETERS[Param.RESOLUTION].default * 1e-9
-    force_constant: float = PARAMETERS[Param.FORCE_CONSTANT].default * 1e-3
-    current_limit: float = PARAMETERS[Param.CURRENT_LIMIT].default * 1e-3
+    resolution: float = PARAMETERS[Param.RESOLUTION].to_si(PARAMETERS[Param.RESOLUTION].default)
+    force_constant: float = PARAMETERS[Param.FORCE_CONSTANT].to_si(
+        PARAMETERS[Param.FORCE_CONSTANT].default)
+    current_limit: float = PARAMETERS[Param.CURRENT_LIMIT].to_si(
+        PARAMETERS[Param.CURRENT_LIMIT].default)
     amplifier_bandwidth: float = 1000.0
 
 
@@ -135,9 +138,10 @@ class HapticTwin(Twin):
         self.finger = finger
         self.mechanics = mechanics
         self.params = {p: spec.default for p, spec in PARAMETERS.items()}
-        self.params[Param.RESOLUTION] = round(mechanics.resolution * 1e9)
-        self.params[Param.FORCE_CONSTANT] = round(mechanics.force_constant * 1e3)
-        self.params[Param.CURRENT_LIMIT] = round(mechanics.current_limit * 1e3)
+        for p, value in ((Param.RESOLUTION, mechanics.resolution),
+                         (Param.FORCE_CONSTANT, mechanics.force_constant),
+                         (Param.CURRENT_LIMIT, mechanics.current_limit)):
+            self.params[p] = PARAMETERS[p].to_wire(value)
         self.state = "IDLE"
         self.external_force = 0.0
         self.flags = Flag(0)
@@ -153,7 +157,7 @@ class HapticTwin(Twin):
         self._xf = 0.0
         self._vf = 0.0
         self._fault_code = ErrorCode.STATE
-        self._events = [Frame(0, Command.EVENT.value, (Event.BOOT.value,))]
+        self._events = [event_frame(Event.BOOT)]
         self._discretise()
         self._compensate()
 
@@ -181,7 +185,7 @@ class HapticTwin(Twin):
     def _compensate(self):
         """g_c and phi_c from the parameters (the firmware does this on every SP)."""
         p = self.params
-        f_ref = p[Param.QFREQ] * 1e-3
+        f_ref = self._si(Param.QFREQ)
         w = 2.0 * math.pi * f_ref
         alpha = 1.0 - math.exp(-2.0 * math.pi * p[Param.VFILTER] * TICK)
         z = cmath.exp(-1j * w * TICK)
@@ -189,8 +193,8 @@ class HapticTwin(Twin):
         h /= 1.0 + 1j * f_ref / self.mechanics.amplifier_bandwidth
         self._alpha = alpha
         self._w_ref = w
-        gain = p[Param.QGAIN] * 1e-3 / abs(h)
-        phase = p[Param.QPHASE] * math.pi / 180e3 + cmath.phase(h)
+        gain = self._si(Param.QGAIN) / abs(h)
+        phase = self._si(Param.QPHASE) + cmath.phase(h)
         self._qc = gain * math.cos(phase)
         self._qs = gain * math.sin(phase) / w
 
@@ -230,11 +234,15 @@ class HapticTwin(Twin):
         self._fault_code = ErrorCode.ESTOP if flag == Flag.ESTOP else ErrorCode.LIMIT
         self._command = 0.0
         self._stream_force = 0.0
-        self._events.append(Frame(0, Command.EVENT.value, (event.value,)))
+        self._events.append(event_frame(event))
+
+    def _si(self, param) -> float:
+        """The SI value of a parameter's current wire value (the table's unit)."""
+        return PARAMETERS[param].to_si(self.params[param])
 
     def _tick(self):
         p = self.params
-        res = p[Param.RESOLUTION] * 1e-9
+        res = self._si(Param.RESOLUTION)
         count = int(math.floor(self._x[0] / res + 0.5)) - self._offset
         x = count * res
         x_prev = self._prev * res
@@ -248,17 +256,17 @@ class HapticTwin(Twin):
                 self.state = "IDLE"
                 self.flags |= Flag.WATCHDOG
                 self._stream_force = 0.0
-                self._events.append(Frame(0, Command.EVENT.value, (Event.WATCHDOG.value,)))
-            elif abs(x) > p[Param.TRAVEL] * 1e-6:
+                self._events.append(event_frame(Event.WATCHDOG))
+            elif abs(x) > self._si(Param.TRAVEL):
                 self._fault(Event.LIMIT, Flag.LIMIT)
             else:
-                ks = p[Param.SPRING] * 1e-3
-                force = self._stream_force * p[Param.FORCE_SCALE] * 1e-3 - ks * x
-                xw = p[Param.WALL_POSITION] * 1e-6
+                ks = self._si(Param.SPRING)
+                force = self._stream_force * self._si(Param.FORCE_SCALE) - ks * x
+                xw = self._si(Param.WALL_POSITION)
                 if x > xw:
-                    force -= p[Param.WALL_STIFFNESS] * 1e-3 * (x - xw)
+                    force -= self._si(Param.WALL_STIFFNESS) * (x - xw)
                 force += ks * (self._qc * self._xf - self._qs * self._vf)
-                limit = p[Param.MAX_FORCE] * 1e-6
+                limit = self._si(Param.MAX_FORCE)
                 if abs(force) > limit:
                     force = math.copysign(limit, force)
                     self.flags |= Flag.SATURATED
@@ -271,8 +279,7 @@ class HapticTwin(Twin):
         return x
 
     def _position_frame(self, x):
-        us = (self._ticks * 1000) % TIME_WRAP
-        return Frame(0, Command.POSITION.value, (round(x * 1e6), round(self._vf * 1e6), us))
+        return position_frame(x, self._vf, self._ticks * TICK)
 
     # -- the Twin protocol --------------------------------------------------------------------
     def poll(self, now: float) -> list[Frame]:
@@ -337,7 +344,7 @@ class HapticTwin(Twin):
         if code == Command.FORCE.value:
             if frame.seq != 0 or len(args) != 1 or not isinstance(args[0], int):
                 return [] if frame.seq == 0 else [self.error(frame, ErrorCode.BAD_ARGUMENT)]
-            self._stream_force = args[0] * 1e-6
+            self._stream_force = force_from_wire(args[0])
             self._last_force = self._ticks
             return []
         if frame.seq == 0:
@@ -393,7 +400,7 @@ class HapticTwin(Twin):
     def _zero(self, frame):
         if self.state == "ACTIVE":
             return [self.error(frame, ErrorCode.STATE)]
-        res = self.params[Param.RESOLUTION] * 1e-9
+        res = self._si(Param.RESOLUTION)
         self._offset = int(math.floor(self._x[0] / res + 0.5))
         self._prev, self._xf, self._vf = 0, 0.0, 0.0
         return [self.ok(frame)]
@@ -411,11 +418,10 @@ class HapticTwin(Twin):
         return [self.ok(frame, ms)]
 
     def _status(self, frame):
-        res = self.params[Param.RESOLUTION] * 1e-9
+        res = self._si(Param.RESOLUTION)
         x = (int(math.floor(self._x[0] / res + 0.5)) - self._offset) * res
         flags, self.flags = self.flags, Flag(0)
-        return [self.ok(frame, self.state, int(flags), round(x * 1e6),
-                        round(self._command * 1e6))]
+        return [self.ok(frame, *status_results(self.state, flags, x, self._command))]
 
     def _estop(self, frame):
         self._fault(Event.ESTOP, Flag.ESTOP)

@@ -1,10 +1,14 @@
 """The macroscopic AFM's protocol (device ``MACROAFM``, protocol version 1): bytes <-> messages.
 
-Pure: no I/O. The enums :class:`Command`, :class:`ErrorCode`, :class:`Event` and :class:`Param`
-have the names and values of the firmware's ``protocol.h`` (``CMD_<NAME>``, ``ERR_<NAME>``,
-``EVT_<NAME>``, ``PAR_<NAME>``); a test parses that file and compares, so they cannot drift.
+Pure: no I/O. The enums :class:`Command`, :class:`Event` and :class:`Param` (built from
+:data:`TABLE`, the parameters described once) and module (h)'s shared
+:class:`~afmsmiler.hardware.errors.ErrorCode` have the names and values of the firmware's
+``protocol.h`` (``CMD_<NAME>``, ``ERR_<NAME>``, ``EVT_<NAME>``, ``PAR_<NAME>``); tests parse that
+file, the firmware's limits and PROTOCOL.md's parameter table and compare, so they cannot drift.
 Frames follow :mod:`afmsmiler.hardware.framing`; quantities on the wire are integers in the units
-the contract names (um for the pitch, nm per z micro-step, gauge counts, micro-steps, steps/s).
+:data:`TABLE` names (um for the pitch, nm per z micro-step, gauge counts, micro-steps, steps/s).
+The codec works both ways: :meth:`MacroAFMCodec.encode` writes a device message (what the twin
+sends), :meth:`MacroAFMCodec.parse` reads one (what the driver receives).
 
 Messages a device sends:
 
@@ -29,12 +33,13 @@ import enum
 import inspect
 from dataclasses import dataclass
 
-from ..errors import FrameError
-from ..framing import Frame, decode_frame, encode_frame
+from ..errors import ErrorCode, FrameError, ReplyError
+from ..framing import Frame, decode_frame, encode_frame, error_frame, event_frame, reply_frame
+from ..protocol import ParamTable, WireParam
 
 __all__ = ["DEVICE", "BAUDRATE", "Command", "ErrorCode", "Event", "Param", "State", "Flag",
            "Pixel", "LineEnd", "EventMsg", "Reply", "ErrorReply", "Status", "MacroAFMCodec",
-           "READ_ONLY"]
+           "READ_ONLY", "TABLE"]
 
 #: The device's name in its ``ID`` reply.
 DEVICE = "MACROAFM"
@@ -73,28 +78,6 @@ class Command(str, enum.Enum):
 
 
 @_by_value
-class ErrorCode(enum.IntEnum):
-    """Error numbers shared by every device (``ERR_<NAME> <n>``).
-
-    Parameters
-    ----------
-    value : int
-        The error number on the wire.
-    """
-
-    CHECKSUM = 1
-    UNKNOWN_COMMAND = 2
-    BAD_ARGUMENT = 3
-    BUSY = 4
-    NOT_HOMED = 5
-    LIMIT = 6
-    ESTOP = 7
-    SENSOR = 8
-    MALFORMED = 9
-    STATE = 10
-
-
-@_by_value
 class Event(str, enum.Enum):
     """Event words of ``0 EV <WORD> [ARG]`` (``EVT_<NAME> "<WORD>"``).
 
@@ -114,30 +97,32 @@ class Event(str, enum.Enum):
     BUTTON = "BUTTON"
 
 
-@_by_value
-class Param(str, enum.Enum):
-    """Integer parameters of ``SP``/``GP`` (``PAR_<NAME> "XX"``).
+#: The device's parameters, described once (wire code, unit, range, default; PROTOCOL.md's table).
+TABLE = ParamTable(DEVICE, (
+    WireParam("NX", "NX", "count", 1, 128, 8, si_name="pixels", meaning="pixels per line"),
+    WireParam("NY", "NY", "count", 1, 1024, 8, si_name="lines", meaning="lines"),
+    WireParam("PITCH", "DX", "um", 25, 10_000, 200, multiple=25, si_name="pitch",
+              meaning="pixel spacing"),
+    WireParam("ZSTEP", "ZS", "nm", 1, 1_000_000, 2500, read_only=True, si_name="z_step",
+              meaning="height of one z micro-step"),
+    WireParam("SETPOINT", "SE", "count", 301, 4_000_000, 2000, si_name="setpoint_counts",
+              meaning="deflection setpoint in gauge counts"),
+    WireParam("MODE", "MO", "count", 0, 1, 0, si_name="mode", meaning="0 contact, 1 jumping"),
+    WireParam("LIFT", "LI", "step", 1, 40_000, 400, si_name="lift_steps",
+              meaning="jumping lift in z micro-steps"),
+    WireParam("SPEED", "VE", "step/s", 10, 8000, 4000, si_name="step_rate",
+              meaning="maximum step rate"),
+    WireParam("ACCEL", "AC", "step/s^2", 10, 1_000_000, 40_000, si_name="step_acceleration",
+              meaning="acceleration"),
+    WireParam("PRESET", "PR", "count", 0, 3, 0, si_name="preset",
+              meaning="the scan the START button runs"),
+))
 
-    Parameters
-    ----------
-    value : str
-        The two letters on the wire (``Param("DX")`` is ``Param.PITCH``).
-    """
-
-    NX = "NX"          #: pixels per line
-    NY = "NY"          #: lines
-    PITCH = "DX"       #: pixel spacing in um
-    ZSTEP = "ZS"       #: nm per z micro-step (read-only: set by the mechanics)
-    SETPOINT = "SE"    #: deflection setpoint in gauge counts above the free reading
-    MODE = "MO"        #: 0 contact, 1 jumping
-    LIFT = "LI"        #: jumping lift in z micro-steps
-    SPEED = "VE"       #: max step rate in steps/s
-    ACCEL = "AC"       #: acceleration in steps/s^2
-    PRESET = "PR"      #: the pre-programmed scan a push button starts
-
+#: Integer parameters of ``SP``/``GP`` (``PAR_<NAME> "XX"``), built from :data:`TABLE`.
+Param = TABLE.enum(__name__)
 
 #: Parameters the host may read but not set.
-READ_ONLY = frozenset({Param.ZSTEP})
+READ_ONLY = frozenset(Param(p.code) for p in TABLE if p.read_only)
 
 
 @_by_value
@@ -362,6 +347,74 @@ class MacroAFMCodec:
             return EventMsg(_enum(Event, args[0]), args[1] if len(args) == 2 else None)
         raise FrameError(f"not a MACROAFM message: {frame!r}", encode_frame(frame))
 
+    @staticmethod
+    def frame(message) -> Frame:
+        """The frame of a device message (the inverse of :meth:`message`).
+
+        Parameters
+        ----------
+        message : Reply, ErrorReply, Pixel, LineEnd, EventMsg or Status
+            What the device says (a :class:`Status` becomes ``0 OK ST ...`` with SEQ 0: give it
+            to :meth:`reply_status` with the command's SEQ instead).
+
+        Returns
+        -------
+        Frame
+
+        Raises
+        ------
+        TypeError
+            If ``message`` is not a message of this protocol.
+        """
+        if isinstance(message, Pixel):
+            return Frame(0, "PX", (message.row, message.col, message.z, message.counts))
+        if isinstance(message, LineEnd):
+            return Frame(0, "LN", (message.row, message.pixels))
+        if isinstance(message, EventMsg):
+            return event_frame(message.event, *(() if message.arg is None else (message.arg,)))
+        if isinstance(message, Reply):
+            return reply_frame(message.seq, message.command, *message.results)
+        if isinstance(message, ErrorReply):
+            return error_frame(message.seq, message.code, message.word)
+        raise TypeError(f"message must be a MACROAFM message, got {type(message).__name__}")
+
+    @classmethod
+    def encode(cls, message) -> bytes:
+        """The bytes of a device message on the wire (what the firmware or a twin sends).
+
+        Parameters
+        ----------
+        message : Reply, ErrorReply, Pixel, LineEnd or EventMsg
+            The message.
+
+        Returns
+        -------
+        bytes
+
+        Examples
+        --------
+        >>> MacroAFMCodec.encode(LineEnd(0, 8))
+        b'0 LN 0 8*D6\\n'
+        """
+        return encode_frame(cls.frame(message))
+
+    @staticmethod
+    def status_results(status: Status) -> tuple:
+        """The results of the reply to ``ST`` for a :class:`Status` (the inverse of :meth:`status`).
+
+        Parameters
+        ----------
+        status : Status
+            The device's state.
+
+        Returns
+        -------
+        tuple
+            ``(state-word, row, col, flags)``.
+        """
+        state = status.state.value if isinstance(status.state, enum.Enum) else status.state
+        return (state, int(status.row), int(status.col), int(status.flags))
+
     @classmethod
     def parse(cls, line: bytes):
         """The message in one received line (decode, then :meth:`message`).
@@ -406,11 +459,11 @@ class MacroAFMCodec:
         r = reply.results
         if (reply.command != Command.STATUS or len(r) != 4 or not isinstance(r[0], str)
                 or not all(isinstance(v, int) for v in r[1:])):
-            raise FrameError(f"not a status reply: {reply!r}")
+            raise ReplyError(f"not a status reply: {reply!r}")
         known = sum(f.value for f in Flag)
         if r[3] < 0 or r[3] & ~known:
             unknown = r[3] & ~known if r[3] >= 0 else r[3]
-            raise FrameError(f"status flags {r[3]} have bits this driver does not know "
+            raise ReplyError(f"status flags {r[3]} have bits this driver does not know "
                              f"({unknown}; protocol version 1 knows {known} = "
                              f"{' | '.join(f'{f.value} {f.name}' for f in Flag)})")
         return Status(_enum(State, r[0]), r[1], r[2], Flag(r[3]))

@@ -22,39 +22,49 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...parameters import UNITS, Parameter, read_only
+from ...parameters import Parameter, read_only
 from ...samples import Sample
 from ...validation import check_choice, check_instance, check_integer, check_positive
-from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError,
-                      ProtocolVersionError, TransportTimeout)
-from ..framing import PROTOCOL_VERSION
-from .codec import (DEVICE, Command, ErrorCode, ErrorReply, Event, EventMsg, Flag, LineEnd,
-                    MacroAFMCodec, Param, Pixel, Reply, State, Status)
+from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError, ReplyError,
+                      TransportTimeout)
+from ..framed import FramedDevice
+from ..framing import Frame
+from .codec import (DEVICE, TABLE, Command, ErrorCode, ErrorReply, Event, EventMsg, Flag,
+                    LineEnd, MacroAFMCodec, Param, Pixel, Reply, State, Status)
 from .mechanics import GaugeCalibration
 
 __all__ = ["MacroAFM", "DeviceInfo", "ScanProgress", "PARAMETERS", "MODES"]
 
-_UM = UNITS["um"][1]
-_NM = UNITS["nm"][1]
-
-#: Imaging modes and their wire values.
+#: Imaging modes and their wire values (``MO`` of :data:`~.codec.TABLE`).
 MODES = read_only({"contact": 0, "jumping": 1})
 
-#: What :meth:`MacroAFM.configure` takes (SI), validated before anything is sent.
+#: The z micro-step of the machine as built (``ZS``'s default), for the lift's range in m.
+_NOMINAL_Z_STEP = TABLE[Param.ZSTEP].to_si(TABLE[Param.ZSTEP].default)
+
+
+def _from_table(param, label: str, **slider) -> Parameter:
+    """An SI Parameter whose range and default are the protocol table's (never retyped)."""
+    w = TABLE[param]
+    return Parameter(name=w.si_name, unit=w.si_unit, default=w.to_si(w.default),
+                     low=w.to_si(w.low), high=w.to_si(w.high), label=label, **slider)
+
+
+#: What :meth:`MacroAFM.configure` takes (SI), validated before anything is sent: the ranges are
+#: the protocol table's (:data:`~.codec.TABLE`, the firmware's limits).
 PARAMETERS = read_only({p.name: p for p in (
-    Parameter(name="pixels", unit="", default=128, low=2, high=1024, label="pixels per line"),
-    Parameter(name="lines", unit="", default=128, low=1, high=1024, label="lines"),
-    Parameter(name="pitch", unit="m", display_unit="mm", default=0.2e-3, low=1e-6, high=0.1,
-              slider_low=0.05e-3, slider_high=2e-3, label="pixel spacing"),
+    _from_table(Param.NX, "pixels per line"),
+    _from_table(Param.NY, "lines"),
+    _from_table(Param.PITCH, "pixel spacing", display_unit="mm", slider_low=0.05e-3,
+                slider_high=2e-3),
     Parameter(name="setpoint_force", unit="N", display_unit="mN", default=10e-3, low=1e-5,
               high=1.0, slider_low=1e-3, slider_high=50e-3, label="setpoint force"),
-    Parameter(name="lift", unit="m", display_unit="mm", default=0.5e-3, low=1e-6, high=0.05,
+    Parameter(name="lift", unit="m", display_unit="mm", default=0.5e-3,
+              low=TABLE[Param.LIFT].low * _NOMINAL_Z_STEP,
+              high=TABLE[Param.LIFT].high * _NOMINAL_Z_STEP,
               slider_low=0.05e-3, slider_high=5e-3, label="jumping lift"),
-    Parameter(name="step_rate", unit="1/s", default=2000.0, low=1.0, high=20_000.0,
-              slider_low=100.0, slider_high=5000.0, label="max step rate"),
-    Parameter(name="step_acceleration", unit="1/s^2", default=20_000.0, low=1.0, high=1e6,
-              slider_low=1e3, slider_high=1e5, log=True, label="step acceleration"),
-    Parameter(name="preset", unit="", default=0, low=0, high=9, label="button preset"),
+    _from_table(Param.SPEED, "max step rate", slider_low=100.0, slider_high=5000.0),
+    _from_table(Param.ACCEL, "step acceleration", slider_low=1e3, slider_high=1e5, log=True),
+    _from_table(Param.PRESET, "button preset"),
 )})
 
 
@@ -133,7 +143,7 @@ class _Scan:
         self.last_row = 0
 
 
-class MacroAFM:
+class MacroAFM(FramedDevice):
     """The macroscopic AFM (a steel ruler scanned by a 3D printer's steppers), over a transport.
 
     Parameters
@@ -175,16 +185,13 @@ class MacroAFM:
     >>> afm.close(); server.stop()
     """
 
+    DEVICE = DEVICE
+    TABLE = TABLE
+
     def __init__(self, transport, *, timeout: float = 1.0, retries: int = 3,
                  calibration: GaugeCalibration | None = None, stream_timeout: float = 30.0,
                  home_timeout: float = 300.0):
-        for name in ("write", "readline", "close"):
-            if not callable(getattr(transport, name, None)):
-                raise TypeError(f"transport must have write/readline/close, got "
-                                f"{type(transport).__name__}")
-        self.transport = transport
-        self.timeout = check_positive("timeout", timeout, "s")
-        self.retries = check_integer("retries", retries, 0, 100)
+        super().__init__(transport, timeout=timeout, retries=retries)
         self.calibration = GaugeCalibration.from_ruler() if calibration is None else \
             check_instance("calibration", calibration, GaugeCalibration)
         self.stream_timeout = check_positive("stream_timeout", stream_timeout, "s")
@@ -192,9 +199,6 @@ class MacroAFM:
         self.info = None
         self.events = []
         self.result = None
-        self.garbage = 0
-        self.retried = 0
-        self._seq = 0
         self._io = threading.RLock()
         self._scan = None
         self._scan_thread = None
@@ -202,10 +206,6 @@ class MacroAFM:
         self._homed_event = False
 
     # -- the wire ------------------------------------------------------------------------------
-    def _next_seq(self) -> int:
-        self._seq = self._seq % 255 + 1
-        return self._seq
-
     def _read(self, timeout: float):
         """One message (None for a line that is not one); stream messages dispatched."""
         line = self.transport.readline(timeout)
@@ -221,42 +221,25 @@ class MacroAFM:
             self._dispatch(msg)
         return msg
 
+    def _exchange(self, code: str, *args) -> tuple:
+        """One request (FramedDevice's: one deadline per attempt, retries) holding the link."""
+        with self._io:
+            return super()._exchange(code, *args)
+
+    def _stream(self, frame: Frame) -> None:
+        """A SEQ 0 frame met while waiting for a reply: into the scan, or an event noted."""
+        try:
+            msg = MacroAFMCodec.message(frame)
+        except FrameError:
+            self.garbage += 1
+            return
+        self._dispatch(msg)
+
     def _command(self, command: Command, *args) -> tuple:
         """Send a command and return its results, retrying with the same SEQ where safe."""
-        with self._io:
-            seq = self._next_seq()
-            data = MacroAFMCodec.command(seq, command, *args)
-            attempts = 0
-            self.transport.write(data)
-            deadline = time.monotonic() + self.timeout
-            while True:
-                remaining = deadline - time.monotonic()
-                try:
-                    if remaining <= 0:
-                        raise TransportTimeout("reply deadline passed")
-                    msg = self._read(remaining)
-                    resend = (isinstance(msg, ErrorReply) and msg.seq == 0
-                              and msg.code in (ErrorCode.CHECKSUM, ErrorCode.MALFORMED))
-                except TransportTimeout:
-                    resend = True
-                if resend:
-                    attempts += 1
-                    if attempts > self.retries:
-                        raise DeviceNotResponding(
-                            f"{DEVICE} did not answer {command.name} ({command.value}) after "
-                            f"{self.retries} retries of {self.timeout:g} s: is it powered, on "
-                            f"this port, running firmware of protocol {PROTOCOL_VERSION}?")
-                    self.retried += 1
-                    self.transport.write(data)
-                    deadline = time.monotonic() + self.timeout
-                    continue
-                if isinstance(msg, (Reply, ErrorReply)) and msg.seq == seq:
-                    if isinstance(msg, ErrorReply):
-                        raise DeviceError(int(msg.code), msg.word, DEVICE, command.value)
-                    if msg.command != command:
-                        self.garbage += 1
-                        continue
-                    return msg.results
+        command = Command(command)
+        return self._exchange(command.value, *(a.value if isinstance(a, Param) else a
+                                               for a in args))
 
     def _dispatch(self, msg) -> None:
         """A stream message: into the running scan's image, or an event noted."""
@@ -330,17 +313,12 @@ class MacroAFM:
             If the firmware speaks another protocol version (both versions named).
         HardwareError
             If the device is not a MACROAFM.
+        ReplyError
+            If a reply is not of the protocol's shape, or ZS is outside the table's range.
         """
-        results = self._command(Command.IDENTIFY)
-        if len(results) != 3:
-            raise HardwareError(f"unexpected ID reply {results!r}")
-        device, version, firmware = results
-        if version != PROTOCOL_VERSION:
-            raise ProtocolVersionError(version, PROTOCOL_VERSION, str(device))
-        if device != DEVICE:
-            raise HardwareError(f"expected a {DEVICE} on this port, found {device!r}")
-        z_step = self.get(Param.ZSTEP) * _NM
-        self.info = DeviceInfo(str(device), int(version), str(firmware), z_step)
+        device, version, firmware = self._identify()
+        z_step = TABLE[Param.ZSTEP].to_si(self.get(Param.ZSTEP))
+        self.info = DeviceInfo(device, version, firmware, z_step)
         return self.info
 
     def _require_info(self) -> DeviceInfo:
@@ -359,12 +337,16 @@ class MacroAFM:
         Returns
         -------
         int
+
+        Raises
+        ------
+        ReplyError
+            If the reply names another parameter or its value is outside the table's range
+            (e.g. ``ZS 0`` or ``NX 2147483647``), naming the parameter, value and range.
         """
         param = Param(param)
-        results = self._call(Command.GET, param.value)
-        if len(results) != 2 or results[0] != param.value or not isinstance(results[1], int):
-            raise HardwareError(f"unexpected GP reply {results!r}")
-        return results[1]
+        return self._checked(self._call(Command.GET, param.value), Command.GET.value,
+                             param.value)
 
     def set(self, param: Param, value: int) -> None:
         """Set one parameter on the wire (``SP``), as an integer in the device's unit.
@@ -374,11 +356,16 @@ class MacroAFM:
         param : Param
             The parameter.
         value : int
-            Its value in the unit the protocol names (um, counts, micro-steps, steps/s ...).
+            Its value in the unit :data:`~.codec.TABLE` names (um, counts, micro-steps,
+            steps/s ...).
+
+        Raises
+        ------
+        ValueError
+            If the parameter is read-only or the value outside the table's range (nothing sent).
         """
         param = Param(param)
-        self._call(Command.SET, param.value, check_integer("value", value, -2 ** 31,
-                                                            2 ** 31 - 1))
+        self._call(Command.SET, param.value, TABLE[param].check(value))
 
     def wire_values(self, **values) -> dict:
         """The integers :meth:`configure` would send for SI ``values``, validated, nothing sent.
@@ -394,6 +381,13 @@ class MacroAFM:
         -------
         dict
             :class:`Param` -> int.
+
+        Raises
+        ------
+        ValueError
+            Naming the parameter, its value and the valid range (the protocol table's).
+        TypeError
+            For an unknown keyword.
         """
         out = {}
         for name, value in values.items():
@@ -405,24 +399,26 @@ class MacroAFM:
                                 f"valid: {sorted([*PARAMETERS, 'mode'])}")
             p = PARAMETERS[name]
             if name in ("pixels", "lines", "preset"):
-                out[{"pixels": Param.NX, "lines": Param.NY, "preset": Param.PRESET}[name]] = \
+                out[Param(TABLE.by_si_name(name).code)] = \
                     check_integer(name, value, int(p.low), int(p.high))
                 continue
             si = p.check(value)
-            if name == "pitch":
-                out[Param.PITCH] = max(1, round(si / _UM))
-            elif name == "setpoint_force":
+            if name == "setpoint_force":
                 counts = round(self.calibration.counts(si))
-                if not 1 <= counts <= 8_000_000:
+                se = TABLE[Param.SETPOINT]
+                if not se.valid(counts):
                     raise ValueError(f"setpoint_force {si:g} N is {counts} gauge counts; the "
-                                     f"gauge reads 1 to 8000000 counts")
+                                     f"firmware takes {se.low} to {se.high} counts (SE)")
                 out[Param.SETPOINT] = counts
             elif name == "lift":
-                out[Param.LIFT] = max(1, round(si / self._require_info().z_step))
-            elif name == "step_rate":
-                out[Param.SPEED] = round(si)
-            elif name == "step_acceleration":
-                out[Param.ACCEL] = round(si)
+                steps = round(si / self._require_info().z_step)
+                li = TABLE[Param.LIFT]
+                if not li.valid(steps):
+                    raise ValueError(f"lift {si:g} m is {steps} z micro-steps; the firmware "
+                                     f"takes {li.low} to {li.high} (LI)")
+                out[Param.LIFT] = steps
+            else:   # pitch (to whole multiples of 25 um), step_rate, step_acceleration
+                out[Param(TABLE.by_si_name(name).code)] = TABLE.by_si_name(name).to_wire(si)
         return out
 
     def configure(self, **values) -> dict:
@@ -431,10 +427,11 @@ class MacroAFM:
         Parameters
         ----------
         **values
-            ``pixels`` (2..1024), ``lines`` (1..1024), ``pitch`` (m), ``setpoint_force`` (N,
-            converted to gauge counts by the calibration), ``mode`` ("contact" or "jumping"),
-            ``lift`` (m, converted to z micro-steps), ``step_rate`` (steps/s),
-            ``step_acceleration`` (steps/s^2), ``preset`` (0..9).
+            ``pixels`` (1..128), ``lines`` (1..1024), ``pitch`` (m, 25 um to 10 mm, sent as
+            the nearest multiple of 25 um), ``setpoint_force`` (N, converted to gauge counts by
+            the calibration), ``mode`` ("contact" or "jumping"), ``lift`` (m, converted to z
+            micro-steps), ``step_rate`` (10..8000 steps/s), ``step_acceleration``
+            (10..1000000 steps/s^2), ``preset`` (0..3): the ranges of :data:`~.codec.TABLE`.
 
         Returns
         -------
@@ -467,7 +464,7 @@ class MacroAFM:
         wire = {param: self.get(param) for param in Param if param != Param.ZSTEP}
         modes = {v: k for k, v in MODES.items()}
         return {"pixels": wire[Param.NX], "lines": wire[Param.NY],
-                "pitch": wire[Param.PITCH] * _UM,
+                "pitch": TABLE[Param.PITCH].to_si(wire[Param.PITCH]),
                 "setpoint_force": self.calibration.force(wire[Param.SETPOINT]),
                 "mode": modes.get(wire[Param.MODE], wire[Param.MODE]),
                 "lift": wire[Param.LIFT] * z_step, "step_rate": float(wire[Param.SPEED]),
@@ -491,7 +488,7 @@ class MacroAFM:
         """
         results = self._call(Command.GAUGE)
         if len(results) != 1 or not isinstance(results[0], int):
-            raise HardwareError(f"unexpected RG reply {results!r}")
+            raise ReplyError(f"{DEVICE}'s RG reply must be one integer, got {results!r}")
         return results[0]
 
     def force(self) -> float:
@@ -678,7 +675,7 @@ class MacroAFM:
         """
         info = self._require_info()
         nx, ny = self.get(Param.NX), self.get(Param.NY)
-        pitch = self.get(Param.PITCH) * _UM
+        pitch = TABLE[Param.PITCH].to_si(self.get(Param.PITCH))
         scan = _Scan(nx, ny, pitch, info.z_step)
         self.result = None
         name = f"{DEVICE} scan"
@@ -689,6 +686,7 @@ class MacroAFM:
                 if start:
                     self._command(Command.START)
                 last = time.monotonic()
+                stalls = 0
                 done = 0
                 budget = 20 * nx * ny + 10_000  # messages: a device streaming on and on is a bug
                 while True:
@@ -709,15 +707,26 @@ class MacroAFM:
                         break
                     if scan.aborted:
                         break
-                    try:
-                        msg = self._read(min(self.timeout, 0.1))
-                    except TransportTimeout:
-                        if time.monotonic() - last > self.stream_timeout:
-                            self._stalled(scan)
-                            last = time.monotonic()
-                        continue
-                    if isinstance(msg, (Pixel, LineEnd, EventMsg, ErrorReply)):
+                    if time.monotonic() - last > self.stream_timeout:
+                        # no progress for stream_timeout, whatever else came: ask the device
+                        stalls += 1
+                        if stalls > self.retries + 1:
+                            raise DeviceNotResponding(
+                                f"{DEVICE} sent no pixel for {stalls - 1} waits of "
+                                f"{self.stream_timeout:g} s while saying it scans")
+                        self._stalled(scan)
                         last = time.monotonic()
+                        continue
+                    try:
+                        msg = self._read(min(self.timeout, 0.1,
+                                             max(1e-3, last + self.stream_timeout
+                                                 - time.monotonic())))
+                    except TransportTimeout:
+                        continue
+                    if isinstance(msg, (Pixel, LineEnd, EventMsg, ErrorReply)) and \
+                            (len(scan.new) or not isinstance(msg, Pixel)):
+                        last = time.monotonic()
+                        stalls = 0
                     budget -= 1
                     if budget < 0:
                         raise HardwareError(f"{DEVICE} sent far more than the {nx} x {ny} "

@@ -38,27 +38,18 @@ from ...contact import Parabolic
 from ...imaging.dilation import dilate
 from ...samples import Sample
 from ...validation import check_instance, check_positive, check_range
+from ..errors import ErrorCode
 from ..framing import Frame
 from ..twin import Twin
-from .codec import DEVICE, Command, ErrorCode, Event, Flag, Param, State
+from .codec import (DEVICE, TABLE, Command, ErrorReply, Event, EventMsg, Flag, LineEnd,
+                    MacroAFMCodec, Param, Pixel, State)
 from .mechanics import GaugeCalibration
 
-__all__ = ["MacroAFMTwin", "printed_sample", "FIRMWARE_VERSION", "PARAM_LIMITS", "DEFAULTS"]
+__all__ = ["MacroAFMTwin", "printed_sample", "FIRMWARE_VERSION"]
 
 FIRMWARE_VERSION = "0.1.0"
-#: Valid range of each parameter on the wire, inclusive (the firmware's, PROTOCOL.md); DX must
-#: also be a multiple of :data:`PITCH_MULTIPLE` um (two x/y micro-steps).
-PARAM_LIMITS = {Param.NX: (1, 128), Param.NY: (1, 1024), Param.PITCH: (25, 10_000),
-                Param.ZSTEP: (1, 1_000_000), Param.SETPOINT: (301, 4_000_000),
-                Param.MODE: (0, 1), Param.LIFT: (1, 40_000), Param.SPEED: (10, 8000),
-                Param.ACCEL: (10, 1_000_000), Param.PRESET: (0, 3)}
-PITCH_MULTIPLE = 25
-#: The parameters at power-up (the firmware's).
-DEFAULTS = {Param.NX: 8, Param.NY: 8, Param.PITCH: 200, Param.ZSTEP: 2500,
-            Param.SETPOINT: 2000, Param.MODE: 0, Param.LIFT: 400, Param.SPEED: 4000,
-            Param.ACCEL: 40_000, Param.PRESET: 0}
-#: The pre-programmed scans of the start button: (NX, NY, DX um, MODE, LIFT); 0 runs the current
-#: parameters; 2 and 3 are the paper's 128 x 128 at 0.2 mm.
+#: The pre-programmed scans of the start button (PRESET 0..3 of :data:`~.codec.TABLE`): (NX, NY,
+#: DX um, MODE, LIFT); 0 runs the current parameters; 2 and 3 are the paper's 128 x 128 at 0.2 mm.
 PRESETS = {0: None, 1: (16, 16, 500, 0, 400), 2: (128, 128, 200, 0, 400),
            3: (128, 128, 200, 1, 400)}
 #: Stepper resolution of x and y (m): an Ender 3's 80 steps/mm.
@@ -192,9 +183,11 @@ class MacroAFMTwin(Twin):
         if len(self.travel) != 3:
             raise ValueError(f"travel must be (x, y, z) in m, got {travel!r}")
         self.base = check_range("base", base, 0.0, self.travel[2], "m")
-        zs_nm = round(check_range("z_step", z_step, 1e-9, 1e-3, "m") * 1e9)
-        self.params = dict(DEFAULTS)
-        self.params[Param.ZSTEP] = zs_nm
+        zs = TABLE[Param.ZSTEP]
+        zs_nm = round(check_range("z_step", z_step, zs.to_si(zs.low), zs.to_si(zs.high), "m")
+                      / zs.scale)
+        self.params = {Param(code): value for code, value in TABLE.defaults().items()}
+        self.params[Param.ZSTEP] = TABLE[Param.ZSTEP].check_reply(zs_nm)
         self._rng = np.random.default_rng(seed)
         self.state = State.IDLE
         self.homed = False
@@ -213,7 +206,7 @@ class MacroAFMTwin(Twin):
     @property
     def z_step(self) -> float:
         """The z micro-step in m."""
-        return self.params[Param.ZSTEP] * 1e-9
+        return TABLE[Param.ZSTEP].to_si(self.params[Param.ZSTEP])
 
     @property
     def z_top(self) -> int:
@@ -314,7 +307,7 @@ class MacroAFMTwin(Twin):
             is not homed, as the firmware does).
         """
         preset = self.params[Param.PRESET] if preset is None else preset
-        if preset not in PRESETS:
+        if not TABLE[Param.PRESET].valid(preset):
             raise ValueError(f"preset must be one of {sorted(PRESETS)}, got {preset!r}")
         self._button = preset
 
@@ -332,7 +325,7 @@ class MacroAFMTwin(Twin):
         if not self._fits():
             return []
         self._start(self.now)
-        return [Frame(0, "EV", (Event.BUTTON.value, preset))]
+        return [self._frame(EventMsg(Event.BUTTON, preset))]
 
     def press_estop(self) -> None:
         """Press the emergency stop (the scan faults at its next pixel)."""
@@ -348,16 +341,16 @@ class MacroAFMTwin(Twin):
         else:
             self.estop = True
             code = ErrorCode.ESTOP
-        ev = Frame(0, "EV", (event.value,) if word is None else (event.value, word))
-        return [ev, Frame(0, "ER", (int(code),))]
+        return [self._frame(EventMsg(event, word)), self._frame(ErrorReply(0, code))]
 
     def _next_pixel(self, start: float) -> None:
         """Compute the scan's next pixel (or fault) and when it is due."""
         s, p = self._scan, self.params
         rate, accel = p[Param.SPEED], p[Param.ACCEL]
         fault = self._fault_at.pop((s.row, s.col), None) or self._fault_at.pop(None, None)
-        x_new = round(s.col * p[Param.PITCH] * 1e-6 / XY_STEP) * XY_STEP
-        y_new = round(s.row * p[Param.PITCH] * 1e-6 / XY_STEP) * XY_STEP
+        pitch = TABLE[Param.PITCH].to_si(p[Param.PITCH])
+        x_new = round(s.col * pitch / XY_STEP) * XY_STEP
+        y_new = round(s.row * pitch / XY_STEP) * XY_STEP
         if fault is None:
             for axis, pos, travel in (("X", x_new, self.travel[0]), ("Y", y_new, self.travel[1])):
                 if pos > travel:
@@ -409,17 +402,17 @@ class MacroAFMTwin(Twin):
         if kind == "fault":
             return self._fault(*payload)
         row, col, z, counts = payload
-        out = [Frame(0, "PX", payload)]
+        out = [self._frame(Pixel(*payload))]
         s.lines.setdefault(row, []).append((col, z, counts))
         for old in [r for r in s.lines if r < row - 1]:
             del s.lines[old]
         s.col += 1
         if s.col == p[Param.NX]:
-            out.append(Frame(0, "LN", (row, p[Param.NX])))
+            out.append(self._frame(LineEnd(row, p[Param.NX])))
             s.col = 0
             s.row += 1
             if s.row == p[Param.NY]:
-                out.append(Frame(0, "EV", (Event.DONE.value,)))
+                out.append(self._frame(EventMsg(Event.DONE)))
                 self.state = State.IDLE
                 return out
         self._next_pixel(s.due)
@@ -442,10 +435,10 @@ class MacroAFMTwin(Twin):
         out = []
         if not self._booted:
             self._booted = True
-            out.append(Frame(0, "EV", (Event.BOOT.value,)))
+            out.append(self._frame(EventMsg(Event.BOOT)))
         if self.state == State.HOMING and self._homing_done <= self.now:
             self._home_done()
-            out.append(Frame(0, "EV", (Event.HOMED.value,)))
+            out.append(self._frame(EventMsg(Event.HOMED)))
         if self._button is not None:
             out += self._button_scan()
         while self.state == State.SCANNING and self._scan.due <= self.now:
@@ -478,7 +471,7 @@ class MacroAFMTwin(Twin):
     def _fits(self) -> bool:
         """Whether the scan's grid lies within the x and y travel."""
         p = self.params
-        span = p[Param.PITCH] * 1e-6
+        span = TABLE[Param.PITCH].to_si(p[Param.PITCH])
         return ((p[Param.NX] - 1) * span <= self.travel[0]
                 and (p[Param.NY] - 1) * span <= self.travel[1])
 
@@ -518,6 +511,8 @@ class MacroAFMTwin(Twin):
         handler = getattr(self, "_cmd_" + command.name.lower())
         return handler(frame)
 
+    _frame = staticmethod(MacroAFMCodec.frame)
+
     def _param(self, frame, index=0):
         try:
             return Param(frame.args[index])
@@ -535,9 +530,8 @@ class MacroAFMTwin(Twin):
             return [self.error(frame, ErrorCode.BAD_ARGUMENT, "READONLY")]
         if self.state in (State.SCANNING, State.PAUSED, State.HOMING):
             return [self.error(frame, ErrorCode.BUSY)]
-        low, high = PARAM_LIMITS[param]
         value = frame.args[1]
-        if not low <= value <= high or (param == Param.PITCH and value % PITCH_MULTIPLE):
+        if not TABLE[param].valid(value):
             return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
         self.params[param] = frame.args[1]
         return [self.ok(frame, param.value, frame.args[1])]
@@ -575,7 +569,7 @@ class MacroAFMTwin(Twin):
             return [self.error(frame, ErrorCode.STATE)]
         self.state = State.PAUSED
         self._scan.remaining = max(0.0, self._scan.due - self.now)
-        return [self.ok(frame), Frame(0, "EV", (Event.PAUSED.value,))]
+        return [self.ok(frame), self._frame(EventMsg(Event.PAUSED))]
 
     def _cmd_resume(self, frame):
         if self.state != State.PAUSED:
@@ -588,7 +582,7 @@ class MacroAFMTwin(Twin):
         if self.state not in (State.SCANNING, State.PAUSED, State.HOMING):
             return [self.error(frame, ErrorCode.STATE)]
         self.state = State.IDLE
-        return [self.ok(frame), Frame(0, "EV", (Event.ABORTED.value,))]
+        return [self.ok(frame), self._frame(EventMsg(Event.ABORTED))]
 
     def _cmd_status(self, frame):
         flags = Flag(0)
@@ -613,5 +607,5 @@ class MacroAFMTwin(Twin):
         if row not in lines:
             return [self.error(frame, ErrorCode.BAD_ARGUMENT)]
         pixels = lines[row]
-        out = [Frame(0, "PX", (row, col, z, counts)) for col, z, counts in pixels]
+        out = [self._frame(Pixel(row, col, z, counts)) for col, z, counts in pixels]
         return out + [self.ok(frame, row, len(pixels))]
