@@ -84,12 +84,12 @@ if _CPU_REPORT:
 
 
 # -- the browser tests' shared pieces (tests/browser.py drives them) ----------------------------
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def chromium():
     """Debian's headless Chromium through Playwright, or a skip that says why it cannot run.
 
-    One per test process (per xdist worker), shared by every browser test: each test module opens
-    its own pages and servers."""
+    Module-scoped: Playwright's sync API allows one instance per thread at a time, and some
+    browser tests start their own (tests/test_plots_live_browser.py, the scenes' tests)."""
     from tests import browser as B
     reason = B.unavailable()
     if reason:

@@ -20,8 +20,8 @@ import pytest
 
 from tests import browser as B
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser,
-              pytest.mark.xdist_group("notebooks_browser")]  # its servers on one worker
+pytestmark = [pytest.mark.slow, pytest.mark.browser]  # not grouped: 08 alone takes minutes, so
+# each xdist worker may start its own server for the notebooks it runs
 
 SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person to see
 
