@@ -50,6 +50,7 @@ import numpy as np
 import scipy.constants
 
 from .cantilever import MAX_MODE, Cantilever, eigenvalue
+from .parameters import UNDERDAMPED_QUALITY_FACTOR as QUALITY_FACTOR
 from .parameters import Parameter, read_only
 from .validation import (check_array, check_instance, check_integer, check_positive,
                          check_range)
@@ -61,9 +62,9 @@ __all__ = ["QUALITY_FACTOR", "TEMPERATURE", "PARAMETERS", "BOLTZMANN", "mode_sha
 #: Boltzmann constant k_B in J/K (scipy's CODATA value).
 BOLTZMANN = scipy.constants.k
 
-#: The lever's quality factor (every mode) and its temperature.
-QUALITY_FACTOR = Parameter(name="quality_factor", unit="", default=150.0, low=0.5, high=1e5,
-                           log=True, label="quality factor Q")
+#: The lever's temperature (its quality factor is the vocabulary's underdamped one,
+#: :data:`afmsmiler.parameters.UNDERDAMPED_QUALITY_FACTOR`, imported here as QUALITY_FACTOR: the
+#: closed form of the thermal spectrum needs Q >= 1/2).
 TEMPERATURE = Parameter(name="temperature", unit="K", default=295.0, low=1.0, high=600.0,
                         label="temperature T")
 #: Name -> Parameter of the Brownian motion's own parameters.

@@ -38,7 +38,8 @@ import numpy as np
 
 from .validation import check_range
 
-__all__ = ["UNITS", "Parameter", "unit_scale", "read_only", "shown"]
+__all__ = ["UNITS", "Parameter", "unit_scale", "read_only", "shown", "PARAMETERS",
+           "SPRING_CONSTANT", "RESONANCE_FREQUENCY", "QUALITY_FACTOR", "UNDERDAMPED_QUALITY_FACTOR"]
 
 
 def read_only(mapping) -> MappingProxyType:
@@ -401,3 +402,31 @@ class Parameter:
             Field names and their new values.
         """
         return replace(self, **changes)
+
+
+# -- the quantities every lever shares ---------------------------------------------------------
+# One valid range each, whatever the mode: a lever valid in contact, tapping, FM, Q control or the
+# Brownian model is valid in all of them. A module changes only the default and the slider
+# (``SPRING_CONSTANT.with_(default=40.0, ...)``), never the valid range; a test walks the package
+# and holds every description of these names to these ranges.
+#: Lever spring constant k: from a soft contact lever's 1 uN/m to a qPlus sensor's kN/m and beyond.
+SPRING_CONSTANT = Parameter(name="spring_constant", unit="N/m", display_unit="N/m", default=0.1,
+                            low=1e-6, high=1e6, slider_low=0.005, slider_high=100.0, log=True,
+                            label="lever spring constant k")
+#: Free resonance frequency f0: from a lever felt by hand (~10 Hz, down to 0.1 Hz) to 1 GHz.
+RESONANCE_FREQUENCY = Parameter(name="resonance_frequency", unit="Hz", display_unit="kHz",
+                                default=300e3, low=0.1, high=1e9, slider_low=10e3,
+                                slider_high=2e6, log=True, label="resonance frequency f0")
+#: Quality factor Q, any damping up to a lever in vacuum (Q < 1/2 is overdamped: a Q-controlled
+#: lever rings down without oscillating); the slider starts at critical damping.
+QUALITY_FACTOR = Parameter(name="quality_factor", unit="", default=150.0, low=0.0, high=1e5,
+                           low_inclusive=False, slider_low=0.5, slider_high=1e5, log=True,
+                           label="quality factor Q")
+#: The same quantity for the models that hold only for an underdamped mode, Q >= 1/2 (the closed
+#: form of the thermal spectrum, b = sqrt(4 - 1/Q^2), the transducers built on it, and the
+#: contact loop's lever, whose damping m w / Q it bounds): the one named narrowing of
+#: :data:`QUALITY_FACTOR`, written here and nowhere else.
+UNDERDAMPED_QUALITY_FACTOR = QUALITY_FACTOR.with_(low=0.5, low_inclusive=True)
+#: The shared lever quantities by name (read-only).
+PARAMETERS = read_only({p.name: p for p in (SPRING_CONSTANT, RESONANCE_FREQUENCY,
+                                             QUALITY_FACTOR)})

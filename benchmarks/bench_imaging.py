@@ -27,7 +27,7 @@ from _timing import best_time, report  # noqa: E402
 from afmsmiler.contact import Parabolic  # noqa: E402
 from afmsmiler.controller import ContactLoop, scan_image  # noqa: E402
 from afmsmiler.imaging.dilation import dilate, tip_surface  # noqa: E402
-from afmsmiler.imaging.modes import ConstantForce  # noqa: E402
+from afmsmiler.imaging.scan_modes import ConstantForce  # noqa: E402
 from afmsmiler.imaging.scanner import Scan, ScanSettings  # noqa: E402
 from afmsmiler.samples import particles  # noqa: E402
 

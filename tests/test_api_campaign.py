@@ -70,15 +70,15 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers
            "afmsmiler.brownian", "afmsmiler.parameters", "afmsmiler.validation",
            # module (f): each public module of the imaging package (not the package, whose
            # re-exports would give the classes twice), and the PNG export
-           "afmsmiler.imaging.dilation", "afmsmiler.imaging.scanner", "afmsmiler.imaging.modes",
+           "afmsmiler.imaging.dilation", "afmsmiler.imaging.scanner", "afmsmiler.imaging.scan_modes",
            "afmsmiler.imaging.corrections", "afmsmiler.imaging.statistics",
-           "afmsmiler.plots.images",
+           "afmsmiler.plots.export",
            # module (e): the optical head's laser alignment
            "afmsmiler.instrument.optics", "afmsmiler.instrument.alignment",
            # module (g): the imaging modalities
            "afmsmiler.modes._forces", "afmsmiler.modes.tapping", "afmsmiler.modes.fm",
            "afmsmiler.modes.jumping", "afmsmiler.modes.force_volume", "afmsmiler.modes.bimodal",
-           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol",
+           "afmsmiler.modes.lateral", "afmsmiler.modes.qcontrol", "afmsmiler.modes.oscillator",
            # module (h): the educational AFM's signal chain and lock-in
            "afmsmiler.signals.lockin", "afmsmiler.signals.ad630", "afmsmiler.signals.chain",
            "afmsmiler.signals.demo",
@@ -103,10 +103,10 @@ NEW_NAMES = {"samples.Sample.with_heights:name", "hardware.printing.mesh_to_samp
 ACCEPTED = {
     "imaging.scanner.Scan:tip": (("None",), "None is the documented ideal, infinitely sharp tip"),
     "imaging.scanner.scan:tip": (("None",), "None is the documented ideal, infinitely sharp tip"),
-    "imaging.modes.ConstantHeight.line:state": (("bool",), "the documented state: whether the "
+    "imaging.scan_modes.ConstantHeight.line:state": (("bool",), "the documented state: whether the "
                                                 "tip was in contact at the end of the line"),
     # any text is a file name; "1e-6" would also write a PNG into the working directory
-    "plots.images.save_png:path": (("str",), "any text is a file name"),
+    "plots.export.save_png:path": (("str",), "any text is a file name"),
     "modes.lateral.LateralForceMode.line:state": (
         ("nan", "str", "bool", "complex", "object", "nan-array"),
         "unused and documented so: each line is a steady friction loop"),
@@ -131,7 +131,7 @@ SLOW_SMOKE = {
 RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
            "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
-           "Operation", "Bending", "FitResults",
+           "Operation", "Bending", "FitResults", "ApexPath",
            # module (f): the scanner's and the corrections' results, and what a mode returns
            # (the scanner checks a ModeLine's channels when it receives one)
            "ScanResult", "LineRecord", "ScanPlan", "ModeLine", "Crash", "Plane", "Histogram",
@@ -218,12 +218,12 @@ def _system():
 
 
 def _constant_force():
-    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scan_modes import ConstantForce
     return ConstantForce(_loop())
 
 
 def _constant_height():
-    from afmsmiler.imaging.modes import ConstantHeight
+    from afmsmiler.imaging.scan_modes import ConstantHeight
     return ConstantHeight(_system(), z_np=1e-9)
 
 
@@ -278,6 +278,7 @@ VALID = {
     "kind": float, "limit": 100, "ndim": 2, "span": 1.0, "steps": 10,
     "name": "q_x", "unit": "m", "si_value": 1e-4, "display_value": 100.0,
     "u": lambda: np.linspace(0.0, 1.0, 11), "resonance_frequency": 13e3, "section": 0.5,
+    "quality_factor": 150.0, "angular_frequency": 8e4,
     "modes": 3,
     # module (e): the optical head (afmsmiler.instrument)
     "focal_length": 0.02, "distance": 0.01, "centre": 0.0, "waist": 17e-6,
@@ -364,7 +365,7 @@ OVERRIDES = {
     # "mode" is a lever's mode number elsewhere
     "afmsmiler.imaging.scanner.Scan": {"mode": _constant_force},
     "afmsmiler.imaging.scanner.scan": {"mode": _constant_force},
-    "afmsmiler.plots.images.save_png": {
+    "afmsmiler.plots.export.save_png": {
         "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.png"},
     # module (g)
     "afmsmiler.modes.tapping.integrate": {"distance": 12e-9},
@@ -378,7 +379,12 @@ OVERRIDES = {
     "afmsmiler.modes.tapping.amplitude_feedback": {"heights": lambda: np.zeros(32),
                                                    "times": lambda: np.linspace(0, 1e-3, 32)},
     "afmsmiler.modes.jumping.JumpingMode": {"systems": _system},
+    "afmsmiler.modes.jumping.apex_path": {
+        "curve": lambda: __import__("afmsmiler.modes.jumping", fromlist=["jump_curve"])
+        .jump_curve(_system()), "surface": lambda: np.zeros(4)},
     "afmsmiler.modes.tapping.AmplitudeCurve.branch": {"name": "attractive"},
+    "afmsmiler.modes.tapping.AmplitudeCurve.on_branch": {
+        "name": "attractive", "values": Ctx(lambda curve: curve.dissipated_energy)},
     "afmsmiler.modes.force_volume.force_volume": {
         "materials": lambda: __import__("afmsmiler.modes", fromlist=["BLEND"]).BLEND,
         "labels": lambda: (np.arange(256).reshape(16, 16) % 2)},

@@ -271,3 +271,38 @@ def test_contact_surface_checks_tip_and_rho_out_of_contact_too():
         contact_surface("parabolic", off, [0.0, 1e-8])
     with pytest.raises(ValueError, match="^rho must be finite"):
         contact_surface(Parabolic(), off, [0.0, math.nan])
+
+
+def test_ramp_reaches_past_the_dmt_snap_off():
+    # DMT on a paraboloid: the contact stiffness falls to zero at zero indentation, so the tip
+    # leaves there, under the pull-off force 2 pi R w (Derjaguin, Muller and Toporov 1975): the
+    # lever is then bent by -2 pi R w / k and Z_np = -2 pi R w / k
+    from afmsmiler.contact import system as model
+    r, w = 20e-9, 0.02
+    for k, expected in ((0.01, 1.25 * -2 * math.pi * r * w / 0.01), (0.001, -2000e-9)):
+        s = ContactSystem(spring_constant=k, tip=Parabolic(radius=r), adhesion="dmt",
+                          work_of_adhesion=w)
+        assert s.snap_off_z_np == pytest.approx(-2 * math.pi * r * w / k, rel=1e-9)
+        low, high = s.ramp(-50e-9, 200e-9)
+        assert low == pytest.approx(expected, rel=1e-12)  # 1.25 x the snap-off, or the floor
+        assert high == 200e-9  # a paraboloid has no limit
+    plain = ContactSystem(spring_constant=0.01, tip=Parabolic(radius=r))
+    assert plain.ramp(-50e-9, 200e-9) == (-50e-9, 200e-9)
+    assert model.SNAP_OFF_MARGIN == 1.25 and model.RAMP_FLOOR == -2000e-9
+    with pytest.raises(ValueError, match="low must be below high"):
+        plain.ramp(1e-9, 1e-9)
+
+
+def test_ramp_stops_short_of_a_buried_sphere_and_drops_useless_adhesion():
+    from afmsmiler.contact import system as model
+    sphere = ContactSystem(spring_constant=1.0, tip=Spherical(radius=10e-9), youngs_modulus=1e9)
+    assert sphere.ramp(-50e-9, 1e-3)[1] == pytest.approx(0.9 * sphere.z_np_limit, rel=1e-15)
+    assert sphere.for_ramp() is sphere
+    # weak and strong adhesion on a soft lever: kept while the ramp has room, else dropped
+    kept = sphere.replace(adhesion="dmt", work_of_adhesion=1e-3)
+    assert model.RAMP_MARGIN * kept.z_np_limit >= model.RAMP_MIN_RANGE and kept.for_ramp() is kept
+    sticky = ContactSystem(spring_constant=1e-3, tip=Spherical(radius=10e-9),
+                           youngs_modulus=1e5, adhesion="jkr", work_of_adhesion=0.5)
+    assert sticky.z_np_limit < 0.0  # pulled in past its radius before any load
+    shown = sticky.for_ramp()
+    assert shown.adhesion is None and shown == sticky.replace(adhesion=None)

@@ -20,7 +20,7 @@ from afmsmiler.hardware.educational import (Command, EducationalAFM, Educational
                                             ErrorCode, Event, Param, live_view)
 from afmsmiler.hardware.educational import codec
 from afmsmiler.imaging import ScanSettings, scan
-from afmsmiler.imaging.modes import ConstantForce
+from afmsmiler.imaging.scan_modes import ConstantForce
 from afmsmiler.samples import particles
 from afmsmiler.scenes.imaging import ImagingScene
 from tests.recording import Recorder

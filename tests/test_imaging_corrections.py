@@ -253,7 +253,7 @@ def test_scar_settings_are_checked():
 def test_levelling_removes_the_tilt_the_scanner_adds_to_the_sample():
     """The issue's lesson end to end: a sample scanned tilted by (alpha_x, alpha_y) levels back
     to the untilted scan; the fitted slopes differ by tan(alpha) (the plane the scanner adds)."""
-    from afmsmiler.imaging.modes import Mode, ModeLine
+    from afmsmiler.imaging.scan_modes import Mode, ModeLine
     from afmsmiler.imaging.scanner import ScanSettings, scan
     from afmsmiler.samples import particles
 

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from afmsmiler.parameters import UNITS
-from afmsmiler.imaging.modes import Crash
+from afmsmiler.imaging.scan_modes import Crash
 from afmsmiler.plots.imaging import (ImagingFigure, crash_note, error_channel, length_unit,
                                      main_channel, scan_view, side_channel)
 from afmsmiler.plots.live import describe
@@ -166,7 +166,7 @@ def test_the_error_colour_scale_is_centred_on_zero():
 
 def test_a_scanners_result_is_shown_as_it_grows():
     from afmsmiler.controller import ContactLoop
-    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scan_modes import ConstantForce
     from afmsmiler.imaging.scanner import Scan, ScanSettings
     sample = Sample(np.random.default_rng(1).normal(size=(40, 40)) * 1e-9, 10e-9)
     scan = Scan(sample, None, ConstantForce(ContactLoop()), ScanSettings(300e-9, pixels=16))

@@ -12,7 +12,7 @@ import pytest
 
 from afmsmiler.contact import ContactSystem, Parabolic
 from afmsmiler.controller import ContactLoop, scan_image
-from afmsmiler.imaging.modes import (ConstantForce, ConstantHeight, Crash, Mode, ModeLine,
+from afmsmiler.imaging.scan_modes import (ConstantForce, ConstantHeight, Crash, Mode, ModeLine,
                                      PARAMETERS as MODE_PARAMETERS)
 from afmsmiler.imaging.scanner import PARAMETERS, Scan, ScanResult, ScanSettings, scan
 from afmsmiler.parameters import UNITS

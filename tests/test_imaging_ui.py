@@ -9,7 +9,7 @@ import pytest
 
 from afmsmiler.contact import ContactSystem, make_tip
 from afmsmiler.controller import PRESETS
-from afmsmiler.imaging import modes
+from afmsmiler.imaging import scan_modes as modes
 from afmsmiler.imaging.scanner import PARAMETERS as SCAN, Scan, ScanSettings
 from afmsmiler.parameters import UNITS
 from afmsmiler.ui import imaging as ui
@@ -156,7 +156,7 @@ def test_in_a_notebook_a_scan_paused_after_a_line_waits_and_resumes(monkeypatch)
         p.start()
         for _ in range(50):
             await asyncio.sleep(0)
-        paused = (p.paused, p.last.lines_done, p._task)
+        paused = (p.paused, p.last.lines_done, p.acquisition.state)
         p.set(scan_speed=1000.0)
         p.resume()
         for _ in range(100):
@@ -166,7 +166,7 @@ def test_in_a_notebook_a_scan_paused_after_a_line_waits_and_resumes(monkeypatch)
         return paused
 
     paused = asyncio.run(session())
-    assert paused == (True, 4, None)
+    assert paused == (True, 4, "paused")
     assert not p.running and p.last.lines_done == PIXELS and p.last.changes == (4,)
 
 
@@ -238,11 +238,11 @@ def test_a_crash_in_constant_height_stops_the_scan_and_keeps_the_lines(runs):
     p.set(damage_force=0.5 * (force[0] + force.max()) * NM)
     p.start()
     r = p.last
-    assert r.crashed is not None and not p.running
-    assert r.lines_done == r.crashed.row and 0 < r.lines_done < PIXELS
+    assert r.fault is not None and not p.running
+    assert r.lines_done == r.fault.row and 0 < r.lines_done < PIXELS
     ref = _direct(p)
-    assert (ref.crashed.row, ref.crashed.column) == (r.crashed.row, r.crashed.column)
-    assert ref.crashed.force == pytest.approx(r.crashed.force, rel=1e-12)
+    assert (ref.crashed.row, ref.crashed.column) == (r.fault.row, r.fault.column)
+    assert ref.crashed.force == pytest.approx(r.fault.force, rel=1e-12)
     np.testing.assert_allclose(r.channels["deflection trace"].heights[:r.lines_done],
                                ref.images["deflection trace"][:r.lines_done], rtol=1e-12)
     assert "crashed" in p.figure.axes["image"].get_title()
@@ -427,12 +427,12 @@ def test_notebook_a_lower_damage_force_mid_scan_crashes_a_later_line():
     p.set(mode="constant height")
     p.pause_at.value = 20
     p.start()
-    assert p.paused and p.last.lines_done == 20 and p.last.crashed is None
+    assert p.paused and p.last.lines_done == 20 and p.last.fault is None
     before = p.last.channels["deflection trace"].heights[:20].copy()
     p.set(damage_force=2.0)
     p.resume()
     r = p.last
-    assert r.crashed is not None and 20 <= r.crashed.row == r.lines_done < r.lines
+    assert r.fault is not None and 20 <= r.fault.row == r.lines_done < r.lines
     np.testing.assert_array_equal(r.channels["deflection trace"].heights[:20], before)
     assert "crashed" in p.status.value
 
@@ -544,7 +544,7 @@ def test_the_3d_view_shows_the_finished_lines_and_the_tip_where_the_last_line_en
     for _ in range(5):
         p.step()
     assert scene.image_lines == 5  # the rows drawn: the lines finished
-    job = p._job.scan
+    job = p.acquisition.scan
     x, y = job.position(4, 0, "retrace")
     assert scene.tip_position == pytest.approx((x, y, job.plan.retrace[4, 0]), rel=1e-12)
     meshes = rec.log[scene.vis["image"].key]["n_objects"]
@@ -605,3 +605,33 @@ def test_a_line_not_shown_appears_in_the_next_picture(panel, runs):
     image = np.ma.getmaskarray(panel.figure.images["image"].get_array())
     assert not image[:4].any() and image[4:].all()  # the four lines, and only those
 
+
+
+def test_start_configures_only_what_changed_since_the_last_update(monkeypatch):
+    """Start ran the configuration a second time after update had run it: now once."""
+    calls = {"n": 0}
+    original = ImagingPanel._configure
+
+    def counting(self, values):
+        calls["n"] += 1
+        return original(self, values)
+
+    monkeypatch.setattr(ImagingPanel, "_configure", counting)
+    p = ImagingPanel(pixels=PIXELS)
+    p.set(kp=1.0)
+    before = calls["n"]
+    p.start(run=False)
+    assert calls["n"] == before  # the values update configured are the scan's
+    p.set(mode="constant height")
+    p.start(run=False)
+    assert calls["n"] == before + 1
+
+
+def test_the_image_is_the_modes_main_channel():
+    """The panel named its channel by isinstance; the mode says which channel is its image."""
+    p = ImagingPanel(pixels=PIXELS, mode="constant height")
+    assert p.last.main == modes.ConstantHeight.main_channel == "deflection trace"
+    p.start(run=False)
+    p.step()
+    assert p.last.main == "deflection trace" and "deflection trace" in \
+        p.figure.axes["image"].get_title()

@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from afmsmiler.exercises import modalities as ex
+from afmsmiler.exercises import modes as ex
 from afmsmiler.modes import setpoint_state
 
 
@@ -24,7 +24,7 @@ def test_exercise_1_solved_on_the_tapping_panel_as_the_notebook_teaches():
     # notebook 07: the first guess 0.8 fails (repulsive); then, on the tapping panel at its
     # defaults (A0 = 12 nm), raise the setpoint in steps of 0.01 and read the branch in the
     # readout: the first attractive one is the answer within 0.05
-    from afmsmiler.ui.modalities import TappingPanel
+    from afmsmiler.ui.modes import TappingPanel
     first = ex.check_attractive_setpoint(0.8)
     assert not first and "repulsive" in str(first)
     panel = TappingPanel()

@@ -15,10 +15,10 @@ import pytest
 from afmsmiler.contact import ContactSystem, Parabolic, Spherical
 from afmsmiler.controller import ContactLoop
 from afmsmiler.imaging.dilation import dilate
-from afmsmiler.imaging.modes import ConstantForce
+from afmsmiler.imaging.scan_modes import ConstantForce
 from afmsmiler.imaging.scanner import Scan, ScanSettings, scan
 from afmsmiler.modes import jumping
-from afmsmiler.modes.jumping import JumpingMode, jump_curve, trigger_z_np
+from afmsmiler.modes.jumping import JumpingMode, apex_path, jump_curve, trigger_z_np
 from afmsmiler.modes.lateral import friction_loop
 from afmsmiler.samples import Sample, grating
 
@@ -255,3 +255,31 @@ def test_line_refuses_a_state_that_is_not_a_height():
     plan = Scan(SAMPLE, None, mode, SETTINGS).plan
     with pytest.raises(ValueError, match="state"):
         mode.line(plan, 0, float("nan"))
+
+
+def test_apex_path_touches_where_the_curve_has_a_contact_force():
+    # independent of the path's Z_np thresholds: in module (d)'s DMT law the free tip feels no
+    # force and the touching tip the elastic force less the adhesion 2 pi R w (never zero)
+    system = ContactSystem(spring_constant=1.0, tip=Parabolic(radius=10e-9),
+                           youngs_modulus=1e9, adhesion="dmt", work_of_adhesion=20e-3)
+    curve = jump_curve(system)
+    n = curve.approach_z_np.size
+    surface = np.array([0.0, 5e-9, -3e-9])
+    path = apex_path(curve, surface, 20e-9, frames=n)
+    assert path.height.shape == path.x.shape == path.touching.shape == (3 * 2 * n,)
+    force = np.concatenate((curve.approach_force, curve.retract_force))
+    z = np.concatenate((curve.approach_z_np, curve.retract_z_np))
+    for j, s in enumerate(surface):
+        cycle = slice(2 * n * j, 2 * n * (j + 1))
+        assert np.array_equal(path.touching[cycle], force != 0.0)
+        assert np.all(path.x[cycle] == 20e-9 * j)
+        h = path.height[cycle]
+        touch = path.touching[cycle]
+        assert np.all(h[touch] == s)  # on the surface while touching
+        assert h[~touch] == pytest.approx(s + np.abs(z[~touch]), abs=1e-18)  # |Z_np| above it
+    # the snap-off lies below Z_np = 0: the retract holds on past where the approach touched
+    assert curve.snap_off_z_np < 0.0
+    with pytest.raises(ValueError, match="frames"):
+        apex_path(curve, surface, 20e-9, frames=1)
+    with pytest.raises(ValueError, match="pixel_size"):
+        apex_path(curve, surface, 0.0)

@@ -15,7 +15,7 @@ MARKDOWN = ["".join(c["source"]) for c in CELLS if c["cell_type"] == "markdown"]
 def _run(*sources):
     """Run cells of the notebook in one namespace; return the last expression's value."""
     namespace = {}
-    exec("from afmsmiler.exercises import modalities as ex", namespace)
+    exec("from afmsmiler.exercises import modes as ex", namespace)
     *body, last = "\n".join(sources).rstrip().splitlines()
     exec("\n".join(body), namespace)
     return eval(last.split("#")[0], namespace)

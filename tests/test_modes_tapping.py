@@ -344,7 +344,7 @@ def test_parameter_tables_are_parameters_with_their_defaults_in_range():
 def no_integration(monkeypatch):
     def boom(*args, **kwargs):
         raise AssertionError("integration started before the input was checked")
-    monkeypatch.setattr(tapping, "solve_ivp", boom)
+    monkeypatch.setattr(tapping.integration, "solve_ivp", boom)
 
 
 @pytest.mark.parametrize("call, name", [
@@ -561,3 +561,46 @@ def test_feedback_bad_input():
         tapping.amplitude_feedback([0.0], [0.0], setpoint_ratio=1.0)
     with pytest.raises(TypeError, match="state"):
         tapping.amplitude_feedback([0.0], [0.0], state=[1, 2])
+
+
+def test_a_curve_carries_its_jumps_from_one_run_per_direction(monkeypatch):
+    lever = TappingLever(free_amplitude=15e-9)
+    z = np.linspace(0.2, 1.5, 400) * 15e-9
+    curve = amplitude_curve(z, lever)
+    runs = []
+    original = tapping.AmplitudeCurve._sweep
+    monkeypatch.setattr(tapping.AmplitudeCurve, "_sweep",
+                        lambda self, way: runs.append(way) or original(self, way))
+    zc = tapping.operating_point(curve, 0.8)[0]  # follows the approach
+    jumps = curve.jumps
+    assert sorted(runs) == ["approach", "retract"]  # each direction once, not the approach twice
+    assert tapping.operating_point(curve, 0.8)[0] == zc and len(runs) == 2
+    # the marks are where the branches end (the definition, as the jump test above reads it
+    # off the coexistence region)
+    both = z[curve.coexist]
+    assert jumps["approach"] == [pytest.approx(z[z < both.min()].max())]
+    assert jumps["retract"] == [pytest.approx(z[z > both.max()].min())]
+    amp = curve.sweep("approach")[0]
+    with pytest.raises(ValueError):  # the memo is the curve's: nobody writes into it
+        amp[0] = 0.0
+
+
+def test_on_branch_lines_each_roots_quantity_up_with_the_branch():
+    lever = TappingLever(sample_viscosity=20.0)
+    z = np.linspace(0.3, 1.5, 200) * lever.free_amplitude
+    curve = amplitude_curve(z, lever)
+    for name in tapping.BRANCHES:
+        a, phi = curve.branch(name)
+        ok = np.isfinite(a)
+        assert ok.sum() > 10
+        assert np.array_equal(curve.on_branch(curve.amplitude, name)[ok], a[ok])
+        # independent of which column was picked: the lever's own formulas at (z_c, A, phi)
+        depth = curve.on_branch(curve.indentation, name)
+        assert depth[ok] == pytest.approx(lever.indentation(z[ok], a[ok]), rel=1e-12, abs=1e-21)
+        e = curve.on_branch(curve.dissipated_energy, name)
+        bound = curve.on_branch(curve.dissipated_energy_error, name)
+        assert np.all(np.abs(e[ok] - lever.dissipated_energy(a[ok], phi[ok])) <= bound[ok])
+    with pytest.raises(ValueError, match="values"):
+        curve.on_branch(np.zeros(3), "attractive")
+    with pytest.raises(ValueError, match="name"):
+        curve.on_branch(curve.amplitude, "high")

@@ -16,7 +16,7 @@ from afmsmiler.modes import fm, force_volume, jumping, lateral, tapping
 from afmsmiler.modes import (TappingLever, friction_loop, friction_sample, setpoint_state,
                              tip_sample_force)
 from afmsmiler.parameters import UNITS
-from afmsmiler.ui.modalities import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
+from afmsmiler.ui.modes import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
                                      FORCE_VOLUME_MAP, JUMPING_DEFAULTS, JUMPING_SCAN,
                                      LATERAL_DEFAULTS, LATERAL_SAMPLE, TAPPING_DEFAULTS,
                                      ForceVolumePanel, FrequencyShiftPanel, JumpingPanel,
@@ -452,3 +452,16 @@ def test_notebook_viscosity_dissipates_only_while_the_tip_touches():
     tap.set(setpoint_ratio=0.99)
     s = tap.last
     assert not s.touches and abs(s.dissipated_energy) < 1e-9 * scale
+
+
+def test_tapping_panel_follows_each_sweep_once_per_move(monkeypatch):
+    runs = []
+    original = tapping.AmplitudeCurve._sweep
+    monkeypatch.setattr(tapping.AmplitudeCurve, "_sweep",
+                        lambda self, way: runs.append(way) or original(self, way))
+    panel = TappingPanel()
+    assert sorted(runs) == ["approach", "retract"]  # the state and both jump marks
+    panel.set(setpoint_ratio=0.7)  # the same curve: nothing followed again
+    assert sorted(runs) == ["approach", "retract"]
+    panel.set(free_amplitude=15.0)  # a new curve: each direction once more
+    assert sorted(runs) == ["approach", "approach", "retract", "retract"]

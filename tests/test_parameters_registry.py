@@ -111,3 +111,31 @@ def test_the_walk_reaches_mappings_tuples_and_classes():
     _walk(vars(Lever)["PARAMETERS"], "fake.Lever.PARAMETERS", found)
     assert [w for _, w in found] == ["fake.TABLE[0]", "fake.Lever.PARAMETERS['width']",
                                      "fake.Lever.PARAMETERS['more'][0]"]
+
+
+def _range(p):
+    return (p.low, p.high, p.low_inclusive, p.high_inclusive)
+
+
+@pytest.mark.slow  # imports the whole package in a new interpreter (seconds)
+def test_a_lever_quantity_has_one_valid_range_everywhere():
+    # k, f0 and Q (and mode 2's Q_2) are described once in afmsmiler.parameters; a module may
+    # change the default and the slider, never the valid range: a lever valid in one mode is
+    # valid in the next (the one exception, named there: Q >= 1/2 for the models of an
+    # underdamped mode: the Brownian closed form, the transducers and the contact loop)
+    from afmsmiler.parameters import PARAMETERS as SHARED
+    from afmsmiler.parameters import UNDERDAMPED_QUALITY_FACTOR
+    code = ("import json, sys; sys.path.insert(0, sys.argv[1]); "
+            "from test_parameters_registry import collect; "
+            "print(json.dumps([(p.name, p.low, p.high, p.low_inclusive, p.high_inclusive, where) "
+            "for p, where in collect()]))")
+    out = subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent)],
+                         capture_output=True, text=True, timeout=300, check=True)
+    found = json.loads(out.stdout.strip().splitlines()[-1])
+    shared = {name: _range(p) for name, p in SHARED.items()}
+    shared["quality_factor_2"] = shared["quality_factor"]
+    narrowed = {("quality_factor", _range(UNDERDAMPED_QUALITY_FACTOR))}
+    bad = [(name, (low, high, li, hi), where) for name, low, high, li, hi, where in found
+           if name in shared and (low, high, li, hi) != shared[name]
+           and (name, (low, high, li, hi)) not in narrowed]
+    assert not bad, f"lever quantities with another valid range than afmsmiler.parameters: {bad}"

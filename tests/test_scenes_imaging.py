@@ -199,7 +199,7 @@ def test_a_real_scan_is_drawn_line_by_line_with_the_tip_where_the_scanner_says()
     """With module (f)'s scanner (constant force through module (c)'s loop): one image mesh per
     finished line, the tip moved by transforms to Scan.position, the last mesh the result."""
     from afmsmiler.controller import ContactLoop
-    from afmsmiler.imaging.modes import ConstantForce
+    from afmsmiler.imaging.scan_modes import ConstantForce
     from afmsmiler.imaging.scanner import Scan, ScanSettings
     from afmsmiler.samples import particles
 

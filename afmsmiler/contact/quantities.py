@@ -12,15 +12,13 @@ ranges over what E and nu give (:data:`afmsmiler.contact.indent.E_STAR_RANGE`).
 """
 from __future__ import annotations
 
-from ..parameters import Parameter, read_only
+from ..parameters import SPRING_CONSTANT, Parameter, read_only
 
 __all__ = ["PARAMETERS"]
 
 #: The quantities of a contact system: name -> Parameter (what the panel's sliders show).
 PARAMETERS = read_only({p.name: p for p in (
-    Parameter(name="spring_constant", unit="N/m", display_unit="N/m", default=0.1, low=1e-6,
-              high=1e6, slider_low=0.005, slider_high=100.0, log=True,
-              label="lever spring constant k"),
+    SPRING_CONSTANT,
     Parameter(name="youngs_modulus", unit="Pa", display_unit="MPa", default=1e6, low=1.0,
               high=1e13, slider_low=1e3, slider_high=1e11, log=True,
               label="Young's modulus E"),

@@ -39,10 +39,20 @@ from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesio
 from .quantities import PARAMETERS
 from .tips import Parabolic, Tip, reduced_modulus
 
-__all__ = ["PARAMETERS", "ContactSystem", "BRANCHES"]
+__all__ = ["PARAMETERS", "ContactSystem", "BRANCHES", "RAMP_MARGIN", "RAMP_MIN_RANGE",
+           "SNAP_OFF_MARGIN", "RAMP_FLOOR"]
 
 #: The branches of a cycle on which :meth:`ContactSystem.at` gives the state.
 BRANCHES = ("approach", "retract")
+#: A ramp stops at this fraction of :attr:`ContactSystem.z_np_limit` (a sphere buried at 1).
+RAMP_MARGIN = 0.9
+#: Room in m below which a sphere's ramp has no use for adhesion: adhesion would pull it in past
+#: its radius before Z_np = RAMP_MIN_RANGE / RAMP_MARGIN (:meth:`ContactSystem.for_ramp`).
+RAMP_MIN_RANGE = 1e-9
+#: A ramp with adhesion reaches this multiple of the snap-off Z_np, so the retract is complete.
+SNAP_OFF_MARGIN = 1.25
+#: The lowest Z_np in m a ramp reaches (a very soft lever's snap-off lies lower).
+RAMP_FLOOR = -2000e-9
 
 
 def _point(curve: IndentationCurve, i: int) -> IndentationCurve:
@@ -212,6 +222,54 @@ class ContactSystem:
         """
         return approach_retract(z_np, self.spring_constant, self.tip, self.youngs_modulus,
                                 self.poisson_ratio, **self._adhesion_kwargs)
+
+    # -- the ramp that shows a whole cycle ---------------------------------------------------
+    def for_ramp(self) -> "ContactSystem":
+        """This system, or the same without adhesion where adhesion leaves a ramp no room.
+
+        Adhesion can pull a sphere in past its radius before any load: its limit Z_np (times
+        :data:`RAMP_MARGIN`) then lies below :data:`RAMP_MIN_RANGE`, and no approach-retract
+        cycle can be shown. Such a system is shown without adhesion (compare ``adhesion``).
+
+        Returns
+        -------
+        ContactSystem
+        """
+        if self.adhesion and RAMP_MARGIN * self.z_np_limit < RAMP_MIN_RANGE:
+            return self.replace(adhesion=None)
+        return self
+
+    def ramp(self, low: float, high: float) -> tuple[float, float]:
+        """The Z_np range in m of a whole approach-retract cycle, from a wished [low, high].
+
+        With adhesion the range reaches down to :data:`SNAP_OFF_MARGIN` times the snap-off
+        Z_np, so that the retract ends off the surface; never below :data:`RAMP_FLOOR`; and up
+        to at most :data:`RAMP_MARGIN` of the tip's :attr:`z_np_limit` (a sphere's).
+
+        Parameters
+        ----------
+        low, high : float
+            The wished ends in m (a slider's), ``low < high``.
+
+        Returns
+        -------
+        (float, float)
+            The ends in m.
+
+        Raises
+        ------
+        ValueError
+            If an end is not a finite number or ``low >= high``.
+        """
+        low = float(check_array("low", low, "m", ndim=0))
+        high = float(check_array("high", high, "m", ndim=0))
+        if not low < high:
+            raise ValueError(f"low must be below high, got low={low:g} m, high={high:g} m")
+        if self.adhesion:  # extend the ramp below the snap-off so that the retract is complete
+            low = min(low, SNAP_OFF_MARGIN * self.snap_off_z_np)
+        low = max(low, RAMP_FLOOR)
+        high = min(high, RAMP_MARGIN * self.z_np_limit)
+        return low, high
 
     def at(self, z_np, branch: str = "approach") -> IndentationCurve:
         """The state at one Z_np on the approach or the retract branch (one model run).

@@ -29,7 +29,7 @@ from typing import NamedTuple
 import numpy as np
 
 from ..cantilever import Cantilever
-from ..parameters import Parameter, read_only
+from ..parameters import UNDERDAMPED_QUALITY_FACTOR, Parameter, read_only
 from ..validation import check_array, check_choice, check_finite, check_instance
 from .closed_forms import ClosedForm, classify_roots, closed_form, normalise
 from .polygon import polygon_response
@@ -81,8 +81,7 @@ PARAMETERS = read_only({p.name: p for p in (
               high=1e-6, slider_low=0.0, slider_high=100e-9, label="setpoint R"),
     Parameter(name="height", unit="m", display_unit="nm", default=50e-9, low=0.0, high=1e-5,
               low_inclusive=False, slider_low=1e-9, slider_high=500e-9, label="feature h"),
-    Parameter(name="quality_factor", unit="", default=150.0, low=0.5, high=1e5,
-              slider_low=0.5, slider_high=1e5, log=True, label="quality factor Q"),
+    UNDERDAMPED_QUALITY_FACTOR,  # Q >= 1/2: the lever's damping m w / Q stays bounded
 )})
 
 #: Most pixels of a scanned line (a 2**18-pixel line, trace and retrace, takes about 1.5 s).

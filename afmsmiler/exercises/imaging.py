@@ -26,7 +26,7 @@ from ..contact import Parabolic
 from ..controller import PRESETS
 from ..imaging.corrections import fit_plane
 from ..imaging.dilation import dilate, sphere_apparent_width
-from ..imaging.modes import ConstantForce
+from ..imaging.scan_modes import ConstantForce
 from ..imaging.scanner import PARAMETERS as SCAN, ScanSettings, scan
 from ..parameters import read_only
 from ..samples import Sample

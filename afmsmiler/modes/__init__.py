@@ -1,5 +1,7 @@
 """Module (g): imaging modalities computed, not animated.
 
+- :mod:`afmsmiler.modes.oscillator`: the point-mass oscillator (k, f0, Q) every lever below
+  describes itself by (:class:`Oscillator`);
 - :mod:`afmsmiler.modes.tapping`: amplitude-modulation (tapping) AFM, a driven lever with van der
   Waals and DMT forces (:mod:`afmsmiler.modes._forces`), its time integration and the fast
   first-harmonic steady states with both branches; :class:`TappingMode` images through module
@@ -18,6 +20,7 @@
   feedback that sets the lever's effective Q and resonance.
 """
 from ._forces import FORCE_PARAMETERS, tip_sample_force, work_of_adhesion
+from .oscillator import Oscillator
 from .fm import PARAMETERS as FM_PARAMETERS
 from .fm import (FrequencyShiftCurve, force_gradient_shift, frequency_shift,
                  frequency_shift_curve, sader_jarvis)
@@ -43,7 +46,8 @@ from .bimodal import PARAMETERS as BIMODAL_PARAMETERS
 from .bimodal import (FLEXURAL_RATIO, BimodalLever, BimodalState, averaged_gradient,
                       bimodal_response, modal_stiffness)
 
-__all__ = ["FORCE_PARAMETERS", "tip_sample_force", "work_of_adhesion", "TAPPING_PARAMETERS",
+__all__ = ["FORCE_PARAMETERS", "tip_sample_force", "work_of_adhesion", "Oscillator",
+           "TAPPING_PARAMETERS",
            "AmplitudeCurve", "SteadyState", "TappingLever", "amplitude_curve", "free_response",
            "integrate", "setpoint_state", "operating_point", "TappingMode", "FM_PARAMETERS",
            "frequency_shift",

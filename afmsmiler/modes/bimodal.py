@@ -50,11 +50,12 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..cantilever import Cantilever, eigenvalue
-from ..parameters import Parameter, read_only
+from ..parameters import QUALITY_FACTOR, Parameter, read_only
 from ..validation import check_instance, check_integer, check_range
 from ._forces import _force
 from .tapping import PARAMETERS as TAPPING_PARAMETERS
 from .tapping import TappingLever
+from .oscillator import Oscillator
 
 __all__ = ["PARAMETERS", "FLEXURAL_RATIO", "BimodalLever", "BimodalState", "modal_stiffness",
            "bimodal_response", "averaged_gradient", "BLOCK_PERIODS", "MAX_PERIODS",
@@ -77,9 +78,8 @@ _AMPLITUDE_TOL, _PHASE_TOL = 1e-4, 1e-2
 #: The default first mode has Q_1 = 100 (:data:`DEFAULT_QUALITY_FACTOR`): its transient
 #: settles in some 300 periods, a few seconds of integration.
 PARAMETERS = read_only({p.name: p for p in (
-    Parameter(name="quality_factor_2", unit="", default=300.0, low=0.0, high=1e5,
-              low_inclusive=False, slider_low=1.0, slider_high=5000.0, log=True,
-              label="quality factor Q_2 (mode 2)"),
+    QUALITY_FACTOR.with_(name="quality_factor_2", default=300.0, slider_low=1.0,
+                         slider_high=5000.0, label="quality factor Q_2 (mode 2)"),
     Parameter(name="free_amplitude_2", unit="m", display_unit="nm", default=1e-9, low=0.0,
               high=1e-6, low_inclusive=False, slider_low=0.05e-9, slider_high=5e-9,
               label="free amplitude A_02 (mode 2)"),
@@ -213,6 +213,23 @@ class BimodalLever:
         """(w_d1, w_d2) = (W w_1, w_2) in rad/s."""
         w1, w2 = self.angular_frequencies
         return self.lever.frequency_ratio * w1, w2
+
+    @property
+    def oscillators(self) -> tuple[Oscillator, Oscillator]:
+        """The two modes as point-mass oscillators (k_n, f_n, Q_n)
+        (:class:`~afmsmiler.modes.oscillator.Oscillator`): mode 1 is the tapping lever's own.
+
+        Raises
+        ------
+        ValueError
+            If mode 2's k_2 = k_1 (k_2 / k_1) or f_2 = f_1 (f_2 / f_1) leaves the shared range
+            of :data:`afmsmiler.parameters.PARAMETERS` (a ratio at its extreme on a lever at
+            its extreme).
+        """
+        k2 = self.stiffnesses[1]
+        return (self.lever.oscillator,
+                Oscillator(k2, self.lever.resonance_frequency * self.mode_frequency_ratio,
+                           self.quality_factor_2))
 
     @property
     def quality_factors(self) -> tuple[float, float]:

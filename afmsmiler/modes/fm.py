@@ -53,6 +53,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .. import parameters
 from ..parameters import Parameter, read_only
 from ..validation import check_array, check_integer
 
@@ -64,13 +65,10 @@ __all__ = ["frequency_shift", "sader_jarvis", "force_gradient_shift", "frequency
 # Defaults: a silicon non-contact lever (k = 40 N/m, f0 = 300 kHz, e.g. NanoWorld/Nanosensors
 # NCH) at A = 5 nm; a qPlus sensor (k = 1800 N/m, f0 = 32.768 kHz, A of 50 pm) lies in range.
 #: Lever spring constant k.
-SPRING_CONSTANT = Parameter(name="spring_constant", unit="N/m", default=40.0, low=1e-3,
-                            high=1e5, slider_low=0.1, slider_high=5000.0, log=True,
-                            label="spring constant k")
+SPRING_CONSTANT = parameters.SPRING_CONSTANT.with_(default=40.0, slider_low=0.1,
+                                                   slider_high=5000.0, label="spring constant k")
 #: Free resonance frequency f0 of the lever (the FM loop keeps it oscillating there).
-RESONANCE_FREQUENCY = Parameter(name="resonance_frequency", unit="Hz", display_unit="kHz",
-                                default=300e3, low=1.0, high=1e9, slider_low=10e3,
-                                slider_high=2e6, log=True, label="resonance frequency f0")
+RESONANCE_FREQUENCY = parameters.RESONANCE_FREQUENCY
 #: Oscillation amplitude A (half the peak-to-peak motion), kept constant by the FM loop.
 AMPLITUDE = Parameter(name="amplitude", unit="m", display_unit="nm", default=5e-9, low=1e-13,
                       high=1e-6, slider_low=10e-12, slider_high=100e-9, log=True,

@@ -53,7 +53,7 @@ import numpy as np
 from ..contact import ContactSystem, StandardLinearSolid, Tip, viscoelastic_approach_retract
 from ..contact.fit import fit_curves
 from ..contact.quantities import PARAMETERS as CONTACT
-from ..imaging.modes import Mode, ModeLine, ScanPlan
+from ..imaging.scan_modes import Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
 from ..samples import Sample
 from ..samples.sample import check_shape
@@ -548,7 +548,7 @@ class ForceVolumeMode(Mode):
 
         Parameters
         ----------
-        plan : afmsmiler.imaging.modes.ScanPlan
+        plan : afmsmiler.imaging.scan_modes.ScanPlan
             The scan.
         row : int
             Line index.
@@ -558,7 +558,7 @@ class ForceVolumeMode(Mode):
 
         Returns
         -------
-        afmsmiler.imaging.modes.ModeLine
+        afmsmiler.imaging.scan_modes.ModeLine
 
         Raises
         ------

@@ -17,7 +17,7 @@ pull-off force (DMT: 2 pi R w; JKR: (3/2) pi R w; module (d)'s exact values). Th
 reach beyond the jump-off, Z_t - L < Z_snap-off (:attr:`ContactSystem.snap_off_z_np`), or the
 tip is still stuck when the move starts (a ValueError says how much lift is needed).
 
-**The image** (:class:`JumpingMode`, a :class:`~afmsmiler.imaging.modes.Mode` of module (f)'s
+**The image** (:class:`JumpingMode`, a :class:`~afmsmiler.imaging.scan_modes.Mode` of module (f)'s
 scanner). The scanner hands the apex surface r (the sample dilated by the tip, module (f)); the
 tip touches at the positioner height H = r (the undeflected apex at the surface), and the trigger
 comes at H_t = r - Z_t(material). The height channel is H_t + Z_t(first material): the apex
@@ -25,7 +25,7 @@ surface itself where the sample is the first material (the true topography up to
 dilation), lower where a softer material lets the tip sink further before the trigger. The
 tip is lifted to H_t + L and moved to the next pixel (pass order: trace forwards, retrace
 backwards, then the next line); where the apex surface there rises above the lifted tip, the
-tip runs into the feature's side while moving: a :class:`~afmsmiler.imaging.modes.Crash`
+tip runs into the feature's side while moving: a :class:`~afmsmiler.imaging.scan_modes.Crash`
 (force inf: a rigid wall), and the lift must be raised above the tallest step between pixels.
 The lateral force channel is the largest lateral force felt while moving: 0.
 
@@ -35,25 +35,26 @@ one is longer by the height difference; along a pass these differences add up to
 difference between its first and last pixel, at most the height range per pass, so
 :meth:`JumpingMode.acquisition_time` is exact on a flat sample and within 2 x range / v_z per
 pass otherwise). Contact mode's scan takes lines x (2 pixels - 1) dx / v
-(:attr:`~afmsmiler.imaging.scanner.ScanSettings.scan_time`).
+(:attr:`~afmsmiler.imaging.settings.ScanSettings.scan_time`).
 """
 from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
 from types import MappingProxyType
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import brentq
 
 from ..contact import ContactSystem
-from ..imaging.modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
+from ..imaging.scan_modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
 from ..parameters import Parameter, read_only
-from ..validation import check_instance, check_integer
+from ..validation import check_array, check_instance, check_integer, check_range
 
 __all__ = ["PARAMETERS", "TRIGGER_FORCE", "LIFT_HEIGHT", "Z_SPEED", "JumpCurve", "JumpingMode",
-           "ModeComparison", "jump_curve", "trigger_z_np", "compare_with_contact",
-           "MAX_CURVE_POINTS", "MAX_MATERIALS"]
+           "ModeComparison", "ApexPath", "apex_path", "jump_curve", "trigger_z_np",
+           "compare_with_contact", "MAX_CURVE_POINTS", "MAX_MATERIALS"]
 
 #: Most points of one branch of :func:`jump_curve`.
 MAX_CURVE_POINTS = 100_000
@@ -207,6 +208,71 @@ class JumpCurve:
         return 2.0 * self.lift_height / self.z_speed
 
 
+class ApexPath(NamedTuple):
+    """Where the apex is along jumping cycles over a run of pixels (:func:`apex_path`), SI.
+
+    Parameters
+    ----------
+    height : numpy.ndarray
+        Apex height in m at each frame (the surface while touching, |Z_np| above it while free).
+    x : numpy.ndarray
+        Position in m along the line (the pixel's).
+    touching : numpy.ndarray of bool
+        Whether the tip touches the surface.
+    """
+
+    height: np.ndarray
+    x: np.ndarray
+    touching: np.ndarray
+
+
+def apex_path(curve: JumpCurve, surface, pixel_size: float, *, frames: int = 12) -> ApexPath:
+    """The apex's path through one jumping cycle per pixel, pixel after pixel.
+
+    Each pixel: the curve's approach (touching from Z_np = 0 on), then its retract (touching
+    until the snap-off Z_np, or Z_np = 0 without adhesion), ``frames`` points of each, evenly
+    spread over the curve's points; the apex sits on the surface while touching and |Z_np| above
+    it while free; then the lateral move to the next pixel, the tip lifted.
+
+    Parameters
+    ----------
+    curve : JumpCurve
+        One pixel's curve (:func:`jump_curve`).
+    surface : array_like
+        Surface height in m under each pixel (1-D, finite, at least one pixel).
+    pixel_size : float
+        Pixel pitch in m, > 0.
+    frames : int
+        Points of the approach and of the retract per pixel, 2 to the curve's points.
+
+    Returns
+    -------
+    ApexPath
+        2 ``frames`` points per pixel.
+
+    Raises
+    ------
+    TypeError
+        If ``curve`` is not a JumpCurve.
+    ValueError
+        On a surface that is not 1-D and finite, a pixel size <= 0 or ``frames`` out of range.
+    """
+    check_instance("curve", curve, JumpCurve)
+    surface = check_array("surface", surface, "m", ndim=1, min_size=1)
+    pitch = check_range("pixel_size", pixel_size, 0.0, math.inf, "m", low_inclusive=False)
+    n = check_integer("frames", frames, 2, curve.approach_z_np.size)
+    pick = np.linspace(0, curve.approach_z_np.size - 1, n).round().astype(int)
+    z_app, z_ret = curve.approach_z_np[pick], curve.retract_z_np[pick]
+    heights, xs, touching = [], [], []
+    for j in range(surface.size):
+        for z, touch in ((z_app, z_app >= 0.0),
+                         (z_ret, z_ret >= min(curve.snap_off_z_np, 0.0))):
+            heights += list(surface[j] + np.where(touch, 0.0, -z))
+            touching += list(touch)
+            xs += [j * pitch] * z.size
+    return ApexPath(np.array(heights), np.array(xs), np.array(touching))
+
+
 def jump_curve(system: ContactSystem, *, trigger_force: float = TRIGGER_FORCE.default,
                lift_height: float = LIFT_HEIGHT.default, z_speed: float = Z_SPEED.default,
                points: int = 400) -> JumpCurve:
@@ -353,7 +419,7 @@ class JumpingMode(Mode):
 
         Parameters
         ----------
-        settings : afmsmiler.imaging.scanner.ScanSettings
+        settings : afmsmiler.imaging.settings.ScanSettings
             The scan (pixel size and lateral speed).
 
         Returns
@@ -369,7 +435,7 @@ class JumpingMode(Mode):
 
         Parameters
         ----------
-        settings : afmsmiler.imaging.scanner.ScanSettings
+        settings : afmsmiler.imaging.settings.ScanSettings
             The scan.
 
         Returns
@@ -385,7 +451,7 @@ class JumpingMode(Mode):
 
         Parameters
         ----------
-        plan : afmsmiler.imaging.modes.ScanPlan
+        plan : afmsmiler.imaging.scan_modes.ScanPlan
             The scan.
         row : int
             Line index.
@@ -395,8 +461,8 @@ class JumpingMode(Mode):
 
         Returns
         -------
-        afmsmiler.imaging.modes.ModeLine
-            With a :class:`~afmsmiler.imaging.modes.Crash` where the apex surface at the next
+        afmsmiler.imaging.scan_modes.ModeLine
+            With a :class:`~afmsmiler.imaging.scan_modes.Crash` where the apex surface at the next
             pixel rises above the lifted tip (the tip runs into the feature's side).
 
         Raises
@@ -461,7 +527,7 @@ class ModeComparison:
     jumping_time, contact_time : float
         Acquisition time of each image in s.
     crashed : object
-        The jumping scan's :class:`~afmsmiler.imaging.modes.Crash` (lift too small), or None.
+        The jumping scan's :class:`~afmsmiler.imaging.scan_modes.Crash` (lift too small), or None.
     """
 
     true_height: np.ndarray = field(repr=False)
@@ -503,7 +569,7 @@ def compare_with_contact(sample, tip, settings, *, system: ContactSystem, loop=N
         The sample (2-D heights in m).
     tip : afmsmiler.contact.Tip
         The tip (the systems' tip: it blurs and touches).
-    settings : afmsmiler.imaging.scanner.ScanSettings
+    settings : afmsmiler.imaging.settings.ScanSettings
         The scan (the same for both modes).
     system : afmsmiler.contact.ContactSystem
         The contact of jumping mode's curves (its pull-off force adds to contact mode's load).
@@ -527,13 +593,13 @@ def compare_with_contact(sample, tip, settings, *, system: ContactSystem, loop=N
     Raises
     ------
     TypeError, ValueError
-        As :class:`JumpingMode`, :class:`~afmsmiler.imaging.modes.ConstantForce`,
+        As :class:`JumpingMode`, :class:`~afmsmiler.imaging.scan_modes.ConstantForce`,
         :func:`~afmsmiler.imaging.scanner.scan` and
         :func:`~afmsmiler.modes.lateral.friction_loop`, before any scan.
     """
     from ..controller import PARAMETERS as LOOP_PARAMETERS
     from ..controller import ContactLoop
-    from ..imaging.modes import ConstantForce
+    from ..imaging.scan_modes import ConstantForce
     from ..imaging.scanner import Scan, ScanSettings
     from .lateral import FRICTION_COEFFICIENT, friction_loop
 

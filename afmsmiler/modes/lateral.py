@@ -52,7 +52,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..cantilever import Cantilever
-from ..imaging.modes import Mode, ModeLine, ScanPlan
+from ..imaging.scan_modes import Mode, ModeLine, ScanPlan
 from ..materials import MATERIALS, Material, lookup
 from ..parameters import Parameter, read_only
 from ..samples import Sample

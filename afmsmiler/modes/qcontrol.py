@@ -41,6 +41,7 @@ import numpy as np
 
 from ..parameters import Parameter, read_only
 from ..validation import check_array, check_integer, check_range
+from .oscillator import PointMassLever
 from .tapping import PARAMETERS as TAPPING
 
 __all__ = ["PARAMETERS", "QControl", "ClosedLoopResponse", "RingDown", "stable_gains",
@@ -54,9 +55,8 @@ MAX_POINTS = 1_000_000
 #: (k = 40 N/m, f0 = 300 kHz, Q = 400 in air) and the controller's gain and phase.
 PARAMETERS = read_only({p.name: p for p in (
     TAPPING["spring_constant"],
-    TAPPING["resonance_frequency"].with_(low=0.1),  # down to a lever felt by hand (~10 Hz)
-    TAPPING["quality_factor"].with_(low=0.01, low_inclusive=True, slider_low=1.0,
-                                    slider_high=1000.0),
+    TAPPING["resonance_frequency"],  # down to a lever felt by hand (~10 Hz) and below
+    TAPPING["quality_factor"].with_(slider_low=1.0, slider_high=1000.0),
     Parameter(name="gain", unit="", default=0.0, low=-10.0, high=10.0, slider_low=-0.05,
               slider_high=0.05, label="Q-control gain g"),
     Parameter(name="phase", unit="rad", display_unit="deg", default=math.pi / 2, low=-math.pi,
@@ -65,7 +65,7 @@ PARAMETERS = read_only({p.name: p for p in (
 
 
 @dataclass(frozen=True)
-class QControl:
+class QControl(PointMassLever):
     """A lever with a Q controller: every quantity of the closed loop, validated (SI units).
 
     Parameters
@@ -107,7 +107,7 @@ class QControl:
     @property
     def mass(self) -> float:
         """Effective mass m = k / w0^2 in kg."""
-        return self.spring_constant / (2.0 * math.pi * self.resonance_frequency) ** 2
+        return self.oscillator.mass
 
     @property
     def stiffness_ratio(self) -> float:

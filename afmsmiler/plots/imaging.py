@@ -1,7 +1,7 @@
 """Figures of module (f): an AFM image forming line by line, as the virtual scan runs.
 
 :func:`scan_view` reads a scan's result (a :class:`~afmsmiler.imaging.scanner.ScanResult`, or
-the imaging panel's :class:`~afmsmiler.ui.imaging.ImagingResult`: full images per channel and
+an acquisition's :class:`~afmsmiler.acquisition.Snapshot`: full images per channel and
 ``lines_done``) into a :class:`ScanView` in the units shown: the main image (the height channel of a
 constant-force scan, the deflection of a constant-height one) with the rows not scanned yet set
 to NaN (drawn transparent), the error channel, and the trace and retrace of the last finished line.
@@ -114,7 +114,7 @@ def crash_note(crash) -> str:
     Parameters
     ----------
     crash : Crash or object
-        A :class:`~afmsmiler.imaging.modes.Crash` (``row``, ``column``, ``force`` in N,
+        A :class:`~afmsmiler.imaging.scan_modes.Crash` (``row``, ``column``, ``force`` in N,
         ``direction``); anything else is shown as its text.
 
     Returns
@@ -124,7 +124,7 @@ def crash_note(crash) -> str:
 
     Examples
     --------
-    >>> from afmsmiler.imaging.modes import Crash
+    >>> from afmsmiler.imaging.scan_modes import Crash
     >>> crash_note(Crash(3, 16, 1.2e-7, "retrace"))
     'tip crashed: 120 nN on line 4 (retrace), pixel 17'
     >>> crash_note(Crash(0, 0, float("inf")))

@@ -66,8 +66,10 @@ _COLORS = read_only(dict(attractive="C0", repulsive="C3", unstable="0.55", point
 def branch_values(curve: AmplitudeCurve, values: np.ndarray, name: str) -> np.ndarray:
     """One column of ``values`` (shaped like ``curve.amplitude``) on a branch, NaN where none.
 
-    The column is the one :meth:`AmplitudeCurve.branch` picks (the stable root of the branch,
-    the largest if two), so that e.g. the dissipated energy lines up with the branch's amplitude.
+    The model's own choice, :meth:`AmplitudeCurve.on_branch
+    <afmsmiler.modes.AmplitudeCurve.on_branch>` (the root :meth:`AmplitudeCurve.branch` picks:
+    the stable root of the branch, the largest if two), so that e.g. the dissipated energy lines
+    up with the branch's amplitude.
 
     Parameters
     ----------
@@ -84,17 +86,7 @@ def branch_values(curve: AmplitudeCurve, values: np.ndarray, name: str) -> np.nd
         Shape (n,), NaN where the branch has no stable root.
     """
     check_instance("curve", curve, AmplitudeCurve)
-    values = np.asarray(values, dtype=float)
-    if values.shape != curve.amplitude.shape:
-        raise ValueError(f"values must be shaped like curve.amplitude {curve.amplitude.shape}, "
-                         f"got {values.shape}")
-    if name not in ("attractive", "repulsive"):
-        raise ValueError(f"name must be 'attractive' or 'repulsive', got {name!r}")
-    mask = curve.stable & (~curve.repulsive_branch if name == "attractive"
-                           else curve.repulsive_branch)
-    j = np.argmax(np.where(mask, curve.amplitude, -np.inf), axis=1)
-    rows = np.arange(curve.distance.size)
-    return np.where(mask.any(axis=1), values[rows, j], np.nan)
+    return curve.on_branch(values, name)
 
 
 def unstable_roots(curve: AmplitudeCurve) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -217,7 +209,7 @@ class TappingFigure:
         data = {}
         for b in ("attractive", "repulsive"):
             a, p = curve.branch(b)
-            e = branch_values(curve, curve.dissipated_energy, b)
+            e = curve.on_branch(curve.dissipated_energy, b)
             data[b] = dict(amplitude=a * _NM, phase=p * _DEG, energy=e * _ZJ)
         zu, au, pu = unstable_roots(curve)
         # the unstable roots carry no dissipation of their own worth showing: amplitude, phase

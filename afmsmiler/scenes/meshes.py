@@ -5,6 +5,8 @@
   thickness) and on both end caps.
 - :func:`height_map_mesh`: a regular grid of heights (a sample surface, an AFM image), in SI,
   as a surface in scene units.
+- :func:`hollow_cylinder_mesh` and :func:`prism_mesh`: plain solids of the instrument scene (a
+  piezo tube, a knurled knob), vertices and triangles only.
 
 Both return a :class:`ScalarMesh`, whose :meth:`ScalarMesh.geometry` is the meshcat
 ``TriangularMeshGeometry`` with vertex colours.
@@ -25,7 +27,8 @@ from .colors import ColorScale
 #: beam of as many; built in about a second, and already more than a browser draws smoothly.
 MAX_VERTICES = 2048 * 2048
 
-__all__ = ["ScalarMesh", "beam_mesh", "beam_faces", "height_map_mesh", "MAX_VERTICES"]
+__all__ = ["ScalarMesh", "beam_mesh", "beam_faces", "height_map_mesh", "MAX_VERTICES",
+           "hollow_cylinder_mesh", "prism_mesh", "knurl_outline"]
 
 
 def _check_vertices(name: str, n_vertices: int, sizes: str) -> None:
@@ -257,3 +260,99 @@ def height_map_mesh(heights, pixel_size: float, *, unit: float, pixel_size_y: fl
     vertices[..., 2] = h * (exaggeration / unit)
     faces = _grid_faces(rows, cols, 0)[:, ::-1].astype(np.uint32)
     return ScalarMesh(vertices.reshape(-1, 3), faces, vals.ravel())
+
+
+def hollow_cylinder_mesh(outer_radius: float, inner_radius: float, length: float,
+                         sides: int = 32) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and triangles of a hollow cylinder (a piezo tube) along z, centred at the origin.
+
+    Parameters
+    ----------
+    outer_radius, inner_radius : float
+        Radii in scene units, ``0 < inner_radius < outer_radius``.
+    length : float
+        Length along z in scene units, > 0.
+    sides : int
+        Vertices around each ring, 3 to 256.
+
+    Returns
+    -------
+    (vertices, faces) : tuple of ndarray
+        ``4 sides`` vertices (float32) and ``8 sides`` triangles: outer and inner walls and the
+        two end rings.
+    """
+    ro = check_positive("outer_radius", outer_radius)
+    ri = check_positive("inner_radius", inner_radius)
+    if not ri < ro:
+        raise ValueError(f"inner_radius must be below outer_radius = {ro:g}, got {ri:g}")
+    h = check_positive("length", length) / 2
+    n = check_integer("sides", sides, 3, 256)
+    a = 2 * np.pi * np.arange(n) / n
+    c, s = np.cos(a), np.sin(a)
+    rings = [np.stack([r * c, r * s, np.full(n, z)], -1)
+             for r, z in ((ro, -h), (ro, h), (ri, -h), (ri, h))]
+    j = np.arange(n)
+    k = (j + 1) % n
+
+    def band(p, q):  # quads between ring p and ring q (vertex blocks of n)
+        return np.concatenate([np.stack([p * n + j, p * n + k, q * n + k], -1),
+                               np.stack([p * n + j, q * n + k, q * n + j], -1)])
+    faces = np.concatenate([band(0, 1), band(3, 2), band(1, 3), band(2, 0)])
+    return np.concatenate(rings).astype(np.float32), faces.astype(np.uint32)
+
+
+def prism_mesh(outline, length: float) -> tuple[np.ndarray, np.ndarray]:
+    """Vertices and triangles of a prism: a star-shaped outline in x-y extruded along z.
+
+    Used for knurled knobs and thumb wheels (an outline with ridges), centred at the origin.
+
+    Parameters
+    ----------
+    outline : array_like, shape (n, 2)
+        The outline's corners in order, scene units, n from 3 to 1024, star-shaped about the
+        origin (every corner seen from the origin), so the end caps are fans from the centre.
+    length : float
+        Length along z in scene units, > 0.
+
+    Returns
+    -------
+    (vertices, faces) : tuple of ndarray
+        ``2 n + 2`` vertices (float32) and ``4 n`` triangles.
+    """
+    xy = check_array("outline", outline, ndim=2)
+    if xy.shape[1] != 2 or not 3 <= xy.shape[0] <= 1024:
+        raise ValueError(f"outline must have shape (n, 2) with 3 <= n <= 1024, got {xy.shape}")
+    h = check_positive("length", length) / 2
+    n = xy.shape[0]
+    bottom = np.column_stack([xy, np.full(n, -h)])
+    top = np.column_stack([xy, np.full(n, h)])
+    centres = np.array([[0.0, 0.0, -h], [0.0, 0.0, h]])
+    j = np.arange(n)
+    k = (j + 1) % n
+    walls = np.concatenate([np.stack([j, k, n + k], -1), np.stack([j, n + k, n + j], -1)])
+    caps = np.concatenate([np.stack([np.full(n, 2 * n), k, j], -1),
+                           np.stack([np.full(n, 2 * n + 1), n + j, n + k], -1)])
+    vertices = np.concatenate([bottom, top, centres]).astype(np.float32)
+    return vertices, np.concatenate([walls, caps]).astype(np.uint32)
+
+
+def knurl_outline(radius: float, ridges: int = 24, depth: float = 0.08) -> np.ndarray:
+    """The outline of a knurled wheel: ``2 ridges`` corners alternating between ``radius`` and
+    ``radius (1 - depth)`` (for :func:`prism_mesh`).
+
+    Parameters
+    ----------
+    radius : float
+        Outer radius in scene units.
+    ridges : int
+        Ridges around the wheel.
+    depth : float
+        Depth of a groove as a fraction of the radius.
+
+    Returns
+    -------
+    ndarray, shape (2 ridges, 2)
+    """
+    a = np.pi * np.arange(2 * ridges) / ridges
+    r = np.where(np.arange(2 * ridges) % 2 == 0, radius, radius * (1 - depth))
+    return np.column_stack([r * np.cos(a), r * np.sin(a)])

@@ -202,13 +202,9 @@ class CantileverPanel(Panel):
                                  n_length=PLOTS["n_points"], n_thickness=_N_THICKNESS,
                                  n_section=_N_SECTION, modes=_N_MODES)
         curves = cantilever_curves(bending)
-        if self.figure is None:
-            self.figure = CantileverFigure(curves, fig=self.fig)
-        else:
-            self.figure.update(curves)
         if self.modes_figure is not None:
             self.modes_figure.update(curves)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self.draw(CantileverFigure, curves)  # the figures' frames leave first
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.cantilever import CantileverScene

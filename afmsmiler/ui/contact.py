@@ -49,9 +49,6 @@ DEFAULTS = read_only(dict(
     **{name: p.to_display(p.default) for name, p in SLIDERS.items()}))
 
 _RAMP_POINTS = 400
-_SPHERE_MARGIN = 0.9  # the Z_np slider stops at 90 % of the depth at which the sphere is buried
-_MIN_RANGE = 1e-9  # m: below this much room, adhesion is switched off for a sphere
-_Z_NP_FLOOR = -2000e-9  # m: the Z_np slider never reaches lower (a very soft lever's snap-off)
 
 
 @dataclass(frozen=True)
@@ -209,11 +206,7 @@ class ContactPanel(Panel):
         the model's limit."""
         p = SLIDERS["z_np"]
         step = self.controls["z_np"].step
-        low = p.slider_low
-        if system.adhesion:  # extend the ramp below the snap-off so that the retract is complete
-            low = min(low, 1.25 * system.snap_off_z_np)
-        low = max(low, _Z_NP_FLOOR)
-        high = min(p.slider_high, _SPHERE_MARGIN * system.z_np_limit)
+        low, high = system.ramp(p.slider_low, p.slider_high)  # the model's whole cycle
         # whole steps in the display unit (in SI, 200e-9 / 1e-9 is 199.99999999999997)
         n_low = math.floor(p.to_display(low) / step + 1e-9)
         n_high = max(math.floor(p.to_display(high) / step + 1e-9), n_low + 1)
@@ -257,11 +250,9 @@ class ContactPanel(Panel):
         model = _ADHESION[adhesion] if shape.adhesive else None
         system = ContactSystem(tip=shape, adhesion=model, spring_constant=spring_constant,
                                youngs_modulus=youngs_modulus, poisson_ratio=poisson_ratio,
-                               work_of_adhesion=work_of_adhesion)
-        self._note = ""
-        if model and _SPHERE_MARGIN * system.z_np_limit < _MIN_RANGE:
-            self._note = "adhesion would pull this sphere in past its radius: shown without it"
-            system = system.replace(adhesion=None)
+                               work_of_adhesion=work_of_adhesion).for_ramp()
+        self._note = ("" if system.adhesion == model else
+                      "adhesion would pull this sphere in past its radius: shown without it")
         lo, hi = self._z_np_range(system)  # as shown, nm
         p_z = SLIDERS["z_np"]
         shown = _decimal(p_z.to_display(z_np))
@@ -278,11 +269,7 @@ class ContactPanel(Panel):
         extent = max(4.0 * float(current.contact_radius[0]), 2.0 * abs(float(current.z_s[0])),
                      30e-9)
         curves = contact_curves(cycle, current, shape, extent)
-        if self.figure is None:
-            self.figure = ContactFigure(curves, fig=self.fig)
-        else:
-            self.figure.update(curves)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self.draw(ContactFigure, curves)  # the figure's frame leaves first: its pixels wait for nothing else
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.contact import ContactScene

@@ -229,11 +229,7 @@ class ControllerPanel(Panel):
         scan = self.run_model(loop.scan_line, sample.x, sample.heights, speed=speed,
                               setpoint=setpoint)
         curves = scan_curves(scan, loop)
-        if self.figure is None:
-            self.figure = ScanFigure(curves, fig=self.fig)
-        else:
-            self.figure.update(curves)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self.draw(ScanFigure, curves)  # the figure's frame leaves first: its pixels wait for nothing else
         err = max(float(abs(scan.trace.error - scan.offset).max()),
                   float(abs(scan.retrace.error - scan.offset).max()))
         self.last = ControllerState(loop, scan, curves, err)

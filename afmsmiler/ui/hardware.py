@@ -7,12 +7,16 @@ print, its lateral and vertical scales, the base plate) and Export STL. Below: t
 (:class:`~afmsmiler.plots.hardware.MacroFigure`): the height image forming from the streamed
 pixels, the gauge's image, the current line; and the print compared with the scan of it.
 
-The scan runs as module (f)'s panel runs its scan (:mod:`afmsmiler.ui.imaging`):
-:meth:`MacroAFMPanel.step` reads the pixels the machine has streamed (at most one line's worth, or
-until :attr:`MacroAFMPanel.MAX_LINE_WAIT`), puts them into the image and redraws once. In a live
-notebook :meth:`MacroAFMPanel.start` runs the steps in an asyncio task on the kernel's event loop
-and draws at most one picture per :attr:`MacroAFMPanel.FRAME_INTERVAL`, so Pause or Abort pressed
-during the scan is handled between two steps. Tests (and nbval) drive it synchronously:
+The panel reads values -> acquisition -> view. The link and its scans are the machine's session
+below the UI (:class:`~afmsmiler.hardware.macro.session.MacroSession`, an
+:class:`~afmsmiler.acquisition.Acquisition`), which holds the image; the panel draws its
+snapshots. The buttons, the progress bar and the live loop are module (f)'s
+(:class:`~afmsmiler.ui.acquisition.AcquisitionControls`): :meth:`MacroAFMPanel.step` reads the
+pixels the machine has streamed (at most one line's worth, or until
+:attr:`MacroAFMPanel.MAX_LINE_WAIT`) and redraws once; in a live notebook
+:meth:`MacroAFMPanel.start` runs the steps in an asyncio task on the kernel's event loop and draws
+at most one picture per :attr:`MacroAFMPanel.FRAME_INTERVAL`, so Pause or Abort pressed during the
+scan is handled between two steps (pressed in another thread, they are queued for the loop). Tests (and nbval) drive it synchronously:
 ``start(run=False)``, then ``step()``. A fault that ends the scan (a limit switch, the port
 unplugged) is shown under the panel; the lines finished before it stay in the image and can be
 saved.
@@ -23,24 +27,24 @@ and starts one scan; Export STL builds one mesh and writes it.
 """
 from __future__ import annotations
 
-import asyncio
 import math
 import os
-import time
-from collections import deque
 from dataclasses import dataclass
 
 import ipywidgets as widgets
 import numpy as np
 
 from .. import samples as _samples
+from ..acquisition import Snapshot
 from ..hardware import printing
 from ..hardware.macro.device import PARAMETERS as DEVICE_PARAMETERS
+from ..hardware.macro.session import CHANNELS, MacroSession
 from ..hardware.macro.twin import printed_sample
 from ..parameters import read_only, shown
 from ..plots.hardware import MacroFigure, comparison_view, macro_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
+from .acquisition import Acquiring, AcquisitionControls
 from .controls import WIDTH
 from .panel import Panel, initial_values, running_as_notebook, slider
 
@@ -160,14 +164,17 @@ def twin_sample(name: str):
 
 @dataclass(frozen=True)
 class MacroResult:
-    """What the panel holds (what it shows), for tests and exercises; SI units.
+    """What the panel shows, for tests and exercises; SI units.
+
+    The images are the session's snapshot (:class:`~afmsmiler.acquisition.Snapshot`: read-only,
+    not copied again); the panel adds the state it shows, the comparison and the print's size.
 
     Attributes
     ----------
     height : numpy.ndarray
-        Heights in m, (lines, pixels), NaN where no pixel came.
+        Heights in m, (lines, pixels), NaN where no pixel came (read-only).
     gauge : numpy.ndarray
-        Gauge counts above the free reading, NaN where no pixel came.
+        Gauge counts above the free reading, NaN where no pixel came (read-only).
     pitch : float
         Pixel spacing in m.
     pixels_done : int
@@ -201,9 +208,7 @@ class MacroResult:
         -------
         Sample
         """
-        if self.lines_done < 2:
-            raise ValueError(f"a Sample needs at least 2 finished lines, got {self.lines_done}")
-        return Sample(self.height[:self.lines_done], self.pitch, "macroscopic AFM scan")
+        return _finished(self.height, self.lines_done, self.pitch)
 
 
 def _defaults() -> dict:
@@ -218,7 +223,7 @@ DEFAULTS = read_only(dict(port=TWIN, sample=next(iter(TWIN_SAMPLES)), mode="cont
                           pitch=0.2, source=SOURCES[0], **_defaults()))
 
 
-class MacroAFMPanel(Panel):
+class MacroAFMPanel(Acquiring, Panel):
     """Scan with the macroscopic AFM or its twin, watch the image form, print an image.
 
     Controls (units as shown): ``port`` (``"twin"`` or a serial port), ``sample`` (the printed
@@ -287,117 +292,98 @@ class MacroAFMPanel(Panel):
         for name in PRINT_SLIDERS:
             c[name] = slider(name, printing.PARAMETERS[name], v[name])
         self.controls = c
-        self.buttons = {name: widgets.Button(description=label, icon=icon, button_style=style)
-                        for name, label, icon, style in (
-                            ("connect", "Connect", "plug", "info"),
-                            ("start", "Start", "play", "success"),
-                            ("pause", "Pause", "pause", "warning"),
-                            ("abort", "Abort", "stop", "danger"),
-                            ("save", "Save .gwy", "save", ""),
-                            ("export", "Export STL", "cube", ""))}
+        self.control = AcquisitionControls(
+            start=self.start, pause=self.pause, resume=self.resume, stop=self.abort,
+            show=self._show, report=self._report_error, live=lambda: running_as_notebook(),
+            stop_label="Abort", unit="pixels")
+        act = self.control.act
+        self.buttons = {"connect": widgets.Button(description="Connect", icon="plug",
+                                                  button_style="info"),
+                        "start": self.control.buttons["start"],
+                        "pause": self.control.buttons["pause"],
+                        "abort": self.control.buttons["stop"],
+                        "save": widgets.Button(description="Save .gwy", icon="save"),
+                        "export": widgets.Button(description="Export STL", icon="cube")}
         b = self.buttons
-        b["connect"].on_click(lambda _b: self._action(self.connect))
-        b["start"].on_click(lambda _b: self._action(self.start))
-        b["pause"].on_click(lambda _b: self._request(self.pause if not self.paused
-                                                     else self.resume))
-        b["abort"].on_click(lambda _b: self._request(self.abort))
-        b["save"].on_click(lambda _b: self._action(lambda: self.save_gwy(self.paths["gwy"]
-                                                                         .value)))
-        b["export"].on_click(lambda _b: self._action(lambda: self.export_stl(
-            self.paths["stl"].value)))
+        b["connect"].on_click(lambda _b: act(self.connect))
+        b["save"].on_click(lambda _b: act(lambda: self.save_gwy(self.paths["gwy"].value)))
+        b["export"].on_click(lambda _b: act(lambda: self.export_stl(self.paths["stl"].value)))
         self.paths = {"gwy": widgets.Text(value="macro_scan.gwy", description="image file"),
                       "stl": widgets.Text(value="print.stl", description="STL file")}
-        self.progress = widgets.IntProgress(min=0, max=1, value=0, description="0 pixels",
-                                            style={"description_width": "initial"})
+        self.progress = self.control.progress
         self.status = widgets.HTML()
         self.fig = self.new_figure(figsize=(10.0, 7.5))
         self.figure = None
         self.device = None
-        self._session = None
-        self.running = self.paused = False
-        self._task = None
-        self._link = None          # (transport, server or None, port, sample name)
-        self._stream = None        # the scan's pixel iterator
+        self._session = None       # the MacroSession: the link and its scans (holds the image)
+        self._kept = None          # the last scan's snapshot once its link is closed
+        self._link = None          # (port, sample name) of the open link
         self._config = None        # what update decided (SI)
         self._scan_config = None   # the config the image shown was scanned with
-        self._height = np.full((2, 2), np.nan)
-        self._gauge = np.full((2, 2), np.nan)
-        self._pitch = 1.0
-        self._done = 0
-        self._state = "idle"
-        self._fault = None
         self._comparison = None
+        self._compared = None      # the snapshot the comparison was made from
         self._prints = {}          # your prints: name -> mesh (m)
         self._maps = {}            # (what, name, pitch) -> height map of a print (m)
         self.mesh_runs = 0         # meshes built (Export STL, a twin's new sample)
-        self._actions = deque()    # buttons pressed during a scan, for the reading thread
-        self._set_buttons()
         super().__init__()
 
-    # -- buttons ----------------------------------------------------------------------------
-    def _set_buttons(self) -> None:
-        b = self.buttons
-        b["start"].disabled = self.running
-        b["pause"].disabled = not self.running
-        b["pause"].description = "Resume" if self.paused else "Pause"
-        b["pause"].icon = "play" if self.paused else "pause"
-        b["abort"].disabled = not self.running
-        b["save"].disabled = self._lines_done() < 2
-
-    def _request(self, action) -> None:
-        """A button's action on a running scan: done by the loop that reads the scan.
-
-        ipykernel 7 runs a widget's click handler in another thread than the cell or the
-        asyncio task that reads the scan; the driver then queues the command to the reading
-        thread, which a paused scan does not run, so a Resume or Abort waited for its timeout.
-        The action is queued here instead and :meth:`step` (on the reading thread) runs it.
-        """
-        if self.running:
-            self._actions.append(action)
-        else:
-            self._action(action)
-
-    def _run_actions(self) -> None:
-        while self._actions:
-            self._action(self._actions.popleft())
-
-    def _action(self, action) -> None:
-        """A button's action; a failure is shown under the panel (raised again under test)."""
+    # -- state -----------------------------------------------------------------------------
+    @property
+    def last(self) -> "MacroResult":
+        """The image so far (the session's snapshot), the state, the print's size, the
+        comparison."""
+        snap = self._snapshot()
+        key = (snap, self._session, self._config, self._comparison)
+        cached = getattr(self, "_last", None)
+        if cached is not None and all(a is b for a, b in zip(cached[0], key)):
+            return cached[1]  # nothing changed: the same result
         try:
-            action()
-        except Exception as exc:
-            self._report_error(exc)
-            self._show()
-            if not running_as_notebook():
-                raise
-        else:
-            if self.error is not None:
-                self.error, self._error_box.value = None, ""
+            size = self._print_size(snap) if self._config is not None else ()
+        except ValueError:
+            size = ()
+        result = MacroResult(snap.images["height"], snap.images["gauge"], snap.pixel_size,
+                             snap.pixels_done, snap.lines_done, self._state(snap), snap.error,
+                             self._comparison, size)
+        self._last = (key, result)
+        return result
+
+    @last.setter
+    def last(self, value) -> None:  # Panel.__init__ starts it at None: the session holds it
+        pass
+
+    def _snapshot(self) -> Snapshot:
+        """What is shown: the session's scan, else the last scan kept, else an empty grid."""
+        session = self._session
+        if session is not None and session.state != "idle":
+            return session.snapshot()
+        if self._kept is not None:
+            return self._kept
+        n = self._config["scan"]["pixels"] if self._config is not None else 2
+        pitch = self._config["scan"]["pitch"] if self._config is not None else 1.0
+        blank = getattr(self, "_blank", None)
+        if blank is None or blank.lines != n or blank.pixel_size != pitch:
+            self._blank = blank = Snapshot.blank(CHANNELS, (n, n), pitch, main="height")
+        return blank
+
+    def _state(self, snap: Snapshot) -> str:
+        """The snapshot's state; "connected" (or "idle") while the link has not scanned."""
+        if snap.state == "idle" or (self._session is not None and self._session.state == "idle"):
+            return "connected" if self._session is not None else "idle"
+        return snap.state
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> dict:
-        """Check the values (sliders in SI) and turn them into the scan's and the print's (SI)."""
-        ports = [o[1] for o in self.controls["port"].options]
-        check_choice("port", values["port"], ports)
-        samples = [o if isinstance(o, str) else o[1] for o in self.controls["sample"].options]
-        check_choice("sample", values["sample"], samples)
-        check_choice("mode", values["mode"], list(MODES))
-        check_choice("pixels", values["pixels"], list(PIXELS))
-        check_choice("pitch", values["pitch"], list(PITCHES))
-        check_choice("source", values["source"], list(SOURCES))
-
-        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
-            return values[name]
-
+        """Turn the values (checked, sliders in SI: the panel contract) into the scan's and the
+        print's (SI; the pitch drop-down shows mm)."""
         scan = dict(mode=values["mode"], pixels=int(values["pixels"]),
                     pitch=DEVICE_PARAMETERS["pitch"].to_si(values["pitch"]),
-                    **{name: si(name, p) for name, p in SCAN_PARAMETERS.items()})
-        prints = {name: si(name, printing.PARAMETERS[name]) for name in PRINT_SLIDERS}
+                    **{name: values[name] for name in SCAN_PARAMETERS})
+        prints = {name: values[name] for name in PRINT_SLIDERS}
         return dict(port=values["port"], sample=values["sample"], scan=scan,
                     source=values["source"], print=prints)
 
     def update(self, port, sample, mode, pixels, pitch, source, **sliders) -> None:
-        """Check the controls' values (units shown) and keep them for the next action.
+        """Keep the controls' values (sliders in SI) for the next action.
 
         Nothing is scanned or printed here: Connect, Start and Export STL act on the values
         kept. The print's size is recomputed (a product of three numbers, no mesh).
@@ -418,33 +404,31 @@ class MacroAFMPanel(Panel):
         source : str
             The image Export STL prints, one of :data:`SOURCES`.
         **sliders : float
-            ``setpoint_force`` [mN], ``lift`` [mm], ``lateral_scale``, ``vertical_scale`` [x] and
-            ``base_thickness`` [mm].
+            ``setpoint_force`` [N], ``lift`` [m], ``lateral_scale``, ``vertical_scale`` and
+            ``base_thickness`` [m], in SI.
 
         Raises
         ------
         TypeError, ValueError
-            For an unknown or missing control or a value out of range, before any work.
+            For an unknown or missing control or a value out of range, before any work (the
+            panel contract).
         """
-        expected = set(DEFAULTS) - {"port", "sample", "mode", "pixels", "pitch", "source"}
-        if set(sliders) != expected:
-            raise TypeError(f"update needs exactly the sliders {sorted(expected)}, got "
-                            f"{sorted(sliders)}")
         values = dict(sliders, port=port, sample=sample, mode=mode, pixels=pixels, pitch=pitch,
                       source=source)
         self._config = self._configure(values)
-        if self.figure is None:
-            self._clear(self._config["scan"])
         self._show()
 
     # -- the print --------------------------------------------------------------------------
-    def _source(self, source: str) -> Sample | None:
+    def _source(self, source: str, snap: Snapshot | None = None) -> Sample | None:
         if source == "last scan":
-            return self.last.finished() if self.last and self.last.lines_done >= 2 else None
+            snap = self._snapshot() if snap is None else snap
+            if snap.lines_done < 2:
+                return None
+            return _finished(snap.images["height"], snap.lines_done, snap.pixel_size)
         return source_image(source)
 
-    def _print_size(self) -> tuple:
-        image = self._source(self._config["source"])
+    def _print_size(self, snap: Snapshot | None = None) -> tuple:
+        image = self._source(self._config["source"], snap)
         if image is None:
             return ()
         p = self._config["print"]
@@ -523,47 +507,34 @@ class MacroAFMPanel(Panel):
         self.close()
         config = self._config
         twin = config["port"] == TWIN
-        height_map = self._twin_map(config["sample"]) if twin else None
-        self._session = _Session.open(config["port"], height_map, time_scale=self.time_scale)
+        if twin:
+            session = MacroSession.twin(self._twin_map(config["sample"]),
+                                        time_scale=self.time_scale)
+        else:
+            session = MacroSession.port(config["port"])
+        self._session, self.device = session, session.device
         self._link = (config["port"], config["sample"] if twin else None)
-        self.device = self._session.device
-        self._state = "connected"
-        self._fault = None
+        self.control.attach(session)
         self._show()
-        return self._session.identity
+        return session.identity
 
     def close(self) -> None:
         """Stop a running scan (abort) and close the link (the image shown stays)."""
-        task, self._task = self._task, None
-        if task is not None and not task.done():
-            task.cancel()
-        session = getattr(self, "_session", None)
+        self.control.cancel()
+        session = self._session
         if session is not None:
-            if self.running:
-                try:
-                    session.abort()
-                except Exception:  # the link may be gone already
-                    pass
             session.close()
+            if session.state != "idle":
+                self._kept = session.snapshot()  # the image shown stays
         self._session, self.device, self._link = None, None, None
-        if self.running:
-            self.running = self.paused = False
-            self._state = "aborted"
-        elif self._state == "connected":
-            self._state = "idle"
-
-    def _clear(self, scan: dict) -> None:
-        n = scan["pixels"]
-        self._height = np.full((n, n), np.nan)
-        self._gauge = np.full((n, n), np.nan)
-        self._pitch = scan["pitch"]
-        self._done, self._fault, self._comparison = 0, None, None
-        self.progress.max, self.progress.value = n * n, 0
+        self.control.attach(None)
 
     def start(self, run: bool = True, wait: bool = False) -> None:
-        """Configure the machine with the controls' values and start a scan.
+        """Start one scan on the machine with the settings the controls hold.
 
-        Connects first if no link is open (or the twin's sample changed since).
+        Connects first if no link is open (or the twin's sample changed since); a running scan
+        is aborted first. The settings were checked when the controls last changed
+        (:meth:`update`); the machine receives them once, here.
 
         Parameters
         ----------
@@ -579,46 +550,18 @@ class MacroAFMPanel(Panel):
         """
         config = self._config
         wanted = (config["port"], config["sample"] if config["port"] == TWIN else None)
-        if getattr(self, "_session", None) is None or self._link != wanted:
+        if self._session is None or self._link != wanted:
             self.connect()
-        elif self.running:
-            self.abort()
-        self._clear(config["scan"])
+        self._comparison = self._compared = None
         self._session.start(**config["scan"])
         self._scan_config = config
-        self.running, self.paused, self._state = True, False, "scanning"
         self._show()
-        if not run:
-            return
-        if running_as_notebook() and not wait:
-            self._task = asyncio.ensure_future(self._run_async())
-            return
-        shown_at = time.monotonic()
-        while True:
-            picture = time.monotonic() - shown_at >= self.FRAME_INTERVAL
-            if not self.step(show=picture):
-                break
-            if picture:
-                shown_at = time.monotonic()
-
-    async def _run_async(self) -> None:
-        try:
-            shown_at = time.monotonic()
-            while True:
-                now = time.monotonic()
-                picture = now - shown_at >= self.FRAME_INTERVAL
-                if not self.step(show=picture, wait=0.02):
-                    break
-                if picture:
-                    shown_at = now
-                await asyncio.sleep(0.01 if not self.paused else 0.1)
-        except Exception as exc:  # shown under the panel: a task's exception is otherwise lost
-            self.running, self._task = False, None
-            self._report_error(exc)
-            self._show()
+        if run:
+            self.control.run(wait=wait, frame_interval=self.FRAME_INTERVAL,
+                             max_line_wait=self.MAX_LINE_WAIT, read_wait=0.02)
 
     def step(self, show: bool = True, wait: float | None = None) -> bool:
-        """Read the pixels streamed so far (up to the end of the line), add them, redraw once.
+        """Read the pixels streamed so far (up to the end of the line) and redraw once.
 
         Parameters
         ----------
@@ -633,50 +576,8 @@ class MacroAFMPanel(Panel):
             True while the scan runs (paused included), False once it has ended (finished,
             aborted or faulted).
         """
-        self._run_actions()  # Pause, Resume, Abort pressed since the last step
-        if not self.running:
-            return False
-        if self.paused:
-            return True
-        wait = self.MAX_LINE_WAIT if wait is None else float(wait)
-        try:
-            items = self._session.read(wait)
-        except Exception as exc:  # a fault ends the scan: the finished lines stay
-            self._fault = f"{type(exc).__name__}: {exc}"
-            self.running, self._state = False, "fault"
-            self._report_error(exc)
-            self._show()
-            return False
-        n = self._height.shape[1]
-        ended = False
-        for kind, *args in items:
-            if kind == "pixel":
-                row, col, z, counts = args
-                if 0 <= row < self._height.shape[0] and 0 <= col < n:
-                    self._height[row, col] = z
-                    self._gauge[row, col] = counts
-                    self._done = max(self._done, row * n + col + 1)
-            elif kind == "done":
-                ended = True
-        if ended or self._done >= self._height.size:
-            if not ended:  # the last pixel came: let the driver see the scan's end (DONE)
-                try:
-                    self._session.finish()
-                except Exception as exc:
-                    self._fault = f"{type(exc).__name__}: {exc}"
-                    self.running, self._state = False, "fault"
-                    self._report_error(exc)
-                    self._show()
-                    return False
-            self.running, self._state = False, "done"
-            self._compare()
-            self._show()
-            return False
-        if show:
-            self._show()
-        else:
-            self.last = self._result()
-        return True
+        return self.control.step(show=show,
+                                 wait=self.MAX_LINE_WAIT if wait is None else float(wait))
 
     def pause(self) -> None:
         """Pause the scan (the machine stops after the pixel under way)."""
@@ -685,27 +586,20 @@ class MacroAFMPanel(Panel):
         if not self._session.pause():
             self.status.value = "<b>the machine had already finished scanning</b>"
             return
-        self.paused, self._state = True, "paused"
         self._show()
 
     def resume(self) -> None:
         """Resume a paused scan."""
-        if not self.running or not self.paused:
+        if not self.paused:
             return
         self._session.resume()
-        self.paused, self._state = False, "scanning"
         self._show()
 
     def abort(self) -> None:
         """Abort the scan: the machine stops; the lines finished so far stay in the image."""
-        task, self._task = self._task, None
-        if task is not None and not task.done():
-            task.cancel()
         if not self.running:
             return
         self._session.abort()
-        self.running = self.paused = False
-        self._state = "aborted"
         self._show()
 
     def save_gwy(self, path) -> "os.PathLike":
@@ -720,13 +614,13 @@ class MacroAFMPanel(Panel):
         -------
         pathlib.Path
         """
-        image = self._result().finished()
+        image = self.last.finished()
         written = _samples.save_gwy(image, path)
         self.status.value = f"<b>saved {written.name}</b> ({image.shape[0]} lines)"
         return written
 
     # -- the comparison ---------------------------------------------------------------------
-    def _compare(self) -> None:
+    def _compare(self, snap: Snapshot) -> None:
         """The finished lines of a twin's scan against the print as the needle follows it.
 
         The needle's apex cannot enter a gap narrower than itself: the surface it follows is
@@ -734,17 +628,16 @@ class MacroAFMPanel(Panel):
         which the twin computed once; it is read on the scan's grid (the scan starts at the
         print's first pixel, the pitch a multiple of :data:`TWIN_PITCH`).
         """
-        config = self._scan_config
-        self._comparison = None
-        session = getattr(self, "_session", None)
+        config, session = self._scan_config, self._session
+        self._comparison, self._compared = None, snap
         if (config is None or config["port"] != TWIN or session is None
-                or session.server is None or self._lines_done() < 2):
+                or session.server is None or snap.lines_done < 2):
             return
         apex = session.server.twin.apex
         k = int(round(config["scan"]["pitch"] / apex.pixel_size))
         reference = Sample(apex.heights[::k, ::k], k * apex.pixel_size,
                            "print as the needle follows it")
-        image = self._result().finished()
+        image = _finished(snap.images["height"], snap.lines_done, snap.pixel_size)
         rows = min(image.shape[0], reference.shape[0])
         cols = min(image.shape[1], reference.shape[1])
         if rows < 2 or cols < 2:
@@ -753,40 +646,25 @@ class MacroAFMPanel(Panel):
             image.heights[:rows, :cols], image.pixel_size, image.name))
 
     # -- what is shown ----------------------------------------------------------------------
-    def _lines_done(self) -> int:
-        n = self._height.shape[1]
-        return self._done // n
-
-    def _result(self) -> MacroResult:
-        try:
-            size = self._print_size() if self._config is not None else ()
-        except ValueError:
-            size = ()
-        return MacroResult(self._height.copy(), self._gauge.copy(), self._pitch, self._done,
-                           self._lines_done(), self._state, self._fault, self._comparison, size)
-
     def _show(self) -> None:
         """The image so far into the figure (one redraw), the progress bar and the status."""
-        self.last = self._result()
-        state = self._state + (": " + self._fault if self._fault else "")
-        view = macro_view(self._height, self._gauge, self._pitch, self._done,
-                          "" if self._state in ("scanning", "idle", "connected") else state)
-        z_step = self._session.z_step if getattr(self, "_session", None) else math.nan
+        snap = self._snapshot()
+        if snap.state == "done" and self._compared is not snap and snap is not self._kept:
+            self._compare(snap)
+        result = self.last
+        state = result.state + (": " + result.error if result.error else "")
+        view = macro_view(result.height, result.gauge, result.pitch, result.pixels_done,
+                          "" if result.state in ("scanning", "idle", "connected") else state)
+        z_step = self._session.z_step if self._session is not None else math.nan
         comparison = comparison_view(self._comparison, z_step)
-        if self.figure is None:
-            self.figure = MacroFigure(view, comparison, fig=self.fig)
-        else:
-            self.figure.update(view, comparison)
-        self.redraw()
-        self.progress.value = self._done
-        self.progress.description = f"{self._done}/{self.progress.max} pixels"
-        size = self.last.print_size
+        self.draw(MacroFigure, view, comparison)
+        self.control.refresh(snap)
+        self.buttons["save"].disabled = snap.lines_done < 2
+        size = result.print_size
         printed = (f" · print {shown(size[0], 'mm', '.3g')} x {shown(size[1], 'mm', '.3g')} x "
                    f"{shown(size[2], 'mm', '.3g')}" if size else "")
-        link = "" if getattr(self, "_session", None) is None else \
-            f" · {self._session.identity}"
+        link = "" if self._session is None else f" · {self._session.identity}"
         self.status.value = f"<b>{state}</b>{link}{printed}"
-        self._set_buttons()
 
     def widget(self) -> widgets.Widget:
         """The machine's controls (left), the print's (right), buttons and progress, the figure.
@@ -807,112 +685,9 @@ class MacroAFMPanel(Panel):
         return widgets.VBox([widgets.HBox([machine, printer]), figure])
 
 
-class _Session:
-    """The panel's link to the machine: a :class:`MacroAFM` on a transport, the twin's server.
 
-    Parameters
-    ----------
-    device : MacroAFM
-        Connected.
-    server : TwinServer or None
-        The twin's server (None for a real port).
-    """
-
-    def __init__(self, device, server):
-        self.device, self.server = device, server
-        info = device.info
-        self.z_step = info.z_step
-        self.identity = (f"{info.device} protocol {info.protocol_version}, firmware "
-                         f"{info.firmware_version}, z step {shown(info.z_step, 'um', '.3g')}"
-                         + (" (twin)" if server is not None else ""))
-        self._iter = None
-        self._columns = 0
-
-    @classmethod
-    def open(cls, port: str, sample, *, time_scale: float) -> "_Session":
-        """Connect to the twin scanning ``sample`` (a height map in m) or to a serial port."""
-        from ..hardware import SerialTransport, open_twin
-        from ..hardware.macro import MacroAFM, MacroAFMTwin
-        from ..hardware.macro.codec import BAUDRATE
-
-        if port == TWIN:
-            host, server = open_twin(MacroAFMTwin(sample), time_scale=time_scale)
-        else:
-            host, server = SerialTransport(port, baudrate=BAUDRATE), None
-        device = MacroAFM(host)
-        try:
-            device.connect()
-        except Exception:
-            device.close()
-            if server is not None:
-                server.stop()
-            raise
-        return cls(device, server)
-
-    def start(self, *, mode: str, pixels: int, pitch: float, setpoint_force: float,
-              lift: float) -> None:
-        """Home if needed, send the settings (SI), start the scan."""
-        self.stop_stream()
-        if not self.device.status().homed:
-            self.device.home()
-        self.device.configure(pixels=pixels, lines=pixels, pitch=pitch,
-                              setpoint_force=setpoint_force, mode=mode, lift=lift)
-        self._columns = pixels
-        self._iter = self.device.scan_iter()
-
-    def read(self, wait: float) -> list:
-        """The pixels that arrive within ``wait`` s (at most to the end of a line)."""
-        items, deadline = [], time.monotonic() + wait
-        while self._iter is not None:
-            try:
-                p = next(self._iter)
-            except StopIteration:
-                self._iter = None
-                items.append(("done",))
-                break
-            items.append(("pixel", p.row, p.col, p.height, p.counts))
-            if p.col == self._columns - 1 or time.monotonic() >= deadline:
-                break
-        return items
-
-    def finish(self) -> None:
-        """Read to the scan's end (the driver's DONE), after the last pixel arrived."""
-        while self._iter is not None:
-            try:
-                next(self._iter)
-            except StopIteration:
-                self._iter = None
-
-    def pause(self) -> bool:
-        """Pause; False if the machine has already finished (its last pixels are on the way)."""
-        from ..hardware import DeviceError
-        from ..hardware.macro import ErrorCode
-
-        try:
-            self.device.pause()
-        except DeviceError as exc:
-            if exc.code != ErrorCode.STATE:
-                raise
-            return False
-        return True
-
-    def resume(self) -> None:
-        self.device.resume()
-
-    def abort(self) -> None:
-        self.device.abort()
-        self.stop_stream()
-
-    def stop_stream(self) -> None:
-        """Close the scan's generator (the driver forgets the scan; late pixels are ignored)."""
-        it, self._iter = self._iter, None
-        if it is not None:
-            it.close()
-
-    def close(self) -> None:
-        self.stop_stream()
-        try:
-            self.device.close()
-        finally:
-            if self.server is not None:
-                self.server.stop()
+def _finished(height: np.ndarray, lines_done: int, pitch: float) -> Sample:
+    """The finished lines of a scan's height image as a Sample (at least two lines)."""
+    if lines_done < 2:
+        raise ValueError(f"a Sample needs at least 2 finished lines, got {lines_done}")
+    return Sample(height[:lines_done], pitch, "macroscopic AFM scan")

@@ -3,29 +3,28 @@
 Controls: the sample (synthetic generators of :mod:`afmsmiler.samples` and the real image that
 ships), the imaging mode, the tip, the scan settings and the mode's own settings, every slider
 built by :func:`~afmsmiler.ui.controls.control` from a :class:`~afmsmiler.parameters.Parameter`
-of the model layer (:data:`afmsmiler.imaging.scanner.PARAMETERS`, the controller's and the contact
+of the model layer (:data:`afmsmiler.imaging.settings.PARAMETERS`, the controller's and the contact
 model's), and the choice of what a slider moved during a scan does: apply from the next line on,
 or restart the scan. Start, Pause/Resume and Stop buttons, a "pause after line" box and a progress
 bar sit beside them: a scan paused (by the button, or by itself after the line the box names) waits
 with its finished lines kept, for as long as the student needs to move a slider, and Resume goes on
 from the next line.
 
-The scan runs one line per step: :meth:`ImagingPanel.step` asks the
-:class:`~afmsmiler.imaging.scanner.Scan` for its next line (one model run), copies the finished
-line into the panel's image and redraws the figure once. In a live notebook :meth:`start` runs
-the steps in an asyncio task on the kernel's event loop, one line per line time of the instrument
-(at most :attr:`ImagingPanel.MAX_LINE_WAIT`), waiting between lines, so the kernel keeps handling
-the widgets' messages: a slider moved or Stop pressed during the scan takes effect before the next
-line; it draws at most one picture per :attr:`ImagingPanel.FRAME_INTERVAL` (the lines finished
-meanwhile appear in the next one). Tests (and nbval) drive the steps synchronously:
-``start(run=False)``, then ``step()`` / ``pause()`` / ``resume(run=False)`` / ``stop()``. Lines
-already finished are never lost.
+The scan is an acquisition below the UI (:class:`~afmsmiler.imaging.acquisition.ScanAcquisition`):
+it holds the image, scans one line per step (one model run) and takes a slider moved during the
+scan from the next line on. The panel reads values -> acquisition -> view: :meth:`update` turns
+the controls' values into a sample, tip, mode and settings (no scan); Start makes the acquisition
+and starts it; the buttons, the progress bar and the live loop on the kernel's event loop are
+module (h)'s too (:class:`~afmsmiler.ui.acquisition.AcquisitionControls`): in a live notebook the
+steps run as an asyncio task, one line per line time of the instrument (at most
+:attr:`ImagingPanel.MAX_LINE_WAIT`), so the kernel keeps handling the widgets' messages between
+lines; at most one picture per :attr:`ImagingPanel.FRAME_INTERVAL`. Tests (and nbval) drive the
+steps synchronously: ``start(run=False)``, then ``step()`` / ``pause()`` / ``resume(run=False)`` /
+``stop()``. Lines already finished are never lost.
 """
 from __future__ import annotations
 
-import asyncio
 import math
-import time
 from dataclasses import dataclass, field
 
 import ipywidgets as widgets
@@ -35,25 +34,28 @@ from .. import samples as _samples
 from ..contact import PARAMETERS as CONTACT
 from ..contact import TIPS, ContactSystem, Tip, make_tip
 from ..controller import PARAMETERS as LOOP, PRESETS
-from ..imaging import modes as _modes
-from ..imaging import scanner as _scanner
-from ..imaging.modes import PARAMETERS as MODE_PARAMETERS
+from ..acquisition import SettingsRefused, Snapshot
+from ..imaging import scan_modes as _modes
+from ..imaging import settings as _settings
+from ..imaging.acquisition import ScanAcquisition
+from ..imaging.scan_modes import PARAMETERS as MODE_PARAMETERS
 from ..parameters import read_only
-from ..plots.imaging import ImagingFigure, scan_view
+from ..plots.imaging import ImagingFigure, crash_note, scan_view
 from ..samples import Sample
 from ..validation import check_choice, check_finite
+from .acquisition import Acquiring, AcquisitionControls
 from .controls import WIDTH
 from .panel import Panel, check_control_value, initial_values, running_as_notebook, slider
 
-__all__ = ["ImagingPanel", "ImagingResult", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE",
-           "SCAN_SLIDERS", "ChannelImage", "sample", "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
+__all__ = ["ImagingPanel", "DEFAULTS", "SAMPLES", "MODES", "ON_CHANGE", "SCAN_SLIDERS", "sample",
+           "max_scan_size", "MODE_SLIDERS", "TIP_CONTROLS", "PIXELS"]
 
 #: The samples to scan: name -> (generator in :mod:`afmsmiler.samples`, its arguments in SI).
 #: Every synthetic one is 256 x 256 pixels of 2 nm (0.51 um); the real image is 2 um wide.
 SAMPLES = read_only({
     "particles": ("particles", read_only(dict(shape=(256, 256), pixel_size=2e-9, count=12,
                                               radius=15e-9, rms=0.3e-9, seed=1))),
-    "grating": ("grating", read_only(dict(pixels=(256, 256), pixel_size=2e-9, period=100e-9,
+    "grating": ("grating", read_only(dict(shape=(256, 256), pixel_size=2e-9, period=100e-9,
                                           height=20e-9, duty=0.5))),
     "terraces": ("terraces", read_only(dict(shape=(256, 256), pixel_size=2e-9,
                                             step_height=1e-9, terrace_width=60e-9,
@@ -66,7 +68,7 @@ SAMPLES = read_only({
     "real image (Bruker, 2 um)": ("real_image", read_only({})),
 })
 
-#: Imaging modes: name -> class of :mod:`afmsmiler.imaging.modes`.
+#: Imaging modes: name -> class of :mod:`afmsmiler.imaging.scan_modes`.
 MODES = ("constant force", "constant height")
 
 #: What a slider moved during a scan does.
@@ -75,7 +77,7 @@ ON_CHANGE = ("apply on next line", "restart")
 #: Pixels per line (and lines) offered; a scan of 256 x 256 takes a few seconds live.
 PIXELS = (16, 32, 64, 128, 256)
 
-#: The scan's sliders, from :data:`afmsmiler.imaging.scanner.PARAMETERS`.
+#: The scan's sliders, from :data:`afmsmiler.imaging.settings.PARAMETERS`.
 SCAN_SLIDERS = ("scan_size", "scan_speed", "angle", "tilt_x", "noise")
 
 #: The modes' sliders: mode -> control name -> Parameter of the model layer.
@@ -136,14 +138,14 @@ def max_scan_size(name: str, angle: float = 0.0) -> float:
 
 
 def _slider_defaults() -> dict:
-    out = {name: _scanner.PARAMETERS[name].to_display(_scanner.PARAMETERS[name].default)
+    out = {name: _settings.PARAMETERS[name].to_display(_settings.PARAMETERS[name].default)
            for name in SCAN_SLIDERS}
     for sliders in MODE_SLIDERS.values():
         out.update({name: p.to_display(p.default) for name, p in sliders.items()})
     out.update({name: p.to_display(p.default) for name, p in TIP_CONTROLS.items()})
     loop = PRESETS[PLANT].loop
     out.update(kp=loop.kp, ki=LOOP["ki"].to_display(loop.ki),
-               scan_size=_scanner.PARAMETERS["scan_size"].to_display(SCAN_SIZE))
+               scan_size=_settings.PARAMETERS["scan_size"].to_display(SCAN_SIZE))
     return {k: float(f"{v:.12g}") for k, v in out.items()}
 
 
@@ -173,46 +175,6 @@ def sample(name: str) -> Sample:
     return _SAMPLE_CACHE[name]
 
 
-@dataclass(frozen=True)
-class ImagingResult:
-    """The image the panel holds (what it shows), for tests and exercises; SI units.
-
-    Attributes
-    ----------
-    channels : dict
-        Channel name -> Sample (rows not scanned yet are NaN).
-    lines_done : int
-        Lines finished, rows 0 to ``lines_done - 1``.
-    lines : int
-        Lines of the whole image.
-    stopped : bool
-        Stop was pressed before the end.
-    crashed : object
-        None, or what the scan reported when the tip crashed (the line is then the last one).
-    changes : tuple of int
-        The rows from which a slider moved during the scan applied (``apply on next line``).
-    paused : bool
-        The scan is paused after ``lines_done`` lines (Resume goes on with the next one).
-    """
-
-    channels: dict
-    lines_done: int
-    lines: int
-    stopped: bool = False
-    crashed: object = None
-    changes: tuple = ()
-    paused: bool = False
-
-
-@dataclass
-class _Job:
-    """One Scan and the rows of the panel's image it fills (from ``first_row`` on)."""
-
-    scan: object
-    lines: object
-    first_row: int
-
-
 @dataclass
 class _Config:
     """What one update decided (SI), to build a Scan from."""
@@ -224,7 +186,7 @@ class _Config:
     key: tuple = field(default=())
 
 
-class ImagingPanel(Panel):
+class ImagingPanel(Acquiring, Panel):
     """Scan a sample in a chosen mode and watch the image grow, line by line.
 
     Controls (units as shown): ``sample``, ``mode`` (constant force, constant height), ``tip``
@@ -249,8 +211,12 @@ class ImagingPanel(Panel):
 
     Attributes
     ----------
-    last : ImagingResult
-        The image so far.
+    last : afmsmiler.acquisition.Snapshot
+        The image so far (immutable; every channel, NaN where no line was scanned), the lines
+        done, the state (``stopped``, ``paused``), the crash (``fault``) and the rows from which
+        new settings applied (``changes``).
+    acquisition : afmsmiler.imaging.acquisition.ScanAcquisition or None
+        The scan (None before the first Start); it holds the image.
     figure : ImagingFigure
         The image, the error channel and the last line's profiles.
     scene : ImagingScene or None
@@ -284,7 +250,7 @@ class ImagingPanel(Panel):
         c["pixels"] = widgets.Dropdown(options=list(PIXELS), value=v["pixels"],
                                        description="pixels per line", layout=layout)
         for name in SCAN_SLIDERS:
-            p = _scanner.PARAMETERS[name]
+            p = _settings.PARAMETERS[name]
             c[name] = slider(name, p, v[name], high=max_scan_size(
                 v["sample"], math.radians(v["angle"])) if name == "scan_size" else None)
         for sliders in MODE_SLIDERS.values():
@@ -294,39 +260,28 @@ class ImagingPanel(Panel):
                                                description="slider during a scan",
                                                style={"description_width": "initial"})
         self.controls = c
-        self.progress = widgets.IntProgress(min=0, max=1, value=0, description="0 lines",
-                                            style={"description_width": "initial"})
-        self.start_button = widgets.Button(description="Start", icon="play",
-                                           button_style="success")
-        self.stop_button = widgets.Button(description="Stop", icon="stop", button_style="danger",
-                                          disabled=True)
-        self.pause_button = widgets.Button(description="Pause", icon="pause", disabled=True)
+        self.control = AcquisitionControls(
+            start=self.start, pause=self.pause, resume=self.resume, stop=self.stop,
+            show=self._show, report=self._report_error, live=lambda: running_as_notebook(),
+            stop_label="Stop", unit="lines")
+        self.progress = self.control.progress
+        self.start_button = self.control.buttons["start"]
+        self.pause_button = self.control.buttons["pause"]
+        self.stop_button = self.control.buttons["stop"]
         self.pause_at = widgets.BoundedIntText(value=0, min=0, max=max(PIXELS), step=1,
                                                description="pause after line (0: never)",
                                                style={"description_width": "initial"})
-        self.start_button.on_click(lambda _b: self.start())
-        self.stop_button.on_click(lambda _b: self.stop())
-        self.pause_button.on_click(lambda _b: self.resume() if self.paused else self.pause())
+        self.pause_at.observe(lambda ch: self._pause_after(), names="value")
         self.status = widgets.HTML()
         self.figure = None
         self.scene = None
         self._scene_key = None
-        self._tip_at = None  # where the last line ended: (x, y, z) in m on the sample
         self.fig = self.new_figure(figsize=(10.0, 7.0))
-        self.running = False
-        self.paused = False
-        self._task = None
-        self._job = None
-        self._pending = None
+        self.acquisition = None  # the scan (it holds the image)
+        self._blank = None       # what is shown before any scan: the configured grid, all NaN
         self._config = None
         self._scanned = None  # the values the image shown was started with
         self._physics = None  # the values (but on_change) of self._config
-        self._image, self._units, self._pixel = {}, {}, (1.0, 1.0)
-        self._done = 0
-        self._stopped = False
-        self._crashed = None
-        self._changes = []
-        self.line_runs = 0  # lines the scanner computed for this panel (one per step)
         self.controls["tip"].observe(lambda ch: self._show_controls(), names="value")
         self.controls["mode"].observe(lambda ch: self._show_controls(), names="value")
         self._show_controls(v["tip"], v["mode"])
@@ -390,20 +345,13 @@ class ImagingPanel(Panel):
 
     # -- the callback -----------------------------------------------------------------------
     def _configure(self, values: dict) -> _Config:
-        """Check the values (sliders in SI) and turn them into a sample, tip, mode and settings."""
-        check_choice("sample", values["sample"], list(SAMPLES))
-        mode = check_choice("mode", values["mode"], list(MODES))
-        key = check_choice("tip", values["tip"], list(TIPS))
-        pixels = check_choice("pixels", values["pixels"], list(PIXELS))
-        check_choice("on_change", values["on_change"], list(ON_CHANGE))
-
-        def si(name, p):  # sliders reach update in SI, checked (the panel contract)
-            return values[name]
-
-        tip = make_tip(key, **{p.name: si(p.name, p) for p in TIPS[key].parameters})
-        scan = {name: si(name, _scanner.PARAMETERS[name]) for name in SCAN_SLIDERS}
+        """Turn the values (checked, sliders in SI: the panel contract) into a sample, tip, mode
+        and settings."""
+        mode, key, pixels = values["mode"], values["tip"], values["pixels"]
+        tip = make_tip(key, **{p.name: values[p.name] for p in TIPS[key].parameters})
+        scan = {name: values[name] for name in SCAN_SLIDERS}
         scan["tilt"] = (scan.pop("tilt_x"), 0.0)
-        knobs = {name: si(name, p) for name, p in MODE_SLIDERS[mode].items()}
+        knobs = {name: values[name] for name in MODE_SLIDERS[mode]}
         if mode == "constant force":
             loop = PRESETS[PLANT].loop.replace(kp=knobs["kp"], ki=knobs["ki"])
             model = _modes.ConstantForce(loop, setpoint=knobs["setpoint"])
@@ -412,14 +360,14 @@ class ImagingPanel(Panel):
                                           damage_force=knobs["damage_force"])
         top = max_scan_size(values["sample"], scan["angle"])
         if scan["scan_size"] > top * (1 + 1e-12):
-            p = _scanner.PARAMETERS["scan_size"]
-            angle = _scanner.PARAMETERS["angle"]
+            p = _settings.PARAMETERS["scan_size"]
+            angle = _settings.PARAMETERS["angle"]
             raise ValueError(f"scan_size must be <= {p.to_display(top):.4g} {p.display_unit} on "
                              f"the sample {values['sample']!r} at angle "
                              f"{angle.to_display(values['angle']):g} {angle.display_unit} "
                              f"(it would leave the sample), got "
                              f"{p.to_display(values['scan_size']):g} {p.display_unit}")
-        settings = _scanner.ScanSettings(scan.pop("scan_size"), pixels=pixels, lines=pixels,
+        settings = _settings.ScanSettings(scan.pop("scan_size"), pixels=pixels, lines=pixels,
                                          **scan)
         s = sample(values["sample"])
         return _Config(s, tip, model, settings,
@@ -462,7 +410,7 @@ class ImagingPanel(Panel):
         "Apply on next line" builds a new :class:`~afmsmiler.imaging.scanner.Scan` with the new
         values and takes its lines from the next one on (the lines before are not scanned
         again). In constant force the loop of the new scan has run with the new values from the
-        first line (:class:`~afmsmiler.imaging.modes.ConstantForce` solves the whole image as
+        first line (:class:`~afmsmiler.imaging.scan_modes.ConstantForce` solves the whole image as
         one polygon in time), so the line after the change shows the settled loop, not the
         transient a real instrument shows right after its gains change.
         """
@@ -479,50 +427,60 @@ class ImagingPanel(Panel):
         config = self._configure(values)
         previous, self._config, self._physics = self._config, config, physics
         if self.running:
-            if on_change == "restart" or previous is None or config.key != previous.key:
+            restart = on_change == "restart" or previous is None or config.key != previous.key
+            if not restart:
+                try:  # from the next line on (after Resume if paused)
+                    self.acquisition.apply(tip=config.tip, mode=config.mode,
+                                           settings=config.settings)
+                except SettingsRefused:
+                    restart = True
+            if restart:  # a new scan from the first line: it runs, paused no more
                 self._begin(config)
-                if self.paused:  # a new scan from the first line: it runs, paused no more
-                    self.paused = False
-                    self._buttons()
-                    if running_as_notebook() and self._task is None:
-                        self._task = asyncio.ensure_future(self._run_async())
-            else:
-                self._pending = config  # the next step scans with it (after Resume if paused)
+                if running_as_notebook():
+                    self._run_steps()
         elif self.figure is None or previous is None or config.key != previous.key:
             self._clear(config)
         self._show()
 
     # -- the scan ---------------------------------------------------------------------------
+    @property
+    def last(self) -> Snapshot:
+        """The image so far: the acquisition's snapshot (immutable)."""
+        if self.acquisition is not None:
+            return self.acquisition.snapshot()
+        return self._blank
+
+    @last.setter
+    def last(self, value) -> None:  # Panel.__init__ starts it at None
+        self._blank = value
+
     def _clear(self, config: _Config) -> None:
-        """An empty image of the scan ``config`` describes (its first channel all NaN)."""
-        n = config.settings.pixels
-        name = "height trace" if isinstance(config.mode, _modes.ConstantForce) \
-            else "deflection trace"
-        self._tip_at = None
-        self._image = {name: np.full((n, n), np.nan)}
-        self._units = {name: "m"}
-        self._pixel = (config.settings.scan_size / n,) * 2
-        self._done, self._stopped, self._crashed, self._changes = 0, False, None, []
-        self.progress.max, self.progress.value = n, 0
+        """No scan: the grid ``config`` describes, every channel all NaN."""
+        mode, settings = config.mode, config.settings
+        self.acquisition = None
+        self.control.attach(None)
+        self._blank = Snapshot.blank({c: mode.unit(c) for c in mode.channels}, settings.shape,
+                                     settings.pixel_size, settings.pixel_size_y,
+                                     main=mode.main_channel or mode.channels[0])
 
     def _begin(self, config: _Config) -> None:
-        """A new scan from the first line (the image cleared)."""
-        self._clear(config)
-        scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
-        self._job = _Job(scan, scan.lines(), 0)
-        self._pending = None
+        """A new scan from the first line (the image of the one before is let go)."""
+        acquisition = ScanAcquisition(config.sample, config.tip, config.mode, config.settings)
+        acquisition.pause_after = self.pause_at.value
+        acquisition.start()
+        self.acquisition = acquisition
+        self.control.attach(acquisition)
         self._scanned = config
 
-    def _continue(self, config: _Config) -> None:
-        """Scan the lines from the next one on with ``config`` (the finished lines kept)."""
-        scan = _scanner.Scan(config.sample, config.tip, config.mode, config.settings)
-        self._job = _Job(scan, scan.lines(start=self._done), self._done)
-        self._pending = None
-        self._scanned = config
-        self._changes.append(self._done)
+    def _pause_after(self) -> None:
+        if self.acquisition is not None:
+            self.acquisition.pause_after = self.pause_at.value
 
     def start(self, run: bool = True) -> None:
         """Start a scan from the first line with the controls' values.
+
+        The values were configured when the controls last changed (:meth:`update`): Start
+        configures only what changed since (nothing, after a slider move).
 
         Parameters
         ----------
@@ -533,41 +491,25 @@ class ImagingPanel(Panel):
         """
         self.stop(redraw=False)
         values = self.to_si(self.values())
-        self._config = self._configure(values)
-        self._physics = {k: v for k, v in values.items() if k != "on_change"}
+        physics = {k: v for k, v in values.items() if k != "on_change"}
+        if self._config is None or physics != self._physics:
+            self._config, self._physics = self._configure(values), physics
         self._begin(self._config)
-        self.running, self.paused = True, False
-        self._buttons()
         self._show()
         if run:
             self._run_steps()
 
     def _run_steps(self) -> None:
         """Run the steps: as a task in a live notebook, else to the end (or the pause) at once."""
-        if running_as_notebook():
-            self._task = asyncio.ensure_future(self._run_async())
-        else:
-            while self.step():
-                pass
-
-    def _buttons(self) -> None:
-        """Start is free unless a scan runs unpaused; Stop and Pause/Resume while one runs."""
-        self.start_button.disabled = self.running and not self.paused
-        self.stop_button.disabled = not self.running
-        self.pause_button.disabled = not self.running
-        self.pause_button.description = "Resume" if self.paused else "Pause"
-        self.pause_button.icon = "play" if self.paused else "pause"
+        self.control.run(frame_interval=self.FRAME_INTERVAL, max_line_wait=self.MAX_LINE_WAIT,
+                         read_wait=0.0)
 
     def pause(self) -> None:
         """Pause the running scan after the line under way: its lines stay, nothing more is
         scanned until :meth:`resume` (sliders moved meanwhile apply as ``on_change`` says)."""
         if not self.running or self.paused:
             return
-        task, self._task = self._task, None
-        if task is not None and not task.done():
-            task.cancel()
-        self.paused = True
-        self._buttons()
+        self.acquisition.pause()
         self._show()
 
     def resume(self, run: bool = True) -> None:
@@ -578,12 +520,11 @@ class ImagingPanel(Panel):
         run : bool
             Run it as :meth:`start` does; with ``run=False`` call :meth:`step` for each line.
         """
-        if not self.running or not self.paused:
+        if not self.paused:
             return
-        self.paused = False
-        self._buttons()
+        self.acquisition.resume()
         self._show()
-        if run and self._task is None:
+        if run:
             self._run_steps()
 
     #: s between two pictures of a running scan in a live notebook. Every line drawn sent a
@@ -597,33 +538,15 @@ class ImagingPanel(Panel):
     #: there (:attr:`pause_at`, :meth:`pause`): 64 lines take only a few seconds.
     MAX_LINE_WAIT = 0.25
 
-    async def _run_async(self) -> None:
-        try:
-            shown = due_line = time.monotonic()
-            while True:
-                now = time.monotonic()
-                picture = now - shown >= self.FRAME_INTERVAL
-                if not self.step(show=picture):
-                    break
-                if picture:
-                    shown = now
-                line_time = min(self._job.scan.settings.line_time, self.MAX_LINE_WAIT)
-                due_line = max(due_line + line_time, time.monotonic() - line_time)
-                # the kernel handles the widgets' messages (a slider, Stop) while it waits
-                await asyncio.sleep(max(0.0, due_line - time.monotonic()))
-        except Exception as exc:  # shown under the panel: a task's exception is otherwise lost
-            self.running, self.paused, self._task = False, False, None
-            self._buttons()
-            self._report_error(exc)
-
     def step(self, show: bool = True) -> bool:
-        """Scan the next line (one model run), add it to the image and redraw once.
+        """Scan the next line (one model run) and redraw once.
 
         Parameters
         ----------
         show : bool
-            Redraw (figure, progress, 3D view) after the line; the scan's last line is always
-            shown. A live scan shows at most one picture per :attr:`FRAME_INTERVAL`.
+            Redraw (figure, progress, 3D view) after the line; the scan's last line (and a
+            pause) is always shown. A live scan shows at most one picture per
+            :attr:`FRAME_INTERVAL`.
 
         Returns
         -------
@@ -632,49 +555,7 @@ class ImagingPanel(Panel):
             stopped or crashed) or is paused (after the line :attr:`pause_at` names, or by
             :meth:`pause`; a paused scan scans nothing until :meth:`resume`).
         """
-        if not self.running or self.paused:
-            return False
-        if self._pending is not None:
-            self._continue(self._pending)
-        job = self._job
-        try:
-            record = next(job.lines)
-        except StopIteration:
-            return self._finish()
-        self.line_runs += 1
-        row, settings = record.row, job.scan.settings
-        for name, values in record.channels.items():
-            if name not in self._image or self._image[name].shape != settings.shape:
-                self._image[name] = np.full(settings.shape, np.nan)
-            self._image[name][row] = values
-            self._units[name] = job.scan.mode.unit(name)
-        self._pixel = (settings.pixel_size, settings.pixel_size_y)
-        self._done = row + (record.crash is None)
-        if self._want_scene:  # the apex where the line ended: the retrace's first pixel
-            x, y = job.scan.position(row, 0, "retrace")
-            self._tip_at = (x, y, float(job.scan.plan.retrace[row, 0]))
-        if record.crash is not None:
-            self._crashed = record.crash
-        if self._done >= self.progress.max or record.crash is not None:
-            return self._finish()
-        if self._done == self.pause_at.value:  # the line the student asked to stop after
-            self._task = None  # (the task that runs this step ends when it returns)
-            self.paused = True
-            self._buttons()
-            self._show()
-            return False
-        if show:
-            self._show()
-        else:
-            self.last = self._result()  # the state is current; only the picture waits
-        return True
-
-    def _finish(self) -> bool:
-        self.running = self.paused = False
-        self._task = None
-        self._buttons()
-        self._show()
-        return False
+        return self.control.step(show=show) and not self.paused
 
     def stop(self, redraw: bool = True) -> None:
         """Stop the scan: the lines finished so far stay in the image.
@@ -684,51 +565,39 @@ class ImagingPanel(Panel):
         redraw : bool
             Show the stopped image (one redraw).
         """
-        task, self._task = self._task, None
-        if task is not None and not task.done():
-            task.cancel()
         if not self.running:
             return
-        self.running = self.paused = False
-        self._stopped = True
-        self._buttons()
+        self.acquisition.abort()
         if redraw:
             self._show()
 
     # -- what is shown ----------------------------------------------------------------------
-    def _result(self) -> ImagingResult:
-        dx, dy = self._pixel
-        channels = {name: ChannelImage(a.copy(), dx, dy, self._units.get(name, "m"), name)
-                    for name, a in self._image.items()}
-        return ImagingResult(channels, self._done, self.progress.max, self._stopped,
-                             self._crashed, tuple(self._changes), self.paused)
-
     def _show(self) -> None:
         """The image so far into the figure (one redraw), the progress bar and the status."""
-        self.last = self._result()
+        snap = self.last
+        fault = snap.fault
+        crash = fault is not None and not isinstance(fault, Exception)
         # an image on screen made with other values than the controls now show says so
-        changed = (not self.running and self._done > 0 and self._scanned is not None
+        changed = (not snap.running and snap.lines_done > 0 and self._scanned is not None
                    and self._config is not self._scanned)
-        view = scan_view(self.last, status="settings changed: Start scans with them"
-                         if changed else None)
-        if self.figure is None:
-            self.figure = ImagingFigure(view, fig=self.fig)
-        else:
-            self.figure.update(view)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
-        self._draw_scene()
-        self.progress.value = self._done
-        self.progress.description = f"{self._done}/{self.progress.max} lines"
-        state = (f"paused after line {self._done}: move a slider if you like, then Resume"
-                 if self.paused else
-                 "scanning" if self.running else "crashed" if self._crashed is not None
-                 else "stopped" if self._stopped else
-                 "done" if self._done and self._done == self.progress.max else "ready")
+        status = ("settings changed: Start scans with them" if changed
+                  else crash_note(fault) if crash else None)
+        view = scan_view(snap, main=snap.main, status=status)
+        self.draw(ImagingFigure, view)  # the figure's frame leaves first: its pixels wait for nothing else
+        self._draw_scene(snap)
+        self.control.refresh(snap)
+        done = snap.lines_done
+        state = (f"paused after line {done}: move a slider if you like, then Resume"
+                 if snap.paused else "scanning" if snap.running
+                 else "crashed" if crash else "failed" if fault is not None
+                 else "stopped" if snap.stopped else
+                 "done" if snap.state == "done" else "ready")
         self.status.value = f"<b>{state}</b>"
 
-    def _draw_scene(self) -> None:
+    def _draw_scene(self, snap: Snapshot) -> None:
         """The 3D view: the sample (rebuilt for another sample or tip), the finished lines of
-        the main channel in m, the tip where the last line ended (no physics here)."""
+        the height image in m, the tip where the last line ended (no physics here: the scan's
+        own positions)."""
         if not self._want_scene:
             return
         config = self._config
@@ -737,16 +606,20 @@ class ImagingPanel(Panel):
             from ..scenes.imaging import ImagingScene
             self.scene = ImagingScene(config.sample, tip=config.tip, vis=self.scene_root())
             self._scene_key = key
-        channel = self.last.channels.get("height trace")  # constant force's image
+        channel = snap.channels.get("height trace")  # constant force's image
         drawn = self.scene.image_lines or 0
-        if channel is not None and (self._done >= 2 or drawn >= 2):
+        done = snap.lines_done
+        if channel is not None and (done >= 2 or drawn >= 2):
             # one row (a scan restarted) removes the image's mesh, as show_image says
-            rows = max(self._done, 1)
+            rows = max(done, 1)
             heights = np.nan_to_num(channel.heights[:rows])
             self.scene.show_image(Sample(heights, channel.pixel_size, "height trace",
-                                         channel.pixel_size_y), lines=self.last.lines)
-        if self._tip_at is not None and self.scene.tip is not None:
-            self.scene.move_tip(*self._tip_at)
+                                         channel.pixel_size_y), lines=snap.lines)
+        scan = self.acquisition.scan if self.acquisition is not None else None
+        if scan is not None and done > 0 and self.scene.tip is not None:
+            row = done - 1  # the apex where the line ended: the retrace's first pixel
+            x, y = scan.position(row, 0, "retrace")
+            self.scene.move_tip(x, y, float(scan.plan.retrace[row, 0]))
 
     def widget(self) -> widgets.Widget:
         """Controls on the left (sample, tip, scan, mode), buttons and progress, the figure below.
@@ -767,39 +640,3 @@ class ImagingPanel(Panel):
                             self.pause_at, self.progress, self.status])
         return widgets.VBox([widgets.HBox([left, right, run]), figure])
 
-
-@dataclass(frozen=True)
-class ChannelImage:
-    """One channel of the panel's image, rows not scanned yet NaN (a Sample refuses NaN).
-
-    Attributes
-    ----------
-    heights : numpy.ndarray
-        Values in ``unit``, shape (lines, pixels).
-    pixel_size, pixel_size_y : float
-        Spacing of the pixels along x and of the lines along y in m.
-    unit : str
-        SI unit of the values (``"m"`` for heights and deflections).
-    name : str
-        The channel's name.
-    """
-
-    heights: np.ndarray
-    pixel_size: float
-    pixel_size_y: float
-    unit: str = "m"
-    name: str = ""
-
-    def finished(self, lines_done: int) -> Sample:
-        """The finished lines as a Sample (rows 0 to ``lines_done - 1``).
-
-        Parameters
-        ----------
-        lines_done : int
-            Lines finished, at least 2 (a Sample holds at least two values per axis).
-
-        Returns
-        -------
-        Sample
-        """
-        return Sample(self.heights[:lines_done], self.pixel_size, self.name, self.pixel_size_y)

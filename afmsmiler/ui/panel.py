@@ -325,6 +325,32 @@ class Panel:
         self.model_runs += 1
         return model(*args, **kwargs)
 
+    def draw(self, figure_class, *data, made_with: Mapping | None = None, **keywords) -> None:
+        """Show a model result in the panel's figure and send it to the browser (one message).
+
+        The first call makes :attr:`figure` as ``figure_class(*data, fig=self.fig, **made_with,
+        **keywords)``; later calls update it in place with ``figure.update(*data, **keywords)``
+        (no new figure, no layout). The figure builders (:mod:`afmsmiler.plots`) compute no
+        physics.
+
+        Parameters
+        ----------
+        figure_class : type
+            A figure builder of :mod:`afmsmiler.plots` with ``update``.
+        *data, **keywords
+            The model results it draws.
+        made_with : mapping, optional
+            Keywords for the builder only (fixed for the panel's life, e.g. legend names).
+        """
+        if self.figure is None:
+            self.figure = figure_class(*data, fig=self.fig, **(made_with or {}), **keywords)
+        else:
+            self.figure.update(*data, **keywords)
+        self.redraw()
+
+    #: The panel's figure builder (made by :meth:`draw`), or None before the first update.
+    figure = None
+
     # -- the contract's conversion ---------------------------------------------------------
     def _check_names(self, values: Mapping) -> None:
         if set(values) != set(self.controls):

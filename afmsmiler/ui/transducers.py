@@ -272,11 +272,7 @@ class TransducerPanel(Panel):
         op = self.run_model(model.operate, value, mode, frequencies=frequency_grid(model),
                            bandwidth=DEFAULTS["bandwidth"])
         curves = chain_curves(op)
-        if self.figure is None:
-            self.figure = TransducerFigure(curves, fig=self.fig)
-        else:
-            self.figure.update(curves)
-        self.redraw()  # the figure's frame leaves first: its pixels wait for nothing else
+        self.draw(TransducerFigure, curves)  # the figure's frame leaves first: its pixels wait for nothing else
         if self._want_scene:
             if self.scene is None:
                 from ..scenes.transducers import TransducerScene

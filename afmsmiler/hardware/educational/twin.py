@@ -12,7 +12,7 @@ import numpy as np
 
 from ...controller import ContactLoop
 from ...imaging import ScanSettings, scan
-from ...imaging.modes import ConstantForce
+from ...imaging.scan_modes import ConstantForce
 from ...samples import Sample
 from ...validation import check_instance, check_integer, check_positive
 from ..framing import Frame

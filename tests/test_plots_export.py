@@ -10,7 +10,7 @@ import pytest
 from PIL import Image
 
 from afmsmiler.parameters import UNITS
-from afmsmiler.plots.images import (BAR_FRACTION, save_png, scale_bar_label,
+from afmsmiler.plots.export import (BAR_FRACTION, save_png, scale_bar_label,
                                     scale_bar_length)
 from afmsmiler.samples import Sample
 
@@ -119,7 +119,7 @@ def test_save_png_names_a_flag_that_is_not_a_bool_and_a_png_too_long(tmp_path):
     """Found by the bad-input campaign: ``scale_bar=None`` or ``"no"`` was accepted (drawn or not
     by its truth value), and a sample with very anisotropic pixels asked matplotlib for a PNG of
     16 x 160000000 pixels, whose error named no parameter."""
-    from afmsmiler.plots.images import MAX_PNG_SIDE, save_png
+    from afmsmiler.plots.export import MAX_PNG_SIDE, save_png
     from afmsmiler.samples import Sample
     s = Sample(np.zeros((8, 8)), 1e-9)
     for name in ("scale_bar", "colorbar"):

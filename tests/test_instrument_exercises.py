@@ -9,10 +9,10 @@ import numpy as np
 import pytest
 from scipy.special import erf
 
-from afmsmiler.exercises.overview import (check_deflection_sensitivity, check_half_off_sum,
+from afmsmiler.exercises.instrument import (check_deflection_sensitivity, check_half_off_sum,
                                           check_spot_direction, givens)
 from afmsmiler.instrument import OpticalHead
-from afmsmiler.ui.overview import OverviewPanel
+from afmsmiler.ui.instrument import InstrumentPanel
 
 TURN = 2 * math.pi
 
@@ -54,7 +54,7 @@ def test_deflection_sensitivity(g):
 
 
 def test_spot_direction_is_what_the_panel_shows(g):
-    panel = OverviewPanel()
+    panel = InstrumentPanel()
     panel.set(**g["knob_turns"])
     vert = panel.last.signals.vertical
     start = panel.controls["detector_vertical"].value
@@ -89,7 +89,7 @@ def test_half_off_sum_is_one_half():
 
 def test_half_off_sum_on_the_panel(g):
     """The notebook: 'walk the spot along the lever until its centre is on the free end'."""
-    panel = OverviewPanel()
+    panel = InstrumentPanel()
     panel.set(**g["knob_turns"])
     start = panel.controls["laser_x"].value
     sums = []                            # the best SUM: the plateau, a little back from the end

@@ -222,12 +222,8 @@ class TappingPanel(_SliderPanel):
             point = (r, zc, phase, e_dis, attractive)
         depth = math.nan if point is None else lever.indentation(zc, r * lever.free_amplitude)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
-        jumps = {way: curve.sweep(way)[2] for way in ("approach", "retract")}
-        if self.figure is None:
-            self.figure = TappingFigure(curve, point, fig=self.fig, jumps=jumps)
-        else:
-            self.figure.update(curve, point, jumps)
-        self.redraw()
+        jumps = curve.jumps  # the same run of the approach as operating_point's
+        self.draw(TappingFigure, curve, point, jumps=jumps)
         scene = self._scene("tapping")
         if point is None:
             self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
@@ -363,11 +359,7 @@ class LateralPanel(_SliderPanel):
         forces = np.vstack((loop.trace, loop.retrace))
         twist, signal = lever.twist(forces), lever.signal(forces)
         self.last = LateralState(images, loop, row, mu.heights, twist, signal)
-        if self.figure is None:
-            self.figure = LateralFigure(loop, images, row, fig=self.fig)
-        else:
-            self.figure.update(loop, images, row)
-        self.redraw()
+        self.draw(LateralFigure, loop, images, row)
         scene = self._scene("lateral")
         if scene is not None:
             scene.animate_lateral(x, twist, signal,
@@ -468,11 +460,7 @@ class FrequencyShiftPanel(_SliderPanel):
                                          spring_constant=si["spring_constant"],
                                          resonance_frequency=si["resonance_frequency"])
         self.last = FrequencyShiftState(curve, law)
-        if self.figure is None:
-            self.figure = FrequencyShiftFigure(curve, fig=self.fig)
-        else:
-            self.figure.update(curve)
-        self.redraw()
+        self.draw(FrequencyShiftFigure, curve)
         i = int(np.argmin(np.abs(z - d["shown"])))
         scene = self._scene("fm")
         if scene is not None:
@@ -585,11 +573,7 @@ class JumpingPanel(_SliderPanel):
         result = self.run_model(_scan, sample, tip, mode, scan_settings)
         self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
                                  scan_settings.scan_time)
-        if self.figure is None:
-            self.figure = JumpingFigure(curve, result, fig=self.fig)
-        else:
-            self.figure.update(curve, result)
-        self.redraw()
+        self.draw(JumpingFigure, curve, result)
         scene = self._scene("jumping")
         if scene is not None:
             heights, xs, touching = self._cycle(curve, result)
@@ -608,21 +592,11 @@ class JumpingPanel(_SliderPanel):
 
     @staticmethod
     def _cycle(curve, result, pixels: int = 4, frames: int = 12):
-        """The apex's path over ``pixels`` pixels of the middle line, in m: the curve's approach
-        (touching from Z_np = 0 on) and retract (touching until the snap-off Z_np), the apex
-        |Z_np| above the surface while free, on it while touching; then the move."""
+        """The apex's path (:func:`~afmsmiler.modes.jumping.apex_path`) over ``pixels`` pixels
+        of the middle line."""
         row = result.images["height trace"].shape[0] // 2
         surface = np.nan_to_num(result.images["height trace"][row, :pixels])
-        pick = np.linspace(0, curve.approach_z_np.size - 1, frames).round().astype(int)
-        z_app, z_ret = curve.approach_z_np[pick], curve.retract_z_np[pick]
-        heights, xs, touching = [], [], []
-        for j in range(pixels):
-            for z, touch in ((z_app, z_app >= 0.0),
-                             (z_ret, z_ret >= min(curve.snap_off_z_np, 0.0))):
-                heights += list(surface[j] + np.where(touch, 0.0, -z))
-                touching += list(touch)
-                xs += [j * result.pixel_size] * z.size
-        return np.array(heights), np.array(xs), np.array(touching)
+        return jumping.apex_path(curve, surface, result.pixel_size, frames=frames)
 
 
 # -- force volume ---------------------------------------------------------------------------------
@@ -695,11 +669,7 @@ class ForceVolumePanel(_SliderPanel):
                                   labels=labels, seed=d["noise_seed"], **si)
         self.labels = labels
         self.last = volume
-        if self.figure is None:
-            self.figure = ForceVolumeFigure(volume, [m.name for m in _fv.BLEND], fig=self.fig)
-        else:
-            self.figure.update(volume)
-        self.redraw()
+        self.draw(ForceVolumeFigure, volume, made_with={"names": [m.name for m in _fv.BLEND]})
         rows = []
 
         def median(values, unit):

@@ -4,9 +4,9 @@ The four knobs of the optical head (:data:`afmsmiler.instrument.KNOBS`), the def
 setpoint and the coarse approach (:data:`afmsmiler.instrument.walkthrough.SETUP`), the housing's
 opacity and the exploded view (:data:`afmsmiler.scenes.instrument.PARAMETERS`) are sliders made
 by :func:`~afmsmiler.ui.controls.control`; the instrument and the part to look at are drop-downs;
-"probe mounted" is a check box. One user action is one :meth:`OverviewPanel.update`, which runs
+"probe mounted" is a check box. One user action is one :meth:`InstrumentPanel.update`, which runs
 the head's model once (:meth:`~afmsmiler.instrument.OpticalHead.signals`) and hands the result
-to the display (SUM, VERT, HORZ), to the figure (:class:`OverviewFigure`: the spot on the lever
+to the display (SUM, VERT, HORZ), to the figure (:class:`InstrumentFigure`: the spot on the lever
 and on the four-quadrant photodiode) and, when a viewer is asked for, to the 3D instrument
 (:class:`~afmsmiler.scenes.instrument.InstrumentScene`: knobs turned, beam traced through the
 spots the model computed, housing, exploded view, the approach's gap, the picked part
@@ -32,11 +32,11 @@ from ..parameters import read_only, shown
 from ..scenes.instrument import INSTRUMENTS
 from ..scenes.instrument import PARAMETERS as SCENE
 from ..validation import check_choice
-from ..plots.overview import OverviewFigure
+from ..plots.instrument import InstrumentFigure
 from .controls import control
 from .panel import Panel
 
-__all__ = ["OverviewPanel", "OverviewState", "DEFAULTS"]
+__all__ = ["InstrumentPanel", "InstrumentState", "DEFAULTS"]
 
 #: The panel's defaults in one place: the first instrument, the figure's size (inches), the
 #: knob sliders' step (turn: a fine screw; 1/200 turn moves the photodiode 2.5 um, so the
@@ -48,7 +48,7 @@ _WHOLE = ""   # the part picker's "whole instrument"
 
 
 @dataclass(frozen=True)
-class OverviewState:
+class InstrumentState:
     """What the panel last computed (SI units), for tests and exercises.
 
     Attributes
@@ -78,7 +78,7 @@ class OverviewState:
     description: str
 
 
-class OverviewPanel(Panel):
+class InstrumentPanel(Panel):
     """The instrument overview: knobs, display, photodiode figure, parts, the guided setup.
 
     Controls: ``instrument`` (``"obd"`` or ``"educational"``, :data:`INSTRUMENTS`), ``part``
@@ -108,11 +108,11 @@ class OverviewPanel(Panel):
     ----------
     head : OpticalHead
         The head the knobs turn.
-    last : OverviewState
+    last : InstrumentState
         The last model result.
     walkthrough : Walkthrough
         The guided setup's position and its checks.
-    figure : OverviewFigure
+    figure : InstrumentFigure
         The spot on the lever and on the photodiode.
     scene : InstrumentScene or None
         The 3D view.
@@ -152,7 +152,7 @@ class OverviewPanel(Panel):
         self.buttons["Next"].on_click(lambda _b: self.next_step())
         self.buttons["Check"].on_click(lambda _b: self.check_step())
         self.fig = self.new_figure(figsize=DEFAULTS["figsize"])
-        self.figure = OverviewFigure(self.head, self.fig)
+        self.figure = InstrumentFigure(self.head, self.fig)
         super().__init__(scene=scene, vis=vis)
         self._show_step()
 
@@ -248,7 +248,7 @@ class OverviewPanel(Panel):
         p = parts.get(part)
         description = (f"{p.label}: {p.description} ({self._dimensions(instrument, p)})"
                        if p is not None else INSTRUMENTS[instrument].title)
-        self.last = OverviewState(head=self.head, signals=signals, setup=setup, deflection=z,
+        self.last = InstrumentState(head=self.head, signals=signals, setup=setup, deflection=z,
                                   instrument=instrument, part=part, description=description)
         self.figure.update(self.head, signals, mounted)
         self.redraw()

@@ -2,7 +2,7 @@
 
 The scanner (:mod:`afmsmiler.imaging.scanner`) decides where the tip is and when: it dilates
 the sample by the tip, samples the apex surface along every line (trace and retrace, with the
-scan angle, offset, drift and creep of its :class:`~afmsmiler.imaging.scanner.ScanSettings`) and
+scan angle, offset, drift and creep of its :class:`~afmsmiler.imaging.settings.ScanSettings`) and
 hands the result to a mode as a :class:`ScanPlan`. A :class:`Mode` turns the plan's lines into
 channels, one line at a time. Two modes live here:
 
@@ -86,7 +86,7 @@ class ScanPlan:
         feel (the scan's bounding box widened by the tip's reach), from ``apex_origin`` on.
     tip : afmsmiler.contact.Tip or None
         The tip (None: an ideal, infinitely sharp one).
-    settings : afmsmiler.imaging.scanner.ScanSettings
+    settings : afmsmiler.imaging.settings.ScanSettings
         The settings of the scan.
     apex_origin : tuple of float
         (x, y) in m of ``apex``'s first pixel on the sample.
@@ -200,6 +200,8 @@ class Mode(ABC):
 
     #: Names of the channels the mode produces, in the order a panel shows them.
     channels: ClassVar[tuple[str, ...]] = ()
+    #: The channel that is the mode's image (what a panel shows first); default the first one.
+    main_channel: ClassVar[str | None] = None
     #: SI unit of each channel that is not in m.
     units: ClassVar[Mapping[str, str]] = MappingProxyType({})
     #: The tip of the mode's own physics (None: the mode does not model one).
@@ -312,6 +314,7 @@ class ConstantForce(Mode):
     """
 
     channels = ("height trace", "height retrace", "error trace", "error retrace")
+    main_channel = "height trace"
 
     def __init__(self, loop: ContactLoop, *, setpoint: float = LOOP_PARAMETERS["setpoint"].default):
         self.loop = check_instance("loop", loop, ContactLoop)
@@ -462,6 +465,7 @@ class ConstantHeight(Mode):
     """
 
     channels = ("deflection trace", "deflection retrace")
+    main_channel = "deflection trace"
 
     def __init__(self, system: ContactSystem, z_np: float = CONTACT_PARAMETERS["z_np"].default,
                  damage_force: float = PARAMETERS["damage_force"].default):

@@ -14,7 +14,7 @@ from afmsmiler.instrument.walkthrough import SETUP, STEP_TOLERANCES
 from afmsmiler.plots.live import describe
 from afmsmiler.scenes.instrument import INSTRUMENTS
 from afmsmiler.scenes.instrument import PARAMETERS as SCENE
-from afmsmiler.ui.overview import OverviewPanel
+from afmsmiler.ui.instrument import InstrumentPanel
 
 TURN = 2 * math.pi
 
@@ -28,7 +28,7 @@ def aligned_turns():
 
 @pytest.fixture
 def panel():
-    return OverviewPanel()
+    return InstrumentPanel()
 
 
 def test_sliders_are_built_from_the_parameter_tables(panel):
@@ -89,7 +89,7 @@ def count_runs(monkeypatch):
 
 
 def test_one_user_action_is_one_model_run(count_runs):
-    panel = OverviewPanel(vis=Recorder())
+    panel = InstrumentPanel(vis=Recorder())
     assert count_runs["signals"] == 1
     moves = [dict(laser_x=1.0), dict(detector_vertical=-0.5), dict(deflection=10.0),
              dict(approach_gap=0.0), dict(part="photodiode"), dict(housing_opacity=0.1),
@@ -113,7 +113,7 @@ def test_one_user_action_is_one_model_run(count_runs):
 
 def test_scene_follows_the_panel(aligned_turns):
     rec = Recorder()
-    panel = OverviewPanel(vis=rec)
+    panel = InstrumentPanel(vis=rec)
     scene = panel.scene
     assert scene is not None and scene.instrument.key == "obd"
     panel.set(laser_x=1.5)
@@ -150,7 +150,7 @@ def test_scene_follows_the_panel(aligned_turns):
 
 
 def test_no_scene_unless_asked():
-    panel = OverviewPanel()
+    panel = InstrumentPanel()
     panel.set(laser_x=1.0, part="photodiode")
     assert panel.scene is None
 
@@ -245,7 +245,7 @@ def test_instrument_pages_for_the_book(tmp_path):
 
 
 def test_browser_changes_and_buttons(count_runs, aligned_turns):
-    panel = OverviewPanel()
+    panel = InstrumentPanel()
     count_runs["signals"] = 0
     panel.controls["instrument"].value = "educational"      # as the browser sends it
     assert count_runs["signals"] == 1 and panel.last.instrument == "educational"
@@ -286,7 +286,7 @@ def test_the_spot_stays_in_view(panel, aligned_turns):
 def test_walkthrough_moves_the_camera_and_highlights_in_the_scene():
     from afmsmiler.instrument.walkthrough import STEPS
     rec = Recorder()
-    panel = OverviewPanel(vis=rec)
+    panel = InstrumentPanel(vis=rec)
     for step in STEPS[1:]:
         panel.next_step()
         scene = panel.scene
@@ -337,7 +337,7 @@ def test_the_probe_description_gives_the_lever_the_optics_use():
     for lever, size in ((None, "450 x 50 x 2 um"),
                         (Cantilever.from_material("silicon", length=125e-6, width=30e-6,
                                                   thickness=4e-6), "125 x 30 x 4 um")):
-        panel = OverviewPanel() if lever is None else OverviewPanel(lever=lever)
+        panel = InstrumentPanel() if lever is None else InstrumentPanel(lever=lever)
         panel.set(part="probe_chip")
         assert f"lever {size}" in panel.last.description
         assert len(re.findall(r"lever \d", panel.last.description)) == 1
@@ -348,7 +348,7 @@ def test_knob_sliders_say_which_way_is_clockwise(panel):
     """Exercise 2 asks clockwise or counter-clockwise: each knob's slider says + is clockwise,
     and + is clockwise in the model (OpticalHead.turn: positive clockwise seen from its end;
     the exercise's checker takes clockwise as +)."""
-    from afmsmiler.exercises.overview import DIRECTIONS
+    from afmsmiler.exercises.instrument import DIRECTIONS
     for name in KNOBS:
         assert "+ clockwise" in panel.controls[name].description
         assert "[turn]" in panel.controls[name].description

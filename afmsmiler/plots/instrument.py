@@ -1,7 +1,7 @@
 """Module (e)'s figure: the laser spot on the lever and on the quadrant photodiode.
 
-:class:`OverviewFigure` draws the optical head's state (:mod:`afmsmiler.instrument`) that the
-overview panel (:mod:`afmsmiler.ui.overview`) computed once per user action; it computes no
+:class:`InstrumentFigure` draws the optical head's state (:mod:`afmsmiler.instrument`) that the
+instrument panel (:mod:`afmsmiler.ui.instrument`) computed once per user action; it computes no
 optics itself.
 """
 from __future__ import annotations
@@ -13,7 +13,7 @@ import numpy as np
 from ..instrument import OpticalHead, Signals
 from ..parameters import unit_scale
 
-__all__ = ["OverviewFigure", "SPOT_POINTS"]
+__all__ = ["InstrumentFigure", "SPOT_POINTS"]
 
 #: Points of a drawn spot's outline.
 SPOT_POINTS = 65
@@ -24,7 +24,7 @@ def _circle(cx, cy, rx, ry, n):
     return cx + rx * np.cos(t), cy + ry * np.sin(t)
 
 
-class OverviewFigure:
+class InstrumentFigure:
     """Two views: the laser spot on the lever (top view, um) and on the photodiode (mm).
 
     The lever is the rectangle [0, L] x [-w/2, w/2], the chip's body the dashed one behind x = 0
