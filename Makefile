@@ -6,9 +6,11 @@ VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.afmsmiler-installed
 STUDENT_STAMP := $(VENV)/.afmsmiler-student-installed
+## pytest-xdist workers for `make test` and `make unit` (JOBS=0: one process, as pytest alone)
+JOBS   ?= 2
 export MPLBACKEND ?= Agg
 
-.PHONY: install lab test unit notebooks bench book clean browser firmware
+.PHONY: install lab test unit lint notebooks bench book clean browser firmware
 
 ## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
 ## missing and we are root (as in CI); otherwise those tests are skipped and say why.
@@ -35,18 +37,22 @@ firmware:
 	      || echo "apt-get could not install them: the firmware tests will be skipped"; \
 	  else echo "no avr-gcc/simavr and not root: the firmware tests will be skipped"; fi; }
 
+## uv (from PyPI) installs in parallel: about 35 s for every extra where pip took about 2 min;
+## pip does it when uv cannot.
+EXTRAS := test,lab,files,bench,hardware
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
-	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[test,lab,files,bench,hardware]'
+	{ $(PY) -m pip install --quiet uv && \
+	  $(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[$(EXTRAS)]'; } || \
+	  { $(PY) -m pip install --quiet --upgrade pip && $(PY) -m pip install --quiet -e '.[$(EXTRAS)]'; }
 	touch $(STAMP) $(STUDENT_STAMP)
 
-## A student's install: the course, JupyterLab and the file readers (no test, bench or hardware
-## extras); a full install already has them.
+## A student's install: the course with its notebooks' UI (lab), the file readers (files) and
+## the devices (hardware); no test or bench extras. A full install already has them.
 $(STUDENT_STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	$(PY) -m pip install --quiet --upgrade pip
-	$(PY) -m pip install --quiet -e '.[lab,files]'
+	$(PY) -m pip install --quiet -e '.[lab,files,hardware]'
 	touch $(STUDENT_STAMP)
 
 install: $(STAMP)
@@ -56,21 +62,26 @@ lab: $(STUDENT_STAMP)
 	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
-## Everything: every test (slow and browser ones too), the docstrings' examples, every notebook
-## under nbval. The tests that need no browser run on both cores (pytest-xdist); the browser
-## tests, which time key presses to pixels, run alone after them.
-test: $(STAMP) browser firmware
-	$(PY) -m pytest -n 2 -m "not browser" tests
-	$(PY) -m pytest -m browser tests
-	$(PY) -m pytest -p no:cacheprovider --doctest-modules afmsmiler
+## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
+## notebook under nbval. Tests run on both cores (pytest-xdist); a browser test module keeps its
+## JupyterLab/voila servers and Chromium on one worker (xdist_group) while the other worker runs
+## the rest. Tests check correctness, not speed (`make bench` measures speed).
+test: $(STAMP) browser firmware lint
+	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup tests
+	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
 
-## The fast suite while you work: every test except those marked `slow` (a second or more each:
-## reference solutions, many fits, code generation, the deep bad-input campaign) and `browser`
-## (headless Chromium against JupyterLab and voila).
-## No doctests, notebooks or server check: `make test` runs those.
+## The fast suite while you work, on both cores: every test except those marked `slow` (a second
+## or more each: reference solutions, many fits, code generation, the deep bad-input campaign) and
+## `browser` (headless Chromium against JupyterLab and voila).
+## No linter, doctests, notebooks or server check: `make test` runs those. (`-p no:nbval`: nbval's
+## plugin imports nbformat and jsonschema, 2.5 s of CPU in each process, for the notebooks only.)
 unit: $(STAMP)
-	$(PY) -m pytest -m "not slow and not browser" tests
+	$(PY) -m pytest -p no:nbval -n $(JOBS) -m "not slow and not browser" tests
+
+## ruff, with the rules in pyproject.toml ([tool.ruff]); `make test` runs it first.
+lint: $(STAMP)
+	$(VENV)/bin/ruff check afmsmiler tests benchmarks tools
 
 notebooks: $(STAMP)
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env notebooks

@@ -28,9 +28,9 @@ import time
 import traceback
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))  # the checkout, for tests/
 
-import browser as B  # noqa: E402
+from tests import browser as B  # noqa: E402
 
 PRESSES = int(os.environ.get("BENCH_BROWSER_PRESSES", "20"))
 WHERE = [w for w in os.environ.get("BENCH_BROWSER_WHERE", "lab,voila").split(",") if w]

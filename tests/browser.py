@@ -50,7 +50,9 @@ CHROMIUM_ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-
                  "--disable-sync"]
 BIN = Path(sys.executable).parent  # jupyter and voila of the interpreter running the tests
 TOKEN = "afm-browser-test"
-PRESS_TIMEOUT = 5.0  # s: a press whose pixels have not changed by then is a failure
+PRESS_TIMEOUT = 15.0  # s: a press whose pixels have not changed by then is a failure (a
+# wait, not a speed check: a press repaints in well under a second; 15 s leaves room for a
+# loaded CI machine running the other tests beside it)
 VIEWPORT = {"width": 1500, "height": 1000}
 
 #: The element of a live figure (afmsmiler.plots.live): it holds <canvas> elements and carries

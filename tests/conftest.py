@@ -1,5 +1,6 @@
-"""Shared test configuration: hypothesis profiles for the property and bad-input tests, and the
-browser tests' Chromium and notebook copies.
+"""Shared test configuration: hypothesis profiles for the property and bad-input tests, the
+``hang_guard`` fixture (the suite's only wall-clock bound), and the browser tests' Chromium and
+notebook copies.
 
 ``make unit`` and ``make test`` use the ``default`` profile: few examples, no deadline (a shared
 CI machine must not turn a slow example into a failure; the bad-input campaign bounds each call
@@ -8,6 +9,8 @@ change validation or the slider factory.
 """
 import os
 import shutil
+import time
+from contextlib import contextmanager
 
 import pytest
 from hypothesis import HealthCheck, settings
@@ -19,11 +22,75 @@ settings.register_profile("deep", max_examples=1000, deadline=None,
 settings.load_profile(os.environ.get("HYPOTHESIS_PROFILE", "default"))
 
 
+# -- hang guards: the only wall-clock bounds in the suite -------------------------------------------
+class HangGuard:
+    """Fail a block that runs far past its expected time: a hang, not a slow machine.
+
+    Tests check correctness, never speed (``make bench`` measures speed). A test that must show
+    that a call *returns* (a timeout fires, retries end, a server stops) bounds it with
+    ``with hang_guard(limit, expected=...):`` or ``hang_guard.check(elapsed, limit, expected=...)``.
+    The limit must be at least :data:`FACTOR` times the expected time and never under
+    :data:`FLOOR` seconds, so a loaded CI machine (two cores shared with others) does not fail it.
+    A test that asks for this fixture is marked ``hang_guard`` (``-m "not hang_guard"`` skips them).
+    """
+
+    FACTOR = 10
+    FLOOR = 5.0
+
+    def _checked(self, limit: float, expected: float) -> float:
+        if limit < max(self.FACTOR * expected, self.FLOOR):
+            raise ValueError(f"a hang guard's limit must be >= {self.FACTOR} x the expected "
+                             f"{expected} s and >= {self.FLOOR} s, got {limit} s")
+        return limit
+
+    def check(self, elapsed: float, limit: float, *, expected: float) -> None:
+        """Assert that ``elapsed`` seconds stayed under ``limit`` (a hang otherwise)."""
+        self._checked(limit, expected)
+        assert elapsed < limit, (f"took {elapsed:.2f} s, past the {limit} s hang guard "
+                                 f"(expected about {expected} s): it hangs")
+
+    @contextmanager
+    def __call__(self, limit: float, *, expected: float):
+        self._checked(limit, expected)
+        t0 = time.monotonic()
+        yield
+        self.check(time.monotonic() - t0, limit, expected=expected)
+
+
+@pytest.fixture
+def hang_guard():
+    """The suite's one wall-clock bound: see :class:`HangGuard`."""
+    return HangGuard()
+
+
+def pytest_collection_modifyitems(items):
+    for item in items:
+        if "hang_guard" in getattr(item, "fixturenames", ()):
+            item.add_marker(pytest.mark.hang_guard)
+
+
+# -- per-test CPU cost: AFMSMILER_CPU_REPORT=FILE appends "cpu_s wall_s nodeid" lines -----------
+# On a shared machine wall times (--durations) say more about the neighbours than the test; the
+# process's CPU time (setup, call and teardown, this process only) says what a test costs.
+_CPU_REPORT = os.environ.get("AFMSMILER_CPU_REPORT")
+if _CPU_REPORT:
+    @pytest.hookimpl(hookwrapper=True)
+    def pytest_runtest_protocol(item, nextitem):
+        cpu, wall = time.process_time(), time.perf_counter()
+        yield
+        with open(_CPU_REPORT, "a") as f:
+            f.write(f"{time.process_time() - cpu:.4f} {time.perf_counter() - wall:.4f} "
+                    f"{item.nodeid}\n")
+
+
 # -- the browser tests' shared pieces (tests/browser.py drives them) ----------------------------
 @pytest.fixture(scope="module")
 def chromium():
-    """Debian's headless Chromium through Playwright, or a skip that says why it cannot run."""
-    import browser as B
+    """Debian's headless Chromium through Playwright, or a skip that says why it cannot run.
+
+    Module-scoped: Playwright's sync API allows one instance per thread at a time, and some
+    browser tests start their own (tests/test_plots_live_browser.py, the scenes' tests)."""
+    from tests import browser as B
     reason = B.unavailable()
     if reason:
         pytest.skip(reason)
@@ -34,7 +101,7 @@ def chromium():
 @pytest.fixture(scope="module")
 def root():
     """A temporary root with copies of the course notebooks (and the floor notebook)."""
-    import browser as B
+    from tests import browser as B
     path = B.notebook_root()
     yield path
     shutil.rmtree(path, ignore_errors=True)

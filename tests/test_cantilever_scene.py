@@ -12,7 +12,7 @@ from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.legends import text_png
 from afmsmiler.scenes.cantilever import (DEFAULTS, LIMITS, SCENE_UNIT, CantileverScene,
                                          mode_animation)
-from recording import Recorder
+from tests.recording import Recorder
 
 E, RHO = 169e9, 2330.0
 L, W, H = 450e-6, 50e-6, 2e-6
@@ -202,15 +202,13 @@ def test_sizes_are_bounded_before_any_work():
 
 
 @pytest.mark.slow
-def test_largest_allowed_drawings_take_seconds_not_minutes():
-    import time
+def test_largest_allowed_drawings_take_seconds_not_minutes(hang_guard):
     rec = Recorder()
-    t0 = time.perf_counter()
-    CantileverScene(LEVER.bending(F, n_length=10_000, n_thickness=LIMITS["mesh_points"] // 10_000),
-                    vis=rec)
-    frames = LIMITS["animation_transforms"] // (20 * 3) - 1
-    mode_animation(bend(LEVER, F), rec["modes"], frames=frames, segments=20, modes=(1, 2, 3))
-    assert time.perf_counter() - t0 < 10.0
+    with hang_guard(60, expected=3):  # about 3 s on one loaded core
+        CantileverScene(LEVER.bending(F, n_length=10_000,
+                                      n_thickness=LIMITS["mesh_points"] // 10_000), vis=rec)
+        frames = LIMITS["animation_transforms"] // (20 * 3) - 1
+        mode_animation(bend(LEVER, F), rec["modes"], frames=frames, segments=20, modes=(1, 2, 3))
 
 
 @pytest.mark.slow

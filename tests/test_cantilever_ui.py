@@ -310,7 +310,7 @@ def test_mode_shapes_follow_the_sliders():
         np.testing.assert_allclose(phi, lever.mode_shape(np.asarray(u) * lever.length, n),
                                    atol=1e-12)
     assert [line.get_label() for line in fig.lines] != before
-    assert [t.get_text() for t in fig.legend.get_texts()] == [l.get_label() for l in fig.lines]
+    assert [t.get_text() for t in fig.legend.get_texts()] == [ln.get_label() for ln in fig.lines]
 
 
 def _legend_covers_data(fig, legend, lines):

@@ -3,7 +3,6 @@ data, calibration of that uncertainty over many noise draws, files read with afm
 vendor's fit of a real JPK curve, and the refusal to fit a curve without contact."""
 import math
 import re
-from pathlib import Path
 
 import numpy as np
 import pytest

@@ -1,6 +1,12 @@
-"""The batched fit of many force curves, fit_curves: curve by curve the same as fit_curve, the
-same as an independent scipy fit of an independently written model, the vendor's fit of a real
-JPK curve inside a batch, per-curve failures, and bad input named before any work.
+"""The batched fit of many force curves, fit_curves: batching invariance, the same as an
+independent scipy fit of an independently written model, the vendor's fit of a real JPK curve
+inside a batch, per-curve failures, and bad input named before any work.
+
+``fit_curve`` is the one-curve case of ``fit_curves`` (the same code), so comparing the two checks
+*batching invariance* only: a curve's result does not depend on the other curves of its batch,
+their order, or the chunk it falls in. What makes the fit right is checked beside each of those
+tests by a source that shares no code with it: scipy's curve_fit below, the JPK software's fit,
+the true modulus within three standard errors, the scatter of E over noise draws.
 
 Independent sources: scipy.optimize.curve_fit (MINPACK's Levenberg-Marquardt with a
 finite-difference Jacobian, and its own covariance) on the model written here from the tips'
@@ -44,7 +50,7 @@ def _axis(curve, with_k):
 
 @pytest.mark.parametrize("with_k", [True, False], ids=["Z_np with k", "tip position"])
 @pytest.mark.parametrize("tip", TIPS, ids=IDS)
-def test_batch_equals_fit_curve_curve_by_curve(tip, with_k):
+def test_batching_invariance_each_curve_fits_as_it_does_alone(tip, with_k):
     curves = _curves(tip, seed=10)
     k = K if with_k else None
     batch = fit_curves([_axis(c, with_k) for c in curves], [c.force for c in curves], tip, NU,
@@ -101,7 +107,7 @@ def test_batch_equals_an_independent_scipy_fit(tip, with_k):
         assert abs(batch.baseline[i] - f0_ref) <= 1e-4 * err[2]
 
 
-def test_the_real_jpk_curve_in_a_batch():
+def test_batching_invariance_and_the_vendors_fit_of_the_real_jpk_curve():
     pytest.importorskip("afmformats")
     curve = load_curve(data.path("spot3-0192.jpk-force"))
     x, f = curve.tip_position, curve.force
@@ -155,7 +161,7 @@ def test_chunks_do_not_change_the_results(monkeypatch):
 
 
 @pytest.mark.slow
-def test_a_large_batch_in_chunks_equals_each_curve_alone():
+def test_batching_invariance_across_the_chunks_of_a_large_batch():
     # 400 curves of 800 points: two chunks (of 327 curves, 2^18 points); each curve as alone
     tip = Parabolic(20e-9)
     e, cp = CASES[1]

@@ -6,7 +6,7 @@ import pytest
 from afmsmiler.contact import Conical, Parabolic, Pyramidal, Spherical, indent, surface_displacement
 from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.contact import DEFAULTS, ContactScene, cut_mesh, surface_mesh, tip_mesh
-from recording import Recorder
+from tests.recording import Recorder
 
 UNIT = 20e-9
 TIPS = [Parabolic(20e-9), Spherical(40e-9), Conical(0.4), Pyramidal(0.6)]

@@ -14,7 +14,7 @@ from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figur
                                      fit_label, fit_window, tip_geometries_figure)
 from afmsmiler.scenes.contact import ContactScene, surface_mesh, tip_mesh
 from afmsmiler.ui.contact import SLIDERS, TIP_CONTROLS, ContactPanel
-from recording import Recorder
+from tests.recording import Recorder
 
 
 # --- figures -------------------------------------------------------------------------------------

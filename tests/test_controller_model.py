@@ -751,10 +751,9 @@ def test_loop_from_cantilever_rejects_bad_input():
 
 
 # --- bounds: valid extremes give finite results quickly; sizes are bounded ------------------------
-def test_valid_extremes_give_finite_results_in_seconds():
+def test_valid_extremes_give_finite_results_in_seconds(hang_guard):
     """Every corner of the valid ranges (and random points inside): a stable loop's scan is
-    finite, no exception but a named ValueError, well under a second per line."""
-    import time
+    finite, no exception but a named ValueError, and every line returns (a hang guard)."""
     import warnings
 
     from afmsmiler.controller import LOOP_PARAMETERS, PARAMETERS
@@ -769,11 +768,9 @@ def test_valid_extremes_give_finite_results_in_seconds():
                         p.default][rng.integers(0, 4)]
         speed = [PARAMETERS["speed"].low, PARAMETERS["speed"].high, 1e-5][rng.integers(0, 3)]
         loop = ContactLoop(**kw)
-        start = time.perf_counter()
-        with warnings.catch_warnings():
+        with hang_guard(5, expected=0.1), warnings.catch_warnings():  # ~7 ms a line on average
             warnings.simplefilter("ignore", RuntimeWarning)  # unstable loops overflow, flagged
             r = loop.scan_line(line.x, line.heights, speed=speed, setpoint=1e-6)
-        assert time.perf_counter() - start < 1.0
         if loop.is_stable():
             for p in (r.trace, r.retrace):
                 assert np.all(np.isfinite(p.z_c)) and np.all(np.isfinite(p.z_np)), kw

@@ -205,7 +205,7 @@ def test_tapping_force_law_is_periodic_in_felt_time():
 def test_figures_say_their_units_and_do_not_overlap():
     """test_figures_labelled's four checks on these panels' figures (the lead may list them
     there too)."""
-    import test_figures_labelled as labelled
+    from tests import test_figures_labelled as labelled
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     q = QControlPanel()
     q.set(gain=0.01)

@@ -340,14 +340,12 @@ def test_driver_resends_the_same_seq_after_a_checksum_error():
     assert calls == [wire("1 RG"), wire("1 RG")]  # the same SEQ: a safe retry
 
 
-def test_driver_gives_up_after_its_retries_in_bounded_time():
+def test_driver_gives_up_after_its_retries_in_bounded_time(hang_guard):
     link = Scripted([])
     afm = MacroAFM(link, timeout=0.05, retries=3)
-    t0 = time.monotonic()
-    with pytest.raises(DeviceNotResponding, match="3 retries"):
-        afm.status()
-    assert time.monotonic() - t0 < 0.5
-    assert link.sent == [wire("1 ST")] * 4
+    with hang_guard(5, expected=0.2), pytest.raises(DeviceNotResponding, match="3 retries"):
+        afm.status()  # 4 tries x 0.05 s
+    assert link.sent == [wire("1 ST")] * 4  # the retries counted, not timed
 
 
 def test_seq_wraps_255_to_1():
@@ -516,13 +514,13 @@ def _faulty_run(twin, faults, *, retries=6, pixels=8, lines=8, timeout=0.05, pac
     {"drop": 0.03, "seed": 4}, {"garbage": 0.02, "partial": 0.02, "corrupt": 0.02, "drop": 0.02,
                                 "seed": 5},
 ], ids=["garbage", "partial", "checksum", "dropped", "all"])
-def test_noisy_line_still_gives_the_full_image(faults):
+def test_noisy_line_still_gives_the_full_image(faults, hang_guard):
     twin = _low(friction=0.0)
     afm, image, error, elapsed, link = _faulty_run(twin, faults)
     assert error is None, error
     assert sum(link.counts[k] for k in ("garbage", "partial", "corrupt", "drop")) > 0
     assert _matches(image, twin) <= twin.z_step * 1.0001
-    assert elapsed < 20
+    hang_guard.check(elapsed, 60, expected=3.5)  # about 3.5 s on one loaded core
     # retries were safe: the twin never executed one command twice
     keys = [(f.seq, f.code, f.args) for f in twin.executed]
     assert all(a != b for a, b in zip(keys, keys[1:]))
@@ -551,21 +549,23 @@ def test_unplugged_mid_scan_keeps_the_finished_lines(tmp_path):
     assert saved.shape == partial.shape and saved.pixel_size == pytest.approx(0.4e-3)
 
 
-def test_unplugged_at_full_speed_keeps_the_finished_lines():
+def test_unplugged_at_full_speed_keeps_the_finished_lines(hang_guard):
     twin = _low()
     _, _, error, elapsed, _ = _faulty_run(twin, {"unplug_after_lines": 100}, pixels=16, pace=0)
-    assert isinstance(error, TransportClosed) and elapsed < 1.0
+    assert isinstance(error, TransportClosed)
+    hang_guard.check(elapsed, 5, expected=0.1)
     assert error.partial.shape[1] == 16 and 1 <= error.partial.shape[0] < 8
 
 
 @pytest.mark.slow
-def test_silent_device_raises_device_not_responding_in_bounded_time():
+def test_silent_device_raises_device_not_responding_in_bounded_time(hang_guard):
     twin = _low()
     afm, image, error, elapsed, _ = _faulty_run(twin, {"silent_after_lines": 50}, retries=2,
                                                 pixels=16)
     assert isinstance(error, DeviceNotResponding)
     assert error.partial is not None and error.partial.shape[0] >= 1
-    assert elapsed < 4.0  # the lines before the silence, stream_timeout 1 s, ST's 3 x 50 ms
+    # the lines before the silence, stream_timeout 1 s, ST's 3 x 50 ms: about 3 s
+    hang_guard.check(elapsed, 30, expected=3)
 
 
 def test_wrong_firmware_version_is_refused_naming_both():

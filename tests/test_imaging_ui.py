@@ -533,10 +533,7 @@ def test_a_real_kernel_waits_at_the_pause_for_as_long_as_the_student_needs(kerne
 
 
 def test_the_3d_view_shows_the_finished_lines_and_the_tip_where_the_last_line_ended():
-    import sys
-    from pathlib import Path
-    sys.path.insert(0, str(Path(__file__).parent))
-    from recording import Recorder
+    from tests.recording import Recorder
 
     rec = Recorder()
     p = ImagingPanel(pixels=PIXELS, vis=rec)

@@ -7,7 +7,7 @@ import re
 
 import numpy as np
 import pytest
-from recording import Recorder
+from tests.recording import Recorder
 
 from afmsmiler.instrument import KNOBS, OpticalHead, align
 from afmsmiler.instrument.walkthrough import SETUP, STEP_TOLERANCES

@@ -277,10 +277,9 @@ def test_parameters_are_consistent():
 
 
 @pytest.mark.slow
-def test_largest_inversion_is_fast():
-    """The inversion at LIMITS['curve_points'] (O(n^2), about 1 s) stays within seconds."""
-    import time
+def test_largest_inversion_returns(hang_guard):
+    """The inversion at LIMITS['curve_points'] (O(n^2), 1-5 s) returns: a hang guard, not a
+    speed test (``make bench`` times it)."""
     z = np.linspace(0.5e-9, 50e-9, fm.LIMITS["curve_points"])
-    start = time.perf_counter()
-    fm.sader_jarvis(z, np.zeros_like(z))
-    assert time.perf_counter() - start < 5.0
+    with hang_guard(60, expected=5):
+        fm.sader_jarvis(z, np.zeros_like(z))

@@ -9,7 +9,7 @@ import pytest
 from meshcat.animation import Animation
 
 from afmsmiler.scenes.modes import DEFAULTS, LIMITS, ModesScene, factor_text, round_factor
-from recording import Recorder
+from tests.recording import Recorder
 
 A0 = 12e-9
 A_CONTACT = 0.165e-9

@@ -21,7 +21,7 @@ from afmsmiler.ui.modes import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS
                                      LATERAL_DEFAULTS, LATERAL_SAMPLE, TAPPING_DEFAULTS,
                                      ForceVolumePanel, FrequencyShiftPanel, JumpingPanel,
                                      LateralPanel, TappingPanel, lateral_lever, operating_point)
-from recording import Recorder
+from tests.recording import Recorder
 
 NM = 1 / UNITS["nm"][1]
 

@@ -18,9 +18,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-import browser as B
+from tests import browser as B
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser]
+pytestmark = [pytest.mark.slow, pytest.mark.browser]  # not grouped: 08 alone takes minutes, so
+# each xdist worker may start its own server for the notebooks it runs
 
 SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person to see
 

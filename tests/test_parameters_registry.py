@@ -74,9 +74,9 @@ def clashes(found):
 def _collect_in_a_fresh_interpreter():
     """collect() in a new process: Parameters that other tests built are not the package's."""
     code = ("import json, sys; sys.path.insert(0, sys.argv[1]); "
-            "from test_parameters_registry import collect; "
+            "from tests.test_parameters_registry import collect; "
             "print(json.dumps([(p.name, p.unit, where) for p, where in collect()]))")
-    out = subprocess.run([sys.executable, "-c", code, str(Path(__file__).parent)],
+    out = subprocess.run([sys.executable, "-c", code, str(Path(__file__).parents[1])],
                          capture_output=True, text=True, timeout=300, check=True)
     return [(SimpleNamespace(name=n, unit=u), where)
             for n, u, where in json.loads(out.stdout.strip().splitlines()[-1])]

@@ -112,11 +112,9 @@ def test_particles_too_much_work_is_named():
 
 
 @pytest.mark.slow
-def test_the_largest_particle_image_is_made_within_seconds():
-    import time
-    start = time.perf_counter()
-    img = samples.particles((2048, 2048), count=10000)  # before: past two minutes
-    assert time.perf_counter() - start < 10.0
+def test_the_largest_particle_image_is_made_within_seconds(hang_guard):
+    with hang_guard(60, expected=5):  # about 5 s on one loaded core; before: past two minutes
+        img = samples.particles((2048, 2048), count=10000)
     assert img.heights.max() == pytest.approx(50e-9, rel=0.05)
 
 

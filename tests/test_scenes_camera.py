@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from afmsmiler.scenes.camera import CAMERA_FOV, camera_ndc, set_camera, show_helpers
-from recording import Recorder
+from tests.recording import Recorder
 
 
 def test_set_camera_converts_to_the_y_up_camera_frame():

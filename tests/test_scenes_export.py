@@ -4,7 +4,7 @@ import os
 import pytest
 
 from afmsmiler.scenes import SceneView, save_static_html, static_html
-from recording import Recorder
+from tests.recording import Recorder
 
 
 @pytest.mark.parametrize("path, match", [

@@ -12,7 +12,7 @@ from afmsmiler.contact import Conical, Parabolic
 from afmsmiler.samples import Sample
 from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.imaging import (DEFAULTS, ImagingScene, auto_exaggeration, decimation)
-from recording import Recorder
+from tests.recording import Recorder
 
 DX = 4e-9
 

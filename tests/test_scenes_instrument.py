@@ -17,7 +17,7 @@ from afmsmiler.parameters import Parameter
 from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.instrument import (DEFAULTS, INSTRUMENTS, LIMITS, PARAMETERS, SCENE_UNIT,
                                          InstrumentScene, hollow_cylinder_mesh, prism_mesh)
-from recording import Recorder
+from tests.recording import Recorder
 
 KINDS = list(INSTRUMENTS)
 MM = 1e-3 / SCENE_UNIT  # scene units per mm (the tables are in mm)

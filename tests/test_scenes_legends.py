@@ -11,7 +11,7 @@ from afmsmiler.scenes.camera import READABLE_TEXT, camera_ndc, readable_width
 from afmsmiler.scenes.colors import ColorScale
 from afmsmiler.scenes.legends import (ColorLegend, TextPlate, colorbar_png, legend_html,
                                       legend_title, text_png, tick_labels)
-from recording import Recorder
+from tests.recording import Recorder
 
 
 def test_legend_png_and_html_state_the_unit():

@@ -3,7 +3,7 @@ import numpy as np
 import pytest
 
 from afmsmiler.scenes.shapes import Arrow, Segment, Tube, cone
-from recording import Recorder
+from tests.recording import Recorder
 
 
 def apply(t, p):

@@ -27,7 +27,7 @@ from afmsmiler.scenes.meshes import beam_mesh
 from afmsmiler.scenes.shapes import Arrow
 from afmsmiler.scenes.view import MAX_ENTRIES, SceneState, fit_camera, library
 from afmsmiler import samples
-from recording import Recorder
+from tests.recording import Recorder
 
 
 class Sent:

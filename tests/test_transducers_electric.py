@@ -6,7 +6,7 @@ from scipy import integrate
 
 from afmsmiler.transducers import Electromagnetic, Electrostatic
 
-from sympy_reference import fourier_coefficients
+from tests.sympy_reference import fourier_coefficients
 
 
 # --- electrostatic -------------------------------------------------------------------------------

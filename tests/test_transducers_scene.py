@@ -5,12 +5,11 @@ import math
 
 import numpy as np
 import pytest
-from meshcat.path import Path
 
 from afmsmiler.scenes.transducers import DEFAULTS, SCENE_UNIT, TransducerScene, lever_pose
 from afmsmiler.transducers import (PRINCIPLES, AstigmaticDetection, OpticalBeamDeflection,
                                    PiezoAcoustic)
-from recording import Recorder
+from tests.recording import Recorder
 
 
 

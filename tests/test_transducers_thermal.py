@@ -13,7 +13,7 @@ from afmsmiler.materials import get_material
 from afmsmiler.transducers import Electrothermal, Photothermal
 from afmsmiler.transducers.thermal import THERMAL, bimorph_curvature
 
-from sympy_reference import fourier_coefficients
+from tests.sympy_reference import fourier_coefficients
 
 
 # --- photothermal and electrothermal bimorphs ----------------------------------------------------

@@ -260,7 +260,7 @@ def _browser_echo(c):
 def test_one_slider_move_runs_the_signal_chain_once(key, monkeypatch):
     # before: five runs per move (the figure's sweep and point, the scene's sweep and point, the
     # panel's own chain); the figure and the 3D view now draw from one Operation
-    from recording import Recorder
+    from tests.recording import Recorder
 
     from afmsmiler.scenes.transducers import TransducerScene
     panel = TransducerPanel(principle=key, scene=False)

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..validation import (check_array, check_choice, check_instance, check_integer,
-                          check_positive, check_range)
+                          check_range)
 from .indent import indent
 from .quantities import PARAMETERS
 from .tips import PYRAMID_FORMS, Pyramidal, Spherical, Tip

@@ -21,13 +21,13 @@ import numpy as np
 
 from ..validation import check_array, check_instance, check_integer, check_range
 from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass, check_size
+from .polygon import polygon_response
 
 #: Most pixels of a scanned image (2048 x 2048 take about 4 s).
 MAX_IMAGE_PIXELS = 2048 * 2048
 #: Largest pixel size in m: 1 mm, ten times the scan range of any AFM (about 100 um). Beyond
 #: some 1e300 m the image's times (pixel / speed, times the pixel count) overflow double precision.
 MAX_PIXEL_SIZE = 1e-3
-from .polygon import polygon_response
 
 __all__ = ["ScanImage", "scan_image", "MAX_IMAGE_PIXELS", "MAX_PIXEL_SIZE"]
 

@@ -516,14 +516,13 @@ class TransducerScene(SceneDisplay):
         self._segment("beam", _RED, opacity=0.7)
 
     def _move_interferometry(self, op, pose):
-        model, value = op.model, op.value
+        model = op.model
         top = self._tip_top(model, pose)
         self._segments["beam"].set(self._fibre_end, top)
         self.parts["gap"] = float(self._fibre_end[2] - top[2])
 
     # -- piezo-acoustic ---------------------------------------------------------------------------
     def _draw_piezo_acoustic(self, op):
-        model = op.model
         self._box("shaker", (1.0, 1.2, 0.3), [-0.5, 0.0, -0.45], _ORANGE)
 
     def _move_piezo_acoustic(self, op, pose):
@@ -560,7 +559,7 @@ class TransducerScene(SceneDisplay):
         self._arrow("force")
 
     def _move_electromagnetic(self, op, pose):
-        model, value = op.model, op.value
+        model = op.model
         w = model.width / SCENE_UNIT
         e = 0.4 * w
         loop = [(0.0, -e), (1.0, -e), (1.0, e), (0.0, e)]
@@ -579,7 +578,7 @@ class TransducerScene(SceneDisplay):
         self._arrow("force")
 
     def _move_electrostatic(self, op, pose):
-        model, value = op.model, op.value
+        model = op.model
         L = model.length / SCENE_UNIT
         le = model.electrode_length / SCENE_UNIT
         self.vis["element"]["electrode"].set_transform(translation([L - le / 2, 0.0, -0.45]))
@@ -600,16 +599,14 @@ class TransducerScene(SceneDisplay):
         self._box("waveguide", (4.0, 0.04, 0.03), [L - 0.1, w / 2 + 0.78, 0.0], 0x8080c0)
 
     def _move_optomechanical(self, op, pose):
-        model, value = op.model, op.value
         self.parts["detuning_fraction"] = pose.fraction
 
     # -- piezoresistive ---------------------------------------------------------------------------
     def _draw_piezoresistive(self, op):
-        model = op.model
         pass
 
     def _move_piezoresistive(self, op, pose):
-        model, value = op.model, op.value
+        model = op.model
         w = model.width / SCENE_UNIT
         lr = model.resistor_length / model.length
         e = 0.3 * w
@@ -619,11 +616,10 @@ class TransducerScene(SceneDisplay):
 
     # -- electrothermal ---------------------------------------------------------------------------
     def _draw_electrothermal(self, op):
-        model = op.model
         pass
 
     def _move_electrothermal(self, op, pose):
-        model, value = op.model, op.value
+        model = op.model
         w = model.width / SCENE_UNIT
         e = 0.35 * w
         n = 6
@@ -635,11 +631,10 @@ class TransducerScene(SceneDisplay):
 
     # -- piezoelectric ----------------------------------------------------------------------------
     def _draw_piezoelectric(self, op):
-        model = op.model
         self._film_material = g.MeshLambertMaterial(color=_GOLD)
 
     def _move_piezoelectric(self, op, pose):
-        model, value = op.model, op.value
+        model = op.model
         u = SCENE_UNIT
         h, w, t = model.thickness / u, model.width / u, max(model.film_thickness / u, 0.01)
         le = model.electrode_length / u

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..parameters import Parameter, read_only
-from ..validation import check_array, check_finite, check_integer, check_positive, check_range
+from ..validation import check_array, check_integer, check_positive, check_range
 from .lockin import (FILTER_ORDER, HARMONIC, LIMITS, TIME_CONSTANT, lowpass, reference_waveforms,
                      settling_time)
 

@@ -46,7 +46,7 @@ from ..brownian import (QUALITY_FACTOR, TEMPERATURE, mechanical_response, therma
 from ..cantilever import Cantilever
 from ..parameters import Parameter
 from ..validation import (check_array, check_choice, check_instance, check_integer,
-                          check_positive, check_range)
+                          check_positive)
 
 __all__ = ["quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
            "Harmonics", "Transducer", "Operation", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",

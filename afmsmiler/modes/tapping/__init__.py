@@ -18,8 +18,8 @@ One module per concern; every name is importable from here as before:
 """
 from .lever import PARAMETERS, TappingLever, free_response
 from .balance import (AMPLITUDE_GRID, BRANCHES, DISSIPATION_ROUNDINGS, MAX_DISTANCES,
-                      SETPOINT_GRID, SWEEPS, AmplitudeCurve, amplitude_curve, operating_point,
-                      setpoint_state)
+                      SETPOINT_GRID, SWEEPS, AmplitudeCurve, amplitude_curve, setpoint_state)
+from .balance import operating_point  # noqa: F401  (modes.tapping.operating_point: ui.modes)
 from .balance import _balance, _integrals  # noqa: F401  (checked by the tests)
 from .integration import (BLOCK_PERIODS, LOCKIN_PERIODS, MAX_PERIODS, SteadyState, integrate)
 from .feedback import (FEEDBACK_PARAMETERS, FEEDBACKS, MAX_FEEDBACK_STEPS, FeedbackLine,
