@@ -1218,7 +1218,7 @@ UPPER_MODULES = ["afmsmiler.plots.cantilever", "afmsmiler.plots.contact",
 
 def _recorder():
     """A stand-in for meshcat's Visualizer that records what a scene sends (tests/recording)."""
-    from recording import Recorder
+    from tests.recording import Recorder
     return Recorder()
 
 

@@ -6,7 +6,7 @@ import numpy as np
 
 from ..validation import check_choice, check_finite, check_integer, check_positive
 from .readers import REAL_IMAGE, real_image
-from .sample import Sample
+from .sample import MAX_LINE_PIXELS, Sample
 from .synthetic import grating, particles, step
 
 __all__ = ["PROFILES", "REAL_LINE_ROW", "profile"]
@@ -47,6 +47,8 @@ def profile(name: str, pixels: int = 512, pixel_size: float = 4e-9,
     Sample
     """
     check_choice("name", name, PROFILES)
+    if name in ("step", "grating"):  # named here: the generators call it their shape
+        check_integer("pixels", pixels, 2, MAX_LINE_PIXELS)
     if name == "step":
         return step(pixels, pixel_size, height)
     if name == "grating":

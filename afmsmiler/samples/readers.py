@@ -77,6 +77,8 @@ def _quiet():
     import warnings
     with warnings.catch_warnings():  # pySPM 0.2.23 imports scipy.ndimage.filters (deprecated)
         warnings.simplefilter("ignore", DeprecationWarning)
+        # and warns that tqdm is missing: its progress bars are never shown here
+        warnings.filterwarnings("ignore", message="the library tqdm cannot be found")
         import AFMReader.general_loader  # noqa: F401 (every reader: each enables the log)
     from loguru import logger
     logger.disable("AFMReader")
@@ -345,6 +347,7 @@ def _spm_scan(p: Path):
     import warnings
     with warnings.catch_warnings():  # pySPM 0.2.23 imports scipy.ndimage.filters (deprecated)
         warnings.simplefilter("ignore", DeprecationWarning)
+        warnings.filterwarnings("ignore", message="the library tqdm cannot be found")
         import pySPM
     images = _spm_header(p)
     try:
