@@ -126,6 +126,8 @@ def runs():
 
 
 @pytest.mark.slow
+# the tests of the integrated runs share one worker: the fixture costs 28 s of integration
+@pytest.mark.xdist_group("tapping_runs")
 def test_fast_solver_matches_time_integration_on_both_branches(runs):
     lever, curve, out = runs
     assert curve.coexist[:3].all() and not curve.coexist[-1]  # both branches where they coexist
@@ -151,6 +153,7 @@ def test_fast_solver_matches_time_integration_off_resonance(ratio):
 
 
 @pytest.mark.slow
+@pytest.mark.xdist_group("tapping_runs")
 def test_dissipated_energy_from_phase_is_the_damping_work(runs):
     """E_dis = pi F0 A sin(phi) - pi k W A^2 / Q counts only the first harmonic of the lever's
     own damping, and assumes the stored energy no longer changes: the higher harmonics and the
