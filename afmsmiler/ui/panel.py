@@ -256,6 +256,7 @@ class Panel:
     fig: Figure | None = None
     #: The figure drawn in the browser (made at the first :meth:`redraw`).
     live = None
+    _converted = False  # update's values come from to_si (checked there)
     #: The panel's sliders declared as parameters: control name -> Parameter.
     SLIDERS: Mapping = {}
     #: Every declared control's initial value, in the units shown.
@@ -271,7 +272,8 @@ class Panel:
                 if args:
                     raise TypeError(f"{cls.__name__}.update takes the control values by name, "
                                     f"got {len(args)} positional argument(s)")
-                self._check_si(values)
+                if not self._converted:  # values from to_si were checked there, once
+                    self._check_si(values)
                 raw(self, **values)
 
             update._raw = raw
@@ -428,7 +430,11 @@ class Panel:
         si = self.to_si(values)
         view = self._view  # its commands leave as one message: one repaint of the 3D view
         with (view.hold() if view is not None else contextlib.nullcontext()):
-            self.update(**si)
+            self._converted = True
+            try:
+                self.update(**si)
+            finally:
+                self._converted = False
         self._applied = dict(values)
 
     def set(self, **values) -> None:
