@@ -187,7 +187,7 @@ class MemoryTransport:
                 remaining = deadline - time.monotonic()
                 if remaining <= 0:
                     raise TransportTimeout(f"no complete line within {timeout} s")
-                self._in.cond.wait(remaining)
+                self._in.cond.wait(min(remaining, 1.0))  # 1e300 s would overflow the lock
 
     def close(self) -> None:
         """Close both directions (the other end's reads raise TransportClosed once drained)."""
@@ -568,7 +568,8 @@ class FaultyTransport:
         if self._pending:
             return self._count(self._pending.pop(0))
         if self._silent():
-            time.sleep(timeout)
+            while time.monotonic() < deadline:  # in slices: sleep(1e300) overflows
+                time.sleep(max(0.0, min(deadline - time.monotonic(), 1.0)))
             raise TransportTimeout(f"no complete line within {timeout} s (device silent)")
         rng = self._read_rng
         while True:

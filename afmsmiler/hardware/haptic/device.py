@@ -382,7 +382,7 @@ class HapticDevice(FramedDevice):
                 left = deadline - time.monotonic()
                 if left <= 0:
                     raise DeviceNotResponding(f"{DEVICE} sent no position for {wait:g} s")
-                self._sample_cond.wait(left)
+                self._sample_cond.wait(min(left, 1.0))  # 1e300 s would overflow the lock
             return self._sample
 
     def ring_down(self, force: float = 1.0, *, hold: float = 0.5, duration: float = 1.0):

@@ -340,6 +340,7 @@ class HapticTwin(Twin):
         -------
         list of Frame
         """
+        self._host_frame(frame)
         code, args = frame.code, frame.args
         if code == Command.FORCE.value:
             if frame.seq != 0 or len(args) != 1 or not isinstance(args[0], int):

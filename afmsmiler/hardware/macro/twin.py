@@ -501,6 +501,7 @@ class MacroAFMTwin(Twin):
             Its reply, after any stream frames it causes (``GL``) and before events it causes
             (``PA``, ``AB``).
         """
+        self._host_frame(frame)
         if frame.seq == 0:
             return []
         self.executed.append(frame)
