@@ -26,6 +26,7 @@ import time
 import tty
 from typing import Protocol, runtime_checkable
 
+from ..validation import check_integer, check_real
 from .errors import TransportClosed, TransportTimeout
 from .framing import as_bytes
 
@@ -53,10 +54,7 @@ class Transport(Protocol):
 
 
 def _check_timeout(timeout) -> float:
-    try:
-        timeout = float(timeout)
-    except (TypeError, ValueError):
-        raise ValueError(f"timeout must be a number of seconds >= 0, got {timeout!r}") from None
+    timeout = check_real("timeout", timeout)  # a str, a bool, 10**400: named
     if not timeout >= 0 or timeout == float("inf"):
         raise ValueError(f"timeout must be a finite number of seconds >= 0, got {timeout!r}")
     return timeout
@@ -118,9 +116,7 @@ class MemoryTransport:
             ``(host_end, device_end)``; closing either closes the link for both.
         """
         if capacity is not None:
-            capacity = int(capacity)
-            if capacity < 1:
-                raise ValueError(f"capacity must be None or >= 1 byte, got {capacity}")
+            capacity = check_integer("capacity", capacity, 1, 2 ** 31)
         a_to_b, b_to_a = _Channel(capacity), _Channel(capacity)
         return cls(b_to_a, a_to_b), cls(a_to_b, b_to_a)
 
@@ -489,6 +485,10 @@ class FaultyTransport:
                         ("silent_after_lines", silent_after_lines)):
             if n is not None and (isinstance(n, bool) or not isinstance(n, int) or n < 0):
                 raise ValueError(f"{name} must be None or an integer >= 0, got {n!r}")
+        for method in ("write", "readline", "close"):
+            if not callable(getattr(inner, method, None)):
+                raise TypeError(f"inner must be a transport (write/readline/close), got "
+                                f"{type(inner).__name__}")
         self.inner = inner
         self.corrupt, self.garbage, self.drop, self.partial = corrupt, garbage, drop, partial
         self.unplug_after_lines = unplug_after_lines

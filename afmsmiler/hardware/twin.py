@@ -17,7 +17,7 @@ from __future__ import annotations
 import threading
 import time
 
-from ..validation import check_finite
+from ..validation import check_finite, check_positive
 from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
 from .framing import (PROTOCOL_VERSION, Frame, decode_frame, encode_frame, error_frame,
                       reply_frame)
@@ -224,8 +224,9 @@ class TwinServer:
         Parameters
         ----------
         timeout : float
-            The longest to wait for the thread (s).
+            The longest to wait for the thread (s), finite and > 0.
         """
+        timeout = check_positive("timeout", timeout, "s")
         self._stop.set()
         self.transport.close()  # wakes a thread waiting to write to a host that does not read
         if self._thread is not None:
