@@ -1397,9 +1397,6 @@ KNOWN = {
         "ies: 'The truth value of an array with more than one element is ambiguous. Use a.any("
         ") or a.all(...'"
     ), False),
-    'hardware.framing.error_frame:word': ((
-        'hardware.framing.error_frame(word=str) -> accepted silently'
-    ), False),
     'hardware.haptic.bridge.CantileverSource.force:position': ((
         'hardware.haptic.bridge.CantileverSource.force(position=nan) -> accepted silently\n'
         'hardware.haptic.bridge.CantileverSource.force(position=str) -> TypeError not naming p'
@@ -1649,12 +1646,6 @@ KNOWN = {
     'hardware.haptic.twin.HapticTwin.error:word': ((
         'hardware.haptic.twin.HapticTwin.error(word=str) -> accepted silently'
     ), False),
-    'hardware.macro.codec.ErrorReply:word': ((
-        'hardware.macro.codec.ErrorReply(word=str) -> accepted silently'
-    ), False),
-    'hardware.macro.codec.EventMsg:arg': ((
-        'hardware.macro.codec.EventMsg(arg=str) -> accepted silently'
-    ), False),
     'hardware.macro.device.MacroAFM.set:value': ((
         "hardware.macro.device.MacroAFM.set(value=nan) -> ValueError not naming value: 'NX (pi"
         "xels per line) must be an integer 1..128, got nan'\n"
@@ -1852,27 +1843,6 @@ KNOWN = {
         "hardware.macro.twin.MacroAFMTwin(seed=tiny) -> TypeError not naming seed: 'SeedSequen"
         "ce expects int or sequence of ints for entropy not 1e-300'"
     ), False),
-    'hardware.protocol.ParamTable.check_reply:command': ((
-        'hardware.protocol.ParamTable.check_reply(command=2d) -> ValueError not naming command'
-        ": 'The truth value of an array with more than one element is ambiguous. Use a.any() o"
-        "r a.all(...'\n"
-        'hardware.protocol.ParamTable.check_reply(command=empty) -> ValueError not naming comm'
-        "and: 'The truth value of an empty array is ambiguous. Use `array.size > 0` to check t"
-        "hat an arra...'\n"
-        'hardware.protocol.ParamTable.check_reply(command=nan-array) -> ValueError not naming '
-        "command: 'The truth value of an array with more than one element is ambiguous. Use a."
-        "any() or a.all(...'"
-    ), False),
-    'hardware.protocol.ParamTable.enum:doc': ((
-        'hardware.protocol.ParamTable.enum(doc=str) -> accepted silently'
-    ), False),
-    'hardware.protocol.WireParam:meaning': ((
-        'hardware.protocol.WireParam(meaning=str) -> accepted silently'
-    ), False),
-    'hardware.protocol.WireParam:multiple': ((
-        "hardware.protocol.WireParam(multiple=bigint) -> ValueError not naming multiple: 'para"
-        "meter NX: default 8 outside 1..128 in steps of 1000000000'"
-    ), False),
     'hardware.transport.FaultyTransport:corrupt': ((
         'hardware.transport.FaultyTransport(corrupt=bool) -> accepted silently'
     ), False),
@@ -1908,9 +1878,6 @@ KNOWN = {
         'hardware.transport.FaultyTransport(writes=nan-array) -> ValueError not naming writes:'
         " 'The truth value of an array with more than one element is ambiguous. Use a.any() or"
         " a.all(...'"
-    ), False),
-    'hardware.twin.Twin.error:word': ((
-        'hardware.twin.Twin.error(word=str) -> accepted silently'
     ), False),
     'hardware.twin.TwinServer:time_scale': ((
         'hardware.twin.TwinServer(time_scale=bool) -> accepted silently'

@@ -125,6 +125,8 @@ MESSAGE_NAMES = {"cantilever.check_modes:name", "hardware.framing.as_bytes:name"
 #: Methods that take a new name for the object they return (any text will do; a non-str is
 #: refused): a label, as a constructor's ``name`` is.
 NEW_NAMES = {"samples.Sample.with_heights:name", "hardware.printing.mesh_to_sample:name"}
+#: The bad-value labels that are not numbers (a parameter that takes anything accepts them all).
+NOT_NUMBERS = ("nan", "str", "bool", "complex", "object", "nan-array")
 #: "callable:parameter" -> (bad-value labels that are in fact valid there, why): documented values
 #: that the table of bad values cannot know about.
 ACCEPTED = {
@@ -135,10 +137,10 @@ ACCEPTED = {
     # any text is a file name; "1e-6" would also write a PNG into the working directory
     "plots.export.save_png:path": (("str",), "any text is a file name"),
     "modes.lateral.LateralForceMode.line:state": (
-        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        NOT_NUMBERS,
         "unused and documented so: each line is a steady friction loop"),
     "modes.tapping.TappingMode.line:state": (
-        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        NOT_NUMBERS,
         "unused by the ideal feedback (the default) and documented so"),
     "modes.force_volume.force_volume:adhesion": (("None",), "None is the documented "
                                                  "adhesion-free contact"),
@@ -149,13 +151,19 @@ ACCEPTED = {
     # module (h): "1e-6" is a word of the frame format ([A-Za-z0-9_.:-]+), and a word a driver
     # does not know is kept as a str (documented): a device of a newer firmware may send it
     "hardware.framing.event_frame:word": (("str",), "any word of the frame format"),
+    "hardware.framing.error_frame:word": (("str",), "any word of the frame format"),
+    "hardware.twin.Twin.error:word": (("str",), "any word of the frame format"),
+    "hardware.macro.codec.ErrorReply:word": (("str",), "any word of the frame format"),
+    "hardware.macro.codec.EventMsg:arg": (("str",), "any word of the frame format"),
+    "hardware.protocol.ParamTable.enum:doc": (("str",), "the enum's docstring: free text"),
+    "hardware.protocol.WireParam:meaning": (("str",), "what it is in a few words: free text"),
     "hardware.macro.codec.EventMsg:event": (("str",), "an event word this driver does not "
                                             "know is kept as a str (documented)"),
     "hardware.macro.codec.Status:state": (("str",), "a state word this driver does not know "
                                           "is kept as a str (documented)"),
     "hardware.protocol.WireUnit:si_unit": (("str",), "the SI unit's symbol: free text"),
     "hardware.protocol.WireParam.valid:wire": (
-        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        NOT_NUMBERS,
         "a predicate: False is its documented answer for anything not a valid wire value"),
     "hardware.haptic.codec.force_frame:force": (("nan",), "documented: a non-finite force is "
                                                 "sent as 0, the safe setpoint"),

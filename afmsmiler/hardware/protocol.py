@@ -217,7 +217,8 @@ class WireParam:
         for field_name in ("low", "high", "default", "multiple"):
             object.__setattr__(self, field_name, int(getattr(self, field_name)))
         if not self.low <= self.default <= self.high or self.default % self.multiple:
-            raise ValueError(f"{label}: default {self.default} outside {self._range()}")
+            raise ValueError(f"{label}: default {self.default} outside {self._range()} (low..high, "
+                             f"a multiple of multiple)")
 
     # -- units -----------------------------------------------------------------------------
     @property
@@ -495,7 +496,7 @@ class ParamTable:
         ValueError
             If ``command`` is not ``"SP"`` or ``"GP"``.
         """
-        if command not in ("SP", "GP"):
+        if not isinstance(command, str) or command not in ("SP", "GP"):
             raise ValueError(f"command must be 'SP' or 'GP', got {_short(command)}")
         if not isinstance(results, (tuple, list)) or len(results) != 2 \
                 or not isinstance(results[0], str):
