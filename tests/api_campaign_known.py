@@ -1362,41 +1362,6 @@ KNOWN = {
         'hardware.experiments.ad2_reading(dwf=nan-array) -> AttributeError: "\'numpy.ndarra'
         'y\' object has no attribute \'deviceControl\'"'
     ), False),
-    'hardware.framed.FramedDevice:max_retries': ((
-        "hardware.framed.FramedDevice(max_retries=nan) -> ValueError not naming max_retries: '"
-        "retries must be an integer in [0, nan], got 3'\n"
-        'hardware.framed.FramedDevice(max_retries=-inf) -> ValueError not naming max_retries: '
-        "'retries must be an integer in [0, -inf], got 3'\n"
-        'hardware.framed.FramedDevice(max_retries=None) -> TypeError not naming max_retries: "'
-        '\'<=\' not supported between instances of \'int\' and \'NoneType\'"\n'
-        'hardware.framed.FramedDevice(max_retries=str) -> TypeError not naming max_retries'
-        ': "\'<=\' not supported between instances of \'int\' and \'str\'"\n'
-        'hardware.framed.FramedDevice(max_retries=bool) -> ValueError not naming max_retries: '
-        "'retries must be an integer in [0, True], got 3'\n"
-        'hardware.framed.FramedDevice(max_retries=complex) -> TypeError not naming max_retries'
-        ': "\'<=\' not supported between instances of \'int\' and \'complex\'"\n'
-        'hardware.framed.FramedDevice(max_retries=list) -> TypeError not naming max_retries: "'
-        '\'<=\' not supported between instances of \'int\' and \'list\'"\n'
-        'hardware.framed.FramedDevice(max_retries=object) -> TypeError not naming max_retries:'
-        ' "\'<=\' not supported between instances of \'int\' and \'Foreign\'"\n'
-        'hardware.framed.FramedDevice(max_retries=zero) -> ValueError not naming max_retries: '
-        "'retries must be an integer in [0, 0.0], got 3'\n"
-        'hardware.framed.FramedDevice(max_retries=negative) -> ValueError not naming max_retri'
-        "es: 'retries must be an integer in [0, -1.0], got 3'\n"
-        'hardware.framed.FramedDevice(max_retries=-huge) -> ValueError not naming max_retries:'
-        " 'retries must be an integer in [0, -1e+300], got 3'\n"
-        'hardware.framed.FramedDevice(max_retries=tiny) -> ValueError not naming max_retries: '
-        "'retries must be an integer in [0, 1e-300], got 3'\n"
-        "hardware.framed.FramedDevice(max_retries=2d) -> ValueError not naming max_retries: 'T"
-        'he truth value of an array with more than one element is ambiguous. Use a.any() or a.'
-        "all(...'\n"
-        'hardware.framed.FramedDevice(max_retries=empty) -> ValueError not naming max_retries:'
-        " 'The truth value of an empty array is ambiguous. Use `array.size > 0` to check that "
-        "an arra...'\n"
-        'hardware.framed.FramedDevice(max_retries=nan-array) -> ValueError not naming max_retr'
-        "ies: 'The truth value of an array with more than one element is ambiguous. Use a.any("
-        ") or a.all(...'"
-    ), False),
     'hardware.haptic.bridge.CantileverSource.force:position': ((
         'hardware.haptic.bridge.CantileverSource.force(position=nan) -> accepted silently\n'
         'hardware.haptic.bridge.CantileverSource.force(position=str) -> TypeError not naming p'
@@ -1842,66 +1807,5 @@ KNOWN = {
         "nce expects int or sequence of ints for entropy not -1e+300'\n"
         "hardware.macro.twin.MacroAFMTwin(seed=tiny) -> TypeError not naming seed: 'SeedSequen"
         "ce expects int or sequence of ints for entropy not 1e-300'"
-    ), False),
-    'hardware.transport.FaultyTransport:corrupt': ((
-        'hardware.transport.FaultyTransport(corrupt=bool) -> accepted silently'
-    ), False),
-    'hardware.transport.FaultyTransport:drop': ((
-        'hardware.transport.FaultyTransport(drop=bool) -> accepted silently'
-    ), False),
-    'hardware.transport.FaultyTransport:garbage': ((
-        'hardware.transport.FaultyTransport(garbage=bool) -> accepted silently'
-    ), False),
-    'hardware.transport.FaultyTransport:partial': ((
-        'hardware.transport.FaultyTransport(partial=bool) -> accepted silently'
-    ), False),
-    'hardware.transport.FaultyTransport:seed': ((
-        'hardware.transport.FaultyTransport(seed=nan) -> accepted silently\n'
-        'hardware.transport.FaultyTransport(seed=None) -> TypeError not naming seed: "unsuppor'
-        'ted operand type(s) for +: \'NoneType\' and \'int\'"\n'
-        "hardware.transport.FaultyTransport(seed=str) -> TypeError not naming seed: 'can only "
-        'concatenate str (not "int") to str\'\n'
-        'hardware.transport.FaultyTransport(seed=bool) -> accepted silently'
-    ), False),
-    'hardware.transport.FaultyTransport:writes': ((
-        'hardware.transport.FaultyTransport(writes=nan) -> accepted silently\n'
-        'hardware.transport.FaultyTransport(writes=None) -> accepted silently\n'
-        'hardware.transport.FaultyTransport(writes=str) -> accepted silently\n'
-        'hardware.transport.FaultyTransport(writes=complex) -> accepted silently\n'
-        'hardware.transport.FaultyTransport(writes=object) -> accepted silently\n'
-        "hardware.transport.FaultyTransport(writes=2d) -> ValueError not naming writes: 'The t"
-        'ruth value of an array with more than one element is ambiguous. Use a.any() or a.all('
-        "...'\n"
-        "hardware.transport.FaultyTransport(writes=empty) -> ValueError not naming writes: 'Th"
-        'e truth value of an empty array is ambiguous. Use `array.size > 0` to check that an a'
-        "rra...'\n"
-        'hardware.transport.FaultyTransport(writes=nan-array) -> ValueError not naming writes:'
-        " 'The truth value of an array with more than one element is ambiguous. Use a.any() or"
-        " a.all(...'"
-    ), False),
-    'hardware.twin.TwinServer:time_scale': ((
-        'hardware.twin.TwinServer(time_scale=bool) -> accepted silently'
-    ), False),
-    'hardware.twin.TwinServer:transport': ((
-        'hardware.twin.TwinServer(transport=nan) -> accepted silently\n'
-        'hardware.twin.TwinServer(transport=str) -> accepted silently\n'
-        'hardware.twin.TwinServer(transport=bool) -> accepted silently\n'
-        'hardware.twin.TwinServer(transport=complex) -> accepted silently\n'
-        'hardware.twin.TwinServer(transport=object) -> accepted silently\n'
-        'hardware.twin.TwinServer(transport=nan-array) -> accepted silently'
-    ), False),
-    'hardware.twin.open_twin:pty': ((
-        'hardware.twin.open_twin(pty=nan) -> accepted silently\n'
-        'hardware.twin.open_twin(pty=None) -> accepted silently\n'
-        'hardware.twin.open_twin(pty=str) -> accepted silently\n'
-        'hardware.twin.open_twin(pty=complex) -> accepted silently\n'
-        'hardware.twin.open_twin(pty=object) -> accepted silently\n'
-        "hardware.twin.open_twin(pty=2d) -> ValueError not naming pty: 'The truth value of an "
-        "array with more than one element is ambiguous. Use a.any() or a.all(...'\n"
-        "hardware.twin.open_twin(pty=nan-array) -> ValueError not naming pty: 'The truth value"
-        " of an array with more than one element is ambiguous. Use a.any() or a.all(...'"
-    ), False),
-    'hardware.twin.open_twin:time_scale': ((
-        'hardware.twin.open_twin(time_scale=bool) -> accepted silently'
     ), False),
 }

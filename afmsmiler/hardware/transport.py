@@ -60,6 +60,32 @@ def _check_timeout(timeout) -> float:
     return timeout
 
 
+def _check_transport(name: str, transport):
+    """``transport``, refused naming ``name`` unless it has ``write``, ``readline`` and ``close``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    transport : Transport
+        The link to check.
+
+    Returns
+    -------
+    Transport
+
+    Raises
+    ------
+    TypeError
+        Naming ``name`` for an object without the three methods.
+    """
+    for method in ("write", "readline", "close"):
+        if not callable(getattr(transport, method, None)):
+            raise TypeError(f"{name} must be a transport (write/readline/close), got "
+                            f"{type(transport).__name__}")
+    return transport
+
+
 def _take_line(buf: bytearray) -> bytes | None:
     """Remove and return the first complete line of ``buf`` (or a junk run), else None."""
     end = buf.find(b"\n")
@@ -479,21 +505,20 @@ class FaultyTransport:
                  silent_after_lines: int | None = None, writes: bool = True):
         for name, p in (("corrupt", corrupt), ("garbage", garbage), ("drop", drop),
                         ("partial", partial)):
-            if not isinstance(p, (int, float)) or not 0.0 <= p <= 1.0:
+            if isinstance(p, bool) or not isinstance(p, (int, float)) or not 0.0 <= p <= 1.0:
                 raise ValueError(f"{name} must be a probability in [0, 1], got {p!r}")
         for name, n in (("unplug_after_lines", unplug_after_lines),
                         ("silent_after_lines", silent_after_lines)):
             if n is not None and (isinstance(n, bool) or not isinstance(n, int) or n < 0):
                 raise ValueError(f"{name} must be None or an integer >= 0, got {n!r}")
-        for method in ("write", "readline", "close"):
-            if not callable(getattr(inner, method, None)):
-                raise TypeError(f"inner must be a transport (write/readline/close), got "
-                                f"{type(inner).__name__}")
-        self.inner = inner
+        self.inner = _check_transport("inner", inner)
         self.corrupt, self.garbage, self.drop, self.partial = corrupt, garbage, drop, partial
         self.unplug_after_lines = unplug_after_lines
         self.silent_after_lines = silent_after_lines
-        self.writes = bool(writes)
+        if not isinstance(writes, bool):
+            raise TypeError(f"writes must be a bool, got {writes!r}"[:160])
+        self.writes = writes
+        seed = check_integer("seed", seed, -2 ** 63, 2 ** 63)
         self._read_rng = random.Random(seed)
         self._write_rng = random.Random(seed + 0x5EED)
         self._pending = []

@@ -21,7 +21,7 @@ from ..validation import check_finite, check_positive
 from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
 from .framing import (PROTOCOL_VERSION, Frame, decode_frame, encode_frame, error_frame,
                       reply_frame)
-from .transport import MemoryTransport, PtyLink
+from .transport import MemoryTransport, PtyLink, _check_transport
 
 __all__ = ["Twin", "TwinServer", "open_twin"]
 
@@ -187,10 +187,11 @@ class TwinServer:
     def __init__(self, twin: Twin, transport, *, time_scale: float = 1.0):
         if not isinstance(twin, Twin):
             raise TypeError(f"twin must be a Twin, got {type(twin).__name__}")
-        if not isinstance(time_scale, (int, float)) or not 0 <= time_scale <= 1e3:
+        if isinstance(time_scale, bool) or not isinstance(time_scale, (int, float)) or \
+                not 0 <= time_scale <= 1e3:
             raise ValueError(f"time_scale must be in [0, 1000] s per s, got {time_scale!r}")
         self.twin = twin
-        self.transport = transport
+        self.transport = _check_transport("transport", transport)
         self.time_scale = float(time_scale)
         self.exception = None
         self._stop = threading.Event()
@@ -331,6 +332,8 @@ def open_twin(twin: Twin, *, pty: bool = False, time_scale: float = 0.0):
     b'1 OK ID TWIN 1 0.1.0*E3'
     >>> server.stop(); host.close()
     """
+    if not isinstance(pty, bool):
+        raise TypeError(f"pty must be a bool, got {pty!r}"[:160])
     if pty:
         link = PtyLink()
         server = TwinServer(twin, link.device_end, time_scale=time_scale)
