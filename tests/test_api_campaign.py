@@ -1,4 +1,4 @@
-"""The bad-input campaign over the public API of the model layer.
+"""The bad-input campaign over the public API: the models, the upper floors and the hardware.
 
 Every public function, class and method of the physics modules (cantilever, materials,
 transducers, controller, contact, samples, brownian when present), of module (f)'s imaging
@@ -46,6 +46,15 @@ The upper floors (issue 21, section 6) are tried the same way:
 * the file readers: a real file of each format, cut short, bytes replaced, header numbers made
   huge, negative or zero, must be refused naming the file or read as finite numbers.
 
+The hardware layer (:data:`HARDWARE_MODULES`, issue 21, section 6) is tried as the models are:
+every public callable of the frame format, the parameter tables, the three devices' codecs, the
+transports, the twins, the drivers (each connected to its twin, served in memory), the sessions,
+the experiments, the force bridge and the AD2; and hostile devices: a driver whose far end,
+after an honest start, sends garbage, an endless line, events for ever, its host's line back,
+nothing, huge or negative integers, words for integers, short replies, replies to another SEQ or
+echoing another command, unknown error numbers. Every operation must end in the guard with a
+HardwareError or an honest result (:class:`HostileLink`).
+
 Every call runs under the same time and memory guard. ``make unit`` runs the smoke part (the
 first parameter of every callable, each parameter of the house modules, the object parameters,
 the panels' ``set()``, a few damaged files); ``make test`` runs every parameter (``slow``) and a
@@ -54,6 +63,7 @@ hypothesis search over random numbers for every callable (``slow``).
 from __future__ import annotations
 
 import dataclasses
+import enum
 import importlib
 import inspect
 import math
@@ -61,6 +71,7 @@ import os
 import re
 import resource
 import signal
+import threading
 import time
 import zlib
 from contextlib import contextmanager
@@ -110,10 +121,12 @@ NOT_INPUTS = {"name", "unit", "what", "label", "description", "readout_format"}
 # Free text that a constructor stores as given (a curve's or a material's name, a source).
 FREE_TEXT = {"name", "source", "label", "description", "channel"}
 #: Parameters that name another one in an error message (any text will do; a non-str is refused).
-MESSAGE_NAMES = {"cantilever.check_modes:name"}
+MESSAGE_NAMES = {"cantilever.check_modes:name", "hardware.framing.as_bytes:name"}
 #: Methods that take a new name for the object they return (any text will do; a non-str is
 #: refused): a label, as a constructor's ``name`` is.
 NEW_NAMES = {"samples.Sample.with_heights:name", "hardware.printing.mesh_to_sample:name"}
+#: The bad-value labels that are not numbers (a parameter that takes anything accepts them all).
+NOT_NUMBERS = ("nan", "str", "bool", "complex", "object", "nan-array")
 #: "callable:parameter" -> (bad-value labels that are in fact valid there, why): documented values
 #: that the table of bad values cannot know about.
 ACCEPTED = {
@@ -124,10 +137,10 @@ ACCEPTED = {
     # any text is a file name; "1e-6" would also write a PNG into the working directory
     "plots.export.save_png:path": (("str",), "any text is a file name"),
     "modes.lateral.LateralForceMode.line:state": (
-        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        NOT_NUMBERS,
         "unused and documented so: each line is a steady friction loop"),
     "modes.tapping.TappingMode.line:state": (
-        ("nan", "str", "bool", "complex", "object", "nan-array"),
+        NOT_NUMBERS,
         "unused by the ideal feedback (the default) and documented so"),
     "modes.force_volume.force_volume:adhesion": (("None",), "None is the documented "
                                                  "adhesion-free contact"),
@@ -135,6 +148,29 @@ ACCEPTED = {
     "modes.force_volume.two_material_sample:seed": (("None",), "None is the documented fresh "
                                                     "layout"),
     "modes.lateral.friction_scan:seed": (("None",), "None is the documented fresh noise"),
+    # module (h): "1e-6" is a word of the frame format ([A-Za-z0-9_.:-]+), and a word a driver
+    # does not know is kept as a str (documented): a device of a newer firmware may send it
+    "hardware.framing.event_frame:word": (("str",), "any word of the frame format"),
+    "hardware.framing.error_frame:word": (("str",), "any word of the frame format"),
+    "hardware.twin.Twin.error:word": (("str",), "any word of the frame format"),
+    "hardware.macro.codec.ErrorReply:word": (("str",), "any word of the frame format"),
+    "hardware.macro.codec.EventMsg:arg": (("str",), "any word of the frame format"),
+    "hardware.protocol.ParamTable.enum:doc": (("str",), "the enum's docstring: free text"),
+    "hardware.protocol.WireParam:meaning": (("str",), "what it is in a few words: free text"),
+    "hardware.macro.codec.EventMsg:event": (("str",), "an event word this driver does not "
+                                            "know is kept as a str (documented)"),
+    "hardware.macro.codec.Status:state": (("str",), "a state word this driver does not know "
+                                          "is kept as a str (documented)"),
+    "hardware.protocol.WireUnit:si_unit": (("str",), "the SI unit's symbol: free text"),
+    "hardware.protocol.WireParam.valid:wire": (
+        NOT_NUMBERS,
+        "a predicate: False is its documented answer for anything not a valid wire value"),
+    "hardware.haptic.codec.force_frame:force": (("nan",), "documented: a non-finite force is "
+                                                "sent as 0, the safe setpoint"),
+    "hardware.haptic.device.HapticDevice.send_force:force": (("nan",), "documented (as "
+                                                              "force_frame): sent as 0"),
+    "hardware.haptic.twin.HapticTwin:finger": (("None",), "None is the documented free handle "
+                                               "(no finger on it)"),
 }
 # First cases of a callable that take seconds (each of their bad values runs a simulation): `make
 # test` runs them, `make unit` does not.
@@ -158,7 +194,7 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            "BimodalState", "LockInResult", "Spectrum", "AD630Result", "ChainRun", "LockInDemo",
            "PrintComparison", "ClosedLoopResponse", "RingDown"}
 # Abstract bases: their methods are called on each concrete subclass instead.
-ABSTRACT = {"Tip", "Transducer", "Mode"}
+ABSTRACT = {"Tip", "Transducer", "Mode", "DeviceSession"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
 LEGACY = {"afmsmiler.contact.TipParameter", "afmsmiler.transducers.Quantity",
           "afmsmiler.transducers.Parameter"}
@@ -182,7 +218,11 @@ INFINITE_OK = {"afmsmiler.contact.z_np_limit": "inf means no limit (documented)"
                "afmsmiler.imaging.dilation.estimate_tip_radius":
                    "inf: an image without a strict local maximum bounds no radius (documented)",
                "afmsmiler.modes.qcontrol.stable_gains":
-                   "-inf or inf: no stability limit on that side (documented)"}
+                   "-inf or inf: no stability limit on that side (documented)",
+               "afmsmiler.hardware.haptic.twin.HapticTwin":
+                   "-inf: the tick of the last force frame before the first one (its watchdog's "
+                   "never)",
+               "afmsmiler.hardware.haptic.device.open_haptic": "its twin's -inf, as HapticTwin"}
 
 
 # -- valid values by parameter name ------------------------------------------------------------
@@ -593,6 +633,340 @@ def _is_lever(obj):
     return type(obj).__name__ == "Cantilever"
 
 
+# -- module (h): the hardware layer ----------------------------------------------------------------
+#: Each public module of the hardware layer: the frame format, the parameter tables, the three
+#: devices' codecs, the transports, the framed-device base, the twins (the far end of a
+#: transport), the drivers (each built on its own twin, served in memory), the sessions, the
+#: experiments, the force bridge's sources and the Analog Discovery 2 (its simulated library).
+#: Not here: SerialTransport and PtyLink (they open a port), the exceptions, and the codecs'
+#: enums (Python's Enum lookup; every function that takes one is tried instead).
+HARDWARE_MODULES = [
+    "afmsmiler.hardware.framing", "afmsmiler.hardware.protocol",
+    "afmsmiler.hardware.macro.codec", "afmsmiler.hardware.educational.codec",
+    "afmsmiler.hardware.haptic.codec", "afmsmiler.hardware.transport",
+    "afmsmiler.hardware.framed", "afmsmiler.hardware.twin",
+    "afmsmiler.hardware.macro.twin", "afmsmiler.hardware.educational.twin",
+    "afmsmiler.hardware.haptic.twin", "afmsmiler.hardware.macro.device",
+    "afmsmiler.hardware.educational.device", "afmsmiler.hardware.haptic.device",
+    "afmsmiler.hardware.session", "afmsmiler.hardware.macro.session",
+    "afmsmiler.hardware.educational.session", "afmsmiler.hardware.macro.mechanics",
+    "afmsmiler.hardware.experiments", "afmsmiler.hardware.haptic.bridge",
+    "afmsmiler.hardware.ad2"]
+MODULES += HARDWARE_MODULES
+#: Hardware classes that are not built from values by a user (a port, a protocol, a base).
+HARDWARE_SKIPPED = {"afmsmiler.hardware.transport.SerialTransport",
+                    "afmsmiler.hardware.transport.MemoryTransport",  # built by pair()
+                    "afmsmiler.hardware.transport.PtyLink",
+                    "afmsmiler.hardware.transport.Transport"}
+RESULTS |= {"DeviceInfo", "ScanProgress", "BridgeStats", "PatternTiming", "QControlTrial",
+            "SecondHarmonic", "AD2Reading", "Acquisition"}
+#: What a device reads or is driven with while a case runs: stopped after each case.
+_HARDWARE_OPEN = []
+
+
+def _opened(obj):
+    """``obj`` (a device, a twin's server, a session, a transport), closed after the case."""
+    _HARDWARE_OPEN.append(obj)
+    return obj
+
+
+def _close_hardware():
+    while _HARDWARE_OPEN:
+        obj = _HARDWARE_OPEN.pop()
+        try:
+            (obj.stop if hasattr(obj, "stop") and not hasattr(obj, "close") else obj.close)()
+        except Exception:  # noqa: BLE001 - a case's leftovers: closing is best effort
+            pass
+
+
+@pytest.fixture(autouse=True)
+def _hardware_closed():
+    """No thread of a twin, a device or a session outlives its case (their CPU would count in
+    the next case's guard)."""
+    yield
+    _close_hardware()
+
+
+def _filled_link(lines=64):
+    """A memory link's host end with ``lines`` valid frames waiting (a read takes one at once)."""
+    from afmsmiler.hardware.transport import MemoryTransport
+    host, end = MemoryTransport.pair()
+    end.write(b"1 OK ID TWIN 1 0.1.0*E3\n" * lines)
+    return _opened(host)
+
+
+def _served(twin):
+    from afmsmiler.hardware import open_twin
+    host, server = open_twin(twin)
+    _opened(server)
+    return host
+
+
+def _macro_twin():
+    from afmsmiler.hardware.macro import MacroAFMTwin
+    return MacroAFMTwin()
+
+
+def _edu_twin():
+    from afmsmiler.hardware.educational import EducationalAFMTwin
+    return EducationalAFMTwin(_image())
+
+
+def _haptic_twin():
+    from afmsmiler.hardware.haptic import HapticTwin
+    return HapticTwin()
+
+
+def _connected(cls, twin, **options):
+    """A driver connected to its twin (served in memory at once), closed after the case."""
+    device = _opened(cls(_served(twin), timeout=0.5, retries=1, **options))
+    device.connect()
+    return device
+
+
+def _macro():
+    """A macro AFM homed on its twin, set for a scan of 4 x 2 pixels."""
+    from afmsmiler.hardware.macro import MacroAFM
+    device = _connected(MacroAFM, _macro_twin(), stream_timeout=2.0)
+    device.home()
+    device.configure(pixels=4, lines=2)
+    return device
+
+
+def _edu():
+    """An educational AFM on its twin, set for a scan of 4 x 2 pixels that fits the image."""
+    from afmsmiler.hardware.educational import EducationalAFM
+    device = _connected(EducationalAFM, _edu_twin())
+    device.configure(pixels=4, lines=2, pitch=10e-9)
+    return device
+
+
+def _haptic():
+    from afmsmiler.hardware.haptic import HapticDevice
+    return _connected(HapticDevice, _haptic_twin())
+
+
+def _table():
+    from afmsmiler.hardware.macro.codec import TABLE
+    return TABLE
+
+
+def _bridge_stats():
+    from afmsmiler.hardware.haptic.bridge import ForceBridge, FunctionSource
+
+    class Still:  # a device that holds still: the bridge's loop alone
+        def send_force(self, force):
+            pass
+
+        def latest(self):
+            return None
+    return ForceBridge(FunctionSource(lambda t, x: 0.0), Still()).run(ticks=5)
+
+
+def _hw(module, name, *args, **kwargs):
+    """``afmsmiler.hardware.<module>.<name>(*args, **kwargs)``, built when a case needs it
+    (an argument that is a callable is built first)."""
+    def build():
+        obj = importlib.import_module(f"afmsmiler.hardware.{module}")
+        for part in name.split("."):
+            obj = getattr(obj, part)
+        return obj(*(a() if callable(a) else a for a in args), **kwargs)
+    return build
+
+
+def _twin_server():
+    from afmsmiler.hardware.transport import MemoryTransport
+    from afmsmiler.hardware.twin import Twin, TwinServer
+    host, end = MemoryTransport.pair()
+    _opened(host)
+    return _opened(TwinServer(Twin(), end, time_scale=0.0))
+
+
+def _printed():
+    """What the macro AFM's twin scans: a printed grating of 16 x 16 pixels."""
+    from afmsmiler.hardware.macro import printed_sample
+    return printed_sample(pixels=16)
+
+
+def _ad2():
+    """An AD2 opened on the simulated WaveForms library."""
+    from afmsmiler.hardware.ad2 import AnalogDiscovery2, SimulatedDwfLibrary
+    device = _opened(AnalogDiscovery2(SimulatedDwfLibrary()))
+    device.open()
+    return device
+
+
+def _still():
+    """A force function that is zero everywhere (the bridge's sources take ``f(t, x)``)."""
+    return lambda t, x: 0.0
+
+
+INSTANCES.update({
+    "WireParam": lambda: _table()["NX"],
+    "ParamTable": _table,
+    "MemoryTransport": _filled_link,
+    "FaultyTransport": _hw("transport", "FaultyTransport", _filled_link),
+    "TwinServer": _twin_server,
+    "EducationalAFMTwin": _edu_twin,
+    "MacroAFM": _macro, "EducationalAFM": _edu, "HapticDevice": _haptic,
+    "MacroSession": lambda: _opened(_hw("macro.session", "MacroSession.twin", _printed)()),
+    "EducationalSession": lambda: _opened(_hw("educational.session", "EducationalSession.twin",
+                                              _image)()),
+    "GaugeCalibration": _hw("macro.mechanics", "GaugeCalibration.from_ruler"),
+    "ForceBridge": _hw("haptic.bridge", "ForceBridge", _hw("haptic.bridge", "FunctionSource",
+                                                           lambda: _still()), _haptic),
+    "IndentationSource": _hw("haptic.bridge", "IndentationSource", _system),
+    "GaugeSource": _hw("haptic.bridge", "GaugeSource", lambda: (lambda: 0),
+                       force_per_count=1e-3),
+    "CantileverSource": _hw("haptic.bridge", "CantileverSource", _lever),
+    "TappingSource": _hw("haptic.bridge", "TappingSource", 12e-9),
+    "FunctionSource": _hw("haptic.bridge", "FunctionSource", lambda: _still()),
+    "AnalogDiscovery2": _ad2,
+})
+
+
+def _frame(*fields):
+    from afmsmiler.hardware.framing import Frame
+    return lambda: Frame(*fields)
+
+
+_H = "afmsmiler.hardware."
+_STATUS = ("IDLE", 0, 0, 0)
+OVERRIDES.update({
+    # the frame format and the tables
+    _H + "framing.crc8": {"data": b"123456789"},
+    _H + "framing.as_bytes": {"name": "data", "data": b"1 ID"},
+    _H + "framing.Frame": {"seq": 1, "code": "ID"},
+    _H + "framing.encode_frame": {"frame": _frame(1, "ID")},
+    _H + "framing.decode_frame": {"line": b"1 OK ID MACROAFM 1 0.1.0*22\n"},
+    _H + "framing.reply_frame": {"seq": 1, "code": "ID"},
+    _H + "framing.error_frame": {"seq": 1, "code": 3},
+    _H + "framing.event_frame": {"word": "DONE"},
+    _H + "protocol.WireUnit": {"si_unit": "m", "scale": 1e-6},
+    _H + "protocol.WireParam": {"name": "NX", "code": "NX", "unit": "count", "low": 1,
+                                "high": 128, "default": 8},
+    _H + "protocol.WireParam.to_si": {"wire": 8}, _H + "protocol.WireParam.to_wire": {"value": 8},
+    _H + "protocol.WireParam.valid": {"wire": 8}, _H + "protocol.WireParam.check": {"wire": 8},
+    _H + "protocol.WireParam.check_reply": {"wire": 8},
+    _H + "protocol.ParamTable": {"device": "TWIN", "params": lambda: (_table()["NX"],)},
+    _H + "protocol.ParamTable.by_si_name": {"name": "pixels"},
+    _H + "protocol.ParamTable.enum": {"module": "afmsmiler.hardware.macro.codec"},
+    _H + "protocol.ParamTable.check_reply": {"results": ("NX", 8), "command": "GP"},
+    # the codecs
+    _H + "macro.codec.Pixel": {"row": 0, "col": 1, "z": 3, "counts": 5},
+    _H + "macro.codec.LineEnd": {"row": 0, "pixels": 8},
+    _H + "macro.codec.EventMsg": {"event": "DONE"},
+    _H + "macro.codec.Reply": {"seq": 1, "command": "ST", "results": _STATUS},
+    _H + "macro.codec.ErrorReply": {"seq": 1, "code": 3},
+    _H + "macro.codec.Status": {"state": "IDLE", "row": 0, "col": 0, "flags": 0},
+    _H + "macro.codec.MacroAFMCodec.command": {"seq": 1, "command": "ST"},
+    _H + "macro.codec.MacroAFMCodec.message": {"frame": _frame(0, "PX", (0, 1, 3, 5))},
+    _H + "macro.codec.MacroAFMCodec.frame": {"message": _hw("macro.codec", "LineEnd", 0, 8)},
+    _H + "macro.codec.MacroAFMCodec.encode": {"message": _hw("macro.codec", "LineEnd", 0, 8)},
+    _H + "macro.codec.MacroAFMCodec.status_results": {
+        "status": _hw("macro.codec", "Status", "IDLE", 0, 0, 0)},
+    _H + "macro.codec.MacroAFMCodec.parse": {"line": b"0 LN 0 8*D6\n"},
+    _H + "macro.codec.MacroAFMCodec.status": {"reply": _hw("macro.codec", "Reply", 1, "ST",
+                                                            _STATUS)},
+    _H + "educational.codec.command": {"seq": 1, "code": "ST"},
+    _H + "educational.codec.pixel": {"row": 0, "col": 1, "counts": 5},
+    _H + "educational.codec.line_end": {"row": 0, "n": 8},
+    _H + "educational.codec.event": {"word": "DONE"},
+    _H + "educational.codec.stream_error": {"code": 8},
+    _H + "haptic.codec.Status": {"state": "IDLE", "flags": 0, "position": 1e-3, "force": 0.1},
+    _H + "haptic.codec.PositionSample": {"position": 1e-3, "velocity": 1e-3,
+                                         "device_time": 1.0},
+    _H + "haptic.codec.force_frame": {"force": 0.1},
+    _H + "haptic.codec.force_from_wire": {"micro": 5},
+    _H + "haptic.codec.parse_position": {"frame": _frame(0, "PO", (1000, 10, 5))},
+    _H + "haptic.codec.parse_status": {"frame": _frame(1, "OK", ("ST", "IDLE", 0, 10, 5))},
+    _H + "haptic.codec.position_frame": {"position": 1e-3, "velocity": 1e-3,
+                                         "device_time": 1.0},
+    _H + "haptic.codec.status_results": {"state": "IDLE", "flags": 0, "position": 1e-3,
+                                         "force": 0.1},
+    _H + "haptic.codec.param_to_wire": {"param": "MF", "value": 1.0},
+    _H + "haptic.codec.param_from_wire": {"param": "MF", "wire": 5},
+    # transports, the framed base, the twins
+    _H + "transport.MemoryTransport.pair": {},
+    _H + "transport.MemoryTransport.write": {"data": b"1 ID*C1\n"},
+    _H + "transport.MemoryTransport.readline": {"timeout": 0.05},
+    _H + "transport.FaultyTransport": {"inner": _filled_link},
+    _H + "transport.FaultyTransport.write": {"data": b"1 ID*C1\n"},
+    _H + "transport.FaultyTransport.readline": {"timeout": 0.05},
+    _H + "framed.FramedDevice": {"transport": _filled_link},
+    _H + "twin.Twin.ok": {"frame": _frame(1, "ID")},
+    _H + "twin.Twin.error": {"frame": _frame(1, "ID"), "code": 2},
+    _H + "twin.Twin.handle": {"frame": _frame(1, "ST")},
+    _H + "twin.Twin.execute": {"frame": _frame(1, "ST")},
+    **{_H + f"{m}.{c}.{f}": {"frame": _frame(1, "ST"), **({"code": 2} if f == "error" else {})}
+       for m, c in (("macro.twin", "MacroAFMTwin"), ("educational.twin", "EducationalAFMTwin"),
+                    ("haptic.twin", "HapticTwin"))
+       for f in ("ok", "error", "handle", "execute")},
+    **{_H + f"{m}.{c}.poll": {"now": 1e-3}
+       for m, c in (("twin", "Twin"), ("macro.twin", "MacroAFMTwin"),
+                    ("educational.twin", "EducationalAFMTwin"), ("haptic.twin", "HapticTwin"))},
+    _H + "twin.TwinServer": {"twin": _hw("twin", "Twin"), "transport": _filled_link},
+    _H + "twin.open_twin": {"twin": _hw("twin", "Twin")},
+    _H + "macro.twin.MacroAFMTwin.surface": {"x": 1e-3, "y": 1e-3},
+    _H + "educational.twin.EducationalAFMTwin": {"sample": _image},
+    _H + "haptic.twin.HapticTwin.push": {"force": 0.1},
+    # the drivers (each on its twin) and their sessions
+    _H + "macro.device.MacroAFM": {"transport": _filled_link},
+    _H + "macro.device.MacroAFM.get": {"param": "NX"},
+    _H + "macro.device.MacroAFM.set": {"param": "NX", "value": 8},
+    _H + "macro.device.MacroAFM.wait_button": {"timeout": 0.05},
+    _H + "macro.device.MacroAFM.save": {"path": lambda: __import__("tempfile").gettempdir()
+                                        + "/afmsmiler_campaign_macro.gwy",
+                                        "sample": _image},
+    _H + "educational.device.EducationalAFM": {"transport": _filled_link},
+    _H + "educational.device.EducationalAFM.request": {"code": "ST"},
+    _H + "educational.device.EducationalAFM.get": {"par": "NX"},
+    _H + "educational.device.EducationalAFM.set": {"par": "NX", "value": 16},
+    _H + "educational.device.live_view": {"scene": lambda: __import__(
+        "tests.recording", fromlist=["Recorder"]).Recorder()},
+    _H + "haptic.device.HapticDevice": {"transport": _filled_link},
+    _H + "haptic.device.HapticDevice.command": {"code": "ST"},
+    _H + "haptic.device.HapticDevice.get": {"param": "MF"},
+    _H + "haptic.device.HapticDevice.set": {"param": "MF", "value": 1.0},
+    _H + "haptic.device.HapticDevice.send_force": {"force": 0.1},
+    _H + "haptic.device.HapticDevice.ring_down": {"hold": 0.05, "duration": 0.05},
+    _H + "session.DeviceSession.close": {},
+    _H + "macro.session.MacroSession": {"device": _macro},
+    _H + "macro.session.MacroSession.open": {"transport": lambda: _served(_macro_twin())},
+    _H + "macro.session.MacroSession.twin": {"scanned": _printed},
+    _H + "educational.session.EducationalSession.open": {
+        "transport": lambda: _served(_edu_twin())},
+    _H + "educational.session.EducationalSession.twin": {"scanned": _image},
+    _H + "educational.session.EducationalSession": {"device": _edu},
+    # mechanics, experiments, the bridge, the AD2
+    _H + "macro.mechanics.GaugeCalibration": {"counts_per_newton": 1e4, "spring_constant": 50.0},
+    _H + "macro.mechanics.GaugeCalibration.from_weights": {
+        "free_counts": 10.0, "loaded_counts": 1010.0, "mass": 0.01, "spring_constant": 50.0},
+    _H + "macro.mechanics.GaugeCalibration.counts": {"force": 0.1},
+    _H + "macro.mechanics.GaugeCalibration.force": {"counts": 100.0},
+    _H + "experiments.virtual_lever": {"haptic": _haptic},
+    _H + "experiments.q_control_trial": {"haptic": _haptic},
+    _H + "experiments.bridge_readout": {"stats": _bridge_stats},
+    _H + "experiments.reference_error": {"demo": lambda: OBJECTS["LockInDemo"]()},
+    _H + "experiments.ad2_reading": {"dwf": _hw("ad2", "SimulatedDwfLibrary"),
+                                     "drive_frequency": 40e3},
+    _H + "experiments.educational_twin": {"sample": _image},
+    _H + "haptic.bridge.ForceBridge": {"source": _hw("haptic.bridge", "FunctionSource",
+                                                     lambda: _still()), "device": _haptic},
+    _H + "haptic.bridge.ForceBridge.run": {"ticks": 5},
+    _H + "haptic.bridge.FunctionSource": {"func": lambda: _still()},
+    _H + "haptic.bridge.IndentationSource": {"system": _system},
+    _H + "haptic.bridge.TappingSource": {"distance": 12e-9},
+    _H + "haptic.bridge.GaugeSource": {"read": lambda: (lambda: 0), "force_per_count": 1e-3},
+    _H + "haptic.bridge.CantileverSource": {"cantilever": _lever},
+    **{_H + f"haptic.bridge.{c}.force": {"time": 0.0, "position": 1e-3}
+       for c in ("FunctionSource", "IndentationSource", "TappingSource", "GaugeSource",
+                 "CantileverSource")},
+    _H + "ad2.pattern_timing": {"clock": 100e6, "frequency": 40e3},
+    _H + "ad2.AnalogDiscovery2": {"dwf": _hw("ad2", "SimulatedDwfLibrary")},
+})
+
+
 # -- bad values ---------------------------------------------------------------------------------
 class Foreign:
     """An object of no kind that any parameter expects."""
@@ -694,7 +1068,10 @@ def _bad_settings(valid):
 
 
 def _input_names(inst):
-    """How messages name ``value``: a transducer's input (``deflection``), a Parameter's name."""
+    """How messages name ``value``: a transducer's input (``deflection``), a Parameter's name,
+    a device parameter's names (its protocol.h name, wire code and SI name)."""
+    if hasattr(inst, "si_name") and hasattr(inst, "code"):  # a WireParam
+        return [n for n in (inst.name, inst.code, inst.si_name) if n]
     if not hasattr(inst, "input_quantity"):
         return [inst.name] if isinstance(getattr(inst, "name", None), str) else []
     try:
@@ -704,7 +1081,7 @@ def _input_names(inst):
 
 
 #: parameter -> other names a message may use for it (given the object whose method it is).
-ALIASES = {"value": _input_names, "at": _input_names}
+ALIASES = {"value": _input_names, "at": _input_names, "wire": _input_names}
 
 
 def _applicable(label, valid):
@@ -789,6 +1166,8 @@ def targets():
                 continue
             if issubclass(obj, BaseException):
                 continue
+            if issubclass(obj, enum.Enum) or qual in HARDWARE_SKIPPED:
+                continue  # Python's Enum lookup; a port (see HARDWARE_MODULES)
             if obj.__name__ in ABSTRACT or qual in LEGACY:
                 continue
             if obj.__name__ not in RESULTS:
@@ -897,7 +1276,8 @@ def _default_of(t: Target, name, inst):
     p = sig.parameters.get(name)
     if p is not None and p.default is not p.empty:
         return p.default
-    if inspect.isclass(t.func) and hasattr(t.func, "defaults"):
+    if inspect.isclass(t.func) and isinstance(inspect.getattr_static(t.func, "defaults", None),
+                                              (classmethod, staticmethod)):
         return t.func.defaults().get(name)
     if t.method == "replace" and inst is not None:
         return getattr(inst, name, None)
@@ -954,6 +1334,11 @@ def _non_finite(obj, depth=0, seen=None):
         return _non_finite(obj.channels, depth + 1, seen)  # the finished lines must be finite
     if type(obj).__name__ in ("LineRecord", "ModeLine") and obj.crash is not None:
         return None  # a crashed line: NaN on the pixels not reached (documented)
+    if any(k.__name__ == "Acquisition" and k.__module__ == "afmsmiler.acquisition"
+           for k in type(obj).__mro__) or type(obj).__name__ == "Snapshot":
+        return None  # NaN marks the pixels not measured yet (documented, issue 21 section 2)
+    if type(obj).__name__ == "BridgeStats" and obj.ticks < 2:
+        return None  # its rate and jitter are NaN before two ticks (documented)
     if type(obj).__name__ == "ClosedLoopResponse" and not obj.steady:
         return None  # an unstable Q-control loop has no steady state: NaN (documented)
     if type(obj).__name__ == "AmplitudeCurve":  # NaN pads the roots a distance lacks
@@ -991,6 +1376,11 @@ def _call(t: Target, kwargs, inst):
     func = t.func if t.method is None else getattr(inst, t.method)
     with guarded():
         result = func(**kwargs)
+        if t.module in HARDWARE_MODULES:  # a link, a server, a session: closed after the case
+            for part in (result if isinstance(result, tuple) else (result,)):
+                if callable(getattr(part, "close", None)) or callable(getattr(part, "stop",
+                                                                              None)):
+                    _opened(part)
         if inspect.isgenerator(result):  # a generator must check its arguments when called,
             result = list(result)        # and what it yields counts
         if t.method is None and inspect.isclass(t.func):
@@ -1166,6 +1556,10 @@ NUMBERS = st.one_of(
 def _search_cases():
     cases = []
     for t in TARGETS:
+        if t.module in HARDWARE_MODULES:
+            continue  # a random count or timeout of the hardware is a wait in real time (a bridge
+            # run of 10**12 ticks): a minute of the hang guard per example; its parameters'
+            # cases try the large values, and the hostile devices what a device sends
         try:
             if not _inputs(t, _param_names(t)):
                 continue
@@ -1711,3 +2105,205 @@ def test_upper_bad_values_are_named_or_harmless(t, name):
         if problem:
             failures.append(problem)
     assert not failures, "\n".join(failures)
+
+
+# -- module (h): hostile devices -------------------------------------------------------------------
+class HostileLink:
+    """The far end of a transport, played in the caller's thread: the device's twin answers
+    each host line (``mode = "honest"``), or a hostile device does.
+
+    A hostile device sends garbage lines, one endless line (what a transport hands up of a run
+    without a newline: :data:`~afmsmiler.hardware.transport.MAX_LINE` bytes at a time), frames
+    that never answer (events for ever), the host's own line back, nothing at all, or the twin's
+    frames changed: huge or negative integers, words for integers, replies cut short, replies
+    to another SEQ, replies that echo another command, error numbers no device has. It answers
+    as fast as the host reads (the worst case for a deadline), and never blocks longer than the
+    host's timeout.
+    """
+
+    MODES = ("garbage", "endless", "flood", "echo", "silent", "huge", "negative", "words",
+             "short", "wrong-seq", "wrong-code", "unknown-error")
+
+    def __init__(self, twin):
+        import collections
+        self.twin = twin
+        self.mode = "honest"
+        self.pending = collections.deque()
+        self.lock = threading.Lock()
+        self.last = b""
+        self.closed = False
+
+    def _changed(self, frame):
+        from afmsmiler.hardware.framing import INT_MAX, INT_MIN, Frame
+        mode, args = self.mode, frame.args
+        ints = {"huge": INT_MAX, "negative": INT_MIN, "words": "W"}
+        if mode in ints:
+            args = tuple(ints[mode] if isinstance(a, int) else a for a in args)
+            if frame.code == "ER" and mode == "words":
+                args = ("W",)
+        elif mode == "short":
+            args = args[:1]
+        elif mode == "wrong-code" and frame.code == "OK":
+            args = ("ZZ", *args[1:])
+        elif mode == "unknown-error" and frame.seq:
+            return Frame(frame.seq, "ER", (99, "W"))
+        elif mode == "wrong-seq" and frame.seq:
+            return Frame(frame.seq % 255 + 1, frame.code, args)
+        return Frame(frame.seq, frame.code, args)
+
+    def _queue(self, frames):
+        from afmsmiler.hardware.framing import encode_frame
+        if self.mode != "silent":
+            self.pending.extend(encode_frame(self._changed(f))[:-1] for f in frames)
+
+    def write(self, data):
+        from afmsmiler.hardware.errors import FrameError, TransportClosed
+        from afmsmiler.hardware.framing import as_bytes, decode_frame
+        data = as_bytes("data", data)
+        with self.lock:
+            if self.closed:
+                raise TransportClosed("the hostile link is closed")
+            for raw in data.split(b"\n"):
+                try:
+                    frame = decode_frame(raw)
+                except FrameError:
+                    continue
+                self.last = raw
+                self._queue(self.twin.handle(frame))
+
+    def readline(self, timeout):
+        from afmsmiler.hardware.errors import TransportClosed, TransportTimeout
+        from afmsmiler.hardware.framing import Frame, encode_frame
+        from afmsmiler.hardware.transport import MAX_LINE
+        with self.lock:
+            if self.closed:
+                raise TransportClosed("the hostile link is closed")
+            mode = self.mode
+            if mode == "garbage":
+                return b"#$%^ \xff\x00 not a frame"
+            if mode == "endless":
+                return b"7" * MAX_LINE
+            if mode == "flood":
+                return encode_frame(Frame(0, "EV", ("BOOT",)))[:-1]
+            if mode == "echo" and self.last:
+                return self.last
+            if not self.pending and self.twin.next_due() is not None:
+                self._queue(self.twin.poll(self.twin.next_due()))
+            if self.pending:
+                time.sleep(5e-4)  # a stream at the pace of a fast serial link, not faster
+                return self.pending.popleft()
+        time.sleep(min(float(timeout), 0.01))
+        raise TransportTimeout("the hostile device sent nothing")
+
+    def close(self):
+        with self.lock:
+            self.closed = True
+
+
+def _hostile_devices():
+    """device -> (driver, its twin, honest setup, operations by name)."""
+    from afmsmiler.hardware.educational import EducationalAFM
+    from afmsmiler.hardware.haptic import HapticDevice
+    from afmsmiler.hardware.macro import MacroAFM
+    return {
+        "macro": (lambda link: MacroAFM(link, timeout=0.2, retries=1, stream_timeout=0.2),
+                  _macro_twin, lambda d: (d.home(), d.configure(pixels=4, lines=2)), {
+                      "connect": lambda d: d.connect(), "get": lambda d: d.get("NX"),
+                      "set": lambda d: d.set("NX", 4), "status": lambda d: d.status(),
+                      "gauge": lambda d: d.gauge(), "force": lambda d: d.force(),
+                      "home": lambda d: d.home(), "configuration": lambda d: d.configuration(),
+                      "scan": lambda d: d.scan()}),
+        "educational": (lambda link: EducationalAFM(link, timeout=0.2, retries=1), _edu_twin,
+                        lambda d: d.configure(pixels=4, lines=2), {
+                            "connect": lambda d: d.connect(), "get": lambda d: d.get("NX"),
+                            "set": lambda d: d.set("NX", 4), "scan": lambda d: d.scan()}),
+        "haptic": (lambda link: HapticDevice(link, timeout=0.2, retries=1), _haptic_twin,
+                   lambda d: None, {
+                       "connect": lambda d: d.connect(), "get": lambda d: d.get("MF"),
+                       "set": lambda d: d.set("MF", 1.0), "status": lambda d: d.status(),
+                       "enable": lambda d: d.enable(),
+                       "position": lambda d: (d.start_stream(1e-3), d.wait_position(0.2))}),
+    }
+
+
+#: Operations whose smoke cases run in ``make unit`` (the others, and every mode of them, run
+#: in ``make test``): a connect meets each hostile device.
+HOSTILE_SMOKE = {"connect"}
+
+
+def _hostile_cases():
+    cases = []
+    for device, (_, _, _, ops) in _hostile_devices().items():
+        for op in ops:
+            for mode in HostileLink.MODES:
+                cid = f"hostile:{device}.{op}[{mode}]"
+                smoke = op in HOSTILE_SMOKE and mode in ("garbage", "endless", "huge", "short")
+                cases.append(pytest.param(device, op, mode, id=cid, marks=_known(
+                    cid, [] if smoke else [pytest.mark.slow])))
+    return cases
+
+
+@pytest.mark.parametrize("device, op, mode", _hostile_cases())
+def test_a_hostile_device_gets_a_named_error_in_time(device, op, mode):
+    """A driver whose device (the far end of its transport) turns hostile after an honest
+    start: each operation ends within the campaign's guard (one deadline per request, whatever
+    the device sends) with a HardwareError (DeviceNotResponding, ReplyError naming the
+    parameter, DeviceError ...) or an honest result of finite numbers. An IndexError,
+    KeyError, OverflowError, a MemoryError (a size taken from the device), an exception in the
+    driver's reader thread, or a hang is the finding."""
+    from afmsmiler.hardware.errors import HardwareError
+    make, twin, setup, ops = _hostile_devices()[device]
+    link = _opened(HostileLink(twin()))
+    driver = _opened(make(link))
+    if op != "connect":
+        driver.connect()
+        setup(driver)
+    link.mode = mode
+    thread_errors = []
+    old_hook = threading.excepthook
+    threading.excepthook = lambda args: thread_errors.append(
+        f"{type(args.exc_value).__name__}: {str(args.exc_value)[:120]!r}")
+    what = f"{device}.{op}() against a device that turned {mode}"
+    problem = None
+    try:
+        with guarded():
+            result = ops[op](driver)
+    except CallTimeout as exc:
+        problem = f"{what} -> {exc}"
+    except MemoryError:
+        problem = f"{what} -> MemoryError (a size from the device without a bound)"
+    except HardwareError:
+        pass
+    except Exception as exc:  # noqa: BLE001 - every other exception is the finding
+        problem = f"{what} -> {type(exc).__name__}: {str(exc)[:120]!r}"
+    else:
+        bad = _non_finite(result)
+        if bad is not None:
+            problem = f"{what} -> returned non-finite ({bad})"
+    finally:
+        _close_hardware()
+        threading.excepthook = old_hook
+    if thread_errors:
+        problem = f"{what} -> in a thread: {thread_errors[0]}"
+    assert problem is None, problem
+
+
+@pytest.mark.parametrize("faulty", [False, True], ids=["memory", "faulty"])
+def test_an_endless_line_is_cut_and_refused_in_time(faulty):
+    """A device that writes megabytes without a newline: the transport hands them up
+    :data:`MAX_LINE` bytes at a time, and a connect ends with DeviceNotResponding within the
+    guard instead of the buffer or the wait growing without bound."""
+    from afmsmiler.hardware.errors import DeviceNotResponding
+    from afmsmiler.hardware.macro import MacroAFM
+    from afmsmiler.hardware.transport import MAX_LINE, FaultyTransport, MemoryTransport
+    host, end = MemoryTransport.pair()
+    _opened(host)
+    end.write(b"7" * (4 * 2**20))
+    link = FaultyTransport(host, seed=1, corrupt=0.5, garbage=0.5) if faulty else host
+    try:
+        with guarded():
+            assert len(link.readline(0.1)) <= MAX_LINE
+            with pytest.raises(DeviceNotResponding):
+                MacroAFM(link, timeout=0.2, retries=1).connect()
+    finally:
+        _close_hardware()

@@ -179,10 +179,10 @@ def test_travel_limit_and_estop_fault():
         frames += twin.poll((i + 1) * TICK)
     assert ("EV", ("LIMIT",)) in [(f.code, f.args) for f in frames]
     assert twin.state == "FAULT"
-    assert _cmd(twin, 300, "EN").args == (ErrorCode.LIMIT,)
-    assert _cmd(twin, 301, "DS").code == "OK" and twin.state == "IDLE"
+    assert _cmd(twin, 250, "EN").args == (ErrorCode.LIMIT,)
+    assert _cmd(twin, 251, "DS").code == "OK" and twin.state == "IDLE"
     twin.press_estop()
-    assert _cmd(twin, 302, "EN").args == (ErrorCode.ESTOP,)
+    assert _cmd(twin, 252, "EN").args == (ErrorCode.ESTOP,)
 
 
 def test_saturation_is_flagged():

@@ -29,6 +29,13 @@ __all__ = ["VIRTUAL_SPRING", "MAX_FORCE", "WATCHDOG", "STREAM_PERIOD", "HOLD_FOR
            "q_control_trial", "SecondHarmonic", "second_harmonic", "reference_error",
            "AD2Reading", "ad2_reading", "stream_sample", "educational_twin"]
 
+def _check_kind(name: str, value, kind: str) -> None:
+    """Refuse, naming ``name``, what is not a ``kind`` (looked up by class name: the haptic
+    driver, its bridge and the lock-in demo are imported where they are used)."""
+    if not any(k.__name__ == kind for k in type(value).__mro__):
+        raise TypeError(f"{name} must be a {kind}, got {type(value).__name__}")
+
+
 #: N/m: the virtual lever the haptic handle becomes. On the handle and a finger (about 13 g:
 #: :class:`~afmsmiler.hardware.haptic.twin.Mechanics` ``handle_mass`` plus
 #: :class:`~afmsmiler.hardware.haptic.twin.Finger` ``mass``, Hajian and Howe, J. Biomech. Eng.
@@ -70,6 +77,7 @@ def virtual_lever(haptic, *, spring: float = VIRTUAL_SPRING, max_force: float = 
     period : float
         s between two position frames.
     """
+    _check_kind("haptic", haptic, "HapticDevice")
     haptic.configure(spring=spring, max_force=max_force, watchdog=watchdog)
     haptic.enable()
     haptic.start_stream(period)
@@ -86,6 +94,7 @@ def bridge_readout(stats) -> str:
     -------
     str
     """
+    _check_kind("stats", stats, "BridgeStats")
     return (f"rate {shown(stats.rate, 'Hz', '.0f')}, jitter median "
             f"{shown(stats.jitter_median, 'us', '.1f')}, 99th percentile "
             f"{shown(stats.jitter_p99, 'us', '.0f')}, {stats.missed} deadlines missed")
@@ -138,6 +147,7 @@ def q_control_trial(haptic, *, gain: float = Q_GAIN, force: float = HOLD_FORCE,
     -------
     QControlTrial
     """
+    _check_kind("haptic", haptic, "HapticDevice")
     from .haptic.twin import Finger, Mechanics
 
     haptic.enable()
@@ -224,6 +234,7 @@ def reference_error(demo) -> str:
     -------
     str
     """
+    _check_kind("demo", demo, "LockInDemo")
     return (f"reading off by {shown(abs(demo.deviation), 'mV', '.2f')}, "
             f"{demo.relative_error:.1%} of the signal (amplitude "
             f"{demo.amplitude_error:+.1%}, phase {shown(demo.phase_error, 'deg', '+.1f')})")

@@ -18,6 +18,7 @@ from ..validation import check_integer, check_positive
 from .errors import (RESEND_CODES, DeviceError, DeviceNotResponding, FrameError, HardwareError,
                      ProtocolVersionError, ReplyError, TransportTimeout)
 from .framing import PROTOCOL_VERSION, Frame, decode_frame, encode_frame
+from .transport import _check_transport
 
 __all__ = ["FramedDevice"]
 
@@ -55,12 +56,9 @@ class FramedDevice:
 
     def __init__(self, transport, *, timeout: float = 1.0, retries: int = 3,
                  max_retries: int = 100):
-        for method in ("write", "readline", "close"):
-            if not callable(getattr(transport, method, None)):
-                raise TypeError(f"transport must have write/readline/close, got "
-                                f"{type(transport).__name__}")
-        self.transport = transport
+        self.transport = _check_transport("transport", transport)
         self.timeout = check_positive("timeout", timeout, "s")
+        max_retries = check_integer("max_retries", max_retries, 0, 10 ** 6)
         self.retries = check_integer("retries", retries, 0, max_retries)
         self.garbage = 0
         self.retried = 0

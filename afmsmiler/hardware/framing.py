@@ -18,6 +18,7 @@ import re
 from dataclasses import dataclass
 from numbers import Integral
 
+from ..validation import _short
 from .errors import ChecksumError, FrameError
 
 __all__ = ["PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
@@ -69,13 +70,16 @@ def as_bytes(name: str, data) -> bytes:
     Raises
     ------
     TypeError
-        Naming the parameter, for anything else (``bytes(10**10)`` would allocate 10 GB).
+        Naming the parameter, for anything else (``bytes(10**10)`` would allocate 10 GB), or
+        if ``name`` is not a str.
 
     Examples
     --------
     >>> as_bytes("data", bytearray(b"1 ID"))
     b'1 ID'
     """
+    if not isinstance(name, str):
+        raise TypeError(f"name must be the parameter's name (a str), got {_short(name)}")
     if not isinstance(data, _BYTES):
         raise TypeError(f"{name} must be bytes, got {type(data).__name__}")
     return bytes(data)
@@ -112,7 +116,7 @@ def crc8(data: bytes) -> int:
 
 @dataclass(frozen=True)
 class Frame:
-    """One frame: a sequence number, a two-letter code and its arguments.
+    """One frame: a sequence number, a two-letter code and its arguments, checked when built.
 
     Parameters
     ----------
@@ -121,7 +125,14 @@ class Frame:
     code : str
         Two uppercase letters (a command, ``OK``, ``ER`` or a stream code such as ``PX``).
     args : tuple of int or str
-        Integer arguments (int32) and words (``[A-Za-z0-9_.:-]+``).
+        Integer arguments (int32) and words (``[A-Za-z0-9_.:-]+``, not of an integer's form);
+        the body ``SEQ CODE ARG ...`` has at most :data:`MAX_BODY` characters.
+
+    Raises
+    ------
+    ValueError
+        Naming the field (``seq``, ``code``, ``args[i]`` or the body's length), its value and
+        what is valid, for a frame that could not go on the wire.
     """
 
     seq: int
@@ -129,12 +140,45 @@ class Frame:
     args: tuple = ()
 
     def __post_init__(self):
-        object.__setattr__(self, "args", tuple(self.args))
+        seq = self.seq
+        if isinstance(seq, bool) or not isinstance(seq, Integral) or not 0 <= int(seq) <= 255:
+            raise ValueError(f"seq must be an integer in 0..255, got {_short(seq)}")
+        if not isinstance(self.code, str) or not _CODE.fullmatch(self.code):
+            raise ValueError(f"code must be two uppercase letters, got {_short(self.code)}")
+        if isinstance(self.args, (str, bytes)) or not hasattr(self.args, "__iter__"):
+            raise ValueError(f"args must be a tuple of ints and words, got {_short(self.args)}")
+        args = []
+        for i, arg in enumerate(self.args):
+            if i >= MAX_BODY // 2:  # each argument takes two characters at least
+                raise ValueError(f"args must fit a body of at most {MAX_BODY} characters, "
+                                 f"got more than {MAX_BODY // 2} arguments")
+            _token(f"args[{i}]", arg)
+            args.append(int(arg) if isinstance(arg, Integral) else arg)
+        object.__setattr__(self, "seq", int(seq))
+        object.__setattr__(self, "args", tuple(args))
+        length = len(self._body())
+        if length > MAX_BODY:
+            raise ValueError(f"the frame's body must be at most {MAX_BODY} characters, "
+                             f"got {length}")
+
+    def _body(self) -> bytes:
+        tokens = [str(self.seq), self.code] + [_token(f"args[{i}]", a)
+                                         for i, a in enumerate(self.args)]
+        return " ".join(tokens).encode("ascii")
 
 
 def _wire(value):
     """An enum member as its value on the wire (``Param.PITCH`` -> ``"DX"``)."""
     return getattr(value, "value", value)
+
+
+def _word(name: str, value) -> str:
+    """``value`` (a str or a str enum member) as a word of a frame, else ValueError naming it."""
+    word = _wire(value)
+    if not isinstance(word, str) or not _WORD.fullmatch(word) or _INT.fullmatch(word):
+        raise ValueError(f"{name} must be a word of [A-Za-z0-9_.:-] (not a number), got "
+                         f"{_short(value)}")
+    return word
 
 
 def reply_frame(seq: int, code, *results) -> Frame:
@@ -143,17 +187,25 @@ def reply_frame(seq: int, code, *results) -> Frame:
     Parameters
     ----------
     seq : int
-        The command's sequence number.
+        The command's sequence number, 0..255.
     code : str or enum
-        The command echoed.
+        The command echoed (two uppercase letters).
     *results : int or str or enum
         What the command returned.
 
     Returns
     -------
     Frame
+
+    Raises
+    ------
+    ValueError
+        Naming ``seq``, ``code`` or the result (``args[i]``) that cannot go on the wire.
     """
-    return Frame(seq, "OK", (_wire(code), *(_wire(r) for r in results)))
+    command = _wire(code)
+    if not isinstance(command, str) or not _CODE.fullmatch(command):
+        raise ValueError(f"code must be a command's two uppercase letters, got {_short(code)}")
+    return Frame(seq, "OK", (command, *(_wire(r) for r in results)))
 
 
 def error_frame(seq: int, code: int, word: str | None = None) -> Frame:
@@ -162,17 +214,27 @@ def error_frame(seq: int, code: int, word: str | None = None) -> Frame:
     Parameters
     ----------
     seq : int
-        The command's sequence number, 0 for an unsolicited error.
+        The command's sequence number (0..255), 0 for an unsolicited error.
     code : int
-        The error number (an :class:`~afmsmiler.hardware.errors.ErrorCode`).
+        The error number (an :class:`~afmsmiler.hardware.errors.ErrorCode`), 0..2147483647.
     word : str, optional
         A word saying more (an axis, a parameter); None or "" for none.
 
     Returns
     -------
     Frame
+
+    Raises
+    ------
+    ValueError
+        Naming ``seq``, ``code`` or ``word``, with the value and what is valid.
     """
-    return Frame(seq, "ER", (int(code),) if not word else (int(code), _wire(word)))
+    if isinstance(code, bool) or not isinstance(code, Integral) or not 0 <= int(code) <= INT_MAX:
+        raise ValueError(f"code must be an error number, an integer in 0..{INT_MAX}, got "
+                         f"{_short(code)}")
+    if word is None or (isinstance(word, str) and word == ""):
+        return Frame(seq, "ER", (int(code),))
+    return Frame(seq, "ER", (int(code), _word("word", word)))
 
 
 def event_frame(word, *args) -> Frame:
@@ -188,23 +250,30 @@ def event_frame(word, *args) -> Frame:
     Returns
     -------
     Frame
+
+    Raises
+    ------
+    ValueError
+        Naming ``word`` or the argument (``args[i]``) that cannot go on the wire.
     """
-    return Frame(0, "EV", (_wire(word), *(_wire(a) for a in args)))
+    return Frame(0, "EV", (_word("word", word), *(_wire(a) for a in args)))
 
 
-def _arg_text(index: int, arg) -> str:
+def _token(name: str, arg) -> str:
+    """The text of one argument on the wire (an int32 or a word), else ValueError naming it."""
     if isinstance(arg, Integral) and not isinstance(arg, bool):
         value = int(arg)
         if not INT_MIN <= value <= INT_MAX:
-            raise ValueError(f"args[{index}] must fit int32 ({INT_MIN}..{INT_MAX}), got {value}")
+            raise ValueError(f"{name} must fit int32 ({INT_MIN}..{INT_MAX}), got "
+                             f"{_short(value)}")
         return str(value)
     if isinstance(arg, str):
         if not _WORD.fullmatch(arg):
-            raise ValueError(f"args[{index}] must be a word of [A-Za-z0-9_.:-], got {arg!r}")
+            raise ValueError(f"{name} must be a word of [A-Za-z0-9_.:-], got {_short(arg)}")
         if _INT.fullmatch(arg):
-            raise ValueError(f"args[{index}] {arg!r} is a number written as a word: pass an int")
+            raise ValueError(f"{name} {arg!r} is a number written as a word: pass an int")
         return arg
-    raise ValueError(f"args[{index}] must be an int or a word (str), got {arg!r}")
+    raise ValueError(f"{name} must be an int32 or a word (str), got {_short(arg)}")
 
 
 def encode_frame(frame: Frame) -> bytes:
@@ -222,21 +291,12 @@ def encode_frame(frame: Frame) -> bytes:
 
     Raises
     ------
-    ValueError
-        Naming the field (seq, code, args[i] or the body's length) that breaks the format.
+    TypeError
+        If ``frame`` is not a :class:`Frame` (whose fields are checked when it is built).
     """
     if not isinstance(frame, Frame):
         raise TypeError(f"frame must be a Frame, got {type(frame).__name__}")
-    seq = frame.seq
-    if isinstance(seq, bool) or not isinstance(seq, Integral) or not 0 <= int(seq) <= 255:
-        raise ValueError(f"seq must be an integer in 0..255, got {seq!r}")
-    if not isinstance(frame.code, str) or not _CODE.fullmatch(frame.code):
-        raise ValueError(f"code must be two uppercase letters, got {frame.code!r}")
-    tokens = [str(int(seq)), frame.code] + [_arg_text(i, a) for i, a in enumerate(frame.args)]
-    body = " ".join(tokens).encode("ascii")
-    if len(body) > MAX_BODY:
-        raise ValueError(f"the frame's body must be at most {MAX_BODY} characters, "
-                         f"got {len(body)}")
+    body = frame._body()  # a Frame is checked when built
     return body + b"*%02X\n" % crc8(body)
 
 

@@ -25,13 +25,70 @@ from __future__ import annotations
 import enum
 import inspect
 import math
+import re
 from dataclasses import dataclass, field
+from numbers import Integral
 from types import MappingProxyType
 
 from ..parameters import UNITS
+from ..validation import _short, check_finite, check_integer, check_positive
 from .errors import ReplyError
+from .framing import _CODE, INT_MAX, INT_MIN
 
-__all__ = ["WireUnit", "WIRE_UNITS", "WireParam", "ParamTable"]
+__all__ = ["WireUnit", "WIRE_UNITS", "WireParam", "ParamTable", "UnknownParameter"]
+
+_NAME = re.compile(r"[A-Z][A-Z0-9_]*")
+_DEVICE = re.compile(r"[A-Z][A-Z0-9_]*")
+
+
+class UnknownParameter(KeyError, ValueError):
+    """A name or code a device's :class:`ParamTable` does not have (a KeyError, and a
+    ValueError as the rest of the API raises for a bad value).
+
+    Parameters
+    ----------
+    message : str
+        Naming the parameter asked for and the ones the table has.
+    """
+
+    def __str__(self):
+        return str(self.args[0]) if self.args else ""
+
+
+def _lookup(name: str, kind: type, value):
+    """The member of the enum ``kind`` that ``value`` is or names (its wire value), else a
+    ValueError naming ``name``, the value and the valid values (the codecs' shared check)."""
+    try:  # True and 3.0 would find the members 1 and 3 of an int enum
+        if isinstance(value, bool) or (issubclass(kind, int) and not isinstance(value,
+                                                                                 Integral)):
+            raise TypeError
+        return kind(value)
+    except (ValueError, TypeError):
+        raise ValueError(f"{name} must be one of {[m.value for m in kind]}, got "
+                         f"{_short(value)}") from None
+
+
+def _si_to_wire(name: str, value, scale: float, unit: str) -> int:
+    """The int32 on the wire of an SI value in units of ``scale`` (``unit`` for the message),
+    rounded; a ValueError naming ``name`` for what is not a finite number or does not fit."""
+    x = check_finite(name, value, unit)
+    wire = round(x / scale)
+    if not INT_MIN <= wire <= INT_MAX:
+        raise ValueError(f"{name} must be within +-{INT_MAX * scale:g} {unit} (an int32 of "
+                         f"{scale:g} {unit} on the wire), got {x!r}")
+    return wire
+
+
+def _known_flags(name: str, kind: type, value) -> enum.IntFlag:
+    """``value`` as the IntFlag ``kind``, refused naming ``name`` if it is not an integer or
+    has a bit that ``kind`` does not name (dropping it would hide a fault)."""
+    known = sum(f.value for f in kind)
+    value = check_integer(name, value, 0, INT_MAX)
+    if value & ~known:
+        raise ValueError(f"{name} has bits this driver does not know ({value & ~known}; "
+                         f"protocol version 1 knows {known} = "
+                         f"{' | '.join(f'{f.value} {f.name}' for f in kind)}), got {value}")
+    return kind(value)
 
 
 @dataclass(frozen=True)
@@ -51,6 +108,17 @@ class WireUnit:
     si_unit: str
     scale: float
     spellings: tuple = ()
+
+    def __post_init__(self):
+        if not isinstance(self.si_unit, str):
+            raise TypeError(f"si_unit must be a str (an SI unit, '' for none), got "
+                            f"{_short(self.si_unit)}")
+        scale = check_positive("scale", self.scale)
+        if isinstance(self.spellings, str) or not isinstance(self.spellings, (tuple, list)) \
+                or not all(isinstance(w, str) for w in self.spellings):
+            raise TypeError(f"spellings must be a tuple of str, got {_short(self.spellings)}")
+        object.__setattr__(self, "scale", scale)
+        object.__setattr__(self, "spellings", tuple(self.spellings))
 
 
 def _u(name: str) -> float:
@@ -122,15 +190,35 @@ class WireParam:
     meaning: str = ""
 
     def __post_init__(self):
-        if self.unit not in WIRE_UNITS:
-            raise ValueError(f"parameter {self.name}: unit must be a key of WIRE_UNITS, "
-                             f"got {self.unit!r}")
-        if not (isinstance(self.code, str) and len(self.code) == 2 and self.code.isupper()):
-            raise ValueError(f"parameter {self.name}: code must be two uppercase letters, "
-                             f"got {self.code!r}")
+        if not isinstance(self.name, str) or not _NAME.fullmatch(self.name):
+            raise ValueError(f"name must be a protocol.h name (PAR_<name>) of [A-Z0-9_], got "
+                             f"{_short(self.name)}")
+        label = f"parameter {self.name}"
+        if not (isinstance(self.code, str) and _CODE.fullmatch(self.code)):
+            raise ValueError(f"{label}: code must be two uppercase letters, got "
+                             f"{_short(self.code)}")
+        if not isinstance(self.unit, str) or self.unit not in WIRE_UNITS:
+            raise ValueError(f"{label}: unit must be a key of WIRE_UNITS "
+                             f"({', '.join(WIRE_UNITS)}), got {_short(self.unit)}")
+        for field_name in ("low", "high", "default"):
+            check_integer(f"{label}: {field_name}", getattr(self, field_name), INT_MIN, INT_MAX)
+        if self.low > self.high:
+            raise ValueError(f"{label}: low must be <= high, got low={self.low}, "
+                             f"high={self.high}")
+        check_integer(f"{label}: multiple", self.multiple, 1, INT_MAX)
+        if not isinstance(self.read_only, bool):
+            raise TypeError(f"{label}: read_only must be a bool, got {_short(self.read_only)}")
+        if not isinstance(self.si_name, str) or not (self.si_name == ""
+                                                     or self.si_name.isidentifier()):
+            raise ValueError(f"{label}: si_name must be '' or a Python name, got "
+                             f"{_short(self.si_name)}")
+        if not isinstance(self.meaning, str):
+            raise TypeError(f"{label}: meaning must be a str, got {_short(self.meaning)}")
+        for field_name in ("low", "high", "default", "multiple"):
+            object.__setattr__(self, field_name, int(getattr(self, field_name)))
         if not self.low <= self.default <= self.high or self.default % self.multiple:
-            raise ValueError(f"parameter {self.name}: default {self.default} outside "
-                             f"{self._range()}")
+            raise ValueError(f"{label}: default {self.default} outside {self._range()} (low..high, "
+                             f"a multiple of multiple)")
 
     # -- units -----------------------------------------------------------------------------
     @property
@@ -154,8 +242,14 @@ class WireParam:
         Returns
         -------
         float
+
+        Raises
+        ------
+        ValueError
+            Naming the parameter, if ``wire`` is not an integer in int32.
         """
-        return self.scale * int(wire)
+        label = f"wire value of {self.name}"
+        return self.scale * check_integer(label, wire, INT_MIN, INT_MAX)
 
     def to_wire(self, value: float) -> int:
         """The wire integer of an SI value, rounded and checked against the range.
@@ -176,11 +270,15 @@ class WireParam:
         """
         label = self.si_name or self.name
         unit = f" {self.si_unit}" if self.si_unit else ""
-        if isinstance(value, bool) or not isinstance(value, (int, float)) or \
-                not math.isfinite(value):
+        try:
+            value = check_finite(label, value, self.si_unit)
+        except ValueError:
             raise ValueError(f"{label} must be a finite number{unit and ' in' + unit}, "
-                             f"got {value!r}")
-        wire = round(value / self.scale / self.multiple) * self.multiple
+                             f"got {_short(value)}") from None
+        wire = value / self.scale / self.multiple
+        if not abs(wire) < 2.0 ** 62:
+            wire = math.copysign(2.0 ** 62, wire)  # past either end: refused below
+        wire = round(wire) * self.multiple
         if not self.low <= wire <= self.high:
             raise ValueError(f"{label} must be in [{self.low * self.scale:g}, "
                              f"{self.high * self.scale:g}]{unit}, got {value!r}")
@@ -228,7 +326,7 @@ class WireParam:
             raise ValueError(f"{self.name} ({self.meaning or self.code}) is read-only")
         if not self.valid(wire):
             raise ValueError(f"{self.name} ({self.meaning or self.code}) must be an integer "
-                             f"{self._range()}, got {wire!r}")
+                             f"{self._range()}, got {_short(wire)}")
         return int(wire)
 
     def check_reply(self, wire) -> int:
@@ -250,7 +348,7 @@ class WireParam:
         """
         if not self.valid(wire):
             raise ReplyError(f"the device reported {self.name} ({self.meaning or self.code}) = "
-                             f"{wire!r}, outside its valid range {self._range()}")
+                             f"{_short(wire)}, outside its valid range {self._range()}")
         return int(wire)
 
 
@@ -271,9 +369,15 @@ class ParamTable:
     _by_code: dict = field(init=False, repr=False, compare=False)
 
     def __post_init__(self):
+        if not isinstance(self.device, str) or not _DEVICE.fullmatch(self.device):
+            raise ValueError(f"device must be the name in the device's ID reply "
+                             f"([A-Z0-9_]+), got {_short(self.device)}")
+        if isinstance(self.params, (str, bytes)) or not hasattr(self.params, "__iter__"):
+            raise TypeError(f"params must be a tuple of WireParam, got {_short(self.params)}")
         params = tuple(self.params)
         if not all(isinstance(p, WireParam) for p in params):
-            raise TypeError("params must be WireParam descriptions")
+            raise TypeError(f"params must be WireParam descriptions, got "
+                            f"{sorted({type(p).__name__ for p in params})}")
         by_code = {p.code: p for p in params}
         if len(by_code) != len(params) or len({p.name for p in params}) != len(params):
             raise ValueError(f"{self.device}: parameter names and codes must be unique")
@@ -302,8 +406,8 @@ class ParamTable:
         try:
             return self._by_code[key]
         except (KeyError, TypeError):
-            raise KeyError(f"{self.device} has no parameter {code!r}; it has "
-                           f"{sorted(self._by_code)}") from None
+            raise UnknownParameter(f"{self.device} has no parameter {_short(code)}; it has "
+                                   f"{sorted(self._by_code)}") from None
 
     def by_si_name(self, name: str) -> WireParam:
         """The parameter of an SI name (``"max_force"``).
@@ -316,11 +420,22 @@ class ParamTable:
         Returns
         -------
         WireParam
+
+        Raises
+        ------
+        KeyError
+            For a name the table does not have (a ``LookupError``, and a ``ValueError`` too).
+        TypeError
+            If ``name`` is not a str.
         """
+        if not isinstance(name, str):
+            raise TypeError(f"name must be a str (an SI name), got {_short(name)}")
         for p in self.params:
             if p.si_name and p.si_name == name:
                 return p
-        raise KeyError(f"{self.device} has no parameter called {name!r}")
+        names = [p.si_name for p in self.params if p.si_name]
+        raise UnknownParameter(f"{self.device} has no parameter called {_short(name)}: name "
+                               f"must be one of {names}")
 
     def enum(self, module: str, doc: str = "") -> type:
         """The codec's ``Param`` enum: members named as in protocol.h, valued by their code.
@@ -337,6 +452,11 @@ class ParamTable:
         type
             A ``str`` enum; ``Param("NX")`` looks a member up by its code.
         """
+        if not isinstance(module, str) or not all(part.isidentifier()
+                                                  for part in module.split(".")):
+            raise ValueError(f"module must be a dotted module name, got {_short(module)}")
+        if not isinstance(doc, str):
+            raise TypeError(f"doc must be a str, got {_short(doc)}")
         kind = enum.Enum("Param", [(p.name, p.code) for p in self.params], type=str,
                          module=module)
         kind.__doc__ = doc or (f"Parameters of ``SP``/``GP`` of the {self.device} "
@@ -373,11 +493,16 @@ class ParamTable:
         ------
         ReplyError
             If the results are not one known parameter and an integer in its range.
+        ValueError
+            If ``command`` is not ``"SP"`` or ``"GP"``.
         """
-        if len(results) != 2 or not isinstance(results[0], str):
+        if not isinstance(command, str) or command not in ("SP", "GP"):
+            raise ValueError(f"command must be 'SP' or 'GP', got {_short(command)}")
+        if not isinstance(results, (tuple, list)) or len(results) != 2 \
+                or not isinstance(results[0], str):
             raise ReplyError(f"{self.device}'s {command} reply must be <PAR> <int>, "
-                             f"got {tuple(results)!r}")
+                             f"got {_short(results)} (results)")
         if results[0] not in self._by_code:
             raise ReplyError(f"{self.device}'s {command} reply names an unknown parameter "
-                             f"{results[0]!r}")
+                             f"{_short(results[0])} (results)")
         return self._by_code[results[0]].check_reply(results[1])

@@ -26,6 +26,7 @@ import time
 import tty
 from typing import Protocol, runtime_checkable
 
+from ..validation import check_integer, check_real
 from .errors import TransportClosed, TransportTimeout
 from .framing import as_bytes
 
@@ -53,13 +54,36 @@ class Transport(Protocol):
 
 
 def _check_timeout(timeout) -> float:
-    try:
-        timeout = float(timeout)
-    except (TypeError, ValueError):
-        raise ValueError(f"timeout must be a number of seconds >= 0, got {timeout!r}") from None
+    timeout = check_real("timeout", timeout)  # a str, a bool, 10**400: named
     if not timeout >= 0 or timeout == float("inf"):
         raise ValueError(f"timeout must be a finite number of seconds >= 0, got {timeout!r}")
     return timeout
+
+
+def _check_transport(name: str, transport):
+    """``transport``, refused naming ``name`` unless it has ``write``, ``readline`` and ``close``.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name, for the message.
+    transport : Transport
+        The link to check.
+
+    Returns
+    -------
+    Transport
+
+    Raises
+    ------
+    TypeError
+        Naming ``name`` for an object without the three methods.
+    """
+    for method in ("write", "readline", "close"):
+        if not callable(getattr(transport, method, None)):
+            raise TypeError(f"{name} must be a transport (write/readline/close), got "
+                            f"{type(transport).__name__}")
+    return transport
 
 
 def _take_line(buf: bytearray) -> bytes | None:
@@ -118,9 +142,7 @@ class MemoryTransport:
             ``(host_end, device_end)``; closing either closes the link for both.
         """
         if capacity is not None:
-            capacity = int(capacity)
-            if capacity < 1:
-                raise ValueError(f"capacity must be None or >= 1 byte, got {capacity}")
+            capacity = check_integer("capacity", capacity, 1, 2 ** 31)
         a_to_b, b_to_a = _Channel(capacity), _Channel(capacity)
         return cls(b_to_a, a_to_b), cls(a_to_b, b_to_a)
 
@@ -187,7 +209,7 @@ class MemoryTransport:
                 remaining = deadline - time.monotonic()
                 if remaining <= 0:
                     raise TransportTimeout(f"no complete line within {timeout} s")
-                self._in.cond.wait(remaining)
+                self._in.cond.wait(min(remaining, 1.0))  # 1e300 s would overflow the lock
 
     def close(self) -> None:
         """Close both directions (the other end's reads raise TransportClosed once drained)."""
@@ -483,17 +505,20 @@ class FaultyTransport:
                  silent_after_lines: int | None = None, writes: bool = True):
         for name, p in (("corrupt", corrupt), ("garbage", garbage), ("drop", drop),
                         ("partial", partial)):
-            if not isinstance(p, (int, float)) or not 0.0 <= p <= 1.0:
+            if isinstance(p, bool) or not isinstance(p, (int, float)) or not 0.0 <= p <= 1.0:
                 raise ValueError(f"{name} must be a probability in [0, 1], got {p!r}")
         for name, n in (("unplug_after_lines", unplug_after_lines),
                         ("silent_after_lines", silent_after_lines)):
             if n is not None and (isinstance(n, bool) or not isinstance(n, int) or n < 0):
                 raise ValueError(f"{name} must be None or an integer >= 0, got {n!r}")
-        self.inner = inner
+        self.inner = _check_transport("inner", inner)
         self.corrupt, self.garbage, self.drop, self.partial = corrupt, garbage, drop, partial
         self.unplug_after_lines = unplug_after_lines
         self.silent_after_lines = silent_after_lines
-        self.writes = bool(writes)
+        if not isinstance(writes, bool):
+            raise TypeError(f"writes must be a bool, got {writes!r}"[:160])
+        self.writes = writes
+        seed = check_integer("seed", seed, -2 ** 63, 2 ** 63)
         self._read_rng = random.Random(seed)
         self._write_rng = random.Random(seed + 0x5EED)
         self._pending = []
@@ -568,7 +593,8 @@ class FaultyTransport:
         if self._pending:
             return self._count(self._pending.pop(0))
         if self._silent():
-            time.sleep(timeout)
+            while time.monotonic() < deadline:  # in slices: sleep(1e300) overflows
+                time.sleep(max(0.0, min(deadline - time.monotonic(), 1.0)))
             raise TransportTimeout(f"no complete line within {timeout} s (device silent)")
         rng = self._read_rng
         while True:

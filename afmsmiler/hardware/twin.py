@@ -17,10 +17,11 @@ from __future__ import annotations
 import threading
 import time
 
+from ..validation import check_finite, check_positive
 from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
 from .framing import (PROTOCOL_VERSION, Frame, decode_frame, encode_frame, error_frame,
                       reply_frame)
-from .transport import MemoryTransport, PtyLink
+from .transport import MemoryTransport, PtyLink, _check_transport
 
 __all__ = ["Twin", "TwinServer", "open_twin"]
 
@@ -49,6 +50,13 @@ class Twin:
 
     # -- helpers for subclasses -------------------------------------------------------------
     @staticmethod
+    def _host_frame(frame) -> Frame:
+        """``frame``, refused by name unless it is a :class:`Frame` (a twin gets decoded ones)."""
+        if not isinstance(frame, Frame):
+            raise TypeError(f"frame must be a Frame, got {type(frame).__name__}")
+        return frame
+
+    @staticmethod
     def ok(frame: Frame, *results) -> Frame:
         """The OK reply to ``frame``: ``SEQ OK CODE [RESULT ...]``.
 
@@ -63,7 +71,7 @@ class Twin:
         -------
         Frame
         """
-        return reply_frame(frame.seq, frame.code, *results)
+        return reply_frame(Twin._host_frame(frame).seq, frame.code, *results)
 
     @staticmethod
     def error(frame: Frame, code: int, word: str | None = None) -> Frame:
@@ -82,7 +90,7 @@ class Twin:
         -------
         Frame
         """
-        return error_frame(frame.seq, code, word)
+        return error_frame(Twin._host_frame(frame).seq, code, word)
 
     # -- the protocol ------------------------------------------------------------------------
     def handle(self, frame: Frame) -> list[Frame]:
@@ -99,7 +107,7 @@ class Twin:
             Nothing for a host stream frame (SEQ 0) unless the device answers it; otherwise
             whatever :meth:`execute` returns, or the last reply again for a retry.
         """
-        key = (frame.seq, frame.code, frame.args)
+        key = (self._host_frame(frame).seq, frame.code, frame.args)
         if frame.seq != 0 and key == self._last and self._last_reply is not None:
             return [self._last_reply]
         if frame.code == "ID" and frame.seq != 0:
@@ -125,7 +133,7 @@ class Twin:
         list of Frame
             The frames to send; the reply (same SEQ) must be among them when ``frame.seq != 0``.
         """
-        if frame.seq == 0:
+        if self._host_frame(frame).seq == 0:
             return []
         return [self.error(frame, ErrorCode.UNKNOWN_COMMAND, frame.code)]
 
@@ -141,7 +149,7 @@ class Twin:
         -------
         list of Frame
         """
-        self.now = max(self.now, float(now))
+        self.now = max(self.now, check_finite("now", now, "s"))
         return []
 
     def next_due(self) -> float | None:
@@ -179,10 +187,11 @@ class TwinServer:
     def __init__(self, twin: Twin, transport, *, time_scale: float = 1.0):
         if not isinstance(twin, Twin):
             raise TypeError(f"twin must be a Twin, got {type(twin).__name__}")
-        if not isinstance(time_scale, (int, float)) or not 0 <= time_scale <= 1e3:
+        if isinstance(time_scale, bool) or not isinstance(time_scale, (int, float)) or \
+                not 0 <= time_scale <= 1e3:
             raise ValueError(f"time_scale must be in [0, 1000] s per s, got {time_scale!r}")
         self.twin = twin
-        self.transport = transport
+        self.transport = _check_transport("transport", transport)
         self.time_scale = float(time_scale)
         self.exception = None
         self._stop = threading.Event()
@@ -216,8 +225,9 @@ class TwinServer:
         Parameters
         ----------
         timeout : float
-            The longest to wait for the thread (s).
+            The longest to wait for the thread (s), finite and > 0.
         """
+        timeout = check_positive("timeout", timeout, "s")
         self._stop.set()
         self.transport.close()  # wakes a thread waiting to write to a host that does not read
         if self._thread is not None:
@@ -322,6 +332,8 @@ def open_twin(twin: Twin, *, pty: bool = False, time_scale: float = 0.0):
     b'1 OK ID TWIN 1 0.1.0*E3'
     >>> server.stop(); host.close()
     """
+    if not isinstance(pty, bool):
+        raise TypeError(f"pty must be a bool, got {pty!r}"[:160])
     if pty:
         link = PtyLink()
         server = TwinServer(twin, link.device_end, time_scale=time_scale)

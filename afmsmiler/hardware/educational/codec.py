@@ -19,9 +19,10 @@ from __future__ import annotations
 
 import enum
 
+from ...validation import check_integer
 from ..errors import ErrorCode   # the error numbers every device of module (h) shares
-from ..framing import Frame, error_frame, event_frame
-from ..protocol import ParamTable, WireParam
+from ..framing import INT_MAX, INT_MIN, Frame, error_frame, event_frame
+from ..protocol import ParamTable, WireParam, _lookup
 
 __all__ = ["DEVICE", "TABLE", "Command", "Param", "Event", "ErrorCode", "State", "READ_ONLY",
            "command", "pixel", "line_end", "event", "stream_error"]
@@ -100,8 +101,13 @@ def command(seq: int, code: Command, *args) -> Frame:
         The command.
     *args : int or str
         Its arguments (a :class:`Param` is sent as its code).
+
+    Raises
+    ------
+    ValueError
+        Naming ``code`` if it is not a command, or ``seq``/``args[i]`` (see Frame).
     """
-    return Frame(seq, Command(code).value,
+    return Frame(seq, _lookup("code", Command, code).value,
                  tuple(a.value if isinstance(a, enum.Enum) else a for a in args))
 
 
@@ -114,8 +120,15 @@ def pixel(row: int, col: int, counts: int) -> Frame:
         The pixel (row 0 scanned first, col along the fast axis).
     counts : int
         Its height in counts of ZS pm.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument that is not an integer in its range (row and col >= 0, int32).
     """
-    return Frame(0, "PX", (int(row), int(col), int(counts)))
+    return Frame(0, "PX", (check_integer("row", row, 0, INT_MAX),
+                           check_integer("col", col, 0, INT_MAX),
+                           check_integer("counts", counts, INT_MIN, INT_MAX)))
 
 
 def line_end(row: int, n: int) -> Frame:
@@ -127,8 +140,14 @@ def line_end(row: int, n: int) -> Frame:
         The line.
     n : int
         Its pixels.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument that is not an integer in 0..2147483647.
     """
-    return Frame(0, "LN", (int(row), int(n)))
+    return Frame(0, "LN", (check_integer("row", row, 0, INT_MAX),
+                           check_integer("n", n, 0, INT_MAX)))
 
 
 def event(word: Event, *args) -> Frame:
@@ -140,8 +159,13 @@ def event(word: Event, *args) -> Frame:
         The event.
     *args : int or str
         Its argument.
+
+    Raises
+    ------
+    ValueError
+        Naming ``word`` if it is not an :class:`Event`.
     """
-    return event_frame(Event(word), *args)
+    return event_frame(_lookup("word", Event, word), *args)
 
 
 def stream_error(code: ErrorCode) -> Frame:
@@ -151,5 +175,10 @@ def stream_error(code: ErrorCode) -> Frame:
     ----------
     code : ErrorCode
         The error.
+
+    Raises
+    ------
+    ValueError
+        Naming ``code`` if it is not an :class:`~afmsmiler.hardware.errors.ErrorCode`.
     """
-    return error_frame(0, ErrorCode(code))
+    return error_frame(0, _lookup("code", ErrorCode, code))

@@ -19,6 +19,7 @@ import numpy as np
 
 from ...samples import Sample
 from ...validation import check_integer, check_positive
+from ..protocol import _lookup
 from ..errors import (RESEND_CODES, DeviceError, DeviceNotResponding, HardwareError, ReplyError,
                       TransportClosed, TransportTimeout)
 from ..framed import FramedDevice
@@ -198,7 +199,7 @@ class EducationalAFM(FramedDevice):
             If the value is outside the table's range or the parameter is read-only (nothing
             sent).
         """
-        return self._set_wire(Param(par).value, value)
+        return self._set_wire(_lookup("par", Param, par).value, value)
 
     def get(self, par: Param) -> int:
         """Read a parameter.
@@ -214,7 +215,7 @@ class EducationalAFM(FramedDevice):
             Checked against the table (:class:`ReplyError` if the device reports a value
             outside it).
         """
-        return self._get_wire(Param(par).value)
+        return self._get_wire(_lookup("par", Param, par).value)
 
     def configure(self, *, pixels: int = TABLE[Param.NX].default, lines: int | None = None,
                   pitch: float = TABLE[Param.PITCH].to_si(TABLE[Param.PITCH].default)) -> None:
@@ -288,6 +289,9 @@ class EducationalAFM(FramedDevice):
         ReplyError
             If the device reports a scan size outside the protocol's table.
         """
+        for name, func in (("on_pixel", on_pixel), ("on_line", on_line)):
+            if func is not None and not callable(func):
+                raise TypeError(f"{name} must be None or a callable, got {type(func).__name__}")
         if self.info is None:
             self.connect()
         if not self._params:

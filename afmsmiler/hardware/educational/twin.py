@@ -133,6 +133,7 @@ class EducationalAFMTwin(Twin):
         frame : Frame
             The command.
         """
+        self._host_frame(frame)
         if frame.seq == 0:
             return []
         try:

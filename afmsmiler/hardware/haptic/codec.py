@@ -23,9 +23,10 @@ import math
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from ...validation import check_finite, check_integer, check_real
 from ..errors import ErrorCode, ReplyError
-from ..framing import Frame
-from ..protocol import WIRE_UNITS, ParamTable, WireParam
+from ..framing import INT_MAX, INT_MIN, Frame
+from ..protocol import WIRE_UNITS, ParamTable, WireParam, _known_flags, _lookup, _si_to_wire
 
 __all__ = ["DEVICE", "BAUDRATE", "FIRMWARE_VERSION", "Command", "ErrorCode", "Event", "Param",
            "TABLE", "PARAMETERS", "STATES", "Flag", "Status", "PositionSample",
@@ -155,7 +156,7 @@ def param_to_wire(param, value: float) -> int:
     ValueError
         Naming the parameter, the value and the valid range (in SI) when it is outside it.
     """
-    return PARAMETERS[Param(param)].to_wire(value)
+    return PARAMETERS[_lookup("param", Param, param)].to_wire(value)
 
 
 def param_from_wire(param, wire: int) -> float:
@@ -171,8 +172,13 @@ def param_from_wire(param, wire: int) -> float:
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        Naming ``param`` (not a parameter of the device) or the wire value (not an int32).
     """
-    return PARAMETERS[Param(param)].to_si(wire)
+    return PARAMETERS[_lookup("param", Param, param)].to_si(wire)
 
 
 def force_frame(force: float) -> Frame:
@@ -181,12 +187,19 @@ def force_frame(force: float) -> Frame:
     Parameters
     ----------
     force : float
-        Force on the handle in N, positive along +x.
+        Force on the handle in N, positive along +x; a non-finite force (NaN, +-inf) is sent as
+        0, the safe setpoint (a force law that breaks down does not push the student's finger).
 
     Returns
     -------
     Frame
+
+    Raises
+    ------
+    ValueError
+        Naming ``force`` if it is not a real number (a string, None, a complex, 10**400).
     """
+    force = check_real("force", force)
     micro = round(force / _FORCE) if math.isfinite(force) else 0
     return Frame(0, Command.FORCE.value, (max(-_INT32, min(_INT32, micro)),))
 
@@ -197,13 +210,18 @@ def force_from_wire(micro: int) -> float:
     Parameters
     ----------
     micro : int
-        The integer on the wire.
+        The integer on the wire (an int32).
 
     Returns
     -------
     float
+
+    Raises
+    ------
+    ValueError
+        Naming ``micro`` if it is not an int32.
     """
-    return int(micro) * _FORCE
+    return check_integer("micro", micro, INT_MIN, INT_MAX) * _FORCE
 
 
 @dataclass(frozen=True)
@@ -224,6 +242,15 @@ class PositionSample:
     velocity: float
     device_time: float
 
+    def __post_init__(self):
+        for name, unit in (("position", "m"), ("velocity", "m/s"), ("device_time", "s")):
+            object.__setattr__(self, name, check_finite(name, getattr(self, name), unit))
+
+
+def _check_frame(frame) -> None:
+    if not isinstance(frame, Frame):
+        raise TypeError(f"frame must be a Frame, got {type(frame).__name__}")
+
 
 def parse_position(frame: Frame) -> PositionSample:
     """A ``0 PO <um> <um/s> <us>`` frame as a :class:`PositionSample`.
@@ -241,7 +268,10 @@ def parse_position(frame: Frame) -> PositionSample:
     ------
     ReplyError
         If the frame is not a well-formed ``PO`` frame.
+    TypeError
+        If ``frame`` is not a :class:`~afmsmiler.hardware.framing.Frame`.
     """
+    _check_frame(frame)
     a = frame.args
     if frame.code != Command.POSITION.value or len(a) != 3 or \
             not all(isinstance(x, int) for x in a):
@@ -270,6 +300,13 @@ class Status:
     position: float
     force: float
 
+    def __post_init__(self):
+        if not isinstance(self.state, str) or self.state not in STATES:
+            raise ValueError(f"state must be one of {list(STATES)}, got {self.state!r}")
+        object.__setattr__(self, "flags", _known_flags("flags", Flag, self.flags))
+        object.__setattr__(self, "position", check_finite("position", self.position, "m"))
+        object.__setattr__(self, "force", check_finite("force", self.force, "N"))
+
     @property
     def saturated(self) -> bool:
         """Whether the force was clipped at the maximum force since the previous status."""
@@ -293,7 +330,10 @@ def parse_status(frame: Frame) -> Status:
     ReplyError
         If the frame is not such a reply, or its flags integer is negative or has a bit that
         :class:`Flag` does not name (as the macro AFM's codec: dropping it would hide a fault).
+    TypeError
+        If ``frame`` is not a :class:`~afmsmiler.hardware.framing.Frame`.
     """
+    _check_frame(frame)
     a = frame.args
     if frame.code != "OK" or len(a) != 5 or a[0] != "ST" or a[1] not in STATES or \
             not all(isinstance(x, int) for x in a[2:]):
@@ -322,10 +362,16 @@ def position_frame(position: float, velocity: float, device_time: float) -> Fram
     Returns
     -------
     Frame
+
+    Raises
+    ------
+    ValueError
+        Naming the quantity that is not a finite number or does not fit an int32 on the wire.
     """
-    return Frame(0, Command.POSITION.value, (round(position / _POSITION),
-                                             round(velocity / _VELOCITY),
-                                             round(device_time / _TIME) % TIME_WRAP))
+    time_us = round(check_finite("device_time", device_time, "s") / _TIME) % TIME_WRAP
+    return Frame(0, Command.POSITION.value, (_si_to_wire("position", position, _POSITION, "m"),
+                                             _si_to_wire("velocity", velocity, _VELOCITY,
+                                                         "m/s"), time_us))
 
 
 def status_results(state: str, flags: int, position: float, force: float) -> tuple:
@@ -346,5 +392,15 @@ def status_results(state: str, flags: int, position: float, force: float) -> tup
     -------
     tuple
         ``(state, flags, um, uN)``.
+
+    Raises
+    ------
+    ValueError
+        Naming the argument that is not one of the states, known flag bits, or a finite number
+        that fits an int32 on the wire.
     """
-    return (state, int(flags), round(position / _POSITION), round(force / _FORCE))
+    if not isinstance(state, str) or state not in STATES:
+        raise ValueError(f"state must be one of {list(STATES)}, got {state!r}")
+    return (state, int(_known_flags("flags", Flag, flags)),
+            _si_to_wire("position", position, _POSITION, "m"),
+            _si_to_wire("force", force, _FORCE, "N"))

@@ -23,13 +23,19 @@ from ..errors import (RESEND_CODES, DeviceNotResponding, FrameError, HardwareErr
                       TransportClosed, TransportTimeout)
 from ..framed import FramedDevice
 from ..framing import Frame, decode_frame, encode_frame, reply_frame
-from ..protocol import WIRE_UNITS
+from ..protocol import WIRE_UNITS, _lookup
 from .codec import (DEVICE, PARAMETERS, TABLE, Command, Flag, Param, PositionSample, Status,
                     force_frame, param_to_wire, parse_position, parse_status)
 
 __all__ = ["HapticDevice", "open_haptic"]
 
 _NAMES = {spec.si_name: p for p, spec in PARAMETERS.items()}
+
+
+def _param(param):
+    """A parameter by its SI name (``"max_force"``), code or member, else named."""
+    return (_NAMES.get(param) if isinstance(param, str) else None) or \
+        _lookup("param", Param, param)
 
 
 class HapticDevice(FramedDevice):
@@ -182,7 +188,7 @@ class HapticDevice(FramedDevice):
         TransportClosed
             The port is gone.
         """
-        code = Command(code).value
+        code = _lookup("code", Command, code).value
         self._start_reader()
         with self._command_lock:
             self._check_open()
@@ -236,7 +242,7 @@ class HapticDevice(FramedDevice):
         ReplyError
             If the device's reply is outside the table's range.
         """
-        p = _NAMES.get(param) or Param(param)
+        p = _param(param)
         spec = PARAMETERS[p]
         wire = spec.check(param_to_wire(p, value))
         return spec.to_si(self._checked(self.command(Command.SET, p.value, wire),
@@ -254,7 +260,7 @@ class HapticDevice(FramedDevice):
         -------
         float
         """
-        p = _NAMES.get(param) or Param(param)
+        p = _param(param)
         return PARAMETERS[p].to_si(self._checked(self.command(Command.GET, p.value),
                                                  Command.GET.value, p.value))
 
@@ -382,7 +388,7 @@ class HapticDevice(FramedDevice):
                 left = deadline - time.monotonic()
                 if left <= 0:
                     raise DeviceNotResponding(f"{DEVICE} sent no position for {wait:g} s")
-                self._sample_cond.wait(left)
+                self._sample_cond.wait(min(left, 1.0))  # 1e300 s would overflow the lock
             return self._sample
 
     def ring_down(self, force: float = 1.0, *, hold: float = 0.5, duration: float = 1.0):

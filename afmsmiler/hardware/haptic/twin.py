@@ -41,6 +41,8 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+
+from ...validation import check_finite, check_nonnegative, check_positive
 from scipy.linalg import expm
 
 from ..framing import Frame, event_frame
@@ -76,6 +78,11 @@ class Finger:
     stiffness: float = 300.0
     damping: float = 2.0
 
+    def __post_init__(self):
+        for name, unit in (("mass", "kg"), ("stiffness", "N/m")):
+            object.__setattr__(self, name, check_positive(name, getattr(self, name), unit))
+        object.__setattr__(self, "damping", check_nonnegative("damping", self.damping, "N s/m"))
+
 
 @dataclass(frozen=True)
 class Mechanics:
@@ -105,6 +112,13 @@ class Mechanics:
     current_limit: float = PARAMETERS[Param.CURRENT_LIMIT].to_si(
         PARAMETERS[Param.CURRENT_LIMIT].default)
     amplifier_bandwidth: float = 1000.0
+
+    def __post_init__(self):
+        for name in ("handle_mass", "handle_damping", "resolution", "force_constant",
+                     "current_limit", "amplifier_bandwidth"):
+            value = getattr(self, name)
+            check = check_nonnegative if name == "handle_damping" else check_positive
+            object.__setattr__(self, name, check(name, value))
 
 
 class HapticTwin(Twin):
@@ -221,7 +235,7 @@ class HapticTwin(Twin):
         force : float
             Force along +x in N.
         """
-        self.external_force = float(force)
+        self.external_force = check_finite("force", force, "N")
 
     def press_estop(self) -> None:
         """Press the device's emergency-stop button (as the ``ES`` command)."""
@@ -340,6 +354,7 @@ class HapticTwin(Twin):
         -------
         list of Frame
         """
+        self._host_frame(frame)
         code, args = frame.code, frame.args
         if code == Command.FORCE.value:
             if frame.seq != 0 or len(args) != 1 or not isinstance(args[0], int):

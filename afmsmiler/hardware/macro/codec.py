@@ -33,9 +33,11 @@ import enum
 import inspect
 from dataclasses import dataclass
 
+from ...validation import check_integer
 from ..errors import ErrorCode, FrameError, ReplyError
-from ..framing import Frame, decode_frame, encode_frame, error_frame, event_frame, reply_frame
-from ..protocol import ParamTable, WireParam
+from ..framing import (_CODE, _WORD, INT_MAX, INT_MIN, Frame, _token, _word, decode_frame, encode_frame,
+                       error_frame, event_frame, reply_frame)
+from ..protocol import ParamTable, WireParam, _known_flags, _lookup
 
 __all__ = ["DEVICE", "BAUDRATE", "Command", "ErrorCode", "Event", "Param", "State", "Flag",
            "Pixel", "LineEnd", "EventMsg", "Reply", "ErrorReply", "Status", "MacroAFMCodec",
@@ -180,6 +182,10 @@ class Pixel:
     z: int
     counts: int
 
+    def __post_init__(self):
+        _integers(self, row=(0, INT_MAX), col=(0, INT_MAX), z=(INT_MIN, INT_MAX),
+                  counts=(INT_MIN, INT_MAX))
+
 
 @dataclass(frozen=True)
 class LineEnd:
@@ -196,6 +202,9 @@ class LineEnd:
     row: int
     pixels: int
 
+    def __post_init__(self):
+        _integers(self, row=(0, INT_MAX), pixels=(0, INT_MAX))
+
 
 @dataclass(frozen=True)
 class EventMsg:
@@ -211,6 +220,11 @@ class EventMsg:
 
     event: object
     arg: object = None
+
+    def __post_init__(self):
+        _word("event", self.event)
+        if self.arg is not None:
+            _token("arg", self.arg)
 
 
 @dataclass(frozen=True)
@@ -231,6 +245,19 @@ class Reply:
     command: object
     results: tuple = ()
 
+    def __post_init__(self):
+        _integers(self, seq=(0, 255))
+        command = getattr(self.command, "value", self.command)
+        if not isinstance(command, str) or not _CODE.fullmatch(command):
+            raise ValueError(f"command must be a command's two uppercase letters, got "
+                             f"{self.command!r}"[:160])
+        if isinstance(self.results, (str, bytes)) or not isinstance(self.results, (tuple, list)):
+            raise ValueError(f"results must be a tuple of ints and words, got "
+                             f"{type(self.results).__name__}")
+        for i, r in enumerate(self.results):
+            _token(f"results[{i}]", getattr(r, "value", r))
+        object.__setattr__(self, "results", tuple(self.results))
+
 
 @dataclass(frozen=True)
 class ErrorReply:
@@ -249,6 +276,12 @@ class ErrorReply:
     seq: int
     code: int
     word: str = ""
+
+    def __post_init__(self):
+        _integers(self, seq=(0, 255), code=(0, INT_MAX))
+        if not isinstance(self.word, str) or not (self.word == "" or _WORD.fullmatch(self.word)):
+            raise ValueError(f"word must be '' or a word of [A-Za-z0-9_.:-], got "
+                             f"{self.word!r}"[:160])
 
 
 @dataclass(frozen=True)
@@ -272,10 +305,21 @@ class Status:
     col: int
     flags: Flag
 
+    def __post_init__(self):
+        _word("state", self.state)
+        _integers(self, row=(0, INT_MAX), col=(0, INT_MAX))
+        object.__setattr__(self, "flags", _known_flags("flags", Flag, self.flags))
+
     @property
     def homed(self) -> bool:
         """Whether the axes are homed."""
         return bool(self.flags & Flag.HOMED)
+
+
+def _integers(message, **ranges) -> None:
+    """Check (and store as int) the named integer fields of a frozen message."""
+    for name, (low, high) in ranges.items():
+        object.__setattr__(message, name, check_integer(name, getattr(message, name), low, high))
 
 
 def _enum(kind, value):
@@ -310,8 +354,13 @@ class MacroAFMCodec:
         Returns
         -------
         bytes
+
+        Raises
+        ------
+        ValueError
+            Naming ``command`` if it is not a :class:`Command`, or ``seq``/``args[i]``.
         """
-        command = Command(command)
+        command = _lookup("command", Command, command)
         wire = tuple(a.value if isinstance(a, enum.Enum) else a for a in args)
         return encode_frame(Frame(seq, command.value, wire))
 
@@ -332,7 +381,21 @@ class MacroAFMCodec:
         ------
         FrameError
             If the frame is valid but not a message of this protocol.
+        TypeError
+            If ``frame`` is not a :class:`~afmsmiler.hardware.framing.Frame`.
         """
+        if not isinstance(frame, Frame):
+            raise TypeError(f"frame must be a Frame, got {type(frame).__name__}")
+        try:  # a message that its dataclass refuses (a negative row) is not one either
+            return MacroAFMCodec._message(frame)
+        except FrameError:
+            raise
+        except ValueError as exc:
+            raise FrameError(f"not a MACROAFM message: {frame!r}: {exc}",
+                             encode_frame(frame)) from None
+
+    @staticmethod
+    def _message(frame: Frame):
         code, args = frame.code, frame.args
         if code == "OK" and frame.seq != 0 and args and isinstance(args[0], str):
             return Reply(frame.seq, _enum(Command, args[0]), tuple(args[1:]))
@@ -411,7 +474,14 @@ class MacroAFMCodec:
         -------
         tuple
             ``(state-word, row, col, flags)``.
+
+        Raises
+        ------
+        TypeError
+            If ``status`` is not a :class:`Status`.
         """
+        if not isinstance(status, Status):
+            raise TypeError(f"status must be a Status, got {type(status).__name__}")
         state = status.state.value if isinstance(status.state, enum.Enum) else status.state
         return (state, int(status.row), int(status.col), int(status.flags))
 
@@ -455,7 +525,11 @@ class MacroAFMCodec:
             that :class:`Flag` does not name: the device then speaks something else than protocol
             version 1 (a new flag is met by every host, so it needs a new protocol version), and
             dropping the bit would hide, e.g., a switch or an E-stop from the driver.
+        TypeError
+            If ``reply`` is not a :class:`Reply`.
         """
+        if not isinstance(reply, Reply):
+            raise TypeError(f"reply must be a Reply, got {type(reply).__name__}")
         r = reply.results
         if (reply.command != Command.STATUS or len(r) != 4 or not isinstance(r[0], str)
                 or not all(isinstance(v, int) for v in r[1:])):
@@ -466,4 +540,7 @@ class MacroAFMCodec:
             raise ReplyError(f"status flags {r[3]} have bits this driver does not know "
                              f"({unknown}; protocol version 1 knows {known} = "
                              f"{' | '.join(f'{f.value} {f.name}' for f in Flag)})")
-        return Status(_enum(State, r[0]), r[1], r[2], Flag(r[3]))
+        try:
+            return Status(_enum(State, r[0]), r[1], r[2], Flag(r[3]))
+        except ValueError as exc:  # a negative row or column
+            raise ReplyError(f"not a status reply: {reply!r}: {exc}") from None

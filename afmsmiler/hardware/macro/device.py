@@ -24,6 +24,7 @@ import numpy as np
 
 from ...parameters import Parameter, read_only
 from ...samples import Sample
+from ..protocol import _lookup
 from ...validation import check_choice, check_instance, check_integer, check_positive
 from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError, ReplyError,
                       TransportTimeout)
@@ -344,7 +345,7 @@ class MacroAFM(FramedDevice):
             If the reply names another parameter or its value is outside the table's range
             (e.g. ``ZS 0`` or ``NX 2147483647``), naming the parameter, value and range.
         """
-        param = Param(param)
+        param = _lookup("param", Param, param)
         return self._checked(self._call(Command.GET, param.value), Command.GET.value,
                              param.value)
 
@@ -364,7 +365,7 @@ class MacroAFM(FramedDevice):
         ValueError
             If the parameter is read-only or the value outside the table's range (nothing sent).
         """
-        param = Param(param)
+        param = _lookup("param", Param, param)
         self._call(Command.SET, param.value, TABLE[param].check(value))
 
     def wire_values(self, **values) -> dict:
@@ -673,6 +674,8 @@ class MacroAFM(FramedDevice):
         DeviceNotResponding
             If the device stops answering, with ``.partial``.
         """
+        if not isinstance(start, bool):
+            raise TypeError(f"start must be a bool, got {start!r}"[:160])
         info = self._require_info()
         nx, ny = self.get(Param.NX), self.get(Param.NY)
         pitch = TABLE[Param.PITCH].to_si(self.get(Param.PITCH))

@@ -22,7 +22,7 @@ from dataclasses import dataclass
 
 from ...cantilever import Cantilever
 from ...parameters import Parameter, read_only
-from ...validation import check_positive, check_range
+from ...validation import check_finite, check_instance, check_positive, check_range
 
 __all__ = ["STEEL", "RULER", "GAUGE_POSITION", "GAUGE_FACTOR", "AMPLIFIER_GAIN",
            "GaugeCalibration", "ruler", "STANDARD_GRAVITY", "PARAMETERS"]
@@ -125,7 +125,7 @@ class GaugeCalibration:
         -------
         GaugeCalibration
         """
-        lever = ruler() if lever is None else lever
+        lever = ruler() if lever is None else check_instance("lever", lever, Cantilever)
         x = check_range("gauge_position", gauge_position, 0.0, lever.length, "m",
                         high_inclusive=False)
         gf = check_range("gauge_factor", gauge_factor, 0.1, 200.0)
@@ -157,7 +157,8 @@ class GaugeCalibration:
         GaugeCalibration
         """
         mass = check_positive("mass", mass, "kg")
-        delta = abs(float(loaded_counts) - float(free_counts))
+        delta = abs(check_finite("loaded_counts", loaded_counts)
+                    - check_finite("free_counts", free_counts))
         if not math.isfinite(delta) or delta == 0:
             raise ValueError(f"loaded_counts must differ from free_counts, got {loaded_counts!r} "
                              f"and {free_counts!r}")
@@ -180,7 +181,7 @@ class GaugeCalibration:
         -------
         float
         """
-        return float(force) * self.counts_per_newton
+        return check_finite("force", force, "N") * self.counts_per_newton
 
     def force(self, counts: float) -> float:
         """Force at the needle in N for a reading in counts above the free reading.
@@ -194,4 +195,4 @@ class GaugeCalibration:
         -------
         float
         """
-        return float(counts) / self.counts_per_newton
+        return check_finite("counts", counts) / self.counts_per_newton

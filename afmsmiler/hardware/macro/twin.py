@@ -37,7 +37,7 @@ import numpy as np
 from ...contact import Parabolic
 from ...imaging.dilation import dilate
 from ...samples import Sample
-from ...validation import check_instance, check_positive, check_range
+from ...validation import check_finite, check_instance, check_positive, check_range
 from ..errors import ErrorCode
 from ..framing import Frame
 from ..twin import Twin
@@ -227,6 +227,7 @@ class MacroAFMTwin(Twin):
         float
             Above the bottom of z's travel (the sample's heights plus :attr:`base`).
         """
+        x, y = check_finite("x", x, "m"), check_finite("y", y, "m")
         h = self.apex.heights
         rows, cols = h.shape
         px = min(max(x / self.apex.pixel_size, 0.0), cols - 1.0)
@@ -292,7 +293,7 @@ class MacroAFMTwin(Twin):
         at : tuple of int, optional
             (row, col): trip it as the scan reaches that pixel (deterministic tests).
         """
-        if axis not in ("X", "Y", "Z"):
+        if not isinstance(axis, str) or axis not in ("X", "Y", "Z"):
             raise ValueError(f"axis must be 'X', 'Y' or 'Z', got {axis!r}")
         self._fault_at[tuple(at) if at is not None else None] = (Event.LIMIT, axis)
 
@@ -501,6 +502,7 @@ class MacroAFMTwin(Twin):
             Its reply, after any stream frames it causes (``GL``) and before events it causes
             (``PA``, ``AB``).
         """
+        self._host_frame(frame)
         if frame.seq == 0:
             return []
         self.executed.append(frame)
