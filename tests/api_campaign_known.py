@@ -1278,10 +1278,6 @@ KNOWN = {
         'hardware.educational.session.EducationalSession.twin(scanned=nan-array) -> TypeError '
         "not naming scanned: 'sample must be a Sample, got ndarray array([ 0., nan])'...'"
     ), False),
-    'hardware.educational.session.EducationalSession.twin:time_scale': ((
-        'hardware.educational.session.EducationalSession.twin(time_scale=bool) -> accepted sil'
-        'ently'
-    ), False),
     'hardware.educational.session.EducationalSession:server': ((
         'hardware.educational.session.EducationalSession(server=nan) -> accepted silently\n'
         'hardware.educational.session.EducationalSession(server=str) -> accepted silently\n'
@@ -1605,9 +1601,6 @@ KNOWN = {
         'hardware.haptic.device.open_haptic(port=str) -> TransportClosed: "cannot open serial '
         "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file o...'"
     ), False),
-    'hardware.haptic.device.open_haptic:time_scale': ((
-        'hardware.haptic.device.open_haptic(time_scale=bool) -> accepted silently'
-    ), False),
     'hardware.haptic.twin.HapticTwin.error:word': ((
         'hardware.haptic.twin.HapticTwin.error(word=str) -> accepted silently'
     ), False),
@@ -1751,9 +1744,6 @@ KNOWN = {
         'hardware.macro.session.MacroSession.twin(scanned=sample-volts) -> ValueError not nami'
         'ng scanned: "sample must be an image of heights in m, got shape (16, 16) in \'V\'".'
         "..'"
-    ), False),
-    'hardware.macro.session.MacroSession.twin:time_scale': ((
-        'hardware.macro.session.MacroSession.twin(time_scale=bool) -> accepted silently'
     ), False),
     'hardware.macro.session.MacroSession:server': ((
         'hardware.macro.session.MacroSession(server=nan) -> accepted silently\n'
