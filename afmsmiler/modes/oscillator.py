@@ -16,7 +16,8 @@ lever valid in one mode is valid in the next). The tapping lever
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, fields
 
 from ..parameters import PARAMETERS
 from ..validation import check_range
@@ -96,7 +97,15 @@ class Oscillator:
 
 class PointMassLever:
     """What a lever with ``spring_constant``, ``resonance_frequency`` and ``quality_factor``
-    fields shares: its :class:`Oscillator` (a base of the levers' dataclasses, no fields)."""
+    fields shares: every field checked against its description in :attr:`PARAMETERS` when the
+    (frozen) dataclass is built, and its :class:`Oscillator` (a base with no fields)."""
+
+    #: Field name -> Parameter: the subclass's descriptions of its fields.
+    PARAMETERS: Mapping = {}
+
+    def __post_init__(self):
+        for f in fields(self):
+            object.__setattr__(self, f.name, self.PARAMETERS[f.name].check(getattr(self, f.name)))
 
     @property
     def oscillator(self) -> Oscillator:

@@ -94,15 +94,13 @@ class QControl(PointMassLever):
     100.0
     """
 
+    PARAMETERS = PARAMETERS  # checked field by field in PointMassLever.__post_init__
+
     spring_constant: float = PARAMETERS["spring_constant"].default
     resonance_frequency: float = PARAMETERS["resonance_frequency"].default
     quality_factor: float = PARAMETERS["quality_factor"].default
     gain: float = PARAMETERS["gain"].default
     phase: float = PARAMETERS["phase"].default
-
-    def __post_init__(self):
-        for f in fields(self):
-            object.__setattr__(self, f.name, PARAMETERS[f.name].check(getattr(self, f.name)))
 
     @property
     def mass(self) -> float:

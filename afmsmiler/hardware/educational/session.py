@@ -59,17 +59,19 @@ class EducationalSession(DeviceSession):
         self._stop = threading.Event()
         self._arrived = threading.Condition()
         self._received = 0
+        # pixels the reader received that no step has counted yet: a step writes them into the
+        # image, so a snapshot never shows a pixel its pixels_done does not count
+        self._pending = []
         self._outcome = None   # ("done",), ("aborted",) or ("fault", exc) once the reader ends
 
     # -- the reader thread ---------------------------------------------------------------------
     def _on_pixel(self, row: int, col: int, height: float) -> None:
         if self._stop.is_set():
             raise _Aborted
-        image = self._images["height"]
-        lines, n = image.shape
+        lines, n = self._images["height"].shape
         if 0 <= row < lines and 0 <= col < n:
-            image[row, col] = height
-            with self._arrived:
+            with self._arrived:  # at most lines x n pending: one per pixel of the scan
+                self._pending.append((row, col, height))
                 self._received = max(self._received, row * n + col + 1)
                 self._arrived.notify_all()
 
@@ -103,7 +105,7 @@ class EducationalSession(DeviceSession):
         self.device.configure(pixels=pixels, lines=lines, pitch=pitch)
         self._allocate((pixels if lines is None else lines, pixels), pitch)
         self._stop.clear()
-        self._received, self._outcome = 0, None
+        self._received, self._outcome, self._pending = 0, None, []
         self._thread = threading.Thread(target=self._read, name="educational AFM reader",
                                         daemon=True)
         self._thread.start()
@@ -120,6 +122,10 @@ class EducationalSession(DeviceSession):
                     break
                 self._arrived.wait(remaining)
             self._pixels_done, outcome = self._received, self._outcome
+            pending, self._pending = self._pending, []
+        image = self._images["height"]
+        for row, col, height in pending:
+            image[row, col] = height
         if outcome is None:
             return
         self._join()

@@ -17,7 +17,7 @@ This module holds the quantities (:data:`PARAMETERS`), the validated lever and s
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -91,6 +91,8 @@ class TappingLever(PointMassLever):
     1.0
     """
 
+    PARAMETERS = PARAMETERS  # checked field by field in PointMassLever.__post_init__
+
     spring_constant: float = PARAMETERS["spring_constant"].default
     resonance_frequency: float = PARAMETERS["resonance_frequency"].default
     quality_factor: float = PARAMETERS["quality_factor"].default
@@ -102,10 +104,6 @@ class TappingLever(PointMassLever):
     poisson_ratio: float = PARAMETERS["poisson_ratio"].default
     intermolecular_distance: float = PARAMETERS["intermolecular_distance"].default
     sample_viscosity: float = PARAMETERS["sample_viscosity"].default
-
-    def __post_init__(self):
-        for f in fields(self):
-            object.__setattr__(self, f.name, PARAMETERS[f.name].check(getattr(self, f.name)))
 
     @property
     def reduced_modulus(self) -> float:
