@@ -1597,6 +1597,10 @@ KNOWN = {
         'hardware.haptic.device.HapticDevice.set(value=nan-array) -> ValueError not naming val'
         "ue: 'max_force must be a finite number in N, got array([ 0., nan])'...'"
     ), False),
+    'hardware.experiments.haptic_device:port': ((
+        'hardware.experiments.haptic_device(port=str) -> TransportClosed: "cannot open serial '
+        "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file or directory: '1e...'"
+    ), False),
     'hardware.haptic.device.open_haptic:port': ((
         'hardware.haptic.device.open_haptic(port=str) -> TransportClosed: "cannot open serial '
         "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file o...'"

@@ -515,26 +515,58 @@ def close_lab_notebook(page, server: Server) -> None:
 
 
 def run_all(page, *, timeout: float = 300.0) -> float:
-    """Run All in JupyterLab and wait until every cell ran and the kernel is idle; seconds."""
+    """Run All in JupyterLab and wait until every cell ran and the kernel is idle; seconds.
+
+    A cell that shows an error stops Run All (the cells after it never run): the error is
+    raised at once with the cell's number, never waited for until ``timeout``. On a timeout,
+    the cell still running (``[*]``) and its source are named.
+    """
     t0 = time.monotonic()
     page.evaluate(
         """(ms) => Promise.race([
                window.jupyterapp.commands.execute('notebook:run-all-cells'),
                new Promise(r => setTimeout(() => r('timeout'), ms))])""", timeout * 1000)
     left = max(1.0, timeout - (time.monotonic() - t0))
-    page.wait_for_function(
-        """() => { const w = window.jupyterapp.shell.currentWidget;
-                   const k = w.sessionContext.session.kernel;
-                   if (!k || k.status !== 'idle') return false;
-                   const cells = w.content.model.cells;
-                   for (let i = 0; i < cells.length; i++) {
-                     const c = cells.get(i);
-                     if (c.type === 'code' && c.executionCount === null) return false;
-                   }
-                   return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
-                               .some(p => p.textContent.includes('*')); }""",
-        timeout=left * 1000, polling=250)
+    try:
+        page.wait_for_function(
+            """() => { const w = window.jupyterapp.shell.currentWidget;
+                       const cells = w.content.model.cells;
+                       for (let i = 0; i < cells.length; i++) {
+                         const c = cells.get(i);
+                         if (c.type !== 'code') continue;
+                         for (let j = 0; j < c.outputs.length; j++)
+                           if (c.outputs.get(j).type === 'error') return true;
+                       }
+                       const k = w.sessionContext.session.kernel;
+                       if (!k || k.status !== 'idle') return false;
+                       for (let i = 0; i < cells.length; i++) {
+                         const c = cells.get(i);
+                         if (c.type === 'code' && c.executionCount === null) return false;
+                       }
+                       return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
+                                   .some(p => p.textContent.includes('*')); }""",
+            timeout=left * 1000, polling=250)
+    except Exception as exc:
+        raise AssertionError(f"Run All did not end within {timeout:.0f} s; still running: "
+                             f"{_running_cells(page)}") from exc
+    errors = lab_errors(page)
+    if errors:
+        raise AssertionError(f"Run All stopped at an error: {errors}")
     return time.monotonic() - t0
+
+
+def _running_cells(page) -> list[str]:
+    """The open notebook's cells whose prompt shows ``[*]``: index and source's first line."""
+    with contextlib.suppress(Exception):
+        return page.evaluate(
+            """() => { const w = window.jupyterapp.shell.currentWidget, out = [];
+                       w.content.widgets.forEach((cell, i) => {
+                         const p = cell.node.querySelector('.jp-InputArea-prompt');
+                         if (p && p.textContent.includes('*'))
+                           out.push(i + ': ' + cell.model.sharedModel.getSource().slice(0, 120));
+                       });
+                       return out; }""")
+    return ["(the page did not answer)"]
 
 
 def wait_idle(page, *, timeout: float = 300.0) -> None:

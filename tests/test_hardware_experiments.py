@@ -73,3 +73,45 @@ def test_q_control_trial_on_the_twin_undamps_the_handle():
         haptic.close()
         if server is not None:
             server.stop()
+
+
+def test_a_ring_down_the_watchdog_stopped_is_tried_again_a_bounded_number_of_times():
+    from afmsmiler.hardware import WatchdogTripped
+
+    class HapticDevice:  # stands for the driver by its class name, as the experiments check
+        def __init__(self, trips):
+            self.trips, self.enabled, self.calls = trips, 0, 0
+
+        def enable(self):
+            self.enabled += 1
+
+        def ring_down(self, force):
+            self.calls += 1
+            if self.calls <= self.trips:
+                raise WatchdogTripped("the watchdog fired")
+            return "record"
+
+    device = HapticDevice(trips=ex.RING_DOWN_ATTEMPTS - 1)
+    assert ex._ring_down(device, 1.0) == "record"
+    assert device.enabled == device.calls == ex.RING_DOWN_ATTEMPTS
+    device = HapticDevice(trips=ex.RING_DOWN_ATTEMPTS)
+    with pytest.raises(WatchdogTripped):
+        ex._ring_down(device, 1.0)
+    assert device.calls == ex.RING_DOWN_ATTEMPTS
+
+
+def test_a_cell_run_again_gets_the_haptic_twin_it_connected_not_a_second_one():
+    first = ex.haptic_device(None)
+    try:
+        assert first.is_open and first.identity is not None
+        assert ex.haptic_device(None) is first  # a re-run: no second twin streaming
+        first.close()
+        assert not first.is_open
+        second = ex.haptic_device(None)  # closed: a new one, connected
+        assert second is not first and second.is_open
+    finally:
+        for device, server in ex._HAPTICS.values():
+            device.close()
+            if server is not None:
+                server.stop()
+        ex._HAPTICS.clear()

@@ -822,3 +822,38 @@ def test_open_haptic_gives_the_twin_or_refuses_a_port_that_is_not_a_name():
         server.stop()
     with pytest.raises(TypeError, match="port"):
         open_haptic(3)
+
+
+def _held_then_released(t_release, *, f0=31.0, q=2.4, x_hold=1.25e-3, dt=1e-3, n=1500):
+    """A handle held at x_hold until t_release, then the analytic free decay to 0 (m)."""
+    t = np.arange(n) * dt
+    sigma = 2 * math.pi * f0 / (2 * q)
+    wd = math.sqrt((2 * math.pi * f0) ** 2 - sigma ** 2)
+    tau = np.clip(t - t_release, 0.0, None)
+    x = x_hold * np.exp(-sigma * tau) * (np.cos(wd * tau) + sigma / wd * np.sin(wd * tau))
+    return t, x
+
+
+@pytest.mark.parametrize("stale", [0.0, 0.05, 0.2])
+def test_ring_down_starts_where_the_handle_left_its_hold(stale):
+    """A host that reads its samples late estimates the release too early (inside the hold):
+    the decay is found in the data, and the fit gives the analytic f0 and Q (a fit through the
+    plateau gave 12-24 Hz for 31 Hz when the kernel's threads held the interpreter)."""
+    from afmsmiler.hardware.haptic.device import free_decay_start
+    t, x = _held_then_released(0.5 + stale)
+    start = free_decay_start(t, x, 0.5)
+    assert t[start] > 0.5 + stale and t[start] < 0.5 + stale + 0.01
+    q, f = fit_ring_down(t[start:] - t[start], x[start:])
+    assert f == pytest.approx(31.0, rel=1e-3) and q == pytest.approx(2.4, rel=1e-3)
+    if stale:  # from the clock's estimate the fit is off: the plateau is not free motion
+        keep = t >= 0.5
+        q_naive, f_naive = fit_ring_down(t[keep] - 0.5, x[keep])
+        assert abs(f_naive - 31.0) > 0.3 or abs(q_naive - 2.4) > 0.05
+
+
+def test_free_decay_start_names_a_bad_tolerance():
+    from afmsmiler.hardware.haptic.device import free_decay_start
+    t, x = _held_then_released(0.5)
+    with pytest.raises(ValueError, match="tolerance"):
+        free_decay_start(t, x, 0.5, tolerance=0.7)
+    assert free_decay_start(t, np.full_like(x, 1e-3), 0.5) == t.size  # never released

@@ -20,7 +20,7 @@ port itself):
 """
 from .errors import (ChecksumError, DeviceError, DeviceNotResponding, ErrorCode, FrameError,
                      HardwareError, ProtocolVersionError, ReplyError, TransportClosed,
-                     TransportTimeout)
+                     TransportTimeout, WatchdogTripped)
 from .framing import MAX_BODY, PROTOCOL_VERSION, Frame, crc8, decode_frame, encode_frame
 from .protocol import WIRE_UNITS, ParamTable, WireParam
 from .framed import FramedDevice
@@ -34,7 +34,8 @@ from .ad2 import (AD2Config, AD2Unavailable, AnalogDiscovery2, SimulatedDwfLibra
                   pattern_timing)
 
 __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
-           "DeviceNotResponding", "ProtocolVersionError", "DeviceError", "ReplyError", "ErrorCode",
+           "DeviceNotResponding", "WatchdogTripped", "ProtocolVersionError", "DeviceError",
+           "ReplyError", "ErrorCode",
            "ParamTable", "WireParam", "WIRE_UNITS", "FramedDevice",
            "PROTOCOL_VERSION", "MAX_BODY", "crc8", "Frame", "encode_frame", "decode_frame",
            "Transport", "MemoryTransport", "SerialTransport", "PtyLink", "FaultyTransport",

@@ -10,7 +10,7 @@ import enum
 import inspect
 
 __all__ = ["HardwareError", "FrameError", "ChecksumError", "TransportTimeout", "TransportClosed",
-           "DeviceNotResponding", "ProtocolVersionError", "DeviceError", "ReplyError",
+           "DeviceNotResponding", "WatchdogTripped", "ProtocolVersionError", "DeviceError", "ReplyError",
            "ErrorCode", "RESEND_CODES"]
 
 
@@ -95,6 +95,11 @@ class TransportClosed(HardwareError, ConnectionError):
 
 class DeviceNotResponding(HardwareError, TimeoutError):
     """A command got no valid reply after all its retries."""
+
+
+class WatchdogTripped(HardwareError):
+    """The device's watchdog switched its motor off: this host sent no force frame for longer
+    than the watchdog time (a host that paused; a longer watchdog or a retry helps)."""
 
 
 class ProtocolVersionError(HardwareError):

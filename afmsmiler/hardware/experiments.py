@@ -25,7 +25,7 @@ from ..signals.lockin import FILTER_ORDER, TIME_CONSTANT, LockInResult, enbw, lo
     settling_time
 
 __all__ = ["VIRTUAL_SPRING", "MAX_FORCE", "WATCHDOG", "STREAM_PERIOD", "HOLD_FORCE", "Q_GAIN",
-           "RECORD_AFTER_SETTLING", "virtual_lever", "bridge_readout", "QControlTrial",
+           "RECORD_AFTER_SETTLING", "RING_DOWN_ATTEMPTS", "haptic_device", "virtual_lever", "bridge_readout", "QControlTrial",
            "q_control_trial", "SecondHarmonic", "second_harmonic", "reference_error",
            "AD2Reading", "ad2_reading", "stream_sample", "educational_twin"]
 
@@ -58,6 +58,47 @@ Q_GAIN = -0.4
 #: s recorded after the lock-in's filter settles: about 160 periods of 2 omega at the default
 #: lever's 81.5 kHz resonance, which the reading averages.
 RECORD_AFTER_SETTLING = 2e-3
+
+
+#: The haptic devices this kernel connected, by port (None: the twin): a cell run again gets the
+#: same device, not a second twin streaming beside the first.
+_HAPTICS: dict = {}
+
+
+def haptic_device(port: str | None = None):
+    """The connected haptic device on ``port`` (None: its twin), connected once per kernel.
+
+    A cell that calls this again (re-run, or run out of order) gets the device it connected
+    before while that one is still open; a new one only when it was closed or its link lost.
+    Each twin streams its handle's position 1000 times a second (about a fifth of a core), so
+    a second twin per re-run would slow every later cell.
+
+    Parameters
+    ----------
+    port : str or None
+        A serial port (e.g. ``"/dev/ttyACM0"``) with the device plugged in; None: its twin.
+
+    Returns
+    -------
+    afmsmiler.hardware.haptic.HapticDevice
+        Connected (:meth:`~afmsmiler.hardware.haptic.HapticDevice.connect` has identified it).
+    """
+    from .haptic import open_haptic
+    if port is not None and not isinstance(port, str):
+        raise TypeError(f"port must be a serial port's name (str) or None, got {port!r}"[:160])
+    kept = _HAPTICS.get(port)
+    if kept is not None and kept[0].is_open:
+        return kept[0]
+    device, server = open_haptic(port)
+    try:
+        device.connect()
+    except Exception:
+        device.close()
+        if server is not None:
+            server.stop()
+        raise
+    _HAPTICS[port] = (device, server)
+    return device
 
 
 def virtual_lever(haptic, *, spring: float = VIRTUAL_SPRING, max_force: float = MAX_FORCE,
@@ -150,14 +191,30 @@ def q_control_trial(haptic, *, gain: float = Q_GAIN, force: float = HOLD_FORCE,
     _check_kind("haptic", haptic, "HapticDevice")
     from .haptic.twin import Finger, Mechanics
 
-    haptic.enable()
-    q0, f0 = fit_ring_down(*haptic.ring_down(force))
+    q0, f0 = fit_ring_down(*_ring_down(haptic, force))
     haptic.configure(qgain=gain, qphase=math.pi / 2, qfreq=f0)
-    q, f = fit_ring_down(*haptic.ring_down(force))
+    q, f = fit_ring_down(*_ring_down(haptic, force))
     k = (Mechanics().handle_mass + Finger().mass) * (2 * math.pi * f0) ** 2
     closed = QControl(spring_constant=k, resonance_frequency=f0, quality_factor=q0,
                       gain=gain * spring / k)
     return QControlTrial(q0, f0, q, f, closed)
+
+
+#: Ring-downs tried before a busy host's watchdog trips are reported (each one 1.5 s).
+RING_DOWN_ATTEMPTS = 3
+
+
+def _ring_down(haptic, force: float):
+    """Enable the motor and ring the handle down; again (at most :data:`RING_DOWN_ATTEMPTS`
+    times) when this host paused so long that the device's watchdog switched the motor off."""
+    from .errors import WatchdogTripped
+    for attempt in range(RING_DOWN_ATTEMPTS):
+        haptic.enable()
+        try:
+            return haptic.ring_down(force)
+        except WatchdogTripped:
+            if attempt == RING_DOWN_ATTEMPTS - 1:
+                raise
 
 
 @dataclass(frozen=True)

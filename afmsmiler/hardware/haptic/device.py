@@ -19,15 +19,15 @@ import threading
 import time
 
 from ...validation import check_positive
-from ..errors import (RESEND_CODES, DeviceNotResponding, FrameError, HardwareError, ReplyError,
-                      TransportClosed, TransportTimeout)
+from ..errors import (RESEND_CODES, DeviceNotResponding, FrameError, ReplyError,
+                      TransportClosed, TransportTimeout, WatchdogTripped)
 from ..framed import FramedDevice
 from ..framing import Frame, decode_frame, encode_frame, reply_frame
 from ..protocol import WIRE_UNITS, _lookup
 from .codec import (DEVICE, PARAMETERS, TABLE, Command, Flag, Param, PositionSample, Status,
                     force_frame, param_to_wire, parse_position, parse_status)
 
-__all__ = ["HapticDevice", "open_haptic"]
+__all__ = ["HapticDevice", "free_decay_start", "open_haptic"]
 
 _NAMES = {spec.si_name: p for p, spec in PARAMETERS.items()}
 
@@ -415,7 +415,7 @@ class HapticDevice(FramedDevice):
 
         Raises
         ------
-        HardwareError
+        WatchdogTripped
             If the device is not ACTIVE (enable it: its watchdog disables it whenever the force
             frames stop, e.g. at the end of a bridge's run), or its watchdog fired meanwhile.
         DeviceNotResponding
@@ -431,7 +431,7 @@ class HapticDevice(FramedDevice):
         self.send_force(force)  # feeds the watchdog before the status round trip
         state = self.status().state
         if state != "ACTIVE":
-            raise HardwareError(f"{DEVICE} is {state}, not ACTIVE: call enable() first (its "
+            raise WatchdogTripped(f"{DEVICE} is {state}, not ACTIVE: call enable() first (its "
                                 "watchdog disables it whenever the force frames stop)")
         self._recording = []
         release = None
@@ -448,17 +448,24 @@ class HapticDevice(FramedDevice):
         after_run = self.status()  # its reply comes after every frame the run made the device send
         if list(self.events).count("WATCHDOG") > trips or after_run.flags & Flag.WATCHDOG or \
                 after_run.state != "ACTIVE":
-            raise HardwareError(f"{DEVICE}'s watchdog fired during the ring-down: this host "
+            raise WatchdogTripped(f"{DEVICE}'s watchdog fired during the ring-down: this host "
                                 "paused longer than the watchdog time between force frames; "
                                 "set a longer one (configure(watchdog=0.2)) and repeat")
         if samples:  # the release by the device's clock, plus 5 ms for the frames in flight
             release = samples[0].device_time + hold + 5e-3
-        after = [s for s in samples if release is not None and s.device_time >= release]
-        if len(after) < 8:
-            raise DeviceNotResponding(f"{DEVICE} sent {len(after)} positions after the release "
-                                      "(is it enabled and streaming?)")
-        t = np.array([s.device_time for s in after])
-        return t - t[0], np.array([s.position for s in after])
+        t = np.array([s.device_time for s in samples])
+        x = np.array([s.position for s in samples])
+        start = free_decay_start(t, x, release) if release is not None else t.size
+        if t.size - start < 8:
+            raise DeviceNotResponding(f"{DEVICE} sent {t.size - start} positions after the "
+                                      "release (is it enabled and streaming?)")
+        return t[start:] - t[start], x[start:]
+
+    @property
+    def is_open(self) -> bool:
+        """Connected and not closed, its link not lost."""
+        return self.identity is not None and not self._stop.is_set() and \
+            self._closed_error is None
 
     def close(self) -> None:
         """Stop the reader and close the transport (idempotent)."""
@@ -472,6 +479,48 @@ class HapticDevice(FramedDevice):
 
     def __exit__(self, *exc):
         self.close()
+
+
+def free_decay_start(time, position, release: float, *, tolerance: float = 0.02) -> int:
+    """The index of the first sample of a ring-down's free decay, found in the data.
+
+    The release by the clocks (the recording's first sample plus the hold) is only an earliest
+    estimate: a host that stalls (another thread holding the interpreter) reads samples late,
+    so its first recorded sample is older than the moment its force stream began, and the
+    estimate falls inside the hold. A sample that still sits on the hold's plateau is then not
+    free motion, and a damped cosine fitted through it finds a wrong frequency and Q. The
+    decay starts at the first sample after ``release`` that has left the plateau (the median of
+    the positions before ``release``) by more than ``tolerance`` of the way to the rest
+    position (the median of the last tenth).
+
+    Parameters
+    ----------
+    time : ndarray
+        The samples' device times in s, increasing.
+    position : ndarray
+        Their positions in m.
+    release : float
+        The earliest time in s at which the decay can have begun.
+    tolerance : float
+        The fraction of the hold-to-rest distance that counts as having left the plateau,
+        in (0, 0.5).
+
+    Returns
+    -------
+    int
+        The index (``len(time)`` when no sample after ``release`` left the plateau).
+    """
+    import numpy as np
+    t, x = np.asarray(time, dtype=float), np.asarray(position, dtype=float)
+    if not 0.0 < tolerance < 0.5:
+        raise ValueError(f"tolerance must be in (0, 0.5), got {tolerance!r}")
+    first = int(np.searchsorted(t, release))
+    if first == 0 or first >= t.size:
+        return first
+    hold = float(np.median(x[:first]))
+    rest = float(np.median(x[-max(1, t.size // 10):]))
+    left = np.flatnonzero(np.abs(x[first:] - hold) > tolerance * abs(rest - hold))
+    return first + int(left[0]) if left.size else t.size
 
 
 def open_haptic(port: str | None = None, *, time_scale: float = 1.0):
