@@ -9,6 +9,10 @@ STUDENT_STAMP := $(VENV)/.afmsmiler-student-installed
 ## pytest-xdist workers for `make test` and `make unit` (JOBS=0: one process, as pytest alone)
 JOBS   ?= 2
 export MPLBACKEND ?= Agg
+## Python keeps its compiled modules (and pytest its rewritten test modules) in __pycache__:
+## where the environment says not to (PYTHONDONTWRITEBYTECODE), every process, each notebook's
+## kernel and each test worker, compiled the course and the tests again (10 s per worker).
+unexport PYTHONDONTWRITEBYTECODE
 
 .PHONY: install lab test unit lint notebooks bench book clean browser firmware
 
@@ -63,13 +67,15 @@ lab: $(STUDENT_STAMP)
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
 ## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
-## notebook under nbval. Tests run on both cores (pytest-xdist); a browser test module keeps its
-## JupyterLab/voila servers and Chromium on one worker (xdist_group) while the other worker runs
-## the rest. Tests check correctness, not speed (`make bench` measures speed).
+## notebook under nbval. Tests run on both cores (pytest-xdist), the longest modules first
+## (tests/conftest.py); the browser tests that share a JupyterLab or voila server share a worker
+## (xdist_group). Notebooks run on both cores too, each notebook's cells on one worker in order
+## (--dist loadfile). Tests check correctness, not speed (`make bench` measures speed).
 test: $(STAMP) browser firmware lint
 	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup tests
 	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
-	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider notebooks
+	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider \
+	  -n $(JOBS) --dist loadfile notebooks
 
 ## The fast suite while you work, on both cores: every test except those marked `slow` (a second
 ## or more each: reference solutions, many fits, code generation, the deep bad-input campaign) and
@@ -84,7 +90,8 @@ lint: $(STAMP)
 	$(VENV)/bin/ruff check afmsmiler tests benchmarks tools
 
 notebooks: $(STAMP)
-	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env notebooks
+	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -n $(JOBS) --dist loadfile \
+	  notebooks
 
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
 bench: $(STAMP) browser

@@ -67,6 +67,17 @@ def pytest_collection_modifyitems(items):
     for item in items:
         if "hang_guard" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.hang_guard)
+    # The longest first, so that the two workers end together: the browser test modules (a
+    # minute and more per notebook), then the other modules with `slow` tests, then the rest.
+    # A module moves as a whole (its module-scoped fixtures, servers among them, are made once);
+    # the order inside a module is kept.
+    rank: dict = {}
+    for item in items:
+        module = item.nodeid.split("::", 1)[0]
+        r = 0 if item.get_closest_marker("browser") else \
+            1 if item.get_closest_marker("slow") else 2
+        rank[module] = min(rank.get(module, 2), r)
+    items.sort(key=lambda item: rank[item.nodeid.split("::", 1)[0]])
 
 
 # -- per-test CPU cost: AFMSMILER_CPU_REPORT=FILE appends "cpu_s wall_s nodeid" lines -----------

@@ -28,8 +28,8 @@ SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, f
 #: notebook -> 3D views after Run All. Every panel the registry lists in a notebook is moved by
 #: its slider (registry.PanelEntry.slider): its figure changes unless its slider applies to the
 #: next scan, and exactly its own 3D view updates (none for a panel without one).
-NOTEBOOKS = {"05_system_overview.ipynb": 1, "06_virtual_imaging.ipynb": 1,
-             "07_imaging_modalities.ipynb": 4, "08_hardware_interaction.ipynb": 2}
+NOTEBOOKS = {"08_hardware_interaction.ipynb": 2, "07_imaging_modalities.ipynb": 4,
+             "06_virtual_imaging.ipynb": 1, "05_system_overview.ipynb": 1}  # the longest first
 
 
 #: The kernel's child processes and the ports it listens on (its own connection's, at first).

@@ -12,7 +12,7 @@ HTML export (nbconvert) opened from a file.
 The panels come from the registry (``afmsmiler.ui.registry``): here those of modules (a)-(d), one
 per notebook; ``test_notebooks_browser.py`` moves every panel of modules (e)-(h) in its notebook.
 Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why, when Chromium
-or Playwright is missing. One JupyterLab and one voila server and one browser per module.
+or Playwright is missing. One JupyterLab and one voila server, each on the worker of its tests.
 """
 import math
 
@@ -20,8 +20,10 @@ import pytest
 
 from tests import browser as B
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser,
-              pytest.mark.xdist_group("panels_browser")]  # its servers on one worker
+pytestmark = [pytest.mark.slow, pytest.mark.browser]
+# The tests that share a server share a worker (xdist_group): JupyterLab's on one, voila's on
+# one (the other worker may take it), the static exports wherever a worker is free.
+LAB, VOILA = pytest.mark.xdist_group("panels_lab"), pytest.mark.xdist_group("panels_voila")
 
 PRESSES = 3  # key presses timed per panel
 DRAG = 15  # key presses of a drag
@@ -108,6 +110,7 @@ def _check_drag(page, slider, key, name, *, kernel=None):
     raise AssertionError(message)
 
 
+@LAB
 @pytest.mark.parametrize("name", NAMES)
 def test_lab_panel_follows_its_slider(lab, name):
     server, page = lab
@@ -135,6 +138,7 @@ def test_lab_panel_follows_its_slider(lab, name):
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
 
 
+@VOILA
 @pytest.mark.parametrize("name", NAMES)
 def test_voila_panel_follows_its_slider(voila, name):
     server, page = voila
@@ -150,6 +154,7 @@ def test_voila_panel_follows_its_slider(voila, name):
         page.goto("about:blank")  # voila shuts the kernel down when its page goes
 
 
+@LAB
 def test_lab_floor_label_follows_its_slider(lab):
     """The floor the benchmark divides by: slider -> kernel -> a label's text, in time."""
     server, page = lab
