@@ -763,6 +763,13 @@ def _bridge_stats():
     return ForceBridge(FunctionSource(lambda t, x: 0.0), Still()).run(ticks=5)
 
 
+def _low_q_lever():
+    """A tapping lever that settles in a few dozen periods (Q = 20), for the cases that only
+    need a valid one: each bad value that passes integrates it to its steady state."""
+    from afmsmiler.modes.tapping import TappingLever
+    return TappingLever(quality_factor=20.0)
+
+
 def _hw(module, name, *args, **kwargs):
     """``afmsmiler.hardware.<module>.<name>(*args, **kwargs)``, built when a case needs it
     (an argument that is a callable is built first)."""
@@ -819,7 +826,7 @@ INSTANCES.update({
     "GaugeSource": _hw("haptic.bridge", "GaugeSource", lambda: (lambda: 0),
                        force_per_count=1e-3),
     "CantileverSource": _hw("haptic.bridge", "CantileverSource", _lever),
-    "TappingSource": _hw("haptic.bridge", "TappingSource", 12e-9),
+    "TappingSource": _hw("haptic.bridge", "TappingSource", 12e-9, lambda: _low_q_lever()),
     "FunctionSource": _hw("haptic.bridge", "FunctionSource", lambda: _still()),
     "AnalogDiscovery2": _ad2,
 })
