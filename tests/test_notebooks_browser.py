@@ -132,3 +132,21 @@ def test_views_draw_in_voila(chromium, root):
             assert colours > 50, f"the 3D view in voila is nearly uniform ({colours} colours)"
         finally:
             page.close()
+
+
+def test_run_all_stops_at_an_error_at_once_and_names_it(lab):
+    """A cell that raises stops Run All (the cells after it never run): the helper says so at
+    once with the error, where it once waited out its whole timeout (10 min in CI)."""
+    import nbformat
+    server, page = lab
+    name = "raises.ipynb"
+    nb = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell("x = 1"),
+                                         nbformat.v4.new_code_cell("1 / 0"),
+                                         nbformat.v4.new_code_cell("y = 2")],
+                                  metadata={"kernelspec": {"name": "python3",
+                                                           "display_name": "Python 3",
+                                                           "language": "python"}})
+    nbformat.write(nb, server.root / "notebooks" / name)
+    B.open_lab(page, server, name, timeout=120)
+    with pytest.raises(AssertionError, match="ZeroDivisionError"):
+        B.run_all(page, timeout=120)
