@@ -84,20 +84,14 @@ def haptic_device(port: str | None = None):
         Connected (:meth:`~afmsmiler.hardware.haptic.HapticDevice.connect` has identified it).
     """
     from .haptic import open_haptic
+    from .session import connect_or_close
     if port is not None and not isinstance(port, str):
         raise TypeError(f"port must be a serial port's name (str) or None, got {port!r}"[:160])
     kept = _HAPTICS.get(port)
     if kept is not None and kept[0].is_open:
         return kept[0]
     device, server = open_haptic(port)
-    try:
-        device.connect()
-    except Exception:
-        device.close()
-        if server is not None:
-            server.stop()
-        raise
-    _HAPTICS[port] = (device, server)
+    _HAPTICS[port] = (connect_or_close(device, server), server)
     return device
 
 

@@ -14,7 +14,32 @@ from typing import ClassVar
 
 from ..acquisition import Acquisition
 
-__all__ = ["DeviceSession"]
+__all__ = ["DeviceSession", "connect_or_close"]
+
+
+def connect_or_close(device, server=None):
+    """Connect ``device``; if it cannot connect, close it and stop its twin's ``server``.
+
+    Parameters
+    ----------
+    device : FramedDevice or HapticDevice
+        A driver on its transport, not yet connected.
+    server : TwinServer, optional
+        The twin's server serving the far end.
+
+    Returns
+    -------
+    object
+        ``device``, connected.
+    """
+    try:
+        device.connect()
+    except Exception:
+        device.close()
+        if server is not None:
+            server.stop()
+        raise
+    return device
 
 
 class DeviceSession(Acquisition):
@@ -66,15 +91,7 @@ class DeviceSession(Acquisition):
         -------
         DeviceSession
         """
-        device = cls.driver(transport, **options)
-        try:
-            device.connect()
-        except Exception:
-            device.close()
-            if server is not None:
-                server.stop()
-            raise
-        return cls(device, server)
+        return cls(connect_or_close(cls.driver(transport, **options), server), server)
 
     @classmethod
     def twin(cls, scanned, *, time_scale: float = 0.0, **options) -> "DeviceSession":
