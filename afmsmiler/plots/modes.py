@@ -37,6 +37,7 @@ from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance
 from .limits import data_range, hold, sticky_limits
+from .live import set_clim
 
 __all__ = ["UNITS_SHOWN", "ENERGY_FLOOR", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
            "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
@@ -407,7 +408,7 @@ class LateralFigure:
                     lo, hi = -m, m
                 elif hi - lo < 1e-6:
                     lo, hi = lo - 0.05, hi + 0.05
-                im.set_clim(lo, hi)
+                set_clim(im, lo, hi)
                 self.axes[key].set(xlim=extent[:2], ylim=extent[2:],
                                    xlabel=f"x [{UNITS_SHOWN['position']}] (fast axis)",
                                    ylabel=f"y [{UNITS_SHOWN['position']}]")
@@ -512,7 +513,7 @@ def _set_image(im, ax, values, extent, lu):
     elif hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-30):
         pad = max(abs(lo) * 1e-3, 1e-3)
         lo, hi = lo - pad, hi + pad
-    im.set_clim(lo, hi)
+    set_clim(im, lo, hi)
     ax.set(xlim=extent[:2], ylim=extent[2:], xlabel=f"x [{lu}]", ylabel=f"y [{lu}]")
 
 
