@@ -108,7 +108,8 @@ def _integrals(lever: TappingLever, zc: np.ndarray, a: np.ndarray):
     free = u <= -1.0
     if free.any():
         z, b = zc[free], a[free]
-        i_c[free] = hr / 3.0 * b / (z * z - b * b) ** 1.5
+        gap2 = z * z - b * b
+        i_c[free] = hr / 3.0 * b / (gap2 * np.sqrt(gap2))  # (z^2 - A^2)^(3/2), without pow
     touch = ~free
     if touch.any():
         z, b = zc[touch, None], a[touch, None]
