@@ -184,3 +184,13 @@ def test_the_memo_keeps_a_bounded_number_of_bytes():
     assert big[0].flags.writeable  # not shared
     assert [k for k, _ in memo.entries] == [2, 3, 4]
     assert memo.get(3, lambda: pytest.fail("recomputed"))[0].flags.writeable is False
+
+
+def test_the_chain_is_not_linear_in_the_drive_so_runs_are_never_scaled():
+    # issue 24 asked whether a unit-amplitude run could be scaled: the deflection scales as
+    # V_ac^2 exactly (V_dc = 0), but the bridge's reading does not (5e-4 of it at 0.5 -> 1 V)
+    a = simulate(ActiveProbe.build(ac_voltage=0.5), record_duration=1e-3, noise=False)
+    b = simulate(ActiveProbe.build(ac_voltage=1.0), record_duration=1e-3, noise=False)
+    np.testing.assert_allclose(b.deflection, 4 * a.deflection, rtol=0,
+                               atol=1e-14 * np.max(np.abs(b.deflection)))
+    assert np.max(np.abs(b.bridge - 4 * a.bridge)) > 1e-4 * np.max(np.abs(b.bridge))

@@ -349,6 +349,14 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     ------
     ValueError
         If an argument is out of range or the record exceeds ``LIMITS["samples"]`` samples.
+
+    Notes
+    -----
+    What does not depend on the drive amplitude V_ac is remembered for the next runs (bounded;
+    read-only arrays): the transfer function at the record's bins and the noise records (see
+    ``_TRANSFERS``, ``_NOISES``); a run is the same with or without them (tested). The chain
+    itself is not linear in V_ac (P = V^2 / R, and the bridge reads the deflection about its
+    operating point), so a run is never scaled from another.
     """
     probe = ActiveProbe() if probe is None else check_instance("probe", probe, ActiveProbe)
     dc_voltage = DC_VOLTAGE.check(dc_voltage)

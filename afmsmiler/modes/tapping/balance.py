@@ -96,9 +96,9 @@ _GRID = np.concatenate((np.geomspace(1e-5, 1.0 / AMPLITUDE_GRID, 12)[:-1],
 def _integrals(lever: TappingLever, zc: np.ndarray, a: np.ndarray):
     """I_c and I_s in N for arrays of distances and amplitudes of one shape (a > 0).
 
-    The quadratures' weighted sums are matrix products with the weights (one pass over the
-    nodes), sin^2 = 1 - cos^2 at the contact nodes, temporaries reused in place: the sums
-    of the module notes, some twice as fast (issue 24: the tapping panel's curve per move).
+    The module notes' quadratures, their weighted sums taken with ``einsum`` (one pass over
+    the nodes), sin^2 = 1 - cos^2 at the contact nodes and temporaries reused in place (issue
+    24: the grid of the tapping panel's curve, 68 400 points, in some 20 % less time).
     """
     hr = lever.hamaker_constant * lever.radius
     a0 = lever.intermolecular_distance
