@@ -9,7 +9,10 @@ where the range ends), as a student's drag does; the figure is the median wall t
 ``panel.set(...)`` (the contract's conversion, the model and the figure's data, ready to send)
 over those moves. A few more sliders the issue names (tapping's free amplitude, force volume's
 peak force) are moved the same way. ``BENCH_PANELS`` (comma-separated ``key`` or ``key:slider``)
-chooses the rows.
+chooses the rows. To compare with an earlier commit in the same run, export its library
+(``git archive <commit> afmsmiler | tar -x -C /tmp/base``) and run this script with
+``PYTHONPATH=/tmp/base`` and with the current tree in turns: on a shared machine the medians
+move by tens of per cent from one run to the next (the min column less so).
 """
 import math
 import os
