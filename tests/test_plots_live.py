@@ -324,3 +324,8 @@ def test_set_clim_leaves_the_colour_bar_to_the_browser_and_to_the_next_raster():
     np.testing.assert_array_equal(quiet, full)
     assert im.get_clim() == (-1.0, 8.0)
     live.set_clim(Figure().add_subplot().imshow(np.eye(2)), 0.0, 2.0)  # no colour bar: fine
+
+
+def test_set_clim_names_what_is_not_an_image():
+    with pytest.raises(TypeError, match="image"):
+        live.set_clim(np.eye(2), 0.0, 1.0)

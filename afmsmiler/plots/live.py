@@ -47,6 +47,7 @@ import numpy as np
 import traitlets
 from matplotlib import colors as mcolors
 from matplotlib.artist import Artist
+from matplotlib.cm import ScalarMappable
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 from matplotlib.ticker import FixedLocator
@@ -316,7 +317,13 @@ def set_clim(image, low: float, high: float) -> None:
         An image of a figure (with or without a colour bar).
     low, high : float
         The colour limits, in the image's units.
+
+    Raises
+    ------
+    TypeError
+        If ``image`` is not an image of matplotlib's (a mappable with a norm).
     """
+    check_instance("image", image, ScalarMappable)
     norm = image.norm
     with norm.callbacks.blocked():
         norm.vmin, norm.vmax = low, high
