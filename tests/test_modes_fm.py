@@ -283,3 +283,42 @@ def test_largest_inversion_returns(hang_guard):
     z = np.linspace(0.5e-9, 50e-9, fm.LIMITS["curve_points"])
     with hang_guard(60, expected=5):
         fm.sader_jarvis(z, np.zeros_like(z))
+
+
+def _reference_inversion(z, df, k, f0, a):
+    """The Sader-Jarvis inversion as the loop over lower ends it was before issue 24."""
+    omega = df / f0
+    slope = np.gradient(omega, z, edge_order=2)
+    force = np.zeros_like(z)
+    c2 = math.sqrt(a) / (8 * math.sqrt(math.pi))
+    c3 = a ** 1.5 / math.sqrt(2)
+    for j in range(z.size - 1):
+        u = z[j:] - z[j]
+        lo, hi = u[:-1], u[1:]
+        h = hi - lo
+        i0 = 2 * (np.sqrt(hi) - np.sqrt(lo))
+        i1 = 2 / 3 * (hi ** 1.5 - lo ** 1.5)
+
+        def pole(values):
+            b = np.diff(values) / h
+            return np.sum((values[:-1] - b * lo) * i0 + b * i1)
+        om = omega[j:]
+        trapezoid = np.sum(0.5 * (om[:-1] + om[1:]) * h)
+        force[j] = 2 * k * (trapezoid + c2 * pole(om) - c3 * pole(slope[j:]))
+    return force
+
+
+@pytest.mark.parametrize("spacing", ["even", "uneven"])
+def test_the_vectorised_inversion_equals_the_loop(spacing, monkeypatch):
+    # issue 24: every lower end at once (in blocks), the same sums to round-off
+    rng = np.random.default_rng(1)
+    z = np.linspace(0.2e-9, 12e-9, 300) if spacing == "even" else \
+        np.sort(rng.uniform(0.2e-9, 12e-9, 300))
+    df = -40.0 * np.exp(-z / 1.5e-9) + 3.0 * np.sin(z / 0.7e-9)
+    ref = _reference_inversion(z, df, 40.0, 300e3, 5e-9)
+    for block in (fm._INVERSION_BLOCK, 7 * z.size, 1):  # one block, several, one row each
+        monkeypatch.setattr(fm, "_INVERSION_BLOCK", block)
+        got = fm.sader_jarvis(z, df, spring_constant=40.0, resonance_frequency=300e3,
+                           amplitude=5e-9)
+        np.testing.assert_allclose(got, ref, rtol=1e-10, atol=1e-12 * np.max(np.abs(ref)))
+        assert got[-1] == 0.0

@@ -337,3 +337,27 @@ def test_blocks_of_curves_give_the_same_maps(monkeypatch):
     blocks = force_volume(sample, BLEND, TIP, labels=labels, seed=5, points=100)
     for name in ("modulus", "modulus_error", "adhesion", "deformation", "dissipation"):
         np.testing.assert_allclose(getattr(blocks, name), getattr(whole, name), rtol=1e-9)
+
+
+def test_the_noise_free_curves_are_reused_and_equal_the_uncached_ones():
+    # issue 24: a move of the noise (the panel's slider) reuses the noise-free curves; the map
+    # made with them is the map made from curves computed afresh
+    sample, labels = two_material_sample((6, 6), 24e-9, island_radius=50e-9, island_count=1,
+                                         seed=3)
+    tip = Parabolic(radius=10e-9)
+    fvm._cached_curves.cache_clear()
+    first = force_volume(sample, BLEND, tip, labels=labels, seed=0, force_noise=20e-12)
+    again = force_volume(sample, BLEND, tip, labels=labels, seed=0, force_noise=60e-12)
+    assert fvm._cached_curves.cache_info().hits == 1
+    k, f_p, ramp, n, v = (fvm.PARAMETERS[name].default for name in (
+        "spring_constant", "peak_force", "ramp_size", "points", "z_speed"))
+    z, app, ret = fvm._curves(tuple(BLEND), tip, k, f_p, ramp, int(n), v, "dmt")
+    for cached in (first, again):
+        np.testing.assert_array_equal(cached.z_np, z)
+        np.testing.assert_array_equal(cached.approach, app)
+        np.testing.assert_array_equal(cached.retract, ret)
+        assert not cached.approach.flags.writeable
+    fvm._cached_curves.cache_clear()
+    fresh = force_volume(sample, BLEND, tip, labels=labels, seed=0, force_noise=60e-12)
+    for name in ("modulus", "adhesion", "deformation", "dissipation"):
+        np.testing.assert_array_equal(getattr(again, name), getattr(fresh, name))

@@ -316,3 +316,37 @@ def test_tapping_figure_marks_the_jumps_of_a_slow_approach_and_retraction(tappin
     fig.update(curve, point)  # no jumps given: none marked
     assert not fig.lines["amplitude", "jump retract"].get_visible()
     describe(fig.fig)
+
+
+def test_force_volume_maps_updated_in_place_equal_maps_drawn_afresh():
+    # issue 24: an update that keeps the maps' frame skips set_extent and the axes' limits;
+    # the maps are those of a figure made with the new volume, and a new frame is applied
+    from afmsmiler.contact import Parabolic
+    from afmsmiler.modes.force_volume import BLEND, force_volume, two_material_sample
+    from afmsmiler.plots.modes import ForceVolumeFigure
+    tip = Parabolic(radius=10e-9)
+    names = [m.name for m in BLEND]
+    fig = None
+    for pixel, noise in ((20e-9, 20e-12), (20e-9, 200e-12), (30e-9, 50e-12)):
+        sample, labels = two_material_sample((6, 6), pixel, island_radius=40e-9,
+                                             island_count=1, seed=3)
+        fv = force_volume(sample, BLEND, tip, labels=labels, seed=0, points=100,
+                          force_noise=noise)
+        if fig is None:
+            fig = ForceVolumeFigure(fv, names)
+        else:
+            fig.update(fv)
+        fresh = ForceVolumeFigure(fv, names)
+        for key, im in fig.images.items():
+            ax, ref_ax, ref = fig.axes[key], fresh.axes[key], fresh.images[key]
+            assert im.get_extent() == ref.get_extent()
+            assert (ax.get_xlim(), ax.get_ylim()) == (ref_ax.get_xlim(), ref_ax.get_ylim())
+            assert (ax.get_xlabel(), ax.get_ylabel()) == (ref_ax.get_xlabel(),
+                                                          ref_ax.get_ylabel())
+            assert im.get_clim() == ref.get_clim()
+            np.testing.assert_array_equal(im.get_array(), ref.get_array())
+        layout = describe(fig.fig).layout["axes"]
+        ref_layout = describe(fresh.fig).layout["axes"]
+        for mine, theirs in zip(layout, ref_layout):
+            if mine["images"]:
+                assert mine == theirs

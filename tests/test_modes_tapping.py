@@ -607,3 +607,48 @@ def test_on_branch_lines_each_roots_quantity_up_with_the_branch():
         curve.on_branch(np.zeros(3), "attractive")
     with pytest.raises(ValueError, match="name"):
         curve.on_branch(curve.amplitude, "high")
+
+
+def _reference_sweep(curve, direction):
+    """The slow approach or retraction as the loop of numpy calls it was before issue 24."""
+    order = np.argsort(curve.distance)
+    order = order[::-1] if direction == "approach" else order
+    n = curve.distance.size
+    amp, phs = np.full(n, np.nan), np.full(n, np.nan)
+    jumps, prev, side = [], None, None
+    for i in order:
+        js = np.flatnonzero(curve.stable[i] & np.isfinite(curve.amplitude[i]))
+        if js.size == 0:
+            continue
+        js = js[np.argsort(curve.amplitude[i, js])]
+        here = curve.amplitude[i, js]
+        if prev is None:
+            pick = 0 if direction == "approach" else js.size - 1
+        elif js.size >= 2 and prev.size >= 2:
+            pick = 0 if side == 0 else js.size - 1
+        else:
+            pick = int(np.argmin(np.abs(here - prev[side])))
+            if prev.size >= 2 and js.size == 1 and \
+                    np.argmin(np.abs(prev - here[0])) != (side % prev.size):
+                jumps.append(float(curve.distance[i]))
+        side = 0 if pick == 0 else -1
+        amp[i], phs[i] = here[pick], curve.phase[i, js[pick]]
+        prev = here
+    return amp, phs, jumps
+
+
+@pytest.mark.parametrize("a0, viscosity", [(5e-9, 0.0), (8e-9, 100.0), (12e-9, 100.0),
+                                           (20e-9, 0.0)])
+def test_the_sweep_equals_the_reference_walk(a0, viscosity):
+    # issue 24: the sweep walks Python scalars (0.5 ms instead of 10); same states, same jumps
+    lever = TappingLever(free_amplitude=a0, sample_viscosity=viscosity)
+    curve = amplitude_curve(a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID), lever)
+    jumped = 0
+    for direction in tapping.SWEEPS:
+        amp, phs, jumps = curve.sweep(direction)
+        ref_amp, ref_phs, ref_jumps = _reference_sweep(curve, direction)
+        np.testing.assert_array_equal(amp, ref_amp)
+        np.testing.assert_array_equal(phs, ref_phs)
+        assert jumps == ref_jumps
+        jumped += len(jumps)
+    assert jumped >= 1  # each case has a coexistence region to jump out of

@@ -289,3 +289,43 @@ def test_the_shipped_uplot_files_are_the_ones_the_vendoring_script_recorded():
         assert hashlib.sha256((live.STATIC / name).read_bytes()).hexdigest() == digest, name
     assert "MIT License" in (live.STATIC / "uPlot.LICENSE").read_text()
     assert f"uplot-{manifest['version']}.tgz" in manifest["source"]
+
+
+def _colour_bar_figure(quiet: bool):
+    """A figure whose image's limits changed after a first draw: by set_clim or by matplotlib."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    fig = Figure(figsize=(4, 3))
+    ax = fig.add_subplot()
+    im = ax.imshow(np.random.default_rng(0).random((5, 5)))
+    bar = fig.colorbar(im, ax=ax, label="height [nm]")
+    FigureCanvasAgg(fig).draw()
+    im.set_data(np.random.default_rng(1).random((5, 5)) * 7.0)
+    calls = []
+    bar.ax.callbacks.connect("ylim_changed", lambda _ax: calls.append(1))
+    if quiet:
+        live.set_clim(im, -1.0, 8.0)
+    else:
+        im.set_clim(-1.0, 8.0)
+    frame = describe(fig).frame["axes"][0]["colorbar"]
+    redrawn = bool(calls)
+    canvas = FigureCanvasAgg(fig)
+    canvas.draw()
+    return np.asarray(canvas.buffer_rgba()).copy(), frame, redrawn, im
+
+
+def test_set_clim_leaves_the_colour_bar_to_the_browser_and_to_the_next_raster():
+    # issue 24: the force-volume panel spent 21 ms per move redrawing colour bars the browser
+    # never showed; set_clim sends the same limits and an Agg draw gives the same pixels
+    quiet, quiet_frame, quiet_redrawn, im = _colour_bar_figure(True)
+    full, full_frame, full_redrawn, _ = _colour_bar_figure(False)
+    assert quiet_frame == full_frame == {"label": "height [nm]", "cmap": "viridis",
+                                         "vmin": -1.0, "vmax": 8.0}
+    assert full_redrawn and not quiet_redrawn  # no colour-bar work before a raster
+    np.testing.assert_array_equal(quiet, full)
+    assert im.get_clim() == (-1.0, 8.0)
+    live.set_clim(Figure().add_subplot().imshow(np.eye(2)), 0.0, 2.0)  # no colour bar: fine
+
+
+def test_set_clim_names_what_is_not_an_image():
+    with pytest.raises(TypeError, match="image"):
+        live.set_clim(np.eye(2), 0.0, 1.0)

@@ -142,3 +142,55 @@ def test_the_largest_drive_keeps_the_deflection_inside_the_bridge_range():
     assert max_ac_voltage() == pytest.approx(math.sqrt(0.8) * volts, rel=1e-12)
     with pytest.raises(ValueError, match="margin must be in"):
         max_ac_voltage(margin=0.0)
+
+
+def test_the_transfer_function_does_not_depend_on_the_drive_amplitude():
+    # issue 24: why simulate may reuse it when V_ac moves (module (b)'s heat -> deflection is
+    # linear: V_ac enters through P = V^2 / R only)
+    f = np.linspace(0.0, 400e3, 2001)
+    h = ActiveProbe.build(ac_voltage=0.5).deflection_per_power(f)
+    for v in (0.0, 0.37, 2.9):
+        np.testing.assert_array_equal(ActiveProbe.build(ac_voltage=v).deflection_per_power(f), h)
+
+
+@pytest.mark.parametrize("noise", [True, False])
+def test_a_drive_move_reuses_transfer_and_noise_and_equals_the_full_simulation(noise):
+    from afmsmiler.signals import chain
+    fields = ("time", "heater_voltage", "power", "deflection", "brownian", "bridge", "output")
+    chain._TRANSFERS.clear()
+    chain._NOISES.clear()
+    simulate(ActiveProbe.build(ac_voltage=0.5), record_duration=2e-3, noise=noise, seed=4)
+    probe = ActiveProbe.build(ac_voltage=1.3)
+    warm = simulate(probe, record_duration=2e-3, noise=noise, seed=4)  # from the memos
+    assert len(chain._TRANSFERS.entries) == 1 and len(chain._NOISES.entries) == int(noise)
+    chain._TRANSFERS.clear()
+    chain._NOISES.clear()
+    full = simulate(probe, record_duration=2e-3, noise=noise, seed=4)
+    for name in fields:
+        np.testing.assert_array_equal(getattr(warm, name), getattr(full, name))
+    assert (warm.first, warm.second, warm.noise_density) == \
+        (full.first, full.second, full.noise_density)
+    other = simulate(probe, record_duration=2e-3, noise=noise, seed=5)  # another seed: new noise
+    assert noise == (not np.array_equal(other.brownian, full.brownian))
+
+
+def test_the_memo_keeps_a_bounded_number_of_bytes():
+    from afmsmiler.signals.chain import _Memo
+    memo = _Memo(size=3, max_bytes=1000)
+    for i in range(5):
+        memo.get(i, lambda: (np.zeros(40),))  # 320 bytes each: three fit
+    assert [k for k, _ in memo.entries] == [2, 3, 4]
+    big = memo.get("big", lambda: (np.zeros(200),))  # 1600 bytes: computed, not kept
+    assert big[0].flags.writeable  # not shared
+    assert [k for k, _ in memo.entries] == [2, 3, 4]
+    assert memo.get(3, lambda: pytest.fail("recomputed"))[0].flags.writeable is False
+
+
+def test_the_chain_is_not_linear_in_the_drive_so_runs_are_never_scaled():
+    # issue 24 asked whether a unit-amplitude run could be scaled: the deflection scales as
+    # V_ac^2 exactly (V_dc = 0), but the bridge's reading does not (5e-4 of it at 0.5 -> 1 V)
+    a = simulate(ActiveProbe.build(ac_voltage=0.5), record_duration=1e-3, noise=False)
+    b = simulate(ActiveProbe.build(ac_voltage=1.0), record_duration=1e-3, noise=False)
+    np.testing.assert_allclose(b.deflection, 4 * a.deflection, rtol=0,
+                               atol=1e-14 * np.max(np.abs(b.deflection)))
+    assert np.max(np.abs(b.bridge - 4 * a.bridge)) > 1e-4 * np.max(np.abs(b.bridge))

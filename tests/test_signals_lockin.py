@@ -206,3 +206,24 @@ def test_a_box_averaged_square_stays_within_plus_minus_one():
     tone = 0.1 * np.sin(2 * np.pi * 2e3 * np.arange(40_000) / 1e6)
     out = demodulate(tone, sample_rate=1e6, frequency=1e3, time_constant=1e-3)
     assert np.isfinite(out.x)
+
+
+def test_remembered_references_and_window_equal_the_computed_ones():
+    # issue 24: lock_in and amplitude_spectrum reuse them from one call to the next
+    rng = np.random.default_rng(0)
+    s = np.sin(2 * math.pi * 2e3 * np.arange(20000) / 1e6) + 0.1 * rng.standard_normal(20000)
+    lockin._references.cache_clear()
+    lockin._hann.cache_clear()
+    first = lock_in(s, sample_rate=1e6, frequency=1e3, time_constant=1e-3, shape="square")
+    spectrum = amplitude_spectrum(s, sample_rate=1e6)
+    again = lock_in(s, sample_rate=1e6, frequency=1e3, time_constant=1e-3, shape="square")
+    assert lockin._references.cache_info().hits == 1
+    assert (first.x, first.y) == (again.x, again.y)
+    refs = lockin._references(s.size, 1e6, 2e3, "square", 0.0)
+    for cached, computed in zip(refs, lockin.reference_waveforms(
+            s.size, sample_rate=1e6, frequency=2e3, shape="square")):
+        np.testing.assert_array_equal(cached, computed)
+        assert not cached.flags.writeable
+    np.testing.assert_array_equal(lockin._hann(s.size), np.hanning(s.size + 1)[:-1])
+    np.testing.assert_array_equal(amplitude_spectrum(s, sample_rate=1e6).amplitude,
+                                  spectrum.amplitude)

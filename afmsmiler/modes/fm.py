@@ -77,6 +77,8 @@ AMPLITUDE = Parameter(name="amplitude", unit="m", display_unit="nm", default=5e-
 #: Every user-settable quantity of the FM mode, by keyword name (read-only).
 PARAMETERS = read_only({p.name: p for p in (SPRING_CONSTANT, RESONANCE_FREQUENCY, AMPLITUDE)})
 
+# intervals the Sader-Jarvis inversion handles per block (rows x points; some 10 arrays of 8 MB)
+_INVERSION_BLOCK = 1 << 20
 #: Size limits (each call at them takes well under a second): distances per call, quadrature
 #: nodes, samples of a df(z) curve to invert (the inversion costs O(n^2)).
 LIMITS = read_only(dict(points=100_000, nodes=4096, nodes_x_points=4_000_000,
@@ -248,7 +250,8 @@ def sader_jarvis(z, df, *, spring_constant: float = SPRING_CONSTANT.default,
     The formula is good to a few per cent of the peak force (worst for A near the force's decay
     length), the discretisation to well below 1 % for samples spaced by less than a twentieth
     of the decay length; the force beyond the last sample is taken as zero (see the module
-    notes for the range of validity); O(n^2) work.
+    notes for the range of validity); O(n^2) work, vectorised over the lower ends in blocks of
+    :data:`_INVERSION_BLOCK` intervals.
 
     Examples
     --------
@@ -271,20 +274,29 @@ def sader_jarvis(z, df, *, spring_constant: float = SPRING_CONSTANT.default,
     force = np.zeros_like(z)
     c2 = math.sqrt(a) / (8 * math.sqrt(math.pi))
     c3 = a ** 1.5 / math.sqrt(2)
-    for j in range(z.size - 1):
-        t = z[j:]
-        u = t - z[j]
-        lo, hi = u[:-1], u[1:]
+    # every lower end z_j at once, in blocks of rows (bounded memory): entry (j, i) is the
+    # interval [z_i, z_i+1] of the integral from z_j (i >= j; the others are zero)
+    n = z.size
+    d_omega, d_slope = np.diff(omega), np.diff(slope)
+    middle = 0.5 * (omega[:-1] + omega[1:])
+    intervals = np.arange(n - 1)
+    rows = max(1, _INVERSION_BLOCK // n)
+    for start in range(0, n - 1, rows):  # bounded: n / rows blocks
+        j = np.arange(start, min(start + rows, n - 1))
+        inside = intervals[None, :] >= j[:, None]
+        u = z[None, :] - z[j, None]
+        lo = np.where(inside, u[:, :-1], 0.0)
+        hi = np.where(inside, u[:, 1:], 0.0)
         h = hi - lo
-        i0 = 2 * (np.sqrt(hi) - np.sqrt(lo))  # int u^-1/2
-        i1 = 2 / 3 * (hi ** 1.5 - lo ** 1.5)  # int u^1/2
+        root_hi, root_lo = np.sqrt(hi), np.sqrt(lo)
+        i0 = 2 * (root_hi - root_lo)  # int u^-1/2
+        i1 = 2 / 3 * (hi * root_hi - lo * root_lo)  # int u^1/2
 
-        def pole(values):  # int of (values, linear in u) / sqrt(u) over every interval
-            b = np.diff(values) / h
-            return np.sum((values[:-1] - b * lo) * i0 + b * i1)
-        om = omega[j:]
-        trapezoid = np.sum(0.5 * (om[:-1] + om[1:]) * h)
-        force[j] = 2 * k * (trapezoid + c2 * pole(om) - c3 * pole(slope[j:]))
+        def pole(values, steps):  # int of (values, linear in u) / sqrt(u) over every interval
+            b = np.divide(steps, h, out=np.zeros_like(h), where=inside)
+            return np.sum((values[:-1] - b * lo) * i0 + b * i1, axis=1)
+        trapezoid = np.sum(middle * h, axis=1)
+        force[j] = 2 * k * (trapezoid + c2 * pole(omega, d_omega) - c3 * pole(slope, d_slope))
     return force
 
 

@@ -45,6 +45,7 @@ matrix of another, with the label map.
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass, field
 
@@ -343,6 +344,36 @@ def _curves(materials, tip, k, peak_force, ramp_size, points, z_speed, adhesion)
     return np.array(ramps), np.array(app), np.array(ret)
 
 
+#: How many sets of noise-free curves :func:`force_volume` keeps (a move of the noise, the only
+#: slider that leaves them unchanged, reuses them; see :func:`_noise_free_curves`).
+CURVE_CACHE = 8
+
+
+@functools.lru_cache(maxsize=CURVE_CACHE)
+def _cached_curves(materials, tip, k, peak_force, ramp_size, points, z_speed, adhesion):
+    out = _curves(materials, tip, k, peak_force, ramp_size, points, z_speed, adhesion)
+    for a in out:
+        a.setflags(write=False)  # shared by every map made with these arguments
+    return out
+
+
+def _noise_free_curves(materials, tip, k, peak_force, ramp_size, points, z_speed, adhesion):
+    """:func:`_curves`, remembered for the last :data:`CURVE_CACHE` sets of arguments.
+
+    The noise-free curves depend on the materials, the tip, k, the peak force, the ramp, the
+    points, the speed and the adhesion model, and not on the noise or its seed: a map made
+    again with another noise (the force-volume panel's noise slider) reuses them. The arrays
+    are read-only. Arguments that cannot be hashed are computed afresh each time.
+    """
+    args = (tuple(materials), tip, float(k), float(peak_force), float(ramp_size), int(points),
+            float(z_speed), adhesion)
+    try:
+        hash(args)
+    except TypeError:
+        return _curves(*args)
+    return _cached_curves(*args)
+
+
 def _analyse(z, f_app, f_ret, k, sigma, tip, nu):
     """Adhesion, modulus (and error), deformation and dissipation of curves (pixels, points).
 
@@ -454,7 +485,7 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
                          f"{type(tip).__name__}")
     if seed is not None:
         seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
-    z, app, ret = _curves(materials, tip, k, f_p, ramp, n, v, adhesion)
+    z, app, ret = _noise_free_curves(materials, tip, k, f_p, ramp, n, v, adhesion)
     flat = lab.ravel()
     rng = np.random.default_rng(seed)
     f_app = app[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)

@@ -47,13 +47,14 @@ import numpy as np
 import traitlets
 from matplotlib import colors as mcolors
 from matplotlib.artist import Artist
+from matplotlib.cm import ScalarMappable
 from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 from matplotlib.ticker import FixedLocator
 
 from ..validation import check_instance
 
-__all__ = ["Description", "LiveFigure", "describe", "static_html"]
+__all__ = ["Description", "LiveFigure", "describe", "static_html", "set_clim"]
 
 STATIC = Path(__file__).with_name("static")
 #: Pixels per inch of a live figure (as ipympl's canvas): figsize (10, 6) is 1000 x 600 px.
@@ -298,6 +299,53 @@ def _images(ax, packer, luts):
                           extent=[_num(v) for v in im.get_extent()], origin=im.origin,
                           vmin=_num(im.norm.vmin), vmax=_num(im.norm.vmax)))
     return layout, frame
+
+
+def set_clim(image, low: float, high: float) -> None:
+    """Set an image's colour limits; its colour bar is redrawn only when the figure is rasterised.
+
+    ``image.set_clim`` has matplotlib redraw the image's colour bar at once (its mesh of
+    colours, ticks and locator: some 5 ms per bar), work a live figure never shows: the browser
+    draws the bar from the norm's limits (:func:`describe` reads them). Here the norm changes
+    without that callback, and the colour bar is marked stale: the figure's next ``draw`` (Agg,
+    a saved PNG, a test) brings it up to date first, so a rasterised figure is the same as with
+    ``set_clim``.
+
+    Parameters
+    ----------
+    image : matplotlib.image.AxesImage
+        An image of a figure (with or without a colour bar).
+    low, high : float
+        The colour limits, in the image's units.
+
+    Raises
+    ------
+    TypeError
+        If ``image`` is not an image of matplotlib's (a mappable with a norm).
+    """
+    check_instance("image", image, ScalarMappable)
+    norm = image.norm
+    with norm.callbacks.blocked():
+        norm.vmin, norm.vmax = low, high
+    image.stale = True
+    bar = image.colorbar
+    if bar is None:
+        return
+    fig = bar.ax.figure
+    stale = fig.__dict__.get("_afm_stale_colorbars")
+    if stale is None:  # wrap the figure's draw once: stale colour bars are redrawn first
+        stale = fig._afm_stale_colorbars = {}
+        plain = fig.draw
+
+        def draw(renderer, *args, **kwargs):
+            while stale:
+                _, cb = stale.popitem()
+                cb.update_normal(cb.mappable)
+            return plain(renderer, *args, **kwargs)
+
+        fig.draw = draw
+    stale[id(bar)] = bar
+    bar.ax.stale = True
 
 
 @dataclass(frozen=True)

@@ -37,6 +37,7 @@ from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
 from ..validation import check_instance
 from .limits import data_range, hold, sticky_limits
+from .live import set_clim
 
 __all__ = ["UNITS_SHOWN", "ENERGY_FLOOR", "TappingFigure", "LateralFigure", "FrequencyShiftFigure",
            "JumpingFigure", "ForceVolumeFigure", "branch_values", "unstable_roots"]
@@ -407,7 +408,7 @@ class LateralFigure:
                     lo, hi = -m, m
                 elif hi - lo < 1e-6:
                     lo, hi = lo - 0.05, hi + 0.05
-                im.set_clim(lo, hi)
+                set_clim(im, lo, hi)
                 self.axes[key].set(xlim=extent[:2], ylim=extent[2:],
                                    xlabel=f"x [{UNITS_SHOWN['position']}] (fast axis)",
                                    ylabel=f"y [{UNITS_SHOWN['position']}]")
@@ -505,15 +506,20 @@ def _extent(shape, dx, dy, k):
 
 def _set_image(im, ax, values, extent, lu):
     im.set_data(np.ma.masked_invalid(values))
-    im.set_extent(extent)
+    labels = f"x [{lu}]", f"y [{lu}]"
+    framed = (tuple(im.get_extent()) == tuple(extent) and ax.get_xlim() == tuple(extent[:2])
+              and ax.get_ylim() == tuple(extent[2:])
+              and (ax.get_xlabel(), ax.get_ylabel()) == labels)
+    if not framed:  # a move that keeps the map's frame skips matplotlib's relayout (~1 ms)
+        im.set_extent(extent)
+        ax.set(xlim=extent[:2], ylim=extent[2:], xlabel=labels[0], ylabel=labels[1])
     lo, hi = data_range(values)
     if not math.isfinite(lo):
         lo, hi = 0.0, 1.0
     elif hi - lo <= 1e-12 * max(abs(lo), abs(hi), 1e-30):
         pad = max(abs(lo) * 1e-3, 1e-3)
         lo, hi = lo - pad, hi + pad
-    im.set_clim(lo, hi)
-    ax.set(xlim=extent[:2], ylim=extent[2:], xlabel=f"x [{lu}]", ylabel=f"y [{lu}]")
+    set_clim(im, lo, hi)
 
 
 class JumpingFigure:

@@ -253,6 +253,60 @@ def _noise(rng, psd, n: int, fs: float) -> np.ndarray:
     return np.fft.irfft(spectrum, n)
 
 
+class _Memo:
+    """The last few results of a function of keys compared with ``==`` (the transducers are
+    unhashable), newest last, at most ``size`` of them and ``max_bytes`` of arrays in all (a
+    longer record is computed each time); the arrays kept are read-only."""
+
+    def __init__(self, size: int = 4, max_bytes: int = 1 << 26):
+        self.size, self.max_bytes, self.entries = size, max_bytes, []
+
+    def get(self, key, compute):
+        for k, value in self.entries:
+            if k == key:
+                return value
+        value = compute()
+        if sum(a.nbytes for a in value) > self.max_bytes:
+            return value
+        for a in value:
+            a.setflags(write=False)
+        self.entries.append((key, value))
+        while len(self.entries) > self.size or \
+                sum(a.nbytes for _, v in self.entries for a in v) > self.max_bytes:
+            self.entries.pop(0)
+        return value
+
+    def clear(self) -> None:
+        self.entries = []
+
+
+#: What :func:`simulate` reuses from one run to the next (issue 24: a move of the drive
+#: amplitude, the lock-in panel's slider, changes neither): the transfer function heat ->
+#: deflection at the record's bins, which does not depend on V_ac (module (b)'s model is
+#: linear in the heat: V_ac enters only through P = V^2 / R), and the noise records, which
+#: depend on the sensor, e_n^2, the record and the seed, not on the drive.
+_TRANSFERS, _NOISES = _Memo(), _Memo()
+
+
+def _transfer(probe: ActiveProbe, freqs: np.ndarray, n: int, fs: float) -> np.ndarray:
+    """``probe.deflection_per_power(freqs)`` at the rfft bins of ``n`` samples at ``fs``."""
+    values = dict(probe.actuator.values)
+    values.pop("ac_voltage")
+    key = (values, n, fs)
+    return _TRANSFERS.get(key, lambda: (probe.deflection_per_power(freqs),))[0]
+
+
+def _noises(probe, e_n2, freqs, n, fs, seed):
+    """The Brownian and the electrical noise records (m, V) of seed ``seed``."""
+    def compute():
+        s = probe.sensor
+        rng = np.random.default_rng(seed)
+        electrical = _electrical_density(s, e_n2, np.maximum(freqs, freqs[1]))
+        return (_noise(rng, brownian_density(probe, freqs), n, fs),
+                _noise(rng, electrical, n, fs))
+    return _NOISES.get((dict(probe.sensor.values), e_n2, n, fs, seed), compute)
+
+
 def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE.default,
              half_resonance_ratio: float = HALF_RESONANCE_RATIO.default,
              amplifier_noise: float = AMPLIFIER_NOISE.default,
@@ -295,6 +349,14 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     ------
     ValueError
         If an argument is out of range or the record exceeds ``LIMITS["samples"]`` samples.
+
+    Notes
+    -----
+    What does not depend on the drive amplitude V_ac is remembered for the next runs (bounded;
+    read-only arrays): the transfer function at the record's bins and the noise records (see
+    ``_TRANSFERS``, ``_NOISES``); a run is the same with or without them (tested). The chain
+    itself is not linear in V_ac (P = V^2 / R, and the bridge reads the deflection about its
+    operating point), so a run is never scaled from another.
     """
     probe = ActiveProbe() if probe is None else check_instance("probe", probe, ActiveProbe)
     dc_voltage = DC_VOLTAGE.check(dc_voltage)
@@ -321,13 +383,10 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     voltage = dc_voltage + a.ac_voltage * np.sin(2 * math.pi * f * t)
     power = voltage * voltage / a.resistance
     freqs = np.fft.rfftfreq(n, 1.0 / fs)
-    deflection = np.fft.irfft(np.fft.rfft(power) * probe.deflection_per_power(freqs), n)
+    deflection = np.fft.irfft(np.fft.rfft(power) * _transfer(probe, freqs, n, fs), n)
 
-    rng = np.random.default_rng(seed)
-    electrical = _electrical_density(s, e_n2, np.maximum(freqs, freqs[1]))
-    if noise:
-        brownian = _noise(rng, brownian_density(probe, freqs), n, fs)
-        v_noise = _noise(rng, electrical, n, fs)
+    if noise:  # the same records for every drive (remembered: see _NOISES)
+        brownian, v_noise = _noises(probe, e_n2, freqs, n, fs, seed)
     else:
         brownian, v_noise = np.zeros(n), np.zeros(n)
     bridge = s.respond(deflection + brownian)

@@ -54,6 +54,7 @@ sinc-shaped, that rejects every other harmonic of the fundamental exactly).
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -237,6 +238,28 @@ def reference_waveforms(n_samples: int, *, sample_rate: float, frequency: float,
     return square_wave(cycles, step), square_wave(cycles + 0.25, step)
 
 
+#: Longest record whose references and window are remembered (8 MB an array, 4 of each).
+_REMEMBERED = 1 << 20
+
+
+@functools.lru_cache(maxsize=4)
+def _references(n, fs, f, shape, phase):
+    """:func:`reference_waveforms`, remembered (read-only): a lock-in of the same record length,
+    rate and reference (every move of the lock-in panel but its frequency's) reuses them."""
+    out = reference_waveforms(n, sample_rate=fs, frequency=f, shape=shape, phase=phase)
+    for a in out:
+        a.setflags(write=False)
+    return out
+
+
+@functools.lru_cache(maxsize=4)
+def _hann(n: int) -> np.ndarray:
+    """The periodic Hann window of ``n`` samples (read-only, remembered)."""
+    window = np.hanning(n + 1)[:-1]
+    window.setflags(write=False)
+    return window
+
+
 def harmonic_pickup(harmonic: int, shape: str = "square") -> float:
     """Weight with which a reference of ``shape`` reads a component at ``harmonic`` x f_ref.
 
@@ -379,8 +402,11 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
     shape = check_choice("shape", shape, REFERENCES)
     filter = check_choice("filter", filter, FILTERS)
     f_ref = n * f
-    ref_i, ref_q = reference_waveforms(s.size, sample_rate=fs, frequency=f_ref, shape=shape,
-                                       phase=phase)
+    if s.size <= _REMEMBERED:
+        ref_i, ref_q = _references(s.size, fs, f_ref, shape, float(phase))
+    else:
+        ref_i, ref_q = reference_waveforms(s.size, sample_rate=fs, frequency=f_ref,
+                                           shape=shape, phase=phase)
     scale = 2.0 if shape == "sine" else math.pi / 2
     mixed_i, mixed_q = scale * s * ref_i, scale * s * ref_q
     t = np.arange(s.size) / fs
@@ -456,7 +482,8 @@ def amplitude_spectrum(signal, *, sample_rate: float) -> Spectrum:
     if not 2 <= s.size <= LIMITS["samples"]:
         raise ValueError(f"signal must have 2 to {LIMITS['samples']} samples, got {s.size}")
     fs = check_positive("sample_rate", sample_rate, "Hz")
-    window = np.hanning(s.size + 1)[:-1]        # periodic Hann: coherent gain exactly 1/2
+    # periodic Hann: coherent gain exactly 1/2
+    window = _hann(s.size) if s.size <= _REMEMBERED else np.hanning(s.size + 1)[:-1]
     spectrum = np.fft.rfft((s - s.mean()) * window)
     amplitude = 2.0 * np.abs(spectrum) / (s.size * 0.5)
     amplitude[0] /= 2.0
