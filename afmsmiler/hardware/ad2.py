@@ -31,11 +31,17 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..validation import check_finite, check_integer, check_positive, check_range
+from ..validation import (check_finite, check_instance, check_integer, check_positive,
+                          check_range)
 from .errors import HardwareError
 
 __all__ = ["AD2Unavailable", "AD2Config", "PatternTiming", "Acquisition", "pattern_timing",
            "open_library", "library_or_simulation", "AnalogDiscovery2", "SimulatedDwfLibrary"]
+
+#: The fastest pattern clock accepted (Hz): the AD2's is 100 MHz; 1 THz bounds any generator.
+MAX_CLOCK = 1e12
+#: The largest device (and configuration) index accepted: WaveForms enumerates a few devices.
+MAX_DEVICES = 1024
 
 
 class AD2Unavailable(HardwareError):
@@ -78,6 +84,9 @@ def open_library(factory=None):
     AD2Unavailable
         If pydwf is missing or the WaveForms runtime (libdwf) cannot be loaded, with the reason.
     """
+    if factory is not None and not callable(factory):
+        raise TypeError(f"factory must be callable (it builds the library) or None, got "
+                        f"{type(factory).__name__} {factory!r}"[:160])
     pydwf = _pydwf()
     factory = pydwf.DwfLibrary if factory is None else factory
     try:
@@ -85,6 +94,14 @@ def open_library(factory=None):
     except pydwf.PyDwfError as exc:
         raise AD2Unavailable(f"Digilent's WaveForms runtime (libdwf) could not be loaded ({exc}); "
                              f"install WaveForms from digilent.com to use a real AD2") from exc
+
+
+def _check_library(name: str, dwf):
+    """``dwf`` if it is a DwfLibrary-like object (has ``deviceControl.open``), else TypeError."""
+    if not callable(getattr(getattr(dwf, "deviceControl", None), "open", None)):
+        raise TypeError(f"{name} must be a DwfLibrary (pydwf's or SimulatedDwfLibrary: with "
+                        f"deviceControl.open), got {type(dwf).__name__} {dwf!r}"[:200])
+    return dwf
 
 
 def library_or_simulation(factory=None) -> tuple[object, str | None]:
@@ -238,17 +255,19 @@ def pattern_timing(clock: float, frequency: float, phase: float = 0.0, *,
     ValueError
         If the frequency cannot be made (above clock / 4 or below the slowest square).
     """
-    clock = check_positive("clock", clock, "Hz")
+    clock = check_range("clock", clock, 0.0, MAX_CLOCK, "Hz", low_inclusive=False)
     frequency = check_positive("frequency", frequency, "Hz")
     phase = check_finite("phase", phase, "rad")
-    max_count = check_integer("max_count", max_count, 4)
+    max_count = check_integer("max_count", max_count, 4, 2 ** 32)
+    max_divider = check_integer("max_divider", max_divider, 1, 2 ** 32)
     if frequency > clock / 4:
         raise ValueError(f"frequency must be at most clock / 4 = {clock / 4:g} Hz, "
                          f"got {frequency:g} Hz")
     divider = max(1, math.ceil(clock / (2 * frequency * max_count)))
     if divider > max_divider:
         raise ValueError(f"frequency {frequency:g} Hz is below the slowest square the pattern "
-                         f"generator makes, {clock / (2 * max_divider * max_count):g} Hz")
+                         f"generator makes, {clock / (2 * max_divider * max_count):g} Hz "
+                         f"(clock / (2 max_divider max_count))")
     period = max(4, round(clock / (divider * frequency)))
     high = period - period // 2
     pos = round((phase / (2 * math.pi)) % 1.0 * period) % period   # counts into the period
@@ -314,6 +333,7 @@ class AnalogDiscovery2:
     """
 
     def __init__(self, dwf, *, config: AD2Config | None = None):
+        _check_library("dwf", dwf)
         self.dwf = dwf
         self.config = AD2Config() if config is None else config
         if not isinstance(self.config, AD2Config):
@@ -334,6 +354,7 @@ class AnalogDiscovery2:
         AD2Unavailable
             If no device can be opened (the library's message attached).
         """
+        device_index = check_integer("device_index", device_index, -1, MAX_DEVICES)
         pydwf = _pydwf()
         try:
             self.device = self.dwf.deviceControl.open(device_index)
@@ -661,8 +682,25 @@ class SimulatedDwfLibrary:
     devices: list = field(default_factory=list)
 
     def __post_init__(self):
-        from ..signals.chain import ActiveProbe
-        self.probe = ActiveProbe() if self.probe is None else self.probe
+        from ..signals.ad630 import AD630_GAIN
+        from ..signals.chain import AMPLIFIER_GAIN, ActiveProbe
+        from ..signals.lockin import FILTER_ORDER, TIME_CONSTANT
+        self.probe = ActiveProbe() if self.probe is None else \
+            check_instance("probe", self.probe, ActiveProbe)
+        self.amplifier_gain = AMPLIFIER_GAIN.check(self.amplifier_gain)
+        self.ad630_gain = AD630_GAIN.check(self.ad630_gain)
+        self.ad630_time_constant = check_range("ad630_time_constant", self.ad630_time_constant,
+                                               TIME_CONSTANT.low, TIME_CONSTANT.high, "s")
+        self.ad630_order = check_integer("ad630_order", self.ad630_order,
+                                         int(FILTER_ORDER.low), int(FILTER_ORDER.high))
+        if not isinstance(self.reference_pins, tuple) or len(self.reference_pins) != 2:
+            raise ValueError(f"reference_pins must be a pair of pattern pins (X, Y), got "
+                             f"{self.reference_pins!r}"[:160])
+        for pin in self.reference_pins:
+            check_integer("reference_pins", pin, 0, 15)
+        check_instance("noise", self.noise, (bool, np.bool_), "bool")
+        self.seed = check_integer("seed", self.seed, 0, 2 ** 63 - 1)
+        check_instance("devices", self.devices, list)
         self.deviceControl = self
 
     def open(self, device_index: int = -1, config_index=None):
@@ -675,6 +713,9 @@ class SimulatedDwfLibrary:
         config_index : int, optional
             Ignored.
         """
+        check_integer("device_index", device_index, -1, MAX_DEVICES)
+        if config_index is not None:
+            check_integer("config_index", config_index, 0, MAX_DEVICES)
         device = _SimulatedDevice(self)
         self.devices.append(device)
         return device
