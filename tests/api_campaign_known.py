@@ -964,48 +964,6 @@ KNOWN = {
         'scenes.transducers.TransducerScene(path=nan-array) -> AttributeError: "\'numpy.nda'
         'rray\' object has no attribute \'split\'"'
     ), False),
-    'hardware.educational.device.EducationalAFM.set:value': ((
-        'hardware.educational.device.EducationalAFM.set(value=nan) -> ValueError not naming va'
-        "lue: 'NX (pixels per line) must be an integer 2..512, got nan'\n"
-        'hardware.educational.device.EducationalAFM.set(value=inf) -> ValueError not naming va'
-        "lue: 'NX (pixels per line) must be an integer 2..512, got inf'\n"
-        'hardware.educational.device.EducationalAFM.set(value=-inf) -> ValueError not naming v'
-        "alue: 'NX (pixels per line) must be an integer 2..512, got -inf'\n"
-        'hardware.educational.device.EducationalAFM.set(value=str) -> ValueError not naming va'
-        'lue: "NX (pixels per line) must be an integer 2..512, got \'1e-6\'"\n'
-        'hardware.educational.device.EducationalAFM.set(value=bool) -> ValueError not naming v'
-        "alue: 'NX (pixels per line) must be an integer 2..512, got True'\n"
-        'hardware.educational.device.EducationalAFM.set(value=complex) -> ValueError not namin'
-        "g value: 'NX (pixels per line) must be an integer 2..512, got (1+1j)'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=list) -> ValueError not naming v'
-        "alue: 'NX (pixels per line) must be an integer 2..512, got [1.0, 2.0]'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=object) -> ValueError not naming'
-        " value: 'NX (pixels per line) must be an integer 2..512, got Foreign()'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=zero) -> ValueError not naming v'
-        "alue: 'NX (pixels per line) must be an integer 2..512, got 0.0'\n"
-        'hardware.educational.device.EducationalAFM.set(value=negative) -> ValueError not nami'
-        "ng value: 'NX (pixels per line) must be an integer 2..512, got -1.0'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=huge) -> ValueError not naming v'
-        "alue: 'NX (pixels per line) must be an integer 2..512, got 1e+300'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=-huge) -> ValueError not naming '
-        "value: 'NX (pixels per line) must be an integer 2..512, got -1e+300'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=tiny) -> ValueError not naming v'
-        "alue: 'NX (pixels per line) must be an integer 2..512, got 1e-300'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=bigint) -> ValueError not naming'
-        " value: 'NX (pixels per line) must be an integer 2..512, got 1000000000'...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=hugeint) -> ValueError not namin'
-        "g value: 'NX (pixels per line) must be an integer 2..512, got 10000000000000000000000"
-        "000000000000000...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=2d) -> ValueError not naming val'
-        "ue: 'NX (pixels per line) must be an integer 2..512, got array([[1., 1., 1.],\\n  "
-        "     [1., 1., ...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=empty) -> ValueError not naming '
-        "value: 'NX (pixels per line) must be an integer 2..512, got array([], dtype=float64)'"
-        "...'\n"
-        'hardware.educational.device.EducationalAFM.set(value=nan-array) -> ValueError not nam'
-        "ing value: 'NX (pixels per line) must be an integer 2..512, got array([ 0., nan])'..."
-        "'"
-    ), False),
     'hardware.educational.device.live_view:scene': ((
         'hardware.educational.device.live_view(scene=nan) -> accepted silently\n'
         'hardware.educational.device.live_view(scene=str) -> accepted silently\n'
@@ -1291,78 +1249,6 @@ KNOWN = {
         'hardware.haptic.bridge.TappingSource(distance=tiny) -> still running after 10 s of CP'
         'U'
     ), True),
-    'hardware.haptic.codec.param_to_wire:value': ((
-        "hardware.haptic.codec.param_to_wire(value=nan) -> ValueError not naming value: 'max_f"
-        "orce must be a finite number in N, got nan'\n"
-        "hardware.haptic.codec.param_to_wire(value=inf) -> ValueError not naming value: 'max_f"
-        "orce must be a finite number in N, got inf'\n"
-        "hardware.haptic.codec.param_to_wire(value=-inf) -> ValueError not naming value: 'max_"
-        "force must be a finite number in N, got -inf'\n"
-        'hardware.haptic.codec.param_to_wire(value=str) -> ValueError not naming value: "max_f'
-        'orce must be a finite number in N, got \'1e-6\'"\n'
-        "hardware.haptic.codec.param_to_wire(value=bool) -> ValueError not naming value: 'max_"
-        "force must be a finite number in N, got True'\n"
-        "hardware.haptic.codec.param_to_wire(value=complex) -> ValueError not naming value: 'm"
-        "ax_force must be a finite number in N, got (1+1j)'\n"
-        "hardware.haptic.codec.param_to_wire(value=list) -> ValueError not naming value: 'max_"
-        "force must be a finite number in N, got [1.0, 2.0]'\n"
-        "hardware.haptic.codec.param_to_wire(value=object) -> ValueError not naming value: 'ma"
-        "x_force must be a finite number in N, got Foreign()'\n"
-        "hardware.haptic.codec.param_to_wire(value=negative) -> ValueError not naming value: '"
-        "max_force must be in [0, 5] N, got -1.0'\n"
-        "hardware.haptic.codec.param_to_wire(value=huge) -> ValueError not naming value: 'max_"
-        "force must be in [0, 5] N, got 1e+300'\n"
-        "hardware.haptic.codec.param_to_wire(value=-huge) -> ValueError not naming value: 'max"
-        "_force must be in [0, 5] N, got -1e+300'\n"
-        "hardware.haptic.codec.param_to_wire(value=bigint) -> ValueError not naming value: 'ma"
-        "x_force must be in [0, 5] N, got 1000000000.0'\n"
-        "hardware.haptic.codec.param_to_wire(value=hugeint) -> ValueError not naming value: 'm"
-        'ax_force must be a finite number in N, got 100000000000000000000000000000000000000000'
-        "0000...'\n"
-        "hardware.haptic.codec.param_to_wire(value=2d) -> ValueError not naming value: 'max_fo"
-        'rce must be a finite number in N, got array([[1., 1., 1.],\\n       [1., 1., 1.],\\'
-        "n  ...'\n"
-        "hardware.haptic.codec.param_to_wire(value=empty) -> ValueError not naming value: 'max"
-        "_force must be a finite number in N, got array([], dtype=float64)'...'\n"
-        'hardware.haptic.codec.param_to_wire(value=nan-array) -> ValueError not naming value: '
-        "'max_force must be a finite number in N, got array([ 0., nan])'"
-    ), False),
-    'hardware.haptic.device.HapticDevice.set:value': ((
-        "hardware.haptic.device.HapticDevice.set(value=nan) -> ValueError not naming value: 'm"
-        "ax_force must be a finite number in N, got nan'\n"
-        "hardware.haptic.device.HapticDevice.set(value=inf) -> ValueError not naming value: 'm"
-        "ax_force must be a finite number in N, got inf'\n"
-        "hardware.haptic.device.HapticDevice.set(value=-inf) -> ValueError not naming value: '"
-        "max_force must be a finite number in N, got -inf'\n"
-        'hardware.haptic.device.HapticDevice.set(value=str) -> ValueError not naming value: "m'
-        'ax_force must be a finite number in N, got \'1e-6\'"\n'
-        "hardware.haptic.device.HapticDevice.set(value=bool) -> ValueError not naming value: '"
-        "max_force must be a finite number in N, got True'\n"
-        'hardware.haptic.device.HapticDevice.set(value=complex) -> ValueError not naming value'
-        ": 'max_force must be a finite number in N, got (1+1j)'\n"
-        "hardware.haptic.device.HapticDevice.set(value=list) -> ValueError not naming value: '"
-        "max_force must be a finite number in N, got [1.0, 2.0]'\n"
-        'hardware.haptic.device.HapticDevice.set(value=object) -> ValueError not naming value:'
-        " 'max_force must be a finite number in N, got Foreign()'\n"
-        'hardware.haptic.device.HapticDevice.set(value=negative) -> ValueError not naming valu'
-        "e: 'max_force must be in [0, 5] N, got -1.0'\n"
-        "hardware.haptic.device.HapticDevice.set(value=huge) -> ValueError not naming value: '"
-        "max_force must be in [0, 5] N, got 1e+300'\n"
-        'hardware.haptic.device.HapticDevice.set(value=-huge) -> ValueError not naming value: '
-        "'max_force must be in [0, 5] N, got -1e+300'\n"
-        'hardware.haptic.device.HapticDevice.set(value=bigint) -> ValueError not naming value:'
-        " 'max_force must be in [0, 5] N, got 1000000000.0'\n"
-        'hardware.haptic.device.HapticDevice.set(value=hugeint) -> ValueError not naming value'
-        ": 'max_force must be a finite number in N, got 10000000000000000000000000000000000000"
-        "00000000...'\n"
-        "hardware.haptic.device.HapticDevice.set(value=2d) -> ValueError not naming value: 'ma"
-        'x_force must be a finite number in N, got array([[1., 1., 1.],\\n       [1., 1., 1'
-        ".],\\n  ...'\n"
-        'hardware.haptic.device.HapticDevice.set(value=empty) -> ValueError not naming value: '
-        "'max_force must be a finite number in N, got array([], dtype=float64)'...'\n"
-        'hardware.haptic.device.HapticDevice.set(value=nan-array) -> ValueError not naming val'
-        "ue: 'max_force must be a finite number in N, got array([ 0., nan])'...'"
-    ), False),
     'hardware.experiments.haptic_device:port': ((
         'hardware.experiments.haptic_device(port=str) -> TransportClosed: "cannot open serial '
         "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file or directory: '1e...'"
@@ -1373,46 +1259,6 @@ KNOWN = {
     ), False),
     'hardware.haptic.twin.HapticTwin.error:word': ((
         'hardware.haptic.twin.HapticTwin.error(word=str) -> accepted silently'
-    ), False),
-    'hardware.macro.device.MacroAFM.set:value': ((
-        "hardware.macro.device.MacroAFM.set(value=nan) -> ValueError not naming value: 'NX (pi"
-        "xels per line) must be an integer 1..128, got nan'\n"
-        "hardware.macro.device.MacroAFM.set(value=inf) -> ValueError not naming value: 'NX (pi"
-        "xels per line) must be an integer 1..128, got inf'\n"
-        "hardware.macro.device.MacroAFM.set(value=-inf) -> ValueError not naming value: 'NX (p"
-        "ixels per line) must be an integer 1..128, got -inf'\n"
-        'hardware.macro.device.MacroAFM.set(value=str) -> ValueError not naming value: "NX (pi'
-        'xels per line) must be an integer 1..128, got \'1e-6\'"\n'
-        "hardware.macro.device.MacroAFM.set(value=bool) -> ValueError not naming value: 'NX (p"
-        "ixels per line) must be an integer 1..128, got True'\n"
-        "hardware.macro.device.MacroAFM.set(value=complex) -> ValueError not naming value: 'NX"
-        " (pixels per line) must be an integer 1..128, got (1+1j)'\n"
-        "hardware.macro.device.MacroAFM.set(value=list) -> ValueError not naming value: 'NX (p"
-        "ixels per line) must be an integer 1..128, got [1.0, 2.0]'\n"
-        "hardware.macro.device.MacroAFM.set(value=object) -> ValueError not naming value: 'NX "
-        "(pixels per line) must be an integer 1..128, got Foreign()'\n"
-        "hardware.macro.device.MacroAFM.set(value=zero) -> ValueError not naming value: 'NX (p"
-        "ixels per line) must be an integer 1..128, got 0.0'\n"
-        "hardware.macro.device.MacroAFM.set(value=negative) -> ValueError not naming value: 'N"
-        "X (pixels per line) must be an integer 1..128, got -1.0'\n"
-        "hardware.macro.device.MacroAFM.set(value=huge) -> ValueError not naming value: 'NX (p"
-        "ixels per line) must be an integer 1..128, got 1e+300'\n"
-        "hardware.macro.device.MacroAFM.set(value=-huge) -> ValueError not naming value: 'NX ("
-        "pixels per line) must be an integer 1..128, got -1e+300'\n"
-        "hardware.macro.device.MacroAFM.set(value=tiny) -> ValueError not naming value: 'NX (p"
-        "ixels per line) must be an integer 1..128, got 1e-300'\n"
-        "hardware.macro.device.MacroAFM.set(value=bigint) -> ValueError not naming value: 'NX "
-        "(pixels per line) must be an integer 1..128, got 1000000000'\n"
-        "hardware.macro.device.MacroAFM.set(value=hugeint) -> ValueError not naming value: 'NX"
-        ' (pixels per line) must be an integer 1..128, got 10000000000000000000000000000000000'
-        "000...'\n"
-        "hardware.macro.device.MacroAFM.set(value=2d) -> ValueError not naming value: 'NX (pix"
-        'els per line) must be an integer 1..128, got array([[1., 1., 1.],\\n       [1., 1.'
-        ", ...'\n"
-        "hardware.macro.device.MacroAFM.set(value=empty) -> ValueError not naming value: 'NX ("
-        "pixels per line) must be an integer 1..128, got array([], dtype=float64)'...'\n"
-        "hardware.macro.device.MacroAFM.set(value=nan-array) -> ValueError not naming value: '"
-        "NX (pixels per line) must be an integer 1..128, got array([ 0., nan])'...'"
     ), False),
     'hardware.macro.mechanics.GaugeCalibration.from_weights:free_counts': ((
         'hardware.macro.mechanics.GaugeCalibration.from_weights(free_counts=huge) -> ValueErro'

@@ -160,5 +160,6 @@ class FramedDevice:
 
     def _set_wire(self, code: str, value: int) -> int:
         """``SP code value`` (checked against :attr:`TABLE` first): the value the device took."""
-        self.TABLE[code].check(value)
+        spec = self.TABLE[code]
+        spec._check(value, spec._value_label("value"))
         return self._checked(self._exchange("SP", code, int(value)), "SP", code)

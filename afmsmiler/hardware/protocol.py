@@ -268,7 +268,10 @@ class WireParam:
         ValueError
             Naming the parameter, the value and the valid range in SI.
         """
-        label = self.si_name or self.name
+        return self._to_wire(value, self.si_name or self.name)
+
+    def _to_wire(self, value, label: str) -> int:
+        """:meth:`to_wire`, its messages naming the value ``label`` (a caller's parameter)."""
         unit = f" {self.si_unit}" if self.si_unit else ""
         try:
             value = check_finite(label, value, self.si_unit)
@@ -322,12 +325,19 @@ class WireParam:
         ValueError
             If it is read-only, not an integer or outside the range (named).
         """
+        return self._check(wire, f"{self.name} ({self.meaning or self.code})")
+
+    def _check(self, wire, label: str) -> int:
+        """:meth:`check`, its range message naming the value ``label`` (a caller's parameter)."""
         if self.read_only:
             raise ValueError(f"{self.name} ({self.meaning or self.code}) is read-only")
         if not self.valid(wire):
-            raise ValueError(f"{self.name} ({self.meaning or self.code}) must be an integer "
-                             f"{self._range()}, got {_short(wire)}")
+            raise ValueError(f"{label} must be an integer {self._range()}, got {_short(wire)}")
         return int(wire)
+
+    def _value_label(self, name: str) -> str:
+        """How a setter's messages name its argument ``name``: ``value for NX (pixels per line)``."""
+        return f"{name} for {self.name} ({self.meaning or self.code})"
 
     def check_reply(self, wire) -> int:
         """A value a device reported, checked against the table.

@@ -156,7 +156,8 @@ def param_to_wire(param, value: float) -> int:
     ValueError
         Naming the parameter, the value and the valid range (in SI) when it is outside it.
     """
-    return PARAMETERS[_lookup("param", Param, param)].to_wire(value)
+    spec = PARAMETERS[_lookup("param", Param, param)]
+    return spec._to_wire(value, f"value for {spec.si_name or spec.name}")
 
 
 def param_from_wire(param, wire: int) -> float:

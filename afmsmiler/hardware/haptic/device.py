@@ -275,8 +275,8 @@ class HapticDevice(FramedDevice):
         unknown = sorted(set(values) - set(_NAMES))
         if unknown:
             raise TypeError(f"unknown parameter(s) {unknown}; known: {sorted(_NAMES)}")
-        for name, value in values.items():
-            param_to_wire(_NAMES[name], value)
+        for name, value in values.items():  # each named by its keyword
+            PARAMETERS[_NAMES[name]].to_wire(value)
         for name, value in values.items():
             self.set(name, value)
 

@@ -366,7 +366,8 @@ class MacroAFM(FramedDevice):
             If the parameter is read-only or the value outside the table's range (nothing sent).
         """
         param = _lookup("param", Param, param)
-        self._call(Command.SET, param.value, TABLE[param].check(value))
+        spec = TABLE[param]
+        self._call(Command.SET, param.value, spec._check(value, spec._value_label("value")))
 
     def wire_values(self, **values) -> dict:
         """The integers :meth:`configure` would send for SI ``values``, validated, nothing sent.
