@@ -26,7 +26,6 @@ bar) is :mod:`afmsmiler.ui.acquisition`; nothing here imports a widget.
 """
 from __future__ import annotations
 
-import math
 from abc import ABC, abstractmethod
 from dataclasses import dataclass, field
 from types import MappingProxyType
@@ -35,7 +34,7 @@ from typing import Mapping
 import numpy as np
 
 from .samples import Sample
-from .validation import check_integer
+from .validation import check_integer, check_nonnegative
 
 __all__ = ["Acquisition", "Snapshot", "Channel", "SettingsRefused", "NotSupported", "STATES"]
 
@@ -425,11 +424,9 @@ class Acquisition(ABC):
         bool
             True while the scan runs (paused included), False once it has ended.
         """
+        wait = check_nonnegative("wait", wait, "s")  # checked in every state
         if self._state != "scanning":
             return self.running
-        wait = float(wait)
-        if not math.isfinite(wait) or wait < 0:
-            raise ValueError(f"wait must be a finite time >= 0 s, got {wait!r}")
         before = self.lines_done
         try:
             self._advance(wait)

@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import ClassVar
 
 from ..acquisition import Acquisition
+from ..validation import check_instance
 
 __all__ = ["DeviceSession", "connect_or_close"]
 
@@ -40,6 +41,12 @@ def connect_or_close(device, server=None):
             server.stop()
         raise
     return device
+
+
+def _check_server(server):
+    """``server`` if it is a TwinServer or None, else TypeError naming it."""
+    from .twin import TwinServer
+    return None if server is None else check_instance("server", server, TwinServer)
 
 
 class DeviceSession(Acquisition):
@@ -70,6 +77,7 @@ class DeviceSession(Acquisition):
         if not isinstance(device, self.driver) or getattr(device, "info", None) is None:
             raise TypeError(f"device must be a connected {self.driver.__name__}, got "
                             f"{device!r}")
+        _check_server(server)
         self.device, self.server = device, server
         super().__init__(units, shape, pixel_size, main=main, name=name)
 
@@ -91,6 +99,7 @@ class DeviceSession(Acquisition):
         -------
         DeviceSession
         """
+        _check_server(server)
         return cls(connect_or_close(cls.driver(transport, **options), server), server)
 
     @classmethod
@@ -111,7 +120,13 @@ class DeviceSession(Acquisition):
         DeviceSession
         """
         from .. import hardware  # looked up at the call: tests wrap open_twin's link
-        host, server = hardware.open_twin(cls.twin_class(scanned), time_scale=time_scale)
+        from ..samples import Sample
+        check_instance("scanned", scanned, Sample)
+        try:
+            twin = cls.twin_class(scanned)
+        except (TypeError, ValueError) as exc:  # the twin names it as its own sample
+            raise type(exc)(f"scanned (the twin's sample): {exc}") from exc
+        host, server = hardware.open_twin(twin, time_scale=time_scale)
         return cls.open(host, server, **options)
 
     def _release(self) -> None:
