@@ -964,46 +964,6 @@ KNOWN = {
         'scenes.transducers.TransducerScene(path=nan-array) -> AttributeError: "\'numpy.nda'
         'rray\' object has no attribute \'split\'"'
     ), False),
-    'hardware.educational.device.live_view:scene': ((
-        'hardware.educational.device.live_view(scene=nan) -> accepted silently\n'
-        'hardware.educational.device.live_view(scene=str) -> accepted silently\n'
-        'hardware.educational.device.live_view(scene=bool) -> accepted silently\n'
-        'hardware.educational.device.live_view(scene=complex) -> accepted silently\n'
-        'hardware.educational.device.live_view(scene=object) -> accepted silently\n'
-        'hardware.educational.device.live_view(scene=nan-array) -> accepted silently'
-    ), False),
-    'hardware.educational.twin.EducationalAFMTwin.error:word': ((
-        'hardware.educational.twin.EducationalAFMTwin.error(word=str) -> accepted silently'
-    ), False),
-    'hardware.educational.twin.EducationalAFMTwin:fault_at': ((
-        'hardware.educational.twin.EducationalAFMTwin(fault_at=nan) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(fault_at=str) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(fault_at=bool) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(fault_at=complex) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(fault_at=object) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(fault_at=nan-array) -> accepted silently'
-    ), False),
-    'hardware.educational.twin.EducationalAFMTwin:noise': ((
-        'hardware.educational.twin.EducationalAFMTwin(noise=nan) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(noise=None) -> TypeError not naming nois'
-        'e: "float() argument must be a string or a real number, not \'NoneType\'"...\'\n'
-        'hardware.educational.twin.EducationalAFMTwin(noise=str) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(noise=bool) -> accepted silently\n'
-        'hardware.educational.twin.EducationalAFMTwin(noise=complex) -> TypeError not naming n'
-        'oise: "float() argument must be a string or a real number, not \'complex\'"...\'\n'
-        'hardware.educational.twin.EducationalAFMTwin(noise=list) -> TypeError not naming nois'
-        'e: "float() argument must be a string or a real number, not \'list\'"...\'\n'
-        'hardware.educational.twin.EducationalAFMTwin(noise=object) -> TypeError not naming no'
-        'ise: "float() argument must be a string or a real number, not \'Foreign\'"...\'\n'
-        "hardware.educational.twin.EducationalAFMTwin(noise=hugeint) -> OverflowError: 'int to"
-        "o large to convert to float'\n"
-        'hardware.educational.twin.EducationalAFMTwin(noise=2d) -> TypeError not naming noise:'
-        " 'only 0-dimensional arrays can be converted to Python scalars'\n"
-        'hardware.educational.twin.EducationalAFMTwin(noise=empty) -> TypeError not naming noi'
-        "se: 'only 0-dimensional arrays can be converted to Python scalars'...'\n"
-        'hardware.educational.twin.EducationalAFMTwin(noise=nan-array) -> TypeError not naming'
-        " noise: 'only 0-dimensional arrays can be converted to Python scalars'...'"
-    ), False),
     'hardware.haptic.bridge.TappingSource:distance': ((
         'hardware.haptic.bridge.TappingSource(distance=tiny) -> still running after 10 s of CP'
         'U'
@@ -1015,77 +975,5 @@ KNOWN = {
     'hardware.haptic.device.open_haptic:port': ((
         'hardware.haptic.device.open_haptic(port=str) -> TransportClosed: "cannot open serial '
         "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file o...'"
-    ), False),
-    'hardware.haptic.twin.HapticTwin.error:word': ((
-        'hardware.haptic.twin.HapticTwin.error(word=str) -> accepted silently'
-    ), False),
-    'hardware.macro.mechanics.GaugeCalibration.from_weights:free_counts': ((
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(free_counts=huge) -> ValueErro'
-        "r not naming free_counts: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.01972e+"
-        "301'...'\n"
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(free_counts=-huge) -> ValueErr'
-        "or not naming free_counts: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.01972e"
-        "+301'...'"
-    ), False),
-    'hardware.macro.mechanics.GaugeCalibration.from_weights:loaded_counts': ((
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(loaded_counts=huge) -> ValueEr'
-        "ror not naming loaded_counts: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.019"
-        "72e+301'...'\n"
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(loaded_counts=-huge) -> ValueE'
-        "rror not naming loaded_counts: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.01"
-        "972e+301'...'"
-    ), False),
-    'hardware.macro.mechanics.GaugeCalibration.from_weights:mass': ((
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(mass=huge) -> ValueError not n'
-        "aming mass: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.01972e-298'...'\n"
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(mass=tiny) -> ValueError not n'
-        "aming mass: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.01972e+302'...'\n"
-        'hardware.macro.mechanics.GaugeCalibration.from_weights(mass=bigint) -> ValueError not'
-        " naming mass: 'counts_per_newton must be in [1, 1e+12] 1/N, got 1.01972e-07'...'"
-    ), False),
-    'hardware.macro.twin.MacroAFMTwin.error:word': ((
-        'hardware.macro.twin.MacroAFMTwin.error(word=str) -> accepted silently'
-    ), False),
-    'hardware.macro.twin.MacroAFMTwin.trigger_limit:at': ((
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=str) -> accepted silently\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=bool) -> TypeError not naming at: "'
-        '\'bool\' object is not iterable"\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=complex) -> TypeError not naming at'
-        ': "\'complex\' object is not iterable"\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=object) -> TypeError not naming at:'
-        ' "\'Foreign\' object is not iterable"\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=bigint) -> TypeError not naming at:'
-        ' "\'int\' object is not iterable"\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=hugeint) -> TypeError not naming at'
-        ': "\'int\' object is not iterable"\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=2d) -> TypeError not naming at: "un'
-        'hashable type: \'numpy.ndarray\'"\n'
-        'hardware.macro.twin.MacroAFMTwin.trigger_limit(at=nan-array) -> accepted silently'
-    ), False),
-    'hardware.macro.twin.MacroAFMTwin:seed': ((
-        "hardware.macro.twin.MacroAFMTwin(seed=nan) -> TypeError not naming seed: 'SeedSequenc"
-        "e expects int or sequence of ints for entropy not nan'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=inf) -> TypeError not naming seed: 'SeedSequenc"
-        "e expects int or sequence of ints for entropy not inf'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=-inf) -> TypeError not naming seed: 'SeedSequen"
-        "ce expects int or sequence of ints for entropy not -inf'\n"
-        'hardware.macro.twin.MacroAFMTwin(seed=None) -> accepted silently\n'
-        "hardware.macro.twin.MacroAFMTwin(seed=str) -> TypeError not naming seed: 'SeedSequenc"
-        "e expects int or sequence of ints for entropy not 1e-6'\n"
-        'hardware.macro.twin.MacroAFMTwin(seed=bool) -> accepted silently\n'
-        "hardware.macro.twin.MacroAFMTwin(seed=complex) -> TypeError not naming seed: 'SeedSeq"
-        "uence expects int or sequence of ints for entropy not (1+1j)'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=object) -> TypeError not naming seed: 'SeedSequ"
-        "ence expects int or sequence of ints for entropy not Foreign()'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=zero) -> TypeError not naming seed: 'SeedSequen"
-        "ce expects int or sequence of ints for entropy not 0.0'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=negative) -> TypeError not naming seed: 'SeedSe"
-        "quence expects int or sequence of ints for entropy not -1.0'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=huge) -> TypeError not naming seed: 'SeedSequen"
-        "ce expects int or sequence of ints for entropy not 1e+300'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=-huge) -> TypeError not naming seed: 'SeedSeque"
-        "nce expects int or sequence of ints for entropy not -1e+300'\n"
-        "hardware.macro.twin.MacroAFMTwin(seed=tiny) -> TypeError not naming seed: 'SeedSequen"
-        "ce expects int or sequence of ints for entropy not 1e-300'"
     ), False),
 }

@@ -153,6 +153,9 @@ ACCEPTED = {
     "hardware.framing.event_frame:word": (("str",), "any word of the frame format"),
     "hardware.framing.error_frame:word": (("str",), "any word of the frame format"),
     "hardware.twin.Twin.error:word": (("str",), "any word of the frame format"),
+    **{f"hardware.{twin}.error:word": (("str",), "Twin.error's: any word of the frame format")
+       for twin in ("macro.twin.MacroAFMTwin", "educational.twin.EducationalAFMTwin",
+                    "haptic.twin.HapticTwin")},
     "hardware.macro.codec.ErrorReply:word": (("str",), "any word of the frame format"),
     "hardware.macro.codec.EventMsg:arg": (("str",), "any word of the frame format"),
     "hardware.protocol.ParamTable.enum:doc": (("str",), "the enum's docstring: free text"),
@@ -930,7 +933,9 @@ OVERRIDES.update({
     _H + "educational.device.EducationalAFM.get": {"par": "NX"},
     _H + "educational.device.EducationalAFM.set": {"par": "NX", "value": 16},
     _H + "educational.device.live_view": {"scene": lambda: __import__(
-        "tests.recording", fromlist=["Recorder"]).Recorder()},
+        "afmsmiler.scenes.imaging", fromlist=["ImagingScene"]).ImagingScene(
+        _image(), vis=__import__("tests.recording", fromlist=["Recorder"]).Recorder(),
+        camera=False)},  # an ImagingScene drawing into the recording fake
     _H + "haptic.device.HapticDevice": {"transport": _filled_link},
     _H + "haptic.device.HapticDevice.command": {"code": "ST"},
     _H + "haptic.device.HapticDevice.get": {"param": "MF"},

@@ -64,6 +64,10 @@ def live_view(scene) -> Callable:
     callable
         ``on_line(image, lines)``: ``image`` the Sample of rows 0..k, ``lines`` the full count.
     """
+    if not callable(getattr(scene, "show_image", None)):  # named now, not at the first line
+        raise TypeError(f"scene must have show_image(image, lines=...) (an ImagingScene), got "
+                        f"{type(scene).__name__} {scene!r}"[:160])
+
     def on_line(image: Sample, lines: int) -> None:
         scene.show_image(image, lines=lines)
     return on_line

@@ -13,6 +13,7 @@ import numpy as np
 from ...controller import ContactLoop
 from ...imaging import ScanSettings, scan
 from ...imaging.scan_modes import ConstantForce
+from ...imaging.settings import PARAMETERS as SCAN_PARAMETERS
 from ...samples import Sample
 from ...validation import check_instance, check_integer, check_positive
 from ..framing import Frame
@@ -37,7 +38,7 @@ class EducationalAFMTwin(Twin):
         Height per count in pm (the read-only ZS).
     noise : float
         Rms height noise in m added to each pixel (the lock-in's amplitude noise through the
-        loop).
+        loop), in [0, 1e-6] (the scan settings' range).
     seed : int
         Seed of the noise.
     fault_at : int, optional
@@ -61,9 +62,9 @@ class EducationalAFMTwin(Twin):
         self.pixel_time = check_positive("pixel_time", pixel_time, "s")
         zs = TABLE[Param.ZSTEP]
         self.z_step = check_integer("z_step", z_step, zs.low, zs.high)
-        self.noise = float(noise)
+        self.noise = SCAN_PARAMETERS["noise"].check(noise)
         self.seed = check_integer("seed", seed, 0)
-        self.fault_at = fault_at
+        self.fault_at = None if fault_at is None else check_integer("fault_at", fault_at, 0)
         self.params = {Param(code): value for code, value in TABLE.defaults().items()}
         self.params[Param.ZSTEP] = self.z_step
         self.state = State.IDLE

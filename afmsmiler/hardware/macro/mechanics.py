@@ -162,7 +162,14 @@ class GaugeCalibration:
         if not math.isfinite(delta) or delta == 0:
             raise ValueError(f"loaded_counts must differ from free_counts, got {loaded_counts!r} "
                              f"and {free_counts!r}")
-        return cls(delta / (mass * STANDARD_GRAVITY), spring_constant)
+        per_newton = PARAMETERS["counts_per_newton"]
+        value = delta / (mass * STANDARD_GRAVITY)
+        if not per_newton.low <= value <= per_newton.high:
+            raise ValueError(f"|loaded_counts - free_counts| / (mass g) is the counts per newton, "
+                             f"which must be in [{per_newton.low:g}, {per_newton.high:g}] 1/N, "
+                             f"got {value:g} (loaded_counts {loaded_counts!r}, free_counts "
+                             f"{free_counts!r}, mass {mass!r} kg)"[:300])
+        return cls(value, spring_constant)
 
     @property
     def counts_per_metre(self) -> float:

@@ -37,7 +37,8 @@ import numpy as np
 from ...contact import Parabolic
 from ...imaging.dilation import dilate
 from ...samples import Sample
-from ...validation import check_finite, check_instance, check_positive, check_range
+from ...validation import (check_finite, check_instance, check_integer, check_positive,
+                           check_range)
 from ..errors import ErrorCode
 from ..framing import Frame
 from ..twin import Twin
@@ -163,6 +164,7 @@ class MacroAFMTwin(Twin):
                  travel: tuple = (0.22, 0.22, 0.05), z_step: float = 2.5e-6,
                  base: float = 5e-3, seed: int = 0):
         super().__init__()
+        seed = check_integer("seed", seed, 0)
         sample = printed_sample() if sample is None else check_instance("sample", sample, Sample)
         if sample.heights.ndim != 2 or sample.unit != "m":
             raise ValueError(f"sample must be an image of heights in m, got shape "
@@ -295,7 +297,12 @@ class MacroAFMTwin(Twin):
         """
         if not isinstance(axis, str) or axis not in ("X", "Y", "Z"):
             raise ValueError(f"axis must be 'X', 'Y' or 'Z', got {axis!r}")
-        self._fault_at[tuple(at) if at is not None else None] = (Event.LIMIT, axis)
+        if at is not None:
+            if not isinstance(at, (tuple, list)) or len(at) != 2:
+                raise ValueError(f"at must be a pixel (row, col) of two integers >= 0 or None, "
+                                 f"got {at!r}"[:160])
+            at = tuple(check_integer(f"at[{i}]", v, 0) for i, v in enumerate(at))
+        self._fault_at[at] = (Event.LIMIT, axis)
 
     def press_button(self, preset: int | None = None) -> None:
         """Press the start button: at its next poll an idle machine runs a preset scan.
