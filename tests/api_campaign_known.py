@@ -968,12 +968,4 @@ KNOWN = {
         'hardware.haptic.bridge.TappingSource(distance=tiny) -> still running after 10 s of CP'
         'U'
     ), True),
-    'hardware.experiments.haptic_device:port': ((
-        'hardware.experiments.haptic_device(port=str) -> TransportClosed: "cannot open serial '
-        "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file or directory: '1e...'"
-    ), False),
-    'hardware.haptic.device.open_haptic:port': ((
-        'hardware.haptic.device.open_haptic(port=str) -> TransportClosed: "cannot open serial '
-        "port 1e-6: [Errno 2] could not open port 1e-6: [Errno 2] No such file o...'"
-    ), False),
 }

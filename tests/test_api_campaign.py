@@ -172,6 +172,11 @@ ACCEPTED = {
                                                 "sent as 0, the safe setpoint"),
     "hardware.haptic.device.HapticDevice.send_force:force": (("nan",), "documented (as "
                                                               "force_frame): sent as 0"),
+    # any str may name a serial port: whether it is one is the machine's answer at the time
+    # (TransportClosed naming it, documented), as open()'s FileNotFoundError is, not bad input
+    **{f"hardware.{f}:port": (("str",), "any str may name a serial port; one that is not "
+                              "there raises TransportClosed naming it (documented)")
+       for f in ("haptic.device.open_haptic", "experiments.haptic_device")},
     "hardware.haptic.twin.HapticTwin:finger": (("None",), "None is the documented free handle "
                                                "(no finger on it)"),
 }

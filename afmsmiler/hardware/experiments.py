@@ -82,6 +82,13 @@ def haptic_device(port: str | None = None):
     -------
     afmsmiler.hardware.haptic.HapticDevice
         Connected (:meth:`~afmsmiler.hardware.haptic.HapticDevice.connect` has identified it).
+
+    Raises
+    ------
+    TypeError
+        If ``port`` is neither None nor a str.
+    TransportClosed
+        If the port cannot be opened (as :func:`~afmsmiler.hardware.haptic.open_haptic`).
     """
     from .haptic import open_haptic
     from .session import connect_or_close

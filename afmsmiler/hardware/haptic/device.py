@@ -543,6 +543,9 @@ def open_haptic(port: str | None = None, *, time_scale: float = 1.0):
     ------
     TypeError
         If ``port`` is neither None nor a str.
+    TransportClosed
+        If the port cannot be opened (no such port, or busy), naming it: whether a name is a
+        port is the machine's answer at the time, as ``open()``'s ``FileNotFoundError`` is.
     """
     from ..transport import SerialTransport
     from ..twin import open_twin
