@@ -964,8 +964,4 @@ KNOWN = {
         'scenes.transducers.TransducerScene(path=nan-array) -> AttributeError: "\'numpy.nda'
         'rray\' object has no attribute \'split\'"'
     ), False),
-    'hardware.haptic.bridge.TappingSource:distance': ((
-        'hardware.haptic.bridge.TappingSource(distance=tiny) -> still running after 10 s of CP'
-        'U'
-    ), True),
 }

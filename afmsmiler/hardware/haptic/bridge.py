@@ -452,10 +452,14 @@ class TappingSource:
     F_ts(z_c + z) (``quantity="tip_force"``: the taps) or the lever's spring force -k z
     (``"lever_force"``: the oscillation the finger holds).
 
+    Building it runs the reference solver once: a second or two for the default lever, a tenth
+    of that for a Q of tens, tens of seconds in hard contact (z_c of a nanometre or less),
+    bounded by :func:`~afmsmiler.modes.integrate`'s ``max_periods``.
+
     Parameters
     ----------
     distance : float
-        Rest tip-sample distance z_c in m.
+        Rest tip-sample distance z_c in m, in (0, 1e-5] (as :func:`~afmsmiler.modes.integrate`).
     lever : afmsmiler.modes.TappingLever, optional
         Lever and sample (default ``TappingLever()``).
     quantity : {"tip_force", "lever_force"}
