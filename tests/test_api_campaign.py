@@ -177,6 +177,10 @@ ACCEPTED = {
                      "imaging.ImagingScene", "modes.ModesScene", "transducers.TransducerScene")},
     "scenes.legends.TextPlate:text": (("str",), "any text is the plate's text"),
     "plots.controller.ScanFigure:title": (("str",), "any text is a figure's title"),
+    "plots.imaging.scan_view:status": (("str",), "any text is the title's note"),
+    "plots.contact.fit_figure:zoom": (("None",), "None is the documented whole curve"),
+    "plots.hardware.comparison_view:z_step": (("nan",), "NaN is the documented unknown z step "
+                                              "(the default)"),
 }
 # First cases of a callable that take seconds (each of their bad values runs a simulation): `make
 # test` runs them, `make unit` does not. (The two time integrations are called with their fewest
@@ -1354,6 +1358,11 @@ def _non_finite(obj, depth=0, seen=None):
         return None  # its rate and jitter are NaN before two ticks (documented)
     if type(obj).__name__ == "ClosedLoopResponse" and not obj.steady:
         return None  # an unstable Q-control loop has no steady state: NaN (documented)
+    if type(obj).__name__ == "ComparisonView":  # module (h)'s print comparison, as shown: NaN
+        if math.isnan(obj.rms):  # images and rms before a comparison (documented), the z step
+            return None          # while unknown (documented): the figure's empty bottom row
+        return _non_finite([obj.reference, obj.image, obj.difference, obj.extent, obj.rms],
+                           depth + 1, seen)
     if type(obj).__name__ == "AmplitudeCurve":  # NaN pads the roots a distance lacks
         has = ~np.isnan(obj.amplitude)  # (documented): the roots that exist must be finite
         return _non_finite([obj.amplitude[has], obj.phase[has], obj.dissipated_energy[has]],
