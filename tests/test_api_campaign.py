@@ -403,6 +403,7 @@ OVERRIDES = {
         "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.gwy"},
     "afmsmiler.validation.check_choice": {"value": "a"},
     "afmsmiler.validation.check_integer": {"value": 3},
+    "afmsmiler.validation.check_flag": {"value": True},
     "afmsmiler.validation.check_size": {"value": 3},
     "afmsmiler.validation.check_shape": {"value": (4, 4)},
     "afmsmiler.validation.check_instance": {"value": lambda: {"a": 1}, "kind": dict},
