@@ -94,7 +94,8 @@ def surface_mesh(tip, current, extent, unit, n_grid=DEFAULTS["n_grid"], *, half=
     current : IndentationCurve
         The current state (its first point is drawn).
     extent : float
-        Half the side of the drawn square in m.
+        Half the side of the drawn square in m (``extent / unit`` at most
+        :data:`MAX_SCENE_SIZE`).
     unit : float
         Metres per scene unit.
     n_grid : int
@@ -160,7 +161,7 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     tip : Tip
         The tip shape (the pyramid gets four flat faces, the others are bodies of revolution).
     height : float
-        Drawn height in m.
+        Drawn height in m (``height / unit`` at most :data:`MAX_SCENE_SIZE`).
     unit : float
         Metres per scene unit.
     n_angular : int
@@ -230,7 +231,8 @@ class ContactScene(SceneDisplay):
     unit : float
         Metres per scene unit (default 20 nm).
     extent : float
-        Half the side of the drawn square of sample in m.
+        Half the side of the drawn square of sample in m; ``extent / unit`` in (0.001,
+        :data:`MAX_SCENE_SIZE`] scene units (the camera stands off it by 1.6 times that).
     camera : bool
         Place the camera to look at the contact slightly from above.
 

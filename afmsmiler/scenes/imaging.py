@@ -152,7 +152,8 @@ class ImagingScene(SceneDisplay):
     path : str
         Path of this scene in the viewer.
     exaggeration : float, optional
-        Factor on all heights (> 0); default :func:`auto_exaggeration` of the sample.
+        Factor on all heights (> 0, drawing the sample's relief at most :data:`MAX_RELIEF`
+        times its width tall); default :func:`auto_exaggeration` of the sample.
     max_vertices : int
         The most vertices of each field's mesh (4 to
         :data:`~afmsmiler.scenes.meshes.MAX_VERTICES`); larger images are decimated.

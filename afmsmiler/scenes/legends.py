@@ -125,7 +125,7 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     scale : ColorScale
         The scale to draw.
     size_px : (int, int)
-        Image width and height in pixels (at least 100 x 40).
+        Image width and height in pixels (100 to 4096 wide, 40 to 4096 high).
     n_ticks : int
         Evenly spaced tick labels from ``vmin`` to ``vmax`` (2 to 21).
     """
