@@ -27,6 +27,7 @@ __all__ = [
     "check_choice",
     "check_integer",
     "check_instance",
+    "check_flag",
     "check_size",
     "check_shape",
     "check_writable_path",
@@ -434,6 +435,35 @@ def check_instance(name: str, value, kind, what: str | None = None):
             what = " or ".join(k.__name__ for k in kinds)
         raise TypeError(f"{name} must be a {what}, got {type(value).__name__} {_short(value)}")
     return value
+
+
+def check_flag(name: str, value) -> bool:
+    """Return ``value`` as bool; raise ``TypeError`` naming ``name`` unless it is True or False.
+
+    A switch (``camera=``, ``half=``, ``grid=``) given NaN, a string or an array is refused: its
+    truth would be Python's (any non-empty string is true) or numpy's ambiguous one.
+
+    Parameters
+    ----------
+    name : str
+        The parameter's name.
+    value : bool
+        The value to check (a ``numpy.bool_`` too).
+
+    Returns
+    -------
+    bool
+
+    Examples
+    --------
+    >>> check_flag("camera", "no")
+    Traceback (most recent call last):
+    ...
+    TypeError: camera must be True or False, got 'no'
+    """
+    if not isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name} must be True or False, got {_short(value)}")
+    return bool(value)
 
 
 def check_writable_path(name: str, path, what: str = "a file") -> str:

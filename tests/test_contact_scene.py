@@ -75,3 +75,23 @@ def test_legend_follows_the_depth_in_round_numbers():
     assert sc.legend.scale == sc.depth_scale
     sc.update(tip, indent([5e-9], 0.1, tip, 1e6, 0.3))
     assert sc.legend.scale == sc.depth_scale and sc.depth_scale.vmax < depth_nm
+
+
+def test_a_scale_past_float32_or_too_small_for_the_camera_is_named():
+    """extent = 1e300 m (or unit = 1e-300 m) drew vertices at -inf and extent = 1e-300 m put the
+    camera on the contact: both were errors of the camera naming neither parameter."""
+    tip = Parabolic(50e-9)
+    current = indent([-5e-9], 0.1, tip, 1e6, 0.3)
+    for kw in (dict(extent=1e300), dict(unit=1e-300), dict(extent=1e-300), dict(unit=1e300)):
+        with pytest.raises(ValueError, match=r"^extent / unit \(the drawn size in scene units\) "
+                                             r"must be in \(0.001, 1e\+06\], got "):
+            ContactScene(tip, current, vis=Recorder(), **kw)
+    with pytest.raises(ValueError, match=r"^height / unit"):
+        tip_mesh(tip, 1e300, 1e-9)
+    for bad in ("no", float("nan"), np.ones(2)):
+        with pytest.raises(TypeError, match="^half must be True or False"):
+            tip_mesh(tip, 50e-9, 1e-9, half=bad)
+        with pytest.raises(TypeError, match="^camera must be True or False"):
+            ContactScene(tip, current, vis=Recorder(), camera=bad)
+        with pytest.raises(TypeError, match="^path must be a str"):
+            ContactScene(tip, current, vis=Recorder(), path=np.ones(2))

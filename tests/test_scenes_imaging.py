@@ -173,6 +173,11 @@ def test_bad_input_is_named():
         ImagingScene(_sample(), vis=Recorder(), max_vertices=2)
     with pytest.raises(ValueError, match="exaggeration"):
         ImagingScene(_sample(), vis=Recorder(), exaggeration=0.0)
+    with pytest.raises(ValueError, match=r"^exaggeration must be in \(0, .*\] for this sample "
+                                         r"\(its relief of .* drawn at most 1000 times"):
+        ImagingScene(_sample(), vis=Recorder(), exaggeration=1e300)
+    with pytest.raises(TypeError, match="^camera must be True or False"):
+        ImagingScene(_sample(), vis=Recorder(), camera="yes")
     sc, _ = _scene()
     with pytest.raises(ValueError, match="lines"):
         sc.show_image(_sample(), lines=59)

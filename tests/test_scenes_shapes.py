@@ -77,3 +77,19 @@ def test_a_wrong_visualizer_is_named_before_drawing():
         with pytest.raises(TypeError, match="^vis must be a meshcat.Visualizer"):
             Segment(bad)
     assert vis.calls == []  # nothing drawn
+
+
+def test_a_colour_is_an_int_0xRRGGBB_named_before_drawing():
+    """A float, a string or NaN given as a colour reached the browser as a colour three.js
+    cannot read (accepted silently)."""
+    from afmsmiler.scenes.shapes import polyline, sphere
+    vis = Recorder()
+    for bad in (0.5, "red", None, float("nan"), -1, 0x1000000, True):
+        with pytest.raises(ValueError, match=r"^color \(0xRRGGBB\) must be an integer in "
+                                             r"\[0, 16777215\], got "):
+            Arrow(vis, color=bad)
+        with pytest.raises(ValueError, match=r"^color \(0xRRGGBB\)"):
+            polyline(vis, np.zeros((2, 3)), color=bad)
+    with pytest.raises(ValueError, match=r"^opacity must be in \(0, 1\]"):
+        sphere(vis, 1.0, opacity=float("nan"))
+    assert vis.calls == []  # nothing drawn

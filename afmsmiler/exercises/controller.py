@@ -14,6 +14,7 @@ from ..controller.defaults import SETPOINT, line_profile
 from ..validation import (check_choice, check_instance, check_nonnegative, check_positive,
                           check_range)
 from ..parameters import read_only
+from ..samples.profiles import PROFILES
 from . import Feedback, check_close
 
 __all__ = ["DEFAULTS", "height_error", "check_fast_scan", "critical_ki", "check_critical_ki",
@@ -46,6 +47,7 @@ def height_error(loop: ContactLoop, speed: float, profile: str = DEFAULTS["profi
         RMS error in m (inf if the signals overflow).
     """
     check_instance("loop", loop, ContactLoop)
+    check_choice("profile", profile, PROFILES)
     line = line_profile(profile)
     scan = loop.scan_line(line.x, line.heights, speed=speed, setpoint=SETPOINT)
     shift = loop.steady_state(SETPOINT, 0.0).z_np

@@ -213,6 +213,7 @@ def check_apparent_width(width, rtol: float = DEFAULTS["width_rtol"]) -> Feedbac
         Against the analytic width of a sphere under a paraboloid
         (:func:`~afmsmiler.imaging.dilation.sphere_apparent_width`).
     """
+    rtol = check_positive("rtol", rtol)
     if width is None:
         return Feedback(False, "measure the width of the particle where it leaves the "
                                "substrate (height > 0) on the line through its top, in m.")
@@ -244,6 +245,7 @@ def check_tip_radius(radius, rtol: float = DEFAULTS["radius_rtol"]) -> Feedback:
         Against the radius the image was made with. Using the two-spheres formula
         W = 4 sqrt(R r), which the paraboloid's flanks do not follow, is recognised.
     """
+    rtol = check_positive("rtol", rtol)
     hint = ("For a paraboloid over a sphere of radius r, with w = W / (2 r): solve "
             "w = (1 + c)^(3/2) / (1 - c)^(1/2) for c in (0, 1), then R = 2 r c^2 / (1 - c).")
     if radius is None:

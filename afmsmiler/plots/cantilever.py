@@ -13,6 +13,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from matplotlib.axes import Axes
 from matplotlib.figure import Figure
 
 from ..cantilever import Bending, Cantilever, check_modes
@@ -235,6 +236,8 @@ class ModeShapesFigure:
     def __init__(self, curves: CantileverCurves, fig: Figure | None = None, ax=None,
                  modes=None):
         curves = check_instance("curves", curves, CantileverCurves)
+        if ax is not None:
+            check_instance("ax", ax, Axes, "matplotlib Axes")
         n = len(curves.frequencies_khz)
         self.modes = tuple(range(1, n + 1)) if modes is None else tuple(check_modes(modes))
         if len(self.modes) != n:
@@ -299,6 +302,8 @@ def mode_shapes_figure(bending, modes=(1, 2, 3), *, ax=None):
         One line per mode, labelled with f_n in kHz.
     """
     check_instance("bending", bending, (Bending, Cantilever), "Bending or Cantilever")
+    if ax is not None:
+        check_instance("ax", ax, Axes, "matplotlib Axes")
     modes = check_modes(modes)
     if isinstance(bending, Cantilever):
         bending = bending.bending(0.0, n_length=DEFAULTS["n_points"], modes=max(modes))

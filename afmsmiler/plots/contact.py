@@ -12,11 +12,11 @@ from dataclasses import dataclass
 import numpy as np
 from matplotlib.figure import Figure
 
-from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve,
+from ..contact import (TIPS, ApproachRetract, FitResult, ForceCurve, IndentationCurve, Tip,
                        contact_surface)
 from ..contact.viscoelastic import ViscoelasticCycle
 from ..parameters import read_only, unit_scale
-from ..validation import check_instance, check_positive, check_range
+from ..validation import check_instance, check_positive, check_range, check_size
 from .limits import data_range, hold
 
 __all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
@@ -26,6 +26,13 @@ __all__ = ["DEFAULTS", "UNITS", "tip_geometries_figure", "ContactCurves",
 #: Defaults of the figures, in one place.
 DEFAULTS = read_only(dict(figsize=(10.5, 4.2), geometry_height=100e-9, n_profile=121,
                           surface_extent=3.0, fit_zoom=1e-6))
+
+#: The longest length drawn (a tip's height, a cross-section's half-width): the figures are in
+#: nm, and a millimetre is already 10**6 of them.
+MAX_LENGTH = 1e-3
+
+#: The most tips drawn side by side.
+MAX_TIPS = 12
 
 #: Factors from SI to the units shown (value_shown = value_SI * factor), from the unit table.
 UNITS = read_only(dict(length=unit_scale("nm", "m"), force=unit_scale("nN", "N")))
@@ -42,10 +49,11 @@ def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=Non
 
     Parameters
     ----------
-    tips : sequence of Tip, optional
-        The tips to draw; by default one of each registry class with its default parameters.
+    tips : list of Tip, optional
+        The tips to draw (1 to :data:`MAX_TIPS`); by default one of each registry class with its
+        default parameters.
     height : float
-        Height of the drawn tips in m.
+        Height of the drawn tips in m, in (0, :data:`MAX_LENGTH`].
     fig : Figure, optional
         Figure to draw into.
 
@@ -53,7 +61,15 @@ def tip_geometries_figure(tips=None, height=DEFAULTS["geometry_height"], fig=Non
     -------
     Figure
     """
-    tips = [cls() for cls in TIPS.values()] if tips is None else list(tips)
+    if tips is None:
+        tips = [cls() for cls in TIPS.values()]
+    else:
+        if not isinstance(tips, (list, tuple)):
+            raise TypeError(f"tips must be a list or tuple of Tip, got {type(tips).__name__} "
+                            f"{tips!r:.60}")
+        check_size("len(tips)", len(tips), MAX_TIPS)
+        tips = [check_instance(f"tips[{i}]", tip, Tip) for i, tip in enumerate(tips)]
+    height = check_range("height", height, 0.0, MAX_LENGTH, "m", low_inclusive=False)
     fig = (check_instance("fig", fig, Figure) if fig is not None
            else Figure(figsize=(2.6 * len(tips), 3.2)))
     axes = fig.subplots(1, len(tips), sharex=True, sharey=True, squeeze=False)[0]
@@ -123,7 +139,7 @@ def contact_curves(cycle, current, tip, extent) -> ContactCurves:
     tip : Tip
         The tip shape.
     extent : float
-        Half-width of the drawn cross-section in m.
+        Half-width of the drawn cross-section in m, in (0, :data:`MAX_LENGTH`].
 
     Returns
     -------
@@ -133,7 +149,7 @@ def contact_curves(cycle, current, tip, extent) -> ContactCurves:
         raise ValueError(f"cycle must be an ApproachRetract, got {cycle!r}")
     if not isinstance(current, IndentationCurve):
         raise ValueError(f"current must be an IndentationCurve, got {current!r}")
-    extent = check_positive("extent", extent, "m")
+    extent = check_range("extent", extent, 0.0, MAX_LENGTH, "m", low_inclusive=False)
     s, f = UNITS["length"], UNITS["force"]
     rho = np.linspace(-extent, extent, 2 * DEFAULTS["n_profile"] + 1)
     z_s = float(current.z_s[0])

@@ -9,6 +9,7 @@ axes keep the topography's range and say how far off scale the signals went.
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -16,9 +17,10 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FixedLocator, FuncFormatter
 from matplotlib.patches import Circle, FancyArrowPatch, Rectangle
 
-from ..controller import ContactLoop, ScanImage, ScanLine
+from ..controller import ContactLoop, Preset, ScanImage, ScanLine
 from ..parameters import read_only, unit_scale
-from ..validation import check_array, check_instance, check_positive
+from ..samples import Sample
+from ..validation import check_array, check_choice, check_instance, check_positive, check_size
 from .limits import hold
 
 __all__ = ["UNITS", "FIGSIZE", "ScanCurves", "scan_curves", "ScanFigure", "fig4_figure",
@@ -33,6 +35,11 @@ UNITS = read_only(dict(x=unit_scale("um", "m"), z=unit_scale("nm", "m"),
 #: per scenario row), ``"image"`` (width per image, height).
 FIGSIZE = read_only(dict(scan=(10.0, 6.0), fig4=(10.0, 2.2), block=(10.0, 2.9),
                          polygon=(10.0, 3.2), image=(3.3, 3.2)))
+
+#: The most scenarios (rows) of :func:`fig4_figure` and knots (pixels) of :func:`polygon_figure`:
+#: each is drawn as its own artists, and more would not read.
+MAX_SCENARIOS = 12
+MAX_KNOTS = 1000
 
 
 @dataclass(frozen=True)
@@ -155,6 +162,7 @@ class ScanFigure:
 
     def __init__(self, curves: ScanCurves, fig: Figure | None = None, title: str = ""):
         check_instance("curves", curves, ScanCurves)
+        check_instance("title", title, str)
         self.fig = (check_instance("fig", fig, Figure) if fig is not None
                     else Figure(figsize=FIGSIZE["scan"]))
         self.fig.set_layout_engine("constrained")  # before the legend placed "outside"
@@ -280,7 +288,8 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
     Parameters
     ----------
     presets : dict, optional
-        Name -> :class:`~afmsmiler.controller.Preset`; default the four Fig. 4 presets.
+        Name -> :class:`~afmsmiler.controller.Preset` (1 to :data:`MAX_SCENARIOS` of them);
+        default the four Fig. 4 presets.
     sample : afmsmiler.samples.Sample, optional
         The line to scan; default the presets' grating.
     fig : matplotlib.figure.Figure, optional
@@ -292,6 +301,14 @@ def fig4_figure(presets=None, sample=None, fig: Figure | None = None) -> Figure:
     """
     from ..controller import PRESETS
     presets = PRESETS if presets is None else presets
+    if not isinstance(presets, Mapping) or not presets:
+        raise TypeError(f"presets must be a non-empty dict of name -> Preset, got "
+                        f"{type(presets).__name__} {presets!r:.60}")
+    check_size("len(presets)", len(presets), MAX_SCENARIOS)
+    for name, preset in presets.items():
+        check_instance(f"presets[{name!r}]", preset, Preset)
+    if sample is not None:
+        check_instance("sample", sample, Sample)
     width, row = FIGSIZE["fig4"]
     fig = (check_instance("fig", fig, Figure) if fig is not None
            else Figure(figsize=(width, row * len(presets))))
@@ -382,11 +399,11 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     Parameters
     ----------
     x, height : array_like
-        Pixel positions and heights in m.
+        Pixel positions and heights in m (as many of each).
     speed : float
         Scan speed in m/s (turns x into time).
     n_show : int
-        Number of pixels to draw (the first ones).
+        Number of pixels to draw (the first ones), 1 to :data:`MAX_KNOTS`.
     fig : matplotlib.figure.Figure, optional
         Where to draw; default a new Figure of FIGSIZE["polygon"] (10 x 3.2 in).
 
@@ -394,8 +411,12 @@ def polygon_figure(x, height, speed, n_show: int = 12, fig: Figure | None = None
     -------
     matplotlib.figure.Figure
     """
-    x = check_array("x", x, "m", ndim=1, min_size=1)[:n_show]
-    h = check_array("height", height, "m", ndim=1)[:n_show] * UNITS["z"]
+    n_show = check_size("n_show", n_show, MAX_KNOTS)
+    x = check_array("x", x, "m", ndim=1, min_size=1)
+    h = check_array("height", height, "m", ndim=1)
+    if h.size != x.size:
+        raise ValueError(f"x and height must have as many points, got {x.size} and {h.size}")
+    x, h = x[:n_show], h[:n_show] * UNITS["z"]
     speed = check_positive("speed", speed, "m/s")
     t = (x - x[0]) / speed * 1e6  # us
     fig = (check_instance("fig", fig, Figure) if fig is not None
@@ -436,8 +457,7 @@ def image_figure(image, heights=None, signal: str = "height", fig: Figure | None
     -------
     matplotlib.figure.Figure
     """
-    if signal not in ("height", "topography"):
-        raise ValueError(f"signal must be one of ['height', 'topography'], got {signal!r}")
+    check_choice("signal", signal, ("height", "topography"))
     check_instance("image", image, ScanImage)
     if signal == "height":
         panels = [("trace: -Z_np", image.height_trace), ("retrace: -Z_np", image.height_retrace)]

@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 
+import matplotlib
 import numpy as np
 from matplotlib.figure import Figure
 
@@ -279,6 +280,8 @@ def scan_view(result, *, main: str | None = None, status: str | None = None) -> 
     ValueError
         If ``main`` is not a channel, or ``lines_done`` is not in [0, lines].
     """
+    if status is not None:
+        check_instance("status", status, str)
     channels = _full_images(result)
     main = main_channel(channels) if main is None else check_choice("main", main, list(channels))
     image = channels[main]
@@ -359,6 +362,9 @@ class ImagingFigure:
 
     def __init__(self, view: ScanView, fig: Figure | None = None, cmap: str = "afmhot"):
         check_instance("view", view, ScanView)
+        if not isinstance(cmap, str) or cmap not in matplotlib.colormaps:
+            raise ValueError(f"cmap must be a matplotlib colormap name (e.g. 'afmhot'), got "
+                             f"{cmap!r:.60}")
         self.fig = (check_instance("fig", fig, Figure) if fig is not None
                     else Figure(figsize=FIGSIZE))
         self.fig.set_layout_engine("constrained")

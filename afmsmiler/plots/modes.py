@@ -23,6 +23,7 @@ Each figure takes the model's result objects and only converts units (the displa
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 
 import numpy as np
 from matplotlib.figure import Figure
@@ -35,7 +36,7 @@ from ..modes.lateral import FrictionImages, FrictionLoop
 from ..imaging.scanner import ScanResult
 from ..modes.tapping import AmplitudeCurve
 from ..parameters import read_only, unit_scale
-from ..validation import check_instance
+from ..validation import check_array, check_flag, check_instance, check_integer, check_real
 from .limits import data_range, hold, sticky_limits
 from .live import set_clim
 
@@ -123,6 +124,30 @@ def _coexistence(curve: AmplitudeCurve) -> list:
     return [(float(z[i]), float(z[j - 1])) for i, j in zip(edges[::2], edges[1::2])]
 
 
+def _check_setpoint(setpoint):
+    """``setpoint`` (None, or ``(ratio, z_c, phase, E_dis, attractive)``), or a named error."""
+    if setpoint is None:
+        return None
+    if not isinstance(setpoint, (tuple, list)) or len(setpoint) != 5:
+        raise TypeError(f"setpoint must be None or a tuple (setpoint_ratio, z_c, phase, E_dis, "
+                        f"attractive), got {type(setpoint).__name__} {setpoint!r:.60}")
+    *numbers, attractive = setpoint
+    names = ("setpoint_ratio", "z_c", "phase", "E_dis")
+    return (*(check_real(f"setpoint's {n}", v) for n, v in zip(names, numbers)),
+            check_flag("setpoint's attractive", attractive))
+
+
+def _check_jumps(jumps):
+    """``jumps`` (None, or ``{"approach": [z, ...], "retract": [z, ...]}`` in m), or a named
+    error."""
+    if jumps is None:
+        return {}
+    if not isinstance(jumps, Mapping) or not set(jumps) <= {"approach", "retract"}:
+        raise TypeError(f"jumps must be None or a dict with keys 'approach' and/or 'retract', "
+                        f"got {type(jumps).__name__} {jumps!r:.60}")
+    return {way: check_array(f"jumps[{way!r}]", at, "m", ndim=1) for way, at in jumps.items()}
+
+
 class TappingFigure:
     """Amplitude, phase lag and E_dis against z_c: both branches, the jump, the setpoint.
 
@@ -162,6 +187,9 @@ class TappingFigure:
 
     def __init__(self, curve: AmplitudeCurve, setpoint=None, fig: Figure | None = None,
                  jumps=None):
+        check_instance("curve", curve, AmplitudeCurve)
+        _check_setpoint(setpoint)
+        _check_jumps(jumps)
         self.fig = (check_instance("fig", fig, Figure) if fig is not None
                     else Figure(figsize=(8.0, 7.5)))
         self.fig.set_layout_engine("constrained")
@@ -207,6 +235,7 @@ class TappingFigure:
             The jumps' distances, as for the constructor.
         """
         check_instance("curve", curve, AmplitudeCurve)
+        setpoint, jumps = _check_setpoint(setpoint), _check_jumps(jumps)
         z = curve.distance * _NM
         order = np.argsort(z)
         data = {}
@@ -237,7 +266,6 @@ class TappingFigure:
         a0 = curve.lever.free_amplitude
         title = f"A0 = {a0 * _NM:.3g} nm" + ("" if not span else "; both branches " + " and ".join(
             f"from {lo * _NM:.3g} to {hi * _NM:.3g}" for lo, hi in span) + " nm (grey)")
-        jumps = {} if jumps is None else jumps
         said = []
         for way in ("approach", "retract"):
             at = list(jumps.get(way, ()))
@@ -317,6 +345,8 @@ class LateralFigure:
 
     def __init__(self, loop: FrictionLoop, images: FrictionImages | None = None,
                  row: int | None = None, fig: Figure | None = None):
+        if row is not None:
+            check_integer("row", row, 0)
         self.fig = (check_instance("fig", fig, Figure) if fig is not None
                     else Figure(figsize=(9.0, 7.0)))
         self.fig.set_layout_engine("constrained")
@@ -369,6 +399,10 @@ class LateralFigure:
             The row of the loop on the maps.
         """
         check_instance("loop", loop, FrictionLoop)
+        if row is not None:
+            rows = (np.shape(images.friction_coefficient.heights)[0]
+                    if isinstance(images, FrictionImages) else math.inf)
+            row = check_integer("row", row, 0, rows - 1)
         x = loop.x * _NM
         for key, values in (("trace", loop.trace), ("retrace", loop.retrace),
                             ("friction", loop.friction), ("slope", loop.slope_term)):
@@ -673,6 +707,13 @@ class ForceVolumeFigure:
 
     def __init__(self, volume: ForceVolume, names=None, fig: Figure | None = None):
         check_instance("volume", volume, ForceVolume)
+        n = volume.approach.shape[0]
+        if names is not None:
+            if not isinstance(names, (list, tuple)) or not all(isinstance(s, str) for s in names):
+                raise TypeError(f"names must be a list of str, one per material, got "
+                                f"{type(names).__name__} {names!r:.60}")
+            if len(names) != n:
+                raise ValueError(f"names must name the {n} materials, got {len(names)}")
         self.fig = (check_instance("fig", fig, Figure) if fig is not None
                     else Figure(figsize=(10.0, 6.5)))
         self.fig.set_layout_engine("constrained")

@@ -7,7 +7,7 @@ import math
 import meshcat
 import numpy as np
 
-from ..validation import check_array, check_positive, check_range
+from ..validation import check_array, check_flag, check_positive, check_range
 from .transforms import check_point, check_visualizer
 
 __all__ = ["set_camera", "CAMERA_FOV", "camera_ndc", "show_helpers", "READABLE_TEXT",
@@ -91,8 +91,9 @@ def show_helpers(vis: meshcat.Visualizer, grid: bool = True, axes: bool = True) 
         Whether to show the grid and the axes.
     """
     check_visualizer("vis", vis)
-    vis["/Grid"].set_property("visible", bool(grid))
-    vis["/Axes"].set_property("visible", bool(axes))
+    grid, axes = check_flag("grid", grid), check_flag("axes", axes)
+    vis["/Grid"].set_property("visible", grid)
+    vis["/Axes"].set_property("visible", axes)
 
 
 #: The smallest height, as a fraction of the view's height, at which a line of text in a scene

@@ -25,7 +25,7 @@ from meshcat.animation import Animation
 
 from ..cantilever import EXAGGERATION, Bending, Cantilever, check_modes
 from ..parameters import read_only, unit_scale
-from ..validation import check_instance, check_integer, check_positive, check_range
+from ..validation import check_flag, check_instance, check_integer, check_positive, check_range
 from .camera import camera_ndc, readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend, TextPlate
@@ -117,6 +117,7 @@ class CantileverScene(SceneDisplay):
                  stress_limit: float | None = None, camera: bool = True):
         check_instance("bending", bending, Bending)
         check_instance("path", path, str)
+        camera = check_flag("camera", camera)
         self.root = scene_root(vis)
         self.path = path
         self.vis = self.root[path]
@@ -132,7 +133,7 @@ class CantileverScene(SceneDisplay):
         self.scale = None
         self.mesh = None
         self.field = None
-        self.camera = bool(camera)
+        self.camera = camera
         self.camera_position = None
         self._framed_for = None
         self.update(bending, exaggeration=exaggeration)

@@ -26,7 +26,7 @@ import numpy as np
 
 from ..contact import IndentationCurve, Tip, contact_surface
 from ..parameters import read_only
-from ..validation import check_instance, check_integer, check_positive
+from ..validation import check_flag, check_instance, check_integer, check_positive
 from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .legends import ColorLegend
@@ -47,6 +47,21 @@ DEFAULTS = read_only(dict(
 _CUT_COLOR = 0xb89f7a
 
 _TIP_COLOR = 0x8a8a8a
+
+#: The largest drawn size (a length over the scene's unit) in scene units: a million keeps every
+#: vertex and the camera's distance well inside float32, the drawing's precision.
+MAX_SCENE_SIZE = 1e6
+
+
+def _check_scale(name: str, length: float, unit: float, low: float = 0.0) -> float:
+    """``length / unit``, the drawn size in scene units, or a ValueError naming both (a scene
+    too large for float32, or too small for the camera to stand off it)."""
+    size = length / unit
+    if not low < size <= MAX_SCENE_SIZE:
+        raise ValueError(f"{name} / unit (the drawn size in scene units) must be in "
+                         f"({low:g}, {MAX_SCENE_SIZE:g}], got {name}={length!r} m over "
+                         f"unit={unit!r} m = {size:.3g}")
+    return size
 
 
 def _polar_faces(n_r: int, n_t: int, closed: bool = True) -> np.ndarray:
@@ -79,7 +94,8 @@ def surface_mesh(tip, current, extent, unit, n_grid=DEFAULTS["n_grid"], *, half=
     current : IndentationCurve
         The current state (its first point is drawn).
     extent : float
-        Half the side of the drawn square in m.
+        Half the side of the drawn square in m (``extent / unit`` at most
+        :data:`MAX_SCENE_SIZE`).
     unit : float
         Metres per scene unit.
     n_grid : int
@@ -93,7 +109,9 @@ def surface_mesh(tip, current, extent, unit, n_grid=DEFAULTS["n_grid"], *, half=
         depth is the downward displacement u of each vertex in m.
     """
     extent = check_positive("extent", extent, "m")
+    _check_scale("extent", extent, check_positive("unit", unit, "m"))
     n = check_integer("n_grid", n_grid, 1, 1000)
+    half = check_flag("half", half)
     x = np.linspace(-extent, extent, 2 * n + 1)
     y = x[n:] if half else x
     rho = np.hypot(x[None, :], y[:, None])
@@ -143,7 +161,7 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     tip : Tip
         The tip shape (the pyramid gets four flat faces, the others are bodies of revolution).
     height : float
-        Drawn height in m.
+        Drawn height in m (``height / unit`` at most :data:`MAX_SCENE_SIZE`).
     unit : float
         Metres per scene unit.
     n_angular : int
@@ -158,6 +176,8 @@ def tip_mesh(tip, height, unit, n_angular=DEFAULTS["n_angular"], *, half=False):
     """
     unit = check_positive("unit", unit, "m")
     check_instance("tip", tip, Tip)
+    _check_scale("height", check_positive("height", height, "m"), unit)
+    half = check_flag("half", half)
     x, z = tip.outline(height)
     mid = x.size // 2
     r, z = x[mid:], z[mid:]  # one flank: from the apex outwards
@@ -211,7 +231,8 @@ class ContactScene(SceneDisplay):
     unit : float
         Metres per scene unit (default 20 nm).
     extent : float
-        Half the side of the drawn square of sample in m.
+        Half the side of the drawn square of sample in m; ``extent / unit`` in (0.001,
+        :data:`MAX_SCENE_SIZE`] scene units (the camera stands off it by 1.6 times that).
     camera : bool
         Place the camera to look at the contact slightly from above.
 
@@ -227,8 +248,11 @@ class ContactScene(SceneDisplay):
                  path: str = "afmsmiler/contact", unit: float = DEFAULTS["unit"],
                  extent: float = DEFAULTS["extent"], camera: bool = True):
         check_instance("tip", tip, Tip)
+        check_instance("path", path, str)
+        camera = check_flag("camera", camera)
         self.unit = check_positive("unit", unit, "m")
         self.extent = check_positive("extent", extent, "m")
+        _check_scale("extent", self.extent, self.unit, low=1e-3)  # the camera stands off
         self.root = scene_root(vis)
         self.vis = self.root[path]
         self.vis.delete()

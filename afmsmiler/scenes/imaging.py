@@ -27,7 +27,8 @@ import numpy as np
 from ..contact import Tip
 from ..parameters import UNITS, read_only
 from ..samples import Sample
-from ..validation import check_finite, check_instance, check_integer, check_positive
+from ..validation import (check_finite, check_flag, check_instance, check_integer, check_positive,
+                          check_shape)
 from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale, nice_ceil
 from .contact import tip_mesh
@@ -52,6 +53,10 @@ DEFAULTS = read_only(dict(
 
 _TIP_COLOR = 0x8a8a8a
 
+#: The tallest drawn relief, in widths of the field: an exaggeration beyond would only draw a
+#: needle (and, far beyond, vertices past float32).
+MAX_RELIEF = 1e3
+
 
 def decimation(shape, max_vertices: int = DEFAULTS["max_vertices"]) -> int:
     """The stride s (every s-th row and column) that leaves at most ``max_vertices`` vertices.
@@ -69,11 +74,22 @@ def decimation(shape, max_vertices: int = DEFAULTS["max_vertices"]) -> int:
         s >= 1 with ceil(rows / s) ceil(columns / s) <= max_vertices.
     """
     max_vertices = check_integer("max_vertices", max_vertices, 4, MAX_VERTICES)
-    rows, cols = (check_integer("shape", int(n), 1) for n in shape)
+    rows, cols = check_shape("shape", shape)
     s = max(1, math.isqrt(rows * cols // max_vertices))
     while math.ceil(rows / s) * math.ceil(cols / s) > max_vertices:
         s += 1
     return s
+
+
+def _check_exaggeration(exaggeration, width: float, relief: float) -> float:
+    """A factor given on the heights, or a ValueError naming it: > 0, and drawing the relief at
+    most :data:`MAX_RELIEF` times the field's width tall (beyond, the vertices leave float32)."""
+    exaggeration = check_positive("exaggeration", exaggeration)
+    if relief > 0 and exaggeration * relief > MAX_RELIEF * width:
+        raise ValueError(f"exaggeration must be in (0, {MAX_RELIEF * width / relief:.3g}] for "
+                         f"this sample (its relief of {relief:.3g} m drawn at most {MAX_RELIEF:g} "
+                         f"times its width of {width:.3g} m tall), got {exaggeration:g}")
+    return exaggeration
 
 
 def auto_exaggeration(width: float, relief: float, fraction: float = DEFAULTS["relief"]) -> float:
@@ -136,7 +152,8 @@ class ImagingScene(SceneDisplay):
     path : str
         Path of this scene in the viewer.
     exaggeration : float, optional
-        Factor on all heights (> 0); default :func:`auto_exaggeration` of the sample.
+        Factor on all heights (> 0, drawing the sample's relief at most :data:`MAX_RELIEF`
+        times its width tall); default :func:`auto_exaggeration` of the sample.
     max_vertices : int
         The most vertices of each field's mesh (4 to
         :data:`~afmsmiler.scenes.meshes.MAX_VERTICES`); larger images are decimated.
@@ -165,6 +182,8 @@ class ImagingScene(SceneDisplay):
                              f"{sample.heights.shape}")
         if tip is not None:
             check_instance("tip", tip, Tip)
+        check_instance("path", path, str)
+        camera = check_flag("camera", camera)
         self.max_vertices = check_integer("max_vertices", max_vertices, 4, MAX_VERTICES)
         rows, cols = sample.heights.shape
         self.width = (cols - 1) * sample.pixel_size
@@ -172,7 +191,7 @@ class ImagingScene(SceneDisplay):
         self.unit = self.width / DEFAULTS["side"]
         relief = float(np.ptp(sample.heights))
         self.exaggeration = (auto_exaggeration(self.width, relief) if exaggeration is None
-                             else check_positive("exaggeration", exaggeration))
+                             else _check_exaggeration(exaggeration, self.width, relief))
         self.sample = sample
         self.root = scene_root(vis)
         self.vis = self.root[path]

@@ -106,6 +106,7 @@ def legend_title(scale: ColorScale, exponent: int = 0) -> str:
         The power of ten shared by the tick labels (0: none).
     """
     check_instance("scale", scale, ColorScale)
+    exponent = check_integer("exponent", exponent, -330, 330)  # the powers of ten of a float
     if exponent == 0:
         return scale.title
     unit = f" {scale.unit}" if scale.unit else ""
@@ -124,7 +125,7 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     scale : ColorScale
         The scale to draw.
     size_px : (int, int)
-        Image width and height in pixels (at least 100 x 40).
+        Image width and height in pixels (100 to 4096 wide, 40 to 4096 high).
     n_ticks : int
         Evenly spaced tick labels from ``vmin`` to ``vmax`` (2 to 21).
     """
@@ -132,8 +133,11 @@ def colorbar_png(scale: ColorScale, size_px=(480, 120), n_ticks: int = 5) -> byt
     from PIL import Image, ImageDraw
 
     n_ticks = check_integer("n_ticks", n_ticks, 2, 21)
-    width = check_integer("width_px", int(size_px[0]), 100, 4096)
-    height = check_integer("height_px", int(size_px[1]), 40, 4096)
+    if not isinstance(size_px, (tuple, list)) or len(size_px) != 2:
+        raise ValueError(f"size_px must be (width, height) in pixels, at least 100 x 40, got "
+                         f"{size_px!r:.60}")
+    width = check_integer("size_px[0] (the width)", size_px[0], 100, 4096)
+    height = check_integer("size_px[1] (the height)", size_px[1], 40, 4096)
     margin = width // 16
     top, bottom = int(0.32 * height), int(0.56 * height)
     img = np.full((height, width, 3), 255, dtype=np.uint8)
@@ -202,9 +206,9 @@ class TextPlate:
 
     def __init__(self, vis: meshcat.Visualizer, text: str, width: float = 1.0):
         check_visualizer("vis", vis)
+        self.text = check_instance("text", text, str)
         self.vis = vis
         self.width = check_positive("width", width)
-        self.text = str(text)
         view = _view(vis)
         if view is not None:  # screen-space text in the view's legend: never tilted or clipped
             view.set_legend_part(vis.path.lower(), f"<div>{html.escape(self.text)}</div>")
@@ -225,10 +229,12 @@ class TextPlate:
 def legend_html(scale: ColorScale, n_stops: int = 9, width_px: int = 240) -> str:
     """The legend of ``scale`` as an HTML snippet: a CSS gradient bar, its limits and its unit.
 
-    ``n_stops`` colors (2 to 64) make the gradient; the bar is ``width_px`` pixels wide.
+    ``n_stops`` colors (2 to 64) make the gradient; the bar is ``width_px`` pixels wide (40 to
+    4096).
     """
     check_instance("scale", scale, ColorScale)
     n_stops = check_integer("n_stops", n_stops, 2, 64)
+    width_px = check_integer("width_px", width_px, 40, 4096)
     stops = scale.rgb(np.linspace(scale.vmin, scale.vmax, n_stops))
     css = ", ".join(f"rgb({int(255 * r)},{int(255 * gg)},{int(255 * b)})" for r, gg, b in stops)
     ticks = ([scale.vmin, 0.0, scale.vmax] if scale.vmin < 0 < scale.vmax

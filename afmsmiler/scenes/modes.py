@@ -39,7 +39,8 @@ import numpy as np
 from meshcat.animation import Animation
 
 from ..parameters import read_only, unit_scale
-from ..validation import check_array, check_choice, check_integer, check_positive, check_range
+from ..validation import (check_array, check_choice, check_flag, check_instance, check_integer,
+                          check_positive, check_range)
 from .camera import set_camera, show_helpers
 from .legends import text_png
 from .shapes import cone, polyline
@@ -165,13 +166,15 @@ class ModesScene(SceneDisplay):
     def __init__(self, kind: str = "tapping", *, vis: meshcat.Visualizer | None = None,
                  path: str = "afmsmiler/modes", camera: bool = True):
         self.kind = check_choice("kind", kind, KINDS)
+        check_instance("path", path, str)
+        camera = check_flag("camera", camera)
         self.root = scene_root(vis)
         self.path = path
         self.vis = self.root[path]
         self.caption = ""
         self.factors = {}
         self.animation = None
-        self._camera = bool(camera)
+        self._camera = camera
         self.draw()
 
     # -- the instrument -----------------------------------------------------------------------

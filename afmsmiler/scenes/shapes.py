@@ -21,6 +21,12 @@ def _material(color, opacity=1.0, **kwargs):
     return g.MeshLambertMaterial(color=color, opacity=opacity, **kwargs)
 
 
+def _check_color(color) -> int:
+    """``color`` as an int 0xRRGGBB, or a ValueError naming it (a float, None or a string would
+    reach the browser as a colour three.js cannot read)."""
+    return check_integer("color (0xRRGGBB)", color, 0, 0xFFFFFF)
+
+
 
 def _show(obj, visible: bool) -> None:
     # meshcat's server appends every set_property to the node's list (kept for static_html), so
@@ -48,6 +54,7 @@ class Arrow:
     def __init__(self, vis: meshcat.Visualizer, color: int = 0x202020, radius: float = 0.01,
                  head_length: float = 0.06):
         check_visualizer("vis", vis)
+        color = _check_color(color)
         self.vis = vis
         self.radius = check_positive("radius", radius)
         self.head_length = check_positive("head_length", head_length)
@@ -107,6 +114,7 @@ class Segment:
     def __init__(self, vis: meshcat.Visualizer, color: int = 0xff2020, radius: float = 0.005,
                  opacity: float = 1.0):
         check_visualizer("vis", vis)
+        color = _check_color(color)
         self.vis = vis
         self.radius = check_positive("radius", radius)
         opacity = check_range("opacity", opacity, 0.0, 1.0, low_inclusive=False)
@@ -157,7 +165,7 @@ class Tube:
                  sides: int = 6):
         check_visualizer("vis", vis)
         self.vis = vis
-        self.color = color
+        self.color = _check_color(color)
         self.radius = check_positive("radius", radius)
         self.sides = check_integer("sides", sides, 3, 32)
 
@@ -221,6 +229,7 @@ def cone(vis: meshcat.Visualizer, height: float, radius: float, color: int = 0x8
     check_visualizer("vis", vis)
     height = check_positive("height", height)
     radius = check_positive("radius", radius)
+    color = _check_color(color)
     # meshcat's cone points along +y with its centre at the origin: turn it apex-down and lift it
     fix = translation([0.0, 0.0, height / 2]) @ np.array(
         [[1, 0, 0, 0], [0, 0, 1, 0], [0, -1, 0, 0], [0, 0, 0, 1]], dtype=float)
@@ -235,6 +244,8 @@ def sphere(vis: meshcat.Visualizer, radius: float, color: int = 0x808080,
     (0xRRGGBB) and ``opacity`` in (0, 1]."""
     check_visualizer("vis", vis)
     radius = check_positive("radius", radius)
+    color = _check_color(color)
+    opacity = check_range("opacity", opacity, 0.0, 1.0, low_inclusive=False)
     vis.set_object(g.Sphere(radius), _material(color, opacity))
 
 
@@ -244,6 +255,7 @@ def polyline(vis: meshcat.Visualizer, points, color: int = 0x202020) -> None:
     WebGL draws lines one pixel wide whatever their width; use :class:`Segment` for a thick one.
     """
     check_visualizer("vis", vis)
+    color = _check_color(color)
     pts = check_array("points", points, ndim=2)
     if pts.shape[1] != 3 or pts.shape[0] < 2:
         raise ValueError(f"points must have shape (N >= 2, 3), got {pts.shape}")

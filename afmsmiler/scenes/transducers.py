@@ -47,8 +47,8 @@ import numpy as np
 
 from ..parameters import read_only
 from ..transducers.base import Operation
-from ..validation import (check_array, check_instance, check_integer, check_positive,
-                          check_range)
+from ..validation import (check_array, check_flag, check_instance, check_integer,
+                          check_positive, check_range)
 from .camera import readable_width, set_camera, show_helpers
 from .colors import ColorScale
 from .legends import TextPlate
@@ -330,6 +330,8 @@ class TransducerScene(SceneDisplay):
     def __init__(self, operation: Operation, *, vis: meshcat.Visualizer | None = None,
                  path: str = "afmsmiler/transducers", camera: bool = True):
         check_instance("operation", operation, Operation)
+        check_instance("path", path, str)
+        camera = check_flag("camera", camera)
         self.root = scene_root(vis)
         self.path = path
         self.vis = self.root[path]
