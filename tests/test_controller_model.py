@@ -412,7 +412,7 @@ def test_bad_scan_input():
         scan_image(loop, np.zeros((2, 3)), 0.0, speed=1e-5, setpoint=SETPOINT)
     with pytest.raises(ValueError, match="heights must be a 2-D array"):
         scan_image(loop, np.zeros(3), 1e-9, speed=1e-5, setpoint=SETPOINT)
-    with pytest.raises(ValueError, match="chained must be True or False"):
+    with pytest.raises(TypeError, match="chained must be True or False"):
         scan_image(loop, np.zeros((2, 3)), 1e-9, speed=1e-5, setpoint=SETPOINT, chained="yes")
     with pytest.raises(TypeError):
         scan_image(loop, np.zeros((2, 3)), 1e-9, speed=1e-5, setpoint=SETPOINT, rows_first=True)

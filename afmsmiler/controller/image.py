@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ..validation import check_array, check_instance, check_integer, check_range
+from ..validation import check_flag, check_array, check_instance, check_integer, check_range
 from .loop import PARAMETERS, ContactLoop, ScanLine, ScanPass, check_size
 from .polygon import polygon_response
 
@@ -185,8 +185,7 @@ def scan_image(loop: ContactLoop, heights, pixel_size: float, *,
                              low_inclusive=False)
     speed = PARAMETERS["speed"].check(speed)
     setpoint = PARAMETERS["setpoint"].check(setpoint)
-    if not isinstance(chained, (bool, np.bool_)):
-        raise ValueError(f"chained must be True or False, got {chained!r}")
+    chained = check_flag("chained", chained)
     rows, n = h.shape
     dt = pixel_size / speed
     path = np.concatenate((h, h[:, ::-1][:, 1:]), axis=1)  # trace then retrace, (rows, 2n - 1)

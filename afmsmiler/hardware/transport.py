@@ -26,7 +26,7 @@ import time
 import tty
 from typing import Protocol, runtime_checkable
 
-from ..validation import check_integer, check_real
+from ..validation import check_flag, check_integer, check_real
 from .errors import TransportClosed, TransportTimeout
 from .framing import as_bytes
 
@@ -515,9 +515,7 @@ class FaultyTransport:
         self.corrupt, self.garbage, self.drop, self.partial = corrupt, garbage, drop, partial
         self.unplug_after_lines = unplug_after_lines
         self.silent_after_lines = silent_after_lines
-        if not isinstance(writes, bool):
-            raise TypeError(f"writes must be a bool, got {writes!r}"[:160])
-        self.writes = writes
+        self.writes = check_flag("writes", writes)
         seed = check_integer("seed", seed, -2 ** 63, 2 ** 63)
         self._read_rng = random.Random(seed)
         self._write_rng = random.Random(seed + 0x5EED)

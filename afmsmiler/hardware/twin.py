@@ -17,7 +17,7 @@ from __future__ import annotations
 import threading
 import time
 
-from ..validation import check_finite, check_positive
+from ..validation import check_flag, check_finite, check_positive
 from .errors import ChecksumError, ErrorCode, FrameError, TransportClosed, TransportTimeout
 from .framing import (PROTOCOL_VERSION, Frame, decode_frame, encode_frame, error_frame,
                       reply_frame)
@@ -332,8 +332,7 @@ def open_twin(twin: Twin, *, pty: bool = False, time_scale: float = 0.0):
     b'1 OK ID TWIN 1 0.1.0*E3'
     >>> server.stop(); host.close()
     """
-    if not isinstance(pty, bool):
-        raise TypeError(f"pty must be a bool, got {pty!r}"[:160])
+    pty = check_flag("pty", pty)
     if pty:
         link = PtyLink()
         server = TwinServer(twin, link.device_end, time_scale=time_scale)

@@ -20,7 +20,7 @@ from matplotlib.patches import Rectangle
 
 from ..parameters import unit_scale
 from ..samples import Sample
-from ..validation import (check_instance, check_integer, check_positive, check_range,
+from ..validation import (check_flag, check_instance, check_integer, check_positive, check_range,
                           check_writable_path)
 
 __all__ = ["PngExport", "save_png", "scale_bar_length", "scale_bar_label", "MAX_PNG_SIDE",
@@ -173,9 +173,7 @@ def save_png(sample: Sample, path, *, scale_bar: bool = True, cmap: str = "afmho
         colormap = matplotlib.colormaps[cmap]
     except (KeyError, TypeError):
         raise ValueError(f"cmap must be a matplotlib colormap name, got {cmap!r}") from None
-    for name, flag in (("scale_bar", scale_bar), ("colorbar", colorbar)):
-        if not isinstance(flag, (bool, np.bool_)):
-            raise TypeError(f"{name} must be True or False, got {flag!r}")
+    scale_bar, colorbar = check_flag("scale_bar", scale_bar), check_flag("colorbar", colorbar)
     rows, cols = h.shape
     aspect = sample.pixel_size_y / sample.pixel_size
     longest = max(cols, rows * aspect)

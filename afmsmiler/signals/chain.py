@@ -50,7 +50,7 @@ from ..brownian import mechanical_response, thermal_noise_density
 from ..parameters import Parameter, read_only
 from ..transducers import Electrothermal, Piezoresistive
 from ..transducers.base import BOLTZMANN
-from ..validation import check_instance, check_integer, check_positive
+from ..validation import check_flag, check_instance, check_integer, check_positive
 from .lockin import LIMITS
 
 __all__ = ["ActiveProbe", "ChainRun", "simulate", "DC_VOLTAGE", "AC_VOLTAGE",
@@ -367,8 +367,7 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     spp = check_integer("samples_per_period", samples_per_period, int(SAMPLES_PER_PERIOD.low),
                         int(SAMPLES_PER_PERIOD.high))
     duration = RECORD_DURATION.check(record_duration)
-    if not isinstance(noise, bool):
-        raise TypeError(f"noise must be True or False, got {noise!r}")
+    noise = check_flag("noise", noise)
     seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
     a, s = probe.actuator, probe.sensor
     f = ratio * probe.resonance_frequency / 2

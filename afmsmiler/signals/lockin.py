@@ -401,9 +401,10 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
     order = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
     shape = check_choice("shape", shape, REFERENCES)
     filter = check_choice("filter", filter, FILTERS)
+    phase = check_finite("phase", phase, "rad")
     f_ref = n * f
     if s.size <= _REMEMBERED:
-        ref_i, ref_q = _references(s.size, fs, f_ref, shape, float(phase))
+        ref_i, ref_q = _references(s.size, fs, f_ref, shape, phase)
     else:
         ref_i, ref_q = reference_waveforms(s.size, sample_rate=fs, frequency=f_ref,
                                            shape=shape, phase=phase)

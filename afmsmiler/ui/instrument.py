@@ -31,7 +31,7 @@ from ..instrument.walkthrough import (SETUP, STEP_TOLERANCES, STEPS, SetupState,
 from ..parameters import read_only, shown
 from ..scenes.instrument import INSTRUMENTS
 from ..scenes.instrument import PARAMETERS as SCENE
-from ..validation import check_choice
+from ..validation import check_flag, check_choice
 from ..plots.instrument import InstrumentFigure
 from .controls import control
 from .panel import Panel
@@ -137,8 +137,7 @@ class InstrumentPanel(Panel):
                                      description="part")
         c["housing_opacity"] = control(SCENE["housing_opacity"])
         c["explode_fraction"] = control(SCENE["explode_fraction"])
-        if not isinstance(mounted, bool):
-            raise TypeError(f"mounted must be True or False, got {mounted!r}")
+        mounted = check_flag("mounted", mounted)
         c["mounted"] = widgets.Checkbox(value=mounted, description="probe mounted")
         for name in _KNOB_NAMES:
             c[name] = control(KNOBS[name])

@@ -25,7 +25,7 @@ import numpy as np
 from ...parameters import Parameter, read_only
 from ...samples import Sample
 from ..protocol import _lookup
-from ...validation import check_choice, check_instance, check_integer, check_positive
+from ...validation import check_flag, check_choice, check_instance, check_integer, check_positive
 from ..errors import (DeviceError, DeviceNotResponding, FrameError, HardwareError, ReplyError,
                       TransportTimeout)
 from ..framed import FramedDevice
@@ -675,8 +675,7 @@ class MacroAFM(FramedDevice):
         DeviceNotResponding
             If the device stops answering, with ``.partial``.
         """
-        if not isinstance(start, bool):
-            raise TypeError(f"start must be a bool, got {start!r}"[:160])
+        start = check_flag("start", start)
         info = self._require_info()
         nx, ny = self.get(Param.NX), self.get(Param.NY)
         pitch = TABLE[Param.PITCH].to_si(self.get(Param.PITCH))
