@@ -282,6 +282,10 @@ class _Loop:
 
     def __init__(self):
         self.ready = []
+        self.now = 0.0  # its clock stands still unless a test moves it
+
+    def time(self):
+        return self.now
 
     def call_soon(self, callback, *args):
         self.ready.append((callback, args))
@@ -342,6 +346,22 @@ def test_a_drag_queued_while_the_kernel_was_busy_runs_the_model_once_for_its_las
     live._handle_message(live, {"control": "length", "value": steps[0]}, [])
     loop.run()
     assert p.calls[-1][:2] == (steps[0], 200.0) and len(p.calls) == 3
+
+
+def test_moves_that_keep_coming_still_run_the_model(monkeypatch):
+    # a steady stream of moves (a mouse drag on a loop slowed by a busy thread) never leaves the
+    # loop quiet; the deferred update runs after panel._MAX_DEFER s all the same
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _linked_lever()
+    step = p.controls["length"].step
+    for k in range(1, 40):
+        live._handle_message(live, {"control": "length", "value": 225.0 + k * step}, [])
+        loop.turn()
+        loop.now += 0.004
+    assert 2 <= len(p.calls) - 1 <= 4  # one run per _MAX_DEFER (156 ms of moves), not 39
+    loop.run()
+    assert p.calls[-1][0] == pytest.approx(225.0 + 39 * step)
 
 
 def test_without_a_live_loop_every_move_updates_at_once_and_a_cell_set_wins():

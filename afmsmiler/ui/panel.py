@@ -66,6 +66,9 @@ def running_as_notebook() -> bool:
 #: :meth:`Panel._settle`): ipykernel reads one queued message per turn or two (the shell channel's
 #: thread hands them to the main thread's stream, which reads one per event and runs it as a task).
 _QUIET_TURNS = 3
+#: Seconds a deferred update waits at most for moves to stop (a steady stream of moves, a mouse
+#: drag at 60 Hz on a loop slowed by a busy thread, must not starve the model).
+_MAX_DEFER = 0.05
 
 
 def _live_loop():
@@ -310,6 +313,7 @@ class Panel:
         #: Seconds each of the last updates took in the kernel (:meth:`_run`; the benchmark's
         #: kernel step), newest last.
         self.update_seconds = collections.deque(maxlen=1000)
+        self.updates = 0  #: Runs of :meth:`update` through the contract (:meth:`_run`).
         #: Moves the browser sent (forwarded steps and slider updates); with :attr:`model_runs`
         #: it shows how many a drag's coalescing folded together.
         self.moves_received = 0
@@ -475,6 +479,7 @@ class Panel:
             finally:
                 self._converted = False
                 self.update_seconds.append(time.perf_counter() - start)
+                self.updates += 1
         self._applied = dict(values)
 
     def set(self, **values) -> None:
@@ -600,19 +605,20 @@ class Panel:
             self._flush()
         elif not self._deferred:
             self._deferred = True
-            loop.call_soon(self._settle, loop, self._moves, 0)
+            loop.call_soon(self._settle, loop, self._moves, 0, loop.time() + _MAX_DEFER)
 
-    def _settle(self, loop, seen: int, quiet: int) -> None:
+    def _settle(self, loop, seen: int, quiet: int, until: float) -> None:
         """Run the deferred update once :data:`_QUIET_TURNS` turns of the loop brought no move.
 
         ipykernel handles queued messages one at a time, a turn or two of its loop each, so an
         update run at the first turn would see only the first of the moves that queued behind
         the last model run; waiting for a few quiet turns (microseconds when nothing is queued)
-        lets every queued move land first.
+        lets every queued move land first. Moves that keep coming run it after
+        :data:`_MAX_DEFER` s anyway.
         """
-        if self._moves != seen or quiet < _QUIET_TURNS:
+        if (self._moves != seen or quiet < _QUIET_TURNS) and loop.time() < until:
             quiet = 0 if self._moves != seen else quiet + 1
-            loop.call_soon(self._settle, loop, self._moves, quiet)
+            loop.call_soon(self._settle, loop, self._moves, quiet, until)
             return
         self._deferred = False
         self._flush()  # a failure is shown under the panel (_apply, live)

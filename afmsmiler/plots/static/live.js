@@ -596,6 +596,12 @@ function decodeLut(b64) {
   return out;
 }
 
+// append v to a log of the last few hundred values
+function keep(log, v) {
+  log.push(v);
+  if (log.length > 1000) log.splice(0, 500);
+}
+
 class Figure {
   constructor(root) {
     this.root = root;
@@ -609,7 +615,11 @@ class Figure {
     this.scheduled = false;
     this.drawnSeq = null; // drawn in the last animation frame, painted once the next one starts
     this.received = 0; // frames received from the kernel (push)
-    this.paintedSeqs = []; // the kernel's sequence number of each frame painted, in order
+    this.painted = 0; // frames known painted
+    // the kernel's sequence numbers of the last frames received and painted, in order (the
+    // browser tests compare them: every frame received is painted once)
+    this.receivedSeqs = [];
+    this.paintedSeqs = [];
     root.dataset.painted = "0";
   }
 
@@ -692,6 +702,7 @@ class Figure {
   // hidden page (no animation frames) or a backlog past MAX_PENDING keeps the newest alone.
   push(layout, frame, buffer) {
     this.received += 1;
+    keep(this.receivedSeqs, frame.seq);
     this.pending.push([layout, frame, buffer]);
     if (this.pending.length > MAX_PENDING || document.hidden) this.pending = this.pending.slice(-1);
     this.schedule();
@@ -706,9 +717,9 @@ class Figure {
   tick() {
     this.scheduled = false;
     if (this.drawnSeq !== null) { // drawn in the previous animation frame: it has been painted
-      this.paintedSeqs.push(this.drawnSeq);
-      if (this.paintedSeqs.length > 1000) this.paintedSeqs.splice(0, 500);
-      this.root.dataset.painted = String(Number(this.root.dataset.painted) + 1);
+      keep(this.paintedSeqs, this.drawnSeq);
+      this.painted += 1;
+      this.root.dataset.painted = String(this.painted);
       this.drawnSeq = null;
     }
     if (!this.pending.length) return;
