@@ -906,6 +906,29 @@ def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
                       values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
 
 
+def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
+          quiet: float = 1.5, timeout: float = 20.0) -> DragResult:
+    """As :func:`drag`, the ``n`` key presses dispatched in one task of the page.
+
+    Playwright's presses each wait for a round trip to the browser (a few ms, more on a busy
+    machine), so the kernel often answers one before the next arrives; dispatched at once, the
+    moves reach the kernel while it runs the model for the first, and queue behind it.
+    """
+    page.evaluate("([sel, q, t]) => window.__afm.armDrag(sel, q, t)",
+                  [selector, quiet * 1000, timeout * 1000])
+    slider.focus()
+    slider.evaluate(
+        """(h, [key, n]) => {
+             for (let i = 0; i < n; i++) for (const type of ['keydown', 'keyup'])
+               h.dispatchEvent(new KeyboardEvent(type, {key, bubbles: true, cancelable: true}));
+           }""", [key, n])
+    r = page.evaluate("() => window.__afm.current.promise")
+    seqs = [s for s in r["seqs"] if s.strip(",")]
+    return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
+                      last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
+                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
+
+
 # -- static export -------------------------------------------------------------------------
 def export_html(notebook: Path, outdir: Path, *, timeout: float = 300.0) -> Path:
     """``jupyter nbconvert --to html --execute`` a copy of ``notebook`` into ``outdir``."""

@@ -150,6 +150,44 @@ def test_lab_panel_follows_its_slider(lab, name):
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
 
 
+@pytest.mark.skipif(not LIVE, reason="a live figure logs the frames it paints")
+def test_lab_a_burst_of_presses_paints_every_frame_the_kernel_sent_once(lab):
+    """Issue 24: 15 presses at once on the contact panel's slider queue behind the kernel's
+    model run; the kernel runs it for the newest value (it may coalesce the moves), the figure
+    paints each frame it sent exactly once (the sequence numbers it logs after each paint), the
+    last one painted is the kernel's last, and it is for the value the slider shows."""
+    server, page = lab
+    e = B.PANELS["contact"]
+    B.open_lab(page, server, e.notebook)
+    B.run_all(page)
+    slider = B.find_control(page, e)
+    B.focus_panel(page, slider, SELECTOR)
+    key, _ = B.keys(slider)
+    v = e.variable
+
+    def kernel(code):
+        return B.kernel_eval(page, code).strip()
+
+    before = int(kernel(f"print({v}.live.frames_sent)"))
+    start = _shown(B.slider_value(slider))
+    result = B.burst(page, slider, key, DRAG, selector=SELECTOR, timeout=DRAG_TIMEOUT)
+    assert not result.timed_out, f"still drawing after {DRAG_TIMEOUT:g} s"
+    B.settle(page, SELECTOR, quiet=0.5, timeout=5)
+    sent = int(kernel(f"print({v}.live.frames_sent)"))
+    painted = [f["painted"] for f in result.frames if f]
+    assert len(painted) == 1, result.frames  # the panel's one live figure
+    assert painted[0] == list(range(before + 1, sent + 1)), \
+        f"the kernel sent frames {before + 1}..{sent}, the figure painted {painted[0]}"
+    assert result.painted_once, result.frames
+    shown = _shown(B.slider_value(slider))
+    assert shown != start, f"{DRAG} presses of {key} did not move the slider"
+    ran = float(kernel(f"print(repr({v}._applied[{e.slider!r}]))"))
+    assert math.isclose(ran, shown, rel_tol=5e-3, abs_tol=1e-9), \
+        f"the slider shows {shown}, the last frame is for {ran}"
+    assert not result.jumped_back, result.values
+    assert B.lab_errors(page) == []
+
+
 @pytest.mark.parametrize("name", NAMES)
 def test_voila_panel_follows_its_slider(voila, name):
     server, page = voila
