@@ -20,7 +20,9 @@ points, 166 kB a frame, rasterised in 27-44 ms). The artists keep the full data 
 
 A panel links its sliders (:meth:`LiveFigure.link`): the browser then forwards every step of a
 drag to the kernel as a message of the figure (ipywidgets itself merges the moves made while one
-update is in flight), and paints every frame that comes back, one per animation frame.
+update is in flight); the panel runs the model once for the steps that queued while it was busy
+(:meth:`afmsmiler.ui.panel.Panel._move`), and the browser paints every frame that comes back
+exactly once, one per animation frame.
 
 Examples
 --------
@@ -612,8 +614,9 @@ class LiveFigure(anywidget.AnyWidget):
         ipywidgets keeps one update of a widget in flight and merges the moves made meanwhile,
         so a quick drag reached the kernel a few times in 15 steps. Linked sliders send each value
         they take in the browser as a message of this widget, which is not merged, and
-        ``on_control`` runs the model for it; the slider's own (merged) update still arrives and
-        finds its value applied. Only sliders are linked (a drop-down syncs an index).
+        ``on_control`` takes it (a panel coalesces the steps that queued while its model ran,
+        and runs it for the newest); the slider's own (merged) update still arrives and finds
+        its value applied. Only sliders are linked (a drop-down syncs an index).
 
         Parameters
         ----------

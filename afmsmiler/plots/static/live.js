@@ -817,7 +817,8 @@ function drawStatic(root, layout, frame, base64) {
 // Every step of a slider reaches the kernel: ipywidgets keeps one update of a widget in flight
 // and merges the moves made meanwhile, so a quick drag reached the model 3 times in 15 steps.
 // The controls the kernel links (LiveFigure.link) send each new value as a custom message of this
-// widget, which is not merged; the kernel runs the model for each and this view paints each frame.
+// widget, which is not merged; the kernel runs the model for the newest of the steps that queued
+// while it was busy (afmsmiler/ui/panel.py) and this view paints each frame it sends once.
 // Linked once per model (not per view), in anywidget's initialize.
 function initialize({ model }) {
   let cleanup = [];
