@@ -724,9 +724,14 @@ class Figure {
     }
     if (!this.pending.length) return;
     const [layout, frame, buffer] = this.pending.shift();
-    this.draw(layout, frame, buffer);
-    this.drawnSeq = frame.seq === undefined ? -1 : frame.seq;
-    this.schedule(); // the next frame, and the paint of this one
+    // then the next frame, and the paint of this one (a frame that failed to draw does not stop
+    // the ones after it)
+    try {
+      this.draw(layout, frame, buffer);
+      this.drawnSeq = frame.seq === undefined ? -1 : frame.seq;
+    } finally {
+      this.schedule();
+    }
   }
 
   draw(layout, frame, buffer) {
