@@ -313,8 +313,9 @@ class Panel:
         #: Seconds each of the last updates took in the kernel (:meth:`_run`; the benchmark's
         #: kernel step), newest last.
         self.update_seconds = collections.deque(maxlen=1000)
-        self.updates = 0  #: Runs of :meth:`update` through the contract (:meth:`_run`).
-        #: Moves the browser sent (forwarded steps and slider updates); with :attr:`model_runs`
+        #: Runs of :meth:`update` through the contract (:meth:`_run`).
+        self.updates = 0
+        #: Moves the browser sent (forwarded steps and slider updates); with :attr:`updates`
         #: it shows how many a drag's coalescing folded together.
         self.moves_received = 0
         self._forwarded = {}  # name -> (control, value): the newest step the browser forwarded
