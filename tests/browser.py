@@ -405,6 +405,7 @@ afm.arm = (sel, mode, timeoutMs) => {
     : (root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel)));
   if (obs) for (const w of watched) obs.observe(w, {subtree: true, childList: true,
                                                      characterData: true, attributes: true});
+  const figs = () => (mode === 'text' ? [] : watched).map(f => f.afmFigure).filter(f => f);
   const onKey = () => { if (st.t0 === null) st.t0 = performance.now(); };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
@@ -425,7 +426,12 @@ afm.arm = (sel, mode, timeoutMs) => {
         if (observed) dirty = false;
       }
       if (changed) {
-        finish({dt: Math.max(ts, st.t0) - st.t0, frame: ts, keydown: st.t0,
+        // a live figure draws in an animation-frame callback, painted in that same frame: the
+        // change is dated by that frame's time, as the floor's text is by the frame after its
+        // mutation (both: the frame whose rendering shows it), not by this later check
+        const drawn = figs().map(f => f.drawnAt).filter(t => t != null && t >= st.t0);
+        const at = drawn.length ? Math.min(ts, Math.max(...drawn)) : ts;
+        finish({dt: Math.max(at, st.t0) - st.t0, frame: at, keydown: st.t0,
                 readout: tRead === null ? null : Math.max(tRead, st.t0) - st.t0});
       } else if (now - start > timeoutMs) {
         finish({dt: null, keydown: st.t0});

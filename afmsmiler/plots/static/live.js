@@ -620,6 +620,7 @@ class Figure {
     // browser tests compare them: every frame received is painted once)
     this.receivedSeqs = [];
     this.paintedSeqs = [];
+    this.drawnAt = null; // the requestAnimationFrame time of the last frame drawn
     root.dataset.painted = "0";
   }
 
@@ -711,10 +712,10 @@ class Figure {
   schedule() {
     if (this.scheduled) return;
     this.scheduled = true;
-    requestAnimationFrame(() => this.tick());
+    requestAnimationFrame((ts) => this.tick(ts));
   }
 
-  tick() {
+  tick(ts) {
     this.scheduled = false;
     if (this.drawnSeq !== null) { // drawn in the previous animation frame: it has been painted
       keep(this.paintedSeqs, this.drawnSeq);
@@ -729,6 +730,8 @@ class Figure {
     try {
       this.draw(layout, frame, buffer);
       this.drawnSeq = frame.seq === undefined ? -1 : frame.seq;
+      // the time of the animation frame that paints it (the browser tests date a change by it)
+      this.drawnAt = ts;
     } finally {
       this.schedule();
     }
