@@ -130,3 +130,17 @@ def test_the_q_control_panel_sends_a_quarter_of_its_points_drawn_alike():
             _check_envelope(x, y, xs, ys, ax.get_xlim(), _columns(p.fig, ax),
                             ax.get_xscale())
     assert full > 20_000 and sent < full / 3
+
+
+@pytest.mark.parametrize("kwargs, message", [
+    (dict(x=[0.0, 1.0], y=[0.0]), "x and y must have one length, got 2 and 1"),
+    (dict(lim=(1.0, 1.0)), "lim must be two distinct finite numbers"),
+    (dict(lim=(0.0, float("nan"))), "lim must be a finite"),
+    (dict(columns=0), "columns must be an integer"),
+    (dict(xscale="logit"), "xscale must be one of"),
+])
+def test_decimate_names_what_it_cannot_take(kwargs, message):
+    args = dict(x=[0.0, 1.0], y=[0.0, 1.0], lim=(0.0, 1.0), columns=10)
+    args.update(kwargs)
+    with pytest.raises(ValueError, match=message):
+        decimate(**args)

@@ -57,7 +57,7 @@ from matplotlib.figure import Figure
 from matplotlib.patches import Polygon, Rectangle
 from matplotlib.ticker import FixedLocator
 
-from ..validation import check_instance
+from ..validation import check_choice, check_finite, check_instance, check_integer, check_positive
 
 __all__ = ["Description", "LiveFigure", "decimate", "describe", "static_html"]
 
@@ -209,6 +209,12 @@ def decimate(x, y, *, lim, columns: int, xscale: str = "linear", linthresh: floa
     numpy.ndarray
         Indices into ``x`` and ``y``, increasing: the points to send.
 
+    Raises
+    ------
+    ValueError
+        If ``x`` and ``y`` differ in length, ``lim`` is not two distinct finite numbers,
+        ``columns`` is not a positive integer or ``xscale`` is not one of the three.
+
     Examples
     --------
     >>> x = np.linspace(0.0, 1.0, 10_001)
@@ -217,6 +223,14 @@ def decimate(x, y, *, lim, columns: int, xscale: str = "linear", linthresh: floa
     (True, 0, 10000)
     """
     x, y = np.asarray(x, dtype=float).ravel(), np.asarray(y, dtype=float).ravel()
+    if x.size != y.size:
+        raise ValueError(f"x and y must have one length, got {x.size} and {y.size}")
+    columns = check_integer("columns", columns, 1)
+    check_choice("xscale", xscale, ("linear", "log", "symlog"))
+    linthresh = check_positive("linthresh", linthresh)
+    lim = tuple(check_finite("lim", v) for v in lim)
+    if len(lim) != 2 or lim[0] == lim[1]:
+        raise ValueError(f"lim must be two distinct finite numbers, got {lim}")
     n = x.size
     if n == 0:
         return np.zeros(0, dtype=np.intp)
