@@ -290,6 +290,8 @@ class _Loop:
     def call_soon(self, callback, *args):
         self.ready.append((callback, args))
 
+    call_soon_threadsafe = call_soon  # list.append is atomic
+
     def turn(self):
         ready, self.ready = self.ready, []
         for callback, args in ready:
@@ -362,6 +364,28 @@ def test_moves_that_keep_coming_still_run_the_model(monkeypatch):
     assert 2 <= len(p.calls) - 1 <= 4  # one run per _MAX_DEFER (156 ms of moves), not 39
     loop.run()
     assert p.calls[-1][0] == pytest.approx(225.0 + 39 * step)
+
+
+def test_a_move_handled_in_another_thread_runs_in_the_panels_own(monkeypatch):
+    # JupyterLab sends a slider's own update on a kernel subshell, handled in a thread of its
+    # own: run there, the update ran at the same time as the main thread's (a force-volume map
+    # computed twice at once); the move is handed to the loop the panel was made in
+    import threading
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _linked_lever()
+    threads = []
+
+    def update(**values):
+        threads.append(threading.get_ident())
+    p.update = update  # the instance's own: records the thread it runs in
+    worker = threading.Thread(target=live._handle_message,
+                              args=(live, {"control": "length", "value": 240.0}, []))
+    worker.start()
+    worker.join()
+    assert threads == [] and p.values()["length"] == 240.0  # nothing ran in the other thread
+    loop.run()
+    assert threads == [threading.get_ident()] and p._applied["length"] == 240.0
 
 
 def test_without_a_live_loop_every_move_updates_at_once_and_a_cell_set_wins():

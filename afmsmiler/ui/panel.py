@@ -31,6 +31,7 @@ import functools
 import html
 import math
 import os
+import threading
 import time
 import traceback
 from collections.abc import Mapping
@@ -321,6 +322,10 @@ class Panel:
         self._forwarded = {}  # name -> (control, value): the newest step the browser forwarded
         self._moves = 0  # moves seen, for the coalescing (see _settle)
         self._deferred = False  # an update is waiting on the kernel's loop
+        # the thread and loop the panel was made in (a cell: the kernel's main thread), where
+        # every deferred update runs; None outside a live kernel
+        loop = _live_loop()
+        self._home = (threading.get_ident(), loop) if loop is not None else None
         self._vis = vis
         self._want_scene = scene or vis is not None
         self.last = None  # the last model result, for tests and exercises
@@ -598,10 +603,18 @@ class Panel:
         once. No value is changed: the model runs for exactly the values the controls hold, and
         the value the student stops at is always the last one run.
         """
+        loop = _live_loop() if from_browser else None
+        if loop is not None and self._home is not None and \
+                self._home[0] != threading.get_ident():
+            # JupyterLab sends a widget's own updates on a kernel subshell, handled in a thread
+            # of its own while the main thread may be running this panel's model: the move is
+            # handed to the panel's home loop, so that its updates never run at once
+            self._home[1].call_soon_threadsafe(functools.partial(self._move,
+                                                                 from_browser=True))
+            return
         if from_browser:
             self.moves_received += 1
         self._moves += 1
-        loop = _live_loop() if from_browser else None
         if loop is None:
             self._flush()
         elif not self._deferred:
