@@ -348,6 +348,25 @@ afm.seqs = (root, sel) => {
   const figs = root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel));
   return figs.map(f => f.getAttribute('data-seq')).join(',');
 };
+// each live figure's frames received and painted so far (afmsmiler/plots/static/live.js)
+afm.frames = (root, sel) => {
+  const figs = root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel));
+  return figs.map(f => {
+    const F = f.afmFigure;
+    return F ? {received: F.received, painted: F.painted, receivedSeqs: F.receivedSeqs.slice(),
+                paintedSeqs: F.paintedSeqs.slice()} : null;
+  });
+};
+// the frames received and painted since `base` (afm.frames), per figure
+afm.framesSince = (root, sel, base) => afm.frames(root, sel).map((f, i) => {
+  const b = base[i];
+  if (!f || !b) return null;
+  const last = (log, n) => (n > 0 ? log.slice(-n) : []);
+  return {received: last(f.receivedSeqs, f.received - b.received),
+          painted: last(f.paintedSeqs, f.painted - b.painted)};
+});
+afm.paintedCount = (root, sel) => afm.frames(root, sel)
+  .reduce((n, f) => n + (f ? f.painted : 0), 0);
 // the closest ancestor of el that holds a figure: the panel's own box
 afm.panelOf = (el, sel) => {
   let p = el;
@@ -386,6 +405,7 @@ afm.arm = (sel, mode, timeoutMs) => {
     : (root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel)));
   if (obs) for (const w of watched) obs.observe(w, {subtree: true, childList: true,
                                                      characterData: true, attributes: true});
+  const figs = () => (mode === 'text' ? [] : watched).map(f => f.afmFigure).filter(f => f);
   const onKey = () => { if (st.t0 === null) st.t0 = performance.now(); };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
@@ -406,7 +426,12 @@ afm.arm = (sel, mode, timeoutMs) => {
         if (observed) dirty = false;
       }
       if (changed) {
-        finish({dt: Math.max(ts, st.t0) - st.t0, frame: ts, keydown: st.t0,
+        // a live figure draws in an animation-frame callback, painted in that same frame: the
+        // change is dated by that frame's time, as the floor's text is by the frame after its
+        // mutation (both: the frame whose rendering shows it), not by this later check
+        const drawn = figs().map(f => f.drawnAt).filter(t => t != null && t >= st.t0);
+        const at = drawn.length ? Math.min(ts, Math.max(...drawn)) : ts;
+        finish({dt: Math.max(at, st.t0) - st.t0, frame: at, keydown: st.t0,
                 readout: tRead === null ? null : Math.max(tRead, st.t0) - st.t0});
       } else if (now - start > timeoutMs) {
         finish({dt: null, keydown: st.t0});
@@ -427,7 +452,8 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
     return r ? r.textContent.trim() : null;
   };
   let lastSeq = afm.seqs(root, sel), lastHash = afm.checksum(root, sel).hash;
-  const baseSeq = lastSeq;
+  const baseSeq = lastSeq, baseFrames = afm.frames(root, sel);
+  let lastPainted = afm.paintedCount(root, sel);
   const onKey = () => { st.keys++; if (st.t0 === null) st.t0 = performance.now(); };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
@@ -442,6 +468,8 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
         lastSeq = seq;
         lastChange = now;
       }
+      const painted = afm.paintedCount(root, sel);
+      if (painted !== lastPainted) { lastPainted = painted; lastChange = now; }
       if (hash !== lastHash) {
         st.states++;
         st.times.push(ts - (st.t0 || ts));
@@ -453,7 +481,7 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
         window.removeEventListener('keydown', onKey, true);
         resolve({seqs: st.seqs, states: st.states, times: st.times,
                  timedOut: now - start > timeoutMs, baseSeq: baseSeq, values: st.values,
-                 keys: st.keys});
+                 keys: st.keys, frames: afm.framesSince(root, sel, baseFrames)});
       } else requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
@@ -818,12 +846,39 @@ class DragResult:
     last_frame_s: float | None = None  # s from the first keydown to the last change painted
     values: list = field(default_factory=list)  # the slider's readout, as it changed per frame
     keys: int = 0  # keydown events the page saw
+    #: Per live figure of the panel: the kernel's sequence numbers of the frames it received
+    #: and of those it painted (each recorded by the figure at the animation frame after its
+    #: draw, so after a paint), in order; empty without a live figure.
+    frames: list = field(default_factory=list)
+
+    @property
+    def received(self) -> int:
+        """Frames the panel's live figures received during the drag."""
+        return sum(len(f["received"]) for f in self.frames if f)
+
+    @property
+    def painted(self) -> int:
+        """Frames the panel's live figures painted during the drag (a frame painted twice
+        counts twice)."""
+        return sum(len(f["painted"]) for f in self.frames if f)
+
+    @property
+    def painted_once(self) -> bool:
+        """Whether every frame received was painted exactly once, in the order received."""
+        return all(f["painted"] == f["received"] for f in self.frames if f)
+
+    @property
+    def last_painted(self) -> list:
+        """Per live figure, the sequence number of the last frame painted (None if none)."""
+        return [f["painted"][-1] if f and f["painted"] else None for f in self.frames]
 
     @property
     def steps_drawn(self) -> int:
-        """Steps seen drawn: distinct data-seq values when the figure has them, else pixel
-        states."""
-        return len(self.seqs) if self.seqs and self.seqs[0] not in ("", None) else self.states
+        """Steps seen painted: the frames the live figures painted (their own count, made after
+        the paint), else distinct pixel states seen on animation frames."""
+        if any(self.frames):
+            return self.painted
+        return self.states
 
     @property
     def jumped_back(self) -> list:
@@ -854,7 +909,30 @@ def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
     seqs = [s for s in r["seqs"] if s.strip(",")]
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
-                      values=r["values"], keys=r["keys"])
+                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
+
+
+def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
+          quiet: float = 1.5, timeout: float = 20.0) -> DragResult:
+    """As :func:`drag`, the ``n`` key presses dispatched in one task of the page.
+
+    Playwright's presses each wait for a round trip to the browser (a few ms, more on a busy
+    machine), so the kernel often answers one before the next arrives; dispatched at once, the
+    moves reach the kernel while it runs the model for the first, and queue behind it.
+    """
+    page.evaluate("([sel, q, t]) => window.__afm.armDrag(sel, q, t)",
+                  [selector, quiet * 1000, timeout * 1000])
+    slider.focus()
+    slider.evaluate(
+        """(h, [key, n]) => {
+             for (let i = 0; i < n; i++) for (const type of ['keydown', 'keyup'])
+               h.dispatchEvent(new KeyboardEvent(type, {key, bubbles: true, cancelable: true}));
+           }""", [key, n])
+    r = page.evaluate("() => window.__afm.current.promise")
+    seqs = [s for s in r["seqs"] if s.strip(",")]
+    return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
+                      last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
+                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
 
 
 # -- static export -------------------------------------------------------------------------

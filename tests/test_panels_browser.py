@@ -4,10 +4,12 @@ Headless Debian Chromium driven by Playwright (``tests/browser.py``), against Ju
 voila serving copies of the course notebooks, run as a student would (Run All; no test flags).
 For each panel: no cell shows an error, each key press on the panel's slider changes the pixels
 of the panel's figure within :data:`browser.PRESS_TIMEOUT` (never hangs), and the kernel's panel
-holds the value the slider shows. With the live component (``div.afm-live``): every step of a
-15-press drag is drawn (distinct ``data-seq`` values painted), the slider never jumps back
-against the keys and ends where the kernel is, and each panel's figure has pixels in a static
-HTML export (nbconvert) opened from a file.
+holds the value the slider shows. With the live component (``div.afm-live``): a 15-press drag
+paints every frame the kernel sent exactly once (the figure records each frame's ``data-seq``
+at the animation frame after its draw, so after a paint; the kernel coalesces the moves that
+queued while it was busy, so it may send fewer than 15), its last frame is the kernel's last,
+for the value the slider shows, the slider never jumps back against the keys, and each panel's
+figure has pixels in a static HTML export (nbconvert) opened from a file.
 
 The panels come from the registry (``afmsmiler.ui.registry``): here those of modules (a)-(d), one
 per notebook; ``test_notebooks_browser.py`` moves every panel of modules (e)-(h) in its notebook.
@@ -77,29 +79,44 @@ def _check_presses(page, name):
 
 
 #: Panels whose drag is known not to meet issue 9's target, with why: their drag is reported
-#: as an expected failure (xfail) with its numbers; every other panel must draw each of the 15
-#: steps, its slider must never jump back against the keys, and (JupyterLab) the kernel's panel
-#: must hold the value the slider shows once the drag is over. Remove an entry when it is fixed.
+#: as an expected failure (xfail) with its numbers; every other panel must paint each frame
+#: the kernel sent once, its slider must never jump back against the keys, and (JupyterLab) the
+#: kernel's panel must hold the value the slider shows once the drag is over. Remove an entry
+#: when it is fixed.
 DRAG_KNOWN_BROKEN = {}  # panel -> why its drag is known to fail (none now)
 DRAG_TIMEOUT = 30.0  # s: a drag still drawing after this never settled (a wait, not a speed check)
 
 
 def _check_drag(page, slider, key, name, *, kernel=None):
-    """A 15-press drag of a live figure: every step drawn, no jump back, kernel agrees."""
+    """A 15-press drag of a live figure: every frame received painted once, the last one the
+    kernel's last (JupyterLab: ``kernel(code)`` runs code in the kernel), no jump back."""
     if not LIVE:
         return
+    e = B.PANELS[name]
+
+    def frames_sent():
+        return int(kernel(f"print({e.variable}.live.frames_sent)"))
+
+    before = frames_sent() if kernel is not None else None
     result = B.drag(page, slider, key, DRAG, selector=SELECTOR, timeout=DRAG_TIMEOUT)
     problems = []
-    if result.steps_drawn != DRAG:
-        problems.append(f"{result.steps_drawn} of {DRAG} steps drawn (data-seq painted "
-                        f"{result.seqs[:20]})")
+    if result.received < 1:
+        problems.append("no frame received")
+    if not result.painted_once:
+        problems.append(f"frames received {result.frames} were not each painted once")
     if result.jumped_back:
         problems.append(f"the slider jumped back {result.jumped_back[:5]}")
     if result.timed_out:
         problems.append(f"still drawing after {DRAG_TIMEOUT:g} s")
     if kernel is not None and not problems:
         B.settle(page, SELECTOR, quiet=0.5, timeout=5)
-        value, shown = kernel(), _shown(B.slider_value(slider))
+        sent = frames_sent()
+        painted = [f["painted"] for f in result.frames if f]
+        if len(painted) != 1 or len(painted[0]) != sent - before or painted[0][-1] != sent:
+            problems.append(f"the kernel sent frames {before + 1}..{sent}, the figure painted "
+                            f"{painted}")
+        value = kernel(f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
+        shown = _shown(B.slider_value(slider))
         if not math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9):
             problems.append(f"the slider shows {shown}, the kernel holds {value}")
     if not problems:
@@ -127,15 +144,52 @@ def test_lab_panel_follows_its_slider(lab, name):
     slider, key = _check_presses(page, name)
     B.settle(page, SELECTOR, quiet=0.5, timeout=5)
 
-    def kernel():
-        return B.kernel_eval(page, f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
-
-    value, shown = kernel(), _shown(B.slider_value(slider))
+    value = B.kernel_eval(page, f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
+    shown = _shown(B.slider_value(slider))
     assert math.isclose(float(value), shown, rel_tol=5e-3, abs_tol=1e-9), \
         f"{notebook}: the slider shows {shown}, the kernel's {cls} holds {value}"
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the key presses"
-    _check_drag(page, slider, key, name, kernel=kernel)
+    _check_drag(page, slider, key, name, kernel=lambda code: B.kernel_eval(page, code).strip())
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
+
+
+@LAB
+@pytest.mark.skipif(not LIVE, reason="a live figure logs the frames it paints")
+def test_lab_a_burst_of_presses_paints_every_frame_the_kernel_sent_once(lab):
+    """Issue 24: 15 presses at once on the contact panel's slider queue behind the kernel's
+    model run; the kernel runs it for the newest value (it may coalesce the moves), the figure
+    paints each frame it sent exactly once (the sequence numbers it logs after each paint), the
+    last one painted is the kernel's last, and it is for the value the slider shows."""
+    server, page = lab
+    e = B.PANELS["contact"]
+    B.open_lab(page, server, e.notebook)
+    B.run_all(page)
+    slider = B.find_control(page, e)
+    B.focus_panel(page, slider, SELECTOR)
+    key, _ = B.keys(slider)
+    v = e.variable
+
+    def kernel(code):
+        return B.kernel_eval(page, code).strip()
+
+    before = int(kernel(f"print({v}.live.frames_sent)"))
+    start = _shown(B.slider_value(slider))
+    result = B.burst(page, slider, key, DRAG, selector=SELECTOR, timeout=DRAG_TIMEOUT)
+    assert not result.timed_out, f"still drawing after {DRAG_TIMEOUT:g} s"
+    B.settle(page, SELECTOR, quiet=0.5, timeout=5)
+    sent = int(kernel(f"print({v}.live.frames_sent)"))
+    painted = [f["painted"] for f in result.frames if f]
+    assert len(painted) == 1, result.frames  # the panel's one live figure
+    assert painted[0] == list(range(before + 1, sent + 1)), \
+        f"the kernel sent frames {before + 1}..{sent}, the figure painted {painted[0]}"
+    assert result.painted_once, result.frames
+    shown = _shown(B.slider_value(slider))
+    assert shown != start, f"{DRAG} presses of {key} did not move the slider"
+    ran = float(kernel(f"print(repr({v}._applied[{e.slider!r}]))"))
+    assert math.isclose(ran, shown, rel_tol=5e-3, abs_tol=1e-9), \
+        f"the slider shows {shown}, the last frame is for {ran}"
+    assert not result.jumped_back, result.values
+    assert B.lab_errors(page) == []
 
 
 @VOILA

@@ -275,3 +275,132 @@ def test_a_sweep_shows_each_value_and_leaves_the_control_where_it_was():
     assert len(p.calls) == 5
     with pytest.raises(TypeError, match="unknown control"):
         p.sweep("width", [1.0])
+
+
+class _Loop:
+    """A stand-in for the kernel's event loop: callbacks run when the test turns it."""
+
+    def __init__(self):
+        self.ready = []
+        self.now = 0.0  # its clock stands still unless a test moves it
+
+    def time(self):
+        return self.now
+
+    def call_soon(self, callback, *args):
+        self.ready.append((callback, args))
+
+    call_soon_threadsafe = call_soon  # list.append is atomic
+
+    def turn(self):
+        ready, self.ready = self.ready, []
+        for callback, args in ready:
+            callback(*args)
+
+    def run(self, turns=100):
+        for _ in range(turns):
+            if not self.ready:
+                return
+            self.turn()
+        raise AssertionError("the loop never went quiet")
+
+
+def _linked_lever():
+    from matplotlib.figure import Figure
+    from afmsmiler.plots.live import LiveFigure
+    p = Lever()
+    fig = Figure()
+    fig.add_subplot().plot([0, 1], [0, 1])
+    live = LiveFigure(fig)
+    live.link(p.controls, p._from_browser)
+    return p, live
+
+
+def test_a_drag_queued_while_the_kernel_was_busy_runs_the_model_once_for_its_last_step(
+        monkeypatch):
+    # issue 24: newer moves replace queued ones; the model runs for the latest value, never for
+    # every value passed over, and the value the student stops at is the one it ran for
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _linked_lever()
+    length = p.controls["length"]
+    steps = [225.0 + k * length.step for k in range(1, 16)]
+    for v in steps[:5]:  # queued behind a model run: they arrive one loop turn after the other
+        live._handle_message(live, {"control": "length", "value": v}, [])
+        loop.turn()
+    for v in steps[5:]:
+        live._handle_message(live, {"control": "length", "value": v}, [])
+    assert len(p.calls) == 1  # nothing ran while moves kept coming
+    loop.run()
+    assert [c[0] for c in p.calls[1:]] == [steps[-1]]
+    assert p.moves_received == 15 and p.values()["length"] == steps[-1]
+    length._property_lock = {"value": steps[-1]}  # the slider's own (merged) update, applied
+    try:                                           # as ipywidgets applies the browser's state
+        length.value = steps[-1]
+    finally:
+        length._property_lock = {}
+    loop.run()
+    assert len(p.calls) == 2 and len(p.update_seconds) == 2  # its value was already applied
+    # the other slider moved by the browser while this one's update is still merged
+    p.controls["quality_factor"]._property_lock = {"value": 200.0}
+    p.controls["quality_factor"].value = 200.0
+    p.controls["quality_factor"]._property_lock = {}
+    live._handle_message(live, {"control": "length", "value": steps[0]}, [])
+    loop.run()
+    assert p.calls[-1][:2] == (steps[0], 200.0) and len(p.calls) == 3
+
+
+def test_moves_that_keep_coming_still_run_the_model(monkeypatch):
+    # a steady stream of moves (a mouse drag on a loop slowed by a busy thread) never leaves the
+    # loop quiet; the deferred update runs after panel._MAX_DEFER s all the same
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _linked_lever()
+    step = p.controls["length"].step
+    for k in range(1, 40):
+        live._handle_message(live, {"control": "length", "value": 225.0 + k * step}, [])
+        loop.turn()
+        loop.now += 0.004
+    assert 2 <= len(p.calls) - 1 <= 4  # one run per _MAX_DEFER (156 ms of moves), not 39
+    loop.run()
+    assert p.calls[-1][0] == pytest.approx(225.0 + 39 * step)
+
+
+def test_a_move_handled_in_another_thread_runs_in_the_panels_own(monkeypatch):
+    # JupyterLab sends a slider's own update on a kernel subshell, handled in a thread of its
+    # own: run there, the update ran at the same time as the main thread's (a force-volume map
+    # computed twice at once); the move is handed to the loop the panel was made in
+    import threading
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _linked_lever()
+    threads = []
+
+    def update(**values):
+        threads.append(threading.get_ident())
+    p.update = update  # the instance's own: records the thread it runs in
+    worker = threading.Thread(target=live._handle_message,
+                              args=(live, {"control": "length", "value": 240.0}, []))
+    worker.start()
+    worker.join()
+    assert threads == [] and p.values()["length"] == 240.0  # nothing ran in the other thread
+    loop.run()
+    assert threads == [threading.get_ident()] and p._applied["length"] == 240.0
+
+
+def test_without_a_live_loop_every_move_updates_at_once_and_a_cell_set_wins():
+    # tests and nbval (running_as_notebook() is False): no deferral, as before
+    p, live = _linked_lever()
+    length = p.controls["length"]
+    live._handle_message(live, {"control": "length", "value": 230.0}, [])
+    assert p.calls[-1][0] == 230.0 and p.values()["length"] == 230.0
+    p.set(length=240.0)  # newer than the forwarded step
+    assert p.calls[-1][0] == 240.0 and p.values()["length"] == 240.0 and length.value == 240.0
+
+
+def test_a_value_a_cell_sets_updates_at_once_even_in_a_live_kernel(monkeypatch):
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, _live = _linked_lever()
+    p.controls["length"].value = 250.0  # a cell's assignment: no browser lock
+    assert p.calls[-1][0] == 250.0 and loop.ready == []

@@ -24,11 +24,15 @@ iterate. Tests construct a panel, call :meth:`Panel.set` and check the figure da
 """
 from __future__ import annotations
 
+import asyncio
+import collections
 import contextlib
 import functools
 import html
 import math
 import os
+import threading
+import time
 import traceback
 from collections.abc import Mapping
 
@@ -57,6 +61,30 @@ def running_as_notebook() -> bool:
         return False
     return shell is not None and type(shell).__name__ == "ZMQInteractiveShell" and \
         not os.environ.get("NBVAL")
+
+
+#: Turns of the kernel's event loop without a new move before a deferred update runs (see
+#: :meth:`Panel._settle`): ipykernel reads one queued message per turn or two (the shell channel's
+#: thread hands them to the main thread's stream, which reads one per event and runs it as a task).
+_QUIET_TURNS = 3
+#: Seconds a deferred update waits at most for moves to stop (a steady stream of moves, a mouse
+#: drag at 60 Hz on a loop slowed by a busy thread, must not starve the model).
+_MAX_DEFER = 0.05
+
+
+def _live_loop():
+    """The kernel's running event loop in a live notebook, else None (tests, nbval, scripts).
+
+    A move is deferred to this loop so that moves already queued reach the panel first and the
+    model runs once, for the latest; without one (tests, nbval: :func:`running_as_notebook` is
+    False) every move updates at once, as before.
+    """
+    if not running_as_notebook():
+        return None
+    try:
+        return asyncio.get_running_loop()
+    except RuntimeError:
+        return None
 
 
 def setup_notebook() -> None:
@@ -283,6 +311,21 @@ class Panel:
         if not isinstance(scene, bool):
             raise TypeError(f"scene must be True or False, got {scene!r}")
         self.model_runs = 0  # see run_model
+        #: Seconds each of the last updates took in the kernel (:meth:`_run`; the benchmark's
+        #: kernel step), newest last.
+        self.update_seconds = collections.deque(maxlen=1000)
+        #: Runs of :meth:`update` through the contract (:meth:`_run`).
+        self.updates = 0
+        #: Moves the browser sent (forwarded steps and slider updates); with :attr:`updates`
+        #: it shows how many a drag's coalescing folded together.
+        self.moves_received = 0
+        self._forwarded = {}  # name -> (control, value): the newest step the browser forwarded
+        self._moves = 0  # moves seen, for the coalescing (see _settle)
+        self._deferred = False  # an update is waiting on the kernel's loop
+        # the thread and loop the panel was made in (a cell: the kernel's main thread), where
+        # every deferred update runs; None outside a live kernel
+        loop = _live_loop()
+        self._home = (threading.get_ident(), loop) if loop is not None else None
         self._vis = vis
         self._want_scene = scene or vis is not None
         self.last = None  # the last model result, for tests and exercises
@@ -410,11 +453,16 @@ class Panel:
 
         A slider whose value differs from the one the model last ran with by round-off only
         (the browser's echo of a value it snapped to the slider's grid) reports the value the
-        model ran with: the browser never changes a value the student did not touch.
+        model ran with: the browser never changes a value the student did not touch. A slider
+        whose step the browser forwarded (:meth:`_from_browser`) after its own last update
+        reports that step: it is newer (ipywidgets sends a slider's own update later, merged).
         """
         out = {}
         for name, c in self.controls.items():
             v, last = c.value, self._applied.get(name, _MISSING)
+            forwarded = self._forwarded.get(name)
+            if forwarded is not None and forwarded[0] is c:
+                v = forwarded[1]
             out[name] = last if last is not _MISSING and _same(v, last, c) else v
         return out
 
@@ -429,12 +477,15 @@ class Panel:
         values = {k: _decimal(v) for k, v in values.items()}
         si = self.to_si(values)
         view = self._view  # its commands leave as one message: one repaint of the 3D view
+        start = time.perf_counter()
         with (view.hold() if view is not None else contextlib.nullcontext()):
             self._converted = True
             try:
                 self.update(**si)
             finally:
                 self._converted = False
+                self.update_seconds.append(time.perf_counter() - start)
+                self.updates += 1
         self._applied = dict(values)
 
     def set(self, **values) -> None:
@@ -449,6 +500,8 @@ class Panel:
             control, the value and what is valid (a slider would silently clamp it).
         """
         self.check_values(values)
+        for name in values:  # what is set now is newer than any step the browser forwarded
+            self._forwarded.pop(name, None)
         hold, self._hold = self._hold, True
         try:
             for name, v in values.items():
@@ -502,27 +555,32 @@ class Panel:
         finally:
             self.set(**{name: start})
 
-    def _on_change(self, _change) -> None:
+    def _on_change(self, change) -> None:
         """A control moved: update, and show a failure in the panel instead of losing it.
 
         ipywidgets runs this callback outside any cell, so an exception raised here would only
         reach JupyterLab's log console while the panel silently stopped updating. In a live
         notebook the error is shown under the panel (:attr:`error`); elsewhere (tests) it is
-        shown and raised again.
+        shown and raised again. A move from the browser is coalesced with the moves queued behind
+        it (:meth:`_move`); a value a cell sets updates at once.
         """
+        owner = change.get("owner") if isinstance(change, Mapping) else None
+        for name, c in self.controls.items():  # the control's own value is newer than a step
+            if c is owner:
+                self._forwarded.pop(name, None)
         if self._hold:
             return
-        values = self.values()
-        if values == self._applied:  # a browser echo of what the model already shows
-            return
-        self._apply(values)
+        lock = getattr(owner, "_property_lock", None) or {}
+        self._move(from_browser="value" in lock)
 
     def _from_browser(self, name: str, value) -> None:
         """One step of a slider, forwarded by the live figure (:meth:`LiveFigure.link`).
 
-        The step runs the model at once, so a quick drag shows every step; the slider's own
-        update, which ipywidgets merges and sends later, then finds its value applied. A value
-        the control could not hold (a message is input) is ignored.
+        ipywidgets merges a slider's moves while one update is in flight, but not by what the
+        kernel is doing: the live figure forwards each step at once. The step is remembered as
+        the slider's value (:meth:`values`) and coalesced with the moves queued behind it
+        (:meth:`_move`); the slider's own update, which arrives later, then finds it applied. A
+        value the control could not hold (a message is input) is ignored.
         """
         control = self.controls.get(name)
         if control is None or self._hold:
@@ -531,10 +589,59 @@ class Panel:
             check_control_value(name, control, value)
         except (TypeError, ValueError):
             return
-        last = self._applied.get(name, _MISSING)
-        if last is not _MISSING and _same(value, last, control):
+        self._forwarded[name] = (control, value)
+        self._move(from_browser=True)
+
+    def _move(self, *, from_browser: bool) -> None:
+        """Update for the controls' current values: now, or once the queued moves are in.
+
+        A move from the browser in a live kernel is deferred to the kernel's event loop
+        (:meth:`_settle`): the moves of a drag that queued while the model ran are applied to the
+        controls first, and the model runs once, for the newest values (never for each value the
+        student passed over, so a slow panel's last frame comes one model run after the last
+        key, not one per key). Anywhere else (tests, nbval, a cell setting a value) it updates at
+        once. No value is changed: the model runs for exactly the values the controls hold, and
+        the value the student stops at is always the last one run.
+        """
+        loop = _live_loop() if from_browser else None
+        if loop is not None and self._home is not None and \
+                self._home[0] != threading.get_ident():
+            # JupyterLab sends a widget's own updates on a kernel subshell, handled in a thread
+            # of its own while the main thread may be running this panel's model: the move is
+            # handed to the panel's home loop, so that its updates never run at once
+            self._home[1].call_soon_threadsafe(functools.partial(self._move,
+                                                                 from_browser=True))
             return
-        self._apply({**self.values(), name: value})
+        if from_browser:
+            self.moves_received += 1
+        self._moves += 1
+        if loop is None:
+            self._flush()
+        elif not self._deferred:
+            self._deferred = True
+            loop.call_soon(self._settle, loop, self._moves, 0, loop.time() + _MAX_DEFER)
+
+    def _settle(self, loop, seen: int, quiet: int, until: float) -> None:
+        """Run the deferred update once :data:`_QUIET_TURNS` turns of the loop brought no move.
+
+        ipykernel handles queued messages one at a time, a turn or two of its loop each, so an
+        update run at the first turn would see only the first of the moves that queued behind
+        the last model run; waiting for a few quiet turns (microseconds when nothing is queued)
+        lets every queued move land first. Moves that keep coming run it after
+        :data:`_MAX_DEFER` s anyway.
+        """
+        if (self._moves != seen or quiet < _QUIET_TURNS) and loop.time() < until:
+            quiet = 0 if self._moves != seen else quiet + 1
+            loop.call_soon(self._settle, loop, self._moves, quiet, until)
+            return
+        self._deferred = False
+        self._flush()  # a failure is shown under the panel (_apply, live)
+
+    def _flush(self) -> None:
+        values = self.values()
+        if values == self._applied:  # a browser echo of what the model already shows
+            return
+        self._apply(values)
 
     def _apply(self, values: dict) -> None:
         try:

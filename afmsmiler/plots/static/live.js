@@ -6,16 +6,21 @@
 // a new frame only swaps data and limits. uPlot (the kept library, shipped beside this file) draws
 // axes and curves; images, spans, reference lines and texts are drawn in its hooks.
 //
-// Every frame the kernel sends is painted for at least one animation frame: a frame arriving while
-// another was already drawn in this animation frame waits for the next one, so a quick drag shows
-// every step. The root element counts painted frames (data-frames) and names the kernel's sequence
-// number shown last (data-seq), which the browser tests read.
+// Every frame the kernel sends is drawn once and painted once (Figure.push): frames are drawn only
+// in animation-frame callbacks, one per animation frame, so no draw is overwritten before the
+// browser painted it. The kernel coalesces a drag's moves (afmsmiler/ui/panel.py), so frames come
+// no faster than the model runs. The root element counts the frames drawn (data-frames), names the
+// kernel's sequence number drawn last (data-seq), and counts the frames known painted
+// (data-painted; their sequence numbers in Figure.paintedSeqs), which the browser tests and the
+// benchmark read.
 //
 // This file holds no physics: every number comes from the kernel.
 
-const PX = 100 / 72;
+const PX = 100 / 72; // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
 const BAR = 16, CB_GAP = 2, CB_BELOW = 8; // colour bar: its width, its gap from the plot, room under it
-const MAX_PENDING = 30; // frames waiting to be painted, one per animation frame (0.5 s at 60 Hz) // px per point at the figure's 100 dpi (as matplotlib's sizes are given)
+// frames waiting to be drawn, one per animation frame: a safety valve only (0.5 s at 60 Hz, or a
+// hidden page, where animation frames stop), never reached while the page keeps up
+const MAX_PENDING = 30;
 
 function el(tag, cls, parent) {
   const e = document.createElement(tag);
@@ -591,6 +596,12 @@ function decodeLut(b64) {
   return out;
 }
 
+// append v to a log of the last few hundred values
+function keep(log, v) {
+  log.push(v);
+  if (log.length > 1000) log.splice(0, 500);
+}
+
 class Figure {
   constructor(root) {
     this.root = root;
@@ -601,8 +612,16 @@ class Figure {
     this.axes = [];
     this.luts = {};
     this.pending = [];
-    this.paintedThisFrame = false;
     this.scheduled = false;
+    this.drawnSeq = null; // drawn in the last animation frame, painted once the next one starts
+    this.received = 0; // frames received from the kernel (push)
+    this.painted = 0; // frames known painted
+    // the kernel's sequence numbers of the last frames received and painted, in order (the
+    // browser tests compare them: every frame received is painted once)
+    this.receivedSeqs = [];
+    this.paintedSeqs = [];
+    this.drawnAt = null; // the requestAnimationFrame time of the last frame drawn
+    root.dataset.painted = "0";
   }
 
   lut(name) { return this.luts[name] || new Uint8Array(768); }
@@ -666,31 +685,56 @@ class Figure {
     }
   }
 
-  // a frame from the kernel: draw it now, or at the next animation frame if one was just painted
+  // A frame from the kernel: drawn at the next animation frame, one frame per animation frame.
+  //
+  // A requestAnimationFrame callback runs just before the browser's rendering update of that
+  // frame (style, layout, paint), so a canvas drawn in it is painted in that same update; drawing
+  // from the message handler instead lets a second message of the same frame overwrite the first
+  // draw before it was ever painted (the old scheduler reset its "painted" flag at the start of an
+  // animation frame and then drew a queued frame in it too). Drawing here costs no latency: the
+  // first chance to paint a frame is that rendering update anyway. A callback that finds a frame
+  // drawn by the previous one knows it was painted (a rendering update came between them) and
+  // records it: data-painted and paintedSeqs count paints, not draws.
+  //
+  // Queued frames are never dropped for newer ones while the page keeps up: the kernel already
+  // computed each of them (it coalesces a drag's moves before running the model, so it sends only
+  // frames of values the student passed while it was free, and the last one for where the
+  // student stopped), and a frame dropped here would be a step the student never sees. Only a
+  // hidden page (no animation frames) or a backlog past MAX_PENDING keeps the newest alone.
   push(layout, frame, buffer) {
+    this.received += 1;
+    keep(this.receivedSeqs, frame.seq);
     this.pending.push([layout, frame, buffer]);
-    // every frame is painted while the page keeps up; a backlog longer than half a second
-    // (a hidden page, a burst) is cut to the newest frame
     if (this.pending.length > MAX_PENDING || document.hidden) this.pending = this.pending.slice(-1);
-    if (!this.paintedThisFrame) this.drain();
-    else this.schedule();
+    this.schedule();
   }
 
   schedule() {
     if (this.scheduled) return;
     this.scheduled = true;
-    requestAnimationFrame(() => {
-      this.scheduled = false;
-      this.paintedThisFrame = false;
-      if (this.pending.length) this.drain();
-    });
+    requestAnimationFrame((ts) => this.tick(ts));
   }
 
-  drain() {
+  tick(ts) {
+    this.scheduled = false;
+    if (this.drawnSeq !== null) { // drawn in the previous animation frame: it has been painted
+      keep(this.paintedSeqs, this.drawnSeq);
+      this.painted += 1;
+      this.root.dataset.painted = String(this.painted);
+      this.drawnSeq = null;
+    }
+    if (!this.pending.length) return;
     const [layout, frame, buffer] = this.pending.shift();
-    this.draw(layout, frame, buffer);
-    this.paintedThisFrame = true;
-    this.schedule();
+    // then the next frame, and the paint of this one (a frame that failed to draw does not stop
+    // the ones after it)
+    try {
+      this.draw(layout, frame, buffer);
+      this.drawnSeq = frame.seq === undefined ? -1 : frame.seq;
+      // the time of the animation frame that paints it (the browser tests date a change by it)
+      this.drawnAt = ts;
+    } finally {
+      this.schedule();
+    }
   }
 
   draw(layout, frame, buffer) {
@@ -781,7 +825,8 @@ function drawStatic(root, layout, frame, base64) {
 // Every step of a slider reaches the kernel: ipywidgets keeps one update of a widget in flight
 // and merges the moves made meanwhile, so a quick drag reached the model 3 times in 15 steps.
 // The controls the kernel links (LiveFigure.link) send each new value as a custom message of this
-// widget, which is not merged; the kernel runs the model for each and this view paints each frame.
+// widget, which is not merged; the kernel runs the model for the newest of the steps that queued
+// while it was busy (afmsmiler/ui/panel.py) and this view paints each frame it sends once.
 // Linked once per model (not per view), in anywidget's initialize.
 function initialize({ model }) {
   let cleanup = [];
