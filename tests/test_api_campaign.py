@@ -195,6 +195,7 @@ ACCEPTED = {
 # periods, see VALID: under a second each, so `make unit` runs them.)
 SLOW_SMOKE: set[str] = {
     "hardware.haptic.bridge.TappingSource:distance",  # a hard-contact distance: 10 s (alarm)
+    "hardware.experiments.q_control_trial:haptic",  # about 1.6 s
 }
 # Returned by the models, not built by a user: their constructors are not part of the input API
 # (their methods are called on a result the model returned, see INSTANCES).

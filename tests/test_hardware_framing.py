@@ -137,6 +137,7 @@ words = st.from_regex(r"[A-Za-z_.:][A-Za-z0-9_.:-]{0,7}", fullmatch=True)
 ints = st.integers(-(2 ** 31), 2 ** 31 - 1)
 
 
+@pytest.mark.slow  # over a second: make test runs it, make unit does not
 @given(seq=st.integers(0, 255), code=st.from_regex(r"[A-Z]{2}", fullmatch=True),
        args=st.lists(st.one_of(ints, words), max_size=8))
 def test_round_trip(seq, code, args):

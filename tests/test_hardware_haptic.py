@@ -306,6 +306,7 @@ def _faulty(twin, **faults):
     return FaultyTransport(host, seed=3, **faults), server
 
 
+@pytest.mark.slow  # over a second: make test runs it, make unit does not
 def test_garbage_and_checksum_errors_are_retried():
     twin = HapticTwin()
     link, server = _faulty(twin, corrupt=0.2, garbage=0.2, partial=0.1)

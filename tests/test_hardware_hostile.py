@@ -133,6 +133,7 @@ def test_educational_scan_ends_when_a_pixel_repeats_for_ever(device):
     assert isinstance(bounded(afm.scan, guard=20.0), DeviceNotResponding)
 
 
+@pytest.mark.slow  # over a second: make test runs it, make unit does not
 def test_macro_connect_and_scan_end_against_a_device_that_babbles(device):
     afm = MacroAFM(device().host, timeout=0.2, retries=2)
     assert isinstance(bounded(afm.connect, guard=10.0), DeviceNotResponding)

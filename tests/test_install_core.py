@@ -8,6 +8,8 @@ import sys
 import tomllib
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 #: What only the extras bring: the notebooks' UI stack (lab), the file readers (files), the
 #: device libraries (hardware), and what Jupyter brings with them.
@@ -37,6 +39,7 @@ print("\\n".join(failed))
 """
 
 
+@pytest.mark.slow  # over a second: make test runs it, make unit does not
 def test_every_model_module_imports_without_the_extras():
     out = subprocess.run([sys.executable, "-c", BLOCKED_IMPORT], capture_output=True, text=True,
                          timeout=300, cwd=ROOT, check=True).stdout.splitlines()

@@ -303,6 +303,7 @@ def test_walkthrough_moves_the_camera_and_highlights_in_the_scene():
     assert set(panel.scene.highlighted) == {STEPS[-2].parts[0]}
 
 
+@pytest.mark.slow  # over a second: make test runs it, make unit does not
 def test_align_sets_the_knobs_where_the_manuals_procedure_ends(panel):
     """Notebook 05's one-line call: the panel runs align() from a freshly mounted head and sets
     the sliders (in turns) to its knobs; the display is then that head's, aligned."""

@@ -39,6 +39,7 @@ def test_a_page_holds_its_panels_figure_at_the_defaults(name):
         assert a["axes"]["x"]["label"] == ax.get_xlabel()
 
 
+@pytest.mark.slow  # over a second: make test runs it, make unit does not
 def test_pages_are_written_and_unknown_panels_refused(tmp_path):
     paths = write_panel_pages(tmp_path / "panels")
     assert sorted(p.stem for p in paths) == sorted(PANELS)
