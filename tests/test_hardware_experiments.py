@@ -105,10 +105,12 @@ def test_a_cell_run_again_gets_the_haptic_twin_it_connected_not_a_second_one():
     try:
         assert first.is_open and first.identity is not None
         assert ex.haptic_device(None) is first  # a re-run: no second twin streaming
+        first_server = ex._HAPTICS[None][1]
         first.close()
         assert not first.is_open
         second = ex.haptic_device(None)  # closed: a new one, connected
         assert second is not first and second.is_open
+        assert not first_server.running  # the closed device's twin no longer streams
     finally:
         for device, server in ex._HAPTICS.values():
             device.close()

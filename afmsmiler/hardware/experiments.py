@@ -95,8 +95,12 @@ def haptic_device(port: str | None = None):
     if port is not None and not isinstance(port, str):
         raise TypeError(f"port must be a serial port's name (str) or None, got {port!r}"[:160])
     kept = _HAPTICS.get(port)
-    if kept is not None and kept[0].is_open:
-        return kept[0]
+    if kept is not None:
+        if kept[0].is_open:
+            return kept[0]
+        kept[0].close()  # closed or its link lost: its twin's server (if any) stops too
+        if kept[1] is not None:
+            kept[1].stop()
     device, server = open_haptic(port)
     _HAPTICS[port] = (connect_or_close(device, server), server)
     return device
