@@ -1644,6 +1644,7 @@ UPPER_MODULES = ["afmsmiler.plots.cantilever", "afmsmiler.plots.contact",
                  "afmsmiler.scenes.imaging", "afmsmiler.scenes.legends",
                  "afmsmiler.scenes.modes", "afmsmiler.scenes.shapes",
                  "afmsmiler.scenes.transducers", "afmsmiler.scenes.camera",
+                 "afmsmiler.scenes.animation",
                  "afmsmiler.exercises.contact", "afmsmiler.exercises.controller",
                  "afmsmiler.exercises.imaging"]
 
@@ -1722,6 +1723,7 @@ OBJECTS = {
     "Sample": _image,
     "FitExercise": _upper("afmsmiler.exercises.contact", "fitting_exercise"),
     "Visualizer": _recorder,
+    "Animation": lambda: __import__("meshcat.animation", fromlist=["Animation"]).Animation(),
     "Figure": lambda: __import__("matplotlib.figure", fromlist=["Figure"]).Figure(),
 }
 #: Valid values of the upper floors' other parameters, by "callable:parameter" (else by name in
@@ -1741,6 +1743,12 @@ UPPER_VALID = {
     "scenes.shapes.cone": {"height": 1.0, "radius": 0.5},
     "scenes.shapes.sphere": {"radius": 0.5},
     "scenes.camera.set_camera": {"position": (1.0, 1.0, 1.0)},
+    "scenes.animation.set_track": {"prop": "position",
+                                   "frames": lambda: np.arange(3.0),
+                                   "values": lambda: np.zeros((3, 3))},
+    "scenes.animation.set_translations": {"frames": lambda: np.arange(3.0),
+                                          "positions": lambda: np.zeros((3, 3))},
+    "scenes.animation.quaternions_about_x": {"angles": lambda: np.zeros(3)},
     "plots.controller.fig4_figure": {"sample": lambda: _image().line(0)},
     "plots.modes.branch_values": {"values": lambda: INSTANCES["AmplitudeCurve"]().amplitude,
                                   "name": "attractive"},

@@ -41,6 +41,7 @@ from meshcat.animation import Animation
 from ..parameters import read_only, unit_scale
 from ..validation import (check_array, check_choice, check_flag, check_instance, check_integer,
                           check_positive, check_range)
+from .animation import quaternions_about_x, set_track, set_translations
 from .camera import set_camera, show_helpers
 from .legends import text_png
 from .shapes import cone, polyline
@@ -128,11 +129,11 @@ def factor_text(factor: float) -> str:
     return f"x {mantissa}e{int(exponent)}"
 
 
-def _rotation_x(angle: float) -> np.ndarray:
-    c, s = math.cos(angle), math.sin(angle)
-    r = np.eye(4)
-    r[1:3, 1:3] = [[c, -s], [s, c]]
-    return r
+def _column(values: np.ndarray, at: int) -> np.ndarray:
+    """Points (n, 3) that are zero but for coordinate ``at``, which holds ``values``."""
+    out = np.zeros((np.size(values), 3))
+    out[:, at] = values
+    return out
 
 
 class ModesScene(SceneDisplay):
@@ -267,9 +268,15 @@ class ModesScene(SceneDisplay):
         """
         vertical = check_range("vertical", vertical, -1.0, 1.0)
         lateral = check_range("lateral", lateral, -1.0, 1.0)
+        return self._spots(np.array([vertical]), np.array([lateral]))[0]
+
+    def _spots(self, vertical: np.ndarray, lateral: np.ndarray) -> np.ndarray:
+        """:meth:`spot_position` of many offsets at once (arrays in [-1, 1]), shape (n, 3)."""
         half = DEFAULTS["detector_size"] / 2 * DEFAULTS["spot_travel"]
-        local = np.array([vertical * half, lateral * half, 0.0])
-        return self.detector + self.rotation[:3, :3] @ local + 0.03 * self.normal
+        local = np.zeros((np.size(vertical), 3))
+        local[:, 0] = vertical * half
+        local[:, 1] = lateral * half
+        return self.detector + local @ self.rotation[:3, :3].T + 0.03 * self.normal
 
     def _ensure(self, kind: str) -> None:
         if kind != self.kind or not self.owns_view:
@@ -353,17 +360,15 @@ class ModesScene(SceneDisplay):
         self.factors = {"distance": scale}
         self._aim(self._lever_top(zc * scale))
         anim = Animation(default_framerate=fps)
-        touches = 0
-        for k in range(frames * periods + 1):
-            c = math.cos(2 * math.pi * k / frames)
-            z = zc + a * c
-            touching = z < contact
-            touches += touching
-            with anim.at_frame(self.vis, k) as frame:
-                frame["probe"].set_transform(translation([0.0, 0.0, z * scale]))
-                frame["spot"].set_transform(translation(
-                    self.spot_position(float(np.clip(a * c / a0, -1, 1)), 0.0)))
-                frame["contact"].set_property("visible", "boolean", bool(touching))
+        k = np.arange(frames * periods + 1)
+        c = np.cos(2 * math.pi * k / frames)
+        z = zc + a * c
+        touching = z < contact
+        touches = int(touching.sum())
+        set_translations(anim, self.vis["probe"], k, _column(z * scale, at=2))
+        set_translations(anim, self.vis["spot"], k,
+                         self._spots(np.clip(a * c / a0, -1, 1), np.zeros(k.size)))
+        set_track(anim, self.vis["contact"], "visible", k, touching)
         self.touching_frames = touches
         nm_per_unit = _NM / scale
         self._caption(f"tapping: z_c {zc * _NM:.3g} nm, A {a * _NM:.3g} nm"
@@ -419,14 +424,14 @@ class ModesScene(SceneDisplay):
         self.factors = {"distance": scale, "frequency": boost}
         self._aim(self._lever_top((z + a) * scale))
         anim = Animation(default_framerate=fps)
-        for k in range(frames * periods + 1):
-            theta = 2 * math.pi * k / frames
-            c = math.cos(theta * (1 + boost * df / f0))
-            with anim.at_frame(self.vis, k) as frame:
-                frame["probe"].set_transform(translation([0.0, 0.0, (z + a * (1 + c)) * scale]))
-                frame["ghost"].set_transform(translation(
-                    [0.0, 0.6, (z + a * (1 + math.cos(theta))) * scale]))
-                frame["spot"].set_transform(translation(self.spot_position(c, 0.0)))
+        k = np.arange(frames * periods + 1)
+        theta = 2 * math.pi * k / frames
+        c = np.cos(theta * (1 + boost * df / f0))
+        set_translations(anim, self.vis["probe"], k, _column((z + a * (1 + c)) * scale, at=2))
+        ghost = _column((z + a * (1 + np.cos(theta))) * scale, at=2)
+        ghost[:, 1] = 0.6
+        set_translations(anim, self.vis["ghost"], k, ghost)
+        set_translations(anim, self.vis["spot"], k, self._spots(c, np.zeros(k.size)))
         self._caption(f"FM: df = {df:.3g} Hz at z = {z * _NM:.3g} nm (grey: free lever); "
                       f"df {factor_text(boost)}, heights {factor_text(scale)}")
         return self._send(anim, play, repetitions)
@@ -495,15 +500,13 @@ class ModesScene(SceneDisplay):
         self._aim(self._lever_top(0.0))
         pick = np.unique(np.linspace(0, n - 1, frames).round().astype(int))
         anim = Animation(default_framerate=fps)
-        k = 0
-        for p, order in ((0, pick), (1, pick[::-1])):
-            for i in order:
-                pose = translation([0.0, y[i], 0.0]) @ _rotation_x(twist_factor * phi[p, i])
-                lateral = float(np.clip(signal_factor * s[p, i], -1.0, 1.0))
-                with anim.at_frame(self.vis, k) as frame:
-                    frame["probe"].set_transform(pose)
-                    frame["spot"].set_transform(translation(self.spot_position(0.0, lateral)))
-                k += 1
+        passes = np.concatenate((np.zeros(pick.size, int), np.ones(pick.size, int)))
+        order = np.concatenate((pick, pick[::-1]))  # trace, then retrace
+        k = np.arange(order.size)
+        set_translations(anim, self.vis["probe"], k, _column(y[order], at=1),
+                         quaternions_about_x(twist_factor * phi[passes, order]))
+        lateral = np.clip(signal_factor * s[passes, order], -1.0, 1.0)
+        set_translations(anim, self.vis["spot"], k, self._spots(np.zeros(k.size), lateral))
         self._caption(f"lateral force: trace (to +y), then retrace; "
                       f"twist {factor_text(twist_factor)}, "
                       f"spot offset {factor_text(signal_factor)}")
@@ -556,11 +559,12 @@ class ModesScene(SceneDisplay):
         self.factors = {"distance": scale}
         self._aim(self._lever_top(float(np.median(h)) * scale))
         anim = Animation(default_framerate=fps)
-        for k in range(h.size):
-            with anim.at_frame(self.vis, k) as frame:
-                y = -DEFAULTS["scan_half"] + (xs[k] - xs.min()) * lateral
-                frame["probe"].set_transform(translation([0.0, y, h[k] * scale]))
-                frame["contact"].set_transform(translation([0.0, y, 0.0]))
-                frame["contact"].set_property("visible", "boolean", bool(touching[k]))
+        k = np.arange(h.size)
+        y = -DEFAULTS["scan_half"] + (xs - xs.min()) * lateral
+        probe = _column(y, at=1)
+        probe[:, 2] = h * scale
+        set_translations(anim, self.vis["probe"], k, probe)
+        set_translations(anim, self.vis["contact"], k, _column(y, at=1))
+        set_track(anim, self.vis["contact"], "visible", k, touching)
         self._caption(f"jumping: approach, touch, retract, move; heights {factor_text(scale)}")
         return self._send(anim, play, repetitions)
