@@ -43,6 +43,19 @@ def test_trigger_against_hertz(force):
     assert trigger_z_np(HARD, force) == pytest.approx(hertz_trigger(HARD, force), rel=1e-9)
 
 
+def test_a_kept_trigger_is_the_one_of_the_system_asked_for():
+    """The trigger is kept per (system, force): an equal system gets it again, a system that
+    differs in any field (a panel's modulus slider) gets its own, each against Hertz."""
+    first = trigger_z_np(HARD, F_T)
+    again = trigger_z_np(HARD.replace(), F_T)  # an equal, distinct object
+    assert again == first == pytest.approx(hertz_trigger(HARD, F_T), rel=1e-9)
+    for other in (HARD.replace(youngs_modulus=HARD.youngs_modulus / 3),
+                  HARD.replace(spring_constant=HARD.spring_constant * 2)):
+        z = trigger_z_np(other, F_T)
+        assert z != first and z == pytest.approx(hertz_trigger(other, F_T), rel=1e-9)
+    assert trigger_z_np(HARD, 2 * F_T) == pytest.approx(hertz_trigger(HARD, 2 * F_T), rel=1e-9)
+
+
 @pytest.mark.parametrize("model, factor", [("dmt", 2.0), ("jkr", 1.5)])
 def test_curve_reaches_the_trigger_and_pulls_off(model, factor):
     w = 0.05

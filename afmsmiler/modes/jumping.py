@@ -40,6 +40,7 @@ pass otherwise). Contact mode's scan takes lines x (2 pixels - 1) dx / v
 from __future__ import annotations
 
 import math
+from functools import lru_cache
 from dataclasses import dataclass, field
 from types import MappingProxyType
 from typing import NamedTuple
@@ -106,8 +107,14 @@ def trigger_z_np(system: ContactSystem, trigger_force: float = TRIGGER_FORCE.def
         before the force reaches it.
     """
     check_instance("system", system, ContactSystem)
-    f_t = TRIGGER_FORCE.check(trigger_force)
+    return _trigger_z_np(system, TRIGGER_FORCE.check(trigger_force))
 
+
+@lru_cache(maxsize=64)
+def _trigger_z_np(system: ContactSystem, f_t: float) -> float:
+    """:func:`trigger_z_np` of a checked system and force, kept for the systems last asked for
+    (a frozen, hashable system: a jumping panel's move of the lift or the speed, and the mode
+    beside its curve, ask for the same trigger again; 8 ms of Brent's method each)."""
     def excess(z):
         return float(system.at(z, "approach").force[0]) - f_t
 
