@@ -21,6 +21,12 @@ const BAR = 16, CB_GAP = 2, CB_BELOW = 8; // colour bar: its width, its gap from
 // frames waiting to be drawn, one per animation frame: a safety valve only (0.5 s at 60 Hz, or a
 // hidden page, where animation frames stop), never reached while the page keeps up
 const MAX_PENDING = 30;
+// What the page's figures are doing, shared with the 3D views (scenes/static/scene_common.js):
+// figures that hold a frame not yet painted, and when a figure last painted one. Without a GPU a
+// 3D view's render takes 20-200 ms of the page's main thread; a view waits while a figure has a
+// frame to paint, so the student's key press shows in the figure first and in the view a frame
+// later.
+const FRAMES = (globalThis.__afmsmilerFrames ??= { pending: 0, inputAt: -Infinity, paintedAt: -Infinity });
 
 function el(tag, cls, parent) {
   const e = document.createElement(tag);
@@ -706,7 +712,16 @@ class Figure {
     keep(this.receivedSeqs, frame.seq);
     this.pending.push([layout, frame, buffer]);
     if (this.pending.length > MAX_PENDING || document.hidden) this.pending = this.pending.slice(-1);
+    if (!this.holding) { this.holding = true; FRAMES.pending += 1; }
     this.schedule();
+  }
+
+  // nothing left to draw or paint: the 3D views may render again
+  release(ts) {
+    FRAMES.paintedAt = ts;
+    if (!this.holding) return;
+    this.holding = false;
+    FRAMES.pending = Math.max(0, FRAMES.pending - 1);
   }
 
   schedule() {
@@ -723,7 +738,7 @@ class Figure {
       this.root.dataset.painted = String(this.painted);
       this.drawnSeq = null;
     }
-    if (!this.pending.length) return;
+    if (!this.pending.length) { this.release(ts); return; }
     const [layout, frame, buffer] = this.pending.shift();
     // then the next frame, and the paint of this one (a frame that failed to draw does not stop
     // the ones after it)

@@ -12,6 +12,24 @@ function afmBytes(b) {
   return new Uint8Array(b.buffer, b.byteOffset, b.byteLength); // a DataView
 }
 
+// What the page's live figures are doing (plots/static/live.js fills it: figures holding a frame
+// not yet painted, the time of the last paint) and when the student last pressed a key or clicked
+// outside a 3D view (a slider, most likely), shared by every view of the page.
+function afmFrames() {
+  const frames = (globalThis.__afmsmilerFrames ??= { pending: 0, inputAt: -Infinity, paintedAt: -Infinity });
+  if (!frames.listening && typeof document !== "undefined") {
+    frames.listening = true;
+    const input = (event) => {
+      const target = event.target;
+      if (target && target.closest && target.closest(".afm-scene")) return; // turning a view
+      frames.inputAt = performance.now();
+    };
+    document.addEventListener("keydown", input, true);
+    document.addEventListener("pointerdown", input, true);
+  }
+  return frames;
+}
+
 // A meshcat viewer in `host` (an element with a size), with its overlays; returns its handle.
 function afmCreateViewer(MeshCat, host) {
   host.classList.add("afm-scene");
@@ -104,7 +122,13 @@ function afmCreateViewer(MeshCat, host) {
   // and each key press waited about a second. Here a view renders only while on screen, and
   // after a render waits 1.5 times what that render added to its frame (nothing with a GPU:
   // every frame is rendered), so a view takes at most about 40 % of the page's frames.
-  const FRAME_MS = 1000 / 60;
+  //
+  // A key press or a click outside the 3D views (a slider moved) holds the views' renders until
+  // the figures painted what it changed: while a live figure (plots/static/live.js) has a frame to
+  // paint, or for INPUT_HOLD_MS after the input until a figure painted, a view does not render,
+  // so the figure's paint never waits for a software render. A view waits at most MAX_WAIT_MS.
+  const FRAME_MS = 1000 / 60, INPUT_HOLD_MS = 150, MAX_WAIT_MS = 400;
+  const frames = afmFrames();
   let visible = true, last = -Infinity, cost = 0, measuring = false;
   const seen = typeof IntersectionObserver === "function"
     ? new IntersectionObserver((entries) => {
@@ -123,6 +147,9 @@ function afmCreateViewer(MeshCat, host) {
     }
     viewer.animator.update();
     if (!visible || !viewer.needs_render || now - last < 2.5 * cost) return;
+    const figureFirst = frames.pending > 0
+      || (now - frames.inputAt < INPUT_HOLD_MS && frames.paintedAt < frames.inputAt);
+    if (figureFirst && now - last < MAX_WAIT_MS) return;
     viewer.render();
     last = performance.now();
     measuring = true;
