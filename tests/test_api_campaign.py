@@ -186,6 +186,7 @@ ACCEPTED = {
     "scenes.legends.TextPlate:text": (("str",), "any text is the plate's text"),
     "plots.controller.ScanFigure:title": (("str",), "any text is a figure's title"),
     "plots.imaging.scan_view:status": (("str",), "any text is the title's note"),
+    "plots.modes.ForceVolumeFigure:status": (("str",), "any text is the maps' note"),
     "plots.contact.fit_figure:zoom": (("None",), "None is the documented whole curve"),
     "plots.hardware.comparison_view:z_step": (("nan",), "NaN is the documented unknown z step "
                                               "(the default)"),

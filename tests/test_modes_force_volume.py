@@ -361,3 +361,27 @@ def test_the_noise_free_curves_are_reused_and_equal_the_uncached_ones():
     fresh = force_volume(sample, BLEND, tip, labels=labels, seed=0, force_noise=60e-12)
     for name in ("modulus", "adhesion", "deformation", "dissipation"):
         np.testing.assert_array_equal(getattr(again, name), getattr(fresh, name))
+
+
+@pytest.mark.parametrize("stride", [2, 3])
+def test_a_coarse_map_is_the_full_map_at_its_pixels(stride):
+    """Every pixel a coarse map analyses has the full map's values exactly (same curves, same
+    noise), on a grid ``stride`` times coarser."""
+    sample, labels = two_material_sample((9, 10), 24e-9, island_radius=70e-9, island_count=2,
+                                         seed=3)
+    args = dict(labels=labels, seed=4, force_noise=30e-12)
+    full = force_volume(sample, BLEND, Parabolic(radius=10e-9), **args)
+    coarse = force_volume(sample, BLEND, Parabolic(radius=10e-9), stride=stride, **args)
+    assert coarse.pixel_size == pytest.approx(stride * full.pixel_size, rel=1e-15)
+    np.testing.assert_array_equal(coarse.labels, labels[::stride, ::stride])
+    for key in ("modulus", "modulus_error", "adhesion", "deformation", "dissipation"):
+        np.testing.assert_array_equal(getattr(coarse, key), getattr(full, key)[::stride, ::stride])
+    np.testing.assert_array_equal(coarse.measured_approach, full.measured_approach)
+
+
+@pytest.mark.parametrize("stride", [0, fvm.MAX_STRIDE + 1, 1.5])
+def test_a_stride_out_of_range_is_named(stride):
+    sample, labels = two_material_sample((4, 4), 24e-9, island_radius=30e-9, island_count=1,
+                                         seed=3)
+    with pytest.raises((ValueError, TypeError), match="stride"):
+        force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, stride=stride)

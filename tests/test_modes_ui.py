@@ -17,7 +17,8 @@ from afmsmiler.modes import (TappingLever, friction_loop, friction_sample, setpo
                              tip_sample_force)
 from afmsmiler.parameters import UNITS
 from afmsmiler.ui.modes import (FM_DEFAULTS, FM_DISTANCES, FORCE_VOLUME_DEFAULTS,
-                                     FORCE_VOLUME_MAP, JUMPING_DEFAULTS, JUMPING_SCAN,
+                                     FORCE_VOLUME_MAP, FORCE_VOLUME_SLIDERS, JUMPING_DEFAULTS,
+                                     JUMPING_SCAN,
                                      LATERAL_DEFAULTS, LATERAL_SAMPLE, TAPPING_DEFAULTS,
                                      ForceVolumePanel, FrequencyShiftPanel, JumpingPanel,
                                      LateralPanel, TappingPanel, lateral_lever, operating_point)
@@ -380,6 +381,55 @@ def test_force_volume_panel_one_map_per_move(monkeypatch):
     panel = ForceVolumePanel()
     panel.set(peak_force=20.0)
     assert len(calls) == 2 and panel.model_runs == 2
+
+
+def _full_map(**si):
+    """The panel's full map for slider values ``si`` (SI), made here from the model directly."""
+    d = FORCE_VOLUME_MAP
+    sample, labels = force_volume.two_material_sample(
+        d["shape"], d["pixel_size"], island_radius=d["island_radius"],
+        island_count=d["island_count"], seed=d["seed"])
+    return force_volume.force_volume(sample, force_volume.BLEND, Parabolic(radius=d["tip_radius"]),
+                                     labels=labels, seed=d["noise_seed"], **si)
+
+
+def test_force_volume_panel_live_shows_a_coarse_map_then_the_full_one(monkeypatch):
+    """In a live kernel a move shows the map of every other pixel at once, said so on screen,
+    with no readout from it; a move during the wait replaces the pending full map; the full map
+    follows once the slider rests, and both equal the model's full computation."""
+    import asyncio
+
+    import afmsmiler.ui.modes as ui_modes
+    import afmsmiler.ui.panel as ui_panel
+    panel = ForceVolumePanel()
+    monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    runs = panel.model_runs
+    si = {k: FORCE_VOLUME_SLIDERS[k].to_si(v) for k, v in FORCE_VOLUME_DEFAULTS.items()}
+    peak = FORCE_VOLUME_SLIDERS["peak_force"]
+
+    async def drag():
+        panel.set(peak_force=15.0)
+        first = panel.coarse
+        assert "coarse map" in panel.fig.get_suptitle()
+        assert "computing the full map" in panel.readout.value and "MPa" not in \
+            panel.readout.value
+        await asyncio.sleep(ui_modes.FULL_DELAY / 3)
+        panel.set(peak_force=20.0)  # before the first full map was due
+        await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        return first
+
+    first = asyncio.run(drag())
+    assert panel.model_runs - runs == 3  # two coarse maps, one full map (the last values)
+    full15 = _full_map(**{**si, "peak_force": peak.to_si(15.0)})
+    full20 = _full_map(**{**si, "peak_force": peak.to_si(20.0)})
+    s = ui_modes.COARSE_STRIDE
+    assert first.modulus.shape == full15.modulus[::s, ::s].shape
+    assert first.pixel_size == pytest.approx(s * full15.pixel_size, rel=1e-12)
+    for key in ("modulus", "adhesion", "deformation", "dissipation"):
+        np.testing.assert_array_equal(getattr(first, key), getattr(full15, key)[::s, ::s])
+        np.testing.assert_array_equal(getattr(panel.last, key), getattr(full20, key))
+    assert panel.coarse is None and panel.fig.get_suptitle() == ""
+    assert "MPa" in panel.readout.value
 
 
 def test_notebook_suggestion_the_maps_separate_the_materials(fvp):

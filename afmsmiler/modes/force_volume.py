@@ -63,7 +63,7 @@ from .jumping import Z_SPEED, _material_index, _sequence, trigger_z_np
 
 __all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "force_volume",
            "two_material_sample", "MAX_MAP_PIXELS", "MAX_POINTS", "MAX_MATERIALS",
-           "MAX_ISLAND_WORK",
+           "MAX_ISLAND_WORK", "MAX_STRIDE",
            "ADHESION_MODELS", "BLEND"]
 
 #: Most pixels of one map (64 x 64: with 2000-point curves, 8.2e6 points to fit, within the
@@ -344,6 +344,9 @@ def _curves(materials, tip, k, peak_force, ramp_size, points, z_speed, adhesion)
     return np.array(ramps), np.array(app), np.array(ret)
 
 
+#: Largest ``stride`` of a coarse map (:func:`force_volume`).
+MAX_STRIDE = 8
+
 #: How many sets of noise-free curves :func:`force_volume` keeps (a move of the noise, the only
 #: slider that leaves them unchanged, reuses them; see :func:`_noise_free_curves`).
 CURVE_CACHE = 8
@@ -405,7 +408,8 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
                  points: int = int(PARAMETERS["points"].default),
                  force_noise: float = PARAMETERS["force_noise"].default,
                  z_speed: float = PARAMETERS["z_speed"].default,
-                 adhesion: str | None = "dmt", seed: int | None = None) -> ForceVolume:
+                 adhesion: str | None = "dmt", seed: int | None = None,
+                 stride: int = 1) -> ForceVolume:
     """A force curve at every pixel of ``sample``, analysed into maps (see the module notes).
 
     Parameters
@@ -435,6 +439,12 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
         Adhesion model of the materials with a work of adhesion.
     seed : int or None
         Seed of the noise.
+    stride : int
+        Analyse every ``stride``-th pixel of every ``stride``-th row only, 1 to
+        :data:`MAX_STRIDE`: a coarse map for a quick look (a panel shows it while the full map is
+        computed). Every pixel's curves and noise are made as in the full map, so each pixel
+        analysed has exactly the full map's values; the maps hold those pixels, ``pixels[::stride,
+        ::stride]`` of the full map, with a pixel size ``stride`` times the sample's.
 
     Returns
     -------
@@ -485,23 +495,28 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
                          f"{type(tip).__name__}")
     if seed is not None:
         seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
+    stride = check_integer("stride", stride, 1, MAX_STRIDE)
     z, app, ret = _noise_free_curves(materials, tip, k, f_p, ramp, n, v, adhesion)
     flat = lab.ravel()
     rng = np.random.default_rng(seed)
     f_app = app[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)
     f_ret = ret[flat] + (rng.normal(0.0, sigma, (flat.size, n)) if sigma else 0.0)
     nu = np.array([m.poisson_ratio for m in materials])
-    out = [np.empty(flat.size) for _ in range(5)]
+    analysed = np.zeros(h.shape, bool)
+    analysed[::stride, ::stride] = True
+    analysed = analysed.ravel()
+    out = [np.full(flat.size, np.nan) for _ in range(5)]
     rows = max(1, _ANALYSIS_POINTS // n)
     for m in range(len(materials)):  # one Poisson's ratio per material in the fit
-        pixels = np.flatnonzero(flat == m)
+        pixels = np.flatnonzero((flat == m) & analysed)
         for start in range(0, pixels.size, rows):  # bounded: MAX_MAP_PIXELS / rows blocks
             block = pixels[start:start + rows]
             for arr, values in zip(out, _analyse(np.broadcast_to(z[m], (block.size, n)),
                                                  f_app[block], f_ret[block], k, sigma, tip,
                                                  float(nu[m]))):
                 arr[block] = values
-    adh, modulus, error, deformation, dissipation = (a.reshape(h.shape) for a in out)
+    adh, modulus, error, deformation, dissipation = (a.reshape(h.shape)[::stride, ::stride]
+                                                     for a in out)
     # one pixel's measured curves per material, and the loop area's scatter from the noise
     measured_app = np.full(app.shape, np.nan)
     measured_ret = np.full(ret.shape, np.nan)
@@ -515,9 +530,9 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
     w[:, :-1] += 0.5 * weights
     w[:, 1:] += 0.5 * weights
     noise_w = sigma * np.sqrt(2.0 * np.sum(w * w, axis=1))
-    return ForceVolume(modulus, error, adh, deformation, dissipation, lab.copy(),
-                       sample.pixel_size, z, app, ret, sigma, measured_app, measured_ret,
-                       noise_w)
+    return ForceVolume(modulus, error, adh, deformation, dissipation,
+                       lab[::stride, ::stride].copy(), sample.pixel_size * stride, z, app, ret,
+                       sigma, measured_app, measured_ret, noise_w)
 
 
 class ForceVolumeMode(Mode):

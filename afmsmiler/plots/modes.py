@@ -687,6 +687,8 @@ class ForceVolumeFigure:
         The materials' names, for the curves' legend.
     fig : matplotlib.figure.Figure, optional
         Where to draw; default a new Figure 10 x 6.5 in.
+    status : str
+        What the maps are, shown over them (a coarse map's note); empty for a full map.
 
     Attributes
     ----------
@@ -705,7 +707,8 @@ class ForceVolumeFigure:
                       "deformation": ("m", "nm", "cividis"),
                       "dissipation": ("J", "zJ", "inferno")})
 
-    def __init__(self, volume: ForceVolume, names=None, fig: Figure | None = None):
+    def __init__(self, volume: ForceVolume, names=None, fig: Figure | None = None,
+                 status: str = ""):
         check_instance("volume", volume, ForceVolume)
         n = volume.approach.shape[0]
         if names is not None:
@@ -752,17 +755,21 @@ class ForceVolumeFigure:
               title="curves (dashed: retract;\npale: one pixel as measured)")
         c.legend(loc="upper left", fontsize="small")
         self._reset = True
-        self.update(volume)
+        self.update(volume, status)
 
-    def update(self, volume: ForceVolume) -> None:
+    def update(self, volume: ForceVolume, status: str = "") -> None:
         """Show new maps and curves (artists updated in place).
 
         Parameters
         ----------
         volume : ForceVolume
             The maps.
+        status : str
+            What the maps are, shown over them (a coarse map's note); empty for a full map.
         """
         check_instance("volume", volume, ForceVolume)
+        check_instance("status", status, str)
+        self.fig.suptitle(status, fontsize="medium", color="#b00020")
         dx = float(volume.pixel_size)
         extent = _extent(volume.modulus.shape, dx, dx, _NM)
         for key, (unit, shown_unit, _) in self.MAPS.items():

@@ -49,7 +49,7 @@ from ..parameters import read_only, shown
 from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
                            LateralFigure, TappingFigure)
 from ..samples import grating
-from .panel import Panel
+from .panel import Panel, _live_loop
 
 __all__ = ["TappingPanel", "TappingState", "LateralPanel", "LateralState",
            "FrequencyShiftPanel", "FrequencyShiftState", "TAPPING_SLIDERS", "LATERAL_SLIDERS",
@@ -616,11 +616,21 @@ FORCE_VOLUME_MAP = read_only(dict(shape=(10, 10), pixel_size=24e-9, island_radiu
                                   island_count=2, seed=3, tip_radius=10e-9, noise_seed=0))
 
 
+#: A live move first shows the map of every COARSE_STRIDE-th pixel (a quarter of the fits), then
+#: the full map once the student left the slider for FULL_DELAY s.
+COARSE_STRIDE, FULL_DELAY = 2, 0.15
+
+
 class ForceVolumePanel(_SliderPanel):
     """Modulus, adhesion, deformation and dissipation maps of a two-material blend.
 
     Sliders (units as shown): ``peak_force`` [nN], ``ramp_size`` [nm], ``force_noise`` [pN]
     and ``spring_constant`` [N/m].
+
+    In a live notebook a move shows a coarse map at once (every :data:`COARSE_STRIDE`-th pixel
+    of every other row, computed exactly as in the full map, the figure's title says so) and the
+    full map :data:`FULL_DELAY` s after the last move of a drag; the readouts come from the full
+    map only. Elsewhere (tests, nbval, a script) the full map is made at once.
 
     Parameters
     ----------
@@ -634,13 +644,19 @@ class ForceVolumePanel(_SliderPanel):
     Attributes
     ----------
     last : ForceVolume
-        The maps.
+        The full maps of the last values the full map was made for.
+    coarse : ForceVolume or None
+        The coarse map shown while the full one is pending (None once it is shown).
     labels : ndarray
         The material of each pixel (the truth).
     figure : ForceVolumeFigure
     model_runs : int
-        :func:`~afmsmiler.modes.force_volume.force_volume` runs so far (one per move).
+        :func:`~afmsmiler.modes.force_volume.force_volume` runs so far (one per move; in a live
+        notebook one coarse per move and one full per drag).
     """
+
+    coarse = None
+    _full_pending = None
 
     SLIDERS = FORCE_VOLUME_SLIDERS
     DEFAULTS = FORCE_VOLUME_DEFAULTS
@@ -661,15 +677,49 @@ class ForceVolumePanel(_SliderPanel):
             the tip off (the model's message), before any work.
         """
         si = dict(values)
+        if self._full_pending is not None:  # a newer move: the full map of the old one is moot
+            self._full_pending.cancel()
+            self._full_pending = None
+        loop = _live_loop()
+        if loop is None:
+            self._show(self._map(si))
+            return
+        self.coarse = self._map(si, COARSE_STRIDE)
+        shape, full = self.coarse.modulus.shape, FORCE_VOLUME_MAP["shape"]
+        self._show(self.coarse, status=(
+            f"coarse map: every {COARSE_STRIDE}nd pixel ({shape[0]} x {shape[1]} of "
+            f"{full[0]} x {full[1]}); the full map follows when the slider rests"))
+        self._full_pending = loop.call_later(FULL_DELAY, self._full, si)
+
+    def _map(self, si: dict, stride: int = 1):
+        """The model: the blend's maps for slider values ``si`` (SI), every ``stride``-th pixel."""
         d = FORCE_VOLUME_MAP
         sample, labels = _fv.two_material_sample(d["shape"], d["pixel_size"],
                                                  island_radius=d["island_radius"],
                                                  island_count=d["island_count"], seed=d["seed"])
-        volume = self.run_model(_fv.force_volume, sample, _fv.BLEND, Parabolic(radius=d["tip_radius"]),
-                                  labels=labels, seed=d["noise_seed"], **si)
         self.labels = labels
+        return self.run_model(_fv.force_volume, sample, _fv.BLEND,
+                              Parabolic(radius=d["tip_radius"]), labels=labels,
+                              seed=d["noise_seed"], stride=stride, **si)
+
+    def _full(self, si: dict) -> None:
+        """The full map after a coarse one (a loop callback: a failure shows under the panel)."""
+        self._full_pending = None
+        try:
+            self._show(self._map(si))
+        except Exception as exc:  # shown, not lost in the kernel's log
+            self._report_error(exc)
+
+    def _show(self, volume, status: str = "") -> None:
+        """Draw ``volume``; a full map (no ``status``) also becomes :attr:`last` and the readouts."""
+        self.draw(ForceVolumeFigure, volume, made_with={"names": [m.name for m in _fv.BLEND]},
+                  status=status)
+        if status:
+            self.readout.value = _table([("the maps' medians", "computing the full map ...")])
+            return
+        self.coarse = None
         self.last = volume
-        self.draw(ForceVolumeFigure, volume, made_with={"names": [m.name for m in _fv.BLEND]})
+        labels = volume.labels
         rows = []
 
         def median(values, unit):
