@@ -42,12 +42,14 @@ firmware:
 	  else echo "no avr-gcc/simavr and not root: the firmware tests will be skipped"; fi; }
 
 ## uv (from PyPI) installs in parallel: about 35 s for every extra where pip took about 2 min;
-## pip does it when uv cannot.
+## pip does it when uv cannot. uv compiles the installed modules as pip does (--compile-bytecode,
+## on both cores): otherwise the first test run after an install compiled numpy, scipy,
+## matplotlib and Jupyter in each of its processes.
 EXTRAS := test,lab,files,bench,hardware
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	{ $(PY) -m pip install --quiet uv && \
-	  $(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[$(EXTRAS)]'; } || \
+	  $(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[$(EXTRAS)]'; } || \
 	  { $(PY) -m pip install --quiet --upgrade pip && $(PY) -m pip install --quiet -e '.[$(EXTRAS)]'; }
 	touch $(STAMP) $(STUDENT_STAMP)
 
