@@ -239,7 +239,7 @@ def test_a_huge_image_size_is_refused_before_anything_is_allocated():
         "GP other parameter",
         "SP no value", "SP out of range", "ST empty", "ST short", "ST unknown state"])
 def test_educational_short_or_odd_replies_are_named_errors(answers, call):
-    afm = EducationalAFM(Scripted(answers), timeout=0.05, retries=0)
+    afm = EducationalAFM(Scripted(answers), timeout=2.0, retries=0)
     with pytest.raises(ReplyError):
         call(afm)
 
@@ -253,7 +253,7 @@ def test_educational_short_or_odd_replies_are_named_errors(answers, call):
     ({"ST": ["OK ST IDLE 0 0 -1"]}, lambda afm: afm.status()),
 ])
 def test_macro_short_or_odd_replies_are_named_errors(answers, call):
-    afm = MacroAFM(Scripted(answers), timeout=0.05, retries=0)
+    afm = MacroAFM(Scripted(answers), timeout=2.0, retries=0)
     with pytest.raises(ReplyError):
         call(afm)
 
@@ -268,7 +268,7 @@ def test_macro_short_or_odd_replies_are_named_errors(answers, call):
     ({"ST": ["OK ST IDLE 16 0 0"]}, lambda dev: dev.status(), "flags 16"),
 ])
 def test_haptic_short_or_odd_replies_are_named_errors(answers, call, match):
-    with HapticDevice(Scripted(answers), timeout=0.05, retries=0) as dev:
+    with HapticDevice(Scripted(answers), timeout=2.0, retries=0) as dev:
         with pytest.raises(ReplyError, match=match):
             call(dev)
 
@@ -276,7 +276,7 @@ def test_haptic_short_or_odd_replies_are_named_errors(answers, call, match):
 @pytest.mark.parametrize("version", ["2", "v1"])
 def test_another_protocol_version_is_named_even_as_a_word(version):
     from afmsmiler.hardware import ProtocolVersionError
-    afm = EducationalAFM(Scripted({"ID": [f"OK ID EDUAFM {version} 0.1.0"]}), timeout=0.05,
+    afm = EducationalAFM(Scripted({"ID": [f"OK ID EDUAFM {version} 0.1.0"]}), timeout=2.0,
                          retries=0)
     with pytest.raises(ProtocolVersionError, match=f"EDUAFM speaks protocol version {version}"):
         afm.connect()
