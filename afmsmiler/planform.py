@@ -741,8 +741,8 @@ class Lever:
         Examples
         --------
         >>> lever = Lever.rectangular("silicon", length=125e-6, width=30e-6, thickness=4e-6)
-        >>> round(lever.modes(1).frequencies[0] / 1e3)  # kHz
-        348
+        >>> round(lever.modes(1).frequencies[0] / 1e3)  # kHz, as Cantilever's f_1
+        352
         """
         n = check_integer("n", n, 1, 20)
         kind = check_choice("kind", kind, ("flexural", "torsional"))

@@ -346,3 +346,23 @@ def test_limits_are_what_the_messages_say():
     assert LIMITS["length_per_thickness"] == 10 and LIMITS["width_per_thickness"] == 5
     with pytest.raises(ValueError, match=re.escape("elements must be")):
         rect().with_(elements=LIMITS["max_elements"] + 1)
+
+
+# -- module (g)'s lateral-force model takes the lever's torsion ------------------------------
+def test_lateral_force_model_uses_the_levers_torsion():
+    from afmsmiler.modes.lateral import LateralLever
+    c = Cantilever.from_material("silicon", 450e-6, 50e-6, 2e-6)
+    lat = LateralLever(c, 15e-6, 60e9)
+    assert lat.torsional_stiffness == pytest.approx(60e9 * 50e-6 * 2e-6 ** 3 / (3 * 450e-6),
+                                                    rel=1e-12)
+    assert lat.body.torsional_stiffness == lat.torsional_stiffness
+    for name in ("AC240TS", "MLCT-E"):
+        lever = preset(name)
+        lat = LateralLever(lever)
+        assert lat.tip_height == pytest.approx(lever.tip_height + lever.thickness / 2)
+        assert lat.shear_modulus == lever.shear_modulus
+        assert lat.torsional_stiffness == pytest.approx(lever.torsional_stiffness, rel=1e-12)
+        assert lat.spring_constant == pytest.approx(lever.lateral_spring_constant, rel=1e-12)
+        # a friction force F twists the lever by F (h_tip + t/2) / k_phi
+        assert lat.twist(1e-9) == pytest.approx(1e-9 * lever.apex_lever_arm
+                                                / lever.torsional_stiffness, rel=1e-12)
