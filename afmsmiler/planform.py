@@ -72,7 +72,8 @@ from dataclasses import dataclass, field, replace
 from functools import cached_property
 
 import numpy as np
-from scipy.linalg import eigh
+from scipy.linalg import cho_factor, cho_solve, eigh
+from scipy.sparse import csr_matrix
 
 from .cantilever import LENGTH, MAX_MODE, THICKNESS, WIDTH, Cantilever
 from .materials import DENSITY, YOUNGS_MODULUS, Material, lookup
@@ -656,14 +657,20 @@ class Lever:
         return mesh, K, M
 
     def _reduced(self, kind: str):
-        mesh, K, M = self._model
-        C = self._reduction(mesh, kind)
-        return mesh, C, C.T @ K @ C, C.T @ M @ C
+        """Mesh, C and the reduced stiffness and mass C^T K C, C^T M C (once per kind)."""
+        if kind not in self._eigen:
+            mesh, K, M = self._model
+            C = self._reduction(mesh, kind)
+            Cs = csr_matrix(C)  # a selection with a few joint rows: sparse products, no BLAS
+            Kr = np.asarray((Cs.T @ np.asarray(Cs.T @ K).T).T)
+            Mr = np.asarray((Cs.T @ np.asarray(Cs.T @ M).T).T)
+            self._eigen[kind] = (mesh, C, (Kr + Kr.T) / 2, (Mr + Mr.T) / 2)
+        return self._eigen[kind]
 
     def _compliance(self, kind: str, dof: int) -> float:
         mesh, C, Kr, _ = self._reduced(kind)
         load = C[3 * mesh.tip + dof]
-        u = np.linalg.solve(Kr, load)
+        u = cho_solve(cho_factor(Kr), load)
         return float(load @ u)
 
     # -- statics --------------------------------------------------------------------------
@@ -746,7 +753,7 @@ class Lever:
         """
         n = check_integer("n", n, 1, 20)
         kind = check_choice("kind", kind, ("flexural", "torsional"))
-        mesh, C, w2, vec = self._eig(kind)
+        mesh, C, w2, vec = self._eig(kind, n)
         n = min(n, w2.size)
         w2, vec = w2[:n], vec[:, :n]
         full = (C @ vec).reshape(mesh.xy.shape[0], 3, n)
@@ -760,13 +767,18 @@ class Lever:
     def _eigen(self) -> dict:
         return {}
 
-    def _eig(self, kind: str):
-        """The first 20 modes of ``kind`` (or all the mesh has), solved once per lever."""
-        if kind not in self._eigen:
+    def _eig(self, kind: str, n: int):
+        """At least the first ``n`` (and 3) modes of ``kind``, solved once per lever and count:
+        a later call for fewer modes reuses them, so that f_n does not depend on the order of
+        the calls."""
+        key = ("modes", kind)
+        have = self._eigen.get(key)
+        if have is None or have[2].size < min(n, have[4]):
             mesh, C, Kr, Mr = self._reduced(kind)
-            w2, vec = eigh(Kr, Mr, subset_by_index=[0, min(20, Kr.shape[0]) - 1])
-            self._eigen[kind] = (mesh, C, w2, vec)
-        return self._eigen[kind]
+            count = min(max(n, 3), Kr.shape[0])
+            w2, vec = eigh(Kr, Mr, subset_by_index=[0, count - 1])
+            self._eigen[key] = have = (mesh, C, w2, vec, Kr.shape[0])
+        return have[:4]
 
     def frequencies(self, n: int = 3) -> tuple:
         """Frequencies f_1 ... f_n in Hz of the first ``n`` flexural modes (vacuum).

@@ -9,6 +9,7 @@ Instrum. 66, 4583 (1995)) and the parallel-beam approximation (Albrecht et al., 
 Technol. A 8, 3386 (1990)), and the vendors' datasheets (cited per preset in
 ``afmsmiler/_probes.py``).
 """
+import functools
 import math
 import re
 
@@ -141,7 +142,8 @@ def test_pointed_frequencies_converge_as_h4_and_exceed_the_rectangle():
 
 
 # -- the V-shaped lever ----------------------------------------------------------------------
-def _two_arm_frame(E, G, t, b, L, theta):
+@functools.lru_cache(maxsize=1)
+def _frame_formula():
     """k of two straight arms (bending E I, Saint-Venant torsion G J) clamped at the base and
     joined at the apex, derived from the beam ODE: each arm w'''' = 0, w(0) = w'(0) = 0,
     w(l) = delta, w'(l) = s; the joint's slope (g, 0) along the axis gives the arm its end slope
@@ -154,11 +156,16 @@ def _two_arm_frame(E, G, t, b, L, theta):
     U_b = sp.integrate(EI / 2 * sp.diff(w, x, 2) ** 2, (x, 0, ell))
     U = 2 * (U_b.subs(s, g * sp.cos(th)) + GJ / 2 * (g * sp.sin(th)) ** 2 / ell)
     g_min = sp.solve(sp.diff(U, g), g)[0]
-    k = sp.simplify(sp.diff(U.subs(g, g_min), d, 2))
-    return float(k.subs({EI: E * b * t ** 3 / 12, GJ: G * b * t ** 3 / 3, ell: L / math.cos(theta),
-                         th: theta}))
+    k = sp.diff(U.subs(g, g_min), d, 2)
+    return sp.lambdify((EI, GJ, ell, th), k)
 
 
+def _two_arm_frame(E, G, t, b, L, theta):
+    return float(_frame_formula()(E * b * t ** 3 / 12, G * b * t ** 3 / 3, L / math.cos(theta),
+                                  theta))
+
+
+@pytest.mark.slow  # the sympy derivation takes a second or two
 def test_v_shape_converges_to_the_two_arm_frame_as_the_apex_shrinks():
     """The model's apex is a solid triangle arm_width / sin(theta) long; with narrow arms it
     shrinks and the model must approach the sympy-derived frame, the gap shrinking with it."""
@@ -255,13 +262,11 @@ def test_coated_section_by_integration():
     z = sp.symbols("z")
     t, tc = sp.Rational(6, 10), sp.Rational(5, 100)  # um
 
-    def prop(p1, p2):
-        return sp.Piecewise((p1, z <= t), (p2, True))
-
-    def about_centre(p1, p2, weight=1):
-        P = prop(p1, p2)
-        zc = sp.integrate(P * z, (z, 0, t + tc)) / sp.integrate(P, (z, 0, t + tc))
-        return float(weight * sp.integrate(P * (z - zc) ** 2, (z, 0, t + tc))) * 1e-18
+    def about_centre(p1, p2, weight=1):  # int P (z - z_c)^2 dz, layer by layer
+        def layers(f):
+            return sp.integrate(p1 * f, (z, 0, t)) + sp.integrate(p2 * f, (z, t, t + tc))
+        zc = layers(z) / layers(1)
+        return float(weight * layers((z - zc) ** 2)) * 1e-18
     d_b, d_t, mu, i_z = lever.section
     assert d_b == pytest.approx(about_centre(NITRIDE.youngs_modulus, gold.youngs_modulus),
                                 rel=1e-12)
@@ -349,6 +354,7 @@ def test_limits_are_what_the_messages_say():
 
 
 # -- module (g)'s lateral-force model takes the lever's torsion ------------------------------
+@pytest.mark.slow  # importing afmsmiler.modes alone takes seconds
 def test_lateral_force_model_uses_the_levers_torsion():
     from afmsmiler.modes.lateral import LateralLever
     c = Cantilever.from_material("silicon", 450e-6, 50e-6, 2e-6)
