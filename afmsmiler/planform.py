@@ -26,7 +26,7 @@ mass are integrated exactly (4-point Gauss for the linear width) and assembled v
 modes come from ``scipy.linalg.eigh`` of the symmetric half of the lever (flexural modes are
 symmetric about the axis, torsional ones antisymmetric). For a uniform rectangle the flexural
 results equal the closed forms of :class:`~afmsmiler.cantilever.Cantilever` (k = 3 E J / L^3
-exactly; f_n from :func:`~afmsmiler.cantilever.eigenvalue` to the discretisation error), and
+to the solve's rounding, 1e-9; f_n from :func:`~afmsmiler.cantilever.eigenvalue` to the discretisation error), and
 the torsional ones Saint-Venant's k_phi = G w t^3 / (3 L) exactly and
 f_n = (2 n - 1) / (4 L) sqrt(G J / (rho I_p)), J = w t^3 / 3, I_p = (w t^3 + w^3 t) / 12
 (Timoshenko, *Vibration Problems in Engineering*; for AFM levers Green and Sader,
@@ -373,8 +373,9 @@ class Lever:
 
     @classmethod
     def v_shaped(cls, material: str | Material, length: float = 200e-6,
-                 arm_width: float = ARM_WIDTH.default, width: float = 160e-6,
-                 thickness: float = 0.6e-6, *, tip_position: float | None = None,
+                 arm_width: float = ARM_WIDTH.default, width: float | None = None,
+                 thickness: float = 0.6e-6, *, half_angle: float | None = None,
+                 tip_position: float | None = None,
                  tip_height: float = TIP_HEIGHT.default, coating: str | Material | None = None,
                  coating_thickness: float = 0.0) -> "Lever":
         """A V-shaped lever: two arms of width ``arm_width`` meeting at the apex x = L.
@@ -387,10 +388,15 @@ class Lever:
             Length L in m, clamp to apex along the axis.
         arm_width : float
             Width of each arm across the arm in m.
-        width : float
-            Total width at the clamp in m (outer edge to outer edge).
+        width : float or None
+            Total width at the clamp in m (outer edge to outer edge); None: from
+            ``half_angle``, or 160 um without one.
         thickness : float
             Thickness t in m.
+        half_angle : float or None
+            Angle theta in rad between each arm's outer edge and the axis, in (0, pi/2): the
+            width is then 2 L tan(theta); given with ``width``, the two must agree (else the
+            arms would not meet at the apex).
         tip_position : float or None
             Tip position from the clamp in m, on the solid apex; None: at the apex.
         tip_height : float
@@ -405,6 +411,21 @@ class Lever:
         Lever
         """
         m = lookup(material, "material")
+        if half_angle is not None:
+            theta = check_range("half_angle", half_angle, 0.0, math.pi / 2, "rad",
+                                low_inclusive=False, high_inclusive=False)
+            length = LENGTH.check(length)
+            opening = 2 * length * math.tan(theta)
+            if width is not None and not math.isclose(WIDTH.check(width), opening,
+                                                      rel_tol=1e-9):
+                raise ValueError(
+                    f"half_angle must agree with width: arms of length {length:g} m at "
+                    f"{half_angle:g} rad meet at the apex only for width = 2 length "
+                    f"tan(half_angle) = {opening:g} m, got width {width:g} m (the arms would "
+                    f"not meet)")
+            width = opening
+        elif width is None:
+            width = 160e-6
         return cls("v_shaped", length, width, thickness, m.youngs_modulus, m.density,
                    m.shear_modulus, tip_position, tip_height, arm_width=arm_width,
                    coating=_coating(coating), coating_thickness=coating_thickness)
@@ -856,7 +877,8 @@ def sader_v_spring_constant(lever: Lever) -> float:
 
     k = E t^3 b / (2 L^3) cos(theta) [1 + 4 b^3 / d^3 (3 cos(theta) - 2)]^-1, b the arm width,
     d the total width at the clamp, theta the half-angle, L the length to the apex (Sader,
-    Rev. Sci. Instrum. 66, 4583 (1995), fitted to finite-element results for plates).
+    Rev. Sci. Instrum. 66, 4583 (1995), who compares it with finite-element results for
+    plates).
 
     Parameters
     ----------

@@ -155,6 +155,9 @@ ACCEPTED = {
                                   "coating, the material's or the lever's G")
        for m in ("", ".rectangular", ".pointed", ".v_shaped")
        for p in ("tip_position", "coating")},
+    **{f"planform.Lever.v_shaped:{p}": (("None",), "None is documented: the width from the "
+                                        "half-angle, or the half-angle from the width")
+       for p in ("width", "half_angle")},
     # module (h): "1e-6" is a word of the frame format ([A-Za-z0-9_.:-]+), and a word a driver
     # does not know is kept as a str (documented): a device of a newer firmware may send it
     "hardware.framing.event_frame:word": (("str",), "any word of the frame format"),

@@ -210,7 +210,7 @@ def test_v_shape_twist_converges_to_the_two_arm_frame():
 @pytest.mark.parametrize("Lv, b, d", [(200e-6, 5e-6, 160e-6), (200e-6, 10e-6, 80e-6),
                                       (100e-6, 5e-6, 100e-6), (120e-6, 5e-6, 150e-6)])
 def test_v_shape_against_sader_for_narrow_arms(Lv, b, d):
-    """Sader's formula (fitted to plate finite elements) and the frame agree within 6 % for
+    """Sader's formula (checked by him against plate finite elements) and the frame agree within 6 % for
     narrow arms (b <= L / 20, theta 11 to 32 deg); the frame is the stiffer (its rigid joint)."""
     lever = Lever.v_shaped("silicon_nitride", Lv, b, d, 0.6e-6)
     ratio = lever.spring_constant / sader_v_spring_constant(lever)
@@ -320,6 +320,10 @@ def test_the_pointed_presets_are_what_the_rectangle_missed():
     (lambda: Lever.v_shaped("silicon_nitride", 200e-6, 20e-6, 160e-6, 0.6e-6,
                             tip_position=100e-6),
      r"^tip_position must be in \(0\.000146\d*, 0\.0002\] m \(between x_j"),
+    (lambda: Lever.v_shaped("silicon_nitride", 200e-6, 20e-6, half_angle=-0.3),
+     r"^half_angle must be in \(0, 1\.5708\) rad, got -0\.3"),
+    (lambda: Lever.v_shaped("silicon_nitride", 200e-6, 20e-6, 160e-6, half_angle=0.2),
+     r"^half_angle must agree with width: .* \(the arms would not meet\)"),
     (lambda: rect(tip_position=130e-6), r"^tip_position must be in \(0, 0\.000125\] m, got"),
     (lambda: rect(tip_position=-1e-6), r"^tip_position must be in \[1e-09, 1\] m"),
     (lambda: Lever.rectangular("silicon", 125e-6, 30e-6, 20e-6),
@@ -345,6 +349,14 @@ def test_the_pointed_presets_are_what_the_rectangle_missed():
 def test_bad_geometry_names_the_parameter(call, pattern):
     with pytest.raises((ValueError, TypeError), match=pattern):
         call()
+
+
+def test_v_shape_from_its_half_angle():
+    a = Lever.v_shaped("silicon_nitride", 200e-6, 20e-6, half_angle=math.atan(0.4))
+    b = Lever.v_shaped("silicon_nitride", 200e-6, 20e-6, 160e-6)
+    assert a.width == pytest.approx(160e-6, rel=1e-12)
+    assert a.half_angle == pytest.approx(math.atan(0.4), rel=1e-12)
+    assert a.spring_constant == pytest.approx(b.spring_constant, rel=1e-9)
 
 
 def test_limits_are_what_the_messages_say():
