@@ -133,8 +133,9 @@ class Modes:
     x, y : ndarray, shape (nodes,)
         Node positions in m of the lever's half y >= 0 (the other half is its mirror image).
     shapes : ndarray, shape (n, nodes)
-        Deflection w of each mode at the nodes; flexural modes are normalised to +1 at the tip,
-        torsional ones to a twist (slope dw/dy) of +1 rad at the tip.
+        Flexural modes: the deflection w at the nodes, normalised to +1 at the tip; torsional
+        modes: the rotation about the lever's axis (the slope dw/dy) at the nodes, normalised to
+        +1 at the tip.
     kind : str
         ``"flexural"`` or ``"torsional"``.
     """
@@ -457,7 +458,8 @@ class Lever:
         Parameters
         ----------
         **changes
-            Field names and new values (``tip_position=...``, ``thickness=...``).
+            Field names and new values (``tip_position=...``, ``thickness=...``); a tip at the
+            free end stays at the free end when the length changes.
 
         Returns
         -------
@@ -466,6 +468,8 @@ class Lever:
         unknown = set(changes) - set(self.__dataclass_fields__)
         if unknown:
             raise TypeError(f"changes must name fields of Lever, got {sorted(unknown)}")
+        if "tip_position" not in changes and self.tip_position == self.length:
+            changes["tip_position"] = None  # a tip at the free end stays there
         return replace(self, **changes)
 
     # -- geometry -------------------------------------------------------------------------
@@ -778,9 +782,10 @@ class Lever:
         n = min(n, w2.size)
         w2, vec = w2[:n], vec[:, :n]
         full = (C @ vec).reshape(mesh.xy.shape[0], 3, n)
-        ref = full[mesh.tip, 0 if kind == "flexural" else 2, :]
+        dof = 0 if kind == "flexural" else 2
+        ref = full[mesh.tip, dof, :]
         ref = np.where(np.abs(ref) > 0, ref, 1.0)
-        shapes = (full[:, 0, :] / ref).T
+        shapes = (full[:, dof, :] / ref).T
         return Modes(np.sqrt(np.clip(w2, 0.0, None)) / (2 * math.pi), mesh.xy[:, 0].copy(),
                      mesh.xy[:, 1].copy(), shapes, kind)
 

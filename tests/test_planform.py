@@ -129,6 +129,40 @@ def test_pointed_static_stiffnesses_by_the_unit_load_integral(a, tip):
     assert lever.lateral_bending_stiffness == pytest.approx(k_lat, rel=2e-5)
 
 
+def test_pointed_twist_by_the_unit_load_integral():
+    """Torsion of a strip of varying width: compliance int dx / (G J(x)) (J = b t^3 / 3, the
+    point stiffened to Lever.stiff_width); linear elements converge to it as h^2."""
+    G = SI.shear_modulus
+    exact = []
+    for tip in (None, 110e-6):
+        lever = Lever.pointed("silicon", L, W, T, 40e-6, tip_position=tip)
+        x = L if tip is None else tip
+        floor = lever.stiff_width
+        c = quad(lambda s: 1 / (G * max(W * min(1.0, (L - s) / 40e-6), floor) * T ** 3 / 3), 0, x,
+                 points=[L - 40e-6], epsabs=0, epsrel=1e-12, limit=200)[0]
+        exact.append(1 / c)
+        assert lever.torsional_stiffness == pytest.approx(1 / c, rel=2e-3)
+    lever = Lever.pointed("silicon", L, W, T, 40e-6)
+    errors = [abs(lever.with_(elements=e).torsional_stiffness / exact[0] - 1) for e in (25, 50, 100)]
+    assert errors[0] / errors[1] > 3 and errors[1] / errors[2] > 3
+    m = lever.modes(2, "torsional")
+    assert m.kind == "torsional" and np.allclose(m.shapes[:, np.argmax(m.x)], 1.0)
+
+
+def test_torsional_mode_shapes_of_the_rectangle():
+    """A uniform shaft fixed at one end: twist sin((2 n - 1) pi x / (2 L))."""
+    m = rect().modes(2, "torsional")
+    for n in (1, 2):
+        expected = np.sin((2 * n - 1) * np.pi * m.x / (2 * L))
+        assert np.allclose(m.shapes[n - 1], expected / expected[-1], atol=2e-3)
+
+
+def test_with_keeps_a_tip_at_the_free_end():
+    longer = rect().with_(length=150e-6)
+    assert longer.tip_position == 150e-6
+    assert rect(tip_position=100e-6).with_(length=150e-6).tip_position == 100e-6
+
+
 def test_pointed_frequencies_converge_as_h4_and_exceed_the_rectangle():
     base = Lever.pointed("silicon", L, W, T, 30e-6)
     f = np.array([base.with_(elements=e).frequencies(3) for e in (4, 8, 16, 32)])
