@@ -3,7 +3,10 @@
 Values are textbook figures; each preset says where it comes from. Crystalline silicon is
 anisotropic: the Young's modulus along <110>, the usual cantilever axis on a (100) wafer, is
 169 GPa (Hopcroft, Nix and Kenny, J. Microelectromech. Syst. 19, 229 (2010)), which is also the
-value AFM probe vendors use to compute nominal spring constants.
+value AFM probe vendors use to compute nominal spring constants. Twisting such a lever shears it
+in the (001) plane between <110> and <-110>, whose shear modulus is 50.9 GPa (same source), not
+the isotropic E / (2 (1 + nu)) = 79.4 GPa of E<110> and nu = 0.064: a preset may therefore give
+its shear modulus G explicitly; otherwise G = E / (2 (1 + nu)).
 """
 from __future__ import annotations
 
@@ -40,6 +43,9 @@ class Material:
         Poisson's ratio nu, in [0, 0.5).
     source : str
         Where the figures come from.
+    shear_modulus : float or None
+        Shear modulus G in Pa for twisting a lever made of it (1 Pa to 10 TPa); None: the
+        isotropic G = E / (2 (1 + nu)).
     """
 
     name: str
@@ -47,6 +53,7 @@ class Material:
     density: float
     poisson_ratio: float = 0.25
     source: str = ""
+    shear_modulus: float | None = None
 
     def __post_init__(self):
         check_instance("name", self.name, str)
@@ -55,12 +62,16 @@ class Material:
         object.__setattr__(self, "density", DENSITY.check(self.density))
         object.__setattr__(self, "poisson_ratio", check_range(
             "poisson_ratio", self.poisson_ratio, 0.0, 0.5, high_inclusive=False))
+        g = (self.youngs_modulus / (2 * (1 + self.poisson_ratio)) if self.shear_modulus is None
+             else check_range("shear_modulus", self.shear_modulus, 1.0, 1e13, "Pa"))
+        object.__setattr__(self, "shear_modulus", g)
 
 
 #: The presets by key (read-only).
 MATERIALS = read_only({
     "silicon": Material("silicon <110>", 169e9, 2330.0, 0.064,
-                        "Hopcroft et al., JMEMS 19, 229 (2010): E<110> = 169 GPa"),
+                        "Hopcroft et al., JMEMS 19, 229 (2010): E<110> = 169 GPa, nu = 0.064 and"
+                        " G = 50.9 GPa for a lever along <110> on a (100) wafer", 50.9e9),
     "silicon_nitride": Material("silicon nitride (LPCVD)", 250e9, 3100.0, 0.23,
                                 "LPCVD Si3N4 films, E reported 150-310 GPa; 250 GPa typical"),
     "silicon_dioxide": Material("silicon dioxide (thermal)", 70e9, 2200.0, 0.17,

@@ -92,7 +92,7 @@ if os.environ.get("AFMSMILER_CAMPAIGN_RECORD"):  # tests/api_campaign_record.py:
 # Overflow and invalid-value warnings of extreme inputs are expected; the results are judged.
 pytestmark = pytest.mark.filterwarnings("ignore::RuntimeWarning")
 
-MODULES = ["afmsmiler.cantilever", "afmsmiler.materials", "afmsmiler.transducers",
+MODULES = ["afmsmiler.cantilever", "afmsmiler.planform", "afmsmiler.materials", "afmsmiler.transducers",
            "afmsmiler.controller", "afmsmiler.contact", "afmsmiler.samples",
            "afmsmiler.brownian", "afmsmiler.parameters", "afmsmiler.validation",
            # module (f): each public module of the imaging package (not the package, whose
@@ -148,6 +148,16 @@ ACCEPTED = {
     "modes.force_volume.two_material_sample:seed": (("None",), "None is the documented fresh "
                                                     "layout"),
     "modes.lateral.friction_scan:seed": (("None",), "None is the documented fresh noise"),
+    "modes.lateral.LateralLever:tip_height": (("None",), "None is the documented: from the lever"),
+    "modes.lateral.LateralLever:shear_modulus": (("None",), "None is the documented: the "
+                                                 "lever's own"),
+    **{f"planform.Lever{m}:{p}": (("None",), "None is documented: tip at the free end, no "
+                                  "coating, the material's or the lever's G")
+       for m in ("", ".rectangular", ".pointed", ".v_shaped")
+       for p in ("tip_position", "coating")},
+    **{f"planform.Lever.v_shaped:{p}": (("None",), "None is documented: the width from the "
+                                        "half-angle, or the half-angle from the width")
+       for p in ("width", "half_angle")},
     # module (h): "1e-6" is a word of the frame format ([A-Za-z0-9_.:-]+), and a word a driver
     # does not know is kept as a str (documented): a device of a newer firmware may send it
     "hardware.framing.event_frame:word": (("str",), "any word of the frame format"),
@@ -203,7 +213,7 @@ SLOW_SMOKE: set[str] = {
 RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", "ScanLine", "ScanPass", "ScanImage", "ClosedForm",
            "IndentationCurve", "ApproachRetract", "ViscoelasticCycle", "FitResult", "TableRow",
            "SignalChain", "Stage", "FrequencyResponse", "Resolution", "Harmonics", "Preset",
-           "Operation", "Bending", "FitResults", "ApexPath",
+           "Operation", "Bending", "FitResults", "ApexPath", "Modes",
            # module (f): the scanner's and the corrections' results, and what a mode returns
            # (the scanner checks a ModeLine's channels when it receives one)
            "ScanResult", "LineRecord", "ScanPlan", "ModeLine", "Crash", "Plane", "Histogram",
@@ -389,6 +399,14 @@ OVERRIDES = {
     "afmsmiler.transducers.get_principle": {"key": "optical_beam_deflection"},
     "afmsmiler.contact.make_tip": {"key": "parabolic"},
     "afmsmiler.cantilever.check_modes": {"modes": (1, 2, 3)},
+    "afmsmiler.planform.Lever": {"planform": "rectangular", "youngs_modulus": 169e9},
+    "afmsmiler.planform.Lever.modes": {"kind": "flexural"},
+    "afmsmiler.planform.Lever.v_shaped": {"width": 160e-6, "thickness": 0.6e-6},
+    "afmsmiler.planform.preset": {"name": "AC240TS"},
+    **{f"afmsmiler.planform.{f}": {"lever": lambda: __import__(
+        "afmsmiler.planform", fromlist=["preset"]).preset("MLCT-E")}
+       for f in ("sader_v_spring_constant", "parallel_beam_spring_constant",
+                 "parallel_beam_error")},
     "afmsmiler.contact.adhesion_extrema": {"adhesion": "jkr", "work_of_adhesion": 0.03},
     "afmsmiler.contact.ContactSystem.at": {"z_np": 10e-9},
     "afmsmiler.contact.contact_surface": {"current": lambda: _curve()},

@@ -12,8 +12,13 @@ Neumeister and Ducker, Rev. Sci. Instrum. 65, 2527 (1994), in its thin-plate lim
 
 For a plate of finite w / t the factor 1/3 becomes about 1/3 (1 - 0.630 t / w) (Roark's
 *Formulas for Stress and Strain*, torsion of a rectangular section; 2.5 % less for w / t = 25,
-the default lever); this model keeps the thin-plate value. G = E / (2 (1 + nu))
-of an isotropic material (:func:`shear_modulus`).
+the default lever); this model keeps the thin-plate value. The torsional stiffness is the
+lever's own, :attr:`afmsmiler.planform.Lever.torsional_stiffness` (module (a)), for every
+planform: a :class:`~afmsmiler.planform.Lever` (pointed, V-shaped) brings its shear modulus
+and tip height; a rectangular :class:`~afmsmiler.cantilever.Cantilever` is given G here,
+by default G = E / (2 (1 + nu)) of the isotropic silicon preset (:func:`shear_modulus`; a <110>
+silicon lever's true 50.9 GPa is the material preset's
+:attr:`~afmsmiler.materials.Material.shear_modulus`).
 
 The twist tilts the reflecting end sideways, so the reflected beam turns by 2 phi and the spot
 moves across the four-quadrant photodiode by D tan(2 phi): exactly the optical lever of module
@@ -52,6 +57,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..cantilever import Cantilever
+from ..planform import Lever
 from ..imaging.scan_modes import Mode, ModeLine, ScanPlan
 from ..materials import MATERIALS, Material, lookup
 from ..parameters import Parameter, read_only
@@ -132,12 +138,16 @@ class LateralLever:
 
     Parameters
     ----------
-    lever : Cantilever
-        The lever (module (a)): length L, width w, thickness t.
-    tip_height : float
-        Tip height h in m, apex to the lever's mid-plane.
-    shear_modulus : float
-        Shear modulus G of the lever's material in Pa (:func:`shear_modulus`).
+    lever : Cantilever or Lever
+        The lever (module (a)): a rectangular Cantilever (length L, width w, thickness t), or a
+        :class:`~afmsmiler.planform.Lever` of any planform.
+    tip_height : float or None
+        Tip height h in m, apex to the lever's mid-plane; None: the Lever's
+        :attr:`~afmsmiler.planform.Lever.apex_lever_arm` (h_tip + t/2), or
+        :data:`TIP_HEIGHT`'s default for a Cantilever.
+    shear_modulus : float or None
+        Shear modulus G of the lever's material in Pa; None: the Lever's, or
+        :data:`SHEAR_MODULUS`'s default for a Cantilever (:func:`shear_modulus`).
     optics : OpticalBeamDeflection or None
         The optical lever reading the twist (module (b)); None: its defaults.
 
@@ -157,24 +167,38 @@ class LateralLever:
     104.6
     """
 
-    lever: Cantilever
-    tip_height: float = TIP_HEIGHT.default
-    shear_modulus: float = SHEAR_MODULUS.default
+    lever: Cantilever | Lever
+    tip_height: float | None = None
+    shear_modulus: float | None = None
     optics: OpticalBeamDeflection | None = None
 
     def __post_init__(self):
-        check_instance("lever", self.lever, Cantilever)
-        object.__setattr__(self, "tip_height", TIP_HEIGHT.check(self.tip_height))
-        object.__setattr__(self, "shear_modulus", SHEAR_MODULUS.check(self.shear_modulus))
+        lever = check_instance("lever", self.lever, (Cantilever, Lever), "Cantilever or Lever")
+        planform = isinstance(lever, Lever)
+        h = (lever.apex_lever_arm if planform else TIP_HEIGHT.default) \
+            if self.tip_height is None else self.tip_height
+        g = (lever.shear_modulus if planform else SHEAR_MODULUS.default) \
+            if self.shear_modulus is None else self.shear_modulus
+        object.__setattr__(self, "tip_height", TIP_HEIGHT.check(h))
+        object.__setattr__(self, "shear_modulus", SHEAR_MODULUS.check(g))
+        # module (a)'s lever carries the torsion: a Cantilever becomes its rectangular Lever
+        body = (lever.with_(shear_modulus=self.shear_modulus) if planform
+                else Lever.from_cantilever(lever, self.shear_modulus))
+        object.__setattr__(self, "_body", body)
         optics = OpticalBeamDeflection() if self.optics is None else self.optics
         object.__setattr__(self, "optics", check_instance("optics", optics,
                                                           OpticalBeamDeflection))
 
     @property
+    def body(self) -> Lever:
+        """The lever as module (a)'s :class:`~afmsmiler.planform.Lever` (with this G)."""
+        return self._body
+
+    @property
     def torsional_stiffness(self) -> float:
-        """k_phi = G w t^3 / (3 L) in N m/rad (torque per twist angle at the free end)."""
-        lv = self.lever
-        return self.shear_modulus * lv.width * lv.thickness ** 3 / (3 * lv.length)
+        """k_phi in N m/rad (torque per twist angle at the tip): the lever's
+        :attr:`~afmsmiler.planform.Lever.torsional_stiffness`, G w t^3 / (3 L) for a rectangle."""
+        return self._body.torsional_stiffness
 
     @property
     def spring_constant(self) -> float:
