@@ -73,8 +73,8 @@ import numpy as np
 
 from .brownian import BOLTZMANN, TEMPERATURE, mode_share
 from .cantilever import MAX_MODE, Cantilever, eigenvalue
-from .hydrodynamics import (Fluid, FluidMode, _circ, _omega, fluid_mode, get_fluid,
-                            hydrodynamic_function, mass_loading, reynolds_number)
+from .hydrodynamics import (REYNOLDS_RANGE, Fluid, FluidMode, _circ, _omega, fluid_mode,
+                            get_fluid, hydrodynamic_function, mass_loading, reynolds_number)
 from .parameters import QUALITY_FACTOR, RESONANCE_FREQUENCY, read_only
 from .validation import check_array, check_instance, check_integer, check_range, check_size
 
@@ -320,14 +320,17 @@ class ThermalSpectrum:
 
 def _gamma_interpolated(re: np.ndarray) -> np.ndarray:
     """Gamma_rect(re) (Omega held at the ends of its range) for many Reynolds numbers at once:
-    log Gamma_r and log Gamma_i interpolated linearly in log Re on a grid of 4000 points per
-    span, within 1e-7 of the direct evaluation (tested); a direct evaluation of 2^20 complex
-    Bessel pairs takes about a second."""
+    log Gamma_r and log Gamma_i interpolated linearly in log Re on a grid of 1000 points per
+    decade, within 1e-6 of the direct evaluation (tested), or evaluated directly when there are
+    fewer values than grid points (a direct evaluation of 2^20 complex Bessel pairs takes about
+    a second)."""
     lo, hi = math.log10(float(re.min())), math.log10(float(re.max()))
-    if hi - lo < 1e-9:
+    n = int(1000 * max(hi - lo, 0.1)) + 2
+    if re.size <= n:
         return _omega(re) * _circ(re)
-    n = int(min(4000 * max(hi - lo, 0.5), 40_000))
-    grid = np.linspace(lo, hi, n)
+    # with the ends of Omega's range as nodes: Omega is held beyond them (a kink)
+    ends = [t for t in np.log10(REYNOLDS_RANGE) if lo < t < hi]
+    grid = np.union1d(np.linspace(lo, hi, n), ends)
     g = _omega(10.0 ** grid) * _circ(10.0 ** grid)
     tau = np.log10(re)
     return (np.exp(np.interp(tau, grid, np.log(g.real)))
@@ -488,9 +491,10 @@ def _smooth(y: np.ndarray, block: int) -> np.ndarray:
     return y[:n * block].reshape(n, block).mean(axis=1)
 
 
-def _start(f: np.ndarray, p: np.ndarray):
-    """A first guess (f_peak, Q, A, W) and a band from the block-averaged spectrum."""
-    block = max(1, f.size // 4096)
+def _start(f: np.ndarray, p: np.ndarray, averages: int):
+    """A first guess (f_peak, Q, A, W) and a band from the block-averaged spectrum (blocks of
+    at least 64 / M bins, so that each smoothed point averages 64 periodogram values)."""
+    block = max(1, f.size // 4096, min(-(-64 // averages), f.size // 64))
     fs, ps = _smooth(f, block), _smooth(p, block)
     skip = min(3, ps.size - 1)
     i = skip + int(np.argmax(ps[skip:]))
@@ -511,57 +515,14 @@ def _start(f: np.ndarray, p: np.ndarray):
                                                                 f_peak + reach)
 
 
-def fit_thermal_spectrum(spectrum: ThermalSpectrum, *, band=None) -> SHOFit:
-    """Fit mode 1's peak of ``spectrum`` with an SHO line plus a white background.
-
-    Maximum likelihood for averaged periodogram bins (Gamma-distributed with shape M about the
-    model; see the module docstring), by Fisher scoring in (ln f0, ln Q, ln A, ln W) with step
-    halving, at most 100 steps.
-
-    Parameters
-    ----------
-    spectrum : ThermalSpectrum
-        The recorded spectrum.
-    band : tuple of float, optional
-        (f_low, f_high) in Hz; default the peak +- 10 full widths (at most +- 0.9 f_peak),
-        found on the block-averaged spectrum.
-
-    Returns
-    -------
-    SHOFit
-
-    Raises
-    ------
-    ValueError
-        If the band holds fewer than 8 bins, or the fit does not converge.
-    """
-    spectrum = check_instance("spectrum", spectrum, ThermalSpectrum)
-    f, p, m = spectrum.frequency, spectrum.psd, spectrum.averages
-    guess, auto = _start(f, p)
-    if band is None:
-        band = auto
-    else:
-        if not isinstance(band, (tuple, list)) or len(band) != 2:
-            raise ValueError(f"band must be (f_low, f_high) in Hz, got {band!r:.60}")
-        low = check_range("band[0]", band[0], 0.0, float(f[-1]), "Hz")
-        high = check_range("band[1]", band[1], low, math.inf, "Hz", low_inclusive=False)
-        band = (low, high)
-        inside = p[(f >= low) & (f <= high)]
-        if inside.size:
-            k = int(np.argmax(inside))
-            guess = (float(f[(f >= low) & (f <= high)][k]),) + guess[1:]
-    sel = (f >= band[0]) & (f <= band[1])
-    fb, pb = f[sel], p[sel]
-    if fb.size < 8:
-        raise ValueError(f"band must hold at least 8 bins of the spectrum, got {fb.size} in "
-                         f"[{band[0]:g}, {band[1]:g}] Hz")
-    params = np.log(np.array(guess, dtype=float))
-
+def _maximum_likelihood(fb, pb, m, params):
+    """Fisher scoring of M sum(ln S + P / S) from ``params``: (params, steps taken)."""
     def nll(x):
         s = _sho(fb, x)[0]
         return m * float(np.sum(np.log(s) + pb / s))
 
     current = nll(params)
+    iteration = 0
     for iteration in range(1, LIMITS["iterations"] + 1):
         s, jac = _sho(fb, params)
         grad = m * (jac.T @ (1.0 - pb / s))
@@ -582,6 +543,68 @@ def fit_thermal_spectrum(spectrum: ThermalSpectrum, *, band=None) -> SHOFit:
         params, previous, current = trial, current, value
         if np.max(np.abs(step)) < 1e-9 or previous - current < 1e-12 * abs(current):
             break
+    return params, iteration
+
+
+def fit_thermal_spectrum(spectrum: ThermalSpectrum, *, band=None) -> SHOFit:
+    """Fit mode 1's peak of ``spectrum`` with an SHO line plus a white background.
+
+    Maximum likelihood for averaged periodogram bins (Gamma-distributed with shape M about the
+    model; see the module docstring), by Fisher scoring in (ln f0, ln Q, ln A, ln W) with step
+    halving, at most 100 steps.
+
+    Parameters
+    ----------
+    spectrum : ThermalSpectrum
+        The recorded spectrum.
+    band : tuple of float, optional
+        (f_low, f_high) in Hz; default the peak +- 10 full widths (at most +- 0.9 f_peak),
+        found on the block-averaged spectrum and then on the fitted line (f0 +- 10 f0 / Q,
+        refitted up to twice).
+
+    Returns
+    -------
+    SHOFit
+
+    Raises
+    ------
+    ValueError
+        If the band holds fewer than 8 bins, or the fit does not converge.
+    """
+    spectrum = check_instance("spectrum", spectrum, ThermalSpectrum)
+    f, p, m = spectrum.frequency, spectrum.psd, spectrum.averages
+    guess, auto = _start(f, p, m)
+    automatic = band is None
+    if band is None:
+        band = auto
+    else:
+        if not isinstance(band, (tuple, list)) or len(band) != 2:
+            raise ValueError(f"band must be (f_low, f_high) in Hz, got {band!r:.60}")
+        low = check_range("band[0]", band[0], 0.0, float(f[-1]), "Hz")
+        high = check_range("band[1]", band[1], low, math.inf, "Hz", low_inclusive=False)
+        band = (low, high)
+        inside = p[(f >= low) & (f <= high)]
+        if inside.size:
+            k = int(np.argmax(inside))
+            guess = (float(f[(f >= low) & (f <= high)][k]),) + guess[1:]
+    params = np.log(np.array(guess, dtype=float))
+    df = float(f[1] - f[0])
+    for attempt in range(3):   # automatic band: refit once or twice on the fitted line's band
+        sel = (f >= band[0]) & (f <= band[1])
+        fb, pb = f[sel], p[sel]
+        if fb.size < 8:
+            raise ValueError(f"band must hold at least 8 bins of the spectrum, got {fb.size} "
+                             f"in [{band[0]:g}, {band[1]:g}] Hz")
+        params, iteration = _maximum_likelihood(fb, pb, m, params)
+        f0, q = math.exp(params[0]), math.exp(params[1])
+        if not automatic or not (math.isfinite(f0) and math.isfinite(q)):
+            break
+        reach = min(0.9 * f0, max(10.0 * f0 / q, 20.0 * df))
+        new = (f0 - reach, f0 + reach)
+        if attempt == 2 or (abs(new[1] - new[0] - (band[1] - band[0]))
+                            < 0.2 * (band[1] - band[0]) and band[0] <= f0 <= band[1]):
+            break
+        band = new
     s, jac = _sho(fb, params)
     covariance = np.linalg.pinv(m * (jac.T @ jac))
     f0, q, area, white = map(float, np.exp(params))
