@@ -129,7 +129,13 @@ def sader_spring_constant(length: float, width: float, resonance_frequency: floa
     quality_factor = QUALITY_FACTOR.check(quality_factor)
     fluid = get_fluid(fluid)
     omega = 2.0 * math.pi * resonance_frequency
-    gamma_i = hydrodynamic_function(reynolds_number(omega, width, fluid)).imag
+    re = reynolds_number(omega, width, fluid)
+    if not REYNOLDS_RANGE[0] <= re <= REYNOLDS_RANGE[1]:
+        raise ValueError(f"width = {width:g} m and resonance_frequency = {resonance_frequency:g} "
+                         f"Hz give Re = {re:.3g} in {fluid.name}, outside the range "
+                         f"[{REYNOLDS_RANGE[0]:g}, {REYNOLDS_RANGE[1]:g}] of Sader's "
+                         f"hydrodynamic function")
+    gamma_i = hydrodynamic_function(re).imag
     return (SADER_FACTOR * fluid.density * width ** 2 * length * quality_factor * gamma_i
             * omega ** 2)
 
@@ -204,8 +210,10 @@ def added_mass_spring_constant(added_mass: float, loaded_frequency: float,
     float
     """
     added_mass = check_range("added_mass", added_mass, 0.0, 1.0, "kg", low_inclusive=False)
-    loaded_frequency = RESONANCE_FREQUENCY.check(loaded_frequency)
-    unloaded_frequency = RESONANCE_FREQUENCY.check(unloaded_frequency)
+    loaded_frequency = check_range("loaded_frequency", loaded_frequency, RESONANCE_FREQUENCY.low,
+                                   RESONANCE_FREQUENCY.high, "Hz")
+    unloaded_frequency = check_range("unloaded_frequency", unloaded_frequency,
+                                     RESONANCE_FREQUENCY.low, RESONANCE_FREQUENCY.high, "Hz")
     if not loaded_frequency < unloaded_frequency:
         raise ValueError(f"loaded_frequency must be below unloaded_frequency "
                          f"({unloaded_frequency:g} Hz): a mass lowers the resonance, got "
@@ -227,9 +235,12 @@ def _slope_ratio(mode: int, spot: float) -> float:
     end = (0.5 * (one_minus_s * math.exp(bl) + (2.0 - one_minus_s) * math.exp(-bl))
            - math.cos(bl) + s * math.sin(bl))
     # phi'(v) / b = sinh v + sin v - s (cosh v - cos v); sinh - s cosh = ((1-s) e^v - (1+s) e^-v) / 2
-    slope = bl * (0.5 * (one_minus_s * math.exp(v) - (2.0 - one_minus_s) * math.exp(-v))
-                  + math.sin(v) + s * math.cos(v))
-    return slope / end / (1.5 * (2.0 * spot - spot * spot))
+    if v < 1e-3:   # near the clamp, the Taylor series (2v - s v^2 + v^5/60 - s v^6/360), no cancellation
+        slope = bl * v * (2.0 - s * v + v ** 4 / 60.0 - s * v ** 5 / 360.0)
+    else:
+        slope = bl * (0.5 * (one_minus_s * math.exp(v) - (2.0 - one_minus_s) * math.exp(-v))
+                      + math.sin(v) + s * math.cos(v))
+    return slope / end / (1.5 * spot * (2.0 - spot))
 
 
 def optical_lever_correction(mode: int = 1, spot: float = 1.0) -> float:

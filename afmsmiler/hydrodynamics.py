@@ -64,7 +64,7 @@ from scipy.optimize import brentq
 
 from .cantilever import MAX_MODE, Cantilever, eigenvalue
 from .parameters import Parameter, read_only
-from .validation import check_array, check_instance, check_integer, check_range
+from .validation import check_array, check_flag, check_instance, check_integer, check_range
 
 __all__ = ["FLUID_DENSITY", "VISCOSITY", "PARAMETERS", "REYNOLDS_RANGE", "Fluid", "FLUIDS",
            "get_fluid", "reynolds_number", "circular_hydrodynamic_function",
@@ -262,16 +262,32 @@ def reynolds_number(angular_frequency, width: float, fluid="air"):
     return float(re) if re.ndim == 0 else re
 
 
+#: Reynolds numbers accepted when extrapolating: Gamma stays a finite double over them.
+_EXTRAPOLATED = (1e-200, math.inf)
+# Above this Re (|z| = 1e6) K1/K0 is its large-argument expansion (error below 1e-12; the Bessel
+# routines lose accuracy and then return NaN for |z| beyond ~1e8).
+_ASYMPTOTIC = 1e12
+
+
 def _reynolds(re, extrapolate: bool) -> np.ndarray:
-    low, high = (0.0, math.inf) if extrapolate else REYNOLDS_RANGE
-    return check_array("re", re, low=low, high=high, low_inclusive=not extrapolate)
+    low, high = _EXTRAPOLATED if check_flag("extrapolate", extrapolate) else REYNOLDS_RANGE
+    return check_array("re", re, low=low, high=high)
 
 
 def _circ(re: np.ndarray) -> np.ndarray:
+    shape = np.shape(re)
+    re = np.atleast_1d(re).astype(float)
     root = np.sqrt(1j * re)
     z = -1j * root
+    big = re > _ASYMPTOTIC
+    safe = np.where(big, 1.0, z)
     # the scaled functions kve = kv exp(z): their ratio is kv's, without underflow at large Re
-    return 1.0 + 4j * scipy.special.kve(1, z) / (root * scipy.special.kve(0, z))
+    ratio = scipy.special.kve(1, safe) / scipy.special.kve(0, safe)
+    # Abramowitz and Stegun 9.7.2: K_nu(z) ~ sqrt(pi / 2z) e^-z (1 + (4 nu^2 - 1) / 8z + ...)
+    zb = z[big]
+    ratio[big] = (1 + 3 / (8 * zb) - 15 / (128 * zb ** 2)) / (1 - 1 / (8 * zb)
+                                                            + 9 / (128 * zb ** 2))
+    return (1.0 + 4j * ratio / root).reshape(shape)
 
 
 def _omega(re: np.ndarray) -> np.ndarray:
@@ -297,7 +313,8 @@ def circular_hydrodynamic_function(re):
     Parameters
     ----------
     re : float or array_like
-        Reynolds number rho_f omega b^2 / (4 eta), > 0.
+        Reynolds number rho_f omega b^2 / (4 eta), >= 1e-200 (beyond 1e12 the large-argument
+        expansion of K1 / K0, Abramowitz and Stegun 9.7.2).
 
     Returns
     -------
@@ -314,7 +331,8 @@ def rectangular_correction(re, *, extrapolate: bool = False):
     re : float or array_like
         Reynolds number, in :data:`REYNOLDS_RANGE` unless ``extrapolate``.
     extrapolate : bool
-        Accept any Re > 0, holding Omega at its value at the nearer end of the fitted range.
+        Accept any Re >= 1e-200, holding Omega at its value at the nearer end of the fitted
+        range.
 
     Returns
     -------
@@ -336,7 +354,8 @@ def hydrodynamic_function(re, *, extrapolate: bool = False):
         Reynolds number rho_f omega b^2 / (4 eta) (:func:`reynolds_number`), in
         :data:`REYNOLDS_RANGE` unless ``extrapolate``.
     extrapolate : bool
-        Accept any Re > 0 (Omega held at the ends of the fitted range; Gamma_circ exact).
+        Accept any Re >= 1e-200 (Omega held at the ends of the fitted range; Gamma_circ
+        exact).
 
     Returns
     -------

@@ -95,7 +95,7 @@ def test_sader_from_a_fitted_spectrum_works_in_air_and_fails_in_water():
 
 
 def test_sader_bad_input_is_named():
-    with pytest.raises(ValueError, match="re must be in"):   # beyond the fit: b = 1 cm in water
+    with pytest.raises(ValueError, match="width = .* resonance_frequency = .* outside the range"):
         sader_spring_constant(0.1, 0.01, 1e6, 100.0, "water")
     with pytest.raises(ValueError, match="quality_factor"):
         sader_spring_constant(400e-6, 30e-6, 1e4, -1.0)
@@ -151,6 +151,10 @@ def test_optical_lever_published_numbers():
     assert total + tail == pytest.approx(4 / 3, rel=1e-5)
     with pytest.raises(ValueError, match="spot"):
         optical_lever_correction(1, 0.0)
+    # a spot near the clamp: chi stays finite and continuous across the switch to the Taylor
+    # series of the mode's slope at b_1 u = 1e-3
+    near = [optical_lever_correction(1, u / B1) for u in (0.99e-3, 1.01e-3, 1e-30)]
+    assert near[0] == pytest.approx(near[1], rel=1e-5) and math.isfinite(near[2])
 
 
 # -- the simulated spectrum ------------------------------------------------------------------

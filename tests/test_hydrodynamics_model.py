@@ -221,3 +221,17 @@ def test_fluid_mode_bad_input_is_named():
         fluid_mode("lever", "air")
     with pytest.raises(ValueError, match="fluid"):
         fluid_mode(lever, "glycerol")
+
+
+def test_circular_function_far_beyond_the_bessel_routines():
+    # above Re = 1e12 the large-argument expansion of K1/K0 takes over: continuous there, and
+    # Stokes' thin layer 2 sqrt(2) (1 + i) / sqrt(Re) up to Re = 1e300
+    a = circular_hydrodynamic_function(0.999e12) - 1
+    b = circular_hydrodynamic_function(1.001e12) - 1
+    assert b == pytest.approx(a * math.sqrt(0.999 / 1.001), rel=1e-9)
+    for re in (1e20, 1e300):
+        assert circular_hydrodynamic_function(re) - 1 == pytest.approx(
+            2 * math.sqrt(2) * (1 + 1j) / math.sqrt(re), rel=1e-9)
+    assert np.isfinite(circular_hydrodynamic_function(1e-200))
+    with pytest.raises(TypeError, match="extrapolate"):
+        hydrodynamic_function(1.0, extrapolate="yes")
