@@ -17,6 +17,7 @@ import mpmath
 import numpy as np
 import pytest
 import scipy.constants
+import scipy.special
 
 from afmsmiler.brownian import mode_share
 from afmsmiler.calibration import (SADER_FACTOR, ThermalSpectrum, added_mass_spring_constant,
@@ -179,6 +180,11 @@ def test_the_bins_have_chi_squared_statistics():
         assert ratio.mean() == pytest.approx(1.0, abs=5 * math.sqrt(1 / m / ratio.size))
         assert ratio.var() == pytest.approx(1 / m, rel=5 * math.sqrt(2 / ratio.size)
                                             * math.sqrt(1 + 3 / m))
+        # why the fit is not least squares on log P: E[ln P] - ln S = psi(M) - ln M (-0.577 at
+        # M = 1; the variance of ln P is the trigamma psi'(M))
+        assert np.log(ratio).mean() == pytest.approx(
+            scipy.special.digamma(m) - math.log(m),
+            abs=5 * math.sqrt(scipy.special.polygamma(1, m) / ratio.size))
     a = thermal_spectrum(lever, "air", points=256, seed=7)
     b = thermal_spectrum(lever, "air", points=256, seed=7)
     assert np.array_equal(a.psd, b.psd)   # seeded: deterministic
