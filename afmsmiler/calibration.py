@@ -478,6 +478,8 @@ class SHOFit:
         Bins in the band.
     iterations : int
         Fisher-scoring steps taken.
+    resolution : float
+        The spectrum's bin width df in Hz.
     """
 
     resonance_frequency: float
@@ -488,6 +490,13 @@ class SHOFit:
     band: tuple
     bins: int
     iterations: int
+    resolution: float
+
+    @property
+    def bins_per_linewidth(self) -> float:
+        """The line's full width f0 / Q in bins: below about 5 the bins are not independent
+        (leakage) and the line is not resolved; record longer."""
+        return self.resonance_frequency / (self.quality_factor * self.resolution)
 
     @property
     def relative_errors(self) -> dict:
@@ -637,7 +646,7 @@ def fit_thermal_spectrum(spectrum: ThermalSpectrum, *, band=None) -> SHOFit:
                          f"{band[1]:g}] Hz (got f0 = {f0:g} Hz): give a band around mode 1")
     return SHOFit(resonance_frequency=f0, quality_factor=q, area=area, background=white,
                   covariance=covariance, band=(float(band[0]), float(band[1])),
-                  bins=int(fb.size), iterations=iteration)
+                  bins=int(fb.size), iterations=iteration, resolution=df)
 
 
 @dataclass(frozen=True)

@@ -219,6 +219,7 @@ def test_the_fit_recovers_an_exact_sho_line():
     assert fit.quality_factor == pytest.approx(q, rel=1e-7)
     assert fit.area == pytest.approx(area, rel=1e-7)
     assert fit.background == pytest.approx(white, rel=1e-5)
+    assert fit.bins_per_linewidth == pytest.approx(f0 / q / (1e5 / 2 ** 15), rel=1e-6)
     assert fit.model(np.array([f0])) == pytest.approx(area * 2 * q / (math.pi * f0) + white,
                                                       rel=1e-6)
     with pytest.raises(ValueError, match="band"):

@@ -207,9 +207,13 @@ def test_the_mode_stiffness_and_oscillator_kwargs():
     assert m.oscillator() == {"spring_constant": m.spring_constant,
                               "resonance_frequency": m.resonance_frequency,
                               "quality_factor": m.quality_factor}
+    from afmsmiler.modes.oscillator import Oscillator
     from afmsmiler.modes.tapping import TappingLever
     tapping = TappingLever(**fluid_mode(lever, "air").oscillator())
     assert tapping.quality_factor == fluid_mode(lever, "air").quality_factor
+    # the point mass of mode 2 in water: k_n / omega_R^2, the modal mass with the fluid's load
+    assert Oscillator(**m.oscillator()).mass == pytest.approx(
+        m.spring_constant / m.angular_frequency ** 2, rel=1e-12)
     assert m.in_fit_range
 
 
