@@ -3,7 +3,7 @@
 A lever of width b, thickness h and density rho vibrating at angular frequency omega in a fluid of
 density rho_f and viscosity eta feels, per unit length, the hydrodynamic force (Sader, "Frequency
 response of cantilever beams immersed in viscous fluids with applications to the atomic force
-microscope", J. Appl. Phys. 84, 64 (1998), Sec. II; time dependence exp(-i omega t))::
+microscope", J. Appl. Phys. 84, 64 (1998); time dependence exp(-i omega t))::
 
     F_hydro(x | omega) = (pi / 4) rho_f omega^2 b^2 Gamma(omega) W(x | omega)
 
@@ -20,9 +20,8 @@ and for the thin rectangular section of a lever Sader writes Gamma_rect = Omega(
 (Eq. (20)) with the correction Omega = Omega_r + i Omega_i fitted to Tuck's exact numerical
 solution by the rational functions of tau = log10(Re) of Eqs. (21a), (21b) and (22); Sader
 validated the fit for 1e-6 <= Re <= 1e4 (:data:`REYNOLDS_RANGE`), which covers AFM levers in gases
-and liquids. The fifth-order
-coefficient of Omega_i is -0.000044510, as printed in Eq. (21b) and in the authors' own
-calibration code (some reimplementations carry -0.000045510, a typo).
+and liquids. The fifth-order coefficient of Omega_i is -0.000044510, as printed in Eq. (21b) and
+in the authors' own calibration code (some reimplementations carry -0.000045510, a typo).
 
 Outside that range :func:`hydrodynamic_function` refuses a Reynolds number unless asked to
 extrapolate; then Gamma_circ stays exact and Omega is held at its value at the nearer end of the
@@ -33,7 +32,7 @@ The modes in the fluid
 ----------------------
 With the mass-loading ratio T = pi rho_f b / (4 rho h), flexural mode n of vacuum frequency
 omega_vac,n rings in the fluid at the frequency and with the quality factor (Sader 1998, the
-limit of weak dissipation, Q >> 1, Sec. IV; restated by Sader, Chon and Mulvaney, Rev. Sci.
+limit of weak dissipation, Q >> 1; restated by Sader, Chon and Mulvaney, Rev. Sci.
 Instrum. 70, 3967 (1999), as the basis of their calibration)::
 
     omega_R,n = omega_vac,n (1 + T Gamma_r(omega_R,n))^(-1/2)   (solved self-consistently)
@@ -42,8 +41,9 @@ Instrum. 70, 3967 (1999), as the basis of their calibration)::
 each mode with its own frequency (:func:`fluid_mode`). The mode's stiffness seen at the tip is
 k_n = k / share_n = k (b_n L)^4 / 12 (Butt and Jaschke, Nanotechnology 6, 1 (1995); Melcher, Hu
 and Raman, Appl. Phys. Lett. 91, 053101 (2007)), 1.030 k for mode 1. :meth:`FluidMode.oscillator`
-hands (k_n, f_R,n, Q_n) to the models that take a point-mass lever (tapping, FM, the Brownian
-spectrum, the lock-in demonstrations).
+hands (k_n, f_R,n, Q_n) to the models that take a point-mass lever (module (g)'s tapping, FM and
+Q-control levers, :class:`~afmsmiler.modes.oscillator.Oscillator`); its ``quality_factor`` is the
+medium's Q for the Brownian spectrum and the lock-in's probe.
 
 Examples
 --------
@@ -148,11 +148,11 @@ class Fluid:
     def water(cls, temperature: float = 293.15) -> "Fluid":
         """Liquid water at 1 atm and ``temperature``.
 
-        Density from Kell's formula (G. S. Kell, J. Chem. Eng. Data 20, 97 (1975), Eq. (16),
-        0 to 150 C), viscosity from the Vogel equation eta = A 10^(B / (T - C)) with
-        A = 2.414e-5 Pa s, B = 247.8 K, C = 140 K (within 2.5 % from 0 to 370 C; the usual
-        engineering fit, e.g. Al-Shemmeri, *Engineering Fluid Mechanics* (2012)). At 20 C:
-        998.2 kg/m^3 and 1.002 mPa s (CRC Handbook: 998.21 kg/m^3, 1.0016 mPa s).
+        Density from Kell's rational formula in the Celsius temperature (G. S. Kell, J. Chem.
+        Eng. Data 20, 97 (1975), 0 to 150 C), viscosity from the Vogel-type fit
+        eta = A 10^(B / (T - C)) with A = 2.414e-5 Pa s, B = 247.8 K, C = 140 K (the common
+        engineering fit, within 2.5 % from 0 to 370 C). At 20 C: 998.2 kg/m^3 and 1.002 mPa s
+        (CRC Handbook: 998.21 kg/m^3, 1.0016 mPa s; tested at 20 and 25 C).
 
         Parameters
         ----------
@@ -177,8 +177,7 @@ class Fluid:
 
         Density p M / (R T) with M = 28.9647 g/mol; viscosity from Sutherland's law
         eta = 1.716e-5 Pa s (T / 273.15 K)^(3/2) (273.15 K + S) / (T + S), S = 110.4 K (F. M.
-        White, *Viscous Fluid Flow*, 3rd ed. (2006), Eq. (1-36) and Table 1-2), independent of
-        pressure. At 20 C and 1 atm: 1.204 kg/m^3 and 1.813e-5 Pa s (CRC Handbook: 1.204
+        White, *Viscous Fluid Flow*, 3rd ed. (2006), Ch. 1), independent of pressure. At 20 C and 1 atm: 1.204 kg/m^3 and 1.813e-5 Pa s (CRC Handbook: 1.204
         kg/m^3, 1.81e-5 Pa s).
 
         Parameters
@@ -468,8 +467,8 @@ def fluid_mode(lever: Cantilever, fluid="air", mode: int = 1) -> FluidMode:
 
     Solves omega_R = omega_vac (1 + T Gamma_r(omega_R))^(-1/2) for omega_R (Brent's method on
     ln omega, Gamma_r decreasing with omega so that the root is unique) and evaluates
-    Q = (1/T + Gamma_r) / Gamma_i there, T = pi rho_f b / (4 rho h) (Sader 1998, Sec. IV; Sader,
-    Chon and Mulvaney 1999). Gamma is Sader's rectangular function, held at the ends of
+    Q = (1/T + Gamma_r) / Gamma_i there, T = pi rho_f b / (4 rho h) (Sader 1998; Sader, Chon and
+    Mulvaney 1999). Gamma is Sader's rectangular function, held at the ends of
     its fitted Reynolds range beyond them (see :attr:`FluidMode.in_fit_range`).
 
     Parameters
