@@ -81,7 +81,7 @@ from .validation import check_array, check_instance, check_integer, check_range,
 __all__ = ["SADER_FACTOR", "LIMITS", "sader_spring_constant", "SaderCalibration",
            "sader_calibration", "added_mass_spring_constant", "optical_lever_correction",
            "ThermalSpectrum", "thermal_spectrum", "SHOFit", "fit_thermal_spectrum",
-           "ThermalCalibration", "thermal_calibration"]
+           "ThermalCalibration", "thermal_calibration", "LabCalibration", "calibrate"]
 
 #: (pi / 4) x 0.2427: Sader, Chon and Mulvaney (1999)'s constant (M_e = 0.2427 M, L / b > 5).
 SADER_FACTOR = 0.1906
@@ -714,3 +714,89 @@ def thermal_calibration(spectrum: ThermalSpectrum, *, spot: float = 1.0,
                               fit=fit, mode_share=share, correction=chi,
                               true_spring_constant=spectrum.lever.spring_constant)
 
+
+
+# -- all the methods at once -----------------------------------------------------------------
+@dataclass(frozen=True)
+class LabCalibration:
+    """A lever calibrated the ways a lab does it, beside its true k (:func:`calibrate`).
+
+    Attributes
+    ----------
+    spectrum : ThermalSpectrum
+        The recorded thermal spectrum.
+    thermal : ThermalCalibration
+        The thermal-noise method on it.
+    sader : float
+        Sader's method in N/m with f_f and Q_f read off the thermal fit (as in the lab).
+    sader_model : SaderCalibration
+        Sader's method with the model's own f_R and Q (Sader's weak-damping relations).
+    true_spring_constant : float
+        The model's k = 3 E J / L^3 in N/m.
+    """
+
+    spectrum: ThermalSpectrum
+    thermal: ThermalCalibration
+    sader: float
+    sader_model: SaderCalibration
+    true_spring_constant: float
+
+    def rows(self) -> list:
+        """(method, k in N/m, k / k_true - 1) for each method, the true k first.
+
+        Returns
+        -------
+        list of tuple
+        """
+        k = self.true_spring_constant
+        return [("model: 3 E J / L^3", k, 0.0),
+                ("thermal noise (SHO fit, 0.971, chi)", self.thermal.spring_constant,
+                 self.thermal.relative_error),
+                ("Sader (f and Q of the fit)", self.sader, self.sader / k - 1.0),
+                ("Sader (the model's f and Q)", self.sader_model.spring_constant,
+                 self.sader_model.relative_error)]
+
+
+def calibrate(lever: Cantilever, fluid="air", *, spot: float = 1.0,
+              assumed_spot: float = 1.0, points: int = 2 ** 16, averages: int = 16,
+              seed=None) -> LabCalibration:
+    """Record a thermal spectrum of ``lever`` in ``fluid`` and calibrate k by every method.
+
+    One call for the notebook: :func:`thermal_spectrum`, :func:`thermal_calibration` (with the
+    spot where the experimenter believes it is), Sader's method on the fitted f and Q, and
+    Sader's method on the model's own resonance.
+
+    Parameters
+    ----------
+    lever : Cantilever
+        The lever.
+    fluid : str or Fluid
+        Its medium.
+    spot : float
+        Where the laser spot really is, x/L in (0, 1].
+    assumed_spot : float
+        Where the experimenter assumes it is, x/L in (0, 1].
+    points : int
+        Bins of the spectrum, 16 to 2^22.
+    averages : int
+        Spectra averaged, 1 to 100 000.
+    seed : int or numpy.random.Generator, optional
+        The noise's seed.
+
+    Returns
+    -------
+    LabCalibration
+    """
+    assumed_spot = check_range("assumed_spot", assumed_spot, 0.0, 1.0, low_inclusive=False)
+    spectrum = thermal_spectrum(lever, fluid, points=points, averages=averages, spot=spot,
+                                seed=seed)
+    thermal = thermal_calibration(spectrum, spot=assumed_spot)
+    fit = thermal.fit
+    try:
+        sader = sader_spring_constant(lever.length, lever.width, fit.resonance_frequency,
+                                      fit.quality_factor, spectrum.fluid)
+    except ValueError:   # a fitted f outside Sader's Reynolds range: the method does not apply
+        sader = math.nan
+    return LabCalibration(spectrum=spectrum, thermal=thermal, sader=sader,
+                          sader_model=sader_calibration(lever, spectrum.fluid),
+                          true_spring_constant=lever.spring_constant)

@@ -215,7 +215,8 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            "BimodalState", "LockInResult", "Spectrum", "AD630Result", "ChainRun", "LockInDemo",
            "PrintComparison", "ClosedLoopResponse", "RingDown",
            # module (a): a mode in a fluid, a thermal spectrum, its fit and the calibrations
-           "FluidMode", "ThermalSpectrum", "SHOFit", "ThermalCalibration", "SaderCalibration"}
+           "FluidMode", "ThermalSpectrum", "SHOFit", "ThermalCalibration", "SaderCalibration",
+           "LabCalibration"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode", "DeviceSession"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -625,6 +626,8 @@ INSTANCES = {
         "fluid_mode"]).fluid_mode(_lever(), "water"),
     "SHOFit": lambda: __import__("afmsmiler.calibration", fromlist=[
         "fit_thermal_spectrum"]).fit_thermal_spectrum(_spectrum()),
+    "LabCalibration": lambda: __import__("afmsmiler.calibration", fromlist=[
+        "calibrate"]).calibrate(_lever(), points=2 ** 12, seed=1),
     "LockInResult": lambda: __import__("afmsmiler.signals.lockin", fromlist=["lock_in"]).lock_in(
         _tone(), sample_rate=1e6, frequency=1e3, time_constant=1e-3),
     "Profile": lambda: __import__("afmsmiler.imaging.statistics",

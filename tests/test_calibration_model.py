@@ -303,3 +303,23 @@ def test_the_spectrums_interpolated_gamma_is_the_direct_one():
     fast = _gamma_interpolated(re)
     assert np.max(np.abs(fast.real / direct.real - 1)) < 1e-6
     assert np.max(np.abs(fast.imag / direct.imag - 1)) < 1e-6
+
+
+def test_calibrate_runs_every_method_on_one_lever():
+    from afmsmiler.calibration import calibrate
+    lever = _contact()
+    lab = calibrate(lever, "air", points=2 ** 14, averages=16, seed=4)
+    rows = lab.rows()
+    assert [r[0] for r in rows][0].startswith("model") and rows[0][1] == lever.spring_constant
+    # E w h^3 / (4 L^3) with E = 169 GPa (Hopcroft et al.)
+    assert lab.true_spring_constant == pytest.approx(169e9 * 50e-6 * 2e-6 ** 3 / (4 * 450e-6 ** 3),
+                                                     rel=1e-12)
+    for _, k, error in rows[1:]:
+        assert abs(error) < 0.05 and k == pytest.approx(lever.spring_constant * (1 + error))
+    # the spot at 0.8 L but assumed at the end: only the thermal method notices
+    moved = calibrate(lever, "air", spot=0.8, points=2 ** 14, averages=16, seed=4)
+    factor = (_chi_by_finite_differences(1, 0.8) / _chi_by_finite_differences(1, 1.0)) ** 2
+    assert moved.thermal.spring_constant / calibrate(
+        lever, "air", spot=0.8, assumed_spot=0.8, points=2 ** 14, averages=16,
+        seed=4).thermal.spring_constant == pytest.approx(factor, rel=1e-4)
+    assert moved.sader == pytest.approx(lab.sader, rel=0.05)
