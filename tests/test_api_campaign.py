@@ -110,7 +110,9 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.planform", "afmsmiler.materials", 
            "afmsmiler.signals.lockin", "afmsmiler.signals.ad630", "afmsmiler.signals.chain",
            "afmsmiler.signals.demo",
            # module (h): an AFM image as a printable STL
-           "afmsmiler.hardware.printing"]
+           "afmsmiler.hardware.printing",
+           # module (a): the lever in a fluid and its calibration (issue 23)
+           "afmsmiler.hydrodynamics", "afmsmiler.calibration"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s of CPU per call: the issue's bound (CPU, so a loaded machine cannot fail it)
 WALL_LIMIT = 60.0  # s of wall-clock time per call: a hang guard for a call that waits, not computes
@@ -222,7 +224,10 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            "AmplitudeCurve", "SteadyState", "FrequencyShiftCurve", "FrictionLoop",
            "FrictionImages", "FeedbackLine", "JumpCurve", "ModeComparison", "ForceVolume",
            "BimodalState", "LockInResult", "Spectrum", "AD630Result", "ChainRun", "LockInDemo",
-           "PrintComparison", "ClosedLoopResponse", "RingDown"}
+           "PrintComparison", "ClosedLoopResponse", "RingDown",
+           # module (a): a mode in a fluid, a thermal spectrum, its fit and the calibrations
+           "FluidMode", "ThermalSpectrum", "SHOFit", "ThermalCalibration", "SaderCalibration",
+           "LabCalibration"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode", "DeviceSession"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -390,6 +395,9 @@ VALID = {
     "levers": lambda: __import__("afmsmiler.modes", fromlist=["TappingLever"]).TappingLever(),
     "z": lambda: np.linspace(0.3e-9, 10e-9, 64), "force_gradient": 0.1,
     "lateral_force": 1e-9, "friction_coefficient": 0.2, "direction": 1,
+    # module (a): the lever in a fluid and its calibration
+    "fluid": "air", "re": 1.0, "viscosity": 1e-3, "spectrum": lambda: _spectrum(),
+    "added_mass": 1e-12,
     "topography": _image, "friction": lambda: __import__("afmsmiler.samples", fromlist=[
         "Sample"]).Sample(np.full((16, 16), 0.2), 10e-9, "friction", unit=""),
 }
@@ -463,6 +471,8 @@ OVERRIDES = {
         10e-9, __import__("afmsmiler.contact", fromlist=["Parabolic"]).Parabolic(20e-9))},
     # "mode" is a lever's mode number elsewhere
     "afmsmiler.imaging.scanner.Scan": {"mode": _constant_force},
+    "afmsmiler.calibration.added_mass_spring_constant": {"loaded_frequency": 1e4,
+                                                         "unloaded_frequency": 1.2e4},
     "afmsmiler.imaging.scanner.scan": {"mode": _constant_force},
     "afmsmiler.plots.export.save_png": {
         "path": lambda: __import__("tempfile").gettempdir() + "/afmsmiler_campaign.png"},
@@ -631,6 +641,12 @@ INSTANCES = {
     "ConstantHeight": _constant_height,
     "AmplitudeCurve": lambda: __import__("afmsmiler.modes", fromlist=[
         "amplitude_curve"]).amplitude_curve(np.linspace(2e-9, 12e-9, 20)),
+    "FluidMode": lambda: __import__("afmsmiler.hydrodynamics", fromlist=[
+        "fluid_mode"]).fluid_mode(_lever(), "water"),
+    "SHOFit": lambda: __import__("afmsmiler.calibration", fromlist=[
+        "fit_thermal_spectrum"]).fit_thermal_spectrum(_spectrum()),
+    "LabCalibration": lambda: __import__("afmsmiler.calibration", fromlist=[
+        "calibrate"]).calibrate(_lever(), points=2 ** 12, seed=1),
     "LockInResult": lambda: __import__("afmsmiler.signals.lockin", fromlist=["lock_in"]).lock_in(
         _tone(), sample_rate=1e6, frequency=1e3, time_constant=1e-3),
     "Profile": lambda: __import__("afmsmiler.imaging.statistics",
@@ -655,6 +671,12 @@ def _ring():
     t = np.arange(2000) / 1e5
     w = 2 * np.pi * 1e3
     return t, 1e-9 * np.exp(-w * t / 40) * np.cos(w * np.sqrt(1 - 1 / 1600) * t)
+
+
+def _spectrum():
+    """A thermal spectrum of the campaign's lever in air: 2^12 bins, 4 averages, seeded."""
+    from afmsmiler.calibration import thermal_spectrum
+    return thermal_spectrum(_lever(), "air", points=2 ** 12, averages=4, seed=1)
 
 
 def _tone():

@@ -2,6 +2,7 @@
 import math
 
 import pytest
+import scipy.constants
 
 from afmsmiler.exercises import Feedback
 from afmsmiler.exercises.cantilever import (check_largest_stress, check_mode_ratio,
@@ -148,3 +149,73 @@ def test_mode_ratio_upside_down_is_named_without_the_answer(mode):
     right = (BL[mode - 1] / BL[0]) ** 2
     assert f"{right:.4g}" not in str(fb) and f"{right:.3g}" not in str(fb)
     assert check_mode_ratio(right, mode=mode)
+
+
+# -- exercise 5: calibrate a lever the student has not seen ----------------------------------
+def _student_k(seed=2026):
+    """The student's way: fit mode 1's peak, then k = share_1 k_B T / (chi^2 <z*^2>) with
+    share_1 = 12 / (b_1 L)^4 (Blevins' eigenvalue) and chi from module (a)'s mode shape."""
+    from afmsmiler.calibration import fit_thermal_spectrum
+    from afmsmiler.exercises.cantilever import unseen_lever_spectrum
+    from tests.test_calibration_model import _chi_by_finite_differences
+    spectrum = unseen_lever_spectrum(seed)
+    area = fit_thermal_spectrum(spectrum).area
+    chi = _chi_by_finite_differences(1, 1.0)
+    k = 12 / BL[0] ** 4 * scipy.constants.k * spectrum.temperature / (chi ** 2 * area)
+    return k, spectrum, chi
+
+
+def test_unseen_lever_right_answer_and_the_true_k():
+    from afmsmiler.exercises.cantilever import check_unseen_lever_calibration
+    k, spectrum, _ = _student_k()
+    assert check_unseen_lever_calibration(k).passed
+    assert check_unseen_lever_calibration(k * 1.008).passed
+    assert not check_unseen_lever_calibration(k * 1.02)
+    # the calibration lands on the hidden lever's true k = E w h^3 / (4 L^3) within the
+    # method's bias in air (0.5 %) and a few tenths of a per cent of statistics
+    lever = spectrum.lever
+    true_k = E_SI * lever.width * lever.thickness ** 3 / (4 * lever.length ** 3)
+    assert k == pytest.approx(true_k, rel=0.015)
+    # another seed is another lever
+    assert _unseen_k_differs(k)
+
+
+def _unseen_k_differs(k):
+    other, _, _ = _student_k(7)
+    return abs(other / k - 1) > 0.05
+
+
+@pytest.mark.parametrize("factor, words", [
+    (12 / BL[0] ** 4, ("share",)),   # the 0.971 forgotten: k / 0.971
+    (None, ("optical-lever",)),      # chi^2 forgotten: k chi^2
+    (2 * math.pi, ("rad/s",)), (1 / (2 * math.pi), ("rad/s",)),
+    (0.5, ("two-sided",)), (2.0, ("two-sided",)),
+    ("both", ("share", "optical-lever")), ("share+2pi", ("share", "rad/s"))])
+def test_unseen_lever_slips_are_named_without_the_answer(factor, words):
+    from afmsmiler.exercises.cantilever import check_unseen_lever_calibration
+    k, _, chi = _student_k()
+    share = 12 / BL[0] ** 4
+    answer = {None: k * chi ** 2, "both": k * chi ** 2 / share,
+              "share+2pi": k / share * 2 * math.pi}.get(factor)
+    if answer is None:
+        answer = k / factor if factor == share else k * factor
+    fb = check_unseen_lever_calibration(answer)
+    assert not fb
+    for word in words:
+        assert word in str(fb), str(fb)
+    _no_answer(fb, k, answer)
+    assert "%" not in str(fb)
+
+
+def test_unseen_lever_placeholders_and_bad_arguments():
+    from afmsmiler.exercises.cantilever import check_unseen_lever_calibration
+    for answer in (None, "stiff", math.inf, True):
+        fb = check_unseen_lever_calibration(answer)
+        assert not fb and str(fb).startswith("Not yet")
+    k, _, _ = _student_k()
+    _no_answer(check_unseen_lever_calibration(None), k)
+    assert "off by" in str(check_unseen_lever_calibration(3 * k))
+    with pytest.raises(ValueError, match="rtol must be in"):
+        check_unseen_lever_calibration(1.0, rtol=0.05)
+    with pytest.raises(ValueError, match="seed must be an integer"):
+        check_unseen_lever_calibration(1.0, seed=-1)

@@ -5,8 +5,13 @@ Each checker computes the right answer with :class:`~afmsmiler.cantilever.Cantil
 """
 from __future__ import annotations
 
+import functools
+import itertools
 import math
 
+import numpy as np
+
+from ..calibration import ThermalSpectrum, thermal_calibration, thermal_spectrum
 from ..cantilever import FORCE, LENGTH, MAX_MODE, WIDTH, Cantilever
 from ..materials import lookup
 from ..parameters import read_only, unit_scale
@@ -14,11 +19,12 @@ from ..validation import check_integer, check_range
 from . import Feedback, check_close
 
 __all__ = ["DEFAULTS", "check_thickness_for_spring_constant", "check_mode_ratio",
-           "check_largest_stress", "check_tip_slope"]
+           "check_largest_stress", "check_tip_slope", "unseen_lever_spectrum",
+           "check_unseen_lever_calibration"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(target_k=0.1, length=450e-6, width=50e-6, material="silicon",
-                          force=100e-9, thickness=2e-6))
+                          force=100e-9, thickness=2e-6, unseen_seed=2026))
 
 _LOCATIONS = ("clamp", "middle", "free end")
 _STATES = ("tension", "compression")
@@ -200,3 +206,95 @@ def check_tip_slope(slope, *, force: float = DEFAULTS["force"],
     if isinstance(value, Feedback):
         return value
     return check_close("theta(L)", value, expected, rtol, "rad", hint)
+
+
+# The unseen lever: a silicon lever in air drawn from these ranges (m) by the exercise's seed.
+_UNSEEN_RANGES = dict(length=(150e-6, 450e-6), width=(25e-6, 50e-6), thickness=(1.5e-6, 4e-6))
+
+
+def unseen_lever_spectrum(seed: int = DEFAULTS["unseen_seed"]) -> ThermalSpectrum:
+    """Exercise 5's data: the thermal spectrum of a silicon lever in air the student has not seen.
+
+    Its length, width and thickness are drawn from fixed ranges by ``seed``; the spectrum is
+    recorded with the laser spot at the free end, 2^18 bins and 64 averages (a statistical error
+    of k well under 1 %).
+
+    Parameters
+    ----------
+    seed : int
+        Picks the lever and the noise, 0 to 2^32 - 1.
+
+    Returns
+    -------
+    ThermalSpectrum
+        What the student calibrates (its ``lever`` attribute is the answer's source: no peeking).
+    """
+    seed = check_integer("seed", seed, 0, 2 ** 32 - 1)
+    rng = np.random.default_rng(seed)
+    size = {name: float(rng.uniform(*span)) for name, span in _UNSEEN_RANGES.items()}
+    lever = Cantilever.from_material("silicon", **size)
+    return thermal_spectrum(lever, "air", points=2 ** 18, averages=64, seed=rng)
+
+
+# The slips of a thermal calibration and the factor each puts on k (k = share k_B T / (chi^2 A)).
+_SLIPS = (
+    "mode 1's share of k_B T looks left out (the higher modes carry the rest)",
+    "the optical-lever factor looks left out (the detector reads the slope, calibrated on a "
+    "lever loaded at its end, not bent in mode 1's shape)",
+    "the area looks taken per rad/s where the spectrum is per Hz (or the other way round)",
+    "the spectrum looks treated as two-sided where it is one-sided (or the other way round)",
+)
+
+
+@functools.lru_cache(maxsize=8)
+def _unseen_calibration(seed: int) -> tuple:
+    """(k, mode share, chi) of the thermal calibration of exercise 5's spectrum."""
+    calibration = thermal_calibration(unseen_lever_spectrum(seed))
+    return calibration.spring_constant, calibration.mode_share, calibration.correction
+
+
+def check_unseen_lever_calibration(spring_constant, *, seed: int = DEFAULTS["unseen_seed"],
+                                   rtol: float = 0.012) -> Feedback:
+    """Exercise 5: calibrate the spring constant of :func:`unseen_lever_spectrum`'s lever.
+
+    The student fits mode 1's peak (e.g. with
+    :func:`~afmsmiler.calibration.fit_thermal_spectrum`) and turns its area <z*^2> into k by
+    equipartition. The answer is compared with the thermal calibration of the same spectrum
+    (:func:`~afmsmiler.calibration.thermal_calibration`, spot at the end).
+
+    Parameters
+    ----------
+    spring_constant : float or None
+        The student's k in N/m.
+    seed : int
+        The exercise's lever (as given to :func:`unseen_lever_spectrum`).
+    rtol : float
+        Accepted relative error, in (0, 0.015] (the smallest slip, the forgotten 0.971, is 3 %).
+
+    Returns
+    -------
+    Feedback
+        Passed within ``rtol``; an answer off by the usual slips (the 0.971 mode share, the
+        optical-lever factor, Hz vs rad/s, one- vs two-sided spectrum, alone or together) is
+        told which, without the answer.
+    """
+    seed = check_integer("seed", seed, 0, 2 ** 32 - 1)
+    rtol = check_range("rtol", rtol, 0.0, 0.015, low_inclusive=False)
+    hint = ("Equipartition: the area of mode 1's peak is the mean-square deflection the detector "
+            "reports; mind which share of k_B T mode 1 carries and what the optical lever "
+            "measures. Give k in N/m.")
+    value = _number("the spring constant k", "N/m", spring_constant, hint)
+    if isinstance(value, Feedback):
+        return value
+    expected, share, chi = _unseen_calibration(seed)
+    if abs(value / expected - 1.0) <= rtol:
+        return Feedback(True, f"k = {value:.4g} N/m: the lever's k from its thermal spectrum.")
+    factors = ((1.0 / share,), (chi ** 2,),
+               (2.0 * math.pi, 0.5 / math.pi), (2.0, 0.5))
+    for count in range(1, len(_SLIPS) + 1):
+        for chosen in itertools.combinations(range(len(_SLIPS)), count):
+            for combo in itertools.product(*(factors[i] for i in chosen)):
+                if abs(value / (expected * math.prod(combo)) - 1.0) <= rtol:
+                    said = "; and ".join(_SLIPS[i] for i in chosen)
+                    return Feedback(False, f"k = {value:.4g} N/m: {said}. {hint}")
+    return check_close("the spring constant k", value, expected, rtol, "N/m", hint)
