@@ -207,7 +207,6 @@ ACCEPTED = {
 # test` runs them, `make unit` does not. (The two time integrations are called with their fewest
 # periods, see VALID: under a second each, so `make unit` runs them.)
 SLOW_SMOKE: set[str] = {
-    "hardware.haptic.bridge.TappingSource:distance",  # a hard-contact distance: 10 s (alarm)
     "hardware.experiments.q_control_trial:haptic",  # about 1.6 s
 }
 # Returned by the models, not built by a user: their constructors are not part of the input API
@@ -1030,7 +1029,7 @@ OVERRIDES.update({
     _H + "haptic.bridge.ForceBridge.run": {"ticks": 5},
     _H + "haptic.bridge.FunctionSource": {"func": lambda: _still()},
     _H + "haptic.bridge.IndentationSource": {"system": _system},
-    _H + "haptic.bridge.TappingSource": {"distance": 12e-9},
+    _H + "haptic.bridge.TappingSource": {"distance": 12e-9, "max_periods": 20},
     _H + "haptic.bridge.GaugeSource": {"read": lambda: (lambda: 0), "force_per_count": 1e-3},
     _H + "haptic.bridge.CantileverSource": {"cantilever": _lever},
     **{_H + f"haptic.bridge.{c}.force": {"time": 0.0, "position": 1e-3}

@@ -464,15 +464,20 @@ class TappingSource:
         Lever and sample (default ``TappingLever()``).
     quantity : {"tip_force", "lever_force"}
         What to replay.
+    max_periods : int
+        The most drive periods the reference solver integrates before it takes the state it
+        reached (:func:`~afmsmiler.modes.integrate`'s ``max_periods``).
     """
 
-    def __init__(self, distance: float, lever=None, *, quantity: str = "tip_force"):
-        from ...modes.tapping import TappingLever, integrate
+    def __init__(self, distance: float, lever=None, *, quantity: str = "tip_force",
+                 max_periods: int | None = None):
+        from ...modes.tapping import MAX_PERIODS, TappingLever, integrate
         from ...validation import check_choice
         check_choice("quantity", quantity, ("tip_force", "lever_force"))
         lever = TappingLever() if lever is None else lever
         check_instance("lever", lever, TappingLever)
-        state = integrate(distance, lever)
+        state = integrate(distance, lever,
+                          max_periods=MAX_PERIODS if max_periods is None else max_periods)
         self.lever, self.state, self.quantity = lever, state, quantity
         self.period = 1.0 / (lever.frequency_ratio * lever.resonance_frequency)
         z = np.asarray(state.deflection)
