@@ -3,7 +3,7 @@
 References used as independent checks: sympy's derivative of the sphere-plane van der Waals
 energy -H R / (6 d) (Israelachvili, Sec. 13.1), module (d)'s Hertz force of a paraboloid and DMT's
 pull-off force 2 pi R w, scipy.integrate.quad of the first-harmonic integrals' definitions, the
-analytic driven harmonic oscillator, and scipy's solve_ivp run to steady state (the reference
+analytic driven harmonic oscillator, and scipy's odeint (LSODA) run to steady state (the reference
 solver) for the fast solver and the energy balance.
 """
 import math
@@ -347,7 +347,7 @@ def test_parameter_tables_are_parameters_with_their_defaults_in_range():
 def no_integration(monkeypatch):
     def boom(*args, **kwargs):
         raise AssertionError("integration started before the input was checked")
-    monkeypatch.setattr(tapping.integration, "solve_ivp", boom)
+    monkeypatch.setattr(tapping.integration, "odeint", boom)
 
 
 @pytest.mark.parametrize("call, name", [
