@@ -1,6 +1,9 @@
 """The course book: its table of contents names existing chapters, and book <-> notebook links hold."""
+import json
 import re
 from pathlib import Path
+
+import pytest
 
 ROOT = Path(__file__).parents[1]
 BOOK = ROOT / "book"
@@ -26,3 +29,75 @@ def test_chapter_links_point_to_existing_notebooks():
     for f in _toc_files():
         for link in re.findall(r"notebooks/([\w.-]+\.ipynb)", (BOOK / f"{f}.md").read_text(encoding="utf-8")):
             assert (ROOT / "notebooks" / link).exists(), f"book/{f}.md links to missing notebooks/{link}"
+
+
+# -- the book <-> notebook <-> page triangle (issue 22, part 4) ----------------------------------
+def _chapter(module: str) -> tuple[str, str]:
+    """The stem of module ``module``'s notebook (= its chapter's) and the chapter's text."""
+    from afmsmiler.ui.registry import MODULES
+    stem = MODULES[module][0][: -len(".ipynb")]
+    return stem, (BOOK / f"{stem}.md").read_text(encoding="utf-8")
+
+
+def _slug(heading: str) -> str:
+    """The anchor docutils (and GitHub) give a plain heading: lower case, words joined by '-'."""
+    return re.sub(r"[^a-z0-9]+", "-", heading.lower()).strip("-")
+
+
+def test_the_pages_cover_every_panel_of_the_registry_once():
+    from afmsmiler.ui import pages
+    from afmsmiler.ui.registry import MODULES, PANELS
+    names = [n for m in MODULES for n in pages.module_pages(m)]
+    assert len(names) == len(set(names))
+    assert set(names) == {*pages.PANELS, *pages.SCENE_PAGES, *pages.INSTRUMENT_PAGES}
+    assert set(pages.PANELS) == {e.key for e in PANELS}  # module (h)'s four included
+    assert {e.key for e in PANELS if e.module == "h"} <= set(names)
+    assert set(pages.SCENE_PAGES) == {f"scene_{e.key}" for e in PANELS if e.scene}
+
+
+def test_every_chapter_embeds_its_modules_pages_and_no_other():
+    from afmsmiler.ui import pages
+    from afmsmiler.ui.registry import MODULES
+    for m in MODULES:
+        stem, text = _chapter(m)
+        embedded = re.findall(r'<iframe src="_static/panels/(\w+)\.html"', text)
+        assert sorted(embedded) == sorted(pages.module_pages(m)), \
+            f"book/{stem}.md embeds {embedded}, module ({m}) has {pages.module_pages(m)}"
+
+
+def test_every_chapter_links_its_notebook_and_says_how_to_start_its_app():
+    from afmsmiler.ui.registry import MODULES
+    for m in MODULES:
+        stem, text = _chapter(m)
+        assert f"{{download}}`notebooks/{stem}.ipynb <../notebooks/{stem}.ipynb>`" in text, stem
+        assert f"`make app NB={stem}`" in text, stem
+        assert "## Notebook, web app and figures" in text, stem
+
+
+def test_every_notebook_links_back_to_its_chapter_section():
+    headings = {}
+    for f in _toc_files():
+        text = (BOOK / f"{f}.md").read_text(encoding="utf-8")
+        headings[f] = {_slug(h) for h in re.findall(r"^#+ (.+)$", text, flags=re.M)}
+    for nb in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        first = "".join(json.loads(nb.read_text(encoding="utf-8"))["cells"][0]["source"])
+        links = re.findall(r"\]\(\.\./book/([\w.-]+)\.md#([\w-]+)\)", first)
+        assert (nb.stem, "notebook-web-app-and-figures") in links, \
+            f"{nb.name}'s first cell has no link to its chapter's section: {links}"
+        for stem, anchor in links:
+            assert anchor in headings[stem], f"{nb.name} links to book/{stem}.md#{anchor}: no such section"
+
+
+def test_the_instructor_guide_is_in_the_book_and_quotes_the_measured_times():
+    assert "instructor_guide" in _toc_files()
+    guide = (BOOK / "instructor_guide.md").read_text(encoding="utf-8")
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    measured = dict(re.findall(r"^\| \d \| `(\d\d_\w+)` \| [^|]+ \| (\d+ s) \|", readme, flags=re.M))
+    quoted = dict(re.findall(r"^\| `(\d\d_\w+)` \| (\d+ s) \|", guide, flags=re.M))
+    assert len(measured) == len(list((ROOT / "notebooks").glob("*.ipynb"))) and quoted == measured
+
+
+def test_module_pages_refuses_an_unknown_module():
+    from afmsmiler.ui.pages import module_pages
+    with pytest.raises(ValueError, match="module"):
+        module_pages("z")
