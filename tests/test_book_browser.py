@@ -101,14 +101,14 @@ def built(tmp_path_factory):
 
 
 @pytest.fixture(scope="module")
-def page(built):
-    with B.browser() as b:
-        p = B.new_page(b)
-        p.set_default_timeout(30_000)
-        p.requests, p.failed = [], []
-        p.on("request", lambda r: p.requests.append(r.url))
-        p.on("requestfailed", lambda r: p.failed.append(f"{r.url}: {r.failure}"))
-        yield p
+def page(built, chromium):
+    """A page of the suite's Chromium (conftest.py) that records every request and failure."""
+    p = B.new_page(chromium)
+    p.requests, p.failed = [], []
+    p.on("request", lambda r: p.requests.append(r.url))
+    p.on("requestfailed", lambda r: p.failed.append(f"{r.url}: {r.failure}"))
+    yield p
+    p.close()
 
 
 def _offsite(urls) -> list[str]:
