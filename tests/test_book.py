@@ -5,6 +5,9 @@ from pathlib import Path
 
 import pytest
 
+from afmsmiler.ui import pages
+from afmsmiler.ui.registry import MODULES, PANELS
+
 ROOT = Path(__file__).parents[1]
 BOOK = ROOT / "book"
 
@@ -34,7 +37,6 @@ def test_chapter_links_point_to_existing_notebooks():
 # -- the book <-> notebook <-> page triangle (issue 22, part 4) ----------------------------------
 def _chapter(module: str) -> tuple[str, str]:
     """The stem of module ``module``'s notebook (= its chapter's) and the chapter's text."""
-    from afmsmiler.ui.registry import MODULES
     stem = MODULES[module][0][: -len(".ipynb")]
     return stem, (BOOK / f"{stem}.md").read_text(encoding="utf-8")
 
@@ -45,8 +47,6 @@ def _slug(heading: str) -> str:
 
 
 def test_the_pages_cover_every_panel_of_the_registry_once():
-    from afmsmiler.ui import pages
-    from afmsmiler.ui.registry import MODULES, PANELS
     names = [n for m in MODULES for n in pages.module_pages(m)]
     assert len(names) == len(set(names))
     assert set(names) == {*pages.PANELS, *pages.SCENE_PAGES, *pages.INSTRUMENT_PAGES}
@@ -56,8 +56,6 @@ def test_the_pages_cover_every_panel_of_the_registry_once():
 
 
 def test_every_chapter_embeds_its_modules_pages_and_no_other():
-    from afmsmiler.ui import pages
-    from afmsmiler.ui.registry import MODULES
     for m in MODULES:
         stem, text = _chapter(m)
         embedded = re.findall(r'<iframe src="_static/panels/(\w+)\.html"', text)
@@ -66,7 +64,6 @@ def test_every_chapter_embeds_its_modules_pages_and_no_other():
 
 
 def test_every_chapter_links_its_notebook_and_says_how_to_start_its_app():
-    from afmsmiler.ui.registry import MODULES
     for m in MODULES:
         stem, text = _chapter(m)
         assert f"{{download}}`notebooks/{stem}.ipynb <../notebooks/{stem}.ipynb>`" in text, stem
@@ -98,6 +95,35 @@ def test_the_instructor_guide_is_in_the_book_and_quotes_the_measured_times():
 
 
 def test_module_pages_refuses_an_unknown_module():
-    from afmsmiler.ui.pages import module_pages
     with pytest.raises(ValueError, match="module"):
-        module_pages("z")
+        pages.module_pages("z")
+
+
+def _vendor_mathjax():
+    import importlib.util
+    spec = importlib.util.spec_from_file_location("vendor_mathjax", ROOT / "tools" / "vendor_mathjax.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_mathjax_integrity_is_npms_sha512_format():
+    # npm's dist.integrity of an empty file: SHA-512 of b"" (FIPS 180-4's test value), base64
+    assert _vendor_mathjax().integrity_of(b"") == (
+        "sha512-z4PhNX7vuL3xVChQ1m2AB9Yg5AULVxXcg/SpIdNs6c5H0NE8XYXysP+DGNKHfuwvY7kxvUdBeoGlODJ6+SfaPg==")
+
+
+def test_mathjax_tarball_that_is_not_the_pin_is_refused(tmp_path, monkeypatch):
+    fake = tmp_path / "mathjax-3.2.2.tgz"
+    fake.write_bytes(b"not mathjax")
+    monkeypatch.setenv("MATHJAX_TARBALL", str(fake))
+    vendor = _vendor_mathjax()
+    with pytest.raises(SystemExit, match="MATHJAX_TARBALL=.* hashes to sha512-"):
+        vendor.vendor(tmp_path / "mathjax", cache=tmp_path / "cache.tgz")
+    assert not (tmp_path / "mathjax").exists()  # nothing unpacked
+
+
+def test_the_book_loads_mathjax_from_its_build():
+    config = (BOOK / "_config.yml").read_text(encoding="utf-8")
+    entry = _vendor_mathjax().ENTRY
+    assert f"mathjax_path: ../mathjax/{entry}" in config and 'html_extra_path: ["_extra"]' in config

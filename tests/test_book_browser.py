@@ -17,8 +17,8 @@ page from ``file://`` and checks that
 * every request went to ``file:``/``data:``/``blob:`` or 127.0.0.1 and none failed (a MathJax
   component or font missing from the build would fail).
 
-Cost, measured on the shared 2-core machine with other developers' work beside it: the whole
-file 57-91 s of wall time in three runs, of which the build 17-30 s (about 13 s of CPU: the pages
+Cost, measured on the shared 2-core machine with other developers' work beside it (load
+average about 12): the whole file 57-91 s of wall time in four runs, about 22 s of CPU, of which the build 17-30 s (about 13 s of CPU: the pages
 6 s, jupyter-book 7 s) and the chapter with nine embedded pages (module (g)) 13 s. ``make test``
 builds the book here rather than reusing ``book/_build`` (which may be stale or absent), on one
 worker beside the other tests; ``make unit`` skips it (slow, browser).
