@@ -18,10 +18,11 @@ page from ``file://`` and checks that
   component or font missing from the build would fail).
 
 Cost, measured on the shared 2-core machine with other developers' work beside it (load
-average about 12): the whole file 57-91 s of wall time in four runs, about 22 s of CPU, of which the build 17-30 s (about 13 s of CPU: the pages
-6 s, jupyter-book 7 s) and the chapter with nine embedded pages (module (g)) 13 s. ``make test``
-builds the book here rather than reusing ``book/_build`` (which may be stale or absent), on one
-worker beside the other tests; ``make unit`` skips it (slow, browser).
+average about 12): the whole file took 57-91 s of wall time in four runs and about 22 s of CPU;
+the build 17-30 s of it (about 13 s of CPU: the pages 6 s, jupyter-book 7 s), the chapter with
+nine embedded pages (module (g)) 13 s. ``make test`` builds the book here rather than reusing
+``book/_build`` (which may be stale or absent), on one worker beside the other tests; ``make
+unit`` skips it (slow, browser).
 """
 from __future__ import annotations
 
