@@ -43,12 +43,33 @@ INSTRUMENT_PAGES = {"instrument_obd": "obd", "instrument_educational": "educatio
 INSTRUMENT_MODULE = "e"
 
 
+#: Panels whose pages show the scan their notebook starts right below them (their sliders apply to
+#: the next scan, ``figure=False``), rather than empty axes. Not the macroscopic AFM: its twin
+#: streams the pixels in real time, so the line its figure shows last depends on the timing.
+SCANNED_FIRST = ("imaging",)
+
+
+def _made(entry, scene: bool = False):
+    """The panel of ``entry`` at its defaults, as its notebook first shows it.
+
+    A panel of :data:`SCANNED_FIRST` is shown after one scan at its defaults (``panel.start()``,
+    run to the end at once outside a live notebook), as the notebook's next cell starts it.
+    """
+    panel = entry.make(scene=True) if scene else entry.make()
+    if entry.key in SCANNED_FIRST:
+        panel.start()
+    return panel
+
+
 def _panel(name: str):
-    return PANELS[name].make()  # at its defaults, without a 3D view
+    return _made(PANELS[name])  # without a 3D view
 
 
 def panel_page(name: str) -> str:
     """A complete HTML page with panel ``name``'s figure at its defaults.
+
+    A panel of :data:`SCANNED_FIRST` is shown after the scan its notebook starts at its
+    defaults.
 
     Parameters
     ----------
@@ -100,7 +121,7 @@ def scene_page(name: str) -> str:
     """A complete HTML page with the 3D view of panel ``name`` at its defaults.
 
     The panel is built with its 3D view (:class:`~afmsmiler.scenes.SceneView`, no browser or
-    server needed) and the view is exported as its static page (meshcat's three.js bundle and
+    server needed), after its first scan as in :func:`panel_page`, and the view is exported as its static page (meshcat's three.js bundle and
     the scene's commands inlined, so the page needs no network).
 
     Parameters
@@ -119,7 +140,7 @@ def scene_page(name: str) -> str:
     """
     if name not in SCENE_PAGES:
         raise ValueError(f"name must be one of {sorted(SCENE_PAGES)}, got {name!r}")
-    return SCENE_PAGES[name].make(scene=True).scene_view().static_html()
+    return _made(SCENE_PAGES[name], scene=True).scene_view().static_html()
 
 
 def write_scene_pages(directory) -> list[Path]:
