@@ -127,3 +127,15 @@ def test_the_book_loads_mathjax_from_its_build():
     config = (BOOK / "_config.yml").read_text(encoding="utf-8")
     entry = _vendor_mathjax().ENTRY
     assert f"mathjax_path: ../mathjax/{entry}" in config and 'html_extra_path: ["_extra"]' in config
+
+
+def test_the_instructor_guide_counts_each_notebooks_exercises():
+    guide = (BOOK / "instructor_guide.md").read_text(encoding="utf-8")
+    counted = {nb: int(n) for nb, n in
+               re.findall(r"^\| `(\d\d_\w+)` \| \d+ s \| [^|]+ \| (\d+) \|", guide, flags=re.M)}
+    for path in sorted((ROOT / "notebooks").glob("*.ipynb")):
+        cells = json.loads(path.read_text(encoding="utf-8"))["cells"]
+        text = "\n".join("".join(c["source"]) for c in cells if c["cell_type"] == "markdown")
+        numbers = {int(n) for n in re.findall(r"^\*\*(\d+)\. ", text, flags=re.M)}  # **2. Title.**
+        assert numbers == set(range(1, len(numbers) + 1)) and counted[path.stem] == len(numbers), \
+            f"the guide gives {path.stem} {counted.get(path.stem)} exercises, it has {sorted(numbers)}"
