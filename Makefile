@@ -45,7 +45,7 @@ firmware:
 ## pip does it when uv cannot. uv compiles the installed modules as pip does (--compile-bytecode,
 ## on both cores): otherwise the first test run after an install compiled numpy, scipy,
 ## matplotlib and Jupyter in each of its processes.
-EXTRAS := test,lab,files,bench,hardware
+EXTRAS := test,lab,files,bench,hardware,book
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	{ $(PY) -m pip install --quiet uv && \
@@ -99,11 +99,16 @@ notebooks: $(STAMP)
 bench: $(STAMP) browser
 	$(PY) benchmarks/run_all.py
 
-## The course book (Jupyter Book 1.x) into book/_build/html.
-book: $(STAMP)
-	$(PY) -m pip install --quiet -e '.[book]'
+## The course book (Jupyter Book 1.x) into book/_build/html, warnings as errors. Its figure and
+## 3D pages are written from the panels' registry; MathJax ships in the build (the pinned npm
+## release, hash-checked, fetched once into book/_vendor or read from MATHJAX_TARBALL), so
+## the build and its pages need no network (tests/test_book_browser.py checks both).
+MATHJAX := book/_extra/mathjax/tex-mml-chtml.js
+$(MATHJAX): tools/vendor_mathjax.py
+	$(PY) tools/vendor_mathjax.py book/_extra/mathjax
+book: $(STAMP) $(MATHJAX)
 	$(PY) -m afmsmiler.ui.pages book/_static/panels
-	$(VENV)/bin/jupyter-book build book
+	$(VENV)/bin/jupyter-book build -W -n --keep-going book
 
 clean:
-	rm -rf $(VENV) .pytest_cache book/_build
+	rm -rf $(VENV) .pytest_cache book/_build book/_static/panels book/_extra

@@ -5,7 +5,7 @@ import re
 import numpy as np
 import pytest
 
-from afmsmiler.ui.pages import PANELS, _panel, panel_page, write_panel_pages
+from afmsmiler.ui.pages import PANELS, SCANNED_FIRST, _panel, panel_page, write_panel_pages
 
 
 def _frame(page):
@@ -19,7 +19,10 @@ def _frame(page):
     return layout, frame
 
 
-@pytest.mark.parametrize("name", sorted(PANELS))
+@pytest.mark.parametrize("name", [
+    # a panel shown after its first scan takes 2 s (the scan, twice: the page and the check)
+    pytest.param(name, marks=pytest.mark.slow) if name in SCANNED_FIRST else name
+    for name in sorted(PANELS)])
 def test_a_page_holds_its_panels_figure_at_the_defaults(name):
     page = panel_page(name)
     assert page.startswith("<!DOCTYPE html>") and "uPlot" in page
@@ -46,3 +49,26 @@ def test_pages_are_written_and_unknown_panels_refused(tmp_path):
     assert all(p.read_text().count("drawStatic(") == 2 for p in paths)  # defined once, called once
     with pytest.raises(ValueError, match="name must be one of"):
         panel_page("afm")
+
+
+@pytest.mark.slow  # nine panels built with their 3D views: about 2 s
+def test_scene_pages_hold_each_panels_3d_view_and_unknown_names_are_refused(tmp_path):
+    from afmsmiler.ui.pages import SCENE_PAGES, scene_page, write_scene_pages
+    from afmsmiler.ui.registry import PANELS as REGISTRY
+    assert sorted(SCENE_PAGES) == sorted(f"scene_{e.key}" for e in REGISTRY if e.scene)
+    paths = write_scene_pages(tmp_path / "scenes")
+    assert sorted(p.stem for p in paths) == sorted(SCENE_PAGES)
+    for path in paths:
+        page = path.read_text(encoding="utf-8")
+        # the view's commands embedded (a scene with nothing in it would pass an empty list)
+        commands = re.search(r"drawStatic\(document\.getElementById\('scene'\), (\[.*?\]), ", page, re.S)
+        assert page.startswith("<!DOCTYPE html>") and len(json.loads(commands.group(1))) > 0
+    with pytest.raises(ValueError, match="name must be one of"):
+        scene_page("scene_controller")  # module (c)'s panel has no 3D view
+
+
+@pytest.mark.slow  # one scan of module (f)'s panel: about a second
+@pytest.mark.parametrize("name", SCANNED_FIRST)
+def test_a_scanned_panels_page_shows_its_finished_first_scan(name):
+    snapshot = _panel(name).last
+    assert snapshot.state == "done" and snapshot.lines_done == snapshot.lines > 0

@@ -6,9 +6,14 @@ shows what the notebook's panel shows before the student moves a slider. Run as
 
     python -m afmsmiler.ui.pages DIRECTORY
 
-to write one ``<panel>.html`` per panel into ``DIRECTORY``, and one ``instrument_<kind>.html`` per
-3D instrument of module (e) (:func:`instrument_page`: meshcat's own static page of the scene, which
-needs the kernel's meshcat server for the export; it is started and closed again).
+to write into ``DIRECTORY`` one ``<panel>.html`` per panel of the registry
+(:data:`afmsmiler.ui.registry.PANELS`, every module's, (h)'s four included), one
+``scene_<panel>.html`` per panel that the notebook shows with a 3D view (:func:`scene_page`: the
+panel's scene at its defaults, as the 3D view's own static page) and one
+``instrument_<kind>.html`` per 3D instrument of module (e) (:func:`instrument_page`). The pages
+iterate the registry, so a panel added there gets its pages and a test
+(``tests/test_book.py``) fails until its module's chapter embeds them; :func:`module_pages`
+says which pages belong to a module's chapter.
 """
 from __future__ import annotations
 
@@ -19,24 +24,52 @@ from pathlib import Path
 
 from ..plots.live import static_html
 from ..validation import check_choice
-from .registry import PANELS as REGISTRY
+from .registry import MODULES, PANELS as REGISTRY
 
-__all__ = ["PANELS", "INSTRUMENT_PAGES", "panel_page", "write_panel_pages", "instrument_page",
-           "write_instrument_pages"]
+__all__ = ["PANELS", "SCENE_PAGES", "INSTRUMENT_PAGES", "panel_page", "write_panel_pages",
+           "scene_page", "write_scene_pages", "instrument_page", "write_instrument_pages",
+           "module_pages", "write_pages"]
 
 #: Page name -> the panel's entry in :data:`afmsmiler.ui.registry.PANELS` (every panel).
 PANELS = {e.key: e for e in REGISTRY}
 
+#: Page name (``scene_<key>``) -> the entry of every panel the notebook shows with its 3D view.
+SCENE_PAGES = {f"scene_{e.key}": e for e in REGISTRY if e.scene}
+
 #: Page name -> the 3D instrument (a key of :data:`afmsmiler.scenes.instrument.INSTRUMENTS`).
 INSTRUMENT_PAGES = {"instrument_obd": "obd", "instrument_educational": "educational"}
 
+#: The module whose chapter shows the instruments' pages.
+INSTRUMENT_MODULE = "e"
+
+
+#: Panels whose pages show the scan their notebook starts right below them (their sliders apply to
+#: the next scan, ``figure=False``), rather than empty axes. Not the macroscopic AFM: its twin
+#: streams the pixels in real time, so the line its figure shows last depends on the timing.
+SCANNED_FIRST = ("imaging",)
+
+
+def _made(entry, scene: bool = False):
+    """The panel of ``entry`` at its defaults, as its notebook first shows it.
+
+    A panel of :data:`SCANNED_FIRST` is shown after one scan at its defaults (``panel.start()``,
+    run to the end at once outside a live notebook), as the notebook's next cell starts it.
+    """
+    panel = entry.make(scene=True) if scene else entry.make()
+    if entry.key in SCANNED_FIRST:
+        panel.start()
+    return panel
+
 
 def _panel(name: str):
-    return PANELS[name].make()  # at its defaults, without a 3D view
+    return _made(PANELS[name])  # without a 3D view
 
 
 def panel_page(name: str) -> str:
     """A complete HTML page with panel ``name``'s figure at its defaults.
+
+    A panel of :data:`SCANNED_FIRST` is shown after the scan its notebook starts at its
+    defaults.
 
     Parameters
     ----------
@@ -80,6 +113,55 @@ def write_panel_pages(directory) -> list[Path]:
     for name in PANELS:
         path = out / f"{name}.html"
         path.write_text(panel_page(name), encoding="utf-8")
+        written.append(path)
+    return written
+
+
+def scene_page(name: str) -> str:
+    """A complete HTML page with the 3D view of panel ``name`` at its defaults.
+
+    The panel is built with its 3D view (:class:`~afmsmiler.scenes.SceneView`, no browser or
+    server needed), after its first scan as in :func:`panel_page`, and the view is exported as its static page (meshcat's three.js bundle and
+    the scene's commands inlined, so the page needs no network).
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`SCENE_PAGES` (``"scene_<panel>"``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``name``, listing the 3D pages.
+    """
+    if name not in SCENE_PAGES:
+        raise ValueError(f"name must be one of {sorted(SCENE_PAGES)}, got {name!r}")
+    return _made(SCENE_PAGES[name], scene=True).scene_view().static_html()
+
+
+def write_scene_pages(directory) -> list[Path]:
+    """Write ``scene_<panel>.html`` for every panel of :data:`SCENE_PAGES` into ``directory``.
+
+    Parameters
+    ----------
+    directory : str or os.PathLike
+        Created if missing.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The pages written.
+    """
+    out = Path(directory)
+    out.mkdir(parents=True, exist_ok=True)
+    written = []
+    for name in SCENE_PAGES:
+        path = out / f"{name}.html"
+        path.write_text(scene_page(name), encoding="utf-8")
         written.append(path)
     return written
 
@@ -132,11 +214,56 @@ def write_instrument_pages(directory) -> list[Path]:
     return written
 
 
+def module_pages(module: str) -> list[str]:
+    """The names of the pages (without ``.html``) that module ``module``'s chapter embeds.
+
+    Its panels' figures, then their 3D views, then (module (e)) the two instruments.
+
+    Parameters
+    ----------
+    module : str
+        A module's letter, a key of :data:`afmsmiler.ui.registry.MODULES`.
+
+    Returns
+    -------
+    list of str
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``module``, listing the modules.
+    """
+    check_choice("module", module, list(MODULES))
+    names = [k for k, e in PANELS.items() if e.module == module]
+    names += [k for k, e in SCENE_PAGES.items() if e.module == module]
+    if module == INSTRUMENT_MODULE:
+        names += list(INSTRUMENT_PAGES)
+    return names
+
+
+def write_pages(directory) -> list[Path]:
+    """Write every page of the book (figures, 3D views, instruments) into ``directory``.
+
+    Parameters
+    ----------
+    directory : str or os.PathLike
+        Created if missing.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The pages written.
+    """
+    return [*write_panel_pages(directory), *write_scene_pages(directory),
+            *write_instrument_pages(directory)]
+
+
 def main(argv=None) -> int:
-    parser = argparse.ArgumentParser(description="Write the panels' figures as static pages.")
+    parser = argparse.ArgumentParser(description="Write the panels' figures and 3D views as "
+                                                 "static pages.")
     parser.add_argument("directory")
     args = parser.parse_args(argv)
-    for path in [*write_panel_pages(args.directory), *write_instrument_pages(args.directory)]:
+    for path in write_pages(args.directory):
         print(path)
     return 0
 
