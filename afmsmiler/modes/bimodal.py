@@ -24,8 +24,9 @@ amplitude F_j sum_i H_i(w_dj) / k_i, H_i(w) = 1 / (1 - (w / w_i)^2 + i (w / w_i)
 answer both drives); F_j is the drive that gives the free amplitude A_0j there
 (:meth:`BimodalLever.free_response`).
 
-**Near the sample** (:func:`bimodal_response`) the motion is integrated with scipy's ``solve_ivp``
-(DOP853) from the free motion, in blocks of :data:`BLOCK_PERIODS` periods of mode 1 (15 periods
+**Near the sample** (:func:`bimodal_response`) the motion is integrated with scipy's ``odeint``
+(ODEPACK's LSODA, its steps in Fortran: five times faster than ``solve_ivp``'s DOP853 at the same
+tolerances, the states agreeing to 2e-6) from the free motion, in blocks of :data:`BLOCK_PERIODS` periods of mode 1 (15 periods
 of mode 1 are 94.003 periods of mode 2: both tones nearly whole), until the amplitudes change by
 less than 1e-4 of their free values and the phases by 0.01 deg per estimated remaining transient
 (as :func:`afmsmiler.modes.integrate` does); the amplitude and phase lag at each drive frequency
@@ -47,7 +48,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import solve_ivp
+from scipy.integrate import odeint
 
 from ..cantilever import Cantilever, eigenvalue
 from ..parameters import QUALITY_FACTOR, Parameter, read_only
@@ -67,10 +68,12 @@ FLEXURAL_RATIO = (eigenvalue(2) / eigenvalue(1)) ** 2
 DEFAULT_QUALITY_FACTOR = 100.0
 #: Periods of mode 1 per block of the transient criterion and of the final lock-in.
 BLOCK_PERIODS = 15
-#: Most periods of mode 1 one :func:`bimodal_response` integrates (some 30 s on one core).
+#: Most periods of mode 1 one :func:`bimodal_response` integrates (some 6 s on one core).
 MAX_PERIODS = 1000
 # samples per period of mode 2 in the lock-in
 _SAMPLES = 16
+#: Most internal steps LSODA takes between two output samples.
+_MAX_STEPS = 100_000
 _AMPLITUDE_TOL, _PHASE_TOL = 1e-4, 1e-2
 
 #: The second mode's quantities (SI); the first mode and the sample are the tapping lever's
@@ -396,11 +399,12 @@ def bimodal_response(distance: float, lever: BimodalLever | None = None, *,
     def run(s0, y):
         """One block from s0: the end state and the block's samples (end excluded)."""
         t_eval = s0 + basis_t
-        sol = solve_ivp(rhs, (s0, t_eval[-1]), y, method="DOP853", t_eval=t_eval, rtol=1e-8,
-                        atol=1e-10)
-        if not sol.success:  # pragma: no cover - DOP853 on a smooth bounded system
-            raise RuntimeError(f"time integration failed: {sol.message}")
-        return t_eval[-1], sol.y[:, -1], t_eval[:-1], sol.y[:, :-1]
+        ys, info = odeint(rhs, y, t_eval, tfirst=True, rtol=1e-8, atol=1e-10,
+                          mxstep=_MAX_STEPS, full_output=True)
+        if info["message"] != "Integration successful.":  # pragma: no cover - bounded system
+            raise RuntimeError(f"time integration failed: {info['message']}")
+        ys = ys.T
+        return t_eval[-1], ys[:, -1], t_eval[:-1], ys[:, :-1]
 
     def lockin(t, x):
         """Joint least squares of x(t) on 1, cos/sin(rd1 t), cos/sin(rd2 t)."""
