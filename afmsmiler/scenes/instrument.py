@@ -40,11 +40,13 @@ import meshcat
 import meshcat.geometry as g
 import numpy as np
 from meshcat.animation import Animation
+from meshcat.transformations import quaternion_from_matrix
 
 from ..instrument.assembly import INSTRUMENTS, Instrument, Part, Shape
 from ..parameters import Parameter, read_only, unit_scale
 from ..validation import (check_array, check_choice, check_integer, check_positive,
                           check_range)
+from .animation import set_translations
 from .camera import set_camera, show_helpers
 from .meshes import hollow_cylinder_mesh, knurl_outline, prism_mesh
 from .view import fit_camera
@@ -435,11 +437,14 @@ class InstrumentScene(SceneDisplay):
             raise ValueError(f"frames must make at most {LIMITS['animation_transforms']} "
                              f"transforms, got frames={frames}: {n}")
         anim = Animation(default_framerate=fps)
-        for k in range(total + 1):
-            f = self.fractions(frames, back)[k]
-            with anim.at_frame(self.vis, k) as frame:
-                for p in self.instrument.parts:
-                    frame[p.group][p.name].set_transform(self.transform(p.name, f))
+        f = self.fractions(frames, back)[:, None]
+        k = np.arange(total + 1)
+        for p in self.instrument.parts:  # each part's pose is linear in the fraction
+            start, end = self.transform(p.name, 0.0), self.transform(p.name, 1.0)
+            positions = start[:3, 3] + f * (end[:3, 3] - start[:3, 3])
+            w, x, y, z = quaternion_from_matrix(start)  # the part turns not while it moves
+            set_translations(anim, self.vis[p.group][p.name], k, positions,
+                             np.tile([x, y, z, w], (k.size, 1)))
         self.explode(0.0 if back else 1.0)
         self._show_beam_group(False)
         self.root.set_animation(anim, play=bool(play), repetitions=repetitions)
