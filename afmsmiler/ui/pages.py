@@ -107,12 +107,17 @@ def write_panel_pages(directory) -> list[Path]:
     list of pathlib.Path
         The pages written.
     """
+    return _write(directory, PANELS, panel_page)
+
+
+def _write(directory, names, page) -> list[Path]:
+    """Write ``page(name)`` as ``<name>.html`` into ``directory`` for each of ``names``."""
     out = Path(directory)
     out.mkdir(parents=True, exist_ok=True)
     written = []
-    for name in PANELS:
+    for name in names:
         path = out / f"{name}.html"
-        path.write_text(panel_page(name), encoding="utf-8")
+        path.write_text(page(name), encoding="utf-8")
         written.append(path)
     return written
 
@@ -156,14 +161,7 @@ def write_scene_pages(directory) -> list[Path]:
     list of pathlib.Path
         The pages written.
     """
-    out = Path(directory)
-    out.mkdir(parents=True, exist_ok=True)
-    written = []
-    for name in SCENE_PAGES:
-        path = out / f"{name}.html"
-        path.write_text(scene_page(name), encoding="utf-8")
-        written.append(path)
-    return written
+    return _write(directory, SCENE_PAGES, scene_page)
 
 
 def instrument_page(kind: str) -> str:
