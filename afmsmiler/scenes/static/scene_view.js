@@ -22,7 +22,7 @@ const SCENES = new Map();
 function sceneOf(model) {
   const uid = model.get("_uid");
   let s = SCENES.get(uid);
-  if (!s) { s = { entries: new Map(), seq: 0, views: new Set() }; SCENES.set(uid, s); }
+  if (!s) { s = { entries: new Map(), seq: 0, views: new Set(), queue: [], flushing: false }; SCENES.set(uid, s); }
   return s;
 }
 
@@ -45,6 +45,20 @@ function record(s, cmd, bytes) {
   s.entries.set(key, { kind, path, bytes });
 }
 
+// A slider's move sends the panel's figure first and its 3D view's commands after it. Decoding a
+// scene's commands (a stress-coloured lever is a 120 kB mesh) takes the page's thread for
+// milliseconds, so the views apply them after the next paint: the figure's frame, drawn at the
+// next animation frame, is painted first.
+function applyAfterPaint(s) {
+  if (s.flushing) return;
+  s.flushing = true;
+  requestAnimationFrame(() => setTimeout(() => {
+    s.flushing = false;
+    const queued = s.queue.splice(0);
+    for (const bytes of queued) for (const view of s.views) view.apply(bytes);
+  }, 0));
+}
+
 function initialize({ model }) {
   const s = sceneOf(model);
   const onMessage = (content, buffers) => {
@@ -52,6 +66,7 @@ function initialize({ model }) {
     const bufs = buffers || [];
     if (content.type === "replay") {
       s.entries.clear();
+      s.queue.length = 0; // the replay holds them
       content.commands.forEach((c, i) => record(s, c, afmBytes(bufs[i])));
       s.seq = content.seq;
       for (const view of s.views) view.reset();
@@ -62,8 +77,9 @@ function initialize({ model }) {
       const bytes = afmBytes(bufs[i]);
       record(s, c, bytes);
       s.seq = c.seq;
-      for (const view of s.views) view.apply(bytes);
+      s.queue.push(bytes);
     });
+    applyAfterPaint(s);
   };
   model.on("msg:custom", onMessage);
   // commands sent before this model existed in the page (a reload, a late view) come back whole
