@@ -14,7 +14,7 @@ export MPLBACKEND ?= Agg
 ## kernel and each test worker, compiled the course and the tests again (10 s per worker).
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: install lab test unit lint notebooks bench book clean browser firmware
+.PHONY: install lab test unit lint notebooks bench book clean browser firmware assignments
 
 ## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
 ## missing and we are root (as in CI); otherwise those tests are skipped and say why.
@@ -96,6 +96,23 @@ notebooks: $(STAMP)
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
 bench: $(STAMP) browser
 	$(PY) benchmarks/run_all.py
+
+## An instructor's nbgrader assignments, one per notebook: the source versions (solutions and
+## autograder tests made from afmsmiler.exercises: python -m afmsmiler.grade --help) in
+## $(COURSE)/source/ and the students' versions in $(COURSE)/release/ (nbgrader generate_assignment).
+## Autograde in $(COURSE) with nbgrader as usual (AFMSMILER_TESTING=1 keeps the runs short).
+COURSE ?= course
+assignments: $(STAMP)
+	$(PY) -m afmsmiler.grade --nbgrader-source $(COURSE)/source notebooks/0*.ipynb
+	test -f $(COURSE)/nbgrader_config.py || printf '%s\n' \
+	  '# nbgrader runs the notebooks as python -m afmsmiler.grade does: short animations, and' \
+	  '# room for the longest cells (module (h) scans its simulated devices)' \
+	  'import os' 'os.environ.setdefault("AFMSMILER_TESTING", "1")' \
+	  'os.environ.setdefault("MPLBACKEND", "Agg")' 'c = get_config()  # noqa: F821' \
+	  'c.Execute.timeout = 600' > $(COURSE)/nbgrader_config.py
+	cd $(COURSE) && for a in source/*/; do \
+	  PATH="$(abspath $(VENV))/bin:$$PATH" nbgrader generate_assignment --force "$$(basename $$a)" \
+	    || exit 1; done
 
 ## The course book (Jupyter Book 1.x) into book/_build/html.
 book: $(STAMP)

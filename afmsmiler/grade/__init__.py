@@ -24,11 +24,12 @@ between ``### BEGIN SOLUTION`` and ``### END SOLUTION``), each checker call a lo
 test cell worth the exercise's points (1 each) that raises AssertionError with the checker's hint
 on a wrong answer. Then, in ``COURSE``, the usual nbgrader steps: ``nbgrader generate_assignment
 NN_name`` (the students' version in ``release/``), collect the submissions into
-``submitted/STUDENT/NN_name/``, ``nbgrader autograde NN_name`` (with ``AFMSMILER_TESTING=1`` in the
-environment, and ``--ExecutePreprocessor.timeout=600`` for the longer notebooks) and
-``nbgrader generate_feedback``. The grade command gives a submission the same scores as
-nbgrader's autograder (tests/test_grade_notebooks.py checks it). ``--solved DIR`` writes the
-notebooks with every answer solved (the grade command gives them full marks).
+``submitted/STUDENT/NN_name/``, ``nbgrader autograde NN_name`` and ``nbgrader
+generate_feedback``. Autograde with ``AFMSMILER_TESTING=1`` in the environment and
+``Execute.timeout = 600`` (s per cell): ``make assignments`` writes a ``COURSE/nbgrader_config.py``
+that sets both. The grade command gives a submission the same scores as nbgrader's autograder
+(tests/test_grade_run.py checks it on notebooks 01-07). ``--solved DIR`` writes the notebooks
+with every answer solved (the grade command gives them full marks).
 
 The parts: :mod:`~afmsmiler.grade.notebooks` (the exercises' cells, the solved and nbgrader
 notebooks; pure), :mod:`~afmsmiler.grade.scoring` (scores from verdicts; pure),
