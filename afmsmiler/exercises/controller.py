@@ -94,7 +94,7 @@ def unit_slip(name: str, value: float) -> str | None:
     return None
 
 
-def critical_ki(kp: float = 100.0, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -> float:
+def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -> float:
     """The K_I (1/s) at which the loop of ``plant`` with gains kp, kd loses stability.
 
     Found numerically, without the Routh-Hurwitz formula: the root of the largest real part of
@@ -104,7 +104,7 @@ def critical_ki(kp: float = 100.0, kd: float = 0.0, plant: str = DEFAULTS["unsta
     Parameters
     ----------
     kp : float
-        Proportional gain (exercise 2's: 100).
+        Proportional gain.
     kd : float
         Derivative gain in s.
     plant : str

@@ -68,9 +68,9 @@ class Exercise:
     answers : tuple of str
         The checker's parameters that the student answers, in order.
     solution : callable
-        Takes the checker's givens (its other parameters, by name; those it leaves out keep its
-        defaults) and returns the answer (a tuple of them, in the order of ``answers``, when
-        there are several).
+        Takes the checker's givens (its other parameters) by name, as the notebook passes them
+        to the checker, and returns the answer (a tuple of them, in the order of ``answers``,
+        when there are several).
     points : float
         What the exercise is worth.
     """
