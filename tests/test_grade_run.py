@@ -1,5 +1,5 @@
-"""The grade command and nbgrader on the course's notebooks, run for real (slow: one module
-fixture runs every notebook four times, about three minutes on two cores).
+"""The grade command and nbgrader on the course's notebooks, run for real (slow: two module
+fixtures run 30 notebooks, 3 to 6 minutes on two shared cores; the times are printed).
 
 * the notebooks as students get them (every answer None), through the command line: every
   exercise 0, with the checker's hint;
@@ -8,8 +8,11 @@ fixture runs every notebook four times, about three minutes on two cores).
   ``generate_assignment``, a student's submission that solves every other exercise, leaves the
   others as released and slips a unit in two (a thickness in um, a slope in mrad), autograded by
   nbgrader and graded by the grade command: the same score for every exercise, and the slips
-  get the checker's hint. Notebooks 01-07: 08's exercises are asked as theirs are, and its run is
-  the longest (its simulated devices).
+  get the checker's hint. Notebooks 01-07: 08's exercises are asked as theirs are (the same
+  cells, checked statically for 08 in tests/test_grade_notebooks.py), and its run is the
+  longest (its simulated devices);
+* a run past its time limit is stopped, its kernel gone, and each exercise without a verdict
+  says why.
 """
 import contextlib
 import io
@@ -220,3 +223,30 @@ def test_no_kernel_outlives_the_grading(graded, kernels_before, request):
     with contextlib.suppress(pytest.skip.Exception):  # with nbgrader's runs, if it is here
         seconds.update(request.getfixturevalue("autograded")["seconds"])
     print("\n".join(f"{what}: {s:.0f} s" for what, s in seconds.items()))
+
+
+def test_a_run_is_bounded_and_says_why_an_exercise_has_no_verdict(tmp_path, hang_guard):
+    from afmsmiler.grade.run import grade_notebook
+    cells = ["from afmsmiler.exercises.cantilever import *",
+             "ratio = mode_ratio(2)\ncheck_mode_ratio(ratio)",
+             "h = not_defined_here\ncheck_thickness_for_spring_constant(h)",
+             "import time\ntime.sleep(3600)",  # the run's time limit stops it
+             "check_tip_slope(tip_slope())"]    # never reached; 01.3 is not asked at all
+    nb = dict(cells=[dict(cell_type="code", execution_count=None, id=f"c{i}", metadata={},
+                          outputs=[], source=src) for i, src in enumerate(cells)],
+              metadata={}, nbformat=4, nbformat_minor=5)
+    path = write_notebook(nb, tmp_path / "01_late.ipynb")
+    before = _kernels()
+    with hang_guard(150, expected=15):  # a kernel's start and the 10 s limit
+        score = grade_notebook(path, timeout=10)
+    assert [p for p in _kernels() - before if psutil.pid_exists(p)] == []
+    feedback = {e.key: e.feedback for e in score.exercises}
+    assert feedback["01.2"].startswith("Correct! ")
+    assert feedback["01.1"] == ("No verdict: the cell that calls "
+                                "check_thickness_for_spring_constant stopped with NameError: "
+                                "name 'not_defined_here' is not defined.")
+    assert "no cell ends with a call of check_largest_stress" in feedback["01.3"]
+    assert feedback["01.4"] == "No verdict: the notebook ran out of time (10 s) before " \
+                               "check_tip_slope."
+    assert (score.score, score.points) == (1, 4)
+    assert score.notes == ("ran out of time after 10 s", "1 cell(s) raised an error")
