@@ -97,12 +97,15 @@ notebooks: $(STAMP)
 bench: $(STAMP) browser
 	$(PY) benchmarks/run_all.py
 
-## An instructor's nbgrader assignments, one per notebook: the source versions (solutions and
+## An instructor's nbgrader assignments, one per notebook (the course and nbgrader, the `course`
+## extra, on top of a student's install): the source versions (solutions and
 ## autograder tests made from afmsmiler.exercises: python -m afmsmiler.grade --help) in
 ## $(COURSE)/source/ and the students' versions in $(COURSE)/release/ (nbgrader generate_assignment).
-## Autograde in $(COURSE) with nbgrader as usual (AFMSMILER_TESTING=1 keeps the runs short).
+## Autograde in $(COURSE) with nbgrader as usual: its nbgrader_config.py (written when missing) runs
+## the notebooks as the grade command does (AFMSMILER_TESTING=1, up to 600 s per cell).
 COURSE ?= course
-assignments: $(STAMP)
+assignments: $(STUDENT_STAMP)
+	$(PY) -m pip install --quiet -e '.[course]'
 	$(PY) -m afmsmiler.grade --nbgrader-source $(COURSE)/source notebooks/0*.ipynb
 	test -f $(COURSE)/nbgrader_config.py || printf '%s\n' \
 	  '# nbgrader runs the notebooks as python -m afmsmiler.grade does: short animations, and' \
