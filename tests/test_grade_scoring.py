@@ -61,9 +61,11 @@ def test_read_verdicts():
                      for k, p, m in (("02.1", True, "é ok"), ("02.2", False, "no"))) + "\n\n"
     assert read_verdicts(text) == [_v("02.1", True, "é ok"), _v("02.2", False, "no")]
     assert read_verdicts("") == []
-    for bad in ("{not json", '{"exercise": "02.1"}', "[1, 2]"):
+    for bad in ("{not json\n", '{"exercise": "02.1"}\n', "[1, 2]\n", "{not json\n{}"):
         with pytest.raises(ValueError, match="line 1"):
             read_verdicts(bad)
+    # a kernel stopped while it wrote its last verdict: the line it never finished is left out
+    assert read_verdicts(text + '{"exercise": "02.3", "pas') == read_verdicts(text)
     with pytest.raises(TypeError, match="text must be"):
         read_verdicts(b"{}")
     many = (json.dumps(dict(exercise="02.1", passed=True, message="")) + "\n") * (MAX_VERDICTS + 5)

@@ -108,17 +108,19 @@ def read_verdicts(text: str) -> list[Feedback]:
     Returns
     -------
     list of Feedback
-        In the order they were given, at most :data:`MAX_VERDICTS` (the first ones).
+        In the order they were given, at most :data:`MAX_VERDICTS` (the first ones); a last
+        line cut short (no newline: the kernel was stopped while writing it) is left out.
 
     Raises
     ------
     ValueError
-        If a line is not a verdict (JSON with ``exercise``, ``passed`` and ``message``).
+        If a whole line is not a verdict (JSON with ``exercise``, ``passed`` and ``message``).
     """
     if not isinstance(text, str):
         raise TypeError(f"text must be a str, got {type(text).__name__}")
     verdicts = []
-    for number, line in enumerate(text.splitlines(), 1):
+    lines = text.splitlines()
+    for number, line in enumerate(lines, 1):
         if len(verdicts) >= MAX_VERDICTS:
             break
         if not line.strip():
@@ -128,6 +130,8 @@ def read_verdicts(text: str) -> list[Feedback]:
             verdicts.append(Feedback(bool(item["passed"]), str(item["message"]),
                                      str(item["exercise"])))
         except (json.JSONDecodeError, KeyError, TypeError) as err:
+            if number == len(lines) and not text.endswith("\n"):
+                break  # a kernel stopped while writing its last verdict: it never finished
             raise ValueError(f"text must hold one verdict per line, got line {number}: "
                              f"{line[:80]!r} ({err})") from None
     return verdicts
