@@ -192,8 +192,6 @@ def _called(call: ast.Call) -> str | None:
 
 
 def _exercises(notebook) -> list[Exercise]:
-    if isinstance(notebook, Exercise):
-        return [notebook]
     if not isinstance(notebook, str):
         raise TypeError(f"notebook must be a notebook's number such as '01', got {notebook!r}")
     return exercises_of(notebook)
