@@ -49,7 +49,21 @@ $(STAMP): pyproject.toml
 	{ $(PY) -m pip install --quiet uv && \
 	  $(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[$(EXTRAS)]'; } || \
 	  { $(PY) -m pip install --quiet --upgrade pip && $(PY) -m pip install --quiet -e '.[$(EXTRAS)]'; }
+	$(MAKE) --no-print-directory nbgrader-extensions-off
 	touch $(STAMP) $(STUDENT_STAMP)
+
+## nbgrader (in the test extra: tests/test_grade_run.py) is used through its command line and
+## Python API only. Its server and JupyterLab extensions would load into every Jupyter server of
+## .venv (JupyterLab, voila, a hub's servers: 1.5 s more at each start, its imports' memory, its
+## menus in the browser tests' pages), so a developer's install turns them off.
+NBGRADER_SERVER_EXTENSIONS := formgrader assignment_list course_list validate_assignment
+.PHONY: nbgrader-extensions-off
+nbgrader-extensions-off:
+	@for e in $(NBGRADER_SERVER_EXTENSIONS); do \
+	  $(VENV)/bin/jupyter server extension disable --sys-prefix nbgrader.server_extensions.$$e \
+	    >/dev/null 2>&1 || true; done
+	@$(VENV)/bin/jupyter labextension disable --level=sys_prefix @jupyter/nbgrader \
+	  >/dev/null 2>&1 || true
 
 ## A student's install: the course with its notebooks' UI (lab), the file readers (files) and
 ## the devices (hardware); no test or bench extras. A full install already has them.
