@@ -67,7 +67,8 @@ def main(argv=None) -> int:
     Returns
     -------
     int
-        The exit code: 0 (graded or written), 2 (a notebook missing or not the course's).
+        The exit code: 0 (graded or written), 2 (a notebook missing or not the course's, or
+        nbclient missing).
     """
     args = _parser().parse_args(argv)
     missing = [str(p) for p in args.notebooks if not p.is_file()]
@@ -83,6 +84,10 @@ def main(argv=None) -> int:
         scores = grade(args.notebooks, timeout=args.timeout)
     except ValueError as err:
         print(f"error: {err}", file=sys.stderr)
+        return 2
+    except ImportError as err:  # nbclient and nbformat come with the lab extra
+        print(f"error: grading runs the notebooks with nbclient ({err}): install afmsmiler's "
+              f"lab extra", file=sys.stderr)
         return 2
     if args.json:
         print(json.dumps([s.as_dict() for s in scores], indent=1, ensure_ascii=False))

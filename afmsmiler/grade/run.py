@@ -104,6 +104,8 @@ async def _execute(nb, folder: Path, env: dict, timeout: float) -> tuple[bool, s
             return True, None
         except DeadKernelError as err:
             return False, f"the kernel died ({err})"
+        except Exception as err:  # noqa: BLE001 - no kernel (a missing kernelspec...): said
+            return False, f"the notebook could not be run ({type(err).__name__}: {err})"
         return False, None
     finally:
         if km.has_kernel and await km.is_alive():
