@@ -14,7 +14,7 @@ export MPLBACKEND ?= Agg
 ## kernel and each test worker, compiled the course and the tests again (10 s per worker).
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: install lab test unit lint notebooks bench book clean browser firmware
+.PHONY: install lab test unit lint notebooks bench book clean browser firmware assignments
 
 ## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
 ## missing and we are root (as in CI); otherwise those tests are skipped and say why.
@@ -51,7 +51,21 @@ $(STAMP): pyproject.toml
 	{ $(PY) -m pip install --quiet uv && \
 	  $(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[$(EXTRAS)]'; } || \
 	  { $(PY) -m pip install --quiet --upgrade pip && $(PY) -m pip install --quiet -e '.[$(EXTRAS)]'; }
+	$(MAKE) --no-print-directory nbgrader-extensions-off
 	touch $(STAMP) $(STUDENT_STAMP)
+
+## nbgrader (in the test extra: tests/test_grade_run.py) is used through its command line and
+## Python API only. Its server and JupyterLab extensions would load into every Jupyter server of
+## .venv (JupyterLab, voila, a hub's servers: 1.5 s more at each start, its imports' memory, its
+## menus in the browser tests' pages), so a developer's install turns them off.
+NBGRADER_SERVER_EXTENSIONS := formgrader assignment_list course_list validate_assignment
+.PHONY: nbgrader-extensions-off
+nbgrader-extensions-off:
+	@for e in $(NBGRADER_SERVER_EXTENSIONS); do \
+	  $(VENV)/bin/jupyter server extension disable --sys-prefix nbgrader.server_extensions.$$e \
+	    >/dev/null 2>&1 || true; done
+	@$(VENV)/bin/jupyter labextension disable --level=sys_prefix @jupyter/nbgrader \
+	  >/dev/null 2>&1 || true
 
 ## A student's install: the course with its notebooks' UI (lab), the file readers (files) and
 ## the devices (hardware); no test or bench extras. A full install already has them.
@@ -98,6 +112,26 @@ notebooks: $(STAMP)
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
 bench: $(STAMP) browser
 	$(PY) benchmarks/run_all.py
+
+## An instructor's nbgrader assignments, one per notebook (the course and nbgrader, the `course`
+## extra, on top of a student's install): the source versions (solutions and
+## autograder tests made from afmsmiler.exercises: python -m afmsmiler.grade --help) in
+## $(COURSE)/source/ and the students' versions in $(COURSE)/release/ (nbgrader generate_assignment).
+## Autograde in $(COURSE) with nbgrader as usual: its nbgrader_config.py (written when missing) runs
+## the notebooks as the grade command does (AFMSMILER_TESTING=1, up to 600 s per cell).
+COURSE ?= course
+assignments: $(STUDENT_STAMP)
+	$(PY) -m pip install --quiet -e '.[course]'
+	$(PY) -m afmsmiler.grade --nbgrader-source $(COURSE)/source notebooks/0*.ipynb
+	test -f $(COURSE)/nbgrader_config.py || printf '%s\n' \
+	  '# nbgrader runs the notebooks as python -m afmsmiler.grade does: short animations, and' \
+	  '# room for the longest cells (module (h) scans its simulated devices)' \
+	  'import os' 'os.environ.setdefault("AFMSMILER_TESTING", "1")' \
+	  'os.environ.setdefault("MPLBACKEND", "Agg")' 'c = get_config()  # noqa: F821' \
+	  'c.Execute.timeout = 600' > $(COURSE)/nbgrader_config.py
+	cd $(COURSE) && for a in source/*/; do \
+	  PATH="$(abspath $(VENV))/bin:$$PATH" nbgrader generate_assignment --force "$$(basename $$a)" \
+	    || exit 1; done
 
 ## The course book (Jupyter Book 1.x) into book/_build/html, warnings as errors. Its figure and
 ## 3D pages are written from the panels' registry; MathJax ships in the build (the pinned npm

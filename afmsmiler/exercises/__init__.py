@@ -3,6 +3,10 @@
 A checker takes the student's answer (in SI units unless its docstring says otherwise), compares it
 with what the model says, and returns a :class:`Feedback` that prints as a friendly message and is
 truthy when the answer is right, so that tests can assert on it and notebooks can just show it.
+
+Each checker is one exercise of :mod:`afmsmiler.exercises.registry` (its key, its answers, its
+solution computed by the model): its Feedback carries the exercise's key, and the grader
+(``python -m afmsmiler.grade``, nbgrader's tests) scores from these verdicts.
 """
 from __future__ import annotations
 
@@ -14,13 +18,46 @@ __all__ = ["Feedback", "check_close", "diagnose_slip", "read_number"]
 
 @dataclass(frozen=True)
 class Feedback:
-    """The verdict of a checker: ``passed`` and a message for the student."""
+    """The verdict of a checker: ``passed``, a message for the student and the exercise's key.
+
+    Attributes
+    ----------
+    passed : bool
+        Whether the answer is right.
+    message : str
+        What the student reads (a hint when the answer is wrong, never the answer).
+    exercise : str or None
+        The key of the exercise that gave it (``"01.1"``; see
+        :mod:`afmsmiler.exercises.registry`), None for a verdict of no registered exercise.
+    """
 
     passed: bool
     message: str
+    exercise: str | None = None
 
     def __bool__(self) -> bool:
         return self.passed
+
+    def require(self) -> Feedback:
+        """This verdict if it passed; else raise AssertionError with its message.
+
+        nbgrader's autograder counts an exercise failed when its test cell raises: the test
+        cells that ``python -m afmsmiler.grade --nbgrader-source`` writes end with
+        ``check_...(answer).require()``.
+
+        Returns
+        -------
+        Feedback
+            ``self``, passed (a notebook shows it as it shows any verdict).
+
+        Raises
+        ------
+        AssertionError
+            If the answer is not right, with the checker's message (its hint).
+        """
+        if not self.passed:
+            raise AssertionError(str(self))
+        return self
 
     def __str__(self) -> str:
         return ("Correct! " if self.passed else "Not yet. ") + self.message

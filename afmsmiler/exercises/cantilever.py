@@ -2,6 +2,9 @@
 
 Each checker computes the right answer with :class:`~afmsmiler.cantilever.Cantilever` and returns a
 :class:`~afmsmiler.exercises.Feedback`. A placeholder answer (``None``) gets "Not yet" and a hint.
+Each is an exercise of notebook 01 (:mod:`afmsmiler.exercises.registry`) whose solution is the
+function that computes the checker's reference (:func:`thickness_for_spring_constant`,
+:func:`mode_ratio`, :func:`largest_stress`, :func:`tip_slope`).
 """
 from __future__ import annotations
 
@@ -17,9 +20,11 @@ from ..materials import lookup
 from ..parameters import read_only, unit_scale
 from ..validation import check_integer, check_range
 from . import Feedback, check_close
+from .registry import exercise
 
-__all__ = ["DEFAULTS", "check_thickness_for_spring_constant", "check_mode_ratio",
-           "check_largest_stress", "check_tip_slope", "unseen_lever_spectrum",
+__all__ = ["DEFAULTS", "thickness_for_spring_constant", "check_thickness_for_spring_constant",
+           "mode_ratio", "check_mode_ratio", "largest_stress", "check_largest_stress", "tip_slope",
+           "check_tip_slope", "unseen_lever_spectrum", "unseen_lever_spring_constant",
            "check_unseen_lever_calibration"]
 
 #: The exercises' givens, in one place (SI units).
@@ -45,6 +50,38 @@ def _number(quantity: str, unit: str, answer, hint: str):
     return value
 
 
+def thickness_for_spring_constant(*, target_k: float = DEFAULTS["target_k"],
+                                  length: float = DEFAULTS["length"],
+                                  width: float = DEFAULTS["width"],
+                                  material: str = DEFAULTS["material"]) -> float:
+    """The thickness in m that gives the lever the spring constant ``target_k`` (exercise 1).
+
+    k grows as h^3 (the model's own law, checked against the closed form in the tests): the
+    thickness scales a 1 um reference lever of the same L, w and material,
+    h = 1 um (target_k / k(1 um))^(1/3).
+
+    Parameters
+    ----------
+    target_k : float
+        Wanted spring constant in N/m, in (0, 10^6].
+    length, width : float
+        The lever's L and w in m (valid ranges of :data:`afmsmiler.cantilever.PARAMETERS`).
+    material : str
+        A key of :data:`afmsmiler.materials.MATERIALS`.
+
+    Returns
+    -------
+    float
+        h in m.
+    """
+    target_k = check_range("target_k", target_k, 0.0, 1e6, "N/m", low_inclusive=False)
+    length, width = LENGTH.check(length), WIDTH.check(width)
+    lookup(material, "material")  # named as this function's parameter
+    reference = Cantilever.from_material(material, length, width, 1e-6)
+    return 1e-6 * (target_k / reference.spring_constant) ** (1.0 / 3.0)
+
+
+@exercise("01.1", "Size a lever", answers=("thickness",), solution=thickness_for_spring_constant)
 def check_thickness_for_spring_constant(thickness, *, target_k: float = DEFAULTS["target_k"],
                                         length: float = DEFAULTS["length"],
                                         width: float = DEFAULTS["width"],
@@ -80,10 +117,9 @@ def check_thickness_for_spring_constant(thickness, *, target_k: float = DEFAULTS
     h = _number("the thickness h", "m", thickness, hint)
     if isinstance(h, Feedback):
         return h
-    # k grows as h^3 (the model's own law, checked against the closed form in the tests): the
-    # thickness that gives target_k, from a 1 um reference lever of the same L, w and material
     reference = Cantilever.from_material(material, length, width, 1e-6)
-    expected = 1e-6 * (target_k / reference.spring_constant) ** (1.0 / 3.0)
+    expected = thickness_for_spring_constant(target_k=target_k, length=length, width=width,
+                                             material=material)
     if 0.5 < h / expected < 2.0 and abs((h / expected) ** 3 - 1.0) <= rtol:
         k = reference.spring_constant * (h / 1e-6) ** 3
         return Feedback(True, f"a {h * unit_scale('um'):.4g} um thick lever has k = {k:.4g} N/m "
@@ -91,6 +127,26 @@ def check_thickness_for_spring_constant(thickness, *, target_k: float = DEFAULTS
     return check_close("thickness h", h, expected, rtol / 3.0, "m", hint)
 
 
+def mode_ratio(mode: int = 2) -> float:
+    """f_mode / f_1 of a rectangular lever, from the model's resonance frequencies (exercise 2).
+
+    Parameters
+    ----------
+    mode : int
+        The higher mode n (2 to 50).
+
+    Returns
+    -------
+    float
+        The ratio (the same for every rectangular lever: the exercises' default one is used).
+    """
+    mode = check_integer("mode", mode, 2, MAX_MODE)
+    lever = Cantilever.from_material(DEFAULTS["material"], DEFAULTS["length"], DEFAULTS["width"],
+                                     DEFAULTS["thickness"])
+    return lever.resonance_frequency(mode) / lever.resonance_frequency(1)
+
+
+@exercise("01.2", "Overtones", answers=("ratio",), solution=mode_ratio)
 def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
     """Exercise 2: what is f_n / f_1 for a rectangular cantilever (any size, any material)?
 
@@ -111,9 +167,7 @@ def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
     """
     mode = check_integer("mode", mode, 2, MAX_MODE)
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
-    lever = Cantilever.from_material(DEFAULTS["material"], DEFAULTS["length"], DEFAULTS["width"],
-                                     DEFAULTS["thickness"])
-    expected = lever.resonance_frequency(mode) / lever.resonance_frequency(1)
+    expected = mode_ratio(mode)
     hint = ("f_n is proportional to (b_n L)^2 with b_n L the roots of cos(bL) cosh(bL) = -1; "
             "only the roots matter.")
     value = _number(f"f{mode}/f1", "", ratio, hint)
@@ -125,6 +179,38 @@ def check_mode_ratio(ratio, mode: int = 2, rtol: float = 1e-3) -> Feedback:
     return check_close(f"f{mode}/f1", value, expected, rtol, "", hint)
 
 
+def _top_stresses(force: float) -> dict:
+    """The bending stress (Pa) on the top surface at the clamp, the middle and the free end."""
+    force = FORCE.check(force)
+    if force == 0:
+        raise ValueError(f"force must be in [{FORCE.low:g}, {FORCE.high:g}] N and not 0, got 0")
+    lever = Cantilever.from_material(DEFAULTS["material"], DEFAULTS["length"], DEFAULTS["width"],
+                                     DEFAULTS["thickness"])
+    xs = {"clamp": 0.0, "middle": lever.length / 2, "free end": lever.length}
+    return {k: float(lever.stress(x, lever.thickness / 2, force)) for k, x in xs.items()}
+
+
+def largest_stress(force: float = DEFAULTS["force"]) -> tuple[str, str]:
+    """Where the bending stress is largest and the top surface's state there (exercise 3).
+
+    Parameters
+    ----------
+    force : float
+        End force in N (positive lifts the tip); not 0.
+
+    Returns
+    -------
+    (location, top_surface) : tuple of str
+        One of ``"clamp"``, ``"middle"``, ``"free end"`` and one of ``"tension"``,
+        ``"compression"``, from the model's stress at the three places.
+    """
+    top = _top_stresses(force)
+    where = max(top, key=lambda k: abs(top[k]))
+    return where, "tension" if top[where] > 0 else "compression"
+
+
+@exercise("01.3", "Where does it break?", answers=("location", "top_surface"),
+          solution=largest_stress)
 def check_largest_stress(location, top_surface, force: float = DEFAULTS["force"]) -> Feedback:
     """Exercise 3: where along the lever is the bending stress largest, and is the top surface
     there in tension or in compression when an end force ``force`` acts?
@@ -144,14 +230,8 @@ def check_largest_stress(location, top_surface, force: float = DEFAULTS["force"]
         Both parts right, or what is wrong.
     """
     force = FORCE.check(force)
-    if force == 0:
-        raise ValueError(f"force must be in [{FORCE.low:g}, {FORCE.high:g}] N and not 0, got 0")
-    lever = Cantilever.from_material(DEFAULTS["material"], DEFAULTS["length"], DEFAULTS["width"],
-                                     DEFAULTS["thickness"])
-    xs = {"clamp": 0.0, "middle": lever.length / 2, "free end": lever.length}
-    top = {k: float(lever.stress(x, lever.thickness / 2, force)) for k, x in xs.items()}
-    where = max(top, key=lambda k: abs(top[k]))
-    state = "tension" if top[where] > 0 else "compression"
+    top = _top_stresses(force)
+    where, state = largest_stress(force)
     hint = "Look at the bending moment M(x) = F (L - x) and at sigma = -E z_b z''."
     if location not in _LOCATIONS or top_surface not in _STATES:
         return Feedback(False, f"answer location with one of {_LOCATIONS} and top_surface with "
@@ -169,6 +249,33 @@ def check_largest_stress(location, top_surface, force: float = DEFAULTS["force"]
                           f"{force * unit_scale('nN'):.3g} nN.")
 
 
+def tip_slope(*, force: float = DEFAULTS["force"], length: float = DEFAULTS["length"],
+              width: float = DEFAULTS["width"], thickness: float = DEFAULTS["thickness"],
+              material: str = DEFAULTS["material"]) -> float:
+    """The slope theta(L) in rad at the free end under an end force (exercise 4), from the model.
+
+    Parameters
+    ----------
+    force : float
+        End force in N (positive lifts the tip), in [-10^6, 10^6] and not 0.
+    length, width, thickness : float
+        The lever's L, w and h in m.
+    material : str
+        A key of :data:`afmsmiler.materials.MATERIALS`.
+
+    Returns
+    -------
+    float
+        :meth:`~afmsmiler.cantilever.Cantilever.slope` at x = L, in rad.
+    """
+    force = FORCE.check(force)
+    if force == 0:
+        raise ValueError(f"force must be in [{FORCE.low:g}, {FORCE.high:g}] N and not 0, got 0")
+    lever = Cantilever.from_material(material, length, width, thickness)
+    return float(lever.slope(lever.length, force))
+
+
+@exercise("01.4", "What the optical lever reads", answers=("slope",), solution=tip_slope)
 def check_tip_slope(slope, *, force: float = DEFAULTS["force"],
                     length: float = DEFAULTS["length"], width: float = DEFAULTS["width"],
                     thickness: float = DEFAULTS["thickness"],
@@ -198,8 +305,8 @@ def check_tip_slope(slope, *, force: float = DEFAULTS["force"],
     if force == 0:
         raise ValueError(f"force must be in [{FORCE.low:g}, {FORCE.high:g}] N and not 0, got 0")
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False, high_inclusive=False)
-    lever = Cantilever.from_material(material, length, width, thickness)
-    expected = float(lever.slope(lever.length, force))
+    expected = tip_slope(force=force, length=length, width=width, thickness=thickness,
+                         material=material)
     hint = ("Differentiate z(x) (or use theta(L) = 3 z(L) / (2 L)) and give the angle in "
             "radians, signed like z.")
     value = _number("theta(L)", "rad", slope, hint)
@@ -251,6 +358,23 @@ def _unseen_calibration(seed: int) -> tuple:
     """(k, mode share, chi) of the thermal calibration of exercise 5's spectrum."""
     calibration = thermal_calibration(unseen_lever_spectrum(seed))
     return calibration.spring_constant, calibration.mode_share, calibration.correction
+
+
+def unseen_lever_spring_constant(seed: int = DEFAULTS["unseen_seed"]) -> float:
+    """Exercise 5's answer from the model: the thermal calibration of the spectrum, in N/m.
+
+    Parameters
+    ----------
+    seed : int
+        The exercise's lever (as given to :func:`unseen_lever_spectrum`).
+
+    Returns
+    -------
+    float
+        k by equipartition from the fitted peak of mode 1, with its share 0.971 of k_B T and the
+        optical-lever factor (:func:`~afmsmiler.calibration.thermal_calibration`).
+    """
+    return _unseen_calibration(check_integer("seed", seed, 0, 2 ** 32 - 1))[0]
 
 
 def check_unseen_lever_calibration(spring_constant, *, seed: int = DEFAULTS["unseen_seed"],

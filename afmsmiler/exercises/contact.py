@@ -10,6 +10,10 @@ The hints name only what a notebook has (the exercise is ``ex``, as notebook 04 
 runs every piece of code a hint quotes in backticks), say where to look rather than give the
 answer, and the checkers name the common slips (a unit prefix, the sign) through
 :func:`~afmsmiler.exercises.check_close` and :func:`~afmsmiler.exercises.diagnose_slip`.
+
+Each checker is an exercise of notebook 04 (:mod:`afmsmiler.exercises.registry`) whose solution
+the models compute: the fit that exercise 1's hint shows (:func:`fitted_modulus`,
+:func:`fitted_contact_point`) and the simulated cycle's pull-off force (:func:`pull_off_force`).
 """
 from __future__ import annotations
 
@@ -18,13 +22,15 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..contact import ContactSystem, ForceCurve, Parabolic, Tip, synthetic_curve
+from ..contact import ContactSystem, ForceCurve, Parabolic, Tip, fit_curve, synthetic_curve
 from ..parameters import read_only, shown
 from ..validation import check_choice, check_integer, check_positive, check_range
 from . import Feedback, check_close, diagnose_slip
+from .registry import exercise
 
-__all__ = ["DEFAULTS", "HINTS", "FitExercise", "fitting_exercise", "check_fitted_modulus",
-           "check_contact_point", "check_pull_off_force"]
+__all__ = ["DEFAULTS", "HINTS", "FitExercise", "fitting_exercise", "fitted_modulus",
+           "check_fitted_modulus", "fitted_contact_point", "check_contact_point",
+           "pull_off_force", "check_pull_off_force"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(
@@ -96,6 +102,34 @@ def fitting_exercise(seed: int = 0) -> FitExercise:
     return FitExercise(curve, tip, DEFAULTS["poisson_ratio"], DEFAULTS["noise"], e, cp)
 
 
+def _fit(exercise: FitExercise):
+    """The fit that exercise 1's hint shows (the lever's bending taken into account)."""
+    if not isinstance(exercise, FitExercise):
+        raise ValueError(f"exercise must be a FitExercise, got {exercise!r}")
+    c = exercise.curve
+    return fit_curve(c.z_np, c.force, exercise.tip, exercise.poisson_ratio,
+                     spring_constant=c.spring_constant)
+
+
+def fitted_modulus(exercise: FitExercise) -> float:
+    """Young's modulus in Pa fitted to ``exercise.curve`` as exercise 1's hint shows.
+
+    Parameters
+    ----------
+    exercise : FitExercise
+        The curve to fit.
+
+    Returns
+    -------
+    float
+        The fit's ``youngs_modulus`` (:func:`~afmsmiler.contact.fit_curve` with the lever's
+        spring constant).
+    """
+    return float(_fit(exercise).youngs_modulus)
+
+
+@exercise("04.1a", "Measure a sample: Young's modulus", answers=("answer",),
+          solution=fitted_modulus)
 def check_fitted_modulus(answer, exercise: FitExercise, rtol: float = 0.05) -> Feedback:
     """Exercise 1: the Young's modulus recovered from ``exercise.curve``.
 
@@ -121,6 +155,24 @@ def check_fitted_modulus(answer, exercise: FitExercise, rtol: float = 0.05) -> F
     return check_close("E", answer, exercise._youngs_modulus, rtol, "Pa", hint)
 
 
+def fitted_contact_point(exercise: FitExercise) -> float:
+    """The contact point in m fitted to ``exercise.curve`` as exercise 1's hint shows.
+
+    Parameters
+    ----------
+    exercise : FitExercise
+        The curve to fit.
+
+    Returns
+    -------
+    float
+        The fit's ``contact_point`` (Z_np at first touch).
+    """
+    return float(_fit(exercise).contact_point)
+
+
+@exercise("04.1b", "Measure a sample: the contact point", answers=("answer",),
+          solution=fitted_contact_point)
 def check_contact_point(answer, exercise: FitExercise, tolerance: float = 2e-9) -> Feedback:
     """Exercise 1b: the contact point (Z_np at first touch) of ``exercise.curve``.
 
@@ -159,6 +211,37 @@ def check_contact_point(answer, exercise: FitExercise, tolerance: float = 2e-9) 
                            f"(needs to be within {shown(tolerance, 'nm', 'g')}). {hint}")
 
 
+def _pull_off_system(model: str, radius: float, work_of_adhesion: float) -> ContactSystem:
+    model = check_choice("model", model, ("dmt", "jkr"))
+    radius = check_positive("radius", radius, "m")
+    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    return ContactSystem(tip=Parabolic(radius), spring_constant=DEFAULTS["pull_off_k"],
+                         youngs_modulus=DEFAULTS["youngs_modulus"], poisson_ratio=0.3,
+                         adhesion=model, work_of_adhesion=w)
+
+
+def pull_off_force(model: str = "dmt", radius: float = DEFAULTS["radius"],
+                   work_of_adhesion: float = 0.05) -> float:
+    """The pull-off force (its magnitude, N) of the simulated approach-retract cycle (exercise 2).
+
+    Parameters
+    ----------
+    model : {"dmt", "jkr"}
+        The adhesion model.
+    radius : float
+        Tip radius R in m.
+    work_of_adhesion : float
+        w in J/m^2.
+
+    Returns
+    -------
+    float
+        The most adhesive force of the cycle (paraboloid, E = 10 MPa, k = 0.1 N/m).
+    """
+    return float(_pull_off_system(model, radius, work_of_adhesion).pull_off_force)
+
+
+@exercise("04.2", "Pull-off", answers=("answer",), solution=pull_off_force)
 def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
                          work_of_adhesion: float = 0.05, rtol: float = 0.02) -> Feedback:
     """Exercise 2: predict the pull-off force (its magnitude) of a DMT or JKR contact.
@@ -183,12 +266,8 @@ def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
         (paraboloid, E = 10 MPa, k = 0.1 N/m).
     """
     model = check_choice("model", model, ("dmt", "jkr"))
-    radius = check_positive("radius", radius, "m")
-    w = check_positive("work_of_adhesion", work_of_adhesion, "J/m^2")
+    system = _pull_off_system(model, radius, work_of_adhesion)
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
-    system = ContactSystem(tip=Parabolic(radius), spring_constant=DEFAULTS["pull_off_k"],
-                           youngs_modulus=DEFAULTS["youngs_modulus"], poisson_ratio=0.3,
-                           adhesion=model, work_of_adhesion=w)
     hint = HINTS["pull_off"]
     if answer is None:
         return Feedback(False, f"enter the pull-off force in N. {hint}")

@@ -2,7 +2,9 @@
 
 Each checker simulates the student's answer with :class:`~afmsmiler.controller.ContactLoop` and
 returns a :class:`~afmsmiler.exercises.Feedback`. A placeholder answer (``None``) gets "Not yet"
-and a hint. Answers are in SI units: K_I in 1/s, K_D in s, speed in m/s.
+and a hint. Answers are in SI units: K_I in 1/s, K_D in s, speed in m/s. Each is an exercise of
+notebook 03 (:mod:`afmsmiler.exercises.registry`) whose solution the loop's model finds
+(:func:`fast_scan_gains`, :func:`critical_ki`).
 """
 from __future__ import annotations
 
@@ -16,9 +18,10 @@ from ..validation import (check_choice, check_instance, check_nonnegative, check
 from ..parameters import read_only
 from ..samples.profiles import PROFILES
 from . import Feedback, check_close
+from .registry import exercise
 
-__all__ = ["DEFAULTS", "height_error", "check_fast_scan", "critical_ki", "check_critical_ki",
-           "unit_slip"]
+__all__ = ["DEFAULTS", "height_error", "fast_scan_gains", "check_fast_scan", "critical_ki",
+           "check_critical_ki", "unit_slip"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(plant="a_good_tracking", profile="real line", min_speed=1e-3,
@@ -91,6 +94,84 @@ def unit_slip(name: str, value: float) -> str | None:
     return None
 
 
+def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -> float:
+    """The K_I (1/s) at which the loop of ``plant`` with gains kp, kd loses stability.
+
+    Found numerically, without the Routh-Hurwitz formula: the root of the largest real part of
+    the closed-loop poles as a function of K_I (Brent's method on a bracket found by growing
+    K_I four-fold from 1000 1/s up to the largest K_I the model accepts).
+
+    Parameters
+    ----------
+    kp : float
+        Proportional gain.
+    kd : float
+        Derivative gain in s.
+    plant : str
+        Preset whose mechanics to use.
+
+    Returns
+    -------
+    float
+        Critical K_I in 1/s (inf if the loop is stable for every K_I the model accepts, up to
+        ``PARAMETERS["ki"].high``).
+    """
+    check_choice("plant", plant, list(PRESETS))
+    base = PRESETS[plant].loop.replace(kp=check_nonnegative("kp", kp),
+                                       kd=check_nonnegative("kd", kd, "s"))
+
+    def growth(ki):
+        return float(np.max(base.replace(ki=ki).poles.real))
+
+    top = PARAMETERS["ki"].high  # beyond it ContactLoop rejects K_I: at most 16 steps
+    low, high = 0.0, 1e3  # K_I = 0 is a second-order loop with positive coefficients: stable
+    while growth(high) < 0:
+        if high >= top:
+            return float("inf")
+        low, high = high, min(high * 4, top)
+    return float(brentq(growth, low, high, xtol=1e-12 * high, rtol=1e-12))
+
+
+def fast_scan_gains(speed=DEFAULTS["min_speed"],
+                    max_rms_error: float = DEFAULTS["max_rms_error"]) -> tuple[float, float, float]:
+    """Gains (K_P, K_I in 1/s, K_D in s) with which preset (a)'s loop scans at ``speed`` within
+    ``max_rms_error`` (exercise 1), found on the model as the checker's hint says.
+
+    K_P is raised a decade at a time from 1 to the panel's largest, K_I set to half the
+    critical K_I of that K_P (:func:`critical_ki`: the loop stays stable) and K_D to 0; the
+    first gains whose :func:`height_error` is within the bound are returned.
+
+    Parameters
+    ----------
+    speed : float
+        Scan speed in m/s.
+    max_rms_error : float
+        Largest accepted RMS height error in m.
+
+    Returns
+    -------
+    (kp, ki, kd) : tuple of float
+
+    Raises
+    ------
+    ValueError
+        If no K_P of the search scans within the bound.
+    """
+    speed = PARAMETERS["speed"].check(speed)
+    max_rms_error = check_positive("max_rms_error", max_rms_error, "m")
+    loop = PRESETS[DEFAULTS["plant"]].loop
+    kp = 1.0
+    while kp <= PARAMETERS["kp"].slider_high:  # at most 4 decades: 1 to 1000
+        ki = min(0.5 * critical_ki(kp, 0.0, DEFAULTS["plant"]), PARAMETERS["ki"].slider_high)
+        if height_error(loop.replace(kp=kp, ki=ki, kd=0.0), speed) <= max_rms_error:
+            return kp, ki, 0.0
+        kp *= 10.0
+    raise ValueError(f"speed must allow an RMS error within max_rms_error with K_P up to "
+                     f"{PARAMETERS['kp'].slider_high:g}, got speed={speed!r} m/s, "
+                     f"max_rms_error={max_rms_error!r} m")
+
+
+@exercise("03.1", "The fastest scan", answers=("kp", "ki", "kd"), solution=fast_scan_gains)
 def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
                     max_rms_error: float = DEFAULTS["max_rms_error"],
                     min_speed: float = DEFAULTS["min_speed"]) -> Feedback:
@@ -157,44 +238,7 @@ def check_fast_scan(kp, ki, kd, speed=DEFAULTS["min_speed"],
     return Feedback(False, f"{msg} {hint}")
 
 
-def critical_ki(kp: float, kd: float = 0.0, plant: str = DEFAULTS["unstable"]) -> float:
-    """The K_I (1/s) at which the loop of ``plant`` with gains kp, kd loses stability.
-
-    Found numerically, without the Routh-Hurwitz formula: the root of the largest real part of
-    the closed-loop poles as a function of K_I (Brent's method on a bracket found by growing
-    K_I four-fold from 1000 1/s up to the largest K_I the model accepts).
-
-    Parameters
-    ----------
-    kp : float
-        Proportional gain.
-    kd : float
-        Derivative gain in s.
-    plant : str
-        Preset whose mechanics to use.
-
-    Returns
-    -------
-    float
-        Critical K_I in 1/s (inf if the loop is stable for every K_I the model accepts, up to
-        ``PARAMETERS["ki"].high``).
-    """
-    check_choice("plant", plant, list(PRESETS))
-    base = PRESETS[plant].loop.replace(kp=check_nonnegative("kp", kp),
-                                       kd=check_nonnegative("kd", kd, "s"))
-
-    def growth(ki):
-        return float(np.max(base.replace(ki=ki).poles.real))
-
-    top = PARAMETERS["ki"].high  # beyond it ContactLoop rejects K_I: at most 16 steps
-    low, high = 0.0, 1e3  # K_I = 0 is a second-order loop with positive coefficients: stable
-    while growth(high) < 0:
-        if high >= top:
-            return float("inf")
-        low, high = high, min(high * 4, top)
-    return float(brentq(growth, low, high, xtol=1e-12 * high, rtol=1e-12))
-
-
+@exercise("03.2", "Where does it become unstable?", answers=("ki",), solution=critical_ki)
 def check_critical_ki(ki, kp: float = 100.0, kd: float = 0.0, rtol: float = 0.01) -> Feedback:
     """Exercise 2: the largest K_I for which preset (d)'s loop (K_P = 100, K_D = 0) is stable.
 

@@ -13,6 +13,10 @@ micro-steps).
    setpoint's load, breaks the adhesion and clears the next pixel of the printed seashell.
 3. :func:`check_print_scale`: the largest lateral scale at which the seashell image fits the
    printer's bed with a margin.
+
+Each checker is an exercise of notebook 08 (:mod:`afmsmiler.exercises.registry`) whose solution
+is the function that computes its reference (:func:`ruler_force`, :func:`jumping_lift`,
+:func:`print_scale`).
 """
 from __future__ import annotations
 
@@ -27,6 +31,7 @@ from ..hardware.macro import mechanics
 from ..parameters import read_only
 from ..samples import Sample
 from . import Feedback, check_close, diagnose_slip, read_number
+from .registry import exercise
 
 __all__ = ["DEFAULTS", "ruler", "gauge_deflection", "ruler_force", "check_ruler_force",
            "printed_shell", "jumping_lift", "check_jumping_lift", "print_scale",
@@ -94,6 +99,7 @@ def ruler_force() -> float:
     return ruler().spring_constant * gauge_deflection(DEFAULTS["contact_counts"])
 
 
+@exercise("08.1", "The force on the needle", answers=("force",), solution=ruler_force)
 def check_ruler_force(force) -> Feedback:
     """Check exercise 1: the force in N from the gauge's counts and the calibration.
 
@@ -173,6 +179,7 @@ def jumping_lift() -> int:
     return int(math.ceil(sum(_lift_parts()) / DEFAULTS["z_step"] - 1e-9))
 
 
+@exercise("08.2", "The jumping lift", answers=("steps",), solution=jumping_lift)
 def check_jumping_lift(steps) -> Feedback:
     """Check exercise 2: the smallest jumping-mode lift, in z micro-steps.
 
@@ -246,6 +253,7 @@ def print_scale() -> float:
     return printing.fitting_scale(printing.seashell(), d["bed"], margin=d["margin"])
 
 
+@exercise("08.3", "The print that fits", answers=("scale",), solution=print_scale)
 def check_print_scale(scale) -> Feedback:
     """Check exercise 3: the largest lateral scale (print size / image size) that fits the bed.
 

@@ -11,6 +11,11 @@ diagnose_slip`) without giving the answer. Answers are in SI units.
    tip (:func:`particle_image`) looks wider; measure the width and find the tip radius back.
 3. :func:`check_levelled` and :func:`check_flattening_artefact`: level the tilted scan
    :func:`tilted_image`, and say why line flattening leaves bands beside tall features.
+
+Each checker is an exercise of notebook 06 (:mod:`afmsmiler.exercises.registry`) whose solution
+is found as the notebook asks the student to find it, with the library's models
+(:func:`fast_scan_speed`, :func:`measured_width`, :func:`tip_radius_from_width`,
+:func:`levelled_image`, :func:`flattening_reason`).
 """
 from __future__ import annotations
 
@@ -24,7 +29,7 @@ from scipy.optimize import brentq
 from .. import samples
 from ..contact import Parabolic
 from ..controller import PRESETS
-from ..imaging.corrections import fit_plane
+from ..imaging.corrections import fit_plane, level_plane, mask_features
 from ..imaging.dilation import dilate, sphere_apparent_width
 from ..imaging.scan_modes import ConstantForce
 from ..imaging.scanner import PARAMETERS as SCAN, ScanSettings, scan
@@ -32,10 +37,13 @@ from ..parameters import read_only
 from ..samples import Sample
 from ..validation import check_instance, check_positive
 from . import Feedback, check_close, diagnose_slip
+from .registry import exercise
 
-__all__ = ["DEFAULTS", "speed_sample", "scan_error", "fastest_speed", "check_fast_scan",
-           "particle_image", "check_apparent_width", "check_tip_radius", "tilted_image",
-           "substrate_tilt", "check_levelled", "CHOICES", "check_flattening_artefact"]
+__all__ = ["DEFAULTS", "speed_sample", "scan_error", "fastest_speed", "fast_scan_speed",
+           "check_fast_scan", "particle_image", "measured_width", "check_apparent_width",
+           "tip_radius_from_width", "check_tip_radius", "tilted_image", "substrate_tilt",
+           "levelled_image", "check_levelled", "CHOICES", "flattening_reason",
+           "check_flattening_artefact"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(
@@ -128,6 +136,33 @@ def fastest_speed(max_rms_error: float = DEFAULTS["max_rms_error"]) -> float:
     return math.exp(brentq(excess, lo, hi, xtol=1e-4, maxiter=60))
 
 
+def fast_scan_speed(max_rms_error: float = DEFAULTS["max_rms_error"],
+                    rtol: float = DEFAULTS["speed_rtol"]) -> float:
+    """Exercise 1's answer: the fastest speed within the bound, backed off by half of ``rtol``.
+
+    The hint's way: find where the error passes the bound (:func:`fastest_speed`), then back
+    off a little, so that the error stays below the bound.
+
+    Parameters
+    ----------
+    max_rms_error : float
+        The bound in m.
+    rtol : float
+        The checker's tolerance, in (0, 1): the answer is (1 - rtol / 2) times the fastest.
+
+    Returns
+    -------
+    float
+        Speed in m/s.
+    """
+    max_rms_error = check_positive("max_rms_error", max_rms_error, "m")
+    rtol = check_positive("rtol", rtol)
+    if rtol >= 1:
+        raise ValueError(f"rtol must be in (0, 1), got {rtol!r}")
+    return fastest_speed(max_rms_error) * (1.0 - rtol / 2.0)
+
+
+@exercise("06.1", "The fastest scan", answers=("speed",), solution=fast_scan_speed)
 def check_fast_scan(speed, max_rms_error: float = DEFAULTS["max_rms_error"],
                     rtol: float = DEFAULTS["speed_rtol"]) -> Feedback:
     """Exercise 1: the fastest speed whose RMS error signal stays below ``max_rms_error``.
@@ -197,6 +232,24 @@ def particle_image() -> Sample:
                   Parabolic(radius=_TIP_RADIUS))
 
 
+def measured_width() -> float:
+    """Exercise 2a's answer measured on :func:`particle_image` as the notebook says.
+
+    The pixels above the substrate (height > 0) on the line through the particle's top,
+    times the pixel size.
+
+    Returns
+    -------
+    float
+        W in m.
+    """
+    image = particle_image()
+    top = np.unravel_index(np.argmax(image.heights), image.heights.shape)[0]
+    return float(np.count_nonzero(image.heights[top] > 0.0) * image.pixel_size)
+
+
+@exercise("06.2a", "Tip dilation: the apparent width", answers=("width",),
+          solution=measured_width)
 def check_apparent_width(width, rtol: float = DEFAULTS["width_rtol"]) -> Feedback:
     """Exercise 2a: the apparent width in m of the particle in :func:`particle_image`.
 
@@ -229,6 +282,25 @@ def _two_spheres(width: float, particle_radius: float) -> float:
     return width * width / (16.0 * particle_radius)
 
 
+def tip_radius_from_width() -> float:
+    """Exercise 2b's answer: the paraboloid's radius in m that gives the measured width.
+
+    The root R of ``sphere_apparent_width(r, Parabolic(R)) = W`` (Brent's method between 0.1 nm
+    and 1 um) for the width :func:`measured_width` finds on the image: the model's forward
+    width inverted, not the radius the image was made with.
+
+    Returns
+    -------
+    float
+        R in m.
+    """
+    r, width = DEFAULTS["particle_radius"], measured_width()
+    return float(brentq(lambda radius: sphere_apparent_width(r, Parabolic(radius=radius)) - width,
+                        1e-10, 1e-6, xtol=1e-15))
+
+
+@exercise("06.2b", "Tip dilation: the tip's radius", answers=("radius",),
+          solution=tip_radius_from_width)
 def check_tip_radius(radius, rtol: float = DEFAULTS["radius_rtol"]) -> Feedback:
     """Exercise 2b: the radius in m of the paraboloid tip that imaged :func:`particle_image`.
 
@@ -313,6 +385,22 @@ def substrate_tilt(image: Sample) -> tuple[float, float]:
     return plane.slope_x, plane.slope_y
 
 
+def levelled_image() -> Sample:
+    """Exercise 3a's answer: :func:`tilted_image` levelled with its particles masked out.
+
+    Plane levelled once to find the particles (:func:`~afmsmiler.imaging.corrections.
+    mask_features` wants a level image), then levelled again with them left out of the fit.
+
+    Returns
+    -------
+    Sample
+    """
+    tilted = tilted_image()
+    return level_plane(tilted, mask_features(level_plane(tilted)))
+
+
+@exercise("06.3a", "Levelling and its artefacts: levelling", answers=("image",),
+          solution=levelled_image)
 def check_levelled(image, max_residual: float = DEFAULTS["max_residual_tilt"]) -> Feedback:
     """Exercise 3a: a levelled copy of :func:`tilted_image`, its substrate no longer tilted.
 
@@ -368,6 +456,18 @@ _REFERENCE = re.compile(r"\b(median|mean|average|fit|fitted|polynomial|offset|ba
 _FEATURE = re.compile(r"\b(particle|feature|tall|high|bump|peak|island)s?\b", re.I)
 
 
+def flattening_reason() -> str:
+    """Exercise 3b's answer: the letter of :data:`CHOICES` that says why.
+
+    Returns
+    -------
+    str
+    """
+    return _RIGHT
+
+
+@exercise("06.3b", "Levelling and its artefacts: line flattening", answers=("answer",),
+          solution=flattening_reason)
 def check_flattening_artefact(answer) -> Feedback:
     """Exercise 3b: why line flattening creates artefacts around tall features.
 

@@ -6,7 +6,9 @@ prefix, a per cent, the reciprocal, a forgotten factor of the optical lever) are
 right value is never given. A placeholder answer (``None``) gets "Not yet" and a hint.
 
 The givens of the exercises come from :func:`givens` (the default head aligned by
-:func:`~afmsmiler.instrument.align`, as the student aligns it on the panel).
+:func:`~afmsmiler.instrument.align`, as the student aligns it on the panel). Each checker is an
+exercise of notebook 05 (:mod:`afmsmiler.exercises.registry`) whose solution the head's model
+computes (:func:`deflection_sensitivity`, :func:`spot_direction`, :func:`half_off_sum`).
 """
 from __future__ import annotations
 
@@ -18,9 +20,10 @@ from ..instrument.optics import interval_fraction
 from ..parameters import read_only
 from ..validation import check_choice, check_range
 from . import Feedback, check_close, read_number
+from .registry import exercise
 
-__all__ = ["givens", "check_deflection_sensitivity", "check_spot_direction",
-           "check_half_off_sum", "DIRECTIONS"]
+__all__ = ["givens", "deflection_sensitivity", "check_deflection_sensitivity", "spot_direction",
+           "check_spot_direction", "half_off_sum", "check_half_off_sum", "DIRECTIONS"]
 
 #: Accepted spellings of the two ways to turn a knob (seen from its end), and their sign.
 DIRECTIONS = read_only({"clockwise": 1, "cw": 1, "+": 1, "+1": 1, "1": 1, "positive": 1,
@@ -66,6 +69,20 @@ def givens() -> dict:
                 knob_turns={k: KNOBS[k].to_display(v) for k, v in s.knobs.items()})
 
 
+def deflection_sensitivity() -> float:
+    """The aligned head's deflection sensitivity in m/V (exercise 1), from its model.
+
+    Returns
+    -------
+    float
+        1 / (d VERT / dz) (:meth:`~afmsmiler.instrument.OpticalHead.sensitivity` with
+        ``normalised=False``).
+    """
+    return float(1.0 / _aligned_head().sensitivity(normalised=False))
+
+
+@exercise("05.1", "The deflection sensitivity", answers=("answer",),
+          solution=deflection_sensitivity)
 def check_deflection_sensitivity(answer, rtol: float = 0.03) -> Feedback:
     """Exercise 1: the aligned head's deflection sensitivity (the "InvOLS") in m/V.
 
@@ -94,7 +111,7 @@ def check_deflection_sensitivity(answer, rtol: float = 0.03) -> Feedback:
     value, fail = read_number("a deflection sensitivity", answer, hint)
     if fail is not None:
         return fail
-    expected = 1.0 / _aligned_head().sensitivity(normalised=False)
+    expected = deflection_sensitivity()
     for n in range(-6, 7):      # the slope dVERT/dz (V/m, or V/nm...) given for its inverse
         scale = 10.0 ** (3 * n)
         if abs(value - scale / expected) <= rtol * scale / expected:
@@ -113,6 +130,35 @@ def check_deflection_sensitivity(answer, rtol: float = 0.03) -> Feedback:
     return check_close("the deflection sensitivity", value, expected, rtol, "m/V", hint)
 
 
+def _spot_moves(move: str, direction: str) -> bool:
+    """Whether turning the knob of ``move`` a twentieth of a turn ``direction`` moves the spot
+    ``move`` on the aligned head's photodiode."""
+    knob, signal, sign = _MOVES[move]
+    head = _aligned_head()
+    before = getattr(head.signals(), signal)
+    after = getattr(head.turn(knob, DIRECTIONS[direction] * 2 * math.pi / 20), signal)
+    return (after - before) * sign > 0
+
+
+def spot_direction(move: str = "up") -> str:
+    """Which way to turn a photodiode knob to move the spot ``move`` (exercise 2), on the model.
+
+    Parameters
+    ----------
+    move : {"up", "down", "left", "right"}
+        Where the spot is to go on the photodiode.
+
+    Returns
+    -------
+    str
+        ``"clockwise"`` or ``"counter-clockwise"``: the way that, a twentieth of a turn on the
+        aligned head, moves the spot there.
+    """
+    move = check_choice("move", move, _MOVES)
+    return "clockwise" if _spot_moves(move, "clockwise") else "counter-clockwise"
+
+
+@exercise("05.2", "Which way?", answers=("direction",), solution=spot_direction)
 def check_spot_direction(direction, move: str = "up") -> Feedback:
     """Exercise 2: which way to turn a photodiode knob to move the spot ``move`` on it?
 
@@ -131,7 +177,7 @@ def check_spot_direction(direction, move: str = "up") -> Feedback:
         Checked on the model: the aligned head's knob turned a twentieth of a turn that way.
     """
     move = check_choice("move", move, _MOVES)
-    knob, signal, sign = _MOVES[move]
+    knob = _MOVES[move][0]
     hint = (f"the knob moves the photodiode, not the beam: the spot moves the other way on it. "
             f"Try it on the panel with {knob} and watch "
             f"{'VERT' if knob.endswith('vertical') else 'HORZ'}.")
@@ -145,16 +191,32 @@ def check_spot_direction(direction, move: str = "up") -> Feedback:
         return Feedback(False, f"direction must be one of 'clockwise' or 'counter-clockwise' "
                                f"(or +1 / -1), got {direction!r}.")
     key = "clockwise" if DIRECTIONS[key] > 0 else "counter-clockwise"
-    turn = DIRECTIONS[key] * 2 * math.pi / 20
-    head = _aligned_head()
-    before = getattr(head.signals(), signal)
-    after = getattr(head.turn(knob, turn), signal)
-    if (after - before) * sign > 0:
+    if _spot_moves(move, key):
         return Feedback(True, f"turning {knob} {key} moves the photodiode so that the spot "
                               f"goes {move} on it.")
     return Feedback(False, f"turning {knob} {key} moves the spot the other way. {hint}")
 
 
+def half_off_sum() -> float:
+    """SUM with the spot's centre on the lever's free end over the best SUM (exercise 3).
+
+    The closed-form Gaussian overlap of the head's model: the lever's share of the spot with
+    its centre at x = L over the share with the spot at the lever's centre
+    (:func:`~afmsmiler.instrument.optics.interval_fraction`, the spot's radius along the lever
+    w / cos(tilt)).
+
+    Returns
+    -------
+    float
+        The ratio, a plain number.
+    """
+    head = OpticalHead()
+    length, w_along = head.lever.length, head.waist / math.cos(head.holder_tilt)
+    return float(interval_fraction(length, w_along, 0.0, length)
+                 / interval_fraction(length / 2, w_along, 0.0, length))
+
+
+@exercise("05.3", "Half off the end", answers=("ratio",), solution=half_off_sum)
 def check_half_off_sum(ratio, rtol: float = 0.02) -> Feedback:
     """Exercise 3: SUM with the spot's centre on the lever's free end, over the best SUM.
 
@@ -178,11 +240,7 @@ def check_half_off_sum(ratio, rtol: float = 0.02) -> Feedback:
     value, fail = read_number("a ratio", ratio, hint)
     if fail is not None:
         return fail
-    head = OpticalHead()
-    length, w_along = head.lever.length, head.waist / math.cos(head.holder_tilt)
-    expected = (interval_fraction(length, w_along, 0.0, length)
-                / interval_fraction(length / 2, w_along, 0.0, length))
-    expected = float(expected)
+    expected = half_off_sum()
     if abs(value - expected ** 2) <= rtol * expected ** 2:
         return Feedback(False, "that is the square of the right ratio: only the direction along "
                                "the lever loses light; across the lever the spot is still "

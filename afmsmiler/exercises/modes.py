@@ -28,10 +28,12 @@ from ..modes.lateral import FrictionLoop, friction_loop
 from ..modes.tapping import TappingLever, setpoint_state
 from ..parameters import read_only, unit_scale
 from . import Feedback, check_close, diagnose_slip, read_number
+from .registry import exercise
 
 __all__ = ["DEFAULTS", "tapping_lever", "lowest_attractive_setpoint",
-           "check_attractive_setpoint", "friction_loop_data", "check_friction_coefficient",
-           "dissipation_lever", "dissipation_givens", "check_dissipated_energy"]
+           "check_attractive_setpoint", "friction_loop_data", "friction_from_loop",
+           "check_friction_coefficient", "dissipation_lever", "dissipation_givens",
+           "dissipated_energy", "check_dissipated_energy"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(
@@ -87,6 +89,8 @@ def lowest_attractive_setpoint() -> float:
     return hi
 
 
+@exercise("07.1", "Stay on the attractive branch", answers=("ratio",),
+          solution=lowest_attractive_setpoint)
 def check_attractive_setpoint(ratio,
                               tolerance: float = DEFAULTS["setpoint_tolerance"]) -> Feedback:
     """Exercise 1: the lowest setpoint A_sp / A0 that keeps the tip on the attractive branch.
@@ -168,6 +172,23 @@ def friction_loop_data() -> FrictionLoop:
                         loop.lateral_stiffness)
 
 
+def friction_from_loop() -> float:
+    """Exercise 2's answer from :func:`friction_loop_data`, as the hint says.
+
+    Half the difference of trace and retrace (friction flips sign with the scan direction, the
+    slope term does not), averaged over the line but its two turn-around pixels (where the tip
+    sticks; the notebook's first try leaves them out too), over the load.
+
+    Returns
+    -------
+    float
+        The friction coefficient (dimensionless).
+    """
+    loop = friction_loop_data()
+    return float(np.mean((loop.trace[1:-1] - loop.retrace[1:-1]) / 2.0) / loop.normal_force)
+
+
+@exercise("07.2", "Friction from a friction loop", answers=("mu",), solution=friction_from_loop)
 def check_friction_coefficient(mu, rtol: float = DEFAULTS["friction_rtol"]) -> Feedback:
     """Exercise 2: the friction coefficient from :func:`friction_loop_data`.
 
@@ -244,6 +265,20 @@ def dissipation_givens() -> dict:
                 phase_deg=round(math.degrees(phase), 2))
 
 
+def dissipated_energy() -> float:
+    """Exercise 3's answer: E_dis in J at :func:`dissipation_givens`, from the lever's model.
+
+    Returns
+    -------
+    float
+        :meth:`~afmsmiler.modes.TappingLever.dissipated_energy` at the givens' amplitude and
+        phase (in rad).
+    """
+    g = dissipation_givens()
+    return float(dissipation_lever().dissipated_energy(g["amplitude"], math.radians(g["phase_deg"])))
+
+
+@exercise("07.3", "Dissipation from the phase", answers=("energy",), solution=dissipated_energy)
 def check_dissipated_energy(energy, rtol: float = DEFAULTS["energy_rtol"]) -> Feedback:
     """Exercise 3: the energy in J the sample takes per cycle, from :func:`dissipation_givens`.
 
@@ -266,9 +301,8 @@ def check_dissipated_energy(energy, rtol: float = DEFAULTS["energy_rtol"]) -> Fe
     if feedback is not None:
         return feedback
     g = dissipation_givens()
-    lever = dissipation_lever()
     phi = math.radians(g["phase_deg"])
-    expected = float(lever.dissipated_energy(g["amplitude"], phi))
+    expected = dissipated_energy()
     k, q, a0, a = g["spring_constant"], g["quality_factor"], g["free_amplitude"], g["amplitude"]
     base = math.pi * k * a * a / q
 

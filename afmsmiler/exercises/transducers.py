@@ -2,23 +2,67 @@
 
 Each checker computes the right answer with a model of :mod:`afmsmiler.transducers` and returns a
 :class:`~afmsmiler.exercises.Feedback`. A placeholder answer (``None``) gets "Not yet" and a hint.
+Each is an exercise of notebook 02 (:mod:`afmsmiler.exercises.registry`) whose solution the
+models compute (:func:`doubling_length`, :func:`two_omega_power`, :func:`bridge_output`,
+:func:`quadrature_phase`).
 """
 from __future__ import annotations
 
 import math
 
+from scipy.optimize import brentq, minimize_scalar
+
 from ..parameters import read_only
 from ..transducers import Electrothermal, Interferometer, OpticalBeamDeflection, Piezoresistive
 from ..validation import check_range
 from . import Feedback, check_close, read_number
+from .registry import exercise
 
-__all__ = ["DEFAULTS", "check_length_doubling_sensitivity", "check_two_omega_power",
-           "check_bridge_output", "check_quadrature_phase"]
+__all__ = ["DEFAULTS", "doubling_length", "check_length_doubling_sensitivity",
+           "two_omega_power", "check_two_omega_power", "bridge_output", "check_bridge_output",
+           "quadrature_phase", "check_quadrature_phase"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(length=225e-6, ac_voltage=2.0, resistance=1e3, deflection=100e-9))
 
 
+def doubling_length(reference_length: float = DEFAULTS["length"]) -> float:
+    """The lever length in m at which the optical lever is twice as sensitive (exercise 1).
+
+    Found on the model, without its formula: the root of
+    ``sensitivity(L) / sensitivity(reference_length) - 2`` between the model's shortest length
+    and ``reference_length`` (Brent's method).
+
+    Parameters
+    ----------
+    reference_length : float
+        The lever length (m) whose sensitivity is to be doubled (other parameters: defaults),
+        inside the model's range of lengths.
+
+    Returns
+    -------
+    float
+        L in m.
+
+    Raises
+    ------
+    ValueError
+        If no length in the model's range doubles the sensitivity.
+    """
+    p = OpticalBeamDeflection.parameter_table()["length"]
+    reference_length = check_range("reference_length", reference_length, p.low, p.high, "m")
+    base = OpticalBeamDeflection(length=reference_length).sensitivity()
+
+    def excess(length):
+        return OpticalBeamDeflection(length=length).sensitivity() / base - 2.0
+
+    if not excess(p.low) > 0:
+        raise ValueError(f"reference_length must be long enough for a lever of the model's "
+                         f"lengths to double its sensitivity, got {reference_length!r}")
+    return float(brentq(excess, p.low, reference_length, xtol=1e-12 * reference_length))
+
+
+@exercise("02.1", "Shorter levers", answers=("length",), solution=doubling_length)
 def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS["length"],
                                       rtol: float = 0.02) -> Feedback:
     """Exercise 1: which lever length doubles the optical lever's sensitivity?
@@ -56,6 +100,27 @@ def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS
                        rtol, "", hint)
 
 
+def two_omega_power(ac_voltage: float = DEFAULTS["ac_voltage"],
+                    resistance: float = DEFAULTS["resistance"]) -> float:
+    """The power amplitude in W at 2 omega of an unbiased heater (exercise 2), from the model.
+
+    Parameters
+    ----------
+    ac_voltage : float
+        V_ac in V.
+    resistance : float
+        The heater's R in ohm.
+
+    Returns
+    -------
+    float
+        :meth:`~afmsmiler.transducers.Electrothermal.power_components` ``.second`` at V_dc = 0.
+    """
+    model = Electrothermal(ac_voltage=ac_voltage, resistance=resistance)
+    return float(model.power_components(0.0).second)
+
+
+@exercise("02.2", "The 2ω term", answers=("amplitude",), solution=two_omega_power)
 def check_two_omega_power(amplitude, ac_voltage: float = DEFAULTS["ac_voltage"],
                           resistance: float = DEFAULTS["resistance"],
                           rtol: float = 1e-3) -> Feedback:
@@ -83,10 +148,28 @@ def check_two_omega_power(amplitude, ac_voltage: float = DEFAULTS["ac_voltage"],
     value, fail = read_number("a power amplitude", amplitude, hint)
     if fail is not None:
         return fail
-    return check_close("the 2-omega power amplitude", value, model.power_components(0.0).second,
-                       rtol, "W", hint)
+    return check_close("the 2-omega power amplitude", value,
+                       two_omega_power(model.ac_voltage, model.resistance), rtol, "W", hint)
 
 
+def bridge_output(deflection: float = DEFAULTS["deflection"]) -> float:
+    """The default piezoresistive lever's quarter-bridge output in V (exercise 3), from the model.
+
+    Parameters
+    ----------
+    deflection : float
+        Tip deflection in m.
+
+    Returns
+    -------
+    float
+        The exact bridge output of :class:`~afmsmiler.transducers.Piezoresistive`.
+    """
+    model = Piezoresistive()
+    return float(model.respond(model.input_quantity().check(deflection)))
+
+
+@exercise("02.3", "The bridge", answers=("voltage",), solution=bridge_output)
 def check_bridge_output(voltage, deflection: float = DEFAULTS["deflection"],
                         rtol: float = 0.02) -> Feedback:
     """Exercise 3: the quarter-bridge output of the default piezoresistive lever for a deflection.
@@ -115,11 +198,30 @@ def check_bridge_output(voltage, deflection: float = DEFAULTS["deflection"],
     value, fail = read_number("a voltage", voltage, hint)
     if fail is not None:
         return fail
-    expected = float(model.respond(deflection))
+    expected = bridge_output(deflection)
     # a wrong sign is named, never answered with the right value (check_close's slips)
     return check_close("the bridge output", value, expected, rtol, "V", hint)
 
 
+def quadrature_phase() -> float:
+    """The operating phase in rad, in [0, pi], where the interferometer is most sensitive.
+
+    Found on the model, without its formula: the largest |sensitivity| of
+    :class:`~afmsmiler.transducers.Interferometer` over the phase (bounded Brent search).
+
+    Returns
+    -------
+    float
+        phi in rad.
+    """
+    model = Interferometer()
+    best = minimize_scalar(lambda p: -abs(model.replace(phase=p).sensitivity()),
+                           bounds=(0.0, math.pi), method="bounded",
+                           options=dict(xatol=1e-9, maxiter=200))
+    return float(best.x)
+
+
+@exercise("02.4", "Quadrature", answers=("phase",), solution=quadrature_phase)
 def check_quadrature_phase(phase, rtol: float = 0.01) -> Feedback:
     """Exercise 4: at which operating phase phi is the interferometer most sensitive?
 
