@@ -143,3 +143,16 @@ def test_bad_input_is_refused_by_name():
     with pytest.raises(TypeError, match="lever"):
         equivalent_cantilever("AC240TS")
     assert SPOT.check(1.0) == 1.0
+
+
+def test_the_books_plan_view_ratios():
+    # book/01_cantilever_mechanics.md, "Your probe": L / L_e of 1.13 for the AC240TS and 1.4 to
+    # 2.2 for the V-shaped presets
+    def ratio(name):
+        lever = preset(name)
+        return lever.length / equivalent_cantilever(lever).length
+
+    assert ratio("AC240TS") == pytest.approx(1.13, abs=0.005)
+    vs = [ratio(n) for n, p in PRESETS.items() if p.planform == "v_shaped"]
+    assert 1.4 <= min(vs) and max(vs) < 2.25
+    assert ratio("ContAl-G") == pytest.approx(1.0, abs=1e-5)

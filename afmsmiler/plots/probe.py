@@ -20,8 +20,9 @@ from .limits import data_range, hold
 
 __all__ = ["DEFAULTS", "UNITS", "ProbeCurves", "probe_curves", "ProbeFigure"]
 
-#: Figure defaults.
-DEFAULTS = read_only(dict(figsize=(10.0, 3.6)))
+#: Figure defaults: the size, and how far below the fitted peak the frequency axis starts (a
+#: factor).
+DEFAULTS = read_only(dict(figsize=(10.0, 3.6), below_peak=30.0))
 #: Display unit of each quantity shown.
 UNITS = read_only(dict(frequency="kHz", psd="pm^2/Hz", length="um"))
 
@@ -132,7 +133,7 @@ class ProbeFigure:
         ln["f0"] = spectrum.axvline(1.0, color="C3", ls=":", lw=0.8)
         spectrum.set(xlabel=f"frequency [{u['frequency']}]",
                      ylabel=f"deflection PSD [{u['psd']}]")
-        spectrum.legend(loc="lower left", fontsize="small")
+        spectrum.legend(loc="upper left", fontsize="small")
         ln["outline"], = plan.plot([], [], color="0.3", lw=1.2)
         ln["tip"], = plan.plot([], [], "^", color="C2", ms=7, label="tip")
         ln["spot"], = plan.plot([], [], "o", color="C3", ms=8, label="laser spot")
@@ -158,7 +159,9 @@ class ProbeFigure:
         ln["expected"].set_data(c.frequency_khz, c.expected)
         ln["fitted"].set_data(c.fitted_khz, c.fitted)
         ln["f0"].set_xdata([c.f0_khz] * 2)
-        ax["spectrum"].set_xlim(float(c.frequency_khz[0]), float(c.frequency_khz[-1]))
+        # from 1/30 of the peak (the floor of the line's low side) to the last bin
+        low = max(float(c.frequency_khz[0]), c.f0_khz / DEFAULTS["below_peak"])
+        ax["spectrum"].set_xlim(low, float(c.frequency_khz[-1]))
         hold(ax["spectrum"], "y", *data_range(c.psd, c.expected, log=True), reset=True,
              log=True, margin=0.05)
         ax["spectrum"].set_title(f"thermal spectrum in {c.fluid}: fit f0 = {c.f0_khz:.4g} "
