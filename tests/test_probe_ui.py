@@ -70,6 +70,19 @@ def test_a_geometry_move_makes_the_lever_custom_in_one_run():
     assert lever.name == "" and lever.coating is None
 
 
+def test_a_browser_echo_of_a_slider_keeps_the_preset_and_runs_nothing():
+    # the browser sends a slider's value back as min + n * step, a rounding error off the value
+    # the kernel set: no move, so the preset stays chosen and the model does not run again
+    p = ProbePanel()
+    calls = _count_runs(p)
+    for name in ("length", "width", "thickness", "point_length", "arm_width"):
+        c = p.controls[name]
+        echo = c.min + round((c.value - c.min) / c.step) * c.step
+        c.value = echo * (1 + 2e-16) if echo == c.value else echo
+        assert p.values()["probe"] == "ContAl-G", name
+    assert calls == []
+
+
 def test_set_with_a_preset_and_geometry_starts_from_the_preset():
     p = ProbePanel()
     calls = _count_runs(p)

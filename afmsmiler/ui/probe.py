@@ -26,7 +26,7 @@ from ..plots.probe import ProbeFigure, probe_curves
 from ..probe import DEFAULTS as MODEL
 from ..probe import FLUID_NAMES, SPOT, ProbeReport, probe_report
 from ..validation import check_choice, check_integer
-from .panel import Panel, initial_values
+from .panel import Panel, _same, initial_values
 
 __all__ = ["ProbePanel", "DEFAULTS", "SLIDERS", "GEOMETRY", "CUSTOM"]
 
@@ -113,8 +113,8 @@ class ProbePanel(Panel):
                                          value=v["material"], description="material"),
             **{k: sliders[k] for k in ("length", "width", "thickness", "point_length",
                                        "arm_width")},
-            "fluid": widgets.ToggleButtons(options=list(FLUID_NAMES), value=v["fluid"],
-                                           description="fluid"),
+            "fluid": widgets.Dropdown(options=list(FLUID_NAMES), value=v["fluid"],
+                                      description="fluid"),
             "spot": sliders["spot"],
         }
         self.readout = widgets.HTML()
@@ -141,8 +141,17 @@ class ProbePanel(Panel):
             self._hold, self._syncing = hold, False
 
     def _on_geometry(self, change) -> None:
-        """A geometry control moved: the lever is now custom (no update of its own)."""
+        """A geometry control moved: the lever is now custom (no update of its own).
+
+        The browser's echo of a value it snapped to a slider's grid (a preset's 195.14 um width)
+        is no move (:meth:`Panel.values` reports the value the model ran with) and leaves the
+        preset chosen.
+        """
         if self._syncing or self.controls["probe"].value == CUSTOM:
+            return
+        owner = change.get("owner")
+        name = next((n for n, c in self.controls.items() if c is owner), None)
+        if name in self._applied and _same(change["new"], self._applied[name], owner):
             return
         hold, self._hold = self._hold, True
         try:
