@@ -66,6 +66,7 @@ is proportional to its mean), and one on log P is biased by E[ln P] - ln S = psi
 """
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import dataclass
 
@@ -329,6 +330,18 @@ class ThermalSpectrum:
         return 2.0 * self.frequency.size * self.resolution
 
 
+@functools.lru_cache(maxsize=16)
+def _gamma_nodes(first: int, last: int) -> tuple:
+    """log Gamma_r and log Gamma_i at the nodes 10^(j / 1000), j = first .. last + 1, kept for
+    the next spectrum of the same lever (a panel's step: the Bessel functions are most of a
+    2^14-bin spectrum's cost)."""
+    nodes = 10.0 ** (np.arange(first, last + 2) / 1000.0)
+    g = _omega(nodes) * _circ(nodes)
+    log_r, log_i = np.log(g.real), np.log(g.imag)
+    log_r.flags.writeable = log_i.flags.writeable = False
+    return log_r, log_i
+
+
 def _gamma_interpolated(re: np.ndarray) -> np.ndarray:
     """Gamma_rect(re) (Omega held at the ends of its range) for many Reynolds numbers at once:
     log Gamma_r and log Gamma_i interpolated linearly in tau = log10 Re between nodes at the
@@ -339,9 +352,7 @@ def _gamma_interpolated(re: np.ndarray) -> np.ndarray:
     first, last = math.floor(float(tau.min()) * 1000), math.ceil(float(tau.max()) * 1000)
     if re.size <= last - first + 2:
         return _omega(re) * _circ(re)
-    nodes = 10.0 ** (np.arange(first, last + 2) / 1000.0)
-    g = _omega(nodes) * _circ(nodes)
-    log_r, log_i = np.log(g.real), np.log(g.imag)
+    log_r, log_i = _gamma_nodes(first, last)
     # uniform nodes: the cell and the weight by arithmetic, no search
     position = tau * 1000.0 - first
     cell = np.minimum(position.astype(np.intp), last - first)

@@ -94,6 +94,7 @@ UNITS = MappingProxyType({
     "Hz": ("Hz", 1.0), "kHz": ("Hz", 1e3), "MHz": ("Hz", 1e6), "GHz": ("Hz", 1e9),
     "m/s": ("m/s", 1.0), "mm/s": ("m/s", 1e-3), "um/s": ("m/s", 1e-6), "nm/s": ("m/s", 1e-9),
     "Hz/m": ("Hz/m", 1.0), "GHz/nm": ("Hz/m", 1e9 / 1e-9),
+    "m^2/Hz": ("m^2/Hz", 1.0), "pm^2/Hz": ("m^2/Hz", 1e-24),  # deflection spectra
     # electrical, magnetic, optical
     "V": ("V", 1.0), "mV": ("V", 1e-3), "uV": ("V", 1e-6),
     "V^2/Hz": ("V^2/Hz", 1.0), "nV^2/Hz": ("V^2/Hz", 1e-18),

@@ -516,8 +516,10 @@ class Lever:
             return self.length * self.width
         if self.planform == "pointed":
             return self.width * (self.length - self.point_length / 2)
+        # the outer triangle w L / 2 less the open V between the arms' inner edges, a triangle
+        # of base 2 (w/2 - b / cos(theta)) at the clamp and apex x_j
         return self.width * self.length / 2 - (self.width / 2 - self.arm_width
-                                               / math.cos(self.half_angle)) * self.solid_from / 2
+                                               / math.cos(self.half_angle)) * self.solid_from
 
     @property
     def mass(self) -> float:

@@ -112,7 +112,9 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.planform", "afmsmiler.materials", 
            # module (h): an AFM image as a printable STL
            "afmsmiler.hardware.printing",
            # module (a): the lever in a fluid and its calibration (issue 23)
-           "afmsmiler.hydrodynamics", "afmsmiler.calibration"]
+           "afmsmiler.hydrodynamics", "afmsmiler.calibration",
+           # module (a): "your probe", a Lever in air and water, calibrated (issue 23)
+           "afmsmiler.probe"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s of CPU per call: the issue's bound (CPU, so a loaded machine cannot fail it)
 WALL_LIMIT = 60.0  # s of wall-clock time per call: a hang guard for a call that waits, not computes
@@ -226,7 +228,7 @@ RESULTS = {"Signals", "Alignment", "AlignmentRun", "Stability", "LoopResponse", 
            "PrintComparison", "ClosedLoopResponse", "RingDown",
            # module (a): a mode in a fluid, a thermal spectrum, its fit and the calibrations
            "FluidMode", "ThermalSpectrum", "SHOFit", "ThermalCalibration", "SaderCalibration",
-           "LabCalibration"}
+           "LabCalibration", "ProbeReport"}
 # Abstract bases: their methods are called on each concrete subclass instead.
 ABSTRACT = {"Tip", "Transducer", "Mode", "DeviceSession"}
 # Legacy descriptions that afmsmiler.parameters.Parameter replaces (issue 8, section 1).
@@ -414,6 +416,13 @@ OVERRIDES = {
         "afmsmiler.planform", fromlist=["preset"]).preset("MLCT-E")}
        for f in ("sader_v_spring_constant", "parallel_beam_spring_constant",
                  "parallel_beam_error")},
+    # "your probe": a Lever (a pointed preset), not module (a)'s Cantilever
+    **{f"afmsmiler.probe.{f}": {"lever": lambda: __import__(
+        "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS")}
+       for f in ("mean_width", "equivalent_cantilever", "planform_outline")},
+    "afmsmiler.probe.probe_report": {"lever": lambda: __import__(
+        "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS"), "points": 2 ** 12,
+        "averages": 4},
     "afmsmiler.contact.adhesion_extrema": {"adhesion": "jkr", "work_of_adhesion": 0.03},
     "afmsmiler.contact.ContactSystem.at": {"z_np": 10e-9},
     "afmsmiler.contact.contact_surface": {"current": lambda: _curve()},
@@ -646,6 +655,9 @@ INSTANCES = {
         "fit_thermal_spectrum"]).fit_thermal_spectrum(_spectrum()),
     "LabCalibration": lambda: __import__("afmsmiler.calibration", fromlist=[
         "calibrate"]).calibrate(_lever(), points=2 ** 12, seed=1),
+    "ProbeReport": lambda: __import__("afmsmiler.probe", fromlist=["probe_report"]).probe_report(
+        __import__("afmsmiler.planform", fromlist=["preset"]).preset("AC240TS"),
+        points=2 ** 12, averages=4, seed=1),
     "LockInResult": lambda: __import__("afmsmiler.signals.lockin", fromlist=["lock_in"]).lock_in(
         _tone(), sample_rate=1e6, frequency=1e3, time_constant=1e-3),
     "Profile": lambda: __import__("afmsmiler.imaging.statistics",
@@ -1680,6 +1692,7 @@ UPPER_MODULES = ["afmsmiler.plots.cantilever", "afmsmiler.plots.contact",
                  "afmsmiler.plots.controller", "afmsmiler.plots.hardware",
                  "afmsmiler.plots.imaging", "afmsmiler.plots.lockin", "afmsmiler.plots.modes",
                  "afmsmiler.plots.instrument", "afmsmiler.plots.transducers",
+                 "afmsmiler.plots.probe",
                  "afmsmiler.scenes.cantilever", "afmsmiler.scenes.contact",
                  "afmsmiler.scenes.imaging", "afmsmiler.scenes.legends",
                  "afmsmiler.scenes.modes", "afmsmiler.scenes.shapes",
@@ -1732,6 +1745,9 @@ OBJECTS = {
     "Bending": lambda: _lever().bending(),
     "CantileverCurves": _upper("afmsmiler.plots.cantilever", "cantilever_curves",
                                lambda: _lever().bending()),
+    "ProbeReport": lambda: INSTANCES["ProbeReport"](),
+    "ProbeCurves": _upper("afmsmiler.plots.probe", "probe_curves",
+                          lambda: INSTANCES["ProbeReport"]()),
     "Tip": lambda: VALID["tip"](),
     "IndentationCurve": _curve,
     "ApproachRetract": lambda: _system().approach_retract(np.linspace(-50e-9, 30e-9, 40)),
