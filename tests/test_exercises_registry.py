@@ -33,7 +33,7 @@ def test_every_checker_is_an_exercise_of_its_notebook():
     registered = {f"{e.checker.__module__.rsplit('.', 1)[1]}.{e.checker.__name__}"
                   for e in EXERCISES.values()}
     assert checkers == registered
-    assert len(EXERCISES) == 27
+    assert len(EXERCISES) == 28
     # notebook NN's checkers live in the NN-th module of the course's order
     for e in EXERCISES.values():
         assert e.checker.__module__.endswith(registry.MODULES[int(e.notebook) - 1]), e.key

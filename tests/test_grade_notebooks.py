@@ -21,7 +21,7 @@ def _nb(*sources):
     return dict(cells=cells, metadata={}, nbformat=4, nbformat_minor=5)
 
 
-#: A notebook 01 in small: its four exercises asked the ways the course's notebooks ask them.
+#: A notebook 01 in small: its five exercises asked the ways the course's notebooks ask them.
 SMALL = _nb("from afmsmiler.exercises.cantilever import *",
             "h = None  # in m\ncheck_thickness_for_spring_constant(h, target_k=0.1)",
             "check_mode_ratio(6.0)   # a wrong first try, shown on purpose",
@@ -30,12 +30,14 @@ SMALL = _nb("from afmsmiler.exercises.cantilever import *",
             "location, top_surface = None, None\ntheta = None\nx = 1\n"
             "check_largest_stress(location, top_surface,\n                     force=100e-9)",
             "check_tip_slope(theta, force=100e-9)  # a comment",
+            "k_lever = None\ncheck_unseen_lever_calibration(k_lever)",
             "%matplotlib inline")
 
 
 def test_checker_cells_and_answers_are_found():
     calls = checker_calls(SMALL, "01")
-    assert {k: c.cell for k, c in calls.items()} == {"01.1": 2, "01.2": 5, "01.3": 6, "01.4": 7}
+    assert {k: c.cell for k, c in calls.items()} == {"01.1": 2, "01.2": 5, "01.3": 6, "01.4": 7,
+                                                        "01.5": 8}
     assert calls["01.3"].answers == ("location", "top_surface")
     assert calls["01.3"].givens == (("force", "100e-9"),)
     assert solution_code(calls["01.1"]) == \
@@ -64,6 +66,8 @@ def test_solved_copy_sets_each_answer_before_its_check():
                       "check_largest_stress(location, top_surface,\n"
                       "                     force=100e-9)")
     assert src[7] == "check_tip_slope(theta, force=100e-9)  # a comment"
+    assert src[8] == ("k_lever = None\nk_lever = check_unseen_lever_calibration.solution()\n"
+                      "check_unseen_lever_calibration(k_lever)")
     assert "".join(SMALL["cells"][2]["source"]) == "h = None  # in m\n" \
         "check_thickness_for_spring_constant(h, target_k=0.1)"  # the argument is not changed
     # what the copy says runs: the solutions pass (the first try of 01.2 does not)
@@ -73,7 +77,8 @@ def test_solved_copy_sets_each_answer_before_its_check():
         for cell in out["cells"][1:-1]:
             exec("".join(cell["source"]), namespace)
     assert [(v.exercise, v.passed) for v in verdicts] == [
-        ("01.1", True), ("01.2", False), ("01.2", True), ("01.3", True), ("01.4", True)]
+        ("01.1", True), ("01.2", False), ("01.2", True), ("01.3", True), ("01.4", True),
+        ("01.5", True)]
 
 
 def test_nbgrader_source_has_solution_and_test_cells():
@@ -100,22 +105,26 @@ def test_nbgrader_source_has_solution_and_test_cells():
     assert src[8] == "check_largest_stress(location, top_surface,\n" \
                      "                     force=100e-9).require()"
     assert src[9] == "check_tip_slope(theta, force=100e-9).require()"
-    assert src[10] == "%matplotlib inline" and len(cells) == 11
+    assert src[10].startswith("k_lever = None\n" + BEGIN_SOLUTION)
+    assert src[11] == "check_unseen_lever_calibration(k_lever).require()"
+    assert src[12] == "%matplotlib inline" and len(cells) == 13
     ids = [c[1] for c in cells]
     assert len(set(ids)) == len(ids)
     grade_ids = [c[2]["grade_id"] for c in cells if c[2]]
-    assert len(set(grade_ids)) == len(grade_ids) == 7  # 01.3 and 01.4 answered in one cell
+    assert len(set(grade_ids)) == len(grade_ids) == 9  # 01.3 and 01.4 answered in one cell
 
 
 @pytest.mark.parametrize("sources, words", [
     (("check_mode_ratio(ratio)",), "must hold a checker cell"),   # 01.1, 01.3, 01.4 missing
     (("check_thickness_for_spring_constant(h)", "check_mode_ratio(r)",
-      "check_largest_stress(a, b)", "t = None\ncheck_tip_slope(t)"), "must set h = None"),
+      "check_largest_stress(a, b)", "t = None\ncheck_tip_slope(t)", "k = None\ncheck_unseen_lever_calibration(k)"),
+     "must set h = None"),
     (("h = None\ncheck_thickness_for_spring_constant(h)", "r = 1\ncheck_mode_ratio(r)",
-      "a = b = None\ncheck_largest_stress(a, b)", "t = None\ncheck_tip_slope(t)"),
+      "a = b = None\ncheck_largest_stress(a, b)", "t = None\ncheck_tip_slope(t)", "k = None\ncheck_unseen_lever_calibration(k)"),
      "must set r = None"),
     (("h = None\ncheck_thickness_for_spring_constant(h)", "check_mode_ratio(0.5)",
-      "check_largest_stress()", "t = None\ncheck_tip_slope(t)"), "as a variable"),
+      "check_largest_stress()", "t = None\ncheck_tip_slope(t)", "k = None\ncheck_unseen_lever_calibration(k)"),
+     "as a variable"),
 ])
 def test_a_notebook_that_cannot_be_solved_says_why(sources, words):
     for make in (solved_copy, nbgrader_source):

@@ -377,6 +377,8 @@ def unseen_lever_spring_constant(seed: int = DEFAULTS["unseen_seed"]) -> float:
     return _unseen_calibration(check_integer("seed", seed, 0, 2 ** 32 - 1))[0]
 
 
+@exercise("01.5", "Calibrate a lever you have not seen", answers=("spring_constant",),
+          solution=unseen_lever_spring_constant)
 def check_unseen_lever_calibration(spring_constant, *, seed: int = DEFAULTS["unseen_seed"],
                                    rtol: float = 0.012) -> Feedback:
     """Exercise 5: calibrate the spring constant of :func:`unseen_lever_spectrum`'s lever.
