@@ -14,7 +14,7 @@ export MPLBACKEND ?= Agg
 ## kernel and each test worker, compiled the course and the tests again (10 s per worker).
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: install lab test unit lint notebooks bench book clean browser firmware
+.PHONY: install lab test unit lint notebooks bench book clean browser firmware app apps hub-proxy lock
 
 ## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
 ## missing and we are root (as in CI); otherwise those tests are skipped and say why.
@@ -43,7 +43,7 @@ firmware:
 
 ## uv (from PyPI) installs in parallel: about 35 s for every extra where pip took about 2 min;
 ## pip does it when uv cannot.
-EXTRAS := test,lab,files,bench,hardware
+EXTRAS := test,lab,files,bench,hardware,hub
 $(STAMP): pyproject.toml
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	{ $(PY) -m pip install --quiet uv && \
@@ -66,12 +66,35 @@ lab: $(STUDENT_STAMP)
 	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
+## A module as a web app (voila, 127.0.0.1 only: code hidden, widgets and 3D views live):
+## `make app NB=06_virtual_imaging`; `make apps` serves the index of every module. The app is the
+## notebook itself, run and rendered by voila (afmsmiler/apps.py).
+NB ?= 01_cantilever_mechanics
+app: $(STUDENT_STAMP)
+	$(PY) -m afmsmiler.apps $(NB) $(if $(DISPLAY),--browser)
+apps: $(STUDENT_STAMP)
+	$(PY) -m afmsmiler.apps $(if $(DISPLAY),--browser)
+
+## JupyterHub's proxy (configurable-http-proxy, from the npm registry) into .hub/, for the local
+## hub of tests/test_hub_browser.py and benchmarks/bench_hub.py; skipped without npm.
+CHP_VERSION := 5.3.0
+hub-proxy:
+	@test -x .hub/node_modules/.bin/configurable-http-proxy || { \
+	  if command -v npm >/dev/null; then \
+	    npm install --silent --no-audit --no-fund --prefix .hub configurable-http-proxy@$(CHP_VERSION); \
+	  else echo "no npm: the hub test will be skipped"; fi; }
+
+## binder/requirements.txt: the exact versions installed in .venv (what `make test` passed with),
+## for repo2docker (Binder, a JupyterHub's image). Run it after an upgrade.
+lock: $(STAMP)
+	$(VENV)/bin/uv pip freeze --python $(PY) --exclude-editable > binder/requirements.txt
+
 ## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
 ## notebook under nbval. Tests run on both cores (pytest-xdist), the longest modules first
 ## (tests/conftest.py); the browser tests that share a JupyterLab or voila server share a worker
 ## (xdist_group). Notebooks run on both cores too, each notebook's cells on one worker in order
 ## (--dist loadfile). Tests check correctness, not speed (`make bench` measures speed).
-test: $(STAMP) browser firmware lint
+test: $(STAMP) browser firmware hub-proxy lint
 	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup tests
 	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider \
@@ -94,7 +117,7 @@ notebooks: $(STAMP)
 	  notebooks
 
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
-bench: $(STAMP) browser
+bench: $(STAMP) browser hub-proxy
 	$(PY) benchmarks/run_all.py
 
 ## The course book (Jupyter Book 1.x) into book/_build/html.
