@@ -43,12 +43,16 @@ firmware:
 
 ## uv (from PyPI) installs in parallel: about 35 s for every extra where pip took about 2 min;
 ## pip does it when uv cannot.
+## The versions are those of the lock binder/requirements.txt (constraints: what the tests passed
+## with, what a class's image installs; `make lock` writes it again after an upgrade).
 EXTRAS := test,lab,files,bench,hardware,hub
-$(STAMP): pyproject.toml
+LOCK   := binder/requirements.txt
+$(STAMP): pyproject.toml $(LOCK)
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	{ $(PY) -m pip install --quiet uv && \
-	  $(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[$(EXTRAS)]'; } || \
-	  { $(PY) -m pip install --quiet --upgrade pip && $(PY) -m pip install --quiet -e '.[$(EXTRAS)]'; }
+	  $(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[$(EXTRAS)]' -c $(LOCK); } || \
+	  { $(PY) -m pip install --quiet --upgrade pip && \
+	    $(PY) -m pip install --quiet -e '.[$(EXTRAS)]' -c $(LOCK); }
 	touch $(STAMP) $(STUDENT_STAMP)
 
 ## A student's install: the course with its notebooks' UI (lab), the file readers (files) and
@@ -86,8 +90,9 @@ hub-proxy:
 
 ## binder/requirements.txt: the exact versions installed in .venv (what `make test` passed with),
 ## for repo2docker (Binder, a JupyterHub's image). Run it after an upgrade.
-lock: $(STAMP)
-	$(VENV)/bin/uv pip freeze --python $(PY) --exclude-editable > binder/requirements.txt
+lock:
+	$(VENV)/bin/uv pip freeze --quiet --python $(PY) --exclude-editable > $(LOCK).new
+	mv $(LOCK).new $(LOCK)
 
 ## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
 ## notebook under nbval. Tests run on both cores (pytest-xdist), the longest modules first

@@ -21,6 +21,7 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
 import tempfile
@@ -211,6 +212,12 @@ def main(argv=None) -> int:
         env.pop("MPLBACKEND", None)  # the kernels draw for the browser, not to files
         cmd = voila_command(target, port=args.port, open_browser=args.browser)
         proc = subprocess.Popen(cmd, env=env, cwd=NOTEBOOKS)
+
+        def stop(signum, frame):  # a stop of this process stops voila (and its kernels)
+            proc.terminate()
+
+        for signum in (signal.SIGTERM, signal.SIGHUP):
+            signal.signal(signum, stop)
         try:
             return proc.wait()
         except KeyboardInterrupt:
