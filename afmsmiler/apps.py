@@ -30,7 +30,7 @@ from pathlib import Path
 from .ui.registry import MODULES
 from .validation import check_choice
 
-__all__ = ["NOTEBOOKS", "TEMPLATE", "notebook_path", "write_template", "voila_command", "main"]
+__all__ = ["NOTEBOOKS", "TEMPLATE", "notebook_path", "write_template", "voila_command"]
 
 #: The course's notebooks (a checkout's ``notebooks/``: they are not part of the wheel).
 NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
@@ -165,12 +165,19 @@ def voila_command(target, *, port: int = 8866, open_browser: bool = False,
     Raises
     ------
     ValueError
-        For a port out of range or a target that does not exist.
+        For a port out of range, a target that does not exist or a token with spaces.
+    TypeError
+        For an ``open_browser`` that is not a bool.
     """
     if not isinstance(port, int) or isinstance(port, bool) or not 0 <= port <= 65535:
         raise ValueError(f"port must be an int in 0..65535, got {port!r}")
     if not isinstance(target, (str, os.PathLike)) or not Path(target).exists():
         raise ValueError(f"target must be an existing notebook or folder, got {target!r}")
+    if not isinstance(open_browser, bool):
+        raise TypeError(f"open_browser must be a bool, got {open_browser!r}")
+    if token is not None and (not isinstance(token, str) or not token.isprintable()
+                              or " " in token):
+        raise ValueError(f"token must be None or a printable str without spaces, got {token!r}")
     voila = Path(sys.executable).parent / "voila"
     cmd = [str(voila) if voila.exists() else (shutil.which("voila") or "voila"),
            "--Voila.ip=127.0.0.1", f"--port={port}", f"--template={TEMPLATE}",
