@@ -6,15 +6,18 @@ modules, ``make apps``; ``make app NB=...`` serves one of them alone). Headless 
 would (modules (e)-(h) here; (a)-(d) in tests/test_panels_browser.py): every cell runs at load
 (notebook 08 starts its simulated devices), no code is shown, no cell shows an error, and a key press on the slider the registry names for the module
 (``afmsmiler.ui.registry``) changes the pixels of its panel's figure (module (f)'s slider applies
-to the next scan: its readout moves and the panel's figure is drawn). Every request the pages
+to the next scan: its readout moves and the panel's figure is drawn); a panel's 3D view draws
+over voila's own kernel connection (its pixels more than a few colours). Every request the pages
 make, HTTP and WebSocket, goes to 127.0.0.1: an app needs no network beyond its own server.
 
 The kernels run with ``AFMSMILER_TESTING=1`` (short animations): these tests check what the apps
 show, never how long they take. Marked ``slow`` and ``browser``, all on one xdist worker with one
 server (``xdist_group``); skipped, saying why, when Chromium or Playwright is missing.
 """
+from pathlib import Path
 from urllib.parse import urlsplit
 
+import numpy as np
 import pytest
 
 from afmsmiler.ui.registry import MODULES
@@ -23,6 +26,7 @@ from tests import browser as B
 pytestmark = [pytest.mark.slow, pytest.mark.browser, pytest.mark.xdist_group("apps_voila")]
 
 FIGURE = B.LIVE_FIGURE
+SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person
 #: The apps loaded here: modules (e)-(h). Modules (a)-(d)'s apps are loaded, their sliders
 #: pressed and dragged and their requests checked by tests/test_panels_browser.py's voila
 #: tests, on the same server command (tests/browser.py serves voila as afmsmiler.apps does).
@@ -34,6 +38,18 @@ def _entry(notebook: str):
     panel of the module when none does)."""
     entries = [e for e in B.PANELS.values() if e.notebook == notebook]
     return next((e for e in entries if e.figure), entries[0])
+
+
+def _check_view_draws(page, notebook: str) -> None:
+    """The app's first 3D view received its scene and shows more than a few colours."""
+    page.wait_for_function(
+        "(sel) => Array.from(document.querySelectorAll(sel))"
+        ".some(e => Number(e.dataset.commands) > 0)", arg=B.SCENE_VIEW, timeout=120_000)
+    image = B.scene_pixels(page, 0)
+    SHOTS.mkdir(exist_ok=True)
+    image.save(SHOTS / f"{notebook[:2]}_voila.png")
+    colours = len(np.unique(np.asarray(image.resize((240, 120))).reshape(-1, 3), axis=0))
+    assert colours > 50, f"{notebook}: the 3D view in voila is nearly uniform ({colours} colours)"
 
 
 @pytest.fixture(scope="module")
@@ -78,6 +94,8 @@ def test_each_app_loads_and_its_slider_moves_the_figure(apps, notebook):
         B.focus_panel(page, slider, selector)
         state = B.figure_state(page, selector)
         assert state["figures"] >= 1 and state["lit"] > 0, (notebook, state)
+        if e.scene:  # its 3D view draws over voila's own kernel connection (no second port)
+            _check_view_draws(page, notebook)
         key, _ = B.keys(slider)
         before = B.slider_value(slider)
         if e.figure:
