@@ -293,6 +293,24 @@ class Hub:
                 uss += m.uss
         return {"rss": rss / 2**20, "uss": uss / 2**20}
 
+    def listening(self) -> list:
+        """Every listening TCP socket of the hub, its proxy and the students' processes, as
+        ``(process name, address, port)``."""
+        import psutil
+        procs = []
+        with contextlib.suppress(psutil.Error):
+            hub = psutil.Process(self.proc.pid)
+            procs = [hub] + hub.children(recursive=True)
+        for name in self.names:
+            procs += self.processes(name)
+        out = []
+        for p in procs:
+            with contextlib.suppress(psutil.Error):
+                for c in p.net_connections("inet"):
+                    if c.status == psutil.CONN_LISTEN:
+                        out.append((p.name(), c.laddr.ip, c.laddr.port))
+        return out
+
     def stop(self) -> None:
         """Stop the hub (it stops the students' servers), then anything left of them, bounded."""
         if self.proc is not None:

@@ -8,7 +8,8 @@ Chromium with a context each, log in at once through an nbgitpuller link that cl
 into their home and opens module (d); they Run All, and press the contact panel's slider
 together: every press changes their own figure's pixels, no cell shows an error, both kernels
 still answer, no page asks for anything beyond 127.0.0.1, and the first student's kernel cannot
-read the second's notebook. Skipped, saying why, when not root or when JupyterHub, the proxy or
+read the second's notebook; the hub, its proxy and every student's server and kernel listen on
+127.0.0.1 only. Skipped, saying why, when not root or when JupyterHub, the proxy or
 Chromium is missing. ``make bench`` (``benchmarks/bench_hub.py``) measures 1, 4 and 8 students.
 Marked ``browser`` and ``slow``, on its own xdist worker (``xdist_group``).
 """
@@ -43,3 +44,9 @@ def test_two_students_pull_the_course_run_it_and_move_a_slider(chromium, hub):
         assert s.kernel_alive, f"{s.name}'s kernel no longer answers"
         assert s.foreign == [], f"{s.name}'s pages asked beyond 127.0.0.1: {s.foreign[:5]}"
         assert s.memory["rss"] > 0, f"no process runs as {s.name}"
+    # the hub, its proxy, each student's JupyterLab and kernel: on 127.0.0.1 only
+    sockets = hub.listening()
+    ports = {port for _, _, port in sockets}
+    assert {hub.port, hub.hub_port, hub.api_port} <= ports, sockets  # proxy, hub, proxy's API
+    assert len(ports) >= 3 + 2 * N_STUDENTS, sockets  # and each student's server and kernel
+    assert [s for s in sockets if s[1] != "127.0.0.1"] == [], sockets
