@@ -138,8 +138,9 @@ def home_mode(name: str) -> int:
     return stat.S_IMODE(os.stat(pwd.getpwnam(name).pw_dir).st_mode)
 
 
-def _branch() -> str:
-    out = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "--abbrev-ref", "HEAD"],
+def _head() -> str:
+    """The commit checked out here (CI may check out a commit, not a branch)."""
+    out = subprocess.run(["git", "-C", str(ROOT), "rev-parse", "HEAD"],
                          capture_output=True, text=True, timeout=30, check=True)
     return out.stdout.strip()
 
@@ -235,10 +236,12 @@ class Hub:
         return path
 
     def start(self) -> "Hub":
-        self.branch = _branch()
-        subprocess.run(["git", "clone", "--quiet", "--bare", "--branch", self.branch,
-                        str(ROOT), str(self.repo)], check=True, timeout=120,
-                       capture_output=True)
+        # the course as an instructor publishes it: a repository whose branch is this commit
+        self.branch = "course"
+        subprocess.run(["git", "clone", "--quiet", "--bare", str(ROOT), str(self.repo)],
+                       check=True, timeout=120, capture_output=True)
+        subprocess.run(["git", "-C", str(self.repo), "branch", "--force", self.branch, _head()],
+                       check=True, timeout=30, capture_output=True)
         for dirpath, _, _ in os.walk(self.repo):
             os.chmod(dirpath, 0o755)
         subprocess.run(["chmod", "-R", "a+rX", str(self.repo)], check=True, timeout=60)
