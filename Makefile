@@ -14,7 +14,7 @@ export MPLBACKEND ?= Agg
 ## kernel and each test worker, compiled the course and the tests again (10 s per worker).
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: install lab test unit lint notebooks bench book clean browser firmware assignments
+.PHONY: install lab test unit lint notebooks bench book clean browser firmware assignments app apps hub-proxy lock
 
 ## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
 ## missing and we are root (as in CI); otherwise those tests are skipped and say why.
@@ -45,12 +45,16 @@ firmware:
 ## pip does it when uv cannot. uv compiles the installed modules as pip does (--compile-bytecode,
 ## on both cores): otherwise the first test run after an install compiled numpy, scipy,
 ## matplotlib and Jupyter in each of its processes.
-EXTRAS := test,lab,files,bench,hardware,book
-$(STAMP): pyproject.toml
+## The versions are those of the lock binder/requirements.txt (constraints: what the tests passed
+## with, what a class's image installs; `make lock` writes it again after an upgrade).
+EXTRAS := test,lab,files,bench,hardware,book,hub
+LOCK   := binder/requirements.txt
+$(STAMP): pyproject.toml $(LOCK)
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	{ $(PY) -m pip install --quiet uv && \
-	  $(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[$(EXTRAS)]'; } || \
-	  { $(PY) -m pip install --quiet --upgrade pip && $(PY) -m pip install --quiet -e '.[$(EXTRAS)]'; }
+	  $(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[$(EXTRAS)]' -c $(LOCK); } || \
+	  { $(PY) -m pip install --quiet --upgrade pip && \
+	    $(PY) -m pip install --quiet -e '.[$(EXTRAS)]' -c $(LOCK); }
 	$(MAKE) --no-print-directory nbgrader-extensions-off
 	touch $(STAMP) $(STUDENT_STAMP)
 
@@ -82,12 +86,36 @@ lab: $(STUDENT_STAMP)
 	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
+## A module as a web app (voila, 127.0.0.1 only: code hidden, widgets and 3D views live):
+## `make app NB=06_virtual_imaging`; `make apps` serves the index of every module. The app is the
+## notebook itself, run and rendered by voila (afmsmiler/apps.py).
+NB ?= 01_cantilever_mechanics
+app: $(STUDENT_STAMP)
+	$(PY) -m afmsmiler.apps $(NB) $(if $(DISPLAY),--browser)
+apps: $(STUDENT_STAMP)
+	$(PY) -m afmsmiler.apps $(if $(DISPLAY),--browser)
+
+## JupyterHub's proxy (configurable-http-proxy, from the npm registry) into .hub/, for the local
+## hub of tests/test_hub_browser.py and benchmarks/bench_hub.py; skipped without npm.
+CHP_VERSION := 5.3.0
+hub-proxy:
+	@test -x .hub/node_modules/.bin/configurable-http-proxy || { \
+	  if command -v npm >/dev/null; then \
+	    npm install --silent --no-audit --no-fund --prefix .hub configurable-http-proxy@$(CHP_VERSION); \
+	  else echo "no npm: the hub test will be skipped"; fi; }
+
+## binder/requirements.txt: the exact versions installed in .venv (what `make test` passed with),
+## for repo2docker (Binder, a JupyterHub's image). Run it after an upgrade.
+lock:
+	$(VENV)/bin/uv pip freeze --quiet --python $(PY) --exclude-editable > $(LOCK).new
+	mv $(LOCK).new $(LOCK)
+
 ## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
 ## notebook under nbval. Tests run on both cores (pytest-xdist), the longest modules first
 ## (tests/conftest.py); the browser tests that share a JupyterLab or voila server share a worker
 ## (xdist_group). Notebooks run on both cores too, each notebook's cells on one worker in order
 ## (--dist loadfile). Tests check correctness, not speed (`make bench` measures speed).
-test: $(STAMP) browser firmware lint
+test: $(STAMP) browser firmware hub-proxy lint
 	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup tests
 	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider \
@@ -110,7 +138,7 @@ notebooks: $(STAMP)
 	  notebooks
 
 ## Speed figures, as ratios against each issue's named peer, measured in one run.
-bench: $(STAMP) browser
+bench: $(STAMP) browser hub-proxy
 	$(PY) benchmarks/run_all.py
 
 ## An instructor's nbgrader assignments, one per notebook (the course and nbgrader, the `course`

@@ -211,7 +211,8 @@ class Server:
             (d / f"{name}.jupyterlab-settings").write_text(json.dumps(values))
         return settings
 
-    def start(self) -> "Server":
+    def command(self) -> list:
+        """The server's command line (a subclass may serve otherwise)."""
         nbdir = self.root / "notebooks"
         if self.kind == "lab":
             cmd = [_tool("jupyter-lab"), "--no-browser", "--ServerApp.ip=127.0.0.1",
@@ -223,14 +224,34 @@ class Server:
             if hasattr(os, "geteuid") and os.geteuid() == 0:
                 cmd.append("--allow-root")
         else:
+            # as `make app` and `make apps` serve (afmsmiler.apps: the course's template, which
+            # asks no other host for anything), with the tracebacks shown
+            from afmsmiler import apps
             target = nbdir / self.notebook if self.notebook else nbdir
-            cmd = [_tool("voila"), "--no-browser", "--Voila.ip=127.0.0.1",
-                   f"--port={self.port}", "--show_tracebacks=True", f"--token={TOKEN}",
-                   str(target)]
+            cmd = apps.voila_command(target, port=self.port, token=TOKEN)
+            cmd.insert(-1, "--show_tracebacks=True")
+        return cmd
+
+    def environment(self) -> dict:
+        """The server's (and its kernels') environment: a student's (:func:`kernel_env`);
+        voila's with the course's template first on ``JUPYTER_PATH``."""
+        env = kernel_env(self.checkout, short=self.short)
+        if self.kind == "voila":
+            from afmsmiler import apps
+            template = self.root / f"voila-template-{self.port}"
+            template.mkdir(exist_ok=True)
+            env["JUPYTER_PATH"] = os.pathsep.join(
+                [str(apps.write_template(template))]
+                + ([env["JUPYTER_PATH"]] if env.get("JUPYTER_PATH") else []))
+        return env
+
+    def start(self) -> "Server":
+        nbdir = self.root / "notebooks"
+        cmd = self.command()
         with open(self.log, "wb") as log:
-            self.proc = subprocess.Popen(cmd, env=kernel_env(self.checkout, short=self.short),
-                                         cwd=nbdir, stdout=log, stderr=subprocess.STDOUT,
-                                         stdin=subprocess.DEVNULL, start_new_session=True)
+            self.proc = subprocess.Popen(cmd, env=self.environment(), cwd=nbdir, stdout=log,
+                                         stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                         start_new_session=True)
         deadline = time.monotonic() + self.startup_timeout
         probe = f"{self.base}/api/status?token={TOKEN}" if self.kind == "lab" else self.base
         while time.monotonic() < deadline:
@@ -505,6 +526,23 @@ afm.quiet = (sel, quietMs, timeoutMs) => new Promise(resolve => {
 });
 })();
 """
+
+
+def watch_requests(page) -> list:
+    """Record every address ``page`` asks for from now on (HTTP requests and WebSockets)."""
+    asked: list = []
+    page.on("request", lambda r: asked.append(r.url))
+    page.on("websocket", lambda ws: asked.append(ws.url))
+    return asked
+
+
+def foreign(asked, host: str = "127.0.0.1") -> list:
+    """The addresses in ``asked`` on any host but ``host`` (the page's own data:, blob: and
+    about: addresses are not requests to a host)."""
+    from urllib.parse import urlsplit
+    return [url for url in asked
+            if urlsplit(url).scheme not in ("data", "blob", "about")
+            and urlsplit(url).hostname != host]
 
 
 # -- notebooks in JupyterLab and voila -----------------------------------------------------

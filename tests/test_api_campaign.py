@@ -114,7 +114,9 @@ MODULES = ["afmsmiler.cantilever", "afmsmiler.planform", "afmsmiler.materials", 
            # module (a): the lever in a fluid and its calibration (issue 23)
            "afmsmiler.hydrodynamics", "afmsmiler.calibration",
            # module (a): "your probe", a Lever in air and water, calibrated (issue 23)
-           "afmsmiler.probe"]
+           "afmsmiler.probe",
+           # the modules as web apps (voila's command line and template)
+           "afmsmiler.apps"]
 HOUSE = ("afmsmiler.parameters", "afmsmiler.validation")
 TIME_LIMIT = 10.0  # s of CPU per call: the issue's bound (CPU, so a loaded machine cannot fail it)
 WALL_LIMIT = 60.0  # s of wall-clock time per call: a hang guard for a call that waits, not computes
@@ -164,6 +166,8 @@ ACCEPTED = {
        for p in ("width", "half_angle")},
     # module (h): "1e-6" is a word of the frame format ([A-Za-z0-9_.:-]+), and a word a driver
     # does not know is kept as a str (documented): a device of a newer firmware may send it
+    # any text without spaces is a token ("1e-6" too)
+    "apps.voila_command:token": (("str",), "any printable text without spaces is a token"),
     "hardware.framing.event_frame:word": (("str",), "any word of the frame format"),
     "hardware.framing.error_frame:word": (("str",), "any word of the frame format"),
     "hardware.twin.Twin.error:word": (("str",), "any word of the frame format"),
@@ -404,7 +408,21 @@ VALID = {
 }
 
 # Valid values for one callable (by its qualified name), where the name table does not fit.
+def _campaign_dir(name: str) -> str:
+    """A folder in the temporary directory, the same one every call (nothing piles up)."""
+    import tempfile
+    path = os.path.join(tempfile.gettempdir(), name)
+    os.makedirs(path, exist_ok=True)
+    return path
+
+
 OVERRIDES = {
+    "afmsmiler.apps.notebook_path": {"name": "f"},
+    "afmsmiler.apps.write_template": {
+        "directory": lambda: _campaign_dir("afm-campaign-voila")},
+    "afmsmiler.apps.voila_command": {
+        "target": lambda: str(__import__("afmsmiler.apps", fromlist=["NOTEBOOKS"]).NOTEBOOKS),
+        "port": 8866, "open_browser": False, "token": None},
     "afmsmiler.transducers.get_principle": {"key": "optical_beam_deflection"},
     "afmsmiler.contact.make_tip": {"key": "parabolic"},
     "afmsmiler.cantilever.check_modes": {"modes": (1, 2, 3)},

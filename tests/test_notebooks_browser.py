@@ -5,8 +5,8 @@ copies of the course notebooks. For each notebook, as a student would: Run All; 
 draws its own scene (their pixels differ from each other's, and each is more than meshcat's empty
 grid); a panel's slider moves its figure *and* its 3D view; every code cell is run again in order
 and then in reverse order with no error shown; the kernel has started no process and listens on
-no port but its own connection's. In voila (a second server, served on 127.0.0.1) the 3D views
-draw too: no second port exists that a remote browser could not reach.
+no port but its own connection's. In voila the 3D views draw too (no second port exists that a
+remote browser could not reach): tests/test_apps_browser.py checks it in each app.
 
 The kernels run with ``AFMSMILER_TESTING=1`` (short animations): these tests check what the
 cells show and that they can be re-run, never how long anything takes. Marked ``slow`` and
@@ -113,25 +113,6 @@ def test_views_survive_run_all_and_every_rerun(lab, notebook):
     assert len(views) == n_views and all(v["commands"] > 0 for v in views), views
     _distinct([B.scene_pixels(page, i) for i in range(n_views)])
     assert B.kernel_eval(page, PORTS).strip() == fresh, "the notebook started a process or a port"
-
-
-def test_views_draw_in_voila(chromium, root):
-    """voila on 127.0.0.1: the 3D view of notebook 05 draws over voila's own kernel connection."""
-    with B.Server("voila", root, short=True) as server:
-        page = B.new_page(chromium)
-        try:
-            B.open_voila(page, server, "05_system_overview.ipynb", "laser knob along")
-            page.wait_for_function(
-                "(sel) => Array.from(document.querySelectorAll(sel))"
-                ".some(e => Number(e.dataset.commands) > 0)", arg=B.SCENE_VIEW, timeout=120_000)
-            assert B.voila_errors(page) == []
-            image = B.scene_pixels(page, 0)
-            SHOTS.mkdir(exist_ok=True)
-            image.save(SHOTS / "05_voila.png")
-            colours = len(np.unique(np.asarray(image.resize((240, 120))).reshape(-1, 3), axis=0))
-            assert colours > 50, f"the 3D view in voila is nearly uniform ({colours} colours)"
-        finally:
-            page.close()
 
 
 def test_run_all_stops_at_an_error_at_once_and_names_it(lab):

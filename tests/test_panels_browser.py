@@ -9,7 +9,8 @@ paints every frame the kernel sent exactly once (the figure records each frame's
 at the animation frame after its draw, so after a paint; the kernel coalesces the moves that
 queued while it was busy, so it may send fewer than 15), its last frame is the kernel's last,
 for the value the slider shows, the slider never jumps back against the keys, and each panel's
-figure has pixels in a static HTML export (nbconvert) opened from a file.
+figure has pixels in a static HTML export (nbconvert) opened from a file. voila serves as
+``make app`` does (``afmsmiler.apps``), and its pages ask no host but 127.0.0.1 for anything.
 
 The panels come from the registry (``afmsmiler.ui.registry``): here those of modules (a)-(d), one
 per notebook; ``test_notebooks_browser.py`` moves every panel of modules (e)-(h) in its notebook.
@@ -39,6 +40,7 @@ def _served(kind, chromium, root):
     """A JupyterLab or voila server on the notebooks' copies, and a page; both closed after."""
     server = B.Server(kind, root).start()
     page = B.new_page(chromium)
+    page.asked = B.watch_requests(page)  # every address the page asks for
     try:
         yield server, page
     finally:
@@ -204,6 +206,8 @@ def test_voila_panel_follows_its_slider(voila, name):
         assert B.voila_errors(page) == [], f"{notebook} shows errors after the key presses"
         _check_drag(page, slider, key, name)
         assert B.voila_errors(page) == [], f"{notebook} shows errors after the drag"
+        # the app (make app) asks no host but its own server for anything
+        assert B.foreign(page.asked) == [], f"{notebook} in voila asked beyond 127.0.0.1"
     finally:
         page.goto("about:blank")  # voila shuts the kernel down when its page goes
 
