@@ -475,7 +475,11 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
   let lastSeq = afm.seqs(root, sel), lastHash = afm.checksum(root, sel).hash;
   const baseSeq = lastSeq, baseFrames = afm.frames(root, sel);
   let lastPainted = afm.paintedCount(root, sel);
-  const onKey = () => { st.keys++; if (st.t0 === null) st.t0 = performance.now(); };
+  const onKey = () => {
+    st.keys++;
+    st.tLast = performance.now();
+    if (st.t0 === null) st.t0 = st.tLast;
+  };
   window.addEventListener('keydown', onKey, true);
   const start = performance.now();
   let lastChange = null;
@@ -501,6 +505,7 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
       if ((quietFrom !== null && now - quietFrom > quietMs) || now - start > timeoutMs) {
         window.removeEventListener('keydown', onKey, true);
         resolve({seqs: st.seqs, states: st.states, times: st.times,
+                 lastKey: st.t0 === null ? null : st.tLast - st.t0,
                  timedOut: now - start > timeoutMs, baseSeq: baseSeq, values: st.values,
                  keys: st.keys, frames: afm.framesSince(root, sel, baseFrames)});
       } else requestAnimationFrame(tick);
@@ -882,12 +887,20 @@ class DragResult:
     states: int = 0  # distinct pixel states painted
     timed_out: bool = False
     last_frame_s: float | None = None  # s from the first keydown to the last change painted
+    last_key_s: float | None = None  # s from the first keydown to the last one
     values: list = field(default_factory=list)  # the slider's readout, as it changed per frame
     keys: int = 0  # keydown events the page saw
     #: Per live figure of the panel: the kernel's sequence numbers of the frames it received
     #: and of those it painted (each recorded by the figure at the animation frame after its
     #: draw, so after a paint), in order; empty without a live figure.
     frames: list = field(default_factory=list)
+
+    @property
+    def after_last_key_s(self) -> float | None:
+        """s from the last keydown to the last change painted (None when nothing changed)."""
+        if self.last_frame_s is None or self.last_key_s is None:
+            return None
+        return self.last_frame_s - self.last_key_s
 
     @property
     def received(self) -> int:
@@ -947,6 +960,7 @@ def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
     seqs = [s for s in r["seqs"] if s.strip(",")]
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
+                      last_key_s=None if r.get("lastKey") is None else r["lastKey"] / 1000.0,
                       values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
 
 
@@ -970,6 +984,7 @@ def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
     seqs = [s for s in r["seqs"] if s.strip(",")]
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
+                      last_key_s=None if r.get("lastKey") is None else r["lastKey"] / 1000.0,
                       values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
 
 
