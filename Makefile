@@ -105,9 +105,11 @@ hub-proxy:
 	  else echo "no npm: the hub test will be skipped"; fi; }
 
 ## binder/requirements.txt: the exact versions installed in .venv (what `make test` passed with),
-## for repo2docker (Binder, a JupyterHub's image). Run it after an upgrade.
+## for repo2docker (Binder, a JupyterHub's image). Run it after an upgrade. The installers
+## themselves (pip, setuptools, wheel, uv: the venv's and PyPI's own) are not pinned.
 lock:
-	$(VENV)/bin/uv pip freeze --quiet --python $(PY) --exclude-editable > $(LOCK).new
+	$(VENV)/bin/uv pip freeze --quiet --python $(PY) --exclude-editable \
+	  | grep -v -E '^(pip|setuptools|wheel|uv)==' > $(LOCK).new
 	mv $(LOCK).new $(LOCK)
 
 ## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every

@@ -231,7 +231,7 @@ def test_a_run_is_bounded_and_says_why_an_exercise_has_no_verdict(tmp_path, hang
              "ratio = mode_ratio(2)\ncheck_mode_ratio(ratio)",
              "h = not_defined_here\ncheck_thickness_for_spring_constant(h)",
              "import time\ntime.sleep(3600)",  # the run's time limit stops it
-             "check_tip_slope(tip_slope())"]    # never reached; 01.3 is not asked at all
+             "check_tip_slope(tip_slope())"]    # never reached; 01.3, 01.5 are not asked
     nb = dict(cells=[dict(cell_type="code", execution_count=None, id=f"c{i}", metadata={},
                           outputs=[], source=src) for i, src in enumerate(cells)],
               metadata={}, nbformat=4, nbformat_minor=5)
@@ -248,5 +248,6 @@ def test_a_run_is_bounded_and_says_why_an_exercise_has_no_verdict(tmp_path, hang
     assert "no cell ends with a call of check_largest_stress" in feedback["01.3"]
     assert feedback["01.4"] == "No verdict: the notebook ran out of time (10 s) before " \
                                "check_tip_slope."
-    assert (score.score, score.points) == (1, 4)
+    assert "no cell ends with a call of check_unseen_lever_calibration" in feedback["01.5"]
+    assert (score.score, score.points) == (1, 5)
     assert score.notes == ("ran out of time after 10 s", "1 cell(s) raised an error")

@@ -17,8 +17,9 @@ EXTRAS_ONLY = {"ipywidgets": "lab", "matplotlib": "lab", "meshcat": "lab", "anyw
                "PIL": "lab", "IPython": "lab", "ipykernel": "lab", "AFMReader": "files",
                "gwyfile": "files", "afmformats": "files", "serial": "hardware",
                "trimesh": "hardware", "pydwf": "hardware"}
-#: The layers that draw and wire widgets: they need the lab extra.
-UI_LAYERS = ("ui", "plots", "scenes")
+#: The layers that draw and wire widgets, and the web apps that serve them (voila): they need
+#: the lab extra.
+UI_LAYERS = ("ui", "plots", "scenes", "apps")
 
 BLOCKED_IMPORT = f"""
 import importlib, pkgutil, sys
