@@ -118,7 +118,7 @@ lock:
 ## (xdist_group). Notebooks run on both cores too, each notebook's cells on one worker in order
 ## (--dist loadfile). Tests check correctness, not speed (`make bench` measures speed).
 test: $(STAMP) browser firmware hub-proxy lint
-	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup tests
+	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup --durations=40 tests
 	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
 	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider \
 	  -n $(JOBS) --dist loadfile notebooks
