@@ -11,7 +11,7 @@ __all__ = ["main"]
 
 def _parser() -> argparse.ArgumentParser:
     from . import __doc__ as help_text
-    from .run import DEFAULT_TIMEOUT, MAX_TIMEOUT
+    from .run import DEFAULT_TIMEOUT, MAX_JOBS, MAX_TIMEOUT
 
     def seconds(text):
         value = float(text)
@@ -26,6 +26,8 @@ def _parser() -> argparse.ArgumentParser:
                         help="notebooks (.ipynb) named as the course's (NN_name.ipynb)")
     parser.add_argument("--timeout", type=seconds, default=DEFAULT_TIMEOUT,
                         help=f"longest run of each notebook in s (default {DEFAULT_TIMEOUT:g})")
+    parser.add_argument("--jobs", type=int, default=1, choices=range(1, MAX_JOBS + 1),
+                        metavar="N", help=f"notebooks run at once, 1 to {MAX_JOBS} (default 1)")
     parser.add_argument("--json", action="store_true", help="print the scores as JSON")
     what = parser.add_mutually_exclusive_group()
     what.add_argument("--nbgrader-source", type=Path, metavar="DIR",
@@ -81,7 +83,7 @@ def main(argv=None) -> int:
         from .run import grade
         from .scoring import report
 
-        scores = grade(args.notebooks, timeout=args.timeout)
+        scores = grade(args.notebooks, timeout=args.timeout, jobs=args.jobs)
     except ValueError as err:
         print(f"error: {err}", file=sys.stderr)
         return 2

@@ -25,15 +25,18 @@ from pathlib import Path
 
 from ..exercises import Feedback
 from ..exercises.registry import GRADE_LOG, exercises_of
+from ..validation import check_integer
 from .notebooks import cell_errors, checker_calls, notebook_number, read_notebook
 from .scoring import NotebookScore, read_verdicts, score_notebook
 
-__all__ = ["DEFAULT_TIMEOUT", "MAX_TIMEOUT", "Run", "run_notebook", "grade_notebook", "grade"]
+__all__ = ["DEFAULT_TIMEOUT", "MAX_TIMEOUT", "MAX_JOBS", "Run", "run_notebook", "grade_notebook", "grade"]
 
 #: Seconds a notebook may run by default (the course's longest, 08, runs in about 15 s here).
 DEFAULT_TIMEOUT = 600.0
 #: The longest run allowed, in seconds.
 MAX_TIMEOUT = 24 * 3600.0
+#: Most notebooks :func:`grade` runs at once.
+MAX_JOBS = 8
 #: The kernel that runs the notebooks (jupyter_client starts this Python for it).
 KERNEL_NAME = "python3"
 
@@ -219,8 +222,8 @@ def grade_notebook(path, *, timeout: float = DEFAULT_TIMEOUT) -> NotebookScore:
                           reasons=_reasons(run, number, calls, errors, timeout), notes=notes)
 
 
-def grade(paths, *, timeout: float = DEFAULT_TIMEOUT) -> list[NotebookScore]:
-    """Grade notebooks one after the other (:func:`grade_notebook`).
+def grade(paths, *, timeout: float = DEFAULT_TIMEOUT, jobs: int = 1) -> list[NotebookScore]:
+    """Grade notebooks (:func:`grade_notebook`), ``jobs`` of them at a time.
 
     Parameters
     ----------
@@ -228,12 +231,23 @@ def grade(paths, *, timeout: float = DEFAULT_TIMEOUT) -> list[NotebookScore]:
         The notebooks, at most 100.
     timeout : float
         Longest run of each in s.
+    jobs : int
+        Notebooks run at once, each in its own kernel, 1 to :data:`MAX_JOBS` (a kernel waits
+        for its cells' output much of the time: two at once on two cores take little more than
+        one).
 
     Returns
     -------
     list of NotebookScore
+        In the order of ``paths``.
     """
     paths = [paths] if isinstance(paths, (str, os.PathLike)) else list(paths)
     if not 1 <= len(paths) <= 100:
         raise ValueError(f"paths must name 1 to 100 notebooks, got {len(paths)}")
-    return [grade_notebook(p, timeout=timeout) for p in paths]
+    timeout = _check_timeout(timeout)
+    jobs = check_integer("jobs", jobs, 1, MAX_JOBS)
+    if jobs == 1:
+        return [grade_notebook(p, timeout=timeout) for p in paths]
+    from concurrent.futures import ThreadPoolExecutor
+    with ThreadPoolExecutor(max_workers=jobs) as pool:  # the kernels are processes
+        return list(pool.map(lambda p: grade_notebook(p, timeout=timeout), paths))
