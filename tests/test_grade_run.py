@@ -1,4 +1,4 @@
-"""The grade command and nbgrader on the course's notebooks, run for real (slow: two module
+"""The grade command and nbgrader on the course's notebooks, run for real (slow: two session
 fixtures run 22 notebooks, the grade command's two at a time, 1.5 to 3 minutes on two shared
 cores; the times are printed).
 
@@ -91,12 +91,12 @@ def _kernels():
     return {p.pid for p in psutil.Process().children(recursive=True)}
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def kernels_before():
     return _kernels()
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def graded(tmp_path_factory, kernels_before):
     """The notebooks as students get them (through the command line) and their solved copies,
     graded; and how long it took."""
@@ -119,7 +119,7 @@ def graded(tmp_path_factory, kernels_before):
     return dict(code=code, unsolved=json.loads(out.getvalue()), solved=solved, seconds=seconds)
 
 
-@pytest.fixture(scope="module")
+@pytest.fixture(scope="session")
 def autograded(tmp_path_factory, kernels_before):
     """nbgrader: each notebook released, a mixed submission autograded; the grade command on
     the same files."""
