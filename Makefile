@@ -42,9 +42,8 @@ firmware:
 	  else echo "no avr-gcc/simavr and not root: the firmware tests will be skipped"; fi; }
 
 ## uv (from PyPI) installs in parallel: about 35 s for every extra where pip took about 2 min;
-## pip does it when uv cannot. uv compiles the installed modules as pip does (--compile-bytecode,
-## on both cores): otherwise the first test run after an install compiled numpy, scipy,
-## matplotlib and Jupyter in each of its processes.
+## pip does it when uv cannot. (uv's --compile-bytecode, all 220 packages compiled at install, cost
+## make test more than the first imports it saves: each is compiled once, on first use.)
 ## The versions are those of the lock binder/requirements.txt (constraints: what the tests passed
 ## with, what a class's image installs; `make lock` writes it again after an upgrade).
 EXTRAS := test,lab,files,bench,hardware,book,hub
@@ -52,7 +51,7 @@ LOCK   := binder/requirements.txt
 $(STAMP): pyproject.toml $(LOCK)
 	test -x $(PY) || $(PYTHON) -m venv $(VENV)
 	{ $(PY) -m pip install --quiet uv && \
-	  $(VENV)/bin/uv pip install --quiet --compile-bytecode --python $(PY) -e '.[$(EXTRAS)]' -c $(LOCK); } || \
+	  $(VENV)/bin/uv pip install --quiet --python $(PY) -e '.[$(EXTRAS)]' -c $(LOCK); } || \
 	  { $(PY) -m pip install --quiet --upgrade pip && \
 	    $(PY) -m pip install --quiet -e '.[$(EXTRAS)]' -c $(LOCK); }
 	$(MAKE) --no-print-directory nbgrader-extensions-off

@@ -585,6 +585,26 @@ def close_lab_notebook(page, server: Server) -> None:
     server.shutdown_kernels()
 
 
+#: True once the current notebook's Run All is over: a cell shows an error (Run All stops there),
+#: or the kernel is idle with every code cell run and no prompt still busy.
+RUN_ALL_DONE_JS = """() => { const w = window.jupyterapp.shell.currentWidget;
+    const cells = w.content.model.cells;
+    for (let i = 0; i < cells.length; i++) {
+      const c = cells.get(i);
+      if (c.type !== 'code') continue;
+      for (let j = 0; j < c.outputs.length; j++)
+        if (c.outputs.get(j).type === 'error') return true;
+    }
+    const k = w.sessionContext.session.kernel;
+    if (!k || k.status !== 'idle') return false;
+    for (let i = 0; i < cells.length; i++) {
+      const c = cells.get(i);
+      if (c.type === 'code' && c.executionCount === null) return false;
+    }
+    return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
+                .some(p => p.textContent.includes('*')); }"""
+
+
 def run_all(page, *, timeout: float = 300.0) -> float:
     """Run All in JupyterLab and wait until every cell ran and the kernel is idle; seconds.
 
@@ -600,22 +620,7 @@ def run_all(page, *, timeout: float = 300.0) -> float:
     left = max(1.0, timeout - (time.monotonic() - t0))
     try:
         page.wait_for_function(
-            """() => { const w = window.jupyterapp.shell.currentWidget;
-                       const cells = w.content.model.cells;
-                       for (let i = 0; i < cells.length; i++) {
-                         const c = cells.get(i);
-                         if (c.type !== 'code') continue;
-                         for (let j = 0; j < c.outputs.length; j++)
-                           if (c.outputs.get(j).type === 'error') return true;
-                       }
-                       const k = w.sessionContext.session.kernel;
-                       if (!k || k.status !== 'idle') return false;
-                       for (let i = 0; i < cells.length; i++) {
-                         const c = cells.get(i);
-                         if (c.type === 'code' && c.executionCount === null) return false;
-                       }
-                       return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
-                                   .some(p => p.textContent.includes('*')); }""",
+            RUN_ALL_DONE_JS,
             timeout=left * 1000, polling=250)
     except Exception as exc:
         raise AssertionError(f"Run All did not end within {timeout:.0f} s; still running: "

@@ -359,22 +359,7 @@ _READY_JS = """(path) => { const a = window.jupyterapp; if (!a) return false;
               && w.sessionContext.session.kernel
               && w.sessionContext.session.kernel.status === 'idle'); }"""
 
-_DONE_JS = """() => { const w = window.jupyterapp.shell.currentWidget;
-    const cells = w.content.model.cells;
-    for (let i = 0; i < cells.length; i++) {
-      const c = cells.get(i);
-      if (c.type !== 'code') continue;
-      for (let j = 0; j < c.outputs.length; j++)
-        if (c.outputs.get(j).type === 'error') return true;
-    }
-    const k = w.sessionContext.session.kernel;
-    if (!k || k.status !== 'idle') return false;
-    for (let i = 0; i < cells.length; i++) {
-      const c = cells.get(i);
-      if (c.type === 'code' && c.executionCount === null) return false;
-    }
-    return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
-                .some(p => p.textContent.includes('*')); }"""
+_DONE_JS = B.RUN_ALL_DONE_JS  # the same end of Run All as tests/browser.run_all waits for
 
 
 @dataclass

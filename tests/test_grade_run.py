@@ -91,6 +91,11 @@ def _kernels():
     return {p.pid for p in psutil.Process().children(recursive=True)}
 
 
+def _left(before) -> list:
+    """Processes started since ``before`` that are still alive (kernels the grading left)."""
+    return [p for p in _kernels() - before if psutil.pid_exists(p)]
+
+
 @pytest.fixture(scope="session")
 def kernels_before():
     return _kernels()
@@ -116,7 +121,8 @@ def graded(tmp_path_factory, kernels_before):
     solved = grade([write_notebook(solved_copy(read_notebook(p), notebook_number(p)),
                                    root / "solved" / p.name) for p in NOTEBOOKS], jobs=JOBS)
     seconds[f"solved ({len(NOTEBOOKS)} notebooks, grade command)"] = time.monotonic() - t0
-    return dict(code=code, unsolved=json.loads(out.getvalue()), solved=solved, seconds=seconds)
+    return dict(code=code, unsolved=json.loads(out.getvalue()), solved=solved, seconds=seconds,
+                left=_left(kernels_before))
 
 
 @pytest.fixture(scope="session")
@@ -166,10 +172,11 @@ def autograded(tmp_path_factory, kernels_before):
     mixed = grade(submissions, jobs=JOBS)
     seconds[f"the same submissions ({len(NBGRADER)} notebooks, grade command)"] = \
         time.monotonic() - t0
-    return dict(mixed=mixed, nbgrader=scores, autograded=notebooks, seconds=seconds)
+    return dict(mixed=mixed, nbgrader=scores, autograded=notebooks, seconds=seconds,
+                left=_left(kernels_before))
 
 
-def test_unsolved_copies_score_zero_with_each_checkers_hint(graded):
+def _unsolved_copies_score_zero_with_each_checkers_hint(graded):
     assert graded["code"] == 0
     assert [nb["notebook"] for nb in graded["unsolved"]] == [p.name for p in NOTEBOOKS]
     for nb in graded["unsolved"]:
@@ -182,7 +189,7 @@ def test_unsolved_copies_score_zero_with_each_checkers_hint(graded):
             assert len(e["feedback"]) > 20
 
 
-def test_solved_copies_get_full_marks(graded):
+def _solved_copies_get_full_marks(graded):
     assert len(graded["solved"]) == len(NOTEBOOKS)
     for nb in graded["solved"]:
         assert nb.score == nb.points == len(exercises_of(nb.notebook)) > 0, nb
@@ -190,7 +197,7 @@ def test_solved_copies_get_full_marks(graded):
         assert all(e.feedback.startswith("Correct! ") for e in nb.exercises)
 
 
-def test_nbgrader_autograde_agrees_with_the_grade_command(autograded):
+def _nbgrader_autograde_agrees_with_the_grade_command(autograded):
     graded = autograded
     assert len(graded["mixed"]) == len(NBGRADER)
     for nb in graded["mixed"]:
@@ -205,7 +212,7 @@ def test_nbgrader_autograde_agrees_with_the_grade_command(autograded):
         assert 0 < nb.score < nb.points
 
 
-def test_a_units_slip_gets_the_checkers_hint(autograded):
+def _a_units_slip_gets_the_checkers_hint(autograded):
     graded = autograded
     from afmsmiler.exercises.cantilever import thickness_for_spring_constant, tip_slope
     first = graded["mixed"][0]
@@ -223,13 +230,20 @@ def test_a_units_slip_gets_the_checkers_hint(autograded):
     assert feedback["01.1"] == errors["ex01_1"]["evalue"]
 
 
-def test_no_kernel_outlives_the_grading(graded, kernels_before, request):
-    left = [p for p in _kernels() - kernels_before if psutil.pid_exists(p)]
-    assert left == []
-    seconds = dict(graded["seconds"])
-    with contextlib.suppress(pytest.skip.Exception):  # with nbgrader's runs, if it is here
-        seconds.update(request.getfixturevalue("autograded")["seconds"])
-    print("\n".join(f"{what}: {s:.0f} s" for what, s in seconds.items()))
+# One test per fixture: under xdist the tests of this module's group were spread over both
+# workers, and each worker graded every notebook again for its share of the tests.
+def test_the_grade_command_on_unsolved_and_solved_copies(graded):
+    _unsolved_copies_score_zero_with_each_checkers_hint(graded)
+    _solved_copies_get_full_marks(graded)
+    assert graded["left"] == []  # no kernel outlives the grading
+    print("\n".join(f"{what}: {s:.0f} s" for what, s in graded["seconds"].items()))
+
+
+def test_nbgrader_and_the_grade_command_on_the_same_submissions(autograded):
+    _nbgrader_autograde_agrees_with_the_grade_command(autograded)
+    _a_units_slip_gets_the_checkers_hint(autograded)
+    assert autograded["left"] == []
+    print("\n".join(f"{what}: {s:.0f} s" for what, s in autograded["seconds"].items()))
 
 
 def test_a_run_is_bounded_and_says_why_an_exercise_has_no_verdict(tmp_path, hang_guard):
