@@ -994,30 +994,79 @@ def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
 
 
 # -- static export -------------------------------------------------------------------------
-def export_html(notebook: Path, outdir: Path, *, timeout: float = 300.0) -> Path:
-    """``jupyter nbconvert --to html --execute`` a copy of ``notebook`` into ``outdir``."""
-    outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
-    src = outdir / notebook.name
-    shutil.copy2(notebook, src)
-    cmd = [_tool("jupyter-nbconvert"), "--to", "html", "--execute",
-           f"--ExecutePreprocessor.timeout={int(timeout)}", f"--output-dir={outdir}", str(src)]
-    proc = subprocess.Popen(cmd, env=kernel_env(), cwd=outdir, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, start_new_session=True)
+@dataclass(frozen=True)
+class HeadlessRun:
+    """A course notebook run once under nbclient with no browser, as a student's kernel runs it.
+
+    Attributes
+    ----------
+    frames : dict
+        Frames each panel of the notebook (registry variable -> ``live.frames_sent``) sent by
+        the end of the run: with a browser attached, every frame beyond these was caused by the
+        page itself (an echo of a slider, a redraw on display).
+    html : pathlib.Path
+        The executed notebook exported to HTML by nbconvert's HTMLExporter (what
+        ``jupyter nbconvert --to html --execute`` writes), without the cell that read the frames.
+    """
+    frames: dict
+    html: Path
+
+
+_HEADLESS: dict = {}
+
+
+def headless_run(notebook: str, shared: Path, *, timeout: float = 300.0) -> HeadlessRun:
+    """Run ``notebook`` (a name in :data:`NOTEBOOKS`) once with no browser: :class:`HeadlessRun`.
+
+    The run is made once per test run and notebook, by whichever xdist worker asks first (the
+    other waits for it under a file lock in ``shared``, a directory every worker of the run
+    sees: the ``headless`` fixture): the frames the lab test compares with and the HTML the
+    static-export test opens come from one execution. The kernel runs in a student's
+    environment (:func:`kernel_env`), in a fresh temporary working directory.
+    """
+    import fcntl
+    key = (notebook, str(shared))
+    if key in _HEADLESS:
+        return _HEADLESS[key]
+    stem = Path(notebook).stem
+    out = Path(shared) / stem
+    with open(Path(shared) / f"{stem}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)  # released when the file closes
+        if not (out / "frames.json").exists():
+            out.mkdir(exist_ok=True)
+            frames = _execute_and_export(NOTEBOOKS / notebook, out, timeout=timeout)
+            (out / "frames.json").write_text(json.dumps(frames))
+    run = HeadlessRun(frames=json.loads((out / "frames.json").read_text()),
+                      html=out / f"{stem}.html")
+    _HEADLESS[key] = run
+    return run
+
+
+def _execute_and_export(path: Path, out: Path, *, timeout: float) -> dict:
+    import nbformat
+    from nbclient import NotebookClient
+    from nbconvert import HTMLExporter
+    nb = nbformat.read(path, as_version=4)
+    names = [e.variable for e in REGISTRY if e.notebook == path.name]
+    nb.cells.append(nbformat.v4.new_code_cell(
+        "import json\nprint(json.dumps({"
+        + ", ".join(f"{n!r}: {n}.live.frames_sent" for n in names) + "}))"))
+    workdir = Path(tempfile.mkdtemp(prefix="afm-headless-run-"))
+    old = dict(os.environ)
     try:
-        out, _ = proc.communicate(timeout=timeout + 30)
-    except subprocess.TimeoutExpired:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.communicate()
-        raise RuntimeError(f"nbconvert of {notebook.name} took more than {timeout + 30:g} s")
+        os.environ.clear()
+        os.environ.update(kernel_env())
+        NotebookClient(nb, timeout=int(timeout), kernel_name="python3",
+                       resources={"metadata": {"path": str(workdir)}}).execute()
     finally:
-        if _group_alive(proc.pid):
-            with contextlib.suppress(ProcessLookupError, PermissionError):
-                os.killpg(proc.pid, signal.SIGKILL)
-    html = outdir / (notebook.stem + ".html")
-    if proc.returncode != 0 or not html.exists():
-        raise RuntimeError(f"nbconvert of {notebook.name} failed: {out.decode()[-2000:]}")
-    return html
+        os.environ.clear()
+        os.environ.update(old)
+        shutil.rmtree(workdir, ignore_errors=True)
+    last = nb.cells.pop()
+    text = "".join(o.get("text", "") for o in last.outputs if o.get("name") == "stdout")
+    body, _ = HTMLExporter().from_notebook_node(nb)
+    (out / f"{path.stem}.html").write_text(body, encoding="utf-8")
+    return json.loads(text)
 
 
 def static_figures(page, html: Path, selector: str = LIVE_FIGURE, *,
@@ -1047,29 +1096,3 @@ def summary(times: list) -> dict:
     ok = [t for t in times if t is not None]
     return {"n": len(times), "failed": len(times) - len(ok),
             "median": statistics.median(ok) if ok else None, "worst": max(ok) if ok else None}
-
-
-def headless_frames(notebook: str, *, timeout: float = 300.0) -> int:
-    """Frames the notebook's ``panel`` sent when the notebook runs with no browser at all.
-
-    A copy with one more cell (``print(panel.live.frames_sent)``) runs under nbclient in a
-    student's environment (:func:`kernel_env`); with a browser attached, every frame beyond this
-    count was caused by the page itself (an echo of a slider, a redraw on display).
-    """
-    import nbformat
-    from nbclient import NotebookClient
-    nb = nbformat.read(NOTEBOOKS / notebook, as_version=4)
-    nb.cells.append(nbformat.v4.new_code_cell("print(panel.live.frames_sent)"))
-    workdir = Path(tempfile.mkdtemp(prefix="afm-headless-"))
-    old = dict(os.environ)
-    try:
-        os.environ.clear()
-        os.environ.update(kernel_env())
-        NotebookClient(nb, timeout=int(timeout), kernel_name="python3",
-                       resources={"metadata": {"path": str(workdir)}}).execute()
-    finally:
-        os.environ.clear()
-        os.environ.update(old)
-        shutil.rmtree(workdir, ignore_errors=True)
-    out = "".join(o.get("text", "") for o in nb.cells[-1].outputs if o.get("name") == "stdout")
-    return int(out.strip())

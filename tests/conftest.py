@@ -119,6 +119,16 @@ def chromium():
         yield b
 
 
+@pytest.fixture(scope="session")
+def headless(tmp_path_factory):
+    """A directory every xdist worker of this run shares, for :func:`tests.browser.headless_run`
+    (each course notebook run once with no browser, whichever worker asks first)."""
+    base = tmp_path_factory.getbasetemp()
+    shared = (base.parent if os.environ.get("PYTEST_XDIST_WORKER") else base) / "headless"
+    shared.mkdir(exist_ok=True)
+    return shared
+
+
 @pytest.fixture(scope="module")
 def root():
     """A temporary root with copies of the course notebooks (and the floor notebook)."""

@@ -142,7 +142,7 @@ def _open_and_run(page, server, notebook):
 
 
 @pytest.mark.parametrize("name", NAMES)
-def test_lab_panel_follows_its_slider(lab, name):
+def test_lab_panel_follows_its_slider(lab, headless, name):
     server, page = lab
     e = B.PANELS[name]
     notebook, cls = e.notebook, e.cls
@@ -152,7 +152,9 @@ def test_lab_panel_follows_its_slider(lab, name):
     # (the browser echoed slider values back and each panel redrew twice on display)
     page.wait_for_timeout(1000)  # any echo of the sliders reaches the kernel by then
     shown = int(B.kernel_eval(page, f"print({e.variable}.live.frames_sent)").strip())
-    assert shown == B.headless_frames(notebook), f"{notebook}: the page made the panel update"
+    alone = B.headless_run(notebook, headless).frames[e.variable]
+    assert shown == alone, f"{notebook}: the page made the panel update ({shown} frames, {alone} " \
+                           "with no page)"
     slider, key = _check_presses(page, name)
     B.settle(page, SELECTOR, quiet=0.5, timeout=5)
 
@@ -240,9 +242,9 @@ def test_lab_floor_label_follows_its_slider(lab):
 @pytest.mark.skipif(not LIVE, reason="the panels' figures are ipympl canvases (blank in a "
                                      "static export) until afmsmiler/plots/live.py lands")
 @pytest.mark.parametrize("stem", sorted({B.PANELS[n].notebook for n in NAMES}))
-def test_static_export_shows_the_panel_figures(chromium, tmp_path, stem):
+def test_static_export_shows_the_panel_figures(chromium, headless, stem):
     notebook = B.NOTEBOOKS / stem
-    html = B.export_html(notebook, tmp_path)
+    html = B.headless_run(stem, headless).html  # the notebook executed and exported as nbconvert
     page = B.new_page(chromium)
     try:
         figures = B.static_figures(page, html, B.LIVE_FIGURE)
