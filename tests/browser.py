@@ -575,7 +575,7 @@ def open_lab(page, server: Server, notebook: str, *, timeout: float = 90.0) -> N
                              && w.sessionContext && w.sessionContext.session
                              && w.sessionContext.session.kernel
                              && w.sessionContext.session.kernel.status === 'idle'); }""",
-        arg=notebook, timeout=timeout * 1000, polling=250)
+        arg=notebook, timeout=timeout * 1000, polling="raf")
 
 
 def close_lab_notebook(page, server: Server) -> None:
@@ -621,7 +621,7 @@ def run_all(page, *, timeout: float = 300.0) -> float:
     try:
         page.wait_for_function(
             RUN_ALL_DONE_JS,
-            timeout=left * 1000, polling=250)
+            timeout=left * 1000, polling="raf")
     except Exception as exc:
         raise AssertionError(f"Run All did not end within {timeout:.0f} s; still running: "
                              f"{_running_cells(page)}") from exc
@@ -653,7 +653,7 @@ def wait_idle(page, *, timeout: float = 300.0) -> None:
                    if (!k || k.status !== 'idle') return false;
                    return !Array.from(document.querySelectorAll('.jp-InputArea-prompt'))
                                .some(p => p.textContent.includes('*')); }""",
-        timeout=timeout * 1000, polling=250)
+        timeout=timeout * 1000, polling="raf")
 
 
 def code_cells(page) -> list[int]:
