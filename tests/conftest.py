@@ -65,7 +65,37 @@ def hang_guard():
     return HangGuard()
 
 
+#: The browser tests' two xdist groups, by module. ``make test`` runs three workers: each group on
+#: a worker of its own (a group's modules share their servers and Chromium, and its tests run
+#: one after the other, so two pages never compete for the cores), and every other test on the
+#: third worker and then on whichever is free. The browser tests wait for pages most of their
+#: time, which the third worker's models fill. The two groups take about the same time (4.5 to
+#: 5 minutes each on this machine). A browser test in a module not listed here is refused at
+#: collection, so a new one cannot run outside them.
+BROWSER_GROUPS = {
+    "browser_panels": ("test_panels_browser.py", "test_book_browser.py"),
+    "browser_notebooks": ("test_notebooks_browser.py", "test_apps_browser.py",
+                          "test_hub_browser.py", "test_plots_live_browser.py",
+                          "test_scenes_instrument.py", "test_scenes_viewer.py"),
+}
+_BROWSER_GROUP = {module: group for group, modules in BROWSER_GROUPS.items()
+                  for module in modules}
+
+
+@pytest.hookimpl(tryfirst=True)  # before xdist's worker reads the groups into the node ids
 def pytest_collection_modifyitems(items):
+    outside = set()
+    for item in items:
+        if item.get_closest_marker("browser") is None:
+            continue
+        module = item.nodeid.split("::", 1)[0].rsplit("/", 1)[-1]
+        if module not in _BROWSER_GROUP:
+            outside.add(module)
+        elif item.get_closest_marker("xdist_group") is None:
+            item.add_marker(pytest.mark.xdist_group(_BROWSER_GROUP[module]))
+    if outside:
+        raise pytest.UsageError(f"browser tests in {sorted(outside)}: add their modules to "
+                                "tests/conftest.py:BROWSER_GROUPS")
     for item in items:
         if "hang_guard" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.hang_guard)

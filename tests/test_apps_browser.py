@@ -12,7 +12,7 @@ make, HTTP and WebSocket, goes to 127.0.0.1: an app needs no network beyond its 
 
 The kernels run with ``AFMSMILER_TESTING=1`` (short animations): these tests check what the apps
 show, never how long they take. Marked ``slow`` and ``browser``, all on one xdist worker with one
-server (``xdist_group``); skipped, saying why, when Chromium or Playwright is missing.
+server (the xdist group conftest.BROWSER_GROUPS gives them); skipped, saying why, when Chromium or Playwright is missing.
 """
 from pathlib import Path
 from urllib.parse import urlsplit
@@ -23,7 +23,7 @@ import pytest
 from afmsmiler.ui.registry import MODULES
 from tests import browser as B
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser, pytest.mark.xdist_group("apps_voila")]
+pytestmark = [pytest.mark.slow, pytest.mark.browser]  # its xdist group: conftest.BROWSER_GROUPS
 
 FIGURE = B.LIVE_FIGURE
 SHOTS = Path(__file__).resolve().parents[1] / ".browser-shots"  # screenshots, for a person

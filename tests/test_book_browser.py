@@ -47,8 +47,8 @@ BUILD_TIMEOUT = 300  # s: a bound, not a speed check (the build takes ~10 s)
 DRAW_TIMEOUT = 10.0  # s: a page not drawn by then fails (a wait, not a speed check)
 LIT = 0.01  # share of a frame's pixels a drawn figure or 3D view paints, at least (blank: 0)
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser,
-              pytest.mark.xdist_group("book_browser")]  # one build, on one worker
+pytestmark = [pytest.mark.slow, pytest.mark.browser]  # one build: its tests share an xdist
+# group (conftest.BROWSER_GROUPS)
 
 CHAPTERS = [nb[: -len(".ipynb")] for nb, _ in MODULES.values()]
 PAGES = ["intro", *CHAPTERS, "instructor_guide"]

@@ -11,13 +11,13 @@ still answer, no page asks for anything beyond 127.0.0.1, and the first student'
 read the second's notebook; the hub, its proxy and every student's server and kernel listen on
 127.0.0.1 only. Skipped, saying why, when not root or when JupyterHub, the proxy or
 Chromium is missing. ``make bench`` (``benchmarks/bench_hub.py``) measures 1, 4 and 8 students.
-Marked ``browser`` and ``slow``, on its own xdist worker (``xdist_group``).
+Marked ``browser`` and ``slow``, in the xdist group that conftest.BROWSER_GROUPS gives it.
 """
 import pytest
 
 from tests import hub as H
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser, pytest.mark.xdist_group("hub")]
+pytestmark = [pytest.mark.slow, pytest.mark.browser]  # its xdist group: conftest.BROWSER_GROUPS
 
 N_STUDENTS = 2
 

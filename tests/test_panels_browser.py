@@ -24,9 +24,8 @@ import pytest
 from tests import browser as B
 
 pytestmark = [pytest.mark.slow, pytest.mark.browser]
-# The tests that share a server share a worker (xdist_group): JupyterLab's on one, voila's on
-# one (the other worker may take it), the static exports wherever a worker is free.
-LAB, VOILA = pytest.mark.xdist_group("panels_lab"), pytest.mark.xdist_group("panels_voila")
+# The module's tests share one xdist group (conftest.BROWSER_GROUPS): one JupyterLab and one
+# voila server for all of them.
 
 PRESSES = 3  # key presses timed per panel
 DRAG = 15  # key presses of a drag
@@ -129,7 +128,6 @@ def _check_drag(page, slider, key, name, *, kernel=None):
     raise AssertionError(message)
 
 
-@LAB
 def _open_and_run(page, server, notebook):
     """Open ``notebook`` in JupyterLab and Run All, unless the page shows it run already (the
     panels of one notebook are tried in one session, as a student tries them)."""
@@ -167,7 +165,6 @@ def test_lab_panel_follows_its_slider(lab, headless, name):
     assert B.lab_errors(page) == [], f"{notebook} shows errors after the drag"
 
 
-@LAB
 @pytest.mark.skipif(not LIVE, reason="a live figure logs the frames it paints")
 def test_lab_a_burst_of_presses_paints_every_frame_the_kernel_sent_once(lab):
     """Issue 24: 15 presses at once on the contact panel's slider queue behind the kernel's
@@ -207,7 +204,6 @@ def test_lab_a_burst_of_presses_paints_every_frame_the_kernel_sent_once(lab):
     assert B.lab_errors(page) == []
 
 
-@VOILA
 @pytest.mark.parametrize("name", NAMES)
 def test_voila_panel_follows_its_slider(voila, name):
     server, page = voila
@@ -230,7 +226,6 @@ def test_voila_panel_follows_its_slider(voila, name):
         raise
 
 
-@LAB
 def test_lab_floor_label_follows_its_slider(lab):
     """The floor the benchmark divides by: slider -> kernel -> a label's text, in time."""
     server, page = lab

@@ -16,8 +16,8 @@ from matplotlib.figure import Figure
 
 from afmsmiler.plots.live import static_html
 
-pytestmark = [pytest.mark.slow, pytest.mark.browser,
-              pytest.mark.xdist_group("plots_live_browser")]  # its servers on one worker
+pytestmark = [pytest.mark.slow, pytest.mark.browser]  # its servers: one xdist group
+# (conftest.BROWSER_GROUPS)
 CHROMIUM = os.environ.get("AFMSMILER_CHROMIUM", "/usr/bin/chromium")
 ARGS = ["--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
         "--disable-background-networking", "--disable-component-update", "--disable-sync"]
