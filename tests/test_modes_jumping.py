@@ -43,6 +43,30 @@ def test_trigger_against_hertz(force):
     assert trigger_z_np(HARD, force) == pytest.approx(hertz_trigger(HARD, force), rel=1e-9)
 
 
+
+@pytest.mark.parametrize("force", [0.5e-9, 10e-9, 200e-9])
+def test_dmt_trigger_against_the_closed_form(force):
+    # DMT: F = (4/3) E* sqrt(R) d^(3/2) - 2 pi R w in contact (Derjaguin, Muller and Toporov
+    # 1975), so d = (3 (F_t + 2 pi R w) / (4 E* sqrt R))^(2/3) and Z_t = d + F_t / k
+    system = HARD.replace(adhesion="dmt", work_of_adhesion=0.05)
+    loaded = force + 2 * math.pi * TIP.radius * 0.05
+    d = (3 * loaded / (4 * system.reduced_modulus * math.sqrt(TIP.radius))) ** (2 / 3)
+    assert trigger_z_np(system, force) == pytest.approx(d + force / system.spring_constant,
+                                                        rel=1e-11)
+
+
+@pytest.mark.parametrize("model", ["dmt", "jkr", None])
+def test_the_approach_branch_at_a_point_does_not_depend_on_the_ramp(model):
+    # issue 24: the trigger's search runs the approach branch on grids of Z_np; each value must be
+    # the one-point state system.at gives (the branch has no memory on approach)
+    system = HARD.replace(adhesion=model, work_of_adhesion=0.05) if model else HARD
+    z = np.linspace(-2e-9, 30e-9, 41)
+    grid = jumping._approach_force(system, z)
+    alone = np.array([system.at(v, "approach").force[0] for v in z])
+    np.testing.assert_allclose(grid, alone, rtol=1e-12, atol=1e-24)
+    # and the trigger found on those grids is where the one-point state carries F_t
+    assert system.at(trigger_z_np(system, F_T)).force[0] == pytest.approx(F_T, rel=1e-9)
+
 def test_a_kept_trigger_is_the_one_of_the_system_asked_for():
     """The trigger is kept per (system, force): an equal system gets it again, a system that
     differs in any field (a panel's modulus slider) gets its own, each against Hertz."""
