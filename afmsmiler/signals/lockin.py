@@ -175,6 +175,8 @@ def _stages(x: np.ndarray, fs: float, tau: float, n: int) -> np.ndarray:
     recursion y[k] = y[k-1] + a (x[k] - y[k-1]) per stage as a cascade of ``lfilter`` calls
     (equal to it, tested), in one loop over the samples instead of ``n``, for X and Y at once.
     """
+    if x.shape[-1] == 0:  # nothing to filter (sosfilt refuses an empty axis)
+        return np.array(x, dtype=float)
     a = -math.expm1(-1.0 / (fs * tau))
     sos = np.tile([a, 0.0, 0.0, 1.0, a - 1.0, 0.0], (n, 1))
     return scipy.signal.sosfilt(sos, x, axis=-1)
