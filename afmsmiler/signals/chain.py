@@ -30,8 +30,7 @@ The heater power is periodic in the drive period, so the steady state is compute
 frequency domain over a whole number of drive periods: FFT of the sampled P(t), times the
 transfer function at every bin, inverse FFT (a linear chain's periodic steady state; the lever
 has rung for a long time before the record starts, as in the lab). Being linear, it is done once
-per lever and record for the sampled 1, sin(w t) and sin^2(w t) that make up P, and a run adds
-them with P's coefficients (V_dc^2, 2 V_dc V_ac, V_ac^2) / R. Noise is drawn in the same
+per lever and record for the sampled sin^2(w t), and an unbiased run scales that by V_ac^2 / R. Noise is drawn in the same
 domain from its one-sided density S(f): bin k gets sqrt(S f_s N / 4) (a + j b), a, b standard
 normal, whose inverse FFT has the variance int S df.
 
@@ -283,23 +282,23 @@ class _Memo:
 
 
 #: What :func:`simulate` reuses from one run to the next (issue 24: a move of the drive
-#: amplitude, the lock-in panel's slider, changes none of it): the drive's waveforms and their
-#: deflections (:func:`_drive`), which depend on the lever, the frequency and the record but not on
-#: V_ac or V_dc, and the noise records, which depend on the sensor, e_n^2, the record and the seed,
-#: not on the drive.
+#: amplitude, the lock-in panel's slider, changes none of it): the drive's waveforms, the transfer
+#: function and the deflection of a unit sin^2 power (:func:`_drive`), which depend on the lever,
+#: the frequency and the record but not on V_ac or V_dc, and the noise records, which depend on
+#: the sensor, e_n^2, the record and the seed, not on the drive.
 _DRIVES, _NOISES = _Memo(), _Memo()
 
 
 def _drive(probe: ActiveProbe, f: float, n: int, fs: float) -> tuple:
-    """The record's times, bins, sampled drive waveforms and their deflections per watt.
+    """The record's times, bins, sampled drive waveforms, transfer function and one deflection.
 
-    Returns ``(t, freqs, s, tone, (d_1, d_s, d_ss))``: t = k / fs, the rfft bin frequencies,
-    s = sin(w t), the interference's sin(6 w t), and the periodic steady-state deflection
-    (m/W x W) of a heater power equal to 1, s and s^2 W: each ``irfft(rfft(p) H)`` with H
-    :meth:`ActiveProbe.deflection_per_power` at the bins. Since P = (V_dc + V_ac s)^2 / R =
-    (V_dc^2 + 2 V_dc V_ac s + V_ac^2 s^2) / R and heat -> deflection is linear (the FFT too), the
-    deflection of P is (V_dc^2 d_1 + 2 V_dc V_ac d_s + V_ac^2 d_ss) / R, equal to the FFT of the
-    sampled P through H to rounding (tested): the same sampled squares, without three FFTs a move.
+    Returns ``(t, freqs, s, tone, h, d_ss)``: t = k / fs, the rfft bin frequencies, s = sin(w t),
+    the interference's sin(6 w t), H = :meth:`ActiveProbe.deflection_per_power` at the bins, and
+    d_ss = ``irfft(rfft(s^2) H)``, the periodic steady-state deflection (m) of a heater power
+    s^2 W. Without a bias P = V_ac^2 s^2 / R, and heat -> deflection is linear (the FFT too), so
+    the deflection of P is (V_ac^2 / R) d_ss, equal to the FFT of the sampled P through H to
+    rounding (tested): the same sampled square, without an FFT pair and a sine a move of V_ac.
+    A new frequency or record (the other sliders) costs what one run did before.
     """
     values = dict(probe.actuator.values)
     values.pop("ac_voltage")
@@ -309,10 +308,9 @@ def _drive(probe: ActiveProbe, f: float, n: int, fs: float) -> tuple:
         freqs = np.fft.rfftfreq(n, 1.0 / fs)
         h = probe.deflection_per_power(freqs)
         s = np.sin(2 * math.pi * f * t)
-        responses = tuple(np.fft.irfft(np.fft.rfft(p) * h, n) for p in (np.ones(n), s, s * s))
-        return (t, freqs, s, np.sin(2 * math.pi * 6 * f * t)) + responses
-    t, freqs, s, tone, *responses = _DRIVES.get((values, f, n, fs), compute)
-    return t, freqs, s, tone, tuple(responses)
+        return (t, freqs, s, np.sin(2 * math.pi * 6 * f * t), h,
+                np.fft.irfft(np.fft.rfft(s * s) * h, n))
+    return _DRIVES.get((values, f, n, fs), compute)
 
 
 def _noises(probe, e_n2, freqs, n, fs, seed):
@@ -397,14 +395,13 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
         raise ValueError(f"record_duration {duration:g} s needs {n} samples at "
                          f"{spp} per period; at most {LIMITS['samples']}: shorten it or lower "
                          f"samples_per_period")
-    t, freqs, wave, tone, (d_1, d_s, d_ss) = _drive(probe, f, n, fs)
+    t, freqs, wave, tone, h, d_ss = _drive(probe, f, n, fs)
     voltage = dc_voltage + a.ac_voltage * wave
     power = voltage * voltage / a.resistance
-    # the FFT of the sampled power through H, term by term (see _drive)
-    deflection = (a.ac_voltage ** 2 / a.resistance) * d_ss
-    if dc_voltage:
-        deflection = deflection + (dc_voltage ** 2 / a.resistance) * d_1 \
-            + (2 * dc_voltage * a.ac_voltage / a.resistance) * d_s
+    if dc_voltage:  # the FFT of the sampled power through H
+        deflection = np.fft.irfft(np.fft.rfft(power) * h, n)
+    else:  # the same, P being V_ac^2 / R times the sampled s^2 (see _drive)
+        deflection = (a.ac_voltage ** 2 / a.resistance) * d_ss
 
     if noise:  # the same records for every drive (remembered: see _NOISES)
         brownian, v_noise = _noises(probe, e_n2, freqs, n, fs, seed)
