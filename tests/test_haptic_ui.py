@@ -51,6 +51,29 @@ def test_drawn_ring_down_decays_with_the_readout_q():
     assert "Q_eff = 100" in panel.readout.value
 
 
+
+@pytest.mark.parametrize("quality_factor", [10.0, 400.0, 1000.0])
+def test_no_dashed_line_runs_a_long_path(quality_factor):
+    # issue 24: the browser strokes a dashed line dash by dash; the ring-downs oscillate across
+    # the whole axis at about a period a pixel, a path of ~150 axis widths at Q = 400: such a
+    # line must be solid (a dashed one may run at most a few axis widths)
+    panel = QControlPanel(quality_factor=quality_factor)
+    panel.set(gain=0.001)
+    for ax in panel.fig.axes:
+        (x0, x1), (y0, y1) = ax.get_xlim(), ax.get_ylim()
+        log = ax.get_yscale() == "log"
+        if log:
+            y0, y1 = math.log10(y0), math.log10(y1)
+        width, height = panel.fig.get_size_inches() * ax.get_position().size
+        for line in ax.get_lines():
+            x, y = (np.asarray(v, dtype=float) for v in line.get_data())
+            if log:
+                y = np.log10(y)
+            path = np.nansum(np.hypot(np.diff(x) / (x1 - x0), np.diff(y) / (y1 - y0) * height
+                                      / width))  # in axis widths
+            if line.get_linestyle() not in ("-", "solid"):
+                assert path < 5.0, (line.get_label(), path)
+
 def test_one_model_run_per_slider_move(runs):
     panel = QControlPanel()
     base = dict(runs)

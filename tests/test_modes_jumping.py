@@ -43,6 +43,46 @@ def test_trigger_against_hertz(force):
     assert trigger_z_np(HARD, force) == pytest.approx(hertz_trigger(HARD, force), rel=1e-9)
 
 
+
+
+@pytest.mark.parametrize("spring_constant", [0.1, 1.0, 40.0])
+@pytest.mark.parametrize("youngs_modulus", [1e6, 1e9, 1e11])
+def test_trigger_is_within_its_tolerance_of_hertz(spring_constant, youngs_modulus):
+    # the search's stated tolerance, 1e-15 m + 1e-12 Z_t, against Hertz's closed form over soft
+    # and stiff levers and samples and five decades of force (issue 24: the search stops on an
+    # estimate of its interpolation error)
+    system = ContactSystem(spring_constant=spring_constant, tip=TIP,
+                           youngs_modulus=youngs_modulus, poisson_ratio=0.3)
+    for force in (1e-10, 1e-8, 1e-6, 1e-5):
+        z = hertz_trigger(system, force)
+        assert abs(trigger_z_np(system, force) - z) <= 1e-15 + 1e-12 * z
+
+@pytest.mark.parametrize("force", [0.5e-9, 10e-9, 200e-9])
+def test_dmt_trigger_against_the_closed_form(force):
+    # DMT: F = (4/3) E* sqrt(R) d^(3/2) - 2 pi R w in contact (Derjaguin, Muller and Toporov
+    # 1975), so d = (3 (F_t + 2 pi R w) / (4 E* sqrt R))^(2/3) and Z_t = d + F_t / k
+    system = HARD.replace(adhesion="dmt", work_of_adhesion=0.05)
+    loaded = force + 2 * math.pi * TIP.radius * 0.05
+    d = (3 * loaded / (4 * system.reduced_modulus * math.sqrt(TIP.radius))) ** (2 / 3)
+    assert trigger_z_np(system, force) == pytest.approx(d + force / system.spring_constant,
+                                                        rel=1e-11)
+
+
+@pytest.mark.parametrize("model", ["dmt", "jkr", None])
+def test_the_approach_branch_at_a_point_does_not_depend_on_the_ramp(model):
+    # issue 24: the trigger's search runs the approach branch on grids of Z_np; each value must be
+    # the one-point state system.at gives (the branch has no memory on approach)
+    system = HARD.replace(adhesion=model, work_of_adhesion=0.05) if model else HARD
+    z = np.linspace(-2e-9, 30e-9, 41)
+    grid = jumping._approach_force(system, z)
+    alone = np.array([system.at(v, "approach").force[0] for v in z])
+    np.testing.assert_allclose(grid, alone, rtol=1e-12, atol=1e-24)
+    # and the trigger found on those grids is where the one-point state crosses F_t, within the
+    # tolerance 1e-15 m + 1e-12 Z_t
+    z_t = trigger_z_np(system, F_T)
+    tol = 1e-15 + 1e-12 * z_t
+    assert system.at(z_t - tol).force[0] < F_T < system.at(z_t + tol).force[0]
+
 def test_a_kept_trigger_is_the_one_of_the_system_asked_for():
     """The trigger is kept per (system, force): an equal system gets it again, a system that
     differs in any field (a panel's modulus slider) gets its own, each against Hertz."""

@@ -154,16 +154,16 @@ def test_the_transfer_function_does_not_depend_on_the_drive_amplitude():
 
 
 @pytest.mark.parametrize("noise", [True, False])
-def test_a_drive_move_reuses_transfer_and_noise_and_equals_the_full_simulation(noise):
+def test_a_drive_move_reuses_drive_and_noise_and_equals_the_full_simulation(noise):
     from afmsmiler.signals import chain
     fields = ("time", "heater_voltage", "power", "deflection", "brownian", "bridge", "output")
-    chain._TRANSFERS.clear()
+    chain._DRIVES.clear()
     chain._NOISES.clear()
     simulate(ActiveProbe.build(ac_voltage=0.5), record_duration=2e-3, noise=noise, seed=4)
     probe = ActiveProbe.build(ac_voltage=1.3)
     warm = simulate(probe, record_duration=2e-3, noise=noise, seed=4)  # from the memos
-    assert len(chain._TRANSFERS.entries) == 1 and len(chain._NOISES.entries) == int(noise)
-    chain._TRANSFERS.clear()
+    assert len(chain._DRIVES.entries) == 1 and len(chain._NOISES.entries) == int(noise)
+    chain._DRIVES.clear()
     chain._NOISES.clear()
     full = simulate(probe, record_duration=2e-3, noise=noise, seed=4)
     for name in fields:
@@ -194,3 +194,20 @@ def test_the_chain_is_not_linear_in_the_drive_so_runs_are_never_scaled():
     np.testing.assert_allclose(b.deflection, 4 * a.deflection, rtol=0,
                                atol=1e-14 * np.max(np.abs(b.deflection)))
     assert np.max(np.abs(b.bridge - 4 * a.bridge)) > 1e-4 * np.max(np.abs(b.bridge))
+
+
+@pytest.mark.parametrize("dc_voltage", [0.0, 0.7])
+def test_the_deflection_is_the_fft_of_the_sampled_power_through_the_transfer_function(dc_voltage):
+    # issue 24: simulate adds the remembered deflections of the sampled 1, sin and sin^2 with
+    # P's coefficients; here the sampled P itself goes through rfft, H at the bins and irfft
+    probe = ActiveProbe.build(ac_voltage=1.1)
+    run = simulate(probe, dc_voltage=dc_voltage, half_resonance_ratio=1.004, noise=False,
+                   record_duration=1e-3)
+    n = run.time.size
+    power = (dc_voltage + 1.1 * np.sin(2 * math.pi * run.drive_frequency * run.time)) ** 2 \
+        / probe.actuator.resistance
+    h = probe.deflection_per_power(np.fft.rfftfreq(n, 1 / run.sample_rate))
+    direct = np.fft.irfft(np.fft.rfft(power) * h, n)
+    np.testing.assert_allclose(run.power, power, rtol=1e-12)
+    np.testing.assert_allclose(run.deflection, direct, rtol=0,
+                               atol=1e-12 * np.max(np.abs(direct)))

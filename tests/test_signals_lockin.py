@@ -47,6 +47,24 @@ def test_lowpass_gain_is_that_of_n_rc_stages():
     assert (tail.max() - tail.min()) / 2 == pytest.approx(expected, rel=2e-3)
 
 
+
+@pytest.mark.parametrize("order", [1, 4])
+def test_lowpass_is_the_rc_recursion_stage_after_stage(order):
+    # issue 24: the stages run in one sosfilt pass; here each is the zero-order-hold recursion
+    # y[k] = y[k-1] + a (x[k] - y[k-1]) written out, a = 1 - exp(-dt / tau), from rest
+    fs, tau = 1e5, 3e-4
+    x = np.random.default_rng(2).standard_normal(400)
+    a = 1 - math.exp(-1 / (fs * tau))
+    y = x.tolist()
+    for _ in range(order):
+        prev, out = 0.0, []
+        for v in y:
+            prev = prev + a * (v - prev)
+            out.append(prev)
+        y = out
+    np.testing.assert_allclose(lowpass(x, sample_rate=fs, time_constant=tau, order=order), y,
+                               rtol=1e-12, atol=1e-15)
+
 def _tone(amplitude, phase, f, fs, n):
     return amplitude * np.sin(2 * math.pi * f * np.arange(n) / fs + phase)
 

@@ -46,7 +46,6 @@ from types import MappingProxyType
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import brentq
 
 from ..contact import ContactSystem
 from ..imaging.scan_modes import DIRECTIONS, Crash, Mode, ModeLine, ScanPlan
@@ -94,9 +93,10 @@ def trigger_z_np(system: ContactSystem, trigger_force: float = TRIGGER_FORCE.def
     Returns
     -------
     float
-        Z_t > 0 (from the undeformed surface touching the resting tip), found by Brent's method
-        on module (d)'s approach branch (its force rises with Z_np: the lever's equation
-        k (Z_np - Z_s) = F(Z_s) has one root on the stable branch).
+        Z_t > 0 (from the undeformed surface touching the resting tip), found on module (d)'s
+        approach branch, whose force rises with Z_np (the lever's equation k (Z_np - Z_s) =
+        F(Z_s) has one root on the stable branch), by bracketing, grid refinement and
+        interpolation (see ``_trigger_z_np``), to 1e-15 m + 1e-12 Z_t.
 
     Raises
     ------
@@ -110,28 +110,79 @@ def trigger_z_np(system: ContactSystem, trigger_force: float = TRIGGER_FORCE.def
     return _trigger_z_np(system, TRIGGER_FORCE.check(trigger_force))
 
 
+#: Z_np values per model run of the trigger's search (one vectorised approach branch).
+_GRID = 257
+#: The bracketing run's geometric steps per doubling of Z_np (8 doublings a run: 2.2 % cells).
+_PER_DOUBLING = 32
+#: Grid refinements of the trigger's search at most: each narrows the bracket 256-fold (16 from
+#: any bracket a double can hold; one or two in practice, see ``_trigger_z_np``).
+_MAX_REFINEMENTS = 16
+#: The trigger's tolerance: |Z_found - Z_t| <= _XTOL + _RTOL |Z_t| (m, relative).
+_XTOL, _RTOL = 1e-15, 1e-12
+
+
+def _approach_force(system: ContactSystem, z: np.ndarray) -> np.ndarray:
+    """Module (d)'s approach force in N at the increasing Z_np values ``z`` (one model run).
+
+    The approach branch at a Z_np does not depend on the ramp's other points (the tip touches
+    from Z_np = 0 on; only the retract remembers where it has been): each value is
+    ``system.at(z_i, "approach")``'s (tested).
+    """
+    return system.approach_retract(z).approach.force
+
+
 @lru_cache(maxsize=64)
 def _trigger_z_np(system: ContactSystem, f_t: float) -> float:
     """:func:`trigger_z_np` of a checked system and force, kept for the systems last asked for
     (a frozen, hashable system: a jumping panel's move of the lift or the speed, and the mode
-    beside its curve, ask for the same trigger again; 8 ms of Brent's method each)."""
-    def excess(z):
-        return float(system.at(z, "approach").force[0]) - f_t
+    beside its curve, ask for the same trigger again).
 
+    The approach force F(Z) rises with Z_np on the stable branch. One model run on a geometric
+    grid from 2 F_t / k up (8 doublings of :data:`_PER_DOUBLING` steps, more runs while F stays
+    below F_t, up to the tip's limit) brackets Z_t in a cell 2.2 % wide; uniform grids of
+    :data:`_GRID` values (one vectorised run each) narrow it. The root is the linear
+    interpolation in the last cell, whose error is at most h^2 / 8 max|F''| / |F'| (the
+    interpolation remainder; F' and F'' from the grid's first and second differences): the
+    search stops once ten times that, or the cell itself, is within 1e-15 m + 1e-12 Z_t. A
+    scalar root finder needed some ten runs of the model, 1 ms each (issue 24); this takes two
+    or three.
+    """
     limit = system.z_np_limit
-    hi = 2.0 * f_t / system.spring_constant + 1e-12
-    for _ in range(_MAX_DOUBLINGS):
-        if hi >= limit:
-            hi = limit * (1.0 - 1e-9)
-            if excess(hi) < 0:
-                raise ValueError(f"trigger_force {f_t:g} N is never reached: the sphere would "
-                                 f"be indented past its radius first (Z_np limit {limit:g} m); "
-                                 f"choose a smaller trigger_force")
+    top = limit * (1.0 - 1e-9)
+    lo, hi = 0.0, 2.0 * f_t / system.spring_constant + 1e-12
+    ratios = 2.0 ** (np.arange(8 * _PER_DOUBLING + 1) / _PER_DOUBLING)
+    for _ in range(_MAX_DOUBLINGS // 8 + 1):  # bounded: 8 doublings a model run
+        z = hi * ratios
+        capped = bool(z[-1] >= top)
+        z = np.r_[lo, z[z < top], top] if capped else np.r_[lo, z]
+        f = _approach_force(system, z)
+        above = np.flatnonzero(f[1:] >= f_t)
+        if above.size:
+            lo, hi = float(z[above[0]]), float(z[above[0] + 1])
             break
-        if excess(hi) >= 0:
+        if capped:
+            raise ValueError(f"trigger_force {f_t:g} N is never reached: the sphere would "
+                             f"be indented past its radius first (Z_np limit {limit:g} m); "
+                             f"choose a smaller trigger_force")
+        lo, hi = float(z[-1]), 2.0 * float(z[-1])
+    else:
+        raise ValueError(f"trigger_force {f_t:g} N is not reached below Z_np = {lo:g} m")
+    for _ in range(_MAX_REFINEMENTS):  # bounded: each run narrows the bracket 256-fold
+        z = np.linspace(lo, hi, _GRID)
+        f = _approach_force(system, z)
+        i = max(1, int(np.argmax(f >= f_t)))  # f[-1] >= f_t: the first grid value above
+        lo, hi, f_lo, f_hi = float(z[i - 1]), float(z[i]), float(f[i - 1]), float(f[i])
+        h, tol = hi - lo, _XTOL + _RTOL * hi
+        if h <= tol:
             break
-        hi *= 2.0
-    return float(brentq(excess, 0.0, hi, xtol=1e-15, rtol=1e-12, maxiter=200))
+        curvature = max(abs(f[j + 1] - 2.0 * f[j] + f[j - 1]) for j in (i - 1, i)
+                        if 1 <= j <= _GRID - 2) / (h * h)
+        slope = (f_hi - f_lo) / h
+        if slope > 0 and 10.0 * h * h / 8.0 * curvature / slope <= tol:
+            break
+    if f_hi == f_lo:
+        return hi
+    return lo + (f_t - f_lo) / (f_hi - f_lo) * (hi - lo)
 
 
 def _sequence(name: str, values, kind) -> tuple:

@@ -39,7 +39,10 @@ class QControlFigure:
         ax.set_title("resonance")
         ax.legend(loc="upper right")
         ax = self.ax_ring
-        self.lines["ring_free"], = ax.plot([], [], color="0.6", lw=1.0, ls="--",
+        # solid, not dashed: a ring-down of Q = 400 over 2 Q periods fills the axis, a path of
+        # some 150 axis widths (70,000 px), which a dashed stroke cuts into ~10^4 dashes each
+        # frame in the browser (issue 24); grey and thinner tells it from the controlled one
+        self.lines["ring_free"], = ax.plot([], [], color="0.7", lw=0.8,
                                            label="without Q control")
         self.lines["ring"], = ax.plot([], [], color="#1f77b4", lw=1.4, label="with Q control")
         ax.set_xlabel("time t / T0 (dimensionless)")

@@ -29,7 +29,8 @@ or (b), reused, not rewritten:
 The heater power is periodic in the drive period, so the steady state is computed exactly in the
 frequency domain over a whole number of drive periods: FFT of the sampled P(t), times the
 transfer function at every bin, inverse FFT (a linear chain's periodic steady state; the lever
-has rung for a long time before the record starts, as in the lab). Noise is drawn in the same
+has rung for a long time before the record starts, as in the lab). Being linear, it is done once
+per lever and record for the sampled sin^2(w t), and an unbiased run scales that by V_ac^2 / R. Noise is drawn in the same
 domain from its one-sided density S(f): bin k gets sqrt(S f_s N / 4) (a + j b), a, b standard
 normal, whose inverse FFT has the variance int S df.
 
@@ -281,19 +282,35 @@ class _Memo:
 
 
 #: What :func:`simulate` reuses from one run to the next (issue 24: a move of the drive
-#: amplitude, the lock-in panel's slider, changes neither): the transfer function heat ->
-#: deflection at the record's bins, which does not depend on V_ac (module (b)'s model is
-#: linear in the heat: V_ac enters only through P = V^2 / R), and the noise records, which
-#: depend on the sensor, e_n^2, the record and the seed, not on the drive.
-_TRANSFERS, _NOISES = _Memo(), _Memo()
+#: amplitude, the lock-in panel's slider, changes none of it): the drive's waveforms, the transfer
+#: function and the deflection of a unit sin^2 power (:func:`_drive`), which depend on the lever,
+#: the frequency and the record but not on V_ac or V_dc, and the noise records, which depend on
+#: the sensor, e_n^2, the record and the seed, not on the drive.
+_DRIVES, _NOISES = _Memo(), _Memo()
 
 
-def _transfer(probe: ActiveProbe, freqs: np.ndarray, n: int, fs: float) -> np.ndarray:
-    """``probe.deflection_per_power(freqs)`` at the rfft bins of ``n`` samples at ``fs``."""
+def _drive(probe: ActiveProbe, f: float, n: int, fs: float) -> tuple:
+    """The record's times, bins, sampled drive waveforms, transfer function and one deflection.
+
+    Returns ``(t, freqs, s, tone, h, d_ss)``: t = k / fs, the rfft bin frequencies, s = sin(w t),
+    the interference's sin(6 w t), H = :meth:`ActiveProbe.deflection_per_power` at the bins, and
+    d_ss = ``irfft(rfft(s^2) H)``, the periodic steady-state deflection (m) of a heater power
+    s^2 W. Without a bias P = V_ac^2 s^2 / R, and heat -> deflection is linear (the FFT too), so
+    the deflection of P is (V_ac^2 / R) d_ss, equal to the FFT of the sampled P through H to
+    rounding (tested): the same sampled square, without an FFT pair and a sine a move of V_ac.
+    A new frequency or record (the other sliders) costs what one run did before.
+    """
     values = dict(probe.actuator.values)
     values.pop("ac_voltage")
-    key = (values, n, fs)
-    return _TRANSFERS.get(key, lambda: (probe.deflection_per_power(freqs),))[0]
+
+    def compute():
+        t = np.arange(n) / fs
+        freqs = np.fft.rfftfreq(n, 1.0 / fs)
+        h = probe.deflection_per_power(freqs)
+        s = np.sin(2 * math.pi * f * t)
+        return (t, freqs, s, np.sin(2 * math.pi * 6 * f * t), h,
+                np.fft.irfft(np.fft.rfft(s * s) * h, n))
+    return _DRIVES.get((values, f, n, fs), compute)
 
 
 def _noises(probe, e_n2, freqs, n, fs, seed):
@@ -353,8 +370,8 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     Notes
     -----
     What does not depend on the drive amplitude V_ac is remembered for the next runs (bounded;
-    read-only arrays): the transfer function at the record's bins and the noise records (see
-    ``_TRANSFERS``, ``_NOISES``); a run is the same with or without them (tested). The chain
+    read-only arrays): the drive's sampled waveforms and their deflections, and the noise records
+    (see ``_drive``, ``_NOISES``); a run is the same with or without them (tested). The chain
     itself is not linear in V_ac (P = V^2 / R, and the bridge reads the deflection about its
     operating point), so a run is never scaled from another.
     """
@@ -378,19 +395,21 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
         raise ValueError(f"record_duration {duration:g} s needs {n} samples at "
                          f"{spp} per period; at most {LIMITS['samples']}: shorten it or lower "
                          f"samples_per_period")
-    t = np.arange(n) / fs
-    voltage = dc_voltage + a.ac_voltage * np.sin(2 * math.pi * f * t)
+    t, freqs, wave, tone, h, d_ss = _drive(probe, f, n, fs)
+    voltage = dc_voltage + a.ac_voltage * wave
     power = voltage * voltage / a.resistance
-    freqs = np.fft.rfftfreq(n, 1.0 / fs)
-    deflection = np.fft.irfft(np.fft.rfft(power) * _transfer(probe, freqs, n, fs), n)
+    if dc_voltage:  # the FFT of the sampled power through H
+        deflection = np.fft.irfft(np.fft.rfft(power) * h, n)
+    else:  # the same, P being V_ac^2 / R times the sampled s^2 (see _drive)
+        deflection = (a.ac_voltage ** 2 / a.resistance) * d_ss
 
     if noise:  # the same records for every drive (remembered: see _NOISES)
         brownian, v_noise = _noises(probe, e_n2, freqs, n, fs, seed)
     else:
         brownian, v_noise = np.zeros(n), np.zeros(n)
     bridge = s.respond(deflection + brownian)
-    tone = interference * np.sin(2 * math.pi * 6 * f * t)
-    output = gain * (bridge + v_noise + tone)
+    output = gain * (bridge + v_noise + interference * tone) if interference else \
+        gain * (bridge + v_noise)
 
     p_dc, p_1, p_2 = power_harmonics(dc_voltage, a.ac_voltage, a.resistance)
     h_0, h_1, h_2 = probe.deflection_per_power(np.array([0.0, f, 2 * f]))

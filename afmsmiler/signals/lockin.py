@@ -165,11 +165,21 @@ def lowpass(x, *, sample_rate: float, time_constant: float = TIME_CONSTANT.defau
     fs = check_positive("sample_rate", sample_rate, "Hz")
     tau = TIME_CONSTANT.check(time_constant)
     n = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
+    return _stages(x, fs, tau, n)
+
+
+def _stages(x: np.ndarray, fs: float, tau: float, n: int) -> np.ndarray:
+    """:func:`lowpass` of checked arguments along the last axis of ``x`` (rows filtered alike).
+
+    The ``n`` stages are ``n`` first-order sections of one ``scipy.signal.sosfilt`` pass: the same
+    recursion y[k] = y[k-1] + a (x[k] - y[k-1]) per stage as a cascade of ``lfilter`` calls
+    (equal to it, tested), in one loop over the samples instead of ``n``, for X and Y at once.
+    """
+    if x.shape[-1] == 0:  # nothing to filter (sosfilt refuses an empty axis)
+        return np.array(x, dtype=float)
     a = -math.expm1(-1.0 / (fs * tau))
-    y = x
-    for _ in range(n):
-        y = scipy.signal.lfilter([a], [1.0, a - 1.0], y)
-    return y
+    sos = np.tile([a, 0.0, 0.0, 1.0, a - 1.0, 0.0], (n, 1))
+    return scipy.signal.sosfilt(sos, x, axis=-1)
 
 
 def square_wave(cycles, step: float = 0.0) -> np.ndarray:
@@ -421,8 +431,7 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
                              f"the settling time of time_constant {tau:g} s with order {order}, "
                              f"plus one period of the reference at harmonic x frequency = "
                              f"{f_ref:g} Hz")
-        x_trace = lowpass(mixed_i, sample_rate=fs, time_constant=tau, order=order)
-        y_trace = lowpass(mixed_q, sample_rate=fs, time_constant=tau, order=order)
+        x_trace, y_trace = _stages(np.stack([mixed_i, mixed_q]), fs, tau, order)
         whole = math.floor((duration - settle) / period) * period
         start = s.size - int(round(whole * fs))
         bandwidth = enbw(tau, order)
