@@ -6,8 +6,12 @@ VENV   ?= .venv
 PY     := $(VENV)/bin/python
 STAMP  := $(VENV)/.afmsmiler-installed
 STUDENT_STAMP := $(VENV)/.afmsmiler-student-installed
-## pytest-xdist workers for `make test` and `make unit` (JOBS=0: one process, as pytest alone)
-JOBS   ?= 2
+## pytest-xdist workers (0: one process, as pytest alone). `make test` runs three on two cores: the
+## browser tests' two groups (tests/conftest.py:BROWSER_GROUPS) wait for their pages most of the
+## time, and the third worker's models fill it (a fourth made it slower here, and starved notebook
+## 08's real-time haptic loop until its watchdog fired). `make unit`, all models, runs one a core.
+JOBS      ?= 3
+UNIT_JOBS ?= 2
 export MPLBACKEND ?= Agg
 ## Python keeps its compiled modules (and pytest its rewritten test modules) in __pycache__:
 ## where the environment says not to (PYTHONDONTWRITEBYTECODE), every process, each notebook's
@@ -109,10 +113,10 @@ lock:
 	mv $(LOCK).new $(LOCK)
 
 ## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
-## notebook under nbval. Tests run on both cores (pytest-xdist), the longest modules first
-## (tests/conftest.py); the browser tests that share a JupyterLab or voila server share a worker
-## (xdist_group). Notebooks run on both cores too, each notebook's cells on one worker in order
-## (--dist loadfile). Tests check correctness, not speed (`make bench` measures speed).
+## notebook under nbval. Tests run on $(JOBS) pytest-xdist workers, the longest modules first
+## (tests/conftest.py); the browser tests are two xdist groups (their modules share servers and
+## Chromium), one worker each. Notebooks run on the workers too, each notebook's cells on one
+## worker in order (--dist loadfile). Tests check correctness, not speed (`make bench` does).
 test: $(STAMP) browser firmware hub-proxy lint
 	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup --durations=40 tests
 	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
@@ -125,7 +129,7 @@ test: $(STAMP) browser firmware hub-proxy lint
 ## No linter, doctests, notebooks or server check: `make test` runs those. (`-p no:nbval`: nbval's
 ## plugin imports nbformat and jsonschema, 2.5 s of CPU in each process, for the notebooks only.)
 unit: $(STAMP)
-	$(PY) -m pytest -p no:nbval -n $(JOBS) -m "not slow and not browser" tests
+	$(PY) -m pytest -p no:nbval -n $(UNIT_JOBS) -m "not slow and not browser" tests
 
 ## ruff, with the rules in pyproject.toml ([tool.ruff]); `make test` runs it first.
 lint: $(STAMP)
