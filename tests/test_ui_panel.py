@@ -282,6 +282,7 @@ class _Loop:
 
     def __init__(self):
         self.ready = []
+        self.later = []  # (when, callback, args)
         self.now = 0.0  # its clock stands still unless a test moves it
 
     def time(self):
@@ -292,14 +293,19 @@ class _Loop:
 
     call_soon_threadsafe = call_soon  # list.append is atomic
 
+    def call_later(self, delay, callback, *args):
+        self.later.append((self.now + delay, callback, args))
+
     def turn(self):
-        ready, self.ready = self.ready, []
+        due = [c for c in self.later if c[0] <= self.now]
+        self.later = [c for c in self.later if c[0] > self.now]
+        ready, self.ready = self.ready + [(c, a) for _, c, a in due], []
         for callback, args in ready:
             callback(*args)
 
     def run(self, turns=100):
         for _ in range(turns):
-            if not self.ready:
+            if not self.ready and not any(when <= self.now for when, _, _ in self.later):
                 return
             self.turn()
         raise AssertionError("the loop never went quiet")
@@ -348,6 +354,72 @@ def test_a_drag_queued_while_the_kernel_was_busy_runs_the_model_once_for_its_las
     live._handle_message(live, {"control": "length", "value": steps[0]}, [])
     loop.run()
     assert p.calls[-1][:2] == (steps[0], 200.0) and len(p.calls) == 3
+
+
+def _drawing_lever(loop):
+    """A linked lever whose every update sends a frame of its live figure (sent at the test
+    loop's clock), as a panel's figure does."""
+    p, live = _linked_lever()
+    p.live = live
+    line = live.figure.axes[0].lines[0]
+    update = p.update
+
+    def drawn(**values):
+        update(**values)
+        line.set_ydata([0.0, values["length"]])
+        live.sync()
+        live._sent_at = loop.now
+    p.update = drawn
+    return p, live
+
+
+def test_a_drag_waits_for_the_page_to_paint_the_last_frame(monkeypatch):
+    # issue 24: a page slower than the model (a saturated main thread paints a frame in 20-40
+    # ms) got every frame the kernel computed, queued, and showed the last 0.3-0.5 s after the
+    # last key; the next update now waits until the page says it painted the last frame, and the
+    # moves made meanwhile fold into it
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _drawing_lever(loop)
+    step = p.controls["length"].step
+    assert not live.busy(loop.now)  # no page has said anything: nothing is ever waited for
+    live._handle_message(live, {"painted": live.frames_sent}, [])  # the page painted the first
+    live._handle_message(live, {"control": "length", "value": 225.0 + step}, [])
+    loop.run()
+    assert [c[0] for c in p.calls[1:]] == [225.0 + step]  # sent at once: nothing in flight
+    sent = live.frames_sent
+    assert live.busy(loop.now)
+    for k in range(2, 8):  # the student keeps going while the page paints
+        live._handle_message(live, {"control": "length", "value": 225.0 + k * step}, [])
+        loop.turn()
+    for _ in range(20):
+        loop.now += 0.002
+        loop.turn()
+    assert len(p.calls) == 2 and live.frames_sent == sent  # waiting for the paint
+    live._handle_message(live, {"painted": sent}, [])
+    loop.now += 0.002
+    loop.run()
+    assert [c[0] for c in p.calls[2:]] == [225.0 + 7 * step]  # once, for the newest step
+    # a page that never answers (closed, hidden) costs at most PAINT_WAIT
+    from afmsmiler.plots.live import PAINT_WAIT
+    live._handle_message(live, {"control": "length", "value": 225.0 + 8 * step}, [])
+    start = loop.now
+    while len(p.calls) == 3:
+        loop.now += 0.002
+        loop.turn()
+        assert loop.now - start < PAINT_WAIT + 0.01
+    assert p.calls[-1][0] == 225.0 + 8 * step
+    assert loop.now - start >= PAINT_WAIT - 0.003
+
+
+def test_a_painted_message_is_taken_only_for_a_frame_sent():
+    _, live = _linked_lever()
+    for bad in ({"painted": 0}, {"painted": -1}, {"painted": live.frames_sent + 1},
+                {"painted": True}, {"painted": 1.0}, {"painted": "1"}, {"painted": None}):
+        live._handle_message(live, bad, [])
+        assert live.frames_painted == 0, bad
+    live._handle_message(live, {"painted": live.frames_sent}, [])
+    assert live.frames_painted == live.frames_sent and not live.busy()
 
 
 def test_moves_that_keep_coming_still_run_the_model(monkeypatch):

@@ -42,6 +42,7 @@ from __future__ import annotations
 import base64
 import json
 import math
+import time
 import uuid
 from dataclasses import dataclass
 from functools import lru_cache
@@ -63,6 +64,11 @@ from ..validation import check_choice, check_finite, check_instance, check_integ
 __all__ = ["Description", "LiveFigure", "decimate", "describe", "static_html", "set_clim"]
 
 STATIC = Path(__file__).with_name("static")
+#: Seconds a panel waits at most for a view to say it painted the last frame before it sends
+#: the next (:meth:`LiveFigure.busy`): a page whose main thread is saturated (a drag) paints a
+#: frame in 20-40 ms, and the frames sent meanwhile queued behind each other, each a step the
+#: student had already passed; a page that never answers costs no more than this.
+PAINT_WAIT = 0.25
 #: Pixels per inch of a live figure (as ipympl's canvas): figsize (10, 6) is 1000 x 600 px.
 DPI = 100
 _PX = DPI / 72  # px per point (line widths, marker and font sizes are given in points)
@@ -651,6 +657,8 @@ class LiveFigure(anywidget.AnyWidget):
     frames_sent : int
         Frames sent so far (one per :meth:`sync` that changed something); the browser shows it
         as ``data-seq``.
+    frames_painted : int
+        The newest frame a view of this figure said it painted (0 before any view did).
     """
 
     _esm = _esm()
@@ -665,10 +673,29 @@ class LiveFigure(anywidget.AnyWidget):
         super().__init__(**kwargs)
         self.figure = check_instance("figure", figure, Figure)
         self.frames_sent = 0
+        self.frames_painted = 0
+        self._sent_at = 0.0  # time.monotonic() of the newest frame sent
         self._sent_frame = None
         self._on_control = None
         self.on_msg(self._handle_message)
         self.sync()
+
+    def busy(self, now: float | None = None) -> bool:
+        """Whether the browser is still painting a frame sent less than :data:`PAINT_WAIT` s ago.
+
+        ``now`` is ``time.monotonic()`` (the default; asyncio's ``loop.time()`` is the same
+        clock).
+
+        A view says which frame it painted (a message ``{"painted": seq}``); a frame sent after
+        the newest painted one is in flight. Where no view ever said so (no browser: tests,
+        nbval, a static export) or it has not answered within :data:`PAINT_WAIT` s (its page was
+        closed, a view of another kind), nothing is in flight: a panel never waits on a page
+        that cannot answer.
+        """
+        if self.frames_painted == 0 or self.frames_painted >= self.frames_sent:
+            return False
+        now = time.monotonic() if now is None else now
+        return now - self._sent_at < PAINT_WAIT
 
     def link(self, controls: dict, on_control) -> None:
         """Have the browser forward every step of ``controls`` to ``on_control(name, value)``.
@@ -698,8 +725,14 @@ class LiveFigure(anywidget.AnyWidget):
             self._controls = linked  # sent only when the sliders are others
 
     def _handle_message(self, _widget, content, _buffers) -> None:
-        if (self._on_control is not None and isinstance(content, dict)
-                and content.get("control") in self._controls and "value" in content):
+        if not isinstance(content, dict):
+            return
+        painted = content.get("painted")
+        if isinstance(painted, int) and not isinstance(painted, bool) and \
+                0 < painted <= self.frames_sent:
+            self.frames_painted = max(self.frames_painted, painted)
+        elif (self._on_control is not None and content.get("control") in self._controls
+                and "value" in content):
             self._on_control(content["control"], content["value"])
 
     def sync(self) -> Description:
@@ -716,6 +749,7 @@ class LiveFigure(anywidget.AnyWidget):
             return d  # nothing changed (the mode shapes on a force step): no message, no redraw
         self._sent_frame = d.frame
         self.frames_sent += 1
+        self._sent_at = time.monotonic()
         with self.hold_sync():
             self._layout = d.layout
             self._buffer = d.buffer

@@ -70,6 +70,9 @@ _QUIET_TURNS = 3
 #: Seconds a deferred update waits at most for moves to stop (a steady stream of moves, a mouse
 #: drag at 60 Hz on a loop slowed by a busy thread, must not starve the model).
 _MAX_DEFER = 0.05
+#: Seconds between looks at whether the page painted the panel's last frame, while a deferred
+#: update waits for it (:meth:`Panel._settle`, :meth:`afmsmiler.plots.live.LiveFigure.busy`).
+_PAINT_POLL = 0.002
 
 
 def _live_loop():
@@ -628,11 +631,20 @@ class Panel:
         update run at the first turn would see only the first of the moves that queued behind
         the last model run; waiting for a few quiet turns (microseconds when nothing is queued)
         lets every queued move land first. Moves that keep coming run it after
-        :data:`_MAX_DEFER` s anyway.
+        :data:`_MAX_DEFER` s anyway. While the page has not yet painted the panel's last frame
+        (:meth:`~afmsmiler.plots.live.LiveFigure.busy`, at most
+        :data:`~afmsmiler.plots.live.PAINT_WAIT` s after it was sent) the update waits too, and
+        the moves made meanwhile fold into it: a page slower than the model gets the newest
+        frame, not a queue of steps already passed.
         """
         if (self._moves != seen or quiet < _QUIET_TURNS) and loop.time() < until:
             quiet = 0 if self._moves != seen else quiet + 1
             loop.call_soon(self._settle, loop, self._moves, quiet, until)
+            return
+        live = getattr(self, "live", None)
+        if live is not None and live.busy(loop.time()):  # the page still paints the last frame: the moves
+            # that come meanwhile fold into this update (bounded: see LiveFigure.busy)
+            loop.call_later(_PAINT_POLL, self._settle, loop, self._moves, _QUIET_TURNS, until)
             return
         self._deferred = False
         self._flush()  # a failure is shown under the panel (_apply, live)

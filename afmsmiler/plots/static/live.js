@@ -736,6 +736,9 @@ class Figure {
       keep(this.paintedSeqs, this.drawnSeq);
       this.painted += 1;
       this.root.dataset.painted = String(this.painted);
+      // the kernel sends its next frame once this one is painted (LiveFigure.busy): a page that
+      // is slower than the kernel gets the newest frame, not a queue of steps already passed
+      if (this.onPainted && this.drawnSeq > 0) this.onPainted(this.drawnSeq);
       this.drawnSeq = null;
     }
     if (!this.pending.length) { this.release(ts); return; }
@@ -814,6 +817,9 @@ function render({ model, el: host }) {
   requestAnimationFrame(() => hideStaticCopies(host));
   const fig = new Figure(root);
   fig.watch();
+  fig.onPainted = (seq) => {
+    try { model.send({ painted: seq }); } catch (e) { fig.onPainted = null; }
+  };
   const show = () => fig.push(model.get("_layout"), model.get("_frame"), floats(model.get("_buffer")));
   model.on("change:_frame", show);
   // the first frame once the element is in the page (sizes are measured)
