@@ -694,7 +694,7 @@ class LiveFigure(anywidget.AnyWidget):
         """
         if self.frames_painted == 0 or self.frames_painted >= self.frames_sent:
             return False
-        now = time.monotonic() if now is None else now
+        now = time.monotonic() if now is None else check_finite("now", now, "s")
         return now - self._sent_at < PAINT_WAIT
 
     def link(self, controls: dict, on_control) -> None:
