@@ -69,8 +69,8 @@ def hang_guard():
 #: a worker of its own (a group's modules share their servers and Chromium, and its tests run
 #: one after the other, so two pages never compete for the cores), and every other test on the
 #: third worker and then on whichever is free. The browser tests wait for pages most of their
-#: time, which the third worker's models fill. The two groups take about the same time (4.5 to
-#: 5 minutes each on this machine). A browser test in a module not listed here is refused at
+#: time, which the third worker's models fill. The two groups take about the same time (5 to
+#: 6 minutes each in CI on this machine). A browser test in a module not listed here is refused at
 #: collection, so a new one cannot run outside them.
 BROWSER_GROUPS = {
     "browser_panels": ("test_panels_browser.py", "test_book_browser.py"),

@@ -30,9 +30,9 @@ The heater power is periodic in the drive period, so the steady state is compute
 frequency domain over a whole number of drive periods: FFT of the sampled P(t), times the
 transfer function at every bin, inverse FFT (a linear chain's periodic steady state; the lever
 has rung for a long time before the record starts, as in the lab). Being linear, it is done once
-per lever and record for the sampled sin^2(w t), and an unbiased run scales that by V_ac^2 / R. Noise is drawn in the same
-domain from its one-sided density S(f): bin k gets sqrt(S f_s N / 4) (a + j b), a, b standard
-normal, whose inverse FFT has the variance int S df.
+per lever and record for the sampled sin^2(w t), and an unbiased run scales that by V_ac^2 / R.
+Noise is drawn in the same domain from its one-sided density S(f): bin k gets
+sqrt(S f_s N / 4) (a + j b), a, b standard normal, whose inverse FFT has the variance int S df.
 
 Sample rate: ``samples_per_period`` samples per drive period (default 128: f_s = 5.2 MHz for the
 default lever's f1 / 2 = 40.8 kHz; the AD2's scope samples at up to 100 MHz). That places the
@@ -408,8 +408,7 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     else:
         brownian, v_noise = np.zeros(n), np.zeros(n)
     bridge = s.respond(deflection + brownian)
-    output = gain * (bridge + v_noise + interference * tone) if interference else \
-        gain * (bridge + v_noise)
+    output = gain * (bridge + v_noise + interference * tone)
 
     p_dc, p_1, p_2 = power_harmonics(dc_voltage, a.ac_voltage, a.resistance)
     h_0, h_1, h_2 = probe.deflection_per_power(np.array([0.0, f, 2 * f]))

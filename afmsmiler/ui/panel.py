@@ -641,8 +641,7 @@ class Panel:
             quiet = 0 if self._moves != seen else quiet + 1
             loop.call_soon(self._settle, loop, self._moves, quiet, until)
             return
-        live = getattr(self, "live", None)
-        if live is not None and live.busy(loop.time()):  # the page still paints the last frame: the moves
+        if self.live is not None and self.live.busy(loop.time()):  # the page still paints the last frame: the moves
             # that come meanwhile fold into this update (bounded: see LiveFigure.busy)
             loop.call_later(_PAINT_POLL, self._settle, loop, self._moves, _QUIET_TURNS, until)
             return
