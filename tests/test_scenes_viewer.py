@@ -280,3 +280,76 @@ def test_fit_camera_frames_the_objects_in_chromium(tmp_path):
     assert np.all(np.abs(ndc) <= 1.0), ndc  # all of the box in view
     # the bounding sphere (radius 1.15) fills the height: the box spans a good part of it
     assert np.ptp(ndc[:, 1]) > 0.6 or np.ptp(ndc[:, 0]) > 0.6, ndc
+
+
+_COUNT_JS = """async (ms) => { // renders of the view and animation frames asked, over ms
+  const v = document.getElementById('scene').afmView.viewer;
+  let renders = 0, asked = 0;
+  const render = v.renderer.render, raf = window.requestAnimationFrame;
+  v.renderer.render = function (...a) { renders++; return render.apply(this, a); };
+  window.requestAnimationFrame = (cb) => { asked++; return raf(cb); };
+  await new Promise((r) => setTimeout(r, ms));
+  v.renderer.render = render; window.requestAnimationFrame = raf;
+  return {renders, asked};
+}"""
+
+
+@pytest.mark.browser
+def test_a_view_asks_for_frames_only_while_it_has_something_to_show(tmp_path):
+    """A looping animation renders while its view is on screen; scrolled away it asks for no
+    animation frame at all (meshcat's loop asked for every frame of the page's life, a quarter
+    of a core with nothing drawn), and it plays again when it comes back; a still scene renders
+    once, then only when the student turns it."""
+    import os
+    if not os.access("/usr/bin/chromium", os.X_OK):
+        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    from meshcat.animation import Animation
+    from afmsmiler.scenes.animation import set_translations
+
+    pages = {}
+    for name, moving in (("moving", True), ("still", False)):
+        view = SceneView()
+        view.vis["box"].set_object(g.Box([1.0, 1.0, 1.0]))
+        if moving:
+            anim = Animation(default_framerate=30)
+            frames = np.arange(60.0)
+            set_translations(anim, view.vis["box"], frames,
+                             np.c_[np.sin(frames / 60 * 2 * np.pi), 0 * frames, 0 * frames])
+            view.vis.set_animation(anim, play=True, repetitions=10**6)
+        pages[name] = tmp_path / f"{name}.html"
+        pages[name].write_text(view.static_html(), encoding="utf-8")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+                              args=["--no-sandbox", "--disable-gpu"])
+        try:
+            pg = b.new_page(viewport={"width": 400, "height": 300})
+            pg.goto(pages["moving"].as_uri())
+            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
+            shown = pg.evaluate(_COUNT_JS, 1000)
+            assert shown["renders"] >= 3, shown  # the animation plays
+            pg.evaluate("""() => { const s = document.createElement('div');
+                s.style.height = '3000px'; document.body.appendChild(s);
+                window.scrollTo(0, 2000); }""")
+            pg.wait_for_timeout(300)  # the observer's callback
+            away = pg.evaluate(_COUNT_JS, 1000)
+            assert away == {"renders": 0, "asked": 0}, away
+            pg.evaluate("() => window.scrollTo(0, 0)")
+            back = pg.evaluate(_COUNT_JS, 1000)
+            assert back["renders"] >= 3, back
+
+            pg.goto(pages["still"].as_uri())
+            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
+            pg.wait_for_timeout(500)
+            idle = pg.evaluate(_COUNT_JS, 1000)
+            assert idle == {"renders": 0, "asked": 0}, idle
+            # the student turns the view (a wheel over it zooms meshcat's camera): it renders
+            turned = pg.evaluate("""async (ms) => {
+                const counting = (%s)(ms);
+                const c = document.querySelector('#scene canvas');
+                c.dispatchEvent(new WheelEvent('wheel', {deltaY: 100, bubbles: true,
+                                                         cancelable: true}));
+                return await counting; }""" % _COUNT_JS, 500)
+            assert turned["renders"] >= 1, turned
+        finally:
+            b.close()

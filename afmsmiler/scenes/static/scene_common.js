@@ -127,36 +127,57 @@ function afmCreateViewer(MeshCat, host) {
   // the figures painted what it changed: while a live figure (plots/static/live.js) has a frame to
   // paint, or for INPUT_HOLD_MS after the input until a figure painted, a view does not render,
   // so the figure's paint never waits for a software render. A view waits at most MAX_WAIT_MS.
+  //
+  // The loop runs only while it has work: a view on screen with an animation playing or a
+  // render due. meshcat's own loop asks for every animation frame for as long as the page lives,
+  // and that alone, rendering nothing (a view scrolled away), cost headless Chromium a quarter
+  // of a core per view page. A change wakes it: a command, anything that marks the view dirty
+  // (meshcat's camera controls, its animation's progress), an animation played from its
+  // controls, the view coming on screen.
   const FRAME_MS = 1000 / 60, INPUT_HOLD_MS = 150, MAX_WAIT_MS = 400;
   const frames = afmFrames();
-  let visible = true, last = -Infinity, cost = 0, measuring = false;
-  const seen = typeof IntersectionObserver === "function"
-    ? new IntersectionObserver((entries) => {
-      visible = entries[entries.length - 1].isIntersecting;
-      if (visible) viewer.set_dirty();
-    }) : null;
-  if (seen) seen.observe(host);
-  viewer.animate = () => {
-    if (!running) return;
-    requestAnimationFrame(() => viewer.animate());
+  let visible = true, last = -Infinity, cost = 0, measuring = false, looping = false;
+  const step = () => {
+    if (!running) { looping = false; return; }
     const now = performance.now();
     if (measuring) { // the frame after a render: what the render added to it
       const extra = Math.max(0, now - last - FRAME_MS);
       cost = 0.6 * cost + 0.4 * extra;
       measuring = false;
     }
-    viewer.animator.update();
-    if (!visible || !viewer.needs_render || now - last < 2.5 * cost) return;
-    const figureFirst = frames.pending > 0
-      || (now - frames.inputAt < INPUT_HOLD_MS && frames.paintedAt < frames.inputAt);
-    if (figureFirst && now - last < MAX_WAIT_MS) return;
-    viewer.render();
-    last = performance.now();
-    measuring = true;
+    if (visible) viewer.animator.update();
+    const due = visible && viewer.needs_render;
+    if (due && now - last >= 2.5 * cost) {
+      const figureFirst = frames.pending > 0
+        || (now - frames.inputAt < INPUT_HOLD_MS && frames.paintedAt < frames.inputAt);
+      if (!figureFirst || now - last >= MAX_WAIT_MS) {
+        viewer.render();
+        last = performance.now();
+        measuring = true;
+      }
+    }
+    looping = visible && (viewer.needs_render || viewer.animator.playing || measuring);
+    if (looping) requestAnimationFrame(step);
   };
+  const wake = () => {
+    if (looping || !running) return;
+    looping = true;
+    requestAnimationFrame(step);
+  };
+  const setDirty = viewer.set_dirty.bind(viewer);
+  viewer.set_dirty = () => { setDirty(); wake(); };
+  const play = viewer.animator.play.bind(viewer.animator);
+  viewer.animator.play = () => { play(); wake(); };
+  viewer.animate = wake; // meshcat's constructor queued one call of it
+  const seen = typeof IntersectionObserver === "function"
+    ? new IntersectionObserver((entries) => {
+      visible = entries[entries.length - 1].isIntersecting;
+      if (visible) viewer.set_dirty();
+    }) : null;
+  if (seen) seen.observe(host);
   return {
     viewer,
-    apply(bytes) { if (running) viewer.handle_command_bytearray(afmBytes(bytes)); },
+    apply(bytes) { if (running) { viewer.handle_command_bytearray(afmBytes(bytes)); wake(); } },
     setLegend(html) {
       legend.innerHTML = html || "";
       legend.style.display = html ? "" : "none";
