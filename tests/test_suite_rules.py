@@ -68,7 +68,7 @@ def test_an_xdist_group_runs_on_one_worker(tmp_path):
     workers = tmp_path / "workers.txt"
     env = {**os.environ, "WORKERS_FILE": str(workers)}
     proc = subprocess.run([sys.executable, "-m", "pytest", "-q", "-p", "no:cacheprovider",
-                           "-n", "2", "--dist", "loadgroup",
+                           "-p", "no:nbval", "-n", "2", "--dist", "loadgroup",
                            str(tmp_path / "test_grouped.py")],
                           cwd=tmp_path, env=env, capture_output=True, text=True, timeout=120)
     assert proc.returncode == 0, proc.stdout[-2000:] + proc.stderr[-2000:]
