@@ -253,12 +253,15 @@ def decimate(x, y, *, lim, columns: int, xscale: str = "linear", linthresh: floa
     drawn = col[starts] != -2
     yy = np.where(ok, y, 0.0)
     low, high = np.minimum.reduceat(yy, starts), np.maximum.reduceat(yy, starts)
-    keep = [starts, ends[drawn]]
+    kept = np.zeros(n, dtype=bool)  # the kept indices, in order, each once
+    kept[starts] = True
+    kept[ends[drawn]] = True
     for extreme in (low, high):
         at = np.flatnonzero(ok & (yy == extreme[group]))
-        g, first = np.unique(group[at], return_index=True)
-        keep.append(at[first][drawn[g]])
-    return np.unique(np.concatenate(keep))
+        g = group[at]  # non-decreasing: the first point of each run reaching the extreme
+        first = np.flatnonzero(np.r_[True, g[1:] != g[:-1]]) if g.size else g
+        kept[at[first][drawn[g[first]]]] = True
+    return np.flatnonzero(kept)
 
 
 def _thinner(ax, columns: int):
