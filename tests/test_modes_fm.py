@@ -316,9 +316,30 @@ def test_the_vectorised_inversion_equals_the_loop(spacing, monkeypatch):
         np.sort(rng.uniform(0.2e-9, 12e-9, 300))
     df = -40.0 * np.exp(-z / 1.5e-9) + 3.0 * np.sin(z / 0.7e-9)
     ref = _reference_inversion(z, df, 40.0, 300e3, 5e-9)
-    for block in (fm._INVERSION_BLOCK, 7 * z.size, 1):  # one block, several, one row each
-        monkeypatch.setattr(fm, "_INVERSION_BLOCK", block)
-        got = fm.sader_jarvis(z, df, spring_constant=40.0, resonance_frequency=300e3,
-                           amplitude=5e-9)
-        np.testing.assert_allclose(got, ref, rtol=1e-10, atol=1e-12 * np.max(np.abs(ref)))
-        assert got[-1] == 0.0
+    # one block, several, one row each; the weights kept for the grid (computed at the first
+    # call, read at the second) or computed at each call
+    for kept in (z.size, 0):
+        for block in (fm._INVERSION_BLOCK, 7 * z.size, 1):
+            monkeypatch.setattr(fm, "_INVERSION_BLOCK", block)
+            monkeypatch.setattr(fm, "_WEIGHTS_KEPT_POINTS", kept)
+            monkeypatch.setattr(fm, "_weights_kept", {})
+            for _ in range(2):
+                got = fm.sader_jarvis(z, df, spring_constant=40.0, resonance_frequency=300e3,
+                                      amplitude=5e-9)
+                np.testing.assert_allclose(got, ref, rtol=1e-10,
+                                           atol=1e-12 * np.max(np.abs(ref)))
+                assert got[-1] == 0.0
+            assert len(fm._weights_kept) == (1 if kept else 0)
+
+
+def test_the_inversion_keeps_the_weights_of_two_grids_at_most():
+    fm._weights_kept.clear()
+    for n in (100, 200, 300, 400):
+        z = np.linspace(0.2e-9, 12e-9, n)
+        fm.sader_jarvis(z, -1e-18 / z ** 2)
+    assert len(fm._weights_kept) == 2
+    z = np.linspace(0.2e-9, 12e-9, fm._WEIGHTS_KEPT_POINTS + 1)  # too large to keep
+    fm.sader_jarvis(z, -1e-18 / z ** 2)
+    assert len(fm._weights_kept) == 2
+    assert not any(i0.flags.writeable for blocks in fm._weights_kept.values()
+                   for _, i0, _ in blocks)

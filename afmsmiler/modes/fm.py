@@ -271,33 +271,65 @@ def sader_jarvis(z, df, *, spring_constant: float = SPRING_CONSTANT.default,
     df = check_array("df", df, "Hz", ndim=1, size=z.size)
     omega = df / f0
     slope = np.gradient(omega, z, edge_order=2)
-    force = np.zeros_like(z)
     c2 = math.sqrt(a) / (8 * math.sqrt(math.pi))
     c3 = a ** 1.5 / math.sqrt(2)
-    # every lower end z_j at once, in blocks of rows (bounded memory): entry (j, i) is the
-    # interval [z_i, z_i+1] of the integral from z_j (i >= j; the others are zero)
+    # Over interval i, Omega and dOmega/dt are linear: v_i + b_i (t - z_i) with b_i = their step
+    # over dz_i, so each pole term of row j (the lower end z_j) is sum_i I0[j, i] v_i +
+    # W[j, i] b_i, with weights that depend on the distances alone (_sader_jarvis_weights)
+    dz = np.diff(z)
+    values = c2 * omega[:-1] - c3 * slope[:-1]
+    steps = (c2 * np.diff(omega) - c3 * np.diff(slope)) / dz
+    middle = 0.5 * (omega[:-1] + omega[1:]) * dz  # the trapezoid rule, summed from each z_j
+    trapezoid = np.cumsum(middle[::-1])[::-1]
+    force = np.zeros_like(z)
+    for rows, i0, w in _sader_jarvis_weights(z):  # bounded: n / rows blocks
+        force[rows] = 2 * k * (trapezoid[rows] + i0 @ values + w @ steps)
+    return force
+
+
+#: Most distances of a grid whose Sader-Jarvis weights are kept (two n x n matrices, 2 MB each
+#: at this size), for the last two grids inverted: a panel inverts on one grid at every move.
+_WEIGHTS_KEPT_POINTS = 512
+_weights_kept: dict = {}
+
+
+def _sader_jarvis_weights(z: np.ndarray):
+    """Blocks ``(rows, I0, W)`` of the inversion's weights on the grid ``z`` (n values).
+
+    For the lower end z_j (a row) and the interval [z_i, z_i+1] (a column, i >= j; zero
+    below), with lo = z_i - z_j and hi = z_i+1 - z_j: I0 = int_lo^hi u^-1/2 du =
+    2 (hi^1/2 - lo^1/2) and W = int_lo^hi (u - lo) u^-1/2 du = 2/3 (hi^3/2 - lo^3/2) - lo I0,
+    the closed forms of a linear function over the pole (t - z_j)^-1/2. A grid of at most
+    :data:`_WEIGHTS_KEPT_POINTS` values is computed once and kept (the last two grids); a larger
+    one in blocks of :data:`_INVERSION_BLOCK` entries, one at a time, at each call.
+    """
+    if z.size > _WEIGHTS_KEPT_POINTS:
+        return _weight_blocks(z)
+    key = z.tobytes()
+    blocks = _weights_kept.get(key)
+    if blocks is None:
+        blocks = list(_weight_blocks(z))
+        for _, i0, w in blocks:
+            i0.flags.writeable = w.flags.writeable = False
+        if len(_weights_kept) >= 2:
+            _weights_kept.pop(next(iter(_weights_kept)))
+        _weights_kept[key] = blocks
+    return blocks
+
+
+def _weight_blocks(z: np.ndarray):
     n = z.size
-    d_omega, d_slope = np.diff(omega), np.diff(slope)
-    middle = 0.5 * (omega[:-1] + omega[1:])
     intervals = np.arange(n - 1)
-    rows = max(1, _INVERSION_BLOCK // n)
-    for start in range(0, n - 1, rows):  # bounded: n / rows blocks
-        j = np.arange(start, min(start + rows, n - 1))
+    step = max(1, _INVERSION_BLOCK // n)
+    for start in range(0, n - 1, step):  # bounded: n / step blocks
+        j = np.arange(start, min(start + step, n - 1))
         inside = intervals[None, :] >= j[:, None]
         u = z[None, :] - z[j, None]
         lo = np.where(inside, u[:, :-1], 0.0)
         hi = np.where(inside, u[:, 1:], 0.0)
-        h = hi - lo
         root_hi, root_lo = np.sqrt(hi), np.sqrt(lo)
-        i0 = 2 * (root_hi - root_lo)  # int u^-1/2
-        i1 = 2 / 3 * (hi * root_hi - lo * root_lo)  # int u^1/2
-
-        def pole(values, steps):  # int of (values, linear in u) / sqrt(u) over every interval
-            b = np.divide(steps, h, out=np.zeros_like(h), where=inside)
-            return np.sum((values[:-1] - b * lo) * i0 + b * i1, axis=1)
-        trapezoid = np.sum(middle * h, axis=1)
-        force[j] = 2 * k * (trapezoid + c2 * pole(omega, d_omega) - c3 * pole(slope, d_slope))
-    return force
+        i0 = 2 * (root_hi - root_lo)
+        yield slice(start, int(j[-1]) + 1), i0, 2 / 3 * (hi * root_hi - lo * root_lo) - lo * i0
 
 
 @dataclass(frozen=True)
