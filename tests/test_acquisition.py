@@ -288,6 +288,35 @@ def test_one_ui_piece_drives_either_implementation():
     assert shown
 
 
+class _Stuck(Acquisition):
+    """A device that answers every read and never finishes a pixel."""
+
+    def __init__(self):
+        super().__init__({"height": "m"}, (4, 4), 1e-9)
+        self.reads = 0
+
+    def _begin(self, **settings):
+        pass
+
+    def _advance(self, wait):
+        self.reads += 1
+
+
+def test_running_to_the_end_gives_up_on_a_scan_that_measures_nothing():
+    from afmsmiler.ui.acquisition import AcquisitionControls
+    reports, shown = [], []
+    controls = AcquisitionControls(start=lambda: None, pause=lambda: None, resume=lambda: None,
+                                   stop=lambda: None, show=lambda: shown.append(1),
+                                   report=reports.append, live=lambda: False)
+    acq = _Stuck()
+    acq.start()
+    controls.attach(acq)
+    controls.run(wait=True, max_line_wait=0.0)  # returns: the loop is bounded
+    assert acq.state == "aborted" and acq.reads == controls.MAX_IDLE_STEPS
+    assert len(reports) == 1 and "measured nothing in 200 steps" in str(reports[0]), reports
+    assert shown  # the aborted scan is drawn, its (empty) lines kept
+
+
 def test_the_educational_session_refuses_settings_and_keeps_lines_on_a_pulled_cable():
     session = _educational()
     try:

@@ -64,6 +64,10 @@ class AcquisitionControls:
     PAUSED_POLL = 0.1
     #: s between two reads of a device that paces itself (its reads wait for pixels).
     POLL = 0.01
+    #: Steps in a row that measure nothing before :meth:`run` (run to the end) gives up and
+    #: aborts the scan (its finished lines kept): a device that answers without ever finishing
+    #: a pixel (each such step waits at most ``max_line_wait``) cannot hold a cell forever.
+    MAX_IDLE_STEPS = 200
 
     def __init__(self, *, start: Callable, pause: Callable, resume: Callable, stop: Callable,
                  show: Callable, report: Callable, live: Callable, stop_label: str = "Stop",
@@ -208,12 +212,24 @@ class AcquisitionControls:
                 self.poke()
             return
         shown_at = time.monotonic()
-        while True:
+        idle, done = 0, self._done()
+        while idle < self.MAX_IDLE_STEPS:  # a step measures a pixel or ends, pauses, faults
             picture = time.monotonic() - shown_at >= frame_interval
             if not self.step(show=picture, wait=max_line_wait) or self.paused:
-                break
+                return
             if picture:
                 shown_at = time.monotonic()
+            idle, done = (idle + 1, done) if self._done() == done else (0, self._done())
+        self.acquisition.abort()
+        self._report(RuntimeError(
+            f"the scan measured nothing in {self.MAX_IDLE_STEPS} steps in a row: aborted, "
+            f"its finished lines kept"))
+        self._show()
+
+    def _done(self) -> tuple:
+        """What the acquisition has measured so far: (lines, pixels)."""
+        s = self.acquisition.snapshot()
+        return s.lines_done, s.pixels_done
 
     async def _run_async(self, frame_interval, max_line_wait, read_wait) -> None:
         self._loop, self._wake = asyncio.get_running_loop(), asyncio.Event()
