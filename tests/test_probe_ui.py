@@ -58,6 +58,29 @@ def test_a_preset_moves_the_geometry_in_one_run():
     assert p.last.lever.name == "MLCT-E" and p.last.lever.coating is not None
 
 
+def test_only_the_sliders_that_shape_the_planform_can_move():
+    p = ProbePanel(probe=CUSTOM, planform="rectangular")
+    c = p.controls
+    calls = _count_runs(p)
+    assert c["point_length"].disabled and c["arm_width"].disabled
+    assert not any(c[n].disabled for n in ("length", "width", "thickness", "spot"))
+    # what the disabled ones would have moved: nothing, for a rectangle
+    k = p.last.spring_constant
+    p.set(point_length=c["point_length"].value * 1.5, arm_width=c["arm_width"].value * 0.8)
+    assert p.last.spring_constant == k
+    held = (c["point_length"].value, c["arm_width"].value)
+    c["planform"].value = "pointed"
+    assert not c["point_length"].disabled and c["arm_width"].disabled
+    c["planform"].value = "v_shaped"
+    assert c["point_length"].disabled and not c["arm_width"].disabled
+    assert (c["point_length"].value, c["arm_width"].value) == held  # values kept
+    assert len(calls) == 3  # the set and the two planform moves: enabling ran nothing
+    c["probe"].value = "MLCT-E"  # a preset sets its planform, and with it the sliders
+    assert c["planform"].value == "v_shaped" and not c["arm_width"].disabled
+    c["probe"].value = "ContAl-G"
+    assert c["point_length"].disabled and c["arm_width"].disabled
+
+
 def test_a_geometry_move_makes_the_lever_custom_in_one_run():
     p = ProbePanel(probe="AC240TS")
     calls = _count_runs(p)

@@ -28,7 +28,7 @@ from ..probe import FLUID_NAMES, SPOT, ProbeReport, probe_report
 from ..validation import check_choice, check_integer
 from .panel import Panel, _same, initial_values
 
-__all__ = ["ProbePanel", "DEFAULTS", "SLIDERS", "GEOMETRY", "CUSTOM"]
+__all__ = ["ProbePanel", "DEFAULTS", "SLIDERS", "GEOMETRY", "SHAPE", "CUSTOM"]
 
 #: The drop-down's entry for a lever described by the sliders.
 CUSTOM = "custom"
@@ -40,6 +40,9 @@ SLIDERS = read_only({"length": LENGTH, "width": PROBE_WIDTH, "thickness": THICKN
                      "point_length": POINT_LENGTH, "arm_width": ARM_WIDTH, "spot": SPOT})
 #: The controls that describe a custom lever (moving one makes the lever custom).
 GEOMETRY = ("planform", "material", "length", "width", "thickness", "point_length", "arm_width")
+#: The sliders that shape one planform only: slider -> the planform it shapes (disabled for the
+#: others).
+SHAPE = read_only({"point_length": "pointed", "arm_width": "v_shaped"})
 #: Initial control values in the units shown: BudgetSensors' ContAl-G (450 x 50 x 2 um of
 #: silicon, module (a)'s default lever) in air, the spot at the free end.
 DEFAULTS = read_only({"probe": "ContAl-G", "planform": "rectangular", "material": "silicon",
@@ -125,7 +128,17 @@ class ProbePanel(Panel):
         self.controls["probe"].observe(self._on_probe, names="value")
         for name in GEOMETRY:
             self.controls[name].observe(self._on_geometry, names="value")
+        self.controls["planform"].observe(self._enable_shape, names="value")
+        self._enable_shape()
         super().__init__()
+
+    def _enable_shape(self, change=None) -> None:
+        """Enable the sliders that shape the chosen planform only (a rectangle has no point
+        length and no arms): a slider that would change nothing cannot be moved. Their values
+        are kept."""
+        planform = self.controls["planform"].value
+        for name, used_by in SHAPE.items():
+            self.controls[name].disabled = planform != used_by
 
     # -- the preset and the custom geometry ------------------------------------------------
     def _on_probe(self, change) -> None:
