@@ -51,7 +51,7 @@ from .planform import Lever
 from .validation import check_choice, check_instance, check_integer, check_range, check_size
 
 __all__ = ["SPOT", "FLUID_NAMES", "DEFAULTS", "mean_width", "equivalent_cantilever",
-           "planform_outline", "ProbeReport", "probe_report"]
+           "planform_outline", "ProbeReport", "probe_report", "oscillator"]
 
 #: Where the laser spot sits on the lever, as a fraction x/L of its length from the clamp.
 SPOT = Parameter(name="spot", unit="", default=1.0, low=0.0, high=1.0, low_inclusive=False,
@@ -260,6 +260,38 @@ def _fluid_modes(rectangle: Cantilever) -> dict:
     """Mode 1 of ``rectangle`` in each fluid of :data:`FLUID_NAMES` (kept for the same lever:
     a panel's spot or fluid moves need not solve them again)."""
     return read_only({name: fluid_mode(rectangle, name, 1) for name in FLUID_NAMES})
+
+
+def oscillator(lever: Lever, fluid: str = "air") -> dict:
+    """Mode 1 of ``lever`` in ``fluid`` as the point-mass oscillator of the modes' models.
+
+    Sader's frequency and Q of mode 1 of the equivalent rectangle (module notes) and the mode's
+    stiffness at the tip, k_1 = k lambda_1^4 / 12 (:meth:`~afmsmiler.hydrodynamics.FluidMode.
+    oscillator`): ``TappingLever(**oscillator(preset("AC160TS"), "water"), ...)`` taps in
+    water with the Q the water gives, not a typed one.
+
+    Parameters
+    ----------
+    lever : Lever
+        Any planform (a vendor's :func:`~afmsmiler.planform.preset`).
+    fluid : str
+        ``"air"`` or ``"water"``.
+
+    Returns
+    -------
+    dict
+        ``spring_constant`` (N/m), ``resonance_frequency`` (Hz, in the fluid),
+        ``quality_factor``.
+
+    Examples
+    --------
+    >>> from afmsmiler.planform import preset
+    >>> round(oscillator(preset("ContAl-G"), "water")["quality_factor"], 1)
+    2.3
+    """
+    lever = check_instance("lever", lever, Lever)
+    fluid = check_choice("fluid", fluid, FLUID_NAMES)
+    return _fluid_modes(equivalent_cantilever(lever))[fluid].oscillator()
 
 
 def probe_report(lever: Lever, fluid: str = "air", *, spot: float = SPOT.default,

@@ -437,7 +437,7 @@ OVERRIDES = {
     # "your probe": a Lever (a pointed preset), not module (a)'s Cantilever
     **{f"afmsmiler.probe.{f}": {"lever": lambda: __import__(
         "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS")}
-       for f in ("mean_width", "equivalent_cantilever", "planform_outline")},
+       for f in ("mean_width", "equivalent_cantilever", "planform_outline", "oscillator")},
     "afmsmiler.probe.probe_report": {"lever": lambda: __import__(
         "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS"), "points": 2 ** 12,
         "averages": 4},

@@ -130,6 +130,89 @@ def test_notebook_suggestion_the_setpoint_picks_the_branch():
     assert s.branch == "attractive" and s.indentation < 0.1e-9  # gently: 1.7 nm repulsive
 
 
+# -- a vendor's probe in its fluid (issue 23) -------------------------------------------------
+def test_each_tapping_probe_rings_within_the_sliders_in_air_and_water():
+    from afmsmiler.ui.modes import TAPPING_LEVER, TAPPING_FLUIDS, TAPPING_PROBES, TAPPING_SLIDERS
+    from afmsmiler.planform import PRESETS, preset
+    from afmsmiler.probe import equivalent_cantilever, oscillator
+
+    def fits(name, fluid):
+        o = oscillator(preset(name), fluid)
+        return all(TAPPING_SLIDERS[n].slider_low <= o[n] <= TAPPING_SLIDERS[n].slider_high
+                   for n in TAPPING_LEVER)
+
+    assert set(TAPPING_PROBES) <= set(PRESETS)
+    for name in TAPPING_PROBES:
+        assert all(fits(name, m) for m in TAPPING_FLUIDS), name
+    # the contact levers left out: they ring below the f0 slider's 10 kHz in water
+    assert not fits("ContAl-G", "water") and not fits("MLCT-A", "water")
+    # an independent bound: viscosity only adds mass to the inviscid load (Gamma_r > 1), so
+    # f_water <= f_vac (1 + T)^(-1/2), T = pi rho_f b / (4 rho h) (Sader 1998, Eq. 14)
+    for name in TAPPING_PROBES:
+        rect = equivalent_cantilever(preset(name))
+        t = math.pi * 998.2 * rect.width / (4 * rect.density * rect.thickness)
+        f_water = oscillator(preset(name), "water")["resonance_frequency"]
+        assert f_water < rect.resonance_frequency(1) / math.sqrt(1 + t), name
+
+
+def test_a_probe_in_a_fluid_sets_the_lever_in_one_run():
+    from afmsmiler.planform import preset
+    from afmsmiler.probe import oscillator
+    panel = TappingPanel()
+    c = panel.controls
+    assert c["fluid"].disabled and not any(c[n].disabled for n in
+                                            ("quality_factor", "spring_constant"))
+    runs = panel.model_runs
+    c["probe"].value = "AC160TS"
+    assert panel.model_runs == runs + 1
+    for fluid in ("air", "water"):
+        c["fluid"].value = fluid
+        o = oscillator(preset("AC160TS"), fluid)
+        lever = panel.last.lever
+        assert (lever.spring_constant, lever.resonance_frequency, lever.quality_factor) == (
+            o["spring_constant"], o["resonance_frequency"], o["quality_factor"])
+        assert c["quality_factor"].value == pytest.approx(o["quality_factor"], rel=1e-9)
+        assert c["resonance_frequency"].value == pytest.approx(o["resonance_frequency"] / 1e3,
+                                                               rel=1e-9)  # Hz -> kHz
+        assert c["quality_factor"].disabled and not c["fluid"].disabled
+        zc, phase, _, attractive = setpoint_state(0.8, lever)
+        assert panel.last.distance == pytest.approx(zc, rel=1e-12)
+        assert f"AC160TS in {fluid}" in panel.readout.value
+    assert panel.model_runs == runs + 2  # air was already chosen: no run for it
+    # moving a lever slider (in code: the browser cannot move a disabled one) types the lever
+    panel.set(quality_factor=100.0)
+    assert panel.values()["probe"] == "typed" and panel.last.lever.quality_factor == 100.0
+    assert not c["quality_factor"].disabled and c["fluid"].disabled
+    assert panel.model_runs == runs + 3
+
+
+def test_a_probe_is_refused_with_a_lever_given_and_an_unknown_one_by_name():
+    with pytest.raises(ValueError, match="probe"):
+        TappingPanel(probe="AC160TS", quality_factor=300.0)
+    with pytest.raises(ValueError, match="probe"):
+        TappingPanel(probe="ContAl-G")  # a contact lever: not offered
+    with pytest.raises(ValueError, match="fluid"):
+        TappingPanel(probe="AC160TS", fluid="oil")
+
+
+def test_notebook_suggestion_water_leaves_one_repulsive_branch():
+    # notebook 07: the probe AC160TS has Q about 470 in air; in water Q falls to about 7.5 and f0
+    # from 225 to 99 kHz, the branches no longer coexist, the one left is repulsive, and at
+    # setpoint 0.8 the tip presses some 5.6 nm into the sample
+    panel = TappingPanel(probe="AC160TS")
+    air = panel.last
+    assert f"{air.lever.quality_factor:.2g}" == "4.7e+02"
+    assert f"{air.lever.resonance_frequency / 1e3:.3g}" == "225"
+    assert air.curve.coexist.any() and air.branch == "attractive"
+    panel.set(fluid="water")
+    s = panel.last
+    assert f"{s.lever.quality_factor:.2g}" == "7.5"
+    assert f"{s.lever.resonance_frequency / 1e3:.2g}" == "99"
+    assert not s.curve.coexist.any() and s.branch == "repulsive"
+    assert f"{s.indentation * NM:.2g}" == "5.6"
+    assert math.degrees(s.phase) < 90.0  # repulsive: the phase lag below 90 deg
+
+
 def test_notebook_suggestion_viscosity_lights_up_the_dissipation(tap):
     tap.set(sample_viscosity=0.0, setpoint_ratio=0.9)
     dry = tap.last.dissipated_energy

@@ -1,7 +1,8 @@
 """The widget panels of module (g): what each imaging mode measures, one model run per move.
 
-- :class:`TappingPanel` (amplitude modulation): free amplitude, setpoint, Q, k, f0, Hamaker
-  constant, modulus and sample viscosity. One :func:`~afmsmiler.modes.amplitude_curve` per move
+- :class:`TappingPanel` (amplitude modulation): free amplitude, setpoint, Q, k, f0 (typed, or a
+  vendor's probe in air or water: :func:`afmsmiler.probe.oscillator`), Hamaker constant, modulus
+  and sample viscosity. One :func:`~afmsmiler.modes.amplitude_curve` per move
   (none when only the setpoint moved: the curve is the same), drawn by
   :class:`~afmsmiler.plots.modes.TappingFigure` with both branches, and the state the amplitude
   feedback holds at the setpoint, on the branch the approach picks (read off the same curve as
@@ -46,12 +47,16 @@ from ..modes.fm import FrequencyShiftCurve
 from ..modes.lateral import FrictionImages, FrictionLoop, LateralLever
 from ..modes.tapping import AmplitudeCurve, TappingLever, operating_point
 from ..parameters import read_only, shown
+from ..planform import preset
 from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
                            LateralFigure, TappingFigure)
+from ..probe import FLUID_NAMES, oscillator
 from ..samples import grating
-from .panel import Panel, _live_loop
+from ..validation import check_choice
+from .panel import Panel, _live_loop, _same, initial_values
 
-__all__ = ["TappingPanel", "TappingState", "LateralPanel", "LateralState",
+__all__ = ["TappingPanel", "TappingState", "TAPPING_PROBES", "TAPPING_FLUIDS", "TAPPING_LEVER",
+           "TYPED", "tapping_oscillator", "LateralPanel", "LateralState",
            "FrequencyShiftPanel", "FrequencyShiftState", "TAPPING_SLIDERS", "LATERAL_SLIDERS",
            "FM_SLIDERS", "TAPPING_DEFAULTS", "LATERAL_DEFAULTS", "FM_DEFAULTS",
            "operating_point", "LATERAL_SAMPLE", "FM_DISTANCES", "lateral_lever",
@@ -112,9 +117,29 @@ TAPPING_SLIDERS = read_only({name: tapping.PARAMETERS[name] for name in (
     "free_amplitude", "setpoint_ratio", "quality_factor", "spring_constant",
     "resonance_frequency", "hamaker_constant", "youngs_modulus", "sample_viscosity")})
 
+#: The probe drop-down's entry for a lever typed on the k, f0 and Q sliders.
+TYPED = "typed"
+#: The lever's sliders, set by a vendor's probe in its fluid.
+TAPPING_LEVER = ("spring_constant", "resonance_frequency", "quality_factor")
+#: Vendors' tapping probes (:data:`afmsmiler.planform.PRESETS`) the panel offers: mode 1 in air
+#: and in water within the sliders (a test checks each; contact levers ring below 10 kHz in water).
+TAPPING_PROBES = ("Tap300Al-G", "PPP-NCHR", "Arrow-NCR", "AC160TS", "Tap150Al-G", "Multi75Al-G",
+                  "PPP-FMR", "AC240TS")
+#: The fluids a probe taps in (keys of :data:`afmsmiler.hydrodynamics.FLUIDS`).
+TAPPING_FLUIDS = FLUID_NAMES
+
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
-#: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one).
-TAPPING_DEFAULTS = read_only(_display(TAPPING_SLIDERS, free_amplitude=12e-9))
+#: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one), on a typed
+#: lever (k = 40 N/m, f0 = 300 kHz, Q = 400).
+TAPPING_DEFAULTS = read_only({"probe": TYPED, "fluid": "air",
+                              **_display(TAPPING_SLIDERS, free_amplitude=12e-9)})
+
+
+@functools.lru_cache(maxsize=None)
+def tapping_oscillator(probe: str, fluid: str) -> dict:
+    """The k, f0 and Q (SI) of ``probe``'s mode 1 in ``fluid`` (:func:`afmsmiler.probe.
+    oscillator`), solved once per kernel."""
+    return read_only(oscillator(preset(probe), fluid))
 
 
 @dataclass(frozen=True)
@@ -162,9 +187,12 @@ class TappingState:
 class TappingPanel(_SliderPanel):
     """Amplitude and phase against distance, both branches; the branch the setpoint picks.
 
-    Sliders (units as shown): ``free_amplitude`` [nm], ``setpoint_ratio`` (A_sp / A0),
-    ``quality_factor``, ``spring_constant`` [N/m], ``resonance_frequency`` [kHz],
-    ``hamaker_constant`` [zJ], ``youngs_modulus`` [GPa] and ``sample_viscosity`` [Pa s].
+    Controls (units as shown): ``probe`` (``"typed"`` or a vendor's probe of
+    :data:`TAPPING_PROBES`), ``fluid`` (``"air"`` or ``"water"``: where a vendor's probe taps),
+    and the sliders ``free_amplitude`` [nm], ``setpoint_ratio`` (A_sp / A0), ``quality_factor``,
+    ``spring_constant`` [N/m], ``resonance_frequency`` [kHz], ``hamaker_constant`` [zJ],
+    ``youngs_modulus`` [GPa] and ``sample_viscosity`` [Pa s]. A vendor's probe puts its mode 1
+    in the fluid (Sader's hydrodynamics) on the k, f0 and Q sliders, which it disables.
 
     Parameters
     ----------
@@ -189,21 +217,101 @@ class TappingPanel(_SliderPanel):
     DEFAULTS = TAPPING_DEFAULTS
     FIGSIZE = (8.5, 7.5)
 
+    def declared_controls(self, initial) -> dict:
+        """The probe and fluid drop-downs, then the sliders (a probe's lever on them).
+
+        A vendor's probe sets the k, f0 and Q sliders to its mode 1 in the fluid (Sader's
+        hydrodynamics, :func:`tapping_oscillator`) and disables them; ``"typed"`` frees them
+        (and the fluid, which then decides nothing, is disabled). Moving a lever slider in code
+        makes the lever typed.
+        """
+        v = initial_values(initial, self.DEFAULTS)
+        probe = check_choice("probe", v["probe"], [TYPED, *TAPPING_PROBES])
+        fluid = check_choice("fluid", v["fluid"], TAPPING_FLUIDS)
+        if probe != TYPED:
+            given = sorted(set(initial) & set(TAPPING_LEVER))
+            if given:
+                raise ValueError(f"probe must be {TYPED!r} when {given} are given (a probe's "
+                                 f"lever is its own), got {probe!r}")
+            initial = {**initial, **self._lever_display(probe, fluid)}
+        controls = {
+            "probe": widgets.Dropdown(
+                options=[("typed: k, f0, Q below", TYPED), *((p, p) for p in TAPPING_PROBES)],
+                value=probe, description="probe"),
+            "fluid": widgets.Dropdown(options=list(TAPPING_FLUIDS), value=fluid,
+                                       description="fluid"),
+            **super().declared_controls(initial)}
+        # before the panel's own observers: one choice is one update
+        for name in ("probe", "fluid"):
+            controls[name].observe(self._on_probe, names="value")
+        for name in TAPPING_LEVER:
+            controls[name].observe(self._on_lever_slider, names="value")
+        self._syncing = False
+        self.controls = controls
+        self._enable_lever()
+        return controls
+
+    def _lever_display(self, probe: str, fluid: str) -> dict:
+        """The lever sliders' values (units shown) of ``probe`` in ``fluid``."""
+        o = tapping_oscillator(probe, fluid)
+        return {n: float(f"{self.SLIDERS[n].to_display(o[n]):.12g}") for n in TAPPING_LEVER}
+
+    def _enable_lever(self) -> None:
+        typed = self.controls["probe"].value == TYPED
+        self.controls["fluid"].disabled = typed
+        for name in TAPPING_LEVER:
+            self.controls[name].disabled = not typed
+
+    def _on_probe(self, change) -> None:
+        """A probe or fluid was chosen: its lever on the sliders, no update of their own (the
+        drop-down's own change runs the one update)."""
+        self._enable_lever()
+        probe = self.controls["probe"].value
+        if probe == TYPED:
+            return
+        hold, self._hold, self._syncing = self._hold, True, True
+        try:
+            for name, value in self._lever_display(probe,
+                                                   self.controls["fluid"].value).items():
+                self.controls[name].value = value
+        finally:
+            self._hold, self._syncing = hold, False
+
+    def _on_lever_slider(self, change) -> None:
+        """A lever slider moved (in code: the browser cannot move a disabled one): the lever is
+        typed from now on. A browser's echo of a synced value is no move."""
+        if self._syncing or self.controls["probe"].value == TYPED:
+            return
+        owner = change.get("owner")
+        name = next((n for n, c in self.controls.items() if c is owner), None)
+        if name in self._applied and _same(change["new"], self._applied[name], owner):
+            return
+        hold, self._hold = self._hold, True
+        try:
+            self.controls["probe"].value = TYPED
+        finally:
+            self._hold = hold
+
     def update(self, **values) -> None:
         """Run the model (unless only the setpoint moved) and draw the curves and the state.
 
         Parameters
         ----------
-        **values : float
-            Exactly the sliders of :data:`TAPPING_SLIDERS`, in SI.
+        **values
+            Exactly the controls: ``probe`` and ``fluid`` (str) and the sliders of
+            :data:`TAPPING_SLIDERS` in SI. With a vendor's probe its lever in the fluid
+            replaces the k, f0 and Q given.
 
         Raises
         ------
         TypeError, ValueError
-            For a missing or unknown slider or a value out of range, before any work.
+            For a missing or unknown control or a value out of range, before any work.
         """
         si = dict(values)
         r = si.pop("setpoint_ratio")
+        probe, fluid = si.pop("probe"), si.pop("fluid")
+        if probe != TYPED:
+            si.update(tapping_oscillator(probe, fluid))
         lever = TappingLever(**si)
         previous = self.last
         if previous is not None and previous.lever == lever:
@@ -236,6 +344,9 @@ class TappingPanel(_SliderPanel):
                                   contact_distance=lever.intermolecular_distance)
         s = self.last
         self.readout.value = _table([
+            ("lever", "typed" if probe == TYPED else
+             f"{probe} in {fluid}: Q = {lever.quality_factor:.3g}, f0 = "
+             f"{shown(lever.resonance_frequency, 'kHz', '.4g')} (Sader)"),
             ("held at z_c", shown(zc, "nm")), ("amplitude A", shown(r * lever.free_amplitude,
                                                                    "nm")),
             ("phase lag", shown(phase, "deg")), ("E_dis per cycle", shown(e_dis, "zJ")),
