@@ -186,6 +186,23 @@ def test_a_probe_in_a_fluid_sets_the_lever_in_one_run():
     assert panel.model_runs == runs + 3
 
 
+def test_the_browsers_echo_of_a_probes_lever_before_its_update_keeps_the_probe():
+    # in a live kernel the choice's update waits for the moves queued behind it; the browser's
+    # echo of the synced Q, snapped to the log slider's grid, may come first: no move (it made
+    # the lever typed again in JupyterLab)
+    panel = TappingPanel()
+    c = panel.controls
+    panel._hold = True  # the choice's update deferred, as on a live kernel's loop
+    c["probe"].value = "AC160TS"
+    q = c["quality_factor"]
+    snapped = 10 ** (round(math.log10(q.value) / q.step) * q.step)
+    assert snapped != q.value
+    q.value = snapped  # the echo
+    assert c["probe"].value == "AC160TS"
+    q.value = q.value * 10 ** (2 * q.step)  # a real move, two steps away: typed
+    assert c["probe"].value == "typed"
+
+
 def test_a_probe_is_refused_with_a_lever_given_and_an_unknown_one_by_name():
     with pytest.raises(ValueError, match="probe"):
         TappingPanel(probe="AC160TS", quality_factor=300.0)

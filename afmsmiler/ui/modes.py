@@ -53,7 +53,7 @@ from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigur
 from ..probe import FLUID_NAMES, oscillator
 from ..samples import grating
 from ..validation import check_choice
-from .panel import Panel, _live_loop, _same, initial_values
+from .panel import Panel, _live_loop, initial_values
 
 __all__ = ["TappingPanel", "TappingState", "TAPPING_PROBES", "TAPPING_FLUIDS", "TAPPING_LEVER",
            "TYPED", "tapping_oscillator", "LateralPanel", "LateralState",
@@ -246,7 +246,6 @@ class TappingPanel(_SliderPanel):
             controls[name].observe(self._on_probe, names="value")
         for name in TAPPING_LEVER:
             controls[name].observe(self._on_lever_slider, names="value")
-        self._syncing = False
         self.controls = controls
         self._enable_lever()
         return controls
@@ -269,22 +268,12 @@ class TappingPanel(_SliderPanel):
         probe = self.controls["probe"].value
         if probe == TYPED:
             return
-        hold, self._hold, self._syncing = self._hold, True, True
-        try:
-            for name, value in self._lever_display(probe,
-                                                   self.controls["fluid"].value).items():
-                self.controls[name].value = value
-        finally:
-            self._hold, self._syncing = hold, False
+        self.sync_controls(self._lever_display(probe, self.controls["fluid"].value))
 
     def _on_lever_slider(self, change) -> None:
         """A lever slider moved (in code: the browser cannot move a disabled one): the lever is
         typed from now on. A browser's echo of a synced value is no move."""
-        if self._syncing or self.controls["probe"].value == TYPED:
-            return
-        owner = change.get("owner")
-        name = next((n for n, c in self.controls.items() if c is owner), None)
-        if name in self._applied and _same(change["new"], self._applied[name], owner):
+        if self.controls["probe"].value == TYPED or self.is_echo(change):
             return
         hold, self._hold = self._hold, True
         try:

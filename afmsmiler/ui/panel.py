@@ -515,6 +515,48 @@ class Panel:
             self._run({**self.values(), **values})
 
     _hold = False
+    _syncing = False
+
+    def sync_controls(self, values: Mapping) -> None:
+        """Set controls to the values a choice implies (a preset's geometry), with no update of
+        their own: the choice's own change runs the one update.
+
+        The browser echoes each value snapped to its slider's grid, possibly before that update
+        has run; :meth:`is_echo` knows such an echo for what it is.
+
+        Parameters
+        ----------
+        values : mapping
+            Control name -> value, in the units shown.
+        """
+        synced = self.__dict__.setdefault("_synced", {})
+        hold, self._hold, self._syncing = self._hold, True, True
+        try:
+            for name, value in values.items():
+                self.controls[name].value = value
+                synced[name] = self.controls[name].value
+        finally:
+            self._hold, self._syncing = hold, False
+
+    def is_echo(self, change) -> bool:
+        """Whether a control's change is no student's move: made by :meth:`sync_controls`, or
+        the browser's echo, snapped to the grid, of a value a sync or the model's last run set.
+
+        Parameters
+        ----------
+        change : dict
+            The traitlets change (``owner``, ``new``).
+
+        Returns
+        -------
+        bool
+        """
+        if self._syncing:
+            return True
+        owner = change.get("owner")
+        name = next((n for n, c in self.controls.items() if c is owner), None)
+        return any(name in held and _same(change["new"], held[name], owner)
+                   for held in (self.__dict__.get("_synced", {}), self._applied))
 
     def check_values(self, values: Mapping) -> None:
         """Refuse control values (units shown) that no control could hold, naming them.

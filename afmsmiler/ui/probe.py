@@ -26,7 +26,7 @@ from ..plots.probe import ProbeFigure, probe_curves
 from ..probe import DEFAULTS as MODEL
 from ..probe import FLUID_NAMES, SPOT, ProbeReport, probe_report
 from ..validation import check_choice, check_integer
-from .panel import Panel, _same, initial_values
+from .panel import Panel, initial_values
 
 __all__ = ["ProbePanel", "DEFAULTS", "SLIDERS", "GEOMETRY", "SHAPE", "CUSTOM"]
 
@@ -122,7 +122,6 @@ class ProbePanel(Panel):
         }
         self.readout = widgets.HTML()
         self.fig = self.new_figure(figsize=_FIGSIZE)
-        self._syncing = False
         self._custom = (None, None)   # (geometry, Lever) of the last custom lever
         # registered before Panel's observers, so that one choice is one update
         self.controls["probe"].observe(self._on_probe, names="value")
@@ -146,12 +145,7 @@ class ProbePanel(Panel):
         their own (the drop-down's own change runs the one update)."""
         if change["new"] == CUSTOM:
             return
-        hold, self._hold, self._syncing = self._hold, True, True
-        try:
-            for name, value in _preset_values(change["new"]).items():
-                self.controls[name].value = value
-        finally:
-            self._hold, self._syncing = hold, False
+        self.sync_controls(_preset_values(change["new"]))
 
     def _on_geometry(self, change) -> None:
         """A geometry control moved: the lever is now custom (no update of its own).
@@ -160,11 +154,7 @@ class ProbePanel(Panel):
         is no move (:meth:`Panel.values` reports the value the model ran with) and leaves the
         preset chosen.
         """
-        if self._syncing or self.controls["probe"].value == CUSTOM:
-            return
-        owner = change.get("owner")
-        name = next((n for n, c in self.controls.items() if c is owner), None)
-        if name in self._applied and _same(change["new"], self._applied[name], owner):
+        if self.controls["probe"].value == CUSTOM or self.is_echo(change):
             return
         hold, self._hold = self._hold, True
         try:
