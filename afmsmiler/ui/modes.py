@@ -275,11 +275,7 @@ class TappingPanel(_SliderPanel):
         typed from now on. A browser's echo of a synced value is no move."""
         if self.controls["probe"].value == TYPED or self.is_echo(change):
             return
-        hold, self._hold = self._hold, True
-        try:
-            self.controls["probe"].value = TYPED
-        finally:
-            self._hold = hold
+        self.sync_controls({"probe": TYPED})
 
     def update(self, **values) -> None:
         """Run the model (unless only the setpoint moved) and draw the curves and the state.

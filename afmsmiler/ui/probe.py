@@ -156,11 +156,7 @@ class ProbePanel(Panel):
         """
         if self.controls["probe"].value == CUSTOM or self.is_echo(change):
             return
-        hold, self._hold = self._hold, True
-        try:
-            self.controls["probe"].value = CUSTOM
-        finally:
-            self._hold = hold
+        self.sync_controls({"probe": CUSTOM})
 
     def set(self, **values) -> None:
         """Set control values as a user would, in one update (see :meth:`Panel.set`).
