@@ -8,6 +8,7 @@ import itertools
 import math
 import os
 import re
+import time
 
 import numpy as np
 import pytest
@@ -645,10 +646,24 @@ def _screenshot(browser, html, path):
     try:
         page.goto(path.as_uri())
         page.wait_for_selector("canvas", timeout=30_000)
-        page.wait_for_timeout(2500)  # a few frames drawn
         from io import BytesIO
         from PIL import Image
-        return np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"), float)
+
+        def shot():
+            return np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"), float)
+
+        # drawn once two shots 0.5 s apart agree (a loaded machine drew a page after a fixed
+        # 2.5 s wait only some of the time: the shot of a blank page differed everywhere);
+        # a wait for the drawing, bounded, not a check of its speed
+        page.wait_for_timeout(500)
+        last, deadline = shot(), time.monotonic() + 30.0
+        while time.monotonic() < deadline:
+            page.wait_for_timeout(500)
+            now = shot()
+            if np.array_equal(now, last) and np.ptp(now) > 0:
+                return now
+            last = now
+        return last
     finally:
         page.close()
 
