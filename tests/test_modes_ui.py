@@ -175,6 +175,10 @@ def test_a_probe_in_a_fluid_sets_the_lever_in_one_run():
         assert c["resonance_frequency"].value == pytest.approx(o["resonance_frequency"] / 1e3,
                                                                rel=1e-9)  # Hz -> kHz
         assert c["quality_factor"].disabled and not c["fluid"].disabled
+        # the browser snaps to the grid: a probe's sliders on one fine enough to show its values
+        q = c["quality_factor"]
+        snapped = 10 ** (q.min + round((math.log10(q.value) - q.min) / q.step) * q.step)
+        assert f"{snapped:{q.readout_format}}" == f"{o['quality_factor']:{q.readout_format}}"
         zc, phase, _, attractive = setpoint_state(0.8, lever)
         assert panel.last.distance == pytest.approx(zc, rel=1e-12)
         assert f"AC160TS in {fluid}" in panel.readout.value
@@ -183,6 +187,7 @@ def test_a_probe_in_a_fluid_sets_the_lever_in_one_run():
     panel.set(quality_factor=100.0)
     assert panel.values()["probe"] == "typed" and panel.last.lever.quality_factor == 100.0
     assert not c["quality_factor"].disabled and c["fluid"].disabled
+    assert c["quality_factor"].step == TappingPanel().controls["quality_factor"].step  # typed
     assert panel.model_runs == runs + 3
 
 

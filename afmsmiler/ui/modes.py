@@ -255,11 +255,22 @@ class TappingPanel(_SliderPanel):
         o = tapping_oscillator(probe, fluid)
         return {n: float(f"{self.SLIDERS[n].to_display(o[n]):.12g}") for n in TAPPING_LEVER}
 
+    #: Grid step (in the exponent) of a lever slider a probe drives: the browser snaps a value
+    #: to its slider's grid, and the 6 % steps of a typed lever would show a probe's Q of 7.475
+    #: as 7.535 beside the readout's 7.48.
+    FINE_STEP = 1e-5
+
     def _enable_lever(self) -> None:
+        """Lever sliders free for a typed lever; for a probe's, disabled, on a grid fine enough
+        to show its values as they are (the typed grid back when it is typed again)."""
         typed = self.controls["probe"].value == TYPED
         self.controls["fluid"].disabled = typed
+        steps = self.__dict__.setdefault("_typed_steps", {
+            n: self.controls[n].step for n in TAPPING_LEVER})
         for name in TAPPING_LEVER:
-            self.controls[name].disabled = not typed
+            c = self.controls[name]
+            c.disabled = not typed
+            c.step = steps[name] if typed else self.FINE_STEP
 
     def _on_probe(self, change) -> None:
         """A probe or fluid was chosen: its lever on the sliders, no update of their own (the
