@@ -48,10 +48,11 @@ from .cantilever import Cantilever
 from .hydrodynamics import fluid_mode
 from .parameters import Parameter, read_only
 from .planform import Lever
-from .validation import check_choice, check_instance, check_integer, check_range, check_size
+from .validation import (check_array, check_choice, check_instance, check_integer,
+                         check_range, check_size)
 
 __all__ = ["SPOT", "FLUID_NAMES", "DEFAULTS", "mean_width", "equivalent_cantilever",
-           "planform_outline", "ProbeReport", "probe_report", "oscillator"]
+           "planform_outline", "half_widths", "ProbeReport", "probe_report", "oscillator"]
 
 #: Where the laser spot sits on the lever, as a fraction x/L of its length from the clamp.
 SPOT = Parameter(name="spot", unit="", default=1.0, low=0.0, high=1.0, low_inclusive=False,
@@ -135,6 +136,39 @@ def planform_outline(lever: Lever) -> tuple:
         inner = h - lever.arm_width / math.cos(lever.half_angle)
         x, y = [0, L, 0, 0, lever.solid_from, 0, 0], [-h, 0, h, inner, 0, -inner, -h]
     return np.array(x, float), np.array(y, float)
+
+
+def half_widths(lever: Lever, x) -> tuple:
+    """The plan view's section at ``x`` on one side of the axis: from ``inner`` to ``outer``.
+
+    The lever is symmetric about its axis (y = 0); on the side y >= 0 it covers
+    inner(x) <= y <= outer(x) (:func:`planform_outline`): a rectangle or a pointed lever from the
+    axis (inner = 0) to its half width (narrowing linearly over the point), a V-shaped lever from
+    its arm's inner edge to its outer edge where the arms are apart (x < x_j) and from the axis to
+    the outer edge where they meet.
+
+    Parameters
+    ----------
+    lever : Lever
+        The lever.
+    x : array_like
+        Positions along the lever in m, in [0, L].
+
+    Returns
+    -------
+    inner, outer : ndarray
+        In m, 0 <= inner <= outer.
+    """
+    lever = check_instance("lever", lever, Lever)
+    L, h = lever.length, lever.width / 2
+    x = check_array("x", x, "m", low=0.0, high=L)
+    if lever.planform == "rectangular":
+        return np.zeros_like(x), np.full_like(x, h)
+    if lever.planform == "pointed":
+        a = lever.point_length
+        return np.zeros_like(x), h * np.clip((L - x) / a, 0.0, 1.0)
+    inner0 = h - lever.arm_width / math.cos(lever.half_angle)
+    return (inner0 * np.clip(1.0 - x / lever.solid_from, 0.0, 1.0), h * (1.0 - x / L))
 
 
 @dataclass(frozen=True)

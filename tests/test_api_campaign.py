@@ -200,7 +200,8 @@ ACCEPTED = {
     # the upper floors (test_upper_bad_values_are_named_or_harmless): free text, stored as given
     **{f"scenes.{scene}:path": (("str",), "any text is a path in the viewer's tree")
        for scene in ("cantilever.CantileverScene", "contact.ContactScene",
-                     "imaging.ImagingScene", "modes.ModesScene", "transducers.TransducerScene")},
+                     "imaging.ImagingScene", "modes.ModesScene", "transducers.TransducerScene",
+                     "probe.ProbeScene")},
     "scenes.legends.TextPlate:text": (("str",), "any text is the plate's text"),
     "plots.controller.ScanFigure:title": (("str",), "any text is a figure's title"),
     "plots.imaging.scan_view:status": (("str",), "any text is the title's note"),
@@ -437,7 +438,8 @@ OVERRIDES = {
     # "your probe": a Lever (a pointed preset), not module (a)'s Cantilever
     **{f"afmsmiler.probe.{f}": {"lever": lambda: __import__(
         "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS")}
-       for f in ("mean_width", "equivalent_cantilever", "planform_outline", "oscillator")},
+       for f in ("mean_width", "equivalent_cantilever", "planform_outline", "oscillator",
+                 "half_widths")},
     "afmsmiler.probe.probe_report": {"lever": lambda: __import__(
         "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS"), "points": 2 ** 12,
         "averages": 4},
@@ -1715,7 +1717,7 @@ UPPER_MODULES = ["afmsmiler.plots.cantilever", "afmsmiler.plots.contact",
                  "afmsmiler.scenes.imaging", "afmsmiler.scenes.legends",
                  "afmsmiler.scenes.modes", "afmsmiler.scenes.shapes",
                  "afmsmiler.scenes.transducers", "afmsmiler.scenes.camera",
-                 "afmsmiler.scenes.animation",
+                 "afmsmiler.scenes.animation", "afmsmiler.scenes.probe",
                  "afmsmiler.exercises.contact", "afmsmiler.exercises.controller",
                  "afmsmiler.exercises.imaging"]
 
@@ -1815,6 +1817,10 @@ UPPER_VALID = {
     "scenes.legends.TextPlate": {"text": "campaign"},
     "scenes.shapes.polyline": {"points": lambda: np.zeros((3, 3))},
     "scenes.shapes.cone": {"height": 1.0, "radius": 0.5},
+    # "your probe" draws a Lever (a pointed preset), not module (a)'s Cantilever
+    **{f"scenes.probe.{f}": {"lever": lambda: __import__(
+        "afmsmiler.planform", fromlist=["preset"]).preset("AC240TS"), "twist": 0.01}
+       for f in ("lever_mesh", "ProbeScene")},
     "scenes.shapes.sphere": {"radius": 0.5},
     "scenes.camera.set_camera": {"position": (1.0, 1.0, 1.0)},
     "scenes.animation.set_track": {"prop": "position",

@@ -188,6 +188,40 @@ def test_notebook_suggestion_custom_half_thickness():
     assert after.modes["air"].quality_factor == pytest.approx(18, abs=1)
 
 
+def test_notebook_suggestion_friction_twists_the_lever():
+    # notebook 01: at 500 nN the ContAl-G's tip section twists about 0.58 mrad, F_L (h + t/2) /
+    # k_phi with Saint-Venant's k_phi ~ G w t^3 / (3 L) (its coating adds 2 %); drawn x 500; the
+    # MLCT-E is eleven times softer in torsion and twists about 2.6 mrad
+    from tests.recording import Recorder
+    p = ProbePanel(vis=Recorder())
+    runs = p.model_runs
+    p.set(lateral_force=500.0)
+    assert p.model_runs == runs  # the twist alone: no report again
+    lever = p.last.lever
+    strip = lever.shear_modulus * lever.width * lever.thickness ** 3 / (3 * lever.length)
+    k_phi = strip * 1.02
+    assert f"{p.twist * 1e3:.2g}" == "0.58"
+    assert p.twist == pytest.approx(500e-9 * (lever.tip_height + lever.thickness / 2) / k_phi,
+                                    rel=0.01)
+    assert p.scene.factor == 500.0 and "twist x 500" in p.readout.value
+    p.set(probe="MLCT-E")
+    assert f"{p.twist * 1e3:.2g}" == "2.6"
+    assert round(preset("ContAl-G").torsional_stiffness / preset("MLCT-E").torsional_stiffness) \
+        == 11
+
+
+def test_the_twist_of_an_uncoated_rectangle_is_saint_venants():
+    # a custom silicon rectangle, no coating: phi = F_L (h_tip + t/2) 3 L / (G w t^3) (Saint-Venant's
+    # thin strip, Timoshenko and Goodier), to the frame model's discretisation
+    p = ProbePanel(probe=CUSTOM, planform="rectangular", lateral_force=-200.0)
+    lever = p.last.lever
+    assert lever.coating is None
+    k_phi = lever.shear_modulus * lever.width * lever.thickness ** 3 / (3 * lever.length)
+    arm = lever.tip_height + lever.thickness / 2
+    assert p.twist == pytest.approx(-200e-9 * arm / k_phi, rel=2e-3)  # the sign of the force
+    assert "N m/rad" in p.readout.value and "mrad" in p.readout.value
+
+
 def test_the_notebooks_list_of_things_to_try_names_these_tests():
     section = [m for m in MARKDOWN if m.startswith("## Your probe")]
     assert len(section) == 1
@@ -195,8 +229,8 @@ def test_the_notebooks_list_of_things_to_try_names_these_tests():
     assert "tests/test_probe_ui.py" in text
     tries = sum(1 for n in range(1, 10) if f"\n{n}. " in text)
     own = Path(__file__).read_text(encoding="utf-8").count("def " + "test_notebook_suggestion_")
-    assert tries == own == 4
-    assert any(src.startswith("probe = ProbePanel()") for src in CODE)
+    assert tries == own == 5
+    assert any(src.startswith("probe = ProbePanel(scene=True)") for src in CODE)
 
 
 def _run(*sources):

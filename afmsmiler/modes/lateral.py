@@ -69,7 +69,8 @@ from ..validation import check_array, check_choice, check_instance, check_intege
 __all__ = ["LateralLever", "FrictionLoop", "FrictionImages", "LateralForceMode",
            "shear_modulus", "lateral_force", "friction_loop", "friction_scan", "friction_sample",
            "PARAMETERS", "MODELS", "SHEAR_MODULUS", "TIP_HEIGHT", "NORMAL_FORCE",
-           "FRICTION_COEFFICIENT", "LATERAL_STIFFNESS", "LATERAL_NOISE", "TILT"]
+           "FRICTION_COEFFICIENT", "LATERAL_STIFFNESS", "LATERAL_NOISE", "TILT", "LATERAL_FORCE",
+           "MAX_LATERAL_FORCE"]
 
 #: The two ways of combining friction and slope (module notes).
 MODELS = ("linear", "wedge")
@@ -131,6 +132,10 @@ def shear_modulus(material: str | Material) -> float:
 #: The largest lateral force in N a lever's twist is computed for: 1 mN, a million times an AFM
 #: tip's nN friction (a larger value is a unit slip, and its twist would overflow).
 MAX_LATERAL_FORCE = 1e-3
+#: The lateral (friction) force at the tip apex that twists the lever, as a control.
+LATERAL_FORCE = Parameter(name="lateral_force", unit="N", display_unit="nN", default=100e-9,
+                          low=-MAX_LATERAL_FORCE, high=MAX_LATERAL_FORCE, slider_low=-500e-9,
+                          slider_high=500e-9, label="friction force at the apex F_L")
 
 @dataclass(frozen=True)
 class LateralLever:

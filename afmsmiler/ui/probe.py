@@ -19,6 +19,7 @@ import math
 import ipywidgets as widgets
 
 from ..cantilever import LENGTH, THICKNESS, WIDTH
+from ..modes.lateral import LATERAL_FORCE, LateralLever
 from ..materials import MATERIALS
 from ..parameters import read_only, shown
 from ..planform import ARM_WIDTH, PLANFORMS, POINT_LENGTH, PRESETS, Lever, preset
@@ -37,7 +38,8 @@ CUSTOM = "custom"
 PROBE_WIDTH = WIDTH.with_(slider_high=250e-6)
 #: The panel's sliders, by control name.
 SLIDERS = read_only({"length": LENGTH, "width": PROBE_WIDTH, "thickness": THICKNESS,
-                     "point_length": POINT_LENGTH, "arm_width": ARM_WIDTH, "spot": SPOT})
+                     "point_length": POINT_LENGTH, "arm_width": ARM_WIDTH, "spot": SPOT,
+                     "lateral_force": LATERAL_FORCE})
 #: The controls that describe a custom lever (moving one makes the lever custom).
 GEOMETRY = ("planform", "material", "length", "width", "thickness", "point_length", "arm_width")
 #: The sliders that shape one planform only: slider -> the planform it shapes (disabled for the
@@ -93,7 +95,7 @@ class ProbePanel(Panel):
     SLIDERS = SLIDERS
     DEFAULTS = DEFAULTS
 
-    def __init__(self, *, seed: int = MODEL["seed"], **initial):
+    def __init__(self, *, seed: int = MODEL["seed"], scene: bool = False, vis=None, **initial):
         self.seed = check_integer("seed", seed, 0, 2 ** 32 - 1)
         v = initial_values(initial, DEFAULTS)
         check_choice("probe", v["probe"], [CUSTOM, *PRESETS])
@@ -119,6 +121,7 @@ class ProbePanel(Panel):
             "fluid": widgets.Dropdown(options=list(FLUID_NAMES), value=v["fluid"],
                                       description="fluid"),
             "spot": sliders["spot"],
+            "lateral_force": sliders["lateral_force"],
         }
         self.readout = widgets.HTML()
         self.fig = self.new_figure(figsize=_FIGSIZE)
@@ -129,7 +132,9 @@ class ProbePanel(Panel):
             self.controls[name].observe(self._on_geometry, names="value")
         self.controls["planform"].observe(self._enable_shape, names="value")
         self._enable_shape()
-        super().__init__()
+        self.scene = None
+        self.twist = 0.0
+        super().__init__(scene=scene, vis=vis)
 
     def _enable_shape(self, change=None) -> None:
         """Enable the sliders that shape the chosen planform only (a rectangle has no point
@@ -200,7 +205,7 @@ class ProbePanel(Panel):
 
     # -- the callback ---------------------------------------------------------------------
     def update(self, *, probe, planform, material, length, width, thickness, point_length,
-               arm_width, fluid, spot) -> None:
+               arm_width, fluid, spot, lateral_force) -> None:
         """Run the model once for these control values (sliders in SI) and draw the result.
 
         Parameters
@@ -215,13 +220,27 @@ class ProbePanel(Panel):
             ``"air"`` or ``"water"``.
         spot : float
             The laser spot's position x/L.
+        lateral_force : float
+            The friction force at the tip's apex in N: it twists the lever (the 3D view; a move
+            of it alone runs no report again).
         """
         lever = self._lever(probe, planform, material, length, width, thickness, point_length,
                             arm_width)
-        report = self.run_model(probe_report, lever, fluid, spot=spot, seed=self.seed)
-        self.last = report
-        self.draw(ProbeFigure, probe_curves(report))
-        self.readout.value = _readout_html(report)
+        last = self.last
+        if last is None or (last.lever, last.fluid, last.spot) != (lever, fluid, spot):
+            report = self.run_model(probe_report, lever, fluid, spot=spot, seed=self.seed)
+            self.last = report
+            self.draw(ProbeFigure, probe_curves(report))
+        lateral = LateralLever(lever)
+        self.twist = lateral.twist(lateral_force)
+        if self._want_scene:
+            if self.scene is None:
+                from ..scenes.probe import ProbeScene
+                self.scene = ProbeScene(lever, self.twist, vis=self.scene_root())
+            else:
+                self.scene.update(lever, self.twist)
+        self.readout.value = _readout_html(self.last, lateral, lateral_force, self.twist,
+                                           self.scene)
 
     @property
     def report(self) -> ProbeReport:
@@ -251,7 +270,8 @@ def _percent(x: float) -> str:
     return f"{100 * x:+.1f} %" if math.isfinite(x) else "n/a"
 
 
-def _readout_html(r: ProbeReport) -> str:
+def _readout_html(r: ProbeReport, lateral: LateralLever, force: float, twist: float,
+                  scene=None) -> str:
     u = _READOUT
     k = u["spring_constant"]
     air, water = r.modes["air"], r.modes["water"]
@@ -271,10 +291,19 @@ def _readout_html(r: ProbeReport) -> str:
     cal_rows = "".join(f"<tr><td>{a}</td><td style='text-align:right'><b>{b}</b></td>"
                        f"<td style='padding-left:8px'>{c}</td></tr>" for a, b, c in cal)
     why = "".join(f"<li>{html.escape(s)}</li>" for s in r.reasons())
+    twist_rows = (f"<tr><td>torsional stiffness k_phi</td><td style='text-align:right'><b>"
+                  f"{lateral.torsional_stiffness:.4g} N m/rad</b></td></tr>"
+                  f"<tr><td>lateral k at the apex, k_phi / (h_tip + t/2)^2</td>"
+                  f"<td style='text-align:right'><b>{lateral.spring_constant:.4g} {k}</b>"
+                  f"</td></tr><tr><td>twist at F_L = {shown(force, 'nN', '.3g')}</td>"
+                  f"<td style='text-align:right'><b>{shown(twist, 'mrad', '.3g')}</b></td></tr>")
+    view = "" if scene is None else f"<div>3D view: {html.escape(scene.caption)}</div>"
     name = html.escape(r.lever.name or CUSTOM)
     return (f"<div><b>{name}</b> ({r.lever.planform}): k = {r.spring_constant:.4g} {k} at the "
             "tip</div>"
             f"<table>{table}</table>"
             f"<div style='margin-top:6px'>calibrated in {r.fluid}, spot at x/L = "
             f"{r.spot:.3g} (assumed {r.assumed_spot:g}):</div><table>{cal_rows}</table>"
-            f"<div style='margin-top:6px'>why they differ:</div><ul style='margin:0'>{why}</ul>")
+            f"<div style='margin-top:6px'>why they differ:</div><ul style='margin:0'>{why}</ul>"
+            f"<div style='margin-top:6px'>twisted by the friction force at its apex:</div>"
+            f"<table>{twist_rows}</table>{view}")

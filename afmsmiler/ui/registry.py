@@ -106,7 +106,7 @@ PANELS = (
     PanelEntry("cantilever", "a", "panel", "cantilever", "CantileverPanel",
                "a lever's deflection, stress, stiffness and modes", "force", scene=True),
     PanelEntry("probe", "a", "probe", "probe", "ProbePanel",
-               "your probe in air and water, calibrated", "spot"),
+               "your probe in air and water, calibrated, twisted", "spot", scene=True),
     PanelEntry("transducers", "b", "panel", "transducers", "TransducerPanel",
                "a sensing or actuation principle's chain and noise", "input", scene=True),
     PanelEntry("controller", "c", "panel", "controller", "ControllerPanel",
