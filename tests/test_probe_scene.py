@@ -87,6 +87,8 @@ def test_the_scene_draws_the_models_twist_magnified_and_the_tip_turns_with_it():
     np.testing.assert_allclose(apex[:3], sc.apex(), rtol=1e-12)
     assert f"twist x {sc.factor:g}" in sc.caption
     n = rec.log["/afmsmiler/probe/lever"]["n_objects"]
+    sc.update(lever, twist)    # nothing changed (the spot moved): nothing sent
+    assert rec.log["/afmsmiler/probe/lever"]["n_objects"] == n
     sc.update(lever, -twist)   # the force reversed: the other way, the same factor
     assert rec.log["/afmsmiler/probe/lever"]["n_objects"] == n + 1
     assert sc.apex()[1] == pytest.approx(-arm * math.sin(drawn))

@@ -176,6 +176,8 @@ class ProbeScene(SceneDisplay):
         """
         lever = check_instance("lever", lever, Lever)
         twist = check_range("twist", twist, -math.pi / 2, math.pi / 2, "rad")
+        if lever == self.lever and twist == self.twist:
+            return  # nothing to draw again (a move of the spot or the fluid)
         if lever != self.lever:
             self.factor = self.factor_for(lever)
         drawn = float(np.clip(self.factor * twist, -math.pi / 2, math.pi / 2))
