@@ -204,8 +204,43 @@ def test_the_browsers_echo_of_a_probes_lever_before_its_update_keeps_the_probe()
     assert snapped != q.value
     q.value = snapped  # the echo
     assert c["probe"].value == "AC160TS"
+    # two syncs in a row (air, then water) and the air echo arriving late: still no move
+    c["fluid"].value = "water"
+    q.value = snapped
+    assert c["probe"].value == "AC160TS"
     q.value = q.value * 10 ** (2 * q.step)  # a real move, two steps away: typed
     assert c["probe"].value == "typed"
+
+
+def test_set_with_a_probe_and_a_lever_slider_starts_the_typed_lever_from_the_probe():
+    from afmsmiler.planform import preset
+    from afmsmiler.probe import oscillator
+    o = oscillator(preset("AC160TS"), "water")
+    for kwargs in ({"probe": "AC160TS", "fluid": "water", "quality_factor": 100.0},
+                   {"quality_factor": 100.0, "fluid": "water", "probe": "AC160TS"}):
+        panel = TappingPanel()
+        runs = panel.model_runs
+        panel.set(**kwargs)
+        lever, v = panel.last.lever, panel.values()
+        assert v["probe"] == "typed" and v["quality_factor"] == 100.0
+        assert lever.quality_factor == 100.0 and panel.model_runs == runs + 1
+        # the others from the probe in water, on the sliders' grid (6 % steps)
+        assert lever.spring_constant == pytest.approx(o["spring_constant"], rel=0.04)
+        assert lever.resonance_frequency == pytest.approx(o["resonance_frequency"], rel=0.04)
+        assert lever.spring_constant == v["spring_constant"]  # what the slider shows runs
+        panel.set(free_amplitude=13.0)   # and nothing runs twice or drifts afterwards
+        assert panel.model_runs == runs + 2 and panel.last.lever.quality_factor == 100.0
+
+
+def test_back_to_typed_the_lever_is_what_the_sliders_show():
+    panel = TappingPanel(probe="AC160TS", fluid="water")
+    c = panel.controls
+    c["probe"].value = "typed"
+    q = c["quality_factor"]
+    on_grid = 10 ** (q.min + round((math.log10(q.value) - q.min) / q.step) * q.step)
+    assert q.value == pytest.approx(on_grid, rel=1e-9) and q.step == 0.025
+    assert panel.last.lever.quality_factor == pytest.approx(q.value, rel=1e-9)
+    assert panel.last.lever.quality_factor == pytest.approx(7.475, rel=0.04)
 
 
 def test_a_probe_is_refused_with_a_lever_given_and_an_unknown_one_by_name():

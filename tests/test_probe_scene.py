@@ -12,7 +12,7 @@ import pytest
 
 from afmsmiler.modes.lateral import LATERAL_FORCE, LateralLever
 from afmsmiler.planform import Lever, preset
-from afmsmiler.probe import half_widths
+from afmsmiler.probe import half_widths, planform_outline
 from afmsmiler.scenes.camera import camera_ndc
 from afmsmiler.scenes.probe import SCENE_UNIT, ProbeScene, lever_mesh
 from tests.recording import Recorder
@@ -42,17 +42,46 @@ def test_the_untwisted_slab_is_the_plan_view(name):
     assert _top_area(verts, faces, lever.thickness) == pytest.approx(lever.area, rel=1e-9)
 
 
-def test_half_widths_follow_the_outline():
-    v = preset("MLCT-E")
-    inner, outer = half_widths(v, [0.0, v.solid_from, v.length])
-    h = v.width / 2
-    assert inner[0] == pytest.approx(h - v.arm_width / math.cos(v.half_angle))
-    assert inner[1] == 0.0 and outer[2] == 0.0 and outer[0] == pytest.approx(h)
-    p = preset("AC160TS")
-    _, outer = half_widths(p, [p.length - p.point_length, p.length])
-    assert outer == pytest.approx([p.width / 2, 0.0])
+def _signed_volume(verts, faces):
+    v0, v1, v2 = verts[faces[:, 0]], verts[faces[:, 1]], verts[faces[:, 2]]
+    return float(np.einsum("ij,ij->i", v0, np.cross(v1, v2)).sum() / 6)
+
+
+@pytest.mark.parametrize("name", LEVERS)
+def test_the_slab_is_closed_and_wound_outwards(name):
+    # the divergence theorem on a closed surface wound counter-clockwise from outside: its signed
+    # volume is the slab's, area x thickness; inside out it would be negative, open it would
+    # depend on the origin (shifted here)
+    lever = preset(name)
+    volume = lever.area * lever.thickness
+    for twist in (0.0, 0.4):
+        verts, faces = lever_mesh(lever, twist)
+        for shift in ((0, 0, 0), (1e-3, -2e-3, 5e-4)):
+            assert _signed_volume(verts + shift, faces) == pytest.approx(
+                volume, rel=1e-9 if twist == 0 else 1e-2)
+
+
+@pytest.mark.parametrize("name", LEVERS)
+def test_half_widths_follow_the_outline(name):
+    # the plan view's outline (planform_outline, the figure's polygon) crossed at each station:
+    # on the side y >= 0 its crossings are the section's edges, the axis where it is inside
+    lever = preset(name)
+    from matplotlib.path import Path as Polygon
+    ox, oy = planform_outline(lever)
+    outline = Polygon(np.column_stack([ox, oy]))
+    x = np.linspace(0.0, lever.length, 41)[1:-1]
+    inner, outer = half_widths(lever, x)
+    for xi, lo, hi in zip(x, inner, outer):
+        ys = []
+        for (x0, y0), (x1, y1) in zip(zip(ox[:-1], oy[:-1]), zip(ox[1:], oy[1:])):
+            if min(x0, x1) <= xi <= max(x0, x1) and x0 != x1:
+                ys.append(y0 + (y1 - y0) * (xi - x0) / (x1 - x0))
+        ys = sorted(y for y in ys if y >= 0)
+        axis_inside = outline.contains_point((xi, 0.0))
+        expect_lo = 0.0 if axis_inside else ys[0]
+        assert (lo, hi) == pytest.approx((expect_lo, ys[-1]), abs=1e-12), (name, xi)
     with pytest.raises(ValueError, match="x"):
-        half_widths(p, [2 * p.length])
+        half_widths(lever, [2 * lever.length])
 
 
 def test_a_section_turns_by_the_twist_growing_to_the_tip():
@@ -118,3 +147,29 @@ def test_the_camera_frames_the_lever_and_its_tip(name):
     # ... and fills a good part of the view: the lever spans over a third of its width
     assert np.ptp(ndc[:, 0]) > 0.66, (name, np.ptp(ndc[:, 0]))
     assert rec.log["/Grid"]["visible"] is False
+
+
+def test_a_twist_beyond_a_quarter_turn_is_drawn_held_there_and_said_so():
+    # a long thin custom lever at the slider's largest force twists some 11 rad in the linear
+    # model: drawn at a quarter turn, the caption says so, nothing raised
+    lever = Lever.rectangular("silicon", 1000e-6, 5e-6, 0.2e-6)
+    twist = LateralLever(lever).twist(LATERAL_FORCE.slider_high)
+    assert twist > 2 * math.pi
+    sc = ProbeScene(lever, twist, vis=Recorder())
+    assert sc.factor == 1.0  # never shrunk
+    assert "held at a quarter turn" in sc.caption and "drawn 90 deg" in sc.caption
+    arm = (lever.tip_height + lever.thickness / 2) / SCENE_UNIT
+    assert sc.apex()[1:] == pytest.approx([arm, 0.0], abs=1e-12)
+
+
+def test_a_tip_set_back_twists_as_far_as_the_tip_and_no_further():
+    lever = Lever.rectangular("silicon", 450e-6, 50e-6, 2e-6, tip_position=400e-6)
+    verts, _ = lever_mesh(lever, 0.3)
+    mid = verts[np.argmin(np.abs(verts[:, 0] - 200e-6)), 0]   # the station nearest 200 um
+    for x, angle in ((mid, 0.3 * mid / 400e-6), (400e-6, 0.3), (450e-6, 0.3)):
+        at = np.isclose(verts[:, 0], x) & np.isclose(verts[:, 2], math.sin(angle) * 25e-6
+                                                     + math.cos(angle) * 1e-6)
+        # the top outer corner (y = w/2, z = t/2) turned by the angle of its section
+        assert at.any(), x
+        np.testing.assert_allclose(verts[at, 1], math.cos(angle) * 25e-6 - math.sin(angle) * 1e-6,
+                                   rtol=1e-9)

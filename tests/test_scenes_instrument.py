@@ -652,15 +652,19 @@ def _screenshot(browser, html, path):
         def shot():
             return np.asarray(Image.open(BytesIO(page.screenshot())).convert("RGB"), float)
 
-        # drawn once two shots 0.5 s apart agree (a loaded machine drew a page after a fixed
-        # 2.5 s wait only some of the time: the shot of a blank page differed everywhere);
-        # a wait for the drawing, bounded, not a check of its speed
+        # drawn once the canvas shows something (not one colour) and two shots 0.5 s apart
+        # agree (a loaded machine drew a page after a fixed 2.5 s wait only some of the time:
+        # the shot of a blank page differed everywhere); a wait for the drawing, bounded, not a
+        # check of its speed
+        box = page.locator("canvas").first.bounding_box()
+        rows = slice(int(box["y"]), int(box["y"] + box["height"]))
+        cols = slice(int(box["x"]), int(box["x"] + box["width"]))
         page.wait_for_timeout(500)
         last, deadline = shot(), time.monotonic() + 30.0
         while time.monotonic() < deadline:
             page.wait_for_timeout(500)
             now = shot()
-            if np.array_equal(now, last) and np.ptp(now) > 0:
+            if np.array_equal(now, last) and np.ptp(now[rows, cols]) > 0:
                 return now
             last = now
         return last

@@ -6,11 +6,15 @@ centred), z up, its tip under it at the tip position. The lever is drawn from it
 (:func:`afmsmiler.probe.half_widths`: a rectangle, a pointed end or a V's two arms), true to
 scale, and twisted about its long axis: the model gives the twist of the tip's section,
 phi = F_L (h_tip + t/2) / k_phi (:meth:`afmsmiler.modes.LateralLever.twist`); the drawing
-magnifies it by :attr:`ProbeScene.factor`, one round factor per lever (the twist at the slider's
-largest force drawn at about 30 deg), so that the drawn twist follows the force. Along the lever
+magnifies it by :attr:`ProbeScene.factor`, one round factor of at least 1 per lever (the twist
+at the slider's largest force drawn at 0.5 rad, 29 deg, at most), so that the drawn twist follows
+the force; a drawn twist is never more than a quarter turn (the caption says when it is held
+there). Along the lever
 the drawn twist grows linearly from the clamp to the tip's section, as it does in a uniform bar
 under an end torque (Saint-Venant torsion), and stays the tip's beyond it; for a pointed or
-V-shaped lever this shape is a drawing, the tip's twist is the model's.
+V-shaped lever this shape is a drawing, the tip's twist is the model's. The chip the lever
+comes out of is drawn above it (the side away from the tip), smaller than a real chip's
+1.6 x 3.4 x 0.3 mm so that the lever fills the view.
 
 The scene draws what the panel computed (a :class:`~afmsmiler.planform.Lever` and a twist angle)
 and computes no physics: the mesh is sent again at each update (one message).
@@ -27,7 +31,7 @@ from ..modes.lateral import LATERAL_FORCE, LateralLever
 from ..parameters import read_only
 from ..planform import Lever
 from ..probe import half_widths
-from ..validation import check_instance, check_range
+from ..validation import check_finite, check_instance, check_integer, check_range
 from .camera import set_camera, show_helpers
 from .modes import factor_text, round_factor
 from .shapes import cone
@@ -51,13 +55,26 @@ DEFAULTS = read_only(dict(
 ))
 
 
+def _oriented(quads: np.ndarray, outward) -> np.ndarray:
+    """``quads`` (m, 4, 3) turned so that each faces ``outward`` (counter-clockwise seen from
+    there), those of no area left out."""
+    normal = np.cross(quads[:, 2] - quads[:, 0], quads[:, 3] - quads[:, 1])
+    keep = np.linalg.norm(normal, axis=1) > 0
+    quads, normal = quads[keep], normal[keep]
+    flip = normal @ np.asarray(outward, float) < 0
+    quads[flip] = quads[flip][:, ::-1]
+    return quads
+
+
 def lever_mesh(lever: Lever, twist: float = 0.0, *, stations: int = DEFAULTS["stations"]):
     """Vertices and triangles of ``lever``'s plan view as a slab, twisted (SI units, m).
 
     Each half (y >= 0 and y <= 0) is a strip of sections between its inner and outer edge
     (:func:`~afmsmiler.probe.half_widths`) at ``stations`` points along x and the planform's
-    corners, the thickness t about the mid-plane z = 0: top, bottom, outer and inner walls and
-    the end faces. A section at x is turned about the x axis by ``twist`` min(x / x_tip, 1).
+    corners, the thickness t about the mid-plane z = 0: top, bottom and outer walls, the inner
+    walls where the arms of a V are apart, the clamp's face and the free end's where it has a
+    width. Every face is wound counter-clockwise seen from outside and has its own vertices (flat
+    shading). A section at x is turned about the x axis by ``twist`` min(x / x_tip, 1).
 
     Parameters
     ----------
@@ -75,7 +92,7 @@ def lever_mesh(lever: Lever, twist: float = 0.0, *, stations: int = DEFAULTS["st
     """
     lever = check_instance("lever", lever, Lever)
     twist = check_range("twist", twist, -math.pi / 2, math.pi / 2, "rad")
-    stations = int(check_range("stations", stations, 2, 1000))
+    stations = check_integer("stations", stations, 2, 1000)
     L, t = lever.length, lever.thickness
     marks = [lever.tip_position]
     if lever.planform == "pointed":
@@ -84,31 +101,33 @@ def lever_mesh(lever: Lever, twist: float = 0.0, *, stations: int = DEFAULTS["st
         marks.append(lever.solid_from)
     x = np.unique(np.concatenate([np.linspace(0.0, L, stations), marks]))
     inner, outer = half_widths(lever, x)
-    n = x.size
-    angle = twist * np.clip(x / lever.tip_position, 0.0, 1.0)
-    verts, faces = [], []
+    quads = []
     for side in (1.0, -1.0):
-        # per station: inner-top, outer-top, outer-bottom, inner-bottom (a ring of 4)
-        y = np.stack([inner, outer, outer, inner], axis=1) * side
-        z = np.tile([t / 2, t / 2, -t / 2, -t / 2], (n, 1))
-        c, s = np.cos(angle)[:, None], np.sin(angle)[:, None]
-        ring = np.stack([np.repeat(x[:, None], 4, axis=1), y * c - z * s, y * s + z * c],
-                        axis=2).reshape(-1, 3)
-        base = sum(len(v) for v in verts)
-        verts.append(ring)
-        k = np.arange(n - 1)[:, None]
-        for a in range(4):  # the four walls between station k and k + 1
-            b = (a + 1) % 4
-            p, q = base + 4 * k + a, base + 4 * k + b
-            faces.append(np.hstack([p, q, q + 4]))
-            faces.append(np.hstack([p, q + 4, p + 4]))
-        for end in (0, n - 1):  # the clamp's and the free end's faces
-            r = base + 4 * end
-            faces.append(np.array([[r, r + 1, r + 2], [r, r + 2, r + 3]]))
-    faces = np.vstack(faces)
-    if np.any(faces < 0):  # pragma: no cover - built above
-        raise AssertionError(faces)
-    return np.vstack(verts), faces
+        def edge(y, z):
+            return np.stack([x, side * y, np.full_like(x, z)], axis=1)
+        top_in, top_out = edge(inner, t / 2), edge(outer, t / 2)
+        bot_in, bot_out = edge(inner, -t / 2), edge(outer, -t / 2)
+
+        def strip(p, q, outward):
+            quads.append(_oriented(np.stack([p[:-1], p[1:], q[1:], q[:-1]], axis=1), outward))
+
+        strip(top_in, top_out, (0, 0, 1))
+        strip(bot_in, bot_out, (0, 0, -1))
+        strip(top_out, bot_out, (0, side, 0))
+        apart = (inner[:-1] > 0) | (inner[1:] > 0)  # the inner edge of a V's arm
+        wall = np.stack([top_in[:-1], top_in[1:], bot_in[1:], bot_in[:-1]], axis=1)[apart]
+        quads.append(_oriented(wall, (0, -side, 0)))
+        for k, outward in ((0, (-1, 0, 0)), (-1, (1, 0, 0))):  # the clamp's and the free end's
+            quads.append(_oriented(np.stack([top_in[k], top_out[k], bot_out[k], bot_in[k]])[None],
+                                   outward))
+    q = np.concatenate(quads)
+    angle = twist * np.clip(q[..., 0] / lever.tip_position, 0.0, 1.0)
+    c, s = np.cos(angle), np.sin(angle)
+    q = np.stack([q[..., 0], q[..., 1] * c - q[..., 2] * s, q[..., 1] * s + q[..., 2] * c],
+                 axis=-1)
+    i = 4 * np.arange(len(q))[:, None]
+    faces = np.vstack([i + [0, 1, 2], i + [0, 2, 3]])
+    return q.reshape(-1, 3), faces
 
 
 class ProbeScene(SceneDisplay):
@@ -148,7 +167,7 @@ class ProbeScene(SceneDisplay):
         """The round magnification that draws the twist at the slider's largest force at about
         ``DEFAULTS["twist"]`` rad."""
         largest = abs(LateralLever(lever).twist(LATERAL_FORCE.slider_high))
-        return round_factor(DEFAULTS["twist"] / largest) if largest > 0 else 1.0
+        return max(1.0, round_factor(DEFAULTS["twist"] / largest)) if largest > 0 else 1.0
 
     @staticmethod
     def camera_for(lever: Lever) -> list:
@@ -160,8 +179,10 @@ class ProbeScene(SceneDisplay):
     @property
     def caption(self) -> str:
         """What the view shows and how much it magnifies."""
+        drawn = self._drawn(self.twist)
+        held = ", held at a quarter turn" if abs(drawn) < abs(self.factor * self.twist) else ""
         return (f"twist {factor_text(self.factor)} (tip's section {math.degrees(self.twist):.3g}"
-                f" deg, drawn {math.degrees(self.factor * self.twist):.3g} deg); "
+                f" deg, drawn {math.degrees(drawn):.3g} deg{held}); the apex moves along F_L; "
                 "1 unit = 100 um")
 
     def update(self, lever: Lever, twist: float) -> None:
@@ -175,12 +196,12 @@ class ProbeScene(SceneDisplay):
             The tip section's twist in rad.
         """
         lever = check_instance("lever", lever, Lever)
-        twist = check_range("twist", twist, -math.pi / 2, math.pi / 2, "rad")
+        twist = check_finite("twist", twist, "rad")
         if lever == self.lever and twist == self.twist:
             return  # nothing to draw again (a move of the spot or the fluid)
         if lever != self.lever:
             self.factor = self.factor_for(lever)
-        drawn = float(np.clip(self.factor * twist, -math.pi / 2, math.pi / 2))
+        drawn = self._drawn(twist)
         verts, faces = lever_mesh(lever, drawn)
         shift = np.array([lever.length / 2, 0.0, 0.0])
         self.vis["lever"].set_object(
@@ -191,9 +212,9 @@ class ProbeScene(SceneDisplay):
             cx, cy, cz = DEFAULTS["chip"]
             self.vis["chip"].set_object(g.Box([cx, cy, cz]),
                                         g.MeshLambertMaterial(color=0x505a66))
-            self.vis["chip"].set_transform(translation(
+            self.vis["chip"].set_transform(translation(  # its underside the lever's
                 [-lever.length / SCENE_UNIT / 2 - cx / 2, 0.0,
-                 lever.thickness / SCENE_UNIT / 2 - cz / 2]))
+                 -lever.thickness / SCENE_UNIT / 2 + cz / 2]))
             self.camera_position = self.camera_for(lever)
             set_camera(self.root, self.camera_position)
             show_helpers(self.root, grid=False, axes=False)  # the grid would cut the lever
@@ -206,9 +227,13 @@ class ProbeScene(SceneDisplay):
         self.vis["tip"].set_transform(at @ rot @ down)
         self.lever, self.twist = lever, float(twist)
 
+    def _drawn(self, twist: float) -> float:
+        """The drawn twist in rad: ``twist`` magnified, held within a quarter turn."""
+        return float(np.clip(self.factor * twist, -math.pi / 2, math.pi / 2))
+
     def apex(self) -> np.ndarray:
         """Where the drawn tip's apex is (scene units), for tests."""
-        drawn = self.factor * self.twist
+        drawn = self._drawn(self.twist)
         arm = (self.lever.thickness / 2 + self.lever.tip_height) / SCENE_UNIT
         return np.array([(self.lever.tip_position - self.lever.length / 2) / SCENE_UNIT,
                          arm * math.sin(drawn), -arm * math.cos(drawn)])

@@ -64,10 +64,12 @@ class AcquisitionControls:
     PAUSED_POLL = 0.1
     #: s between two reads of a device that paces itself (its reads wait for pixels).
     POLL = 0.01
-    #: Steps in a row that measure nothing before :meth:`run` (run to the end) gives up and
-    #: aborts the scan (its finished lines kept): a device that answers without ever finishing
-    #: a pixel (each such step waits at most ``max_line_wait``) cannot hold a cell forever.
-    MAX_IDLE_STEPS = 200
+    #: Seconds without a new pixel after which :meth:`run` (run to the end) gives up and aborts
+    #: the scan (its finished lines kept): a device that answers without ever finishing a pixel
+    #: cannot hold a cell forever (a first line, an approach, takes seconds, not a minute).
+    IDLE_SECONDS = 60.0
+    #: ... and the steps in a row that measure nothing, whatever they waited (a backstop).
+    MAX_IDLE_STEPS = 100_000
 
     def __init__(self, *, start: Callable, pause: Callable, resume: Callable, stop: Callable,
                  show: Callable, report: Callable, live: Callable, stop_label: str = "Stop",
@@ -211,19 +213,23 @@ class AcquisitionControls:
             else:
                 self.poke()
             return
-        shown_at = time.monotonic()
+        shown_at = progress_at = time.monotonic()
         idle, done = 0, self._done()
-        while idle < self.MAX_IDLE_STEPS:  # a step measures a pixel or ends, pauses, faults
+        while idle < self.MAX_IDLE_STEPS and \
+                time.monotonic() - progress_at < self.IDLE_SECONDS:
             picture = time.monotonic() - shown_at >= frame_interval
             if not self.step(show=picture, wait=max_line_wait) or self.paused:
                 return
             if picture:
                 shown_at = time.monotonic()
-            idle, done = (idle + 1, done) if self._done() == done else (0, self._done())
+            if self._done() == done:
+                idle += 1
+            else:
+                idle, done, progress_at = 0, self._done(), time.monotonic()
         self.acquisition.abort()
         self._report(RuntimeError(
-            f"the scan measured nothing in {self.MAX_IDLE_STEPS} steps in a row: aborted, "
-            f"its finished lines kept"))
+            f"the scan measured nothing for {time.monotonic() - progress_at:.3g} s "
+            f"({idle} steps): aborted, its finished lines kept"))
         self._show()
 
     def _done(self) -> tuple:

@@ -135,6 +135,16 @@ TAPPING_DEFAULTS = read_only({"probe": TYPED, "fluid": "air",
                               **_display(TAPPING_SLIDERS, free_amplitude=12e-9)})
 
 
+def _on_grid(slider) -> float:
+    """``slider``'s value moved to the nearest point of its grid (a log slider's, in the
+    exponent), as the browser would show it."""
+    log = isinstance(slider, widgets.FloatLogSlider)
+    v = math.log(slider.value, slider.base) if log else slider.value
+    top = math.floor((slider.max - slider.min) / slider.step + 1e-9)
+    x = slider.min + min(max(round((v - slider.min) / slider.step), 0), top) * slider.step
+    return float(f"{slider.base ** x if log else x:.12g}")
+
+
 @functools.lru_cache(maxsize=None)
 def tapping_oscillator(probe: str, fluid: str) -> dict:
     """The k, f0 and Q (SI) of ``probe``'s mode 1 in ``fluid`` (:func:`afmsmiler.probe.
@@ -274,12 +284,38 @@ class TappingPanel(_SliderPanel):
 
     def _on_probe(self, change) -> None:
         """A probe or fluid was chosen: its lever on the sliders, no update of their own (the
-        drop-down's own change runs the one update)."""
+        drop-down's own change runs the one update). Back to typed, the lever starts from the
+        probe's values on the sliders' own grid (what the browser shows is what runs)."""
         self._enable_lever()
         probe = self.controls["probe"].value
-        if probe == TYPED:
-            return
-        self.sync_controls(self._lever_display(probe, self.controls["fluid"].value))
+        if probe != TYPED:
+            self.sync_controls(self._lever_display(probe, self.controls["fluid"].value))
+        elif change.get("name") == "value" and change.get("owner") is self.controls["probe"]:
+            self.sync_controls({n: _on_grid(self.controls[n]) for n in TAPPING_LEVER})
+
+    def set(self, **values) -> None:
+        """Set control values as a user would, in one update (see :meth:`Panel.set`).
+
+        A probe (and fluid) is applied first; k, f0 or Q given with it then make the lever
+        typed, starting from the probe's.
+
+        Parameters
+        ----------
+        **values
+            Control names and values, in the units shown.
+        """
+        self.check_values(values)
+        choice = {n: values.pop(n) for n in ("probe", "fluid") if n in values}
+        if choice.get("probe", self.controls["probe"].value) != TYPED and \
+                set(values) & set(TAPPING_LEVER):
+            hold, self._hold = self._hold, True
+            try:
+                for name, value in choice.items():   # the probe's lever, no update
+                    self.controls[name].value = value
+            finally:
+                self._hold = hold
+            choice = {"probe": TYPED}
+        super().set(**choice, **values)
 
     def _on_lever_slider(self, change) -> None:
         """A lever slider moved (in code: the browser cannot move a disabled one): the lever is

@@ -533,14 +533,18 @@ class Panel:
         hold, self._hold, self._syncing = self._hold, True, True
         try:
             for name, value in values.items():
+                check_control_value(name, self.controls[name], value)  # never clamped
                 self.controls[name].value = value
-                synced[name] = self.controls[name].value
+                # the last few: echoes of two syncs in a row (air, then water) may come late
+                synced.setdefault(name, collections.deque(maxlen=4)).append(
+                    self.controls[name].value)
         finally:
             self._hold, self._syncing = hold, False
 
     def is_echo(self, change) -> bool:
         """Whether a control's change is no student's move: made by :meth:`sync_controls`, or
-        the browser's echo, snapped to the grid, of a value a sync or the model's last run set.
+        the browser's echo, snapped to the grid, of a value one of the last syncs or the model's
+        last run set.
 
         Parameters
         ----------
@@ -555,8 +559,10 @@ class Panel:
             return True
         owner = change.get("owner")
         name = next((n for n, c in self.controls.items() if c is owner), None)
-        return any(name in held and _same(change["new"], held[name], owner)
-                   for held in (self.__dict__.get("_synced", {}), self._applied))
+        held = [*self.__dict__.get("_synced", {}).get(name, ())]
+        if name in self._applied:
+            held.append(self._applied[name])
+        return any(_same(change["new"], v, owner) for v in held)
 
     def check_values(self, values: Mapping) -> None:
         """Refuse control values (units shown) that no control could hold, naming them.

@@ -51,6 +51,9 @@ DEFAULTS = read_only({"probe": "ContAl-G", "planform": "rectangular", "material"
                       **{n: p.to_display(p.default) for n, p in SLIDERS.items()},
                       "fluid": "air"})
 _READOUT = read_only(dict(spring_constant="N/m", frequency="kHz"))
+#: rad: the largest twist the readout gives without a warning (linear torsion, sin phi ~ phi to
+#: 0.2 %).
+SMALL_TWIST = 0.1
 _FIGSIZE = (10.0, 3.6)
 
 
@@ -293,10 +296,14 @@ def _readout_html(r: ProbeReport, lateral: LateralLever, force: float, twist: fl
     why = "".join(f"<li>{html.escape(s)}</li>" for s in r.reasons())
     twist_rows = (f"<tr><td>torsional stiffness k_phi</td><td style='text-align:right'><b>"
                   f"{lateral.torsional_stiffness:.4g} N m/rad</b></td></tr>"
-                  f"<tr><td>lateral k at the apex, k_phi / (h_tip + t/2)^2</td>"
+                  f"<tr><td>lateral k of the apex from twist, k_phi / (h_tip + t/2)^2</td>"
                   f"<td style='text-align:right'><b>{lateral.spring_constant:.4g} {k}</b>"
                   f"</td></tr><tr><td>twist at F_L = {shown(force, 'nN', '.3g')}</td>"
-                  f"<td style='text-align:right'><b>{shown(twist, 'mrad', '.3g')}</b></td></tr>")
+                  f"<td style='text-align:right'><b>{shown(twist, 'mrad', '.3g')}</b></td></tr>"
+                  + ("" if abs(twist) <= SMALL_TWIST else
+                     f"<tr><td colspan='2' style='color:#b00020'>beyond small twists: |phi| &gt; "
+                     f"{SMALL_TWIST:g} rad, where the linear torsion of this model no longer "
+                     "holds</td></tr>"))
     view = "" if scene is None else f"<div>3D view: {html.escape(scene.caption)}</div>"
     name = html.escape(r.lever.name or CUSTOM)
     return (f"<div><b>{name}</b> ({r.lever.planform}): k = {r.spring_constant:.4g} {k} at the "
