@@ -167,13 +167,9 @@ class CantileverPanel(Panel):
         """A material was chosen: move E and rho to its values without an update of their own
         (the drop-down's own change then runs the one update)."""
         m = MATERIALS[change["new"]]
-        hold, self._hold = self._hold, True
-        try:
-            self.controls["youngs_modulus"].value = PARAMETERS["youngs_modulus"].to_display(
-                m.youngs_modulus)
-            self.controls["density"].value = PARAMETERS["density"].to_display(m.density)
-        finally:
-            self._hold = hold
+        self.sync_controls({
+            "youngs_modulus": PARAMETERS["youngs_modulus"].to_display(m.youngs_modulus),
+            "density": PARAMETERS["density"].to_display(m.density)})
 
     def update(self, *, force, length, width, thickness, material, youngs_modulus, density,
                section, exaggeration) -> None:

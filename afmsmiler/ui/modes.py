@@ -305,17 +305,7 @@ class TappingPanel(_SliderPanel):
             Control names and values, in the units shown.
         """
         self.check_values(values)
-        choice = {n: values.pop(n) for n in ("probe", "fluid") if n in values}
-        if choice.get("probe", self.controls["probe"].value) != TYPED and \
-                set(values) & set(TAPPING_LEVER):
-            hold, self._hold = self._hold, True
-            try:
-                for name, value in choice.items():   # the probe's lever, no update
-                    self.controls[name].value = value
-            finally:
-                self._hold = hold
-            choice = {"probe": TYPED}
-        super().set(**choice, **values)
+        super().set(**self.choice_first(values, ("probe", "fluid"), TAPPING_LEVER, TYPED))
 
     def _on_lever_slider(self, change) -> None:
         """A lever slider moved (in code: the browser cannot move a disabled one): the lever is

@@ -541,6 +541,39 @@ class Panel:
         finally:
             self._hold, self._syncing = hold, False
 
+    def choice_first(self, values: dict, choices, implied, custom: str) -> dict:
+        """``values`` of :meth:`set` reordered so that a choice (a preset, its fluid) comes
+        first: applied now, with no update, and, when values of the ``implied`` controls are
+        given too, the ``"probe"`` choice made ``custom`` so that they start from what it implied.
+
+        Parameters
+        ----------
+        values : dict
+            Control names and values (units shown), checked; the choices are taken out of it.
+        choices : sequence of str
+            The choice controls (``"probe"`` first).
+        implied : sequence of str
+            The controls a chosen probe sets.
+        custom : str
+            The probe drop-down's entry for values typed on the controls.
+
+        Returns
+        -------
+        dict
+            The values for :meth:`Panel.set`, the choices first.
+        """
+        given = {n: values.pop(n) for n in choices if n in values}
+        if given.get("probe", self.controls["probe"].value) != custom and \
+                set(values) & set(implied):
+            hold, self._hold = self._hold, True
+            try:
+                for name, value in given.items():   # what the choice implies, no update
+                    self.controls[name].value = value
+            finally:
+                self._hold = hold
+            given["probe"] = custom
+        return {**given, **values}
+
     def is_echo(self, change) -> bool:
         """Whether a control's change is no student's move: made by :meth:`sync_controls`, or
         the browser's echo, snapped to the grid, of a value one of the last syncs or the model's

@@ -178,17 +178,7 @@ class ProbePanel(Panel):
             Control names and values, in the units shown.
         """
         self.check_values(values)
-        if "probe" in values:
-            probe = values.pop("probe")
-            if probe != CUSTOM and set(values) & set(GEOMETRY):
-                hold, self._hold = self._hold, True
-                try:
-                    self.controls["probe"].value = probe   # the preset's geometry, no update
-                finally:
-                    self._hold = hold
-                probe = CUSTOM
-            values = {"probe": probe, **values}
-        super().set(**values)
+        super().set(**self.choice_first(values, ("probe",), GEOMETRY, CUSTOM))
 
     def _lever(self, probe, planform, material, length, width, thickness, point_length,
                arm_width) -> Lever:
