@@ -33,9 +33,17 @@ closed-form antiderivative of |H_n|^2 in r = f / f_n, b = sqrt(4 - 1/Q^2) (parti
 
     F(r) = r / (2 (1 + r^2)) atanh(x) / x + (Q / 2) atan2(r, Q (1 - r^2)),   x = b r / (1 + r^2)
 
-(F(inf) = pi Q / 2). Well below resonance it is sqrt(S_n0 B), the white floor under every
-detector's resolution. The same Q is used for every mode (a simplification: in air Q grows
-with the mode number).
+(F(inf) = pi Q / 2). For an overdamped mode (Q < 1/2) b is imaginary, b = j c with
+c = sqrt(1/Q^2 - 4), and atanh(x) / x becomes atan(y) / y, y = c r / (1 + r^2): the same F for
+every Q > 0 (a lever in water can be overdamped: 1 mm x 5 um x 0.2 um of silicon has Q = 0.16
+there). Well below resonance it is sqrt(S_n0 B), the white floor under every detector's
+resolution. The same Q is used for every mode (a simplification: in air Q grows with the mode
+number).
+
+In a fluid the mode rings at f_R,n below its vacuum f_n (the fluid's added mass) with the
+fluid's Q_n (:func:`afmsmiler.hydrodynamics.fluid_mode`, Sader 1998): the functions take that
+f_R,n as ``resonance_frequency``, and S_n0 = share_n 4 k_B T / (k omega_R,n Q_n) still
+integrates to share_n k_B T / k (the added mass changes the frequency, not the stiffness).
 
 Examples
 --------
@@ -50,8 +58,7 @@ import numpy as np
 import scipy.constants
 
 from .cantilever import MAX_MODE, Cantilever, eigenvalue
-from .parameters import UNDERDAMPED_QUALITY_FACTOR as QUALITY_FACTOR
-from .parameters import Parameter, read_only
+from .parameters import QUALITY_FACTOR, Parameter, read_only
 from .validation import (check_array, check_instance, check_integer, check_positive,
                          check_range)
 
@@ -62,9 +69,9 @@ __all__ = ["QUALITY_FACTOR", "TEMPERATURE", "PARAMETERS", "BOLTZMANN", "mode_sha
 #: Boltzmann constant k_B in J/K (scipy's CODATA value).
 BOLTZMANN = scipy.constants.k
 
-#: The lever's temperature (its quality factor is the vocabulary's underdamped one,
-#: :data:`afmsmiler.parameters.UNDERDAMPED_QUALITY_FACTOR`, imported here as QUALITY_FACTOR: the
-#: closed form of the thermal spectrum needs Q >= 1/2).
+#: The lever's temperature (its quality factor is the vocabulary's
+#: :data:`afmsmiler.parameters.QUALITY_FACTOR`, any Q > 0: the closed form of the thermal
+#: spectrum holds for an overdamped mode too).
 TEMPERATURE = Parameter(name="temperature", unit="K", default=295.0, low=1.0, high=600.0,
                         label="temperature T")
 #: Name -> Parameter of the Brownian motion's own parameters.
@@ -148,28 +155,34 @@ def mechanical_response(f, *, resonance_frequency: float,
 
 
 def _response_power_integral(r, quality_factor: float):
-    """int_0^r |1 / (1 - u^2 + j u / Q)|^2 du (see the module docstring), for Q >= 1/2, r >= 0."""
+    """int_0^r |1 / (1 - u^2 + j u / Q)|^2 du (see the module docstring), for Q > 0, r >= 0."""
     # beyond r = 1e150, F(r) equals F(inf) = pi Q / 2 to double precision (and r^2 overflows)
     r = np.minimum(np.asarray(r, dtype=float), 1e150)
-    b = math.sqrt(4.0 - 1.0 / quality_factor ** 2)
-    x = b * r / (1.0 + r * r)
+    b2 = 4.0 - 1.0 / quality_factor ** 2          # b^2: negative for an overdamped mode
+    x = math.sqrt(abs(b2)) * r / (1.0 + r * r)
     safe = np.where(x > 1e-6, x, 0.5)   # a dummy where the series is used
-    ratio = np.where(x > 1e-6, np.arctanh(safe) / safe, 1.0 + x * x / 3.0)
+    if b2 >= 0.0:                       # atanh(x) / x, x = b r / (1 + r^2) < 1
+        ratio = np.where(x > 1e-6, np.arctanh(safe) / safe, 1.0 + x * x / 3.0)
+    else:                               # b = j c: atanh(j y) / (j y) = atan(y) / y
+        ratio = np.where(x > 1e-6, np.arctan(safe) / safe, 1.0 - x * x / 3.0)
     return (r / (2.0 * (1.0 + r * r)) * ratio
             + quality_factor / 2.0 * np.arctan2(r, quality_factor * (1.0 - r * r)))
 
 
 def _white_floor(lever: Cantilever, quality_factor: float, temperature: float,
-                 mode: int) -> tuple[float, float]:
-    """(S_n0 in m^2/Hz, f_n in Hz) of mode ``mode``."""
-    fn = lever.resonance_frequency(mode)
+                 mode: int, resonance_frequency: float | None) -> tuple[float, float]:
+    """(S_n0 in m^2/Hz, f_n in Hz) of mode ``mode``, ringing at ``resonance_frequency`` (Hz;
+    None: the lever's own f_n in vacuum)."""
+    fn = (lever.resonance_frequency(mode) if resonance_frequency is None
+          else check_positive("resonance_frequency", resonance_frequency, "Hz"))
     s0 = (mode_share(mode) * 4 * BOLTZMANN * temperature
           / (lever.spring_constant * 2 * math.pi * fn * quality_factor))
     return s0, fn
 
 
 def thermal_noise_density(lever: Cantilever, f, *, quality_factor: float = QUALITY_FACTOR.default,
-                          temperature: float = TEMPERATURE.default, mode: int = 1) -> np.ndarray:
+                          temperature: float = TEMPERATURE.default, mode: int = 1,
+                          resonance_frequency: float | None = None) -> np.ndarray:
     """One-sided power spectral density of mode ``mode``'s Brownian end deflection in m^2/Hz.
 
     S_n(f) = share_n 4 k_B T / (k omega_n Q) |H_n(f)|^2 (see the module docstring); it
@@ -182,11 +195,14 @@ def thermal_noise_density(lever: Cantilever, f, *, quality_factor: float = QUALI
     f : array_like
         Frequencies in Hz, >= 0.
     quality_factor : float
-        Q of the mode.
+        Q of the mode, > 0.
     temperature : float
         T in K.
     mode : int
         Mode number n.
+    resonance_frequency : float, optional
+        Where the mode rings, in Hz: its f_R,n in a fluid
+        (:func:`~afmsmiler.hydrodynamics.fluid_mode`); default the lever's f_n in vacuum.
 
     Returns
     -------
@@ -196,14 +212,15 @@ def thermal_noise_density(lever: Cantilever, f, *, quality_factor: float = QUALI
     lever = _check_lever(lever)
     quality_factor = QUALITY_FACTOR.check(quality_factor)
     temperature = TEMPERATURE.check(temperature)
-    s0, fn = _white_floor(lever, quality_factor, temperature, mode)
+    s0, fn = _white_floor(lever, quality_factor, temperature, mode, resonance_frequency)
     response = mechanical_response(f, resonance_frequency=fn, quality_factor=quality_factor)
     return s0 * np.abs(response) ** 2
 
 
 def thermal_deflection_noise(lever: Cantilever, *, quality_factor: float = QUALITY_FACTOR.default,
                              temperature: float = TEMPERATURE.default, bandwidth: float,
-                             low_frequency: float | None = None, mode: int = 1) -> float:
+                             low_frequency: float | None = None, mode: int = 1,
+                             resonance_frequency: float | None = None) -> float:
     """Rms Brownian end deflection of mode ``mode`` in m within a bandwidth.
 
     Without ``low_frequency``: sqrt(S_n0 B), the white floor of the mode's thermal spectrum well
@@ -217,7 +234,7 @@ def thermal_deflection_noise(lever: Cantilever, *, quality_factor: float = QUALI
     lever : Cantilever
         The lever (its k and f_n).
     quality_factor : float
-        Q of the mode, in [1/2, 1e5].
+        Q of the mode, in (0, 1e5].
     temperature : float
         T in K.
     bandwidth : float
@@ -226,6 +243,8 @@ def thermal_deflection_noise(lever: Cantilever, *, quality_factor: float = QUALI
         Lower edge of the band in Hz, >= 0.
     mode : int
         Mode number n (its share of k_B T / k: 0.971 for mode 1).
+    resonance_frequency : float, optional
+        Where the mode rings, in Hz (its f_R,n in a fluid); default the lever's f_n in vacuum.
 
     Returns
     -------
@@ -243,7 +262,7 @@ def thermal_deflection_noise(lever: Cantilever, *, quality_factor: float = QUALI
     quality_factor = QUALITY_FACTOR.check(quality_factor)
     temperature = TEMPERATURE.check(temperature)
     bandwidth = check_positive("bandwidth", bandwidth, "Hz")
-    s0, fn = _white_floor(lever, quality_factor, temperature, mode)
+    s0, fn = _white_floor(lever, quality_factor, temperature, mode, resonance_frequency)
     if low_frequency is None:
         return math.sqrt(s0 * bandwidth)
     low_frequency = check_range("low_frequency", low_frequency, 0.0, math.inf, "Hz")

@@ -67,7 +67,7 @@ from .parameters import Parameter, read_only
 from .validation import check_array, check_flag, check_instance, check_integer, check_range
 
 __all__ = ["FLUID_DENSITY", "VISCOSITY", "PARAMETERS", "REYNOLDS_RANGE", "Fluid", "FLUIDS",
-           "get_fluid", "reynolds_number", "circular_hydrodynamic_function",
+           "FLUID_NAMES", "get_fluid", "reynolds_number", "circular_hydrodynamic_function",
            "rectangular_correction", "hydrodynamic_function", "FluidMode", "fluid_mode",
            "fluid_modes", "mass_loading"]
 
@@ -208,6 +208,9 @@ FLUIDS = read_only({
     "air_sader1999": Fluid("air (Sader et al. 1999)", 1.18, 1.86e-5,
                            "Sader, Chon and Mulvaney, Rev. Sci. Instrum. 70, 3967 (1999)"),
 })
+
+#: The media a student chooses between in the panels (keys of :data:`FLUIDS`).
+FLUID_NAMES = ("air", "water")
 
 
 def get_fluid(fluid) -> Fluid:

@@ -432,10 +432,10 @@ RESONANCE_FREQUENCY = Parameter(name="resonance_frequency", unit="Hz", display_u
 QUALITY_FACTOR = Parameter(name="quality_factor", unit="", default=150.0, low=0.0, high=1e5,
                            low_inclusive=False, slider_low=0.5, slider_high=1e5, log=True,
                            label="quality factor Q")
-#: The same quantity for the models that hold only for an underdamped mode, Q >= 1/2 (the closed
-#: form of the thermal spectrum, b = sqrt(4 - 1/Q^2), the transducers built on it, and the
-#: contact loop's lever, whose damping m w / Q it bounds): the one named narrowing of
-#: :data:`QUALITY_FACTOR`, written here and nowhere else.
+#: The same quantity for the models that take only an underdamped mode, Q >= 1/2 (the contact
+#: loop's lever, whose damping m w / Q it bounds, and the transducers' Q typed in vacuum, from
+#: critical damping up: a lower Q is a fluid's, which the transducers compute): the one named
+#: narrowing of :data:`QUALITY_FACTOR`, written here and nowhere else.
 UNDERDAMPED_QUALITY_FACTOR = QUALITY_FACTOR.with_(low=0.5, low_inclusive=True)
 #: The shared lever quantities by name (read-only).
 PARAMETERS = read_only({p.name: p for p in (SPRING_CONSTANT, RESONANCE_FREQUENCY,

@@ -45,7 +45,7 @@ import numpy as np
 from .calibration import (LIMITS, ThermalCalibration, ThermalSpectrum, optical_lever_correction,
                           sader_spring_constant, thermal_calibration, thermal_spectrum)
 from .cantilever import Cantilever
-from .hydrodynamics import fluid_mode
+from .hydrodynamics import FLUID_NAMES, fluid_mode  # FLUID_NAMES: the fluids a report compares
 from .parameters import Parameter, read_only
 from .planform import Lever
 from .validation import (check_array, check_choice, check_instance, check_integer,
@@ -57,9 +57,6 @@ __all__ = ["SPOT", "FLUID_NAMES", "DEFAULTS", "mean_width", "equivalent_cantilev
 #: Where the laser spot sits on the lever, as a fraction x/L of its length from the clamp.
 SPOT = Parameter(name="spot", unit="", default=1.0, low=0.0, high=1.0, low_inclusive=False,
                  slider_low=0.4, slider_high=1.0, label="laser spot x/L")
-
-#: The fluids a report compares (keys of :data:`afmsmiler.hydrodynamics.FLUIDS`).
-FLUID_NAMES = ("air", "water")
 
 #: The report's defaults: the thermal spectrum's bins and averages (2^14 bins of 16 averages: a
 #: panel step of a few milliseconds, a statistical error of k of about 2 % for a contact lever in

@@ -92,7 +92,7 @@ def test_each_mode_spectrum_integrates_to_its_share(mode):
         == pytest.approx(ref, rel=1e-6)
 
 
-@pytest.mark.slow  # a sympy derivative and quadratures at four Q, ~0.7-0.8 s
+@pytest.mark.slow  # sympy derivatives and quadratures at six Q, ~1 s
 def test_band_integral_of_the_brownian_spectrum():
     # the closed-form antiderivative differentiates back to |H|^2 (sympy, 30 digits)
     r, q = sp.symbols("r Q", positive=True)
@@ -104,10 +104,20 @@ def test_band_integral_of_the_brownian_spectrum():
     for qv, rv in (("0.51", "0.3"), ("0.7", "2"), ("30", "0.99"), ("10000", "1.0001"),
                    ("150", "7")):
         assert abs(sp.N(residual.subs({q: sp.Rational(qv), r: sp.Rational(rv)}), 30)) < 1e-20
+    # overdamped (Q < 1/2): b = j c, atanh(x) / x -> atan(y) / y, y = c r / (1 + r^2)
+    c = sp.sqrt(1 / q ** 2 - 4)
+    y = c * r / (1 + r ** 2)
+    overdamped = (r / (2 * (1 + r ** 2)) * sp.atan(y) / y
+                  + q / 2 * sp.atan2(r, q * (1 - r ** 2)))
+    residual = sp.diff(overdamped, r) - 1 / ((1 - r ** 2) ** 2 + r ** 2 / q ** 2)
+    for qv, rv in (("0.49", "0.3"), ("0.1", "2"), ("0.3", "0.99"), ("1/100", "50")):
+        assert abs(sp.N(residual.subs({q: sp.Rational(qv), r: sp.Rational(rv)}), 30)) < 1e-20
     # the band noise against scipy's quadrature of S_0 |H|^2 (python-control's H), first mode
     share = _share_by_mpmath(1)
-    for qv in (0.5, 0.7, 30.0, 1e4):
-        model = OpticalBeamDeflection(quality_factor=qv)
+    for qv in (0.1, 0.3, 0.5, 0.7, 30.0, 1e4):
+        # an overdamped Q is a fluid's (the transducers take it from their medium), so below
+        # 1/2 the lever's spectrum is asked of module (a) directly
+        model = OpticalBeamDeflection(quality_factor=max(qv, 0.5))
         f1 = model.resonance_frequency
         s0 = share * 4 * BOLTZMANN * model.temperature / (model.spring_constant * 2 * math.pi
                                                             * f1 * qv)
@@ -117,6 +127,11 @@ def test_band_integral_of_the_brownian_spectrum():
             ref, _ = integrate.quad(lambda f: s0 * abs(sys(2j * math.pi * f)) ** 2, lo, hi,
                                     points=[p for p in (f1,) if lo < p < hi], limit=2000,
                                     epsabs=0, epsrel=1e-11)
+            assert thermal_deflection_noise(
+                model.lever, quality_factor=qv, temperature=model.temperature,
+                bandwidth=hi - lo, low_frequency=lo) == pytest.approx(math.sqrt(ref), rel=1e-8)
+            if qv < 0.5:
+                continue
             assert model.thermal_noise(hi - lo, lo) == pytest.approx(math.sqrt(ref), rel=1e-8)
             np.testing.assert_allclose(model.thermal_noise_density([lo, hi]),
                                        [s0 * abs(sys(2j * math.pi * f)) ** 2 for f in (lo, hi)],
@@ -137,8 +152,8 @@ def test_band_integral_of_the_brownian_spectrum():
     assert drive.contributions["thermal"] == pytest.approx(
         model.thermal_noise(2 * model.resonance_frequency) / Electromagnetic().sensitivity(),
         rel=1e-12)
-    with pytest.raises(ValueError, match="^quality_factor must be in"):
-        thermal_deflection_noise(model.lever, quality_factor=0.3, temperature=300.0,
+    with pytest.raises(ValueError, match=r"^quality_factor must be in \(0, 100000\]"):
+        thermal_deflection_noise(model.lever, quality_factor=0.0, temperature=300.0,
                                  bandwidth=1e3, low_frequency=0.0)
     with pytest.raises(ValueError, match="^low_frequency must be in"):
         model.thermal_noise(1e3, -1.0)

@@ -99,16 +99,18 @@ def test_one_range_in_every_mode(name, value):
     assert getattr(QControl(**args), name) == value
 
 
-def test_the_brownian_closed_form_takes_the_one_named_narrowing():
-    # Q is any damping; the thermal spectrum's band integral needs an underdamped mode
-    # (b = sqrt(4 - 1/Q^2) real): it takes the vocabulary's named narrowing, as the transducers
+def test_the_brownian_closed_form_takes_any_damping():
+    # the thermal spectrum's band integral holds overdamped too (a lever in water can be:
+    # tests/test_brownian_model.py checks it against sympy and quadrature), so the Brownian
+    # motion takes the vocabulary's Q, any Q > 0; the transducers' Q typed in vacuum keeps the
+    # named narrowing (from critical damping up), their fluids compute any Q
     from afmsmiler.cantilever import Cantilever
     from afmsmiler.transducers.base import LEVER_PARAMETERS
     lever = Cantilever(450e-6, 50e-6, 2e-6, 169e9, 2330.0)
-    assert brownian.PARAMETERS["quality_factor"] is parameters.UNDERDAMPED_QUALITY_FACTOR
+    assert brownian.PARAMETERS["quality_factor"] is parameters.QUALITY_FACTOR
     assert parameters.UNDERDAMPED_QUALITY_FACTOR in LEVER_PARAMETERS
-    with pytest.raises(ValueError, match=r"^quality_factor must be in \[0.5, 100000"):
-        brownian.thermal_deflection_noise(lever, quality_factor=0.3, bandwidth=1e3,
+    with pytest.raises(ValueError, match=r"^quality_factor must be in \(0, 100000"):
+        brownian.thermal_deflection_noise(lever, quality_factor=0.0, bandwidth=1e3,
                                          low_frequency=0.0)
-    assert brownian.thermal_deflection_noise(lever, quality_factor=0.5, bandwidth=1e3,
+    assert brownian.thermal_deflection_noise(lever, quality_factor=0.3, bandwidth=1e3,
                                             low_frequency=0.0) > 0

@@ -122,7 +122,7 @@ def test_a_lever_quantity_has_one_valid_range_everywhere():
     # k, f0 and Q (and mode 2's Q_2) are described once in afmsmiler.parameters; a module may
     # change the default and the slider, never the valid range: a lever valid in one mode is
     # valid in the next (the one exception, named there: Q >= 1/2 for the models of an
-    # underdamped mode: the Brownian closed form, the transducers and the contact loop)
+    # underdamped mode: the contact loop and the transducers' Q typed in vacuum)
     from afmsmiler.parameters import PARAMETERS as SHARED
     from afmsmiler.parameters import UNDERDAMPED_QUALITY_FACTOR
     code = ("import json, sys; sys.path.insert(0, sys.argv[1]); "

@@ -22,7 +22,7 @@ def test_sliders_are_generated_from_the_metadata(panel):
     for key, cls in PRINCIPLES.items():
         panel.set(principle=key)
         table = cls.parameter_table()
-        assert set(panel.controls) == {"principle", "mode", "input", *table}
+        assert set(panel.controls) == {"principle", "mode", "fluid", "input", *table}
         for name, p in table.items():
             c = panel.controls[name]
             assert p.display_unit in c.description
@@ -40,14 +40,18 @@ def test_sliders_are_generated_from_the_metadata(panel):
 
 @pytest.mark.parametrize("key", list(PRINCIPLES))
 def test_every_slider_extreme_is_a_valid_model(panel, key):
+    # in vacuum and in water too, where a long thin lever is overdamped (Q < 1/2): the thermal
+    # spectrum's closed form holds for any Q > 0 (tests/test_brownian_model.py)
     panel.set(principle=key)
-    names = [n for n in panel.controls if n not in ("principle", "mode")]
-    for name in names:
-        c = panel.controls[name]
-        for end in ("min", "max"):
-            value = getattr(c, end)
-            panel.set(**{name: 10 ** value if hasattr(c, "base") else value})
-            assert panel.last.model.key == key   # no ValueError from the model
+    names = [n for n in panel.controls if n not in ("principle", "mode", "fluid")]
+    for fluid in ("typed", "water"):
+        panel.set(fluid=fluid)
+        for name in names:
+            c = panel.controls[name]
+            for end in ("min", "max"):
+                value = getattr(c, end)
+                panel.set(**{name: 10 ** value if hasattr(c, "base") else value})
+                assert panel.last.model.key == key   # no ValueError from the model
 
 
 def test_lines_equal_the_model_in_the_units_shown(panel):
@@ -210,9 +214,11 @@ def test_controls_and_readout_share_a_row_above_the_figure():
         assert any(x is panel.readout for x in in_row)
         assert not any(x is figure for x in in_row) and figure is not panel.readout
         # the readout is beside the principle's column, not under it
-        assert list(lever.children) == [panel.controls[n] for n in lever_names] + [panel.readout]
+        assert list(lever.children) == ([panel.controls["fluid"]]
+                                        + [panel.controls[n] for n in lever_names]
+                                        + [panel.readout])
         assert chain.children[:2] == (panel.controls["principle"], panel.controls["mode"])
-        assert len(chain.children) == len(panel.controls) - len(lever_names)
+        assert len(chain.children) == len(panel.controls) - len(lever_names) - 1
         assert len(chain.children) <= 10
         # labels aligned within each column, also for the swapped-in sliders
         widths = {c.layout.width for c in chain.children[2:]}
@@ -286,7 +292,7 @@ def test_one_principle_change_is_one_update_even_with_the_browser_echo():
         calls.clear()
         panel.controls["principle"].value = key           # the student picks a principle
         for name, c in list(panel.controls.items()):      # the browser draws the new sliders
-            if name not in ("principle", "mode"):
+            if name not in ("principle", "mode", "fluid"):
                 c.value = _browser_echo(c)
         assert calls == [key], key
         model = PRINCIPLES[key]()
@@ -451,3 +457,26 @@ def test_the_live_figure_forwards_the_sliders_of_the_principle_shown():
     target = c.value + c.step if c.value + c.step <= c.max else c.value - c.step
     p.live._handle_message(p.live, {"control": name, "value": target}, [])
     assert p._applied[name] == pytest.approx(target)
+
+
+def test_the_medium_sets_f1_and_q_and_never_moves_the_q_slider():
+    # notebook 02's suggestion, from the defaults: in water the optical lever's resolution in
+    # 1 kHz is set by the lever's Brownian motion, no longer by the shot noise
+    from afmsmiler.hydrodynamics import fluid_mode
+    panel = TransducerPanel(scene=False)
+    assert "mostly shot" in panel.readout.value
+    q_slider = panel.controls["quality_factor"]
+    typed_q, updates = q_slider.value, panel.updates
+    panel.set(fluid="water")
+    assert panel.updates == updates + 1
+    assert q_slider.disabled and q_slider.value == typed_q
+    water = fluid_mode(panel.last.model.lever, "water", 1)
+    assert panel.last.model.resonance_frequency == water.resonance_frequency
+    assert panel.last.model.quality_factor == water.quality_factor
+    assert "mostly thermal" in panel.readout.value and "water (Sader)" in panel.readout.value
+    assert "Q &gt;&gt; 1" in panel.readout.value or "Q >> 1" in panel.readout.value
+    panel.set(principle="piezoresistive")   # the medium stays, and so does the disabled Q
+    assert panel.last.model.fluid == "water" and panel.controls["quality_factor"].disabled
+    panel.set(principle="optical_beam_deflection", fluid="typed")
+    assert not panel.controls["quality_factor"].disabled
+    assert panel.last.model == OpticalBeamDeflection()

@@ -47,7 +47,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..brownian import mechanical_response, thermal_noise_density
+from ..brownian import mechanical_response
 from ..parameters import Parameter, read_only
 from ..transducers import Electrothermal, Piezoresistive
 from ..transducers.base import BOLTZMANN
@@ -127,7 +127,8 @@ class ActiveProbe:
     TypeError
         If either is not of its model class.
     ValueError
-        If the two describe different levers (length, width, thickness, Q, temperature).
+        If the two describe different levers (length, width, thickness, Q, temperature,
+        medium).
     """
 
     actuator: Electrothermal = field(default_factory=Electrothermal)
@@ -136,6 +137,10 @@ class ActiveProbe:
     def __post_init__(self):
         check_instance("actuator", self.actuator, Electrothermal)
         check_instance("sensor", self.sensor, Piezoresistive)
+        if self.actuator.fluid != self.sensor.fluid:
+            raise ValueError(f"actuator and sensor must share the lever: its medium is "
+                             f"{self.actuator.fluid!r} for the actuator, {self.sensor.fluid!r} "
+                             "for the sensor")
         for name in _SHARED:
             a, s = getattr(self.actuator, name), getattr(self.sensor, name)
             if a != s:
@@ -143,25 +148,31 @@ class ActiveProbe:
                                  f"for the actuator, {s:g} for the sensor")
 
     @classmethod
-    def build(cls, *, ac_voltage: float = AC_VOLTAGE.default, **lever) -> "ActiveProbe":
+    def build(cls, *, ac_voltage: float = AC_VOLTAGE.default, fluid: str | None = None,
+              **lever) -> "ActiveProbe":
         """A probe with drive amplitude ``ac_voltage`` (V) and the shared ``lever`` parameters.
 
         Parameters
         ----------
         ac_voltage : float
             V_ac in V.
+        fluid : str, optional
+            The lever's medium (``"air"`` or ``"water"``: its f1 and Q there, Sader 1998);
+            default None, in vacuum with the typed Q (:class:`~afmsmiler.transducers.base.
+            Transducer`).
         **lever : float
             Any of length, width, thickness (m), quality_factor, temperature (K).
         """
         unknown = set(lever) - set(_SHARED)
         if unknown:
             raise TypeError(f"build got unknown parameter(s) {sorted(unknown)}; valid: "
-                            f"ac_voltage and {list(_SHARED)}")
-        return cls(Electrothermal(ac_voltage=ac_voltage, **lever), Piezoresistive(**lever))
+                            f"ac_voltage, fluid and {list(_SHARED)}")
+        return cls(Electrothermal(ac_voltage=ac_voltage, fluid=fluid, **lever),
+                   Piezoresistive(fluid=fluid, **lever))
 
     @property
     def resonance_frequency(self) -> float:
-        """f1 of the lever in Hz (module (a))."""
+        """f1 of the lever in Hz (module (a)), in its medium."""
         return self.actuator.resonance_frequency
 
     def deflection_per_power(self, f) -> np.ndarray:
@@ -283,7 +294,8 @@ class _Memo:
 
 #: What :func:`simulate` reuses from one run to the next (issue 24: a move of the drive
 #: amplitude, the lock-in panel's slider, changes none of it): the drive's waveforms, the transfer
-#: function and the deflection of a unit sin^2 power (:func:`_drive`), which depend on the lever,
+#: function and the deflection of a unit sin^2 power (:func:`_drive`), which depend on the lever
+#: (and its medium),
 #: the frequency and the record but not on V_ac or V_dc, and the noise records, which depend on
 #: the sensor, e_n^2, the record and the seed, not on the drive.
 _DRIVES, _NOISES = _Memo(), _Memo()
@@ -310,7 +322,7 @@ def _drive(probe: ActiveProbe, f: float, n: int, fs: float) -> tuple:
         s = np.sin(2 * math.pi * f * t)
         return (t, freqs, s, np.sin(2 * math.pi * 6 * f * t), h,
                 np.fft.irfft(np.fft.rfft(s * s) * h, n))
-    return _DRIVES.get((values, f, n, fs), compute)
+    return _DRIVES.get((probe.actuator.fluid, values, f, n, fs), compute)
 
 
 def _noises(probe, e_n2, freqs, n, fs, seed):
@@ -321,7 +333,7 @@ def _noises(probe, e_n2, freqs, n, fs, seed):
         electrical = _electrical_density(s, e_n2, np.maximum(freqs, freqs[1]))
         return (_noise(rng, brownian_density(probe, freqs), n, fs),
                 _noise(rng, electrical, n, fs))
-    return _NOISES.get((dict(probe.sensor.values), e_n2, n, fs, seed), compute)
+    return _NOISES.get((probe.sensor.fluid, dict(probe.sensor.values), e_n2, n, fs, seed), compute)
 
 
 def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE.default,
@@ -434,6 +446,4 @@ def brownian_density(probe: ActiveProbe, f) -> np.ndarray:
     f : array_like
         Frequencies in Hz.
     """
-    s = check_instance("probe", probe, ActiveProbe).sensor
-    return thermal_noise_density(s.lever, f, quality_factor=s.quality_factor,
-                                 temperature=s.temperature)
+    return check_instance("probe", probe, ActiveProbe).sensor.thermal_noise_density(f)

@@ -124,7 +124,8 @@ def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
                  time_constant: float = TIME_CONSTANT.default,
                  order: int = int(FILTER_ORDER.default), shape: str = "sine",
                  interference: float = INTERFERENCE.default,
-                 amplifier_gain: float = AMPLIFIER_GAIN.default, seed: int = 0) -> LockInDemo:
+                 amplifier_gain: float = AMPLIFIER_GAIN.default, seed: int = 0,
+                 fluid: str | None = None) -> LockInDemo:
     """Simulate the chain, demodulate at 2 omega, take the spectrum (one model run).
 
     Parameters
@@ -147,6 +148,9 @@ def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
         Amplifier gain.
     seed : int
         Noise seed.
+    fluid : str, optional
+        The lever's medium, ``"air"`` or ``"water"`` (its f1 and Q there, Sader 1998); default
+        None: in vacuum with the typed Q (:meth:`ActiveProbe.build`).
 
     Returns
     -------
@@ -155,7 +159,7 @@ def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
     shape = check_choice("shape", shape, REFERENCES)
     order = check_integer("order", order, int(FILTER_ORDER.low), int(FILTER_ORDER.high))
     tau = TIME_CONSTANT.check(time_constant)
-    probe = ActiveProbe.build(ac_voltage=AC_VOLTAGE.check(ac_voltage))
+    probe = ActiveProbe.build(ac_voltage=AC_VOLTAGE.check(ac_voltage), fluid=fluid)
     f = HALF_RESONANCE_RATIO.check(half_resonance_ratio) * probe.resonance_frequency / 2
     record = settling_time(tau, order) + DEFAULTS["extra_periods"] / (2 * f)
     if math.ceil(record * f) * DEFAULTS["samples_per_period"] > LIMITS["samples"]:

@@ -179,14 +179,15 @@ class PiezoAcoustic(Transducer):
     def mode_2_share(self) -> float:
         """|tip response of mode 2| / |tip response of mode 1| at the drive frequency.
 
-        Each mode n responds as gamma_n r_n^2 / (1 - r_n^2 + j r_n / Q), r_n = f / f_n, with the
-        same Q for both (an assumption; only the order of magnitude matters here).
+        Each mode n responds as gamma_n r_n^2 / (1 - r_n^2 + j r_n / Q_n), r_n = f / f_n, at
+        f_n and Q_n in the lever's medium (:meth:`mode_in_medium`: in vacuum the typed Q for
+        both, an assumption; only the order of magnitude matters here).
         """
         f = self.drive_ratio * self.resonance_frequency
-        f2 = self.lever.resonance_frequency(2)
+        f2, q2 = self.mode_in_medium(2)
         r2 = f / f2
         second = participation_factor(2) * r2 * r2 * mechanical_response(
-            f, resonance_frequency=f2, quality_factor=self.quality_factor)
+            f, resonance_frequency=f2, quality_factor=q2)
         return float(abs(second) / abs(self.base_transfer(f)))
 
     def _validity(self, value, mode, point):

@@ -25,6 +25,18 @@ higher modes the rest (Butt and Jaschke, Nanotechnology 6, 1 (1995)). The deflec
 band is that spectrum integrated in closed form; well below resonance it is sqrt(S_0 B), the
 white floor under every detector's resolution.
 
+The medium
+----------
+Without ``fluid`` the lever rings at its vacuum f1 with the Q typed in (``quality_factor``).
+With ``fluid="air"`` or ``"water"`` each mode n rings at its f_R,n in that fluid with the
+fluid's Q_n, both from Sader's hydrodynamic function (:func:`afmsmiler.hydrodynamics.
+fluid_mode`; Sader, J. Appl. Phys. 84, 64 (1998)): the fluid's added mass lowers the frequency,
+its viscosity sets Q, and k is unchanged. The oscillator above then takes f_R,n and Q_n, so the
+response, the thermal spectrum (S_0 = 0.971 x 4 k_B T / (k omega_R Q), which still integrates to
+0.971 k_B T / k) and every chain built on them are the lever's in that medium. Sader's Q is a
+weak-damping result (Q >> 1): below Q = 5 (:data:`LOW_Q`) :meth:`Transducer.validity` says that
+the one-oscillator model is rough there.
+
 Conventions
 -----------
 Public methods take and return SI units. Deflections z are positive when the tip moves up
@@ -41,16 +53,17 @@ from typing import ClassVar
 import numpy as np
 import scipy.constants
 
-from ..brownian import (QUALITY_FACTOR, TEMPERATURE, mechanical_response, thermal_deflection_noise,
+from ..brownian import (TEMPERATURE, mechanical_response, thermal_deflection_noise,
                         thermal_noise_density)
-from ..cantilever import Cantilever
-from ..parameters import Parameter
+from ..cantilever import MAX_MODE, Cantilever
+from ..hydrodynamics import FLUID_NAMES, fluid_mode
+from ..parameters import UNDERDAMPED_QUALITY_FACTOR, Parameter
 from ..validation import (check_array, check_choice, check_instance, check_integer,
                           check_positive)
 
 __all__ = ["quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
            "Harmonics", "Transducer", "Operation", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",
-           "LEVER_PARAMETERS", "SWEEP_POINTS"]
+           "LEVER_PARAMETERS", "SWEEP_POINTS", "FLUIDS", "LOW_Q"]
 
 #: Boltzmann constant k_B in J/K, elementary charge q in C, vacuum permittivity epsilon_0 in
 #: F/m: scipy's CODATA values (2022 in scipy >= 1.15), kept under these names for the models.
@@ -63,6 +76,13 @@ SIGNALS = ("DC&AC", "AC only", "AC mostly")
 SIZES = ("bulk", "embedded")
 #: Inputs sampled over the input's range by :meth:`Transducer.operate` (plots, 3D view).
 SWEEP_POINTS = 201
+#: The media of a lever: None (vacuum, the typed Q) or a fluid of
+#: :data:`afmsmiler.hydrodynamics.FLUID_NAMES` (Sader's f_R and Q).
+FLUIDS = (None, *FLUID_NAMES)
+#: Below this Q in a fluid, :meth:`Transducer.validity` calls the one-oscillator model rough (Sader's
+#: Q holds for Q >> 1; the calibration module calls out the same threshold,
+#: :data:`afmsmiler.probe.DEFAULTS` ``low_q``).
+LOW_Q = 5.0
 
 
 def quantity(*, name: str, unit: str, display_unit: str | None = None,
@@ -90,8 +110,9 @@ def quantity(*, name: str, unit: str, display_unit: str | None = None,
     return Parameter(name=name, unit=unit, display_unit=display_unit, default=0.0, label=label)
 
 
-#: Parameters shared by every model: the lever's geometry (silicon), its Q and its temperature
-#: (the last two those of module (a)'s Brownian motion, :mod:`afmsmiler.brownian`).
+#: Parameters shared by every model: the lever's geometry (silicon), its typed Q (in vacuum: from
+#: critical damping up, the vocabulary's named narrowing; a fluid computes its own Q, which may be
+#: lower) and its temperature (module (a)'s Brownian motion, :mod:`afmsmiler.brownian`).
 LEVER_PARAMETERS: tuple[Parameter, ...] = (
     Parameter(name="length", unit="m", display_unit="um", default=225e-6, low=20e-6, high=1e-3,
               label="lever length"),
@@ -99,7 +120,7 @@ LEVER_PARAMETERS: tuple[Parameter, ...] = (
               label="lever width"),
     Parameter(name="thickness", unit="m", display_unit="um", default=3e-6, low=0.2e-6,
               high=10e-6, label="lever thickness"),
-    QUALITY_FACTOR,
+    UNDERDAMPED_QUALITY_FACTOR,
     TEMPERATURE,
 )
 
@@ -323,6 +344,10 @@ class Transducer:
 
     Parameters
     ----------
+    fluid : str, optional
+        The lever's medium, ``"air"`` or ``"water"``: each mode rings at its frequency in the
+        fluid with the fluid's Q (Sader 1998; the typed ``quality_factor`` is then unused).
+        Default None: in vacuum, with the typed Q (see the module docstring).
     **params : float
         Any of :meth:`parameter_table` by name, in SI units; the others take their defaults.
 
@@ -331,7 +356,8 @@ class Transducer:
     TypeError
         For an unknown parameter name.
     ValueError
-        For a value outside the parameter's valid range (the message names it and the range).
+        For a value outside the parameter's valid range (the message names it and the range),
+        or an unknown fluid.
     """
 
     key: ClassVar[str] = ""
@@ -352,7 +378,9 @@ class Transducer:
     #: (an electrode cannot be longer than the lever); widgets use it to bound their sliders.
     BOUNDED_BY: ClassVar[dict] = {}
 
-    def __init__(self, **params):
+    def __init__(self, *, fluid: str | None = None, **params):
+        if fluid is not None:
+            fluid = check_choice("fluid", fluid, FLUID_NAMES)
         table = self.parameter_table()
         unknown = set(params) - set(table)
         if unknown:
@@ -365,6 +393,8 @@ class Transducer:
         self._validate(values)
         self.lever = Cantilever.from_material("silicon", values["length"], values["width"],
                                               values["thickness"])
+        self.fluid = fluid
+        self._modes = {}   # mode number -> (f_n, Q_n) in the medium, computed once
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -400,10 +430,12 @@ class Transducer:
 
     def __repr__(self) -> str:
         args = ", ".join(f"{k}={v:g}" for k, v in self._values.items())
-        return f"{type(self).__name__}({args})"
+        medium = "" if self.fluid is None else f"fluid={self.fluid!r}, "
+        return f"{type(self).__name__}({medium}{args})"
 
     def __eq__(self, other) -> bool:
-        return type(self) is type(other) and self._values == other._values
+        return (type(self) is type(other) and self.fluid == other.fluid
+                and self._values == other._values)
 
     __hash__ = None
 
@@ -424,8 +456,8 @@ class Transducer:
         return dict(self._values)
 
     def replace(self, **changes) -> "Transducer":
-        """A copy with some parameters changed (validated like the constructor)."""
-        return type(self)(**{**self._values, **changes})
+        """A copy with some parameters (or ``fluid``) changed, validated like the constructor."""
+        return type(self)(**{"fluid": self.fluid, **self._values, **changes})
 
     def _mode(self, mode) -> str:
         return self.MODES[0] if mode is None else check_choice("mode", mode, self.MODES)
@@ -448,10 +480,37 @@ class Transducer:
         """k of the lever in N/m."""
         return self.lever.spring_constant
 
+    def mode_in_medium(self, mode: int = 1) -> tuple:
+        """Where flexural mode ``mode`` rings and its Q: (f_n in Hz, Q_n).
+
+        In vacuum the lever's own f_n and the typed Q (the same for every mode); in a fluid
+        f_R,n and Q_n from Sader's hydrodynamic function
+        (:func:`afmsmiler.hydrodynamics.fluid_mode`).
+
+        Parameters
+        ----------
+        mode : int
+            Mode number n, 1 to :data:`~afmsmiler.cantilever.MAX_MODE`.
+        """
+        mode = check_integer("mode", mode, 1, MAX_MODE)
+        if mode not in self._modes:
+            if self.fluid is None:
+                self._modes[mode] = (self.lever.resonance_frequency(mode),
+                                     self._values["quality_factor"])
+            else:
+                m = fluid_mode(self.lever, self.fluid, mode)
+                self._modes[mode] = (m.resonance_frequency, m.quality_factor)
+        return self._modes[mode]
+
     @property
     def resonance_frequency(self) -> float:
-        """f1 of the lever in Hz."""
-        return self.lever.resonance_frequency(1)
+        """f1 of the lever in Hz, in its medium."""
+        return self.mode_in_medium(1)[0]
+
+    @property
+    def quality_factor(self) -> float:
+        """Q of the first mode: the typed one in vacuum, the fluid's in a fluid."""
+        return self.mode_in_medium(1)[1]
 
     def thermal_noise(self, bandwidth: float, low_frequency: float | None = None) -> float:
         """Rms Brownian tip deflection in m within ``bandwidth`` Hz (see the module docstring).
@@ -466,13 +525,14 @@ class Transducer:
         """
         return thermal_deflection_noise(self.lever, quality_factor=self.quality_factor,
                                         temperature=self.temperature, bandwidth=bandwidth,
-                                        low_frequency=low_frequency, mode=1)
+                                        low_frequency=low_frequency, mode=1,
+                                        resonance_frequency=self.resonance_frequency)
 
     def thermal_noise_density(self, f) -> np.ndarray:
         """One-sided power spectral density of the Brownian tip deflection in m^2/Hz.
 
         S_z(f) = 0.971 x 4 k_B T / (k omega1 Q) |H_mech(f)|^2, the first mode's share (see
-        :func:`afmsmiler.brownian.thermal_noise_density`).
+        :func:`afmsmiler.brownian.thermal_noise_density`), at f1 and Q in the lever's medium.
 
         Parameters
         ----------
@@ -480,7 +540,8 @@ class Transducer:
             Frequencies in Hz, >= 0.
         """
         return thermal_noise_density(self.lever, f, quality_factor=self.quality_factor,
-                                     temperature=self.temperature, mode=1)
+                                     temperature=self.temperature, mode=1,
+                                     resonance_frequency=self.resonance_frequency)
 
     # -- the lever's shape --------------------------------------------------------------------
     def deflection_shape(self, u) -> tuple:
@@ -578,7 +639,7 @@ class Transducer:
             sensitivity=self.sensitivity(mode, at=value),
             response=None if frequencies is None else self.frequency_response(frequencies, mode),
             resolution=None if bandwidth is None else self.resolution(bandwidth, mode=mode),
-            validity=tuple(self._validity(value, mode, point)))
+            validity=(*self._medium_validity(), *self._validity(value, mode, point)))
 
     def respond(self, value, mode=None):
         """The output for input ``value`` in the chain of ``mode`` (last stage of :meth:`chain`)."""
@@ -705,7 +766,13 @@ class Transducer:
         """
         mode = self._mode(mode)
         value = self.INPUTS[mode].check(value)
-        return tuple(self._validity(value, mode, self.chain(np.array([value]), mode)))
+        return (*self._medium_validity(),
+                *self._validity(value, mode, self.chain(np.array([value]), mode)))
+
+    def _medium_validity(self):
+        if self.fluid is not None and self.quality_factor < LOW_Q:
+            yield (f"in {self.fluid} Q = {self.quality_factor:.3g}: Sader's Q holds for Q >> 1, "
+                   "so the one-oscillator lever is rough here")
 
     # -- to implement -----------------------------------------------------------------------
     def _validity(self, value: float, mode: str, point: SignalChain):

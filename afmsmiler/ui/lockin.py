@@ -14,13 +14,14 @@ from __future__ import annotations
 
 import ipywidgets as widgets
 
+from ..hydrodynamics import FLUID_NAMES
 from ..parameters import read_only
 from ..plots.lockin import LockInFigure
 from ..signals.chain import AC_VOLTAGE, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO, INTERFERENCE
 from ..signals.demo import LockInDemo, lock_in_demo, max_ac_voltage
 from ..signals.lockin import FILTER_ORDER, REFERENCES, TIME_CONSTANT
 from ..validation import check_choice, check_integer
-from .panel import Panel, initial_values, slider
+from .panel import TYPED, Panel, initial_values, slider
 
 __all__ = ["LockInPanel", "DEFAULTS", "SLIDERS"]
 
@@ -30,7 +31,10 @@ SLIDERS = read_only({"ac_voltage": AC_VOLTAGE, "half_resonance_ratio": HALF_RESO
                      "time_constant": TIME_CONSTANT})
 #: Choices of the drop-downs and their defaults.
 DEFAULTS = read_only(dict(orders=(1, 2, 3, 4, 6, 8), order=int(FILTER_ORDER.default),
-                          shape="sine", seed=0))
+                          shape="sine", seed=0, fluid=TYPED))
+#: The medium drop-down: module (b)'s typed Q in vacuum, or the lever's f1 and Q in a fluid.
+MEDIA = (("vacuum: Q typed (module b)", TYPED),
+         *((f"{f}: f1 and Q from Sader", f) for f in FLUID_NAMES))
 _SEED = DEFAULTS["seed"]
 
 
@@ -38,7 +42,11 @@ class LockInPanel(Panel):
     """Sliders, the lock-in's reading against the truth, the spectrum and the harmonic pickup.
 
     Controls: ``ac_voltage`` (V), ``half_resonance_ratio``, ``amplifier_noise`` (nV^2/Hz),
-    ``interference`` (uV), ``time_constant`` (ms), ``order`` and ``shape``.
+    ``interference`` (uV), ``time_constant`` (ms), ``order``, ``shape`` and ``fluid`` (the
+    lever's medium: ``"typed"``, in vacuum with module (b)'s typed Q, or ``"air"``/``"water"``,
+    its f1 and Q there from Sader's hydrodynamics). The drive's slider ends where module (b)'s
+    bridge would leave its range in the medium where the lever rings most (the highest Q), so
+    that no medium makes a drive the student set invalid.
 
     Parameters
     ----------
@@ -56,14 +64,15 @@ class LockInPanel(Panel):
 
     SLIDERS = SLIDERS
     DEFAULTS = read_only({**{name: p.to_display(p.default) for name, p in SLIDERS.items()},
-                          "order": DEFAULTS["order"], "shape": DEFAULTS["shape"]})
+                          "order": DEFAULTS["order"], "shape": DEFAULTS["shape"],
+                          "fluid": DEFAULTS["fluid"]})
 
     def __init__(self, *, seed: int = _SEED, **initial):
         self.seed = check_integer("seed", seed, 0, 2**32 - 1)
         values = initial_values(initial, self.DEFAULTS)
         self.controls = self.declared_controls(initial)
         # the drive stops where module (b)'s bridge would leave its range (at resonance)
-        top = max_ac_voltage()
+        top = min(max_ac_voltage(fluid=None if f == TYPED else f) for _, f in MEDIA)
         self.controls["ac_voltage"] = slider("ac_voltage", AC_VOLTAGE, values["ac_voltage"],
                                              high=top)
         check_choice("order", values["order"], DEFAULTS["orders"])
@@ -74,18 +83,21 @@ class LockInPanel(Panel):
         self.controls["shape"] = widgets.ToggleButtons(options=list(REFERENCES),
                                                        value=values["shape"],
                                                        description="reference")
+        check_choice("fluid", values["fluid"], [f for _, f in MEDIA])
+        self.controls["fluid"] = widgets.Dropdown(options=list(MEDIA), value=values["fluid"],
+                                                  description="medium")
         self.figure = None
         self.fig = None
         super().__init__()
 
     def update(self, *, ac_voltage, half_resonance_ratio, amplifier_noise, interference,
-               time_constant, order, shape) -> None:
+               time_constant, order, shape, fluid) -> None:
         """Run the demonstration once with these control values (sliders in SI) and draw it."""
         demo = self.run_model(lock_in_demo, ac_voltage=ac_voltage,
                               half_resonance_ratio=half_resonance_ratio,
                               amplifier_noise=amplifier_noise, interference=interference,
                               time_constant=time_constant, order=int(order), shape=shape,
-                              seed=self.seed)
+                              seed=self.seed, fluid=None if fluid == TYPED else fluid)
         self.last = demo
         if self.figure is None:
             self.figure = LockInFigure(demo, fig=self.new_figure(figsize=(11.0, 3.8)))

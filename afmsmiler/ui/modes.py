@@ -53,7 +53,7 @@ from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigur
 from ..probe import FLUID_NAMES, oscillator
 from ..samples import grating
 from ..validation import check_choice
-from .panel import Panel, _live_loop, initial_values
+from .panel import TYPED, Panel, _live_loop, initial_values
 
 __all__ = ["TappingPanel", "TappingState", "TAPPING_PROBES", "TAPPING_FLUIDS", "TAPPING_LEVER",
            "TYPED", "tapping_oscillator", "LateralPanel", "LateralState",
@@ -117,8 +117,6 @@ TAPPING_SLIDERS = read_only({name: tapping.PARAMETERS[name] for name in (
     "free_amplitude", "setpoint_ratio", "quality_factor", "spring_constant",
     "resonance_frequency", "hamaker_constant", "youngs_modulus", "sample_viscosity")})
 
-#: The probe drop-down's entry for a lever typed on the k, f0 and Q sliders.
-TYPED = "typed"
 #: The lever's sliders, set by a vendor's probe in its fluid.
 TAPPING_LEVER = ("spring_constant", "resonance_frequency", "quality_factor")
 #: Vendors' tapping probes (:data:`afmsmiler.planform.PRESETS`) the panel offers: mode 1 in air

@@ -24,11 +24,11 @@ import ipywidgets as widgets
 from ..parameters import read_only, shown
 from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves, frequency_grid
 from ..transducers import PRINCIPLES
-from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalChain,
+from ..transducers.base import (FLUIDS, LEVER_PARAMETERS, Operation, Resolution, SignalChain,
                                 Transducer)
 from ..validation import check_choice
 from .controls import control
-from .panel import Panel, to_si
+from .panel import TYPED, Panel, to_si
 
 __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "to_si"]
 
@@ -36,7 +36,10 @@ __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "to_si"]
 DEFAULTS = read_only(dict(principle="optical_beam_deflection", bandwidth=1e3,
                           figsize=(10.0, 3.8)))
 
-_FIXED = ("principle", "mode", "input")
+_FIXED = ("principle", "mode", "fluid", "input")
+#: The medium drop-down: the typed Q in vacuum, or the lever's f1 and Q in a fluid (Sader).
+MEDIA = (("vacuum: Q typed below", TYPED),
+         *((f"{f}: f1 and Q from Sader", f) for f in FLUIDS if f is not None))
 #: The sliders of the lever every model shares; :meth:`TransducerPanel.widget` gives them a column.
 _LEVER = tuple(p.name for p in LEVER_PARAMETERS)
 
@@ -79,7 +82,10 @@ class TransducerPanel(Panel):
     """Selector, mode, input and parameter sliders for any of the eleven transducer models.
 
     Controls: ``principle`` (a key of :data:`~afmsmiler.transducers.PRINCIPLES`), ``mode``
-    (``"sensing"``/``"actuation"``; a choice only for the piezoelectric film), ``input`` (the
+    (``"sensing"``/``"actuation"``; a choice only for the piezoelectric film), ``fluid`` (the
+    lever's medium: ``"typed"``, in vacuum with the Q slider's value, or ``"air"``/``"water"``,
+    where the lever rings at its f1 in the fluid with the fluid's Q, Sader 1998, and the Q slider
+    is disabled), ``input`` (the
     chain's input in its display unit, e.g. nm of tip deflection or V of drive) and one slider per
     model parameter, named like the parameter, in its display unit. Changing the principle or the
     mode rebuilds the sliders (``controls`` changes with it).
@@ -113,6 +119,7 @@ class TransducerPanel(Panel):
             description="principle")
         self._mode = widgets.ToggleButtons(options=list(PRINCIPLES[principle].MODES),
                                            description="mode")
+        self._fluid = widgets.Dropdown(options=list(MEDIA), value=TYPED, description="medium")
         self.readout = widgets.HTML()
         # the two columns of widget(): the principle's chain, and the lever with the readout
         self._chain, self._lever = widgets.VBox(), widgets.VBox()
@@ -123,6 +130,7 @@ class TransducerPanel(Panel):
         self._build(principle)
         self._selector.observe(self._on_principle, names="value")
         self._mode.observe(self._on_mode, names="value")
+        self._fluid.observe(lambda change: self._typed_q(), names="value")
         super().__init__(scene=scene, vis=vis)
         self._ready = True
 
@@ -148,18 +156,24 @@ class TransducerPanel(Panel):
                 sliders[name] = control(p, high=high)
             old = getattr(self, "controls", {})
             for name, c in old.items():
-                if name not in ("principle", "mode"):
+                if name not in ("principle", "mode", "fluid"):
                     c.unobserve_all()
-            self.controls = {"principle": self._selector, "mode": self._mode, **sliders}
+            self.controls = {"principle": self._selector, "mode": self._mode,
+                             "fluid": self._fluid, **sliders}
             if self._ready:
                 for c in sliders.values():
                     c.observe(self._on_change, names="value")
+            self._typed_q()
             self._chain.children = [self._selector, self._mode,
                                     *(c for n, c in sliders.items() if n not in _LEVER)]
-            self._lever.children = [*(c for n, c in sliders.items() if n in _LEVER),
+            self._lever.children = [self._fluid, *(c for n, c in sliders.items() if n in _LEVER),
                                     self.readout]
         finally:
             self._hold = hold
+
+    def _typed_q(self) -> None:
+        """The Q slider is the lever's Q only in vacuum; in a fluid the fluid sets Q (readout)."""
+        self.controls["quality_factor"].disabled = self._fluid.value != TYPED
 
     def _on_principle(self, change) -> None:
         self._build(change["new"])
@@ -245,7 +259,7 @@ class TransducerPanel(Panel):
             self._hold = hold
         super()._run(values)
 
-    def update(self, principle, mode, input, **params) -> None:  # noqa: A002 - a control name
+    def update(self, principle, mode, fluid, input, **params) -> None:  # noqa: A002 - a control name
         """Run the model once with the values given and update plots, scene and readout.
 
         Parameters
@@ -254,6 +268,8 @@ class TransducerPanel(Panel):
             A key of :data:`~afmsmiler.transducers.PRINCIPLES`.
         mode : str
             One of the principle's modes.
+        fluid : str
+            ``"typed"`` (vacuum, the Q slider's Q), ``"air"`` or ``"water"``.
         input : float
             The chain's input in SI (m of deflection, V, A, W, ...).
         **params : float
@@ -267,7 +283,7 @@ class TransducerPanel(Panel):
             clamped), before any work (the panel contract).
         """
         cls = PRINCIPLES[principle]
-        model = cls(**params)
+        model = cls(fluid=None if fluid == TYPED else fluid, **params)
         value = input
         op = self.run_model(model.operate, value, mode, frequencies=frequency_grid(model),
                            bandwidth=DEFAULTS["bandwidth"])
@@ -294,6 +310,9 @@ class TransducerPanel(Panel):
         rows = [("Table I", f"{m.function}; {m.signal}; {m.size}"),
                 ("lever k, f1",
                  f"{m.spring_constant:.3g} N/m, {shown(m.resonance_frequency, 'kHz')}"),
+                ("medium, Q", f"vacuum, Q = {m.quality_factor:.3g} (typed)" if m.fluid is None else
+                 f"{m.fluid} (Sader): Q = {m.quality_factor:.3g}, f1 in vacuum "
+                 f"{shown(m.lever.resonance_frequency(1), 'kHz')}"),
                 ("sensitivity here", f"{sq.to_display(s.sensitivity) + 0.0:.4g} {sq.display_unit}"),
                 (f"resolution in {shown(DEFAULTS['bandwidth'], 'kHz', 'g')}",
                  (f"{total:.3g} {q.display_unit} (mostly {res.dominant})"
