@@ -474,6 +474,9 @@ def test_the_medium_sets_f1_and_q_and_never_moves_the_q_slider():
     assert panel.last.model.resonance_frequency == water.resonance_frequency
     assert panel.last.model.quality_factor == water.quality_factor
     assert "mostly thermal" in panel.readout.value and "water (Sader)" in panel.readout.value
+    # the notebook's words: f1 falls to less than half, Q to about 4
+    assert panel.last.model.resonance_frequency < 0.5 * OpticalBeamDeflection().resonance_frequency
+    assert 3.5 < panel.last.model.quality_factor < 4.5
     assert "Q &gt;&gt; 1" in panel.readout.value or "Q >> 1" in panel.readout.value
     panel.set(principle="piezoresistive")   # the medium stays, and so does the disabled Q
     assert panel.last.model.fluid == "water" and panel.controls["quality_factor"].disabled
