@@ -91,6 +91,9 @@ class PiezoAcoustic(Transducer):
     1.4 % to the tip amplitude well below f1, next to nothing at f1 (where mode 1 resonates), 2 %
     at 1.5 f1, 5 % at 2 f1 and 15 % at 3 f1; :meth:`validity` says so when its share exceeds
     ``MAX_MODE_2_SHARE``.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "piezo_acoustic"

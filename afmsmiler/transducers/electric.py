@@ -34,6 +34,9 @@ class Electrostatic(Transducer):
     (the end-load values F / k and 3 F / (2 k L) when l_e -> 0; q L^4 / (8 E J) when l_e = L).
     Small deflections (|z| << g): the gap change and the electrostatic spring softening are not
     modelled; :attr:`pull_in_voltage` says where that stops being true.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "electrostatic"
@@ -140,6 +143,9 @@ class Electromagnetic(Transducer):
     (:meth:`moment_torque_deflection`): an end moment M bends the lever to z = M L^2 / (2 E J),
     theta = M L / (E J) (Jackson, *Classical Electrodynamics*, sec. 5.7; Han, Lindsay and Jing,
     Appl. Phys. Lett. 69, 4111 (1996)).
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "electromagnetic"

@@ -64,6 +64,9 @@ class Piezoresistive(Transducer):
     resistors of N = p V carriers each, V = 2 l_r (w/4) d_j): Johnson noise of the bridge's
     output resistance R, sqrt(4 k_B T R B), and Hooge 1/f noise, V_b^2 alpha_H / (4 N) *
     ln(f_2 / f_1) over the band [f_1, f_2].
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "piezoresistive"
@@ -187,6 +190,9 @@ class Piezoelectric(Transducer):
     (DeVoe and Pisano, J. Microelectromech. Syst. 6, 266 (1997); Smits and Choi, IEEE Trans.
     Ultrason. Ferroelectr. Freq. Control 38, 256 (1991); AlN: d31 = -2.0 pm/V, E = 330 GPa,
     eps_r = 10.5, Tsubouchi and Mikoshiba, IEEE Trans. Sonics Ultrason. 32, 634 (1985)).
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "piezoelectric"
@@ -307,6 +313,9 @@ class Optomechanical(Transducer):
     (Aspelmeyer, Kippenberg and Marquardt, Rev. Mod. Phys. 86, 1391 (2014); Srinivasan et al.,
     Nano Lett. 11, 791 (2011)). The intracavity field follows x with the amplitude decay rate
     kappa / 2, a low-pass at gamma / 2. Noise: shot noise of the transmitted photocurrent.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "optomechanical"

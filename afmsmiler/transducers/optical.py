@@ -50,6 +50,9 @@ class OpticalBeamDeflection(Transducer):
 
     Noise: the difference current carries the shot noise of the whole photocurrent I = R P, so
     the rms noise of S is sqrt(2 q B / I).
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "optical_beam_deflection"
@@ -139,6 +142,9 @@ class AstigmaticDetection(Transducer):
     AFM with a DVD pickup head: Hwu et al., Appl. Phys. Lett. 91, 221908 (2007), Nanotechnology
     19, 115501 (2008)).
     Noise: shot noise of the detector current, as for the optical lever.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "astigmatic"
@@ -252,6 +258,9 @@ class Interferometer(Transducer):
     largest at quadrature, phi = -pi/2 (the default), where it is 4 pi V P0 / lambda; far from
     it the response is nonlinear and even folds over each half fringe (lambda / 4 of travel).
     Noise: shot noise of the photocurrent at the operating point.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "interferometry"

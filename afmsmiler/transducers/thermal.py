@@ -272,6 +272,9 @@ class Photothermal(_Bimorph):
     bimorph bends the lever down: z = -C P_abs L^3 / (6 G), through the thermal low-pass of time
     constant tau (see :mod:`afmsmiler.transducers.thermal`). Works at DC and AC (bulk: the
     laser comes from outside); used for clean, resonance-free drive in liquid.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "photothermal"
@@ -320,6 +323,9 @@ class Electrothermal(_Bimorph):
     :meth:`validity` flags temperature rises beyond ``MAX_TEMPERATURE_RISE``. The chain's input
     is the DC heater voltage; the AC amplitude is a parameter whose rectified part
     V_ac^2 / (2 R) adds to the DC heat.
+
+    Its lever works in vacuum with the typed Q, or in a fluid (``fluid``: see
+    :class:`~afmsmiler.transducers.base.Transducer`).
     """
 
     key = "electrothermal"
