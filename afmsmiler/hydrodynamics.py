@@ -67,7 +67,7 @@ from .parameters import Parameter, read_only
 from .validation import check_array, check_flag, check_instance, check_integer, check_range
 
 __all__ = ["FLUID_DENSITY", "VISCOSITY", "PARAMETERS", "REYNOLDS_RANGE", "Fluid", "FLUIDS",
-           "FLUID_NAMES", "get_fluid", "reynolds_number", "circular_hydrodynamic_function",
+           "FLUID_NAMES", "LOW_Q", "get_fluid", "reynolds_number", "circular_hydrodynamic_function",
            "rectangular_correction", "hydrodynamic_function", "FluidMode", "fluid_mode",
            "fluid_modes", "mass_loading"]
 
@@ -211,6 +211,9 @@ FLUIDS = read_only({
 
 #: The media a student chooses between in the panels (keys of :data:`FLUIDS`).
 FLUID_NAMES = ("air", "water")
+#: Sader's Q is a weak-damping result (Q >> 1): below this Q the models that take it say that one
+#: oscillator with that Q (a Lorentzian line, a fixed damping) describes the mode only roughly.
+LOW_Q = 5.0
 
 
 def get_fluid(fluid) -> Fluid:

@@ -45,7 +45,7 @@ import numpy as np
 from .calibration import (LIMITS, ThermalCalibration, ThermalSpectrum, optical_lever_correction,
                           sader_spring_constant, thermal_calibration, thermal_spectrum)
 from .cantilever import Cantilever
-from .hydrodynamics import FLUID_NAMES, fluid_mode  # FLUID_NAMES: the fluids a report compares
+from .hydrodynamics import FLUID_NAMES, LOW_Q, fluid_mode  # FLUID_NAMES: the fluids a report compares
 from .parameters import Parameter, read_only
 from .planform import Lever
 from .validation import (check_array, check_choice, check_instance, check_integer,
@@ -61,8 +61,8 @@ SPOT = Parameter(name="spot", unit="", default=1.0, low=0.0, high=1.0, low_inclu
 #: The report's defaults: the thermal spectrum's bins and averages (2^14 bins of 16 averages: a
 #: panel step of a few milliseconds, a statistical error of k of about 2 % for a contact lever in
 #: air), the noise's seed, and the Q below which the methods' assumptions (an oscillator line,
-#: Q >> 1) are called out.
-DEFAULTS = read_only(dict(points=2 ** 14, averages=16, seed=0, low_q=5.0, resolved_bins=5.0))
+#: Q >> 1) are called out (:data:`afmsmiler.hydrodynamics.LOW_Q`).
+DEFAULTS = read_only(dict(points=2 ** 14, averages=16, seed=0, low_q=LOW_Q, resolved_bins=5.0))
 
 
 def mean_width(lever: Lever) -> float:

@@ -21,7 +21,7 @@ from afmsmiler.signals.chain import ActiveProbe
 from afmsmiler.signals.demo import lock_in_demo
 from afmsmiler.transducers import (PRINCIPLES, Electrothermal, OpticalBeamDeflection,
                                    PiezoAcoustic, Piezoresistive)
-from afmsmiler.transducers.base import LOW_Q
+from afmsmiler.hydrodynamics import LOW_Q
 
 #: Butt and Jaschke (1995): the first mode's share of k_B T / k at the tip.
 PUBLISHED_FIRST_SHARE = 0.971

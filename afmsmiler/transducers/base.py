@@ -34,8 +34,8 @@ fluid_mode`; Sader, J. Appl. Phys. 84, 64 (1998)): the fluid's added mass lowers
 its viscosity sets Q, and k is unchanged. The oscillator above then takes f_R,n and Q_n, so the
 response, the thermal spectrum (S_0 = 0.971 x 4 k_B T / (k omega_R Q), which still integrates to
 0.971 k_B T / k) and every chain built on them are the lever's in that medium. Sader's Q is a
-weak-damping result (Q >> 1): below Q = 5 (:data:`LOW_Q`) :meth:`Transducer.validity` says that
-the one-oscillator model is rough there.
+weak-damping result (Q >> 1): below Q = 5 (:data:`afmsmiler.hydrodynamics.LOW_Q`)
+:meth:`Transducer.validity` says that the one-oscillator model is rough there.
 
 Conventions
 -----------
@@ -56,7 +56,7 @@ import scipy.constants
 from ..brownian import (TEMPERATURE, mechanical_response, thermal_deflection_noise,
                         thermal_noise_density)
 from ..cantilever import MAX_MODE, Cantilever
-from ..hydrodynamics import FLUID_NAMES, fluid_mode
+from ..hydrodynamics import FLUID_NAMES, LOW_Q, fluid_mode
 from ..parameters import UNDERDAMPED_QUALITY_FACTOR, Parameter
 from ..validation import (check_array, check_choice, check_instance, check_integer,
                           check_positive)
@@ -79,10 +79,6 @@ SWEEP_POINTS = 201
 #: The media of a lever: None (vacuum, the typed Q) or a fluid of
 #: :data:`afmsmiler.hydrodynamics.FLUID_NAMES` (Sader's f_R and Q).
 FLUIDS = (None, *FLUID_NAMES)
-#: Below this Q in a fluid, :meth:`Transducer.validity` calls the one-oscillator model rough (Sader's
-#: Q holds for Q >> 1; the calibration module calls out the same threshold,
-#: :data:`afmsmiler.probe.DEFAULTS` ``low_q``).
-LOW_Q = 5.0
 
 
 def quantity(*, name: str, unit: str, display_unit: str | None = None,

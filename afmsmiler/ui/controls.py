@@ -17,13 +17,42 @@ import math
 import ipywidgets as widgets
 
 from ..parameters import Parameter
-from ..validation import (check_finite, check_instance, check_integer, check_positive,
-                          check_range)
+from ..validation import (check_choice, check_finite, check_instance, check_integer,
+                          check_positive, check_range)
 
-__all__ = ["control", "nice_step", "grid", "WIDTH"]
+__all__ = ["control", "nice_step", "grid", "WIDTH", "TYPED", "medium_control", "medium"]
 
 #: Width of a control in px (a panel column; :func:`~afmsmiler.ui.panel.arrange` aligns labels).
 WIDTH = "420px"
+#: A choice drop-down's entry for values typed on the sliders (a lever's k, f0 and Q; its Q in
+#: vacuum), against a preset or a fluid that sets them.
+TYPED = "typed"
+
+
+def medium_control(typed: str, value: str = TYPED) -> widgets.Dropdown:
+    """The ``medium`` drop-down of a lever: in vacuum with a typed Q, or in a fluid.
+
+    Parameters
+    ----------
+    typed : str
+        The label of the vacuum entry (what types its Q), e.g. ``"vacuum: Q typed below"``.
+    value : str
+        :data:`TYPED` or a fluid of :data:`afmsmiler.hydrodynamics.FLUID_NAMES`.
+
+    Returns
+    -------
+    ipywidgets.Dropdown
+        Values :data:`TYPED` and the fluids (:func:`medium` turns one into a model's ``fluid``).
+    """
+    from ..hydrodynamics import FLUID_NAMES
+    options = [(typed, TYPED), *((f"{f}: f1 and Q from Sader", f) for f in FLUID_NAMES)]
+    check_choice("fluid", value, [v for _, v in options])
+    return widgets.Dropdown(options=options, value=value, description="medium")
+
+
+def medium(value: str) -> str | None:
+    """A ``medium`` drop-down's value as a model's ``fluid``: None for :data:`TYPED`."""
+    return None if value == TYPED else value
 #: Linear sliders get at least this many steps over their range, log sliders this many per decade.
 STEPS, STEPS_PER_DECADE = 200, 40
 _NICE = (1.0, 2.0, 2.5, 5.0)

@@ -21,7 +21,8 @@ from ..signals.chain import AC_VOLTAGE, AMPLIFIER_NOISE, HALF_RESONANCE_RATIO, I
 from ..signals.demo import LockInDemo, lock_in_demo, max_ac_voltage
 from ..signals.lockin import FILTER_ORDER, REFERENCES, TIME_CONSTANT
 from ..validation import check_choice, check_integer
-from .panel import TYPED, Panel, initial_values, slider
+from .controls import TYPED, medium, medium_control
+from .panel import Panel, initial_values, slider
 
 __all__ = ["LockInPanel", "DEFAULTS", "SLIDERS"]
 
@@ -32,9 +33,7 @@ SLIDERS = read_only({"ac_voltage": AC_VOLTAGE, "half_resonance_ratio": HALF_RESO
 #: Choices of the drop-downs and their defaults.
 DEFAULTS = read_only(dict(orders=(1, 2, 3, 4, 6, 8), order=int(FILTER_ORDER.default),
                           shape="sine", seed=0, fluid=TYPED))
-#: The medium drop-down: module (b)'s typed Q in vacuum, or the lever's f1 and Q in a fluid.
-MEDIA = (("vacuum: Q typed (module b)", TYPED),
-         *((f"{f}: f1 and Q from Sader", f) for f in FLUID_NAMES))
+
 _SEED = DEFAULTS["seed"]
 
 
@@ -72,7 +71,7 @@ class LockInPanel(Panel):
         values = initial_values(initial, self.DEFAULTS)
         self.controls = self.declared_controls(initial)
         # the drive stops where module (b)'s bridge would leave its range (at resonance)
-        top = min(max_ac_voltage(fluid=None if f == TYPED else f) for _, f in MEDIA)
+        top = min(max_ac_voltage(fluid=f) for f in (None, *FLUID_NAMES))
         self.controls["ac_voltage"] = slider("ac_voltage", AC_VOLTAGE, values["ac_voltage"],
                                              high=top)
         check_choice("order", values["order"], DEFAULTS["orders"])
@@ -83,9 +82,7 @@ class LockInPanel(Panel):
         self.controls["shape"] = widgets.ToggleButtons(options=list(REFERENCES),
                                                        value=values["shape"],
                                                        description="reference")
-        check_choice("fluid", values["fluid"], [f for _, f in MEDIA])
-        self.controls["fluid"] = widgets.Dropdown(options=list(MEDIA), value=values["fluid"],
-                                                  description="medium")
+        self.controls["fluid"] = medium_control("vacuum: Q typed (module b)", values["fluid"])
         self.figure = None
         self.fig = None
         super().__init__()
@@ -97,7 +94,7 @@ class LockInPanel(Panel):
                               half_resonance_ratio=half_resonance_ratio,
                               amplifier_noise=amplifier_noise, interference=interference,
                               time_constant=time_constant, order=int(order), shape=shape,
-                              seed=self.seed, fluid=None if fluid == TYPED else fluid)
+                              seed=self.seed, fluid=medium(fluid))
         self.last = demo
         if self.figure is None:
             self.figure = LockInFigure(demo, fig=self.new_figure(figsize=(11.0, 3.8)))

@@ -53,7 +53,8 @@ from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigur
 from ..probe import FLUID_NAMES, oscillator
 from ..samples import grating
 from ..validation import check_choice
-from .panel import TYPED, Panel, _live_loop, initial_values
+from .controls import TYPED
+from .panel import Panel, _live_loop, initial_values
 
 __all__ = ["TappingPanel", "TappingState", "TAPPING_PROBES", "TAPPING_FLUIDS", "TAPPING_LEVER",
            "TYPED", "tapping_oscillator", "LateralPanel", "LateralState",

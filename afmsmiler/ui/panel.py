@@ -43,7 +43,7 @@ from matplotlib.figure import Figure
 from ..parameters import Parameter
 from ..validation import check_choice, check_finite, check_range
 
-__all__ = ["Panel", "TYPED", "arrange", "check_control_value", "initial_values", "running_as_notebook",
+__all__ = ["Panel", "arrange", "check_control_value", "initial_values", "running_as_notebook",
            "setup_notebook", "show_static", "slider", "to_si"]
 
 
@@ -203,9 +203,6 @@ def slider(name: str, p: Parameter, display_value: float, *, high: float | None 
 
 
 _MISSING = object()
-#: A choice drop-down's entry for values typed on the sliders (a lever's k, f0 and Q; its Q in
-#: vacuum), against a preset or a fluid that sets them.
-TYPED = "typed"
 
 
 def _decimal(value):

@@ -24,11 +24,11 @@ import ipywidgets as widgets
 from ..parameters import read_only, shown
 from ..plots.transducers import ChainCurves, TransducerFigure, chain_curves, frequency_grid
 from ..transducers import PRINCIPLES
-from ..transducers.base import (FLUIDS, LEVER_PARAMETERS, Operation, Resolution, SignalChain,
+from ..transducers.base import (LEVER_PARAMETERS, Operation, Resolution, SignalChain,
                                 Transducer)
 from ..validation import check_choice
-from .controls import control
-from .panel import TYPED, Panel, to_si
+from .controls import TYPED, control, medium, medium_control
+from .panel import Panel, to_si
 
 __all__ = ["TransducerPanel", "TransducerState", "DEFAULTS", "to_si"]
 
@@ -37,9 +37,6 @@ DEFAULTS = read_only(dict(principle="optical_beam_deflection", bandwidth=1e3,
                           figsize=(10.0, 3.8)))
 
 _FIXED = ("principle", "mode", "fluid", "input")
-#: The medium drop-down: the typed Q in vacuum, or the lever's f1 and Q in a fluid (Sader).
-MEDIA = (("vacuum: Q typed below", TYPED),
-         *((f"{f}: f1 and Q from Sader", f) for f in FLUIDS if f is not None))
 #: The sliders of the lever every model shares; :meth:`TransducerPanel.widget` gives them a column.
 _LEVER = tuple(p.name for p in LEVER_PARAMETERS)
 
@@ -119,7 +116,7 @@ class TransducerPanel(Panel):
             description="principle")
         self._mode = widgets.ToggleButtons(options=list(PRINCIPLES[principle].MODES),
                                            description="mode")
-        self._fluid = widgets.Dropdown(options=list(MEDIA), value=TYPED, description="medium")
+        self._fluid = medium_control("vacuum: Q typed below")
         self.readout = widgets.HTML()
         # the two columns of widget(): the principle's chain, and the lever with the readout
         self._chain, self._lever = widgets.VBox(), widgets.VBox()
@@ -283,7 +280,7 @@ class TransducerPanel(Panel):
             clamped), before any work (the panel contract).
         """
         cls = PRINCIPLES[principle]
-        model = cls(fluid=None if fluid == TYPED else fluid, **params)
+        model = cls(fluid=medium(fluid), **params)
         value = input
         op = self.run_model(model.operate, value, mode, frequencies=frequency_grid(model),
                            bandwidth=DEFAULTS["bandwidth"])
