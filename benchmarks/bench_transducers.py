@@ -31,6 +31,7 @@ from afmsmiler.plots.transducers import (TransducerFigure, chain_curves,  # noqa
                                          frequency_grid)
 from afmsmiler.transducers import PRINCIPLES  # noqa: E402
 from afmsmiler.ui.transducers import TransducerPanel, to_si  # noqa: E402
+from afmsmiler.ui.controls import medium  # noqa: E402
 
 TARGET = 5e-3
 
@@ -39,7 +40,7 @@ def main():
     with contextlib.redirect_stdout(io.StringIO()):
         panel = TransducerPanel(scene=True)
     panel.redraw = lambda: None  # pixels are drawn by the front end, after the callback
-    rows = {"model": [], "plots": [], "scene": [], "panel": [], "naive": []}
+    rows = {"model": [], "water": [], "plots": [], "scene": [], "panel": [], "naive": []}
     for key, cls in PRINCIPLES.items():
         panel.set(principle=key)
         values = panel.values()
@@ -52,15 +53,16 @@ def main():
 
         table = cls.parameter_table()
 
-        def model():
-            m = cls(**{n: to_si(table[n], v) for n, v in values.items()
-                       if n not in ("principle", "mode", "input")})
+        def model(fluid=medium(values["fluid"])):
+            m = cls(fluid=fluid, **{n: to_si(table[n], v) for n, v in values.items()
+                                    if n not in ("principle", "mode", "fluid", "input")})
             op = m.operate(q.to_si(next_input()), frequencies=frequency_grid(m),
                            bandwidth=1e3)
             return op, chain_curves(op)
 
         op, curves = model()
         rows["model"].append(best_time(model, repeat=3, min_time=0.05))
+        rows["water"].append(best_time(lambda: model("water"), repeat=3, min_time=0.05))
         rows["plots"].append(best_time(lambda: panel.figure.update(curves), repeat=3,
                                        min_time=0.05))
         rows["scene"].append(best_time(lambda: panel.scene.update(op),
@@ -82,6 +84,7 @@ def main():
     report([
         ("model (chain, sensitivity, response, noise), mean", mean["model"], None, None),
         (f"model, slowest ({worst['model'][1]})", worst["model"][0], None, None),
+        ("model with the lever in water (Sader's f_R and Q), mean", mean["water"], None, None),
         ("plots: update line data in place, mean", mean["plots"], None, None),
         ("scene: update in place (meshcat), mean", mean["scene"], None, None),
         (f"scene, slowest ({worst['scene'][1]})", worst["scene"][0], None, None),

@@ -97,6 +97,26 @@ def test_acquire_arms_before_the_trigger_and_reads_the_chain(session):
     assert acq.reference_frequency == pytest.approx(2 * acq.drive_frequency)
 
 
+def test_the_simulated_board_drives_the_librarys_lever_in_its_medium():
+    # the board rebuilt the probe from its lever's numbers and lost its medium: a lever in water
+    # rang at its vacuum f1 with water's Q (and an overdamped one raised)
+    from afmsmiler.hydrodynamics import fluid_mode
+    probe = ActiveProbe.build(fluid="water")
+    lib = SimulatedDwfLibrary(seed=4, probe=probe)
+    f_water = fluid_mode(probe.sensor.lever, "water", 1).resonance_frequency
+    ad2 = AnalogDiscovery2(lib, config=AD2Config(drive_frequency=f_water / 2, ac_voltage=0.5))
+    ad2.open()
+    try:
+        ad2.configure()
+        ad2.acquire()
+        run = lib.devices[0].run
+        assert run.probe.sensor.fluid == run.probe.actuator.fluid == "water"
+        assert run.probe.resonance_frequency == f_water
+        assert run.probe.actuator.ac_voltage == pytest.approx(0.5)
+    finally:
+        ad2.close()
+
+
 def test_untriggered_pattern_loses_the_phase():
     lib = SimulatedDwfLibrary(seed=1)
     f = lib.probe.resonance_frequency / 2

@@ -607,9 +607,8 @@ class _SimulatedDevice:
                      and self.last("analogIn", "triggerSourceSet") == wave_start)
         # an untriggered pattern starts whenever it was armed: a phase nobody knows
         slip = 0.0 if triggered else float(np.random.default_rng(lib.seed).uniform(0, 2 * np.pi))
-        probe = ActiveProbe.build(ac_voltage=va, **{
-            k: getattr(lib.probe.actuator, k) for k in ("length", "width", "thickness",
-                                                        "quality_factor", "temperature")})
+        # the library's probe with WaveGen's amplitude: its lever, typed Q and medium as they are
+        probe = ActiveProbe(lib.probe.actuator.replace(ac_voltage=va), lib.probe.sensor)
         spp = 64
         run = simulate(probe, dc_voltage=vdc,
                        half_resonance_ratio=2 * f / probe.resonance_frequency,

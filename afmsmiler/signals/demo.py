@@ -100,7 +100,8 @@ def max_ac_voltage(*, margin: float = 0.8, **lever) -> float:
     margin : float
         Share of the deflection range the drive may use, in (0, 1].
     **lever
-        The shared lever parameters of :meth:`ActiveProbe.build`.
+        The shared lever parameters of :meth:`ActiveProbe.build`, and its ``fluid`` (the medium:
+        the peak, and so the largest drive, follows the medium's Q).
 
     Returns
     -------

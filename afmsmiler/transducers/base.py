@@ -56,14 +56,14 @@ import scipy.constants
 from ..brownian import (TEMPERATURE, mechanical_response, thermal_deflection_noise,
                         thermal_noise_density)
 from ..cantilever import MAX_MODE, Cantilever
-from ..hydrodynamics import FLUID_NAMES, LOW_Q, fluid_mode
+from ..hydrodynamics import FLUID_NAMES, LOW_Q, REYNOLDS_RANGE, fluid_mode
 from ..parameters import UNDERDAMPED_QUALITY_FACTOR, Parameter
 from ..validation import (check_array, check_choice, check_instance, check_integer,
                           check_positive)
 
 __all__ = ["quantity", "Parameter", "Stage", "SignalChain", "FrequencyResponse", "Resolution",
            "Harmonics", "Transducer", "Operation", "BOLTZMANN", "ELEMENTARY_CHARGE", "EPSILON_0",
-           "LEVER_PARAMETERS", "SWEEP_POINTS", "FLUIDS", "LOW_Q"]
+           "LEVER_PARAMETERS", "SWEEP_POINTS"]
 
 #: Boltzmann constant k_B in J/K, elementary charge q in C, vacuum permittivity epsilon_0 in
 #: F/m: scipy's CODATA values (2022 in scipy >= 1.15), kept under these names for the models.
@@ -76,9 +76,6 @@ SIGNALS = ("DC&AC", "AC only", "AC mostly")
 SIZES = ("bulk", "embedded")
 #: Inputs sampled over the input's range by :meth:`Transducer.operate` (plots, 3D view).
 SWEEP_POINTS = 201
-#: The media of a lever: None (vacuum, the typed Q) or a fluid of
-#: :data:`afmsmiler.hydrodynamics.FLUID_NAMES` (Sader's f_R and Q).
-FLUIDS = (None, *FLUID_NAMES)
 
 
 def quantity(*, name: str, unit: str, display_unit: str | None = None,
@@ -375,8 +372,9 @@ class Transducer:
     BOUNDED_BY: ClassVar[dict] = {}
 
     def __init__(self, *, fluid: str | None = None, **params):
-        if fluid is not None:
-            fluid = check_choice("fluid", fluid, FLUID_NAMES)
+        if fluid is not None and not (isinstance(fluid, str) and fluid in FLUID_NAMES):
+            raise ValueError(f"fluid must be None (vacuum, the typed Q) or one of "
+                             f"{list(FLUID_NAMES)}, got {fluid!r}")
         table = self.parameter_table()
         unknown = set(params) - set(table)
         if unknown:
@@ -389,7 +387,7 @@ class Transducer:
         self._validate(values)
         self.lever = Cantilever.from_material("silicon", values["length"], values["width"],
                                               values["thickness"])
-        self.fluid = fluid
+        self._fluid = fluid
         self._modes = {}   # mode number -> (f_n, Q_n) in the medium, computed once
 
     def __init_subclass__(cls, **kwargs):
@@ -476,6 +474,11 @@ class Transducer:
         """k of the lever in N/m."""
         return self.lever.spring_constant
 
+    @property
+    def fluid(self) -> str | None:
+        """The lever's medium: None (vacuum, the typed Q), ``"air"`` or ``"water"``."""
+        return self._fluid
+
     def mode_in_medium(self, mode: int = 1) -> tuple:
         """Where flexural mode ``mode`` rings and its Q: (f_n in Hz, Q_n).
 
@@ -487,8 +490,16 @@ class Transducer:
         ----------
         mode : int
             Mode number n, 1 to :data:`~afmsmiler.cantilever.MAX_MODE`.
+
+        Returns
+        -------
+        tuple of float
+            (f_n in Hz, Q_n).
         """
-        mode = check_integer("mode", mode, 1, MAX_MODE)
+        return self._medium(check_integer("mode", mode, 1, MAX_MODE))
+
+    def _medium(self, mode: int) -> tuple:
+        """:meth:`mode_in_medium` of a checked mode number (the properties ask it often)."""
         if mode not in self._modes:
             if self.fluid is None:
                 self._modes[mode] = (self.lever.resonance_frequency(mode),
@@ -501,12 +512,12 @@ class Transducer:
     @property
     def resonance_frequency(self) -> float:
         """f1 of the lever in Hz, in its medium."""
-        return self.mode_in_medium(1)[0]
+        return self._medium(1)[0]
 
     @property
     def quality_factor(self) -> float:
         """Q of the first mode: the typed one in vacuum, the fluid's in a fluid."""
-        return self.mode_in_medium(1)[1]
+        return self._medium(1)[1]
 
     def thermal_noise(self, bandwidth: float, low_frequency: float | None = None) -> float:
         """Rms Brownian tip deflection in m within ``bandwidth`` Hz (see the module docstring).
@@ -766,9 +777,16 @@ class Transducer:
                 *self._validity(value, mode, self.chain(np.array([value]), mode)))
 
     def _medium_validity(self):
-        if self.fluid is not None and self.quality_factor < LOW_Q:
+        if self.fluid is None:
+            return
+        if self.quality_factor < LOW_Q:
             yield (f"in {self.fluid} Q = {self.quality_factor:.3g}: Sader's Q holds for Q >> 1, "
                    "so the one-oscillator lever is rough here")
+        m = fluid_mode(self.lever, self.fluid, 1)
+        if not m.in_fit_range:
+            yield (f"in {self.fluid} the lever's Reynolds number {m.reynolds_number:.3g} lies "
+                   f"outside Sader's fit ({REYNOLDS_RANGE[0]:g} to {REYNOLDS_RANGE[1]:g}): its "
+                   "f1 and Q there are extrapolated")
 
     # -- to implement -----------------------------------------------------------------------
     def _validity(self, value: float, mode: str, point: SignalChain):
