@@ -389,6 +389,7 @@ class Transducer:
                                               values["thickness"])
         self._fluid = fluid
         self._modes = {}   # mode number -> (f_n, Q_n) in the medium, computed once
+        self._sader = {}   # mode number -> its FluidMode, in a fluid
 
     def __init_subclass__(cls, **kwargs):
         super().__init_subclass__(**kwargs)
@@ -505,7 +506,7 @@ class Transducer:
                 self._modes[mode] = (self.lever.resonance_frequency(mode),
                                      self._values["quality_factor"])
             else:
-                m = fluid_mode(self.lever, self.fluid, mode)
+                m = self._sader[mode] = fluid_mode(self.lever, self.fluid, mode)
                 self._modes[mode] = (m.resonance_frequency, m.quality_factor)
         return self._modes[mode]
 
@@ -782,7 +783,8 @@ class Transducer:
         if self.quality_factor < LOW_Q:
             yield (f"in {self.fluid} Q = {self.quality_factor:.3g}: Sader's Q holds for Q >> 1, "
                    "so the one-oscillator lever is rough here")
-        m = fluid_mode(self.lever, self.fluid, 1)
+        self._medium(1)
+        m = self._sader[1]
         if not m.in_fit_range:
             yield (f"in {self.fluid} the lever's Reynolds number {m.reynolds_number:.3g} lies "
                    f"outside Sader's fit ({REYNOLDS_RANGE[0]:g} to {REYNOLDS_RANGE[1]:g}): its "

@@ -53,6 +53,8 @@ def medium_control(typed: str, value: str = TYPED) -> widgets.Dropdown:
 def medium(value: str) -> str | None:
     """A ``medium`` drop-down's value as a model's ``fluid``: None for :data:`TYPED`."""
     return None if value == TYPED else value
+
+
 #: Linear sliders get at least this many steps over their range, log sliders this many per decade.
 STEPS, STEPS_PER_DECADE = 200, 40
 _NICE = (1.0, 2.0, 2.5, 5.0)

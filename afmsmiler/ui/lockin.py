@@ -33,7 +33,6 @@ SLIDERS = read_only({"ac_voltage": AC_VOLTAGE, "half_resonance_ratio": HALF_RESO
 #: Choices of the drop-downs and their defaults.
 DEFAULTS = read_only(dict(orders=(1, 2, 3, 4, 6, 8), order=int(FILTER_ORDER.default),
                           shape="sine", seed=0, fluid=TYPED))
-
 _SEED = DEFAULTS["seed"]
 
 
