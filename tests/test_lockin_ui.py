@@ -132,3 +132,25 @@ def test_every_medium_takes_every_drive_the_slider_offers():
     assert water < abs(panel.last.truth) / 10
     panel.set(fluid="typed")
     assert water < abs(panel.last.truth) / 10
+
+
+@pytest.mark.parametrize("time_constant, order", [(1e-3, 4), (1e-4, 1), (3e-3, 8), (1e-5, 2)])
+def test_the_record_is_settled_and_a_fast_fft_length(time_constant, order):
+    # the record is rounded up to whole drive periods whose count has no prime factor above 5
+    # (with 2^k samples a period the FFT's length then has none either): never shorter than the
+    # filter's settling time plus the extra periods, at most a few per cent longer
+    from afmsmiler.signals.demo import DEFAULTS, lock_in_demo
+    from afmsmiler.signals.lockin import settling_time
+    demo = lock_in_demo(time_constant=time_constant, order=order)
+    f, n = demo.run.drive_frequency, demo.run.output.size
+    spp = DEFAULTS["samples_per_period"]
+    assert n % spp == 0
+    periods = n // spp
+    rest = periods
+    for p in (2, 3, 5):
+        while rest % p == 0:
+            rest //= p
+    assert rest == 1, f"{periods} periods has a prime factor above 5"
+    needed = settling_time(time_constant, order) + DEFAULTS["extra_periods"] / (2 * f)
+    assert periods >= needed * f - 1e-9
+    assert periods <= 1.07 * math.ceil(needed * f)

@@ -2,7 +2,8 @@
 
 :func:`lock_in_demo` is what the lock-in panel (:mod:`afmsmiler.ui.lockin`) computes once per user
 action: the educational AFM's chain (:func:`afmsmiler.signals.chain.simulate`) for a record long
-enough for the chosen filter to settle, its demodulation at 2 omega with the chosen reference
+enough for the chosen filter to settle (rounded up to a count of periods that makes a fast
+FFT), its demodulation at 2 omega with the chosen reference
 (:func:`afmsmiler.signals.lockin.lock_in`), the output's spectrum, the closed-form truth and what
 the reference's harmonics pick up (:func:`afmsmiler.signals.lockin.harmonic_pickup`).
 """
@@ -12,6 +13,7 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.fft
 
 from ..parameters import read_only
 from ..validation import check_choice, check_integer, check_range
@@ -119,6 +121,19 @@ def max_ac_voltage(*, margin: float = 0.8, **lever) -> float:
     return min(volts, AC_VOLTAGE.high)
 
 
+def _fast_record(record: float, f: float) -> float:
+    """``record`` (s) rounded up to a whole number of drive periods (``f`` in Hz) whose count has
+    no prime factor above 5.
+
+    The samples per period are a power of two, so the record's length is then a fast length of
+    the spectrum's FFT (``scipy.fft.next_fast_len``): 750 periods of 128 samples take 1.4 ms
+    where the 749 that just settle (95,872 = 2^7 x 7 x 107 samples) take 3.0 ms. The record
+    grows by at most a few per cent: the filter is as settled as before, or more.
+    """
+    periods = max(1, math.ceil(record * f - 1e-9))
+    return scipy.fft.next_fast_len(periods, real=True) / f
+
+
 def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
                  half_resonance_ratio: float = HALF_RESONANCE_RATIO.default,
                  amplifier_noise: float = AMPLIFIER_NOISE.default,
@@ -162,8 +177,8 @@ def lock_in_demo(*, ac_voltage: float = AC_VOLTAGE.default,
     tau = TIME_CONSTANT.check(time_constant)
     probe = ActiveProbe.build(ac_voltage=AC_VOLTAGE.check(ac_voltage), fluid=fluid)
     f = HALF_RESONANCE_RATIO.check(half_resonance_ratio) * probe.resonance_frequency / 2
-    record = settling_time(tau, order) + DEFAULTS["extra_periods"] / (2 * f)
-    if math.ceil(record * f) * DEFAULTS["samples_per_period"] > LIMITS["samples"]:
+    record = _fast_record(settling_time(tau, order) + DEFAULTS["extra_periods"] / (2 * f), f)
+    if round(record * f) * DEFAULTS["samples_per_period"] > LIMITS["samples"]:
         longest = LIMITS["samples"] / (DEFAULTS["samples_per_period"] * f)
         raise ValueError(f"time_constant {tau:g} s with order {order} needs a record of "
                          f"{record:.3g} s; at most {longest:.3g} s ({LIMITS['samples']} samples) "

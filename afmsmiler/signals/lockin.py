@@ -254,11 +254,11 @@ _REMEMBERED = 1 << 20
 
 @functools.lru_cache(maxsize=4)
 def _references(n, fs, f, shape, phase):
-    """:func:`reference_waveforms`, remembered (read-only): a lock-in of the same record length,
-    rate and reference (every move of the lock-in panel but its frequency's) reuses them."""
-    out = reference_waveforms(n, sample_rate=fs, frequency=f, shape=shape, phase=phase)
-    for a in out:
-        a.setflags(write=False)
+    """:func:`reference_waveforms` as rows of one (2, n) array, remembered (read-only): a lock-in
+    of the same record length, rate and reference (every move of the lock-in panel but its
+    frequency's) reuses them, and mixes both with one product."""
+    out = np.stack(reference_waveforms(n, sample_rate=fs, frequency=f, shape=shape, phase=phase))
+    out.setflags(write=False)
     return out
 
 
@@ -414,12 +414,13 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
     phase = check_finite("phase", phase, "rad")
     f_ref = n * f
     if s.size <= _REMEMBERED:
-        ref_i, ref_q = _references(s.size, fs, f_ref, shape, phase)
+        refs = _references(s.size, fs, f_ref, shape, phase)
     else:
-        ref_i, ref_q = reference_waveforms(s.size, sample_rate=fs, frequency=f_ref,
-                                           shape=shape, phase=phase)
+        refs = np.stack(reference_waveforms(s.size, sample_rate=fs, frequency=f_ref,
+                                            shape=shape, phase=phase))
     scale = 2.0 if shape == "sine" else math.pi / 2
-    mixed_i, mixed_q = scale * s * ref_i, scale * s * ref_q
+    mixed = refs * (scale * s)  # rows: in-phase, quadrature
+    mixed_i, mixed_q = mixed
     t = np.arange(s.size) / fs
     duration = s.size / fs
     period = 1.0 / f_ref
@@ -431,7 +432,7 @@ def lock_in(signal, *, sample_rate: float, frequency: float,
                              f"the settling time of time_constant {tau:g} s with order {order}, "
                              f"plus one period of the reference at harmonic x frequency = "
                              f"{f_ref:g} Hz")
-        x_trace, y_trace = _stages(np.stack([mixed_i, mixed_q]), fs, tau, order)
+        x_trace, y_trace = _stages(mixed, fs, tau, order)
         whole = math.floor((duration - settle) / period) * period
         start = s.size - int(round(whole * fs))
         bandwidth = enbw(tau, order)
