@@ -9,7 +9,8 @@ where the range ends), as a student's drag does; the figure is the median wall t
 ``panel.set(...)`` (the contract's conversion, the model and the figure's data, ready to send)
 over those moves. A few more sliders the issue names (tapping's free amplitude, force volume's
 peak force) are moved the same way. A panel that shows a quick result first in a live notebook
-(force volume's coarse map, then the full map when the slider rests) also gets a ``(coarse)``
+(force volume's coarse map and tapping's coarse curve, then the full one when the slider
+rests) also gets a ``(coarse)``
 row: as many moves (the other way from the default, so that the models remember nothing of
 the row before) with a live loop that holds the full map back, so ``panel.set`` is the step
 the browser waits for. ``BENCH_PANELS`` (comma-separated ``key`` or ``key:slider``)
@@ -36,7 +37,10 @@ MOVES = 21
 EXTRA = {"tapping": ("free_amplitude",), "force_volume": ("peak_force",)}
 #: Panels with a quick first result in a live notebook: panel key -> the module whose
 #: ``_live_loop`` decides it (timed again with a loop that holds the rest back).
-COARSE = {"force_volume": "afmsmiler.ui.modes"}
+COARSE = {"force_volume": "afmsmiler.ui.modes", "tapping": "afmsmiler.ui.modes"}
+#: Sliders of those panels whose move never shows a quick result (tapping's setpoint reuses
+#: the curve shown).
+NOT_COARSE = {"tapping": ("setpoint_ratio",)}
 #: The floor (a text label's kernel round trip in the browser, issue 24) and the target in s.
 FLOOR, TARGET = 0.030, 0.020
 
@@ -49,7 +53,7 @@ def rows():
             continue
         for name in (e.slider,) + tuple(EXTRA.get(e.key, ())):
             out.append((e, name, False))
-            if e.key in COARSE:
+            if e.key in COARSE and name not in NOT_COARSE.get(e.key, ()):
                 out.append((e, name, True))
     chosen = [s for s in os.environ.get("BENCH_PANELS", "").split(",") if s]
     if chosen:

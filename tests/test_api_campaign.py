@@ -206,6 +206,7 @@ ACCEPTED = {
     "plots.controller.ScanFigure:title": (("str",), "any text is a figure's title"),
     "plots.imaging.scan_view:status": (("str",), "any text is the title's note"),
     "plots.modes.ForceVolumeFigure:status": (("str",), "any text is the maps' note"),
+    "plots.modes.TappingFigure:status": (("str",), "any text is the curve's note"),
     "plots.contact.fit_figure:zoom": (("None",), "None is the documented whole curve"),
     "plots.hardware.comparison_view:z_step": (("nan",), "NaN is the documented unknown z step "
                                               "(the default)"),

@@ -57,6 +57,62 @@ def test_tapping_panel_one_curve_per_move_and_none_for_the_setpoint(monkeypatch)
     assert len(calls) == 5 and panel.model_runs == 5
 
 
+def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
+    """In a live kernel a lever move shows the curve at every 4th distance at once, said so on
+    screen, with no jumps, held state or readout from it; a move during the wait replaces the
+    pending full curve, a move back to the lever shown cancels it; both curves equal the
+    model's own at their distances."""
+    import asyncio
+
+    import afmsmiler.ui.modes as ui_modes
+    import afmsmiler.ui.panel as ui_panel
+    from afmsmiler.ui.modes import TAPPING_COARSE_STRIDE as s
+    panel = TappingPanel()
+    start = panel.last
+    monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    runs = panel.model_runs
+
+    def title():
+        return panel.figure.axes["amplitude"].get_title()
+
+    async def drag():
+        panel.set(free_amplitude=15.0)
+        first = panel.coarse
+        assert title().startswith("coarse curve") and "nm" not in title()
+        assert "computing the full curve" in panel.readout.value
+        assert panel.last is start  # nothing read from the coarse curve
+        assert not panel.figure.lines["amplitude", "jump approach"].get_visible()
+        assert len(panel.figure.lines["amplitude", "point"].get_xdata()) == 0
+        await asyncio.sleep(ui_modes.FULL_DELAY / 3)
+        panel.set(free_amplitude=16.0)  # before the first full curve was due
+        await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        full16 = panel.last
+        panel.set(free_amplitude=18.0)
+        await asyncio.sleep(ui_modes.FULL_DELAY / 3)
+        panel.set(free_amplitude=16.0)  # back to the curve shown: at once, nothing pending
+        assert panel.coarse is None and panel.last.curve is full16.curve
+        await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        return first, full16
+
+    first, full16 = asyncio.run(drag())
+    assert panel.model_runs - runs == 4  # three coarse curves, one full (16 nm, once)
+    assert panel.last.curve is full16.curve
+    for curve, a0 in ((first, 15e-9), (full16.curve, 16e-9)):
+        lever = curve.lever
+        assert lever.free_amplitude == pytest.approx(a0, rel=1e-12)
+        distances = a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID)
+        coarse = curve is first
+        model = tapping.amplitude_curve(distances[::s] if coarse else distances, lever)
+        np.testing.assert_allclose(curve.distance, model.distance, rtol=1e-15)
+        np.testing.assert_allclose(curve.amplitude, model.amplitude, rtol=1e-12)
+        np.testing.assert_array_equal(curve.stable, model.stable)
+    assert first.distance.size == tapping.SETPOINT_GRID // s
+    assert not title().startswith("coarse") and "A0 = 16 nm" in title()
+    assert "nm" in panel.readout.value and "computing" not in panel.readout.value
+    zc, *_ = setpoint_state(panel.last.setpoint_ratio, panel.last.lever)
+    assert panel.last.distance == pytest.approx(zc, rel=1e-12)
+
+
 def test_tapping_panel_holds_the_state_setpoint_state_finds(tap):
     for r in (0.8, 0.9, 0.6):
         tap.set(setpoint_ratio=r)

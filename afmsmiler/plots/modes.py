@@ -166,6 +166,10 @@ class TappingFigure:
         approach and a slow retraction jump between the branches
         (:meth:`AmplitudeCurve.sweep <afmsmiler.modes.AmplitudeCurve.sweep>`); the first of
         each is marked.
+    status : str, optional
+        Shown as the title instead of the curve's numbers (the coexistence, the jumps, the
+        held state): what the figure shows when it is not the whole answer (a panel's quick
+        curve during a drag).
 
     Attributes
     ----------
@@ -186,7 +190,7 @@ class TappingFigure:
     QUANTITIES = ("amplitude", "phase", "energy")
 
     def __init__(self, curve: AmplitudeCurve, setpoint=None, fig: Figure | None = None,
-                 jumps=None):
+                 jumps=None, status: str = ""):
         check_instance("curve", curve, AmplitudeCurve)
         _check_setpoint(setpoint)
         _check_jumps(jumps)
@@ -220,9 +224,9 @@ class TappingFigure:
         self.axes["energy"].set_xlabel(f"rest tip-sample distance z_c [{UNITS_SHOWN['distance']}]")
         self.axes["amplitude"].legend(loc="lower right", fontsize="small")
         self._reset = True
-        self.update(curve, setpoint, jumps)
+        self.update(curve, setpoint, jumps, status)
 
-    def update(self, curve: AmplitudeCurve, setpoint=None, jumps=None) -> None:
+    def update(self, curve: AmplitudeCurve, setpoint=None, jumps=None, status: str = "") -> None:
         """Show a new curve and operating point (artists updated in place).
 
         Parameters
@@ -233,8 +237,11 @@ class TappingFigure:
             ``(setpoint_ratio, z_c, phase, E_dis, attractive)`` as for the constructor.
         jumps : dict, optional
             The jumps' distances, as for the constructor.
+        status : str, optional
+            As for the constructor.
         """
         check_instance("curve", curve, AmplitudeCurve)
+        check_instance("status", status, str)
         setpoint, jumps = _check_setpoint(setpoint), _check_jumps(jumps)
         z = curve.distance * _NM
         order = np.argsort(z)
@@ -306,10 +313,10 @@ class TappingFigure:
         # E_dis is 0 where the model finds it zero within its accuracy: say it when all are
         energies = np.r_[data["attractive"]["energy"], data["repulsive"]["energy"]]
         energies = energies[np.isfinite(energies)]
-        none = energies.size > 0 and not np.any(energies)
+        none = energies.size > 0 and not np.any(energies) and not status
         self.axes["energy"].set_title("E_dis = 0 on both branches (within the model's accuracy): "
                                       "the sample takes no energy" if none else "")
-        ax.set_title(title)
+        ax.set_title(status or title, color="#b00020" if status else "k")
         self._reset = False
 
 

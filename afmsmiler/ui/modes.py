@@ -71,10 +71,17 @@ def _display(sliders, **si) -> dict:
             for name, p in sliders.items()}
 
 
+#: Seconds a slider must rest before a panel that showed a quick answer during a drag computes
+#: the full one (``_SliderPanel._quick_then_full``).
+FULL_DELAY = 0.15
+
+
 class _SliderPanel(Panel):
     """A panel of sliders only (declared as :attr:`Panel.SLIDERS`), a readout beside them."""
 
     FIGSIZE = (9.0, 7.0)
+    #: The loop's handle of a full answer still to come after a quick one, else None.
+    _full_pending = None
 
     def __init__(self, scene: bool = False, vis=None, **initial):
         self.controls = self.declared_controls(initial)
@@ -92,6 +99,38 @@ class _SliderPanel(Panel):
             from ..scenes.modes import ModesScene
             self.scene = ModesScene(kind, vis=self.scene_root())
         return self.scene
+
+    def _quick_then_full(self, quick, full) -> None:
+        """Run ``full()``; in a live notebook ``quick()`` at once and ``full()`` only once the
+        student left the slider for :data:`FULL_DELAY` s.
+
+        For a model that cannot answer every step of a drag in a kernel round trip (issue 24):
+        ``quick`` shows a coarse answer and says so on screen, with no readout from it; ``full``
+        shows the whole answer and the readouts. Elsewhere (tests, nbval, a script) ``full``
+        runs at once and ``quick`` never. A newer move cancels a full answer still pending
+        (every update of such a panel starts with ``_cancel_full``).
+        """
+        self._cancel_full()
+        loop = _live_loop()
+        if loop is None:
+            full()
+            return
+        quick()
+        self._full_pending = loop.call_later(FULL_DELAY, self._full_now, full)
+
+    def _cancel_full(self) -> None:
+        """Drop the full answer an older move left pending (``_quick_then_full``)."""
+        if self._full_pending is not None:
+            self._full_pending.cancel()
+            self._full_pending = None
+
+    def _full_now(self, full) -> None:
+        """The pending full answer (a loop callback: a failure shows under the panel)."""
+        self._full_pending = None
+        try:
+            full()
+        except Exception as exc:  # shown, not lost in the kernel's log
+            self._report_error(exc)
 
     def widget(self) -> widgets.Widget:
         """Sliders with the readout beside them, the figure below.
@@ -126,6 +165,11 @@ TAPPING_PROBES = ("Tap300Al-G", "PPP-NCHR", "Arrow-NCR", "AC160TS", "Tap150Al-G"
                   "PPP-FMR", "AC240TS")
 #: The fluids a probe taps in (keys of :data:`afmsmiler.hydrodynamics.FLUIDS`).
 TAPPING_FLUIDS = FLUID_NAMES
+
+#: A live move of the lever or the sample first shows the curve at every TAPPING_COARSE_STRIDE-th
+#: distance (100 of 400, some 8 ms instead of 38), then the full curve, its jumps and the held
+#: state once the student left the slider for :data:`FULL_DELAY` s.
+TAPPING_COARSE_STRIDE = 4
 
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
 #: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one), on a typed
@@ -203,6 +247,13 @@ class TappingPanel(_SliderPanel):
     ``youngs_modulus`` [GPa] and ``sample_viscosity`` [Pa s]. A vendor's probe puts its mode 1
     in the fluid (Sader's hydrodynamics) on the k, f0 and Q sliders, which it disables.
 
+    In a live notebook a move of the lever or the sample shows the curve at every
+    :data:`TAPPING_COARSE_STRIDE`-th distance at once (each root exactly the full curve's; the
+    figure's title says so and the readouts wait), and the full curve, its jumps, the held state
+    and the 3D view :data:`FULL_DELAY` s after the last move of a drag. A setpoint move reuses
+    the curve and answers at once. Elsewhere (tests, nbval, a script) the full curve is made at
+    once.
+
     Parameters
     ----------
     scene : bool
@@ -215,12 +266,18 @@ class TappingPanel(_SliderPanel):
     Attributes
     ----------
     last : TappingState
+        The state on the full curve of the last values it was made for.
+    coarse : AmplitudeCurve or None
+        The coarse curve shown while the full one is pending (None once it is shown).
     figure : TappingFigure
     scene : ModesScene or None
     model_runs : int
         :func:`~afmsmiler.modes.amplitude_curve` runs so far (one per move that changes the
-        lever or sample; none for a setpoint move).
+        lever or sample, none for a setpoint move; in a live notebook one coarse per such move
+        and one full per drag).
     """
+
+    coarse = None
 
     SLIDERS = TAPPING_SLIDERS
     DEFAULTS = TAPPING_DEFAULTS
@@ -334,13 +391,33 @@ class TappingPanel(_SliderPanel):
         if probe != TYPED:
             si.update(tapping_oscillator(probe, fluid))
         lever = TappingLever(**si)
+        self._cancel_full()  # a move back to the lever shown needs no curve still pending
         previous = self.last
         if previous is not None and previous.lever == lever:
-            curve = previous.curve
-        else:
-            a0 = lever.free_amplitude
-            curve = self.run_model(tapping.amplitude_curve,
-                                   a0 * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID), lever)
+            self._show_state(previous.curve, r, probe, fluid)
+            return
+        distances = lever.free_amplitude * np.linspace(1.5, 0.01, tapping.SETPOINT_GRID)
+
+        def quick():
+            self.coarse = self.run_model(tapping.amplitude_curve,
+                                         distances[::TAPPING_COARSE_STRIDE], lever)
+            self.draw(TappingFigure, self.coarse, None, jumps=None, status=(
+                f"coarse curve: every {TAPPING_COARSE_STRIDE}th distance "
+                f"({self.coarse.distance.size} of {distances.size}); the jumps, the held state "
+                f"and the numbers follow when the slider rests"))
+            self.readout.value = _table([("held at z_c", "computing the full curve ...")])
+
+        def full():
+            self._show_state(self.run_model(tapping.amplitude_curve, distances, lever), r,
+                             probe, fluid)
+
+        self._quick_then_full(quick, full)
+
+    def _show_state(self, curve, r: float, probe: str, fluid: str) -> None:
+        """Hold the lever at setpoint ``r`` on ``curve`` (the full curve); draw it and the
+        state, animate the 3D view and write the readouts."""
+        self.coarse = None
+        lever = curve.lever
         try:
             zc, phase, e_dis, attractive = operating_point(curve, r)
         except ValueError:  # the approach never gets down to the setpoint: nothing is held
@@ -352,7 +429,7 @@ class TappingPanel(_SliderPanel):
         depth = math.nan if point is None else lever.indentation(zc, r * lever.free_amplitude)
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
         jumps = curve.jumps  # the same run of the approach as operating_point's
-        self.draw(TappingFigure, curve, point, jumps=jumps)
+        self.draw(TappingFigure, curve, point, jumps=jumps, status="")
         scene = self._scene("tapping")
         if point is None:
             self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
@@ -749,8 +826,8 @@ FORCE_VOLUME_MAP = read_only(dict(shape=(10, 10), pixel_size=24e-9, island_radiu
 
 
 #: A live move first shows the map of every COARSE_STRIDE-th pixel (a quarter of the fits), then
-#: the full map once the student left the slider for FULL_DELAY s.
-COARSE_STRIDE, FULL_DELAY = 2, 0.15
+#: the full map once the student left the slider for :data:`FULL_DELAY` s.
+COARSE_STRIDE = 2
 
 
 class ForceVolumePanel(_SliderPanel):
@@ -788,7 +865,6 @@ class ForceVolumePanel(_SliderPanel):
     """
 
     coarse = None
-    _full_pending = None
 
     SLIDERS = FORCE_VOLUME_SLIDERS
     DEFAULTS = FORCE_VOLUME_DEFAULTS
@@ -809,19 +885,15 @@ class ForceVolumePanel(_SliderPanel):
             the tip off (the model's message), before any work.
         """
         si = dict(values)
-        if self._full_pending is not None:  # a newer move: the full map of the old one is moot
-            self._full_pending.cancel()
-            self._full_pending = None
-        loop = _live_loop()
-        if loop is None:
-            self._show(self._map(si))
-            return
-        self.coarse = self._map(si, COARSE_STRIDE)
-        shape, full = self.coarse.modulus.shape, FORCE_VOLUME_MAP["shape"]
-        self._show(self.coarse, status=(
-            f"coarse map: every {COARSE_STRIDE}nd pixel ({shape[0]} x {shape[1]} of "
-            f"{full[0]} x {full[1]}); the full map follows when the slider rests"))
-        self._full_pending = loop.call_later(FULL_DELAY, self._full, si)
+
+        def quick():
+            self.coarse = self._map(si, COARSE_STRIDE)
+            shape, full = self.coarse.modulus.shape, FORCE_VOLUME_MAP["shape"]
+            self._show(self.coarse, status=(
+                f"coarse map: every {COARSE_STRIDE}nd pixel ({shape[0]} x {shape[1]} of "
+                f"{full[0]} x {full[1]}); the full map follows when the slider rests"))
+
+        self._quick_then_full(quick, lambda: self._show(self._map(si)))
 
     def _map(self, si: dict, stride: int = 1):
         """The model: the blend's maps for slider values ``si`` (SI), every ``stride``-th pixel."""
@@ -833,14 +905,6 @@ class ForceVolumePanel(_SliderPanel):
         return self.run_model(_fv.force_volume, sample, _fv.BLEND,
                               Parabolic(radius=d["tip_radius"]), labels=labels,
                               seed=d["noise_seed"], stride=stride, **si)
-
-    def _full(self, si: dict) -> None:
-        """The full map after a coarse one (a loop callback: a failure shows under the panel)."""
-        self._full_pending = None
-        try:
-            self._show(self._map(si))
-        except Exception as exc:  # shown, not lost in the kernel's log
-            self._report_error(exc)
 
     def _show(self, volume, status: str = "") -> None:
         """Draw ``volume``; a full map (no ``status``) also becomes :attr:`last` and the readouts."""
