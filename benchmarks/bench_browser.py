@@ -26,10 +26,12 @@ after a MutationObserver saw it): browser -> kernel -> browser, which no figure 
 kernel can beat. Target (issues 9, 24): each panel's median within 1.5x the floor, every frame
 the kernel sent in a drag painted once. ``BENCH_BROWSER_PRESSES`` (default 20) and ``BENCH_BROWSER_WHERE`` (default
 ``lab,voila``) and ``BENCH_BROWSER_PANELS`` (default every panel of the registry,
-``afmsmiler.ui.registry.PANELS``; a panel with no slider that redraws at once is moved but not
+``afmsmiler.ui.registry.PANELS``, then the sliders of :data:`EXTRA`; ``key:slider`` moves
+another slider of a panel; a panel with no slider that redraws at once is moved but not
 timed) change the run. Prints a
 reason and exits 0 when the browser cannot run.
 """
+import dataclasses
 import os
 import statistics
 import sys
@@ -44,7 +46,11 @@ from afmsmiler.ui.modes import FULL_DELAY  # noqa: E402
 
 PRESSES = int(os.environ.get("BENCH_BROWSER_PRESSES", "20"))
 WHERE = [w for w in os.environ.get("BENCH_BROWSER_WHERE", "lab,voila").split(",") if w]
-PANELS = [p for p in os.environ.get("BENCH_BROWSER_PANELS", ",".join(B.PANELS)).split(",") if p]
+#: Sliders timed beside each registry slider (issue 24's table: tapping's free amplitude,
+#: force volume's peak force), as ``key:slider``.
+EXTRA = ("tapping:free_amplitude", "force_volume:peak_force")
+PANELS = [p for p in os.environ.get("BENCH_BROWSER_PANELS",
+                                    ",".join((*B.PANELS, *EXTRA))).split(",") if p]
 DRAG = 15
 TARGET_RATIO = 1.5
 #: Issue 24: a drag's last frame within this many floors of its last key.
@@ -67,8 +73,15 @@ def _floor(where, server, page):
     return B.summary(B.press_text(page, slider, "ArrowRight", PRESSES))
 
 
+def _entry(name):
+    """The registry's entry of ``name`` (``key`` or ``key:slider``: that slider moved instead)."""
+    key, _, slider = name.partition(":")
+    e = B.PANELS[key]
+    return dataclasses.replace(e, slider=slider) if slider else e
+
+
 def _panel(where, server, page, name, selector):
-    e = B.PANELS[name]
+    e = _entry(name)
     notebook, description = e.notebook, e.slider_selector
     t0 = time.monotonic()
     if where == "lab":
@@ -144,7 +157,7 @@ def _row(where, name, s, floor):
         kernel += f"slider {s['shown']} / kernel {s['kernel']}"
     elif "shown" in s:
         kernel += f"slider {s['shown']}"
-    print(f"{where:<6s}{name:<13s}{_ms(s.get('median'))} ms {_ms(s.get('worst'))} ms "
+    print(f"{where:<6s}{name:<24s}{_ms(s.get('median'))} ms {_ms(s.get('worst'))} ms "
           f"{s['failed']:3d}/{s['n']:<3d} {ratio:<13s} {_ms(s.get('step'))} ms "
           f"{_ms(s.get('readout'))} ms  {drawn:<60s} {kernel}", flush=True)
 
@@ -161,8 +174,9 @@ def main():
     print(f"target: median <= {TARGET_RATIO}x the floor (slider -> kernel -> label text, same "
           f"run), every frame the kernel sent in a {DRAG}-press drag painted once, its last "
           f"frame within {DRAG_RATIO}x the floor of its last key (force volume's last frame is "
-          f"its full map, drawn once the slider rested {FULL_DELAY * 1e3:.0f} ms)")
-    print(f"{'where':<6s}{'panel':<13s}{'median':>10s} {'worst':>10s} {'failed':>7s} "
+          f"its full map, and tapping's after a move of the lever its full curve, drawn once "
+          f"the slider rested {FULL_DELAY * 1e3:.0f} ms)")
+    print(f"{'where':<6s}{'panel':<24s}{'median':>10s} {'worst':>10s} {'failed':>7s} "
           f"{'median/floor':<13s} {'step':>10s} {'readouts':>10s}  "
           f"{'drag: frames painted':<36s} value after the drag")
     print("(step: median time of the panel's update in the kernel, lab only; readouts: median "
@@ -182,10 +196,10 @@ def main():
                     floor = _floor(where, server, page)
                     _row(where, "floor", floor, None)
                 except Exception as exc:
-                    print(f"{where:<6s}floor        failed: {type(exc).__name__}: {exc}")
+                    print(f"{where:<6s}{'floor':<24s}failed: {type(exc).__name__}: {exc}")
                 for name in PANELS:
-                    if not B.PANELS[name].figure:
-                        print(f"{where:<6s}{name:<13s}not timed: its slider applies to the next "
+                    if not _entry(name).figure:
+                        print(f"{where:<6s}{name:<24s}not timed: its slider applies to the next "
                               f"scan, the figure does not move")
                         continue
                     try:
@@ -193,7 +207,7 @@ def main():
                         results[where, name] = (s, floor)
                         _row(where, name, s, floor)
                     except Exception as exc:
-                        print(f"{where:<6s}{name:<13s}failed: {type(exc).__name__}: "
+                        print(f"{where:<6s}{name:<24s}failed: {type(exc).__name__}: "
                               f"{str(exc).splitlines()[0] if str(exc) else ''}", flush=True)
                         traceback.print_exc(limit=2, file=sys.stdout)
                     if where == "voila":
