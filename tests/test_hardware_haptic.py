@@ -242,6 +242,22 @@ def twin_device():
     server.stop()
 
 
+def test_a_stopped_stream_sends_no_more_positions(twin_device):
+    # notebook 08 stops the stream when it is done with the handle: 1000 frames a second keep
+    # the twin's server and the device's reader busy (some 40 % of a core) for as long as they run
+    _, dev, _ = twin_device
+    dev.connect()
+    dev.start_stream(1e-3)
+    dev.wait_position(1.0)
+    dev.stop_stream()  # answered after any frame already sent: none follows its reply
+    time.sleep(0.05)
+    stopped = dev.samples_received
+    time.sleep(0.2)
+    assert dev.samples_received == stopped
+    dev.start_stream(1e-3)  # and it starts again (notebook 08's virtual lever, run again)
+    assert dev.wait_position(1.0).device_time > 0
+
+
 def test_device_connects_configures_and_streams(twin_device):
     twin, dev, _ = twin_device
     assert dev.connect() == ("HAPTIC", 1, "0.1.0")

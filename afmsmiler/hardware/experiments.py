@@ -70,8 +70,9 @@ def haptic_device(port: str | None = None):
 
     A cell that calls this again (re-run, or run out of order) gets the device it connected
     before while that one is still open; a new one only when it was closed or its link lost.
-    Each twin streams its handle's position 1000 times a second (about a fifth of a core), so
-    a second twin per re-run would slow every later cell.
+    Each twin streams its handle's position 1000 times a second while asked to (its server
+    and the device's reader take some 40 % of a core meanwhile), so a second twin per re-run
+    would slow every later cell; notebook 08 stops the stream when it is done with the handle.
 
     Parameters
     ----------
