@@ -420,7 +420,10 @@ def simulate(probe: ActiveProbe | None = None, *, dc_voltage: float = DC_VOLTAGE
     else:
         brownian, v_noise = np.zeros(n), np.zeros(n)
     bridge = s.respond(deflection + brownian)
-    output = gain * (bridge + v_noise + interference * tone)
+    output = bridge + v_noise  # gain (bridge + noise + interference tone), in place
+    if interference:
+        output += interference * tone
+    output *= gain
 
     p_dc, p_1, p_2 = power_harmonics(dc_voltage, a.ac_voltage, a.resistance)
     h_0, h_1, h_2 = probe.deflection_per_power(np.array([0.0, f, 2 * f]))

@@ -41,7 +41,11 @@ def quarter_bridge_output(bias_voltage, relative_change):
     """
     bias_voltage = check_finite("bias_voltage", bias_voltage, "V")
     d = check_array("relative_change", relative_change, low=-1.0)
-    return bias_voltage / 4 * d / (1 + d / 2)
+    out = np.multiply(d, 0.5, out=np.empty_like(d))  # (V_b / 4) d / (1 + d / 2), in place
+    out += 1.0
+    np.divide(d, out, out=out)
+    out *= bias_voltage / 4
+    return out if out.ndim else out[()]
 
 
 class Piezoresistive(Transducer):
