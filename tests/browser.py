@@ -506,7 +506,10 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
         lastHash = hash;
         lastChange = now;
       }
-      const quietFrom = lastChange === null ? (st.t0 === null ? null : st.t0) : lastChange;
+      // quiet since the last change or the last key, whichever came later: on a loaded machine
+      // the keys alone may take longer than quietMs, and the first frame comes after them
+      const stamps = [lastChange, st.tLast].filter(v => v !== null && v !== undefined);
+      const quietFrom = stamps.length ? Math.max(...stamps) : null;
       if ((quietFrom !== null && now - quietFrom > quietMs) || now - start > timeoutMs) {
         window.removeEventListener('keydown', onKey, true);
         resolve({seqs: st.seqs, states: st.states, times: st.times,

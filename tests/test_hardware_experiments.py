@@ -75,6 +75,36 @@ def test_q_control_trial_on_the_twin_undamps_the_handle():
             server.stop()
 
 
+@pytest.mark.slow
+def test_q_control_trial_after_the_stream_was_stopped_streams_for_itself_only():
+    # notebook 08's cells out of order: the cell that frees the handle (motor off, stream
+    # stopped) and then the Q-control trial again: the trial streams for itself and leaves the
+    # stream as it found it
+    import time
+
+    from afmsmiler.hardware.haptic import open_haptic
+    haptic, server = open_haptic(None)
+    try:
+        haptic.connect()
+        ex.virtual_lever(haptic)
+        assert haptic.stream_period == pytest.approx(ex.STREAM_PERIOD)
+        haptic.configure(qgain=0.0)
+        haptic.disable()
+        haptic.stop_stream()
+        assert haptic.stream_period is None
+        t = ex.q_control_trial(haptic)
+        assert 1.0 < t.q0 < 5.0 and 20 < t.f0 < 45
+        assert haptic.stream_period is None
+        time.sleep(0.05)
+        n = haptic.samples_received
+        time.sleep(0.2)
+        assert haptic.samples_received == n  # stopped again
+    finally:
+        haptic.close()
+        if server is not None:
+            server.stop()
+
+
 def test_a_ring_down_the_watchdog_stopped_is_tried_again_a_bounded_number_of_times():
     from afmsmiler.hardware import WatchdogTripped
 

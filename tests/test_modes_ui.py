@@ -57,6 +57,16 @@ def test_tapping_panel_one_curve_per_move_and_none_for_the_setpoint(monkeypatch)
     assert len(calls) == 5 and panel.model_runs == 5
 
 
+def _from_browser(panel, **values):
+    """Set ``values`` as a drag's moves from the browser reach the panel in a live kernel (the
+    update its loop runs for them, :meth:`Panel._settle`)."""
+    panel.in_drag = True
+    try:
+        panel.set(**values)
+    finally:
+        panel.in_drag = False
+
+
 def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
     """In a live kernel a lever move shows the curve at every 4th distance at once, said so on
     screen, with no jumps, held state or readout from it; a move during the wait replaces the
@@ -76,7 +86,7 @@ def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
         return panel.figure.axes["amplitude"].get_title()
 
     async def drag():
-        panel.set(free_amplitude=15.0)
+        _from_browser(panel, free_amplitude=15.0)
         first = panel.coarse
         assert title().startswith("coarse curve") and "nm" not in title()
         assert "computing the full curve" in panel.readout.value
@@ -84,19 +94,25 @@ def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
         assert not panel.figure.lines["amplitude", "jump approach"].get_visible()
         assert len(panel.figure.lines["amplitude", "point"].get_xdata()) == 0
         await asyncio.sleep(ui_modes.FULL_DELAY / 3)
-        panel.set(free_amplitude=16.0)  # before the first full curve was due
+        _from_browser(panel, free_amplitude=16.0)  # before the first full curve was due
         await asyncio.sleep(3 * ui_modes.FULL_DELAY)
         full16 = panel.last
-        panel.set(free_amplitude=18.0)
+        _from_browser(panel, free_amplitude=18.0)
         await asyncio.sleep(ui_modes.FULL_DELAY / 3)
-        panel.set(free_amplitude=16.0)  # back to the curve shown: at once, nothing pending
+        _from_browser(panel, free_amplitude=16.0)  # back to the curve shown: nothing pending
         assert panel.coarse is None and panel.last.curve is full16.curve
         await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        # a value a cell sets, and a panel made in a live kernel, are whole at once (the cell
+        # may read them; the 3D view is shown with the panel)
+        panel.set(free_amplitude=17.0)
+        assert panel.coarse is None and panel.last.lever.free_amplitude == pytest.approx(17e-9)
+        made = TappingPanel()
+        assert made.coarse is None and made.last is not None
+        panel.set(free_amplitude=16.0)
         return first, full16
 
     first, full16 = asyncio.run(drag())
-    assert panel.model_runs - runs == 4  # three coarse curves, one full (16 nm, once)
-    assert panel.last.curve is full16.curve
+    assert panel.model_runs - runs == 6  # three coarse curves, one full drag (16 nm), two sets
     for curve, a0 in ((first, 15e-9), (full16.curve, 16e-9)):
         lever = curve.lever
         assert lever.free_amplitude == pytest.approx(a0, rel=1e-12)
@@ -604,13 +620,13 @@ def test_force_volume_panel_live_shows_a_coarse_map_then_the_full_one(monkeypatc
     peak = FORCE_VOLUME_SLIDERS["peak_force"]
 
     async def drag():
-        panel.set(peak_force=15.0)
+        _from_browser(panel, peak_force=15.0)
         first = panel.coarse
         assert "coarse map" in panel.fig.get_suptitle()
         assert "computing the full map" in panel.readout.value and "MPa" not in \
             panel.readout.value
         await asyncio.sleep(ui_modes.FULL_DELAY / 3)
-        panel.set(peak_force=20.0)  # before the first full map was due
+        _from_browser(panel, peak_force=20.0)  # before the first full map was due
         await asyncio.sleep(3 * ui_modes.FULL_DELAY)
         return first
 

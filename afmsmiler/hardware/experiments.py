@@ -20,11 +20,12 @@ from dataclasses import dataclass
 
 from ..modes.qcontrol import QControl, fit_ring_down
 from ..parameters import shown
+from ..validation import check_range
 from ..signals.chain import ActiveProbe, ChainRun, simulate
 from ..signals.lockin import FILTER_ORDER, TIME_CONSTANT, LockInResult, enbw, lock_in, \
     settling_time
 
-__all__ = ["VIRTUAL_SPRING", "MAX_FORCE", "WATCHDOG", "STREAM_PERIOD", "HOLD_FORCE", "Q_GAIN",
+__all__ = ["VIRTUAL_SPRING", "MAX_FORCE", "WATCHDOG", "STREAM_PERIOD", "HOLD_FORCE", "MIN_HOLD_FORCE", "MAX_SPRING", "Q_GAIN",
            "RECORD_AFTER_SETTLING", "RING_DOWN_ATTEMPTS", "haptic_device", "virtual_lever", "bridge_readout", "QControlTrial",
            "q_control_trial", "SecondHarmonic", "second_harmonic", "reference_error",
            "AD2Reading", "ad2_reading", "stream_sample", "educational_twin"]
@@ -50,6 +51,11 @@ WATCHDOG = 0.2
 STREAM_PERIOD = 1e-3
 #: N: the force the handle is held with before a ring-down (half of :data:`MAX_FORCE`).
 HOLD_FORCE = 1.0
+#: The smallest holding force in N of a Q-control trial: 0.2 mm on the 500 N/m virtual lever,
+#: some 26 counts of the encoder, for a ring-down that can be fitted.
+MIN_HOLD_FORCE = 0.1
+#: N/m: the stiffest virtual spring the firmware takes (its KS parameter, 2,000,000 mN/m).
+MAX_SPRING = 2000.0
 #: The Q controller's gain, relative to the virtual spring: -0.4 undamps the handle to about two
 #: and a half times its Q, short of the limit g k_s / k = -1 / Q0 (module (g)'s
 #: :class:`~afmsmiler.modes.qcontrol.QControl`, Hoelscher, Ebeling and Schwarz, J. Appl.
@@ -181,25 +187,38 @@ def q_control_trial(haptic, *, gain: float = Q_GAIN, force: float = HOLD_FORCE,
     Parameters
     ----------
     haptic : afmsmiler.hardware.haptic.HapticDevice
-        Connected and streaming positions (:func:`virtual_lever`); enabled again here (its
-        watchdog switches the motor off whenever the force frames stop).
+        Connected (:func:`virtual_lever`); enabled again here (its watchdog switches the
+        motor off whenever the force frames stop), and streaming positions for the trial (a
+        stream stopped before, as notebook 08 does when it is done with the handle, is started
+        and stopped again).
     gain : float
-        The Q controller's gain relative to ``spring``.
+        The Q controller's gain relative to ``spring``, in [-10, 10].
     force : float
-        The holding force in N before each release.
+        The holding force in N before each release, from :data:`MIN_HOLD_FORCE` to
+        :data:`MAX_FORCE`.
     spring : float
-        The virtual lever's stiffness in N/m (as configured).
+        The virtual lever's stiffness in N/m (as configured), in (0, :data:`MAX_SPRING`].
 
     Returns
     -------
     QControlTrial
     """
     _check_kind("haptic", haptic, "HapticDevice")
+    gain = check_range("gain", gain, -10.0, 10.0)
+    force = check_range("force", force, MIN_HOLD_FORCE, MAX_FORCE, "N")
+    spring = check_range("spring", spring, 0.0, MAX_SPRING, "N/m", low_inclusive=False)
     from .haptic.twin import Finger, Mechanics
 
-    q0, f0 = fit_ring_down(*_ring_down(haptic, force))
-    haptic.configure(qgain=gain, qphase=math.pi / 2, qfreq=f0)
-    q, f = fit_ring_down(*_ring_down(haptic, force))
+    stopped = haptic.stream_period is None
+    if stopped:
+        haptic.start_stream(STREAM_PERIOD)
+    try:
+        q0, f0 = fit_ring_down(*_ring_down(haptic, force))
+        haptic.configure(qgain=gain, qphase=math.pi / 2, qfreq=f0)
+        q, f = fit_ring_down(*_ring_down(haptic, force))
+    finally:
+        if stopped:
+            haptic.stop_stream()
     k = (Mechanics().handle_mass + Finger().mass) * (2 * math.pi * f0) ** 2
     closed = QControl(spring_constant=k, resonance_frequency=f0, quality_factor=q0,
                       gain=gain * spring / k)

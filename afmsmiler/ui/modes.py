@@ -101,18 +101,19 @@ class _SliderPanel(Panel):
         return self.scene
 
     def _quick_then_full(self, quick, full) -> None:
-        """Run ``full()``; in a live notebook ``quick()`` at once and ``full()`` only once the
-        student left the slider for :data:`FULL_DELAY` s.
+        """Run ``full()``; for a move from the browser in a live notebook ``quick()`` at once
+        and ``full()`` only once the student left the slider for :data:`FULL_DELAY` s.
 
         For a model that cannot answer every step of a drag in a kernel round trip (issue 24):
         ``quick`` shows a coarse answer and says so on screen, with no readout from it; ``full``
-        shows the whole answer and the readouts. Elsewhere (tests, nbval, a script) ``full``
-        runs at once and ``quick`` never. A newer move cancels a full answer still pending
-        (every update of such a panel starts with ``_cancel_full``).
+        shows the whole answer and the readouts. The panel's first update, a value a cell sets
+        (which the cell may read at once) and everything outside a live kernel (tests, nbval, a
+        script) run ``full`` at once and ``quick`` never. A newer move cancels a full answer
+        still pending.
         """
         self._cancel_full()
         loop = _live_loop()
-        if loop is None:
+        if loop is None or not self.in_drag:
             full()
             return
         quick()
@@ -166,9 +167,10 @@ TAPPING_PROBES = ("Tap300Al-G", "PPP-NCHR", "Arrow-NCR", "AC160TS", "Tap150Al-G"
 #: The fluids a probe taps in (keys of :data:`afmsmiler.hydrodynamics.FLUIDS`).
 TAPPING_FLUIDS = FLUID_NAMES
 
-#: A live move of the lever or the sample first shows the curve at every TAPPING_COARSE_STRIDE-th
-#: distance (100 of 400, some 8 ms instead of 38), then the full curve, its jumps and the held
-#: state once the student left the slider for :data:`FULL_DELAY` s.
+#: A browser's move of the lever or the sample first shows the curve at every
+#: TAPPING_COARSE_STRIDE-th distance (100 of 400: the panel's step some 11 ms instead of 37),
+#: then the full curve, its jumps and the held state once the student left the slider for
+#: :data:`FULL_DELAY` s.
 TAPPING_COARSE_STRIDE = 4
 
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
@@ -247,12 +249,12 @@ class TappingPanel(_SliderPanel):
     ``youngs_modulus`` [GPa] and ``sample_viscosity`` [Pa s]. A vendor's probe puts its mode 1
     in the fluid (Sader's hydrodynamics) on the k, f0 and Q sliders, which it disables.
 
-    In a live notebook a move of the lever or the sample shows the curve at every
-    :data:`TAPPING_COARSE_STRIDE`-th distance at once (each root exactly the full curve's; the
-    figure's title says so and the readouts wait), and the full curve, its jumps, the held state
-    and the 3D view :data:`FULL_DELAY` s after the last move of a drag. A setpoint move reuses
-    the curve and answers at once. Elsewhere (tests, nbval, a script) the full curve is made at
-    once.
+    In a live notebook a slider move of the lever or the sample in the browser shows the curve
+    at every :data:`TAPPING_COARSE_STRIDE`-th distance at once (each root exactly the full
+    curve's; the figure's title says so and the readouts wait), and the full curve, its jumps,
+    the held state and the 3D view :data:`FULL_DELAY` s after the last move of a drag. A
+    setpoint move reuses the curve shown. The first update, values a cell sets and everything
+    outside a live kernel (tests, nbval, a script) make the full curve at once.
 
     Parameters
     ----------
@@ -836,10 +838,11 @@ class ForceVolumePanel(_SliderPanel):
     Sliders (units as shown): ``peak_force`` [nN], ``ramp_size`` [nm], ``force_noise`` [pN]
     and ``spring_constant`` [N/m].
 
-    In a live notebook a move shows a coarse map at once (every :data:`COARSE_STRIDE`-th pixel
-    of every other row, computed exactly as in the full map, the figure's title says so) and the
-    full map :data:`FULL_DELAY` s after the last move of a drag; the readouts come from the full
-    map only. Elsewhere (tests, nbval, a script) the full map is made at once.
+    In a live notebook a slider move in the browser shows a coarse map at once (every
+    :data:`COARSE_STRIDE`-th pixel of every other row, computed exactly as in the full map, the
+    figure's title says so) and the full map :data:`FULL_DELAY` s after the last move of a drag;
+    the readouts come from the full map only. The first update, values a cell sets and
+    everything outside a live kernel (tests, nbval, a script) make the full map at once.
 
     Parameters
     ----------

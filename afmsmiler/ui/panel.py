@@ -398,6 +398,10 @@ class Panel:
 
     #: The panel's figure builder (made by :meth:`draw`), or None before the first update.
     figure = None
+    #: True while an update runs for moves the browser sent in a live kernel (deferred to its
+    #: loop, :meth:`_settle`); False for the first update and values a cell sets, which a cell
+    #: may read at once.
+    in_drag = False
 
     # -- the contract's conversion ---------------------------------------------------------
     def _check_names(self, values: Mapping) -> None:
@@ -727,7 +731,11 @@ class Panel:
             loop.call_later(_PAINT_POLL, self._settle, loop, self._moves, _QUIET_TURNS, until)
             return
         self._deferred = False
-        self._flush()  # a failure is shown under the panel (_apply, live)
+        self.in_drag = True  # a move from the browser (see in_drag)
+        try:
+            self._flush()  # a failure is shown under the panel (_apply, live)
+        finally:
+            self.in_drag = False
 
     def _flush(self) -> None:
         values = self.values()

@@ -61,6 +61,9 @@ class HapticDevice(FramedDevice):
         Error numbers the device reported unsolicited (``0 ER n``, n not 1 or 9).
     garbage : int
         Lines the reader could not decode (ignored).
+    stream_period : float or None
+        The period in s of the position stream this host last asked for (:meth:`start_stream`),
+        None before it or after :meth:`stop_stream`.
 
     Examples
     --------
@@ -94,6 +97,7 @@ class HapticDevice(FramedDevice):
         self._stop = threading.Event()
         self._reader = None
         self.read_only = {}
+        self.stream_period = None
 
     # -- the reader thread --------------------------------------------------------------------
     def _start_reader(self):
@@ -328,10 +332,12 @@ class HapticDevice(FramedDevice):
         if not 1 <= ms <= 1000:
             raise ValueError(f"period must be in [0.001, 1] s, got {period!r}")
         self.command(Command.STREAM, ms)
+        self.stream_period = ms * WIRE_UNITS["ms"].scale
 
     def stop_stream(self) -> None:
         """Stop the position stream."""
         self.command(Command.STREAM, 0)
+        self.stream_period = None
 
     def send_force(self, force: float) -> None:
         """Stream one force setpoint ``0 FO <uN>`` (no reply; feeds the device's watchdog).
