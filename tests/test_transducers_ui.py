@@ -460,21 +460,6 @@ def test_a_new_principle_fits_its_own_quantities(panel):
         assert _ylims(panel.figure) == _ylims(fresh), key
 
 
-def test_the_live_figure_forwards_the_sliders_of_the_principle_shown():
-    # a principle change builds new sliders: the browser must forward their steps, not the old
-    p = TransducerPanel(scene=False)
-    assert all(p.live._controls[n] is c for n, c in p.controls.items() if n in p.live._controls)
-    other = next(k for k in PRINCIPLES if k != p.values()["principle"])
-    p.set(principle=other)
-    linked = p.live._controls
-    assert linked and all(linked[n] is p.controls[n] for n in linked)
-    name = next(iter(linked))
-    c = p.controls[name]
-    target = c.value + c.step if c.value + c.step <= c.max else c.value - c.step
-    p.live._handle_message(p.live, {"control": name, "value": target}, [])
-    assert p._applied[name] == pytest.approx(target)
-
-
 def test_the_medium_sets_f1_and_q_and_never_moves_the_q_slider():
     # notebook 02's suggestion, from the defaults: in water the optical lever's resolution in
     # 1 kHz is set by the lever's Brownian motion, no longer by the shot noise

@@ -18,11 +18,11 @@ A line of many more points than its axes has pixel columns is sent as its per-co
 (:func:`decimate`): what the canvas draws is the same, the message a fraction (Q control's 20,804
 points, 166 kB a frame, rasterised in 27-44 ms). The artists keep the full data (tests read it).
 
-A panel links its sliders (:meth:`LiveFigure.link`): the browser then forwards every step of a
-drag to the kernel as a message of the figure (ipywidgets itself merges the moves made while one
-update is in flight); the panel runs the model once for the steps that queued while it was busy
-(:meth:`afmsmiler.ui.panel.Panel._move`), and the browser paints every frame that comes back
-exactly once, one per animation frame.
+A panel's sliders reach the kernel as ipywidgets sends them: one update in flight, the moves made
+meanwhile merged into the next (a quick drag of 15 key presses arrives as 4 to 6 updates, the
+last one the value the student stopped at). The panel runs the model once for the moves that
+queued while it was busy (:meth:`afmsmiler.ui.panel.Panel._move`), and the browser paints every
+frame that comes back exactly once, one per animation frame.
 
 Examples
 --------
@@ -49,7 +49,6 @@ from functools import lru_cache
 from pathlib import Path
 
 import anywidget
-import ipywidgets as widgets
 import numpy as np
 import traitlets
 from matplotlib import colors as mcolors
@@ -669,8 +668,6 @@ class LiveFigure(anywidget.AnyWidget):
     _layout = traitlets.Dict().tag(sync=True)
     _frame = traitlets.Dict().tag(sync=True)
     _buffer = traitlets.Bytes().tag(sync=True)
-    #: Sliders whose every step the browser forwards (see :meth:`link`), by name.
-    _controls = traitlets.Dict().tag(sync=True, **widgets.widget_serialization)
 
     def __init__(self, figure: Figure, **kwargs):
         super().__init__(**kwargs)
@@ -679,7 +676,6 @@ class LiveFigure(anywidget.AnyWidget):
         self.frames_painted = 0
         self._sent_at = 0.0  # time.monotonic() of the newest frame sent
         self._sent_frame = None
-        self._on_control = None
         self.on_msg(self._handle_message)
         self.sync()
 
@@ -700,33 +696,6 @@ class LiveFigure(anywidget.AnyWidget):
         now = time.monotonic() if now is None else check_finite("now", now, "s")
         return now - self._sent_at < PAINT_WAIT
 
-    def link(self, controls: dict, on_control) -> None:
-        """Have the browser forward every step of ``controls`` to ``on_control(name, value)``.
-
-        ipywidgets keeps one update of a widget in flight and merges the moves made meanwhile,
-        so a quick drag reached the kernel a few times in 15 steps. Linked sliders send each value
-        they take in the browser as a message of this widget, which is not merged, and
-        ``on_control`` takes it (a panel coalesces the steps that queued while its model ran,
-        and runs it for the newest); the slider's own (merged) update still arrives and finds
-        its value applied. Only sliders are linked (a drop-down syncs an index).
-
-        Parameters
-        ----------
-        controls : dict
-            Name -> widget; the sliders among them are linked.
-        on_control : callable
-            Called as ``on_control(name, value)`` for each step, in the order of the steps.
-        """
-        if not callable(on_control):
-            raise TypeError(f"on_control must be callable, got {on_control!r}")
-        check_instance("controls", controls, dict)
-        sliders = (widgets.FloatSlider, widgets.FloatLogSlider, widgets.IntSlider)
-        self._on_control = on_control
-        linked = {name: c for name, c in controls.items() if isinstance(c, sliders)}
-        if linked.keys() != self._controls.keys() or \
-                any(linked[n] is not self._controls[n] for n in linked):
-            self._controls = linked  # sent only when the sliders are others
-
     def _handle_message(self, _widget, content, _buffers) -> None:
         if not isinstance(content, dict):
             return
@@ -734,9 +703,6 @@ class LiveFigure(anywidget.AnyWidget):
         if isinstance(painted, int) and not isinstance(painted, bool) and \
                 0 < painted <= self.frames_sent:
             self.frames_painted = max(self.frames_painted, painted)
-        elif (self._on_control is not None and content.get("control") in self._controls
-                and "value" in content):
-            self._on_control(content["control"], content["value"])
 
     def sync(self) -> Description:
         """Send the figure's current state to the browser as one message; return it.

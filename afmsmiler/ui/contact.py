@@ -183,8 +183,8 @@ class ContactPanel(Panel):
         """Move the Z_np slider's ends (nm) without triggering an update, and its value where the
         model moved it (``clipped``) or the new ends would.
 
-        Otherwise the value is left alone: during a drag the browser forwards each step before the
-        slider's own (merged) update reaches the kernel, so the kernel's copy of the value lags the
+        Otherwise the value is left alone: during a drag ipywidgets holds the moves made while
+        one update is in flight and sends them merged, so the kernel's copy of the value lags the
         student's; setting it sent an older step back and the slider jumped back and forth.
         """
         z = self.controls["z_np"]

@@ -319,10 +319,9 @@ class Panel:
         self.update_seconds = collections.deque(maxlen=1000)
         #: Runs of :meth:`update` through the contract (:meth:`_run`).
         self.updates = 0
-        #: Moves the browser sent (forwarded steps and slider updates); with :attr:`updates`
-        #: it shows how many a drag's coalescing folded together.
+        #: Moves the browser sent (a slider's updates, as ipywidgets merges them); with
+        #: :attr:`updates` it shows how many a drag's coalescing folded together.
         self.moves_received = 0
-        self._forwarded = {}  # name -> (control, value): the newest step the browser forwarded
         self._moves = 0  # moves seen, for the coalescing (see _settle)
         self._deferred = False  # an update is waiting on the kernel's loop
         # the thread and loop the panel was made in (a cell: the kernel's main thread), where
@@ -460,16 +459,11 @@ class Panel:
 
         A slider whose value differs from the one the model last ran with by round-off only
         (the browser's echo of a value it snapped to the slider's grid) reports the value the
-        model ran with: the browser never changes a value the student did not touch. A slider
-        whose step the browser forwarded (:meth:`_from_browser`) after its own last update
-        reports that step: it is newer (ipywidgets sends a slider's own update later, merged).
+        model ran with: the browser never changes a value the student did not touch.
         """
         out = {}
         for name, c in self.controls.items():
             v, last = c.value, self._applied.get(name, _MISSING)
-            forwarded = self._forwarded.get(name)
-            if forwarded is not None and forwarded[0] is c:
-                v = forwarded[1]
             out[name] = last if last is not _MISSING and _same(v, last, c) else v
         return out
 
@@ -507,8 +501,6 @@ class Panel:
             control, the value and what is valid (a slider would silently clamp it).
         """
         self.check_values(values)
-        for name in values:  # what is set now is newer than any step the browser forwarded
-            self._forwarded.pop(name, None)
         hold, self._hold = self._hold, True
         try:
             for name, v in values.items():
@@ -653,32 +645,10 @@ class Panel:
         it (:meth:`_move`); a value a cell sets updates at once.
         """
         owner = change.get("owner") if isinstance(change, Mapping) else None
-        for name, c in self.controls.items():  # the control's own value is newer than a step
-            if c is owner:
-                self._forwarded.pop(name, None)
         if self._hold:
             return
         lock = getattr(owner, "_property_lock", None) or {}
         self._move(from_browser="value" in lock)
-
-    def _from_browser(self, name: str, value) -> None:
-        """One step of a slider, forwarded by the live figure (:meth:`LiveFigure.link`).
-
-        ipywidgets merges a slider's moves while one update is in flight, but not by what the
-        kernel is doing: the live figure forwards each step at once. The step is remembered as
-        the slider's value (:meth:`values`) and coalesced with the moves queued behind it
-        (:meth:`_move`); the slider's own update, which arrives later, then finds it applied. A
-        value the control could not hold (a message is input) is ignored.
-        """
-        control = self.controls.get(name)
-        if control is None or self._hold:
-            return
-        try:
-            check_control_value(name, control, value)
-        except (TypeError, ValueError):
-            return
-        self._forwarded[name] = (control, value)
-        self._move(from_browser=True)
 
     def _move(self, *, from_browser: bool) -> None:
         """Update for the controls' current values: now, or once the queued moves are in.
@@ -824,9 +794,6 @@ class Panel:
             self.live = LiveFigure(self.fig)
         else:
             self.live.sync()
-        # the sliders whose every step the browser forwards; a panel that rebuilt its controls
-        # (another transducer principle) links the new ones (no message when they are the same)
-        self.live.link(self.controls, self._from_browser)
         self._tag_controls()
 
     def widget(self) -> widgets.Widget:

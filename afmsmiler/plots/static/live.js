@@ -843,40 +843,5 @@ function drawStatic(root, layout, frame, base64) {
   return fig;
 }
 
-// Every step of a slider reaches the kernel: ipywidgets keeps one update of a widget in flight
-// and merges the moves made meanwhile, so a quick drag reached the model 3 times in 15 steps.
-// The controls the kernel links (LiveFigure.link) send each new value as a custom message of this
-// widget, which is not merged; the kernel runs the model for the newest of the steps that queued
-// while it was busy (afmsmiler/ui/panel.py) and this view paints each frame it sends once.
-// Linked once per model (not per view), in anywidget's initialize.
-function initialize({ model }) {
-  let cleanup = [];
-  const unlink = () => { cleanup.forEach((f) => f()); cleanup = []; };
-  // (re)link whenever the kernel names the controls: it may do so after the model was made
-  const link = () => {
-    unlink();
-    const manager = model.widget_manager, refs = model.get("_controls") || {}, mine = cleanup;
-    for (const [name, ref] of Object.entries(refs)) {
-      if (!manager || typeof ref !== "string") continue;
-      manager.get_model(ref.replace(/^IPY_MODEL_/, "")).then((control) => {
-        if (mine !== cleanup) return; // relinked meanwhile
-        const send = () => {
-          // only the student's moves: a value the kernel set (ipywidgets' state lock holds it
-          // while applying the kernel's state) is not sent back; a cell that swept a slider
-          // ran its sweep a second time from these echoes
-          const lock = control._state_lock;
-          if (lock && Object.prototype.hasOwnProperty.call(lock, "value")) return;
-          model.send({ control: name, value: control.get("value") });
-        };
-        control.on("change:value", send);
-        cleanup.push(() => control.off("change:value", send));
-      }).catch((e) => console.warn("afmsmiler: a control of the live figure is missing", e));
-    }
-  };
-  model.on("change:_controls", link);
-  link();
-  return () => { model.off("change:_controls", link); unlink(); };
-}
-
-export default { initialize, render };
+export default { render };
 export { drawStatic };
