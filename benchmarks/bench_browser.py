@@ -9,9 +9,9 @@ canvases differ (read once the figure's DOM changed, as the floor's text is: rea
 canvas on every frame cost the page 3-6 ms a frame); one that changes nothing within 5 s counts
 as failed. Then a drag: 15 presses
 sent without waiting, and the frames painted: a live figure records each frame's ``data-seq``
-at the animation frame after the one that drew it, so only frames that were painted count (the
-old count, read in an animation-frame callback that ran before the figure's catch-up draw,
-counted frames never painted). The kernel coalesces the moves that queue while it runs the
+once the rendering update of the animation frame that drew it has run, so only frames that were
+painted count (the old count, read in an animation-frame callback that ran before the figure's
+catch-up draw, counted frames never painted). The kernel coalesces the moves that queue while it runs the
 model, so it may send fewer than 15 frames; the drag is met when every frame it sent was painted
 once and the last one is the kernel's last.
 

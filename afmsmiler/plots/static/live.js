@@ -603,6 +603,15 @@ function decodeLut(b64) {
 }
 
 // append v to a log of the last few hundred values
+// Run f in a task after the current one: posted from an animation-frame callback, after that
+// frame's rendering update (style, layout, paint, commit), which ends the task the callback runs in.
+const afterChannel = new MessageChannel(), afterQueue = [];
+afterChannel.port1.onmessage = () => { for (const f of afterQueue.splice(0)) f(); };
+function afterRendering(f) {
+  afterQueue.push(f);
+  if (afterQueue.length === 1) afterChannel.port2.postMessage(null);
+}
+
 function keep(log, v) {
   log.push(v);
   if (log.length > 1000) log.splice(0, 500);
@@ -619,7 +628,7 @@ class Figure {
     this.luts = {};
     this.pending = [];
     this.scheduled = false;
-    this.drawnSeq = null; // drawn in the last animation frame, painted once the next one starts
+    this.drawnSeq = null; // drawn in an animation frame, not yet known painted (see tick)
     this.received = 0; // frames received from the kernel (push)
     this.painted = 0; // frames known painted
     // the kernel's sequence numbers of the last frames received and painted, in order (the
@@ -698,9 +707,12 @@ class Figure {
   // from the message handler instead lets a second message of the same frame overwrite the first
   // draw before it was ever painted (the old scheduler reset its "painted" flag at the start of an
   // animation frame and then drew a queued frame in it too). Drawing here costs no latency: the
-  // first chance to paint a frame is that rendering update anyway. A callback that finds a frame
-  // drawn by the previous one knows it was painted (a rendering update came between them) and
-  // records it: data-painted and paintedSeqs count paints, not draws.
+  // first chance to paint a frame is that rendering update anyway. The frame is known painted
+  // once that rendering update has run: a task posted from the callback runs after it (the
+  // update finishes the task the callback runs in), or, if the page's tasks wait behind input, the
+  // next callback finds the frame still unrecorded and records it (a rendering update came
+  // between them). data-painted and paintedSeqs count paints, not draws; the kernel hears of
+  // each at once, not an animation frame later.
   //
   // Queued frames are never dropped for newer ones while the page keeps up: the kernel already
   // computed each of them (it coalesces a drag's moves before running the model, so it sends only
@@ -730,17 +742,22 @@ class Figure {
     requestAnimationFrame((ts) => this.tick(ts));
   }
 
+  // the frame drawn last has been through a rendering update: record its paint (once)
+  paintedNow() {
+    if (this.drawnSeq === null) return;
+    keep(this.paintedSeqs, this.drawnSeq);
+    this.painted += 1;
+    this.root.dataset.painted = String(this.painted);
+    // the kernel sends its next frame once this one is painted (LiveFigure.busy): a page that
+    // is slower than the kernel gets the newest frame, not a queue of steps already passed
+    const seq = this.drawnSeq;
+    this.drawnSeq = null;
+    if (this.onPainted && seq > 0) this.onPainted(seq);
+  }
+
   tick(ts) {
     this.scheduled = false;
-    if (this.drawnSeq !== null) { // drawn in the previous animation frame: it has been painted
-      keep(this.paintedSeqs, this.drawnSeq);
-      this.painted += 1;
-      this.root.dataset.painted = String(this.painted);
-      // the kernel sends its next frame once this one is painted (LiveFigure.busy): a page that
-      // is slower than the kernel gets the newest frame, not a queue of steps already passed
-      if (this.onPainted && this.drawnSeq > 0) this.onPainted(this.drawnSeq);
-      this.drawnSeq = null;
-    }
+    this.paintedNow(); // drawn in an earlier animation frame and not yet recorded
     if (!this.pending.length) { this.release(ts); return; }
     const [layout, frame, buffer] = this.pending.shift();
     // then the next frame, and the paint of this one (a frame that failed to draw does not stop
@@ -750,6 +767,7 @@ class Figure {
       this.drawnSeq = frame.seq === undefined ? -1 : frame.seq;
       // the time of the animation frame that paints it (the browser tests date a change by it)
       this.drawnAt = ts;
+      afterRendering(() => this.paintedNow());
     } finally {
       this.schedule();
     }
