@@ -120,18 +120,19 @@ def pytest_unconfigure(config):
     atexit.register(gc.freeze)
 
 
-# -- per-test CPU cost: AFMSMILER_CPU_REPORT=FILE appends "cpu_s wall_s nodeid" lines -----------
+# -- per-test CPU cost: AFMSMILER_CPU_REPORT=FILE appends "cpu_s wall_s start worker nodeid" lines
 # On a shared machine wall times (--durations) say more about the neighbours than the test; the
 # process's CPU time (setup, call and teardown, this process only) says what a test costs.
 _CPU_REPORT = os.environ.get("AFMSMILER_CPU_REPORT")
 if _CPU_REPORT:
     @pytest.hookimpl(hookwrapper=True)
     def pytest_runtest_protocol(item, nextitem):
-        cpu, wall = time.process_time(), time.perf_counter()
+        cpu, wall, start = time.process_time(), time.perf_counter(), time.time()
         yield
+        worker = os.environ.get("PYTEST_XDIST_WORKER", "-")
         with open(_CPU_REPORT, "a") as f:
             f.write(f"{time.process_time() - cpu:.4f} {time.perf_counter() - wall:.4f} "
-                    f"{item.nodeid}\n")
+                    f"{start:.3f} {worker} {item.nodeid}\n")
 
 
 # -- the browser tests' shared pieces (tests/browser.py drives them) ----------------------------
