@@ -23,6 +23,7 @@ import contextlib
 import json
 import os
 import pwd
+import random
 import shutil
 import signal
 import stat
@@ -370,6 +371,8 @@ class Student:
     login_at: float = 0.0  # time.time() when they pressed "Sign in"
     first_figure_s: float | None = None  # login to the first figure's pixels
     presses: list = field(default_factory=list)  # key-to-pixels per press (None: no change), s
+    #: the same with each student pressing at their own moment of each round (``spread``)
+    spread_presses: list = field(default_factory=list)
     memory: dict = field(default_factory=dict)  # MiB, after Run All (Hub.memory)
     errors: list = field(default_factory=list)  # error outputs after Run All and the presses
     foreign: list = field(default_factory=list)  # addresses asked for beyond 127.0.0.1
@@ -408,9 +411,11 @@ def _poll_all(pages, predicate, *, arg=None, timeout: float, what: str, hub=None
 
 
 def class_session(chromium, hub: Hub, *, presses: int = 3, timeout: float = 900.0,
-                  readable_by_others: bool = True) -> list[Student]:
+                  readable_by_others: bool = True, spread: float | None = None,
+                  seed: int = 22) -> list[Student]:
     """Every student of ``hub`` logs in at once, opens the module through the nbgitpuller link,
-    runs all its cells and presses the panel's slider ``presses`` times, together.
+    runs all its cells and presses the panel's slider ``presses`` times, together (and, with
+    ``spread``, ``presses`` times more, each at their own moment).
 
     Parameters
     ----------
@@ -425,6 +430,12 @@ def class_session(chromium, hub: Hub, *, presses: int = 3, timeout: float = 900.
     readable_by_others : bool
         Also try, from the first student's kernel, to read the second student's notebook (the
         result is in the first student's ``errors`` if it could be read).
+    spread : float or None
+        After the rounds together, ``presses`` rounds in which each student presses at a moment
+        drawn uniformly within ``spread`` s (a class, whose students do not press in the same
+        millisecond), recorded in ``Student.spread_presses``; None: none. 0 < spread <= 10.
+    seed : int
+        The random moments' seed (the same moments run after run).
 
     Returns
     -------
@@ -432,6 +443,8 @@ def class_session(chromium, hub: Hub, *, presses: int = 3, timeout: float = 900.
     """
     if not 1 <= presses <= 50:
         raise ValueError(f"presses must be in 1..50, got {presses!r}")
+    if spread is not None and not 0 < spread <= 10:
+        raise ValueError(f"spread must be None or in (0, 10] s, got {spread!r}")
     entry = B.PANELS[PANEL]
     selector = f"{entry.selector} {B.LIVE_FIGURE}"
     out = []
@@ -471,15 +484,24 @@ def class_session(chromium, hub: Hub, *, presses: int = 3, timeout: float = 900.
             slider = B.find_control(s.page, entry)
             B.focus_panel(s.page, slider, selector)
             sliders.append((slider, B.keys(slider)[0]))
-        for _ in range(presses):
+        rng = random.Random(seed)
+        rounds = [None] * presses + ([spread] * presses if spread is not None else [])
+        for within in rounds:
             for s in out:
                 s.page.evaluate("([sel, mode, ms]) => window.__afm.arm(sel, mode, ms)",
                                 [selector, "pixels", B.PRESS_TIMEOUT * 1000])
-            for s, (slider, key) in zip(out, sliders):
+            # together: one after the other as fast as Playwright sends keys (a few ms apart);
+            # spread: each at its own moment of the round, in the order of those moments
+            at = [0.0] * len(out) if within is None else [rng.uniform(0, within) for _ in out]
+            start = time.monotonic()
+            for i in sorted(range(len(out)), key=at.__getitem__):
+                time.sleep(max(0.0, start + at[i] - time.monotonic()))
+                slider, key = sliders[i]
                 slider.press(key)
             for s in out:
                 r = s.page.evaluate("() => window.__afm.current.promise")
-                s.presses.append(None if r.get("dt") is None else r["dt"] / 1000.0)
+                dt = None if r.get("dt") is None else r["dt"] / 1000.0
+                (s.presses if within is None else s.spread_presses).append(dt)
             for s in out:
                 B.settle(s.page, selector, quiet=0.3, timeout=B.PRESS_TIMEOUT)
         if readable_by_others and len(out) >= 2:
