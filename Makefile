@@ -18,32 +18,36 @@ export MPLBACKEND ?= Agg
 ## kernel and each test worker, compiled the course and the tests again (10 s per worker).
 unexport PYTHONDONTWRITEBYTECODE
 
-.PHONY: install lab test unit lint notebooks bench book clean browser firmware assignments app apps hub-proxy lock
+.PHONY: install lab test unit lint notebooks bench book clean browser firmware system-packages \
+        test-setup assignments app apps hub-proxy lock
 
-## Debian's Chromium for the browser tests (tests/test_panels_browser.py): installed with apt-get when
-## missing and we are root (as in CI); otherwise those tests are skipped and say why.
+## Debian's packages the tests need, installed with apt-get when missing and we are root (as in
+## CI); otherwise the tests that need them are skipped and say why. `browser`: Chromium for the
+## browser tests (tests/test_panels_browser.py and the others marked `browser`). `firmware`:
+## avr-gcc, the Arduino core and simavr for the firmware tests (tests/test_hardware_firmware*.py:
+## the macroscopic AFM's real firmware built and run in an emulated ATmega2560). `system-packages`
+## (what `make test` runs): both, in one apt-get run (one package-list update, 30 s on a new machine).
 BROWSER ?= /usr/bin/chromium
-browser:
-	@test -x $(BROWSER) || { \
-	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "installing Debian's chromium for the browser tests"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq chromium >/dev/null \
-	      || echo "apt-get could not install chromium: the browser tests will be skipped"; \
-	  else echo "no $(BROWSER) and not root: the browser tests will be skipped"; fi; }
-
-## avr-gcc, the Arduino core and simavr for the firmware tests (tests/test_hardware_firmware*.py):
-## the macroscopic AFM's real firmware is built and run in an emulated ATmega2560. Installed with
-## apt-get when missing and we are root (as in CI); otherwise those tests are skipped and say why.
 FIRMWARE_PACKAGES := gcc-avr avr-libc arduino-core-avr simavr libsimavr-dev
+have-browser  := test -x $(BROWSER)
+have-firmware := command -v avr-gcc >/dev/null && test -d /usr/share/arduino/hardware/arduino/avr \
+                 && test -f /usr/include/simavr/sim_avr.h
+## $(call apt-install,PACKAGES,WHAT): PACKAGES (a shell word list) with apt-get, or say WHAT is skipped
+apt-install = if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
+	    echo "installing$(1) for $(2)"; \
+	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $(1) >/dev/null \
+	      || echo "apt-get could not install them: $(2) will be skipped"; \
+	  else echo "missing$(1) and not root: $(2) will be skipped"; fi
+browser:
+	@$(have-browser) || { $(call apt-install, chromium,the browser tests); }
 firmware:
-	@{ command -v avr-gcc >/dev/null && test -d /usr/share/arduino/hardware/arduino/avr \
-	    && test -f /usr/include/simavr/sim_avr.h; } || { \
-	  if [ "$$(id -u)" = 0 ] && command -v apt-get >/dev/null; then \
-	    echo "installing avr-gcc, the Arduino core and simavr for the firmware tests"; \
-	    apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq \
-	      $(FIRMWARE_PACKAGES) >/dev/null \
-	      || echo "apt-get could not install them: the firmware tests will be skipped"; \
-	  else echo "no avr-gcc/simavr and not root: the firmware tests will be skipped"; fi; }
+	@{ $(have-firmware); } || { $(call apt-install, $(FIRMWARE_PACKAGES),the firmware tests); }
+system-packages:
+	@missing=""; what=""; \
+	$(have-browser) || { missing=" chromium"; what="the browser tests"; }; \
+	{ $(have-firmware); } || { missing="$$missing $(FIRMWARE_PACKAGES)"; \
+	  what="$${what:+$$what and }the firmware tests"; }; \
+	test -z "$$missing" || { $(call apt-install,$$missing,$$what); }
 
 ## uv (from PyPI) installs in parallel: about 35 s for every extra where pip took about 2 min;
 ## pip does it when uv cannot. (uv's --compile-bytecode, all 220 packages compiled at install, cost
@@ -112,16 +116,22 @@ lock:
 	  | grep -v -E '^(pip|setuptools|wheel|uv)==' > $(LOCK).new
 	mv $(LOCK).new $(LOCK)
 
-## Everything: the linter, every test (slow and browser ones too), the docstrings' examples, every
-## notebook under nbval. Tests run on $(JOBS) pytest-xdist workers, the longest modules first
-## (tests/conftest.py); the browser tests are two xdist groups (their modules share servers and
-## Chromium), one worker each. Notebooks run on the workers too, each notebook's cells on one
-## worker in order (--dist loadfile). Tests check correctness, not speed (`make bench` does).
-test: $(STAMP) browser firmware hub-proxy lint
-	$(PY) -m pytest -p no:nbval -n $(JOBS) --dist loadgroup --durations=40 tests
-	$(PY) -m pytest -p no:nbval -p no:cacheprovider --doctest-modules afmsmiler
-	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env -p no:cacheprovider \
-	  -n $(JOBS) --dist loadfile notebooks
+## What `make test` needs, installed side by side (Python packages from PyPI, Debian's packages,
+## the hub's proxy from npm: each mostly waits on its downloads): `make -j3` of the three.
+test-setup:
+	@$(MAKE) --no-print-directory -j3 $(STAMP) system-packages hub-proxy
+
+## Everything: the linter, then one pytest run of every test (slow and browser ones too), the
+## docstrings' examples and every notebook under nbval, on $(JOBS) pytest-xdist workers, the
+## longest first (tests/conftest.py). The browser tests are two xdist groups (their modules share
+## servers and Chromium), one worker each; each notebook is a group too (its cells in order, in one
+## kernel, on one worker). One run, not three: the notebooks and doctests fill the cores while
+## the browser tests wait for their pages (36 s less than three runs one after the other here).
+## AFMSMILER_TESTING=1 shortens the notebooks' animations (as CI=true does). Tests check
+## correctness, not speed (`make bench` does).
+test: test-setup lint
+	AFMSMILER_TESTING=1 $(PY) -m pytest --nbval-lax --nbval-current-env --doctest-modules \
+	  -n $(JOBS) --dist loadgroup --durations=40 tests afmsmiler notebooks
 
 ## The fast suite while you work, on both cores: every test except those marked `slow` (a second
 ## or more each: reference solutions, many fits, code generation, the deep bad-input campaign) and

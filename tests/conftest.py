@@ -96,6 +96,11 @@ def pytest_collection_modifyitems(items):
     if outside:
         raise pytest.UsageError(f"browser tests in {sorted(outside)}: add their modules to "
                                 "tests/conftest.py:BROWSER_GROUPS")
+    for item in items:  # nbval: a notebook's cells run in order in one kernel, on one worker
+        path = item.nodeid.split("::", 1)[0]
+        if path.endswith(".ipynb") and item.get_closest_marker("xdist_group") is None:
+            item.add_marker(pytest.mark.xdist_group("notebook " + path.rsplit("/", 1)[-1]))
+            item.add_marker(pytest.mark.slow)
     for item in items:
         if "hang_guard" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.hang_guard)
