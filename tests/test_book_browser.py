@@ -103,10 +103,11 @@ def built(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def page(built, chromium):
-    """A page of the suite's Chromium (conftest.py) that records every request and failure."""
+    """A page of the suite's Chromium (conftest.py) that records every request (HTTP and
+    WebSocket, as tests/browser.py:watch_requests does) and every failure."""
     p = B.new_page(chromium)
-    p.requests, p.failed = [], []
-    p.on("request", lambda r: p.requests.append(r.url))
+    p.failed = []
+    p.requests = B.watch_requests(p)
     p.on("requestfailed", lambda r: p.failed.append(f"{r.url}: {r.failure}"))
     yield p
     p.close()

@@ -255,6 +255,15 @@ def test_pull_off_checker_uses_the_published_values():
     assert check_pull_off_force(2 * math.pi * R * w, "dmt", R, w)
     assert check_pull_off_force(1.5 * math.pi * R * w, "jkr", R, w)
     assert not check_pull_off_force(2 * math.pi * R * w, "jkr", R, w)
+    # the other model's law (DMT 2 pi R w, JKR 3/2 pi R w: Derjaguin et al. 1975, Johnson et al.
+    # 1971) is named as such, without the value asked for
+    for answer, model, other in ((1.5 * math.pi * R * w, "dmt", "JKR"),
+                                 (2 * math.pi * R * w, "jkr", "DMT")):
+        fb = check_pull_off_force(answer, model, R, w)
+        assert not fb and f"that is the {other} pull-off force" in fb.message, fb.message
+        right = (2 if model == "dmt" else 1.5) * math.pi * R * w
+        assert f"{right:.3g}" not in fb.message and f"{right:.2e}" not in fb.message
+    assert "that is the" not in check_pull_off_force(3 * math.pi * R * w, "dmt", R, w).message
     with pytest.raises(ValueError, match="model must be one of"):
         check_pull_off_force(1e-9, "maugis")
 

@@ -75,6 +75,9 @@ def test_jumping_lift():
     assert not ex.check_jumping_lift(n - 1)
     assert "not the smallest" in ex.check_jumping_lift(n + 10).message
     assert "micro-steps" in ex.check_jumping_lift(n * D["z_step"]).message
+    for wrong_sign in (-n, -(n + 1), 0):  # a lift down into the sample is a sign slip, not short
+        fb = ex.check_jumping_lift(wrong_sign)
+        assert not fb and "positive" in fb.message and "too short" not in fb.message
     per_m = D["calibration_counts"] / (D["calibration_steps"] * D["z_step"])
     no_adhesion = math.ceil((D["setpoint_counts"] / per_m + rise) / D["z_step"])
     assert "adhesion" in ex.check_jumping_lift(no_adhesion).message

@@ -21,6 +21,19 @@ def test_length_that_doubles_the_optical_lever_sensitivity():
     assert check_length_doubling_sensitivity(50e-6, reference_length=100e-6)
 
 
+def test_a_length_in_um_or_mm_is_named_as_a_unit_slip_not_only_as_out_of_range():
+    # half the default length (sensitivity ~ 1/L) typed in um or mm: the prefix slip is named
+    # (the answer is not given), where the range alone said only "the model takes lengths in"
+    half = DEFAULTS["length"] / 2
+    for answer, words in ((half * 1e6, "10^6 times"), (half * 1e3, "10^3 times"),
+                          (-half, "sign is wrong")):
+        fb = check_length_doubling_sensitivity(answer)
+        assert not fb and words in str(fb), str(fb)
+        assert f"{half:g}" not in str(fb) and f"{half * 1e6:.4g} um" not in str(fb)
+    fb = check_length_doubling_sensitivity(1.0)  # no slip of the answer: the range is said
+    assert not fb and "the model takes lengths in" in str(fb)
+
+
 def test_two_omega_power():
     # (V cos wt)^2 / R = V^2 / (2 R) + V^2 / (2 R) cos 2wt: 2^2 / (2 * 1000) = 2 mW
     assert check_two_omega_power(2e-3)

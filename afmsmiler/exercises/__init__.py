@@ -66,12 +66,20 @@ class Feedback:
         return ("**Correct!** " if self.passed else "**Not yet.** ") + self.message
 
 
+#: Units of an angle: only there is an answer 180/pi times the right one degrees for radians.
+ANGLE_UNITS = ("rad", "deg", "\u00b0")
+#: Units of a frequency: only there (and in a ratio) is 2 pi the slip of rad/s for Hz.
+FREQUENCY_UNITS = ("Hz", "kHz", "MHz", "rad/s", "1/s")
+
+
 def diagnose_slip(value: float, expected: float, rtol: float, unit: str = "") -> str | None:
     """Name the common slip that turns the right answer into ``value``, without giving the answer.
 
     The slips recognised: the wrong sign; a factor 10^(3n) (|n| = 1..6, a unit prefix such as um
     for m or 1/us for 1/s), also with the wrong sign; a factor 10^2 (cm, per cent); degrees
-    for radians and back (180/pi); hertz for radians per second and back (2 pi). The message says
+    for radians and back (180/pi), only for an angle (``unit`` rad or deg); hertz for radians per
+    second and back (2 pi), only for a frequency (``unit`` Hz, kHz, MHz, rad/s or 1/s) or a
+    dimensionless ratio (``unit`` ""), a ratio of frequencies among them. The message says
     which slip it is and what to check, never the expected value.
 
     Parameters
@@ -105,13 +113,15 @@ def diagnose_slip(value: float, expected: float, rtol: float, unit: str = "") ->
                 both = " and the sign is wrong too" if sign < 0 else ""
                 return (f"Your answer is 10^{3 * n} times the right one{both}: a unit prefix "
                         f"slipped (milli, micro, nano, ...); give it in SI units{in_unit}.")
-    for factor, what in ((100.0, "10^2 times the right one (centi, or a per cent?)"),
-                         (0.01, "10^-2 times the right one (centi, or a per cent?)"),
-                         (180.0 / math.pi, "in degrees where radians are asked"),
-                         (math.pi / 180.0, "in radians where degrees are asked"),
-                         (2.0 * math.pi, "2 pi times the right one (rad/s where Hz is asked?)"),
-                         (1.0 / (2.0 * math.pi), "1/(2 pi) of the right one (Hz where rad/s is "
-                                                 "asked?)")):
+    slips = [(100.0, "10^2 times the right one (centi, or a per cent?)"),
+             (0.01, "10^-2 times the right one (centi, or a per cent?)")]
+    if unit in ANGLE_UNITS:
+        slips += [(180.0 / math.pi, "in degrees where radians are asked"),
+                  (math.pi / 180.0, "in radians where degrees are asked")]
+    if unit in FREQUENCY_UNITS or unit == "":
+        slips += [(2.0 * math.pi, "2 pi times the right one (rad/s where Hz is asked?)"),
+                  (1.0 / (2.0 * math.pi), "1/(2 pi) of the right one (Hz where rad/s is asked?)")]
+    for factor, what in slips:
         if near(factor):
             return f"Your answer looks {what}; check the unit{in_unit}."
     return None

@@ -271,6 +271,13 @@ def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
     hint = HINTS["pull_off"]
     if answer is None:
         return Feedback(False, f"enter the pull-off force in N. {hint}")
-    return check_close(f"{model.upper()} pull-off force", answer, system.pull_off_force, rtol, "N",
-                       hint)
+    feedback = check_close(f"{model.upper()} pull-off force", answer, system.pull_off_force,
+                           rtol, "N", hint)
+    other = "jkr" if model == "dmt" else "dmt"
+    if not feedback.passed and isinstance(answer, (int, float)) and not isinstance(answer, bool):
+        other_force = _pull_off_system(other, radius, work_of_adhesion).pull_off_force
+        if abs(answer - other_force) <= rtol * abs(other_force):  # the other model's law
+            return Feedback(False, f"that is the {other.upper()} pull-off force; this asks the "
+                                   f"{model.upper()} one: compare the two models' laws. {hint}")
+    return feedback
 

@@ -206,6 +206,9 @@ def check_jumping_lift(steps) -> Feedback:
     if feedback is not None:
         return feedback
     expected = jumping_lift()
+    if value <= 0:
+        return Feedback(False, f"lift = {value:g} micro-steps: a lift moves the tip up, away from "
+                               "the sample; give it as a positive number of micro-steps.")
     if expected <= value <= expected + 1 and float(value).is_integer():
         return Feedback(True, f"lift = {int(value)} micro-steps ({value * 2.5:g} um): it frees "
                               f"the tip and clears every pixel (smallest: {expected}).")

@@ -15,7 +15,7 @@ from scipy.optimize import brentq, minimize_scalar
 from ..parameters import read_only
 from ..transducers import Electrothermal, Interferometer, OpticalBeamDeflection, Piezoresistive
 from ..validation import check_range
-from . import Feedback, check_close, read_number
+from . import Feedback, check_close, diagnose_slip, read_number
 from .registry import exercise
 
 __all__ = ["DEFAULTS", "doubling_length", "check_length_doubling_sensitivity",
@@ -92,8 +92,11 @@ def check_length_doubling_sensitivity(length, reference_length: float = DEFAULTS
     if fail is not None:
         return fail
     if not p.low <= value <= p.high:
-        return Feedback(False, f"the model takes lengths in [{p.low:g}, {p.high:g}] m, "
-                               f"got {value:g}. {hint}")
+        # a length in um or mm (or negative) is the usual slip: name it, not only the range
+        slip = diagnose_slip(value, doubling_length(reference_length), 0.05, "m")
+        return Feedback(False, slip + f" {hint}" if slip else
+                        f"the model takes lengths in [{p.low:g}, {p.high:g}] m, got {value:g}. "
+                        f"{hint}")
     base = OpticalBeamDeflection(length=reference_length).sensitivity()
     ratio = OpticalBeamDeflection(length=value).sensitivity() / base
     return check_close(f"the sensitivity ratio of the {value * 1e6:.4g} um lever", ratio, 2.0,
