@@ -1,10 +1,12 @@
 """The course book: its table of contents names existing chapters, and book <-> notebook links hold."""
+import inspect
 import json
 import re
 from pathlib import Path
 
 import pytest
 
+from afmsmiler import apps
 from afmsmiler.ui import pages
 from afmsmiler.ui.registry import MODULES, PANELS
 
@@ -49,7 +51,8 @@ def _slug(heading: str) -> str:
 def test_the_pages_cover_every_panel_of_the_registry_once():
     names = [n for m in MODULES for n in pages.module_pages(m)]
     assert len(names) == len(set(names))
-    assert set(names) == {*pages.PANELS, *pages.SCENE_PAGES, *pages.INSTRUMENT_PAGES}
+    assert set(names) == {*pages.PANELS, *pages.SCENE_PAGES, *pages.INSTRUMENT_PAGES,
+                          *pages.VIEW_PAGES}
     assert set(pages.PANELS) == {e.key for e in PANELS}  # module (h)'s four included
     assert {e.key for e in PANELS if e.module == "h"} <= set(names)
     assert set(pages.SCENE_PAGES) == {f"scene_{e.key}" for e in PANELS if e.scene}
@@ -68,6 +71,9 @@ def test_every_chapter_links_its_notebook_and_says_how_to_start_its_app():
         stem, text = _chapter(m)
         assert f"{{download}}`notebooks/{stem}.ipynb <../notebooks/{stem}.ipynb>`" in text, stem
         assert f"`make app NB={stem}`" in text, stem
+        # the link to the app where `make app` serves it (voila_command's default port)
+        port = inspect.signature(apps.voila_command).parameters["port"].default
+        assert f"[the web app](http://127.0.0.1:{port}/)" in text, stem
         assert "## Notebook, web app and figures" in text, stem
 
 

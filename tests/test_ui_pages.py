@@ -1,9 +1,11 @@
 """The panels' static pages (the book's figures) hold each panel's figure at its defaults."""
+import base64
 import json
 import re
 
 import numpy as np
 import pytest
+import umsgpack
 
 from afmsmiler.ui.pages import PANELS, SCANNED_FIRST, _panel, panel_page, write_panel_pages
 
@@ -65,6 +67,30 @@ def test_scene_pages_hold_each_panels_3d_view_and_unknown_names_are_refused(tmp_
         assert page.startswith("<!DOCTYPE html>") and len(json.loads(commands.group(1))) > 0
     with pytest.raises(ValueError, match="name must be one of"):
         scene_page("scene_controller")  # module (c)'s panel has no 3D view
+
+
+def test_view_pages_hold_notebook_08s_3d_views_with_what_they_draw(tmp_path):
+    # notebook 08's print_scene and stream_scene: each page embeds its view's commands, among
+    # them the sample's height field and (the streamed scan, run to its end) the image's
+    from afmsmiler.ui.pages import VIEW_PAGES, module_pages, view_page, write_view_pages
+    assert set(VIEW_PAGES) == {"view_print", "view_stream"}
+    assert set(VIEW_PAGES) <= set(module_pages("h"))
+    paths = write_view_pages(tmp_path / "views")
+    assert sorted(p.stem for p in paths) == sorted(VIEW_PAGES)
+    drawn = {}
+    for path in paths:
+        page = path.read_text(encoding="utf-8")
+        commands = re.search(r"drawStatic\(document\.getElementById\('scene'\), (\[.*?\]), ",
+                             page, re.S)
+        assert page.startswith("<!DOCTYPE html>")
+        drawn[path.stem] = {(c["type"], c["path"].rsplit("/", 1)[-1]) for c in
+                            (umsgpack.unpackb(base64.b64decode(x))
+                             for x in json.loads(commands.group(1)))}
+    # both show their sample; the streamed scan, run to its end, its image beside it too
+    assert ("set_object", "sample") in drawn["view_print"] & drawn["view_stream"]
+    assert ("set_object", "image") in drawn["view_stream"] - drawn["view_print"]
+    with pytest.raises(ValueError, match="name must be one of"):
+        view_page("view_seashell")
 
 
 @pytest.mark.slow  # one scan of module (f)'s panel: about a second

@@ -10,7 +10,9 @@ to write into ``DIRECTORY`` one ``<panel>.html`` per panel of the registry
 (:data:`afmsmiler.ui.registry.PANELS`, every module's, (h)'s four included), one
 ``scene_<panel>.html`` per panel that the notebook shows with a 3D view (:func:`scene_page`: the
 panel's scene at its defaults, as the 3D view's own static page) and one
-``instrument_<kind>.html`` per 3D instrument of module (e) (:func:`instrument_page`). The pages
+``instrument_<kind>.html`` per 3D instrument of module (e) (:func:`instrument_page`) and one
+``view_<name>.html`` per 3D view a notebook shows outside its panels (:data:`VIEW_PAGES`, module
+(h)'s print and stream, :func:`view_page`). The pages
 iterate the registry, so a panel added there gets its pages and a test
 (``tests/test_book.py``) fails until its module's chapter embeds them; :func:`module_pages`
 says which pages belong to a module's chapter.
@@ -28,7 +30,7 @@ from .registry import MODULES, PANELS as REGISTRY
 
 __all__ = ["PANELS", "SCENE_PAGES", "INSTRUMENT_PAGES", "panel_page", "write_panel_pages",
            "scene_page", "write_scene_pages", "instrument_page", "write_instrument_pages",
-           "module_pages", "write_pages"]
+           "VIEW_PAGES", "view_page", "write_view_pages", "module_pages", "write_pages"]
 
 #: Page name -> the panel's entry in :data:`afmsmiler.ui.registry.PANELS` (every panel).
 PANELS = {e.key: e for e in REGISTRY}
@@ -41,6 +43,39 @@ INSTRUMENT_PAGES = {"instrument_obd": "obd", "instrument_educational": "educatio
 
 #: The module whose chapter shows the instruments' pages.
 INSTRUMENT_MODULE = "e"
+
+
+def _print_view():
+    """Notebook 08's ``print_scene``: the macroscopic AFM panel's print at its defaults (the
+    seashell's STL, read back on the printer's grid), as the notebook first shows it."""
+    import tempfile
+    from ..hardware import printing
+    from ..scenes.imaging import ImagingScene
+    with tempfile.TemporaryDirectory() as folder:
+        stl = _panel("macro_afm").export_stl(Path(folder) / "seashell_print.stl")
+        return ImagingScene(printing.mesh_to_sample(stl))
+
+
+def _stream_view():
+    """Notebook 08's ``stream_scene``: the educational AFM's twin scanning its sample, each
+    finished line drawn beside it (the notebook's scan, at its end)."""
+    from ..hardware import experiments
+    from ..hardware.educational import live_view
+    from ..scenes.imaging import ImagingScene
+    sample = experiments.stream_sample()
+    afm, server = experiments.educational_twin(sample)
+    try:
+        scene = ImagingScene(sample)
+        afm.scan(on_line=live_view(scene))
+    finally:
+        afm.close()
+        server.stop()
+    return scene
+
+
+#: Page name -> (module, what builds the scene) of the 3D views a notebook shows outside its
+#: panels: module (h)'s print of an AFM image and its educational AFM's streamed scan.
+VIEW_PAGES = {"view_print": ("h", _print_view), "view_stream": ("h", _stream_view)}
 
 
 #: Panels whose pages show the scan their notebook starts right below them (their sliders apply to
@@ -164,6 +199,43 @@ def write_scene_pages(directory) -> list[Path]:
     return _write(directory, SCENE_PAGES, scene_page)
 
 
+def view_page(name: str) -> str:
+    """A complete HTML page with the 3D view ``name`` a notebook shows outside its panels.
+
+    Parameters
+    ----------
+    name : str
+        A key of :data:`VIEW_PAGES` (``"view_<name>"``).
+
+    Returns
+    -------
+    str
+
+    Raises
+    ------
+    ValueError
+        For an unknown ``name``, listing the views.
+    """
+    check_choice("name", name, list(VIEW_PAGES))
+    return VIEW_PAGES[name][1]().view.static_html()
+
+
+def write_view_pages(directory) -> list[Path]:
+    """Write ``view_<name>.html`` for every view of :data:`VIEW_PAGES` into ``directory``.
+
+    Parameters
+    ----------
+    directory : str or os.PathLike
+        Created if missing.
+
+    Returns
+    -------
+    list of pathlib.Path
+        The pages written.
+    """
+    return _write(directory, VIEW_PAGES, view_page)
+
+
 def instrument_page(kind: str) -> str:
     """The 3D instrument ``kind`` as one self-contained page (meshcat's static HTML).
 
@@ -215,7 +287,8 @@ def write_instrument_pages(directory) -> list[Path]:
 def module_pages(module: str) -> list[str]:
     """The names of the pages (without ``.html``) that module ``module``'s chapter embeds.
 
-    Its panels' figures, then their 3D views, then (module (e)) the two instruments.
+    Its panels' figures, then their 3D views, then (module (e)) the two instruments and (module
+    (h)) the 3D views its notebook shows outside its panels (:data:`VIEW_PAGES`).
 
     Parameters
     ----------
@@ -236,6 +309,7 @@ def module_pages(module: str) -> list[str]:
     names += [k for k, e in SCENE_PAGES.items() if e.module == module]
     if module == INSTRUMENT_MODULE:
         names += list(INSTRUMENT_PAGES)
+    names += [k for k, (m, _) in VIEW_PAGES.items() if m == module]
     return names
 
 
@@ -253,7 +327,7 @@ def write_pages(directory) -> list[Path]:
         The pages written.
     """
     return [*write_panel_pages(directory), *write_scene_pages(directory),
-            *write_instrument_pages(directory)]
+            *write_instrument_pages(directory), *write_view_pages(directory)]
 
 
 def main(argv=None) -> int:
