@@ -1821,6 +1821,8 @@ UPPER_VALID = {
     "scenes.contact.tip_mesh": {"height": 50e-9, "unit": 1e-9},
     "exercises.contact.check_fitted_modulus": {"answer": 20e6},
     "exercises.contact.check_contact_point": {"answer": 0.0},
+    "exercises.contact.pull_off_feedback": {"answer": 6e-9, "model": "dmt"},
+    "exercises.contact.check_pull_off_forces": {"dmt": 6e-9, "jkr": 5e-9},
     "exercises.controller.height_error": {"speed": 1e-6},
     "scenes.legends.TextPlate": {"text": "campaign"},
     "scenes.shapes.polyline": {"points": lambda: np.zeros((3, 3))},
@@ -1892,9 +1894,13 @@ def _upper_targets():
 
 
 def _is_checker(t):
-    """Whether ``t`` is an exercise's checker (it answers any answer with a Feedback)."""
-    return t.module.startswith("afmsmiler.exercises.") and t.qual.rsplit(".", 1)[1].startswith(
-        "check_")
+    """Whether ``t`` answers any answer with a Feedback: an exercise's checker (``check_``) or a
+    function of the exercises annotated to return one (one part's verdict, such as
+    ``exercises.contact.pull_off_feedback``)."""
+    if not t.module.startswith("afmsmiler.exercises."):
+        return False
+    returns = getattr(t.func, "__annotations__", {}).get("return") if t.method is None else None
+    return t.qual.rsplit(".", 1)[1].startswith("check_") or returns == "Feedback"
 
 
 def _judge_checker(t, name, label, value, can_return, kwargs, inst):

@@ -9,7 +9,8 @@ from afmsmiler.contact import (TIPS, Conical, Parabolic, Pyramidal, Spherical, a
                                fit_curve, indent, jkr_curve, jkr_instability, reduced_modulus,
                                surface_displacement)
 from afmsmiler.exercises.contact import (FitExercise, check_contact_point, check_fitted_modulus,
-                                         check_pull_off_force, fitting_exercise)
+                                         pull_off_feedback, check_pull_off_forces,
+                                         fitting_exercise)
 from afmsmiler.plots.contact import (ContactFigure, contact_curves, cycles_figure, fit_figure,
                                      fit_label, fit_window, tip_geometries_figure)
 from afmsmiler.scenes.contact import ContactScene, surface_mesh, tip_mesh
@@ -252,20 +253,41 @@ def test_fitting_exercise_checker():
 
 def test_pull_off_checker_uses_the_published_values():
     R, w = 20e-9, 0.05
-    assert check_pull_off_force(2 * math.pi * R * w, "dmt", R, w)
-    assert check_pull_off_force(1.5 * math.pi * R * w, "jkr", R, w)
-    assert not check_pull_off_force(2 * math.pi * R * w, "jkr", R, w)
+    assert pull_off_feedback(2 * math.pi * R * w, "dmt", R, w)
+    assert pull_off_feedback(1.5 * math.pi * R * w, "jkr", R, w)
+    assert not pull_off_feedback(2 * math.pi * R * w, "jkr", R, w)
     # the other model's law (DMT 2 pi R w, JKR 3/2 pi R w: Derjaguin et al. 1975, Johnson et al.
     # 1971) is named as such, without the value asked for
     for answer, model, other in ((1.5 * math.pi * R * w, "dmt", "JKR"),
                                  (2 * math.pi * R * w, "jkr", "DMT")):
-        fb = check_pull_off_force(answer, model, R, w)
+        fb = pull_off_feedback(answer, model, R, w)
         assert not fb and f"that is the {other} pull-off force" in fb.message, fb.message
         right = (2 if model == "dmt" else 1.5) * math.pi * R * w
         assert f"{right:.3g}" not in fb.message and f"{right:.2e}" not in fb.message
-    assert "that is the" not in check_pull_off_force(3 * math.pi * R * w, "dmt", R, w).message
+    assert "that is the" not in pull_off_feedback(3 * math.pi * R * w, "dmt", R, w).message
     with pytest.raises(ValueError, match="model must be one of"):
-        check_pull_off_force(1e-9, "maugis")
+        pull_off_feedback(1e-9, "maugis")
+
+
+def test_the_pull_off_exercise_grades_both_models_and_names_each_slip():
+    # DMT 2 pi R w (Derjaguin, Muller, Toporov 1975), JKR 3/2 pi R w (Johnson, Kendall, Roberts
+    # 1971): exercise 04.2 asks both, and its verdict says which part is wrong without a value
+    R, w = 20e-9, 0.05
+    dmt, jkr = 2 * math.pi * R * w, 1.5 * math.pi * R * w
+    assert check_pull_off_forces(dmt, jkr, R, w)
+    assert check_pull_off_forces.exercise.answers == ("dmt", "jkr")
+    for answers, words in (((dmt, dmt), ["DMT right", "that is the DMT pull-off force"]),
+                           ((jkr, dmt), ["that is the JKR", "that is the DMT"]),
+                           ((dmt * 1e9, jkr), ["JKR right", "10^9 times"]),
+                           ((None, jkr), ["JKR right", "enter the DMT"]),
+                           ((-dmt, jkr), ["JKR right", "sign is wrong"])):
+        fb = check_pull_off_forces(*answers, R, w)
+        assert not fb and all(word in fb.message for word in words), (answers, fb.message)
+        assert "model:" not in fb.message, fb.message  # the model's values only once right
+        if answers[0] is not None and answers[0] > 0:  # (a sign slip echoes its own size)
+            assert f"{dmt:.4g}" not in fb.message and f"{jkr:.4g}" not in fb.message, fb.message
+    with pytest.raises(ValueError, match="radius"):
+        check_pull_off_forces(dmt, jkr, radius=-1.0)
 
 
 @pytest.mark.slow
@@ -480,7 +502,7 @@ def test_every_hint_s_code_runs_in_the_notebook():
     messages = list(HINTS.values()) + [check_fitted_modulus(1.0, ex).message,
                                        check_fitted_modulus(None, ex).message,
                                        check_contact_point(1.0, ex).message,
-                                       check_pull_off_force(1e-3, "jkr").message]
+                                       pull_off_feedback(1e-3, "jkr").message]
     snippets = [code for m in messages for code in re.findall(r"`([^`]+)`", m)]
     assert snippets, "the fitting hint shows the call"
     for code in snippets:
@@ -491,7 +513,7 @@ def test_every_hint_s_code_runs_in_the_notebook():
 
 def test_the_pull_off_hint_points_to_the_sources_without_the_formulas():
     from afmsmiler.exercises.contact import HINTS
-    text = check_pull_off_force(1e-3, "dmt").message + HINTS["pull_off"]
+    text = pull_off_feedback(1e-3, "dmt").message + HINTS["pull_off"]
     for giveaway in ("pi R w", "2 pi", "3/2", "1.5", "(3/2)"):
         assert giveaway not in text
     assert "book" in text and "1971" in text and "1975" in text
@@ -505,7 +527,7 @@ def test_checkers_name_unit_slips():
     assert not in_kpa and "10^-3 times" in in_kpa.message and "prefix" in in_kpa.message
     in_nm = check_contact_point(r.contact_point * 1e9, ex)  # before: only "... nm off"
     assert not in_nm and "10^9 times" in in_nm.message and "prefix" in in_nm.message
-    in_nn = check_pull_off_force(1.5 * math.pi * 20e-9 * 0.05 * 1e9, "jkr", 20e-9, 0.05)
+    in_nn = pull_off_feedback(1.5 * math.pi * 20e-9 * 0.05 * 1e9, "jkr", 20e-9, 0.05)
     assert not in_nn and "10^9 times" in in_nn.message
 
 

@@ -3,8 +3,9 @@
 Exercise 1 (fitting): :func:`fitting_exercise` hands out a noisy synthetic approach curve of a
 sample of unknown Young's modulus; the student recovers E (and the contact point) by fitting, and
 :func:`check_fitted_modulus` / :func:`check_contact_point` compare with the values the curve was
-made from. Exercise 2 (adhesion): :func:`check_pull_off_force` compares a predicted pull-off force
-with the one of the simulated approach-retract cycle.
+made from. Exercise 2 (adhesion): :func:`check_pull_off_forces` compares the predicted DMT and
+JKR pull-off forces with those of the simulated approach-retract cycles (:func:`pull_off_feedback`
+checks one model's answer on its own).
 
 The hints name only what a notebook has (the exercise is ``ex``, as notebook 04 calls it; a test
 runs every piece of code a hint quotes in backticks), say where to look rather than give the
@@ -25,12 +26,13 @@ import numpy as np
 from ..contact import ContactSystem, ForceCurve, Parabolic, Tip, fit_curve, synthetic_curve
 from ..parameters import read_only, shown
 from ..validation import check_choice, check_integer, check_positive, check_range
-from . import Feedback, check_close, diagnose_slip
+from . import Feedback, check_close, diagnose_slip, read_number
 from .registry import exercise
 
 __all__ = ["DEFAULTS", "HINTS", "FitExercise", "fitting_exercise", "fitted_modulus",
            "check_fitted_modulus", "fitted_contact_point", "check_contact_point",
-           "pull_off_force", "check_pull_off_force"]
+           "pull_off_force", "pull_off_feedback", "pull_off_forces",
+           "check_pull_off_forces"]
 
 #: The exercises' givens, in one place (SI units).
 DEFAULTS = read_only(dict(
@@ -241,10 +243,28 @@ def pull_off_force(model: str = "dmt", radius: float = DEFAULTS["radius"],
     return float(_pull_off_system(model, radius, work_of_adhesion).pull_off_force)
 
 
-@exercise("04.2", "Pull-off", answers=("answer",), solution=pull_off_force)
-def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
-                         work_of_adhesion: float = 0.05, rtol: float = 0.02) -> Feedback:
-    """Exercise 2: predict the pull-off force (its magnitude) of a DMT or JKR contact.
+def _pull_off_verdict(answer, model: str, radius: float, work_of_adhesion: float,
+                      rtol: float) -> Feedback:
+    """The verdict on one model's pull-off force, without the hint (see the checkers below)."""
+    model = check_choice("model", model, ("dmt", "jkr"))
+    expected = pull_off_force(model, radius, work_of_adhesion)
+    if answer is None:
+        return Feedback(False, f"enter the {model.upper()} pull-off force in N.")
+    feedback = check_close(f"{model.upper()} pull-off force", answer, expected, rtol, "N")
+    value, unread = read_number("a force", answer, "")
+    if not feedback.passed and unread is None:
+        other = "jkr" if model == "dmt" else "dmt"
+        other_force = pull_off_force(other, radius, work_of_adhesion)
+        if abs(value - other_force) <= rtol * abs(other_force):  # the other model's law
+            return Feedback(False, f"that is the {other.upper()} pull-off force; this asks the "
+                                   f"{model.upper()} one: compare the two models' laws.")
+    return feedback
+
+
+def pull_off_feedback(answer, model: str, radius: float = DEFAULTS["radius"],
+                      work_of_adhesion: float = 0.05, rtol: float = 0.02) -> Feedback:
+    """Feedback on a predicted pull-off force (its magnitude) of a DMT or JKR contact: one
+    model's part of exercise 2 (:func:`check_pull_off_forces` grades both), on its own.
 
     Parameters
     ----------
@@ -263,21 +283,64 @@ def check_pull_off_force(answer, model: str, radius: float = DEFAULTS["radius"],
     -------
     Feedback
         Compared with the most adhesive force of the simulated approach-retract cycle
-        (paraboloid, E = 10 MPa, k = 0.1 N/m).
+        (paraboloid, E = 10 MPa, k = 0.1 N/m); the other model's force given for this one is
+        named as such.
     """
     model = check_choice("model", model, ("dmt", "jkr"))
-    system = _pull_off_system(model, radius, work_of_adhesion)
+    _pull_off_system(model, radius, work_of_adhesion)  # the givens checked before the answer
     rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
-    hint = HINTS["pull_off"]
-    if answer is None:
-        return Feedback(False, f"enter the pull-off force in N. {hint}")
-    feedback = check_close(f"{model.upper()} pull-off force", answer, system.pull_off_force,
-                           rtol, "N", hint)
-    other = "jkr" if model == "dmt" else "dmt"
-    if not feedback.passed and isinstance(answer, (int, float)) and not isinstance(answer, bool):
-        other_force = _pull_off_system(other, radius, work_of_adhesion).pull_off_force
-        if abs(answer - other_force) <= rtol * abs(other_force):  # the other model's law
-            return Feedback(False, f"that is the {other.upper()} pull-off force; this asks the "
-                                   f"{model.upper()} one: compare the two models' laws. {hint}")
-    return feedback
+    verdict = _pull_off_verdict(answer, model, radius, work_of_adhesion, rtol)
+    return verdict if verdict.passed else Feedback(False, f"{verdict.message} {HINTS['pull_off']}")
+
+
+def pull_off_forces(radius: float = DEFAULTS["radius"],
+                    work_of_adhesion: float = 0.05) -> tuple[float, float]:
+    """The DMT and the JKR pull-off forces (magnitudes, N) of exercise 2 (:func:`pull_off_force`).
+
+    Parameters
+    ----------
+    radius : float
+        Tip radius R in m.
+    work_of_adhesion : float
+        w in J/m^2.
+
+    Returns
+    -------
+    (dmt, jkr) : tuple of float
+    """
+    return (pull_off_force("dmt", radius, work_of_adhesion),
+            pull_off_force("jkr", radius, work_of_adhesion))
+
+
+@exercise("04.2", "Pull-off", answers=("dmt", "jkr"), solution=pull_off_forces)
+def check_pull_off_forces(dmt, jkr, radius: float = DEFAULTS["radius"],
+                          work_of_adhesion: float = 0.05, rtol: float = 0.02) -> Feedback:
+    """Exercise 2: predict the pull-off force (its magnitude) with DMT and with JKR.
+
+    Parameters
+    ----------
+    dmt, jkr : float or None
+        The student's pull-off forces in N (positive), of each model.
+    radius : float
+        Tip radius R in m.
+    work_of_adhesion : float
+        w in J/m^2.
+    rtol : float
+        Accepted relative error of each.
+
+    Returns
+    -------
+    Feedback
+        Both right, or what is wrong with each (:func:`pull_off_feedback`).
+    """
+    _pull_off_system("dmt", radius, work_of_adhesion)  # the givens checked before the answers
+    rtol = check_range("rtol", rtol, 0.0, 1.0, low_inclusive=False)
+    verdicts = [_pull_off_verdict(a, m, radius, work_of_adhesion, rtol)
+                for a, m in ((dmt, "dmt"), (jkr, "jkr"))]
+    if all(v.passed for v in verdicts):
+        return Feedback(True, " ".join(v.message for v in verdicts))
+    wrong = " ".join(v.message for v in verdicts if not v.passed)
+    right = [m.upper() for v, m in zip(verdicts, ("dmt", "jkr")) if v.passed]
+    return Feedback(False, (f"{' and '.join(right)} right; " if right else "")
+                    + f"{wrong} {HINTS['pull_off']}")
 
