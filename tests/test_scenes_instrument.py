@@ -656,8 +656,10 @@ def _screenshot(browser, html, path):
         # agree (a loaded machine drew a page after a fixed 2.5 s wait only some of the time:
         # the shot of a blank page differed everywhere); a wait for the drawing, bounded, not a
         # check of its speed
+        # (below meshcat's "Open Controls" bar, 20 px of page over the canvas: with it, a canvas
+        # not yet drawn, one colour, was not one colour, and a CI run compared a blank shot)
         box = page.locator("canvas").first.bounding_box()
-        rows = slice(int(box["y"]), int(box["y"] + box["height"]))
+        rows = slice(int(box["y"]) + 40, int(box["y"] + box["height"]))
         cols = slice(int(box["x"]), int(box["x"] + box["width"]))
         page.wait_for_timeout(500)
         last, deadline = shot(), time.monotonic() + 30.0
