@@ -100,7 +100,7 @@ def pytest_collection_modifyitems(items):
         path = item.nodeid.split("::", 1)[0]
         if path.endswith(".ipynb") and item.get_closest_marker("xdist_group") is None:
             item.add_marker(pytest.mark.xdist_group("notebook " + path.rsplit("/", 1)[-1]))
-            item.add_marker(pytest.mark.slow)
+            item.add_marker(pytest.mark.slow)  # ordered with the slow modules (below)
     for item in items:
         if "hang_guard" in getattr(item, "fixturenames", ()):
             item.add_marker(pytest.mark.hang_guard)

@@ -66,9 +66,10 @@ class Feedback:
         return ("**Correct!** " if self.passed else "**Not yet.** ") + self.message
 
 
-#: Units of an angle: only there is an answer 180/pi times the right one degrees for radians.
+#: Units of an angle: only for these is an answer 180/pi off named degrees for radians (and back).
 ANGLE_UNITS = ("rad", "deg", "\u00b0")
-#: Units of a frequency: only there (and in a ratio) is 2 pi the slip of rad/s for Hz.
+#: Units of a frequency: only for these (and a ratio, unit "") is an answer 2 pi off named rad/s
+#: for Hz (and back).
 FREQUENCY_UNITS = ("Hz", "kHz", "MHz", "rad/s", "1/s")
 
 

@@ -339,7 +339,8 @@ def check_pull_off_forces(dmt, jkr, radius: float = DEFAULTS["radius"],
                 for a, m in ((dmt, "dmt"), (jkr, "jkr"))]
     if all(v.passed for v in verdicts):
         return Feedback(True, " ".join(v.message for v in verdicts))
-    wrong = " ".join(v.message for v in verdicts if not v.passed)
+    wrong = " ".join(f"{m.upper()}: {v.message}" for v, m in zip(verdicts, ("dmt", "jkr"))
+                     if not v.passed)
     right = [m.upper() for v, m in zip(verdicts, ("dmt", "jkr")) if v.passed]
     return Feedback(False, (f"{' and '.join(right)} right; " if right else "")
                     + f"{wrong} {HINTS['pull_off']}")
