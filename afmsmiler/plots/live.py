@@ -63,11 +63,17 @@ from ..validation import check_choice, check_finite, check_instance, check_integ
 __all__ = ["Description", "LiveFigure", "decimate", "describe", "static_html", "set_clim"]
 
 STATIC = Path(__file__).with_name("static")
-#: Seconds a panel waits at most for a view to say it painted the last frame before it sends
-#: the next (:meth:`LiveFigure.busy`): a page whose main thread is saturated (a drag) paints a
+#: Seconds a panel waits at most for a view to say it painted a frame before it sends more than
+#: :data:`FRAMES_AHEAD` ahead (:meth:`LiveFigure.busy`): a page whose main thread is saturated (a drag) paints a
 #: frame in 20-40 ms, and the frames sent meanwhile queued behind each other, each a step the
 #: student had already passed; a page that never answers costs no more than this.
 PAINT_WAIT = 0.25
+#: Frames a panel may have sent and not yet seen painted when it runs its next update
+#: (:meth:`LiveFigure.busy`): one, so the model computes a drag's next step while the page
+#: paints the last (waiting for that paint put a whole round trip, 20-40 ms, between the last
+#: key's move reaching the kernel and its frame), and no more, so frames never queue in a page
+#: slower than the model.
+FRAMES_AHEAD = 1
 #: Pixels per inch of a live figure (as ipympl's canvas): figsize (10, 6) is 1000 x 600 px.
 DPI = 100
 _PX = DPI / 72  # px per point (line widths, marker and font sizes are given in points)
@@ -680,7 +686,8 @@ class LiveFigure(anywidget.AnyWidget):
         self.sync()
 
     def busy(self, now: float | None = None) -> bool:
-        """Whether the browser is still painting a frame sent less than :data:`PAINT_WAIT` s ago.
+        """Whether the browser has more than :data:`FRAMES_AHEAD` frames to paint, the newest
+        sent less than :data:`PAINT_WAIT` s ago.
 
         ``now`` is ``time.monotonic()`` (the default; asyncio's ``loop.time()`` is the same
         clock).
@@ -691,7 +698,7 @@ class LiveFigure(anywidget.AnyWidget):
         closed, a view of another kind), nothing is in flight: a panel never waits on a page
         that cannot answer.
         """
-        if self.frames_painted == 0 or self.frames_painted >= self.frames_sent:
+        if self.frames_painted == 0 or self.frames_sent - self.frames_painted <= FRAMES_AHEAD:
             return False
         now = time.monotonic() if now is None else check_finite("now", now, "s")
         return now - self._sent_at < PAINT_WAIT

@@ -686,17 +686,17 @@ class Panel:
         update run at the first turn would see only the first of the moves that queued behind
         the last model run; waiting for a few quiet turns (microseconds when nothing is queued)
         lets every queued move land first. Moves that keep coming run it after
-        :data:`_MAX_DEFER` s anyway. While the page has not yet painted the panel's last frame
-        (:meth:`~afmsmiler.plots.live.LiveFigure.busy`, at most
-        :data:`~afmsmiler.plots.live.PAINT_WAIT` s after it was sent) the update waits too, and
-        the moves made meanwhile fold into it: a page slower than the model gets the newest
-        frame, not a queue of steps already passed.
+        :data:`_MAX_DEFER` s anyway. While the page has more frames of the panel to paint than
+        :data:`~afmsmiler.plots.live.FRAMES_AHEAD` (:meth:`~afmsmiler.plots.live.LiveFigure.busy`,
+        at most :data:`~afmsmiler.plots.live.PAINT_WAIT` s after the last was sent) the update
+        waits too, and the moves made meanwhile fold into it: a page slower than the model gets
+        the newest frame, not a queue of steps already passed.
         """
         if (self._moves != seen or quiet < _QUIET_TURNS) and loop.time() < until:
             quiet = 0 if self._moves != seen else quiet + 1
             loop.call_soon(self._settle, loop, self._moves, quiet, until)
             return
-        if self.live is not None and self.live.busy(loop.time()):  # the page still paints the last frame: the moves
+        if self.live is not None and self.live.busy(loop.time()):  # the page still paints two frames: the moves
             # that come meanwhile fold into this update (bounded: see LiveFigure.busy)
             loop.call_later(_PAINT_POLL, self._settle, loop, self._moves, _QUIET_TURNS, until)
             return

@@ -748,8 +748,8 @@ class Figure {
     keep(this.paintedSeqs, this.drawnSeq);
     this.painted += 1;
     this.root.dataset.painted = String(this.painted);
-    // the kernel sends its next frame once this one is painted (LiveFigure.busy): a page that
-    // is slower than the kernel gets the newest frame, not a queue of steps already passed
+    // the kernel sends no frame while two are unpainted (LiveFigure.busy, FRAMES_AHEAD): a page
+    // that is slower than the kernel gets the newest frame, not a queue of steps already passed
     const seq = this.drawnSeq;
     this.drawnSeq = null;
     if (this.onPainted && seq > 0) this.onPainted(seq);
