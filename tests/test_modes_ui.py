@@ -5,6 +5,7 @@ move: the curve is the same), the state the panel shows equals the model run dir
 says (the setpoint that picks the branch, the slope that leaks into a trace but not into the
 friction map, the lift that clears the bars, the noise that biases the modulus map)."""
 import functools
+import html
 import math
 import re
 
@@ -383,7 +384,7 @@ def test_tapping_panel_animates_the_held_state():
     z = np.array([v[2] for v in clip.tracks["position"].values]) / panel.scene.factors["distance"]
     assert z.max() == pytest.approx(s.distance + s.setpoint_ratio * 12e-9, rel=1e-9)
     assert panel.scene.touching_frames > 0  # the default state is on the repulsive branch
-    assert panel.scene.caption in panel.readout.value
+    assert html.escape(panel.scene.caption) in panel.caption.value
 
 
 # -- lateral ------------------------------------------------------------------------------------

@@ -401,6 +401,48 @@ def test_a_drag_computes_one_frame_ahead_of_the_page_and_no_more(monkeypatch):
     assert loop.now - start >= PAINT_WAIT - 0.003
 
 
+def test_a_view_waits_for_the_figure_s_paint_during_a_drag_and_the_newest_wins(monkeypatch):
+    # issue 24: a 3D view's animation (3-6 ms of the kernel's step on the modes panels) ran
+    # while the figure's frame was on its way; during a drag it now runs once the page painted
+    # that frame, and only the newest update's
+    from afmsmiler.plots.live import PAINT_WAIT
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    p, live = _drawing_lever(loop)
+    shown = []
+    p.after_frame(lambda: shown.append("cell"))  # not a move from the browser: at once
+    assert shown == ["cell"]
+    p.in_drag = True
+    p.after_frame(lambda: shown.append("no page yet"))  # no page ever said it painted: at once
+    assert shown[-1] == "no page yet"
+    live._handle_message(live, {"painted": live.frames_sent}, [])
+    live.figure.axes[0].lines[0].set_ydata([0.0, 7.0])
+    sent = live.frames_sent
+    live.sync()  # an update's frame
+    assert live.frames_sent == sent + 1
+    p.after_frame(lambda: shown.append("old"))
+    p.after_frame(lambda: shown.append("new"))  # a newer update before the paint
+    p.in_drag = False
+    for _ in range(10):
+        loop.now += 0.002
+        loop.turn()
+    assert shown[-1] == "no page yet"  # waiting for the paint
+    live._handle_message(live, {"painted": live.frames_sent}, [])
+    loop.now += 0.002
+    loop.run()
+    assert shown[2:] == ["new"]
+    # a page that never answers costs at most PAINT_WAIT; a failure is shown, not raised
+    p.in_drag = True
+    p.after_frame(lambda: 1 / 0)
+    p.in_drag = False
+    start = loop.now
+    while p.error is None:
+        loop.now += 0.002
+        loop.turn()
+        assert loop.now - start < PAINT_WAIT + 0.01
+    assert "ZeroDivisionError" in p.error
+
+
 def test_a_painted_message_is_taken_only_for_a_frame_sent():
     _, live = _lever_with_figure()
     for bad in ({"painted": 0}, {"painted": -1}, {"painted": live.frames_sent + 1},

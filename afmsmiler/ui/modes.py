@@ -28,6 +28,7 @@ move).
 from __future__ import annotations
 
 import functools
+import html
 import math
 from dataclasses import dataclass
 
@@ -86,6 +87,8 @@ class _SliderPanel(Panel):
     def __init__(self, scene: bool = False, vis=None, **initial):
         self.controls = self.declared_controls(initial)
         self.readout = widgets.HTML()
+        #: The 3D view's caption (its magnifications), under the readout.
+        self.caption = widgets.HTML()
         self.figure = None
         self.scene = None
         self.fig = self.new_figure(figsize=self.FIGSIZE)
@@ -99,6 +102,19 @@ class _SliderPanel(Panel):
             from ..scenes.modes import ModesScene
             self.scene = ModesScene(kind, vis=self.scene_root())
         return self.scene
+
+    def _animate(self, kind: str, animate) -> None:
+        """Show this update's motion in the 3D view, ``animate(scene)``, and its caption; during
+        a drag once the page painted the figure (:meth:`~afmsmiler.ui.panel.Panel.after_frame`).
+        """
+        scene = self._scene(kind)
+        if scene is None:
+            return
+
+        def show():
+            animate(scene)
+            self.caption.value = f"<div>3D view: {html.escape(scene.caption)}</div>"
+        self.after_frame(show)
 
     def _quick_then_full(self, quick, full) -> None:
         """Run ``full()``; for a move from the browser in a live notebook ``quick()`` at once
@@ -143,7 +159,10 @@ class _SliderPanel(Panel):
         figure = super().widget().children[1]
         self.readout.layout.margin = "0 0 0 16px"
         self.readout.layout.width = "420px"
-        top = widgets.HBox([widgets.VBox(list(self.controls.values())), self.readout])
+        self.caption.layout.margin = "0 0 0 16px"
+        self.caption.layout.width = "420px"
+        top = widgets.HBox([widgets.VBox(list(self.controls.values())),
+                            widgets.VBox([self.readout, self.caption])])
         return widgets.VBox([top, figure])
 
 
@@ -432,16 +451,14 @@ class TappingPanel(_SliderPanel):
         self.last = TappingState(lever, curve, r, zc, phase, e_dis, attractive, depth)
         jumps = curve.jumps  # the same run of the approach as operating_point's
         self.draw(TappingFigure, curve, point, jumps=jumps, status="")
-        scene = self._scene("tapping")
         if point is None:
             self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
                                   f"to z_c = {shown(float(curve.distance.min()), 'nm', '.3g')}): "
                                   f"no state is held; raise the setpoint.</div>")
             return
-        if scene is not None:
-            scene.animate_tapping(zc, r * lever.free_amplitude,
-                                  free_amplitude=lever.free_amplitude,
-                                  contact_distance=lever.intermolecular_distance)
+        self._animate("tapping", lambda scene: scene.animate_tapping(
+            zc, r * lever.free_amplitude, free_amplitude=lever.free_amplitude,
+            contact_distance=lever.intermolecular_distance))
         s = self.last
         self.readout.value = _table([
             ("lever", "typed" if probe == TYPED else
@@ -452,8 +469,7 @@ class TappingPanel(_SliderPanel):
             ("phase lag", shown(phase, "deg")), ("E_dis per cycle", shown(e_dis, "zJ")),
             ("branch (net force)", s.branch),
             ("tip touches the sample", f"yes, {shown(depth, 'nm', '.2g')} deep" if s.touches
-             else f"no, {shown(-depth, 'nm', '.2g')} clear")]) + (
-            f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+             else f"no, {shown(-depth, 'nm', '.2g')} clear")])
 
 
 # -- lateral force --------------------------------------------------------------------------------
@@ -571,10 +587,8 @@ class LateralPanel(_SliderPanel):
         twist, signal = lever.twist(forces), lever.signal(forces)
         self.last = LateralState(images, loop, row, mu.heights, twist, signal)
         self.draw(LateralFigure, loop, images, row)
-        scene = self._scene("lateral")
-        if scene is not None:
-            scene.animate_lateral(x, twist, signal,
-                                  materials=mu.heights[row] == si["friction_b"])
+        self._animate("lateral", lambda scene: scene.animate_lateral(
+            x, twist, signal, materials=mu.heights[row] == si["friction_b"]))
         sliding = slice(1, -1)
         self.readout.value = _table([
             ("mean friction / load (line)",
@@ -582,8 +596,7 @@ class LateralPanel(_SliderPanel):
             ("mean trace / load (line)",
              f"{float(np.mean(loop.trace[sliding])) / loop.normal_force:.4g}"),
             ("lateral stiffness k_t", shown(lever.spring_constant, "N/m")),
-            ("largest twist", shown(float(np.abs(twist).max()), "mrad"))]) + (
-            f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+            ("largest twist", shown(float(np.abs(twist).max()), "mrad"))])
 
 
 # -- frequency modulation -------------------------------------------------------------------------
@@ -673,18 +686,16 @@ class FrequencyShiftPanel(_SliderPanel):
         self.last = FrequencyShiftState(curve, law)
         self.draw(FrequencyShiftFigure, curve)
         i = int(np.argmin(np.abs(z - d["shown"])))
-        scene = self._scene("fm")
-        if scene is not None:
-            scene.animate_fm(float(z[i]), curve.amplitude, float(curve.frequency_shift[i]),
-                             resonance_frequency=curve.resonance_frequency)
+        self._animate("fm", lambda scene: scene.animate_fm(
+            float(z[i]), curve.amplitude, float(curve.frequency_shift[i]),
+            resonance_frequency=curve.resonance_frequency))
         peak = float(np.max(np.abs(curve.force)))
         self.readout.value = _table([
             (f"df at z = {shown(float(z[i]), 'nm', '.3g')}",
              shown(float(curve.frequency_shift[i]), "Hz")),
             ("small-amplitude df there", shown(float(curve.gradient_shift[i]), "Hz")),
             ("largest inversion error", f"{100 * float(np.max(np.abs(curve.error))) / peak:.2g}"
-                                        f" % of the peak force")]) + (
-            f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+                                        f" % of the peak force")])
 
 
 # -- jumping --------------------------------------------------------------------------------------
@@ -785,10 +796,10 @@ class JumpingPanel(_SliderPanel):
         self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
                                  scan_settings.scan_time)
         self.draw(JumpingFigure, curve, result)
-        scene = self._scene("jumping")
-        if scene is not None:
+        def animate(scene):
             heights, xs, touching = self._cycle(curve, result)
             scene.animate_jumping(heights, xs, pixel_size=result.pixel_size, contact=touching)
+        self._animate("jumping", animate)
         crash = result.crashed
         self.readout.value = _table([
             ("pull-off force", shown(curve.pull_off_force, "nN")),
@@ -798,8 +809,7 @@ class JumpingPanel(_SliderPanel):
             ("largest lateral force", shown(float(np.nanmax(np.abs(
                 result.images["lateral force trace"]))), "nN")),
             ("crash", "none" if crash is None  # counted from 1, as the figures count lines
-             else f"line {crash.row + 1}, pixel {crash.column + 1}")]
-        ) + (f"<div>3D view: {self.scene.caption}</div>" if self.scene is not None else "")
+             else f"line {crash.row + 1}, pixel {crash.column + 1}")])
 
     @staticmethod
     def _cycle(curve, result, pixels: int = 4, frames: int = 12):

@@ -707,6 +707,45 @@ class Panel:
         finally:
             self.in_drag = False
 
+    #: The newest view update waiting for the page to paint its figure's frame
+    #: (:meth:`after_frame`), else None.
+    _after = None
+
+    def after_frame(self, show) -> None:
+        """Run ``show()``, a view's update the figure's frame need not wait for (a 3D view's
+        animation), once the page painted the frame this update sent.
+
+        In a live kernel, for a move from the browser (:attr:`in_drag`), with a page that says
+        what it painted: the figure's frame reaches the page while the kernel is idle, and the
+        3D view (which renders only once the figure painted, ``scene_view.js``) gets its
+        commands then (a whole :data:`~afmsmiler.plots.live.PAINT_WAIT` at most after the frame
+        was sent). A newer update's ``show`` replaces one still waiting, so the view shows the
+        newest values. Anywhere else (the first update, a cell, tests, nbval) it runs at once. A
+        failure is shown under the panel, as an update's.
+        """
+        self._after = None
+        loop = _live_loop() if self.in_drag else None
+        live = self.live
+        if loop is None or live is None or live.frames_painted == 0:
+            show()
+            return
+        from ..plots.live import PAINT_WAIT
+        self._after = show
+        seq, until = live.frames_sent, loop.time() + PAINT_WAIT
+
+        def poll():
+            if self._after is not show:  # a newer update brought its own
+                return
+            if live.frames_painted < seq and loop.time() < until:
+                loop.call_later(_PAINT_POLL, poll)
+                return
+            self._after = None
+            try:
+                show()
+            except Exception as exc:  # shown, not lost in the kernel's log
+                self._report_error(exc)
+        loop.call_soon(poll)
+
     def _flush(self) -> None:
         values = self.values()
         if values == self._applied:  # a browser echo of what the model already shows
