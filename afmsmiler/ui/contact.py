@@ -275,7 +275,8 @@ class ContactPanel(Panel):
                 from ..scenes.contact import ContactScene
                 self.scene = ContactScene(shape, current, vis=self.scene_root())
             else:
-                self.scene.update(shape, current)
+                scene = self.scene
+                self.after_frame(lambda: scene.update(shape, current))
         self.last = ContactState(system, cycle, current, curves)
         self.readout.value = self._readout_html()
 

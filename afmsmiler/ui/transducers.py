@@ -291,7 +291,8 @@ class TransducerPanel(Panel):
                 from ..scenes.transducers import TransducerScene
                 self.scene = TransducerScene(op, vis=self.scene_root())
             else:
-                self.scene.update(op)
+                scene = self.scene
+                self.after_frame(lambda: scene.update(op))
         self.last = TransducerState(
             model=model, mode=mode, value=value, chain=op.point, curves=curves,
             sensitivity=op.sensitivity, resolution=op.resolution, operation=op)
