@@ -73,11 +73,22 @@ def _floor(where, server, page):
     slider = B.find_slider(page, B.FLOOR_SLIDER)
     B.mark_text(page, slider)
     B.press_text(page, slider, "ArrowRight", 2)  # warm-up
-    stats = B.summary(B.press_text(page, slider, "ArrowRight", PRESSES))
+    times = B.press_text(page, slider, "ArrowRight", PRESSES)
+    stats = B.summary(times)
     drags = [_floor_drag(page, slider, key) for key in ("ArrowRight", "ArrowLeft") * 2]
     drags = [d for d in drags if d is not None]
-    stats["drag_after"] = statistics.median(drags) if drags else None
+    stats.update(times=[t for t in times if t is not None], drags=drags,
+                 drag_after=statistics.median(drags) if drags else None)
     return stats
+
+
+def _pool(floor, again):
+    """The floor of the whole run: the presses and drags of its start and its end together
+    (one sample of a shared machine moved by half from one run to the next); ``floor`` is
+    updated in place, so every panel's ratio is taken against it."""
+    times, drags = floor["times"] + again["times"], floor["drags"] + again["drags"]
+    floor.update(times=times, drags=drags, median=statistics.median(times) if times else None,
+                 drag_after=statistics.median(drags) if drags else None)
 
 
 #: The floor's drag: the label's changes dated at the animation frame after each (as a press of
@@ -265,6 +276,15 @@ def main():
                         traceback.print_exc(limit=2, file=sys.stdout)
                     if where == "voila":
                         page.goto("about:blank")  # voila ends that notebook's kernel
+                if floor is not None:
+                    try:
+                        again = _floor(where, server, page)
+                        _row(where, "floor, at the end", again, None)
+                        _pool(floor, again)
+                        _summary(where, results, floor)
+                    except Exception as exc:
+                        print(f"{where:<6s}{'floor, at the end':<24s}failed: "
+                              f"{type(exc).__name__}: {exc}")
             except Exception as exc:
                 print(f"{where}: could not run: {type(exc).__name__}: {exc}")
             finally:
@@ -277,6 +297,24 @@ def main():
         print(f"median/floor over the panels: best {min(ratios):.1f}x, "
               f"median {statistics.median(ratios):.1f}x, worst {max(ratios):.1f}x "
               f"(target <= {TARGET_RATIO}x)")
+
+
+def _summary(where, results, floor):
+    """Each panel against the floor of the whole run (:func:`_pool`)."""
+    print(f"{where}: against the floor of the whole run ({len(floor['times'])} presses, median "
+          f"{floor['median'] * 1e3:.1f} ms; its drag's last change "
+          f"{(floor['drag_after'] or 0) * 1e3:.0f} ms after the last key, {len(floor['drags'])} "
+          f"drags): key -> pixels / floor (target {TARGET_RATIO}x), drag's last frame after the "
+          f"last key / floor (target {DRAG_RATIO}x) and / the floor's drag")
+    for (w, name), (s, _) in results.items():
+        if w != where or not s.get("median"):
+            continue
+        after = s["drag"].after_last_key_s if s.get("drag") else None
+        drag = "" if after is None else (
+            f"{after / floor['median']:5.1f}x {'OK' if after / floor['median'] <= DRAG_RATIO else 'MISSED':6s}"
+            + (f"{after / floor['drag_after']:5.1f}x" if floor.get("drag_after") else ""))
+        r = s["median"] / floor["median"]
+        print(f"  {name:<24s}{r:5.2f}x {'OK' if r <= TARGET_RATIO else 'MISSED':6s}  {drag}")
 
 
 if __name__ == "__main__":
