@@ -694,6 +694,13 @@ def test_a_setpoint_never_reached_shows_the_curves_and_says_so():
     assert not panel.figure.lines["amplitude", "setpoint"].get_visible()
     panel.set(quality_factor=400.0)
     assert panel.last.distance > 0 and "held at z_c" in panel.readout.value
+    # with a 3D view: it keeps the last state it drew, and its caption says so
+    viewed = TappingPanel(vis=Recorder())
+    drawn = viewed.scene.caption
+    assert html.escape(drawn) in viewed.caption.value
+    viewed.set(quality_factor=1.005)
+    assert "never gets down" in viewed.readout.value
+    assert viewed.caption.value == f"<div>3D view: still the last state held, {html.escape(drawn)}</div>"
 
 
 def test_notebook_viscosity_dissipates_only_while_the_tip_touches():

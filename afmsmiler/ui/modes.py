@@ -455,6 +455,10 @@ class TappingPanel(_SliderPanel):
             self.readout.value = (f"<div><b>The approach never gets down to {r:g} A0</b> (down "
                                   f"to z_c = {shown(float(curve.distance.min()), 'nm', '.3g')}): "
                                   f"no state is held; raise the setpoint.</div>")
+            if self.scene is not None:  # its view keeps the last state it drew, and says so
+                self._after = None
+                self.caption.value = ("<div>3D view: still the last state held, "
+                                      f"{html.escape(self.scene.caption)}</div>")
             return
         self._animate("tapping", lambda scene: scene.animate_tapping(
             zc, r * lever.free_amplitude, free_amplitude=lever.free_amplitude,
@@ -796,6 +800,7 @@ class JumpingPanel(_SliderPanel):
         self.last = JumpingState(system, curve, result, mode.acquisition_time(scan_settings),
                                  scan_settings.scan_time)
         self.draw(JumpingFigure, curve, result)
+
         def animate(scene):
             heights, xs, touching = self._cycle(curve, result)
             scene.animate_jumping(heights, xs, pixel_size=result.pixel_size, contact=touching)
