@@ -42,6 +42,15 @@ print(len(me.children(recursive=True)),
 """
 
 
+#: Each panel's box: whether its content is painted (``content-visibility: auto``, live.css,
+#: skips a box out of view) and how far it lies from the viewport, in viewport heights.
+PAINTED = """() => Array.from(document.querySelectorAll('.afm-panel')).map(p => {
+  const r = p.getBoundingClientRect(), h = window.innerHeight;
+  return {painted: p.firstElementChild.checkVisibility({contentVisibilityAuto: true}),
+          away: r.top > h ? (r.top - h) / h : (r.bottom < 0 ? -r.bottom / h : 0)};
+})"""
+
+
 @pytest.fixture(scope="module")
 def lab(chromium, root):
     server = B.Server("lab", root, short=True).start()
@@ -82,6 +91,14 @@ def test_views_survive_run_all_and_every_rerun(lab, notebook):
     for i, im in enumerate(shots):
         im.save(SHOTS / f"{notebook[:2]}_view{i}.png")
     _distinct(shots)
+
+    # a panel out of view is not painted (its canvases and slider handles, composited layers,
+    # cost the page's every rendering update 10-15 ms in notebook 07), one in view is
+    page.wait_for_timeout(300)  # skipped or not from the next rendering update on
+    boxes = page.evaluate(PAINTED)
+    assert len(boxes) >= len(entries), boxes
+    assert all(b["painted"] for b in boxes if b["away"] == 0), boxes
+    assert not any(b["painted"] for b in boxes if b["away"] > 1), boxes
 
     # each panel's slider moves its figure and its own 3D view, and the kernel holds its value
     for e in entries:

@@ -855,6 +855,7 @@ class Panel:
             children.append(view)
         box = self._shown = widgets.VBox(children)
         box.add_class(f"afm-panel-{type(self).__name__}")  # see registry.PanelEntry.selector
+        box.add_class("afm-panel")  # not painted while out of view (plots/static/live.css)
         display(box)
         if self.fig is not None and self.fig.axes:
             show_static(self.fig)

@@ -650,6 +650,8 @@ class Figure {
     this.layout = Object.assign({}, layout, { width: layout.width * k, height: layout.height * k });
     const L = this.layout;
     this.root.style.width = `${L.width}px`;
+    // its size while out of view (live.css: content-visibility), the last one drawn once drawn
+    this.root.style.containIntrinsicSize = `auto ${L.width}px auto ${L.height}px`;
     this.header = el("div", "afm-live-header", this.root);
     this.suptitle = el("div", "afm-live-suptitle", this.header);
     this.figLegend = el("div", "afm-live-legend", this.header);
