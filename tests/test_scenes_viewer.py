@@ -355,3 +355,39 @@ def test_a_view_asks_for_frames_only_while_it_has_something_to_show(tmp_path):
             assert turned["renders"] >= 1, turned
         finally:
             b.close()
+
+
+def test_commands_are_packed_to_the_bytes_meshcat_s_own_packer_gives(monkeypatch):
+    """msgpack's C packer (view.packb) against meshcat's umsgpack, on every kind of command
+    the course sends: meshes with typed arrays (a stress-coloured lever), transforms,
+    properties, an animation's tracks, a delete, the camera's fit."""
+    from afmsmiler.scenes import view as view_module
+    from afmsmiler.ui.cantilever import CantileverPanel
+    from afmsmiler.ui.modes import TappingPanel
+
+    lowered = []
+    packb = view_module.packb
+    monkeypatch.setattr(view_module, "packb", lambda data: lowered.append(data) or packb(data))
+    view = SceneView()
+    _a_session(view.vis)
+    panel = CantileverPanel(scene=True)
+    panel.set(force=panel.values()["force"] / 2)
+    tapping = TappingPanel(scene=True)
+    tapping.set(setpoint_ratio=0.9)
+    kinds = {d["type"] for d in lowered}
+    assert {"set_object", "set_transform", "set_property", "set_animation", "delete",
+            "afm_fit"} <= kinds, kinds
+
+    def exts(value):
+        if isinstance(value, umsgpack.Ext):
+            return 1
+        if isinstance(value, dict):
+            return sum(exts(v) for v in value.values())
+        return sum(exts(v) for v in value) if isinstance(value, (list, tuple)) else 0
+
+    assert {d["type"] for d in lowered if exts(d)} >= {"set_object", "set_animation"}
+    assert sum(len(packb(d)) for d in lowered) > 100_000  # the meshes' arrays are in them
+    for data in lowered:
+        assert packb(data) == umsgpack.packb(data), data["type"]
+    with pytest.raises(TypeError, match="cannot pack a ndarray"):
+        packb({"type": "set_property", "value": np.zeros(3)})
