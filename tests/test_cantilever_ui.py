@@ -126,12 +126,13 @@ def test_panel_with_scene_updates_the_3d_view_in_place():
                                1000 * lever.deflection(centre[:, 0] * 1e-4, -3e-7) / 1e-4, rtol=1e-5,
                                atol=1e-9)
     assert p.scene_view() is view  # the same view throughout
-    assert "MPa" in p.readout.value and "x1,000" in p.readout.value
+    assert "MPa" in p.caption.value and "x1,000" in p.caption.value
     p.set(length=1000.0, width=5.0, thickness=0.2, youngs_modulus=10.0, force=500.0)
-    assert "capped" in p.readout.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
-    assert f"at most {DEFAULTS['max_drawn_tip']:g} L" in p.readout.value
+    assert "capped" in p.caption.value  # z(L) = 0.6 m would be drawn 6 km long otherwise
+    assert f"at most {DEFAULTS['max_drawn_tip']:g} L" in p.caption.value
     w = p.widget()
-    assert p.readout in w.children[0].children  # beside the controls, above the figure
+    readouts = w.children[0].children[1]  # beside the controls, above the figure
+    assert readouts.children == (p.readout, p.caption)
 
 
 def test_mode_shapes_figure_and_strain_axis():
@@ -181,10 +182,11 @@ def test_layout_fits_one_screen():
     p = CantileverPanel(scene=False)
     w = arrange(p.widget())
     top, figure = w.children
-    controls, readout = top.children
-    assert list(controls.children) == list(p.controls.values()) and readout is p.readout
+    controls, readouts = top.children
+    assert list(controls.children) == list(p.controls.values())
+    assert readouts.children == (p.readout, p.caption)  # the 3D view's caption under the numbers
     assert top.layout.flex_flow == "row wrap" and controls.layout.flex == "0 0 auto"
-    assert readout.layout.width == "460px"  # a long line (the slope warning) wraps inside it
+    assert readouts.layout.width == "460px"  # a long line (the slope warning) wraps inside it
     width, height = p.fig.get_size_inches() * p.fig.dpi
     assert width <= 1000 and height <= 600
     # the labels lie inside the figure (its static, Agg-drawn copy for the book)
@@ -476,3 +478,32 @@ def test_the_lever_gets_longer_on_fixed_axes(panel):
     panel.set(length=600.0)
     lo, hi = _limits(panel, "z", "x")
     assert lo == 0.0 and 600.0 <= hi
+
+
+def test_during_a_drag_the_3d_view_and_its_caption_follow_the_figure_s_paint(monkeypatch):
+    # issue 24: the stress-coloured lever (21 commands, 240 kB) was built and sent while the
+    # figure's frame was on its way; during a drag it is sent once the page painted that frame
+    import afmsmiler.ui.panel as panel_module
+    from afmsmiler.plots.live import LiveFigure
+    from tests.recording import Recorder
+    from tests.test_ui_panel import _Loop
+    loop = _Loop()
+    monkeypatch.setattr(panel_module, "_live_loop", lambda: loop)
+    vis = Recorder()
+    p = CantileverPanel(vis=vis)
+    p.live = LiveFigure(p.fig)
+    p.live._handle_message(p.live, {"painted": p.live.frames_sent}, [])  # a page painted it
+    calls, frames = len(vis.calls), p.live.frames_sent
+    p.in_drag = True
+    p.set(force=-250.0, exaggeration=20.0)
+    p.in_drag = False
+    assert p.live.frames_sent == frames + 1 and f"{p.last.tip_deflection * 1e9:.4g} nm" in \
+        p.readout.value  # the figure and the numbers at once
+    assert len(vis.calls) == calls and "deflection x20," not in p.caption.value  # the view waits
+    loop.run()
+    assert len(vis.calls) == calls  # ... for the paint
+    p.live._handle_message(p.live, {"painted": p.live.frames_sent}, [])
+    loop.now += 0.01
+    loop.run()
+    assert len(vis.calls) > calls and "deflection x20," in p.caption.value
+    assert p.scene.lever is p.last.lever and p.scene.exaggeration == pytest.approx(20.0)

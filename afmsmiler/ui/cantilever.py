@@ -116,7 +116,10 @@ class CantileverPanel(Panel):
     scene : CantileverScene or None
         The 3D view.
     readout : ipywidgets.HTML
-        k [N/m], f1..f3 [kHz], tip deflection [nm], max stress [MPa] and the color legend.
+        k [N/m], f1..f3 [kHz], tip deflection [nm] and max stress [MPa].
+    caption : ipywidgets.HTML
+        The 3D view's exaggeration and colour legend, under the readout (set with the view:
+        during a drag once the figure painted, :meth:`~afmsmiler.ui.panel.Panel.after_frame`).
     """
 
     def __init__(self, scene: bool = False, vis=None, **initial):
@@ -138,6 +141,7 @@ class CantileverPanel(Panel):
             section=sliders["section"], exaggeration=sliders["exaggeration"],
         )
         self.readout = widgets.HTML()
+        self.caption = widgets.HTML()
         self.figure = None
         self.modes_figure = None  # the mode shapes, once show_modes() drew them
         self.modes_fig = None
@@ -201,19 +205,24 @@ class CantileverPanel(Panel):
         if self.modes_figure is not None:
             self.modes_figure.update(curves)
         self.draw(CantileverFigure, curves)  # the figures' frames leave first
-        if self._want_scene:
-            if self.scene is None:
-                from ..scenes.cantilever import CantileverScene
-                self.scene = CantileverScene(bending, vis=self.scene_root(),
-                                             exaggeration=exaggeration,
-                                             force_per_unit=FORCE.slider_high / 1.5)
-            else:
-                self.scene.update(bending, exaggeration=exaggeration)
         self.last = CantileverState(
             lever=lever, force=bending.force, bending=bending, curves=curves,
             spring_constant=bending.spring_constant, frequencies=bending.frequencies,
             tip_deflection=bending.tip_deflection, max_stress=bending.max_stress)
         self.readout.value = self._readout_html()
+        if self._want_scene:
+            self.after_frame(lambda: self._show_scene(bending, exaggeration))
+
+    def _show_scene(self, bending, exaggeration: float) -> None:
+        """Draw ``bending`` in the 3D view and write its caption."""
+        if self.scene is None:
+            from ..scenes.cantilever import CantileverScene
+            self.scene = CantileverScene(bending, vis=self.scene_root(),
+                                         exaggeration=exaggeration,
+                                         force_per_unit=FORCE.slider_high / 1.5)
+        else:
+            self.scene.update(bending, exaggeration=exaggeration)
+        self.caption.value = self._caption_html()
 
     # -- the mode shapes ------------------------------------------------------------------
     def modes_widget(self) -> widgets.Widget:
@@ -259,17 +268,18 @@ class CantileverPanel(Panel):
             table += ("<tr><td colspan='2' style='color:#b00020'>beyond small deflections: "
                       f"|theta(L)| = {slope:.2g} rad &gt; {SMALL_SLOPE:g} rad, so linear beam "
                       "theory (these curves) overestimates z</td></tr>")
-        legend = ""
-        if self.scene is not None:
-            from ..scenes.legends import legend_html
-            ex = self.scene.drawn_exaggeration
-            from ..scenes.cantilever import DEFAULTS as SCENE
-            note = ("" if ex == self.scene.exaggeration else
-                    f" (capped: tip drawn at most {SCENE['max_drawn_tip']:g} L away)")
-            shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
-            legend = (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
-                      "1 unit = 100 um</div>" + legend_html(self.scene.scale))
-        return f"<table>{table}</table>{legend}"
+        return f"<table>{table}</table>"
+
+    def _caption_html(self) -> str:
+        """The 3D view's exaggeration as drawn and its colour legend."""
+        from ..scenes.cantilever import DEFAULTS as SCENE
+        from ..scenes.legends import legend_html
+        ex = self.scene.drawn_exaggeration
+        note = ("" if ex == self.scene.exaggeration else
+                f" (capped: tip drawn at most {SCENE['max_drawn_tip']:g} L away)")
+        shown = f"{ex:,.0f}" if ex >= 10 else f"{ex:.2g}"
+        return (f"<div style='margin-top:6px'>3D view: deflection x{shown}{note}, "
+                "1 unit = 100 um</div>" + legend_html(self.scene.scale))
 
     def widget(self) -> widgets.Widget:
         """Controls with the readouts beside them, the figure below.
@@ -279,7 +289,8 @@ class CantileverPanel(Panel):
         student scrolls to it. This way the whole panel (about 900 px high) fits on one screen.
         """
         figure = super().widget().children[1]
-        self.readout.layout.margin = "0 0 0 16px"
-        self.readout.layout.width = "460px"  # a long warning wraps instead of pushing it below
-        top = widgets.HBox([widgets.VBox(list(self.controls.values())), self.readout])
+        readouts = widgets.VBox([self.readout, self.caption])
+        readouts.layout.margin = "0 0 0 16px"
+        readouts.layout.width = "460px"  # a long warning wraps instead of pushing it below
+        top = widgets.HBox([widgets.VBox(list(self.controls.values())), readouts])
         return widgets.VBox([top, figure])
