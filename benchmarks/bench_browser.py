@@ -301,8 +301,12 @@ def main():
 
 def _summary(where, results, floor):
     """Each panel against the floor of the whole run (:func:`_pool`)."""
+    q = statistics.quantiles(floor["times"], n=4) if len(floor["times"]) >= 2 else [0, 0, 0]
+    # the floor's presses fall in two groups an animation frame (16.7 ms at 60 Hz) apart: its
+    # median, and so every ratio, moves by up to half of that between runs
     print(f"{where}: against the floor of the whole run ({len(floor['times'])} presses, median "
-          f"{floor['median'] * 1e3:.1f} ms; its drag's last change "
+          f"{floor['median'] * 1e3:.1f} ms, quartiles {q[0] * 1e3:.0f} / {q[2] * 1e3:.0f} ms; "
+          f"its drag's last change "
           f"{(floor['drag_after'] or 0) * 1e3:.0f} ms after the last key, {len(floor['drags'])} "
           f"drags): key -> pixels / floor (target {TARGET_RATIO}x), drag's last frame after the "
           f"last key / floor (target {DRAG_RATIO}x) and / the floor's drag")
