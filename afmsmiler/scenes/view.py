@@ -218,8 +218,8 @@ def _ext(obj):
 def packb(data) -> bytes:
     """A command packed as meshcat's window packs it (``umsgpack.packb``), the same bytes.
 
-    msgpack's C packer: a stress-coloured lever's mesh took pure-Python ``umsgpack`` about
-    1.3 ms of the kernel per slider move. meshcat's typed arrays (``umsgpack.Ext``) become
+    msgpack's C packer, some 7 times quicker than the pure-Python ``umsgpack`` on the commands
+    of a stress-coloured lever's slider move. meshcat's typed arrays (``umsgpack.Ext``) become
     msgpack's extension objects of the same code and data.
 
     Parameters
