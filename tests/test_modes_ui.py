@@ -700,7 +700,8 @@ def test_a_setpoint_never_reached_shows_the_curves_and_says_so():
     assert html.escape(drawn) in viewed.caption.value
     viewed.set(quality_factor=1.005)
     assert "never gets down" in viewed.readout.value
-    assert viewed.caption.value == f"<div>3D view: still the last state held, {html.escape(drawn)}</div>"
+    assert viewed.caption.value == \
+        f"<div>3D view: still the last state held, {html.escape(drawn)}</div>"
 
 
 def test_notebook_viscosity_dissipates_only_while_the_tip_touches():

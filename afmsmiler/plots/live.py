@@ -64,9 +64,9 @@ __all__ = ["Description", "LiveFigure", "decimate", "describe", "static_html", "
 
 STATIC = Path(__file__).with_name("static")
 #: Seconds a panel waits at most for a view to say it painted a frame before it sends more than
-#: :data:`FRAMES_AHEAD` ahead (:meth:`LiveFigure.busy`): a page whose main thread is saturated (a drag) paints a
-#: frame in 20-40 ms, and the frames sent meanwhile queued behind each other, each a step the
-#: student had already passed; a page that never answers costs no more than this.
+#: :data:`FRAMES_AHEAD` ahead (:meth:`LiveFigure.busy`): a page whose main thread is saturated
+#: (a drag) paints a frame in 20-40 ms, and the frames sent meanwhile queued behind each other,
+#: each a step the student had already passed; a page that never answers costs no more than this.
 PAINT_WAIT = 0.25
 #: Frames a panel may have sent and not yet seen painted when it runs its next update
 #: (:meth:`LiveFigure.busy`): one, so the model computes a drag's next step while the page

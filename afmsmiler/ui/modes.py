@@ -157,12 +157,10 @@ class _SliderPanel(Panel):
         ipywidgets.VBox
         """
         figure = super().widget().children[1]
-        self.readout.layout.margin = "0 0 0 16px"
-        self.readout.layout.width = "420px"
-        self.caption.layout.margin = "0 0 0 16px"
-        self.caption.layout.width = "420px"
-        top = widgets.HBox([widgets.VBox(list(self.controls.values())),
-                            widgets.VBox([self.readout, self.caption])])
+        readouts = widgets.VBox([self.readout, self.caption])
+        readouts.layout.margin = "0 0 0 16px"
+        readouts.layout.width = "420px"
+        top = widgets.HBox([widgets.VBox(list(self.controls.values())), readouts])
         return widgets.VBox([top, figure])
 
 

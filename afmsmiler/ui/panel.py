@@ -696,8 +696,9 @@ class Panel:
             quiet = 0 if self._moves != seen else quiet + 1
             loop.call_soon(self._settle, loop, self._moves, quiet, until)
             return
-        if self.live is not None and self.live.busy(loop.time()):  # the page still paints two frames: the moves
-            # that come meanwhile fold into this update (bounded: see LiveFigure.busy)
+        if self.live is not None and self.live.busy(loop.time()):
+            # the page has two frames to paint: the moves that come meanwhile fold into this
+            # update (bounded: see LiveFigure.busy)
             loop.call_later(_PAINT_POLL, self._settle, loop, self._moves, _QUIET_TURNS, until)
             return
         self._deferred = False
