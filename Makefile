@@ -88,6 +88,7 @@ install: $(STAMP)
 ## Open the course notebooks in JupyterLab, served on 127.0.0.1 only.
 lab: $(STUDENT_STAMP)
 	MPLBACKEND= $(VENV)/bin/jupyter lab --ServerApp.ip=127.0.0.1 --ServerApp.root_dir=notebooks \
+	  --ServerApp.kernel_websocket_connection_class=afmsmiler.serving.NoDelayConnection \
 	  $(if $(DISPLAY),,--no-browser) $(if $(filter 0,$(shell id -u)),--allow-root) $(LAB_ARGS)
 
 ## A module as a web app (voila, 127.0.0.1 only: code hidden, widgets and 3D views live):

@@ -27,6 +27,7 @@ import sys
 import tempfile
 from pathlib import Path
 
+from .serving import VOILA_OPTION
 from .ui.registry import MODULES
 from .validation import check_choice
 
@@ -181,7 +182,7 @@ def voila_command(target, *, port: int = 8866, open_browser: bool = False,
     voila = Path(sys.executable).parent / "voila"
     cmd = [str(voila) if voila.exists() else (shutil.which("voila") or "voila"),
            "--Voila.ip=127.0.0.1", f"--port={port}", f"--template={TEMPLATE}",
-           "--VoilaConfiguration.classic_tree=True",
+           "--VoilaConfiguration.classic_tree=True", VOILA_OPTION,
            "--Voila.open_browser=" + ("True" if open_browser else "False")]
     if token is not None:
         cmd.append(f"--token={token}")

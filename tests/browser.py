@@ -40,6 +40,7 @@ import urllib.request
 from dataclasses import dataclass, field
 from pathlib import Path
 
+from afmsmiler.serving import SERVER_OPTION
 from afmsmiler.ui.registry import PANELS as REGISTRY
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -220,7 +221,8 @@ class Server:
                    f"--IdentityProvider.token={TOKEN}", f"--ServerApp.root_dir={nbdir}",
                    f"--LabApp.workspaces_dir={self.root / 'workspaces'}",
                    f"--LabApp.user_settings_dir={self._settings()}",
-                   "--LabApp.expose_app_in_browser=True", "--ServerApp.open_browser=False"]
+                   "--LabApp.expose_app_in_browser=True", "--ServerApp.open_browser=False",
+                   SERVER_OPTION]
             if hasattr(os, "geteuid") and os.geteuid() == 0:
                 cmd.append("--allow-root")
         else:

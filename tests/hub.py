@@ -209,7 +209,7 @@ class Hub:
             "chp": str(CHP), "db": f"sqlite:///{self.secret / 'jupyterhub.sqlite'}",
             "cookie": str(self.secret / "cookie_secret"), "pid": str(self.secret / "proxy.pid"),
             "users": self.names, "password": PASSWORD, "env": env,
-            "singleuser": [python, "-m", "jupyterhub.singleuser"],
+            "singleuser": [python, "-m", "jupyterhub.singleuser"], "nodelay": B.SERVER_OPTION,
         }
         path = self.secret / "jupyterhub_config.py"
         path.write_text(
@@ -228,7 +228,7 @@ class Hub:
             "c.Authenticator.allowed_users = set(k['users'])\n"
             "c.JupyterHub.spawner_class = 'localprocess'\n"
             "c.Spawner.cmd = k['singleuser']\n"
-            "c.Spawner.args = ['--LabApp.expose_app_in_browser=True']\n"
+            "c.Spawner.args = ['--LabApp.expose_app_in_browser=True', k['nodelay']]\n"
             "c.Spawner.default_url = '/lab'\n"
             "c.Spawner.ip = '127.0.0.1'\n"
             "c.Spawner.environment = k['env']\n"

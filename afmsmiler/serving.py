@@ -1,0 +1,50 @@
+"""The course's Jupyter servers send a kernel's messages to the browser at once.
+
+jupyter_server leaves Nagle's algorithm on for a kernel's websocket (tornado's default, see
+``tornado.websocket.WebSocketHandler.set_nodelay``). A slider's drag is a steady exchange of small
+messages: the page sends a move, the kernel answers with its status, the slider's echo, the new
+figure and its status again, and ipywidgets sends the next move only once that last status is in.
+With Nagle on, the server sends the first small message and holds the rest until the browser
+acknowledges it; the browser's TCP delays that acknowledgement (up to 40 ms on Linux) because it
+has nothing to send, as it waits for the status. So every round trip of a drag waited about
+40 ms: a text label (the floor of ``benchmarks/bench_browser.py``) dragged at 30 key presses a
+second changed 91-105 ms after the last key; with the kernel's websocket in no-delay mode, 24-25 ms,
+what one key press costs. A single press after a pause was never delayed (TCP acknowledges at once
+after an idle spell), which is why only drags showed it.
+
+:class:`NoDelayConnection` is jupyter_server's own kernel connection with no-delay set when the
+websocket opens; every server the course starts uses it through its option: ``make lab``
+(:data:`SERVER_OPTION`), the apps (:data:`VOILA_OPTION`, :func:`afmsmiler.apps.voila_command`), the
+image of a class's JupyterHub and of Binder (``binder/postBuild`` writes it into the server's
+configuration) and the tests' servers.
+"""
+from __future__ import annotations
+
+from jupyter_server.services.kernels.connection.channels import ZMQChannelsWebsocketConnection
+
+__all__ = ["CONNECTION_CLASS", "NoDelayConnection", "SERVER_OPTION", "VOILA_OPTION"]
+
+
+class NoDelayConnection(ZMQChannelsWebsocketConnection):
+    """jupyter_server's kernel websocket connection, its socket in no-delay mode (TCP_NODELAY).
+
+    Every message the kernel sends leaves the server when it is written, instead of waiting for
+    the browser to acknowledge the one before (see the module's notes).
+    """
+
+    def connect(self):
+        """Set no-delay on the websocket, then connect it to the kernel as jupyter_server does."""
+        try:
+            self.websocket_handler.set_nodelay(True)
+        except Exception as exc:  # a socket gone already: the connection fails as it would
+            self.log.warning("afmsmiler: could not set TCP_NODELAY on a kernel websocket: %s",
+                             exc)
+        return super().connect()
+
+
+#: The class's import name, as Jupyter's configuration takes it.
+CONNECTION_CLASS = f"{NoDelayConnection.__module__}.{NoDelayConnection.__qualname__}"
+#: The option that makes a Jupyter server (JupyterLab, a hub's single-user server) use it.
+SERVER_OPTION = f"--ServerApp.kernel_websocket_connection_class={CONNECTION_CLASS}"
+#: The same option for voila's own server (:func:`afmsmiler.apps.voila_command`).
+VOILA_OPTION = f"--Voila.kernel_websocket_connection_class={CONNECTION_CLASS}"
