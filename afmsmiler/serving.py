@@ -15,14 +15,20 @@ after an idle spell), which is why only drags showed it.
 :class:`NoDelayConnection` is jupyter_server's own kernel connection with no-delay set when the
 websocket opens; every server the course starts uses it through its option: ``make lab``
 (:data:`SERVER_OPTION`), the apps (:data:`VOILA_OPTION`, :func:`afmsmiler.apps.voila_command`), the
-image of a class's JupyterHub and of Binder (``binder/postBuild`` writes it into the server's
-configuration) and the tests' servers.
+image of a class's JupyterHub and of Binder (``binder/postBuild`` writes it into the servers'
+configuration with :func:`write_server_config`; ``python -m afmsmiler.serving`` does the same for
+an environment of one's own, The Littlest JupyterHub's) and the tests' servers.
 """
 from __future__ import annotations
 
+import json
+import sys
+from pathlib import Path
+
 from jupyter_server.services.kernels.connection.channels import ZMQChannelsWebsocketConnection
 
-__all__ = ["CONNECTION_CLASS", "NoDelayConnection", "SERVER_OPTION", "VOILA_OPTION"]
+__all__ = ["CONNECTION_CLASS", "NoDelayConnection", "SERVER_OPTION", "VOILA_OPTION",
+           "write_server_config"]
 
 
 class NoDelayConnection(ZMQChannelsWebsocketConnection):
@@ -43,8 +49,40 @@ class NoDelayConnection(ZMQChannelsWebsocketConnection):
 
 
 #: The class's import name, as Jupyter's configuration takes it.
-CONNECTION_CLASS = f"{NoDelayConnection.__module__}.{NoDelayConnection.__qualname__}"
+CONNECTION_CLASS = "afmsmiler.serving.NoDelayConnection"  # (not __module__: "__main__" under -m)
 #: The option that makes a Jupyter server (JupyterLab, a hub's single-user server) use it.
 SERVER_OPTION = f"--ServerApp.kernel_websocket_connection_class={CONNECTION_CLASS}"
 #: The same option for voila's own server (:func:`afmsmiler.apps.voila_command`).
 VOILA_OPTION = f"--Voila.kernel_websocket_connection_class={CONNECTION_CLASS}"
+
+
+def write_server_config(prefix=None) -> Path:
+    """Make every Jupyter server of an environment use :class:`NoDelayConnection`.
+
+    Writes ``PREFIX/etc/jupyter/jupyter_server_config.d/afmsmiler.json``, which every Jupyter
+    server started from that environment reads (JupyterLab, a hub's single-user server and the
+    voila pages it serves).
+
+    Parameters
+    ----------
+    prefix : str or os.PathLike, optional
+        The environment's prefix; this Python's (``sys.prefix``) by default.
+
+    Returns
+    -------
+    pathlib.Path
+        The file written.
+    """
+    prefix = Path(sys.prefix if prefix is None else prefix)
+    if not prefix.is_dir():
+        raise ValueError(f"prefix must be an existing folder, got {str(prefix)!r}")
+    folder = prefix / "etc" / "jupyter" / "jupyter_server_config.d"
+    folder.mkdir(parents=True, exist_ok=True)
+    path = folder / "afmsmiler.json"
+    path.write_text(json.dumps({"ServerApp": {"kernel_websocket_connection_class":
+                                              CONNECTION_CLASS}}, indent=2) + "\n")
+    return path
+
+
+if __name__ == "__main__":
+    print(f"wrote {write_server_config(sys.argv[1] if len(sys.argv) > 1 else None)}")

@@ -15,7 +15,8 @@ from pathlib import Path
 import pytest
 
 from afmsmiler import apps
-from afmsmiler.serving import CONNECTION_CLASS, SERVER_OPTION, VOILA_OPTION, NoDelayConnection
+from afmsmiler.serving import (CONNECTION_CLASS, SERVER_OPTION, VOILA_OPTION, NoDelayConnection,
+                               write_server_config)
 
 ROOT = Path(__file__).resolve().parents[1]
 
@@ -75,6 +76,7 @@ def test_the_class_is_what_jupyter_s_configuration_imports():
     out = subprocess.run([sys.executable, "-c", f"import {module} as m; print(m.{name}.__mro__[1])"],
                          capture_output=True, text=True, check=True).stdout
     assert "ZMQChannelsWebsocketConnection" in out
+    assert (module, name) == (NoDelayConnection.__module__, NoDelayConnection.__qualname__)
     assert SERVER_OPTION == f"--ServerApp.kernel_websocket_connection_class={CONNECTION_CLASS}"
     assert VOILA_OPTION == f"--Voila.kernel_websocket_connection_class={CONNECTION_CLASS}"
 
@@ -102,3 +104,14 @@ def test_binder_s_image_configures_every_jupyter_server_with_it(tmp_path):
     conf = json.loads((tmp_path / "etc" / "jupyter" / "jupyter_server_config.d" /
                        "afmsmiler.json").read_text())
     assert conf == {"ServerApp": {"kernel_websocket_connection_class": CONNECTION_CLASS}}
+
+
+def test_an_environment_of_one_s_own_is_configured_by_the_module(tmp_path):
+    out = subprocess.run([sys.executable, "-m", "afmsmiler.serving", str(tmp_path)],
+                         capture_output=True, text=True, check=True, cwd=ROOT).stdout
+    path = tmp_path / "etc" / "jupyter" / "jupyter_server_config.d" / "afmsmiler.json"
+    assert str(path) in out
+    assert json.loads(path.read_text())["ServerApp"]["kernel_websocket_connection_class"] == \
+        CONNECTION_CLASS
+    with pytest.raises(ValueError, match="prefix must be an existing folder"):
+        write_server_config(tmp_path / "missing")
