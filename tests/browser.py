@@ -481,6 +481,8 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
   // thread) only when a paint was counted, not on every animation frame, where the reads took a
   // third of the page's time during a drag and delayed the kernel's frames they were timing
   const live = baseFrames.some(f => f);
+  const figs = (root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel)))
+    .map(f => f.afmFigure).filter(f => f);
   const onKey = () => {
     st.keys++;
     st.tLast = performance.now();
@@ -504,7 +506,12 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
       if (newPaint) { lastPainted = painted; lastChange = now; }
       if (hash !== lastHash) {
         st.states++;
-        st.times.push(ts - (st.t0 || ts));
+        // a live figure's paint is counted after the rendering that showed it, so this check
+        // runs an animation frame later: the change is dated by the frame that drew it, as a
+        // single press's is (afm.arm) and as the floor's text is by the frame after its mutation
+        const drawn = newPaint ? figs.map(f => f.drawnAt).filter(t => t != null) : [];
+        const at = drawn.length ? Math.min(ts, Math.max(...drawn)) : ts;
+        st.times.push(at - (st.t0 || at));
         lastHash = hash;
         lastChange = now;
       }
