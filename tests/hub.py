@@ -264,9 +264,10 @@ class Hub:
                 return self
             except Exception:  # not up yet
                 time.sleep(0.3)
+        tail = self.tail()  # before stop(), which removes the log with the hub's folder
         self.stop()
         raise RuntimeError(f"jupyterhub did not answer within {self.startup_timeout:g} s: "
-                           f"{self.tail()}")
+                           f"{tail}")
 
     def tail(self, n: int = 3000) -> str:
         try:
