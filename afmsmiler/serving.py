@@ -9,8 +9,8 @@ acknowledges it; the browser's TCP delays that acknowledgement (up to 40 ms on L
 has nothing to send, as it waits for the status. So every round trip of a drag waited about
 40 ms: a text label (the floor of ``benchmarks/bench_browser.py``) dragged at 30 key presses a
 second changed 91-105 ms after the last key; with the kernel's websocket in no-delay mode, 24-25 ms,
-what one key press costs. A single press after a pause was never delayed (TCP acknowledges at once
-after an idle spell), which is why only drags showed it.
+what one key press costs. A single press after a pause is mostly spared (after an idle spell Linux
+acknowledges at once), which is why drags showed it and single presses hardly did.
 
 :class:`NoDelayConnection` is jupyter_server's own kernel connection with no-delay set when the
 websocket opens; every server the course starts uses it through its option: ``make lab``
