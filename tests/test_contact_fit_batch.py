@@ -187,6 +187,24 @@ def _good():
                 tip=Parabolic(20e-9), poisson_ratio=NU, spring_constant=K)
 
 
+@pytest.mark.parametrize("with_k", [True, False], ids=["Z_np with k", "tip position"])
+@pytest.mark.parametrize("tip", TIPS, ids=IDS)
+def test_the_step_tolerance_stops_where_a_tight_one_agrees(tip, with_k, monkeypatch):
+    # the fit stops at scipy least_squares' default xtol (1e-8): a fit ground on to 1e-13 (where
+    # only round-off moves) gives the same E to 1e-7 and contact point to 1e-4 of its error
+    curves = _curves(tip, seed=30)
+    args = ([_axis(c, with_k) for c in curves], [c.force for c in curves], tip, NU)
+    k = K if with_k else None
+    stopped = fit_curves(*args, spring_constant=k)
+    monkeypatch.setattr(fit_module, "_XTOL", 1e-13)
+    tight = fit_curves(*args, spring_constant=k)
+    np.testing.assert_allclose(stopped.youngs_modulus, tight.youngs_modulus, rtol=1e-7)
+    np.testing.assert_allclose(stopped.youngs_modulus_error, tight.youngs_modulus_error,
+                               rtol=1e-6)
+    assert np.all(np.abs(stopped.contact_point - tight.contact_point)
+                  <= 1e-4 * tight.contact_point_error)
+
+
 @pytest.mark.parametrize("change, error, match", [
     (dict(position=np.zeros(800)), ValueError, r"^position must be a 2-D array"),
     (dict(force=np.zeros((2, 799))), ValueError, r"^force must have the shape of position"),
