@@ -391,3 +391,75 @@ def test_commands_are_packed_to_the_bytes_meshcat_s_own_packer_gives(monkeypatch
         assert packb(data) == umsgpack.packb(data), data["type"]
     with pytest.raises(TypeError, match="cannot pack a ndarray"):
         packb({"type": "set_property", "value": np.zeros(3)})
+
+
+# a render made dear (30 ms of the page's thread, as software WebGL's read-back of the canvas is
+# on a machine without a GPU), then renders counted while the page runs `script` for `ms`
+_DEAR_JS = """async ([ms, script]) => {
+  const v = document.getElementById('scene').afmView.viewer;
+  const render = v.renderer.render;
+  let renders = 0;
+  v.renderer.render = function (...a) {
+    renders++;
+    const until = performance.now() + 30;
+    while (performance.now() < until) { /* the render's cost */ }
+    return render.apply(this, a);
+  };
+  await new Promise((r) => setTimeout(r, 1000)); // its cost measured
+  renders = 0;
+  const t0 = performance.now();
+  await (new Function('ms', script))(ms);
+  const elapsed = performance.now() - t0;
+  v.renderer.render = render;
+  return {renders, elapsed};
+}"""
+# a 30 Hz drag: a key outside the view, and the figure painting what it changed 10 ms later
+_DRAG_JS = """return (async () => {
+  const frames = globalThis.__afmsmilerFrames;
+  const end = performance.now() + ms;
+  while (performance.now() < end) {
+    document.body.dispatchEvent(new KeyboardEvent('keydown', {key: 'ArrowRight', bubbles: true}));
+    await new Promise((r) => setTimeout(r, 10));
+    frames.paintedAt = performance.now();
+    await new Promise((r) => setTimeout(r, 23));
+  }
+})();"""
+
+
+@pytest.mark.browser
+def test_a_dear_render_leaves_the_page_most_of_its_time_and_a_drag_alone(tmp_path):
+    """A looping animation whose render costs 30 ms (software WebGL) renders at most about a
+    third of the time (RENDER_WAIT: a quarter, plus the frames' rounding), where rendering every
+    frame took two thirds; while the student drags a slider (a key every 33 ms, each painted by
+    the figure) it renders only as MAX_WAIT_MS allows, so no key waits behind a render."""
+    import os
+    if not os.access("/usr/bin/chromium", os.X_OK):
+        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    from meshcat.animation import Animation
+    from afmsmiler.scenes.animation import set_translations
+
+    view = SceneView()
+    view.vis["box"].set_object(g.Box([1.0, 1.0, 1.0]))
+    anim = Animation(default_framerate=30)
+    frames = np.arange(60.0)
+    set_translations(anim, view.vis["box"], frames,
+                     np.c_[np.sin(frames / 60 * 2 * np.pi), 0 * frames, 0 * frames])
+    view.vis.set_animation(anim, play=True, repetitions=10**6)
+    page = tmp_path / "moving.html"
+    page.write_text(view.static_html(), encoding="utf-8")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+                              args=["--no-sandbox", "--disable-gpu"])
+        try:
+            pg = b.new_page(viewport={"width": 400, "height": 300})
+            pg.goto(page.as_uri())
+            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
+            rest = pg.evaluate(_DEAR_JS, [3000, "return new Promise((r) => setTimeout(r, ms));"])
+            assert rest["renders"] >= 3, rest  # it plays
+            assert rest["renders"] * 30 <= rest["elapsed"] / 3, rest
+            drag = pg.evaluate(_DEAR_JS, [1200, _DRAG_JS])
+            # MAX_WAIT_MS (400 ms) allows three in 1.2 s; rendering between the keys made 8
+            assert drag["renders"] <= 4, drag
+        finally:
+            b.close()

@@ -119,14 +119,22 @@ function afmCreateViewer(MeshCat, host) {
   // meshcat renders on every animation frame while an animation plays. Without a GPU (software
   // WebGL) a rendered frame of a view delays the page's next frame by 100-200 ms, so a playing
   // animation took every frame from the page: a panel's figure painted none of a 15-step drag
-  // and each key press waited about a second. Here a view renders only while on screen, and
-  // after a render waits 1.5 times what that render added to its frame (nothing with a GPU:
-  // every frame is rendered), so a view takes at most about 40 % of the page's frames.
+  // and each key press waited about a second. Here a view renders only while on screen, and a
+  // render's cost is the page's time from the render to the end of that frame's rendering
+  // update (measured in a task posted from the animation frame, which runs after it). That
+  // includes the commit: with software compositing (headless Chromium, a machine without a GPU)
+  // the compositor reads the WebGL canvas back (20-25 ms a render on a 2-core machine), which
+  // the time to the next animation frame does not show.
+  // After a render a view waits RENDER_WAIT times its cost less one frame, so a view takes about
+  // a quarter of the page's main thread at most where a render is dear, and renders every frame
+  // where it is cheap (under a third of a frame: a GPU).
   //
   // A key press or a click outside the 3D views (a slider moved) holds the views' renders until
   // the figures painted what it changed: while a live figure (plots/static/live.js) has a frame to
   // paint, or for INPUT_HOLD_MS after the input until a figure painted, a view does not render,
-  // so the figure's paint never waits for a software render. A view waits at most MAX_WAIT_MS.
+  // so the figure's paint never waits for a software render. A dear render (over CHEAP_MS) waits
+  // the whole INPUT_HOLD_MS after the last input: in a drag the next key comes 16-33 ms after a
+  // paint, and a render started in that gap holds it back. A view waits at most MAX_WAIT_MS.
   //
   // The loop runs only while it has work: a view on screen with an animation playing or a
   // render due. meshcat's own loop asks for every animation frame for as long as the page lives,
@@ -134,26 +142,36 @@ function afmCreateViewer(MeshCat, host) {
   // of a core per view page. A change wakes it: a command, anything that marks the view dirty
   // (meshcat's camera controls, its animation's progress), an animation played from its
   // controls, the view coming on screen.
-  const FRAME_MS = 1000 / 60, INPUT_HOLD_MS = 150, MAX_WAIT_MS = 400;
+  const FRAME_MS = 1000 / 60, INPUT_HOLD_MS = 150, MAX_WAIT_MS = 400, RENDER_WAIT = 3;
+  const CHEAP_MS = FRAME_MS / 3;
   const frames = afmFrames();
   let visible = true, last = -Infinity, cost = 0, measuring = false, looping = false;
+  // a task after the current one (posted from an animation frame: after its rendering update)
+  const after = new MessageChannel();
+  let start = 0;
+  after.port1.onmessage = () => {
+    const end = performance.now();
+    cost = 0.6 * cost + 0.4 * (end - start);
+    last = end;
+    measuring = false;
+  };
   const step = () => {
     if (!running) { looping = false; return; }
     const now = performance.now();
-    if (measuring) { // the frame after a render: what the render added to it
-      const extra = Math.max(0, now - last - FRAME_MS);
-      cost = 0.6 * cost + 0.4 * extra;
-      measuring = false;
-    }
-    if (visible) viewer.animator.update();
-    const due = visible && viewer.needs_render;
-    if (due && now - last >= 2.5 * cost) {
-      const figureFirst = frames.pending > 0
-        || (now - frames.inputAt < INPUT_HOLD_MS && frames.paintedAt < frames.inputAt);
-      if (!figureFirst || now - last >= MAX_WAIT_MS) {
-        viewer.render();
-        last = performance.now();
-        measuring = true;
+    const due = visible && (viewer.needs_render || viewer.animator.playing) && !measuring;
+    if (due && now - last >= RENDER_WAIT * cost - FRAME_MS) {
+      const held = now - frames.inputAt < INPUT_HOLD_MS
+        && (frames.paintedAt < frames.inputAt || cost > CHEAP_MS);
+      if (!(frames.pending > 0 || held) || now - last >= MAX_WAIT_MS) {
+        start = now;
+        // the animation advances only in a frame that renders it (its clock keeps its time):
+        // meshcat's update also redraws its time control, a layout and paint of the page
+        viewer.animator.update();
+        if (viewer.needs_render) {
+          viewer.render();
+          measuring = true;
+          after.port2.postMessage(null);
+        }
       }
     }
     looping = visible && (viewer.needs_render || viewer.animator.playing || measuring);
