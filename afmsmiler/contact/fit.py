@@ -302,8 +302,8 @@ _CHUNK_POINTS = 1 << 18
 #: Levenberg-Marquardt iterations per curve at most (a curve converges in some 5 to 30).
 _MAX_ITERATIONS = 200
 # converged when the step in the scaled parameters (each of order 1) is below this: the default
-# xtol of scipy.optimize.least_squares, with its test |dx| <= xtol (xtol + |x|). Tighter (1e-12)
-# it only ground round-off: twice the model evaluations (a force-volume map's 19 instead of 6)
+# xtol of scipy.optimize.least_squares, with its test |dx| <= xtol (xtol + |x|). A tighter one
+# (1e-12) only grinds round-off: twice the model evaluations (a force-volume map's 19, not 6)
 # for changes in E of under 1e-8 relative, a millionth of its standard error
 # (tests/test_contact_fit_batch.py, the tolerance against a tight one)
 _XTOL = 1e-8
