@@ -7,6 +7,7 @@ reference here), sends it as comm messages, replays it to a late view, exports i
 and that nothing listens on a port or runs in another process.
 """
 import base64
+import contextlib
 import json
 import re
 
@@ -250,10 +251,6 @@ def test_legends_are_screen_space_text_in_a_view_and_plates_elsewhere():
 def test_fit_camera_frames_the_objects_in_chromium(tmp_path):
     """A box far from the origin, framed by the view's camera: its corners, projected by
     three.js's own camera, fill the view's height and stay inside it."""
-    import os
-    if not os.access("/usr/bin/chromium", os.X_OK):
-        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
-    sync_api = pytest.importorskip("playwright.sync_api")
     view = SceneView()
     view.vis["far/box"].set_object(g.Box([2.0, 1.0, 0.5]))
     view.vis["far/box"].set_transform(tf.translation_matrix([5.0, -3.0, 2.0]))
@@ -262,24 +259,52 @@ def test_fit_camera_frames_the_objects_in_chromium(tmp_path):
     page.write_text(view.static_html(), encoding="utf-8")
     corners = [[5 + sx, -3 + sy, 2 + sz] for sx in (-1, 1) for sy in (-0.5, 0.5)
                for sz in (-0.25, 0.25)]
-    with sync_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
-                              args=["--no-sandbox", "--disable-gpu"])
-        try:
-            pg = b.new_page(viewport={"width": 900, "height": 450})
-            pg.goto(page.as_uri())
-            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
-            ndc = pg.evaluate("""(pts) => { const v = document.getElementById('scene').afmView.viewer;
-                v.render();
-                return pts.map(p => new (v.camera.position.constructor)(p[0], p[1], p[2])
-                  .applyMatrix4(v.scene.matrixWorld).project(v.camera)).map(q => [q.x, q.y]); }""",
-                              corners)
-        finally:
-            b.close()
+    with _chromium(900, 450) as pg:
+        _open(pg, page)
+        ndc = pg.evaluate("""(pts) => { const v = document.getElementById('scene').afmView.viewer;
+            v.render();
+            return pts.map(p => new (v.camera.position.constructor)(p[0], p[1], p[2])
+              .applyMatrix4(v.scene.matrixWorld).project(v.camera)).map(q => [q.x, q.y]); }""",
+                          corners)
     ndc = np.array(ndc)
     assert np.all(np.abs(ndc) <= 1.0), ndc  # all of the box in view
     # the bounding sphere (radius 1.15) fills the height: the box spans a good part of it
     assert np.ptp(ndc[:, 1]) > 0.6 or np.ptp(ndc[:, 0]) > 0.6, ndc
+
+
+def _moving_view() -> SceneView:
+    """A box that slides to and fro, looping for as long as the page lives."""
+    from meshcat.animation import Animation
+    from afmsmiler.scenes.animation import set_translations
+    view = SceneView()
+    view.vis["box"].set_object(g.Box([1.0, 1.0, 1.0]))
+    anim = Animation(default_framerate=30)
+    frames = np.arange(60.0)
+    set_translations(anim, view.vis["box"], frames,
+                     np.c_[np.sin(frames / 60 * 2 * np.pi), 0 * frames, 0 * frames])
+    view.vis.set_animation(anim, play=True, repetitions=10**6)
+    return view
+
+
+@contextlib.contextmanager
+def _chromium(width: int, height: int):
+    """A page of Debian's headless Chromium (skipped, with why, where there is none)."""
+    import os
+    if not os.access("/usr/bin/chromium", os.X_OK):
+        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
+    sync_api = pytest.importorskip("playwright.sync_api")
+    with sync_api.sync_playwright() as p:
+        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
+                              args=["--no-sandbox", "--disable-gpu"])
+        try:
+            yield b.new_page(viewport={"width": width, "height": height})
+        finally:
+            b.close()
+
+
+def _open(pg, page) -> None:
+    pg.goto(page.as_uri())
+    pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
 
 
 _COUNT_JS = """async (ms) => { // renders of the view and animation frames asked, over ms
@@ -300,61 +325,40 @@ def test_a_view_asks_for_frames_only_while_it_has_something_to_show(tmp_path):
     animation frame at all (meshcat's loop asked for every frame of the page's life, a quarter
     of a core with nothing drawn), and it plays again when it comes back; a still scene renders
     once, then only when the student turns it."""
-    import os
-    if not os.access("/usr/bin/chromium", os.X_OK):
-        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
-    sync_api = pytest.importorskip("playwright.sync_api")
-    from meshcat.animation import Animation
-    from afmsmiler.scenes.animation import set_translations
-
+    still = SceneView()
+    still.vis["box"].set_object(g.Box([1.0, 1.0, 1.0]))
     pages = {}
-    for name, moving in (("moving", True), ("still", False)):
-        view = SceneView()
-        view.vis["box"].set_object(g.Box([1.0, 1.0, 1.0]))
-        if moving:
-            anim = Animation(default_framerate=30)
-            frames = np.arange(60.0)
-            set_translations(anim, view.vis["box"], frames,
-                             np.c_[np.sin(frames / 60 * 2 * np.pi), 0 * frames, 0 * frames])
-            view.vis.set_animation(anim, play=True, repetitions=10**6)
+    for name, view in (("moving", _moving_view()), ("still", still)):
         pages[name] = tmp_path / f"{name}.html"
         pages[name].write_text(view.static_html(), encoding="utf-8")
-    with sync_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
-                              args=["--no-sandbox", "--disable-gpu"])
-        try:
-            pg = b.new_page(viewport={"width": 400, "height": 300})
-            pg.goto(pages["moving"].as_uri())
-            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
-            # the animation plays (counted over 3 s: a loaded machine gives the page as few as
-            # 5 animation frames a second, and CI once saw 2 renders in 1 s)
-            shown = pg.evaluate(_COUNT_JS, 3000)
-            assert shown["renders"] >= 3, shown
-            pg.evaluate("""() => { const s = document.createElement('div');
-                s.style.height = '3000px'; document.body.appendChild(s);
-                window.scrollTo(0, 2000); }""")
-            pg.wait_for_timeout(300)  # the observer's callback
-            away = pg.evaluate(_COUNT_JS, 1000)
-            assert away == {"renders": 0, "asked": 0}, away
-            pg.evaluate("() => window.scrollTo(0, 0)")
-            back = pg.evaluate(_COUNT_JS, 3000)
-            assert back["renders"] >= 3, back
+    with _chromium(400, 300) as pg:
+        _open(pg, pages["moving"])
+        # the animation plays (counted over 3 s: a loaded machine gives the page as few as
+        # 5 animation frames a second, and CI once saw 2 renders in 1 s)
+        shown = pg.evaluate(_COUNT_JS, 3000)
+        assert shown["renders"] >= 3, shown
+        pg.evaluate("""() => { const s = document.createElement('div');
+            s.style.height = '3000px'; document.body.appendChild(s);
+            window.scrollTo(0, 2000); }""")
+        pg.wait_for_timeout(300)  # the observer's callback
+        away = pg.evaluate(_COUNT_JS, 1000)
+        assert away == {"renders": 0, "asked": 0}, away
+        pg.evaluate("() => window.scrollTo(0, 0)")
+        back = pg.evaluate(_COUNT_JS, 3000)
+        assert back["renders"] >= 3, back
 
-            pg.goto(pages["still"].as_uri())
-            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
-            pg.wait_for_timeout(500)
-            idle = pg.evaluate(_COUNT_JS, 1000)
-            assert idle == {"renders": 0, "asked": 0}, idle
-            # the student turns the view (a wheel over it zooms meshcat's camera): it renders
-            turned = pg.evaluate("""async (ms) => {
-                const counting = (%s)(ms);
-                const c = document.querySelector('#scene canvas');
-                c.dispatchEvent(new WheelEvent('wheel', {deltaY: 100, bubbles: true,
-                                                         cancelable: true}));
-                return await counting; }""" % _COUNT_JS, 500)
-            assert turned["renders"] >= 1, turned
-        finally:
-            b.close()
+        _open(pg, pages["still"])
+        pg.wait_for_timeout(500)
+        idle = pg.evaluate(_COUNT_JS, 1000)
+        assert idle == {"renders": 0, "asked": 0}, idle
+        # the student turns the view (a wheel over it zooms meshcat's camera): it renders
+        turned = pg.evaluate("""async (ms) => {
+            const counting = (%s)(ms);
+            const c = document.querySelector('#scene canvas');
+            c.dispatchEvent(new WheelEvent('wheel', {deltaY: 100, bubbles: true,
+                                                     cancelable: true}));
+            return await counting; }""" % _COUNT_JS, 500)
+        assert turned["renders"] >= 1, turned
 
 
 def test_commands_are_packed_to_the_bytes_meshcat_s_own_packer_gives(monkeypatch):
@@ -432,34 +436,13 @@ def test_a_dear_render_leaves_the_page_most_of_its_time_and_a_drag_alone(tmp_pat
     third of the time (RENDER_WAIT: a quarter, plus the frames' rounding), where rendering every
     frame took two thirds; while the student drags a slider (a key every 33 ms, each painted by
     the figure) it renders only as MAX_WAIT_MS allows, so no key waits behind a render."""
-    import os
-    if not os.access("/usr/bin/chromium", os.X_OK):
-        pytest.skip("no /usr/bin/chromium (make test installs Debian's chromium as root)")
-    sync_api = pytest.importorskip("playwright.sync_api")
-    from meshcat.animation import Animation
-    from afmsmiler.scenes.animation import set_translations
-
-    view = SceneView()
-    view.vis["box"].set_object(g.Box([1.0, 1.0, 1.0]))
-    anim = Animation(default_framerate=30)
-    frames = np.arange(60.0)
-    set_translations(anim, view.vis["box"], frames,
-                     np.c_[np.sin(frames / 60 * 2 * np.pi), 0 * frames, 0 * frames])
-    view.vis.set_animation(anim, play=True, repetitions=10**6)
     page = tmp_path / "moving.html"
-    page.write_text(view.static_html(), encoding="utf-8")
-    with sync_api.sync_playwright() as p:
-        b = p.chromium.launch(executable_path="/usr/bin/chromium", headless=True,
-                              args=["--no-sandbox", "--disable-gpu"])
-        try:
-            pg = b.new_page(viewport={"width": 400, "height": 300})
-            pg.goto(page.as_uri())
-            pg.wait_for_function("() => document.getElementById('scene').afmView", timeout=20000)
-            rest = pg.evaluate(_DEAR_JS, [3000, "return new Promise((r) => setTimeout(r, ms));"])
-            assert rest["renders"] >= 3, rest  # it plays
-            assert rest["renders"] * 30 <= rest["elapsed"] / 3, rest
-            drag = pg.evaluate(_DEAR_JS, [1200, _DRAG_JS])
-            # MAX_WAIT_MS (400 ms) allows three in 1.2 s; rendering between the keys made 8
-            assert drag["renders"] <= 4, drag
-        finally:
-            b.close()
+    page.write_text(_moving_view().static_html(), encoding="utf-8")
+    with _chromium(400, 300) as pg:
+        _open(pg, page)
+        rest = pg.evaluate(_DEAR_JS, [3000, "return new Promise((r) => setTimeout(r, ms));"])
+        assert rest["renders"] >= 3, rest  # it plays
+        assert rest["renders"] * 30 <= rest["elapsed"] / 3, rest
+        drag = pg.evaluate(_DEAR_JS, [1200, _DRAG_JS])
+        # MAX_WAIT_MS (400 ms) allows three in 1.2 s; rendering between the keys made 8
+        assert drag["renders"] <= 4, drag
