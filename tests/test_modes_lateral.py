@@ -53,6 +53,20 @@ def test_twist_and_apex_displacement():
     assert np.allclose(lat.twist([f, -f]), [lat.twist(f), -lat.twist(f)])
 
 
+def test_a_lever_of_the_same_g_is_twisted_as_it_is_and_another_g_gives_a_copy():
+    # a Lever whose G is the one asked for carries the torsion itself, so its frame model is
+    # solved once per lever however many LateralLevers a panel makes of it
+    from afmsmiler.planform import Lever
+    body = Lever.rectangular("silicon", 450e-6, 50e-6, 2e-6)
+    first = LateralLever(body)
+    assert first.body is body and LateralLever(body).body is body
+    assert first.torsional_stiffness == body.torsional_stiffness
+    # another G: a copy with it, whose k_phi scales as G (Saint-Venant: G w t^3 / (3 L))
+    other = LateralLever(body, shear_modulus=body.shear_modulus / 2)
+    assert other.body is not body and other.body.shear_modulus == body.shear_modulus / 2
+    assert other.torsional_stiffness == pytest.approx(body.torsional_stiffness / 2, rel=1e-9)
+
+
 def test_lateral_signal_is_the_optical_lever_turned():
     optics = OpticalBeamDeflection(optical_path=30e-3, spot_radius=0.5e-3)
     lat = LateralLever(LEVER, 15e-6, optics=optics)

@@ -186,9 +186,14 @@ class LateralLever:
             if self.shear_modulus is None else self.shear_modulus
         object.__setattr__(self, "tip_height", TIP_HEIGHT.check(h))
         object.__setattr__(self, "shear_modulus", SHEAR_MODULUS.check(g))
-        # module (a)'s lever carries the torsion: a Cantilever becomes its rectangular Lever
-        body = (lever.with_(shear_modulus=self.shear_modulus) if planform
-                else Lever.from_cantilever(lever, self.shear_modulus))
+        # module (a)'s lever carries the torsion: a Cantilever becomes its rectangular Lever; a
+        # Lever of this G is used as it is, so its torsion (a frame model, some 10 ms) is solved
+        # once per lever, not once per LateralLever (a panel makes one per move)
+        if planform and lever.shear_modulus == self.shear_modulus:
+            body = lever
+        else:
+            body = (lever.with_(shear_modulus=self.shear_modulus) if planform
+                    else Lever.from_cantilever(lever, self.shear_modulus))
         object.__setattr__(self, "_body", body)
         optics = OpticalBeamDeflection() if self.optics is None else self.optics
         object.__setattr__(self, "optics", check_instance("optics", optics,
