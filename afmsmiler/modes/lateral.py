@@ -187,7 +187,7 @@ class LateralLever:
         object.__setattr__(self, "tip_height", TIP_HEIGHT.check(h))
         object.__setattr__(self, "shear_modulus", SHEAR_MODULUS.check(g))
         # module (a)'s lever carries the torsion: a Cantilever becomes its rectangular Lever; a
-        # Lever of this G is used as it is, so its torsion (a frame model, some 10 ms) is solved
+        # Lever of this G is used as it is, so its torsion (a frame model, 1.5-6.5 ms) is solved
         # once per lever, not once per LateralLever (a panel makes one per move)
         if planform and lever.shear_modulus == self.shear_modulus:
             body = lever
