@@ -215,6 +215,7 @@ function afmCreateViewer(MeshCat, host) {
       running = false; // ends the requestAnimationFrame loop at its next frame
       if (observer) observer.disconnect();
       if (seen) seen.disconnect();
+      after.port1.close(); // the render timer's channel: an open port keeps the view alive
       try { if (viewer.gui) viewer.gui.destroy(); } catch (e) { /* already gone */ }
       try { viewer.renderer.dispose(); viewer.renderer.forceContextLoss(); } catch (e) { /* */ }
       host.textContent = "";
