@@ -198,7 +198,10 @@ def test_bridge_run_shows_rate_and_jitter(twin_device):
     switch = sys.getswitchinterval()
     stats = panel.run(0.2)
     assert sys.getswitchinterval() == switch  # restored after the run
-    assert stats.ticks > 50 and panel.last.stats is stats
+    # every deadline of the run was ticked or counted missed (a loaded machine ticks fewer:
+    # CI once saw 48 ticks and 153 missed in 0.2 s at 1 kHz, so no rate is asserted)
+    assert stats.ticks > 0 and panel.last.stats is stats
+    assert stats.ticks + stats.missed >= 0.9 * stats.elapsed * stats.target_rate, stats
     html = panel.status.value
     assert "measured rate" in html and "Hz" in html and "99th percentile" in html
     assert twin._last_force > 0  # the device took the bridge's force frames
