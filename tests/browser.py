@@ -477,10 +477,13 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
   let lastSeq = afm.seqs(root, sel), lastHash = afm.checksum(root, sel).hash;
   const baseSeq = lastSeq, baseFrames = afm.frames(root, sel);
   let lastPainted = afm.paintedCount(root, sel);
-  // live figures count their paints: their pixels are read (2-3 ms a read, the page's own main
-  // thread) only when a paint was counted, not on every animation frame, where the reads took a
-  // third of the page's time during a drag and delayed the kernel's frames they were timing
+  // live figures count their paints: each is dated by the animation frame that drew it, and
+  // their pixels are read once, when the drag is over (whether they changed). Reading them
+  // during the drag cost the page's main thread 2-3 ms a read, time a student's page does not
+  // spend: read on every animation frame they took a third of it, read after each paint they
+  // still delayed the kernel's next frames they were timing (the floor's drag reads no pixels)
   const live = baseFrames.some(f => f);
+  const baseHash = lastHash;
   const figs = (root.matches && root.matches(sel) ? [root] : Array.from(root.querySelectorAll(sel)))
     .map(f => f.afmFigure).filter(f => f);
   const onKey = () => {
@@ -496,22 +499,26 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
       const now = performance.now();
       const painted = afm.paintedCount(root, sel), newPaint = painted !== lastPainted;
       const seq = afm.seqs(root, sel), v = readout();
-      const hash = !live || newPaint ? afm.checksum(root, sel).hash : lastHash;
+      const hash = live ? lastHash : afm.checksum(root, sel).hash;
       if (v !== null && v !== st.values[st.values.length - 1]) st.values.push(v);
       if (seq !== lastSeq) {
         if (seq !== baseSeq && !st.seqs.includes(seq)) st.seqs.push(seq);
         lastSeq = seq;
         lastChange = now;
       }
-      if (newPaint) { lastPainted = painted; lastChange = now; }
-      if (hash !== lastHash) {
-        st.states++;
+      if (newPaint) {
+        lastPainted = painted;
+        lastChange = now;
         // a live figure's paint is counted after the rendering that showed it, so this check
         // runs an animation frame later: the change is dated by the frame that drew it, as a
         // single press's is (afm.arm) and as the floor's text is by the frame after its mutation
-        const drawn = newPaint ? figs.map(f => f.drawnAt).filter(t => t != null) : [];
+        const drawn = figs.map(f => f.drawnAt).filter(t => t != null);
         const at = drawn.length ? Math.min(ts, Math.max(...drawn)) : ts;
         st.times.push(at - (st.t0 || at));
+      }
+      if (hash !== lastHash) {  // no live figure: a change of its pixels, dated by this frame
+        st.states++;
+        st.times.push(ts - (st.t0 || ts));
         lastHash = hash;
         lastChange = now;
       }
@@ -521,7 +528,8 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
       const quietFrom = stamps.length ? Math.max(...stamps) : null;
       if ((quietFrom !== null && now - quietFrom > quietMs) || now - start > timeoutMs) {
         window.removeEventListener('keydown', onKey, true);
-        resolve({seqs: st.seqs, states: st.states, times: st.times,
+        const changed = afm.checksum(root, sel).hash !== baseHash;
+        resolve({seqs: st.seqs, states: st.states, times: st.times, changed: changed,
                  lastKey: st.t0 === null ? null : st.tLast - st.t0,
                  timedOut: now - start > timeoutMs, baseSeq: baseSeq, values: st.values,
                  keys: st.keys, frames: afm.framesSince(root, sel, baseFrames)});
@@ -906,7 +914,10 @@ class DragResult:
 
     presses: int
     seqs: list = field(default_factory=list)  # distinct data-seq values painted (live figure)
-    states: int = 0  # distinct pixel states painted
+    states: int = 0  # distinct pixel states painted (no live figure: read every animation frame)
+    #: Whether the figure's pixels differ from before the drag (read once it is over); None when
+    #: the page did not say.
+    changed: bool | None = None
     timed_out: bool = False
     last_frame_s: float | None = None  # s from the first keydown to the last change painted
     last_key_s: float | None = None  # s from the first keydown to the last one
@@ -983,7 +994,8 @@ def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
                       last_key_s=None if r.get("lastKey") is None else r["lastKey"] / 1000.0,
-                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
+                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [],
+                      changed=r.get("changed"))
 
 
 def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
@@ -1007,7 +1019,8 @@ def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
                       last_key_s=None if r.get("lastKey") is None else r["lastKey"] / 1000.0,
-                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [])
+                      values=r["values"], keys=r["keys"], frames=r.get("frames") or [],
+                      changed=r.get("changed"))
 
 
 # -- static export -------------------------------------------------------------------------

@@ -103,6 +103,8 @@ def _check_drag(page, slider, key, name, *, kernel=None):
     problems = []
     if result.received < 1:
         problems.append("no frame received")
+    if result.changed is not True:
+        problems.append("the figure's pixels are those from before the drag")
     if not result.painted_once:
         problems.append(f"frames received {result.frames} were not each painted once")
     if result.jumped_back:
