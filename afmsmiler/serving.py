@@ -22,10 +22,13 @@ an environment of one's own, The Littlest JupyterHub's) and the tests' servers.
 from __future__ import annotations
 
 import json
+import os
 import sys
 from pathlib import Path
 
 from jupyter_server.services.kernels.connection.channels import ZMQChannelsWebsocketConnection
+
+from .validation import check_instance
 
 __all__ = ["CONNECTION_CLASS", "NoDelayConnection", "SERVER_OPTION", "VOILA_OPTION",
            "write_server_config"]
@@ -73,6 +76,8 @@ def write_server_config(prefix=None) -> Path:
     pathlib.Path
         The file written.
     """
+    if prefix is not None:
+        check_instance("prefix", prefix, (str, os.PathLike), "str or os.PathLike (a folder)")
     prefix = Path(sys.prefix if prefix is None else prefix)
     if not prefix.is_dir():
         raise ValueError(f"prefix must be an existing folder, got {str(prefix)!r}")

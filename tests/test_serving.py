@@ -135,3 +135,6 @@ def test_an_environment_of_one_s_own_is_configured_by_the_module(tmp_path):
         CONNECTION_CLASS
     with pytest.raises(ValueError, match="prefix must be an existing folder"):
         write_server_config(tmp_path / "missing")
+    # not a path at all: named before anything is written (Path(3) raised a bare TypeError)
+    with pytest.raises(TypeError, match=r"prefix must be a str or os.PathLike .*, got int 3"):
+        write_server_config(3)
