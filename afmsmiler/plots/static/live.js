@@ -782,11 +782,7 @@ class Figure {
     }
     const rebuilt = key !== this.layoutKey;
     if (rebuilt) { this.build(layout); this.layoutKey = key; }
-    // touched only when it changes, as the axes' titles are: a text node replaced by the same
-    // text still dirties the page's layout, which chromeHeights() then runs at once (a forced
-    // layout of the whole notebook, some 6 ms a frame on a JupyterLab page)
-    const suptitle = frame.suptitle || "";
-    if (this.suptitle.textContent !== suptitle) this.suptitle.textContent = suptitle;
+    this.suptitle.textContent = frame.suptitle || "";
     legendHtml(this.figLegend, frame.legend || []);
     // titles and legends first: their heights set the plots' sizes
     frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
