@@ -204,7 +204,7 @@ def _row(where, name, s, floor):
         ok = True
         counts = []
         for drag, k in drags:  # every frame the kernel sent, painted once, the last one last
-            ok = ok and drag.painted_once and drag.received > 0 and drag.changed is not False
+            ok = ok and drag.painted_once and drag.received > 0 and drag.changed is True
             if k is not None:
                 ok = ok and drag.painted == k["frames"] and drag.last_painted[:1] == [k["last"]]
                 counts.append(f"{drag.painted}/{k['frames']} ({k['moves']}->{k['runs']})")
