@@ -69,7 +69,7 @@ def _from_browser(panel, **values):
 
 
 def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
-    """In a live kernel a lever move shows the curve at every 4th distance at once, said so on
+    """In a live kernel a lever move shows the curve at every s-th distance at once, said so on
     screen, with no jumps, held state or readout from it; a move during the wait replaces the
     pending full curve, a move back to the lever shown cancels it; both curves equal the
     model's own at their distances."""

@@ -185,10 +185,12 @@ TAPPING_PROBES = ("Tap300Al-G", "PPP-NCHR", "Arrow-NCR", "AC160TS", "Tap150Al-G"
 TAPPING_FLUIDS = FLUID_NAMES
 
 #: A browser's move of the lever or the sample first shows the curve at every
-#: TAPPING_COARSE_STRIDE-th distance (100 of 400: the panel's step some 11 ms instead of 37),
+#: TAPPING_COARSE_STRIDE-th distance (50 of 400: in a process of its own the panel's step some
+#: 8 ms, against 12-18 ms for 100 and some 50 ms for the full curve; live in JupyterLab a press
+#: costs about twice that),
 #: then the full curve, its jumps and the held state once the student left the slider for
 #: :data:`FULL_DELAY` s.
-TAPPING_COARSE_STRIDE = 4
+TAPPING_COARSE_STRIDE = 8
 
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
 #: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one), on a typed
