@@ -392,6 +392,42 @@ def test_the_noise_free_curves_are_reused_and_equal_the_uncached_ones():
         np.testing.assert_array_equal(getattr(again, name), getattr(fresh, name))
 
 
+@pytest.mark.parametrize("pixels, points", [(100, 500), (64 * 64, 300)])
+def test_the_noise_is_numpys_normal_draws_bit_for_bit(pixels, points):
+    # issue 24: sigma times the kept unit records is what Generator.normal(0, sigma) draws from
+    # the seed, approach then retract (the second size is too large to keep: drawn afresh)
+    sigma = 37e-12
+    fvm._cached_unit_noise.cache_clear()
+    rng = np.random.default_rng(11)
+    want = (rng.normal(0.0, sigma, (pixels, points)), rng.normal(0.0, sigma, (pixels, points)))
+    for _ in range(2):
+        unit = fvm._unit_noise(11, pixels, points)
+        for got, expected in zip(unit, want):
+            np.testing.assert_array_equal(sigma * got, expected)
+    kept = 2 * pixels * points <= fvm._ANALYSIS_POINTS
+    assert fvm._cached_unit_noise.cache_info().hits == (1 if kept else 0)
+    assert unit.flags.writeable is not kept
+    # without a seed: fresh draws each time
+    assert not np.array_equal(fvm._unit_noise(None, 3, 20), fvm._unit_noise(None, 3, 20))
+
+
+def test_a_map_with_kept_noise_equals_one_with_noise_drawn_afresh(monkeypatch):
+    sample, labels = two_material_sample((6, 6), 24e-9, island_radius=50e-9, island_count=1,
+                                         seed=3)
+    tip = Parabolic(radius=10e-9)
+    with monkeypatch.context() as m:  # nothing kept: every map draws its noise
+        m.setattr(fvm, "_cached_unit_noise", lambda seed, pixels, points:
+                  np.random.default_rng(seed).standard_normal((2, pixels, points)))
+        fresh = force_volume(sample, BLEND, tip, labels=labels, seed=2, force_noise=80e-12)
+    fvm._cached_unit_noise.cache_clear()
+    force_volume(sample, BLEND, tip, labels=labels, seed=2, force_noise=30e-12)
+    kept = force_volume(sample, BLEND, tip, labels=labels, seed=2, force_noise=80e-12)
+    assert fvm._cached_unit_noise.cache_info().hits == 1
+    for name in ("modulus", "modulus_error", "adhesion", "deformation", "dissipation",
+                 "measured_approach", "measured_retract"):
+        np.testing.assert_array_equal(getattr(kept, name), getattr(fresh, name))
+
+
 @pytest.mark.parametrize("stride", [2, 3])
 def test_a_coarse_map_is_the_full_map_at_its_pixels(stride):
     """Every pixel a coarse map analyses has the full map's values exactly (same curves, same
