@@ -17,7 +17,11 @@ drag is over (whether they changed), not during it, where the reads cost the pag
 time a student's page does not spend and the floor's drag does not either. The kernel coalesces
 the moves that queue while it runs the model, so it may send fewer than 15 frames; the drag is
 met when every frame it sent was painted once, the last one is the kernel's last and the pixels
-changed; its last frame after the last key is the median of the four.
+changed; its last frame after the last key is the median of the four. Then four drags of the
+same 15 presses at ``KEY_RATE`` keys a second (``BENCH_BROWSER_KEY_RATE``, default 30; 0: none),
+as a held key repeats, the floor's too: the presses above follow each other as soon as the
+browser took one, which keeps the page's input queue full so that it handles hardly any message
+from the kernel until the keys stop.
 
 Beside each panel's latency (JupyterLab) its kernel step: the median time the panel's ``update``
 took in the kernel for the timed presses (``Panel.update_seconds``, read back with
@@ -64,10 +68,19 @@ DRAGS = 4
 TARGET_RATIO = 1.5
 #: Issue 24: a drag's last frame within this many floors of its last key.
 DRAG_RATIO = 2.0
+#: Keys a second of the paced drags (``BENCH_BROWSER_KEY_RATE``; 0: none): a held key repeats
+#: some 30 times a second. The drags above send each key as soon as the browser took the one
+#: before, which keeps the page's input queue full: it then handles hardly any message from the
+#: kernel until the keys stop, which a student's held key or mouse drag does not do.
+KEY_RATE = float(os.environ.get("BENCH_BROWSER_KEY_RATE", "30"))
 
 
 def _ms(t):
     return "      -" if t is None else f"{t * 1e3:7.1f}"
+
+
+#: The floor's drag times (s from the last key to the label's last change) of each kind.
+_RUNS = {"drag": "drags", "paced": "paced_drags"}
 
 
 def _floor(where, server, page):
@@ -81,10 +94,15 @@ def _floor(where, server, page):
     B.press_text(page, slider, "ArrowRight", 2)  # warm-up
     times = B.press_text(page, slider, "ArrowRight", PRESSES)
     stats = B.summary(times)
-    drags = [_floor_drag(page, slider, key) for key in ("ArrowRight", "ArrowLeft") * (DRAGS // 2)]
-    drags = [d for d in drags if d is not None]
-    stats.update(times=[t for t in times if t is not None], drags=drags,
-                 drag_after=statistics.median(drags) if drags else None)
+    stats["times"] = [t for t in times if t is not None]
+    for label, rate in (("drag", 0.0), ("paced", KEY_RATE)):
+        if label == "paced" and not rate:
+            continue
+        runs = [_floor_drag(page, slider, key, 1.0 / rate if rate else 0.0)
+                for key in ("ArrowRight", "ArrowLeft") * (DRAGS // 2)]
+        runs = [d for d in runs if d is not None]
+        stats[_RUNS[label]] = runs
+        stats[f"{label}_after"] = statistics.median(runs) if runs else None
     return stats
 
 
@@ -92,9 +110,12 @@ def _pool(floor, again):
     """The floor of the whole run: the presses and drags of its start and its end together
     (one sample of a shared machine moved by half from one run to the next); ``floor`` is
     updated in place, so every panel's ratio is taken against it."""
-    times, drags = floor["times"] + again["times"], floor["drags"] + again["drags"]
-    floor.update(times=times, drags=drags, median=statistics.median(times) if times else None,
-                 drag_after=statistics.median(drags) if drags else None)
+    times = floor["times"] + again["times"]
+    floor.update(times=times, median=statistics.median(times) if times else None)
+    for label in ("drag", "paced"):
+        runs = floor.get(_RUNS[label], []) + again.get(_RUNS[label], [])
+        floor[_RUNS[label]] = runs
+        floor[f"{label}_after"] = statistics.median(runs) if runs else None
 
 
 #: The floor's drag: the label's changes dated at the animation frame after each (as a press of
@@ -122,13 +143,13 @@ _TEXT_DRAG_JS = r"""
 """
 
 
-def _floor_drag(page, slider, key):
-    """The floor dragged as a panel is: ``DRAG`` presses sent without waiting; s from the last
-    key to the label's last change (None if it never changed after it)."""
+def _floor_drag(page, slider, key, interval=0.0):
+    """The floor dragged as a panel is: ``DRAG`` presses sent without waiting (or ``interval``
+    s apart, :func:`tests.browser.press_keys`); s from the last key to the label's last change
+    (None if it never changed after it)."""
     page.evaluate(_TEXT_DRAG_JS, [DRAG])
     slider.focus()
-    for _ in range(DRAG):
-        page.keyboard.press(key)
+    B.press_keys(page, key, DRAG, interval)
     st = page.evaluate("() => window.__afmTextDrag")
     if not st["keys"] or not st["changes"] or st["changes"][-1] < st["keys"][-1]:
         return None
@@ -165,20 +186,26 @@ def _panel(where, server, page, name, selector):
         stats["step"] = float(B.kernel_eval(
             page, f"import statistics as _st; "
                   f"print(_st.median(list({e.variable}.update_seconds)[-{PRESSES}:]))"))
-    drags = []
-    for way in (key, back) * (DRAGS // 2):  # there and back, as the floor is dragged
-        counters = _counters(page, e.variable) if where == "lab" else None
-        drag = B.drag(page, slider, way, DRAG, selector=selector)
-        B.settle(page, selector, quiet=0.5, timeout=5)
-        kernel = None
-        if counters is not None:
-            after = _counters(page, e.variable)
-            kernel = {k: after[k] - counters[k] for k in after}
-            kernel["last"] = after["frames"]
-        drags.append((drag, kernel))
-    afters = [d.after_last_key_s for d, _ in drags if d.after_last_key_s is not None]
-    stats.update(ready=ready, drag_runs=drags, shown=B.slider_value(slider),
-                 drag_after=statistics.median(afters) if afters else None)
+    stats["ready"] = ready
+    for label, rate in (("drag", 0.0), ("paced", KEY_RATE)):
+        if label == "paced" and not rate:
+            continue
+        drags = []
+        for way in (key, back) * (DRAGS // 2):  # there and back, as the floor is dragged
+            counters = _counters(page, e.variable) if where == "lab" else None
+            drag = B.drag(page, slider, way, DRAG, selector=selector,
+                          interval=1.0 / rate if rate else 0.0)
+            B.settle(page, selector, quiet=0.5, timeout=5)
+            kernel = None
+            if counters is not None:
+                after = _counters(page, e.variable)
+                kernel = {k: after[k] - counters[k] for k in after}
+                kernel["last"] = after["frames"]
+            drags.append((drag, kernel))
+        afters = [d.after_last_key_s for d, _ in drags if d.after_last_key_s is not None]
+        stats[f"{label}_runs"] = drags
+        stats[f"{label}_after"] = statistics.median(afters) if afters else None
+    stats["shown"] = B.slider_value(slider)
     if where == "lab":
         stats["kernel"] = B.kernel_eval(
             page, f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
@@ -199,31 +226,9 @@ def _row(where, name, s, floor):
         r = s["median"] / floor["median"]
         ratio = f"{r:6.1f}x {'OK' if r <= TARGET_RATIO else 'MISSED'}"
     drags = s.get("drag_runs") or []  # the floor's drags are times only (its own line)
-    drawn = ""
-    if drags:
-        ok = True
-        counts = []
-        for drag, k in drags:  # every frame the kernel sent, painted once, the last one last
-            ok = ok and drag.painted_once and drag.received > 0 and drag.changed is True
-            if k is not None:
-                ok = ok and drag.painted == k["frames"] and drag.last_painted[:1] == [k["last"]]
-                counts.append(f"{drag.painted}/{k['frames']} ({k['moves']}->{k['runs']})")
-            else:
-                counts.append(f"{drag.painted}/{drag.received}")
-        drawn = (f"painted/sent (moves->updates) {', '.join(counts)} "
-                 f"{'OK' if ok else 'MISSED'}")
-        after = s.get("drag_after")
-        if after is not None and floor and floor.get("median"):
-            r = after / floor["median"]
-            each = "/".join(f"{d.after_last_key_s * 1e3:.0f}" if d.after_last_key_s is not None
-                            else "-" for d, _ in drags)
-            drawn += (f"; last {after * 1e3:.0f} ms after the last key (median of {each}; "
-                      f"{r:.1f}x {'OK' if r <= DRAG_RATIO else 'MISSED'}")
-            if floor.get("drag_after"):
-                drawn += f"; {after / floor['drag_after']:.1f}x the floor's drag"
-            drawn += ")"
+    drawn = _drag_text(drags, s.get("drag_after"), floor, "drag")
     kernel = ""
-    for drag, _ in drags:
+    for drag, _ in drags + (s.get("paced_runs") or []):
         if drag.jumped_back:
             back = drag.jumped_back
             kernel += (f"(slider jumped back {len(back)} times, e.g. {', '.join(back[:3])}; "
@@ -235,6 +240,38 @@ def _row(where, name, s, floor):
     print(f"{where:<6s}{name:<24s}{_ms(s.get('median'))} ms {_ms(s.get('worst'))} ms "
           f"{s['failed']:3d}/{s['n']:<3d} {ratio:<13s} {_ms(s.get('step'))} ms "
           f"{_ms(s.get('readout'))} ms  {drawn:<60s} {kernel}", flush=True)
+    if s.get("paced_runs"):
+        print(f"{where:<6s}{'  paced, ' + f'{KEY_RATE:g} keys/s':<24s}"
+              f"{_drag_text(s['paced_runs'], s.get('paced_after'), floor, 'paced')}", flush=True)
+
+
+def _drag_text(drags, after, floor, label):
+    """A panel's drags (``label`` "drag" or "paced") as its row shows them: painted/sent per
+    drag, and the last frame after the last key against the floor's press and the floor's own
+    drags of the same kind."""
+    if not drags:
+        return ""
+    ok = True
+    counts = []
+    for drag, k in drags:  # every frame the kernel sent, painted once, the last one last
+        ok = ok and drag.painted_once and drag.received > 0 and drag.changed is True
+        if k is not None:
+            ok = ok and drag.painted == k["frames"] and drag.last_painted[:1] == [k["last"]]
+            counts.append(f"{drag.painted}/{k['frames']} ({k['moves']}->{k['runs']})")
+        else:
+            counts.append(f"{drag.painted}/{drag.received}")
+    text = f"painted/sent (moves->updates) {', '.join(counts)} {'OK' if ok else 'MISSED'}"
+    if after is not None and floor and floor.get("median"):
+        r = after / floor["median"]
+        each = "/".join(f"{d.after_last_key_s * 1e3:.0f}" if d.after_last_key_s is not None
+                        else "-" for d, _ in drags)
+        text += (f"; last {after * 1e3:.0f} ms after the last key (median of {each}; "
+                 f"{r:.1f}x {'OK' if r <= DRAG_RATIO else 'MISSED'}")
+        if floor.get(f"{label}_after"):
+            text += (f"; {after / floor[f'{label}_after']:.1f}x the floor's "
+                     f"{'drag' if label == 'drag' else 'paced drag'}")
+        text += ")"
+    return text
 
 
 def main():
@@ -270,11 +307,13 @@ def main():
                 try:
                     floor = _floor(where, server, page)
                     _row(where, "floor", floor, None)
-                    if floor.get("drag_after") is not None:
-                        print(f"{where:<6s}{'floor drag':<24s}its label's last change "
-                              f"{floor['drag_after'] * 1e3:.0f} ms after the last of {DRAG} "
-                              f"keys ({floor['drag_after'] / floor['median']:.1f}x the floor; "
-                              f"median of {DRAGS} drags)", flush=True)
+                    for label, what in (("drag", "floor drag"),
+                                        ("paced", f"floor, {KEY_RATE:g} keys/s")):
+                        if floor.get(f"{label}_after") is not None:
+                            print(f"{where:<6s}{what:<24s}its label's last change "
+                                  f"{floor[f'{label}_after'] * 1e3:.0f} ms after the last of "
+                                  f"{DRAG} keys ({floor[f'{label}_after'] / floor['median']:.1f}x "
+                                  f"the floor; median of {DRAGS} drags)", flush=True)
                 except Exception as exc:
                     print(f"{where:<6s}{'floor':<24s}failed: {type(exc).__name__}: {exc}")
                 for name in PANELS:
@@ -325,18 +364,23 @@ def _summary(where, results, floor):
           f"its drag's last change "
           f"{(floor['drag_after'] or 0) * 1e3:.0f} ms after the last key, {len(floor['drags'])} "
           f"drags): key -> pixels / floor (target {TARGET_RATIO}x), drag's last frame after the "
-          f"last key / floor (target {DRAG_RATIO}x) and / the floor's drag")
+          f"last key / floor (target {DRAG_RATIO}x) and / the floor's drag; then the same for "
+          f"the drags at {KEY_RATE:g} keys/s"
+          + ("" if not floor.get("paced_after") else
+             f" (the floor's: {floor['paced_after'] * 1e3:.0f} ms)"))
     for (w, name), (s, _) in results.items():
         if w != where or not s.get("median"):
             continue
-        after = s.get("drag_after")
-        drag = ""
-        if after is not None:
-            d = after / floor["median"]
-            drag = f"{d:5.1f}x {'OK' if d <= DRAG_RATIO else 'MISSED':6s}" + (
-                f"{after / floor['drag_after']:5.1f}x" if floor.get("drag_after") else "")
+        columns = ""
+        for label in ("drag", "paced"):
+            after = s.get(f"{label}_after")
+            if after is not None:
+                d = after / floor["median"]
+                columns += f"  {d:5.1f}x {'OK' if d <= DRAG_RATIO else 'MISSED':6s}" + (
+                    f"{after / floor[f'{label}_after']:5.1f}x"
+                    if floor.get(f"{label}_after") else "")
         r = s["median"] / floor["median"]
-        print(f"  {name:<24s}{r:5.2f}x {'OK' if r <= TARGET_RATIO else 'MISSED':6s}  {drag}")
+        print(f"  {name:<24s}{r:5.2f}x {'OK' if r <= TARGET_RATIO else 'MISSED':6s}{columns}")
 
 
 if __name__ == "__main__":

@@ -981,14 +981,32 @@ class DragResult:
                 if (v[i + 1] - v[i]) * sign < 0]
 
 
+def press_keys(page, key: str, n: int, interval: float = 0.0) -> None:
+    """Press ``key`` ``n`` times on the focused element, trusted key events from Playwright.
+
+    With ``interval`` 0 each press follows the one before as soon as the browser took it (a few
+    ms): the page's input queue stays full and it mostly handles no message from the kernel
+    until the keys stop. With ``interval`` > 0 the presses start ``interval`` s apart (each
+    waits for the one before if that took longer), as a held key repeats (some 30 a second) or
+    a mouse drag moves.
+    """
+    if interval < 0:
+        raise ValueError(f"interval must be >= 0 s, got {interval!r}")
+    for i in range(n):
+        start = time.monotonic()
+        page.keyboard.press(key)
+        if interval and i < n - 1:
+            time.sleep(max(0.0, interval - (time.monotonic() - start)))
+
+
 def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
-         quiet: float = 1.5, timeout: float = 20.0) -> DragResult:
-    """Send ``n`` presses of ``key`` as fast as possible and record the frames painted."""
+         quiet: float = 1.5, timeout: float = 20.0, interval: float = 0.0) -> DragResult:
+    """Send ``n`` presses of ``key`` (:func:`press_keys`: as fast as possible, or ``interval``
+    s apart) and record the frames painted."""
     page.evaluate("([sel, q, t]) => window.__afm.armDrag(sel, q, t)",
                   [selector, quiet * 1000, timeout * 1000])
     slider.focus()
-    for _ in range(n):
-        page.keyboard.press(key)
+    press_keys(page, key, n, interval)
     r = page.evaluate("() => window.__afm.current.promise")
     seqs = [s for s in r["seqs"] if s.strip(",")]
     return DragResult(presses=n, seqs=seqs, states=r["states"], timed_out=r["timedOut"],
