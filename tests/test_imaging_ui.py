@@ -492,8 +492,10 @@ def test_a_real_kernel_answers_between_lines_and_stop_keeps_them(kernel):
         time.sleep(0.05)
     assert running == "True" and 0 < seen[-1] < 256
     # a slider moved now (a widget's message is handled like this cell) applies from the
-    # next line on
-    moved = run("print(p.running)\nif p.running: p.set(scan_speed=1000.0)")
+    # next line on; to a slower speed: a live scan takes each line's own time (at most
+    # MAX_LINE_WAIT), so the scan is still running when Stop comes (moved to 1000 um/s, the
+    # remaining lines took 0.6 ms each and a loaded CI machine finished all 256 before it)
+    moved = run("print(p.running)\nif p.running: p.set(scan_speed=5.0)")
     time.sleep(0.05)
     changes = run("print(*p.last.changes)")
     if moved == ["True"]:  # (still scanning when the cell ran)
