@@ -186,10 +186,9 @@ TAPPING_FLUIDS = FLUID_NAMES
 
 #: A browser's move of the lever or the sample first shows the curve at every
 #: TAPPING_COARSE_STRIDE-th distance (50 of 400: in a process of its own the panel's step some
-#: 8 ms, against 12-18 ms for 100 and some 50 ms for the full curve; live in JupyterLab a press
-#: costs about twice that),
-#: then the full curve, its jumps and the held state once the student left the slider for
-#: :data:`FULL_DELAY` s.
+#: 8 ms, against 12-18 ms for 100 and some 50 ms for the full curve; in a live JupyterLab kernel
+#: about twice these), then the full curve, its jumps and the held state once the student left
+#: the slider for :data:`FULL_DELAY` s.
 TAPPING_COARSE_STRIDE = 8
 
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
