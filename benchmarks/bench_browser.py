@@ -73,6 +73,9 @@ DRAG_RATIO = 2.0
 #: before, which keeps the page's input queue full: it then handles hardly any message from the
 #: kernel until the keys stop, which a student's held key or mouse drag does not do.
 KEY_RATE = float(os.environ.get("BENCH_BROWSER_KEY_RATE", "30"))
+if not 0 <= KEY_RATE <= 1000:
+    raise SystemExit(f"BENCH_BROWSER_KEY_RATE must be 0 (no paced drags) to 1000 keys a second, "
+                     f"got {KEY_RATE:g}")
 
 
 def _ms(t):
