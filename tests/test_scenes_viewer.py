@@ -319,6 +319,22 @@ _COUNT_JS = """async (ms) => { // renders of the view and animation frames asked
 }"""
 
 
+def _plays(pg, spans: int = 3) -> dict:
+    """Renders and animation frames asked over up to ``spans`` spans of 3 s, until 3 renders.
+
+    A loaded machine's first render (a shader compiled in software) can take a second or more,
+    and the view's pacing then waits twice that: clean-clone CI once saw 1 render in 3 s with
+    163 frames asked. A loop that stopped still renders no more in 9 s.
+    """
+    total = {"renders": 0, "asked": 0}
+    for _ in range(spans):
+        counted = pg.evaluate(_COUNT_JS, 3000)
+        total = {k: total[k] + counted[k] for k in total}
+        if total["renders"] >= 3:
+            break
+    return total
+
+
 @pytest.mark.browser
 def test_a_view_asks_for_frames_only_while_it_has_something_to_show(tmp_path):
     """A looping animation renders while its view is on screen; scrolled away it asks for no
@@ -333,9 +349,9 @@ def test_a_view_asks_for_frames_only_while_it_has_something_to_show(tmp_path):
         pages[name].write_text(view.static_html(), encoding="utf-8")
     with _chromium(400, 300) as pg:
         _open(pg, pages["moving"])
-        # the animation plays (counted over 3 s: a loaded machine gives the page as few as
-        # 5 animation frames a second, and CI once saw 2 renders in 1 s)
-        shown = pg.evaluate(_COUNT_JS, 3000)
+        # the animation plays (counted over 3 s spans: a loaded machine gives the page as few as
+        # 5 animation frames a second, and CI once saw 2 renders in 1 s; see _plays)
+        shown = _plays(pg)
         assert shown["renders"] >= 3, shown
         pg.evaluate("""() => { const s = document.createElement('div');
             s.style.height = '3000px'; document.body.appendChild(s);
@@ -344,7 +360,7 @@ def test_a_view_asks_for_frames_only_while_it_has_something_to_show(tmp_path):
         away = pg.evaluate(_COUNT_JS, 1000)
         assert away == {"renders": 0, "asked": 0}, away
         pg.evaluate("() => window.scrollTo(0, 0)")
-        back = pg.evaluate(_COUNT_JS, 3000)
+        back = _plays(pg)
         assert back["renders"] >= 3, back
 
         _open(pg, pages["still"])
