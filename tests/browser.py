@@ -727,6 +727,15 @@ def scene_pixels(page, index: int):
     return Image.open(io.BytesIO(loc.screenshot())).convert("RGB")
 
 
+def cell_isolation(page) -> list[str]:
+    """The computed ``isolation`` of every cell of the notebooks in the page (``live.css``: the
+    cells of a notebook that holds a live figure are each a stacking context, painted on their
+    own; those of any other notebook are left as JupyterLab styles them)."""
+    return page.evaluate(
+        "() => Array.from(document.querySelectorAll('.jp-Notebook .jp-Cell'))"
+        ".map(c => getComputedStyle(c).isolation)")
+
+
 def lab_errors(page) -> list[str]:
     """The error outputs of the open notebook: tracebacks and panels that could not update."""
     return page.evaluate(

@@ -18,9 +18,11 @@ Marked ``slow`` and ``browser`` (``make unit`` skips them); skipped, saying why,
 or Playwright is missing. One JupyterLab and one voila server, each on the worker of its tests.
 """
 import math
+from pathlib import Path
 
 import pytest
 
+from afmsmiler.plots import live
 from tests import browser as B
 
 pytestmark = [pytest.mark.slow, pytest.mark.browser]
@@ -148,6 +150,9 @@ def test_lab_panel_follows_its_slider(lab, headless, name):
     notebook, cls = e.notebook, e.cls
     _open_and_run(page, server, notebook)
     assert B.lab_errors(page) == [], f"{notebook} shows errors after Run All"
+    if LIVE:  # its cells are painted each on its own (live.css), not the page's each frame
+        isolation = B.cell_isolation(page)
+        assert isolation and set(isolation) == {"isolate"}, isolation
     # displaying the panel ran no model: as many frames as the same notebook sends with no page
     # (the browser echoed slider values back and each panel redrew twice on display)
     page.wait_for_timeout(1000)  # any echo of the sliders reaches the kernel by then
@@ -238,6 +243,9 @@ def test_lab_floor_label_follows_its_slider(lab):
     times = B.press_text(page, slider, "ArrowRight", 3)
     assert None not in times, times
     assert B.slider_value(slider) == "53"
+    # a notebook without a live figure keeps JupyterLab's own cells, live.css in the page or not
+    page.add_style_tag(path=str(Path(live.__file__).parent / "static" / "live.css"))
+    assert set(B.cell_isolation(page)) == {"auto"}
 
 
 @pytest.mark.skipif(not LIVE, reason="the panels' figures are ipympl canvases (blank in a "

@@ -811,14 +811,17 @@ function outputArea(node) {
   return node.isConnected ? node.closest(".jp-OutputArea, .output_area, .output, .cell") : null;
 }
 
-// hide the static copies of this output area once the view is in the page (a few tries)
-function hideStaticCopies(node, tries = 60) {
+// once the view is in the page (a few tries): hide the static copies of its output area, and mark
+// its notebook, whose cells are then painted each on its own (live.css: .afm-notebook)
+function settleIn(node, tries = 60) {
   const area = outputArea(node);
   if (!area) {
-    if (tries > 0) requestAnimationFrame(() => hideStaticCopies(node, tries - 1));
+    if (tries > 0) requestAnimationFrame(() => settleIn(node, tries - 1));
     return;
   }
   for (const copy of area.querySelectorAll(".afm-live-static")) copy.style.display = "none";
+  const notebook = area.closest(".jp-Notebook");
+  if (notebook && !notebook.classList.contains("afm-notebook")) notebook.classList.add("afm-notebook");
 }
 
 function liveBeside(node) {
@@ -834,7 +837,7 @@ function liveBeside(node) {
 function render({ model, el: host }) {
   const root = document.createElement("div");
   host.appendChild(root);
-  requestAnimationFrame(() => hideStaticCopies(host));
+  requestAnimationFrame(() => settleIn(host));
   const fig = new Figure(root);
   fig.watch();
   fig.onPainted = (seq) => {
