@@ -127,6 +127,22 @@ def test_the_same_object_is_not_sent_twice_and_hold_sends_one_message():
     assert seqs == sorted(seqs) and len(set(seqs)) == len(seqs)  # the browser orders by seq
 
 
+def test_hold_sends_the_legend_once_with_its_last_parts():
+    view = SceneView()
+    states = []
+    view._send = lambda msg, buffers=None: states.append(msg["state"])  # the widget's updates
+    view.set_legend_part("a", "A")
+    view.set_legend_part("b", "B")
+    assert len(states) == 2  # each change at once, outside a hold
+    states.clear()
+    with view.hold():
+        view.set_legend_part("a", "A2")
+        view.set_legend_part("b", "B2")
+        assert states == []
+    assert states == [{"legend": "<div class='afm-legend-part'>A2</div>"
+                                 "<div class='afm-legend-part'>B2</div>"}]
+
+
 def test_a_replay_answers_the_browser_with_the_whole_scene():
     view = SceneView()
     _a_session(view.vis)

@@ -7,6 +7,7 @@ that only an Agg redraw could update (now it is sent to the browser as data, one
 """
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
+import numpy as np
 import pytest
 
 import afmsmiler.ui.panel as panel_module
@@ -431,6 +432,29 @@ def test_a_view_waits_for_the_figure_s_paint_during_a_drag_and_the_newest_wins(m
     loop.now += 0.002
     loop.run()
     assert shown[2:] == ["new"]
+    # a deferred animation's commands leave as one message, its legend as one more
+    vis = p.scene_root()
+    view = p._view
+    sent = []
+    view.send = lambda content, buffers=None: sent.append(("commands", len(buffers or [])))
+    view._send = lambda msg, buffers=None: sent.append(("state", sorted(msg["state"])))
+
+    def animate():
+        for x in range(3):
+            vis["tip"].set_transform(np.diag([1.0, 1.0, 1.0, 1.0]) + x * np.eye(4, k=3))
+        view.set_legend_part("a", "A")
+        view.set_legend_part("b", "B")
+    live._handle_message(live, {"painted": live.frames_sent}, [])
+    live.figure.axes[0].lines[0].set_ydata([0.0, 8.0])
+    live.sync()  # an update's frame, not painted yet
+    p.in_drag = True
+    p.after_frame(animate)
+    p.in_drag = False
+    assert sent == []  # waiting for the paint
+    live._handle_message(live, {"painted": live.frames_sent}, [])
+    loop.now += 0.002
+    loop.run()
+    assert p.error is None and sent == [("state", ["legend"]), ("commands", 3)]
     # a page that never answers costs at most PAINT_WAIT; a failure is shown, not raised
     p.in_drag = True
     p.after_frame(lambda: 1 / 0)

@@ -325,13 +325,15 @@ class SceneView(anywidget.AnyWidget):
 
     @contextlib.contextmanager
     def hold(self):
-        """Send the commands made inside the block as one message at its end (one repaint)."""
+        """Send the commands made inside the block as one message at its end, and the changes
+        of the view's own state (its legend, its labels) as one more: one repaint."""
         with self._lock:
             outer = self._pending is not None
             if not outer:
                 self._pending = []
         try:
-            yield self
+            with self.hold_sync():
+                yield self
         finally:
             if not outer:
                 with self._lock:

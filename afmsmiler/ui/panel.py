@@ -477,9 +477,8 @@ class Panel:
         """
         values = {k: _decimal(v) for k, v in values.items()}
         si = self.to_si(values)
-        view = self._view  # its commands leave as one message: one repaint of the 3D view
         start = time.perf_counter()
-        with (view.hold() if view is not None else contextlib.nullcontext()):
+        with self._held_view():
             self._converted = True
             try:
                 self.update(**si)
@@ -742,10 +741,19 @@ class Panel:
                 return
             self._after = None
             try:
-                show()
+                with self._held_view():
+                    show()
             except Exception as exc:  # shown, not lost in the kernel's log
                 self._report_error(exc)
         loop.call_soon(poll)
+
+    def _held_view(self):
+        """The panel's 3D view held (:meth:`~afmsmiler.scenes.SceneView.hold`): the commands
+        of one update, or of one deferred animation (:meth:`after_frame`), leave as one message
+        and its legend as one more (one repaint of the view, one message less for the page per
+        scene call); a null context without a view."""
+        view = self._view
+        return view.hold() if view is not None else contextlib.nullcontext()
 
     def _flush(self) -> None:
         values = self.values()
