@@ -999,8 +999,8 @@ def press_keys(page, key: str, n: int, interval: float = 0.0) -> None:
     waits for the one before if that took longer), as a held key repeats (some 30 a second) or
     a mouse drag moves.
     """
-    if interval < 0:
-        raise ValueError(f"interval must be >= 0 s, got {interval!r}")
+    if not interval >= 0:  # nan too: it would press as fast as 0
+        raise ValueError(f"interval must be a number >= 0 s, got {interval!r}")
     for i in range(n):
         start = time.monotonic()
         page.keyboard.press(key)
