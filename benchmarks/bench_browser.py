@@ -23,10 +23,18 @@ as a held key repeats, the floor's too: the presses above follow each other as s
 browser took one, which keeps the page's input queue full so that it handles hardly any message
 from the kernel until the keys stop.
 
+JupyterLab runs with its own settings for a notebook's cells, as ``make lab`` serves a student
+(JupyterLab 4.6: cells out of view are not rendered, ``contentVisibility``), not with the
+browser tests' setting that keeps every cell rendered (``tests.browser.Server``'s
+``windowing``).
+
 Beside each panel's latency (JupyterLab) its kernel step: the median time the panel's ``update``
 took in the kernel for the timed presses (``Panel.update_seconds``, read back with
-``tests.browser.kernel_eval``), so a slow model shows itself, and for the drag the moves the
-kernel received, the panel updates they became and the frames it sent.
+``tests.browser.kernel_eval``), so a slow model shows itself, and the CPU time of the kernel's
+thread in it (``Panel.update_cpu_seconds``): the step less its waits, so a model slowed by a
+busy machine (on 2 cores the browser draws while the kernel computes) shows itself too; and
+for the drag the moves the kernel received, the panel updates they became and the frames it
+sent.
 
 Peer (the floor), measured in the same run and the same server: an ipywidgets IntSlider whose
 observer sets a Label's value, key press -> the label's text changed (the next animation frame
@@ -186,9 +194,11 @@ def _panel(where, server, page, name, selector):
     readouts = [d["readout"] for d in detail if d["readout"] is not None]
     stats["readout"] = statistics.median(readouts) if readouts else None
     if where == "lab":
-        stats["step"] = float(B.kernel_eval(
+        step, cpu = B.kernel_eval(
             page, f"import statistics as _st; "
-                  f"print(_st.median(list({e.variable}.update_seconds)[-{PRESSES}:]))"))
+                  f"print(_st.median(list({e.variable}.update_seconds)[-{PRESSES}:]), "
+                  f"_st.median(list({e.variable}.update_cpu_seconds)[-{PRESSES}:]))").split()
+        stats["step"], stats["step_cpu"] = float(step), float(cpu)
     stats["ready"] = ready
     for label, rate in (("drag", 0.0), ("paced", KEY_RATE)):
         if label == "paced" and not rate:
@@ -242,6 +252,7 @@ def _row(where, name, s, floor):
         kernel += f"slider {s['shown']}"
     print(f"{where:<6s}{name:<24s}{_ms(s.get('median'))} ms {_ms(s.get('worst'))} ms "
           f"{s['failed']:3d}/{s['n']:<3d} {ratio:<13s} {_ms(s.get('step'))} ms "
+          f"{_ms(s.get('step_cpu'))} ms "
           f"{_ms(s.get('readout'))} ms  {drawn:<60s} {kernel}", flush=True)
     if s.get("paced_runs"):
         print(f"{where:<6s}{'  paced, ' + f'{KEY_RATE:g} keys/s':<24s}"
@@ -292,9 +303,11 @@ def main():
           f"its full map, and tapping's after a move of the lever its full curve, drawn once "
           f"the slider rested {FULL_DELAY * 1e3:.0f} ms)")
     print(f"{'where':<6s}{'panel':<24s}{'median':>10s} {'worst':>10s} {'failed':>7s} "
-          f"{'median/floor':<13s} {'step':>10s} {'readouts':>10s}  "
+          f"{'median/floor':<13s} {'step':>10s} {'step cpu':>10s} {'readouts':>10s}  "
           f"{'drag: frames painted':<36s} value after the drag")
-    print("(step: median time of the panel's update in the kernel, lab only; readouts: median "
+    print("(step: median time of the panel's update in the kernel, lab only; step cpu: the CPU "
+          "time of the kernel's thread in it, the step less its waits for a CPU other processes "
+          "held (the browser drawing, the server) or for another thread; readouts: median "
           "key press -> the panel's own text readouts changed, the kernel's answer without the "
           "figure, - when the pixels changed first; drag: frames painted (each counted after its "
           "paint) of the frames the kernel sent, and the moves it received -> the "
@@ -305,7 +318,9 @@ def main():
             server = None
             page = B.new_page(b)
             try:
-                server = B.Server(where, root).start()
+                # JupyterLab's own windowing, as `make lab` serves a student (the tests keep
+                # every cell rendered)
+                server = B.Server(where, root, windowing=None).start()
                 floor = None
                 try:
                     floor = _floor(where, server, page)

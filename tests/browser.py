@@ -155,6 +155,10 @@ def notebook_root(prefix: str = "afm-browser-") -> Path:
 
 
 # -- servers -------------------------------------------------------------------------------
+#: JupyterLab's notebook windowing modes (its setting ``windowingMode``)
+WINDOWING = ("none", "full", "defer", "contentVisibility")
+
+
 class Server:
     """A JupyterLab (``kind="lab"``) or voila (``kind="voila"``) server on 127.0.0.1.
 
@@ -174,12 +178,23 @@ class Server:
     checkout : pathlib.Path
         The checkout the kernels import (:func:`kernel_env`); this one by default, another
         (a git worktree of an older commit) for a benchmark's peer.
+    windowing : str or None
+        lab only: the notebook's windowing mode, one of :data:`WINDOWING`. ``"none"`` (the
+        tests'): every cell in the DOM and rendered, on screen or not. None: JupyterLab's own
+        default, the student's (``make lab`` sets none; JupyterLab 4.6: ``contentVisibility``,
+        cells out of view kept in the DOM and not rendered), for a benchmark of what a student
+        gets.
     """
 
     def __init__(self, kind: str, root: Path, *, notebook: str | None = None,
-                 startup_timeout: float = 90.0, short: bool = False, checkout: Path = ROOT):
+                 startup_timeout: float = 90.0, short: bool = False, checkout: Path = ROOT,
+                 windowing: str | None = "none"):
         if kind not in ("lab", "voila"):
             raise ValueError(f"kind must be 'lab' or 'voila', got {kind!r}")
+        if windowing is not None and windowing not in WINDOWING:
+            raise ValueError(f"windowing must be None or one of {', '.join(WINDOWING)}, "
+                             f"got {windowing!r}")
+        self.windowing = windowing
         self.kind, self.root, self.notebook = kind, Path(root), notebook
         self.port = free_port()
         self.proc = None
@@ -201,10 +216,12 @@ class Server:
         return f"{self.base}/voila/render/{notebook}?token={TOKEN}"
 
     def _settings(self) -> Path:
-        """User settings for JupyterLab: no news/update pop-ups, every cell kept in the DOM."""
+        """User settings for JupyterLab: no news/update pop-ups, the windowing mode asked for
+        (``windowing``; JupyterLab's own when None)."""
         settings = self.root / "settings"
+        tracker = {} if self.windowing is None else {"windowingMode": self.windowing}
         for ext, name, values in (
-                ("@jupyterlab/notebook-extension", "tracker", {"windowingMode": "none"}),
+                ("@jupyterlab/notebook-extension", "tracker", tracker),
                 ("@jupyterlab/apputils-extension", "notification",
                  {"fetchNews": "false", "checkForUpdates": False})):
             d = settings / ext

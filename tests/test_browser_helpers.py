@@ -11,3 +11,38 @@ def test_press_keys_names_a_bad_interval_before_pressing_anything(interval):
     # no page: a press would raise AttributeError, so the check comes first
     with pytest.raises(ValueError, match=r"interval must be a number >= 0 s, got"):
         B.press_keys(None, "ArrowLeft", 3, interval)
+
+
+def _windowing_setting(server):
+    import json
+    path = (server._settings() / "@jupyterlab" / "notebook-extension"
+            / "tracker.jupyterlab-settings")
+    return json.loads(path.read_text())
+
+
+def test_the_tests_keep_every_cell_rendered_and_a_benchmark_can_ask_for_jupyterlab_s_own(
+        tmp_path):
+    # the tests' server: every cell in the DOM and rendered
+    assert _windowing_setting(B.Server("lab", tmp_path / "a")) == {"windowingMode": "none"}
+    # a student's (`make lab` passes no settings): no windowing mode of ours, JupyterLab's own
+    assert _windowing_setting(B.Server("lab", tmp_path / "b", windowing=None)) == {}
+    # and the modes JupyterLab's own schema offers are the ones the server takes
+    import json
+    import sys
+    from pathlib import Path
+    schema = (Path(sys.prefix) / "share" / "jupyter" / "lab" / "schemas" / "@jupyterlab"
+              / "notebook-extension" / "tracker.json")
+    if not schema.exists():
+        pytest.skip(f"JupyterLab's schema is not installed at {schema}")
+    modes = json.loads(schema.read_text())["properties"]["windowingMode"]
+    assert sorted(m["const"] for m in modes["oneOf"]) == sorted(B.WINDOWING)
+    for mode in B.WINDOWING:
+        assert _windowing_setting(B.Server("lab", tmp_path / mode, windowing=mode)) == {
+            "windowingMode": mode}
+
+
+@pytest.mark.parametrize("windowing", ["", "None", "contentvisibility", 0])
+def test_a_server_names_a_windowing_mode_it_does_not_know(tmp_path, windowing):
+    with pytest.raises(ValueError, match=r"windowing must be None or one of none, full, defer, "
+                                         r"contentVisibility, got"):
+        B.Server("lab", tmp_path, windowing=windowing)

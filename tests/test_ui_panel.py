@@ -5,6 +5,8 @@ from a slider that only reached the log console while the panel froze, controls 
 clipped strip next to the figure, a panel figure that was pyplot's current one, and a figure
 that only an Agg redraw could update (now it is sent to the browser as data, one message a move).
 """
+import time
+
 import ipywidgets as widgets
 import matplotlib.pyplot as plt
 import numpy as np
@@ -530,3 +532,31 @@ def test_a_value_a_cell_sets_updates_at_once_even_in_a_live_kernel(monkeypatch):
     p, _live = _lever_with_figure()
     p.controls["length"].value = 250.0  # a cell's assignment: no browser lock
     assert p.calls[-1][0] == 250.0 and loop.ready == []
+
+
+class _Timed(Square):
+    """Square whose update waits (sleeps) and then works (spins) for set times."""
+
+    wait = work = 0.0
+
+    def update(self, x):
+        time.sleep(self.wait)
+        end = time.thread_time() + self.work
+        while time.thread_time() < end:
+            pass
+        super().update(x=x)
+
+
+def test_an_update_s_cpu_time_leaves_out_its_waits_and_keeps_its_work():
+    p = _Timed()
+    drawn = len(p.update_seconds)  # the first draw's
+    p.wait, p.work = 0.2, 0.0
+    p.controls["x"].value = 1.5
+    # the thread waited 0.2 s without the CPU: the wall clock counts it, the CPU time does not
+    assert p.update_seconds[-1] >= 0.2
+    assert p.update_cpu_seconds[-1] < p.update_seconds[-1] - 0.15
+    p.wait, p.work = 0.0, 0.05
+    p.controls["x"].value = 1.25
+    # the thread worked 0.05 s of CPU: both count it
+    assert p.update_cpu_seconds[-1] >= 0.05 and p.update_seconds[-1] >= 0.05
+    assert len(p.update_seconds) == len(p.update_cpu_seconds) == drawn + 2

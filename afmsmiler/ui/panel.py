@@ -317,6 +317,11 @@ class Panel:
         #: Seconds each of the last updates took in the kernel (:meth:`_run`; the benchmark's
         #: kernel step), newest last.
         self.update_seconds = collections.deque(maxlen=1000)
+        #: The CPU seconds the kernel's thread spent in each of those updates
+        #: (``time.thread_time``): below :attr:`update_seconds` by the time the thread waited,
+        #: for a CPU that another process held or for another thread (the benchmark's split of
+        #: a slow step into a slow model and a busy machine), newest last.
+        self.update_cpu_seconds = collections.deque(maxlen=1000)
         #: Runs of :meth:`update` through the contract (:meth:`_run`).
         self.updates = 0
         #: Moves the browser sent (a slider's updates, as ipywidgets merges them); with
@@ -477,7 +482,7 @@ class Panel:
         """
         values = {k: _decimal(v) for k, v in values.items()}
         si = self.to_si(values)
-        start = time.perf_counter()
+        start, start_cpu = time.perf_counter(), time.thread_time()
         with self._held_view():
             self._converted = True
             try:
@@ -485,6 +490,7 @@ class Panel:
             finally:
                 self._converted = False
                 self.update_seconds.append(time.perf_counter() - start)
+                self.update_cpu_seconds.append(time.thread_time() - start_cpu)
                 self.updates += 1
         self._applied = dict(values)
 
