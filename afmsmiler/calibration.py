@@ -362,6 +362,57 @@ def _gamma_interpolated(re: np.ndarray) -> np.ndarray:
     return real + 1j * imag
 
 
+#: The most values a kept line-shape table or noise record holds (8 MB of float64; 4 of each
+#: are kept): a panel's spectra (3 modes of 2^14 bins) are kept, a 2^22-bin spectrum of 50
+#: modes is computed anew.
+_KEPT_VALUES = 2 ** 20
+
+
+@functools.lru_cache(maxsize=4)
+def _mode_lines(lever: Cantilever, fluid: Fluid, sample_rate: float, points: int,
+                modes: int) -> tuple:
+    """The bins' frequencies f (Hz) and, for modes n = 1 .. ``modes``, the line shape
+    r^2 T Gamma_i / (omega |1 - r^2 (1 + T Gamma)|^2) (r = f / f_vac,n, T the mass loading)
+    that :func:`thermal_spectrum` weights by the mode's share and the spot, one row a mode,
+    read-only: kept for the next spectrum of the same lever, fluid and bins (a panel's move of
+    the spot, the temperature or the detector: the Bessel functions and the modes' sums are
+    most of a spectrum's cost)."""
+    df = sample_rate / (2.0 * points)
+    f = df * np.arange(1, points + 1)
+    omega = 2.0 * math.pi * f
+    gamma = _gamma_interpolated(fluid.density * lever.width ** 2 / (4.0 * fluid.viscosity)
+                                * omega)
+    loading = mass_loading(lever, fluid)
+    inertia_r, inertia_i = 1.0 + loading * gamma.real, loading * gamma.imag
+    f2 = f * f
+    loss = inertia_i / omega
+    shapes = np.empty((modes, points))
+    real, imag = np.empty(points), np.empty(points)
+    for n in range(1, modes + 1):
+        # with few temporaries
+        r2 = shapes[n - 1]
+        np.multiply(f2, lever.resonance_frequency(n) ** -2, out=r2)
+        np.multiply(r2, inertia_r, out=real)
+        np.subtract(1.0, real, out=real)
+        np.multiply(r2, inertia_i, out=imag)
+        np.multiply(real, real, out=real)
+        np.multiply(imag, imag, out=imag)
+        np.add(real, imag, out=real)
+        np.multiply(r2, loss, out=r2)
+        np.divide(r2, real, out=r2)
+    f.flags.writeable = shapes.flags.writeable = False
+    return f, shapes
+
+
+@functools.lru_cache(maxsize=4)
+def _gamma_draws(seed: int, averages: int, points: int) -> np.ndarray:
+    """``numpy.random.default_rng(seed).standard_gamma(averages, points)``, read-only: kept for
+    the next spectrum of the same seed and size (the same draws, bit for bit)."""
+    draws = np.random.default_rng(seed).standard_gamma(averages, points)
+    draws.flags.writeable = False
+    return draws
+
+
 def thermal_spectrum(lever: Cantilever, fluid="air", *, temperature: float = TEMPERATURE.default,
                      sample_rate: float | None = None, points: int = 2 ** 16,
                      averages: int = 16, detector_noise: float = 50e-15, spot: float = 1.0,
@@ -413,33 +464,21 @@ def thermal_spectrum(lever: Cantilever, fluid="air", *, temperature: float = TEM
         modes = max(1, sum(1 for n in range(1, MAX_MODE + 1)
                            if lever.resonance_frequency(n) < 2.0 * sample_rate))
     modes = check_integer("modes", modes, 1, MAX_MODE)
-    rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(
-        None if seed is None else check_integer("seed", seed, 0, 2 ** 63 - 1))
-    df = sample_rate / (2.0 * points)
-    f = df * np.arange(1, points + 1)
-    omega = 2.0 * math.pi * f
-    gamma = _gamma_interpolated(fluid.density * lever.width ** 2 / (4.0 * fluid.viscosity)
-                                * omega)
-    loading = mass_loading(lever, fluid)
-    inertia_r, inertia_i = 1.0 + loading * gamma.real, loading * gamma.imag
+    if not isinstance(seed, np.random.Generator) and seed is not None:
+        seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
+    lines = _mode_lines if modes * points <= _KEPT_VALUES else _mode_lines.__wrapped__
+    f, shapes = lines(lever, fluid, float(sample_rate), points, modes)
     prefactor = 4.0 * BOLTZMANN * temperature / lever.spring_constant
     expected = np.full(points, detector_noise ** 2)
-    f2 = f * f
-    loss = inertia_i / omega
-    r2, real, imag = np.empty(points), np.empty(points), np.empty(points)
     for n in range(1, modes + 1):
-        # r^2 T Gamma_i / (omega |1 - r^2 (1 + T Gamma)|^2), r = f / f_vac,n, with few temporaries
-        np.multiply(f2, lever.resonance_frequency(n) ** -2, out=r2)
-        np.multiply(r2, inertia_r, out=real)
-        np.subtract(1.0, real, out=real)
-        np.multiply(r2, inertia_i, out=imag)
-        np.multiply(real, real, out=real)
-        np.multiply(imag, imag, out=imag)
-        np.add(real, imag, out=real)
-        np.multiply(r2, loss, out=r2)
-        np.divide(r2, real, out=r2)
-        expected += (_slope_ratio(n, spot) ** 2 * mode_share(n) * prefactor) * r2
-    psd = expected * rng.standard_gamma(averages, points) / averages
+        expected += (_slope_ratio(n, spot) ** 2 * mode_share(n) * prefactor) * shapes[n - 1]
+    if isinstance(seed, int) and points <= _KEPT_VALUES:
+        draws = _gamma_draws(seed, averages, points)
+    else:
+        rng = seed if isinstance(seed, np.random.Generator) else np.random.default_rng(seed)
+        draws = rng.standard_gamma(averages, points)
+    psd = expected * draws / averages
+    f = f.copy()
     for a in (f, psd, expected):
         a.flags.writeable = False
     return ThermalSpectrum(lever=lever, fluid=fluid, frequency=f, psd=psd, expected=expected,

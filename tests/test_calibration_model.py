@@ -206,6 +206,60 @@ def test_spectrum_axes_and_floor():
             thermal_spectrum(lever, "air", **kwargs)
 
 
+def _fresh_spectrum(*args, **kwargs):
+    from afmsmiler import calibration
+    calibration._mode_lines.cache_clear()
+    calibration._gamma_draws.cache_clear()
+    return thermal_spectrum(*args, **kwargs)
+
+
+@pytest.mark.parametrize("kept", [True, False])
+def test_a_spectrum_from_kept_line_shapes_and_draws_is_the_one_computed_afresh(
+        kept, monkeypatch):
+    from afmsmiler import calibration
+    if not kept:  # too large to keep: computed each time
+        monkeypatch.setattr(calibration, "_KEPT_VALUES", 15)
+    lever, kw = _tapping(), dict(points=2 ** 12, averages=8, seed=11)
+    fresh = _fresh_spectrum(lever, "water", spot=0.6, **kw)
+    # a panel's moves: the spot, the temperature, the detector, the same lever and bins
+    thermal_spectrum(lever, "water", spot=0.9, **kw)
+    thermal_spectrum(lever, "water", spot=0.6, temperature=310.0, detector_noise=1e-13, **kw)
+    again = thermal_spectrum(lever, "water", spot=0.6, **kw)
+    for name in ("frequency", "expected", "psd"):
+        np.testing.assert_array_equal(getattr(again, name), getattr(fresh, name))
+        assert not getattr(again, name).flags.writeable
+    assert (calibration._mode_lines.cache_info().hits > 0) is kept
+    # the noise is numpy's own draw for the seed, whether kept or not
+    draws = np.random.default_rng(11).standard_gamma(8, 2 ** 12)
+    np.testing.assert_array_equal(again.psd, again.expected * draws / 8)
+    # another lever, fluid or seed is not served from the kept ones
+    other = thermal_spectrum(_contact(), "water", spot=0.6, **kw)
+    assert other.frequency[0] != again.frequency[0]
+    air = thermal_spectrum(lever, "air", spot=0.6, **kw)
+    np.testing.assert_array_equal(air.expected,
+                                  _fresh_spectrum(lever, "air", spot=0.6, **kw).expected)
+    # water's added mass lowers mode 1 (Sader 1998): its peak is not air's kept line
+    peak = (fluid_mode(lever, "air").resonance_frequency,
+            fluid_mode(lever, "water").resonance_frequency)
+    for s, f in zip((air, again), peak):
+        assert s.frequency[np.argmax(s.expected)] == pytest.approx(f, rel=0.05)
+    reseeded = thermal_spectrum(lever, "water", spot=0.6, **dict(kw, seed=12))
+    np.testing.assert_array_equal(
+        reseeded.psd, reseeded.expected * np.random.default_rng(12).standard_gamma(8, 2 ** 12)
+        / 8)
+
+
+def test_kept_line_shapes_cannot_be_changed_through_a_spectrum():
+    s = thermal_spectrum(_tapping(), "air", points=2 ** 10, seed=3)
+    for a in (s.frequency, s.expected, s.psd):
+        with pytest.raises(ValueError, match="read-only"):
+            a[0] = 0.0
+    from afmsmiler.calibration import _gamma_draws, _mode_lines
+    f, shapes = _mode_lines(_tapping(), s.fluid, s.sample_rate, 2 ** 10, s.modes)
+    assert not f.flags.writeable and not shapes.flags.writeable
+    assert not _gamma_draws(3, s.averages, 2 ** 10).flags.writeable
+
+
 # -- the fit ---------------------------------------------------------------------------------
 def test_the_fit_recovers_an_exact_sho_line():
     # a noise-free SHO line on a floor, written out here: the fit must return its parameters
