@@ -181,9 +181,9 @@ class Server:
     windowing : str or None
         lab only: the notebook's windowing mode, one of :data:`WINDOWING`. ``"none"`` (the
         tests'): every cell in the DOM and rendered, on screen or not. None: JupyterLab's own
-        default, the student's (``make lab`` sets none; JupyterLab 4.6: ``contentVisibility``,
-        cells out of view kept in the DOM and not rendered), for a benchmark of what a student
-        gets.
+        default, the student's (``make lab`` sets no mode; JupyterLab 4.6's is
+        ``contentVisibility``: cells out of view kept in the DOM, not rendered), for a
+        benchmark of what a student gets.
     """
 
     def __init__(self, kind: str, root: Path, *, notebook: str | None = None,
