@@ -160,6 +160,29 @@ def test_chunks_do_not_change_the_results(monkeypatch):
     assert chunked.failure == whole.failure
 
 
+@pytest.mark.parametrize("with_k", [True, False], ids=["with k", "without k"])
+def test_rows_that_all_fall_fit_as_the_same_rows_rising(with_k):
+    # issue 24: a batch whose every row falls (a force-volume map's retracts) is fitted on the
+    # rows reversed without a sort; the results are those of the rows given rising, bit for bit,
+    # and of the sorted path (one row of the batch that is not monotonic)
+    tip = Parabolic(20e-9)
+    curves = _curves(tip, seed=40)
+    x = np.array([c.z_np for c in curves])  # rising on every row (a noisy tip position is not)
+    f = np.array([c.force for c in curves])
+    assert (np.diff(x, axis=1) > 0).all()
+    k = K if with_k else None
+    rising = fit_curves(x, f, tip, NU, spring_constant=k)
+    falling = fit_curves(x[:, ::-1], f[:, ::-1], tip, NU, spring_constant=k)
+    mixed_x, mixed_f = np.vstack([x[:, ::-1], x[:1]]), np.vstack([f[:, ::-1], f[:1]])
+    sorted_path = fit_curves(mixed_x, mixed_f, tip, NU, spring_constant=k)
+    for name in ("youngs_modulus", "youngs_modulus_error", "contact_point", "baseline",
+                 "residual_rms"):
+        np.testing.assert_array_equal(getattr(falling, name), getattr(rising, name))
+        np.testing.assert_array_equal(getattr(sorted_path, name)[:-1], getattr(rising, name))
+    np.testing.assert_array_equal(falling.model_force, rising.model_force[:, ::-1])
+    np.testing.assert_array_equal(sorted_path.model_force[:-1], rising.model_force[:, ::-1])
+
+
 @pytest.mark.slow
 def test_batching_invariance_across_the_chunks_of_a_large_batch():
     # 400 curves of 800 points: two chunks (of 327 curves, 2^18 points); each curve as alone

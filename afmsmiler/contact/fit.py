@@ -571,11 +571,23 @@ def _fit_sorted(x, f, tip, nu, k):
     fitted = np.empty_like(f)
     for i in range(0, n, per_chunk):  # bounded: n / per_chunk chunks
         rows = slice(i, i + per_chunk)
-        order = np.argsort(x[rows], axis=1, kind="stable")
-        part, model, reasons = _solve_rows(np.take_along_axis(x[rows], order, axis=1),
-                                           np.take_along_axis(f[rows], order, axis=1),
-                                           tip, 1.0 - nu * nu, k)
-        np.put_along_axis(fitted[rows], order, model, axis=1)
+        # the stable sort's order without sorting where every row rises or strictly falls (a
+        # force-volume map's retracts: the sort and its scatter were some 1.5 ms of 100 curves)
+        step = np.diff(x[rows], axis=1)
+        if np.all(step < 0):
+            part, model, reasons = _solve_rows(np.ascontiguousarray(x[rows, ::-1]),
+                                               np.ascontiguousarray(f[rows, ::-1]), tip,
+                                               1.0 - nu * nu, k)
+            fitted[rows] = model[:, ::-1]
+        elif np.all(step >= 0):
+            part, model, reasons = _solve_rows(x[rows], f[rows], tip, 1.0 - nu * nu, k)
+            fitted[rows] = model
+        else:
+            order = np.argsort(x[rows], axis=1, kind="stable")
+            part, model, reasons = _solve_rows(np.take_along_axis(x[rows], order, axis=1),
+                                               np.take_along_axis(f[rows], order, axis=1),
+                                               tip, 1.0 - nu * nu, k)
+            np.put_along_axis(fitted[rows], order, model, axis=1)
         for name, value in part.items():
             values.setdefault(name, []).append(value)
         failure.extend(reasons)
