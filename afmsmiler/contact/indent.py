@@ -518,14 +518,19 @@ def _adhesive_cycle(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion, 
         f_ad = 2.0 * math.pi * radius * w
         shift = f_ad / k
 
-        def dmt(zz, contact):
-            el = _elastic(tip, zz + shift, k, e_star)
-            force = np.where(contact, el.force - f_ad, 0.0)
-            z_s = np.where(contact, el.z_s, 0.0)
-            return IndentationCurve(zz, z_s, force / k, force,
-                                    np.where(contact, el.contact_radius, 0.0), contact)
+        # both branches are the elastic solution at Z_np + F_ad / k: solved once (elementwise,
+        # so the retract's is the approach's reversed, bit for bit), cut where each touches
+        el = _elastic(tip, z + shift, k, e_star)
 
-        return ApproachRetract(dmt(z, z >= 0), dmt(rz, rz + shift > 0), f_ad, -f_ad, -shift, "dmt")
+        def dmt(zz, way, contact):
+            force = np.where(contact, el.force[way] - f_ad, 0.0)
+            z_s = np.where(contact, el.z_s[way], 0.0)
+            return IndentationCurve(zz, z_s, force / k, force,
+                                    np.where(contact, el.contact_radius[way], 0.0), contact)
+
+        forward, backward = slice(None), slice(None, None, -1)
+        return ApproachRetract(dmt(z, forward, z >= 0), dmt(rz, backward, rz + shift > 0), f_ad,
+                               -f_ad, -shift, "dmt")
     a_min, z_min, f_min = jkr_instability(k, radius, w, e_star)
     pull_off = _jkr_pull_off(k, radius, w, e_star, a_min, f_min)
 
