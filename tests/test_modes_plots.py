@@ -339,7 +339,7 @@ def test_force_volume_maps_updated_in_place_equal_maps_drawn_afresh():
         fresh = ForceVolumeFigure(fv, names)
         for key, im in fig.images.items():
             ax, ref_ax, ref = fig.axes[key], fresh.axes[key], fresh.images[key]
-            assert im.get_extent() == ref.get_extent()
+            assert tuple(im.get_extent()) == tuple(ref.get_extent())
             assert (ax.get_xlim(), ax.get_ylim()) == (ref_ax.get_xlim(), ref_ax.get_ylim())
             assert (ax.get_xlabel(), ax.get_ylabel()) == (ref_ax.get_xlabel(),
                                                           ref_ax.get_ylabel())
@@ -350,3 +350,41 @@ def test_force_volume_maps_updated_in_place_equal_maps_drawn_afresh():
         for mine, theirs in zip(layout, ref_layout):
             if mine["images"]:
                 assert mine == theirs
+
+
+def test_a_coarse_map_keeps_the_full_map_s_frame_and_shows_its_own_pixels():
+    # issue 24: a coarse map (every 2nd pixel, each twice as large) of the field shown keeps the
+    # axes' limits (no relayout between the coarse and the full map of a move); its image spans
+    # its own pixels; the full map again is the figure drawn afresh; another field is framed
+    from afmsmiler.contact import Parabolic
+    from afmsmiler.modes.force_volume import BLEND, force_volume, two_material_sample
+    from afmsmiler.plots.modes import ForceVolumeFigure
+    tip, names = Parabolic(radius=10e-9), [m.name for m in BLEND]
+    sample, labels = two_material_sample((6, 6), 20e-9, island_radius=40e-9, island_count=1,
+                                         seed=3)
+    args = dict(labels=labels, seed=0, points=100)
+    full = force_volume(sample, BLEND, tip, **args)
+    coarse = force_volume(sample, BLEND, tip, stride=2, **args)
+    fig = ForceVolumeFigure(full, names)
+    frame = {key: (ax.get_xlim(), ax.get_ylim()) for key, ax in fig.axes.items()}
+    fig.update(coarse, status="coarse")
+    half = 0.5 * 40.0  # nm: half a coarse pixel, centred on every 2nd full pixel (20 nm apart)
+    for key, im in fig.images.items():
+        assert (fig.axes[key].get_xlim(), fig.axes[key].get_ylim()) == frame[key]
+        np.testing.assert_allclose(im.get_extent(), (-half, 2 * 40.0 + half, -half,
+                                                     2 * 40.0 + half), rtol=1e-12)
+        np.testing.assert_array_equal(np.ma.filled(im.get_array(), np.nan).shape, (3, 3))
+    sent = [a["images"][0] for a in describe(fig.fig).frame["axes"] if a["images"]]
+    assert len(sent) == 4 and all(img["shape"] == [3, 3] and img["extent"] == pytest.approx(
+        [-half, 2 * 40.0 + half, -half, 2 * 40.0 + half]) for img in sent)
+    fig.update(full)
+    fresh = ForceVolumeFigure(full, names)
+    for key, im in fig.images.items():
+        assert tuple(im.get_extent()) == tuple(fresh.images[key].get_extent())
+        assert (fig.axes[key].get_xlim(), fig.axes[key].get_ylim()) == \
+            (fresh.axes[key].get_xlim(), fresh.axes[key].get_ylim())
+    wider, wider_labels = two_material_sample((6, 6), 30e-9, island_radius=40e-9,
+                                              island_count=1, seed=3)
+    other = force_volume(wider, BLEND, tip, labels=wider_labels, seed=0, points=100)
+    fig.update(other)
+    assert fig.axes["modulus"].get_xlim() == pytest.approx((-15.0, 165.0))

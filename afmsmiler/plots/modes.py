@@ -545,15 +545,22 @@ def _extent(shape, dx, dy, k):
     return (-0.5 * dx * k, (cols - 0.5) * dx * k, -0.5 * dy * k, (rows - 0.5) * dy * k)
 
 
-def _set_image(im, ax, values, extent, lu):
-    im.set_data(np.ma.masked_invalid(values))
+def _set_image(im, ax, values, extent, lu, frame=None):
+    """Show ``values`` in ``im`` over ``extent``, the axes' limits ``frame`` (default the
+    extent), the colour limits the data's range; the extent and the frame are set only when
+    they change (a map moved in place skips matplotlib's relayout, ~0.4 ms per map)."""
+    im.set_data(values)  # matplotlib masks the non-finite values (cbook.safe_masked_invalid)
+    frame = extent if frame is None else frame
     labels = f"x [{lu}]", f"y [{lu}]"
-    framed = (tuple(im.get_extent()) == tuple(extent) and ax.get_xlim() == tuple(extent[:2])
-              and ax.get_ylim() == tuple(extent[2:])
-              and (ax.get_xlabel(), ax.get_ylabel()) == labels)
-    if not framed:  # a move that keeps the map's frame skips matplotlib's relayout (~1 ms)
-        im.set_extent(extent)
-        ax.set(xlim=extent[:2], ylim=extent[2:], xlabel=labels[0], ylabel=labels[1])
+    if tuple(im.get_extent()) != tuple(extent):
+        if ax.get_autoscalex_on() or ax.get_autoscaley_on():
+            im.set_extent(extent)
+        else:  # the frame is set below: set_extent would only grow the unused data limits
+            im._extent = tuple(extent)
+            im.stale = True
+    if not (ax.get_xlim() == tuple(frame[:2]) and ax.get_ylim() == tuple(frame[2:])
+            and (ax.get_xlabel(), ax.get_ylabel()) == labels):
+        ax.set(xlim=frame[:2], ylim=frame[2:], xlabel=labels[0], ylabel=labels[1])
     lo, hi = data_range(values)
     if not math.isfinite(lo):
         lo, hi = 0.0, 1.0
@@ -762,6 +769,7 @@ class ForceVolumeFigure:
               title="curves (dashed: retract;\npale: one pixel as measured)")
         c.legend(loc="upper left", fontsize="small")
         self._reset = True
+        self._field = self._frame = None  # the maps' field (m) and their axes' frame (nm)
         self.update(volume, status)
 
     def update(self, volume: ForceVolume, status: str = "") -> None:
@@ -778,11 +786,19 @@ class ForceVolumeFigure:
         check_instance("status", status, str)
         self.fig.suptitle(status, fontsize="medium", color="#b00020")
         dx = float(volume.pixel_size)
-        extent = _extent(volume.modulus.shape, dx, dx, _NM)
+        rows, cols = volume.modulus.shape
+        extent = _extent((rows, cols), dx, dx, _NM)
+        # a map of the field shown (a coarse map, stride s: s times fewer pixels, each s times
+        # as large, centred on every s-th of the full map's) keeps the axes' frame: no
+        # relayout between a coarse and a full map (~1.5 ms a move); another field is framed
+        field = (cols * dx, rows * dx)
+        if self._field is None or not np.allclose(field, self._field, rtol=1e-9, atol=0.0):
+            self._field, self._frame = field, extent
         for key, (unit, shown_unit, _) in self.MAPS.items():
             values = np.asarray(getattr(volume, key), dtype=float) * unit_scale(shown_unit,
                                                                                  unit)
-            _set_image(self.images[key], self.axes[key], values, extent, "nm")
+            _set_image(self.images[key], self.axes[key], values, extent, "nm",
+                       frame=self._frame)
         n = volume.approach.shape[0]
         measured = volume.measured_approach, volume.measured_retract
         for i in range(n):
