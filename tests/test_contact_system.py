@@ -61,6 +61,32 @@ def test_system_equals_the_free_functions(adhesion):
         assert point.in_contact[0] == curve.in_contact[j]
 
 
+@pytest.mark.parametrize("adhesion", [None, "dmt", "jkr"])
+@pytest.mark.parametrize("tip", [Spherical(radius=2e-6), Conical()], ids=["sphere", "cone"])
+def test_system_equals_the_free_functions_for_every_field_and_refuses_the_same_ramps(tip,
+                                                                                     adhesion):
+    # issue 24: the system checks only the ramp (its fields were checked when it was made): the
+    # same cycle, bit for bit, and the same errors for a bad ramp as the free function
+    if adhesion and not tip.adhesive:
+        return
+    s = ContactSystem(tip=tip, spring_constant=0.5, youngs_modulus=5e6, poisson_ratio=0.45,
+                      adhesion=adhesion, work_of_adhesion=0.02)
+    kw = dict(adhesion=adhesion, work_of_adhesion=0.02) if adhesion else {}
+    ref = approach_retract(RAMP, 0.5, tip, 5e6, 0.45, **kw)
+    got = s.approach_retract(RAMP)
+    for branch in ("approach", "retract"):
+        for name in ("z_np", "z_s", "z_c", "force", "contact_radius", "in_contact"):
+            np.testing.assert_array_equal(getattr(getattr(got, branch), name),
+                                          getattr(getattr(ref, branch), name))
+    for bad in (RAMP[::-1], RAMP[:1], np.r_[RAMP, np.nan], RAMP.reshape(2, -1),
+                np.linspace(-1e-9, 1e-9, 100_001), np.r_[RAMP, 1e3]):
+        with pytest.raises(ValueError) as free:
+            approach_retract(bad, 0.5, tip, 5e6, 0.45, **kw)
+        with pytest.raises(ValueError) as system:
+            s.approach_retract(bad)
+        assert str(system.value) == str(free.value)
+
+
 def test_published_pull_off_forces():
     # DMT: 2 pi R w (Derjaguin, Muller, Toporov 1975); JKR soft-lever limit: 3/2 pi R w
     # (Johnson, Kendall, Roberts 1971)

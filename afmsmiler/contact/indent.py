@@ -418,11 +418,17 @@ def z_np_limit(spring_constant, tip, youngs_modulus, poisson_ratio, *, adhesion=
     _, k, e_star = _check_common(0.0, spring_constant, tip, youngs_modulus, poisson_ratio)
     check_choice("adhesion", adhesion, ADHESION_MODELS)
     _check_work(work_of_adhesion)
+    if isinstance(tip, Spherical) and adhesion is not None:
+        work_of_adhesion = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
+    return _z_np_limit(k, tip, e_star, adhesion, work_of_adhesion)
+
+
+def _z_np_limit(k, tip, e_star, adhesion, w) -> float:
+    """:func:`z_np_limit` of checked values (k in N/m, E* in Pa, w in J/m^2)."""
     if not isinstance(tip, Spherical):
         return math.inf
     if adhesion is None:
         return tip.max_z_np(k, e_star)
-    w = PARAMETERS["work_of_adhesion"].check(work_of_adhesion)
     if adhesion == "dmt":
         return tip.max_z_np(k, e_star) - 2.0 * math.pi * tip.radius * w / k
     a_min, _, _ = jkr_instability(k, tip.radius, w, e_star)
@@ -473,6 +479,24 @@ def approach_retract(z_np, spring_constant, tip, youngs_modulus, poisson_ratio, 
     z, k, e_star = _check_common(z, spring_constant, tip, youngs_modulus, poisson_ratio)
     check_choice("adhesion", adhesion, ADHESION_MODELS)
     _check_work(work_of_adhesion)
+    return _approach_retract(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion,
+                             work_of_adhesion)
+
+
+def _check_ramp(z_np) -> np.ndarray:
+    """The checks of :func:`approach_retract` on its ramp alone, in its order: a system's
+    parameters were checked when it was made (:meth:`ContactSystem.approach_retract`)."""
+    z = check_array("z_np", z_np, "m", ndim=1, min_size=2, increasing=True)
+    if z.size > MAX_POINTS:
+        raise ValueError(f"z_np must have at most {MAX_POINTS} points, got {z.size}")
+    zp = PARAMETERS["z_np"]
+    return check_array("z_np", z, "m", low=zp.low, high=zp.high)
+
+
+def _approach_retract(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion,
+                      work_of_adhesion) -> ApproachRetract:
+    """:func:`approach_retract` of a checked ramp and checked parameters (E* their
+    reduced modulus)."""
     if adhesion is None:
         _check_depth(tip, z, k, e_star)
         app = _elastic(tip, z, k, e_star)
@@ -507,7 +531,7 @@ def _finite(cycle: ApproachRetract) -> bool:
 
 def _adhesive_cycle(z, k, tip, youngs_modulus, poisson_ratio, e_star, adhesion, radius, w):
     """The DMT or JKR cycle of :func:`approach_retract` (inputs checked)."""
-    limit = z_np_limit(k, tip, youngs_modulus, poisson_ratio, adhesion=adhesion, work_of_adhesion=w)
+    limit = _z_np_limit(k, tip, e_star, adhesion, w)
     if z.max() >= limit:
         raise ValueError(
             f"z_np must be < {limit:g} m for this sphere (R = {radius:g} m) with "

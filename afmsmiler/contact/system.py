@@ -34,8 +34,8 @@ from functools import cached_property
 import numpy as np
 
 from ..validation import check_array, check_choice, check_instance
-from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, adhesion_extrema,
-                     approach_retract, indent, z_np_limit)
+from .indent import (ADHESION_MODELS, ApproachRetract, IndentationCurve, _approach_retract,
+                     _check_ramp, adhesion_extrema, indent, z_np_limit)
 from .quantities import PARAMETERS
 from .tips import Parabolic, Tip, reduced_modulus
 
@@ -220,8 +220,10 @@ class ContactSystem:
         -------
         ApproachRetract
         """
-        return approach_retract(z_np, self.spring_constant, self.tip, self.youngs_modulus,
-                                self.poisson_ratio, **self._adhesion_kwargs)
+        # the fields were checked when the system was made: only the ramp is checked here
+        return _approach_retract(_check_ramp(z_np), self.spring_constant, self.tip,
+                                 self.youngs_modulus, self.poisson_ratio, self.reduced_modulus,
+                                 self.adhesion, self.work_of_adhesion if self.adhesion else 0.0)
 
     # -- the ramp that shows a whole cycle ---------------------------------------------------
     def for_ramp(self) -> "ContactSystem":
