@@ -17,7 +17,10 @@ drag is over (whether they changed), not during it, where the reads cost the pag
 time a student's page does not spend and the floor's drag does not either. The kernel coalesces
 the moves that queue while it runs the model, so it may send fewer than 15 frames; the drag is
 met when every frame it sent was painted once, the last one is the kernel's last and the pixels
-changed; its last frame after the last key is the median of the four. Then four drags of the
+changed; its last frame after the last key is the median of the four. A panel that shows a
+coarse answer during a drag and the full one once the slider rests (``FULL_DELAY``) also gives
+when the coarse answer of the drag's last position was painted (the frame the panel names,
+``last_quick_frame``). Then four drags of the
 same 15 presses at ``KEY_RATE`` keys a second (``BENCH_BROWSER_KEY_RATE``, default 30; 0: none),
 as a held key repeats, the floor's too: the presses above follow each other as soon as the
 browser took one, which keeps the page's input queue full so that it handles hardly any message
@@ -204,6 +207,7 @@ def _panel(where, server, page, name, selector):
         if label == "paced" and not rate:
             continue
         drags = []
+        quick = []  # a quick answer's frame of the drag's last position, after the last key
         for way in (key, back) * (DRAGS // 2):  # there and back, as the floor is dragged
             counters = _counters(page, e.variable) if where == "lab" else None
             drag = B.drag(page, slider, way, DRAG, selector=selector,
@@ -214,10 +218,14 @@ def _panel(where, server, page, name, selector):
                 after = _counters(page, e.variable)
                 kernel = {k: after[k] - counters[k] for k in after}
                 kernel["last"] = after["frames"]
+                if after["quick"] is not None and after["quick"] != counters["quick"]:
+                    quick.append(drag.painted_at_s(after["quick"]))
             drags.append((drag, kernel))
         afters = [d.after_last_key_s for d, _ in drags if d.after_last_key_s is not None]
         stats[f"{label}_runs"] = drags
         stats[f"{label}_after"] = statistics.median(afters) if afters else None
+        quick = [t for t in quick if t is not None]
+        stats[f"{label}_quick"] = statistics.median(quick) if quick else None
     stats["shown"] = B.slider_value(slider)
     if where == "lab":
         stats["kernel"] = B.kernel_eval(
@@ -226,11 +234,14 @@ def _panel(where, server, page, name, selector):
 
 
 def _counters(page, variable):
-    """The kernel's counts for a panel: moves received, updates run, frames sent."""
+    """The kernel's counts for a panel: moves received, updates run, frames sent, and the frame
+    of its last quick answer (None for a panel that gives none)."""
     text = B.kernel_eval(page, f"print({variable}.moves_received, {variable}.updates, "
-                               f"{variable}.live.frames_sent)")
-    moves, runs, frames = (int(v) for v in text.split())
-    return {"moves": moves, "runs": runs, "frames": frames}
+                               f"{variable}.live.frames_sent, "
+                               f"getattr({variable}, 'last_quick_frame', None))")
+    moves, runs, frames, quick = text.split()
+    return {"moves": int(moves), "runs": int(runs), "frames": int(frames),
+            "quick": None if quick == "None" else int(quick)}
 
 
 def _row(where, name, s, floor):
@@ -239,7 +250,7 @@ def _row(where, name, s, floor):
         r = s["median"] / floor["median"]
         ratio = f"{r:6.1f}x {'OK' if r <= TARGET_RATIO else 'MISSED'}"
     drags = s.get("drag_runs") or []  # the floor's drags are times only (its own line)
-    drawn = _drag_text(drags, s.get("drag_after"), floor, "drag")
+    drawn = _drag_text(drags, s.get("drag_after"), floor, "drag", s.get("drag_quick"))
     kernel = ""
     for drag, _ in drags + (s.get("paced_runs") or []):
         if drag.jumped_back:
@@ -255,14 +266,16 @@ def _row(where, name, s, floor):
           f"{_ms(s.get('step_cpu'))} ms "
           f"{_ms(s.get('readout'))} ms  {drawn:<60s} {kernel}", flush=True)
     if s.get("paced_runs"):
-        print(f"{where:<6s}{'  paced, ' + f'{KEY_RATE:g} keys/s':<24s}"
-              f"{_drag_text(s['paced_runs'], s.get('paced_after'), floor, 'paced')}", flush=True)
+        paced = _drag_text(s["paced_runs"], s.get("paced_after"), floor, "paced",
+                           s.get("paced_quick"))
+        print(f"{where:<6s}{'  paced, ' + f'{KEY_RATE:g} keys/s':<24s}{paced}", flush=True)
 
 
-def _drag_text(drags, after, floor, label):
+def _drag_text(drags, after, floor, label, quick=None):
     """A panel's drags (``label`` "drag" or "paced") as its row shows them: painted/sent per
     drag, and the last frame after the last key against the floor's press and the floor's own
-    drags of the same kind."""
+    drags of the same kind; for a panel that shows a quick answer until the slider rests, also
+    when the quick answer of the last position was painted (``quick``, s after the last key)."""
     if not drags:
         return ""
     ok = True
@@ -285,6 +298,9 @@ def _drag_text(drags, after, floor, label):
             text += (f"; {after / floor[f'{label}_after']:.1f}x the floor's "
                      f"{'drag' if label == 'drag' else 'paced drag'}")
         text += ")"
+        if quick is not None:  # a panel that shows a coarse answer until the slider rests
+            text += (f"; its last position shown coarse {quick * 1e3:.0f} ms after the last key "
+                     f"({quick / floor['median']:.1f}x the floor)")
     return text
 
 

@@ -485,7 +485,7 @@ afm.arm = (sel, mode, timeoutMs) => {
 // arm a drag: record on every frame the painted data-seq and pixel states, until quiet
 afm.armDrag = (sel, quietMs, timeoutMs) => {
   const root = afm.root();
-  const st = {t0: null, seqs: [], states: 0, times: [], values: [], keys: 0};
+  const st = {t0: null, seqs: [], states: 0, times: [], values: [], keys: 0, paints: []};
   const readout = () => {
     const e = document.activeElement, w = e && e.closest && e.closest('.widget-slider');
     const r = w && w.querySelector('.widget-readout');
@@ -532,6 +532,9 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
         const drawn = figs.map(f => f.drawnAt).filter(t => t != null);
         const at = drawn.length ? Math.min(ts, Math.max(...drawn)) : ts;
         st.times.push(at - (st.t0 || at));
+        // the frames painted by now, each with this date (the last paint of each figure)
+        figs.forEach(f => { const n = f.paintedSeqs.length;
+                            if (n) st.paints.push([f.paintedSeqs[n - 1], at - (st.t0 || at)]); });
       }
       if (hash !== lastHash) {  // no live figure: a change of its pixels, dated by this frame
         st.states++;
@@ -549,7 +552,8 @@ afm.armDrag = (sel, quietMs, timeoutMs) => {
         resolve({seqs: st.seqs, states: st.states, times: st.times, changed: changed,
                  lastKey: st.t0 === null ? null : st.tLast - st.t0,
                  timedOut: now - start > timeoutMs, baseSeq: baseSeq, values: st.values,
-                 keys: st.keys, frames: afm.framesSince(root, sel, baseFrames)});
+                 keys: st.keys, frames: afm.framesSince(root, sel, baseFrames),
+                 paints: st.paints});
       } else requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
@@ -953,6 +957,16 @@ class DragResult:
     #: and of those it painted (each recorded by the figure at the animation frame after its
     #: draw, so after a paint), in order; empty without a live figure.
     frames: list = field(default_factory=list)
+    #: ``(seq, s from the first keydown)`` of each frame a live figure painted, dated as
+    #: ``last_frame_s`` is; empty without a live figure.
+    paints: list = field(default_factory=list)
+
+    def painted_at_s(self, seq: int) -> float | None:
+        """s from the last keydown to the paint of frame ``seq`` (None if it was not painted)."""
+        at = [t for s, t in self.paints if s == seq]
+        if not at or self.last_key_s is None:
+            return None
+        return at[0] / 1000.0 - self.last_key_s
 
     @property
     def after_last_key_s(self) -> float | None:
@@ -1039,7 +1053,7 @@ def drag(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
                       last_key_s=None if r.get("lastKey") is None else r["lastKey"] / 1000.0,
                       values=r["values"], keys=r["keys"], frames=r.get("frames") or [],
-                      changed=r.get("changed"))
+                      changed=r.get("changed"), paints=r.get("paints") or [])
 
 
 def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
@@ -1064,7 +1078,7 @@ def burst(page, slider, key: str = "ArrowLeft", n: int = 15, *, selector: str,
                       last_frame_s=(r["times"][-1] / 1000.0) if r["times"] else None,
                       last_key_s=None if r.get("lastKey") is None else r["lastKey"] / 1000.0,
                       values=r["values"], keys=r["keys"], frames=r.get("frames") or [],
-                      changed=r.get("changed"))
+                      changed=r.get("changed"), paints=r.get("paints") or [])
 
 
 # -- static export -------------------------------------------------------------------------

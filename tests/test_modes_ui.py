@@ -626,13 +626,19 @@ def test_force_volume_panel_live_shows_a_coarse_map_then_the_full_one(monkeypatc
         assert "coarse map" in panel.fig.get_suptitle()
         assert "computing the full map" in panel.readout.value and "MPa" not in \
             panel.readout.value
+        # the frame that shows the coarse map is the one the panel names (the bench dates the
+        # drag's last position by it)
+        assert panel.last_quick_frame == panel.live.frames_sent
         await asyncio.sleep(ui_modes.FULL_DELAY / 3)
         _from_browser(panel, peak_force=20.0)  # before the first full map was due
+        assert panel.last_quick_frame == panel.live.frames_sent
         await asyncio.sleep(3 * ui_modes.FULL_DELAY)
         return first
 
+    sent = panel.live.frames_sent
     first = asyncio.run(drag())
     assert panel.model_runs - runs == 3  # two coarse maps, one full map (the last values)
+    assert panel.last_quick_frame == sent + 2 and panel.live.frames_sent == sent + 3
     full15 = _full_map(**{**si, "peak_force": peak.to_si(15.0)})
     full20 = _full_map(**{**si, "peak_force": peak.to_si(20.0)})
     s = ui_modes.COARSE_STRIDE

@@ -83,6 +83,10 @@ class _SliderPanel(Panel):
     FIGSIZE = (9.0, 7.0)
     #: The loop's handle of a full answer still to come after a quick one, else None.
     _full_pending = None
+    #: The sequence number of the figure's frame that showed the last quick answer
+    #: (``_quick_then_full``), None before any: what the page shows of a drag's last position
+    #: until the full answer comes.
+    last_quick_frame = None
 
     def __init__(self, scene: bool = False, vis=None, **initial):
         self.controls = self.declared_controls(initial)
@@ -133,6 +137,8 @@ class _SliderPanel(Panel):
             full()
             return
         quick()
+        if self.live is not None:
+            self.last_quick_frame = self.live.frames_sent
         self._full_pending = loop.call_later(FULL_DELAY, self._full_now, full)
 
     def _cancel_full(self) -> None:
