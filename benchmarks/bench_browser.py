@@ -216,7 +216,7 @@ def _panel(where, server, page, name, selector):
             kernel = None
             if counters is not None:
                 after = _counters(page, e.variable)
-                kernel = {k: after[k] - counters[k] for k in after}
+                kernel = {k: after[k] - counters[k] for k in ("moves", "runs", "frames")}
                 kernel["last"] = after["frames"]
                 if after["quick"] is not None and after["quick"] != counters["quick"]:
                     quick.append(drag.painted_at_s(after["quick"]))
