@@ -450,3 +450,52 @@ def test_a_stride_out_of_range_is_named(stride):
                                          seed=3)
     with pytest.raises((ValueError, TypeError), match="stride"):
         force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, stride=stride)
+
+
+def _run_steps(steps):
+    """Run a generator of steps to its end: (what it yielded, what it returned)."""
+    yielded = []
+    for _ in range(10_000):  # bounded: a map's steps are fewer
+        try:
+            yielded.append(next(steps))
+        except StopIteration as done:
+            return yielded, done.value
+    raise AssertionError("the steps did not end")
+
+
+@pytest.mark.parametrize("stride", [1, 2])
+@pytest.mark.parametrize("block", [1, 7, 25])
+def test_a_map_made_in_steps_is_the_map_made_at_once(block, stride):
+    """issue 24: the force-volume panel makes its full map a block of pixels per turn of the
+    kernel's loop; the steps make the curves, then analyse ``block`` pixels each (yielding the
+    pixels done), and return the map force_volume makes at once, bit for bit."""
+    sample, labels = two_material_sample((9, 10), 24e-9, island_radius=70e-9, island_count=2,
+                                         seed=3)
+    args = dict(labels=labels, seed=4, force_noise=30e-12, stride=stride)
+    whole = force_volume(sample, BLEND, Parabolic(radius=10e-9), **args)
+    yielded, stepped = _run_steps(fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9),
+                                                         block_pixels=block, **args))
+    analysed = labels[::stride, ::stride].size
+    assert yielded == [0, *range(block, analysed, block), analysed]
+    for key in ("modulus", "modulus_error", "adhesion", "deformation", "dissipation", "labels",
+                "measured_approach", "measured_retract", "dissipation_noise"):
+        np.testing.assert_array_equal(getattr(stepped, key), getattr(whole, key))
+    assert stepped.pixel_size == whole.pixel_size
+
+
+@pytest.mark.parametrize("kwargs, name", [(dict(block_pixels=0), "block_pixels"),
+                                          (dict(block_pixels=fvm.MAX_MAP_PIXELS + 1),
+                                           "block_pixels"),
+                                          (dict(block_pixels=2.5), "block_pixels"),
+                                          (dict(peak_force=-1e-9), "peak_force"),
+                                          (dict(stride=0), "stride")])
+def test_steps_check_their_arguments_when_called(monkeypatch, kwargs, name):
+    """Bad input is named when the steps are asked for, before any curve is made (not at the
+    first step, which a panel runs later, on the kernel's loop)."""
+    def no_curves(*args, **kw):
+        raise AssertionError("curves were made")
+    monkeypatch.setattr(fvm, "_noise_free_curves", no_curves)
+    sample, labels = two_material_sample((4, 4), 24e-9, island_radius=30e-9, island_count=1,
+                                         seed=3)
+    with pytest.raises((ValueError, TypeError), match=name):
+        fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9), labels=labels, **kwargs)

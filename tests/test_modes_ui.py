@@ -590,7 +590,8 @@ def fvp():
 
 @pytest.mark.slow
 def test_force_volume_panel_one_map_per_move(monkeypatch):
-    calls = _count(monkeypatch, force_volume, "force_volume")
+    # every map, made at once (force_volume) or in steps, is one run of force_volume_steps
+    calls = _count(monkeypatch, force_volume, "force_volume_steps")
     panel = ForceVolumePanel()
     panel.set(peak_force=20.0)
     assert len(calls) == 2 and panel.model_runs == 2
@@ -616,6 +617,9 @@ def test_force_volume_panel_live_shows_a_coarse_map_then_the_full_one(monkeypatc
     import afmsmiler.ui.panel as ui_panel
     panel = ForceVolumePanel()
     monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    # the order of moves and full maps is tested, not the delay: one long enough that a loaded
+    # machine's sleep of a third of it still ends before it
+    panel.full_delay = 0.15
     runs = panel.model_runs
     si = {k: FORCE_VOLUME_SLIDERS[k].to_si(v) for k, v in FORCE_VOLUME_DEFAULTS.items()}
     peak = FORCE_VOLUME_SLIDERS["peak_force"]
@@ -629,10 +633,10 @@ def test_force_volume_panel_live_shows_a_coarse_map_then_the_full_one(monkeypatc
         # the frame that shows the coarse map is the one the panel names (the bench dates the
         # drag's last position by it)
         assert panel.last_quick_frame == panel.live.frames_sent
-        await asyncio.sleep(ui_modes.FULL_DELAY / 3)
+        await asyncio.sleep(panel.full_delay / 3)
         _from_browser(panel, peak_force=20.0)  # before the first full map was due
         assert panel.last_quick_frame == panel.live.frames_sent
-        await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        await asyncio.sleep(3 * panel.full_delay)
         return first
 
     sent = panel.live.frames_sent
@@ -649,6 +653,53 @@ def test_force_volume_panel_live_shows_a_coarse_map_then_the_full_one(monkeypatc
         np.testing.assert_array_equal(getattr(panel.last, key), getattr(full20, key))
     assert panel.coarse is None and panel.fig.get_suptitle() == ""
     assert "MPa" in panel.readout.value
+
+
+def test_force_volume_panel_makes_its_full_map_in_blocks_that_a_move_interrupts(monkeypatch):
+    """In a live kernel the full map is made one block of pixels per turn of the loop, so a
+    move from the browser that comes between two blocks is run first: it drops the rest of the
+    older map, which is never shown; the map shown equals the model's made at once."""
+    import asyncio
+
+    import afmsmiler.ui.modes as ui_modes
+    import afmsmiler.ui.panel as ui_panel
+    panel = ForceVolumePanel()
+    monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    si = {k: FORCE_VOLUME_SLIDERS[k].to_si(v) for k, v in FORCE_VOLUME_DEFAULTS.items()}
+    peak = FORCE_VOLUME_SLIDERS["peak_force"]
+    start, runs, sent = panel.last, panel.model_runs, panel.live.frames_sent
+    pixels = int(np.prod(FORCE_VOLUME_MAP["shape"]))
+    assert 1 < ui_modes.FULL_BLOCK < pixels  # more than one block to a map
+
+    async def turns(done, most=2000):
+        for _ in range(most):  # bounded: a few seconds of a busy loop at most
+            if done():
+                return True
+            await asyncio.sleep(0.001)
+        return False
+
+    async def drag():
+        _from_browser(panel, peak_force=15.0)
+        assert await turns(lambda: panel._full_steps is not None)  # the full map under way
+        assert panel.coarse is not None and panel.last is start  # ... and not shown yet
+        # a move from the browser, as the kernel's loop gets it (Panel._move): it waits for one
+        # block, then its update runs and drops the rest of the map of 15 nN
+        panel._hold = True  # the value lands; the move is the browser's
+        panel.controls["peak_force"].value = 20.0
+        panel._hold = False
+        panel._move(from_browser=True)
+        assert await turns(lambda: panel.last is not start and panel._full_pending is None
+                           and panel._full_steps is None)
+
+    asyncio.run(drag())
+    # a coarse and a full map of 15 nN begun, a coarse and a full map of 20 nN: the first full
+    # map was never shown (three frames)
+    assert panel.model_runs - runs == 4 and panel.live.frames_sent == sent + 3
+    full20 = _full_map(**{**si, "peak_force": peak.to_si(20.0)})
+    for key in ("modulus", "modulus_error", "adhesion", "deformation", "dissipation"):
+        np.testing.assert_array_equal(getattr(panel.last, key), getattr(full20, key))
+    assert panel.coarse is None and panel.fig.get_suptitle() == "" and \
+        "MPa" in panel.readout.value
 
 
 def test_notebook_suggestion_the_maps_separate_the_materials(fvp):

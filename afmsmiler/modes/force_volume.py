@@ -62,6 +62,7 @@ from ..validation import check_choice, check_instance, check_integer, check_rang
 from .jumping import Z_SPEED, _material_index, _sequence, trigger_z_np
 
 __all__ = ["PARAMETERS", "SampleMaterial", "ForceVolume", "ForceVolumeMode", "force_volume",
+           "force_volume_steps",
            "two_material_sample", "MAX_MAP_PIXELS", "MAX_POINTS", "MAX_MATERIALS",
            "MAX_ISLAND_WORK", "MAX_STRIDE",
            "ADHESION_MODELS", "BLEND"]
@@ -503,6 +504,60 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
     >>> bool(abs(np.nanmedian(fv.modulus[labels == 0]) / 1e9 - 1) < 0.05)
     True
     """
+    steps = force_volume_steps(sample, materials, tip, labels=labels,
+                               spring_constant=spring_constant, peak_force=peak_force,
+                               ramp_size=ramp_size, points=points, force_noise=force_noise,
+                               z_speed=z_speed, adhesion=adhesion, seed=seed, stride=stride)
+    for _ in range(MAX_MAP_PIXELS + 2):  # bounded: a step per block of at least one pixel
+        try:
+            next(steps)
+        except StopIteration as done:
+            return done.value
+    raise RuntimeError("force_volume_steps took more steps than pixels")  # pragma: no cover
+
+
+def force_volume_steps(sample: Sample, materials, tip: Tip, *, labels,
+                       spring_constant: float = PARAMETERS["spring_constant"].default,
+                       peak_force: float = PARAMETERS["peak_force"].default,
+                       ramp_size: float = PARAMETERS["ramp_size"].default,
+                       points: int = int(PARAMETERS["points"].default),
+                       force_noise: float = PARAMETERS["force_noise"].default,
+                       z_speed: float = PARAMETERS["z_speed"].default,
+                       adhesion: str | None = "dmt", seed: int | None = None,
+                       stride: int = 1, block_pixels: int | None = None):
+    """:func:`force_volume` in steps: a generator that analyses one block of pixels per step.
+
+    Every argument is checked when this is called, before any work; each ``next()`` then makes
+    the curves (first step) or analyses the next ``block_pixels`` pixels, and the last one
+    returns the :class:`ForceVolume` (``StopIteration.value``). :func:`force_volume` is these
+    steps run to their end in blocks as large as memory allows; each pixel's curves and noise
+    are made as in the whole map, and module (d)'s batched fit follows each curve on its own
+    (it leaves the batch once converged), so smaller blocks give the same maps (bit for bit
+    on maps like the course's, tested). A panel runs a step per turn of the kernel's loop, so
+    that a slider move waits for one block, not for the whole map.
+
+    Parameters
+    ----------
+    sample, materials, tip, labels, spring_constant, peak_force, ramp_size, points, force_noise,
+    z_speed, adhesion, seed, stride
+        As :func:`force_volume`.
+    block_pixels : int, optional
+        Pixels analysed per step, 1 to :data:`MAX_MAP_PIXELS`; default: as many as the
+        analysis' working memory allows (``_ANALYSIS_POINTS`` values), one step for a map of
+        the course's size.
+
+    Returns
+    -------
+    generator
+        Yields the number of pixels analysed so far after each step; returns the ForceVolume.
+
+    Raises
+    ------
+    TypeError, ValueError
+        As :func:`force_volume`, and for ``block_pixels`` out of range, when called; a ramp too
+        short to take the tip off a material is found when the curves are made, at the first
+        step.
+    """
     check_instance("sample", sample, Sample)
     materials = _check_materials(materials)
     check_instance("tip", tip, Tip)
@@ -532,6 +587,17 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
     if seed is not None:
         seed = check_integer("seed", seed, 0, 2 ** 63 - 1)
     stride = check_integer("stride", stride, 1, MAX_STRIDE)
+    rows = max(1, _ANALYSIS_POINTS // n)  # the working memory's bound
+    if block_pixels is not None:
+        rows = min(rows, check_integer("block_pixels", block_pixels, 1, MAX_MAP_PIXELS))
+    return _force_volume_steps(sample, materials, tip, lab, k, f_p, ramp, n, sigma, v,
+                               adhesion, seed, stride, rows)
+
+
+def _force_volume_steps(sample, materials, tip, lab, k, f_p, ramp, n, sigma, v, adhesion, seed,
+                        stride, rows):
+    """The work of :func:`force_volume_steps`, of checked arguments (a generator)."""
+    h = sample.heights
     z, app, ret = _noise_free_curves(materials, tip, k, f_p, ramp, n, v, adhesion)
     flat = lab.ravel()
     f_app, f_ret = app[flat], ret[flat]
@@ -544,13 +610,14 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
     analysed[::stride, ::stride] = True
     analysed = analysed.ravel()
     out = [np.full(flat.size, np.nan) for _ in range(5)]
-    rows = max(1, _ANALYSIS_POINTS // n)
     pixels = np.flatnonzero(analysed)
+    yield 0  # the curves are made
     for start in range(0, pixels.size, rows):  # bounded: MAX_MAP_PIXELS / rows blocks
         block = pixels[start:start + rows]
         for arr, values in zip(out, _analyse(z[flat[block]], f_app[block], f_ret[block], k,
                                              sigma, tip, nu[flat[block]])):
             arr[block] = values
+        yield start + block.size
     adh, modulus, error, deformation, dissipation = (a.reshape(h.shape)[::stride, ::stride]
                                                      for a in out)
     # one pixel's measured curves per material, and the loop area's scatter from the noise

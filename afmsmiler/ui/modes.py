@@ -55,7 +55,7 @@ from ..probe import FLUID_NAMES, oscillator
 from ..samples import grating
 from ..validation import check_choice
 from .controls import TYPED
-from .panel import Panel, _live_loop, initial_values
+from .panel import _PAINT_POLL, Panel, _live_loop, initial_values
 
 __all__ = ["TappingPanel", "TappingState", "TAPPING_PROBES", "TAPPING_FLUIDS", "TAPPING_LEVER",
            "TYPED", "tapping_oscillator", "LateralPanel", "LateralState",
@@ -120,40 +120,73 @@ class _SliderPanel(Panel):
             self.caption.value = f"<div>3D view: {html.escape(scene.caption)}</div>"
         self.after_frame(show)
 
+    #: Seconds a slider must rest before the full answer starts (:data:`FULL_DELAY`; a panel
+    #: whose full answer runs in steps that a move interrupts may wait less).
+    full_delay = FULL_DELAY
+    #: The steps of a full answer under way (a generator, see :meth:`_quick_then_full`), else
+    #: None.
+    _full_steps = None
+
     def _quick_then_full(self, quick, full) -> None:
         """Run ``full()``; for a move from the browser in a live notebook ``quick()`` at once
-        and ``full()`` only once the student left the slider for :data:`FULL_DELAY` s.
+        and ``full()`` only once the student left the slider for :attr:`full_delay` s.
 
         For a model that cannot answer every step of a drag in a kernel round trip (issue 24):
         ``quick`` shows a coarse answer and says so on screen, with no readout from it; ``full``
-        shows the whole answer and the readouts. The panel's first update, a value a cell sets
-        (which the cell may read at once) and everything outside a live kernel (tests, nbval, a
-        script) run ``full`` at once and ``quick`` never. A newer move cancels a full answer
-        still pending.
+        shows the whole answer and the readouts. ``full`` may be a generator function: then the
+        kernel's loop runs one of its steps per turn, a move from the browser that comes
+        meanwhile goes first (its update drops the rest), and the answer shows at its last
+        step. The panel's first update, a value a cell sets (which the cell may read at once)
+        and everything outside a live kernel (tests, nbval, a script) run ``full`` at once and
+        whole, and ``quick`` never. A newer move cancels a full answer still pending.
         """
         self._cancel_full()
         loop = _live_loop()
         if loop is None or not self.in_drag:
-            full()
+            steps = full()
+            if steps is not None:
+                for _ in steps:  # bounded: the model's steps are
+                    pass
             return
         quick()
         if self.live is not None:
             self.last_quick_frame = self.live.frames_sent
-        self._full_pending = loop.call_later(FULL_DELAY, self._full_now, full)
+        self._full_pending = loop.call_later(self.full_delay, self._full_step, loop, full)
 
     def _cancel_full(self) -> None:
-        """Drop the full answer an older move left pending (``_quick_then_full``)."""
+        """Drop the full answer an older move left pending or under way
+        (``_quick_then_full``)."""
         if self._full_pending is not None:
             self._full_pending.cancel()
             self._full_pending = None
+        if self._full_steps is not None:
+            self._full_steps.close()
+            self._full_steps = None
 
-    def _full_now(self, full) -> None:
-        """The pending full answer (a loop callback: a failure shows under the panel)."""
+    def _full_step(self, loop, full) -> None:
+        """The pending full answer's next step (a loop callback: a failure shows under the
+        panel). ``full`` is the function (first step) or the generator of its steps."""
         self._full_pending = None
+        if self._deferred:
+            # a move from the browser waits for its update: it goes first, and drops these
+            # steps (unless it changed nothing, an echo: then they go on)
+            self._full_pending = loop.call_later(_PAINT_POLL, self._full_step, loop, full)
+            return
         try:
-            full()
+            if self._full_steps is None:
+                steps = full()
+                if steps is None:  # a plain function: shown
+                    return
+                self._full_steps = steps
+            next(self._full_steps)
+        except StopIteration:
+            self._full_steps = None
+            return
         except Exception as exc:  # shown, not lost in the kernel's log
+            self._full_steps = None
             self._report_error(exc)
+            return
+        self._full_pending = loop.call_soon(self._full_step, loop, full)
 
     def widget(self) -> widgets.Widget:
         """Sliders with the readout beside them, the figure below.
@@ -848,8 +881,11 @@ FORCE_VOLUME_MAP = read_only(dict(shape=(10, 10), pixel_size=24e-9, island_radiu
 
 
 #: A live move first shows the map of every COARSE_STRIDE-th pixel (a quarter of the fits), then
-#: the full map once the student left the slider for :data:`FULL_DELAY` s.
+#: the full map once the student left the slider for :attr:`ForceVolumePanel.full_delay` s.
 COARSE_STRIDE = 2
+#: Pixels the full map fits per turn of the kernel's loop (a quarter of the map: some 3.5 ms in
+#: a process of its own), so that a move made meanwhile waits for one block only.
+FULL_BLOCK = 25
 
 
 class ForceVolumePanel(_SliderPanel):
@@ -860,8 +896,9 @@ class ForceVolumePanel(_SliderPanel):
 
     In a live notebook a slider move in the browser shows a coarse map at once (every
     :data:`COARSE_STRIDE`-th pixel of every other row, computed exactly as in the full map, the
-    figure's title says so) and the full map :data:`FULL_DELAY` s after the last move of a drag;
-    the readouts come from the full map only. The first update, values a cell sets and
+    figure's title says so) and the full map once the slider rested :attr:`full_delay` s, made
+    in blocks of :data:`FULL_BLOCK` pixels, one per turn of the kernel's loop, that a newer
+    move interrupts; the readouts come from the full map only. The first update, values a cell sets and
     everything outside a live kernel (tests, nbval, a script) make the full map at once.
 
     Parameters
@@ -888,6 +925,10 @@ class ForceVolumePanel(_SliderPanel):
     """
 
     coarse = None
+    #: A move waits for one block of the full map at most, not for all of it (as for a full
+    #: answer made at once, :data:`FULL_DELAY`): the map starts after 40 ms of rest, a little
+    #: more than a held key's repeat (some 30 a second).
+    full_delay = 0.04
 
     SLIDERS = FORCE_VOLUME_SLIDERS
     DEFAULTS = FORCE_VOLUME_DEFAULTS
@@ -916,18 +957,25 @@ class ForceVolumePanel(_SliderPanel):
                 f"coarse map: every {COARSE_STRIDE}nd pixel ({shape[0]} x {shape[1]} of "
                 f"{full[0]} x {full[1]}); the full map follows when the slider rests"))
 
-        self._quick_then_full(quick, lambda: self._show(self._map(si)))
+        def full():  # in steps of FULL_BLOCK pixels: a move waits for one block, not the map
+            volume = yield from self._map(si, block_pixels=FULL_BLOCK)
+            self._show(volume)
 
-    def _map(self, si: dict, stride: int = 1):
-        """The model: the blend's maps for slider values ``si`` (SI), every ``stride``-th pixel."""
+        self._quick_then_full(quick, full)
+
+    def _map(self, si: dict, stride: int = 1, block_pixels: int | None = None):
+        """The model: the blend's maps for slider values ``si`` (SI), every ``stride``-th pixel;
+        with ``block_pixels`` the generator of its steps
+        (:func:`~afmsmiler.modes.force_volume.force_volume_steps`)."""
         d = FORCE_VOLUME_MAP
         sample, labels = _fv.two_material_sample(d["shape"], d["pixel_size"],
                                                  island_radius=d["island_radius"],
                                                  island_count=d["island_count"], seed=d["seed"])
         self.labels = labels
-        return self.run_model(_fv.force_volume, sample, _fv.BLEND,
-                              Parabolic(radius=d["tip_radius"]), labels=labels,
-                              seed=d["noise_seed"], stride=stride, **si)
+        model, more = ((_fv.force_volume, {}) if block_pixels is None else
+                       (_fv.force_volume_steps, {"block_pixels": block_pixels}))
+        return self.run_model(model, sample, _fv.BLEND, Parabolic(radius=d["tip_radius"]),
+                              labels=labels, seed=d["noise_seed"], stride=stride, **si, **more)
 
     def _show(self, volume, status: str = "") -> None:
         """Draw ``volume``; a full map (no ``status``) also becomes :attr:`last` and the readouts."""
