@@ -702,6 +702,43 @@ def test_force_volume_panel_makes_its_full_map_in_blocks_that_a_move_interrupts(
         "MPa" in panel.readout.value
 
 
+def test_a_full_map_waits_for_the_page_to_paint_the_coarse_one(monkeypatch):
+    """The full map begins once the page painted the coarse map it follows (a page busy with
+    the student's keys paints nothing, and sends no move, until they stop), or PAINT_WAIT s
+    after it was sent from a page that does not say."""
+    import asyncio
+
+    import afmsmiler.ui.panel as ui_panel
+    from afmsmiler.plots.live import PAINT_WAIT
+    panel = ForceVolumePanel()
+    monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    panel.full_delay = 0.0
+    live = panel.live
+    live.frames_painted = live.frames_sent  # a page that said what it painted
+
+    async def wait(done, seconds):
+        for _ in range(int(seconds / 0.002)):  # bounded
+            if done():
+                return True
+            await asyncio.sleep(0.002)
+        return False
+
+    async def drag():
+        start = panel.last
+        _from_browser(panel, peak_force=15.0)
+        assert not await wait(lambda: panel.last is not start, PAINT_WAIT / 3)
+        assert panel.coarse is not None and panel._full_steps is None  # not begun
+        live._handle_message(live, {"painted": panel.last_quick_frame}, [])  # the page says
+        assert await wait(lambda: panel.last is not start, 5.0)
+        assert panel.last.modulus.shape == FORCE_VOLUME_MAP["shape"]
+        shown, sent = panel.last, asyncio.get_running_loop().time()
+        _from_browser(panel, peak_force=20.0)  # and a page that does not say
+        assert await wait(lambda: panel.last is not shown, 5.0)
+        assert asyncio.get_running_loop().time() - sent >= PAINT_WAIT
+
+    asyncio.run(drag())
+
+
 def test_notebook_suggestion_the_maps_separate_the_materials(fvp):
     # notebook 07: at the defaults the modulus map gives each material's E within 2 % and the
     # adhesion map DMT's 2 pi R w within 5 %

@@ -49,6 +49,7 @@ from ..modes.lateral import FrictionImages, FrictionLoop, LateralLever
 from ..modes.tapping import AmplitudeCurve, TappingLever, operating_point
 from ..parameters import read_only, shown
 from ..planform import preset
+from ..plots.live import PAINT_WAIT
 from ..plots.modes import (ForceVolumeFigure, FrequencyShiftFigure, JumpingFigure,
                            LateralFigure, TappingFigure)
 from ..probe import FLUID_NAMES, oscillator
@@ -72,8 +73,8 @@ def _display(sliders, **si) -> dict:
             for name, p in sliders.items()}
 
 
-#: Seconds a slider must rest before a panel that showed a quick answer during a drag computes
-#: the full one (``_SliderPanel._quick_then_full``).
+#: Seconds a slider must rest (from the page's paint of the quick answer) before a panel that
+#: showed a quick answer during a drag computes the full one (``_SliderPanel._quick_then_full``).
 FULL_DELAY = 0.15
 
 
@@ -129,7 +130,8 @@ class _SliderPanel(Panel):
 
     def _quick_then_full(self, quick, full) -> None:
         """Run ``full()``; for a move from the browser in a live notebook ``quick()`` at once
-        and ``full()`` only once the student left the slider for :attr:`full_delay` s.
+        and ``full()`` only once the student saw the quick answer and left the slider for
+        :attr:`full_delay` s.
 
         For a model that cannot answer every step of a drag in a kernel round trip (issue 24):
         ``quick`` shows a coarse answer and says so on screen, with no readout from it; ``full``
@@ -139,6 +141,14 @@ class _SliderPanel(Panel):
         step. The panel's first update, a value a cell sets (which the cell may read at once)
         and everything outside a live kernel (tests, nbval, a script) run ``full`` at once and
         whole, and ``quick`` never. A newer move cancels a full answer still pending.
+
+        The delay counts from the page's paint of the quick answer
+        (:attr:`~afmsmiler.plots.live.LiveFigure.frames_painted`; at most
+        :data:`~afmsmiler.plots.live.PAINT_WAIT` s after it was sent, and from its sending for
+        a page that never says what it painted): a page busy with the student's keys paints
+        nothing and sends no move until they stop, and a full answer begun meanwhile, for a
+        value already passed, would hold up the next move's quick answer and add a frame
+        for the page to paint first.
         """
         self._cancel_full()
         loop = _live_loop()
@@ -151,6 +161,19 @@ class _SliderPanel(Panel):
         quick()
         if self.live is not None:
             self.last_quick_frame = self.live.frames_sent
+        self._full_pending = loop.call_soon(self._full_after_paint, loop, full,
+                                            loop.time() + PAINT_WAIT)
+
+    def _full_after_paint(self, loop, full, until: float) -> None:
+        """Schedule the full answer :attr:`full_delay` s after the page painted the quick one
+        (a loop callback; polled every :data:`~afmsmiler.ui.panel._PAINT_POLL` s until
+        ``until``, ``loop.time()``)."""
+        live = self.live
+        if live is not None and 0 < live.frames_painted < (self.last_quick_frame or 0) and \
+                loop.time() < until:
+            self._full_pending = loop.call_later(_PAINT_POLL, self._full_after_paint, loop,
+                                                 full, until)
+            return
         self._full_pending = loop.call_later(self.full_delay, self._full_step, loop, full)
 
     def _cancel_full(self) -> None:
@@ -926,8 +949,8 @@ class ForceVolumePanel(_SliderPanel):
 
     coarse = None
     #: A move waits for one block of the full map at most, not for all of it (as for a full
-    #: answer made at once, :data:`FULL_DELAY`): the map starts after 40 ms of rest, a little
-    #: more than a held key's repeat (some 30 a second).
+    #: answer made at once, :data:`FULL_DELAY`): the map begins 40 ms after the page painted the
+    #: coarse one, a little more than a held key's repeat (some 30 a second).
     full_delay = 0.04
 
     SLIDERS = FORCE_VOLUME_SLIDERS
