@@ -74,8 +74,10 @@ def _display(sliders, **si) -> dict:
 
 
 #: Seconds a slider must rest (from the page's paint of the quick answer) before a panel that
-#: showed a quick answer during a drag computes the full one (``_SliderPanel._quick_then_full``).
-FULL_DELAY = 0.15
+#: showed a quick answer during a drag computes the full one (``_SliderPanel._quick_then_full``):
+#: three repeats of a held key (some 30 a second), so that a full answer made at once (some
+#: 40 ms in a live kernel) rarely holds up a drag's next move.
+FULL_DELAY = 0.1
 
 
 class _SliderPanel(Panel):
