@@ -158,6 +158,12 @@ ACCEPTED = {
     "modes.force_volume.force_volume:adhesion": (("None",), "None is the documented "
                                                  "adhesion-free contact"),
     "modes.force_volume.force_volume:seed": (("None",), "None is the documented fresh noise"),
+    "modes.force_volume.force_volume_steps:adhesion": (("None",), "None is the documented "
+                                                       "adhesion-free contact"),
+    "modes.force_volume.force_volume_steps:seed": (("None",), "None is the documented fresh "
+                                                   "noise"),
+    "modes.force_volume.force_volume_steps:block_pixels": (
+        ("None",), "None is the documented: blocks as large as memory allows"),
     "modes.force_volume.two_material_sample:seed": (("None",), "None is the documented fresh "
                                                     "layout"),
     "modes.lateral.friction_scan:seed": (("None",), "None is the documented fresh noise"),
@@ -533,6 +539,9 @@ OVERRIDES = {
     "afmsmiler.modes.tapping.AmplitudeCurve.on_branch": {
         "name": "attractive", "values": Ctx(lambda curve: curve.dissipated_energy)},
     "afmsmiler.modes.force_volume.force_volume": {
+        "materials": lambda: __import__("afmsmiler.modes", fromlist=["BLEND"]).BLEND,
+        "labels": lambda: (np.arange(256).reshape(16, 16) % 2)},
+    "afmsmiler.modes.force_volume.force_volume_steps": {
         "materials": lambda: __import__("afmsmiler.modes", fromlist=["BLEND"]).BLEND,
         "labels": lambda: (np.arange(256).reshape(16, 16) % 2)},
     "afmsmiler.modes.force_volume.ForceVolumeMode": {
