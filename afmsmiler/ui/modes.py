@@ -123,8 +123,9 @@ class _SliderPanel(Panel):
             self.caption.value = f"<div>3D view: {html.escape(scene.caption)}</div>"
         self.after_frame(show)
 
-    #: Seconds a slider must rest before the full answer starts (:data:`FULL_DELAY`; a panel
-    #: whose full answer runs in steps that a move interrupts may wait less).
+    #: Seconds a slider must rest, from the page's paint of the quick answer, before the full
+    #: answer starts (:data:`FULL_DELAY`; a panel whose full answer runs in steps that a move
+    #: interrupts may wait less).
     full_delay = FULL_DELAY
     #: The steps of a full answer under way (a generator, see :meth:`_quick_then_full`), else
     #: None.
@@ -190,7 +191,8 @@ class _SliderPanel(Panel):
 
     def _full_step(self, loop, full) -> None:
         """The pending full answer's next step (a loop callback: a failure shows under the
-        panel). ``full`` is the function (first step) or the generator of its steps."""
+        panel): the first calls ``full``; a generator it returns is kept (:attr:`_full_steps`)
+        and each later call runs one of its steps."""
         self._full_pending = None
         if self._deferred:
             # a move from the browser waits for its update: it goes first, and drops these
