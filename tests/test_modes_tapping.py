@@ -652,3 +652,52 @@ def test_the_sweep_equals_the_reference_walk(a0, viscosity):
         assert jumps == ref_jumps
         jumped += len(jumps)
     assert jumped >= 1  # each case has a coexistence region to jump out of
+
+
+def _run_steps(steps):
+    """Run a generator of steps to its end: (what it yielded, what it returned)."""
+    yielded = []
+    for _ in range(20_000):  # bounded: a curve's steps are fewer
+        try:
+            yielded.append(next(steps))
+        except StopIteration as done:
+            return yielded, done.value
+    raise AssertionError("the steps did not end")
+
+
+@pytest.mark.parametrize("block", [1, 7, 50, 399, None])
+@pytest.mark.parametrize("viscosity", [0.0, 300.0])
+def test_a_curve_made_in_steps_is_the_curve_made_at_once(block, viscosity):
+    """issue 24: the tapping panel makes its full curve a block of distances per turn of the
+    kernel's loop; the steps sample g at ``block`` distances each (yielding the distances
+    done), then refine every root at once, and return amplitude_curve's curve, bit for bit
+    (both branches, their jumps, with and without the sample's viscosity)."""
+    lever = TappingLever(free_amplitude=12e-9, sample_viscosity=viscosity)
+    distances = lever.free_amplitude * np.linspace(1.5, 0.01, 400)
+    whole = amplitude_curve(distances, lever)
+    yielded, stepped = _run_steps(tapping.amplitude_curve_steps(distances, lever,
+                                                                block_distances=block))
+    size = 400 if block is None else block
+    assert yielded == [*range(size, 400, size), 400]
+    for key in ("distance", "amplitude", "phase", "stable", "attractive", "repulsive_branch",
+                "dissipated_energy", "dissipated_energy_error"):
+        np.testing.assert_array_equal(getattr(stepped, key), getattr(whole, key))
+    assert stepped.lever == whole.lever and stepped.jumps == whole.jumps
+    assert np.sum(whole.repulsive_branch) > 0 and np.sum(whole.stable & ~whole.repulsive_branch) > 0
+
+
+@pytest.mark.parametrize("kwargs, name", [
+    (dict(block_distances=0), "block_distances"),
+    (dict(block_distances=tapping.MAX_DISTANCES + 1), "block_distances"),
+    (dict(block_distances=2.5), "block_distances"),
+    (dict(distances=[5e-9, -1e-9]), "distances"),
+    (dict(lever="lever"), "lever")])
+def test_curve_steps_check_their_arguments_when_called(monkeypatch, kwargs, name):
+    """Bad input is named when the steps are asked for, before g is sampled anywhere (not at
+    the first step, which a panel runs later, on the kernel's loop)."""
+    def no_balance(*args, **kw):
+        raise AssertionError("g was sampled")
+    monkeypatch.setattr(tapping.balance, "_balance", no_balance)
+    args = {"distances": [5e-9, 8e-9], "lever": TappingLever(), **kwargs}
+    with pytest.raises((ValueError, TypeError), match=name):
+        tapping.amplitude_curve_steps(**args)

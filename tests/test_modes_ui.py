@@ -47,7 +47,8 @@ def tap():
 
 
 def test_tapping_panel_one_curve_per_move_and_none_for_the_setpoint(monkeypatch):
-    calls = _count(monkeypatch, tapping, "amplitude_curve")
+    # every curve, made at once (amplitude_curve) or in steps, is one run of these steps
+    calls = _count(monkeypatch, tapping.balance, "_amplitude_curve_steps")
     panel = TappingPanel()
     assert len(calls) == 1 and panel.model_runs == 1
     panel.set(setpoint_ratio=0.9)
@@ -75,12 +76,14 @@ def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
     model's own at their distances."""
     import asyncio
 
-    import afmsmiler.ui.modes as ui_modes
     import afmsmiler.ui.panel as ui_panel
     from afmsmiler.ui.modes import TAPPING_COARSE_STRIDE as s
     panel = TappingPanel()
     start = panel.last
     monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    # the order of moves and full curves is tested, not the delay: a loaded machine's sleep of
+    # a third of it must still end before it
+    panel.full_delay = 0.15
     runs = panel.model_runs
 
     def title():
@@ -94,15 +97,15 @@ def test_tapping_panel_live_shows_a_coarse_curve_then_the_full_one(monkeypatch):
         assert panel.last is start  # nothing read from the coarse curve
         assert not panel.figure.lines["amplitude", "jump approach"].get_visible()
         assert len(panel.figure.lines["amplitude", "point"].get_xdata()) == 0
-        await asyncio.sleep(ui_modes.FULL_DELAY / 3)
+        await asyncio.sleep(panel.full_delay / 3)
         _from_browser(panel, free_amplitude=16.0)  # before the first full curve was due
-        await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        await asyncio.sleep(3 * panel.full_delay)
         full16 = panel.last
         _from_browser(panel, free_amplitude=18.0)
-        await asyncio.sleep(ui_modes.FULL_DELAY / 3)
+        await asyncio.sleep(panel.full_delay / 3)
         _from_browser(panel, free_amplitude=16.0)  # back to the curve shown: nothing pending
         assert panel.coarse is None and panel.last.curve is full16.curve
-        await asyncio.sleep(3 * ui_modes.FULL_DELAY)
+        await asyncio.sleep(3 * panel.full_delay)
         # a value a cell sets, and a panel made in a live kernel, are whole at once (the cell
         # may read them; the 3D view is shown with the panel)
         panel.set(free_amplitude=17.0)
@@ -700,6 +703,56 @@ def test_force_volume_panel_makes_its_full_map_in_blocks_that_a_move_interrupts(
         np.testing.assert_array_equal(getattr(panel.last, key), getattr(full20, key))
     assert panel.coarse is None and panel.fig.get_suptitle() == "" and \
         "MPa" in panel.readout.value
+
+
+def test_tapping_panel_makes_its_full_curve_in_blocks_that_a_move_interrupts(monkeypatch):
+    """In a live kernel the full curve is sampled one block of distances per turn of the loop,
+    so a move from the browser that comes between two blocks is run first: it drops the rest of
+    the older curve, which is never shown; the curve shown, its jumps and the state held equal
+    the model's made at once."""
+    import asyncio
+
+    import afmsmiler.ui.panel as ui_panel
+    from afmsmiler.ui.modes import TAPPING_FULL_BLOCK
+    panel = TappingPanel()
+    monkeypatch.setattr(ui_panel, "running_as_notebook", lambda: True)
+    start, runs, sent = panel.last, panel.model_runs, panel.live.frames_sent
+    assert 1 < TAPPING_FULL_BLOCK < tapping.SETPOINT_GRID  # more than one block to a curve
+
+    async def turns(done, most=2000):
+        for _ in range(most):  # bounded: a few seconds of a busy loop at most
+            if done():
+                return True
+            await asyncio.sleep(0.001)
+        return False
+
+    async def drag():
+        _from_browser(panel, free_amplitude=15.0)
+        assert await turns(lambda: panel._full_steps is not None)  # the full curve under way
+        assert panel.coarse is not None and panel.last is start  # ... and not shown yet
+        panel._hold = True  # the value lands; the move is the browser's (Panel._move)
+        panel.controls["free_amplitude"].value = 16.0
+        panel._hold = False
+        panel._move(from_browser=True)
+        assert await turns(lambda: panel.last is not start and panel._full_pending is None
+                           and panel._full_steps is None)
+
+    asyncio.run(drag())
+    # a coarse and a full curve of 15 nm begun, a coarse and a full curve of 16 nm: the first
+    # full curve was never shown (three frames)
+    assert panel.model_runs - runs == 4 and panel.live.frames_sent == sent + 3
+    lever = panel.last.lever
+    assert lever.free_amplitude == pytest.approx(16e-9, rel=1e-12)
+    model = tapping.amplitude_curve(lever.free_amplitude *
+                                    np.linspace(1.5, 0.01, tapping.SETPOINT_GRID), lever)
+    for key in ("distance", "amplitude", "phase", "stable", "repulsive_branch",
+                "dissipated_energy"):
+        np.testing.assert_array_equal(getattr(panel.last.curve, key), getattr(model, key))
+    assert panel.last.curve.jumps == model.jumps
+    r = panel.last.setpoint_ratio
+    assert panel.last.distance == operating_point(model, r)[0]
+    assert panel.coarse is None and "held at z_c" in panel.readout.value and \
+        "computing" not in panel.readout.value
 
 
 def test_a_full_map_waits_for_the_page_to_paint_the_coarse_one(monkeypatch):

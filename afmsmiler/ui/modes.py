@@ -252,10 +252,15 @@ TAPPING_FLUIDS = FLUID_NAMES
 
 #: A browser's move of the lever or the sample first shows the curve at every
 #: TAPPING_COARSE_STRIDE-th distance (50 of 400: in a process of its own the panel's step some
-#: 8 ms, against 12-18 ms for 100 and some 50 ms for the full curve; in a live JupyterLab kernel
+#: 7 ms, against 12-18 ms for 100 and some 40 ms for the full curve; in a live JupyterLab kernel
 #: about twice these), then the full curve, its jumps and the held state once the student left
-#: the slider for :data:`FULL_DELAY` s.
+#: the slider for :attr:`TappingPanel.full_delay` s.
 TAPPING_COARSE_STRIDE = 8
+#: Distances of the full curve sampled per turn of the kernel's loop (1/8 of them: at most some
+#: 7 ms in a process of its own; the roots of all of them then take some 8 ms more,
+#: :func:`~afmsmiler.modes.tapping.amplitude_curve_steps`), so that a move made meanwhile waits
+#: for one block only.
+TAPPING_FULL_BLOCK = 50
 
 #: Initial values in the units shown: a 12 nm free amplitude, where the setpoint decides the
 #: branch (0.8 A0 ends on the repulsive branch, 0.9 A0 stays on the attractive one), on a typed
@@ -336,8 +341,9 @@ class TappingPanel(_SliderPanel):
     In a live notebook a slider move of the lever or the sample in the browser shows the curve
     at every :data:`TAPPING_COARSE_STRIDE`-th distance at once (each root exactly the full
     curve's; the figure's title says so and the readouts wait), and the full curve, its jumps,
-    the held state and the 3D view :data:`FULL_DELAY` s after the last move of a drag. A
-    setpoint move reuses the curve shown. The first update, values a cell sets and everything
+    the held state and the 3D view once the slider rested :attr:`full_delay` s, made in blocks
+    of :data:`TAPPING_FULL_BLOCK` distances, one per turn of the kernel's loop, that a newer
+    move interrupts. A setpoint move reuses the curve shown. The first update, values a cell sets and everything
     outside a live kernel (tests, nbval, a script) make the full curve at once.
 
     Parameters
@@ -364,6 +370,9 @@ class TappingPanel(_SliderPanel):
     """
 
     coarse = None
+    #: As :attr:`ForceVolumePanel.full_delay`: a move waits for one block of the full curve at
+    #: most.
+    full_delay = 0.04
 
     SLIDERS = TAPPING_SLIDERS
     DEFAULTS = TAPPING_DEFAULTS
@@ -493,9 +502,10 @@ class TappingPanel(_SliderPanel):
                 f"and the numbers follow when the slider rests"))
             self.readout.value = _table([("held at z_c", "computing the full curve ...")])
 
-        def full():
-            self._show_state(self.run_model(tapping.amplitude_curve, distances, lever), r,
-                             probe, fluid)
+        def full():  # in steps of TAPPING_FULL_BLOCK distances: a move waits for one block
+            curve = yield from self.run_model(tapping.amplitude_curve_steps, distances, lever,
+                                              block_distances=TAPPING_FULL_BLOCK)
+            self._show_state(curve, r, probe, fluid)
 
         self._quick_then_full(quick, full)
 
@@ -899,7 +909,8 @@ FORCE_VOLUME_SLIDERS = read_only({name: _fv.PARAMETERS[name] for name in (
 #: Initial values in the units shown.
 FORCE_VOLUME_DEFAULTS = read_only(_display(FORCE_VOLUME_SLIDERS))
 
-#: The mapped sample (SI): 10 x 10 pixels of 24 nm (one fit per pixel: some 0.3 to 1 s per move),
+#: The mapped sample (SI): 10 x 10 pixels of 24 nm (one fit per pixel: the full map some 18 ms
+#: in a process of its own, the coarse one some 5 ms),
 #: two islands of 70 nm radius of the blend's soft, sticky material in its stiff matrix
 #: (:data:`afmsmiler.modes.force_volume.BLEND`), a 10 nm paraboloid tip, DMT adhesion, seed 0 of
 #: the noise.

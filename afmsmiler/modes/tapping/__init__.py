@@ -18,7 +18,8 @@ One module per concern; every name is importable from here as before:
 """
 from .lever import PARAMETERS, TappingLever, free_response
 from .balance import (AMPLITUDE_GRID, BRANCHES, DISSIPATION_ROUNDINGS, MAX_DISTANCES,
-                      SETPOINT_GRID, SWEEPS, AmplitudeCurve, amplitude_curve, setpoint_state)
+                      SETPOINT_GRID, SWEEPS, AmplitudeCurve, amplitude_curve,
+                      amplitude_curve_steps, setpoint_state)
 from .balance import operating_point  # noqa: F401  (modes.tapping.operating_point: ui.modes)
 from .balance import _balance, _integrals  # noqa: F401  (checked by the tests)
 from .integration import (BLOCK_PERIODS, LOCKIN_PERIODS, MAX_PERIODS, SteadyState, integrate)
@@ -28,7 +29,7 @@ from .imaging import TappingMode
 from . import balance, feedback, imaging, integration, lever  # noqa: F401
 
 __all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "amplitude_curve",
-           "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
+           "amplitude_curve_steps", "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
            "AMPLITUDE_GRID", "MAX_DISTANCES", "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS",
            "SETPOINT_GRID", "SWEEPS", "FEEDBACKS", "FEEDBACK_PARAMETERS", "FeedbackLine",
            "amplitude_feedback", "MAX_FEEDBACK_STEPS", "DISSIPATION_ROUNDINGS"]

@@ -56,12 +56,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ...validation import check_array, check_choice, check_instance
+from ...validation import check_array, check_choice, check_instance, check_integer
 from .lever import PARAMETERS, TappingLever, _check_lever
 
 __all__ = ["BRANCHES", "AMPLITUDE_GRID", "MAX_DISTANCES", "DISSIPATION_ROUNDINGS",
-           "SETPOINT_GRID", "SWEEPS", "AmplitudeCurve", "amplitude_curve", "setpoint_state",
-           "operating_point"]
+           "SETPOINT_GRID", "SWEEPS", "AmplitudeCurve", "amplitude_curve",
+           "amplitude_curve_steps", "setpoint_state", "operating_point"]
 
 #: The two branches of the amplitude-distance curve.
 BRANCHES = ("attractive", "repulsive")
@@ -394,17 +394,68 @@ def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCu
     >>> round(float(curve.branch("attractive")[0][0]) * 1e9, 3)  # far: the free amplitude
     10.0
     """
+    steps = amplitude_curve_steps(distances, lever)
+    for _ in range(MAX_DISTANCES + 2):  # bounded: a step per block of at least one distance
+        try:
+            next(steps)
+        except StopIteration as done:
+            return done.value
+    raise RuntimeError("amplitude_curve_steps took more steps than distances")  # pragma: no cover
+
+
+def amplitude_curve_steps(distances, lever: TappingLever | None = None, *,
+                          block_distances: int | None = None):
+    """:func:`amplitude_curve` in steps: a generator that samples g(A) at one block of
+    distances per step, then refines every root at once.
+
+    Every argument is checked when this is called, before any work. Each ``next()`` samples
+    g on the amplitude grid at the next ``block_distances`` distances; the last one finds the
+    roots (the Illinois refinement of every sign change together, as :func:`amplitude_curve`
+    does) and returns the :class:`AmplitudeCurve` (``StopIteration.value``). g at a grid point
+    depends on its own distance and amplitude only, so the curve equals
+    :func:`amplitude_curve`'s bit for bit whatever the blocks (tested). A panel runs a step
+    per turn of the kernel's loop, so that a slider move waits for one block, not the curve.
+
+    Parameters
+    ----------
+    distances, lever
+        As :func:`amplitude_curve`.
+    block_distances : int, optional
+        Distances sampled per step, 1 to :data:`MAX_DISTANCES`; default: all of them in one
+        step.
+
+    Returns
+    -------
+    generator
+        Yields the number of distances sampled so far after each block; returns the
+        AmplitudeCurve.
+
+    Raises
+    ------
+    ValueError, TypeError
+        As :func:`amplitude_curve`, and for ``block_distances`` out of range, when called.
+    """
     lever = TappingLever() if lever is None else _check_lever(lever)
     zp = PARAMETERS["distance"]
     zc = check_array("distances", distances, "m", low=zp.low, high=zp.high,
                      low_inclusive=False, max_size=MAX_DISTANCES).ravel()
+    rows = MAX_DISTANCES if block_distances is None else check_integer(
+        "block_distances", block_distances, 1, MAX_DISTANCES)
+    return _amplitude_curve_steps(zc, lever, rows)
+
+
+def _amplitude_curve_steps(zc, lever, rows):
+    """The work of :func:`amplitude_curve_steps`, of checked arguments (a generator)."""
     n = zc.size
     a_max = lever.max_amplitude * (1.0 + 1e-9)
     grid = a_max * _GRID
     m = grid.size
-    zz = np.repeat(zc, m)
-    aa = np.tile(grid, n)
-    g = _balance(lever, zz, aa)[0].reshape(n, m)
+    g = np.empty((n, m))
+    for start in range(0, n, rows):  # bounded: MAX_DISTANCES / rows blocks
+        z_block = zc[start:start + rows]
+        g[start:start + z_block.size] = _balance(lever, np.repeat(z_block, m),
+                                                 np.tile(grid, z_block.size))[0].reshape(-1, m)
+        yield start + z_block.size
     # sign changes of g between neighbouring grid amplitudes (an exact zero counts once)
     lo_neg = g[:, :-1] < 0
     change = lo_neg != (g[:, 1:] < 0)
