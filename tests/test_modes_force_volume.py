@@ -499,3 +499,17 @@ def test_steps_check_their_arguments_when_called(monkeypatch, kwargs, name):
                                          seed=3)
     with pytest.raises((ValueError, TypeError), match=name):
         fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9), labels=labels, **kwargs)
+
+
+def test_steps_use_the_labels_they_checked():
+    """The labels are taken when the steps are asked for: a caller's array changed before the
+    first step (to a material that does not exist) changes nothing."""
+    sample, labels = two_material_sample((4, 4), 24e-9, island_radius=30e-9, island_count=1,
+                                         seed=3)
+    whole = force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, seed=1)
+    mine = labels.copy()
+    steps = fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9), labels=mine, seed=1)
+    mine[:] = len(BLEND)
+    _, stepped = _run_steps(steps)
+    np.testing.assert_array_equal(stepped.labels, labels)
+    np.testing.assert_array_equal(stepped.modulus, whole.modulus)

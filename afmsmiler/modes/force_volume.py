@@ -532,8 +532,10 @@ def force_volume_steps(sample: Sample, materials, tip: Tip, *, labels,
     returns the :class:`ForceVolume` (``StopIteration.value``). :func:`force_volume` is these
     steps run to their end in blocks as large as memory allows; each pixel's curves and noise
     are made as in the whole map, and module (d)'s batched fit follows each curve on its own
-    (it leaves the batch once converged), so smaller blocks give the same maps (bit for bit
-    on maps like the course's, tested). A panel runs a step per turn of the kernel's loop, so
+    (it leaves the batch once converged), so smaller blocks give the same maps: bit for bit on
+    maps like the course's (tested), within round-off where a curve's normal equations are
+    singular (the fit then takes the pseudo-inverse step for every curve of that block's
+    iteration, ``contact.fit._solve_rows``). A panel runs a step per turn of the kernel's loop, so
     that a slider move waits for one block, not for the whole map.
 
     Parameters
@@ -543,8 +545,8 @@ def force_volume_steps(sample: Sample, materials, tip: Tip, *, labels,
         As :func:`force_volume`.
     block_pixels : int, optional
         Pixels analysed per step, 1 to :data:`MAX_MAP_PIXELS`; default: as many as the
-        analysis' working memory allows (``_ANALYSIS_POINTS`` values), one step for a map of
-        the course's size.
+        analysis' working memory allows (``_ANALYSIS_POINTS`` values): for a map of the
+        course's size one step makes the curves and one analyses every pixel.
 
     Returns
     -------
@@ -567,7 +569,7 @@ def force_volume_steps(sample: Sample, materials, tip: Tip, *, labels,
     if h.size > MAX_MAP_PIXELS:
         raise ValueError(f"sample must have at most {MAX_MAP_PIXELS} pixels (one fit each, a "
                          f"bound the map honours in seconds), got {h.shape}")
-    lab = np.asarray(labels)
+    lab = np.array(labels)  # a copy: the checked labels are the ones the steps use
     if lab.shape != h.shape or lab.dtype.kind not in "iu" or lab.min() < 0 or \
             lab.max() >= len(materials):
         raise ValueError(f"labels must be integers in [0, {len(materials) - 1}] shaped like the "
