@@ -21,6 +21,7 @@ from afmsmiler.modes import force_volume as fvm
 from afmsmiler.modes.force_volume import (BLEND, ForceVolumeMode, SampleMaterial, force_volume,
                                           two_material_sample)
 from afmsmiler.samples import Sample
+from tests.steps import run_steps
 
 TIP = Parabolic(radius=10e-9)
 R = TIP.radius
@@ -452,17 +453,6 @@ def test_a_stride_out_of_range_is_named(stride):
         force_volume(sample, BLEND, Parabolic(radius=10e-9), labels=labels, stride=stride)
 
 
-def _run_steps(steps):
-    """Run a generator of steps to its end: (what it yielded, what it returned)."""
-    yielded = []
-    for _ in range(10_000):  # bounded: a map's steps are fewer
-        try:
-            yielded.append(next(steps))
-        except StopIteration as done:
-            return yielded, done.value
-    raise AssertionError("the steps did not end")
-
-
 @pytest.mark.parametrize("stride", [1, 2])
 @pytest.mark.parametrize("block", [1, 7, 25])
 def test_a_map_made_in_steps_is_the_map_made_at_once(block, stride):
@@ -473,7 +463,7 @@ def test_a_map_made_in_steps_is_the_map_made_at_once(block, stride):
                                          seed=3)
     args = dict(labels=labels, seed=4, force_noise=30e-12, stride=stride)
     whole = force_volume(sample, BLEND, Parabolic(radius=10e-9), **args)
-    yielded, stepped = _run_steps(fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9),
+    yielded, stepped = run_steps(fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9),
                                                          block_pixels=block, **args))
     analysed = labels[::stride, ::stride].size
     assert yielded == [0, *range(block, analysed, block), analysed]
@@ -510,6 +500,6 @@ def test_steps_use_the_labels_they_checked():
     mine = labels.copy()
     steps = fvm.force_volume_steps(sample, BLEND, Parabolic(radius=10e-9), labels=mine, seed=1)
     mine[:] = len(BLEND)
-    _, stepped = _run_steps(steps)
+    _, stepped = run_steps(steps)
     np.testing.assert_array_equal(stepped.labels, labels)
     np.testing.assert_array_equal(stepped.modulus, whole.modulus)

@@ -19,6 +19,7 @@ from afmsmiler.modes import (FORCE_PARAMETERS, TAPPING_PARAMETERS, TappingLever,
                              work_of_adhesion)
 from afmsmiler.modes import tapping
 from afmsmiler.parameters import Parameter
+from tests.steps import run_steps
 
 H, R, A0_, E, NU = 6.4e-20, 10e-9, 0.165e-9, 1e9, 0.3
 
@@ -654,17 +655,6 @@ def test_the_sweep_equals_the_reference_walk(a0, viscosity):
     assert jumped >= 1  # each case has a coexistence region to jump out of
 
 
-def _run_steps(steps):
-    """Run a generator of steps to its end: (what it yielded, what it returned)."""
-    yielded = []
-    for _ in range(20_000):  # bounded: a curve's steps are fewer
-        try:
-            yielded.append(next(steps))
-        except StopIteration as done:
-            return yielded, done.value
-    raise AssertionError("the steps did not end")
-
-
 @pytest.mark.parametrize("block", [1, 7, 50, 399, None])
 @pytest.mark.parametrize("viscosity", [0.0, 300.0])
 def test_a_curve_made_in_steps_is_the_curve_made_at_once(block, viscosity):
@@ -675,7 +665,7 @@ def test_a_curve_made_in_steps_is_the_curve_made_at_once(block, viscosity):
     lever = TappingLever(free_amplitude=12e-9, sample_viscosity=viscosity)
     distances = lever.free_amplitude * np.linspace(1.5, 0.01, 400)
     whole = amplitude_curve(distances, lever)
-    yielded, stepped = _run_steps(tapping.amplitude_curve_steps(distances, lever,
+    yielded, stepped = run_steps(tapping.amplitude_curve_steps(distances, lever,
                                                                 block_distances=block))
     size = 400 if block is None else block
     assert yielded == [*range(size, 400, size), 400]

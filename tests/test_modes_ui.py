@@ -600,6 +600,26 @@ def test_force_volume_panel_one_map_per_move(monkeypatch):
     assert len(calls) == 2 and panel.model_runs == 2
 
 
+async def _turns(done, most=2000):
+    """Let the kernel's loop turn until ``done()`` (True), or ``most`` ms (False)."""
+    import asyncio
+    for _ in range(most):  # bounded: a few seconds of a busy loop at most
+        if done():
+            return True
+        await asyncio.sleep(0.001)
+    return False
+
+
+def _move_from_browser(panel, **values):
+    """A move from the browser as the kernel's loop gets it (:meth:`Panel._move`): the values
+    land, and the update waits for the loop."""
+    panel._hold = True
+    for name, value in values.items():
+        panel.controls[name].value = value
+    panel._hold = False
+    panel._move(from_browser=True)
+
+
 def _full_map(**si):
     """The panel's full map for slider values ``si`` (SI), made here from the model directly."""
     d = FORCE_VOLUME_MAP
@@ -674,24 +694,14 @@ def test_force_volume_panel_makes_its_full_map_in_blocks_that_a_move_interrupts(
     pixels = int(np.prod(FORCE_VOLUME_MAP["shape"]))
     assert 1 < ui_modes.FULL_BLOCK < pixels  # more than one block to a map
 
-    async def turns(done, most=2000):
-        for _ in range(most):  # bounded: a few seconds of a busy loop at most
-            if done():
-                return True
-            await asyncio.sleep(0.001)
-        return False
-
     async def drag():
         _from_browser(panel, peak_force=15.0)
-        assert await turns(lambda: panel._full_steps is not None)  # the full map under way
+        assert await _turns(lambda: panel._full_steps is not None)  # the full map under way
         assert panel.coarse is not None and panel.last is start  # ... and not shown yet
         # a move from the browser, as the kernel's loop gets it (Panel._move): it waits for one
         # block, then its update runs and drops the rest of the map of 15 nN
-        panel._hold = True  # the value lands; the move is the browser's
-        panel.controls["peak_force"].value = 20.0
-        panel._hold = False
-        panel._move(from_browser=True)
-        assert await turns(lambda: panel.last is not start and panel._full_pending is None
+        _move_from_browser(panel, peak_force=20.0)
+        assert await _turns(lambda: panel.last is not start and panel._full_pending is None
                            and panel._full_steps is None)
 
     asyncio.run(drag())
@@ -719,22 +729,12 @@ def test_tapping_panel_makes_its_full_curve_in_blocks_that_a_move_interrupts(mon
     start, runs, sent = panel.last, panel.model_runs, panel.live.frames_sent
     assert 1 < TAPPING_FULL_BLOCK < tapping.SETPOINT_GRID  # more than one block to a curve
 
-    async def turns(done, most=2000):
-        for _ in range(most):  # bounded: a few seconds of a busy loop at most
-            if done():
-                return True
-            await asyncio.sleep(0.001)
-        return False
-
     async def drag():
         _from_browser(panel, free_amplitude=15.0)
-        assert await turns(lambda: panel._full_steps is not None)  # the full curve under way
+        assert await _turns(lambda: panel._full_steps is not None)  # the full curve under way
         assert panel.coarse is not None and panel.last is start  # ... and not shown yet
-        panel._hold = True  # the value lands; the move is the browser's (Panel._move)
-        panel.controls["free_amplitude"].value = 16.0
-        panel._hold = False
-        panel._move(from_browser=True)
-        assert await turns(lambda: panel.last is not start and panel._full_pending is None
+        _move_from_browser(panel, free_amplitude=16.0)
+        assert await _turns(lambda: panel.last is not start and panel._full_pending is None
                            and panel._full_steps is None)
 
     asyncio.run(drag())
