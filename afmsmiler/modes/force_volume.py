@@ -51,6 +51,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .._steps import run_steps
 from ..contact import ContactSystem, StandardLinearSolid, Tip, viscoelastic_approach_retract
 from ..contact.fit import fit_curves
 from ..contact.quantities import PARAMETERS as CONTACT
@@ -508,12 +509,8 @@ def force_volume(sample: Sample, materials, tip: Tip, *, labels,
                                spring_constant=spring_constant, peak_force=peak_force,
                                ramp_size=ramp_size, points=points, force_noise=force_noise,
                                z_speed=z_speed, adhesion=adhesion, seed=seed, stride=stride)
-    for _ in range(MAX_MAP_PIXELS + 2):  # bounded: a step per block of at least one pixel
-        try:
-            next(steps)
-        except StopIteration as done:
-            return done.value
-    raise RuntimeError("force_volume_steps took more steps than pixels")  # pragma: no cover
+    # the curves' step, a step per block of at least one pixel, and the maps'
+    return run_steps(steps, MAX_MAP_PIXELS + 2, "force_volume_steps")
 
 
 def force_volume_steps(sample: Sample, materials, tip: Tip, *, labels,
@@ -535,8 +532,8 @@ def force_volume_steps(sample: Sample, materials, tip: Tip, *, labels,
     (it leaves the batch once converged), so smaller blocks give the same maps: bit for bit on
     maps like the course's (tested), within round-off where a curve's normal equations are
     singular (the fit then takes the pseudo-inverse step for every curve of that block's
-    iteration, ``contact.fit._solve_rows``). A panel runs a step per turn of the kernel's loop, so
-    that a slider move waits for one block, not for the whole map.
+    iteration, ``contact.fit._solve_rows``). A panel runs a step per turn of the kernel's
+    loop, so that a slider move waits for one block, not for the whole map.
 
     Parameters
     ----------

@@ -343,8 +343,9 @@ class TappingPanel(_SliderPanel):
     curve's; the figure's title says so and the readouts wait), and the full curve, its jumps,
     the held state and the 3D view once the slider rested :attr:`full_delay` s, made in blocks
     of :data:`TAPPING_FULL_BLOCK` distances, one per turn of the kernel's loop, that a newer
-    move interrupts. A setpoint move reuses the curve shown. The first update, values a cell sets and everything
-    outside a live kernel (tests, nbval, a script) make the full curve at once.
+    move interrupts. A setpoint move reuses the curve shown. The first update, values a cell
+    sets and everything outside a live kernel (tests, nbval, a script) make the full curve at
+    once.
 
     Parameters
     ----------

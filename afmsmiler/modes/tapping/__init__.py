@@ -29,7 +29,8 @@ from .imaging import TappingMode
 from . import balance, feedback, imaging, integration, lever  # noqa: F401
 
 __all__ = ["PARAMETERS", "TappingLever", "AmplitudeCurve", "SteadyState", "amplitude_curve",
-           "amplitude_curve_steps", "integrate", "free_response", "setpoint_state", "TappingMode", "BRANCHES",
+           "amplitude_curve_steps", "integrate", "free_response", "setpoint_state",
+           "TappingMode", "BRANCHES",
            "AMPLITUDE_GRID", "MAX_DISTANCES", "MAX_PERIODS", "BLOCK_PERIODS", "LOCKIN_PERIODS",
            "SETPOINT_GRID", "SWEEPS", "FEEDBACKS", "FEEDBACK_PARAMETERS", "FeedbackLine",
            "amplitude_feedback", "MAX_FEEDBACK_STEPS", "DISSIPATION_ROUNDINGS"]

@@ -56,6 +56,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..._steps import run_steps
 from ...validation import check_array, check_choice, check_instance, check_integer
 from .lever import PARAMETERS, TappingLever, _check_lever
 
@@ -394,13 +395,9 @@ def amplitude_curve(distances, lever: TappingLever | None = None) -> AmplitudeCu
     >>> round(float(curve.branch("attractive")[0][0]) * 1e9, 3)  # far: the free amplitude
     10.0
     """
-    steps = amplitude_curve_steps(distances, lever)
-    for _ in range(MAX_DISTANCES + 2):  # bounded: a step per block of at least one distance
-        try:
-            next(steps)
-        except StopIteration as done:
-            return done.value
-    raise RuntimeError("amplitude_curve_steps took more steps than distances")  # pragma: no cover
+    # a step per block of at least one distance, and the roots'
+    return run_steps(amplitude_curve_steps(distances, lever), MAX_DISTANCES + 1,
+                     "amplitude_curve_steps")
 
 
 def amplitude_curve_steps(distances, lever: TappingLever | None = None, *,
