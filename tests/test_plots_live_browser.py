@@ -254,3 +254,42 @@ def test_a_log_axis_of_a_decade_or_two_reads_its_2_and_5_ticks(page):
     shown = {t: s for s, t in zip(splits, labels) if t}
     assert ["0.2", "0.5", "1", "2", "5", "10"] == list(shown), labels
     assert all(float(t) == pytest.approx(s) for t, s in shown.items())
+
+
+def test_a_status_line_that_comes_and_goes_does_not_move_the_plots(page):
+    """A coarse answer's status (the suptitle) and a full answer's note (an axes title) come and
+    go from frame to frame: once each was shown, their room is kept, so the plots stay where they
+    are and the figure is not laid out again (before, every such frame was laid out and drawn
+    twice, and the plots jumped)."""
+    fig = Figure(figsize=(5, 4))
+    top, bottom = fig.subplots(2, 1)
+    top.plot([0, 1], [0, 1])
+    bottom.plot([0, 1], [1, 0])
+    fig.suptitle("coarse map: the full map follows")
+    _show(page, fig)
+    boxes = page.evaluate("""() => {
+        const F = document.querySelector('.afm-live').afmFigure;
+        const [layout, frame, buffer] = F.last;
+        let resized = 0;
+        const resize = F.resize.bind(F);
+        F.resize = () => { resized += 1; resize(); };
+        const tops = () => F.axes.map((a) => Math.round(a.u.over.getBoundingClientRect().top));
+        const shown = [];
+        const states = [["", "E_dis = 0 on both branches"], ["coarse map", ""],
+                        ["", "E_dis = 0 on both branches"], ["coarse map", ""], ["", ""]];
+        for (const [status, note] of states) {
+            const f = JSON.parse(JSON.stringify(frame));
+            f.suptitle = status;
+            f.axes[1].title = {text: note, color: ""};
+            F.draw(layout, f, buffer);
+            shown.push({tops: tops(), resized});
+        }
+        return shown;
+    }""")
+    assert page.errors == []
+    # the note's first showing makes room for it (one layout); from then on nothing moves
+    assert boxes[0]["resized"] == 1, boxes
+    assert all(b["resized"] == 1 for b in boxes), boxes
+    assert all(b["tops"] == boxes[0]["tops"] for b in boxes), boxes
+    # the room kept is the status line's: the top plot is as low as with the status shown
+    assert boxes[1]["tops"][0] > 0, boxes

@@ -692,8 +692,9 @@ class LiveFigure(anywidget.AnyWidget):
         ``now`` is ``time.monotonic()`` (the default; asyncio's ``loop.time()`` is the same
         clock).
 
-        A view says which frame it painted (a message ``{"painted": seq}``); a frame sent after
-        the newest painted one is in flight. Where no view ever said so (no browser: tests,
+        A view says which frame it painted (a message ``{"painted": seq}``, sent from the
+        animation-frame callback that draws the frame, whose rendering update paints it); a frame
+        sent after the newest painted one is in flight. Where no view ever said so (no browser: tests,
         nbval, a static export) or it has not answered within :data:`PAINT_WAIT` s (its page was
         closed, a view of another kind), nothing is in flight: a panel never waits on a page
         that cannot answer.

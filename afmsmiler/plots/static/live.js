@@ -672,6 +672,22 @@ class Figure {
     return [this.header.offsetHeight, ...this.axes.map((a) => a.title.offsetHeight + a.legend.offsetHeight)].join();
   }
 
+  // The texts around the plots keep the tallest height they had since the layout was built: a
+  // line that comes and goes (a coarse answer's status above its maps, gone from the full answer
+  // that follows) no longer moves the plots under the student's eyes, nor lays them out again and
+  // draws them twice on each frame (a force-volume frame took 15 ms of the page for it).
+  holdChrome() {
+    for (const e of [this.header, ...this.axes.flatMap((a) => [a.title, a.legend])]) {
+      const h = e.offsetHeight;
+      if (h > (e.afmHeld || 0)) {
+        e.afmHeld = h;
+        e.classList.add("afm-held");
+        e.style.boxSizing = "border-box";
+        e.style.minHeight = `${h}px`;
+      }
+    }
+  }
+
   // shown after it was drawn detached (a collapsed output, a tab shown later): measure again
   watch() {
     if (this.observer || typeof ResizeObserver === "undefined") return;
@@ -750,11 +766,7 @@ class Figure {
     keep(this.paintedSeqs, this.drawnSeq);
     this.painted += 1;
     this.root.dataset.painted = String(this.painted);
-    // the kernel sends no frame while two are unpainted (LiveFigure.busy, FRAMES_AHEAD): a page
-    // that is slower than the kernel gets the newest frame, not a queue of steps already passed
-    const seq = this.drawnSeq;
     this.drawnSeq = null;
-    if (this.onPainted && seq > 0) this.onPainted(seq);
   }
 
   tick(ts) {
@@ -769,6 +781,12 @@ class Figure {
       this.drawnSeq = frame.seq === undefined ? -1 : frame.seq;
       // the time of the animation frame that paints it (the browser tests date a change by it)
       this.drawnAt = ts;
+      // the kernel hears of it from this callback, whose rendering update paints it: it sends no
+      // frame while two are unpainted (LiveFigure.busy, FRAMES_AHEAD), so a page slower than the
+      // kernel gets the newest frame, not a queue of steps already passed. Told from the task
+      // after the rendering update instead, it heard 20-50 ms late in a drag (the page's tasks
+      // wait behind its input and rendering), and held the last key's frame back as long.
+      if (this.onPainted && this.drawnSeq > 0) this.onPainted(this.drawnSeq);
       afterRendering(() => this.paintedNow());
     } finally {
       this.schedule();
@@ -786,6 +804,7 @@ class Figure {
     legendHtml(this.figLegend, frame.legend || []);
     // titles and legends first: their heights set the plots' sizes
     frame.axes.forEach((f, i) => this.axes[i].update(f, buffer));
+    this.holdChrome();
     const heights = this.chromeHeights();
     if (rebuilt || heights !== this.measured) {
       this.measured = heights;
