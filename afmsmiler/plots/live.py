@@ -693,11 +693,11 @@ class LiveFigure(anywidget.AnyWidget):
         clock).
 
         A view says which frame it painted (a message ``{"painted": seq}``, sent from the
-        animation-frame callback that draws the frame, whose rendering update paints it); a frame
-        sent after the newest painted one is in flight. Where no view ever said so (no browser: tests,
-        nbval, a static export) or it has not answered within :data:`PAINT_WAIT` s (its page was
-        closed, a view of another kind), nothing is in flight: a panel never waits on a page
-        that cannot answer.
+        animation-frame callback that draws the frame, whose rendering update paints it); a
+        frame sent after the newest painted one is in flight. Where no view ever said so (no
+        browser: tests, nbval, a static export) or it has not answered within
+        :data:`PAINT_WAIT` s (its page was closed, a view of another kind), nothing is in
+        flight: a panel never waits on a page that cannot answer.
         """
         if self.frames_painted == 0 or self.frames_sent - self.frames_painted <= FRAMES_AHEAD:
             return False
