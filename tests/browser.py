@@ -126,13 +126,8 @@ def floor_notebook(path: Path) -> Path:
     round trip that bounds any figure drawn from the kernel.
     """
     import nbformat
-    code = ("import ipywidgets as w\n"
-            "slider = w.IntSlider(value=50, min=0, max=1000, description='floor slider')\n"
-            "label = w.Label('50', layout=w.Layout(width='200px'))\n"
-            "slider.observe(lambda change: setattr(label, 'value', str(change['new'])), 'value')\n"
-            "w.VBox([slider, label])")
     nb = nbformat.v4.new_notebook()
-    nb.cells = [nbformat.v4.new_code_cell(code)]
+    nb.cells = [nbformat.v4.new_code_cell(FLOOR_CODE)]
     nb.metadata["kernelspec"] = {"name": "python3", "display_name": "Python 3",
                                  "language": "python"}
     nbformat.write(nb, str(path))
@@ -141,6 +136,26 @@ def floor_notebook(path: Path) -> Path:
 
 FLOOR_NOTEBOOK = "00_floor.ipynb"
 FLOOR_SLIDER = "floor slider"
+#: The floor's cell: a slider whose observer sets a Label's value (names of its own, so that it
+#: can sit in a course notebook beside a panel, :func:`add_floor_cell`).
+FLOOR_CODE = ("import ipywidgets as _floor_w\n"
+              "_floor_slider = _floor_w.IntSlider(value=50, min=0, max=1000, "
+              "description='floor slider')\n"
+              "_floor_label = _floor_w.Label('50', layout=_floor_w.Layout(width='200px'))\n"
+              "_floor_slider.observe(lambda change: setattr(_floor_label, 'value', "
+              "str(change['new'])), 'value')\n"
+              "_floor_w.VBox([_floor_slider, _floor_label])")
+
+
+def add_floor_cell(path: Path) -> Path:
+    """Append the floor's cell (:data:`FLOOR_CODE`) to the notebook at ``path``: the floor on
+    the page of a course notebook, beside its panels (a label's round trip costs more on a page
+    of many cells, 3D views and figures than in the floor notebook's one cell)."""
+    import nbformat
+    nb = nbformat.read(str(path), as_version=4)
+    nb.cells.append(nbformat.v4.new_code_cell(FLOOR_CODE))
+    nbformat.write(nb, str(path))
+    return path
 
 
 def notebook_root(prefix: str = "afm-browser-") -> Path:
