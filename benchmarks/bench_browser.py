@@ -54,11 +54,13 @@ panel of the registry, ``afmsmiler.ui.registry.PANELS``, then the sliders of :da
 moved but not timed) change the run. Prints a reason and exits 0 when the browser cannot run.
 
 The floor on the panel's own page, beside it: the bench's copy of each course notebook ends with
-the floor's cell (:func:`tests.browser.add_floor_cell`), pressed ``PRESSES`` times and dragged
-``DRAGS`` times (no paced drags) once the notebook ran, before the panel is timed. The same
-label's round trip costs more on a page of many cells, figures and 3D views than in the floor
-notebook's one cell (and a live figure that runs no model at all answers at that page floor), so
-each panel is also given against it. The targets stay the issue's: against the floor notebook.
+the floor's cell and a live figure's that runs no model (:func:`tests.browser.append_cell`,
+:data:`tests.browser.FLOOR_CODE`, :data:`tests.browser.NULL_FIGURE_CODE`). Once the notebook ran,
+before the panel is timed, its floor is pressed ``PRESSES`` times and dragged ``DRAGS`` times
+(no paced drags), and, once per page, so is the null figure. The same label's round trip costs
+more on a page of many cells, figures and 3D views than in the floor notebook's one cell, and a
+live figure without a model shows what the page itself costs any figure; each panel is also
+given against its page's floor. The targets stay the issue's: against the floor notebook.
 """
 import dataclasses
 import os
@@ -197,6 +199,25 @@ def _page_floor(page):
     return stats
 
 
+def _null_figure(page, selector):
+    """The live figure without a model on the panel's page (the null figure's cell at the end of
+    its notebook, :data:`tests.browser.NULL_FIGURE_CODE`): its presses and fast drags, timed as a
+    panel's are; ``{"median": s, "drag_after": s}``."""
+    slider = B.find_slider(page, B.NULL_FIGURE_SLIDER)
+    B.focus_panel(page, slider, selector)
+    B.press(page, slider, "ArrowRight", 2, selector=selector)  # warm-up
+    times = B.press(page, slider, "ArrowRight", PRESSES, selector=selector)
+    stats = B.summary(times)
+    runs = []
+    for key in ("ArrowRight", "ArrowLeft") * (DRAGS // 2):
+        drag = B.drag(page, slider, key, DRAG, selector=selector)
+        B.settle(page, selector, quiet=0.5, timeout=5)
+        if drag.painted_once and drag.after_last_key_s is not None:
+            runs.append(drag.after_last_key_s)
+    stats["drag_after"] = statistics.median(runs) if runs else None
+    return stats
+
+
 def _entry(name):
     """The registry's entry of ``name`` (``key`` or ``key:slider``: that slider moved instead)."""
     key, _, slider = name.partition(":")
@@ -215,6 +236,10 @@ def _panel(where, server, page, name, selector):
         B.open_voila(page, server, notebook, description)
     ready = time.monotonic() - t0
     page_floor = _page_floor(page)
+    null = None
+    if (where, notebook) not in _NULL_DONE:  # once per page
+        _NULL_DONE.add((where, notebook))
+        null = _null_figure(page, selector)
     slider = B.find_control(page, e)
     selector = f"{e.selector} {selector}"
     B.focus_panel(page, slider, selector)
@@ -232,6 +257,7 @@ def _panel(where, server, page, name, selector):
         stats["step"], stats["step_cpu"] = float(step), float(cpu)
     stats["ready"] = ready
     stats["page_floor"] = page_floor
+    stats["null"] = null
     for label, rate in (("drag", 0.0), ("paced", KEY_RATE)):
         if label == "paced" and not rate:
             continue
@@ -260,6 +286,10 @@ def _panel(where, server, page, name, selector):
         stats["kernel"] = B.kernel_eval(
             page, f"print(repr({e.variable}.values()[{e.slider!r}]))").strip()
     return stats
+
+
+#: The pages (where, notebook) whose null figure was timed.
+_NULL_DONE = set()
 
 
 def _counters(page, variable):
@@ -304,6 +334,19 @@ def _row(where, name, s, floor):
                      + (f" and {s['drag_after'] / pf['drag_after']:.1f}x its drag"
                         if pf.get("drag_after") else ""))
         print(f"{where:<6s}{'  page floor':<24s}{text}", flush=True)
+        nf = s.get("null")
+        if nf and nf.get("median"):
+            text = (f"a live figure without a model on this page: press {nf['median'] * 1e3:.1f} "
+                    f"ms ({nf['median'] / pf['median']:.2f}x the page floor")
+            if floor and floor.get("median"):
+                text += f", {nf['median'] / floor['median']:.2f}x the floor"
+            text += ")"
+            if nf.get("drag_after") is not None:
+                text += (f", its drag's last frame {nf['drag_after'] * 1e3:.0f} ms after the "
+                         f"last key ({nf['drag_after'] / pf['median']:.1f}x the page floor"
+                         + (f", {nf['drag_after'] / floor['median']:.1f}x the floor"
+                            if floor and floor.get("median") else "") + ")")
+            print(f"{where:<6s}{'  null figure':<24s}{text}", flush=True)
     if s.get("paced_runs"):
         paced = _drag_text(s["paced_runs"], s.get("paced_after"), floor, "paced",
                            s.get("paced_quick"))
@@ -351,7 +394,9 @@ def main():
     selector = B.figure_selector()
     root = B.notebook_root(prefix="afm-bench-browser-")
     for notebook in sorted({_entry(name).notebook for name in PANELS}):
-        B.add_floor_cell(root / "notebooks" / notebook)  # the floor on each panel's own page
+        # the floor and a live figure without a model on each panel's own page
+        for code in (B.FLOOR_CODE, B.NULL_FIGURE_CODE):
+            B.append_cell(root / "notebooks" / notebook, code)
     print(f"key press -> changed pixels in headless {B.CHROMIUM}, {PRESSES} presses per panel "
           f"(after one warm-up); figure element {selector!r}")
     print(f"target: median <= {TARGET_RATIO}x the floor (slider -> kernel -> label text, same "

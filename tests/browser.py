@@ -137,7 +137,7 @@ def floor_notebook(path: Path) -> Path:
 FLOOR_NOTEBOOK = "00_floor.ipynb"
 FLOOR_SLIDER = "floor slider"
 #: The floor's cell: a slider whose observer sets a Label's value (names of its own, so that it
-#: can sit in a course notebook beside a panel, :func:`add_floor_cell`).
+#: can sit in a course notebook beside a panel, :func:`append_cell`).
 FLOOR_CODE = ("import ipywidgets as _floor_w\n"
               "_floor_slider = _floor_w.IntSlider(value=50, min=0, max=1000, "
               "description='floor slider')\n"
@@ -147,13 +147,36 @@ FLOOR_CODE = ("import ipywidgets as _floor_w\n"
               "_floor_w.VBox([_floor_slider, _floor_label])")
 
 
-def add_floor_cell(path: Path) -> Path:
-    """Append the floor's cell (:data:`FLOOR_CODE`) to the notebook at ``path``: the floor on
-    the page of a course notebook, beside its panels (a label's round trip costs more on a page
-    of many cells, 3D views and figures than in the floor notebook's one cell)."""
+#: A live figure that runs no model: one line of two points whose end the slider moves, sent
+#: from the slider's observer (no panel, no coalescing). Beside a panel it shows what any live
+#: figure costs on that page.
+NULL_FIGURE_CODE = ("import ipywidgets as _null_w\n"
+                    "from matplotlib.figure import Figure as _null_Figure\n"
+                    "from afmsmiler.plots.live import LiveFigure as _null_Live\n"
+                    "_null_fig = _null_Figure(figsize=(6, 3))\n"
+                    "_null_ax = _null_fig.add_subplot()\n"
+                    "_null_line, = _null_ax.plot([0, 1], [0, 50])\n"
+                    "_null_ax.set_xlim(0, 1)\n"
+                    "_null_ax.set_ylim(-1, 1001)\n"
+                    "_null_live = _null_Live(_null_fig)\n"
+                    "_null_slider = _null_w.IntSlider(value=50, min=0, max=1000, "
+                    "description='null figure slider')\n"
+                    "def _null_move(change):\n"
+                    "    _null_line.set_ydata([0, change['new']])\n"
+                    "    _null_live.sync()\n"
+                    "_null_slider.observe(_null_move, 'value')\n"
+                    "_null_w.VBox([_null_slider, _null_live])")
+NULL_FIGURE_SLIDER = "null figure slider"
+
+
+def append_cell(path: Path, code: str) -> Path:
+    """Append a code cell of ``code`` to the notebook at ``path`` (the floor's,
+    :data:`FLOOR_CODE`, or the null figure's, :data:`NULL_FIGURE_CODE`, on the page of a course
+    notebook, beside its panels: a label's round trip costs more on a page of many cells, 3D
+    views and figures than in the floor notebook's one cell)."""
     import nbformat
     nb = nbformat.read(str(path), as_version=4)
-    nb.cells.append(nbformat.v4.new_code_cell(FLOOR_CODE))
+    nb.cells.append(nbformat.v4.new_code_cell(code))
     nbformat.write(nb, str(path))
     return path
 

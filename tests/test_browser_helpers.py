@@ -48,25 +48,39 @@ def test_a_server_names_a_windowing_mode_it_does_not_know(tmp_path, windowing):
         B.Server("lab", tmp_path, windowing=windowing)
 
 
-def test_the_floor_cell_added_to_a_course_notebook_is_the_floor_notebook_s_and_keeps_its_cells(
-        tmp_path):
+@pytest.mark.parametrize("code, prefix", [(B.FLOOR_CODE, "_floor_"),
+                                          (B.NULL_FIGURE_CODE, "_null_")],
+                         ids=["floor", "null figure"])
+def test_a_cell_added_to_a_course_notebook_keeps_its_cells_and_its_names(tmp_path, code, prefix):
     import shutil
 
     import nbformat
     course = sorted(B.NOTEBOOKS.glob("*.ipynb"))[0]
     path = shutil.copy2(course, tmp_path / course.name)
     before = nbformat.read(str(path), as_version=4).cells
-    B.add_floor_cell(path)
+    B.append_cell(path, code)
     after = nbformat.read(str(path), as_version=4).cells
     assert [c.source for c in after[:-1]] == [c.source for c in before]
-    floor = nbformat.read(str(B.floor_notebook(tmp_path / "floor.ipynb")), as_version=4).cells
-    assert after[-1].cell_type == "code" and after[-1].source == floor[0].source
-    # run as a cell would be: its label follows its slider, and it takes no name of the notebook
-    body, last = after[-1].source.rsplit("\n", 1)
+    assert after[-1].cell_type == "code" and after[-1].source == code
+    # run as a cell would be: it takes no name of the notebook, and its output follows its slider
+    body, last = code.rsplit("\n", 1)
     names = {}
     exec(body, names)
-    slider, label = eval(last, names).children  # the cell's output: the box it shows
-    assert slider.description == B.FLOOR_SLIDER
-    slider.value = 123
-    assert label.value == "123"
-    assert all(n.startswith("_floor_") for n in names if n != "__builtins__")
+    slider, shown = eval(last, names).children  # the cell's output: the box it shows
+    assert all(n.lower().startswith(prefix) for n in names if n != "__builtins__")
+    if code == B.FLOOR_CODE:
+        assert slider.description == B.FLOOR_SLIDER
+        slider.value = 123
+        assert shown.value == "123"
+    else:
+        assert slider.description == B.NULL_FIGURE_SLIDER
+        sent = shown.frames_sent
+        slider.value = 123
+        assert shown.frames_sent == sent + 1
+        assert names["_null_line"].get_ydata()[1] == 123
+
+
+def test_the_floor_notebook_holds_the_floor_cell(tmp_path):
+    import nbformat
+    cells = nbformat.read(str(B.floor_notebook(tmp_path / "floor.ipynb")), as_version=4).cells
+    assert [c.source for c in cells] == [B.FLOOR_CODE]
