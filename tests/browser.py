@@ -171,9 +171,8 @@ NULL_FIGURE_SLIDER = "null figure slider"
 
 def append_cell(path: Path, code: str) -> Path:
     """Append a code cell of ``code`` to the notebook at ``path`` (the floor's,
-    :data:`FLOOR_CODE`, or the null figure's, :data:`NULL_FIGURE_CODE`, on the page of a course
-    notebook, beside its panels: a label's round trip costs more on a page of many cells, 3D
-    views and figures than in the floor notebook's one cell)."""
+    :data:`FLOOR_CODE`, or the null figure's, :data:`NULL_FIGURE_CODE`: timed on the page of a
+    course notebook, beside its panels, by ``benchmarks/bench_browser.py``)."""
     import nbformat
     nb = nbformat.read(str(path), as_version=4)
     nb.cells.append(nbformat.v4.new_code_cell(code))
