@@ -117,6 +117,14 @@ def _floor(where, server, page):
         B.run_all(page)
     else:
         B.open_voila(page, server, B.FLOOR_NOTEBOOK, B.FLOOR_SLIDER)
+    return _page_floor(page, paced=True)
+
+
+def _page_floor(page, *, paced: bool = False):
+    """The floor's cell on the open page (the floor notebook's, or the one at the end of a
+    panel's notebook, :data:`tests.browser.FLOOR_CODE`): ``PRESSES`` presses and ``DRAGS`` drags
+    of its slider, and as many paced ones with ``paced``; the presses' :func:`tests.browser.summary`
+    with their ``times`` and each kind's drags and median (``drags``, ``drag_after``, ...)."""
     slider = B.find_slider(page, B.FLOOR_SLIDER)
     B.mark_text(page, slider)
     B.press_text(page, slider, "ArrowRight", 2)  # warm-up
@@ -124,7 +132,7 @@ def _floor(where, server, page):
     stats = B.summary(times)
     stats["times"] = [t for t in times if t is not None]
     for label, rate in (("drag", 0.0), ("paced", KEY_RATE)):
-        if label == "paced" and not rate:
+        if label == "paced" and not (paced and rate):
             continue
         runs = [_floor_drag(page, slider, key, 1.0 / rate if rate else 0.0)
                 for key in ("ArrowRight", "ArrowLeft") * (DRAGS // 2)]
@@ -182,22 +190,6 @@ def _floor_drag(page, slider, key, interval=0.0):
     if not st["keys"] or not st["changes"] or st["changes"][-1] < st["keys"][-1]:
         return None
     return (st["changes"][-1] - st["keys"][-1]) / 1e3
-
-
-def _page_floor(page):
-    """The floor on the panel's own page: the floor's cell at the end of the panel's notebook
-    (:data:`tests.browser.FLOOR_CODE`), pressed and dragged as the floor notebook's is (no paced
-    drags); its stats as :func:`_floor`'s."""
-    slider = B.find_slider(page, B.FLOOR_SLIDER)
-    B.mark_text(page, slider)
-    B.press_text(page, slider, "ArrowRight", 2)  # warm-up
-    times = B.press_text(page, slider, "ArrowRight", PRESSES)
-    stats = B.summary(times)
-    runs = [_floor_drag(page, slider, key) for key in ("ArrowRight", "ArrowLeft") * (DRAGS // 2)]
-    runs = [d for d in runs if d is not None]
-    stats["drags"] = runs
-    stats["drag_after"] = statistics.median(runs) if runs else None
-    return stats
 
 
 def _null_figure(page, selector):
